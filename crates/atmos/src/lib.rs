@@ -1,0 +1,1 @@
+//! Aerial perspective, sky, spectral colour, rainbow and mirage.

@@ -1,0 +1,151 @@
+//! Crash-safe file writing: write to a temporary name beside the target, then rename.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::error::{CoreError, Result};
+
+static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// The temporary path used while writing `path`: a hidden sibling in the same
+/// directory (so the final rename never crosses file systems).
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
+    path.with_file_name(format!(
+        ".natura-tmp-{}-{unique}-{name}",
+        std::process::id()
+    ))
+}
+
+/// Writes a file through `write`, atomically: the bytes go to a temporary file
+/// beside `path`, which is flushed, synced and renamed over `path` only if
+/// `write` succeeds. On any error the temporary file is removed and `path` is
+/// untouched, so a crash or a failed encode never leaves a half-written file.
+///
+/// `write` returns a problem description on failure; it is reported as
+/// [`CoreError::Format`] naming `path` (or [`CoreError::Io`] for OS errors).
+pub fn write_atomic<F>(path: impl AsRef<Path>, write: F) -> Result<()>
+where
+    F: FnOnce(&mut BufWriter<File>) -> std::result::Result<(), WriteError>,
+{
+    let path = path.as_ref();
+    if path.file_name().is_none() {
+        return Err(CoreError::format(path, "not a file path"));
+    }
+    let tmp = temp_path(path);
+    let result = (|| {
+        let file = File::create(&tmp).map_err(|e| CoreError::io(path, e))?;
+        let mut w = BufWriter::new(file);
+        write(&mut w).map_err(|e| match e {
+            WriteError::Io(e) => CoreError::io(path, e),
+            WriteError::Encode(m) => CoreError::format(path, m),
+        })?;
+        let file = w
+            .into_inner()
+            .map_err(|e| CoreError::io(path, e.into_error()))?;
+        file.sync_all().map_err(|e| CoreError::io(path, e))?;
+        std::fs::rename(&tmp, path).map_err(|e| CoreError::io(path, e))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Writes `bytes` to `path` atomically (see [`write_atomic`]).
+pub fn write_bytes_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    write_atomic(path, |w| w.write_all(bytes).map_err(WriteError::Io))
+}
+
+/// Checks, before any long computation, that a file can be created at `path`:
+/// the parent directory exists and is writable. Nothing is left behind.
+pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
+    let path = path.as_ref();
+    let tmp = temp_path(path);
+    match File::create(&tmp) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&tmp);
+            Ok(())
+        }
+        Err(e) => Err(CoreError::io(path, e)),
+    }
+}
+
+/// Failure inside a [`write_atomic`] callback.
+#[derive(Debug)]
+pub enum WriteError {
+    /// The OS refused a write.
+    Io(std::io::Error),
+    /// An encoder refused the data (reason given).
+    Encode(String),
+}
+
+impl From<std::io::Error> for WriteError {
+    fn from(e: std::io::Error) -> Self {
+        WriteError::Io(e)
+    }
+}
+
+/// Reads a whole file, mapping OS errors to [`CoreError::Io`] naming the file.
+pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<u8>> {
+    let path = path.as_ref();
+    std::fs::read(path).map_err(|e| CoreError::io(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("natura-core-io-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    #[test]
+    fn failed_write_leaves_nothing() {
+        let p = scratch("fail.bin");
+        std::fs::write(&p, b"old").unwrap();
+        let err = write_atomic(&p, |w| {
+            w.write_all(b"partial")?;
+            Err(WriteError::Encode("encoder refused".into()))
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("encoder refused"));
+        assert_eq!(std::fs::read(&p).unwrap(), b"old");
+        let dir = p.parent().unwrap();
+        let leftovers: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().starts_with(".natura-tmp"))
+            .collect();
+        assert!(leftovers.is_empty());
+    }
+
+    #[test]
+    fn successful_write_replaces() {
+        let p = scratch("ok.bin");
+        write_bytes_atomic(&p, b"new").unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"new");
+    }
+
+    #[test]
+    fn unwritable_directory_is_reported() {
+        let p = Path::new("/nonexistent-natura-dir/x.png");
+        let err = check_writable(p).unwrap_err();
+        assert!(
+            err.to_string().contains("/nonexistent-natura-dir/x.png"),
+            "{err}"
+        );
+        assert!(write_bytes_atomic(p, b"x").is_err());
+    }
+}
+
+pub mod exr;

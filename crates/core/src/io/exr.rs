@@ -1,0 +1,217 @@
+//! Multi-channel `f32` OpenEXR files: the one place natura touches the `exr` crate.
+//!
+//! Written files are lossless (ZIP, 16 scanlines per block), carry the
+//! channels given, any text attributes, and a `naturaChecksum` attribute (FNV-1a
+//! over the channel data) that [`read_exr`] verifies when present, so a file
+//! corrupted after writing is refused rather than silently misread.
+
+use std::io::{BufReader, Read, Seek};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+
+use exr::prelude::*;
+
+use crate::error::{CoreError, Result};
+use crate::grid2::checked_len;
+use crate::io::{WriteError, write_atomic};
+
+const CHECKSUM_KEY: &str = "naturaChecksum";
+
+/// The channels and text attributes of one EXR layer, all as `f32`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExrChannels {
+    /// Pixels per row.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// `(name, row-major samples)`, each `width·height` long.
+    pub channels: Vec<(String, Vec<f32>)>,
+    /// Text attributes of the layer, `(key, value)`.
+    pub attributes: Vec<(String, String)>,
+}
+
+impl ExrChannels {
+    /// The samples of the channel called `name`, if present.
+    #[must_use]
+    pub fn channel(&self, name: &str) -> Option<&[f32]> {
+        self.channels
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// The text attribute `key`, if present.
+    #[must_use]
+    pub fn attribute(&self, key: &str) -> Option<&str> {
+        self.attributes
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
+/// FNV-1a over the channels in name order (EXR stores channels sorted by name,
+/// so the order given to the writer is not the order read back).
+fn checksum<'a>(channels: impl Iterator<Item = (&'a str, &'a [f32])>) -> String {
+    let mut sorted: Vec<_> = channels.collect();
+    sorted.sort_by(|a, b| a.0.cmp(b.0));
+    let mut h: u64 = 0xCBF2_9CE4_8422_2325;
+    let mut eat = |b: u8| h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3);
+    for (name, data) in sorted {
+        name.bytes().for_each(&mut eat);
+        eat(0);
+        for v in data {
+            v.to_bits().to_le_bytes().into_iter().for_each(&mut eat);
+        }
+    }
+    format!("{h:016x}")
+}
+
+/// Writes `channels` (each `width·height` row-major `f32` samples) and text
+/// `attributes` to `path` as a lossless EXR, atomically.
+///
+/// Fails on a zero or oversize resolution, a channel of the wrong length, or
+/// an I/O error, naming the file.
+pub fn write_exr(
+    path: impl AsRef<Path>,
+    width: usize,
+    height: usize,
+    channels: &[(&str, &[f32])],
+    attributes: &[(&str, &str)],
+) -> Result<()> {
+    let path = path.as_ref();
+    let len = checked_len::<f32>(&[width, height, channels.len().max(1)])? / channels.len().max(1);
+    if channels.is_empty() {
+        return Err(CoreError::format(path, "no channels to write"));
+    }
+    for (name, data) in channels {
+        if data.len() != len {
+            return Err(CoreError::SizeMismatch {
+                expected: format!("channel `{name}` with {width} × {height} = {len} samples"),
+                actual: format!("{} samples", data.len()),
+            });
+        }
+    }
+    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels
+        .iter()
+        .map(|(name, data)| AnyChannel::new(*name, FlatSamples::F32(data.to_vec())))
+        .collect();
+    let mut attrs = LayerAttributes::default();
+    for (k, v) in attributes {
+        attrs
+            .other
+            .insert(Text::from(*k), AttributeValue::Text(Text::from(*v)));
+    }
+    let sum = checksum(channels.iter().map(|(n, d)| (*n, *d)));
+    attrs.other.insert(
+        Text::from(CHECKSUM_KEY),
+        AttributeValue::Text(Text::from(sum.as_str())),
+    );
+    let layer = Layer::new(
+        (width, height),
+        attrs,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(list),
+    );
+    let image = Image::from_layer(layer);
+    write_atomic(path, |w| {
+        image.write().to_buffered(w).map_err(|e| match e {
+            exr::error::Error::Io(e) => WriteError::Io(e),
+            other => WriteError::Encode(other.to_string()),
+        })
+    })
+}
+
+/// Reads the first layer of an EXR file at its full resolution, converting
+/// every channel to `f32`.
+///
+/// Corrupt, truncated or absurdly sized files give [`CoreError::Format`]
+/// naming the file and the problem; a file whose `naturaChecksum` does not
+/// match its pixels is refused. The header's resolution is checked against
+/// [`crate::MAX_GRID_BYTES`] before any pixel memory is allocated.
+pub fn read_exr(path: impl AsRef<Path>) -> Result<ExrChannels> {
+    let path = path.as_ref();
+    let file = std::fs::File::open(path).map_err(|e| CoreError::Io {
+        path: path.into(),
+        source: e,
+    })?;
+    read_exr_from(BufReader::new(file), path)
+}
+
+/// As [`read_exr`], from any seekable reader; `name` labels errors.
+pub fn read_exr_from(mut reader: impl Read + Seek, name: &Path) -> Result<ExrChannels> {
+    let bad = |m: String| CoreError::format(name, m);
+    // Guard the decoder: a library panic on hostile input becomes an error too.
+    let meta = catch_unwind(AssertUnwindSafe(|| {
+        MetaData::read_from_buffered(&mut reader, false)
+    }))
+    .map_err(|_| bad("corrupt EXR header".into()))?
+    .map_err(|e| bad(format!("not a readable EXR file: {e}")))?;
+    let header = meta
+        .headers
+        .first()
+        .ok_or_else(|| bad("EXR file has no layers".into()))?;
+    let (w, h) = (header.layer_size.width(), header.layer_size.height());
+    let nch = header.channels.list.len();
+    checked_len::<f32>(&[w, h, nch.max(1)]).map_err(|e| bad(format!("EXR header: {e}")))?;
+    reader.rewind().map_err(|e| CoreError::Io {
+        path: name.into(),
+        source: e,
+    })?;
+
+    let image = catch_unwind(AssertUnwindSafe(|| {
+        read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .non_parallel()
+            .from_buffered(reader)
+    }))
+    .map_err(|_| bad("corrupt EXR pixel data".into()))?
+    .map_err(|e| bad(format!("corrupt or truncated EXR: {e}")))?;
+
+    let layer = &image.layer_data;
+    let (w, h) = (layer.size.width(), layer.size.height());
+    let mut channels = Vec::with_capacity(layer.channel_data.list.len());
+    for ch in &layer.channel_data.list {
+        let values: Vec<f32> = ch.sample_data.values_as_f32().collect();
+        if values.len() != w * h {
+            return Err(bad(format!(
+                "channel `{}` has {} samples, expected {}",
+                ch.name,
+                values.len(),
+                w * h
+            )));
+        }
+        channels.push((ch.name.to_string(), values));
+    }
+    let mut attributes = Vec::new();
+    for (k, v) in layer
+        .attributes
+        .other
+        .iter()
+        .chain(image.attributes.other.iter())
+    {
+        if let AttributeValue::Text(t) = v {
+            attributes.push((k.to_string(), t.to_string()));
+        }
+    }
+    attributes.sort();
+    let out = ExrChannels {
+        width: w,
+        height: h,
+        channels,
+        attributes,
+    };
+    if let Some(expected) = out.attribute(CHECKSUM_KEY) {
+        let got = checksum(out.channels.iter().map(|(n, d)| (n.as_str(), d.as_slice())));
+        if got != expected {
+            return Err(bad(format!(
+                "checksum mismatch (stored {expected}, data gives {got}): file is corrupt"
+            )));
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,1 @@
+//! Stable fluids, smoke with vorticity confinement, and liquids.

@@ -1,0 +1,2 @@
+//! Noise bases, fractional Brownian motion, multifractals and domain distortion.
+#![no_std]

@@ -1,0 +1,1 @@
+//! Tessendorf FFT ocean waves, spectra, dispersion, Gerstner waves and water optics.

@@ -1,0 +1,1 @@
+//! Scenes that compose the natura crates into images.

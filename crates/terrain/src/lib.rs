@@ -1,0 +1,1 @@
+//! Terrain synthesis (subdivision, faulting, spectral, noise), erosion and analysis.

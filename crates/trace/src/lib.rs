@@ -1,0 +1,1 @@
+//! Ray tracing of height fields: grid tracing, maximum mipmaps, cameras.
