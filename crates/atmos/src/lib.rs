@@ -1,1 +1,13 @@
+//! # natura-atmos
+//!
 //! Aerial perspective, sky, spectral colour, rainbow and mirage.
+#![forbid(unsafe_code)]
+
+mod dir;
+mod error;
+pub mod medium;
+pub mod special;
+
+pub use dir::Dir3;
+pub use error::{AtmosError, Result};
+pub use medium::{Attenuation, Medium};
