@@ -6,7 +6,9 @@
 mod dir;
 mod error;
 pub mod medium;
+pub mod optics;
 pub mod special;
+pub mod spectrum;
 
 pub use dir::Dir3;
 pub use error::{AtmosError, Result};
