@@ -7,6 +7,8 @@ mod dir;
 mod error;
 pub mod medium;
 pub mod optics;
+pub mod scatter;
+pub mod sky;
 pub mod special;
 pub mod spectrum;
 
