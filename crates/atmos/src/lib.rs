@@ -7,6 +7,7 @@ mod dir;
 mod error;
 pub mod medium;
 pub mod optics;
+pub mod rainbow;
 pub mod scatter;
 pub mod sky;
 pub mod special;
