@@ -6,6 +6,7 @@
 mod dir;
 mod error;
 pub mod medium;
+pub mod mirage;
 pub mod optics;
 pub mod rainbow;
 pub mod scatter;
