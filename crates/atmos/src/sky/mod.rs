@@ -37,6 +37,7 @@
 mod data;
 mod model;
 mod params;
+mod render;
 mod spec;
 mod view;
 
@@ -49,6 +50,7 @@ pub use model::{RGB_WAVELENGTHS_NM, SPECTRAL_BANDS};
 pub use params::{
     AtmosphereParams, Evaluation, LutSettings, MieParams, MiePhase, OzoneParams, RayleighParams,
 };
+pub use render::{Ground, Projection, auto_exposure};
 pub use view::{ApSample, SkyView};
 
 use crate::Dir3;

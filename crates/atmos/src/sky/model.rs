@@ -178,13 +178,6 @@ impl<const N: usize> Model<N> {
         (rr, rm, ro)
     }
 
-    /// Extinction coefficient at altitude `h`, m⁻¹.
-    #[inline]
-    pub fn extinction(&self, h: f64) -> S<N> {
-        let (rr, rm, ro) = self.densities(h);
-        self.rayleigh * rr + self.mie_ext * rm + self.ozone * ro
-    }
-
     /// The Mie phase function.
     #[inline]
     pub fn mie_phase(&self, nu: f64) -> f64 {

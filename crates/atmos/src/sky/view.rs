@@ -63,6 +63,7 @@ pub struct SkyView {
     sun_radius: f32,
     cos_sun_radius: f32,
     ambient: Vec3,
+    sun_e: Vec3,
 }
 
 /// Zenith angle → `[0, 1]`, concentrating texels at the horizon `θ_h` (Hillaire §5.3).
@@ -233,8 +234,10 @@ pub(crate) fn build(model: Arc<Inner>, params: AtmosphereParams, q: DVec3, sun: 
         sun_radius: params.sun_angular_radius as f32,
         cos_sun_radius: params.sun_angular_radius.cos() as f32,
         ambient: Vec3::ZERO,
+        sun_e: Vec3::ZERO,
     };
     view.ambient = view.integrate_irradiance();
+    view.sun_e = view.sun_irradiance();
     view
 }
 
@@ -391,6 +394,23 @@ impl SkyView {
         atm.sun_irradiance(p, self.sun)
             .map(|v| v.as_vec3())
             .unwrap_or(Vec3::ZERO)
+    }
+
+    /// Planet-centred camera position.
+    pub(crate) fn camera_planet(&self) -> DVec3 {
+        self.q
+    }
+
+    pub(crate) fn bottom_radius(&self) -> f64 {
+        self.params.bottom_radius_m
+    }
+
+    pub(crate) fn aerial_range(&self) -> f64 {
+        f64::from(self.ap_max)
+    }
+
+    pub(crate) fn sun_irradiance_cached(&self) -> Vec3 {
+        self.sun_e
     }
 
     /// The sun direction this view was built for.
