@@ -415,6 +415,24 @@ impl Rainbow {
     }
 }
 
+impl Rainbow {
+    /// Returns `background` seen through `distance_m` of rain plus the rainbow:
+    /// `background·e^{−βd} + E·P(θ)·(1 − e^{−βd})` (see [`Rainbow::radiance`]).
+    pub fn apply(
+        &self,
+        background: DVec3,
+        view: Dir3,
+        sun: Dir3,
+        sun_irradiance: DVec3,
+        rain_extinction: f64,
+        distance_m: f64,
+    ) -> Result<DVec3> {
+        let add = self.radiance(view, sun, sun_irradiance, rain_extinction, distance_m)?;
+        let t = if rain_extinction == 0.0 { 1.0 } else { (-rain_extinction * distance_m).exp() };
+        Ok(background * t + add)
+    }
+}
+
 /// Musgrave's empirical ("impressionistic") rainbow: 13 coloured fogs in
 /// cones about the antisolar vector, indexed linearly in the cosine
 /// (D:1905-1913, verbatim semantics).
