@@ -18,9 +18,17 @@ use natura::core::{Image, ToneMap};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let width: usize = args.value("--width", if quick { 240 } else { 960 }, "image width, pixels");
+    let width: usize = args.value(
+        "--width",
+        if quick { 240 } else { 960 },
+        "image width, pixels",
+    );
     let sun_el: f64 = args.value("--sun", 8.0, "sun elevation, degrees (behind the camera)");
-    let rain: f64 = args.value("--rain", 2e-4, "rain extinction, 1/m (drop cross-section per volume)");
+    let rain: f64 = args.value(
+        "--rain",
+        2e-4,
+        "rain extinction, 1/m (drop cross-section per volume)",
+    );
     let out = args.out_dir("docs/gallery/atmos");
     args.finish();
     if !(16..=8192).contains(&width) {
@@ -60,7 +68,8 @@ fn main() {
         let reach = view.ground_distance(d).unwrap_or(f32::INFINITY);
         let rain_depth = (reach - near).clamp(0.0, depth);
         let dir = common::check(Dir3::from_f32(d));
-        common::check(bow.apply(bg.as_dvec3(), dir, sun, e_sun, rain, f64::from(rain_depth))).as_vec3()
+        common::check(bow.apply(bg.as_dvec3(), dir, sun, e_sun, rain, f64::from(rain_depth)))
+            .as_vec3()
     }));
     let ev = auto_exposure(&img, 0.18);
     let path = out.join("rainbow.png");
@@ -98,5 +107,8 @@ fn main() {
     let path = out.join("rainbow_table.png");
     common::check(chart.save_png(&path));
     println!("wrote {}", path.display());
-    println!("table: primary+secondary carry {:.2}% of intercepted light", 100.0 * t.total().y);
+    println!(
+        "table: primary+secondary carry {:.2}% of intercepted light",
+        100.0 * t.total().y
+    );
 }

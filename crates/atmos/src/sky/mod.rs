@@ -62,15 +62,21 @@ use spec::S;
 /// The model in RGB or spectral channels.
 #[derive(Debug)]
 pub(crate) enum Inner {
-    Rgb(Model<3>),
-    Spectral(Model<SPECTRAL_BANDS>),
+    Rgb(Box<Model<3>>),
+    Spectral(Box<Model<SPECTRAL_BANDS>>),
 }
 
 macro_rules! with_model {
     ($inner:expr, $m:ident => $body:expr) => {
         match $inner {
-            Inner::Rgb($m) => $body,
-            Inner::Spectral($m) => $body,
+            Inner::Rgb(b) => {
+                let $m = &**b;
+                $body
+            }
+            Inner::Spectral(b) => {
+                let $m = &**b;
+                $body
+            }
         }
     };
 }
@@ -135,8 +141,8 @@ impl Atmosphere {
     /// Like [`Atmosphere::new`], reporting each LUT build to `progress`.
     pub fn with_progress(params: AtmosphereParams, progress: &dyn Progress) -> Result<Self> {
         let inner = match params.evaluation {
-            Evaluation::Rgb => Inner::Rgb(Model::new(params, progress)?),
-            Evaluation::Spectral => Inner::Spectral(Model::new(params, progress)?),
+            Evaluation::Rgb => Inner::Rgb(Box::new(Model::new(params, progress)?)),
+            Evaluation::Spectral => Inner::Spectral(Box::new(Model::new(params, progress)?)),
         };
         Ok(Self {
             inner: Arc::new(inner),
@@ -329,7 +335,7 @@ impl Atmosphere {
         SunlitAtmosphere { atm: self, sun }
     }
 
-    /// Checks a world point for the other modules.
+    /// The channel model, for the other sky modules.
     pub(crate) fn inner(&self) -> &Inner {
         &self.inner
     }

@@ -47,15 +47,15 @@ impl Projection {
                 in_range(
                     "min_elevation",
                     min_elevation,
-                    -1.5708,
-                    1.5708,
+                    -std::f64::consts::FRAC_PI_2,
+                    std::f64::consts::FRAC_PI_2,
                     "must lie in [−π/2, π/2]",
                 )?;
                 in_range(
                     "max_elevation",
                     max_elevation,
-                    -1.5708,
-                    1.5708,
+                    -std::f64::consts::FRAC_PI_2,
+                    std::f64::consts::FRAC_PI_2,
                     "must lie in [−π/2, π/2]",
                 )?;
                 if max_elevation <= min_elevation {
