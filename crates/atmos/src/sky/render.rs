@@ -151,9 +151,11 @@ impl SkyView {
     /// through the aerial perspective.
     #[must_use]
     pub fn ground_radiance(&self, view: Vec3, d: f32, ground: &Ground) -> Vec3 {
-        let hit = self.camera_planet() + view.as_dvec3() * f64::from(d);
-        let n = hit.normalize();
-        let cos = n.dot(self.sun().get()).max(0.0) as f32;
+        // The surface normal at the hit: (q + d·v)/R, with q the planet-centred camera.
+        let q = self.camera_planet();
+        let r = self.bottom_radius();
+        let n = (q / r).as_vec3() + view * (d / r as f32);
+        let cos = n.dot(self.sun().as_vec3()).max(0.0) / n.length();
         let e = self.sun_irradiance_cached() * cos + self.sky_irradiance();
         let l = ground.albedo * e * std::f32::consts::FRAC_1_PI;
         let ap = if f64::from(d) <= self.aerial_range() {
@@ -195,9 +197,7 @@ impl SkyView {
             }
             let mut l = self.radiance_f32(d);
             if sun_disc {
-                if let Ok(dir) = Dir3::from_f32(d) {
-                    l += self.sun_disc(dir);
-                }
+                l += self.sun_disc_f32(d);
             }
             l
         };
