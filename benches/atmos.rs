@@ -23,7 +23,7 @@ fn directions(n: usize) -> Vec<Dir3> {
     (0..n)
         .map(|i| {
             let el = 0.02 + 1.5 * ((i * 37) % n) as f64 / n as f64;
-            let az = 6.283 * (i as f64 * 0.618_034).fract();
+            let az = std::f64::consts::TAU * (i as f64 * 0.618_034).fract();
             Dir3::from_angles(el, az)
         })
         .collect()

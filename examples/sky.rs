@@ -27,7 +27,7 @@ fn main() {
     let altitude: f64 = args.value("--altitude", 300.0, "camera altitude, m");
     let out = args.out_dir("docs/gallery/atmos");
     args.finish();
-    if size < 8 || size > 4096 {
+    if !(8..=4096).contains(&size) {
         common::fail("--size must be in 8..=4096");
     }
 
