@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
 use crate::ray::{Hit, Ray};
-use crate::ray_cell::{CellHit, Edges, intersect_cell};
+use crate::ray_cell::{CellHit, intersect_cell};
 
 /// Returns the closest hit of `ray` with the surface in `[t_min, t_max]`,
 /// found by testing all `2·(nx − 1)·(ny − 1)` triangles.
@@ -26,7 +26,7 @@ pub fn brute_force(hf: &HeightField, ray: &Ray, t_min: f32, t_max: f32) -> Resul
     let mut best: Option<CellHit> = None;
     for j in 0..f.ncy {
         for i in 0..f.ncx {
-            if let Some(h) = intersect_cell::<false>(&r, i, j, f.corners(i, j), Edges::Exact) {
+            if let Some(h) = intersect_cell::<false>(&r, i, j, f.corners(i, j)) {
                 if best.is_none_or(|b| h.t < b.t) {
                     best = Some(h);
                 }

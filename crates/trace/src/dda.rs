@@ -33,7 +33,8 @@ use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
 use crate::ray::{Hit, Ray, TraceStats};
-use crate::ray_cell::{CellHit, Edges, intersect_cell};
+use crate::leaf::{Exit, leaf, nearer};
+use crate::ray_cell::CellHit;
 use crate::tracer::Tracer;
 
 /// One cell visited by the DDA: the cell and the ray's parameter span over it.
@@ -63,6 +64,7 @@ pub struct CellWalk {
     t: f32,
     t_end: f32,
     done: bool,
+    exit: Exit,
 }
 
 impl CellWalk {
@@ -81,6 +83,7 @@ impl CellWalk {
             t: 0.0,
             t_end: 0.0,
             done: true,
+            exit: Exit::End,
         };
         if let Some(r) = r.filter(|r| !r.misses_box()) {
             let (i, j) = r.entry_cell(f);
@@ -140,8 +143,10 @@ impl Iterator for CellWalk {
         };
         if t_out >= self.t_end {
             self.done = true;
+            self.exit = Exit::End;
             return Some(visit);
         }
+        self.exit = if tx <= ty { Exit::X } else { Exit::Y };
         // Step one axis; on an exact corner x first, then y next time (empty span).
         if tx <= ty {
             if self.dx > 0.0 {
@@ -162,32 +167,6 @@ impl Iterator for CellWalk {
         }
         self.t = t_out;
         Some(visit)
-    }
-}
-
-/// Tests cell `(i, j)` over the ray span `[t_in, t_out]`: the two-sided z cull
-/// against the corners, then both triangles.
-#[inline(always)]
-pub(crate) fn leaf<const ANY: bool>(
-    f: &FieldView<'_>,
-    r: &GridRay,
-    i: u32,
-    j: u32,
-    t_in: f32,
-    t_out: f32,
-    stats: &mut TraceStats,
-) -> Option<CellHit> {
-    let c = f.corners(i, j);
-    let (za, zb) = (r.z_at(t_in), r.z_at(t_out));
-    let (zlo, zhi) = if za <= zb { (za, zb) } else { (zb, za) };
-    let cmax = c[0].max(c[1]).max(c[2].max(c[3]));
-    let cmin = c[0].min(c[1]).min(c[2].min(c[3]));
-    if zlo <= cmax + r.zeps && zhi >= cmin - r.zeps {
-        stats.cells_tested += 1;
-        stats.triangle_tests += 2;
-        intersect_cell::<ANY>(r, i, j, c, Edges::Widened)
-    } else {
-        None
     }
 }
 
@@ -229,14 +208,27 @@ impl<'a> GridTracer<'a> {
         stats: &mut TraceStats,
     ) -> Option<CellHit> {
         let r = GridRay::new(&self.f, ray, t_min, t_max)?;
-        for v in CellWalk::new(&self.f, Some(&r)) {
+        let mut walk = CellWalk::new(&self.f, Some(&r));
+        let mut pending: Option<CellHit> = None;
+        let mut first = true;
+        while let Some(v) = walk.next() {
             stats.nodes_visited += 1;
-            if let Some(h) = leaf::<ANY>(&self.f, &r, v.cell.x, v.cell.y, v.t_in, v.t_out, stats)
-            {
-                return Some(h);
+            if let Some(p) = pending {
+                if p.t <= v.t_in {
+                    return pending;
+                }
             }
+            let (i, j) = (v.cell.x, v.cell.y);
+            if let Some(h) = leaf::<ANY>(&self.f, &r, i, j, v.t_in, v.t_out, walk.exit, first, stats) {
+                let h = nearer(pending, h);
+                if ANY || h.t <= v.t_out + r.ttol {
+                    return Some(h);
+                }
+                pending = Some(h);
+            }
+            first = false;
         }
-        None
+        pending
     }
 }
 

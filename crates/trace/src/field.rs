@@ -21,6 +21,9 @@ pub(crate) struct FieldView<'a> {
     pub cell: f32,
     pub zmin: f32,
     pub zmax: f32,
+    /// Largest height span `max − min` of any cell's four corners: how far the
+    /// surface can move per cell of horizontal distance.
+    pub smax: f32,
 }
 
 impl<'a> FieldView<'a> {
@@ -47,6 +50,15 @@ impl<'a> FieldView<'a> {
             return Err(bad(format!("cell size {cell} must be finite and > 0")));
         }
         let (zmin, zmax) = hf.min_max();
+        let h = hf.heights().as_slice();
+        let mut smax = 0.0f32;
+        for (r0, r1) in h.chunks_exact(nx).zip(h.chunks_exact(nx).skip(1)) {
+            for k in 0..nx - 1 {
+                let c = [r0[k], r0[k + 1], r1[k], r1[k + 1]];
+                let span = c[0].max(c[1]).max(c[2].max(c[3])) - c[0].min(c[1]).min(c[2].min(c[3]));
+                smax = smax.max(span);
+            }
+        }
         Ok(Self {
             hf,
             h: hf.heights().as_slice(),
@@ -56,6 +68,7 @@ impl<'a> FieldView<'a> {
             cell,
             zmin,
             zmax,
+            smax,
         })
     }
 

@@ -66,12 +66,20 @@ pub(crate) struct GridRay {
     pub t1: f32,
     /// Bound on the rounding error of any ray altitude `o.z + t·d.z` in the box,
     /// and of the corner heights relative to it: the culls widen by this.
+    #[allow(dead_code)]
     pub zeps: f32,
     /// Bound on the rounding error of projected coordinates in the watertight
-    /// test and of the traversal's xy positions; the fast paths widen each
-    /// triangle by it so that a hit on a cell edge the traversal passed on
-    /// the other side of is still found (no pinholes).
+    /// test and of the traversal's xy positions: where the ray passes within
+    /// this of a cell edge or corner, the tracers also test the cells across
+    /// it, so a hit the traversal rounded past is still found (no pinholes).
     pub xyeps: f32,
+    /// `xyeps` as a parameter span along the ray (infinite for vertical rays).
+    pub ttol: f32,
+    /// Margin of every z cull: the altitude rounding bound plus how far the
+    /// surface can rise within `2·xyeps` of a cell (hits just across a cell
+    /// edge or corner are looked for from the near cell, so its cull must
+    /// let them through).
+    pub zm: f32,
     pub shear: Shear,
 }
 
@@ -92,8 +100,13 @@ impl GridRay {
         let eps = f32::EPSILON;
         let zabs = f.zmin.abs().max(f.zmax.abs());
         let zeps = 16.0 * eps * (o.z.abs() + zabs) + 1e-30;
-        let lo = Vec3::new(0.0, 0.0, f.zmin - zeps);
-        let hi = Vec3::new(f.ncx as f32, f.ncy as f32, f.zmax + zeps);
+        // Corners and traversal points have |p|₁ ≤ ncx + ncy + |z|; the projected
+        // corners (v − o sheared) and the traversal's o + t·d round within a few
+        // ulps of |o|₁ + |p|₁.
+        let o1 = o.x.abs() + o.y.abs() + o.z.abs();
+        let xyeps = 4.0 * eps * (o1 + (f.ncx + f.ncy) as f32 + zabs + 2.0);
+        let lo = Vec3::new(-xyeps, -xyeps, f.zmin - zeps);
+        let hi = Vec3::new(f.ncx as f32 + xyeps, f.ncy as f32 + xyeps, f.zmax + zeps);
         let (mut t0, mut t1) = (t_min, t_max);
         for k in 0..3 {
             if d[k] == 0.0 {
@@ -109,11 +122,9 @@ impl GridRay {
                 t1 = t1.min(a.max(b));
             }
         }
-        // Points in the box have |p|₁ ≤ ncx + ncy + |z|, and p − o bounds every
-        // relative corner and every t·d, so this bounds all xy rounding.
-        let o1 = o.x.abs() + o.y.abs() + o.z.abs();
-        let xyeps = 8.0 * eps * (2.0 * o1 + (f.ncx + f.ncy) as f32 + 2.0 * zabs + 4.0);
         let inv = Vec2::new(1.0 / d.x, 1.0 / d.y);
+        let dxy = d.x.abs().max(d.y.abs());
+        let ttol = if dxy > 0.0 { xyeps / dxy } else { f32::INFINITY };
         Some(Self {
             o,
             d,
@@ -124,6 +135,8 @@ impl GridRay {
             t1,
             zeps,
             xyeps,
+            ttol,
+            zm: zeps + 2.0 * f.smax * xyeps,
             shear: Shear::new(d),
         })
     }

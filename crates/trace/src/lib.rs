@@ -68,6 +68,7 @@ mod dda;
 mod error;
 mod field;
 mod grid_ray;
+mod leaf;
 mod max_mipmap;
 mod ray;
 mod ray_cell;

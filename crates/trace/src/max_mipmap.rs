@@ -23,7 +23,7 @@
 
 use natura_core::HeightField;
 
-use crate::dda::leaf;
+use crate::leaf::{Exit, leaf, nearer};
 use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
@@ -259,14 +259,20 @@ impl<'a> MipmapTracer<'a> {
         // quantum plus the altitude rounding bound.
         let oq = (o.z - m.lo) / m.scale;
         let dq = d.z / m.scale;
-        let mq = 1.0 + r.zeps / m.scale;
+        let mq = 1.0 + r.zm / m.scale;
         let (ncx, ncy) = (f.ncx, f.ncy);
         let t_end = r.t1;
         let (mut ci, mut cj) = r.entry_cell(f);
         let mut t = r.t0;
         let mut level = m.top;
+        let mut pending: Option<CellHit> = None;
         loop {
             stats.nodes_visited += 1;
+            if let Some(p) = pending {
+                if p.t <= t {
+                    return pending;
+                }
+            }
             let size = 1u32 << level;
             let mask = !(size - 1);
             let (nx0, ny0) = (ci & mask, cj & mask);
@@ -286,8 +292,20 @@ impl<'a> MipmapTracer<'a> {
             };
             let t_exit = tx.min(ty).min(t_end).max(t);
             if level == 0 {
-                if let Some(h) = leaf::<ANY>(f, &r, ci, cj, t, t_exit, stats) {
-                    return Some(h);
+                let exit = if t_exit >= t_end {
+                    Exit::End
+                } else if tx <= ty {
+                    Exit::X
+                } else {
+                    Exit::Y
+                };
+                let first = t == r.t0;
+                if let Some(h) = leaf::<ANY>(f, &r, ci, cj, t, t_exit, exit, first, stats) {
+                    let h = nearer(pending, h);
+                    if ANY || h.t <= t_exit + r.ttol {
+                        return Some(h);
+                    }
+                    pending = Some(h);
                 }
             } else {
                 let k = level as usize;
@@ -301,18 +319,18 @@ impl<'a> MipmapTracer<'a> {
                 }
             }
             if t_exit >= t_end {
-                return None;
+                return pending;
             }
             let (oci, ocj) = (ci, cj);
             if tx <= ty {
                 if d.x > 0.0 {
                     ci = nx0 + size;
                     if ci >= ncx {
-                        return None;
+                        return pending;
                     }
                 } else {
                     if nx0 == 0 {
-                        return None;
+                        return pending;
                     }
                     ci = nx0 - 1;
                 }
@@ -326,11 +344,11 @@ impl<'a> MipmapTracer<'a> {
                 if d.y > 0.0 {
                     cj = ny0 + size;
                     if cj >= ncy {
-                        return None;
+                        return pending;
                     }
                 } else {
                     if ny0 == 0 {
-                        return None;
+                        return pending;
                     }
                     cj = ny0 - 1;
                 }

@@ -50,14 +50,6 @@ fn edge64(a: P, b: P) -> f32 {
     (f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)) as f32
 }
 
-/// A bound on how far the edge function of `a → b` may be off because the
-/// projected corners carry errors up to `xyeps` each, plus its own rounding.
-#[inline(always)]
-fn edge_tol(a: P, b: P, xyeps: f32) -> f32 {
-    xyeps * (a.x.abs() + a.y.abs() + b.x.abs() + b.y.abs())
-        + 2.0 * f32::EPSILON * ((a.x * b.y).abs() + (a.y * b.x).abs())
-}
-
 /// A triangle hit found in a cell, before the world-space details are filled in.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CellHit {
@@ -67,22 +59,14 @@ pub(crate) struct CellHit {
     pub bary: Vec3,
 }
 
-/// Tests one triangle from its edge functions `(u, v, w)` (weights of corners
-/// `a, b, c`), their tolerances and the corners' sheared depths.
+/// Tests one triangle from its edge functions `(u, v, w)` (the weights of
+/// corners `a, b, c`) and the corners' sheared depths: inclusive, no culling
+/// of back faces, `t` in `[t_min, t_max]`.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn triangle(
-    u: f32,
-    v: f32,
-    w: f32,
-    tol: [f32; 3],
-    z: [f32; 3],
-    t_min: f32,
-    t_max: f32,
-) -> Option<(f32, Vec3)> {
+fn triangle(u: f32, v: f32, w: f32, z: [f32; 3], t_min: f32, t_max: f32) -> Option<(f32, Vec3)> {
     let det = u + v + w;
-    let inside = (det > 0.0 && u >= -tol[0] && v >= -tol[1] && w >= -tol[2])
-        || (det < 0.0 && u <= tol[0] && v <= tol[1] && w <= tol[2]);
+    let inside = (det > 0.0 && u >= 0.0 && v >= 0.0 && w >= 0.0)
+        || (det < 0.0 && u <= 0.0 && v <= 0.0 && w <= 0.0);
     if !inside {
         return None;
     }
@@ -91,28 +75,16 @@ fn triangle(
     (t >= t_min && t <= t_max).then(|| (t, Vec3::new(u * inv, v * inv, w * inv)))
 }
 
-/// How a cell test treats points on (or within rounding of) an edge.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Edges {
-    /// The paper's exact test: inclusive, with the `f64` fallback for zero edge
-    /// functions. Used by the brute-force oracle.
-    Exact,
-    /// Each triangle widened by the ray's rounding bound, so that a traversal
-    /// that rounded to one side of a cell edge still finds a hit just across it.
-    Widened,
-}
-
 /// Intersects the ray with cell `(i, j)` whose corners are `c = [h00, h10, h01, h11]`.
 ///
-/// Returns the nearer of the two triangles' hits in `[t_min, t_max]`, or with
-/// `ANY` the first one found.
+/// Returns the nearer of the two triangles' hits in `[r.t_min, r.t_max]`, or
+/// with `ANY` the first one found.
 #[inline(always)]
 pub(crate) fn intersect_cell<const ANY: bool>(
     r: &GridRay,
     i: u32,
     j: u32,
     c: [f32; 4],
-    edges: Edges,
 ) -> Option<CellHit> {
     let (x0, y0) = (i as f32, j as f32);
     let (x1, y1) = ((i + 1) as f32, (j + 1) as f32);
@@ -127,39 +99,16 @@ pub(crate) fn intersect_cell<const ANY: bool>(
     let mut bottom = edge(p10, p00);
     let mut right = edge(p11, p10);
     let mut top = edge(p01, p11);
-    let (td, tl, tb, tr, tt) = match edges {
-        Edges::Widened => {
-            let e = r.xyeps;
-            (
-                edge_tol(p01, p10, e),
-                edge_tol(p00, p01, e),
-                edge_tol(p10, p00, e),
-                edge_tol(p11, p10, e),
-                edge_tol(p01, p11, e),
-            )
-        }
-        Edges::Exact => {
-            if diag == 0.0 || left == 0.0 || bottom == 0.0 || right == 0.0 || top == 0.0 {
-                diag = edge64(p01, p10);
-                left = edge64(p00, p01);
-                bottom = edge64(p10, p00);
-                right = edge64(p11, p10);
-                top = edge64(p01, p11);
-            }
-            (0.0, 0.0, 0.0, 0.0, 0.0)
-        }
-    };
+    if diag == 0.0 || left == 0.0 || bottom == 0.0 || right == 0.0 || top == 0.0 {
+        diag = edge64(p01, p10);
+        left = edge64(p00, p01);
+        bottom = edge64(p10, p00);
+        right = edge64(p11, p10);
+        top = edge64(p01, p11);
+    }
 
     // Lower: corners (p00, p10, p01); weights (diag, left, bottom).
-    let lower = triangle(
-        diag,
-        left,
-        bottom,
-        [td, tl, tb],
-        [p00.z, p10.z, p01.z],
-        r.t_min,
-        r.t_max,
-    );
+    let lower = triangle(diag, left, bottom, [p00.z, p10.z, p01.z], r.t_min, r.t_max);
     if ANY {
         if let Some((t, bary)) = lower {
             return Some(CellHit {
@@ -171,15 +120,7 @@ pub(crate) fn intersect_cell<const ANY: bool>(
         }
     }
     // Upper: corners (p11, p01, p10); weights (−diag, right, top).
-    let upper = triangle(
-        -diag,
-        right,
-        top,
-        [td, tr, tt],
-        [p11.z, p01.z, p10.z],
-        r.t_min,
-        r.t_max,
-    );
+    let upper = triangle(-diag, right, top, [p11.z, p01.z, p10.z], r.t_min, r.t_max);
     let pick = match (lower, upper) {
         (Some(l), Some(u)) => Some(if u.0 < l.0 {
             (u, Triangle::Upper)
