@@ -63,7 +63,9 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod batch;
 mod brute;
+mod camera;
 mod dda;
 mod error;
 mod field;
@@ -75,7 +77,12 @@ mod ray_cell;
 mod surface;
 mod tracer;
 
+pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera};
 pub use brute::brute_force;
+pub use camera::{
+    Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
+    Stereo,
+};
 pub use dda::{CellVisit, CellWalk, GridTracer};
 pub use error::{Result, TraceError};
 pub use field::MAX_SAMPLES_PER_AXIS;
