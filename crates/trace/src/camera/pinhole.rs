@@ -67,7 +67,11 @@ impl PinholeCamera {
     /// Fails unless `aspect` is finite and positive.
     pub fn with_aspect(mut self, aspect: f32) -> Result<Self> {
         if !(aspect.is_finite() && aspect > 0.0) {
-            return Err(TraceError::param("aspect", aspect, "must be finite and > 0"));
+            return Err(TraceError::param(
+                "aspect",
+                aspect,
+                "must be finite and > 0",
+            ));
         }
         self.aspect = aspect;
         Ok(self)
