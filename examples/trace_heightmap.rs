@@ -16,14 +16,17 @@
 mod common;
 
 use natura::core::glam::Vec3;
-use natura::core::{Boundary, Grid2, HeightField, Ramp, Seed};
+use natura::core::{Boundary, Grid2, HeightField, Seed};
 use natura::trace::{
     Camera, MipmapTracer, OrthographicCamera, PinholeCamera, Ray, RenderOptions, Tracer,
     render_camera,
 };
 
 fn parse3(s: &str, flag: &str) -> Vec3 {
-    let v: Vec<f32> = s.split(',').map(|p| common::check(p.trim().parse::<f32>())).collect();
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| common::check(p.trim().parse::<f32>()))
+        .collect();
     if v.len() != 3 {
         common::fail(&format!("{flag} needs X,Y,Z"));
     }
@@ -35,24 +38,44 @@ fn main() {
     let quick = args.switch("--quick", "small and fast (CI)");
     let input: Option<std::path::PathBuf> =
         args.optional("--input", "height map to load (.png 16-bit or .exr)");
-    let cell: Option<f32> = args.optional("--cell-size", "metres between samples (overrides the file)");
+    let cell: Option<f32> =
+        args.optional("--cell-size", "metres between samples (overrides the file)");
     let range: Option<String> = args.optional("--range", "LO,HI metres for grey 0 and 65535 (PNG)");
-    let size: usize = args.value("--size", if quick { 193 } else { 1025 }, "samples per side (synthetic)");
+    let size: usize = args.value(
+        "--size",
+        if quick { 193 } else { 1025 },
+        "samples per side (synthetic)",
+    );
     let seed: u64 = args.value("--seed", 7, "random seed (synthetic)");
-    let width: u32 = args.value("--width", if quick { 320 } else { 1280 }, "image width, pixels");
-    let height: u32 = args.value("--height", if quick { 180 } else { 720 }, "image height, pixels");
+    let width: u32 = args.value(
+        "--width",
+        if quick { 320 } else { 1280 },
+        "image width, pixels",
+    );
+    let height: u32 = args.value(
+        "--height",
+        if quick { 180 } else { 720 },
+        "image height, pixels",
+    );
     let spp: u32 = args.value("--spp", if quick { 1 } else { 4 }, "samples per pixel");
     let vfov: f32 = args.value("--vfov", 40.0, "vertical field of view, degrees");
     let eye: Option<String> = args.optional("--eye", "camera position X,Y,Z metres");
     let target: Option<String> = args.optional("--target", "point looked at X,Y,Z metres");
     let ortho = args.switch("--top-down", "orthographic view straight down instead");
-    let sun_az: f32 = args.value("--sun-azimuth", 135.0, "sun azimuth, degrees counterclockwise from +x");
+    let sun_az: f32 = args.value(
+        "--sun-azimuth",
+        135.0,
+        "sun azimuth, degrees counterclockwise from +x",
+    );
     let sun_el: f32 = args.value("--sun-elevation", 20.0, "sun elevation, degrees");
     let out = args.out_dir("docs/gallery/trace");
     args.finish();
 
     let range = range.map(|r| {
-        let v: Vec<f32> = r.split(',').map(|s| common::check(s.trim().parse::<f32>())).collect();
+        let v: Vec<f32> = r
+            .split(',')
+            .map(|s| common::check(s.trim().parse::<f32>()))
+            .collect();
         if v.len() != 2 {
             common::fail("--range needs LO,HI");
         }
@@ -60,7 +83,12 @@ fn main() {
     });
     let hf = match &input {
         Some(path) => common::check(HeightField::load(path, cell, range)),
-        None => common::check(synthetic(size, cell.unwrap_or(20.0), Seed(seed))),
+        // Keep the synthetic landscape about 20 km across whatever its resolution.
+        None => common::check(synthetic(
+            size,
+            cell.unwrap_or(20480.0 / (size.max(2) - 1) as f32),
+            Seed(seed),
+        )),
     };
     let bar = common::Bar::new();
     let tracer = common::check(MipmapTracer::new(&hf));
@@ -82,9 +110,8 @@ fn main() {
                 haze.lerp(sky_colour, up.powf(0.6))
             }
             Some(h) => {
-                let t = ((h.point.z - lo) / relief).clamp(0.0, 1.0);
-                let albedo = Ramp::Terrain.eval(t) * 0.8;
                 let n = h.smooth_normal;
+                let albedo = albedo(((h.point.z - lo) / relief).clamp(0.0, 1.0), n.z);
                 let lambert = n.dot(sun).max(0.0);
                 let lit = if lambert > 0.0 && h.geometric_normal.dot(sun) > 0.0 {
                     // Shadow ray toward the sun, from just above the surface.
@@ -93,12 +120,16 @@ fn main() {
                 } else {
                     false
                 };
-                let direct = if lit { sun_colour * lambert } else { Vec3::ZERO };
+                let direct = if lit {
+                    sun_colour * lambert
+                } else {
+                    Vec3::ZERO
+                };
                 let ambient = sky_colour * (0.35 + 0.25 * n.z);
                 let c = albedo * (direct + ambient);
                 // Light aerial perspective so distance reads.
                 let d = (h.t * ray.dir.length() / scene_size).min(4.0);
-                c.lerp(haze, 1.0 - (-1.2 * d).exp())
+                c.lerp(haze, 1.0 - (-0.8 * d).exp())
             }
         }
     };
@@ -123,11 +154,15 @@ fn main() {
         let eye = eye.map(|s| parse3(&s, "--eye")).unwrap_or_else(|| {
             let (x, y) = (0.1 * e.x, 0.06 * e.y);
             let ground = hf.height_at(x, y).unwrap_or(hi);
-            Vec3::new(x, y, ground.max(lo + 0.5 * relief) + 0.12 * relief + 0.02 * e.x)
+            Vec3::new(
+                x,
+                y,
+                ground.max(lo + 0.5 * relief) + 0.12 * relief + 0.02 * e.x,
+            )
         });
-        let target = target.map(|s| parse3(&s, "--target")).unwrap_or_else(|| {
-            Vec3::new(0.62 * e.x, 0.75 * e.y, lo + 0.3 * relief)
-        });
+        let target = target
+            .map(|s| parse3(&s, "--target"))
+            .unwrap_or_else(|| Vec3::new(0.62 * e.x, 0.75 * e.y, lo + 0.3 * relief));
         let cam = common::check(PinholeCamera::look_at(
             eye,
             target,
@@ -156,6 +191,17 @@ fn fmt_res(cam: &impl Camera) -> String {
     format!("{} × {} pixels", r.x, r.y)
 }
 
+/// A plain natural albedo: grass low and gentle, rock on steep slopes, snow high.
+fn albedo(height01: f32, normal_z: f32) -> Vec3 {
+    let grass = Vec3::new(0.16, 0.22, 0.08);
+    let rock = Vec3::new(0.30, 0.27, 0.24);
+    let snow = Vec3::new(0.85, 0.87, 0.9);
+    let steep = ((0.92 - normal_z) / 0.2).clamp(0.0, 1.0);
+    let ground = grass.lerp(rock, steep.max(((height01 - 0.35) / 0.3).clamp(0.0, 1.0)));
+    let snowy = (((height01 - 0.72) / 0.1).clamp(0.0, 1.0)) * (1.0 - steep * 0.8);
+    ground.lerp(snow, snowy)
+}
+
 /// Heterogeneous terrain over bilinear Gaussian lattices (natura-core only):
 /// each octave's amplitude scales with the altitude so far, so lowlands are
 /// smooth and highlands rough (Musgrave's "hetero terrain" idea).
@@ -175,7 +221,11 @@ fn synthetic(n: usize, cell: f32, seed: Seed) -> natura::core::Result<HeightFiel
         for (k, g) in octaves.iter().enumerate() {
             let f = (g.width() - 1) as f32 / (n - 1) as f32;
             let v = g.sample_bilinear(i as f32 * f, j as f32 * f, Boundary::Clamp);
-            let w = if k == 0 { 1.0 } else { (0.5 + 0.6 * h).clamp(0.03, 1.6) };
+            let w = if k == 0 {
+                1.0
+            } else {
+                (0.5 + 0.6 * h).clamp(0.03, 1.6)
+            };
             h += amp * w * v;
             amp *= 0.5;
         }
