@@ -10,10 +10,13 @@
 //! Views: "grazing" is a 1920×1080 pinhole camera 30 m above the ground near
 //! one corner, looking across the field toward the horizon (the hard case:
 //! long rays skimming the surface); "topdown" looks straight down from high
-//! above. Slow tracers (DDA, parry3d) run on a 1/16 subset of the pixels
-//! (every 4th column and row) so the whole file stays within minutes; all
+//! above. Slow tracers (DDA, parry3d) run on a 1/64 subset of the pixels
+//! (every 8th column and row) so the whole file stays within minutes; all
 //! tracers are also measured on that subset single-threaded, so the ratios
-//! compare like with like. Figures go to docs/performance.md.
+//! compare like with like. Besides criterion's wall-clock figures, each
+//! tracer's rate per second of *thread CPU time* is printed (`[trace] cpu`),
+//! which stays meaningful when the machine is shared. Figures go to
+//! docs/performance.md.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -48,7 +51,11 @@ fn field(n: usize, seed: u64) -> HeightField {
             let f = (g.width() - 1) as f32 / (n - 1) as f32;
             let v = g.sample_bilinear(i as f32 * f, j as f32 * f, Boundary::Clamp);
             // Heterogeneous terrain: higher ground gets rougher detail.
-            let w = if k == 0 { 1.0 } else { (0.6 + 0.5 * h).clamp(0.05, 1.5) };
+            let w = if k == 0 {
+                1.0
+            } else {
+                (0.6 + 0.5 * h).clamp(0.05, 1.5)
+            };
             h += amp * w * v;
             amp *= 0.5;
         }
@@ -65,6 +72,16 @@ fn grazing(hf: &HeightField, w: u32, h: u32) -> PinholeCamera {
     let eye = Vec3::new(x, y, ground + 30.0);
     let target = Vec3::new(0.9 * e.x, 0.75 * e.y, ground - 0.02 * e.x);
     PinholeCamera::look_at(eye, target, Vec3::Z, 40f32.to_radians(), w, h).unwrap()
+}
+
+/// A view from above the highest point near one corner, looking across the
+/// whole field toward the far corner: rays skim long distances at every size.
+fn across(hf: &HeightField, w: u32, h: u32) -> PinholeCamera {
+    let e = hf.extent();
+    let (lo, hi) = hf.min_max();
+    let eye = Vec3::new(0.03 * e.x, 0.03 * e.y, hi + 0.005 * e.x);
+    let target = Vec3::new(0.97 * e.x, 0.9 * e.y, lo + 0.3 * (hi - lo));
+    PinholeCamera::look_at(eye, target, Vec3::Z, 30f32.to_radians(), w, h).unwrap()
 }
 
 fn topdown(hf: &HeightField, w: u32, h: u32) -> PinholeCamera {
@@ -105,6 +122,34 @@ fn parry_ray(hf: &HeightField, r: &Ray) -> parry3d::query::Ray {
         parry3d::math::Vector::new(o.x - 0.5 * e.x, o.z, o.y - 0.5 * e.y),
         parry3d::math::Vector::new(d.x, d.z, d.y),
     )
+}
+
+/// CPU seconds used by the calling thread so far (Linux; 10 ms resolution).
+fn thread_cpu() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    let f: Vec<&str> = s[s.rfind(')')? + 2..].split(' ').collect();
+    let ticks: f64 = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Rays per CPU second of `f` over `n` rays, repeating until at least 1 s of CPU.
+fn cpu_rate(name: &str, n: usize, mut f: impl FnMut()) {
+    let Some(c0) = thread_cpu() else { return };
+    let mut reps = 0;
+    let mut used;
+    loop {
+        f();
+        reps += 1;
+        used = thread_cpu().unwrap_or(c0) - c0;
+        if used >= 1.0 {
+            break;
+        }
+    }
+    eprintln!(
+        "[trace] cpu {name}: {:.3} Mrays per CPU-second ({} rays × {reps})",
+        (n * reps) as f64 / used / 1e6,
+        n
+    );
 }
 
 fn trace_all(t: &impl Tracer, rays: &[Ray]) -> usize {
@@ -151,7 +196,7 @@ fn primary(c: &mut Criterion) {
         ("grazing", grazing(&hf, 1920, 1080)),
         ("topdown", topdown(&hf, 1920, 1080)),
     ] {
-        let sub = rays(&cam, 4);
+        let sub = rays(&cam, 8);
         stats_line(&format!("{view} dda"), &grid, &sub);
         stats_line(&format!("{view} mipmap"), &mip, &sub);
         // Agreement with parry3d (which splits cells along the other diagonal).
@@ -175,7 +220,31 @@ fn primary(c: &mut Criterion) {
             100.0 * agree as f64 / sub.len() as f64
         );
 
-        let mut g = c.benchmark_group(format!("trace_{view}_1of16_1thread"));
+        let pr: Vec<_> = sub.iter().map(|r| parry_ray(&hf, r)).collect();
+        cpu_rate(&format!("{view} mipmap 1/64"), sub.len(), || {
+            black_box(trace_all(&mip, &sub));
+        });
+        cpu_rate(&format!("{view} dda 1/64"), sub.len(), || {
+            black_box(trace_all(&grid, &sub));
+        });
+        cpu_rate(&format!("{view} parry3d 1/64"), sub.len(), || {
+            use parry3d::query::RayCast;
+            black_box(
+                pr.iter()
+                    .filter(|r| pf.cast_local_ray(r, f32::MAX, true).is_some())
+                    .count(),
+            );
+        });
+        let full = rays(&cam, 1);
+        cpu_rate(
+            &format!("{view} mipmap full frame, scanline order"),
+            full.len(),
+            || {
+                black_box(trace_all(&mip, &full));
+            },
+        );
+
+        let mut g = c.benchmark_group(format!("trace_{view}_1of64_1thread"));
         g.sample_size(10);
         g.warm_up_time(Duration::from_millis(500));
         g.measurement_time(Duration::from_secs(4));
@@ -184,7 +253,6 @@ fn primary(c: &mut Criterion) {
         g.bench_function("dda", |b| b.iter(|| black_box(trace_all(&grid, &sub))));
         g.bench_function("parry3d", |b| {
             use parry3d::query::RayCast;
-            let pr: Vec<_> = sub.iter().map(|r| parry_ray(&hf, r)).collect();
             b.iter(|| {
                 black_box(
                     pr.iter()
@@ -204,8 +272,12 @@ fn primary(c: &mut Criterion) {
             b.iter(|| {
                 black_box(
                     render(1920, 1080, 32, &NoProgress, |x, y| {
-                        mip.trace(&cam.ray(x, y, natura::core::glam::Vec2::splat(0.5)), 0.0, f32::INFINITY)
-                            .map_or(0.0f32, |h| h.t)
+                        mip.trace(
+                            &cam.ray(x, y, natura::core::glam::Vec2::splat(0.5)),
+                            0.0,
+                            f32::INFINITY,
+                        )
+                        .map_or(0.0f32, |h| h.t)
                     })
                     .unwrap(),
                 )
@@ -217,7 +289,7 @@ fn primary(c: &mut Criterion) {
     // Shadow rays toward a low sun (10° elevation) from the grazing view's hits.
     let cam = grazing(&hf, 1920, 1080);
     let sun = Vec3::new(-0.6, 0.75, 10f32.to_radians().tan()).normalize();
-    let starts: Vec<Ray> = rays(&cam, 2)
+    let starts: Vec<Ray> = rays(&cam, 4)
         .iter()
         .filter_map(|r| mip.trace(r, 0.0, f32::INFINITY))
         .map(|h| Ray::new(h.point + 0.01 * h.geometric_normal, sun))
@@ -231,6 +303,14 @@ fn primary(c: &mut Criterion) {
         starts.len(),
         100.0 * lit as f64 / starts.len() as f64
     );
+    cpu_rate("shadow mipmap occluded", starts.len(), || {
+        black_box(
+            starts
+                .iter()
+                .filter(|r| mip.occluded(r, 0.0, f32::INFINITY))
+                .count(),
+        );
+    });
     let mut g = c.benchmark_group("shadow_low_sun");
     g.sample_size(10);
     g.warm_up_time(Duration::from_millis(500));
@@ -261,7 +341,7 @@ fn primary(c: &mut Criterion) {
 }
 
 fn scaling(c: &mut Criterion) {
-    let mut g = c.benchmark_group("scaling_grazing_1thread");
+    let mut g = c.benchmark_group("scaling_across_1thread");
     g.sample_size(10);
     g.warm_up_time(Duration::from_millis(300));
     g.measurement_time(Duration::from_secs(3));
@@ -269,12 +349,24 @@ fn scaling(c: &mut Criterion) {
         let hf = field(n, 2);
         let mip = MipmapTracer::new(&hf).unwrap();
         let grid = GridTracer::new(&hf).unwrap();
-        let sub = rays(&grazing(&hf, 1920, 1080), 8);
+        let sub = rays(&across(&hf, 1920, 1080), 8);
+        let field_mb = (hf.nx() * hf.ny() * 4) as f64 / 1e6;
+        eprintln!(
+            "[trace] {n}²: field {field_mb:.1} MB, max-mipmap {:.3}× of it",
+            mip.memory_bytes() as f64 / 1e6 / field_mb
+        );
+        stats_line(&format!("scaling {n}² mipmap"), &mip, &sub);
+        cpu_rate(&format!("scaling {n}² mipmap"), sub.len(), || {
+            black_box(trace_all(&mip, &sub));
+        });
+        let few: Vec<Ray> = sub.iter().step_by(4).copied().collect();
+        cpu_rate(&format!("scaling {n}² dda"), few.len(), || {
+            black_box(trace_all(&grid, &few));
+        });
         g.throughput(Throughput::Elements(sub.len() as u64));
         g.bench_with_input(BenchmarkId::new("mipmap", n), &sub, |b, s| {
             b.iter(|| black_box(trace_all(&mip, s)))
         });
-        let few: Vec<Ray> = sub.iter().step_by(4).copied().collect();
         g.throughput(Throughput::Elements(few.len() as u64));
         g.bench_with_input(BenchmarkId::new("dda", n), &few, |b, s| {
             b.iter(|| black_box(trace_all(&grid, s)))

@@ -148,7 +148,10 @@ impl GridRay {
     /// Whether the clipped range is empty (the ray misses the box within `[t_min, t_max]`).
     #[inline]
     pub fn misses_box(&self) -> bool {
-        !(self.t0 <= self.t1)
+        !matches!(
+            self.t0.partial_cmp(&self.t1),
+            Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+        )
     }
 
     /// The cell holding the clipped entry point, clamped to the grid.

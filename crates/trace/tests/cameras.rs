@@ -107,7 +107,7 @@ fn panoramic_azimuth_is_linear_and_elevation_follows_the_mapping() {
                     let want_az = hfov * (0.5 - px / w as f32);
                     let diff = (az - want_az).rem_euclid(TAU);
                     assert!(
-                        diff < 1e-4 || diff > TAU - 1e-4,
+                        !(1e-4..=TAU - 1e-4).contains(&diff),
                         "azimuth {az} vs {want_az}"
                     );
                 }
