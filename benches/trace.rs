@@ -178,7 +178,24 @@ fn stats_line(name: &str, t: &impl Tracer, rays: &[Ray]) {
     );
 }
 
+/// Whether a benchmark id containing `prefix` can match the command line's
+/// filter (criterion's first free argument), so filtered runs skip the
+/// setup and the printed figures of groups they exclude.
+fn wanted(prefix: &str) -> bool {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
+    filters.is_empty()
+        || filters
+            .iter()
+            .any(|f| prefix.contains(f.as_str()) || f.contains(prefix))
+}
+
 fn primary(c: &mut Criterion) {
+    if !wanted("trace_") && !wanted("shadow") {
+        return;
+    }
     let hf = field(4096, 1);
     let grid = GridTracer::new(&hf).unwrap();
     let mip = MipmapTracer::new(&hf).unwrap();
@@ -341,6 +358,9 @@ fn primary(c: &mut Criterion) {
 }
 
 fn scaling(c: &mut Criterion) {
+    if !wanted("scaling") {
+        return;
+    }
     let mut g = c.benchmark_group("scaling_across_1thread");
     g.sample_size(10);
     g.warm_up_time(Duration::from_millis(300));

@@ -203,9 +203,10 @@ impl MaxMipmap {
 
 /// The fast path: hierarchical tracing over a [`MaxMipmap`].
 ///
-/// Returns exactly what [`crate::GridTracer`] returns (the same leaf test on
-/// the same cells in the same order, minus cells whose whole block the
-/// pyramid proves empty), in far fewer steps on large fields.
+/// Runs the same leaf test as [`crate::GridTracer`] on the same cells in the
+/// same order, minus the cells whose whole block the pyramid proves the ray
+/// cannot touch, so it returns the same hits (both are tested against
+/// [`crate::brute_force`]) in far fewer steps on large fields.
 #[derive(Clone, Debug)]
 pub struct MipmapTracer<'a> {
     f: FieldView<'a>,

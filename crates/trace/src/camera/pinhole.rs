@@ -34,7 +34,7 @@ impl PinholeCamera {
     ///
     /// Fails if a vector is not finite, `eye == target`, `up` is zero or
     /// parallel to the view direction, `vfov` is out of range, or the
-    /// resolution is zero or over [`super::MAX_RESOLUTION`].
+    /// resolution is zero or over [`crate::MAX_RESOLUTION`].
     pub fn look_at(
         eye: Vec3,
         target: Vec3,
