@@ -88,8 +88,11 @@ fn rendering_is_identical_on_one_and_two_threads() {
             .build()
             .unwrap();
         pool.install(|| {
-            render_camera(&cam, &RenderOptions { tile, ..opts }, &NoProgress, |r| {
-                match tracer.trace(r, 0.0, f32::INFINITY) {
+            render_camera(
+                &cam,
+                &RenderOptions { tile, ..opts },
+                &NoProgress,
+                |r| match tracer.trace(r, 0.0, f32::INFINITY) {
                     None => Vec3::new(0.4, 0.6, 0.9),
                     Some(h) => {
                         let lit = !tracer.occluded(
@@ -97,10 +100,14 @@ fn rendering_is_identical_on_one_and_two_threads() {
                             0.0,
                             f32::INFINITY,
                         );
-                        Vec3::splat(if lit { h.smooth_normal.dot(sun).max(0.0) } else { 0.05 })
+                        Vec3::splat(if lit {
+                            h.smooth_normal.dot(sun).max(0.0)
+                        } else {
+                            0.05
+                        })
                     }
-                }
-            })
+                },
+            )
             .unwrap()
         })
     };
