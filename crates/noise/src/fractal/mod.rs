@@ -25,7 +25,11 @@
 
 pub mod altitude;
 pub mod cascade;
+pub mod crossover;
+#[cfg(feature = "alloc")]
+pub mod driven;
 pub mod fbm;
+pub mod filtered;
 pub mod hetero;
 pub mod hybrid;
 pub mod ridged;
