@@ -9,10 +9,14 @@
 //!
 //! Throughput is reported in points per second (`Throughput::Elements`).
 
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use fastnoise_lite::{CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType};
-use natura::noise::{Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simplex, Spectral, Worley, WorleyParams};
-use noise::NoiseFn;
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use fastnoise_lite::{
+    CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
+};
+use natura::noise::{
+    Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simplex, Spectral, Worley, WorleyParams,
+};
+use noise::{MultiFractal, NoiseFn};
 use rayon::prelude::*;
 use simdnoise::NoiseBuilder;
 use std::hint::black_box;
@@ -48,7 +52,11 @@ fn fill_noise_rs(f: &impl NoiseFn<f64, 2>, out: &mut [f32]) {
     }
 }
 
-fn group<'a>(c: &'a mut Criterion, name: &str, points: usize) -> criterion::BenchmarkGroup<'a, criterion::measurement::WallTime> {
+fn group<'a>(
+    c: &'a mut Criterion,
+    name: &str,
+    points: usize,
+) -> criterion::BenchmarkGroup<'a, criterion::measurement::WallTime> {
     let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(points as u64));
     g.sample_size(10);
@@ -62,13 +70,26 @@ fn w1_perlin2(c: &mut Criterion) {
     let mut g = group(c, "W1_perlin2d_1024", N * N);
     let p = Perlin::new(1);
     let l = lattice2();
-    g.bench_function("natura", |b| b.iter(|| p.fill_grid2(&l, black_box(&mut out)).unwrap()));
+    g.bench_function("natura", |b| {
+        b.iter(|| p.fill_grid2(&l, black_box(&mut out)).unwrap())
+    });
     let f = fnl(NoiseType::Perlin);
-    g.bench_function("fastnoise-lite", |b| b.iter(|| fill_fnl(&f, black_box(&mut out))));
+    g.bench_function("fastnoise-lite", |b| {
+        b.iter(|| fill_fnl(&f, black_box(&mut out)))
+    });
     let n = noise::Perlin::new(1);
-    g.bench_function("noise-rs", |b| b.iter(|| fill_noise_rs(&n, black_box(&mut out))));
+    g.bench_function("noise-rs", |b| {
+        b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
+    });
     g.bench_function("simdnoise", |b| {
-        b.iter(|| black_box(NoiseBuilder::gradient_2d(N, N).with_freq(FREQ as f32).with_seed(1).generate()))
+        b.iter(|| {
+            black_box(
+                NoiseBuilder::gradient_2d(N, N)
+                    .with_freq(FREQ as f32)
+                    .with_seed(1)
+                    .generate(),
+            )
+        })
     });
     g.finish();
 }
@@ -78,19 +99,38 @@ fn w2_simplex2(c: &mut Criterion) {
     let mut g = group(c, "W2_simplex2d_1024", N * N);
     let s = Simplex::new(1);
     let l = lattice2();
-    g.bench_function("natura", |b| b.iter(|| s.fill_grid2(&l, black_box(&mut out)).unwrap()));
+    g.bench_function("natura", |b| {
+        b.iter(|| s.fill_grid2(&l, black_box(&mut out)).unwrap())
+    });
     g.bench_function("simdnoise_gradient_2d", |b| {
-        b.iter(|| black_box(NoiseBuilder::gradient_2d(N, N).with_freq(FREQ as f32).with_seed(1).generate()))
+        b.iter(|| {
+            black_box(
+                NoiseBuilder::gradient_2d(N, N)
+                    .with_freq(FREQ as f32)
+                    .with_seed(1)
+                    .generate(),
+            )
+        })
     });
     let f = fnl(NoiseType::OpenSimplex2);
-    g.bench_function("fastnoise-lite", |b| b.iter(|| fill_fnl(&f, black_box(&mut out))));
+    g.bench_function("fastnoise-lite", |b| {
+        b.iter(|| fill_fnl(&f, black_box(&mut out)))
+    });
     let n = noise::OpenSimplex::new(1);
-    g.bench_function("noise-rs", |b| b.iter(|| fill_noise_rs(&n, black_box(&mut out))));
+    g.bench_function("noise-rs", |b| {
+        b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
+    });
     g.finish();
 }
 
 fn fbm8() -> Fbm<Perlin> {
-    let s = Spectral { h: 1.0, lacunarity: 2.0, octaves: 8.0, frequency: 1.0, convention: GainConvention::H };
+    let s = Spectral {
+        h: 1.0,
+        lacunarity: 2.0,
+        octaves: 8.0,
+        frequency: 1.0,
+        convention: GainConvention::H,
+    };
     Fbm::new(Perlin::new(1), s).unwrap()
 }
 
@@ -99,12 +139,19 @@ fn w3_fbm2(c: &mut Criterion) {
     let mut g = group(c, "W3_fbm8_2d_1024", N * N);
     let f = fbm8();
     let l = lattice2();
-    g.bench_function("natura", |b| b.iter(|| f.fill_grid2(&l, black_box(&mut out)).unwrap()));
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    g.bench_function("natura", |b| {
+        b.iter(|| f.fill_grid2(&l, black_box(&mut out)).unwrap())
+    });
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
     g.bench_function("natura_2_threads", |b| {
         b.iter(|| {
             pool.install(|| {
-                out.par_chunks_mut(N).enumerate().for_each(|(j, row)| f.fill_row2(l.row_origin(j), FREQ, row));
+                out.par_chunks_mut(N)
+                    .enumerate()
+                    .for_each(|(j, row)| f.fill_row2(l.row_origin(j), FREQ, row));
             });
             black_box(&out);
         })
@@ -125,9 +172,13 @@ fn w3_fbm2(c: &mut Criterion) {
     let mut fl = fnl(NoiseType::Perlin);
     fl.set_fractal_type(Some(FractalType::FBm));
     fl.set_fractal_octaves(Some(8));
-    g.bench_function("fastnoise-lite", |b| b.iter(|| fill_fnl(&fl, black_box(&mut out))));
+    g.bench_function("fastnoise-lite", |b| {
+        b.iter(|| fill_fnl(&fl, black_box(&mut out)))
+    });
     let n = noise::Fbm::<noise::Perlin>::new(1).set_octaves(8);
-    g.bench_function("noise-rs", |b| b.iter(|| fill_noise_rs(&n, black_box(&mut out))));
+    g.bench_function("noise-rs", |b| {
+        b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
+    });
     g.finish();
 }
 
@@ -138,7 +189,9 @@ fn w4_perlin3(c: &mut Criterion) {
     let mut g = group(c, "W4_perlin3d_128", M * M * M);
     let p = Perlin::new(1);
     let l = Lattice3::new(glam::DVec3::ZERO, glam::DVec3::splat(F3), M, M, M).unwrap();
-    g.bench_function("natura", |b| b.iter(|| p.fill_grid3(&l, black_box(&mut out)).unwrap()));
+    g.bench_function("natura", |b| {
+        b.iter(|| p.fill_grid3(&l, black_box(&mut out)).unwrap())
+    });
     let mut f = fnl(NoiseType::Perlin);
     f.set_frequency(Some(F3 as f32));
     g.bench_function("fastnoise-lite", |b| {
@@ -153,7 +206,14 @@ fn w4_perlin3(c: &mut Criterion) {
         })
     });
     g.bench_function("simdnoise_gradient_3d", |b| {
-        b.iter(|| black_box(NoiseBuilder::gradient_3d(M, M, M).with_freq(F3 as f32).with_seed(1).generate()))
+        b.iter(|| {
+            black_box(
+                NoiseBuilder::gradient_3d(M, M, M)
+                    .with_freq(F3 as f32)
+                    .with_seed(1)
+                    .generate(),
+            )
+        })
     });
     g.finish();
 }
@@ -163,24 +223,39 @@ fn w5_worley2(c: &mut Criterion) {
     let mut g = group(c, "W5_worley_f1_2d_1024", N * N);
     let w = Worley::new(1, WorleyParams::default()).unwrap();
     let l = lattice2();
-    g.bench_function("natura", |b| b.iter(|| w.fill_grid2(&l, black_box(&mut out)).unwrap()));
+    g.bench_function("natura", |b| {
+        b.iter(|| w.fill_grid2(&l, black_box(&mut out)).unwrap())
+    });
     let mut f = fnl(NoiseType::Cellular);
     f.set_cellular_return_type(Some(CellularReturnType::Distance));
     f.set_cellular_distance_function(Some(CellularDistanceFunction::Euclidean));
     f.set_cellular_jitter(Some(1.0));
-    g.bench_function("fastnoise-lite_cellular", |b| b.iter(|| fill_fnl(&f, black_box(&mut out))));
+    g.bench_function("fastnoise-lite_cellular", |b| {
+        b.iter(|| fill_fnl(&f, black_box(&mut out)))
+    });
     g.bench_function("simdnoise_cellular_2d", |b| {
-        b.iter(|| black_box(NoiseBuilder::cellular_2d(N, N).with_freq(FREQ as f32).with_seed(1).generate()))
+        b.iter(|| {
+            black_box(
+                NoiseBuilder::cellular_2d(N, N)
+                    .with_freq(FREQ as f32)
+                    .with_seed(1)
+                    .generate(),
+            )
+        })
     });
     let n = noise::Worley::new(1).set_return_type(noise::core::worley::ReturnType::Distance);
-    g.bench_function("noise-rs", |b| b.iter(|| fill_noise_rs(&n, black_box(&mut out))));
+    g.bench_function("noise-rs", |b| {
+        b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
+    });
     g.finish();
 }
 
-criterion_group!(benches, w1_perlin2, w2_simplex2, w3_fbm2, w4_perlin3, w5_worley2);
+criterion_group!(
+    benches,
+    w1_perlin2,
+    w2_simplex2,
+    w3_fbm2,
+    w4_perlin3,
+    w5_worley2
+);
 criterion_main!(benches);
-
-#[allow(dead_code)]
-fn _ids() -> BenchmarkId {
-    BenchmarkId::new("unused", 0)
-}

@@ -10,12 +10,25 @@
 //!   constants (for ray marchers), and f32 batch fills of rows and regular
 //!   lattices (SIMD with run-time dispatch: AVX-512, AVX2, SSE4.1, scalar),
 //!   callable concurrently from rayon workers.
-//! * **Bases** ([`basis`]): [`Perlin`] gradient noise (1-D to 4-D).
+//! * **Bases** ([`basis`]): [`Perlin`] gradient noise (1-D to 4-D, quintic or
+//!   the sources' cubic fade), [`Value`] noise (1-D to 4-D; "Linear"),
+//!   [`Simplex`] (2-D, 3-D), [`Worley`] (F1–F4, F2−F1…, Euclidean, squared,
+//!   Manhattan, Chebyshev; exact search), [`SparseConvolution`], and
+//!   Musgrave's [`Sine`], [`Steps`] and [`Checkerboard`]; all seeded by a hash
+//!   of lattice position and seed (no 256-periodic table). Combinators:
+//!   [`Ridged`], [`Abs`], [`Transform`].
 //! * **Fractals** ([`fractal`]): [`Fbm`], [`Turbulence`], [`Multifractal`]
 //!   (multiplicative cascade), [`HeteroTerrain`], [`HybridMultifractal`],
-//!   [`RidgedMultifractal`], [`StatsByAltitude`], parameterised by
-//!   [`Spectral`] (H, lacunarity, real-valued octaves, frequency) with
-//!   precomputed octave weights.
+//!   [`RidgedMultifractal`], [`StatsByAltitude`] (and the legacy C `hfBm`),
+//!   [`CrossoverFbm`], [`FilteredFbm`], and [`Driven`] (any parameter given by
+//!   a field), parameterised by [`Spectral`] (H, lacunarity, real-valued
+//!   octaves, frequency, amplitude convention) with precomputed octave weights.
+//! * **Vector noise and distortion** ([`vector`], [`warp`]): [`DNoise`],
+//!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
+//!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
+//!
+//! Every type documents its source (seed file and lines), the errata it
+//! corrects, its bound and its Lipschitz constant.
 //!
 //! ```
 //! use natura_noise::{Field, Fbm, Perlin, Spectral, Lattice2};

@@ -434,19 +434,18 @@ impl Field for Worley {
             }
             return;
         }
-        let mut flags = [false; 64];
+        let mut flags = [0u8; 64];
         for (c, chunk) in out.chunks_mut(64).enumerate() {
             let x0 = origin.x + (c * 64) as f64 * step;
             let fl = &mut flags[..chunk.len()];
-            let any = run(simd, || match self.params.feature.rank() {
-                1 => worley2_row::<1>(self, x0, origin.y, step, chunk, fl),
-                2 => worley2_row::<2>(self, x0, origin.y, step, chunk, fl),
-                3 => worley2_row::<3>(self, x0, origin.y, step, chunk, fl),
-                _ => worley2_row::<4>(self, x0, origin.y, step, chunk, fl),
-            });
-            if any {
+            run(
+                simd,
+                #[inline(always)]
+                || worley_dispatch!(self, worley2_row(self, x0, origin.y, step, chunk, fl)),
+            );
+            if fl.iter().any(|&f| f != 0) {
                 for (i, (o, &f)) in chunk.iter_mut().zip(fl.iter()).enumerate() {
-                    if f {
+                    if f != 0 {
                         *o = self.eval2(DVec2::new(x0 + i as f64 * step, origin.y)) as f32;
                     }
                 }
@@ -464,36 +463,25 @@ impl Field for Worley {
             }
             return;
         }
-        let mut flags = [false; 64];
+        let mut flags = [0u8; 64];
         for (c, chunk) in out.chunks_mut(64).enumerate() {
             let x0 = origin.x + (c * 64) as f64 * step;
             let o = DVec3::new(x0, origin.y, origin.z);
             let fl = &mut flags[..chunk.len()];
-            let any = run(simd, || match self.params.feature.rank() {
-                1 => worley3_row::<1>(self, o, step, chunk, fl),
-                2 => worley3_row::<2>(self, o, step, chunk, fl),
-                3 => worley3_row::<3>(self, o, step, chunk, fl),
-                _ => worley3_row::<4>(self, o, step, chunk, fl),
-            });
-            if any {
+            run(
+                simd,
+                #[inline(always)]
+                || worley_dispatch!(self, worley3_row(self, o, step, chunk, fl)),
+            );
+            if fl.iter().any(|&f| f != 0) {
                 for (i, (v, &f)) in chunk.iter_mut().zip(fl.iter()).enumerate() {
-                    if f {
+                    if f != 0 {
                         *v =
                             self.eval3(DVec3::new(x0 + i as f64 * step, origin.y, origin.z)) as f32;
                     }
                 }
             }
         }
-    }
-}
-
-/// The metric in f32; Euclidean is kept squared until [`finish`].
-#[inline(always)]
-fn metric32(m: Metric, x: f32, y: f32, z: f32) -> f32 {
-    match m {
-        Metric::Euclidean | Metric::EuclideanSquared => x * x + y * y + z * z,
-        Metric::Manhattan => x.abs() + y.abs() + z.abs(),
-        Metric::Chebyshev => x.abs().max(y.abs()).max(z.abs()),
     }
 }
 
@@ -509,15 +497,7 @@ pub(crate) fn sqrt32(v: f32) -> f32 {
     v * y
 }
 
-/// Converts the kept metric values to distances (square root for Euclidean).
-#[inline(always)]
-fn finish(m: Metric, v: f32) -> f32 {
-    match m {
-        Metric::Euclidean => sqrt32(v),
-        _ => v,
-    }
-}
-
+/// Sorted insertion into the K smallest (a min/max network; branch-free).
 #[inline(always)]
 fn insert32<const K: usize>(best: &mut [f32; K], d: f32) {
     let mut d = d;
@@ -528,9 +508,55 @@ fn insert32<const K: usize>(best: &mut [f32; K], d: f32) {
     }
 }
 
-/// 3×3 SIMD search over a 2-D row chunk; flags lanes whose ring-2 bound does
-/// not clear `F_K` (they are redone by the exact point path). Returns whether
-/// any lane was flagged.
+/// The metric as a lane function (Euclidean kept squared until the end),
+/// whether the ring bound must be squared, and whether to take a root at the end.
+macro_rules! with_metric {
+    ($m:expr, |$dist:ident, $sqb:ident, $root:ident| $body:expr) => {
+        match $m {
+            Metric::Euclidean => {
+                let $dist = |x: f32, y: f32, z: f32| x * x + y * y + z * z;
+                let ($sqb, $root) = (true, true);
+                $body
+            }
+            Metric::EuclideanSquared => {
+                let $dist = |x: f32, y: f32, z: f32| x * x + y * y + z * z;
+                let ($sqb, $root) = (true, false);
+                $body
+            }
+            Metric::Manhattan => {
+                let $dist = |x: f32, y: f32, z: f32| x.abs() + y.abs() + z.abs();
+                let ($sqb, $root) = (false, false);
+                $body
+            }
+            Metric::Chebyshev => {
+                let $dist = |x: f32, y: f32, z: f32| x.abs().max(y.abs()).max(z.abs());
+                let ($sqb, $root) = (false, false);
+                $body
+            }
+        }
+    };
+}
+
+/// Monomorphises a row kernel for the feature (rank K and pick) and metric.
+macro_rules! worley_dispatch {
+    ($w:expr, $kernel:ident($($arg:expr),*)) => {{
+        let w = $w;
+        with_metric!(w.params.metric, |dist, sqb, root| match w.params.feature {
+            WorleyFeature::F1 => $kernel::<1>($($arg,)* dist, |d: &[f32; 1]| d[0], sqb, root),
+            WorleyFeature::F2 => $kernel::<2>($($arg,)* dist, |d: &[f32; 2]| d[1], sqb, root),
+            WorleyFeature::F3 => $kernel::<3>($($arg,)* dist, |d: &[f32; 3]| d[2], sqb, root),
+            WorleyFeature::F4 => $kernel::<4>($($arg,)* dist, |d: &[f32; 4]| d[3], sqb, root),
+            WorleyFeature::F2MinusF1 => $kernel::<2>($($arg,)* dist, |d: &[f32; 2]| d[1] - d[0], sqb, root),
+            WorleyFeature::F3MinusF2 => $kernel::<3>($($arg,)* dist, |d: &[f32; 3]| d[2] - d[1], sqb, root),
+            WorleyFeature::F4MinusF3 => $kernel::<4>($($arg,)* dist, |d: &[f32; 4]| d[3] - d[2], sqb, root),
+        })
+    }};
+}
+pub(crate) use {with_metric, worley_dispatch};
+
+/// 3×3 SIMD search over a 2-D row chunk. Sets `flags[i] = 1` for lanes whose
+/// ring-2 bound does not clear `F_K` (they are redone by the exact point path).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn worley2_row<const K: usize>(
     w: &Worley,
@@ -538,8 +564,12 @@ fn worley2_row<const K: usize>(
     y: f64,
     step: f64,
     out: &mut [f32],
-    flags: &mut [bool],
-) -> bool {
+    flags: &mut [u8],
+    dist: impl Fn(f32, f32, f32) -> f32,
+    pick: impl Fn(&[f32; K]) -> f32,
+    square_bound: bool,
+    root: bool,
+) {
     let (iy, fy) = split_fast(y);
     let fy32 = fy as f32;
     let rows = [
@@ -548,52 +578,48 @@ fn worley2_row<const K: usize>(
         row2(iy.wrapping_add(1), w.s),
     ];
     let jt = w.params.jitter as f32;
-    let m = w.params.metric;
-    let feature = w.params.feature;
     let margin = 0.5 - 0.5 * jt;
     let edge_y = fy32.min(1.0 - fy32);
-    let mut any = false;
     for (n, (o, flag)) in out.iter_mut().zip(flags.iter_mut()).enumerate() {
         let x = x0 + (n as i32) as f64 * step;
         let (ix, fx) = split_fast(x);
         let fx = fx as f32;
         let mut best = [f32::INFINITY; K];
         for (r, &row) in rows.iter().enumerate() {
-            let dy = r as f32 - 1.0;
+            let dy = fy32 - (r as f32 - 0.5);
             for dxi in 0..3u32 {
                 let h = corner(ix.wrapping_add(dxi).wrapping_sub(1), row);
-                let px = (dxi as f32 - 1.0) + 0.5 + jt * (unit_lo(h) - 0.5);
-                let py = dy + 0.5 + jt * (unit_hi(h) - 0.5);
-                insert32(&mut best, metric32(m, fx - px, fy32 - py, 0.0));
+                let px = fx - (dxi as f32 - 0.5 + jt * (unit_lo(h) - 0.5));
+                let py = dy - jt * (unit_hi(h) - 0.5);
+                insert32(&mut best, dist(px, py, 0.0));
             }
         }
-        let bound = 1.0 + margin + fx.min(1.0 - fx).min(edge_y);
-        let bound = if m == Metric::EuclideanSquared || m == Metric::Euclidean {
-            bound * bound
-        } else {
-            bound
-        };
+        let b = 1.0 + margin + fx.min(1.0 - fx).min(edge_y);
+        let b = if square_bound { b * b } else { b };
         // A small tolerance so f32 rounding never hides a needed ring.
-        let f = best[K - 1] >= bound * 0.999_9;
-        *flag = f;
-        any |= f;
-        let mut d4 = [0.0f32; 4];
-        for (a, b) in d4.iter_mut().zip(best.iter()) {
-            *a = finish(m, *b);
+        *flag = u8::from(best[K - 1] >= b * 0.999_9);
+        if root {
+            for v in best.iter_mut() {
+                *v = sqrt32(*v);
+            }
         }
-        *o = feature.pick(&d4);
+        *o = pick(&best);
     }
-    any
 }
 
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn worley3_row<const K: usize>(
     w: &Worley,
     origin: DVec3,
     step: f64,
     out: &mut [f32],
-    flags: &mut [bool],
-) -> bool {
+    flags: &mut [u8],
+    dist: impl Fn(f32, f32, f32) -> f32,
+    pick: impl Fn(&[f32; K]) -> f32,
+    square_bound: bool,
+    root: bool,
+) {
     let (iy, fy) = split_fast(origin.y);
     let (iz, fz) = split_fast(origin.z);
     let (fy32, fz32) = (fy as f32, fz as f32);
@@ -607,41 +633,32 @@ fn worley3_row<const K: usize>(
         );
     }
     let jt = w.params.jitter as f32;
-    let m = w.params.metric;
-    let feature = w.params.feature;
     let margin = 0.5 - 0.5 * jt;
     let edge_yz = fy32.min(1.0 - fy32).min(fz32.min(1.0 - fz32));
-    let mut any = false;
     for (n, (o, flag)) in out.iter_mut().zip(flags.iter_mut()).enumerate() {
         let x = origin.x + (n as i32) as f64 * step;
         let (ix, fx) = split_fast(x);
         let fx = fx as f32;
         let mut best = [f32::INFINITY; K];
         for (r, &row) in rows.iter().enumerate() {
-            let dy = (r % 3) as f32 - 1.0;
-            let dz = (r / 3) as f32 - 1.0;
+            let dy = fy32 - ((r % 3) as f32 - 0.5);
+            let dz = fz32 - ((r / 3) as f32 - 0.5);
             for dxi in 0..3u32 {
                 let h = corner(ix.wrapping_add(dxi).wrapping_sub(1), row);
-                let px = (dxi as f32 - 1.0) + 0.5 + jt * (unit_lo(h) - 0.5);
-                let py = dy + 0.5 + jt * (unit_hi(h) - 0.5);
-                let pz = dz + 0.5 + jt * (unit_hi(rehash(h)) - 0.5);
-                insert32(&mut best, metric32(m, fx - px, fy32 - py, fz32 - pz));
+                let px = fx - (dxi as f32 - 0.5 + jt * (unit_lo(h) - 0.5));
+                let py = dy - jt * (unit_hi(h) - 0.5);
+                let pz = dz - jt * (unit_hi(rehash(h)) - 0.5);
+                insert32(&mut best, dist(px, py, pz));
             }
         }
-        let bound = 1.0 + margin + fx.min(1.0 - fx).min(edge_yz);
-        let bound = if m == Metric::EuclideanSquared || m == Metric::Euclidean {
-            bound * bound
-        } else {
-            bound
-        };
-        let f = best[K - 1] >= bound * 0.999_9;
-        *flag = f;
-        any |= f;
-        let mut d4 = [0.0f32; 4];
-        for (a, b) in d4.iter_mut().zip(best.iter()) {
-            *a = finish(m, *b);
+        let b = 1.0 + margin + fx.min(1.0 - fx).min(edge_yz);
+        let b = if square_bound { b * b } else { b };
+        *flag = u8::from(best[K - 1] >= b * 0.999_9);
+        if root {
+            for v in best.iter_mut() {
+                *v = sqrt32(*v);
+            }
         }
-        *o = feature.pick(&d4);
+        *o = pick(&best);
     }
-    any
 }

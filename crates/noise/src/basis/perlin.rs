@@ -289,15 +289,19 @@ impl Field for Perlin {
         let rows = RowCoeffs::new2(self.s, self.fade, origin.y);
         let k = self.scale(2);
         let (s, fade) = (self.s, self.fade);
-        run(simd, || {
-            if step > 0.0 && step <= SPAN_MAX_STEP {
-                row_spans(fade, origin.x, step, k, out, |ix, fy| rows.cell2(s, ix, fy));
-            } else {
-                with_fade32!(fade, |f| perlin2_row(
-                    f, &rows, origin.x, step, k as f32, out
-                ));
-            }
-        });
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix, fy| rows.cell2(s, ix, fy));
+                } else {
+                    with_fade32!(fade, |f| perlin2_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
@@ -314,15 +318,19 @@ impl Field for Perlin {
         let rows = RowCoeffs::new3(self.s, self.fade, origin.y, origin.z);
         let k = self.scale(3);
         let fade = self.fade;
-        run(simd, || {
-            if step > 0.0 && step <= SPAN_MAX_STEP {
-                row_spans(fade, origin.x, step, k, out, |ix, _| rows.cell3(ix));
-            } else {
-                with_fade32!(fade, |f| perlin3_row(
-                    f, &rows, origin.x, step, k as f32, out
-                ));
-            }
-        });
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix, _| rows.cell3(ix));
+                } else {
+                    with_fade32!(fade, |f| perlin3_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
     }
 }
 

@@ -208,7 +208,11 @@ impl Field for Simplex {
         }
         let s = self.s;
         let k = (1.0 / SIMPLEX2_SUP) as f32;
-        run(simd, || simplex2_row(s, origin, step, k, out));
+        run(
+            simd,
+            #[inline(always)]
+            || simplex2_row(s, origin, step, k, out),
+        );
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
@@ -223,7 +227,11 @@ impl Field for Simplex {
         }
         let s = self.s;
         let k = (1.0 / SIMPLEX3_SUP) as f32;
-        run(simd, || simplex3_row(s, origin, step, k, out));
+        run(
+            simd,
+            #[inline(always)]
+            || simplex3_row(s, origin, step, k, out),
+        );
     }
 }
 

@@ -201,57 +201,61 @@ impl Value {
             (a, b - a)
         };
         let interp = self.interp;
-        run(simd, || {
-            if step > 0.0 && step <= SPAN_MAX_STEP {
-                let n = out.len();
-                let s32 = step as f32;
-                let mut i = 0;
-                while i < n {
-                    let (ix, fx) = split_fast(x0 + i as f64 * step);
-                    let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
-                    let (a, b) = cell(ix);
-                    let (a, b, t0) = (a as f32, b as f32, fx as f32);
-                    let span = &mut out[i..i + count];
-                    match interp {
-                        ValueInterp::Linear => {
-                            for (k, o) in span.iter_mut().enumerate() {
-                                *o = a + b * (t0 + k as f32 * s32);
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    let n = out.len();
+                    let s32 = step as f32;
+                    let mut i = 0;
+                    while i < n {
+                        let (ix, fx) = split_fast(x0 + i as f64 * step);
+                        let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
+                        let (a, b) = cell(ix);
+                        let (a, b, t0) = (a as f32, b as f32, fx as f32);
+                        let span = &mut out[i..i + count];
+                        match interp {
+                            ValueInterp::Linear => {
+                                for (k, o) in span.iter_mut().enumerate() {
+                                    *o = a + b * (t0 + k as f32 * s32);
+                                }
+                            }
+                            ValueInterp::Cubic => {
+                                for (k, o) in span.iter_mut().enumerate() {
+                                    *o = a + b * crate::simd::cubic32(t0 + k as f32 * s32);
+                                }
+                            }
+                            ValueInterp::Quintic => {
+                                for (k, o) in span.iter_mut().enumerate() {
+                                    *o = a + b * crate::simd::quintic32(t0 + k as f32 * s32);
+                                }
                             }
                         }
-                        ValueInterp::Cubic => {
-                            for (k, o) in span.iter_mut().enumerate() {
-                                *o = a + b * crate::simd::cubic32(t0 + k as f32 * s32);
-                            }
-                        }
-                        ValueInterp::Quintic => {
-                            for (k, o) in span.iter_mut().enumerate() {
-                                *o = a + b * crate::simd::quintic32(t0 + k as f32 * s32);
-                            }
-                        }
+                        i += count;
                     }
-                    i += count;
-                }
-            } else {
-                let w32: [f32; 4] =
-                    core::array::from_fn(|k| w.get(k).copied().unwrap_or(0.0) as f32);
-                let nr = rows.len();
-                for (i, o) in out.iter_mut().enumerate() {
-                    let (ix, fx) = split_fast(x0 + (i as i32) as f64 * step);
-                    let fx = fx as f32;
-                    let u = match interp {
-                        ValueInterp::Linear => fx,
-                        ValueInterp::Cubic => crate::simd::cubic32(fx),
-                        ValueInterp::Quintic => crate::simd::quintic32(fx),
-                    };
-                    let mut acc = 0.0f32;
-                    for r in 0..nr {
-                        let a = signed_unit(corner(ix, rows[r]));
-                        let b = signed_unit(corner(ix.wrapping_add(1), rows[r]));
-                        acc += w32[r] * (a + u * (b - a));
+                } else {
+                    let w32: [f32; 4] =
+                        core::array::from_fn(|k| w.get(k).copied().unwrap_or(0.0) as f32);
+                    let nr = rows.len();
+                    for (i, o) in out.iter_mut().enumerate() {
+                        let (ix, fx) = split_fast(x0 + (i as i32) as f64 * step);
+                        let fx = fx as f32;
+                        let u = match interp {
+                            ValueInterp::Linear => fx,
+                            ValueInterp::Cubic => crate::simd::cubic32(fx),
+                            ValueInterp::Quintic => crate::simd::quintic32(fx),
+                        };
+                        let mut acc = 0.0f32;
+                        for r in 0..nr {
+                            let a = signed_unit(corner(ix, rows[r]));
+                            let b = signed_unit(corner(ix.wrapping_add(1), rows[r]));
+                            acc += w32[r] * (a + u * (b - a));
+                        }
+                        *o = acc;
                     }
-                    *o = acc;
                 }
-            }
-        });
+            },
+        );
     }
 }
