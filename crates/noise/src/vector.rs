@@ -51,7 +51,7 @@ impl<B: Smooth> Smooth for Fbm<B> {
         let o = self.octaves();
         self.basis().hessian_bound()
             * (0..o.count())
-                .map(|k| o.weight(k) * o.frequency(k).powi(2))
+                .map(|k| o.weight(k) * (o.frequency(k) * o.frequency(k)))
                 .sum::<f64>()
     }
 }

@@ -83,7 +83,7 @@ pub enum TwistLaw {
         max_radius: f64,
         /// Turns across the storm (½ in the sources).
         twist: f64,
-        /// 2 ([D]) or 3 ([T]).
+        /// 2 (dissertation) or 3 (Texturing & Modeling).
         power: f64,
     },
 }

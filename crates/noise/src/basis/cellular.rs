@@ -61,7 +61,7 @@ impl Metric {
 
     /// The metric's value for a lower bound `b` on the largest axis distance.
     #[inline(always)]
-    fn from_axis_bound(self, b: f64) -> f64 {
+    fn metric_of_axis_bound(self, b: f64) -> f64 {
         match self {
             Metric::EuclideanSquared => b * b,
             _ => b,
@@ -280,7 +280,7 @@ impl Worley {
         let mut at = [[0.0; 3]; 4];
         let mut r: i64 = 0;
         loop {
-            if r >= 2 && m.from_axis_bound(self.ring_bound(&[fx, fy], r)) > best[k - 1] {
+            if r >= 2 && m.metric_of_axis_bound(self.ring_bound(&[fx, fy], r)) > best[k - 1] {
                 break;
             }
             for dy in -r..=r {
@@ -313,7 +313,7 @@ impl Worley {
         let mut at = [[0.0; 3]; 4];
         let mut r: i64 = 0;
         loop {
-            if r >= 2 && m.from_axis_bound(self.ring_bound(&[fx, fy, fz], r)) > best[k - 1] {
+            if r >= 2 && m.metric_of_axis_bound(self.ring_bound(&[fx, fy, fz], r)) > best[k - 1] {
                 break;
             }
             for dz in -r..=r {

@@ -9,7 +9,7 @@
 //! * Gradients: 1-D uniform in `[-1, 1)`; 2-D one of 8 unit vectors (axes and
 //!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002);
 //!   4-D one of the 32 tesseract edges. Drawn from a hash of the lattice
-//!   position and seed (no 256-periodic table; [`crate::hash`]).
+//!   position and seed (no 256-periodic table).
 //! * Fade: quintic by default (C²); [`Fade::Cubic`] reproduces the sources
 //!   (C¹ only — erratum 9 of spec §10 corrects their "C²" claim).
 //! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is exactly

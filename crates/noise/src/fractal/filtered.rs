@@ -9,7 +9,7 @@ use crate::fractal::Spectral;
 use crate::fractal::fbm::Fbm;
 
 /// `1 − smoothstep(0.2, 0.6, w)`: the fade of [T 166-170] that "crudely
-/// antialias[es] snoise by fading to its average value at the Nyquist limit",
+/// antialias\[es\] snoise by fading to its average value at the Nyquist limit",
 /// for a filter width `w` in lattice units. 1 for `w ≤ 0.2`, 0 for `w ≥ 0.6`,
 /// continuous and monotone between.
 #[must_use]
