@@ -13,6 +13,9 @@ pub enum TerrainError {
     /// height naming its cell, …).
     #[error(transparent)]
     Core(#[from] CoreError),
+    /// An error from `natura-noise` (invalid fractal parameters, lattice sizes, …).
+    #[error(transparent)]
+    Noise(#[from] natura_noise::NoiseError),
     /// A parameter is NaN, infinite or outside its physical range.
     #[error("invalid parameter `{name}` = {value}: {reason}")]
     InvalidParameter {

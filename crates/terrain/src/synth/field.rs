@@ -5,10 +5,14 @@
 //! friendly (MKM:L71, DIS:L663-665): each sample needs no neighbours and no
 //! global state. [`fill_field`] takes any `Fn(f64, f64) -> f64 + Sync` (f64
 //! points, one call per sample); [`fill_rows`] takes a batch row filler (one
-//! call per row, f32 output), the fast path for SIMD noise.
+//! call per row, f32 output); [`fill_noise`] fills from any natura-noise
+//! [`Field`] (fBm, hetero terrain, hybrid and ridged multifractals,
+//! statistics-by-altitude, Musgrave's large-scale terrain, …) through its
+//! SIMD row path, rows in parallel.
 
 use glam::DVec2;
 use natura_core::{Grid2, HeightField};
+use natura_noise::Field;
 
 use crate::error::{Result, TerrainError, invalid, min_size};
 use crate::par;
@@ -108,6 +112,15 @@ where
     finish(g, cell_size)
 }
 
+/// Fills an `nx × ny` field from a natura-noise [`Field`] (2-D evaluation) with
+/// its batch row fill (SIMD, run-time dispatch), rows in parallel; heights in
+/// metres through `map`. Equals [`fill_field`] with `field.eval2` to f32 rounding.
+pub fn fill_noise<F: Field + ?Sized>(nx: usize, ny: usize, cell_size: f32, map: &FieldMapping, field: &F) -> Result<HeightField> {
+    fill_rows(nx, ny, cell_size, map, &|x0: f64, y: f64, dx: f64, out: &mut [f32]| {
+        field.fill_row2(DVec2::new(x0, y), dx, out);
+    })
+}
+
 fn finish(g: Grid2<f32>, cell_size: f32) -> Result<HeightField> {
     if let Some((x, y, &value)) = g.find(|v| !v.is_finite()) {
         return Err(TerrainError::NonFinite { what: "field value", x, y, value });
@@ -134,7 +147,15 @@ mod tests {
             assert!((p - q).abs() < 1e-4);
         }
         assert_eq!(a.heights()[(0, 0)], (20.0 + 100.0 * f(0.1, -0.05)) as f32);
+        // A natura-noise field through the SIMD row path matches point evaluation.
+        let fbm = natura_noise::Fbm::new(natura_noise::Perlin::new(3), natura_noise::Spectral::default().with_h(0.8)).unwrap();
+        let a = fill_noise(40, 9, 3.0, &map, &fbm).unwrap();
+        let b = fill_field(40, 9, 3.0, &map, &|x: f64, y: f64| fbm.eval2(DVec2::new(x, y))).unwrap();
+        for (p, q) in a.heights().as_slice().iter().zip(b.heights().as_slice()) {
+            assert!((p - q).abs() < 1e-3, "{p} vs {q}");
+        }
         let err = fill_field(4, 4, 1.0, &map, &|x: f64, _| if x > 0.11 { f64::NAN } else { 0.0 }).unwrap_err();
-        assert!(err.to_string().contains("(1, 0)"), "{err}");
+        // Cell (1, 0) sits at exactly x = 0.11, so the first bad cell is (2, 0).
+        assert!(err.to_string().contains("(2, 0)"), "{err}");
     }
 }

@@ -10,7 +10,7 @@ pub mod sra;
 pub mod subdivision;
 
 pub use fault::{FaultParams, poisson_faults};
-pub use field::{FieldMapping, fill_field, fill_rows};
+pub use field::{FieldMapping, fill_field, fill_noise, fill_rows};
 pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};
 pub use spectral::{SpectralParams, spectral_synthesis};
 pub use sra::{SraParams, successive_random_additions};
