@@ -39,11 +39,13 @@ pub fn hillshade_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     map_image(hf.nx(), hf.ny(), |x, y| Vec3::splat(0.08 + 0.92 * shade[(x, y)]))
 }
 
-/// A hill-shaded image tinted by altitude through natura-core's terrain ramp.
+/// A hill-shaded image tinted by altitude through natura-core's terrain ramp
+/// (the ramp's sea colours are skipped: the lowest cell is lowland green).
 pub fn relief_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     let shade = hf.hillshade(sun)?;
     let (lo, hi) = hf.min_max();
     let hi = if hi > lo { hi } else { lo + 1.0 };
+    let lo = lo - 0.3 * (hi - lo);
     let h = hf.heights();
     map_image(hf.nx(), hf.ny(), |x, y| Ramp::Terrain.map(h[(x, y)], lo, hi) * (0.2 + 0.8 * shade[(x, y)]))
 }

@@ -272,7 +272,7 @@ impl MusgraveHydraulic {
 
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
-        let p = self.p.clone();
+        let p = &self.p.clone();
         if p.rain_period > 0 && self.step % u64::from(p.rain_period) == 0 {
             let a = hf.heights().as_slice();
             let mut added = 0.0f64;
@@ -284,6 +284,17 @@ impl MusgraveHydraulic {
             self.ledger.rain += added;
         }
         let offsets = p.neighbourhood.offsets();
+        // Neighbour index deltas for interior cells (no edge handling needed).
+        let deltas: Vec<isize> = offsets.iter().map(|&(dx, dy, _)| dy as isize * nx as isize + dx as isize).collect();
+        let deltas = &deltas;
+        let nbr = move |x: usize, y: usize, i: usize, k: usize| -> Option<usize> {
+            if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                Some((i as isize + deltas[k]) as usize)
+            } else {
+                let (dx, dy, _) = offsets[k];
+                p.edges.resolve(x, y, dx, dy, nx, ny)
+            }
+        };
         let (kc, kd, ks, tr) = (p.k_c as f32, p.k_d as f32, p.k_s as f32, p.transfer as f32);
         // ---- pass 1: per cell, what leaves and where (reads state t only).
         let a = hf.heights().as_slice();
@@ -319,8 +330,8 @@ impl MusgraveHydraulic {
                     let mut total = 0.0f32;
                     let mut biggest = 0.0f32;
                     let mut lowest_bed = f32::INFINITY;
-                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
-                        let d = match p.edges.resolve(x, y, dx, dy, nx, ny) {
+                    for k in 0..offsets.len() {
+                        let d = match nbr(x, y, i, k) {
                             Some(j) => {
                                 let d = level - (a[j] + w[j]);
                                 if d > 0.0 {
@@ -380,9 +391,8 @@ impl MusgraveHydraulic {
                     for k in 0..8 {
                         let f = drops[k] * inv;
                         o[5 + k][r] = f;
-                        if f > 0.0 && k < offsets.len() {
-                            let (dx, dy, _) = offsets[k];
-                            if p.edges.resolve(x, y, dx, dy, nx, ny).is_none() {
+                        if f > 0.0 && k < offsets.len() && p.edges == Edges::Open {
+                            if nbr(x, y, i, k).is_none() {
                                 out_w += f64::from(dw * f);
                                 out_s += f64::from(sent * f);
                             }
@@ -413,8 +423,8 @@ impl MusgraveHydraulic {
                     let r = (y - y0) * nx + x;
                     let mut wn = wk[i];
                     let mut sn = sk[i];
-                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
-                        if let Some(j) = p.edges.resolve(x, y, dx, dy, nx, ny) {
+                    for k in 0..offsets.len() {
+                        if let Some(j) = nbr(x, y, i, k) {
                             let f = frac[opposite[k]][j];
                             if f > 0.0 {
                                 wn += ws[j] * f;

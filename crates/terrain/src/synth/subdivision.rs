@@ -256,8 +256,8 @@ pub enum Scheme {
     Quad,
     /// FFC's non-Markovian grid fill (Fig. 16, FFC:L353-359), i.e. Miller's
     /// diamond-square: centres from the 4 diagonal neighbours, then sides from
-    /// the 4 axial neighbours (the tile border uses the 1-D rule so that tiles
-    /// share edges exactly).
+    /// the 4 axial neighbours; the edges of each base tile (a patch) use the
+    /// 1-D rule, so tiles share edges exactly (FFC:L357).
     DiamondSquare,
 }
 
@@ -382,10 +382,12 @@ pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, se
                 });
                 level_pass(&mut g, s, |g, a, b| {
                     let (i, j) = (a * s, b * s);
-                    let (w, h) = g.dims();
+                    // Tile edges are patch boundaries computed by the 1-D rule
+                    // (FFC:L357), so tiles share edges exactly and the result does
+                    // not depend on how many tiles the grid spans.
                     let m = match (a % 2, b % 2) {
-                        (1, 0) if j == 0 || j == h - 1 => (g[(i - s, j)] + g[(i + s, j)]) / 2.0,
-                        (0, 1) if i == 0 || i == w - 1 => (g[(i, j - s)] + g[(i, j + s)]) / 2.0,
+                        (1, 0) if j % tile == 0 => (g[(i - s, j)] + g[(i + s, j)]) / 2.0,
+                        (0, 1) if i % tile == 0 => (g[(i, j - s)] + g[(i, j + s)]) / 2.0,
                         (1, 0) | (0, 1) => (g[(i - s, j)] + g[(i + s, j)] + g[(i, j - s)] + g[(i, j + s)]) / 4.0,
                         _ => return None,
                     };
