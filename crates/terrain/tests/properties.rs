@@ -3,14 +3,18 @@
 
 use natura_core::{HeightField, NoProgress, Seed};
 use natura_terrain::erosion::{
-    Diffusion, DiffusionParams, Edges, MusgraveHydraulic, MusgraveParams, Neighbourhood, PipeModel, PipeParams, Thermal, ThermalParams,
+    Diffusion, DiffusionParams, Edges, MusgraveHydraulic, MusgraveParams, Neighbourhood, PipeModel,
+    PipeParams, Thermal, ThermalParams,
 };
 use natura_terrain::synth::{MidpointParams, Scheme, SubdivisionParams, subdivide};
 use proptest::prelude::*;
 
 fn field(nx: usize, ny: usize, seed: u64, relief: f32) -> HeightField {
     let s = Seed(seed);
-    HeightField::from_fn(nx, ny, 1.0, |i, j| 100.0 + relief * s.gaussian2(i as i64, j as i64) as f32).unwrap()
+    HeightField::from_fn(nx, ny, 1.0, |i, j| {
+        100.0 + relief * s.gaussian2(i as i64, j as i64) as f32
+    })
+    .unwrap()
 }
 
 fn rel(a: f64, b: f64) -> f64 {

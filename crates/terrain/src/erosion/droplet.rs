@@ -76,26 +76,46 @@ impl DropletParams {
     /// Checks every field's range (see the field docs).
     pub fn validate(&self) -> Result<()> {
         if !(self.inertia >= 0.0 && self.inertia < 1.0) {
-            return Err(invalid("DropletParams::inertia", self.inertia, "must lie in [0, 1)"));
+            return Err(invalid(
+                "DropletParams::inertia",
+                self.inertia,
+                "must lie in [0, 1)",
+            ));
         }
         non_negative("DropletParams::capacity", self.capacity)?;
         non_negative("DropletParams::min_slope", self.min_slope)?;
         in_range("DropletParams::erode", self.erode, 0.0, 1.0)?;
         in_range("DropletParams::deposit", self.deposit, 0.0, 1.0)?;
         if !(self.evaporate >= 0.0 && self.evaporate < 1.0) {
-            return Err(invalid("DropletParams::evaporate", self.evaporate, "must lie in [0, 1)"));
+            return Err(invalid(
+                "DropletParams::evaporate",
+                self.evaporate,
+                "must lie in [0, 1)",
+            ));
         }
         non_negative("DropletParams::gravity", self.gravity)?;
         if !(1..=16).contains(&self.radius) {
-            return Err(invalid("DropletParams::radius", self.radius, "must lie in [1, 16] cells"));
+            return Err(invalid(
+                "DropletParams::radius",
+                self.radius,
+                "must lie in [1, 16] cells",
+            ));
         }
         if !(1..=1000).contains(&self.lifetime) {
-            return Err(invalid("DropletParams::lifetime", self.lifetime, "must lie in [1, 1000] steps"));
+            return Err(invalid(
+                "DropletParams::lifetime",
+                self.lifetime,
+                "must lie in [1, 1000] steps",
+            ));
         }
         positive("DropletParams::initial_water", self.initial_water)?;
         non_negative("DropletParams::initial_speed", self.initial_speed)?;
         if !(1..=65536).contains(&self.batch) {
-            return Err(invalid("DropletParams::batch", self.batch, "must lie in [1, 65536]"));
+            return Err(invalid(
+                "DropletParams::batch",
+                self.batch,
+                "must lie in [1, 65536]",
+            ));
         }
         Ok(())
     }
@@ -163,7 +183,12 @@ impl DropletErosion {
     }
 
     /// Simulates `droplets` more droplets.
-    pub fn run(&mut self, hf: &mut HeightField, droplets: u64, progress: &dyn Progress) -> Result<()> {
+    pub fn run(
+        &mut self,
+        hf: &mut HeightField,
+        droplets: u64,
+        progress: &dyn Progress,
+    ) -> Result<()> {
         check_field("droplet erosion", hf, self.nx, self.ny)?;
         progress.start("droplets", droplets);
         let batch = u64::from(self.p.batch);
@@ -212,7 +237,8 @@ impl DropletErosion {
         let (h00, h10, h01, h11) = (h[i], h[i + 1], h[i + nx], h[i + nx + 1]);
         let gx = (h10 - h00) * (1.0 - v) + (h11 - h01) * v;
         let gy = (h01 - h00) * (1.0 - u) + (h11 - h10) * u;
-        let z = h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
+        let z =
+            h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
         (z, gx, gy)
     }
 
@@ -248,7 +274,8 @@ impl DropletErosion {
                 dx /= len;
                 dy /= len;
             } else {
-                let a = self.seed.uniform(&[key, i64::from(step), 2]) as f32 * std::f32::consts::TAU;
+                let a =
+                    self.seed.uniform(&[key, i64::from(step), 2]) as f32 * std::f32::consts::TAU;
                 dx = a.cos();
                 dy = a.sin();
             }
@@ -260,7 +287,11 @@ impl DropletErosion {
             let dh = nz - z;
             let cap = (-dh).max(p.min_slope as f32) * speed * water * p.capacity as f32;
             if sed > cap || dh > 0.0 {
-                let amount = if dh > 0.0 { dh.min(sed) } else { (sed - cap) * p.deposit as f32 };
+                let amount = if dh > 0.0 {
+                    dh.min(sed)
+                } else {
+                    (sed - cap) * p.deposit as f32
+                };
                 if amount > 0.0 {
                     sed -= amount;
                     deposit_at(x, y, amount, deltas);
@@ -324,7 +355,13 @@ mod tests {
         d.run(&mut hf, 5000, &NoProgress).unwrap();
         let m1 = hf.heights().sum() + d.outflow();
         assert!((m1 - m0).abs() < 1e-4 * m0, "{m0} → {m1}");
-        assert!(d.deposition().unwrap().as_slice().iter().any(|&v| v < -0.01));
+        assert!(
+            d.deposition()
+                .unwrap()
+                .as_slice()
+                .iter()
+                .any(|&v| v < -0.01)
+        );
         assert!(hf.check_finite().is_ok());
     }
 
@@ -332,11 +369,26 @@ mod tests {
     fn refuses_bad_params() {
         let hf = cone(16);
         for p in [
-            DropletParams { inertia: 1.0, ..Default::default() },
-            DropletParams { radius: 0, ..Default::default() },
-            DropletParams { erode: -0.1, ..Default::default() },
-            DropletParams { lifetime: 0, ..Default::default() },
-            DropletParams { capacity: f64::NAN, ..Default::default() },
+            DropletParams {
+                inertia: 1.0,
+                ..Default::default()
+            },
+            DropletParams {
+                radius: 0,
+                ..Default::default()
+            },
+            DropletParams {
+                erode: -0.1,
+                ..Default::default()
+            },
+            DropletParams {
+                lifetime: 0,
+                ..Default::default()
+            },
+            DropletParams {
+                capacity: f64::NAN,
+                ..Default::default()
+            },
         ] {
             assert!(DropletErosion::new(p, &hf, Seed(1)).is_err());
         }
