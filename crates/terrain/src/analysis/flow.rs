@@ -455,6 +455,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn every_cell_reaches_the_edge_after_routing_and_fill() {
         for seed in 0..5 {
             let n = 48;

@@ -288,6 +288,7 @@ impl MusgraveHydraulic {
         Ok(())
     }
 
+    #[allow(clippy::needless_range_loop)]
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
         let p = &self.p.clone();
@@ -414,11 +415,9 @@ impl MusgraveHydraulic {
                     for k in 0..8 {
                         let f = drops[k] * inv;
                         o[5 + k][r] = f;
-                        if f > 0.0 && k < offsets.len() && p.edges == Edges::Open {
-                            if nbr(x, y, i, k).is_none() {
-                                out_w += f64::from(dw * f);
-                                out_s += f64::from(sent * f);
-                            }
+                        if f > 0.0 && k < offsets.len() && p.edges == Edges::Open && nbr(x, y, i, k).is_none() {
+                            out_w += f64::from(dw * f);
+                            out_s += f64::from(sent * f);
                         }
                     }
                 }

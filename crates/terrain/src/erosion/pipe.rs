@@ -274,7 +274,7 @@ impl PipeModel {
         Ok(())
     }
 
-    #[allow(clippy::too_many_lines)]
+    #[allow(clippy::too_many_lines, clippy::needless_range_loop)]
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
         let p = &self.p;

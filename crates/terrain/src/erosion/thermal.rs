@@ -249,7 +249,7 @@ fn interior(
     }
 }
 
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
 fn interior_erod(
     h: [&[f32]; 3],
     e: [&[f32]; 3],

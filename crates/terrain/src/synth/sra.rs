@@ -44,7 +44,7 @@ impl SraParams {
                 "Hurst exponent must lie in (0, 1]",
             ));
         }
-        if !(self.lacunarity > 1.0) {
+        if self.lacunarity.is_nan() || self.lacunarity <= 1.0 {
             return Err(invalid(
                 "SraParams::lacunarity",
                 self.lacunarity,
