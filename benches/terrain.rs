@@ -90,13 +90,20 @@ fn erosion(c: &mut Criterion) {
             b.iter(|| pool.install(|| sp.run(&mut hf, 1, &NoProgress).expect("run")))
         });
     }
-    let mut hf = terrain(1024);
-    let mut d = DropletErosion::new(DropletParams::default(), &hf, Seed(2)).expect("droplets");
     let count = 20_000u64;
     g.throughput(Throughput::Elements(count));
-    g.bench_function("droplets_1024_lifetime30", |b| {
-        b.iter(|| pool.install(|| d.run(&mut hf, count, &NoProgress).expect("run")))
-    });
+    for batch in [1u32, 256] {
+        let mut hf = terrain(1024);
+        let p = DropletParams {
+            batch,
+            ..Default::default()
+        };
+        let mut d = DropletErosion::new(p, &hf, Seed(2)).expect("droplets");
+        g.bench_function(
+            BenchmarkId::new("droplets_1024_lifetime30_batch", batch),
+            |b| b.iter(|| pool.install(|| d.run(&mut hf, count, &NoProgress).expect("run"))),
+        );
+    }
     g.finish();
 }
 

@@ -74,8 +74,17 @@ fn main() {
         out.join("erosion_before_height.png"),
     ));
 
-    // ---- stream power with uplift: the drainage network.
+    // ---- stream power with uplift: the drainage network. The map edge is the
+    // base level (sea level, 0 m) that every river reaches.
     let mut sp_hf = base.clone();
+    let (nx, ny) = (sp_hf.nx(), sp_hf.ny());
+    for j in 0..ny {
+        for i in 0..nx {
+            if i == 0 || j == 0 || i == nx - 1 || j == ny - 1 {
+                sp_hf.heights_mut()[(i, j)] = 0.0;
+            }
+        }
+    }
     let strata = common::check(Erodibility::strata(&base, 120.0, 1.4, 0.6, None));
     let sp_params = StreamPowerParams {
         k: 4e-5,
@@ -104,7 +113,7 @@ fn main() {
         ..Default::default()
     };
     let mut m = common::check(MusgraveHydraulic::new(mkm, &mkm_hf));
-    common::check(m.run(&mut mkm_hf, steps(400.0), &bar));
+    common::check(m.run(&mut mkm_hf, steps(200.0), &bar));
     let th = ThermalParams {
         talus_rate: 0.05,
         ..Default::default()

@@ -253,10 +253,17 @@ fn one_and_two_threads_are_bit_identical() {
                 .unwrap();
             out.push(bits(&hf));
             let mut hf = base.clone();
-            DropletErosion::new(DropletParams::default(), &hf, Seed(3))
-                .unwrap()
-                .run(&mut hf, 3000, &NoProgress)
-                .unwrap();
+            DropletErosion::new(
+                DropletParams {
+                    batch: 64,
+                    ..Default::default()
+                },
+                &hf,
+                Seed(3),
+            )
+            .unwrap()
+            .run(&mut hf, 3000, &NoProgress)
+            .unwrap();
             out.push(bits(&hf));
             let mut hf = base.clone();
             StreamPower::new(StreamPowerParams::default(), &hf)

@@ -15,7 +15,12 @@
 //! at the start of the batch, recording its height changes; the changes are
 //! then applied in droplet order. Batches depend only on the droplet index,
 //! never on the thread count, so results are bit-identical on any number of
-//! threads. Mass is conserved: sediment still carried when a droplet dies is
+//! threads. The default `batch = 1` is Beyer's sequential algorithm exactly.
+//! Larger batches are an approximation: droplets of one batch do not see each
+//! other, so several can dig the same rim or fill the same pit, each up to
+//! its own limit; where many droplets meet (dense batches on small maps) this
+//! over-digs and can run away. Keep `batch` far below
+//! `cells / (lifetime · brush area)`. Mass is conserved: sediment still carried when a droplet dies is
 //! deposited where it stops; sediment carried off the edge is counted.
 
 use natura_core::{Grid2, HeightField, Progress, Seed};
@@ -49,7 +54,8 @@ pub struct DropletParams {
     pub initial_water: f64,
     /// Initial speed. Default 1.
     pub initial_speed: f64,
-    /// Droplets simulated together against a frozen terrain (1..=65536). Default 512.
+    /// Droplets simulated together against a frozen terrain (1..=65536). Default 1
+    /// (sequential, exact); see the module docs before raising it.
     pub batch: u32,
 }
 
@@ -67,7 +73,7 @@ impl Default for DropletParams {
             lifetime: 30,
             initial_water: 1.0,
             initial_speed: 1.0,
-            batch: 512,
+            batch: 1,
         }
     }
 }
@@ -193,18 +199,35 @@ impl DropletErosion {
         progress.start("droplets", droplets);
         let batch = u64::from(self.p.batch);
         let mut left = droplets;
+        let mut since = 0u64;
         while left > 0 {
             let k = left.min(batch);
             self.batch(hf, self.next_droplet, k);
             self.next_droplet += k;
             left -= k;
-            progress.advance(k);
+            since += k;
+            if since >= 1024 || left == 0 {
+                progress.advance(since);
+                since = 0;
+            }
         }
         progress.finish();
         Ok(())
     }
 
     fn batch(&mut self, hf: &mut HeightField, first: u64, count: u64) {
+        if count == 1 {
+            // Sequential: no thread hand-off for a single droplet.
+            let mut deltas = Vec::with_capacity(1024);
+            let out = self.simulate(hf.heights().as_slice(), first, &mut deltas);
+            let hm = hf.heights_mut().as_mut_slice();
+            for (i, d) in deltas {
+                hm[i as usize] += d;
+                self.deposition[i as usize] += d;
+            }
+            self.outflow += out;
+            return;
+        }
         let h = hf.heights().as_slice();
         let ids: Vec<u64> = (first..first + count).collect();
         let chunks: Vec<Vec<u64>> = ids.chunks(16).map(<[u64]>::to_vec).collect();

@@ -287,6 +287,11 @@ impl PipeModel {
         let open = edges == Edges::Open;
         let periodic = edges == Edges::Periodic;
         let nb = |x: usize, y: usize, k: usize| -> Option<usize> {
+            if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                // Interior: no edge handling needed.
+                let i = y * nx + x;
+                return Some([i - 1, i + 1, i - nx, i + nx][k]);
+            }
             let (dx, dy) = [(-1, 0), (1, 0), (0, -1), (0, 1)][k];
             edges.resolve(x, y, dx, dy, nx, ny)
         };
