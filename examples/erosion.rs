@@ -28,11 +28,16 @@ fn main() {
     let quick = args.switch("--quick", "small and fast (CI)");
     let size: usize = args.value("--size", if quick { 128 } else { 1024 }, "samples per side");
     let seed: u64 = args.value("--seed", 7, "random seed");
+    let only: Option<String> = args.optional(
+        "--only",
+        "one method: stream_power, musgrave, pipe, droplets, thermal, diffusion, combined",
+    );
     let out = args.out_dir("docs/gallery/terrain");
     args.finish();
     if size < 16 {
         common::fail("--size must be at least 16");
     }
+    let want = |name: &str| only.as_deref().is_none_or(|o| o == name);
     let bar = common::Bar::new();
     // Work scales with the grid so --quick stays quick; steps are per 1024².
     let scale = size as f64 / 1024.0;
@@ -93,116 +98,134 @@ fn main() {
     };
     let mut sp =
         common::check(StreamPower::new(sp_params, &sp_hf).and_then(|m| m.with_erodibility(strata)));
-    common::check(sp.run(&mut sp_hf, steps(120.0), &bar));
-    save_relief(&sp_hf, &out.join("erosion_stream_power.png"));
-    common::check(export::save_height_png16(
-        &downsample_hf(&sp_hf),
-        out.join("erosion_stream_power_height.png"),
-    ));
-    let area = common::check(analysis::flow_accumulation_d8(&sp_hf, Depressions::Route));
-    save(
-        common::check(export::flow_image(&area)),
-        &out.join("erosion_flow.png"),
-    );
+    if want("stream_power") || want("combined") {
+        common::check(sp.run(&mut sp_hf, steps(120.0), &bar));
+    }
+    if want("stream_power") {
+        save_relief(&sp_hf, &out.join("erosion_stream_power.png"));
+        common::check(export::save_height_png16(
+            &downsample_hf(&sp_hf),
+            out.join("erosion_stream_power_height.png"),
+        ));
+        let area = common::check(analysis::flow_accumulation_d8(&sp_hf, Depressions::Route));
+        save(
+            common::check(export::flow_image(&area)),
+            &out.join("erosion_flow.png"),
+        );
+    }
 
-    // ---- Musgrave–Kolb–Mace hydraulic (corrected) + thermal, as in MKM Plate 9.
-    let mut mkm_hf = base.clone();
-    let mkm = MusgraveParams {
-        rain_period: 20,
-        k_c: 5.0,
-        ..Default::default()
-    };
-    let mut m = common::check(MusgraveHydraulic::new(mkm, &mkm_hf));
-    common::check(m.run(&mut mkm_hf, steps(200.0), &bar));
-    let th = ThermalParams {
-        talus_rate: 0.05,
-        ..Default::default()
-    };
-    common::check(
-        Thermal::new(th.clone(), &mkm_hf)
-            .and_then(|mut t| t.run(&mut mkm_hf, steps(100.0), &bar).map(|_| ())),
-    );
-    save_relief(&mkm_hf, &out.join("erosion_musgrave.png"));
+    if want("musgrave") {
+        // ---- Musgrave–Kolb–Mace hydraulic (corrected) + thermal, as in MKM Plate 9.
+        let mut mkm_hf = base.clone();
+        let mkm = MusgraveParams {
+            rain_period: 20,
+            k_c: 5.0,
+            ..Default::default()
+        };
+        let mut m = common::check(MusgraveHydraulic::new(mkm, &mkm_hf));
+        common::check(m.run(&mut mkm_hf, steps(200.0), &bar));
+        let th = ThermalParams {
+            talus_rate: 0.05,
+            ..Default::default()
+        };
+        common::check(
+            Thermal::new(th.clone(), &mkm_hf)
+                .and_then(|mut t| t.run(&mut mkm_hf, steps(100.0), &bar).map(|_| ())),
+        );
+        save_relief(&mkm_hf, &out.join("erosion_musgrave.png"));
+    }
 
-    // ---- virtual-pipe shallow water.
-    let mut pipe_hf = base.clone();
-    let pp = PipeParams {
-        edges: Edges::Open,
-        rain_m_per_s: 0.02,
-        k_c: 0.1,
-        ..Default::default()
-    };
-    let mut pipe = common::check(PipeModel::new(pp, &pipe_hf));
-    common::check(pipe.run(&mut pipe_hf, steps(600.0), &bar));
-    save_relief(&pipe_hf, &out.join("erosion_pipe.png"));
+    if want("pipe") {
+        // ---- virtual-pipe shallow water.
+        let mut pipe_hf = base.clone();
+        let pp = PipeParams {
+            edges: Edges::Open,
+            rain_m_per_s: 0.02,
+            k_c: 0.1,
+            ..Default::default()
+        };
+        let mut pipe = common::check(PipeModel::new(pp, &pipe_hf));
+        common::check(pipe.run(&mut pipe_hf, steps(600.0), &bar));
+        save_relief(&pipe_hf, &out.join("erosion_pipe.png"));
+    }
 
-    // ---- droplets.
-    let mut drop_hf = base.clone();
-    let mut drops = common::check(DropletErosion::new(
-        DropletParams::default(),
-        &drop_hf,
-        Seed(seed),
-    ));
-    common::check(drops.run(
-        &mut drop_hf,
-        (400_000.0 * scale * scale).max(5000.0) as u64,
-        &bar,
-    ));
-    save_relief(&drop_hf, &out.join("erosion_droplets.png"));
+    if want("droplets") {
+        // ---- droplets.
+        let mut drop_hf = base.clone();
+        let mut drops = common::check(DropletErosion::new(
+            DropletParams::default(),
+            &drop_hf,
+            Seed(seed),
+        ));
+        common::check(drops.run(
+            &mut drop_hf,
+            (400_000.0 * scale * scale).max(5000.0) as u64,
+            &bar,
+        ));
+        save_relief(&drop_hf, &out.join("erosion_droplets.png"));
+    }
 
     // ---- thermal weathering and diffusion alone.
-    let mut th_hf = base.clone();
-    common::check(
-        Thermal::new(
-            ThermalParams {
-                talus_rate: 0.1,
-                ..th
-            },
-            &th_hf,
-        )
-        .and_then(|mut t| t.run(&mut th_hf, steps(300.0), &bar).map(|_| ())),
-    );
-    save_relief(&th_hf, &out.join("erosion_thermal.png"));
-    let mut df_hf = base.clone();
-    common::check(
-        Diffusion::new(DiffusionParams::default(), &df_hf)
-            .and_then(|mut d| d.run(&mut df_hf, steps(100.0), &bar).map(|_| ())),
-    );
-    save_relief(&df_hf, &out.join("erosion_diffusion.png"));
+    if want("thermal") {
+        let mut th_hf = base.clone();
+        common::check(
+            Thermal::new(
+                ThermalParams {
+                    talus_rate: 0.1,
+                    ..Default::default()
+                },
+                &th_hf,
+            )
+            .and_then(|mut t| t.run(&mut th_hf, steps(300.0), &bar).map(|_| ())),
+        );
+        save_relief(&th_hf, &out.join("erosion_thermal.png"));
+    }
 
-    // ---- the landscape pipeline: stream power, then pipe-model and thermal detail.
-    let mut combo = sp_hf.clone();
-    let mut pipe = common::check(PipeModel::new(
-        PipeParams {
-            edges: Edges::Open,
-            ..Default::default()
-        },
-        &combo,
-    ));
-    common::check(pipe.run(&mut combo, steps(300.0), &bar));
-    common::check(
-        Thermal::new(
-            ThermalParams {
-                talus_rate: 0.05,
+    if want("diffusion") {
+        let mut df_hf = base.clone();
+        common::check(
+            Diffusion::new(DiffusionParams::default(), &df_hf)
+                .and_then(|mut d| d.run(&mut df_hf, steps(100.0), &bar).map(|_| ())),
+        );
+        save_relief(&df_hf, &out.join("erosion_diffusion.png"));
+    }
+
+    if want("combined") {
+        // ---- the landscape pipeline: stream power, then pipe-model and thermal detail.
+        let mut combo = sp_hf.clone();
+        let mut pipe = common::check(PipeModel::new(
+            PipeParams {
+                edges: Edges::Open,
                 ..Default::default()
             },
             &combo,
-        )
-        .and_then(|mut t| t.run(&mut combo, steps(50.0), &bar).map(|_| ())),
-    );
-    save_relief(&combo, &out.join("erosion_combined.png"));
-    common::check(export::save_height_png16(
-        &downsample_hf(&combo),
-        out.join("erosion_combined_height.png"),
-    ));
-    let deposit = common::check(pipe.deposition());
-    save(
-        Image::false_colour(&deposit, natura::core::Ramp::Coolwarm, -2.0, 2.0),
-        &out.join("erosion_deposition.png"),
-    );
+        ));
+        common::check(pipe.run(&mut combo, steps(300.0), &bar));
+        common::check(
+            Thermal::new(
+                ThermalParams {
+                    talus_rate: 0.05,
+                    ..Default::default()
+                },
+                &combo,
+            )
+            .and_then(|mut t| t.run(&mut combo, steps(50.0), &bar).map(|_| ())),
+        );
+        save_relief(&combo, &out.join("erosion_combined.png"));
+        let hi = analysis::hypsometric_integral(&combo).unwrap_or(0.0);
+        println!("hypsometric integral after stream power + pipe + thermal {hi:.3}");
+        common::check(export::save_height_png16(
+            &downsample_hf(&combo),
+            out.join("erosion_combined_height.png"),
+        ));
+        let deposit = common::check(pipe.deposition());
+        save(
+            Image::false_colour(&deposit, natura::core::Ramp::Coolwarm, -2.0, 2.0),
+            &out.join("erosion_deposition.png"),
+        );
+    }
 
     let hi_before = analysis::hypsometric_integral(&base).unwrap_or(0.0);
-    let hi_after = analysis::hypsometric_integral(&combo).unwrap_or(0.0);
     println!(
         "{size} × {size} cells of {cell} m; hypsometric integral {hi_before:.3} → {hi_after:.3}"
     );
