@@ -15,7 +15,9 @@
 //! at the start of the batch, recording its height changes; the changes are
 //! then applied in droplet order. Batches depend only on the droplet index,
 //! never on the thread count, so results are bit-identical on any number of
-//! threads. The default `batch = 1` is Beyer's sequential algorithm exactly.
+//! threads. Heights are divided by the cell size inside the simulation (so
+//! slopes are rise per cell and Beyer's constants are resolution-independent);
+//! changes are converted back to metres. The default `batch = 1` is Beyer's sequential algorithm exactly.
 //! Larger batches are an approximation: droplets of one batch do not see each
 //! other, so several can dig the same rim or fill the same pit, each up to
 //! its own limit; where many droplets meet (dense batches on small maps) this
@@ -139,6 +141,9 @@ pub struct DropletErosion {
     erodibility: Option<Erodibility>,
     deposition: Vec<f32>,
     outflow: f64,
+    /// Metres per cell: the simulation runs in cell units (heights / cell size),
+    /// so Beyer's constants mean the same thing at any resolution.
+    cell: f32,
 }
 
 impl DropletErosion {
@@ -167,6 +172,7 @@ impl DropletErosion {
             erodibility: None,
             deposition: vec![0.0; hf.nx() * hf.ny()],
             outflow: 0.0,
+            cell: hf.cell_size(),
         })
     }
 
@@ -262,7 +268,8 @@ impl DropletErosion {
         let gy = (h01 - h00) * (1.0 - u) + (h11 - h10) * u;
         let z =
             h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
-        (z, gx, gy)
+        let s = 1.0 / self.cell;
+        (z * s, gx * s, gy * s)
     }
 
     /// Runs droplet `id`, appending height changes; returns sediment lost off the edge.
@@ -279,7 +286,9 @@ impl DropletErosion {
         let mut sed = 0.0f32;
         let inertia = p.inertia as f32;
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
+        let cell = self.cell;
         let deposit_at = |x: f32, y: f32, amount: f32, deltas: &mut Vec<(u32, f32)>| {
+            let amount = amount * cell;
             let (ix, iy) = (x as usize, y as usize);
             let (u, v) = (x - ix as f32, y - iy as f32);
             let i = (iy * nx + ix) as u32;
@@ -304,7 +313,7 @@ impl DropletErosion {
             }
             let (nxp, nyp) = (x + dx, y + dy);
             if !(nxp >= 0.0 && nyp >= 0.0 && nxp < wmax && nyp < hmax) {
-                return f64::from(sed); // carried off the map
+                return f64::from(sed * cell); // carried off the map
             }
             let (nz, _, _) = self.height_grad(h, nxp, nyp);
             let dh = nz - z;
@@ -337,7 +346,7 @@ impl DropletErosion {
                             let k = erod.map_or(1.0, |e| e[i]);
                             let amount = want * w / wsum * k;
                             if amount > 0.0 {
-                                deltas.push((i as u32, -amount));
+                                deltas.push((i as u32, -amount * cell));
                                 sed += amount;
                             }
                         }
