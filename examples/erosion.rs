@@ -226,9 +226,7 @@ fn main() {
     }
 
     let hi_before = analysis::hypsometric_integral(&base).unwrap_or(0.0);
-    println!(
-        "{size} × {size} cells of {cell} m; hypsometric integral {hi_before:.3} → {hi_after:.3}"
-    );
+    println!("{size} × {size} cells of {cell} m; hypsometric integral before {hi_before:.3}");
     println!("wrote pictures to {}", out.display());
 }
 

@@ -415,7 +415,11 @@ impl MusgraveHydraulic {
                     for k in 0..8 {
                         let f = drops[k] * inv;
                         o[5 + k][r] = f;
-                        if f > 0.0 && k < offsets.len() && p.edges == Edges::Open && nbr(x, y, i, k).is_none() {
+                        if f > 0.0
+                            && k < offsets.len()
+                            && p.edges == Edges::Open
+                            && nbr(x, y, i, k).is_none()
+                        {
                             out_w += f64::from(dw * f);
                             out_s += f64::from(sent * f);
                         }
