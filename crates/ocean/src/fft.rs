@@ -97,57 +97,75 @@ fn split_all<'a, const K: usize, T>(
     (heads, tails)
 }
 
-/// Builds and transforms columns `n0 .. n0 + cols[0].len()/M` of the five sources.
+/// Columns per group of the tiled column-pass output.
+#[inline]
+pub(crate) fn group_width(nx: usize) -> usize {
+    (nx / 2).min(16)
+}
+
+/// Index in a tiled column buffer of column `n`, rows `y0 .. y0 + BLOCK`.
+///
+/// The buffer is laid out [group of `gw` columns][block of BLOCK rows]
+/// [column in group][row in block], so the row pass reads each block of
+/// rows as a few long contiguous runs (a plain column-major layout would
+/// touch one page per column and thrash the TLB), and the column pass can
+/// be split between threads at group boundaries.
+#[inline]
+fn tile_index(n: usize, y0: usize, ny: usize, gw: usize) -> usize {
+    (n / gw) * ny * gw + (y0 / BLOCK) * gw * BLOCK + (n % gw) * BLOCK
+}
+
+/// Builds and transforms the columns of groups `g0 ..` covered by `cols`.
 fn column_pass(
     ocean: &Ocean,
     t: f64,
     cols: [&mut [C32]; SOURCES],
-    n0: usize,
+    g0: usize,
     slots: &mut [crate::frame::Slot],
 ) {
-    let ny = ocean.params.ny;
-    let ncols = cols[0].len() / ny;
+    let (nx, ny) = (ocean.params.nx, ocean.params.ny);
+    let gw = group_width(nx);
+    let groups = cols[0].len() / (ny * gw);
     #[cfg(feature = "parallel")]
-    if slots.len() > 1 && ncols > 1 {
+    if slots.len() > 1 && groups > 1 {
         let left_slots = slots.len() / 2;
-        let left_cols = ncols * left_slots / slots.len();
-        if left_cols > 0 {
+        let left = groups * left_slots / slots.len();
+        if left > 0 {
             let (sa, sb) = slots.split_at_mut(left_slots);
-            let (ca, cb) = split_all(cols, left_cols * ny);
+            let (ca, cb) = split_all(cols, left * ny * gw);
             rayon::join(
-                || column_pass(ocean, t, ca, n0, sa),
-                || column_pass(ocean, t, cb, n0 + left_cols, sb),
+                || column_pass(ocean, t, ca, g0, sa),
+                || column_pass(ocean, t, cb, g0 + left, sb),
             );
             return;
         }
     }
-    let scratch = &mut slots[0].scratch;
+    let slot = &mut slots[0];
     let lam = ocean.params.choppiness as f32;
-    let [s0, s1, s2, s3, s4] = cols;
     let chop = choppy(ocean);
-    for c in 0..ncols {
-        let n = n0 + c;
-        let r = c * ny..(c + 1) * ny;
-        let base = n * ny;
-        fill_column(
-            ocean,
-            t,
-            lam,
-            chop,
-            base,
-            [
-                &mut s0[r.clone()],
-                &mut s1[r.clone()],
-                &mut s2[r.clone()],
-                &mut s3[r.clone()],
-                &mut s4[r.clone()],
-            ],
-        );
-    }
-    // Batched: rustfft transforms each length-M chunk of the buffer.
-    let used = if choppy(ocean) { SOURCES } else { 2 };
-    for s in [s0, s1, s2, s3, s4].into_iter().take(used) {
-        ocean.col_fft.process_with_scratch(s, scratch);
+    let used = if chop { SOURCES } else { 2 };
+    let mut cols = cols;
+    for c in 0..groups * gw {
+        let n = g0 * gw + c;
+        {
+            let (c0, rest) = slot.col.split_at_mut(ny);
+            let (c1, rest) = rest.split_at_mut(ny);
+            let (c2, rest) = rest.split_at_mut(ny);
+            let (c3, c4) = rest.split_at_mut(ny);
+            fill_column(ocean, t, lam, chop, n * ny, [c0, c1, c2, c3, c4]);
+        }
+        // One call transforms every length-M chunk (the `used` columns).
+        ocean
+            .col_fft
+            .process_with_scratch(&mut slot.col[..used * ny], &mut slot.scratch);
+        // Scatter into the tiled layout, relative to this range's first group.
+        for (s, dst) in cols.iter_mut().enumerate().take(used) {
+            let src = &slot.col[s * ny..(s + 1) * ny];
+            for y0 in (0..ny).step_by(BLOCK) {
+                let at = tile_index(c, y0, ny, gw);
+                dst[at..at + BLOCK].copy_from_slice(&src[y0..y0 + BLOCK]);
+            }
+        }
     }
 }
 
@@ -247,9 +265,12 @@ fn row_block(
     let nx = ocean.params.nx;
     let ny = ocean.params.ny;
     let half = nx / 2;
-    let rows = &mut slot.rows[..PAIRS * b * nx];
-    // (source of a, source of b, kind): the k_x factor applied to each.
-    // Kinds: One = 1, IKx = i k_x, NegKx2 = −k_x².
+    // Rows are padded so the b rows of a block do not all map to the same
+    // cache sets (a power-of-two stride would make the unfolding below
+    // thrash L1).
+    let stride = row_stride(nx);
+    let rows = &mut slot.rows[..PAIRS * b * stride];
+    // (source of a, factor of a, source of b, factor of b).
     const PLAN: [(usize, Factor, usize, Factor); PAIRS] = [
         (0, Factor::One, 0, Factor::IKx),    // h, ε_x
         (1, Factor::One, 3, Factor::One),    // ε_y, d_y
@@ -259,29 +280,41 @@ fn row_block(
     let chop = choppy(ocean);
     let pairs = if chop { PAIRS } else { 2 };
     for (p, &(sa, fa, sb, fb)) in PLAN.iter().enumerate().take(pairs) {
-        let g = &mut rows[p * b * nx..(p + 1) * b * nx];
+        let g = &mut rows[p * b * stride..(p + 1) * b * stride];
         let (ca, cb) = (cols[sa], cols[sb]);
-        for n in 0..half {
-            let kx = ocean.kx[n];
-            let col = n * ny + gy;
-            let va = &ca[col..col + b];
-            let vb = &cb[col..col + b];
+        // k_x = 0: the column of a real field is real; the Nyquist bin is 0.
+        let gw = group_width(nx);
+        {
+            let at = tile_index(0, gy, ny, gw);
+            let va = &ca[at..at + b];
+            let vb = &cb[at..at + b];
+            let (ma, mb) = (fa.multiplier(0.0), fb.multiplier(0.0));
             for r in 0..b {
-                let a = fa.apply(va[r], kx);
-                let bb = fb.apply(vb[r], kx);
-                let row = &mut g[r * nx..(r + 1) * nx];
-                if n == 0 {
-                    // The k_x = 0 column of a real field is real.
-                    row[0] = C32::new(a.re, bb.re);
-                    row[half] = C32::new(0.0, 0.0);
-                } else {
-                    // G(n) = A + iB, G(N−n) = A* + iB*.
-                    row[n] = C32::new(a.re - bb.im, a.im + bb.re);
-                    row[nx - n] = C32::new(a.re + bb.im, bb.re - a.im);
-                }
+                let row = &mut g[r * stride..r * stride + nx];
+                row[0] = C32::new((va[r] * ma).re, (vb[r] * mb).re);
+                row[half] = C32::new(0.0, 0.0);
             }
         }
-        ocean.row_fft.process_with_scratch(g, &mut slot.scratch);
+        for n in 1..half {
+            let kx = ocean.kx[n];
+            let (ma, mb) = (fa.multiplier(kx), fb.multiplier(kx));
+            let at = tile_index(n, gy, ny, gw);
+            let va = &ca[at..at + b];
+            let vb = &cb[at..at + b];
+            for r in 0..b {
+                let a = va[r] * ma;
+                let bb = vb[r] * mb;
+                let o = r * stride;
+                // G(n) = A + iB, G(N−n) = A* + iB*.
+                g[o + n] = C32::new(a.re - bb.im, a.im + bb.re);
+                g[o + nx - n] = C32::new(a.re + bb.im, bb.re - a.im);
+            }
+        }
+        for r in 0..b {
+            ocean
+                .row_fft
+                .process_with_scratch(&mut g[r * stride..r * stride + nx], &mut slot.scratch);
+        }
     }
     // Unpack: real parts are field a, imaginary parts field b; the diagonal
     // Jacobian terms get their identity added.
@@ -291,32 +324,38 @@ fn row_block(
         (3, 0.0, 5, 1.0),
         (6, 1.0, 7, 0.0),
     ];
-    let range = ly * nx..(ly + b) * nx;
     for (p, &(ia, oa, ib, ob)) in OUT.iter().enumerate() {
         let (fa, fb) = two_mut(outs, ia, ib);
-        if p >= pairs {
-            fa[range.clone()].fill(oa);
-            fb[range.clone()].fill(ob);
-            continue;
-        }
-        let g = &rows[p * b * nx..(p + 1) * b * nx];
-        if p == 1 && !chop {
-            // d_y shares a transform with ε_y; without chop it is exactly 0.
-            for (x, a) in g.iter().zip(&mut fa[range.clone()]) {
-                *a = x.re;
+        for r in 0..b {
+            let range = (ly + r) * nx..(ly + r + 1) * nx;
+            let (da, db) = (&mut fa[range.clone()], &mut fb[range]);
+            if p >= pairs {
+                da.fill(oa);
+                db.fill(ob);
+                continue;
             }
-            fb[range.clone()].fill(0.0);
-            continue;
-        }
-        for ((x, a), bb) in g
-            .iter()
-            .zip(&mut fa[range.clone()])
-            .zip(&mut fb[range.clone()])
-        {
-            *a = x.re + oa;
-            *bb = x.im + ob;
+            let o = p * b * stride + r * stride;
+            let g = &rows[o..o + nx];
+            if p == 1 && !chop {
+                // d_y shares a transform with ε_y; without chop it is exactly 0.
+                for (x, a) in g.iter().zip(da.iter_mut()) {
+                    *a = x.re;
+                }
+                db.fill(0.0);
+                continue;
+            }
+            for ((x, a), bb) in g.iter().zip(da.iter_mut()).zip(db.iter_mut()) {
+                *a = x.re + oa;
+                *bb = x.im + ob;
+            }
         }
     }
+}
+
+/// Padded row length (complex values) of the row-pass buffers.
+#[inline]
+pub(crate) fn row_stride(nx: usize) -> usize {
+    nx + 16
 }
 
 /// Borrows two distinct elements of `outs` mutably.
@@ -338,12 +377,13 @@ enum Factor {
 }
 
 impl Factor {
+    /// Returns the complex factor for wavenumber `kx`.
     #[inline(always)]
-    fn apply(self, v: C32, kx: f32) -> C32 {
+    fn multiplier(self, kx: f32) -> C32 {
         match self {
-            Factor::One => v,
-            Factor::IKx => C32::new(-kx * v.im, kx * v.re),
-            Factor::NegKx2 => v * (-kx * kx),
+            Factor::One => C32::new(1.0, 0.0),
+            Factor::IKx => C32::new(0.0, kx),
+            Factor::NegKx2 => C32::new(-kx * kx, 0.0),
         }
     }
 }

@@ -15,6 +15,8 @@ use crate::patch::Ocean;
 pub(crate) struct Slot {
     pub(crate) rows: Vec<Complex<f32>>,
     pub(crate) scratch: Vec<Complex<f32>>,
+    /// One column of each source.
+    pub(crate) col: Vec<Complex<f32>>,
 }
 
 /// Buffers reused from frame to frame.
@@ -119,8 +121,9 @@ impl Frame {
             .get_inplace_scratch_len()
             .max(ocean.row_fft.get_inplace_scratch_len());
         let slot = Slot {
-            rows: vec![zero; PAIRS * BLOCK.min(ny) * nx],
+            rows: vec![zero; PAIRS * BLOCK.min(ny) * crate::fft::row_stride(nx)],
             scratch: vec![zero; scratch],
+            col: vec![zero; SOURCES * ny],
         };
         Ok(Self {
             fields: std::array::from_fn(|_| grid.clone()),

@@ -65,15 +65,19 @@ pub mod reference;
 pub mod spectrum;
 pub mod surface;
 
+pub use cascade::{Cascade, CascadeFrame};
 pub use dispersion::{Dispersion, DispersionRelation, G, Quantized};
 pub use error::{OceanError, Result};
 
+pub use foam::{Foam, FoamParams};
 pub use frame::{Field, Frame, JacobianEigen, normal_from};
 
+pub use gerstner::{GerstnerSea, GerstnerWave};
 pub use patch::{AmplitudeScheme, DirectSample, MAX_SIZE, MIN_SIZE, Ocean, OceanParams};
 pub use spectrum::{
     Directional, FrequencySpectrum, Jonswap, Phillips, PiersonMoskowitz, Spectrum, Spreading, Tma,
 };
+pub use surface::{Surface, WaterSurface};
 
 /// Re-export of natura-core's seed type.
 pub use natura_core::Seed;
