@@ -52,8 +52,9 @@ fn main() {
         }
         let h = frame.height_variance().sqrt();
         println!(
-            "wind {wind:>4.1} m/s: height rms {h:.2} m, Hs ≈ {:.2} m, foam cover {:.1}%",
+            "wind {wind:>4.1} m/s: height rms {h:.2} m, Hs ≈ {:.2} m, min Jacobian {:.2}, foam cover {:.1}%",
             4.0 * h,
+            frame.jacobian_grid().min(),
             100.0 * foam.fraction_above(0.1)
         );
     }
@@ -99,7 +100,7 @@ fn warmed_up(
         ny: n,
         lx: extent,
         ly: extent,
-        choppiness: 1.0,
+        choppiness: 1.8,
         loop_period,
         ..OceanParams::default()
     };
@@ -112,7 +113,12 @@ fn warmed_up(
     };
     let ocean = Ocean::new(&params, &spectrum, Seed(seed))?;
     let mut frame = Frame::new(&ocean)?;
-    let mut foam = Foam::for_frame(&frame, FoamParams::default())?;
+    let foam_params = FoamParams {
+        threshold: 0.62,
+        range: 0.25,
+        decay_time: 2.5,
+    };
+    let mut foam = Foam::for_frame(&frame, foam_params)?;
     for i in 0..=steps {
         ocean.evaluate_into(i as f64 * 0.25, &mut frame)?;
         foam.update(&frame)?;
@@ -143,9 +149,9 @@ fn slope_picture(f: &Frame) -> Image {
 fn shaded(surface: &Surface, n: usize, extent: Vec2) -> Image {
     let view = Vec3::new(0.0, 0.82, -0.57).normalize();
     let shader = WaterShader {
-        sun_direction: Vec3::new(0.1, 0.75, 0.65).normalize(),
-        sun_irradiance: Vec3::new(2.4, 2.2, 1.9),
-        slope_variance: 0.01,
+        sun_direction: Vec3::new(-0.55, 0.45, 0.7).normalize(),
+        sun_irradiance: Vec3::new(0.5, 0.47, 0.42),
+        slope_variance: 0.004,
         ..WaterShader::default()
     };
     let zenith = Vec3::new(0.18, 0.36, 0.75);

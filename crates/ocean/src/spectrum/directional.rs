@@ -13,7 +13,7 @@ use crate::error::{Result, finite, non_negative};
 /// Both variants use the cos-2s form N(s) cos^{2s}(θ/2),
 /// N(s) = 2^{2s−1} Γ(s+1)² / (π Γ(2s+1)) (Longuet-Higgins et al. 1963), which
 /// is 0 for waves travelling straight against the wind and largest along it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Spreading {
     /// A fixed spreading exponent s (≥ 0; larger is narrower).
@@ -24,13 +24,8 @@ pub enum Spreading {
     /// Hasselmann et al. (1980): s = 6.97 (ω/ω_p)^4.06 for ω ≤ ω_p and
     /// 9.77 (ω/ω_p)^{−2.33 − 1.45 (U/c_p − 1.17)} above, c_p = g/ω_p.
     /// Narrowest at the peak, broader for shorter and longer waves.
+    #[default]
     Hasselmann,
-}
-
-impl Default for Spreading {
-    fn default() -> Self {
-        Spreading::Hasselmann
-    }
 }
 
 /// ln N(s) for the cos-2s normalisation.
