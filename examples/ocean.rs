@@ -42,9 +42,17 @@ fn main() {
         let tag = format!("{wind:.0}ms");
         save(&out, &format!("height_{tag}.png"), &height_picture(&frame));
         save(&out, &format!("slope_{tag}.png"), &slope_picture(&frame));
-        save(&out, &format!("foam_{tag}.png"), &Image::false_colour(&flip(foam.coverage()), Ramp::Magma, 0.0, 1.0));
+        save(
+            &out,
+            &format!("foam_{tag}.png"),
+            &Image::false_colour(&flip(foam.coverage()), Ramp::Magma, 0.0, 1.0),
+        );
         let surface = common::check(Surface::new(&frame, Some(&foam)));
-        save(&out, &format!("shaded_{tag}.png"), &shaded(&surface, size, ocean.extent()));
+        save(
+            &out,
+            &format!("shaded_{tag}.png"),
+            &shaded(&surface, size, ocean.extent()),
+        );
         if exr {
             let p = out.join(format!("maps_{tag}.exr"));
             common::check(natura::ocean::export::write_maps(&p, &frame, Some(&foam)));
@@ -62,8 +70,14 @@ fn main() {
     // A looping sequence: frequencies quantised to multiples of 2π/T (eq. 18).
     let period = 8.0;
     let n = if quick { 64 } else { 256 };
-    let (ocean, mut frame, mut foam) =
-        common::check(warmed_up(n, 100.0, 10.0, Some(period), seed, (2.0 * period / 0.25) as usize));
+    let (ocean, mut frame, mut foam) = common::check(warmed_up(
+        n,
+        100.0,
+        10.0,
+        Some(period),
+        seed,
+        (2.0 * period / 0.25) as usize,
+    ));
     let mut seq = common::check(FrameSequence::new(&out, "loop"));
     let bar = common::Bar::new();
     use natura::core::Progress;

@@ -12,7 +12,7 @@
 pub(crate) fn sin_cos(theta: f32) -> (f32, f32) {
     const TWO_OVER_PI: f32 = std::f32::consts::FRAC_2_PI;
     const PIO2_HI: f32 = 1.570_312_5;
-    const PIO2_LO: f32 = 4.838_267_9e-4;
+    const PIO2_LO: f32 = 4.838_268e-4;
     // Round to nearest with the 1.5·2²³ trick, which vectorises on plain SSE2.
     const MAGIC: f32 = 12_582_912.0;
     let q = (theta * TWO_OVER_PI + MAGIC) - MAGIC;

@@ -416,11 +416,11 @@ mod tests {
 
     proptest! {
         #[test]
-        fn fresnel_is_bounded_monotone_and_reciprocal(theta in 0.0f64..1.5707, n in 1.05f64..2.0) {
+        fn fresnel_is_bounded_monotone_and_reciprocal(theta in 0.0f64..1.5, n in 1.05f64..2.0) {
             let r = fresnel_reflectance(theta.cos(), 1.0, n);
             prop_assert!((0.0..=1.0).contains(&r));
             prop_assert!((r + fresnel_transmittance(theta.cos(), 1.0, n) - 1.0).abs() < 1e-15);
-            let r2 = fresnel_reflectance((theta + 1e-3).min(1.5707963).cos(), 1.0, n);
+            let r2 = fresnel_reflectance((theta + 1e-3).cos(), 1.0, n);
             prop_assert!(r2 >= r - 1e-12);
             // R(θ_i, n₁→n₂) = R(θ_t, n₂→n₁).
             let tt = (theta.sin() / n).asin();
@@ -428,7 +428,7 @@ mod tests {
         }
 
         #[test]
-        fn refraction_obeys_snell(theta in 0.0f64..1.56, phi in 0.0f64..6.28, n in 1.05f64..2.0, up in proptest::bool::ANY, from_below in proptest::bool::ANY) {
+        fn refraction_obeys_snell(theta in 0.0f64..1.56, phi in 0.0f64..6.0, n in 1.05f64..2.0, up in proptest::bool::ANY, from_below in proptest::bool::ANY) {
             let normal = if up { DVec3::Z } else { -DVec3::Z };
             let (ni, nt) = if from_below { (n, 1.0) } else { (1.0, n) };
             let dz = if from_below { 1.0 } else { -1.0 };
