@@ -68,7 +68,7 @@ impl Cascade {
 
     /// As [`Cascade::new`] with explicit band `boundaries` (rad/m, strictly
     /// increasing, one fewer than `sizes`): patch i keeps
-    /// boundaries[i−1] ≤ |k| < boundaries[i].
+    /// `boundaries[i − 1] ≤ |k| < boundaries[i]`.
     pub fn with_boundaries(
         base: &OceanParams,
         sizes: &[f64],

@@ -31,7 +31,7 @@
 //! | [`gerstner`] | sums of Gerstner waves with steepness checks | eqs. 9-13 |
 //! | [`optics`] | Fresnel, reflect/refract, critical angle, water shading | eqs. 37-45, L1161-1218 |
 //! | [`export`] | EXR maps and frame sequences | |
-//! | [`reference`] | the straightforward one-FFT-per-field evaluation (oracle, baseline) | |
+//! | [`reference`](mod@reference) | the straightforward one-FFT-per-field evaluation (oracle, baseline) | |
 //!
 //! ## Conventions and errata
 //!
