@@ -1,0 +1,73 @@
+//! natura-ocean throughput: a full frame (height, 2 slopes, 2 displacements,
+//! 3 Jacobian terms) at 256², 512² and 1024², single-threaded and on two
+//! threads, against the straightforward one-complex-2-D-FFT-per-field
+//! evaluation (`natura_ocean::reference`) measured in the same run.
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use natura::ocean::reference::Reference;
+use natura::ocean::{Frame, Ocean, OceanParams, Phillips, Seed};
+use std::hint::black_box;
+
+fn ocean(n: usize) -> Ocean {
+    let params = OceanParams {
+        nx: n,
+        ny: n,
+        lx: 500.0,
+        ly: 500.0,
+        choppiness: 1.0,
+        ..OceanParams::default()
+    };
+    let spectrum = Phillips {
+        wind_speed: 12.0,
+        small_wave_length: 0.1,
+        ..Phillips::default()
+    };
+    Ocean::new(&params, &spectrum, Seed(1)).expect("valid parameters")
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
+}
+
+fn full_frame(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_frame");
+    for n in [256usize, 512, 1024] {
+        let o = ocean(n);
+        group.throughput(Throughput::Elements((n * n) as u64));
+        group.sample_size(if n >= 1024 { 10 } else { 20 });
+        group.measurement_time(Duration::from_secs(if n >= 1024 { 6 } else { 4 }));
+        group.warm_up_time(Duration::from_secs(1));
+        for threads in [1usize, 2] {
+            let p = pool(threads);
+            let mut frame = p.install(|| Frame::new(&o).expect("frame"));
+            let mut t = 0.0;
+            group.bench_function(BenchmarkId::new(format!("natura_{threads}t"), n), |b| {
+                p.install(|| {
+                    b.iter(|| {
+                        t += 0.04;
+                        o.evaluate_into(t, &mut frame).expect("evaluate");
+                        black_box(frame.height().as_slice()[0])
+                    })
+                })
+            });
+        }
+        let mut r = Reference::new(&o).expect("reference");
+        let mut t = 0.0;
+        group.bench_function(BenchmarkId::new("one_fft_per_field_1t", n), |b| {
+            b.iter(|| {
+                t += 0.04;
+                r.evaluate(t).expect("evaluate");
+                black_box(r.field(natura::ocean::Field::Height).as_slice()[0])
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, full_frame);
+criterion_main!(benches);
