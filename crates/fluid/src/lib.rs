@@ -1,1 +1,13 @@
+//! # natura-fluid
+//!
 //! Stable fluids, smoke with vorticity confinement, and liquids.
+#![forbid(unsafe_code)]
+
+pub mod advect;
+mod error;
+pub mod grid;
+pub mod interp;
+mod par;
+pub mod pressure;
+
+pub use error::{FluidError, Result};
