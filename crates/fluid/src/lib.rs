@@ -11,3 +11,8 @@ mod par;
 pub mod pressure;
 
 pub use error::{FluidError, Result};
+pub mod mac;
+pub mod shape;
+mod diffuse;
+pub mod fft;
+pub mod stable;

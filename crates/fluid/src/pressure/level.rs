@@ -232,13 +232,15 @@ impl Level {
 
     fn apply_k<const K: usize, T: Real>(&self, x: &[T], y: &mut [T]) {
         let st = self.strides::<K>();
-        let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
+        let (p0, n0) = (self.pad[0], self.n[0]);
         self.rows_par(y, |_, base, yrow| {
-            let xs = &x[base..base + m0];
-            let ms = &self.mask[base..base + m0];
-            let lo: [&[T]; K] = std::array::from_fn(|q| &x[base - st[q]..base - st[q] + m0]);
-            let hi: [&[T]; K] = std::array::from_fn(|q| &x[base + st[q]..base + st[q] + m0]);
-            for i in p0..p0 + n0 {
+            let s = base + p0;
+            let xs = &x[s..s + n0];
+            let ms = &self.mask[s..s + n0];
+            let lo: [&[T]; K] = std::array::from_fn(|q| &x[s - st[q]..s - st[q] + n0]);
+            let hi: [&[T]; K] = std::array::from_fn(|q| &x[s + st[q]..s + st[q] + n0]);
+            let out = &mut yrow[p0..p0 + n0];
+            for (i, o) in out.iter_mut().enumerate() {
                 let m = ms[i];
                 let mut off = T::default();
                 for q in 0..K {
@@ -246,7 +248,7 @@ impl Level {
                         + T::from(f32::from((m >> (2 * q)) & 1)) * lo[q][i]
                         + T::from(f32::from((m >> (2 * q + 1)) & 1)) * hi[q][i];
                 }
-                yrow[i] = T::from(f32::from(m >> 8)) * xs[i] - off;
+                *o = T::from(f32::from(m >> 8)) * xs[i] - off;
             }
         });
     }
@@ -264,25 +266,29 @@ impl Level {
 
     fn gs_half_k<const K: usize>(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
         let st = self.strides::<K>();
-        let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
+        let (p0, n0) = (self.pad[0], self.n[0]);
         self.rows_par(out, |r, base, orow| {
-            let xs = &x[base..base + m0];
-            let bs = &b[base..base + m0];
-            let ms = &self.mask[base..base + m0];
-            let lo: [&[f32]; K] = std::array::from_fn(|q| &x[base - st[q]..base - st[q] + m0]);
-            let hi: [&[f32]; K] = std::array::from_fn(|q| &x[base + st[q]..base + st[q] + m0]);
-            // Cell i (interior index i − p0) is updated when (i − p0 + j + k) ≡ colour.
+            let s = base + p0;
+            let xs = &x[s..s + n0];
+            let bs = &b[s..s + n0];
+            let ms = &self.mask[s..s + n0];
+            let lo: [&[f32]; K] = std::array::from_fn(|q| &x[s - st[q]..s - st[q] + n0]);
+            let hi: [&[f32]; K] = std::array::from_fn(|q| &x[s + st[q]..s + st[q] + n0]);
+            let o = &mut orow[p0..p0 + n0];
+            // Interior cell i is updated when (i + j + k) ≡ colour (mod 2).
             let want = (colour + self.row_parity(r)) & 1;
-            for i in p0..p0 + n0 {
+            for (i, ov) in o.iter_mut().enumerate() {
                 let m = ms[i];
-                let upd = ((i - p0) & 1) == want && m != 0;
                 let mut off = 0.0f32;
                 for q in 0..K {
                     off += f32::from((m >> (2 * q)) & 1) * lo[q][i]
                         + f32::from((m >> (2 * q + 1)) & 1) * hi[q][i];
                 }
                 let d = f32::from((m >> 8).max(1));
-                orow[i] = if upd { (bs[i] + off) / d } else { xs[i] };
+                // Arithmetic blend instead of a branch so the loop vectorises.
+                let w = f32::from(u8::from((i & 1) == want) & u8::from(m != 0));
+                let v = (bs[i] + off) / d;
+                *ov = xs[i] + w * (v - xs[i]);
             }
         });
     }
@@ -502,40 +508,34 @@ impl Transfer {
 /// Coarsens cell kinds by 2 along active axes: air wins, then fluid, then solid.
 pub(crate) fn coarsen(fine: &Level) -> ([usize; 3], Vec<CellKind>) {
     let nc: [usize; 3] = std::array::from_fn(|a| if fine.n[a] > 1 { fine.n[a].div_ceil(2) } else { 1 });
-    let mut kinds = vec![CellKind::Solid; nc[0] * nc[1] * nc[2]];
-    for k in 0..nc[2] {
-        for j in 0..nc[1] {
-            for i in 0..nc[0] {
-                let mut any_air = false;
-                let mut any_fluid = false;
-                let c = [i, j, k];
-                let ranges: [Vec<usize>; 3] = std::array::from_fn(|a| {
-                    if fine.n[a] > 1 {
-                        (2 * c[a]..(2 * c[a] + 2).min(fine.n[a])).collect()
-                    } else {
-                        vec![0]
-                    }
-                });
-                for &fk in &ranges[2] {
-                    for &fj in &ranges[1] {
-                        for &fi in &ranges[0] {
-                            match fine.kinds[fine.uidx([fi, fj, fk])] {
-                                CellKind::Air => any_air = true,
-                                CellKind::Fluid => any_fluid = true,
-                                CellKind::Solid => {}
-                            }
-                        }
-                    }
-                }
-                kinds[(k * nc[1] + j) * nc[0] + i] = if any_air {
-                    CellKind::Air
-                } else if any_fluid {
-                    CellKind::Fluid
-                } else {
-                    CellKind::Solid
-                };
+    // 0 = solid, 1 = fluid, 2 = air: the coarse kind is the max over children.
+    let rank = |k: CellKind| match k {
+        CellKind::Solid => 0u8,
+        CellKind::Fluid => 1,
+        CellKind::Air => 2,
+    };
+    let mut best = vec![0u8; nc[0] * nc[1] * nc[2]];
+    let n = fine.n;
+    let half = |a: usize, i: usize| if n[a] > 1 { i / 2 } else { 0 };
+    for k in 0..n[2] {
+        let kc = half(2, k);
+        for j in 0..n[1] {
+            let jc = half(1, j);
+            let frow = (k * n[1] + j) * n[0];
+            let crow = (kc * nc[1] + jc) * nc[0];
+            for i in 0..n[0] {
+                let c = crow + half(0, i);
+                best[c] = best[c].max(rank(fine.kinds[frow + i]));
             }
         }
     }
+    let kinds = best
+        .into_iter()
+        .map(|r| match r {
+            0 => CellKind::Solid,
+            1 => CellKind::Fluid,
+            _ => CellKind::Air,
+        })
+        .collect();
     (nc, kinds)
 }
