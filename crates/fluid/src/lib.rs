@@ -16,3 +16,5 @@ pub mod shape;
 mod diffuse;
 pub mod fft;
 pub mod stable;
+pub mod smoke;
+pub mod export;
