@@ -56,13 +56,13 @@ pub fn monotone_cubic(fm: f32, f0: f32, f1: f32, f2: f32, s: f32, limiter: Cubic
         d1 = 0.0;
     }
     if limiter == CubicLimiter::FritschCarlson {
-        let a = d0 / delta;
-        let b = d1 / delta;
-        let r2 = a * a + b * b;
-        if r2 > 9.0 {
-            let tau = 3.0 / r2.sqrt();
-            d0 = tau * a * delta;
-            d1 = tau * b * delta;
+        // α² + β² ≤ 9 with α = d0/Δ, β = d1/Δ, written without dividing so
+        // that a tiny Δ cannot overflow to inf/NaN.
+        let norm = (d0 * d0 + d1 * d1).sqrt();
+        if norm > 3.0 * delta.abs() {
+            let tau = 3.0 * delta.abs() / norm;
+            d0 *= tau;
+            d1 *= tau;
         }
     }
     // Corrected a3 (erratum E1): d_k + d_{k+1} − 2Δ_k.

@@ -18,3 +18,8 @@ pub mod fft;
 pub mod stable;
 pub mod smoke;
 pub mod export;
+pub mod levelset;
+pub mod liquid;
+
+#[cfg(test)]
+mod tests;
