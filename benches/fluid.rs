@@ -25,20 +25,49 @@ use natura::fluid::stable::{BoundedFluid, ForceSource, ScalarSource, StableParam
 const TOL: f64 = 1e-5;
 
 fn pool() -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("thread pool")
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("thread pool")
 }
 
 fn stable2d() -> BoundedFluid {
     let n = 512;
     let h = 1.0 / n as f32;
     let dims = Dims::plane(n, n).expect("dims");
-    let params = StableParams { solver: SolverParams { tolerance: TOL, ..Default::default() }, ..Default::default() };
+    let params = StableParams {
+        solver: SolverParams {
+            tolerance: TOL,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
     let mut f = BoundedFluid::new(dims, h, params).expect("fluid");
-    let dye = f.add_substance(Substance::passive("dye")).expect("substance");
-    let jet = Shape::Sphere { centre: Vec3::new(0.5, 0.5 * h, 0.15), radius: 0.05 };
-    f.add_source(dye, ScalarSource { shape: jet, rate: 1.0 }).expect("source");
-    f.add_force_source(ForceSource { shape: jet, acceleration: Vec3::new(3.0, 0.0, 30.0) }).expect("force");
-    f.add_obstacle(Obstacle::fixed(Shape::Sphere { centre: Vec3::new(0.45, 0.5 * h, 0.6), radius: 0.08 })).expect("obstacle");
+    let dye = f
+        .add_substance(Substance::passive("dye"))
+        .expect("substance");
+    let jet = Shape::Sphere {
+        centre: Vec3::new(0.5, 0.5 * h, 0.15),
+        radius: 0.05,
+    };
+    f.add_source(
+        dye,
+        ScalarSource {
+            shape: jet,
+            rate: 1.0,
+        },
+    )
+    .expect("source");
+    f.add_force_source(ForceSource {
+        shape: jet,
+        acceleration: Vec3::new(3.0, 0.0, 30.0),
+    })
+    .expect("force");
+    f.add_obstacle(Obstacle::fixed(Shape::Sphere {
+        centre: Vec3::new(0.45, 0.5 * h, 0.6),
+        radius: 0.08,
+    }))
+    .expect("obstacle");
     f
 }
 
@@ -46,28 +75,68 @@ fn smoke3d() -> Smoke {
     let n = 128;
     let h = 1.0 / n as f32;
     let dims = Dims::new(n, n, n).expect("dims");
-    let params = SmokeParams { solver: SolverParams { tolerance: TOL, ..Default::default() }, ..Default::default() };
+    let params = SmokeParams {
+        solver: SolverParams {
+            tolerance: TOL,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
     let mut s = Smoke::new(dims, h, params).expect("smoke");
     s.add_source(SmokeSource {
-        shape: Shape::Sphere { centre: Vec3::new(0.5, 0.5, 0.15), radius: 0.08 },
+        shape: Shape::Sphere {
+            centre: Vec3::new(0.5, 0.5, 0.15),
+            radius: 0.08,
+        },
         density: 1.0,
         temperature: 330.0,
         velocity: Some(Vec3::new(0.0, 0.0, 0.5)),
     })
     .expect("source");
-    s.add_obstacle(Obstacle::fixed(Shape::Sphere { centre: Vec3::new(0.45, 0.5, 0.6), radius: 0.12 })).expect("obstacle");
+    s.add_obstacle(Obstacle::fixed(Shape::Sphere {
+        centre: Vec3::new(0.45, 0.5, 0.6),
+        radius: 0.12,
+    }))
+    .expect("obstacle");
     s
 }
 
 /// Times MG-PCG and Gauss–Seidel on the projection of `vel` and prints the figures.
-fn baseline(name: &str, vel: &MacVelocity, kinds: &[CellKind], bounds: &Boundaries, h: f32, cap: u32) {
+fn baseline(
+    name: &str,
+    vel: &MacVelocity,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    h: f32,
+    cap: u32,
+) {
     let d = vel.dims();
     let div = divergence(vel, h).expect("div");
-    let b: Vec<f32> = div.as_slice().iter().zip(kinds).map(|(&v, &k)| if k == CellKind::Fluid { -h * h * v } else { 0.0 }).collect();
+    let b: Vec<f32> = div
+        .as_slice()
+        .iter()
+        .zip(kinds)
+        .map(|(&v, &k)| {
+            if k == CellKind::Fluid {
+                -h * h * v
+            } else {
+                0.0
+            }
+        })
+        .collect();
     let mut sys = PoissonSystem::new(d, kinds, bounds, [false; 3]).expect("system");
     let mut x = vec![0.0f64; d.cells()];
     let t = Instant::now();
-    let mg = sys.solve(&b, &mut x, &SolverParams { tolerance: TOL, ..Default::default() }).expect("mg");
+    let mg = sys
+        .solve(
+            &b,
+            &mut x,
+            &SolverParams {
+                tolerance: TOL,
+                ..Default::default()
+            },
+        )
+        .expect("mg");
     let t_mg = t.elapsed();
     // Gauss–Seidel in chunks to observe its rate.
     let mut x = vec![0.0f64; d.cells()];
@@ -78,7 +147,15 @@ fn baseline(name: &str, vel: &MacVelocity, kinds: &[CellKind], bounds: &Boundari
     let t = Instant::now();
     while total < cap {
         let st = sys
-            .solve(&b, &mut x, &SolverParams { solver: PressureSolver::GaussSeidel, tolerance: TOL, max_iterations: chunk })
+            .solve(
+                &b,
+                &mut x,
+                &SolverParams {
+                    solver: PressureSolver::GaussSeidel,
+                    tolerance: TOL,
+                    max_iterations: chunk,
+                },
+            )
             .expect("gs");
         total += st.iterations;
         rate = (st.relative_residual / rel).powf(1.0 / f64::from(st.iterations.max(1)));
@@ -120,10 +197,23 @@ fn benches(c: &mut Criterion) {
             f.step(0.002).expect("step");
         }
         let r = f.step(0.002).expect("step");
-        println!("stable2d_512: {} CG iterations, residual {:.2e}", r.pressure_iterations, r.pressure.map_or(0.0, |p| p.relative_residual));
+        println!(
+            "stable2d_512: {} CG iterations, residual {:.2e}",
+            r.pressure_iterations,
+            r.pressure.map_or(0.0, |p| p.relative_residual)
+        );
         g.throughput(Throughput::Elements(512 * 512));
-        g.bench_function("stable2d_512_bounded_step", |b| b.iter(|| black_box(f.step(0.002).expect("step"))));
-        baseline("stable2d_512 projection", f.velocity(), f.cell_kinds().as_slice(), &Boundaries::closed(), f.h(), 200_000);
+        g.bench_function("stable2d_512_bounded_step", |b| {
+            b.iter(|| black_box(f.step(0.002).expect("step")))
+        });
+        baseline(
+            "stable2d_512 projection",
+            f.velocity(),
+            f.cell_kinds().as_slice(),
+            &Boundaries::closed(),
+            f.h(),
+            200_000,
+        );
         drop(f);
         // 3-D smoke 128³ with confinement.
         let mut s = smoke3d();
@@ -131,12 +221,25 @@ fn benches(c: &mut Criterion) {
             s.step(0.004).expect("step");
         }
         let r = s.step(0.004).expect("step");
-        println!("smoke3d_128: {} CG iterations, residual {:.2e}", r.pressure_iterations, r.pressure.map_or(0.0, |p| p.relative_residual));
+        println!(
+            "smoke3d_128: {} CG iterations, residual {:.2e}",
+            r.pressure_iterations,
+            r.pressure.map_or(0.0, |p| p.relative_residual)
+        );
         g.throughput(Throughput::Elements(128 * 128 * 128));
         g.measurement_time(Duration::from_secs(15));
-        g.bench_function("smoke3d_128_confinement_step", |b| b.iter(|| black_box(s.step(0.004).expect("step"))));
+        g.bench_function("smoke3d_128_confinement_step", |b| {
+            b.iter(|| black_box(s.step(0.004).expect("step")))
+        });
         let bounds = s.params().bounds;
-        baseline("smoke3d_128 projection", s.velocity(), s.cell_kinds().as_slice(), &bounds, s.h(), 3_000);
+        baseline(
+            "smoke3d_128 projection",
+            s.velocity(),
+            s.cell_kinds().as_slice(),
+            &bounds,
+            s.h(),
+            3_000,
+        );
         g.finish();
     });
 }

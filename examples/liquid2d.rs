@@ -18,8 +18,16 @@ use natura::fluid::shape::{Obstacle, Shape};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let nx: usize = args.value("--nx", if quick { 48 } else { 160 }, "cells across (height is half)");
-    let seconds: f32 = args.value("--seconds", if quick { 0.6 } else { 2.4 }, "simulated time (s)");
+    let nx: usize = args.value(
+        "--nx",
+        if quick { 48 } else { 160 },
+        "cells across (height is half)",
+    );
+    let seconds: f32 = args.value(
+        "--seconds",
+        if quick { 0.6 } else { 2.4 },
+        "simulated time (s)",
+    );
     let frames: usize = args.value("--frames", if quick { 3 } else { 12 }, "PNG frames");
     let out = args.out_dir("docs/gallery/fluid");
     args.finish();
@@ -67,14 +75,26 @@ fn main() {
         100.0 * (v1 - v0) / v0
     );
     let (w, hh) = (shots[0].width(), shots[0].height());
-    let strip = Image::from_grid(common::check(Grid2::from_fn(w, hh * shots.len() + 4 * (shots.len() - 1), |x, y| {
-        let k = y / (hh + 4);
-        let r = y % (hh + 4);
-        if r >= hh { Vec3::ONE } else { shots[k].get(x, r).unwrap_or(Vec3::ONE) }
-    })));
+    let strip = Image::from_grid(common::check(Grid2::from_fn(
+        w,
+        hh * shots.len() + 4 * (shots.len() - 1),
+        |x, y| {
+            let k = y / (hh + 4);
+            let r = y % (hh + 4);
+            if r >= hh {
+                Vec3::ONE
+            } else {
+                shots[k].get(x, r).unwrap_or(Vec3::ONE)
+            }
+        },
+    )));
     let path = out.join("liquid2d.png");
     common::check(strip.save_png(&path));
-    println!("wrote {} and frames in {}", path.display(), frame_dir.display());
+    println!(
+        "wrote {} and frames in {}",
+        path.display(),
+        frame_dir.display()
+    );
 }
 
 /// Water (φ < 0) in blue, marker particles as light dots, objects grey; `s`
@@ -84,7 +104,11 @@ fn render(l: &Liquid, s: usize) -> Image {
     let h = l.h();
     let (w, hh) = (d.nx * s, d.nz * s);
     let mut img = common::check(Image::from_fn(w, hh, |x, r| {
-        let p = Vec3::new((x as f32 + 0.5) / s as f32 * h, 0.5 * h, (hh - r) as f32 / s as f32 * h);
+        let p = Vec3::new(
+            (x as f32 + 0.5) / s as f32 * h,
+            0.5 * h,
+            (hh - r) as f32 / s as f32 * h,
+        );
         let (i, k) = (x / s, (hh - 1 - r) / s);
         if l.cells()[(i, 0, k)] == natura::fluid::liquid::LiquidCell::Object {
             return Vec3::splat(0.35);

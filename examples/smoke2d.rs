@@ -21,9 +21,21 @@ use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let nx: usize = args.value("--nx", if quick { 48 } else { 192 }, "cells across (height is 2×)");
-    let seconds: f32 = args.value("--seconds", if quick { 2.0 } else { 6.0 }, "simulated time (s)");
-    let epsilon: f32 = args.value("--epsilon", 4.0, "confinement strength ε (1/s) of the second run");
+    let nx: usize = args.value(
+        "--nx",
+        if quick { 48 } else { 192 },
+        "cells across (height is 2×)",
+    );
+    let seconds: f32 = args.value(
+        "--seconds",
+        if quick { 2.0 } else { 6.0 },
+        "simulated time (s)",
+    );
+    let epsilon: f32 = args.value(
+        "--epsilon",
+        4.0,
+        "confinement strength ε (1/s) of the second run",
+    );
     let frames: usize = args.value("--frames", if quick { 2 } else { 6 }, "PNG frames per run");
     let out = args.out_dir("docs/gallery/fluid");
     args.finish();
@@ -93,7 +105,11 @@ fn main() {
     })));
     let path = out.join("smoke2d.png");
     common::check(pair.save_png(&path));
-    println!("wrote {} and frames in {}", path.display(), frame_dir.display());
+    println!(
+        "wrote {} and frames in {}",
+        path.display(),
+        frame_dir.display()
+    );
 }
 
 fn render(smoke: &Smoke, h: f32) -> Image {
@@ -107,4 +123,3 @@ fn render(smoke: &Smoke, h: f32) -> Image {
         Vec3::new(0.05, 0.07, 0.12),
     ))
 }
-

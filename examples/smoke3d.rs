@@ -13,7 +13,9 @@ mod common;
 use natura::core::Ramp;
 use natura::core::glam::Vec3;
 use natura::fluid::advect::Advection;
-use natura::fluid::export::{field_image, render_smoke_volume, slice, write_exr_volume, write_raw_volume};
+use natura::fluid::export::{
+    field_image, render_smoke_volume, slice, write_exr_volume, write_raw_volume,
+};
 use natura::fluid::grid::Dims;
 use natura::fluid::interp::{CubicLimiter, Interpolation};
 use natura::fluid::shape::{Obstacle, Shape};
@@ -22,8 +24,16 @@ use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let n: usize = args.value("--n", if quick { 20 } else { 64 }, "cells across (height is 2×)");
-    let seconds: f32 = args.value("--seconds", if quick { 1.0 } else { 4.0 }, "simulated time (s)");
+    let n: usize = args.value(
+        "--n",
+        if quick { 20 } else { 64 },
+        "cells across (height is 2×)",
+    );
+    let seconds: f32 = args.value(
+        "--seconds",
+        if quick { 1.0 } else { 4.0 },
+        "simulated time (s)",
+    );
     let frames: usize = args.value("--frames", if quick { 2 } else { 8 }, "frames written");
     let epsilon: f32 = args.value("--epsilon", 4.0, "confinement strength ε (1/s)");
     let out = args.out_dir("docs/gallery/fluid");
@@ -69,21 +79,45 @@ fn main() {
         common::check(smoke.step(dt));
         natura::core::Progress::advance(&bar, 1);
         if (s + 1) % per_frame == 0 || s + 1 == steps {
-            let img = common::check(render_smoke_volume(smoke.density(), h, 40.0, 0.9, light, 1, bg));
+            let img = common::check(render_smoke_volume(
+                smoke.density(),
+                h,
+                40.0,
+                0.9,
+                light,
+                1,
+                bg,
+            ));
             common::check(img.save_png(frame_dir.join(format!("render_{:04}.png", s + 1))));
             let sl = common::check(slice(smoke.density(), 1, n / 2));
-            common::check(field_image(&sl, Ramp::Magma, 0.0, 1.0).save_png(frame_dir.join(format!("slice_{:04}.png", s + 1))));
+            common::check(
+                field_image(&sl, Ramp::Magma, 0.0, 1.0)
+                    .save_png(frame_dir.join(format!("slice_{:04}.png", s + 1))),
+            );
             last = Some(img);
         }
     }
     natura::core::Progress::finish(&bar);
     let vol_dir = out.join("smoke3d_volumes");
     common::check(std::fs::create_dir_all(&vol_dir));
-    common::check(write_raw_volume(vol_dir.join("density.raw"), smoke.density(), h));
-    common::check(write_exr_volume(vol_dir.join("density.exr"), smoke.density(), h));
+    common::check(write_raw_volume(
+        vol_dir.join("density.raw"),
+        smoke.density(),
+        h,
+    ));
+    common::check(write_exr_volume(
+        vol_dir.join("density.exr"),
+        smoke.density(),
+        h,
+    ));
     let path = out.join("smoke3d.png");
     if let Some(img) = last {
         common::check(img.save_png(&path));
     }
-    println!("{steps} steps on {dims}; wrote {}, frames in {}, volumes in {}", path.display(), frame_dir.display(), vol_dir.display());
+    println!(
+        "{steps} steps on {dims}; wrote {}, frames in {}, volumes in {}",
+        path.display(),
+        frame_dir.display(),
+        vol_dir.display()
+    );
 }

@@ -121,8 +121,7 @@ impl Solids<'_> {
     #[inline]
     fn is_solid(&self, p: [f32; 3]) -> bool {
         let n = self.dims.n();
-        let c: [usize; 3] =
-            std::array::from_fn(|a| (p[a].max(0.0) as usize).min(n[a] - 1));
+        let c: [usize; 3] = std::array::from_fn(|a| (p[a].max(0.0) as usize).min(n[a] - 1));
         self.kinds[self.dims.idx(c[0], c[1], c[2])] == CellKind::Solid
     }
 
@@ -267,7 +266,15 @@ pub(crate) fn advect(
             let mut lo = vec![0.0f32; len];
             let mut hi = vec![0.0f32; len];
             // Stencil range from the original field at the same back-traced points.
-            sl_pass(&mut back, Some((&mut lo, &mut hi)), src, vel, dt_h, adv, solids);
+            sl_pass(
+                &mut back,
+                Some((&mut lo, &mut hi)),
+                src,
+                vel,
+                dt_h,
+                adv,
+                solids,
+            );
             sl_pass(dst, None, &tilde_s, vel, dt_h, adv, solids);
             for c in 0..len {
                 dst[c] = dst[c].clamp(lo[c], hi[c].max(lo[c]));

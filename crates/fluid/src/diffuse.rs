@@ -43,7 +43,10 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
             if n[a] == 1 {
                 continue;
             }
-            for (ok, nb) in [(c[a] > 0, s.wrapping_sub(st[a])), (c[a] + 1 < n[a], s + st[a])] {
+            for (ok, nb) in [
+                (c[a] > 0, s.wrapping_sub(st[a])),
+                (c[a] + 1 < n[a], s + st[a]),
+            ] {
                 if ok && !excluded(nb) {
                     diag[s] += coef;
                     if fixed[nb] {
@@ -82,16 +85,32 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
     let dot = |a: &[f32], b: &[f32]| {
         par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
             let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
-            a[r.clone()].iter().zip(&b[r]).map(|(&x, &y)| f64::from(x) * f64::from(y)).sum()
+            a[r.clone()]
+                .iter()
+                .zip(&b[r])
+                .map(|(&x, &y)| f64::from(x) * f64::from(y))
+                .sum()
         })
     };
-    let mut x: Vec<f32> = data.iter().zip(&fixed).map(|(&v, &f)| if f { 0.0 } else { v }).collect();
+    let mut x: Vec<f32> = data
+        .iter()
+        .zip(&fixed)
+        .map(|(&v, &f)| if f { 0.0 } else { v })
+        .collect();
     let mut r = vec![0.0f32; len];
     apply(&x, &mut r);
     for s in 0..len {
         r[s] = if fixed[s] { 0.0 } else { b[s] - r[s] };
     }
-    let bn = dot(&b.iter().zip(&fixed).map(|(&v, &f)| if f { 0.0 } else { v }).collect::<Vec<_>>(), &b).abs().sqrt();
+    let bn = dot(
+        &b.iter()
+            .zip(&fixed)
+            .map(|(&v, &f)| if f { 0.0 } else { v })
+            .collect::<Vec<_>>(),
+        &b,
+    )
+    .abs()
+    .sqrt();
     let mut z: Vec<f32> = r.iter().zip(&diag).map(|(&v, &d)| v / d).collect();
     let mut p = z.clone();
     let mut q = vec![0.0f32; len];

@@ -73,7 +73,8 @@ pub fn projection(g: &Grid3<f32>, normal: usize, h: f32) -> Result<Grid2<f32>> {
 pub fn field_image(f: &Grid2<f32>, ramp: Ramp, lo: f32, hi: f32) -> Image {
     let (w, hgt) = f.dims();
     Image::from_grid(
-        Grid2::from_fn(w, hgt, |i, r| ramp.map(f[(i, hgt - 1 - r)], lo, hi)).expect("same size as a valid grid"),
+        Grid2::from_fn(w, hgt, |i, r| ramp.map(f[(i, hgt - 1 - r)], lo, hi))
+            .expect("same size as a valid grid"),
     )
 }
 
@@ -146,7 +147,13 @@ pub fn render_smoke_volume(
             for i in 0..nx {
                 let mut p = Vec3::new(i as f32, j as f32, k as f32) + step;
                 let mut tau = 0.0;
-                while p.x >= -0.5 && p.y >= -0.5 && p.z >= -0.5 && p.x < nx as f32 - 0.5 && p.y < ny as f32 - 0.5 && p.z < nz as f32 - 0.5 {
+                while p.x >= -0.5
+                    && p.y >= -0.5
+                    && p.z >= -0.5
+                    && p.x < nx as f32 - 0.5
+                    && p.y < ny as f32 - 0.5
+                    && p.z < nz as f32 - 0.5
+                {
                     let q = p.round();
                     tau += density[(q.x as usize, q.y as usize, q.z as usize)];
                     p += step;
@@ -184,7 +191,9 @@ pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Resul
         Ok::<(), WriteError>(())
     })?;
     let (nx, ny, nz) = g.dims();
-    let meta = format!("format = \"f32le\"\nnx = {nx}\nny = {ny}\nnz = {nz}\ncell_size_m = {h}\norder = \"x fastest, then y, then z (up)\"\n");
+    let meta = format!(
+        "format = \"f32le\"\nnx = {nx}\nny = {ny}\nnz = {nz}\ncell_size_m = {h}\norder = \"x fastest, then y, then z (up)\"\n"
+    );
     let mut side = path.as_os_str().to_owned();
     side.push(".txt");
     natura_core::io::write_bytes_atomic(Path::new(&side), meta.as_bytes())?;
@@ -196,7 +205,12 @@ pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Resul
 /// `cell_size_m`.
 pub fn write_exr_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Result<()> {
     let (nx, ny, nz) = g.dims();
-    let (sx, sy, sz, hs) = (nx.to_string(), ny.to_string(), nz.to_string(), h.to_string());
+    let (sx, sy, sz, hs) = (
+        nx.to_string(),
+        ny.to_string(),
+        nz.to_string(),
+        h.to_string(),
+    );
     natura_core::io::exr::write_exr(
         path,
         nx,

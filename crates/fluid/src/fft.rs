@@ -129,7 +129,11 @@ pub(crate) fn symbols(dims: Dims, h: f32, variant: FftVariant) -> [Vec<(f64, f64
                 if n == 1 {
                     return (0.0, 0.0);
                 }
-                let signed = if m <= n / 2 { m as f64 } else { m as f64 - n as f64 };
+                let signed = if m <= n / 2 {
+                    m as f64
+                } else {
+                    m as f64 - n as f64
+                };
                 let k = 2.0 * std::f64::consts::PI * signed / (n as f64 * h);
                 let nyquist = n % 2 == 0 && m == n / 2;
                 match variant {
@@ -145,7 +149,10 @@ pub(crate) fn symbols(dims: Dims, h: f32, variant: FftVariant) -> [Vec<(f64, f64
 }
 
 fn to_complex(g: &Grid3<f32>) -> Vec<Complex64> {
-    g.as_slice().iter().map(|&v| Complex64::new(f64::from(v), 0.0)).collect()
+    g.as_slice()
+        .iter()
+        .map(|&v| Complex64::new(f64::from(v), 0.0))
+        .collect()
 }
 
 /// Solves `∇² p = f` on a periodic grid by FFT (zero-mean `p`; the mean of
@@ -169,10 +176,19 @@ pub fn solve_poisson_periodic(f: &Grid3<f32>, h: f32, variant: FftVariant) -> Re
     for (c, v) in data.iter_mut().enumerate() {
         let [i, j, k] = dims.ijk(c);
         let k2 = sym[0][i].0 + sym[1][j].0 + sym[2][k].0;
-        *v = if k2 > 0.0 { -*v / k2 } else { Complex64::default() };
+        *v = if k2 > 0.0 {
+            -*v / k2
+        } else {
+            Complex64::default()
+        };
     }
     fft.inverse(&mut data);
-    Ok(Grid3::from_vec(nx, ny, nz, data.iter().map(|c| c.re).collect())?)
+    Ok(Grid3::from_vec(
+        nx,
+        ny,
+        nz,
+        data.iter().map(|c| c.re).collect(),
+    )?)
 }
 
 /// Diffuses and projects a collocated periodic velocity in place (the
@@ -227,7 +243,14 @@ pub(crate) fn diffuse_project(
 }
 
 /// Diffuses a periodic scalar by `1/(1 + κ dt k²)` (or the exponential filter).
-pub(crate) fn diffuse_scalar(fft: &Fft3, g: &mut Grid3<f32>, h: f32, kappa_dt: f64, filter: DiffusionFilter, variant: FftVariant) {
+pub(crate) fn diffuse_scalar(
+    fft: &Fft3,
+    g: &mut Grid3<f32>,
+    h: f32,
+    kappa_dt: f64,
+    filter: DiffusionFilter,
+    variant: FftVariant,
+) {
     if kappa_dt == 0.0 {
         return;
     }

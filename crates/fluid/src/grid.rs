@@ -91,7 +91,11 @@ impl Dims {
     #[inline]
     #[must_use]
     pub fn ijk(&self, c: usize) -> [usize; 3] {
-        [c % self.nx, (c / self.nx) % self.ny, c / (self.nx * self.ny)]
+        [
+            c % self.nx,
+            (c / self.nx) % self.ny,
+            c / (self.nx * self.ny),
+        ]
     }
 
     /// Sizes of the face grid of velocity component `a`: one more sample along `a`.
@@ -272,7 +276,12 @@ impl MacVelocity {
             * self
                 .comps
                 .iter()
-                .map(|g| g.as_slice().iter().map(|&v| f64::from(v) * f64::from(v)).sum::<f64>())
+                .map(|g| {
+                    g.as_slice()
+                        .iter()
+                        .map(|&v| f64::from(v) * f64::from(v))
+                        .sum::<f64>()
+                })
                 .sum::<f64>()
     }
 

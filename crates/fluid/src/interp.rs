@@ -196,7 +196,14 @@ impl<'a> Sampler<'a> {
         let sz = nx * self.n[1];
         let d = self.data;
         let line = |r: usize| {
-            monotone_cubic(d[r + ix[0]], d[r + ix[1]], d[r + ix[2]], d[r + ix[3]], tx, lim)
+            monotone_cubic(
+                d[r + ix[0]],
+                d[r + ix[1]],
+                d[r + ix[2]],
+                d[r + ix[3]],
+                tx,
+                lim,
+            )
         };
         if self.n[1] == 1 {
             let v: [f32; 4] = std::array::from_fn(|q| line(iz[q] * sz));

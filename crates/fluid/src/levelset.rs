@@ -131,7 +131,14 @@ impl LevelSet {
         let r0 = self.rate(&g0, u);
         let g1: Vec<f32> = g0.iter().zip(&r0).map(|(&p, &r)| p + dt * r).collect();
         let r1 = self.rate(&g1, u);
-        for (((o, &p0), &p1), &r) in self.phi.as_mut_slice().iter_mut().zip(&g0).zip(&g1).zip(&r1) {
+        for (((o, &p0), &p1), &r) in self
+            .phi
+            .as_mut_slice()
+            .iter_mut()
+            .zip(&g0)
+            .zip(&g1)
+            .zip(&r1)
+        {
             *o = 0.5 * (p0 + p1 + dt * r);
         }
     }
@@ -141,7 +148,12 @@ impl LevelSet {
     pub fn reinitialize(&mut self, iterations: u32) {
         let d = self.dims;
         let h = self.h;
-        let s0: Vec<f32> = self.phi.as_slice().iter().map(|&p| p / (p * p + h * h).sqrt()).collect();
+        let s0: Vec<f32> = self
+            .phi
+            .as_slice()
+            .iter()
+            .map(|&p| p / (p * p + h * h).sqrt())
+            .collect();
         let dtau = 0.5 * h;
         for _ in 0..iterations {
             let g = self.phi.as_slice().to_vec();
@@ -161,8 +173,16 @@ impl LevelSet {
                         let n = d.n()[a];
                         let f0 = gr[ci];
                         // One-sided differences; at the edge use the inner side only.
-                        let am = if c[a] > 0 { (f0 - at(d, gr, c, a, -1)) / h } else { f32::NAN };
-                        let bp = if c[a] + 1 < n { (at(d, gr, c, a, 1) - f0) / h } else { f32::NAN };
+                        let am = if c[a] > 0 {
+                            (f0 - at(d, gr, c, a, -1)) / h
+                        } else {
+                            f32::NAN
+                        };
+                        let bp = if c[a] + 1 < n {
+                            (at(d, gr, c, a, 1) - f0) / h
+                        } else {
+                            f32::NAN
+                        };
                         let (am, bp) = match (am.is_nan(), bp.is_nan()) {
                             (true, false) => (bp, bp),
                             (false, true) => (am, am),
@@ -195,7 +215,9 @@ impl LevelSet {
                 (self.at(g, c, a, 1) - self.at(g, c, a, -1)) / (2.0 * h)
             }))
         };
-        let normals: Vec<glam::Vec3> = (0..d.cells()).map(|ci| grad(d.ijk(ci)).normalize_or_zero()).collect();
+        let normals: Vec<glam::Vec3> = (0..d.cells())
+            .map(|ci| grad(d.ijk(ci)).normalize_or_zero())
+            .collect();
         let mut out = self.phi.clone();
         for (ci, o) in out.as_mut_slice().iter_mut().enumerate() {
             let c = d.ijk(ci);
@@ -211,7 +233,9 @@ impl LevelSet {
                 hi[a] = (c[a] + 1).min(n - 1);
                 let span = (hi[a] - lo[a]) as f32 * h;
                 if span > 0.0 {
-                    k += (normals[d.idx(hi[0], hi[1], hi[2])][a] - normals[d.idx(lo[0], lo[1], lo[2])][a]) / span;
+                    k += (normals[d.idx(hi[0], hi[1], hi[2])][a]
+                        - normals[d.idx(lo[0], lo[1], lo[2])][a])
+                        / span;
                 }
             }
             *o = k;
@@ -258,7 +282,8 @@ impl LevelSet {
                 } else if x > eps {
                     1.0
                 } else {
-                    0.5 + x / (2.0 * eps) + (std::f32::consts::PI * x / eps).sin() / (2.0 * std::f32::consts::PI)
+                    0.5 + x / (2.0 * eps)
+                        + (std::f32::consts::PI * x / eps).sin() / (2.0 * std::f32::consts::PI)
                 };
                 f64::from(hv)
             })

@@ -11,15 +11,15 @@ mod par;
 pub mod pressure;
 
 pub use error::{FluidError, Result};
-pub mod mac;
-pub mod shape;
 mod diffuse;
-pub mod fft;
-pub mod stable;
-pub mod smoke;
 pub mod export;
+pub mod fft;
 pub mod levelset;
 pub mod liquid;
+pub mod mac;
+pub mod shape;
+pub mod smoke;
+pub mod stable;
 
 #[cfg(test)]
 mod tests;

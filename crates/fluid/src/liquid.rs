@@ -111,8 +111,8 @@ impl Default for LiquidParams {
             particles_per_cell: 4,
             particle_radius: 0.5,
             delete_band: 3.0,
-            curvature_threshold: 0.25,
-            reinit_iterations: 4,
+            curvature_threshold: 1.0,
+            reinit_iterations: 1,
             extrapolation_layers: 4,
             object_mode: ObjectMode::Separating,
             advection: Advection::default(),
@@ -224,7 +224,9 @@ impl Liquid {
             let x = grid::cell_centre(d.ijk(c), h);
             *p = p.min(shape.sdf(x));
         }
-        let seed = Seed(self.params.seed).derive("fill").derive_index(self.particles.len() as u64);
+        let seed = Seed(self.params.seed)
+            .derive("fill")
+            .derive_index(self.particles.len() as u64);
         for c in 0..d.cells() {
             let ijk = d.ijk(c);
             for q in 0..self.params.particles_per_cell {
@@ -264,7 +266,8 @@ impl Liquid {
         let far = 3.0 * h;
         self.phi.phi_mut().as_mut_slice().fill(far);
         self.splat_particles(&self.particles.clone(), r, None);
-        self.phi.reinitialize(2 * (d.nx.max(d.ny).max(d.nz) as u32).min(64));
+        self.phi
+            .reinitialize(2 * (d.nx.max(d.ny).max(d.nz) as u32).min(64));
     }
 
     /// `φ ← min(φ, |x − x_p| − r)` at cells within two cells of each particle
@@ -364,7 +367,11 @@ impl Liquid {
                     continue;
                 }
                 for e in 0..2 {
-                    let edge = if e == 0 { ijk[a] == 0 } else { ijk[a] + 1 == n[a] };
+                    let edge = if e == 0 {
+                        ijk[a] == 0
+                    } else {
+                        ijk[a] + 1 == n[a]
+                    };
                     if edge {
                         surface |= self.params.bounds.side(a, e) == Side::Open;
                         continue;
@@ -377,7 +384,11 @@ impl Liquid {
                     }
                 }
             }
-            *o = if surface { LiquidCell::Surface } else { LiquidCell::Full };
+            *o = if surface {
+                LiquidCell::Surface
+            } else {
+                LiquidCell::Full
+            };
         }
         self.cells = Grid3::from_vec(d.nx, d.ny, d.nz, out).expect("same size");
     }
@@ -414,7 +425,8 @@ impl Liquid {
             done += sub;
         }
         report.kinetic_energy = self.vel.kinetic_energy(self.h);
-        report.max_divergence = mac::max_fluid_divergence(&self.vel, &self.pressure_kinds(), self.h)?;
+        report.max_divergence =
+            mac::max_fluid_divergence(&self.vel, &self.pressure_kinds(), self.h)?;
         Ok(report)
     }
 
@@ -427,13 +439,22 @@ impl Liquid {
             .cells
             .as_slice()
             .iter()
-            .map(|&c| if c == LiquidCell::Object { CellKind::Solid } else { CellKind::Fluid })
+            .map(|&c| {
+                if c == LiquidCell::Object {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
             .collect();
         // 2. Convection (SL) + explicit viscosity + gravity.
         let old = self.vel.clone();
         {
             let vs = VelSampler::mac(&old);
-            let sol = Solids { kinds: &solid_kinds, dims: d };
+            let sol = Solids {
+                kinds: &solid_kinds,
+                dims: d,
+            };
             let clip = (!self.obstacles.is_empty()).then_some(&sol);
             for a in 0..3 {
                 if d.active(a) {
@@ -474,7 +495,8 @@ impl Liquid {
                                 fl[b] = lo;
                                 let mut fh = f;
                                 fh[b] = hi;
-                                lap += src[(fl[0], fl[1], fl[2])] + src[(fh[0], fh[1], fh[2])] - 2.0 * src[(i, j, k)];
+                                lap += src[(fl[0], fl[1], fl[2])] + src[(fh[0], fh[1], fh[2])]
+                                    - 2.0 * src[(i, j, k)];
                             }
                         }
                         g[(i, j, k)] += coef * lap + dt * self.params.gravity[a];
@@ -483,10 +505,15 @@ impl Liquid {
             }
         }
         self.vel.check_finite("velocity update")?;
+        // Domain walls stay closed.
+        let open_kinds = vec![CellKind::Fluid; d.cells()];
+        mac::enforce_solids(&mut self.vel, &open_kinds, &bounds, &|_, _| 0.0);
         // 3. Objects.
         self.apply_objects();
         // 4. Pressure on full cells.
-        let stats = self.projector.project(&mut self.vel, &kinds, &bounds, h, dt, &self.params.solver)?;
+        let stats =
+            self.projector
+                .project(&mut self.vel, &kinds, &bounds, h, dt, &self.params.solver)?;
         // Faces of object cells are held fixed through the solve (L2515): re-impose.
         self.apply_objects();
         // 5. Surface cells divergence-free, empty faces zero, extrapolation.
@@ -553,7 +580,8 @@ impl Liquid {
                         let vo = sv(a, f);
                         let g = self.vel.comp_mut(a);
                         let v = &mut g[(i, j, k)];
-                        if (lo_obj && hi_obj) || self.params.object_mode == ObjectMode::StickyNormal {
+                        if (lo_obj && hi_obj) || self.params.object_mode == ObjectMode::StickyNormal
+                        {
                             *v = vo;
                         } else if hi_obj {
                             // Object on the + side: inflow means v − vo > 0.
@@ -621,7 +649,11 @@ impl Liquid {
                         f[a] += 1;
                     }
                     let sign = if e == 1 { 1.0 } else { -1.0 };
-                    let edge = if e == 0 { ijk[a] == 0 } else { ijk[a] + 1 == n[a] };
+                    let edge = if e == 0 {
+                        ijk[a] == 0
+                    } else {
+                        ijk[a] + 1 == n[a]
+                    };
                     let nb_air = if edge {
                         bounds.side(a, e) == Side::Open
                     } else {
@@ -653,7 +685,12 @@ impl Liquid {
         let d = self.dims;
         let n = d.n();
         let cells = self.cells.as_slice();
-        let liquid = |c: [usize; 3]| matches!(cells[d.idx(c[0], c[1], c[2])], LiquidCell::Surface | LiquidCell::Full);
+        let liquid = |c: [usize; 3]| {
+            matches!(
+                cells[d.idx(c[0], c[1], c[2])],
+                LiquidCell::Surface | LiquidCell::Full
+            )
+        };
         for a in 0..3 {
             if !d.active(a) {
                 continue;
@@ -720,7 +757,18 @@ impl Liquid {
         }
         // Walls stay closed.
         let sv = |_: usize, _: [usize; 3]| 0.0f32;
-        let kinds: Vec<CellKind> = self.cells.as_slice().iter().map(|&c| if c == LiquidCell::Object { CellKind::Solid } else { CellKind::Fluid }).collect();
+        let kinds: Vec<CellKind> = self
+            .cells
+            .as_slice()
+            .iter()
+            .map(|&c| {
+                if c == LiquidCell::Object {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
+            .collect();
         let mut bounds = self.params.bounds;
         // Only walls are enforced here; object faces were set before.
         let _ = &mut bounds;
@@ -744,7 +792,11 @@ impl Liquid {
             let v2 = Vec3::from_array(vs.at((mid / h).to_array()));
             let q = p + dt * v2;
             Vec3::from_array(std::array::from_fn(|a| {
-                if d.active(a) { q[a].clamp(1e-3 * h, ext[a] - 1e-3 * h) } else { p[a] }
+                if d.active(a) {
+                    q[a].clamp(1e-3 * h, ext[a] - 1e-3 * h)
+                } else {
+                    p[a]
+                }
             }))
         });
         self.particles = moved;
@@ -790,8 +842,10 @@ impl Liquid {
             .particles
             .iter()
             .map(|p| {
+                // A particle carries liquid: where the level set has it in the
+                // air (it "pokes out") near the surface, it restores the liquid.
                 let phi = self.phi.value_at(*p);
-                phi.abs() < 2.0 * h && ks.linear((*p / h).to_array()).abs() > thr
+                phi > 0.0 && phi < 2.0 * h && ks.linear((*p / h).to_array()).abs() > thr
             })
             .collect();
         let ps = self.particles.clone();
@@ -811,10 +865,15 @@ impl Liquid {
             count[d.idx(c[0], c[1], c[2])] += 1;
         }
         let ppc = self.params.particles_per_cell;
-        let seed = Seed(self.params.seed).derive("reseed").derive_index(self.steps);
+        let seed = Seed(self.params.seed)
+            .derive("reseed")
+            .derive_index(self.steps);
         for c in 0..d.cells() {
             let pc = self.phi.phi().as_slice()[c];
-            if self.owner[c] != u16::MAX || !(pc < 0.0 && pc > -band) || (count[c] as usize) * 2 >= ppc {
+            if self.owner[c] != u16::MAX
+                || !(pc < 0.0 && pc > -band)
+                || (count[c] as usize) * 2 >= ppc
+            {
                 continue;
             }
             let ijk = d.ijk(c);

@@ -56,7 +56,13 @@ pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) 
 /// Whether face `f` (index into component `a`'s grid) is fixed — a domain
 /// wall or touching a solid cell — and so not changed by forces or projection.
 #[inline]
-pub(crate) fn face_fixed(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize, f: [usize; 3]) -> bool {
+pub(crate) fn face_fixed(
+    d: Dims,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    a: usize,
+    f: [usize; 3],
+) -> bool {
     let n = d.n();
     let lo = f[a] == 0;
     let hi = f[a] == n[a];
@@ -73,7 +79,8 @@ pub(crate) fn face_fixed(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: us
     }
     let mut c0 = f;
     c0[a] -= 1;
-    kinds[d.idx(c0[0], c0[1], c0[2])] == CellKind::Solid || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
+    kinds[d.idx(c0[0], c0[1], c0[2])] == CellKind::Solid
+        || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
 }
 
 /// Sets wall faces to zero and faces touching solid cells to `solid_vel(a, face_index)`.
@@ -96,7 +103,8 @@ pub(crate) fn enforce_solids(
                 if !face_fixed(d, kinds, bounds, a, f) {
                     continue;
                 }
-                let on_wall = (f[a] == 0 || f[a] == d.n()[a]) && bounds.side(a, usize::from(f[a] != 0)) == Side::Wall;
+                let on_wall = (f[a] == 0 || f[a] == d.n()[a])
+                    && bounds.side(a, usize::from(f[a] != 0)) == Side::Wall;
                 *v = if on_wall { 0.0 } else { solid_vel(a, f) };
             }
         });
@@ -175,7 +183,10 @@ impl Projector {
             dims.nx,
             dims.ny,
             dims.nz,
-            self.scaled_pressure.iter().map(|&p| (p * inv) as f32).collect(),
+            self.scaled_pressure
+                .iter()
+                .map(|&p| (p * inv) as f32)
+                .collect(),
         )
         .ok()
     }
@@ -225,13 +236,23 @@ impl Projector {
 }
 
 /// `u −= (p̃_{c+1} − p̃_c)/h` on free faces, with `p̃ = 0` at air and open sides.
-pub(crate) fn apply_pressure(vel: &mut MacVelocity, kinds: &[CellKind], bounds: &Boundaries, h: f32, p: &[f64]) {
+pub(crate) fn apply_pressure(
+    vel: &mut MacVelocity,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    h: f32,
+    p: &[f64],
+) {
     let d = vel.dims();
     let n = d.n();
     let inv = 1.0 / f64::from(h);
     let pv = |c: [usize; 3]| -> f64 {
         let i = d.idx(c[0], c[1], c[2]);
-        if kinds[i] == CellKind::Fluid { p[i] } else { 0.0 }
+        if kinds[i] == CellKind::Fluid {
+            p[i]
+        } else {
+            0.0
+        }
     };
     for a in 0..3 {
         if !d.active(a) {
@@ -247,15 +268,27 @@ pub(crate) fn apply_pressure(vel: &mut MacVelocity, kinds: &[CellKind], bounds: 
                 }
                 let mut lo = f;
                 let (p0, p1, any_fluid) = if f[a] == 0 {
-                    (0.0, pv(f), kinds[d.idx(f[0], f[1], f[2])] == CellKind::Fluid)
+                    (
+                        0.0,
+                        pv(f),
+                        kinds[d.idx(f[0], f[1], f[2])] == CellKind::Fluid,
+                    )
                 } else if f[a] == n[a] {
                     lo[a] -= 1;
-                    (pv(lo), 0.0, kinds[d.idx(lo[0], lo[1], lo[2])] == CellKind::Fluid)
+                    (
+                        pv(lo),
+                        0.0,
+                        kinds[d.idx(lo[0], lo[1], lo[2])] == CellKind::Fluid,
+                    )
                 } else {
                     lo[a] -= 1;
                     let k0 = kinds[d.idx(lo[0], lo[1], lo[2])];
                     let k1 = kinds[d.idx(f[0], f[1], f[2])];
-                    (pv(lo), pv(f), k0 == CellKind::Fluid || k1 == CellKind::Fluid)
+                    (
+                        pv(lo),
+                        pv(f),
+                        k0 == CellKind::Fluid || k1 == CellKind::Fluid,
+                    )
                 };
                 if any_fluid {
                     *v = (f64::from(*v) - (p1 - p0) * inv) as f32;
@@ -361,7 +394,11 @@ pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Gri
         (0..n[0])
             .map(|i| {
                 let c = [i, j, k];
-                let eta = glam::Vec3::new(ddx(&mag, d, c, 0, h), ddx(&mag, d, c, 1, h), ddx(&mag, d, c, 2, h));
+                let eta = glam::Vec3::new(
+                    ddx(&mag, d, c, 0, h),
+                    ddx(&mag, d, c, 1, h),
+                    ddx(&mag, d, c, 2, h),
+                );
                 let len = eta.length();
                 // Guard: a gradient below ~1e-6 of |ω|/h carries no direction.
                 let ci = d.idx(i, j, k);

@@ -55,7 +55,11 @@ pub(crate) fn for_chunks2<T: Send, U: Send>(
 
 /// Returns `Σ_i f(i)` over `0..n` blocks, each block's partial computed
 /// independently and the partials added in index order (deterministic).
-pub(crate) fn sum_blocks(n: usize, work_per_block: usize, f: impl Fn(usize) -> f64 + Sync + Send) -> f64 {
+pub(crate) fn sum_blocks(
+    n: usize,
+    work_per_block: usize,
+    f: impl Fn(usize) -> f64 + Sync + Send,
+) -> f64 {
     #[cfg(feature = "parallel")]
     if n > 1 && n * work_per_block >= SERIAL_BELOW {
         use rayon::prelude::*;
@@ -80,7 +84,10 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
 pub(crate) const BLOCK: usize = 8192;
 
 /// `Σ f(slice_block)` over `BLOCK`-sized blocks of `0..len`, deterministic.
-pub(crate) fn sum_range(len: usize, f: impl Fn(std::ops::Range<usize>) -> f64 + Sync + Send) -> f64 {
+pub(crate) fn sum_range(
+    len: usize,
+    f: impl Fn(std::ops::Range<usize>) -> f64 + Sync + Send,
+) -> f64 {
     let n = len.div_ceil(BLOCK);
     sum_blocks(n, BLOCK, |b| f(b * BLOCK..((b + 1) * BLOCK).min(len)))
 }

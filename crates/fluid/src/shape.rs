@@ -44,7 +44,11 @@ impl Shape {
         match *self {
             Shape::Sphere { centre, radius } => (p - centre).length() - radius,
             Shape::Cuboid { min, max } => box_sdf(p - 0.5 * (min + max), 0.5 * (max - min)),
-            Shape::OrientedBox { centre, half, rotation } => box_sdf(rotation.inverse() * (p - centre), half),
+            Shape::OrientedBox {
+                centre,
+                half,
+                rotation,
+            } => box_sdf(rotation.inverse() * (p - centre), half),
         }
     }
 
@@ -61,9 +65,15 @@ impl Shape {
     #[must_use]
     pub fn bounds(&self) -> (Vec3, Vec3) {
         match *self {
-            Shape::Sphere { centre, radius } => (centre - Vec3::splat(radius), centre + Vec3::splat(radius)),
+            Shape::Sphere { centre, radius } => {
+                (centre - Vec3::splat(radius), centre + Vec3::splat(radius))
+            }
             Shape::Cuboid { min, max } => (min, max),
-            Shape::OrientedBox { centre, half, rotation } => {
+            Shape::OrientedBox {
+                centre,
+                half,
+                rotation,
+            } => {
                 let m = glam::Mat3::from_quat(rotation);
                 let e = m.x_axis.abs() * half.x + m.y_axis.abs() * half.y + m.z_axis.abs() * half.z;
                 (centre - e, centre + e)
@@ -80,14 +90,24 @@ impl Shape {
             Quat::IDENTITY
         };
         match *self {
-            Shape::Sphere { centre, radius } => Shape::Sphere { centre: centre + dx, radius },
-            Shape::Cuboid { min, max } if angle_axis == Vec3::ZERO => Shape::Cuboid { min: min + dx, max: max + dx },
+            Shape::Sphere { centre, radius } => Shape::Sphere {
+                centre: centre + dx,
+                radius,
+            },
+            Shape::Cuboid { min, max } if angle_axis == Vec3::ZERO => Shape::Cuboid {
+                min: min + dx,
+                max: max + dx,
+            },
             Shape::Cuboid { min, max } => Shape::OrientedBox {
                 centre: 0.5 * (min + max) + dx,
                 half: 0.5 * (max - min),
                 rotation: rot,
             },
-            Shape::OrientedBox { centre, half, rotation } => Shape::OrientedBox {
+            Shape::OrientedBox {
+                centre,
+                half,
+                rotation,
+            } => Shape::OrientedBox {
                 centre: centre + dx,
                 half,
                 rotation: (rot * rotation).normalize(),
@@ -103,13 +123,28 @@ impl Shape {
             reason,
         };
         let ok = match *self {
-            Shape::Sphere { centre, radius } => centre.is_finite() && radius.is_finite() && radius > 0.0,
-            Shape::Cuboid { min, max } => min.is_finite() && max.is_finite() && max.cmpgt(min).all(),
-            Shape::OrientedBox { centre, half, rotation } => {
-                centre.is_finite() && half.is_finite() && half.cmpgt(Vec3::ZERO).all() && rotation.is_finite()
+            Shape::Sphere { centre, radius } => {
+                centre.is_finite() && radius.is_finite() && radius > 0.0
+            }
+            Shape::Cuboid { min, max } => {
+                min.is_finite() && max.is_finite() && max.cmpgt(min).all()
+            }
+            Shape::OrientedBox {
+                centre,
+                half,
+                rotation,
+            } => {
+                centre.is_finite()
+                    && half.is_finite()
+                    && half.cmpgt(Vec3::ZERO).all()
+                    && rotation.is_finite()
             }
         };
-        if ok { Ok(()) } else { Err(bad("must be finite with positive size")) }
+        if ok {
+            Ok(())
+        } else {
+            Err(bad("must be finite with positive size"))
+        }
     }
 
     /// Checks that the shape lies within the domain `[0, n·h]` on every
@@ -185,7 +220,9 @@ impl Obstacle {
     /// Advances the shape by `dt` seconds.
     pub fn advance(&mut self, dt: f32) {
         if self.is_moving() {
-            self.shape = self.shape.moved(self.velocity * dt, self.angular_velocity * dt);
+            self.shape = self
+                .shape
+                .moved(self.velocity * dt, self.angular_velocity * dt);
         }
     }
 
@@ -221,7 +258,9 @@ pub(crate) fn voxelise(obstacles: &[Obstacle], dims: Dims, h: f32) -> Vec<u16> {
             for j in r(1) {
                 for i in r(0) {
                     let c = dims.idx(i, j, k);
-                    if out[c] == u16::MAX && o.shape.sdf(crate::grid::cell_centre([i, j, k], h)) < 0.0 {
+                    if out[c] == u16::MAX
+                        && o.shape.sdf(crate::grid::cell_centre([i, j, k], h)) < 0.0
+                    {
                         out[c] = oi as u16;
                     }
                 }
@@ -241,7 +280,11 @@ pub(crate) fn solid_face_velocity<'a>(
 ) -> impl Fn(usize, [usize; 3]) -> f32 + Sync + 'a {
     move |a, f| {
         let cell = |c: [usize; 3]| owner[dims.idx(c[0], c[1], c[2])];
-        let mut o = if f[a] < dims.n()[a] { cell(f) } else { u16::MAX };
+        let mut o = if f[a] < dims.n()[a] {
+            cell(f)
+        } else {
+            u16::MAX
+        };
         if o == u16::MAX && f[a] > 0 {
             let mut c = f;
             c[a] -= 1;

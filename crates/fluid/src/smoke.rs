@@ -196,7 +196,13 @@ impl Smoke {
             }
         }
         let mask = voxelise(&[Obstacle::fixed(s.shape)], self.dims, self.h);
-        self.source_cells.push(mask.iter().enumerate().filter(|(_, m)| **m != u16::MAX).map(|(c, _)| c).collect());
+        self.source_cells.push(
+            mask.iter()
+                .enumerate()
+                .filter(|(_, m)| **m != u16::MAX)
+                .map(|(c, _)| c)
+                .collect(),
+        );
         self.sources.push(s);
         Ok(())
     }
@@ -204,7 +210,11 @@ impl Smoke {
     fn revoxelise(&mut self) {
         self.owner = voxelise(&self.obstacles, self.dims, self.h);
         for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
-            *k = if o == u16::MAX { CellKind::Fluid } else { CellKind::Solid };
+            *k = if o == u16::MAX {
+                CellKind::Fluid
+            } else {
+                CellKind::Solid
+            };
         }
     }
 
@@ -256,8 +266,17 @@ impl Smoke {
     pub fn buoyancy(&self) -> Result<[Grid3<f32>; 3]> {
         let d = self.dims;
         let mut f = [d.zeros()?, d.zeros()?, d.zeros()?];
-        let (a, b, t0) = (self.params.alpha, self.params.beta, self.params.ambient_temperature);
-        for ((o, &rho), &t) in f[2].as_mut_slice().iter_mut().zip(self.density.as_slice()).zip(self.temperature.as_slice()) {
+        let (a, b, t0) = (
+            self.params.alpha,
+            self.params.beta,
+            self.params.ambient_temperature,
+        );
+        for ((o, &rho), &t) in f[2]
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.density.as_slice())
+            .zip(self.temperature.as_slice())
+        {
             *o = -a * rho + b * (t - t0);
         }
         Ok(f)
@@ -287,12 +306,24 @@ impl Smoke {
     /// Projects the current velocity, e.g. after setting it by hand.
     pub fn project(&mut self, dt: f32) -> Result<SolveStats> {
         self.enforce();
-        self.projector.project(&mut self.vel, &self.kinds, &self.params.bounds, self.h, dt, &self.params.solver)
+        self.projector.project(
+            &mut self.vel,
+            &self.kinds,
+            &self.params.bounds,
+            self.h,
+            dt,
+            &self.params.solver,
+        )
     }
 
     fn enforce(&mut self) {
         let sv = solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
-        mac::enforce_solids(&mut self.vel, self.kinds.as_slice(), &self.params.bounds, &sv);
+        mac::enforce_solids(
+            &mut self.vel,
+            self.kinds.as_slice(),
+            &self.params.bounds,
+            &sv,
+        );
     }
 
     /// Advances by `dt` seconds (L2134-2142).
@@ -319,7 +350,10 @@ impl Smoke {
         self.vel.check_finite("forces")?;
         // 2. Advect velocity from face midpoints, clipped at solids.
         let kinds_now = self.kinds.as_slice().to_vec();
-        let solids = Solids { kinds: &kinds_now, dims };
+        let solids = Solids {
+            kinds: &kinds_now,
+            dims,
+        };
         let clip = (!self.obstacles.is_empty()).then_some(&solids);
         let old = self.vel.clone();
         {
@@ -342,13 +376,30 @@ impl Smoke {
         self.apply_source_velocity();
         // 3. Project.
         self.enforce();
-        let stats = self.projector.project(&mut self.vel, &self.kinds, &bounds, h, dt, &self.params.solver)?;
+        let stats = self.projector.project(
+            &mut self.vel,
+            &self.kinds,
+            &bounds,
+            h,
+            dt,
+            &self.params.solver,
+        )?;
         self.vel.check_finite("projection")?;
         // 4. Advect T and ρ with the new velocity.
         let vs = VelSampler::mac(&self.vel);
-        for (g, name) in [(&mut self.temperature, "temperature"), (&mut self.density, "density")] {
+        for (g, name) in [
+            (&mut self.temperature, "temperature"),
+            (&mut self.density, "density"),
+        ] {
             let src = g.clone();
-            advect::advect(g.as_mut_slice(), &advect::centre_sampler(&src, false), &vs, dt / h, &self.params.advection, clip);
+            advect::advect(
+                g.as_mut_slice(),
+                &advect::centre_sampler(&src, false),
+                &vs,
+                dt / h,
+                &self.params.advection,
+                clip,
+            );
             grid::check_grid(g, name, "scalar advection")?;
         }
         // 5. Sources and object rules.
@@ -367,7 +418,9 @@ impl Smoke {
             self.revoxelise();
             self.apply_object_rules();
         }
-        self.force.iter_mut().for_each(|g| g.as_mut_slice().fill(0.0));
+        self.force
+            .iter_mut()
+            .for_each(|g| g.as_mut_slice().fill(0.0));
         Ok(StepReport {
             pressure: Some(stats),
             max_divergence: mac::max_fluid_divergence(&self.vel, &self.kinds, h)?,

@@ -175,7 +175,12 @@ impl Substances {
     }
 }
 
-fn force_field(dims: Dims, h: f32, sources: &[ForceSource], extra: &[Grid3<f32>; 3]) -> Result<[Grid3<f32>; 3]> {
+fn force_field(
+    dims: Dims,
+    h: f32,
+    sources: &[ForceSource],
+    extra: &[Grid3<f32>; 3],
+) -> Result<[Grid3<f32>; 3]> {
     let mut f = extra.clone();
     for s in sources {
         let mask = voxelise(&[Obstacle::fixed(s.shape)], dims, h);
@@ -320,7 +325,15 @@ impl PeriodicFluid {
     /// Projects the current velocity (no diffusion), e.g. after setting an
     /// initial field by hand.
     pub fn project(&mut self) {
-        fft::diffuse_project(&self.fft, &mut self.vel, self.h, 0.0, self.params.filter, self.params.variant, true);
+        fft::diffuse_project(
+            &self.fft,
+            &mut self.vel,
+            self.h,
+            0.0,
+            self.params.filter,
+            self.params.variant,
+            true,
+        );
     }
 
     /// Advances by `dt` seconds: Vstep then Sstep (L1874-1890).
@@ -343,14 +356,29 @@ impl PeriodicFluid {
             for a in 0..3 {
                 if dims.active(a) {
                     let src = advect::centre_sampler(&w1[a], true);
-                    advect::advect(self.vel[a].as_mut_slice(), &src, &vs, dt / h, &self.params.advection, None);
+                    advect::advect(
+                        self.vel[a].as_mut_slice(),
+                        &src,
+                        &vs,
+                        dt / h,
+                        &self.params.advection,
+                        None,
+                    );
                 }
             }
         }
         grid::check_grid(&self.vel[0], "u", "advection")?;
         // Diffuse and project in Fourier space.
         let nu_dt = f64::from(self.params.viscosity) * f64::from(dt);
-        fft::diffuse_project(&self.fft, &mut self.vel, h, nu_dt, self.params.filter, self.params.variant, true);
+        fft::diffuse_project(
+            &self.fft,
+            &mut self.vel,
+            h,
+            nu_dt,
+            self.params.filter,
+            self.params.variant,
+            true,
+        );
         for (a, name) in ["u", "v", "w"].into_iter().enumerate() {
             grid::check_grid(&self.vel[a], name, "projection")?;
         }
@@ -359,13 +387,29 @@ impl PeriodicFluid {
         let vs = VelSampler::collocated(&self.vel, dims);
         for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
             let old = field.clone();
-            advect::advect(field.as_mut_slice(), &advect::centre_sampler(&old, true), &vs, dt / h, &self.params.advection, None);
-            fft::diffuse_scalar(&self.fft, field, h, f64::from(s.diffusion) * f64::from(dt), self.params.filter, self.params.variant);
+            advect::advect(
+                field.as_mut_slice(),
+                &advect::centre_sampler(&old, true),
+                &vs,
+                dt / h,
+                &self.params.advection,
+                None,
+            );
+            fft::diffuse_scalar(
+                &self.fft,
+                field,
+                h,
+                f64::from(s.diffusion) * f64::from(dt),
+                self.params.filter,
+                self.params.variant,
+            );
             let k = 1.0 / (1.0 + dt * s.dissipation);
             field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
         }
         self.subs.check_finite("substance step")?;
-        self.force.iter_mut().for_each(|g| g.as_mut_slice().fill(0.0));
+        self.force
+            .iter_mut()
+            .for_each(|g| g.as_mut_slice().fill(0.0));
         Ok(StepReport {
             pressure: None,
             max_divergence: self.max_divergence(),
@@ -469,7 +513,11 @@ impl BoundedFluid {
     fn revoxelise(&mut self) {
         self.owner = voxelise(&self.obstacles, self.dims, self.h);
         for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
-            *k = if o == u16::MAX { CellKind::Fluid } else { CellKind::Solid };
+            *k = if o == u16::MAX {
+                CellKind::Fluid
+            } else {
+                CellKind::Solid
+            };
         }
     }
 
@@ -532,7 +580,14 @@ impl BoundedFluid {
         let sv = crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
         let mut vel = self.vel.clone();
         mac::enforce_solids(&mut vel, self.kinds.as_slice(), &self.params.bounds, &sv);
-        let st = self.projector.project(&mut vel, &self.kinds, &self.params.bounds, self.h, dt, &self.params.solver)?;
+        let st = self.projector.project(
+            &mut vel,
+            &self.kinds,
+            &self.params.bounds,
+            self.h,
+            dt,
+            &self.params.solver,
+        )?;
         self.vel = vel;
         Ok(st)
     }
@@ -545,7 +600,10 @@ impl BoundedFluid {
         let bounds = self.params.bounds;
         let f = force_field(dims, h, &self.force_sources, &self.force)?;
         mac::add_centre_forces(&mut self.vel, &f, dt, self.kinds.as_slice(), &bounds);
-        let solids = Solids { kinds: self.kinds.as_slice(), dims };
+        let solids = Solids {
+            kinds: self.kinds.as_slice(),
+            dims,
+        };
         let has_solids = self.obstacles.iter().len() > 0;
         let w1 = self.vel.clone();
         {
@@ -566,7 +624,8 @@ impl BoundedFluid {
         self.vel.check_finite("advection")?;
         let mut vel = std::mem::replace(&mut self.vel, w1);
         {
-            let sv = crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
+            let sv =
+                crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
             mac::enforce_solids(&mut vel, self.kinds.as_slice(), &bounds, &sv);
         }
         let coef = self.params.viscosity * dt / (h * h);
@@ -579,19 +638,30 @@ impl BoundedFluid {
                 let role: Vec<u8> = (0..n[0] * n[1] * n[2])
                     .map(|s| {
                         let fidx = [s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1])];
-                        if mac::face_fixed(dims, self.kinds.as_slice(), &bounds, a, fidx) { DIRICHLET } else { FREE }
+                        if mac::face_fixed(dims, self.kinds.as_slice(), &bounds, a, fidx) {
+                            DIRICHLET
+                        } else {
+                            FREE
+                        }
                     })
                     .collect();
                 diffuse::diffuse(vel.comp_mut(a).as_mut_slice(), n, coef, &role);
             }
         }
-        let stats = self.projector.project(&mut vel, &self.kinds, &bounds, h, dt, &self.params.solver)?;
+        let stats =
+            self.projector
+                .project(&mut vel, &self.kinds, &bounds, h, dt, &self.params.solver)?;
         vel.check_finite("projection")?;
         self.vel = vel;
         // Substances.
         self.subs.add_sources(dims, h, dt);
         let vs = VelSampler::mac(&self.vel);
-        let role: Vec<u8> = self.kinds.as_slice().iter().map(|&k| if k == CellKind::Solid { EXCLUDED } else { FREE }).collect();
+        let role: Vec<u8> = self
+            .kinds
+            .as_slice()
+            .iter()
+            .map(|&k| if k == CellKind::Solid { EXCLUDED } else { FREE })
+            .collect();
         for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
             let old = field.clone();
             advect::advect(
@@ -602,12 +672,19 @@ impl BoundedFluid {
                 &self.params.advection,
                 has_solids.then_some(&solids),
             );
-            diffuse::diffuse(field.as_mut_slice(), dims.n(), s.diffusion * dt / (h * h), &role);
+            diffuse::diffuse(
+                field.as_mut_slice(),
+                dims.n(),
+                s.diffusion * dt / (h * h),
+                &role,
+            );
             let k = 1.0 / (1.0 + dt * s.dissipation);
             field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
         }
         self.subs.check_finite("substance step")?;
-        self.force.iter_mut().for_each(|g| g.as_mut_slice().fill(0.0));
+        self.force
+            .iter_mut()
+            .for_each(|g| g.as_mut_slice().fill(0.0));
         if self.obstacles.iter().any(Obstacle::is_moving) {
             self.obstacles.iter_mut().for_each(|o| o.advance(dt));
             self.revoxelise();

@@ -6,12 +6,16 @@ use crate::diffuse::{DIRICHLET, FREE, diffuse};
 fn implicit_diffusion_is_a_contraction_and_conserves_mass() {
     let n = [20usize, 1, 17];
     let len = n[0] * n[2];
-    let data: Vec<f32> = (0..len).map(|i| ((natura_core::mix64(i as u64) % 1000) as f32) / 100.0).collect();
+    let data: Vec<f32> = (0..len)
+        .map(|i| ((natura_core::mix64(i as u64) % 1000) as f32) / 100.0)
+        .collect();
     let mut x = data.clone();
     diffuse(&mut x, n, 2.5, &vec![FREE; len]);
     let l2 = |v: &[f32]| v.iter().map(|&a| f64::from(a).powi(2)).sum::<f64>();
     assert!(l2(&x) < l2(&data));
-    let (lo, hi) = data.iter().fold((f32::MAX, f32::MIN), |(l, h), &v| (l.min(v), h.max(v)));
+    let (lo, hi) = data
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(l, h), &v| (l.min(v), h.max(v)));
     assert!(x.iter().all(|&v| v >= lo - 1e-4 && v <= hi + 1e-4));
     let s0: f64 = data.iter().map(|&v| f64::from(v)).sum();
     let s1: f64 = x.iter().map(|&v| f64::from(v)).sum();

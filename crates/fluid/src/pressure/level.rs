@@ -70,7 +70,12 @@ pub(crate) struct Level {
 
 impl Level {
     /// Builds a level from unpadded `kinds`.
-    pub fn new(n: [usize; 3], kinds: Vec<CellKind>, open: [[bool; 2]; 3], periodic: [bool; 3]) -> Self {
+    pub fn new(
+        n: [usize; 3],
+        kinds: Vec<CellKind>,
+        open: [[bool; 2]; 3],
+        periodic: [bool; 3],
+    ) -> Self {
         let act: Vec<usize> = (0..3).filter(|&a| n[a] > 1).collect();
         let pad: [usize; 3] = std::array::from_fn(|a| usize::from(n[a] > 1));
         let m: [usize; 3] = std::array::from_fn(|a| n[a] + 2 * pad[a]);
@@ -107,7 +112,9 @@ impl Level {
     /// Padded index of unpadded cell `(i, j, k)`.
     #[inline]
     pub fn pidx(&self, c: [usize; 3]) -> usize {
-        G + (c[0] + self.pad[0]) + (c[1] + self.pad[1]) * self.st[1] + (c[2] + self.pad[2]) * self.st[2]
+        G + (c[0] + self.pad[0])
+            + (c[1] + self.pad[1]) * self.st[1]
+            + (c[2] + self.pad[2]) * self.st[2]
     }
 
     /// Unpadded linear index.
@@ -327,7 +334,11 @@ impl Level {
     }
 
     /// `Σ a·b` over interior cells, in `f64`, deterministic.
-    pub fn dot<A: Copy + Into<f64> + Sync, B: Copy + Into<f64> + Sync>(&self, a: &[A], b: &[B]) -> f64 {
+    pub fn dot<A: Copy + Into<f64> + Sync, B: Copy + Into<f64> + Sync>(
+        &self,
+        a: &[A],
+        b: &[B],
+    ) -> f64 {
         let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
         par::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
             Some(base) => {
@@ -396,7 +407,11 @@ impl Transfer {
             up[a] = (0..nf)
                 .map(|f| {
                     let p = f / 2;
-                    let nb = if f % 2 == 0 { p as i64 - 1 } else { p as i64 + 1 };
+                    let nb = if f % 2 == 0 {
+                        p as i64 - 1
+                    } else {
+                        p as i64 + 1
+                    };
                     (p, fix(nb))
                 })
                 .collect();
@@ -439,7 +454,9 @@ impl Transfer {
         let cl: &Level = coarse;
         let body = &mut cb[G..G + cl.rows() * m0];
         par::for_chunks(body, m0, |row_i, row| {
-            let Some(base) = cl.row_base(row_i) else { return };
+            let Some(base) = cl.row_base(row_i) else {
+                return;
+            };
             let jc = row_i % cl.m[1] - cl.pad[1];
             let kc = row_i / cl.m[1] - cl.pad[2];
             for ic in 0..n0 {
@@ -473,20 +490,34 @@ impl Transfer {
         let cx = &coarse.x;
         let body = &mut fx[G..G + fl.rows() * m0];
         par::for_chunks(body, m0, |row_i, row| {
-            let Some(base) = fl.row_base(row_i) else { return };
+            let Some(base) = fl.row_base(row_i) else {
+                return;
+            };
             let jf = row_i % fl.m[1] - fl.pad[1];
             let kf = row_i / fl.m[1] - fl.pad[2];
             let (jp, jn) = self.up[1][jf];
             let (kp, kn) = self.up[2][kf];
-            let (wjp, wjn) = if fl.n[1] > 1 { (0.75, 0.25) } else { (1.0, 0.0) };
-            let (wkp, wkn) = if fl.n[2] > 1 { (0.75, 0.25) } else { (1.0, 0.0) };
+            let (wjp, wjn) = if fl.n[1] > 1 {
+                (0.75, 0.25)
+            } else {
+                (1.0, 0.0)
+            };
+            let (wkp, wkn) = if fl.n[2] > 1 {
+                (0.75, 0.25)
+            } else {
+                (1.0, 0.0)
+            };
             let rows = [
                 (coarse.pidx([0, jp, kp]), wjp * wkp),
                 (coarse.pidx([0, jn, kp]), wjn * wkp),
                 (coarse.pidx([0, jp, kn]), wjp * wkn),
                 (coarse.pidx([0, jn, kn]), wjn * wkn),
             ];
-            let (wip, win) = if fl.n[0] > 1 { (0.75f32, 0.25f32) } else { (1.0, 0.0) };
+            let (wip, win) = if fl.n[0] > 1 {
+                (0.75f32, 0.25f32)
+            } else {
+                (1.0, 0.0)
+            };
             for i in 0..n0 {
                 if fl.mask[base + p0 + i] == 0 {
                     continue;
@@ -507,7 +538,13 @@ impl Transfer {
 
 /// Coarsens cell kinds by 2 along active axes: air wins, then fluid, then solid.
 pub(crate) fn coarsen(fine: &Level) -> ([usize; 3], Vec<CellKind>) {
-    let nc: [usize; 3] = std::array::from_fn(|a| if fine.n[a] > 1 { fine.n[a].div_ceil(2) } else { 1 });
+    let nc: [usize; 3] = std::array::from_fn(|a| {
+        if fine.n[a] > 1 {
+            fine.n[a].div_ceil(2)
+        } else {
+            1
+        }
+    });
     // 0 = solid, 1 = fluid, 2 = air: the coarse kind is the max over children.
     let rank = |k: CellKind| match k {
         CellKind::Solid => 0u8,

@@ -141,7 +141,12 @@ pub struct PoissonSystem {
 impl PoissonSystem {
     /// Builds the operator for `kinds` (one per cell, x fastest), domain
     /// `bounds` and `periodic` axes (periodic overrides the sides).
-    pub fn new(dims: Dims, kinds: &[CellKind], bounds: &Boundaries, periodic: [bool; 3]) -> Result<Self> {
+    pub fn new(
+        dims: Dims,
+        kinds: &[CellKind],
+        bounds: &Boundaries,
+        periodic: [bool; 3],
+    ) -> Result<Self> {
         if kinds.len() != dims.cells() {
             return Err(FluidError::SizeMismatch {
                 what: "cell kinds",
@@ -156,7 +161,9 @@ impl PoissonSystem {
         loop {
             let f = levels.last().expect("at least one level");
             let can = !f.act.is_empty()
-                && f.act.iter().all(|&a| f.n[a] >= 8 && (!f.periodic[a] || f.n[a] % 2 == 0))
+                && f.act
+                    .iter()
+                    .all(|&a| f.n[a] >= 8 && (!f.periodic[a] || f.n[a] % 2 == 0))
                 && levels.len() < 24;
             if !can {
                 break;
@@ -292,7 +299,11 @@ impl PoissonSystem {
                 sums[id as usize] += v[c].into();
             }
         }
-        let means: Vec<f64> = sums.iter().zip(&self.comp_cells).map(|(s, &n)| s / n as f64).collect();
+        let means: Vec<f64> = sums
+            .iter()
+            .zip(&self.comp_cells)
+            .map(|(s, &n)| s / n as f64)
+            .collect();
         for (c, &id) in self.comp.iter().enumerate() {
             if id != u32::MAX {
                 let m: f64 = means[id as usize];
@@ -393,7 +404,11 @@ impl PoissonSystem {
         let bn = self.levels[0].dot(b, b).sqrt();
         if bn == 0.0 {
             x.fill(0.0);
-            return SolveStats { iterations: 0, relative_residual: 0.0, converged: true };
+            return SolveStats {
+                iterations: 0,
+                relative_residual: 0.0,
+                converged: true,
+            };
         }
         let b64: Vec<f64> = b.iter().map(|&v| f64::from(v)).collect();
         let mut r = vec![0.0f64; x.len()];
@@ -485,7 +500,11 @@ impl PoissonSystem {
         let bn = l.dot(b, b).sqrt();
         if bn == 0.0 {
             x.fill(0.0);
-            return SolveStats { iterations: 0, relative_residual: 0.0, converged: true };
+            return SolveStats {
+                iterations: 0,
+                relative_residual: 0.0,
+                converged: true,
+            };
         }
         if p.solver == PressureSolver::Mic0 && self.mic.is_none() {
             self.build_mic();
@@ -576,7 +595,10 @@ impl PoissonSystem {
         let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
         let mut prec = vec![0.0f32; l.len()];
         let pos_count = |m: u16, skip: usize| -> f32 {
-            (0..k).filter(|&q| q != skip).map(|q| f32::from((m >> (2 * q + 1)) & 1)).sum()
+            (0..k)
+                .filter(|&q| q != skip)
+                .map(|q| f32::from((m >> (2 * q + 1)) & 1))
+                .sum()
         };
         l.for_each_cell(|_, c| {
             let m = l.mask[c];
@@ -649,7 +671,6 @@ impl PoissonSystem {
         }
     }
 }
-
 
 #[cfg(test)]
 mod tests;

@@ -3,7 +3,10 @@ use crate::grid::Side;
 
 fn rhs(n: usize, seed: u64) -> Vec<f32> {
     (0..n)
-        .map(|i| ((natura_core::mix64(seed ^ (i as u64).wrapping_mul(0x9e37)) % 2001) as f32 / 1000.0) - 1.0)
+        .map(|i| {
+            ((natura_core::mix64(seed ^ (i as u64).wrapping_mul(0x9e37)) % 2001) as f32 / 1000.0)
+                - 1.0
+        })
         .collect()
 }
 
@@ -28,7 +31,11 @@ fn rel_residual(sys: &PoissonSystem, b: &[f32], x: &[f64]) -> f64 {
     sys.project_null(&mut pb);
     let mut cb = vec![0.0f32; b.len()];
     sys.unpad_into(&pb, &mut cb);
-    let num: f64 = cb.iter().zip(&ax).map(|(&p, &q)| (f64::from(p) - q).powi(2)).sum();
+    let num: f64 = cb
+        .iter()
+        .zip(&ax)
+        .map(|(&p, &q)| (f64::from(p) - q).powi(2))
+        .sum();
     let den: f64 = cb.iter().map(|&p| f64::from(p).powi(2)).sum();
     (num / den).sqrt()
 }
@@ -43,7 +50,16 @@ fn operator_is_symmetric_and_psd() {
     let a = rhs(d.cells(), 1);
     let b = rhs(d.cells(), 2);
     let mask = |v: &[f32]| -> Vec<f64> {
-        v.iter().zip(&kinds).map(|(&x, &k)| if k == CellKind::Fluid { f64::from(x) } else { 0.0 }).collect()
+        v.iter()
+            .zip(&kinds)
+            .map(|(&x, &k)| {
+                if k == CellKind::Fluid {
+                    f64::from(x)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
     };
     let (a, b) = (mask(&a), mask(&b));
     let aa = sys.apply(&a).unwrap();
@@ -60,16 +76,35 @@ fn all_solvers_reach_tolerance_with_obstacle() {
         for bounds in [Boundaries::closed(), Boundaries::open_top()] {
             let mut sys = PoissonSystem::new(d, &kinds, &bounds, [false; 3]).unwrap();
             let b: Vec<f32> = rhs(d.cells(), 7);
-            for solver in [PressureSolver::Multigrid, PressureSolver::Mic0, PressureSolver::GaussSeidel] {
-                let tol = if solver == PressureSolver::GaussSeidel { 1e-3 } else { 1e-6 };
-                let params = SolverParams { solver, tolerance: tol, max_iterations: 100_000 };
+            for solver in [
+                PressureSolver::Multigrid,
+                PressureSolver::Mic0,
+                PressureSolver::GaussSeidel,
+            ] {
+                let tol = if solver == PressureSolver::GaussSeidel {
+                    1e-3
+                } else {
+                    1e-6
+                };
+                let params = SolverParams {
+                    solver,
+                    tolerance: tol,
+                    max_iterations: 100_000,
+                };
                 let mut x = vec![0.0f64; d.cells()];
                 let st = sys.solve(&b, &mut x, &params).unwrap();
                 assert!(st.converged, "{solver:?} {d} {st:?}");
                 let rel = rel_residual(&sys, &b, &x);
-                assert!(rel <= tol * 1.05 + 1e-6, "{solver:?} {d}: reported {st:?}, true {rel}");
+                assert!(
+                    rel <= tol * 1.05 + 1e-6,
+                    "{solver:?} {d}: reported {st:?}, true {rel}"
+                );
                 if solver == PressureSolver::Multigrid {
-                    assert!(st.iterations <= 25, "MG-PCG took {} iterations on {d}", st.iterations);
+                    assert!(
+                        st.iterations <= 25,
+                        "MG-PCG took {} iterations on {d}",
+                        st.iterations
+                    );
                 }
             }
         }
@@ -101,7 +136,16 @@ fn periodic_multigrid_solves() {
     assert!(sys.levels() > 1);
     let b = rhs(d.cells(), 5);
     let mut x = vec![0.0f64; d.cells()];
-    let st = sys.solve(&b, &mut x, &SolverParams { tolerance: 1e-6, ..Default::default() }).unwrap();
+    let st = sys
+        .solve(
+            &b,
+            &mut x,
+            &SolverParams {
+                tolerance: 1e-6,
+                ..Default::default()
+            },
+        )
+        .unwrap();
     assert!(st.converged && st.iterations < 30, "{st:?}");
     assert!(rel_residual(&sys, &b, &x) < 1.1e-6);
 }
@@ -113,7 +157,9 @@ fn stam_baseline_runs_fixed_sweeps() {
     let mut sys = PoissonSystem::new(d, &kinds, &Boundaries::open_top(), [false; 3]).unwrap();
     let b = rhs(d.cells(), 9);
     let mut x = vec![0.0f64; d.cells()];
-    let st = sys.solve(&b, &mut x, &SolverParams::stam_baseline()).unwrap();
+    let st = sys
+        .solve(&b, &mut x, &SolverParams::stam_baseline())
+        .unwrap();
     assert_eq!(st.iterations, 20);
     assert!(st.relative_residual < 1.0 && st.relative_residual > 1e-4);
 }
@@ -125,14 +171,32 @@ fn bad_params_are_refused() {
     let mut sys = PoissonSystem::new(d, &kinds, &Boundaries::closed(), [false; 3]).unwrap();
     let mut x = vec![0.0f64; 16];
     for p in [
-        SolverParams { tolerance: f64::NAN, ..Default::default() },
-        SolverParams { tolerance: 0.0, ..Default::default() },
-        SolverParams { max_iterations: 0, ..Default::default() },
+        SolverParams {
+            tolerance: f64::NAN,
+            ..Default::default()
+        },
+        SolverParams {
+            tolerance: 0.0,
+            ..Default::default()
+        },
+        SolverParams {
+            max_iterations: 0,
+            ..Default::default()
+        },
     ] {
-        assert!(matches!(sys.solve(&[0.0; 16], &mut x, &p), Err(FluidError::InvalidParameter { .. })));
+        assert!(matches!(
+            sys.solve(&[0.0; 16], &mut x, &p),
+            Err(FluidError::InvalidParameter { .. })
+        ));
     }
     let mut b = vec![0.0; 16];
     b[5] = f32::NAN;
-    assert!(matches!(sys.solve(&b, &mut x, &SolverParams::default()), Err(FluidError::NonFinite { .. })));
-    assert!(matches!(sys.solve(&[0.0; 3], &mut x, &SolverParams::default()), Err(FluidError::SizeMismatch { .. })));
+    assert!(matches!(
+        sys.solve(&b, &mut x, &SolverParams::default()),
+        Err(FluidError::NonFinite { .. })
+    ));
+    assert!(matches!(
+        sys.solve(&[0.0; 3], &mut x, &SolverParams::default()),
+        Err(FluidError::SizeMismatch { .. })
+    ));
 }
