@@ -82,12 +82,3 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
 
 /// Fixed block length for deterministic reductions over flat arrays.
 pub(crate) const BLOCK: usize = 8192;
-
-/// `Σ f(slice_block)` over `BLOCK`-sized blocks of `0..len`, deterministic.
-pub(crate) fn sum_range(
-    len: usize,
-    f: impl Fn(std::ops::Range<usize>) -> f64 + Sync + Send,
-) -> f64 {
-    let n = len.div_ceil(BLOCK);
-    sum_blocks(n, BLOCK, |b| f(b * BLOCK..((b + 1) * BLOCK).min(len)))
-}
