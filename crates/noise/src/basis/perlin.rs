@@ -1,0 +1,531 @@
+//! Perlin gradient noise, 1-D to 4-D.
+//!
+//! Musgrave's `Noise()` [D 826-856, E89 125-142, M 457-466]: random gradients
+//! at the integer lattice points, blended across each cell by a fade, so the
+//! noise is **zero at every lattice point** with slope equal to the lattice
+//! gradient there, and has its power concentrated near half the integer
+//! frequency ("primary frequency", [D 844]).
+//!
+//! * Gradients: 1-D uniform in `[-1, 1)`; 2-D one of 8 unit vectors (axes and
+//!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002);
+//!   4-D one of the 32 tesseract edges. Drawn from a hash of the lattice
+//!   position and seed (no 256-periodic table; [`crate::hash`]).
+//! * Fade: quintic by default (C²); [`Fade::Cubic`] reproduces the sources
+//!   (C¹ only — erratum 9 of spec §10 corrects their "C²" claim).
+//! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is exactly
+//!   1 and attained (§2.1 "the crate must normalise each implementation"). The
+//!   sups were found by maximising `Σ_c W_c(p)·max_g g·(p−c)` over the cell
+//!   (each corner picks its worst gradient independently): 1-D ½, 2-D √2/2,
+//!   3-D 1.0363 (quintic) / 1.0449 (cubic), 4-D see [`PERLIN4_SUP_QUINTIC`].
+//! * Lipschitz constants are the maximised `|∇N|` of the normalised noise,
+//!   rounded up by 1%.
+
+use glam::{DVec2, DVec3, DVec4};
+
+use crate::basis::lattice::lattice_sum;
+use crate::basis::{Fade, row_in_fast_range, with_fade32};
+use crate::field::Field;
+use crate::hash::{corner, grad1, grad2, grad3, grad4, row2, row3, seed32};
+use crate::simd::{Simd, run, split, split_fast};
+
+/// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
+pub const PERLIN1_SUP: f64 = 0.5;
+/// sup |raw 2-D gradient noise| (either fade): √2/2, at the cell centre with
+/// every corner's diagonal gradient pointing away.
+pub const PERLIN2_SUP: f64 = core::f64::consts::FRAC_1_SQRT_2;
+/// sup |raw 3-D gradient noise| with the quintic fade (numerically maximised).
+pub const PERLIN3_SUP_QUINTIC: f64 = 1.036_330;
+/// sup |raw 3-D gradient noise| with the cubic fade (numerically maximised).
+pub const PERLIN3_SUP_CUBIC: f64 = 1.044_887;
+/// sup |raw 4-D gradient noise| with the quintic fade (numerically maximised).
+pub const PERLIN4_SUP_QUINTIC: f64 = 1.5;
+/// sup |raw 4-D gradient noise| with the cubic fade (numerically maximised).
+pub const PERLIN4_SUP_CUBIC: f64 = 1.5;
+
+/// Lipschitz constants of the *normalised* noise, `[cubic, quintic]`, per dimension 1-4.
+const LIPSCHITZ: [[f64; 2]; 4] = [[2.86, 2.73], [2.54, 2.87], [2.90, 3.64], [4.0, 4.8]];
+
+/// Salt separating Perlin's lattice from the other bases' under the same seed.
+const SALT: u64 = 0x5045_524C; // "PERL"
+
+/// Perlin gradient noise with a seed and a fade; unit lattice spacing, values in `[-1, 1]`.
+///
+/// ```
+/// use natura_noise::{Field, Perlin};
+/// use glam::DVec2;
+/// let n = Perlin::new(7);
+/// assert_eq!(n.eval2(DVec2::new(3.0, -2.0)), 0.0); // zero on the lattice
+/// assert!(n.eval2(DVec2::new(3.3, -2.6)).abs() <= 1.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(from = "PerlinSpec", into = "PerlinSpec"))]
+pub struct Perlin {
+    seed: u64,
+    fade: Fade,
+    s: u32,
+}
+
+/// Serialised form of [`Perlin`] (seed and fade).
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct PerlinSpec {
+    seed: u64,
+    fade: Fade,
+}
+
+#[cfg(feature = "serde")]
+impl From<PerlinSpec> for Perlin {
+    fn from(s: PerlinSpec) -> Self {
+        Perlin::with_fade(s.seed, s.fade)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl From<Perlin> for PerlinSpec {
+    fn from(p: Perlin) -> Self {
+        PerlinSpec {
+            seed: p.seed,
+            fade: p.fade,
+        }
+    }
+}
+
+impl Default for Perlin {
+    fn default() -> Self {
+        Perlin::new(0)
+    }
+}
+
+impl Perlin {
+    /// Perlin noise with the quintic fade.
+    #[must_use]
+    pub const fn new(seed: u64) -> Self {
+        Self::with_fade(seed, Fade::Quintic)
+    }
+
+    /// Perlin noise with the given fade ([`Fade::Cubic`] reproduces the sources).
+    #[must_use]
+    pub const fn with_fade(seed: u64, fade: Fade) -> Self {
+        Self {
+            seed,
+            fade,
+            s: seed32(seed, SALT),
+        }
+    }
+
+    /// The seed.
+    #[must_use]
+    pub const fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// The fade.
+    #[must_use]
+    pub const fn fade(&self) -> Fade {
+        self.fade
+    }
+
+    fn scale(&self, dim: usize) -> f64 {
+        let q = self.fade == Fade::Quintic;
+        1.0 / match dim {
+            1 => PERLIN1_SUP,
+            2 => PERLIN2_SUP,
+            3 if q => PERLIN3_SUP_QUINTIC,
+            3 => PERLIN3_SUP_CUBIC,
+            _ if q => PERLIN4_SUP_QUINTIC,
+            _ => PERLIN4_SUP_CUBIC,
+        }
+    }
+
+    /// Lipschitz constant in `dim` dimensions (1-4).
+    #[must_use]
+    pub fn lipschitz_dim(&self, dim: usize) -> f64 {
+        LIPSCHITZ[dim.clamp(1, 4) - 1][usize::from(self.fade == Fade::Quintic)]
+    }
+
+    /// The value and derivative of 1-D noise at `x`.
+    #[must_use]
+    pub fn eval_grad1(&self, x: f64) -> (f64, f64) {
+        let k = self.scale(1);
+        let (v, g) = lattice_sum::<1>(self.s, self.fade, [x], |h, d| {
+            let g = f64::from(grad1(h));
+            (g * d[0], [g])
+        });
+        (v * k, g[0] * k)
+    }
+
+    /// The value of 1-D noise at `x`.
+    #[must_use]
+    pub fn eval1(&self, x: f64) -> f64 {
+        self.eval_grad1(x).0
+    }
+
+    /// The value and gradient of 4-D noise at `p` (space + time, for animation).
+    #[must_use]
+    pub fn eval_grad4(&self, p: DVec4) -> (f64, DVec4) {
+        let k = self.scale(4);
+        let (v, g) = lattice_sum::<4>(self.s, self.fade, p.to_array(), |h, d| {
+            let g = grad4(h).map(f64::from);
+            (g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3], g)
+        });
+        (v * k, DVec4::from_array(g) * k)
+    }
+
+    /// The value of 4-D noise at `p`.
+    #[must_use]
+    pub fn eval4(&self, p: DVec4) -> f64 {
+        self.eval_grad4(p).0
+    }
+
+    /// Reference 2-D evaluation through the generic lattice sum.
+    fn grad2_impl(&self, p: DVec2) -> (f64, DVec2) {
+        let k = self.scale(2);
+        let (v, g) = lattice_sum::<2>(self.s, self.fade, p.to_array(), |h, d| {
+            let (gx, gy) = grad2(h);
+            let g = [f64::from(gx), f64::from(gy)];
+            (g[0] * d[0] + g[1] * d[1], g)
+        });
+        (v * k, DVec2::from_array(g) * k)
+    }
+
+    fn grad3_impl(&self, p: DVec3) -> (f64, DVec3) {
+        let k = self.scale(3);
+        let (v, g) = lattice_sum::<3>(self.s, self.fade, p.to_array(), |h, d| {
+            let (gx, gy, gz) = grad3(h);
+            let g = [f64::from(gx), f64::from(gy), f64::from(gz)];
+            (g[0] * d[0] + g[1] * d[1] + g[2] * d[2], g)
+        });
+        (v * k, DVec3::from_array(g) * k)
+    }
+}
+
+impl Field for Perlin {
+    #[inline]
+    fn eval2(&self, p: DVec2) -> f64 {
+        // Direct bilinear form: cheaper than the generic sum, same lattice.
+        let (ix, fx) = split(p.x);
+        let (iy, fy) = split(p.y);
+        let r0 = row2(iy, self.s);
+        let r1 = row2(iy.wrapping_add(1), self.s);
+        let dot = |h: u32, x: f64, y: f64| {
+            let (gx, gy) = grad2(h);
+            f64::from(gx) * x + f64::from(gy) * y
+        };
+        let ix1 = ix.wrapping_add(1);
+        let n00 = dot(corner(ix, r0), fx, fy);
+        let n10 = dot(corner(ix1, r0), fx - 1.0, fy);
+        let n01 = dot(corner(ix, r1), fx, fy - 1.0);
+        let n11 = dot(corner(ix1, r1), fx - 1.0, fy - 1.0);
+        let u = self.fade.eval(fx);
+        let v = self.fade.eval(fy);
+        let a = n00 + u * (n10 - n00);
+        let b = n01 + u * (n11 - n01);
+        (a + v * (b - a)) * self.scale(2)
+    }
+
+    #[inline]
+    fn eval3(&self, p: DVec3) -> f64 {
+        let (ix, fx) = split(p.x);
+        let (iy, fy) = split(p.y);
+        let (iz, fz) = split(p.z);
+        let dot = |h: u32, x: f64, y: f64, z: f64| {
+            let (gx, gy, gz) = grad3(h);
+            f64::from(gx) * x + f64::from(gy) * y + f64::from(gz) * z
+        };
+        let ix1 = ix.wrapping_add(1);
+        let u = self.fade.eval(fx);
+        let mut plane = [0.0; 4];
+        for (c, slot) in plane.iter_mut().enumerate() {
+            let (cy, cz) = ((c & 1) as u32, (c >> 1) as u32);
+            let r = row3(iy.wrapping_add(cy), iz.wrapping_add(cz), self.s);
+            let (dy, dz) = (fy - f64::from(cy), fz - f64::from(cz));
+            let n0 = dot(corner(ix, r), fx, dy, dz);
+            let n1 = dot(corner(ix1, r), fx - 1.0, dy, dz);
+            *slot = n0 + u * (n1 - n0);
+        }
+        let v = self.fade.eval(fy);
+        let w = self.fade.eval(fz);
+        let a = plane[0] + v * (plane[1] - plane[0]);
+        let b = plane[2] + v * (plane[3] - plane[2]);
+        (a + w * (b - a)) * self.scale(3)
+    }
+
+    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+        self.grad2_impl(p)
+    }
+
+    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+        self.grad3_impl(p)
+    }
+
+    fn bound(&self) -> f64 {
+        1.0
+    }
+
+    fn lipschitz2(&self) -> f64 {
+        self.lipschitz_dim(2)
+    }
+
+    fn lipschitz3(&self) -> f64 {
+        self.lipschitz_dim(3)
+    }
+
+    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+        if !row_in_fast_range(origin.x, step, out.len())
+            || !origin.y.is_finite()
+            || origin.y.abs() > 1e15
+        {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
+            }
+            return;
+        }
+        let rows = RowCoeffs::new2(self.s, self.fade, origin.y);
+        let k = self.scale(2);
+        let (s, fade) = (self.s, self.fade);
+        run(simd, || {
+            if step > 0.0 && step <= SPAN_MAX_STEP {
+                row_spans(fade, origin.x, step, k, out, |ix, fy| rows.cell2(s, ix, fy));
+            } else {
+                with_fade32!(fade, |f| perlin2_row(
+                    f, &rows, origin.x, step, k as f32, out
+                ));
+            }
+        });
+    }
+
+    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+        let bad_yz = !origin.y.is_finite()
+            || !origin.z.is_finite()
+            || origin.y.abs() > 1e15
+            || origin.z.abs() > 1e15;
+        if !row_in_fast_range(origin.x, step, out.len()) || bad_yz {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval3(DVec3::new(origin.x + i as f64 * step, origin.y, origin.z)) as f32;
+            }
+            return;
+        }
+        let rows = RowCoeffs::new3(self.s, self.fade, origin.y, origin.z);
+        let k = self.scale(3);
+        let fade = self.fade;
+        run(simd, || {
+            if step > 0.0 && step <= SPAN_MAX_STEP {
+                row_spans(fade, origin.x, step, k, out, |ix, _| rows.cell3(ix));
+            } else {
+                with_fade32!(fade, |f| perlin3_row(
+                    f, &rows, origin.x, step, k as f32, out
+                ));
+            }
+        });
+    }
+}
+
+/// Largest lattice step for which a row is evaluated span by span (≥ 16
+/// points per cell, so the per-cell set-up is amortised).
+pub(crate) const SPAN_MAX_STEP: f64 = 1.0 / 16.0;
+
+/// Per-row constants of a 2-D or 3-D gradient-noise row: the fractional y/z,
+/// their fade weights and the row hashes of the 2 (2-D) or 4 (3-D) lattice rows.
+pub(crate) struct RowCoeffs {
+    /// Fractional y and z.
+    fy: f64,
+    fz: f64,
+    /// Fade weights of the corner rows, ordered (cy, cz) = (0,0), (1,0), (0,1), (1,1).
+    w: [f64; 4],
+    /// Row hashes in the same order.
+    r: [u32; 4],
+    /// f32 copies for the lane kernels.
+    fy32: f32,
+    fz32: f32,
+    w32: [f32; 4],
+}
+
+impl RowCoeffs {
+    pub(crate) fn new2(seed: u32, fade: Fade, y: f64) -> Self {
+        let (iy, fy) = split_fast(y);
+        let v = fade.eval(fy);
+        let w = [1.0 - v, v, 0.0, 0.0];
+        let r = [row2(iy, seed), row2(iy.wrapping_add(1), seed), 0, 0];
+        Self {
+            fy,
+            fz: 0.0,
+            w,
+            r,
+            fy32: fy as f32,
+            fz32: 0.0,
+            w32: w.map(|x| x as f32),
+        }
+    }
+
+    pub(crate) fn new3(seed: u32, fade: Fade, y: f64, z: f64) -> Self {
+        let (iy, fy) = split_fast(y);
+        let (iz, fz) = split_fast(z);
+        let v = fade.eval(fy);
+        let ww = fade.eval(fz);
+        let w = [
+            (1.0 - v) * (1.0 - ww),
+            v * (1.0 - ww),
+            (1.0 - v) * ww,
+            v * ww,
+        ];
+        let mut r = [0u32; 4];
+        for (c, rc) in r.iter_mut().enumerate() {
+            *rc = row3(
+                iy.wrapping_add((c & 1) as u32),
+                iz.wrapping_add((c >> 1) as u32),
+                seed,
+            );
+        }
+        Self {
+            fy,
+            fz,
+            w,
+            r,
+            fy32: fy as f32,
+            fz32: fz as f32,
+            w32: w.map(|x| x as f32),
+        }
+    }
+
+    /// Coefficients `(a0, a1, b0, b1)` with `N(fx) = a0 + a1·fx + fade(fx)·(b0 + b1·fx)`
+    /// over the 2-D cell with x index `ix` (unscaled).
+    fn cell2(&self, _seed: u32, ix: u32, _fy: f64) -> [f64; 4] {
+        let mut a = [0.0; 2];
+        let mut c = [0.0; 2];
+        for cy in 0..2 {
+            let dy = self.fy - cy as f64;
+            let w = self.w[cy];
+            let (g0x, g0y) = grad2(corner(ix, self.r[cy]));
+            let (g1x, g1y) = grad2(corner(ix.wrapping_add(1), self.r[cy]));
+            a[1] += w * f64::from(g0x);
+            a[0] += w * f64::from(g0y) * dy;
+            c[1] += w * f64::from(g1x);
+            c[0] += w * f64::from(g1y) * dy;
+        }
+        // L1(fx) = c1·(fx − 1) + c0.
+        let c0 = c[0] - c[1];
+        [a[0], a[1], c0 - a[0], c[1] - a[1]]
+    }
+
+    /// As [`cell2`](Self::cell2) for the 3-D row.
+    fn cell3(&self, ix: u32) -> [f64; 4] {
+        let mut a = [0.0; 2];
+        let mut c = [0.0; 2];
+        for k in 0..4 {
+            let dy = self.fy - (k & 1) as f64;
+            let dz = self.fz - (k >> 1) as f64;
+            let w = self.w[k];
+            let (g0x, g0y, g0z) = grad3(corner(ix, self.r[k]));
+            let (g1x, g1y, g1z) = grad3(corner(ix.wrapping_add(1), self.r[k]));
+            a[1] += w * f64::from(g0x);
+            a[0] += w * (f64::from(g0y) * dy + f64::from(g0z) * dz);
+            c[1] += w * f64::from(g1x);
+            c[0] += w * (f64::from(g1y) * dy + f64::from(g1z) * dz);
+        }
+        let c0 = c[0] - c[1];
+        [a[0], a[1], c0 - a[0], c[1] - a[1]]
+    }
+}
+
+/// Evaluates a low-frequency row cell by cell: within one lattice cell the row
+/// is `a0 + a1·t + fade(t)·(b0 + b1·t)` in the fractional coordinate `t`, with
+/// the four coefficients computed once per cell (hoisting all hashing out of
+/// the per-point loop). The same function as the point path, re-associated.
+#[inline(always)]
+pub(crate) fn row_spans(
+    fade: Fade,
+    x0: f64,
+    step: f64,
+    scale: f64,
+    out: &mut [f32],
+    coeffs: impl Fn(u32, f64) -> [f64; 4],
+) {
+    let n = out.len();
+    let s32 = step as f32;
+    let mut i = 0usize;
+    while i < n {
+        let x = x0 + i as f64 * step;
+        let (ix, fx) = split_fast(x);
+        let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
+        let c = coeffs(ix, fx).map(|v| (v * scale) as f32);
+        let t0 = fx as f32;
+        let span = &mut out[i..i + count];
+        with_fade32!(fade, |f| {
+            for (k, o) in span.iter_mut().enumerate() {
+                let t = t0 + k as f32 * s32;
+                *o = (c[0] + c[1] * t) + f(t) * (c[2] + c[3] * t);
+            }
+        });
+        i += count;
+    }
+}
+
+/// The general 2-D row kernel: every lane finds its own cell.
+#[inline(always)]
+fn perlin2_row(
+    fade: impl Fn(f32) -> f32,
+    rows: &RowCoeffs,
+    x0: f64,
+    step: f64,
+    k: f32,
+    out: &mut [f32],
+) {
+    let (r0, r1) = (rows.r[0], rows.r[1]);
+    let fy = rows.fy32;
+    let fy1 = fy - 1.0;
+    let v = rows.w32[1];
+    for (i, o) in out.iter_mut().enumerate() {
+        let x = x0 + (i as i32) as f64 * step;
+        let (ix, fx) = split_fast(x);
+        let fx = fx as f32;
+        let fx1 = fx - 1.0;
+        let ix1 = ix.wrapping_add(1);
+        let d = |h: u32, x: f32, y: f32| {
+            let (gx, gy) = grad2(h);
+            gx * x + gy * y
+        };
+        let n00 = d(corner(ix, r0), fx, fy);
+        let n10 = d(corner(ix1, r0), fx1, fy);
+        let n01 = d(corner(ix, r1), fx, fy1);
+        let n11 = d(corner(ix1, r1), fx1, fy1);
+        let u = fade(fx);
+        let a = n00 + u * (n10 - n00);
+        let b = n01 + u * (n11 - n01);
+        *o = (a + v * (b - a)) * k;
+    }
+}
+
+/// The general 3-D row kernel.
+#[inline(always)]
+fn perlin3_row(
+    fade: impl Fn(f32) -> f32,
+    rows: &RowCoeffs,
+    x0: f64,
+    step: f64,
+    k: f32,
+    out: &mut [f32],
+) {
+    let (fy, fz) = (rows.fy32, rows.fz32);
+    let dy = [fy, fy - 1.0, fy, fy - 1.0];
+    let dz = [fz, fz, fz - 1.0, fz - 1.0];
+    let w = rows.w32;
+    let r = rows.r;
+    for (i, o) in out.iter_mut().enumerate() {
+        let x = x0 + (i as i32) as f64 * step;
+        let (ix, fx) = split_fast(x);
+        let fx = fx as f32;
+        let fx1 = fx - 1.0;
+        let ix1 = ix.wrapping_add(1);
+        let u = fade(fx);
+        let mut acc = 0.0f32;
+        for c in 0..4 {
+            let (ax, ay, az) = grad3(corner(ix, r[c]));
+            let (bx, by, bz) = grad3(corner(ix1, r[c]));
+            let n0 = ax * fx + ay * dy[c] + az * dz[c];
+            let n1 = bx * fx1 + by * dy[c] + bz * dz[c];
+            acc += w[c] * (n0 + u * (n1 - n0));
+        }
+        *o = acc * k;
+    }
+}

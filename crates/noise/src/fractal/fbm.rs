@@ -1,0 +1,251 @@
+//! Monofractal fBm and turbulence.
+
+use glam::{DVec2, DVec3};
+
+use crate::error::Result;
+use crate::field::Field;
+use crate::fractal::rows::octave_rows;
+use crate::fractal::{Octaves, Spectral};
+use crate::simd::Simd;
+
+/// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and
+/// `w_k = λ^(−kH)` (spec §3.1; [D 858-908], [E89 150-160]).
+///
+/// Math (C-H convention, fractional octaves `o = n + t`):
+/// `fBm(p) = Σ_{k<n} λ^(−kH)·N(λ^k p) + t·λ^(−nH)·N(λ^n p)`.
+/// The sources' loop is reproduced exactly (`result = N(p)`; each further
+/// octave multiplies the point by `λ`); no rotation or offset between octaves,
+/// as in the sources. The weights are precomputed once ([`Octaves`]).
+/// The sources' `VERY_SMALL` early exit is not applied (it drops a tail and
+/// makes the output jump; spec §0.1 item 5).
+///
+/// * [`bound`](Field::bound) = `B_N·Σ w_k`; Lipschitz = `L_N·Σ w_k f_k`.
+/// * Analytic gradient: `Σ w_k f_k ∇N(f_k p)`.
+///
+/// ```
+/// use natura_noise::{Fbm, Field, Perlin, Spectral};
+/// use glam::DVec2;
+/// let fbm = Fbm::new(Perlin::new(1), Spectral::default().with_h(0.8))?;
+/// let v = fbm.eval2(DVec2::new(0.3, 0.7));
+/// assert!(v.abs() <= fbm.bound());
+/// # Ok::<(), natura_noise::NoiseError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fbm<B> {
+    basis: B,
+    spectral: Spectral,
+    oct: Octaves,
+}
+
+impl<B: Field> Fbm<B> {
+    /// fBm of `basis` with `spectral` parameters (validated).
+    pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
+        let oct = spectral.octaves_table()?;
+        Ok(Self {
+            basis,
+            spectral,
+            oct,
+        })
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The spectral parameters.
+    pub fn spectral(&self) -> &Spectral {
+        &self.spectral
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
+    }
+}
+
+impl<B: Field> Field for Fbm<B> {
+    fn eval2(&self, p: DVec2) -> f64 {
+        let o = &self.oct;
+        (0..o.count())
+            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)))
+            .sum()
+    }
+
+    fn eval3(&self, p: DVec3) -> f64 {
+        let o = &self.oct;
+        (0..o.count())
+            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)))
+            .sum()
+    }
+
+    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+        let o = &self.oct;
+        let mut v = 0.0;
+        let mut g = DVec2::ZERO;
+        for k in 0..o.count() {
+            let (n, dn) = self.basis.eval_grad2(p * o.frequency(k));
+            v += o.weight(k) * n;
+            g += dn * (o.weight(k) * o.frequency(k));
+        }
+        (v, g)
+    }
+
+    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+        let o = &self.oct;
+        let mut v = 0.0;
+        let mut g = DVec3::ZERO;
+        for k in 0..o.count() {
+            let (n, dn) = self.basis.eval_grad3(p * o.frequency(k));
+            v += o.weight(k) * n;
+            g += dn * (o.weight(k) * o.frequency(k));
+        }
+        (v, g)
+    }
+
+    fn bound(&self) -> f64 {
+        self.basis.bound() * self.oct.weight_sum()
+    }
+
+    fn lipschitz2(&self) -> f64 {
+        self.basis.lipschitz2() * self.oct.weighted_frequency_sum()
+    }
+
+    fn lipschitz3(&self) -> f64 {
+        self.basis.lipschitz3() * self.oct.weighted_frequency_sum()
+    }
+
+    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, false);
+    }
+
+    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, false);
+    }
+}
+
+fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
+    basis: &B,
+    simd: Simd,
+    oct: &Octaves,
+    origin: P,
+    step: f64,
+    out: &mut [f32],
+    abs: bool,
+) {
+    octave_rows(basis, simd, oct, origin, step, out, |k, n, acc, _| {
+        let w = oct.weight(k) as f32;
+        if k == 0 {
+            for (a, &v) in acc.iter_mut().zip(n) {
+                *a = w * if abs { v.abs() } else { v };
+            }
+        } else {
+            for (a, &v) in acc.iter_mut().zip(n) {
+                *a += w * if abs { v.abs() } else { v };
+            }
+        }
+    });
+}
+
+/// Turbulence: `Σ_k w_k·|N(f_k·p)|`, fBm of the absolute basis.
+///
+/// Called by the sources ([T 560] `turbulence(PP, fw, octaves, λ, H)`) but
+/// not defined there; this is Perlin's 1985 definition (outside the corpus),
+/// with the crate's weights and fractional octaves. Its spectrum is steeper
+/// than the naive expectation (erratum 20). Values in `[0, bound]`; the
+/// derivative jumps on the zero set of each octave (creases).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Turbulence<B> {
+    basis: B,
+    spectral: Spectral,
+    oct: Octaves,
+}
+
+impl<B: Field> Turbulence<B> {
+    /// Turbulence of `basis` with `spectral` parameters (validated).
+    pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
+        let oct = spectral.octaves_table()?;
+        Ok(Self {
+            basis,
+            spectral,
+            oct,
+        })
+    }
+
+    /// The spectral parameters.
+    pub fn spectral(&self) -> &Spectral {
+        &self.spectral
+    }
+}
+
+impl<B: Field> Field for Turbulence<B> {
+    fn eval2(&self, p: DVec2) -> f64 {
+        let o = &self.oct;
+        (0..o.count())
+            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)).abs())
+            .sum()
+    }
+
+    fn eval3(&self, p: DVec3) -> f64 {
+        let o = &self.oct;
+        (0..o.count())
+            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)).abs())
+            .sum()
+    }
+
+    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+        let o = &self.oct;
+        let mut v = 0.0;
+        let mut g = DVec2::ZERO;
+        for k in 0..o.count() {
+            let (n, dn) = self.basis.eval_grad2(p * o.frequency(k));
+            v += o.weight(k) * n.abs();
+            g += dn * (o.weight(k) * o.frequency(k) * sign(n));
+        }
+        (v, g)
+    }
+
+    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+        let o = &self.oct;
+        let mut v = 0.0;
+        let mut g = DVec3::ZERO;
+        for k in 0..o.count() {
+            let (n, dn) = self.basis.eval_grad3(p * o.frequency(k));
+            v += o.weight(k) * n.abs();
+            g += dn * (o.weight(k) * o.frequency(k) * sign(n));
+        }
+        (v, g)
+    }
+
+    fn bound(&self) -> f64 {
+        self.basis.bound() * self.oct.weight_sum()
+    }
+
+    fn lipschitz2(&self) -> f64 {
+        self.basis.lipschitz2() * self.oct.weighted_frequency_sum()
+    }
+
+    fn lipschitz3(&self) -> f64 {
+        self.basis.lipschitz3() * self.oct.weighted_frequency_sum()
+    }
+
+    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
+    }
+
+    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
+    }
+}
+
+/// The sign used for one-sided derivatives of `|x|` (0 at 0).
+#[inline]
+pub(crate) fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,156 @@
+//! Batch evaluation shared by the fractals: octave rows into stack scratch
+//! buffers, combined by a per-fractal vectorised kernel.
+
+use glam::{DVec2, DVec3};
+
+use crate::field::Field;
+use crate::fractal::{CHUNK, Octaves};
+use crate::simd::{Simd, run};
+
+/// A row start point of any dimension, scaled by an octave frequency.
+pub(crate) trait RowPoint: Copy {
+    fn scaled(self, f: f64) -> Self;
+    fn advanced(self, dx: f64) -> Self;
+    fn fill<B: Field + ?Sized>(self, basis: &B, simd: Simd, step: f64, out: &mut [f32]);
+}
+
+impl RowPoint for DVec2 {
+    #[inline]
+    fn scaled(self, f: f64) -> Self {
+        self * f
+    }
+    #[inline]
+    fn advanced(self, dx: f64) -> Self {
+        DVec2::new(self.x + dx, self.y)
+    }
+    #[inline]
+    fn fill<B: Field + ?Sized>(self, basis: &B, simd: Simd, step: f64, out: &mut [f32]) {
+        basis.fill_row2_with(simd, self, step, out);
+    }
+}
+
+impl RowPoint for DVec3 {
+    #[inline]
+    fn scaled(self, f: f64) -> Self {
+        self * f
+    }
+    #[inline]
+    fn advanced(self, dx: f64) -> Self {
+        DVec3::new(self.x + dx, self.y, self.z)
+    }
+    #[inline]
+    fn fill<B: Field + ?Sized>(self, basis: &B, simd: Simd, step: f64, out: &mut [f32]) {
+        basis.fill_row3_with(simd, self, step, out);
+    }
+}
+
+/// Evaluates every octave of `basis` along the row in chunks and hands each
+/// octave's values to `combine(k, basis_values, out_chunk, state_chunk)`.
+/// `combine` runs at the `simd` level so its loops vectorise.
+pub(crate) fn octave_rows<P: RowPoint, B: Field + ?Sized>(
+    basis: &B,
+    simd: Simd,
+    oct: &Octaves,
+    origin: P,
+    step: f64,
+    out: &mut [f32],
+    mut combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+) {
+    let mut tmp = [0.0f32; CHUNK];
+    let mut state = [0.0f32; CHUNK];
+    for (c, chunk) in out.chunks_mut(CHUNK).enumerate() {
+        let m = chunk.len();
+        let start = origin.advanced((c * CHUNK) as f64 * step);
+        for k in 0..oct.count() {
+            let f = oct.frequency(k);
+            start.scaled(f).fill(basis, simd, step * f, &mut tmp[..m]);
+            run(simd, || combine(k, &tmp[..m], chunk, &mut state[..m]));
+        }
+    }
+}
+
+/// Point types the fractals are generic over (2-D and 3-D), with basis evaluation.
+pub(crate) trait Pt:
+    RowPoint
+    + core::ops::Mul<f64, Output = Self>
+    + core::ops::Add<Output = Self>
+    + core::ops::AddAssign
+    + core::ops::Sub<Output = Self>
+{
+    const ZERO: Self;
+    fn eval<B: Field + ?Sized>(b: &B, p: Self) -> f64;
+    fn eval_grad<B: Field + ?Sized>(b: &B, p: Self) -> (f64, Self);
+}
+
+impl Pt for DVec2 {
+    const ZERO: Self = DVec2::ZERO;
+    #[inline]
+    fn eval<B: Field + ?Sized>(b: &B, p: Self) -> f64 {
+        b.eval2(p)
+    }
+    #[inline]
+    fn eval_grad<B: Field + ?Sized>(b: &B, p: Self) -> (f64, Self) {
+        b.eval_grad2(p)
+    }
+}
+
+impl Pt for DVec3 {
+    const ZERO: Self = DVec3::ZERO;
+    #[inline]
+    fn eval<B: Field + ?Sized>(b: &B, p: Self) -> f64 {
+        b.eval3(p)
+    }
+    #[inline]
+    fn eval_grad<B: Field + ?Sized>(b: &B, p: Self) -> (f64, Self) {
+        b.eval_grad3(p)
+    }
+}
+
+/// Implements [`Field`] for a fractal with generic `value<P>`, `value_grad<P>`
+/// and `rows<P>` methods plus `bound`/`lipschitz_factor`.
+macro_rules! impl_fractal_field {
+    ($ty:ident) => {
+        impl<B: $crate::field::Field> $crate::field::Field for $ty<B> {
+            fn eval2(&self, p: glam::DVec2) -> f64 {
+                self.value(p)
+            }
+            fn eval3(&self, p: glam::DVec3) -> f64 {
+                self.value(p)
+            }
+            fn eval_grad2(&self, p: glam::DVec2) -> (f64, glam::DVec2) {
+                self.value_grad(p)
+            }
+            fn eval_grad3(&self, p: glam::DVec3) -> (f64, glam::DVec3) {
+                self.value_grad(p)
+            }
+            fn bound(&self) -> f64 {
+                self.bound_impl()
+            }
+            fn lipschitz2(&self) -> f64 {
+                self.lipschitz_impl(self.basis.lipschitz2())
+            }
+            fn lipschitz3(&self) -> f64 {
+                self.lipschitz_impl(self.basis.lipschitz3())
+            }
+            fn fill_row2_with(
+                &self,
+                simd: $crate::simd::Simd,
+                origin: glam::DVec2,
+                step: f64,
+                out: &mut [f32],
+            ) {
+                self.rows(simd, origin, step, out);
+            }
+            fn fill_row3_with(
+                &self,
+                simd: $crate::simd::Simd,
+                origin: glam::DVec3,
+                step: f64,
+                out: &mut [f32],
+            ) {
+                self.rows(simd, origin, step, out);
+            }
+        }
+    };
+}
+pub(crate) use impl_fractal_field;

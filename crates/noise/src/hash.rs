@@ -1,0 +1,233 @@
+//! Lattice hashing: random numbers indexed by integer lattice position.
+//!
+//! Every basis draws its per-lattice-point randomness (gradients, values,
+//! feature points, impulses) from a stateless hash of the lattice coordinates
+//! and the seed, in the spirit of Fournier–Fussell–Carpenter's "random numbers
+//! indexed by position". No permutation table: the sources' table-based
+//! implementations repeat every 256 cells (spec `noise.md` §2.1, *Periodicity*);
+//! this hash repeats only with the 2³² wrap of the `i32` lattice index.
+//!
+//! The hash is 32-bit integer arithmetic so the f64 point path and the f32
+//! SIMD batch path draw bit-identical lattice values. It is structured so a
+//! batch row hoists the y (and z, w) part out of the per-point loop:
+//! `corner(x, row(y, z, …))`.
+
+/// Multiplier spreading the x lattice index.
+pub(crate) const PX: u32 = 0x8DA6_B343;
+/// Multiplier spreading the y lattice index.
+pub(crate) const PY: u32 = 0xD816_3841;
+/// Multiplier spreading the z lattice index.
+pub(crate) const PZ: u32 = 0xCB1A_B31F;
+/// Multiplier spreading the w lattice index.
+pub(crate) const PW: u32 = 0x1656_67B1;
+
+/// The "lowbias32" integer finaliser (two multiplies; full avalanche).
+#[inline(always)]
+#[must_use]
+pub(crate) const fn mix32(mut h: u32) -> u32 {
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x7FEB_352D);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x846C_A68B);
+    h ^ (h >> 16)
+}
+
+/// splitmix64's finaliser.
+#[inline]
+#[must_use]
+pub(crate) const fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Folds a 64-bit user seed into the 32-bit lattice seed; `salt` separates
+/// the bases so the same seed gives unrelated Perlin, value and Worley fields.
+#[inline]
+#[must_use]
+pub(crate) const fn seed32(seed: u64, salt: u64) -> u32 {
+    (mix64(seed ^ salt.wrapping_mul(0x9E37_79B9_7F4A_7C15)) >> 32) as u32
+}
+
+/// Wraps an `f64` lattice coordinate (already floored) to the `i32` index
+/// the hash uses, reproducing the f32 path's wrap-around.
+#[inline(always)]
+#[must_use]
+pub(crate) fn wrap(i: f64) -> u32 {
+    // Saturating cast to i64 first (exact for |i| < 2^63), then wrap to 32 bits.
+    (i as i64) as u32
+}
+
+/// Row hash for 2-D lattices: the y index mixed with the seed.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn row2(y: u32, seed: u32) -> u32 {
+    mix32(y.wrapping_mul(PY) ^ seed)
+}
+
+/// Row hash for 3-D lattices: the (y, z) indices mixed with the seed.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn row3(y: u32, z: u32, seed: u32) -> u32 {
+    mix32(y.wrapping_mul(PY) ^ mix32(z.wrapping_mul(PZ) ^ seed))
+}
+
+/// Row hash for 4-D lattices: the (y, z, w) indices mixed with the seed.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn row4(y: u32, z: u32, w: u32, seed: u32) -> u32 {
+    mix32(y.wrapping_mul(PY) ^ mix32(z.wrapping_mul(PZ) ^ mix32(w.wrapping_mul(PW) ^ seed)))
+}
+
+/// Row hash for 1-D lattices (only the seed).
+#[inline(always)]
+#[must_use]
+pub(crate) const fn row1(seed: u32) -> u32 {
+    mix32(seed ^ 0x2545_F491)
+}
+
+/// The hash of lattice point `(x, row)`, where `row` is one of the `row*` hashes.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn corner(x: u32, row: u32) -> u32 {
+    mix32(x.wrapping_mul(PX) ^ row)
+}
+
+/// A value uniform in `[-1, 1)` (24 bits) drawn from hash `h`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn signed_unit(h: u32) -> f32 {
+    (h >> 8) as f32 * (1.0 / 8_388_608.0) - 1.0
+}
+
+/// A value uniform in `[0, 1)` (16 bits) drawn from the low half of `h`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn unit_lo(h: u32) -> f32 {
+    (h & 0xFFFF) as f32 * (1.0 / 65_536.0)
+}
+
+/// A value uniform in `[0, 1)` (16 bits) drawn from the high half of `h`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn unit_hi(h: u32) -> f32 {
+    (h >> 16) as f32 * (1.0 / 65_536.0)
+}
+
+/// A second, independent-looking 32-bit draw from `h` (one multiply-xorshift).
+#[inline(always)]
+#[must_use]
+pub(crate) const fn rehash(h: u32) -> u32 {
+    let h = h.wrapping_mul(0x9E37_79B1) ^ 0x68E3_1DA4;
+    h ^ (h >> 15)
+}
+
+/// The 2-D gradient for hash `h`: one of 8 unit vectors (axes and diagonals),
+/// chosen by the top four bits with equal probability.
+#[inline(always)]
+#[must_use]
+pub(crate) fn grad2(h: u32) -> (f32, f32) {
+    const S: f32 = core::f32::consts::FRAC_1_SQRT_2;
+    let diag = h & 0x2000_0000 != 0;
+    let xaxis = h & 0x1000_0000 != 0;
+    let ax = if diag {
+        S
+    } else if xaxis {
+        1.0
+    } else {
+        0.0
+    };
+    let ay = if diag {
+        S
+    } else if xaxis {
+        0.0
+    } else {
+        1.0
+    };
+    let gx = if h & 0x8000_0000 != 0 { -ax } else { ax };
+    let gy = if h & 0x4000_0000 != 0 { -ay } else { ay };
+    (gx, gy)
+}
+
+/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions
+/// `(±1, ±1, 0)` and permutations (Perlin 2002), four of them doubled to
+/// fill 16 slots.
+#[inline(always)]
+#[must_use]
+pub(crate) fn grad3(h: u32) -> (f32, f32, f32) {
+    let c = h >> 28;
+    // u on x for c < 8, else y; v on y for c < 4, x for 12 and 14, else z.
+    let ux = if c < 8 { 1.0 } else { 0.0 };
+    let uy = 1.0 - ux;
+    let vy = if c < 4 { 1.0 } else { 0.0 };
+    let vx = if c == 12 || c == 14 { 1.0 } else { 0.0 };
+    let vz = 1.0 - vy - vx;
+    let su = if c & 1 != 0 { -1.0 } else { 1.0 };
+    let sv = if c & 2 != 0 { -1.0 } else { 1.0 };
+    (su * ux + sv * vx, su * uy + sv * vy, sv * vz)
+}
+
+/// The 4-D gradient for hash `h`: one of the 32 tesseract-edge directions
+/// (three of ±1 and one 0).
+#[inline(always)]
+#[must_use]
+pub(crate) fn grad4(h: u32) -> [f32; 4] {
+    let zero = (h >> 27) & 3;
+    let s0 = if h & 0x8000_0000 != 0 { -1.0 } else { 1.0 };
+    let s1 = if h & 0x4000_0000 != 0 { -1.0 } else { 1.0 };
+    let s2 = if h & 0x2000_0000 != 0 { -1.0 } else { 1.0 };
+    match zero {
+        0 => [0.0, s0, s1, s2],
+        1 => [s0, 0.0, s1, s2],
+        2 => [s0, s1, 0.0, s2],
+        _ => [s0, s1, s2, 0.0],
+    }
+}
+
+/// The 1-D gradient for hash `h`: uniform in `[-1, 1)`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn grad1(h: u32) -> f32 {
+    signed_unit(h)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gradients_are_uniform_over_their_sets() {
+        let mut c2 = [0u32; 8];
+        let mut n3 = 0usize;
+        for i in 0..80_000u32 {
+            let h = corner(i, row2(7, 99));
+            let (x, y) = grad2(h);
+            assert!(((x * x + y * y) - 1.0).abs() < 1e-6);
+            let k = (libm::atan2f(y, x).rem_euclid(core::f32::consts::TAU)
+                / core::f32::consts::FRAC_PI_4
+                + 0.5) as usize
+                % 8;
+            c2[k] += 1;
+            let (a, b, c) = grad3(h);
+            assert_eq!(a * a + b * b + c * c, 2.0);
+            n3 += 1;
+            let g4 = grad4(h);
+            assert_eq!(g4.iter().map(|v| v * v).sum::<f32>(), 3.0);
+        }
+        assert_eq!(n3, 80_000);
+        for c in c2 {
+            // 10 000 expected per direction; 5σ ≈ 470.
+            assert!((9_500..10_500).contains(&c), "{c2:?}");
+        }
+    }
+
+    #[test]
+    fn rows_separate_axes_and_seeds() {
+        assert_ne!(corner(1, row2(2, 0)), corner(2, row2(1, 0)));
+        assert_ne!(row2(5, 1), row2(5, 2));
+        assert_ne!(row3(1, 2, 0), row3(2, 1, 0));
+        assert_ne!(seed32(1, 0), seed32(1, 1));
+        assert_eq!(wrap(-1.0), u32::MAX);
+        assert_eq!(wrap(4_294_967_296.0 + 3.0), 3);
+    }
+}
