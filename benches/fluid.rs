@@ -1,0 +1,248 @@
+//! natura-fluid throughput: the issue 9 workloads on 2 threads.
+//!
+//! * 2-D Stable Fluids, 512², bounded box, projection to relative residual 1e-5;
+//! * 3-D smoke, 128³, vorticity confinement, same tolerance;
+//! * the same projections solved by the Gauss–Seidel baseline to the same
+//!   residual (one timed run each; when the sweep cap is reached the time to
+//!   the tolerance is extrapolated from the measured asymptotic rate and
+//!   marked as such).
+//!
+//! No crates.io fluid solver is a maintained peer; the Gauss–Seidel baseline
+//! is the comparison the issue asks for.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use natura::core::glam::Vec3;
+use natura::fluid::grid::{Boundaries, CellKind, Dims, MacVelocity};
+use natura::fluid::mac::divergence;
+use natura::fluid::pressure::{PoissonSystem, PressureSolver, SolverParams};
+use natura::fluid::shape::{Obstacle, Shape};
+use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
+use natura::fluid::stable::{BoundedFluid, ForceSource, ScalarSource, StableParams, Substance};
+
+const TOL: f64 = 1e-5;
+
+fn pool() -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("thread pool")
+}
+
+fn stable2d() -> BoundedFluid {
+    let n = 512;
+    let h = 1.0 / n as f32;
+    let dims = Dims::plane(n, n).expect("dims");
+    let params = StableParams {
+        solver: SolverParams {
+            tolerance: TOL,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let mut f = BoundedFluid::new(dims, h, params).expect("fluid");
+    let dye = f
+        .add_substance(Substance::passive("dye"))
+        .expect("substance");
+    let jet = Shape::Sphere {
+        centre: Vec3::new(0.5, 0.5 * h, 0.15),
+        radius: 0.05,
+    };
+    f.add_source(
+        dye,
+        ScalarSource {
+            shape: jet,
+            rate: 1.0,
+        },
+    )
+    .expect("source");
+    f.add_force_source(ForceSource {
+        shape: jet,
+        acceleration: Vec3::new(3.0, 0.0, 30.0),
+    })
+    .expect("force");
+    f.add_obstacle(Obstacle::fixed(Shape::Sphere {
+        centre: Vec3::new(0.45, 0.5 * h, 0.6),
+        radius: 0.08,
+    }))
+    .expect("obstacle");
+    f
+}
+
+fn smoke3d() -> Smoke {
+    let n = 128;
+    let h = 1.0 / n as f32;
+    let dims = Dims::new(n, n, n).expect("dims");
+    let params = SmokeParams {
+        solver: SolverParams {
+            tolerance: TOL,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let mut s = Smoke::new(dims, h, params).expect("smoke");
+    s.add_source(SmokeSource {
+        shape: Shape::Sphere {
+            centre: Vec3::new(0.5, 0.5, 0.15),
+            radius: 0.08,
+        },
+        density: 1.0,
+        temperature: 330.0,
+        velocity: Some(Vec3::new(0.0, 0.0, 0.5)),
+    })
+    .expect("source");
+    s.add_obstacle(Obstacle::fixed(Shape::Sphere {
+        centre: Vec3::new(0.45, 0.5, 0.6),
+        radius: 0.12,
+    }))
+    .expect("obstacle");
+    s
+}
+
+/// Times MG-PCG and Gauss–Seidel on the projection of `vel` and prints the figures.
+fn baseline(
+    name: &str,
+    vel: &MacVelocity,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    h: f32,
+    cap: u32,
+) {
+    let d = vel.dims();
+    let div = divergence(vel, h).expect("div");
+    let b: Vec<f32> = div
+        .as_slice()
+        .iter()
+        .zip(kinds)
+        .map(|(&v, &k)| {
+            if k == CellKind::Fluid {
+                -h * h * v
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut sys = PoissonSystem::new(d, kinds, bounds, [false; 3]).expect("system");
+    let mut x = vec![0.0f64; d.cells()];
+    let t = Instant::now();
+    let mg = sys
+        .solve(
+            &b,
+            &mut x,
+            &SolverParams {
+                tolerance: TOL,
+                ..Default::default()
+            },
+        )
+        .expect("mg");
+    let t_mg = t.elapsed();
+    // Gauss–Seidel in chunks to observe its rate.
+    let mut x = vec![0.0f64; d.cells()];
+    let chunk = (cap / 10).max(10);
+    let mut total = 0u32;
+    let mut rel = 1.0f64;
+    let mut rate = 1.0f64;
+    let t = Instant::now();
+    while total < cap {
+        let st = sys
+            .solve(
+                &b,
+                &mut x,
+                &SolverParams {
+                    solver: PressureSolver::GaussSeidel,
+                    tolerance: TOL,
+                    max_iterations: chunk,
+                },
+            )
+            .expect("gs");
+        total += st.iterations;
+        rate = (st.relative_residual / rel).powf(1.0 / f64::from(st.iterations.max(1)));
+        rel = st.relative_residual;
+        if st.converged {
+            break;
+        }
+    }
+    let t_gs = t.elapsed().as_secs_f64();
+    let (t_gs_full, note) = if rel <= TOL {
+        (t_gs, "measured")
+    } else {
+        let more = (TOL / rel).ln() / rate.ln();
+        (t_gs * (1.0 + more / f64::from(total)), "extrapolated")
+    };
+    println!(
+        "{name}: MG-PCG {:.1} ms, {} iterations, residual {:.2e}; Gauss–Seidel {} sweeps → {:.2e} in {:.1} s, to {TOL:.0e}: {:.1} s ({note}); speed-up {:.0}×",
+        t_mg.as_secs_f64() * 1e3,
+        mg.iterations,
+        mg.relative_residual,
+        total,
+        rel,
+        t_gs,
+        t_gs_full,
+        t_gs_full / t_mg.as_secs_f64()
+    );
+}
+
+fn benches(c: &mut Criterion) {
+    let pool = pool();
+    pool.install(|| {
+        let mut g = c.benchmark_group("fluid");
+        g.sample_size(10);
+        g.warm_up_time(Duration::from_millis(500));
+        g.measurement_time(Duration::from_secs(8));
+        // 2-D Stable Fluids 512².
+        let mut f = stable2d();
+        for _ in 0..20 {
+            f.step(0.002).expect("step");
+        }
+        let r = f.step(0.002).expect("step");
+        println!(
+            "stable2d_512: {} CG iterations, residual {:.2e}",
+            r.pressure_iterations,
+            r.pressure.map_or(0.0, |p| p.relative_residual)
+        );
+        g.throughput(Throughput::Elements(512 * 512));
+        g.bench_function("stable2d_512_bounded_step", |b| {
+            b.iter(|| black_box(f.step(0.002).expect("step")))
+        });
+        baseline(
+            "stable2d_512 projection",
+            f.velocity(),
+            f.cell_kinds().as_slice(),
+            &Boundaries::closed(),
+            f.h(),
+            200_000,
+        );
+        drop(f);
+        // 3-D smoke 128³ with confinement.
+        let mut s = smoke3d();
+        for _ in 0..4 {
+            s.step(0.004).expect("step");
+        }
+        let r = s.step(0.004).expect("step");
+        println!(
+            "smoke3d_128: {} CG iterations, residual {:.2e}",
+            r.pressure_iterations,
+            r.pressure.map_or(0.0, |p| p.relative_residual)
+        );
+        g.throughput(Throughput::Elements(128 * 128 * 128));
+        g.measurement_time(Duration::from_secs(15));
+        g.bench_function("smoke3d_128_confinement_step", |b| {
+            b.iter(|| black_box(s.step(0.004).expect("step")))
+        });
+        let bounds = s.params().bounds;
+        baseline(
+            "smoke3d_128 projection",
+            s.velocity(),
+            s.cell_kinds().as_slice(),
+            &bounds,
+            s.h(),
+            3_000,
+        );
+        g.finish();
+    });
+}
+
+criterion_group!(fluid, benches);
+criterion_main!(fluid);

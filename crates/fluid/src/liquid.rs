@@ -1,0 +1,897 @@
+//! Foster & Fedkiw, *Practical Animation of Liquids* (SIGGRAPH 2001; seed
+//! 004 L2308-2596): a level set corrected by marker particles on a MAC grid.
+//!
+//! Per call of [`Liquid::step`] the frame time is split into Navier–Stokes
+//! steps no longer than [`LiquidParams::max_cfl`] times the CFL step
+//! `h / max|u|` (L2456, L2553). Each Navier–Stokes step:
+//!
+//! 1. classifies cells from φ (< 0 is liquid, L2409): *full* liquid cells,
+//!    *surface* cells (liquid with an empty neighbour) and *empty* cells
+//!    (L2468-2472);
+//! 2. updates velocity: first-order semi-Lagrangian convection "as Stam"
+//!    plus explicit central-difference viscosity and gravity (L2454), with
+//!    the viscosity capped where the explicit step would be unstable (the
+//!    paper's local adjustment, L2555);
+//! 3. imposes object velocities (L2511-2515): faces of occupied cells take the
+//!    object's velocity, either always ([`ObjectMode::StickyNormal`]) or only
+//!    where the liquid would flow into the object ([`ObjectMode::Separating`])
+//!    — the paper states both (erratum E6);
+//! 4. solves the pressure for full cells with surface and empty cells at
+//!    atmospheric pressure (Dirichlet) and objects Neumann (L2474-2492). The
+//!    paper's matrix has a negative diagonal (L2486-2488, erratum E5); the
+//!    solver uses its negation, which is positive definite, with CG;
+//! 5. makes every surface cell divergence-free by setting its faces to empty
+//!    neighbours (L2472; the paper leaves the split open, here the missing
+//!    flux is shared equally), zeroes empty–empty faces (L2468) and then
+//!    extrapolates velocity a few cells into the air (beyond the paper) so
+//!    back-traces and particles see a sensible field;
+//! 6. moves particles (trilinear velocity, RK2, L2396) and φ (ENO2 upwind,
+//!    L2431) in CFL-limited sub-steps that add up to the step (L2456);
+//! 7. corrects φ with particles where the surface curvature is high
+//!    (`φ ← min(φ, φ_p)`, L2441-2448), reinitialises φ (eq. 5.1), deletes
+//!    particles deep inside and reseeds sparse cells near the surface (L2437).
+//!
+//! 2-D (x–z plane, `ny = 1`) and 3-D grids are both supported.
+
+use glam::Vec3;
+use natura_core::{Grid3, Seed};
+
+use crate::advect::{self, Advection, Solids, VelSampler};
+use crate::error::{self, FluidError, Result};
+use crate::grid::{self, Boundaries, CellKind, Dims, MacVelocity, Side, StepReport};
+use crate::levelset::LevelSet;
+use crate::mac::{self, Projector};
+use crate::pressure::SolverParams;
+use crate::shape::{Obstacle, Shape, voxelise};
+
+/// How object velocities constrain the liquid (erratum E6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ObjectMode {
+    /// Clamp only inflow: the relative normal velocity is made `>= 0` (L2507).
+    #[default]
+    Separating,
+    /// Always set the normal velocity to the object's (L2513).
+    StickyNormal,
+}
+
+/// The role of a cell in the liquid solver (L2468-2472).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum LiquidCell {
+    /// No liquid.
+    #[default]
+    Empty,
+    /// Liquid with at least one empty neighbour: atmospheric pressure.
+    Surface,
+    /// Liquid surrounded by liquid or objects: a pressure unknown.
+    Full,
+    /// Occupied by an object.
+    Object,
+}
+
+/// Parameters of the liquid model. The paper gives none of these values
+/// (spec §4.2); defaults are library choices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LiquidParams {
+    /// Kinematic viscosity ν (m²/s). Default 1e-6 (water).
+    pub viscosity: f32,
+    /// Gravity (m/s²). Default `(0, 0, −9.81)`.
+    pub gravity: Vec3,
+    /// Navier–Stokes step as a multiple of the CFL step (paper: "around five", L2456).
+    pub max_cfl: f32,
+    /// Marker particles seeded per liquid cell.
+    pub particles_per_cell: usize,
+    /// Particle radius in cells (the `r` of `φ_p = |x − x_p| − r`, L2402).
+    pub particle_radius: f32,
+    /// Particles deeper than this many cells inside are deleted (L2437).
+    pub delete_band: f32,
+    /// Particles correct φ where `|κ|·h` exceeds this (L2441).
+    pub curvature_threshold: f32,
+    /// Reinitialisation iterations per step (eq. 5.1, "a few").
+    pub reinit_iterations: u32,
+    /// Layers of velocity extrapolation into the air.
+    pub extrapolation_layers: u32,
+    /// Object constraint mode.
+    pub object_mode: ObjectMode,
+    /// Velocity advection.
+    pub advection: Advection,
+    /// Pressure solver.
+    pub solver: SolverParams,
+    /// Domain sides (walls by default; an open side is atmospheric).
+    pub bounds: Boundaries,
+    /// Seed for particle jitter and reseeding.
+    pub seed: u64,
+}
+
+impl Default for LiquidParams {
+    fn default() -> Self {
+        Self {
+            viscosity: 1e-6,
+            gravity: Vec3::new(0.0, 0.0, -9.81),
+            max_cfl: 5.0,
+            particles_per_cell: 4,
+            particle_radius: 0.5,
+            delete_band: 3.0,
+            curvature_threshold: 1.0,
+            reinit_iterations: 1,
+            extrapolation_layers: 4,
+            object_mode: ObjectMode::Separating,
+            advection: Advection::default(),
+            solver: SolverParams::default(),
+            bounds: Boundaries::closed(),
+            seed: 1,
+        }
+    }
+}
+
+impl LiquidParams {
+    /// Checks every parameter.
+    pub fn validate(&self) -> Result<()> {
+        error::non_negative("viscosity", f64::from(self.viscosity))?;
+        if !self.gravity.is_finite() {
+            return Err(FluidError::InvalidParameter {
+                name: "gravity",
+                value: format!("{:?}", self.gravity),
+                reason: "must be finite",
+            });
+        }
+        error::positive("max_cfl", f64::from(self.max_cfl))?;
+        if self.particles_per_cell == 0 || self.particles_per_cell > 64 {
+            return Err(FluidError::InvalidParameter {
+                name: "particles_per_cell",
+                value: self.particles_per_cell.to_string(),
+                reason: "must be in 1..=64",
+            });
+        }
+        error::positive("particle_radius", f64::from(self.particle_radius))?;
+        error::positive("delete_band", f64::from(self.delete_band))?;
+        error::non_negative("curvature_threshold", f64::from(self.curvature_threshold))?;
+        self.solver.validate()
+    }
+}
+
+/// The liquid solver.
+#[derive(Clone, Debug)]
+pub struct Liquid {
+    dims: Dims,
+    h: f32,
+    params: LiquidParams,
+    vel: MacVelocity,
+    phi: LevelSet,
+    particles: Vec<Vec3>,
+    cells: Grid3<LiquidCell>,
+    owner: Vec<u16>,
+    obstacles: Vec<Obstacle>,
+    projector: Projector,
+    time: f64,
+    steps: u64,
+}
+
+impl Liquid {
+    /// An empty tank of `dims` cells of size `h` metres.
+    pub fn new(dims: Dims, h: f32, params: LiquidParams) -> Result<Self> {
+        error::positive("cell size h", f64::from(h))?;
+        params.validate()?;
+        let far = 3.0 * h * (dims.nx + dims.ny + dims.nz) as f32;
+        Ok(Self {
+            dims,
+            h,
+            params,
+            vel: MacVelocity::zeros(dims)?,
+            phi: LevelSet::new(Grid3::new(dims.nx, dims.ny, dims.nz, far)?, h)?,
+            particles: Vec::new(),
+            cells: Grid3::new(dims.nx, dims.ny, dims.nz, LiquidCell::Empty)?,
+            owner: vec![u16::MAX; dims.cells()],
+            obstacles: Vec::new(),
+            projector: Projector::new(),
+            time: 0.0,
+            steps: 0,
+        })
+    }
+
+    /// Grid size.
+    #[must_use]
+    pub fn dims(&self) -> Dims {
+        self.dims
+    }
+
+    /// Cell size (m).
+    #[must_use]
+    pub fn h(&self) -> f32 {
+        self.h
+    }
+
+    /// Simulated time (s).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Adds liquid filling `shape` (must lie inside the grid) with velocity
+    /// `velocity`: φ becomes the union with the shape's signed distance and
+    /// particles are seeded in its cells (jittered, deterministic).
+    pub fn fill(&mut self, shape: Shape, velocity: Vec3) -> Result<()> {
+        shape.check_inside(self.dims, self.h, "liquid")?;
+        if !velocity.is_finite() {
+            return Err(FluidError::InvalidParameter {
+                name: "velocity",
+                value: format!("{velocity:?}"),
+                reason: "must be finite",
+            });
+        }
+        let d = self.dims;
+        let h = self.h;
+        for (c, p) in self.phi.phi_mut().as_mut_slice().iter_mut().enumerate() {
+            let x = grid::cell_centre(d.ijk(c), h);
+            *p = p.min(shape.sdf(x));
+        }
+        let seed = Seed(self.params.seed)
+            .derive("fill")
+            .derive_index(self.particles.len() as u64);
+        for c in 0..d.cells() {
+            let ijk = d.ijk(c);
+            for q in 0..self.params.particles_per_cell {
+                let p = jitter(seed, c, q, ijk, d, h);
+                if shape.sdf(p) < 0.0 {
+                    self.particles.push(p);
+                }
+            }
+        }
+        // Give the new liquid its velocity on faces inside the shape.
+        for a in 0..3 {
+            if !d.active(a) {
+                continue;
+            }
+            let n = d.face_dims(a);
+            let g = self.vel.comp_mut(a);
+            for k in 0..n[2] {
+                for j in 0..n[1] {
+                    for i in 0..n[0] {
+                        if shape.sdf(grid::face_position(a, [i, j, k], h)) < 0.0 {
+                            g[(i, j, k)] = velocity[a];
+                        }
+                    }
+                }
+            }
+        }
+        self.classify();
+        Ok(())
+    }
+
+    /// Rebuilds φ from the particles alone (L2400-2409): `φ = min_p |x − x_p| − r`,
+    /// then reinitialised to a signed distance.
+    pub fn rebuild_phi_from_particles(&mut self) {
+        let d = self.dims;
+        let h = self.h;
+        let r = self.params.particle_radius * h;
+        let far = 3.0 * h;
+        self.phi.phi_mut().as_mut_slice().fill(far);
+        self.splat_particles(&self.particles.clone(), r, None);
+        self.phi
+            .reinitialize(2 * (d.nx.max(d.ny).max(d.nz) as u32).min(64));
+    }
+
+    /// `φ ← min(φ, |x − x_p| − r)` at cells within two cells of each particle
+    /// (all particles, or those flagged).
+    fn splat_particles(&mut self, ps: &[Vec3], r: f32, only: Option<&[bool]>) {
+        let d = self.dims;
+        let h = self.h;
+        let n = d.n();
+        let phi = self.phi.phi_mut();
+        for (pi, p) in ps.iter().enumerate() {
+            if only.is_some_and(|o| !o[pi]) {
+                continue;
+            }
+            let c = (*p / h).to_array();
+            let range = |a: usize| {
+                let lo = ((c[a] - 2.5).floor().max(0.0) as usize).min(n[a] - 1);
+                let hi = ((c[a] + 1.5).ceil().max(0.0) as usize).min(n[a] - 1);
+                lo..=hi
+            };
+            for k in range(2) {
+                for j in range(1) {
+                    for i in range(0) {
+                        let x = grid::cell_centre([i, j, k], h);
+                        let v = (x - *p).length() - r;
+                        let s = &mut phi[(i, j, k)];
+                        *s = s.min(v);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds an obstacle (static or moving); it must lie inside the grid.
+    pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
+        o.validate()?;
+        o.shape.check_inside(self.dims, self.h, "obstacle")?;
+        self.obstacles.push(o);
+        self.owner = voxelise(&self.obstacles, self.dims, self.h);
+        self.classify();
+        Ok(())
+    }
+
+    /// The level set (negative inside the liquid).
+    #[must_use]
+    pub fn level_set(&self) -> &LevelSet {
+        &self.phi
+    }
+
+    /// The marker particles (m).
+    #[must_use]
+    pub fn particles(&self) -> &[Vec3] {
+        &self.particles
+    }
+
+    /// The MAC velocity.
+    #[must_use]
+    pub fn velocity(&self) -> &MacVelocity {
+        &self.vel
+    }
+
+    /// Cell roles of the last classification.
+    #[must_use]
+    pub fn cells(&self) -> &Grid3<LiquidCell> {
+        &self.cells
+    }
+
+    /// The obstacles at the current time.
+    #[must_use]
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.obstacles
+    }
+
+    /// Liquid volume (m³; m² in 2-D) from φ with a smoothed Heaviside.
+    #[must_use]
+    pub fn volume(&self) -> f64 {
+        self.phi.volume()
+    }
+
+    fn classify(&mut self) {
+        let d = self.dims;
+        let n = d.n();
+        let phi = self.phi.phi().as_slice();
+        let liquid = |c: usize| self.owner[c] == u16::MAX && phi[c] < 0.0;
+        let mut out = vec![LiquidCell::Empty; d.cells()];
+        for (c, o) in out.iter_mut().enumerate() {
+            if self.owner[c] != u16::MAX {
+                *o = LiquidCell::Object;
+                continue;
+            }
+            if !liquid(c) {
+                continue;
+            }
+            let ijk = d.ijk(c);
+            let mut surface = false;
+            for a in 0..3 {
+                if n[a] == 1 {
+                    continue;
+                }
+                for e in 0..2 {
+                    let edge = if e == 0 {
+                        ijk[a] == 0
+                    } else {
+                        ijk[a] + 1 == n[a]
+                    };
+                    if edge {
+                        surface |= self.params.bounds.side(a, e) == Side::Open;
+                        continue;
+                    }
+                    let mut nb = ijk;
+                    nb[a] = if e == 0 { ijk[a] - 1 } else { ijk[a] + 1 };
+                    let ni = d.idx(nb[0], nb[1], nb[2]);
+                    if self.owner[ni] == u16::MAX && !liquid(ni) {
+                        surface = true;
+                    }
+                }
+            }
+            *o = if surface {
+                LiquidCell::Surface
+            } else {
+                LiquidCell::Full
+            };
+        }
+        self.cells = Grid3::from_vec(d.nx, d.ny, d.nz, out).expect("same size");
+    }
+
+    fn pressure_kinds(&self) -> Grid3<CellKind> {
+        self.cells.map(|c| match c {
+            LiquidCell::Full => CellKind::Fluid,
+            LiquidCell::Object => CellKind::Solid,
+            _ => CellKind::Air,
+        })
+    }
+
+    /// Largest face speed plus the speed gravity adds over one cell, used for the CFL step.
+    fn cfl_speed(&self) -> f32 {
+        self.vel.max_abs() + (self.h * self.params.gravity.length()).sqrt()
+    }
+
+    /// Advances by `dt` seconds in as many Navier–Stokes steps as the CFL
+    /// condition requires.
+    pub fn step(&mut self, dt: f32) -> Result<StepReport> {
+        error::check_dt(dt)?;
+        let mut done = 0.0f32;
+        let mut report = StepReport::default();
+        while done < dt {
+            let cfl = self.h / self.cfl_speed().max(1e-6);
+            let mut sub = (self.params.max_cfl * cfl).min(dt - done);
+            if dt - done - sub < 1e-4 * dt {
+                sub = dt - done;
+            }
+            let r = self.ns_step(sub)?;
+            report.substeps += r.substeps;
+            report.pressure_iterations += r.pressure_iterations;
+            report.pressure = r.pressure;
+            done += sub;
+        }
+        report.kinetic_energy = self.vel.kinetic_energy(self.h);
+        report.max_divergence =
+            mac::max_fluid_divergence(&self.vel, &self.pressure_kinds(), self.h)?;
+        Ok(report)
+    }
+
+    fn ns_step(&mut self, dt: f32) -> Result<StepReport> {
+        let (d, h) = (self.dims, self.h);
+        let bounds = self.params.bounds;
+        self.classify();
+        let kinds = self.pressure_kinds();
+        let solid_kinds: Vec<CellKind> = self
+            .cells
+            .as_slice()
+            .iter()
+            .map(|&c| {
+                if c == LiquidCell::Object {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
+            .collect();
+        // 2. Convection (SL) + explicit viscosity + gravity.
+        let old = self.vel.clone();
+        {
+            let vs = VelSampler::mac(&old);
+            let sol = Solids {
+                kinds: &solid_kinds,
+                dims: d,
+            };
+            let clip = (!self.obstacles.is_empty()).then_some(&sol);
+            for a in 0..3 {
+                if d.active(a) {
+                    advect::advect(
+                        self.vel.comp_mut(a).as_mut_slice(),
+                        &advect::face_sampler(old.comp(a), a),
+                        &vs,
+                        dt / h,
+                        &self.params.advection,
+                        clip,
+                    );
+                }
+            }
+        }
+        let nu_cap = 0.9 * h * h / (2.0 * d.active_axes() as f32 * dt);
+        let nu = self.params.viscosity.min(nu_cap);
+        for a in 0..3 {
+            if !d.active(a) {
+                continue;
+            }
+            let n = d.face_dims(a);
+            let src = old.comp(a).clone();
+            let g = self.vel.comp_mut(a);
+            let coef = nu * dt / (h * h);
+            for k in 0..n[2] {
+                for j in 0..n[1] {
+                    for i in 0..n[0] {
+                        let f = [i, j, k];
+                        let mut lap = 0.0;
+                        if coef > 0.0 {
+                            for b in 0..3 {
+                                if n[b] < 3 {
+                                    continue;
+                                }
+                                let lo = f[b].saturating_sub(1);
+                                let hi = (f[b] + 1).min(n[b] - 1);
+                                let mut fl = f;
+                                fl[b] = lo;
+                                let mut fh = f;
+                                fh[b] = hi;
+                                lap += src[(fl[0], fl[1], fl[2])] + src[(fh[0], fh[1], fh[2])]
+                                    - 2.0 * src[(i, j, k)];
+                            }
+                        }
+                        g[(i, j, k)] += coef * lap + dt * self.params.gravity[a];
+                    }
+                }
+            }
+        }
+        self.vel.check_finite("velocity update")?;
+        // Domain walls stay closed.
+        let open_kinds = vec![CellKind::Fluid; d.cells()];
+        mac::enforce_solids(&mut self.vel, &open_kinds, &bounds, &|_, _| 0.0);
+        // 3. Objects.
+        self.apply_objects();
+        // 4. Pressure on full cells.
+        let stats =
+            self.projector
+                .project(&mut self.vel, &kinds, &bounds, h, dt, &self.params.solver)?;
+        // Faces of object cells are held fixed through the solve (L2515): re-impose.
+        self.apply_objects();
+        // 5. Surface cells divergence-free, empty faces zero, extrapolation.
+        self.fix_surface_cells();
+        self.extrapolate();
+        self.vel.check_finite("pressure projection")?;
+        // 6. Particles and φ in CFL sub-steps.
+        let umax = self.vel.max_abs().max(1e-6);
+        let nsub = ((dt * umax / h).ceil() as u32).max(1);
+        let dsub = dt / nsub as f32;
+        for _ in 0..nsub {
+            self.move_particles(dsub);
+            let centre = mac::centre_velocity(&self.vel)?;
+            self.phi.advect(&centre, dsub);
+        }
+        grid::check_grid(self.phi.phi(), "phi", "level-set advection")?;
+        // 7. Particle correction, reinitialisation, particle maintenance.
+        self.correct_with_particles();
+        self.phi.reinitialize(self.params.reinit_iterations);
+        self.maintain_particles();
+        grid::check_grid(self.phi.phi(), "phi", "reinitialisation")?;
+        if self.obstacles.iter().any(Obstacle::is_moving) {
+            self.obstacles.iter_mut().for_each(|o| o.advance(dt));
+            self.owner = voxelise(&self.obstacles, d, h);
+            self.push_particles_out();
+        }
+        self.time += f64::from(dt);
+        self.steps += 1;
+        Ok(StepReport {
+            pressure: Some(stats),
+            substeps: nsub,
+            pressure_iterations: stats.iterations,
+            ..StepReport::default()
+        })
+    }
+
+    /// Object constraints (L2511-2515) on faces touching object cells.
+    fn apply_objects(&mut self) {
+        if self.obstacles.is_empty() {
+            return;
+        }
+        let d = self.dims;
+        let n = d.n();
+        let sv = crate::shape::solid_face_velocity(d, self.h, &self.owner, &self.obstacles);
+        let is_obj = |c: [usize; 3]| self.owner[d.idx(c[0], c[1], c[2])] != u16::MAX;
+        for a in 0..3 {
+            if !d.active(a) {
+                continue;
+            }
+            let fd = d.face_dims(a);
+            for k in 0..fd[2] {
+                for j in 0..fd[1] {
+                    for i in 0..fd[0] {
+                        let f = [i, j, k];
+                        let mut lo = f;
+                        let lo_obj = f[a] > 0 && {
+                            lo[a] -= 1;
+                            is_obj(lo)
+                        };
+                        let hi_obj = f[a] < n[a] && is_obj(f);
+                        if !lo_obj && !hi_obj {
+                            continue;
+                        }
+                        let vo = sv(a, f);
+                        let g = self.vel.comp_mut(a);
+                        let v = &mut g[(i, j, k)];
+                        if (lo_obj && hi_obj) || self.params.object_mode == ObjectMode::StickyNormal
+                        {
+                            *v = vo;
+                        } else if hi_obj {
+                            // Object on the + side: inflow means v − vo > 0.
+                            if *v > vo {
+                                *v = vo;
+                            }
+                        } else if *v < vo {
+                            *v = vo;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sets faces between surface cells and empty cells so each surface cell
+    /// is divergence-free (L2472), and zeroes faces between empty cells (L2468).
+    fn fix_surface_cells(&mut self) {
+        let d = self.dims;
+        let n = d.n();
+        let cells = self.cells.as_slice().to_vec();
+        let bounds = self.params.bounds;
+        let kind = |c: [usize; 3]| cells[d.idx(c[0], c[1], c[2])];
+        let is_air = |c: [usize; 3]| kind(c) == LiquidCell::Empty;
+        // Empty–empty faces to zero.
+        for a in 0..3 {
+            if !d.active(a) {
+                continue;
+            }
+            let fd = d.face_dims(a);
+            for k in 0..fd[2] {
+                for j in 0..fd[1] {
+                    for i in 1..fd[0].max(1) {
+                        let _ = i;
+                    }
+                    for i in 0..fd[0] {
+                        let f = [i, j, k];
+                        if f[a] == 0 || f[a] == n[a] {
+                            continue;
+                        }
+                        let mut lo = f;
+                        lo[a] -= 1;
+                        if is_air(lo) && is_air(f) {
+                            self.vel.comp_mut(a)[(i, j, k)] = 0.0;
+                        }
+                    }
+                }
+            }
+        }
+        for c in 0..d.cells() {
+            if cells[c] != LiquidCell::Surface {
+                continue;
+            }
+            let ijk = d.ijk(c);
+            // Net outflow through non-air faces, and the list of air faces.
+            let mut net = 0.0f32;
+            let mut air: Vec<(usize, [usize; 3], f32)> = Vec::new();
+            for a in 0..3 {
+                if n[a] == 1 {
+                    continue;
+                }
+                for e in 0..2 {
+                    let mut f = ijk;
+                    if e == 1 {
+                        f[a] += 1;
+                    }
+                    let sign = if e == 1 { 1.0 } else { -1.0 };
+                    let edge = if e == 0 {
+                        ijk[a] == 0
+                    } else {
+                        ijk[a] + 1 == n[a]
+                    };
+                    let nb_air = if edge {
+                        bounds.side(a, e) == Side::Open
+                    } else {
+                        let mut nb = ijk;
+                        nb[a] = if e == 0 { ijk[a] - 1 } else { ijk[a] + 1 };
+                        is_air(nb)
+                    };
+                    if nb_air {
+                        air.push((a, f, sign));
+                    } else {
+                        net += sign * self.vel.comp(a)[(f[0], f[1], f[2])];
+                    }
+                }
+            }
+            if air.is_empty() {
+                continue;
+            }
+            // Σ_air sign·u = −net, shared equally.
+            let share = -net / air.len() as f32;
+            for (a, f, sign) in air {
+                self.vel.comp_mut(a)[(f[0], f[1], f[2])] = sign * share;
+            }
+        }
+    }
+
+    /// Extrapolates face velocities into the air by breadth-first layers:
+    /// each unknown face takes the mean of its known same-component neighbours.
+    fn extrapolate(&mut self) {
+        let d = self.dims;
+        let n = d.n();
+        let cells = self.cells.as_slice();
+        let liquid = |c: [usize; 3]| {
+            matches!(
+                cells[d.idx(c[0], c[1], c[2])],
+                LiquidCell::Surface | LiquidCell::Full
+            )
+        };
+        for a in 0..3 {
+            if !d.active(a) {
+                continue;
+            }
+            let fd = d.face_dims(a);
+            let len = fd[0] * fd[1] * fd[2];
+            let fidx = |f: [usize; 3]| (f[2] * fd[1] + f[1]) * fd[0] + f[0];
+            let mut known = vec![false; len];
+            for (s, kn) in known.iter_mut().enumerate() {
+                let f = [s % fd[0], (s / fd[0]) % fd[1], s / (fd[0] * fd[1])];
+                let mut lo = f;
+                let lo_l = f[a] > 0 && {
+                    lo[a] -= 1;
+                    liquid(lo)
+                };
+                let hi_l = f[a] < n[a] && liquid(f);
+                *kn = lo_l || hi_l;
+            }
+            let g = self.vel.comp_mut(a);
+            for _ in 0..self.params.extrapolation_layers {
+                let mut updates = Vec::new();
+                for s in 0..len {
+                    if known[s] {
+                        continue;
+                    }
+                    let f = [s % fd[0], (s / fd[0]) % fd[1], s / (fd[0] * fd[1])];
+                    let mut sum = 0.0;
+                    let mut cnt = 0;
+                    for b in 0..3 {
+                        if fd[b] == 1 {
+                            continue;
+                        }
+                        for e in [-1i64, 1] {
+                            let q = f[b] as i64 + e;
+                            if q < 0 || q >= fd[b] as i64 {
+                                continue;
+                            }
+                            let mut nb = f;
+                            nb[b] = q as usize;
+                            if known[fidx(nb)] {
+                                sum += g.as_slice()[fidx(nb)];
+                                cnt += 1;
+                            }
+                        }
+                    }
+                    if cnt > 0 {
+                        updates.push((s, sum / cnt as f32));
+                    }
+                }
+                if updates.is_empty() {
+                    break;
+                }
+                for (s, v) in updates {
+                    g.as_mut_slice()[s] = v;
+                    known[s] = true;
+                }
+            }
+            // Faces beyond the band carry no information: zero them.
+            for (s, &k) in known.iter().enumerate() {
+                if !k {
+                    g.as_mut_slice()[s] = 0.0;
+                }
+            }
+        }
+        // Walls stay closed.
+        let sv = |_: usize, _: [usize; 3]| 0.0f32;
+        let kinds: Vec<CellKind> = self
+            .cells
+            .as_slice()
+            .iter()
+            .map(|&c| {
+                if c == LiquidCell::Object {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
+            .collect();
+        let mut bounds = self.params.bounds;
+        // Only walls are enforced here; object faces were set before.
+        let _ = &mut bounds;
+        let vel = &mut self.vel;
+        let has_obj = !self.obstacles.is_empty();
+        mac::enforce_solids(vel, &kinds, &bounds, &sv);
+        if has_obj {
+            self.apply_objects();
+        }
+    }
+
+    fn move_particles(&mut self, dt: f32) {
+        let d = self.dims;
+        let h = self.h;
+        let vs = VelSampler::mac(&self.vel);
+        let ext: [f32; 3] = std::array::from_fn(|a| d.n()[a] as f32 * h);
+        let moved: Vec<Vec3> = crate::par::map_collect(self.particles.len(), |i| {
+            let p = self.particles[i];
+            let v1 = Vec3::from_array(vs.at((p / h).to_array()));
+            let mid = p + 0.5 * dt * v1;
+            let v2 = Vec3::from_array(vs.at((mid / h).to_array()));
+            let q = p + dt * v2;
+            Vec3::from_array(std::array::from_fn(|a| {
+                if d.active(a) {
+                    q[a].clamp(1e-3 * h, ext[a] - 1e-3 * h)
+                } else {
+                    p[a]
+                }
+            }))
+        });
+        self.particles = moved;
+        self.push_particles_out();
+    }
+
+    /// Moves particles found inside an object to just outside its surface (L2505).
+    fn push_particles_out(&mut self) {
+        if self.obstacles.is_empty() {
+            return;
+        }
+        let h = self.h;
+        for p in &mut self.particles {
+            for o in &self.obstacles {
+                let s = o.shape.sdf(*p);
+                if s < 0.0 {
+                    let e = 1e-3 * h;
+                    let grad = Vec3::new(
+                        o.shape.sdf(*p + Vec3::X * e) - o.shape.sdf(*p - Vec3::X * e),
+                        o.shape.sdf(*p + Vec3::Y * e) - o.shape.sdf(*p - Vec3::Y * e),
+                        o.shape.sdf(*p + Vec3::Z * e) - o.shape.sdf(*p - Vec3::Z * e),
+                    )
+                    .normalize_or_zero();
+                    *p -= grad * (s - 0.05 * h);
+                }
+            }
+        }
+    }
+
+    /// Particle correction at high curvature (L2441-2448): only ever adds liquid.
+    fn correct_with_particles(&mut self) {
+        let h = self.h;
+        let kappa = self.phi.curvature();
+        let ks = crate::interp::Sampler::new(
+            kappa.as_slice(),
+            [kappa.nx(), kappa.ny(), kappa.nz()],
+            [0.5; 3],
+            false,
+        );
+        let r = self.params.particle_radius * h;
+        let thr = self.params.curvature_threshold / h;
+        let flags: Vec<bool> = self
+            .particles
+            .iter()
+            .map(|p| {
+                // A particle carries liquid: where the level set has it in the
+                // air (it "pokes out") near the surface, it restores the liquid.
+                let phi = self.phi.value_at(*p);
+                phi > 0.0 && phi < 2.0 * h && ks.linear((*p / h).to_array()).abs() > thr
+            })
+            .collect();
+        let ps = self.particles.clone();
+        self.splat_particles(&ps, r, Some(&flags));
+    }
+
+    /// Deletes particles deep inside and reseeds sparse near-surface cells (L2437).
+    fn maintain_particles(&mut self) {
+        let d = self.dims;
+        let h = self.h;
+        let band = self.params.delete_band * h;
+        let phi = &self.phi;
+        self.particles.retain(|p| phi.value_at(*p) >= -band);
+        let mut count = vec![0u32; d.cells()];
+        for p in &self.particles {
+            let c: [usize; 3] = std::array::from_fn(|a| ((p[a] / h) as usize).min(d.n()[a] - 1));
+            count[d.idx(c[0], c[1], c[2])] += 1;
+        }
+        let ppc = self.params.particles_per_cell;
+        let seed = Seed(self.params.seed)
+            .derive("reseed")
+            .derive_index(self.steps);
+        for c in 0..d.cells() {
+            let pc = self.phi.phi().as_slice()[c];
+            if self.owner[c] != u16::MAX
+                || !(pc < 0.0 && pc > -band)
+                || (count[c] as usize) * 2 >= ppc
+            {
+                continue;
+            }
+            let ijk = d.ijk(c);
+            for q in 0..ppc - count[c] as usize {
+                let p = jitter(seed, c, q, ijk, d, h);
+                if self.phi.value_at(p) < 0.0 {
+                    self.particles.push(p);
+                }
+            }
+        }
+    }
+}
+
+/// A deterministic jittered position inside cell `ijk`.
+fn jitter(seed: Seed, c: usize, q: usize, ijk: [usize; 3], d: Dims, h: f32) -> Vec3 {
+    let u = |axis: i64| seed.uniform3(c as i64, q as i64, axis) as f32;
+    Vec3::from_array(std::array::from_fn(|a| {
+        let t = if d.active(a) { u(a as i64) } else { 0.5 };
+        (ijk[a] as f32 + t) * h
+    }))
+}

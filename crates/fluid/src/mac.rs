@@ -1,0 +1,423 @@
+//! Operators on the staggered MAC grid (Fedkiw, Stam & Jensen App. A, seed
+//! 004 L2228-2256): divergence, pressure projection, centre-to-face forces,
+//! vorticity and vorticity confinement.
+//!
+//! The MAC divergence (L2240) and gradient (L2244) compose to exactly the
+//! compact Laplacian the pressure solver inverts, so after [`Projector::project`]
+//! the discrete divergence of every fluid cell equals `−r/h²` for the solver
+//! residual `r`: the field is divergence-free to the solver tolerance. This is
+//! the consistent discretisation that replaces Stable Fluids' mixed
+//! wide/compact stencils (erratum E8, L1962-1970).
+
+use natura_core::Grid3;
+
+use crate::error::Result;
+use crate::grid::{Boundaries, CellKind, Dims, MacVelocity, Side};
+use crate::par;
+use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
+
+/// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (L2240).
+pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
+    let d = vel.dims();
+    let mut out = d.zeros()?;
+    let inv = 1.0 / h;
+    let n = d.n();
+    let c = vel.comps();
+    par::for_chunks(out.as_mut_slice(), n[0], |r, row| {
+        let (j, k) = (r % n[1], r / n[1]);
+        for (i, o) in row.iter_mut().enumerate() {
+            let mut s = 0.0;
+            if d.active(0) {
+                s += c[0][(i + 1, j, k)] - c[0][(i, j, k)];
+            }
+            if d.active(1) {
+                s += c[1][(i, j + 1, k)] - c[1][(i, j, k)];
+            }
+            if d.active(2) {
+                s += c[2][(i, j, k + 1)] - c[2][(i, j, k)];
+            }
+            *o = s * inv;
+        }
+    });
+    Ok(out)
+}
+
+/// Largest `|∇·u|` over cells of kind [`CellKind::Fluid`].
+pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) -> Result<f32> {
+    let div = divergence(vel, h)?;
+    Ok(div
+        .as_slice()
+        .iter()
+        .zip(kinds.as_slice())
+        .filter(|(_, k)| **k == CellKind::Fluid)
+        .fold(0.0f32, |m, (v, _)| m.max(v.abs())))
+}
+
+/// Whether face `f` (index into component `a`'s grid) is fixed — a domain
+/// wall or touching a solid cell — and so not changed by forces or projection.
+#[inline]
+pub(crate) fn face_fixed(
+    d: Dims,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    a: usize,
+    f: [usize; 3],
+) -> bool {
+    let n = d.n();
+    let lo = f[a] == 0;
+    let hi = f[a] == n[a];
+    if lo || hi {
+        let side = bounds.side(a, usize::from(hi));
+        if side == Side::Wall {
+            return true;
+        }
+        let mut c = f;
+        if hi {
+            c[a] -= 1;
+        }
+        return kinds[d.idx(c[0], c[1], c[2])] == CellKind::Solid;
+    }
+    let mut c0 = f;
+    c0[a] -= 1;
+    kinds[d.idx(c0[0], c0[1], c0[2])] == CellKind::Solid
+        || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
+}
+
+/// Sets wall faces to zero and faces touching solid cells to `solid_vel(a, face_index)`.
+pub(crate) fn enforce_solids(
+    vel: &mut MacVelocity,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    solid_vel: &(dyn Fn(usize, [usize; 3]) -> f32 + Sync),
+) {
+    let d = vel.dims();
+    for a in 0..3 {
+        if !d.active(a) {
+            continue;
+        }
+        let fn_ = d.face_dims(a);
+        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fn_[0], |r, row| {
+            let (j, k) = (r % fn_[1], r / fn_[1]);
+            for (i, v) in row.iter_mut().enumerate() {
+                let f = [i, j, k];
+                if !face_fixed(d, kinds, bounds, a, f) {
+                    continue;
+                }
+                let on_wall = (f[a] == 0 || f[a] == d.n()[a])
+                    && bounds.side(a, usize::from(f[a] != 0)) == Side::Wall;
+                *v = if on_wall { 0.0 } else { solid_vel(a, f) };
+            }
+        });
+    }
+}
+
+/// Adds `dt·F` to every free face, with `F` given at cell centres and averaged
+/// to faces (L2254-2256): `u_{i+½} += dt (f_i + f_{i+1})/2`. Open boundary
+/// faces take their single inner cell's force.
+pub(crate) fn add_centre_forces(
+    vel: &mut MacVelocity,
+    force: &[Grid3<f32>; 3],
+    dt: f32,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+) {
+    let d = vel.dims();
+    let n = d.n();
+    for a in 0..3 {
+        if !d.active(a) {
+            continue;
+        }
+        let fa = force[a].as_slice();
+        let fd = d.face_dims(a);
+        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
+            let (j, k) = (r % fd[1], r / fd[1]);
+            for (i, v) in row.iter_mut().enumerate() {
+                let f = [i, j, k];
+                if face_fixed(d, kinds, bounds, a, f) {
+                    continue;
+                }
+                let mut c0 = f;
+                let hi = f;
+                let val = if f[a] == 0 {
+                    fa[d.idx(hi[0], hi[1], hi[2])]
+                } else if f[a] == n[a] {
+                    c0[a] -= 1;
+                    fa[d.idx(c0[0], c0[1], c0[2])]
+                } else {
+                    c0[a] -= 1;
+                    0.5 * (fa[d.idx(c0[0], c0[1], c0[2])] + fa[d.idx(hi[0], hi[1], hi[2])])
+                };
+                *v += dt * val;
+            }
+        });
+    }
+}
+
+/// The pressure projection on a MAC grid, caching the Poisson system while
+/// the cell kinds stay the same and warm-starting from the last pressure.
+#[derive(Clone, Debug, Default)]
+pub struct Projector {
+    system: Option<PoissonSystem>,
+    key: Vec<CellKind>,
+    bounds: Boundaries,
+    /// Last `p·dt/ρ` per cell (warm start), f64.
+    scaled_pressure: Vec<f64>,
+    last_dt: f32,
+}
+
+impl Projector {
+    /// A projector with no cached system.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The pressure (Pa for unit density, i.e. m²/s²) of the last projection, per cell.
+    #[must_use]
+    pub fn pressure(&self, dims: Dims) -> Option<Grid3<f32>> {
+        if self.scaled_pressure.len() != dims.cells() || self.last_dt <= 0.0 {
+            return None;
+        }
+        let inv = 1.0 / f64::from(self.last_dt);
+        Grid3::from_vec(
+            dims.nx,
+            dims.ny,
+            dims.nz,
+            self.scaled_pressure
+                .iter()
+                .map(|&p| (p * inv) as f32)
+                .collect(),
+        )
+        .ok()
+    }
+
+    /// Makes `vel` discretely divergence-free on fluid cells: solves
+    /// `∇²p = ∇·u*/dt` (Smoke eq. 4, L2074) with Neumann conditions at solids
+    /// and walls and `p = 0` at air cells and open sides, then applies
+    /// `u = u* − dt ∇p` (eq. 5) on every free face. Fixed faces (walls,
+    /// solids) are not touched: set them before calling.
+    pub fn project(
+        &mut self,
+        vel: &mut MacVelocity,
+        kinds: &Grid3<CellKind>,
+        bounds: &Boundaries,
+        h: f32,
+        dt: f32,
+        params: &SolverParams,
+    ) -> Result<SolveStats> {
+        let d = vel.dims();
+        crate::error::check_dt(dt)?;
+        let ks = kinds.as_slice();
+        if self.system.is_none() || self.key.as_slice() != ks || self.bounds != *bounds {
+            self.system = Some(PoissonSystem::new(d, ks, bounds, [false; 3])?);
+            self.key = ks.to_vec();
+            self.bounds = *bounds;
+            self.scaled_pressure = vec![0.0; d.cells()];
+        }
+        // b = −h² div on fluid cells.
+        let div = divergence(vel, h)?;
+        let h2 = h * h;
+        let b: Vec<f32> = div
+            .as_slice()
+            .iter()
+            .zip(ks)
+            .map(|(&v, &k)| if k == CellKind::Fluid { -h2 * v } else { 0.0 })
+            .collect();
+        if self.last_dt > 0.0 && self.last_dt != dt {
+            let s = f64::from(dt / self.last_dt);
+            self.scaled_pressure.iter_mut().for_each(|p| *p *= s);
+        }
+        let sys = self.system.as_mut().expect("built above");
+        let stats = sys.solve(&b, &mut self.scaled_pressure, params)?;
+        self.last_dt = dt;
+        apply_pressure(vel, ks, bounds, h, &self.scaled_pressure);
+        Ok(stats)
+    }
+}
+
+/// `u −= (p̃_{c+1} − p̃_c)/h` on free faces, with `p̃ = 0` at air and open sides.
+pub(crate) fn apply_pressure(
+    vel: &mut MacVelocity,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    h: f32,
+    p: &[f64],
+) {
+    let d = vel.dims();
+    let n = d.n();
+    let inv = 1.0 / f64::from(h);
+    let pv = |c: [usize; 3]| -> f64 {
+        let i = d.idx(c[0], c[1], c[2]);
+        if kinds[i] == CellKind::Fluid {
+            p[i]
+        } else {
+            0.0
+        }
+    };
+    for a in 0..3 {
+        if !d.active(a) {
+            continue;
+        }
+        let fd = d.face_dims(a);
+        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
+            let (j, k) = (r % fd[1], r / fd[1]);
+            for (i, v) in row.iter_mut().enumerate() {
+                let f = [i, j, k];
+                if face_fixed(d, kinds, bounds, a, f) {
+                    continue;
+                }
+                let mut lo = f;
+                let (p0, p1, any_fluid) = if f[a] == 0 {
+                    (
+                        0.0,
+                        pv(f),
+                        kinds[d.idx(f[0], f[1], f[2])] == CellKind::Fluid,
+                    )
+                } else if f[a] == n[a] {
+                    lo[a] -= 1;
+                    (
+                        pv(lo),
+                        0.0,
+                        kinds[d.idx(lo[0], lo[1], lo[2])] == CellKind::Fluid,
+                    )
+                } else {
+                    lo[a] -= 1;
+                    let k0 = kinds[d.idx(lo[0], lo[1], lo[2])];
+                    let k1 = kinds[d.idx(f[0], f[1], f[2])];
+                    (
+                        pv(lo),
+                        pv(f),
+                        k0 == CellKind::Fluid || k1 == CellKind::Fluid,
+                    )
+                };
+                if any_fluid {
+                    *v = (f64::from(*v) - (p1 - p0) * inv) as f32;
+                }
+            }
+        });
+    }
+}
+
+/// Cell-centred central-difference derivative of a centred field along
+/// axis `a` (one-sided at the domain edge, zero on flat axes).
+#[inline]
+fn ddx(g: &[f32], d: Dims, c: [usize; 3], a: usize, h: f32) -> f32 {
+    let n = d.n();
+    if n[a] == 1 {
+        return 0.0;
+    }
+    let mut lo = c;
+    let mut hi = c;
+    let mut span = 0.0;
+    if c[a] > 0 {
+        lo[a] -= 1;
+        span += h;
+    }
+    if c[a] + 1 < n[a] {
+        hi[a] += 1;
+        span += h;
+    }
+    (g[d.idx(hi[0], hi[1], hi[2])] - g[d.idx(lo[0], lo[1], lo[2])]) / span
+}
+
+/// Cell-centred velocity components (face averages, L2248).
+pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
+    let d = vel.dims();
+    let mut out = [d.zeros()?, d.zeros()?, d.zeros()?];
+    let n = d.n();
+    for (a, o) in out.iter_mut().enumerate() {
+        if !d.active(a) {
+            continue;
+        }
+        let g = vel.comp(a);
+        par::for_chunks(o.as_mut_slice(), n[0], |r, row| {
+            let (j, k) = (r % n[1], r / n[1]);
+            for (i, v) in row.iter_mut().enumerate() {
+                let mut hi = [i, j, k];
+                hi[a] += 1;
+                *v = 0.5 * (g[(i, j, k)] + g[(hi[0], hi[1], hi[2])]);
+            }
+        });
+    }
+    Ok(out)
+}
+
+/// Vorticity `ω = ∇ × u` at cell centres from face-averaged velocities and
+/// central differences (App. A, L2246-2252). In 2-D (x–z plane) only the
+/// y component is non-zero.
+pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
+    let d = vel.dims();
+    let u = centre_velocity(vel)?;
+    let mut w = [d.zeros()?, d.zeros()?, d.zeros()?];
+    let n = d.n();
+    let (ux, uy, uz) = (u[0].as_slice(), u[1].as_slice(), u[2].as_slice());
+    let [w0, w1, w2] = &mut w;
+    for (comp, out) in [(0usize, w0), (1, w1), (2, w2)] {
+        par::for_chunks(out.as_mut_slice(), n[0], |r, row| {
+            let (j, k) = (r % n[1], r / n[1]);
+            for (i, v) in row.iter_mut().enumerate() {
+                let c = [i, j, k];
+                *v = match comp {
+                    0 => ddx(uz, d, c, 1, h) - ddx(uy, d, c, 2, h),
+                    1 => ddx(ux, d, c, 2, h) - ddx(uz, d, c, 0, h),
+                    _ => ddx(uy, d, c, 0, h) - ddx(ux, d, c, 1, h),
+                };
+            }
+        });
+    }
+    Ok(w)
+}
+
+/// The vorticity confinement force `f = ε h (N × ω)` at cell centres
+/// (Smoke eqs. 9-11, L2107-2119), `N = ∇|ω| / |∇|ω||`.
+///
+/// Where `|∇|ω||` vanishes (irrotational flow, uniform vorticity) the force
+/// is zero rather than NaN (spec §5 item 10).
+pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Grid3<f32>; 3]> {
+    let d = vel.dims();
+    let w = vorticity(vel, h)?;
+    let mag: Vec<f32> = (0..d.cells())
+        .map(|c| {
+            let v = glam::Vec3::new(w[0].as_slice()[c], w[1].as_slice()[c], w[2].as_slice()[c]);
+            v.length()
+        })
+        .collect();
+    let mut f = [d.zeros()?, d.zeros()?, d.zeros()?];
+    if epsilon == 0.0 {
+        return Ok(f);
+    }
+    let n = d.n();
+    let scale = epsilon * h;
+    let ws = [w[0].as_slice(), w[1].as_slice(), w[2].as_slice()];
+    let forces: Vec<glam::Vec3> = par::map_collect(n[1] * n[2], |r| {
+        let (j, k) = (r % n[1], r / n[1]);
+        (0..n[0])
+            .map(|i| {
+                let c = [i, j, k];
+                let eta = glam::Vec3::new(
+                    ddx(&mag, d, c, 0, h),
+                    ddx(&mag, d, c, 1, h),
+                    ddx(&mag, d, c, 2, h),
+                );
+                let len = eta.length();
+                // Guard: a gradient below ~1e-6 of |ω|/h carries no direction.
+                let ci = d.idx(i, j, k);
+                if !(len > 1e-6 * (mag[ci] / h).max(f32::MIN_POSITIVE)) {
+                    return glam::Vec3::ZERO;
+                }
+                let nn = eta / len;
+                let om = glam::Vec3::new(ws[0][ci], ws[1][ci], ws[2][ci]);
+                scale * nn.cross(om)
+            })
+            .collect::<Vec<_>>()
+    })
+    .into_iter()
+    .flatten()
+    .collect();
+    for (a, g) in f.iter_mut().enumerate() {
+        for (o, v) in g.as_mut_slice().iter_mut().zip(&forces) {
+            *o = v[a];
+        }
+    }
+    Ok(f)
+}

@@ -1,0 +1,84 @@
+//! Deterministic parallel helpers: rayon behind the `parallel` feature.
+//!
+//! Every helper hands each output chunk to exactly one call and combines
+//! reductions in a fixed order, so results are bit-identical for any number
+//! of threads (and without the feature).
+
+/// Below this many elements work runs serially (rayon's overhead dominates).
+const SERIAL_BELOW: usize = 1 << 14;
+
+/// Calls `f(chunk_index, chunk)` for each `chunk`-sized piece of `data`.
+pub(crate) fn for_chunks<T: Send>(
+    data: &mut [T],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T]) + Sync + Send,
+) {
+    let chunk = chunk.max(1);
+    #[cfg(feature = "parallel")]
+    if data.len() >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        // Group small rows so each task does a useful amount of work.
+        data.par_chunks_mut(chunk)
+            .with_min_len((4096 / chunk).max(1))
+            .enumerate()
+            .for_each(|(i, c)| f(i, c));
+        return;
+    }
+    data.chunks_mut(chunk)
+        .enumerate()
+        .for_each(|(i, c)| f(i, c));
+}
+
+/// Like [`for_chunks`] over two equally chunked slices at once.
+pub(crate) fn for_chunks2<T: Send, U: Send>(
+    a: &mut [T],
+    b: &mut [U],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T], &mut [U]) + Sync + Send,
+) {
+    let chunk = chunk.max(1);
+    #[cfg(feature = "parallel")]
+    if a.len() >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        a.par_chunks_mut(chunk)
+            .zip(b.par_chunks_mut(chunk))
+            .with_min_len((4096 / chunk).max(1))
+            .enumerate()
+            .for_each(|(i, (x, y))| f(i, x, y));
+        return;
+    }
+    a.chunks_mut(chunk)
+        .zip(b.chunks_mut(chunk))
+        .enumerate()
+        .for_each(|(i, (x, y))| f(i, x, y));
+}
+
+/// Returns `Σ_i f(i)` over `0..n` blocks, each block's partial computed
+/// independently and the partials added in index order (deterministic).
+pub(crate) fn sum_blocks(
+    n: usize,
+    work_per_block: usize,
+    f: impl Fn(usize) -> f64 + Sync + Send,
+) -> f64 {
+    #[cfg(feature = "parallel")]
+    if n > 1 && n * work_per_block >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        let parts: Vec<f64> = (0..n).into_par_iter().map(&f).collect();
+        return parts.into_iter().sum();
+    }
+    let _ = work_per_block;
+    (0..n).map(f).sum()
+}
+
+/// Maps `f` over `0..n` into a vector, in parallel when large.
+pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if n >= 64 {
+        use rayon::prelude::*;
+        return (0..n).into_par_iter().map(f).collect();
+    }
+    (0..n).map(f).collect()
+}
+
+/// Fixed block length for deterministic reductions over flat arrays.
+pub(crate) const BLOCK: usize = 8192;

@@ -1,0 +1,700 @@
+//! Stam's *Stable Fluids* (SIGGRAPH 1999; seed 004 L1689-2004), 2-D and 3-D.
+//!
+//! One step is `w0 → add force → w1 → advect → w2 → diffuse → w3 → project
+//! → w4` (L1762, Fig. 1): forces are added in place (L1768), every velocity
+//! component is traced back through the force-added field `w1` (L1774,
+//! L1877), diffusion is implicit (L1786) and the projection makes the field
+//! divergence-free (L1790-1792). Moving substances follow
+//! `∂a/∂t = −u·∇a + κ_a∇²a − α_a a + S_a` (L1833; the source prints `κ_a∇²`
+//! without its operand — erratum E4) with the new velocity (L1863), and
+//! dissipation divides by `1 + dt·α_a` (L1837).
+//!
+//! Two domains:
+//!
+//! * [`PeriodicFluid`]: the n-torus with the FFT solver (L1800-1822), on
+//!   Stam's cell-centred (collocated) grid. Output tiles seamlessly.
+//! * [`BoundedFluid`]: a box with walls, open sides and obstacles. Instead of
+//!   the paper's collocated grid with FISHPAK's mixed wide/compact stencils
+//!   (App. B L1962-1970, which only approximately projects — erratum E8),
+//!   velocity lives on the staggered MAC grid whose divergence and gradient
+//!   compose to the compact Laplacian, so the projected field is discretely
+//!   divergence-free to the solver tolerance.
+
+use glam::Vec3;
+use natura_core::Grid3;
+
+use crate::advect::{self, Advection, Solids, VelSampler};
+use crate::diffuse::{self, DIRICHLET, EXCLUDED, FREE};
+use crate::error::{self, FluidError, Result};
+use crate::fft::{self, DiffusionFilter, Fft3, FftVariant};
+use crate::grid::{self, Boundaries, CellKind, Dims, MacVelocity, StepReport};
+use crate::mac::{self, Projector};
+use crate::pressure::SolverParams;
+use crate::shape::{Obstacle, Shape, voxelise};
+
+/// A moving substance (dye, smoke density, temperature, texture coordinate).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Substance {
+    /// A name for reports and files.
+    pub name: String,
+    /// Diffusion constant κ (m²/s), `kS` in the paper (L1849).
+    pub diffusion: f32,
+    /// Dissipation rate α (1/s), `aS` in the paper (L1849).
+    pub dissipation: f32,
+}
+
+impl Substance {
+    /// A substance that neither diffuses nor dissipates.
+    #[must_use]
+    pub fn passive(name: &str) -> Self {
+        Self {
+            name: name.to_owned(),
+            diffusion: 0.0,
+            dissipation: 0.0,
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        error::non_negative("substance diffusion", f64::from(self.diffusion))?;
+        error::non_negative("substance dissipation", f64::from(self.dissipation))
+    }
+}
+
+/// Handle of a substance added to a solver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SubstanceId(pub usize);
+
+/// A region that adds `rate` units of a substance per second to every cell
+/// whose centre lies inside `shape` (the `S_a` term, L1833).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScalarSource {
+    /// The region.
+    pub shape: Shape,
+    /// Units per second.
+    pub rate: f32,
+}
+
+/// A region that accelerates the fluid by `acceleration` (m/s²) in every
+/// cell whose centre lies inside `shape` (the force `f`, L1768).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceSource {
+    /// The region.
+    pub shape: Shape,
+    /// Acceleration (m/s²).
+    pub acceleration: Vec3,
+}
+
+/// Parameters of both Stable Fluids solvers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StableParams {
+    /// Kinematic viscosity ν (m²/s), `visc` (L1849). The paper gives no value;
+    /// default 1e-4.
+    pub viscosity: f32,
+    /// Advection scheme; default linear semi-Lagrangian with RK2 (L1904).
+    pub advection: Advection,
+    /// Periodic solver: diffusion filter (default the paper's rational one).
+    pub filter: DiffusionFilter,
+    /// Periodic solver: spectral or finite-difference wavenumbers.
+    pub variant: FftVariant,
+    /// Bounded solver: pressure solver and tolerance.
+    pub solver: SolverParams,
+    /// Bounded solver: domain sides.
+    pub bounds: Boundaries,
+}
+
+impl Default for StableParams {
+    fn default() -> Self {
+        Self {
+            viscosity: 1e-4,
+            advection: Advection::default(),
+            filter: DiffusionFilter::Rational,
+            variant: FftVariant::Spectral,
+            solver: SolverParams::default(),
+            bounds: Boundaries::closed(),
+        }
+    }
+}
+
+impl StableParams {
+    /// Checks every parameter: viscosity finite and `>= 0`, solver settings valid.
+    pub fn validate(&self) -> Result<()> {
+        error::non_negative("viscosity", f64::from(self.viscosity))?;
+        self.solver.validate()
+    }
+}
+
+fn check_h(h: f32) -> Result<()> {
+    error::positive("cell size h", f64::from(h))
+}
+
+/// Substances and their sources, shared by both solvers.
+#[derive(Clone, Debug, Default)]
+struct Substances {
+    specs: Vec<Substance>,
+    fields: Vec<Grid3<f32>>,
+    sources: Vec<(usize, ScalarSource)>,
+}
+
+impl Substances {
+    fn add(&mut self, dims: Dims, s: Substance) -> Result<SubstanceId> {
+        s.validate()?;
+        self.specs.push(s);
+        self.fields.push(dims.zeros()?);
+        Ok(SubstanceId(self.specs.len() - 1))
+    }
+
+    fn check(&self, id: SubstanceId) -> Result<()> {
+        if id.0 < self.specs.len() {
+            Ok(())
+        } else {
+            Err(FluidError::InvalidParameter {
+                name: "substance id",
+                value: id.0.to_string(),
+                reason: "no such substance",
+            })
+        }
+    }
+
+    fn add_sources(&mut self, dims: Dims, h: f32, dt: f32) {
+        for (id, src) in &self.sources {
+            let f = &mut self.fields[*id];
+            let mask = voxelise(&[Obstacle::fixed(src.shape)], dims, h);
+            for (v, m) in f.as_mut_slice().iter_mut().zip(mask) {
+                if m != u16::MAX {
+                    *v += dt * src.rate;
+                }
+            }
+        }
+    }
+
+    fn check_finite(&self, stage: &'static str) -> Result<()> {
+        for f in &self.fields {
+            grid::check_grid(f, "substance", stage)?;
+        }
+        Ok(())
+    }
+}
+
+fn force_field(
+    dims: Dims,
+    h: f32,
+    sources: &[ForceSource],
+    extra: &[Grid3<f32>; 3],
+) -> Result<[Grid3<f32>; 3]> {
+    let mut f = extra.clone();
+    for s in sources {
+        let mask = voxelise(&[Obstacle::fixed(s.shape)], dims, h);
+        for (c, m) in mask.into_iter().enumerate() {
+            if m != u16::MAX {
+                for a in 0..3 {
+                    if dims.active(a) {
+                        f[a].as_mut_slice()[c] += s.acceleration[a];
+                    }
+                }
+            }
+        }
+    }
+    Ok(f)
+}
+
+fn check_force_source(dims: Dims, h: f32, s: &ForceSource) -> Result<()> {
+    s.shape.check_inside(dims, h, "force source")?;
+    if !s.acceleration.is_finite() {
+        return Err(FluidError::InvalidParameter {
+            name: "acceleration",
+            value: format!("{:?}", s.acceleration),
+            reason: "must be finite",
+        });
+    }
+    Ok(())
+}
+
+fn check_scalar_source(dims: Dims, h: f32, s: &ScalarSource) -> Result<()> {
+    s.shape.check_inside(dims, h, "substance source")?;
+    error::finite("source rate", f64::from(s.rate))
+}
+
+fn zero3(dims: Dims) -> Result<[Grid3<f32>; 3]> {
+    Ok([dims.zeros()?, dims.zeros()?, dims.zeros()?])
+}
+
+/// Stable Fluids on a periodic domain with the FFT solver (L1800-1822).
+#[derive(Clone, Debug)]
+pub struct PeriodicFluid {
+    dims: Dims,
+    h: f32,
+    params: StableParams,
+    fft: Fft3,
+    vel: [Grid3<f32>; 3],
+    force: [Grid3<f32>; 3],
+    force_sources: Vec<ForceSource>,
+    subs: Substances,
+}
+
+impl PeriodicFluid {
+    /// A fluid at rest on `dims` cells of size `h` metres.
+    pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
+        check_h(h)?;
+        params.validate()?;
+        Ok(Self {
+            dims,
+            h,
+            params,
+            fft: Fft3::new(dims),
+            vel: zero3(dims)?,
+            force: zero3(dims)?,
+            force_sources: Vec::new(),
+            subs: Substances::default(),
+        })
+    }
+
+    /// Grid size.
+    #[must_use]
+    pub fn dims(&self) -> Dims {
+        self.dims
+    }
+
+    /// Cell size (m).
+    #[must_use]
+    pub fn h(&self) -> f32 {
+        self.h
+    }
+
+    /// Adds a substance (initially zero everywhere).
+    pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
+        self.subs.add(self.dims, s)
+    }
+
+    /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
+        self.subs.check(id)?;
+        check_scalar_source(self.dims, self.h, &src)?;
+        self.subs.sources.push((id.0, src));
+        Ok(())
+    }
+
+    /// Adds a persistent force region; it must lie inside the grid.
+    pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
+        check_force_source(self.dims, self.h, &s)?;
+        self.force_sources.push(s);
+        Ok(())
+    }
+
+    /// Per-step force field at cell centres (m/s²), cleared after each step —
+    /// the interactive forces `F` of the main loop (L1858-1864).
+    pub fn force_mut(&mut self) -> &mut [Grid3<f32>; 3] {
+        &mut self.force
+    }
+
+    /// Cell-centred velocity components (m/s).
+    #[must_use]
+    pub fn velocity(&self) -> &[Grid3<f32>; 3] {
+        &self.vel
+    }
+
+    /// Cell-centred velocity, mutably (e.g. to set initial conditions).
+    pub fn velocity_mut(&mut self) -> &mut [Grid3<f32>; 3] {
+        &mut self.vel
+    }
+
+    /// The field of substance `id`.
+    pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
+        self.subs.check(id)?;
+        Ok(&self.subs.fields[id.0])
+    }
+
+    /// The field of substance `id`, mutably.
+    pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
+        self.subs.check(id)?;
+        Ok(&mut self.subs.fields[id.0])
+    }
+
+    /// Kinetic energy `½ Σ |u|² h³` (unit density).
+    #[must_use]
+    pub fn kinetic_energy(&self) -> f64 {
+        let vol = f64::from(self.h).powi(3);
+        0.5 * vol
+            * self
+                .vel
+                .iter()
+                .flat_map(|g| g.as_slice())
+                .map(|&v| f64::from(v) * f64::from(v))
+                .sum::<f64>()
+    }
+
+    /// Projects the current velocity (no diffusion), e.g. after setting an
+    /// initial field by hand.
+    pub fn project(&mut self) {
+        fft::diffuse_project(
+            &self.fft,
+            &mut self.vel,
+            self.h,
+            0.0,
+            self.params.filter,
+            self.params.variant,
+            true,
+        );
+    }
+
+    /// Advances by `dt` seconds: Vstep then Sstep (L1874-1890).
+    pub fn step(&mut self, dt: f32) -> Result<StepReport> {
+        error::check_dt(dt)?;
+        let (dims, h) = (self.dims, self.h);
+        // w1 = w0 + dt f
+        let f = force_field(dims, h, &self.force_sources, &self.force)?;
+        for a in 0..3 {
+            if dims.active(a) {
+                for (v, &fv) in self.vel[a].as_mut_slice().iter_mut().zip(f[a].as_slice()) {
+                    *v += dt * fv;
+                }
+            }
+        }
+        // w2(x) = w1(p(x, −dt)), every component traced through w1.
+        let w1 = self.vel.clone();
+        {
+            let vs = VelSampler::collocated(&w1, dims);
+            for a in 0..3 {
+                if dims.active(a) {
+                    let src = advect::centre_sampler(&w1[a], true);
+                    advect::advect(
+                        self.vel[a].as_mut_slice(),
+                        &src,
+                        &vs,
+                        dt / h,
+                        &self.params.advection,
+                        None,
+                    );
+                }
+            }
+        }
+        grid::check_grid(&self.vel[0], "u", "advection")?;
+        // Diffuse and project in Fourier space.
+        let nu_dt = f64::from(self.params.viscosity) * f64::from(dt);
+        fft::diffuse_project(
+            &self.fft,
+            &mut self.vel,
+            h,
+            nu_dt,
+            self.params.filter,
+            self.params.variant,
+            true,
+        );
+        for (a, name) in ["u", "v", "w"].into_iter().enumerate() {
+            grid::check_grid(&self.vel[a], name, "projection")?;
+        }
+        // Sstep: source, advect with the new velocity, diffuse, dissipate.
+        self.subs.add_sources(dims, h, dt);
+        let vs = VelSampler::collocated(&self.vel, dims);
+        for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
+            let old = field.clone();
+            advect::advect(
+                field.as_mut_slice(),
+                &advect::centre_sampler(&old, true),
+                &vs,
+                dt / h,
+                &self.params.advection,
+                None,
+            );
+            fft::diffuse_scalar(
+                &self.fft,
+                field,
+                h,
+                f64::from(s.diffusion) * f64::from(dt),
+                self.params.filter,
+                self.params.variant,
+            );
+            let k = 1.0 / (1.0 + dt * s.dissipation);
+            field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
+        }
+        self.subs.check_finite("substance step")?;
+        self.force
+            .iter_mut()
+            .for_each(|g| g.as_mut_slice().fill(0.0));
+        Ok(StepReport {
+            pressure: None,
+            max_divergence: self.max_divergence(),
+            kinetic_energy: self.kinetic_energy(),
+            substeps: 1,
+            pressure_iterations: 0,
+        })
+    }
+
+    /// Largest |central-difference divergence| (the discrete divergence that
+    /// [`FftVariant::ModifiedWavenumber`] zeroes exactly).
+    #[must_use]
+    pub fn max_divergence(&self) -> f32 {
+        let d = self.dims;
+        let n = d.n();
+        let mut m = 0.0f32;
+        for c in 0..d.cells() {
+            let ijk = d.ijk(c);
+            let mut s = 0.0;
+            for a in 0..3 {
+                if !d.active(a) {
+                    continue;
+                }
+                let mut p = ijk;
+                let mut q = ijk;
+                p[a] = (ijk[a] + 1) % n[a];
+                q[a] = (ijk[a] + n[a] - 1) % n[a];
+                let g = self.vel[a].as_slice();
+                s += (g[d.idx(p[0], p[1], p[2])] - g[d.idx(q[0], q[1], q[2])]) / (2.0 * self.h);
+            }
+            m = m.max(s.abs());
+        }
+        m
+    }
+}
+
+/// Stable Fluids in a box with walls, open sides and obstacles, on the MAC grid.
+#[derive(Clone, Debug)]
+pub struct BoundedFluid {
+    dims: Dims,
+    h: f32,
+    params: StableParams,
+    vel: MacVelocity,
+    kinds: Grid3<CellKind>,
+    owner: Vec<u16>,
+    obstacles: Vec<Obstacle>,
+    force: [Grid3<f32>; 3],
+    force_sources: Vec<ForceSource>,
+    subs: Substances,
+    projector: Projector,
+}
+
+impl BoundedFluid {
+    /// A fluid at rest on `dims` cells of size `h` metres.
+    pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
+        check_h(h)?;
+        params.validate()?;
+        Ok(Self {
+            dims,
+            h,
+            params,
+            vel: MacVelocity::zeros(dims)?,
+            kinds: Grid3::new(dims.nx, dims.ny, dims.nz, CellKind::Fluid)?,
+            owner: vec![u16::MAX; dims.cells()],
+            obstacles: Vec::new(),
+            force: zero3(dims)?,
+            force_sources: Vec::new(),
+            subs: Substances::default(),
+            projector: Projector::new(),
+        })
+    }
+
+    /// Grid size.
+    #[must_use]
+    pub fn dims(&self) -> Dims {
+        self.dims
+    }
+
+    /// Cell size (m).
+    #[must_use]
+    pub fn h(&self) -> f32 {
+        self.h
+    }
+
+    /// Adds an obstacle; it must lie inside the grid.
+    pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
+        o.validate()?;
+        o.shape.check_inside(self.dims, self.h, "obstacle")?;
+        if self.obstacles.len() >= usize::from(u16::MAX) {
+            return Err(FluidError::InvalidParameter {
+                name: "obstacles",
+                value: self.obstacles.len().to_string(),
+                reason: "at most 65535 obstacles",
+            });
+        }
+        self.obstacles.push(o);
+        self.revoxelise();
+        Ok(())
+    }
+
+    fn revoxelise(&mut self) {
+        self.owner = voxelise(&self.obstacles, self.dims, self.h);
+        for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
+            *k = if o == u16::MAX {
+                CellKind::Fluid
+            } else {
+                CellKind::Solid
+            };
+        }
+    }
+
+    /// Adds a substance.
+    pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
+        self.subs.add(self.dims, s)
+    }
+
+    /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
+        self.subs.check(id)?;
+        check_scalar_source(self.dims, self.h, &src)?;
+        self.subs.sources.push((id.0, src));
+        Ok(())
+    }
+
+    /// Adds a persistent force region; it must lie inside the grid.
+    pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
+        check_force_source(self.dims, self.h, &s)?;
+        self.force_sources.push(s);
+        Ok(())
+    }
+
+    /// Per-step force field at cell centres (m/s²), cleared after each step.
+    pub fn force_mut(&mut self) -> &mut [Grid3<f32>; 3] {
+        &mut self.force
+    }
+
+    /// The MAC velocity.
+    #[must_use]
+    pub fn velocity(&self) -> &MacVelocity {
+        &self.vel
+    }
+
+    /// The MAC velocity, mutably.
+    pub fn velocity_mut(&mut self) -> &mut MacVelocity {
+        &mut self.vel
+    }
+
+    /// Cell kinds (fluid or solid).
+    #[must_use]
+    pub fn cell_kinds(&self) -> &Grid3<CellKind> {
+        &self.kinds
+    }
+
+    /// The field of substance `id`.
+    pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
+        self.subs.check(id)?;
+        Ok(&self.subs.fields[id.0])
+    }
+
+    /// The field of substance `id`, mutably.
+    pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
+        self.subs.check(id)?;
+        Ok(&mut self.subs.fields[id.0])
+    }
+
+    /// Projects the current velocity (e.g. after setting it by hand).
+    pub fn project(&mut self, dt: f32) -> Result<crate::pressure::SolveStats> {
+        let sv = crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
+        let mut vel = self.vel.clone();
+        mac::enforce_solids(&mut vel, self.kinds.as_slice(), &self.params.bounds, &sv);
+        let st = self.projector.project(
+            &mut vel,
+            &self.kinds,
+            &self.params.bounds,
+            self.h,
+            dt,
+            &self.params.solver,
+        )?;
+        self.vel = vel;
+        Ok(st)
+    }
+
+    /// Advances by `dt` seconds: force → advect → diffuse → project, then the
+    /// substances (L1874-1890). Moving obstacles advance at the end.
+    pub fn step(&mut self, dt: f32) -> Result<StepReport> {
+        error::check_dt(dt)?;
+        let (dims, h) = (self.dims, self.h);
+        let bounds = self.params.bounds;
+        let f = force_field(dims, h, &self.force_sources, &self.force)?;
+        mac::add_centre_forces(&mut self.vel, &f, dt, self.kinds.as_slice(), &bounds);
+        let solids = Solids {
+            kinds: self.kinds.as_slice(),
+            dims,
+        };
+        let has_solids = self.obstacles.iter().len() > 0;
+        let w1 = self.vel.clone();
+        {
+            let vs = VelSampler::mac(&w1);
+            for a in 0..3 {
+                if dims.active(a) {
+                    advect::advect(
+                        self.vel.comp_mut(a).as_mut_slice(),
+                        &advect::face_sampler(w1.comp(a), a),
+                        &vs,
+                        dt / h,
+                        &self.params.advection,
+                        has_solids.then_some(&solids),
+                    );
+                }
+            }
+        }
+        self.vel.check_finite("advection")?;
+        let mut vel = std::mem::replace(&mut self.vel, w1);
+        {
+            let sv =
+                crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
+            mac::enforce_solids(&mut vel, self.kinds.as_slice(), &bounds, &sv);
+        }
+        let coef = self.params.viscosity * dt / (h * h);
+        if coef > 0.0 {
+            for a in 0..3 {
+                if !dims.active(a) {
+                    continue;
+                }
+                let n = dims.face_dims(a);
+                let role: Vec<u8> = (0..n[0] * n[1] * n[2])
+                    .map(|s| {
+                        let fidx = [s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1])];
+                        if mac::face_fixed(dims, self.kinds.as_slice(), &bounds, a, fidx) {
+                            DIRICHLET
+                        } else {
+                            FREE
+                        }
+                    })
+                    .collect();
+                diffuse::diffuse(vel.comp_mut(a).as_mut_slice(), n, coef, &role);
+            }
+        }
+        let stats =
+            self.projector
+                .project(&mut vel, &self.kinds, &bounds, h, dt, &self.params.solver)?;
+        vel.check_finite("projection")?;
+        self.vel = vel;
+        // Substances.
+        self.subs.add_sources(dims, h, dt);
+        let vs = VelSampler::mac(&self.vel);
+        let role: Vec<u8> = self
+            .kinds
+            .as_slice()
+            .iter()
+            .map(|&k| if k == CellKind::Solid { EXCLUDED } else { FREE })
+            .collect();
+        for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
+            let old = field.clone();
+            advect::advect(
+                field.as_mut_slice(),
+                &advect::centre_sampler(&old, false),
+                &vs,
+                dt / h,
+                &self.params.advection,
+                has_solids.then_some(&solids),
+            );
+            diffuse::diffuse(
+                field.as_mut_slice(),
+                dims.n(),
+                s.diffusion * dt / (h * h),
+                &role,
+            );
+            let k = 1.0 / (1.0 + dt * s.dissipation);
+            field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
+        }
+        self.subs.check_finite("substance step")?;
+        self.force
+            .iter_mut()
+            .for_each(|g| g.as_mut_slice().fill(0.0));
+        if self.obstacles.iter().any(Obstacle::is_moving) {
+            self.obstacles.iter_mut().for_each(|o| o.advance(dt));
+            self.revoxelise();
+        }
+        Ok(StepReport {
+            pressure: Some(stats),
+            max_divergence: mac::max_fluid_divergence(&self.vel, &self.kinds, h)?,
+            kinetic_energy: self.vel.kinetic_energy(h),
+            substeps: 1,
+            pressure_iterations: stats.iterations,
+        })
+    }
+}
