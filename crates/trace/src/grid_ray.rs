@@ -1,0 +1,164 @@
+//! A ray in grid space: clipped to the field's box, with the constants of the
+//! watertight ray–triangle test and the rounding margins the culls use.
+//!
+//! Grid space scales x and y by `1/cell_size` and keeps z, so sample `(i, j)`
+//! sits at `(i, j, h)`, cell bounds are exact integers (as the source notes,
+//! seed 000 line 1322) and the ray parameter `t` is unchanged.
+
+use glam::{Vec2, Vec3};
+
+use crate::field::FieldView;
+use crate::ray::Ray;
+
+/// Per-ray constants of Woop, Benthin & Wald's watertight test (JCGT 2013):
+/// the shear that maps the ray to the +z axis, as three row vectors so that a
+/// vertex transforms by dot products without indexing. Each row has one
+/// coefficient 1 (or `1/d[kz]`), one shear and one exact zero, so the results
+/// equal the paper's `A[kx] − Sx·A[kz]` bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Shear {
+    pub px: Vec3,
+    pub py: Vec3,
+    pub pz: Vec3,
+}
+
+impl Shear {
+    fn new(d: Vec3) -> Self {
+        let a = d.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+        let mut px = Vec3::ZERO;
+        px[kx] = 1.0;
+        px[kz] = -sx;
+        let mut py = Vec3::ZERO;
+        py[ky] = 1.0;
+        py[kz] = -sy;
+        let mut pz = Vec3::ZERO;
+        pz[kz] = sz;
+        Self { px, py, pz }
+    }
+}
+
+/// A validated ray in grid space, clipped to the field's bounding box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GridRay {
+    /// Origin and direction in grid space.
+    pub o: Vec3,
+    pub d: Vec3,
+    /// `1/d.x`, `1/d.y`; only meaningful where the component is non-zero.
+    pub inv: Vec2,
+    /// The caller's `t` range.
+    pub t_min: f32,
+    pub t_max: f32,
+    /// The part of `[t_min, t_max]` inside the (slightly padded) box.
+    pub t0: f32,
+    pub t1: f32,
+    /// Bound on the rounding error of any ray altitude `o.z + t·d.z` in the box,
+    /// and of the corner heights relative to it: the culls widen by this.
+    #[allow(dead_code)]
+    pub zeps: f32,
+    /// Bound on the rounding error of projected coordinates in the watertight
+    /// test and of the traversal's xy positions: where the ray passes within
+    /// this of a cell edge or corner, the tracers also test the cells across
+    /// it, so a hit the traversal rounded past is still found (no pinholes).
+    pub xyeps: f32,
+    /// `xyeps` as a parameter span along the ray (infinite for vertical rays).
+    pub ttol: f32,
+    /// Margin of every z cull: the altitude rounding bound plus how far the
+    /// surface can rise within `2·xyeps` of a cell (hits just across a cell
+    /// edge or corner are looked for from the near cell, so its cull must
+    /// let them through).
+    pub zm: f32,
+    pub shear: Shear,
+}
+
+impl GridRay {
+    /// Sets up `ray` over `[t_min, t_max]` against `f`; `None` if the ray is
+    /// invalid (NaN, infinite, zero direction) or the range is empty or NaN.
+    /// A ray that misses the field's box gets an empty clip: see [`GridRay::misses_box`].
+    #[inline]
+    pub fn new(f: &FieldView<'_>, ray: &Ray, t_min: f32, t_max: f32) -> Option<Self> {
+        if !ray.is_valid() || t_min.is_nan() || t_max.is_nan() || t_min > t_max {
+            return None;
+        }
+        let o = Vec3::new(ray.origin.x / f.cell, ray.origin.y / f.cell, ray.origin.z);
+        let d = Vec3::new(ray.dir.x / f.cell, ray.dir.y / f.cell, ray.dir.z);
+        if !(o.is_finite() && d.is_finite()) || d == Vec3::ZERO {
+            return None;
+        }
+        let eps = f32::EPSILON;
+        let zabs = f.zmin.abs().max(f.zmax.abs());
+        let zeps = 16.0 * eps * (o.z.abs() + zabs) + 1e-30;
+        // Corners and traversal points have |p|₁ ≤ ncx + ncy + |z|; the projected
+        // corners (v − o sheared) and the traversal's o + t·d round within a few
+        // ulps of |o|₁ + |p|₁.
+        let o1 = o.x.abs() + o.y.abs() + o.z.abs();
+        let xyeps = 4.0 * eps * (o1 + (f.ncx + f.ncy) as f32 + zabs + 2.0);
+        let lo = Vec3::new(-xyeps, -xyeps, f.zmin - zeps);
+        let hi = Vec3::new(f.ncx as f32 + xyeps, f.ncy as f32 + xyeps, f.zmax + zeps);
+        let (mut t0, mut t1) = (t_min, t_max);
+        for k in 0..3 {
+            if d[k] == 0.0 {
+                if o[k] < lo[k] || o[k] > hi[k] {
+                    // Parallel to this slab and outside it: an empty range.
+                    t0 = f32::INFINITY;
+                    t1 = f32::NEG_INFINITY;
+                }
+            } else {
+                let a = (lo[k] - o[k]) / d[k];
+                let b = (hi[k] - o[k]) / d[k];
+                t0 = t0.max(a.min(b));
+                t1 = t1.min(a.max(b));
+            }
+        }
+        let inv = Vec2::new(1.0 / d.x, 1.0 / d.y);
+        let dxy = d.x.abs().max(d.y.abs());
+        let ttol = if dxy > 0.0 { xyeps / dxy } else { f32::INFINITY };
+        Some(Self {
+            o,
+            d,
+            inv,
+            t_min,
+            t_max,
+            t0,
+            t1,
+            zeps,
+            xyeps,
+            ttol,
+            zm: zeps + 2.0 * f.smax * xyeps,
+            shear: Shear::new(d),
+        })
+    }
+
+    /// Whether the clipped range is empty (the ray misses the box within `[t_min, t_max]`).
+    #[inline]
+    pub fn misses_box(&self) -> bool {
+        !(self.t0 <= self.t1)
+    }
+
+    /// The cell holding the clipped entry point, clamped to the grid.
+    #[inline]
+    pub fn entry_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
+        let p = self.o + self.t0 * self.d;
+        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
+        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
+        (i, j)
+    }
+
+    /// Ray altitude at `t`.
+    #[inline(always)]
+    pub fn z_at(&self, t: f32) -> f32 {
+        self.o.z + t * self.d.z
+    }
+}

@@ -1,0 +1,28 @@
+//! The triangulated surface the tracers intersect, evaluated directly.
+
+use natura_core::HeightField;
+
+/// Returns the height at world `(x, y)` of the piecewise-planar surface the
+/// tracers intersect (two triangles per cell split along `u + v = 1`, see
+/// [`crate::Triangle`]), or `None` outside the field or for NaN.
+///
+/// This differs from [`HeightField::height_at`], which interpolates
+/// bilinearly; both agree at the samples and along cell edges.
+#[must_use]
+pub fn surface_height(hf: &HeightField, x: f32, y: f32) -> Option<f32> {
+    let e = hf.extent();
+    if !(x >= 0.0 && y >= 0.0 && x <= e.x && y <= e.y) || hf.nx() < 2 || hf.ny() < 2 {
+        return None;
+    }
+    let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
+    let i = (gx.floor() as usize).min(hf.nx() - 2);
+    let j = (gy.floor() as usize).min(hf.ny() - 2);
+    let (u, v) = (gx - i as f32, gy - j as f32);
+    let h = hf.heights();
+    let (h00, h10, h01, h11) = (h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]);
+    Some(if u + v <= 1.0 {
+        h00 + (h10 - h00) * u + (h01 - h00) * v
+    } else {
+        h11 + (h11 - h01) * (u - 1.0) + (h11 - h10) * (v - 1.0)
+    })
+}

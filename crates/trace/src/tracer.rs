@@ -1,0 +1,26 @@
+//! The [`Tracer`] trait: the seam where the grid tracer, the mipmap tracer
+//! (and any future accelerator) plug into cameras and image drivers.
+
+use natura_core::HeightField;
+
+use crate::ray::{Hit, Ray, TraceStats};
+
+/// A ray tracer over one height field.
+///
+/// Both queries take a parameter range `[t_min, t_max]` (inclusive; use
+/// `f32::INFINITY` for no far limit) and never panic: a ray with a NaN,
+/// infinite or zero direction, or an empty or NaN range, hits nothing.
+pub trait Tracer: Sync {
+    /// Returns the closest hit of `ray` with the surface with `t` in `[t_min, t_max]`.
+    fn trace(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit>;
+
+    /// Returns whether anything lies on `ray` with `t` in `[t_min, t_max]`
+    /// (a shadow ray); stops at the first hit found.
+    fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool;
+
+    /// [`Tracer::trace`] together with the work it took.
+    fn trace_with_stats(&self, ray: &Ray, t_min: f32, t_max: f32) -> (Option<Hit>, TraceStats);
+
+    /// The height field being traced.
+    fn height_field(&self) -> &HeightField;
+}
