@@ -1,0 +1,110 @@
+//! Exponential mist: density falling with altitude (seed D:1534-1568).
+
+use glam::DVec3;
+
+use super::{Attenuation, BeerParams, Medium, scale_column};
+use crate::Dir3;
+use crate::error::{Result, finite, positive};
+use crate::special::exprel_neg;
+
+/// Mist whose density falls exponentially with altitude z:
+/// `ρ(z) = e^{−(z − z₀)/H}`, extinction `ε̄·ρ`.
+///
+/// Musgrave's eq. 4.1.5 (D:1554) gives the *mean* extinction over the vertical
+/// span (the source labels it τ; τ is that mean times the Euclidean length,
+/// spec §3.1). The source's near-horizontal fallbacks (eqs. 4.1.6/4.1.7,
+/// D:1558-1566) are only first/second-order accurate; this model instead uses
+/// the exact closed form `τ = ε̄·d·e^{−(z_min − z₀)/H}·(1 − e^{−Δ/H})/(Δ/H)`
+/// evaluated with `expm1`, which is exact for horizontal rays (Δ = 0) and
+/// never divides by a small difference (spec §3.2). Lynch's receding ridges
+/// (D:1536-1540) come from this model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ExponentialMist {
+    beer: BeerParams,
+    base_altitude: f64,
+    scale_height: f64,
+}
+
+impl ExponentialMist {
+    /// Mist with extinction `extinction` (per metre) at altitude `base_altitude`
+    /// (m), falling by `e` every `scale_height` metres.
+    ///
+    /// Refuses NaN, negative extinction or colour, and non-positive scale heights.
+    pub fn new(
+        extinction: DVec3,
+        fog_colour: DVec3,
+        base_altitude: f64,
+        scale_height: f64,
+    ) -> Result<Self> {
+        let beer = BeerParams {
+            extinction,
+            fog_colour,
+        };
+        beer.validate()?;
+        finite("base_altitude", base_altitude)?;
+        positive("scale_height", scale_height)?;
+        Ok(Self {
+            beer,
+            base_altitude,
+            scale_height,
+        })
+    }
+
+    /// The extinction and colour.
+    #[must_use]
+    pub fn params(&self) -> BeerParams {
+        self.beer
+    }
+
+    /// Relative density `ρ(z)` at altitude `z`.
+    #[must_use]
+    pub fn density(&self, z: f64) -> f64 {
+        (-(z - self.base_altitude) / self.scale_height).exp()
+    }
+
+    /// `∫ρ ds` along `a → b` (metres at reference density), exact in closed form.
+    #[must_use]
+    pub fn column(&self, a: DVec3, b: DVec3) -> f64 {
+        let d = a.distance(b);
+        if d == 0.0 {
+            return 0.0;
+        }
+        let (lo, hi) = if a.z <= b.z { (a.z, b.z) } else { (b.z, a.z) };
+        // Reference the lower end so the exponent and E(x) stay bounded (E ∈ (0, 1]).
+        let x = (hi - lo) / self.scale_height;
+        d * self.density(lo) * exprel_neg(x)
+    }
+
+    /// `∫ρ ds` from `origin` to infinity along `dir`: `ρ(z)·H/sin α` upward, `+∞` otherwise.
+    #[must_use]
+    pub fn column_to_infinity(&self, origin: DVec3, dir: Dir3) -> f64 {
+        let s = dir.get().z;
+        if s > 0.0 {
+            self.density(origin.z) * self.scale_height / s
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+impl Medium for ExponentialMist {
+    fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
+        scale_column(self.beer.extinction, self.column(a, b))
+    }
+
+    fn optical_depth_to_infinity(&self, origin: DVec3, dir: Dir3) -> DVec3 {
+        scale_column(self.beer.extinction, self.column_to_infinity(origin, dir))
+    }
+
+    fn attenuation(&self, a: DVec3, b: DVec3) -> Attenuation {
+        Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
+    }
+
+    fn attenuation_to_infinity(&self, origin: DVec3, dir: Dir3) -> Attenuation {
+        Attenuation::beer(
+            self.optical_depth_to_infinity(origin, dir),
+            self.beer.fog_colour,
+        )
+    }
+}

@@ -1,0 +1,57 @@
+//! Homogeneous fog: constant extinction everywhere (seed D:1514-1532).
+
+use glam::DVec3;
+
+use super::{Attenuation, BeerParams, Medium, scale_column};
+use crate::Dir3;
+use crate::error::Result;
+
+/// Musgrave's homogeneous fog: `σ = e^{−ε·|b − a|}` per channel (eq. 4.1.1, D:1518).
+///
+/// Isotropic and the same everywhere; a ray that misses all geometry has
+/// infinite optical depth and shows the pure fog colour (the flaw the radial
+/// model fixes, D:531, D:1576).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct HomogeneousFog {
+    beer: BeerParams,
+}
+
+impl HomogeneousFog {
+    /// A fog with per-metre `extinction` and colour `fog_colour`; refuses negative or NaN values.
+    pub fn new(extinction: DVec3, fog_colour: DVec3) -> Result<Self> {
+        let beer = BeerParams {
+            extinction,
+            fog_colour,
+        };
+        beer.validate()?;
+        Ok(Self { beer })
+    }
+
+    /// The extinction and colour.
+    #[must_use]
+    pub fn params(&self) -> BeerParams {
+        self.beer
+    }
+}
+
+impl Medium for HomogeneousFog {
+    fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
+        scale_column(self.beer.extinction, a.distance(b))
+    }
+
+    fn optical_depth_to_infinity(&self, _origin: DVec3, _dir: Dir3) -> DVec3 {
+        scale_column(self.beer.extinction, f64::INFINITY)
+    }
+
+    fn attenuation(&self, a: DVec3, b: DVec3) -> Attenuation {
+        Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
+    }
+
+    fn attenuation_to_infinity(&self, origin: DVec3, dir: Dir3) -> Attenuation {
+        Attenuation::beer(
+            self.optical_depth_to_infinity(origin, dir),
+            self.beer.fog_colour,
+        )
+    }
+}
