@@ -1,0 +1,527 @@
+//! Musgrave–Kolb–Mace hydraulic (fluvial) erosion, corrected to conserve mass
+//! (MKM:L204-256, DIS:L1118-1160).
+//!
+//! Each cell carries altitude `a`, water `w` and suspended sediment `s`. Water
+//! moves to neighbours whose water *surface* `a + w` is lower; moving water of
+//! volume `Δw` can carry `C_s = K_c·Δw` sediment. Over capacity, the excess is
+//! partly deposited (`K_d`); under capacity, the bed is eroded (`K_s`).
+//!
+//! **Errata corrected (all decided once, here):**
+//! 1. Over capacity, deposition lands at `v`, the cell the water leaves
+//!    (DIS:L1138 and both texts' prose), not at `u` as MKM:L230 prints.
+//! 2. Erosion *lowers* `v`: `a_v ← a_v − K_s(C_s − s_v)`. MKM:L238 lowers `u`,
+//!    DIS:L1142 *raises* `v` (creating material). With our choice every branch
+//!    conserves `a + s` exactly: settle `K_d s + (1−K_d)s = s`; over capacity
+//!    `C_s + K_d(s−C_s) + (1−K_d)(s−C_s) = s`; erosion `−e + s + e = s`.
+//! 3. The printed `Δw = min(w_v, (w_v + a_v) − (w_u + a_u))` moves the *whole*
+//!    surface difference, which for two cells **swaps** their levels instead of
+//!    equalising them, so water sloshes back and forth — a likely source of the
+//!    instability the author reports (DIS:L1148). We move
+//!    `ΔW = min(w_v, transfer · max_u d_u)` with `transfer = ½` by default
+//!    (equalising); `transfer = 1` is the printed rule.
+//! 4. The 2-D split, unspecified beyond "proportional to their respective
+//!    differences in overall elevation" (MKM:L244): `ΔW` and the sediment sent
+//!    are split among all lower neighbours in proportion to their surface
+//!    drops `d_u`, computed from the state at time `t` (Jacobi, gather form), so
+//!    the result is independent of visiting order and thread count.
+//! 5. Boundaries and evaporation are unspecified: [`Edges`] chooses, open edges
+//!    count outflow; `evaporation` defaults to 0 (the sources have none).
+//! 6. Optional guard (default on, our stabilisation): erosion at `v` never digs
+//!    below the bed of the lowest receiving neighbour.
+//!
+//! Rain (MKM:L250-256, L364): every `rain_period` = 65 steps, `0.001·a` of water
+//! on every cell (altitude-proportional: the adiabatic effect), clamped at 0
+//! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (MKM:L364,
+//! DIS:L1152).
+
+use natura_core::{Grid2, HeightField, Progress};
+
+use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size};
+use crate::error::{Result, in_range, invalid, non_negative};
+use crate::par;
+
+/// How much rain falls on a cell when it rains.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RainLaw {
+    /// The same depth everywhere, metres.
+    Uniform {
+        /// Depth of water added, metres.
+        depth_m: f64,
+    },
+    /// `base_m + k · max(a, 0)`: linear in altitude (MKM:L252; Plate 9 uses `k = 0.001`, base 0).
+    AltitudeLinear {
+        /// Water per metre of altitude.
+        k: f64,
+        /// Water added at altitude 0, metres.
+        base_m: f64,
+    },
+}
+
+impl RainLaw {
+    /// Rain depth on a cell of altitude `a`, metres.
+    #[inline]
+    #[must_use]
+    pub fn depth(self, a: f32) -> f32 {
+        match self {
+            RainLaw::Uniform { depth_m } => depth_m as f32,
+            RainLaw::AltitudeLinear { k, base_m } => (base_m + k * f64::from(a.max(0.0))) as f32,
+        }
+    }
+
+    fn validate(self) -> Result<()> {
+        match self {
+            RainLaw::Uniform { depth_m } => non_negative("RainLaw::Uniform::depth_m", depth_m),
+            RainLaw::AltitudeLinear { k, base_m } => {
+                non_negative("RainLaw::AltitudeLinear::k", k)?;
+                non_negative("RainLaw::AltitudeLinear::base_m", base_m)?;
+                if k > 1.0 {
+                    return Err(invalid("RainLaw::AltitudeLinear::k", k, "must be ≤ 1 (rain deeper than the terrain is high)"));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Parameters of [`MusgraveHydraulic`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct MusgraveParams {
+    /// Sediment capacity constant `K_c` (sediment per unit of moving water). Default 5.
+    pub k_c: f64,
+    /// Deposition constant `K_d ∈ [0, 1]`. Default 0.1.
+    pub k_d: f64,
+    /// Soil softness `K_s ∈ [0, 1]`. Default 0.3.
+    pub k_s: f64,
+    /// The rain law. Default `AltitudeLinear { k: 0.001, base_m: 0 }`.
+    pub rain: RainLaw,
+    /// Rain falls on steps `t ≡ 0 (mod rain_period)`, `t = 0, 1, …`; 0 disables rain. Default 65.
+    pub rain_period: u32,
+    /// Fraction of the largest surface drop that leaves a cell per step, `(0, 1]`:
+    /// ½ equalises (default), 1 is the printed (level-swapping) rule.
+    pub transfer: f64,
+    /// Fraction of water evaporated per step, `[0, 1]`. Default 0 (the sources have none).
+    pub evaporation: f64,
+    /// Never erode a cell below its lowest receiving neighbour's bed. Default on.
+    pub erosion_guard: bool,
+    /// Neighbours. Default 8.
+    pub neighbourhood: Neighbourhood,
+    /// Edges. Default closed.
+    pub edges: Edges,
+}
+
+impl Default for MusgraveParams {
+    fn default() -> Self {
+        Self {
+            k_c: 5.0,
+            k_d: 0.1,
+            k_s: 0.3,
+            rain: RainLaw::AltitudeLinear { k: 0.001, base_m: 0.0 },
+            rain_period: 65,
+            transfer: 0.5,
+            evaporation: 0.0,
+            erosion_guard: true,
+            neighbourhood: Neighbourhood::Eight,
+            edges: Edges::Closed,
+        }
+    }
+}
+
+impl MusgraveParams {
+    /// `K_c ≥ 0` (≤ 1000), `K_d, K_s ∈ [0, 1]`, `transfer ∈ (0, 1]`, `evaporation ∈ [0, 1]`, a valid rain law.
+    pub fn validate(&self) -> Result<()> {
+        non_negative("MusgraveParams::k_c", self.k_c)?;
+        in_range("MusgraveParams::k_c", self.k_c, 0.0, 1000.0)?;
+        in_range("MusgraveParams::k_d", self.k_d, 0.0, 1.0)?;
+        in_range("MusgraveParams::k_s", self.k_s, 0.0, 1.0)?;
+        if !(self.transfer > 0.0 && self.transfer <= 1.0) {
+            return Err(invalid("MusgraveParams::transfer", self.transfer, "must lie in (0, 1]"));
+        }
+        in_range("MusgraveParams::evaporation", self.evaporation, 0.0, 1.0)?;
+        self.rain.validate()
+    }
+}
+
+/// Running totals of everything that enters and leaves a hydraulic model, metres³
+/// per unit cell area (sums of depths over cells).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MassLedger {
+    /// Σ(terrain + sediment) when the model was built.
+    pub initial_material: f64,
+    /// Σ water when the model was built.
+    pub initial_water: f64,
+    /// Rain added so far.
+    pub rain: f64,
+    /// Water evaporated so far.
+    pub evaporated: f64,
+    /// Water that flowed off open edges.
+    pub outflow_water: f64,
+    /// Sediment that flowed off open edges.
+    pub outflow_sediment: f64,
+}
+
+/// Corrected Musgrave–Kolb–Mace hydraulic erosion on a field of fixed size.
+#[derive(Debug)]
+pub struct MusgraveHydraulic {
+    p: MusgraveParams,
+    nx: usize,
+    ny: usize,
+    water: Grid2<f32>,
+    sediment: Grid2<f32>,
+    erodibility: Option<Erodibility>,
+    step: u64,
+    ledger: MassLedger,
+    // Pass-1 scratch: new altitude, kept water, kept sediment, water sent, sediment sent.
+    a1: Grid2<f32>,
+    w_keep: Grid2<f32>,
+    s_keep: Grid2<f32>,
+    w_sent: Grid2<f32>,
+    s_sent: Grid2<f32>,
+    frac: Vec<Vec<f32>>,
+}
+
+impl MusgraveHydraulic {
+    /// A dry model (no water, no sediment) for fields the size of `hf`.
+    pub fn new(p: MusgraveParams, hf: &HeightField) -> Result<Self> {
+        p.validate()?;
+        check_model_size("hydraulic erosion", hf)?;
+        let (nx, ny) = (hf.nx(), hf.ny());
+        let z = || Grid2::new(nx, ny, 0.0f32);
+        let ledger = MassLedger { initial_material: hf.heights().sum(), ..Default::default() };
+        Ok(Self {
+            p,
+            nx,
+            ny,
+            water: z()?,
+            sediment: z()?,
+            erodibility: None,
+            step: 0,
+            ledger,
+            a1: z()?,
+            w_keep: z()?,
+            s_keep: z()?,
+            w_sent: z()?,
+            s_sent: z()?,
+            frac: (0..8).map(|_| vec![0.0f32; nx * ny]).collect(),
+        })
+    }
+
+    /// Scales the softness `K_s` per cell.
+    pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
+        check_erodibility(Some(&e), self.nx, self.ny)?;
+        if f64::from(e.max()) * self.p.k_s > 1.0 {
+            return Err(invalid("erodibility", e.max(), "max × k_s must be ≤ 1"));
+        }
+        self.erodibility = Some(e);
+        Ok(self)
+    }
+
+    /// Sets the initial water depth (e.g. a flood); refuses negative or non-finite depths.
+    pub fn set_water(&mut self, water: Grid2<f32>) -> Result<()> {
+        crate::error::same_size("water", &water, self.nx, self.ny)?;
+        crate::error::check_grid("water", &water)?;
+        if let Some((x, y, &v)) = water.find(|&v| v < 0.0) {
+            return Err(invalid("water", format!("{v} at cell ({x}, {y})"), "must be >= 0"));
+        }
+        self.ledger.initial_water += water.sum() - self.water.sum();
+        self.water = water;
+        Ok(())
+    }
+
+    /// Water depth per cell, metres.
+    #[must_use]
+    pub fn water(&self) -> &Grid2<f32> {
+        &self.water
+    }
+
+    /// Suspended sediment per cell, metres of material.
+    #[must_use]
+    pub fn sediment(&self) -> &Grid2<f32> {
+        &self.sediment
+    }
+
+    /// The mass ledger.
+    #[must_use]
+    pub fn ledger(&self) -> MassLedger {
+        self.ledger
+    }
+
+    /// Steps taken so far.
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        self.step
+    }
+
+    /// Runs `steps` steps.
+    pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
+        check_field("hydraulic erosion", hf, self.nx, self.ny)?;
+        progress.start("hydraulic", u64::from(steps));
+        for _ in 0..steps {
+            self.step_unchecked(hf);
+            progress.advance(1);
+        }
+        progress.finish();
+        Ok(())
+    }
+
+    /// One step: rain (on schedule), transport, evaporation.
+    pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
+        check_field("hydraulic erosion", hf, self.nx, self.ny)?;
+        self.step_unchecked(hf);
+        Ok(())
+    }
+
+    fn step_unchecked(&mut self, hf: &mut HeightField) {
+        let (nx, ny) = (self.nx, self.ny);
+        let p = self.p.clone();
+        if p.rain_period > 0 && self.step % u64::from(p.rain_period) == 0 {
+            let a = hf.heights().as_slice();
+            let mut added = 0.0f64;
+            for (w, &h) in self.water.as_mut_slice().iter_mut().zip(a) {
+                let r = p.rain.depth(h);
+                *w += r;
+                added += f64::from(r);
+            }
+            self.ledger.rain += added;
+        }
+        let offsets = p.neighbourhood.offsets();
+        let (kc, kd, ks, tr) = (p.k_c as f32, p.k_d as f32, p.k_s as f32, p.transfer as f32);
+        // ---- pass 1: per cell, what leaves and where (reads state t only).
+        let a = hf.heights().as_slice();
+        let w = self.water.as_slice();
+        let s = self.sediment.as_slice();
+        let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
+        let [f0, f1, f2, f3, f4, f5, f6, f7] = &mut self.frac[..] else { unreachable!("eight planes") };
+        let outs = [
+            self.a1.as_mut_slice(),
+            self.w_keep.as_mut_slice(),
+            self.s_keep.as_mut_slice(),
+            self.w_sent.as_mut_slice(),
+            self.s_sent.as_mut_slice(),
+            f0.as_mut_slice(),
+            f1.as_mut_slice(),
+            f2.as_mut_slice(),
+            f3.as_mut_slice(),
+            f4.as_mut_slice(),
+            f5.as_mut_slice(),
+            f6.as_mut_slice(),
+            f7.as_mut_slice(),
+        ];
+        let outflow: Vec<(f64, f64)> = par::map_bands(nx, ny, outs, |y0, y1, o| {
+            let mut out_w = 0.0f64;
+            let mut out_s = 0.0f64;
+            for y in y0..y1 {
+                for x in 0..nx {
+                    let i = y * nx + x;
+                    let r = (y - y0) * nx + x;
+                    let (av, wv, sv) = (a[i], w[i], s[i]);
+                    let level = av + wv;
+                    let mut drops = [0.0f32; 8];
+                    let mut total = 0.0f32;
+                    let mut biggest = 0.0f32;
+                    let mut lowest_bed = f32::INFINITY;
+                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
+                        let d = match p.edges.resolve(x, y, dx, dy, nx, ny) {
+                            Some(j) => {
+                                let d = level - (a[j] + w[j]);
+                                if d > 0.0 {
+                                    lowest_bed = lowest_bed.min(a[j]);
+                                }
+                                d
+                            }
+                            // Open edge: a water-free bed at v's level continues outward.
+                            None if p.edges == Edges::Open => {
+                                lowest_bed = lowest_bed.min(av);
+                                wv
+                            }
+                            None => 0.0,
+                        };
+                        if d > 0.0 {
+                            drops[k] = d;
+                            total += d;
+                            biggest = biggest.max(d);
+                        }
+                    }
+                    let (mut a_new, w_keep, s_keep, dw, sent);
+                    if wv <= 0.0 || total <= 0.0 {
+                        a_new = av + kd * sv;
+                        s_keep = sv - kd * sv;
+                        w_keep = wv;
+                        dw = 0.0;
+                        sent = 0.0;
+                    } else {
+                        dw = wv.min(tr * biggest);
+                        w_keep = wv - dw;
+                        let cs = kc * dw;
+                        if sv >= cs {
+                            sent = cs;
+                            let rest = sv - cs;
+                            a_new = av + kd * rest;
+                            s_keep = rest - kd * rest;
+                        } else {
+                            let soft = erod.map_or(ks, |e| ks * e[i]);
+                            let mut e = soft * (cs - sv);
+                            if p.erosion_guard {
+                                e = e.min((av - lowest_bed).max(0.0));
+                            }
+                            sent = sv + e;
+                            a_new = av - e;
+                            s_keep = 0.0;
+                        }
+                    }
+                    if !a_new.is_finite() {
+                        a_new = av;
+                    }
+                    o[0][r] = a_new;
+                    o[1][r] = w_keep;
+                    o[2][r] = s_keep;
+                    o[3][r] = dw;
+                    o[4][r] = sent;
+                    let inv = if total > 0.0 { 1.0 / total } else { 0.0 };
+                    for k in 0..8 {
+                        let f = drops[k] * inv;
+                        o[5 + k][r] = f;
+                        if f > 0.0 && k < offsets.len() {
+                            let (dx, dy, _) = offsets[k];
+                            if p.edges.resolve(x, y, dx, dy, nx, ny).is_none() {
+                                out_w += f64::from(dw * f);
+                                out_s += f64::from(sent * f);
+                            }
+                        }
+                    }
+                }
+            }
+            (out_w, out_s)
+        });
+        for (ow, os) in outflow {
+            self.ledger.outflow_water += ow;
+            self.ledger.outflow_sediment += os;
+        }
+        // ---- pass 2: gather what neighbours send.
+        let (a1, wk, sk, ws, ss) = (self.a1.as_slice(), self.w_keep.as_slice(), self.s_keep.as_slice(), self.w_sent.as_slice(), self.s_sent.as_slice());
+        let frac: Vec<&[f32]> = self.frac.iter().map(Vec::as_slice).collect();
+        // Direction index of the opposite offset.
+        let opposite: Vec<usize> = offsets
+            .iter()
+            .map(|&(dx, dy, _)| offsets.iter().position(|&(ex, ey, _)| ex == -dx && ey == -dy).unwrap_or(0))
+            .collect();
+        let evap = p.evaporation as f32;
+        let evaporated: Vec<f64> = par::map_bands(nx, ny, [self.water.as_mut_slice(), self.sediment.as_mut_slice()], |y0, y1, [wo, so]| {
+            let mut ev = 0.0f64;
+            for y in y0..y1 {
+                for x in 0..nx {
+                    let i = y * nx + x;
+                    let r = (y - y0) * nx + x;
+                    let mut wn = wk[i];
+                    let mut sn = sk[i];
+                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
+                        if let Some(j) = p.edges.resolve(x, y, dx, dy, nx, ny) {
+                            let f = frac[opposite[k]][j];
+                            if f > 0.0 {
+                                wn += ws[j] * f;
+                                sn += ss[j] * f;
+                            }
+                        }
+                    }
+                    let lost = wn * evap;
+                    ev += f64::from(lost);
+                    wo[r] = wn - lost;
+                    so[r] = sn;
+                }
+            }
+            ev
+        });
+        self.ledger.evaporated += evaporated.iter().sum::<f64>();
+        hf.heights_mut().as_mut_slice().copy_from_slice(a1);
+        self.step += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use natura_core::{NoProgress, Seed};
+
+    fn tilted(n: usize) -> HeightField {
+        let s = Seed(8);
+        HeightField::from_fn(n, n, 1.0, |i, j| 50.0 + 0.3 * i as f32 + 0.1 * j as f32 + 2.0 * s.gaussian2(i as i64, j as i64) as f32).unwrap()
+    }
+
+    fn totals(m: &MusgraveHydraulic, hf: &HeightField) -> (f64, f64) {
+        (hf.heights().sum() + m.sediment().sum(), m.water().sum())
+    }
+
+    #[test]
+    fn conserves_material_and_water_closed() {
+        let mut hf = tilted(32);
+        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 20, ..Default::default() }, &hf).unwrap();
+        let (mat0, _) = totals(&m, &hf);
+        m.run(&mut hf, 500, &NoProgress).unwrap();
+        let (mat, water) = totals(&m, &hf);
+        let l = m.ledger();
+        assert!((mat - mat0).abs() <= 1e-4 * mat0, "material {mat0} → {mat}");
+        assert!((water - l.rain).abs() <= 1e-4 * l.rain, "water {water} vs rain {}", l.rain);
+        assert!(m.water().min() >= 0.0 && m.sediment().min() >= 0.0);
+    }
+
+    #[test]
+    fn conserves_with_open_edges_and_evaporation() {
+        let mut hf = tilted(24);
+        let p = MusgraveParams { edges: Edges::Open, evaporation: 0.01, rain_period: 10, ..Default::default() };
+        let mut m = MusgraveHydraulic::new(p, &hf).unwrap();
+        let (mat0, _) = totals(&m, &hf);
+        m.run(&mut hf, 500, &NoProgress).unwrap();
+        let (mat, water) = totals(&m, &hf);
+        let l = m.ledger();
+        assert!(l.outflow_water > 0.0 && l.evaporated > 0.0);
+        assert!((mat + l.outflow_sediment - mat0).abs() <= 1e-4 * mat0);
+        let budget = l.rain - l.evaporated - l.outflow_water;
+        assert!((water - budget).abs() <= 1e-4 * l.rain, "{water} vs {budget}");
+    }
+
+    #[test]
+    fn fixed_points() {
+        // Dry terrain is unchanged; a flat lake is unchanged.
+        let mut hf = tilted(12);
+        let before = hf.clone();
+        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, ..Default::default() }, &hf).unwrap();
+        m.run(&mut hf, 5, &NoProgress).unwrap();
+        assert_eq!(hf, before);
+        let mut flat = HeightField::flat(8, 8, 1.0, 10.0).unwrap();
+        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, ..Default::default() }, &flat).unwrap();
+        m.set_water(Grid2::new(8, 8, 0.5).unwrap()).unwrap();
+        m.run(&mut flat, 5, &NoProgress).unwrap();
+        assert!(m.water().as_slice().iter().all(|&w| w == 0.5));
+        assert!(flat.heights().as_slice().iter().all(|&a| a == 10.0));
+    }
+
+    #[test]
+    fn equalising_transfer_never_inverts_levels() {
+        let mut hf = HeightField::from_fn(3, 3, 1.0, |_, _| 0.0).unwrap();
+        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, k_c: 0.0, neighbourhood: Neighbourhood::Four, ..Default::default() }, &hf).unwrap();
+        let mut w = Grid2::new(3, 3, 0.0f32).unwrap();
+        w[(0, 0)] = 4.0;
+        m.set_water(w).unwrap();
+        let mut prev = 4.0f32;
+        for _ in 0..20 {
+            m.step(&mut hf).unwrap();
+            let corner = m.water()[(0, 0)];
+            assert!(corner <= prev + 1e-6 && corner >= 0.0);
+            prev = corner;
+        }
+    }
+
+    #[test]
+    fn refuses_bad_params() {
+        let hf = tilted(8);
+        for p in [
+            MusgraveParams { k_d: 1.5, ..Default::default() },
+            MusgraveParams { k_s: -0.1, ..Default::default() },
+            MusgraveParams { k_c: f64::NAN, ..Default::default() },
+            MusgraveParams { transfer: 0.0, ..Default::default() },
+            MusgraveParams { rain: RainLaw::Uniform { depth_m: -1.0 }, ..Default::default() },
+            MusgraveParams { rain: RainLaw::AltitudeLinear { k: 1e9, base_m: 0.0 }, ..Default::default() },
+        ] {
+            assert!(MusgraveHydraulic::new(p, &hf).is_err());
+        }
+    }
+}

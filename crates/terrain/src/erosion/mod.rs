@@ -1,0 +1,192 @@
+//! Erosion: the second pass over a stored height field that carves drainage
+//! networks, talus slopes and rounded hills (MKM:L75-85, DIS:L1108-1116).
+//!
+//! | model | module | source |
+//! |---|---|---|
+//! | hydraulic (fluvial), corrected and mass-conserving | [`hydraulic`] | MKM:L204-256, DIS:L1118-1160 |
+//! | thermal weathering with a talus angle | [`thermal`] | MKM:L258-266, DIS:L1162-1172 |
+//! | diffusive creep | [`diffusion`] | DIS:L1174-1184 |
+//! | virtual-pipe shallow water | [`pipe`] | Mei, Decaudin & Hu 2007 |
+//! | particle (droplet) | [`droplet`] | Beyer 2015 |
+//! | stream power with uplift | [`stream_power`] | Braun & Willett 2013 |
+//!
+//! Every model is a struct built from its `Params` (validated) and the field's
+//! size, holding its state (water, sediment, …) and scratch buffers, with a
+//! `step` and a `run(…, &dyn Progress)`. Grid models update synchronously
+//! (Jacobi, double-buffered, gather form), so results are bit-identical on any
+//! number of threads. An optional [`Erodibility`] map (e.g. rock strata from
+//! [`Erodibility::strata`]) scales how easily each cell erodes (DIS:L1190).
+
+pub mod diffusion;
+pub mod droplet;
+pub mod hydraulic;
+pub mod pipe;
+pub mod stream_power;
+pub mod thermal;
+
+use natura_core::{Grid2, HeightField};
+
+use crate::error::{Result, TerrainError, check_grid, invalid, min_size, same_size};
+
+pub use diffusion::{Diffusion, DiffusionParams};
+pub use droplet::{DropletErosion, DropletParams};
+pub use hydraulic::{MusgraveHydraulic, MusgraveParams, RainLaw};
+pub use pipe::{PipeModel, PipeParams, SedimentTransport};
+pub use stream_power::{Depressions, StreamPower, StreamPowerParams};
+pub use thermal::{Thermal, ThermalParams};
+
+/// Which neighbours a grid cell exchanges material with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Neighbourhood {
+    /// The 4 axial neighbours (distance 1 cell).
+    Four,
+    /// The 8 axial and diagonal neighbours (distances 1 and √2 cells).
+    Eight,
+}
+
+impl Neighbourhood {
+    /// Number of neighbours.
+    #[must_use]
+    pub fn count(self) -> usize {
+        match self {
+            Neighbourhood::Four => 4,
+            Neighbourhood::Eight => 8,
+        }
+    }
+
+    /// `(dx, dy, distance in cells)` of each neighbour.
+    #[must_use]
+    pub fn offsets(self) -> &'static [(i32, i32, f32)] {
+        const D: f32 = std::f32::consts::SQRT_2;
+        match self {
+            Neighbourhood::Four => &[(-1, 0, 1.0), (1, 0, 1.0), (0, -1, 1.0), (0, 1, 1.0)],
+            Neighbourhood::Eight => &[
+                (-1, 0, 1.0),
+                (1, 0, 1.0),
+                (0, -1, 1.0),
+                (0, 1, 1.0),
+                (-1, -1, D),
+                (1, -1, D),
+                (-1, 1, D),
+                (1, 1, D),
+            ],
+        }
+    }
+}
+
+/// What lies beyond the edge of the grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Edges {
+    /// Nothing: no exchange across the edge (material is conserved).
+    Closed,
+    /// The grid wraps around (a torus; material is conserved).
+    Periodic,
+    /// A sink below everything: water and sediment that flow off the grid
+    /// leave the simulation and are counted as outflow (hydraulic models only).
+    Open,
+}
+
+impl Edges {
+    /// The neighbour of `(x, y)` at offset `(dx, dy)`: `Some(index)` inside (or
+    /// wrapped), `None` across a closed or open edge.
+    #[inline]
+    pub(crate) fn resolve(self, x: usize, y: usize, dx: i32, dy: i32, nx: usize, ny: usize) -> Option<usize> {
+        let (mut i, mut j) = (x as i64 + i64::from(dx), y as i64 + i64::from(dy));
+        let inside = i >= 0 && j >= 0 && i < nx as i64 && j < ny as i64;
+        if inside {
+            return Some(j as usize * nx + i as usize);
+        }
+        match self {
+            Edges::Periodic => {
+                i = i.rem_euclid(nx as i64);
+                j = j.rem_euclid(ny as i64);
+                Some(j as usize * nx + i as usize)
+            }
+            Edges::Closed | Edges::Open => None,
+        }
+    }
+}
+
+/// A per-cell erodibility multiplier (≥ 0, finite): 1 is the model's nominal
+/// rate, 0 unerodible rock, 2 twice as soft. Models multiply their rate
+/// constants (thermal `talus_rate`, hydraulic softness, stream-power `K`,
+/// droplet erosion) by it — the "hardness map" of DIS:L1190.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Erodibility {
+    map: Grid2<f32>,
+    max: f32,
+}
+
+impl Erodibility {
+    /// Wraps a grid of multipliers; refuses NaN, infinite or negative values (naming the cell).
+    pub fn new(map: Grid2<f32>) -> Result<Self> {
+        check_grid("erodibility", &map)?;
+        if let Some((x, y, &v)) = map.find(|&v| v < 0.0) {
+            return Err(invalid("erodibility", format!("{v} at cell ({x}, {y})"), "must be >= 0"));
+        }
+        let max = map.max();
+        Ok(Self { map, max })
+    }
+
+    /// Rock strata (TEX:L579-636, DIS:L1190): horizontal beds `bed_m` metres thick
+    /// alternating between `soft` and `hard` multipliers with a smooth
+    /// transition, indexed by the cell's altitude in `hf` plus an optional
+    /// perturbation field (metres, e.g. fBm) that warps the beds.
+    pub fn strata(hf: &HeightField, bed_m: f32, soft: f32, hard: f32, warp: Option<&Grid2<f32>>) -> Result<Self> {
+        crate::error::positive("strata bed_m", f64::from(bed_m))?;
+        crate::error::non_negative("strata soft", f64::from(soft))?;
+        crate::error::non_negative("strata hard", f64::from(hard))?;
+        if let Some(w) = warp {
+            same_size("strata warp", w, hf.nx(), hf.ny())?;
+            check_grid("strata warp", w)?;
+        }
+        let h = hf.heights();
+        let map = Grid2::from_fn(hf.nx(), hf.ny(), |i, j| {
+            let z = h[(i, j)] + warp.map_or(0.0, |w| w[(i, j)]);
+            let phase = (z / bed_m).rem_euclid(1.0);
+            // Smooth periodic blend: hard in the middle of each bed, soft at its boundaries.
+            let t = 0.5 - 0.5 * (std::f32::consts::TAU * phase).cos();
+            soft + (hard - soft) * t
+        })?;
+        Self::new(map)
+    }
+
+    /// The multipliers.
+    #[must_use]
+    pub fn map(&self) -> &Grid2<f32> {
+        &self.map
+    }
+
+    /// The largest multiplier (used in stability limits).
+    #[must_use]
+    pub fn max(&self) -> f32 {
+        self.max
+    }
+}
+
+/// Checks a height field for use by a grid model of size `(nx, ny)`.
+pub(crate) fn check_field(method: &'static str, hf: &HeightField, nx: usize, ny: usize) -> Result<()> {
+    if (hf.nx(), hf.ny()) != (nx, ny) {
+        return Err(TerrainError::SizeMismatch {
+            what: "height field",
+            expected: format!("{nx} × {ny} (the size the model was built for)"),
+            actual: format!("{} × {}", hf.nx(), hf.ny()),
+        });
+    }
+    let _ = method;
+    Ok(hf.check_finite()?)
+}
+
+/// Checks the size of a new grid model: at least 3 × 3 samples.
+pub(crate) fn check_model_size(method: &'static str, hf: &HeightField) -> Result<()> {
+    min_size(method, hf.nx(), hf.ny(), 3, 3)?;
+    Ok(hf.check_finite()?)
+}
+
+/// Checks an optional erodibility map against the field size.
+pub(crate) fn check_erodibility(e: Option<&Erodibility>, nx: usize, ny: usize) -> Result<()> {
+    if let Some(e) = e {
+        same_size("erodibility map", &e.map, nx, ny)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,17 @@
+//! Height-field synthesis: stochastic subdivision (lines, triangles, quads,
+//! diamond-square), Poisson faulting, successive random additions, Fourier
+//! synthesis and noise synthesis from any scalar field.
+
+pub mod fault;
+pub mod field;
+pub mod mesh;
+pub mod spectral;
+pub mod sra;
+pub mod subdivision;
+
+pub use fault::{FaultParams, poisson_faults};
+pub use field::{FieldMapping, fill_field, fill_rows};
+pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};
+pub use spectral::{SpectralParams, spectral_synthesis};
+pub use sra::{SraParams, successive_random_additions};
+pub use subdivision::{EndpointMode, MidpointParams, Scheme, SubdivisionParams, fractal_polyline, fractal_polyline_ids, midpoint_1d, subdivide};
