@@ -78,6 +78,19 @@ impl std::fmt::Debug for Renderer<'_> {
     }
 }
 
+/// What a ray meets first.
+enum SurfaceHit {
+    /// Dry terrain.
+    Terrain(Hit),
+    /// A lake or the sea, at ray parameter `t`.
+    Water {
+        /// Ray parameter.
+        t: f32,
+        /// The point on the water surface.
+        point: Vec3,
+    },
+}
+
 /// Surface point of a terrain hit, in the form shading needs.
 struct TerrainPoint {
     point: Vec3,
@@ -215,16 +228,11 @@ impl<'w> Renderer<'w> {
     #[must_use]
     pub fn radiance(&self, ray: &Ray) -> Vec3 {
         let d = ray.dir.normalize();
-        let (mut l, dist) = match self.tracer.trace(ray, 0.0, f32::INFINITY) {
-            Some(h) => match self.water_depth(h.point) {
-                Some(_) => (self.shade_water(h.point, d, h.t, true), h.t),
-                None => (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t),
-            },
-            // Beyond the terrain the sea plane goes on to the horizon.
-            None => match self.sea_t(ray.origin, d) {
-                Some(tw) => (self.shade_water(ray.origin + d * tw, d, tw, true), tw),
-                None => (self.sky(d), f32::INFINITY),
-            },
+        let ray = Ray::new(ray.origin, d);
+        let (mut l, dist) = match self.intersect(&ray) {
+            Some(SurfaceHit::Water { t, point }) => (self.shade_water(point, d, t, true), t),
+            Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t),
+            None => (self.sky(d), f32::INFINITY),
         };
         if dist.is_finite() {
             let ap = self.view.aerial_perspective_f32(d, dist);
@@ -234,6 +242,42 @@ impl<'w> Renderer<'w> {
             l = self.rain(rb, d, dist, l);
         }
         l
+    }
+
+    /// The first thing `ray` (unit direction) meets: dry terrain or a water
+    /// surface, or nothing.
+    ///
+    /// The `surface` field holds the lakes and sea on top of the terrain, so
+    /// it finds where a ray reaches water; but its triangles along a shore
+    /// slope from the water level up to the bank. A hit there is resolved
+    /// exactly: the water is the plane at the lake's level `L` (the lowest
+    /// surface sample of the hit cell), and the ray either meets the bare
+    /// terrain before that plane (the bank) or the plane itself.
+    fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let Some(h) = self.tracer.trace(ray, 0.0, f32::INFINITY) else {
+            // Beyond the terrain the sea plane goes on to the horizon.
+            return self.sea_t(ray.origin, ray.dir).map(|t| SurfaceHit::Water { t, point: ray.at(t) });
+        };
+        if self.water_depth(h.point).is_none() {
+            return Some(SurfaceHit::Terrain(h));
+        }
+        let level = self.cell_level(h.cell);
+        if h.point.z - level <= 1e-3 * (1.0 + level.abs()) || ray.dir.z >= 0.0 {
+            return Some(SurfaceHit::Water { t: h.t, point: h.point });
+        }
+        let t_plane = (level - ray.origin.z) / ray.dir.z;
+        match self.ground.trace(ray, (h.t - 1e-3 * h.t.max(1.0)).max(0.0), t_plane) {
+            Some(g) => Some(SurfaceHit::Terrain(g)),
+            None => Some(SurfaceHit::Water { t: t_plane, point: ray.at(t_plane) }),
+        }
+    }
+
+    /// The water level of the cell `(i, j)` of the surface: its lowest corner.
+    fn cell_level(&self, cell: glam::UVec2) -> f32 {
+        let s = self.world.surface.heights();
+        let (i, j) = (cell.x as usize, cell.y as usize);
+        let (i1, j1) = ((i + 1).min(s.width() - 1), (j + 1).min(s.height() - 1));
+        s[(i, j)].min(s[(i1, j)]).min(s[(i, j1)]).min(s[(i1, j1)])
     }
 
     /// Depth of water at a surface point, if it is wet (lake or sea).
@@ -325,16 +369,16 @@ impl<'w> Renderer<'w> {
         }
         let reflected = if reflect_terrain {
             let rray = Ray::new(p + Vec3::Z * 1e-2, r);
-            match self.tracer.trace(&rray, 0.0, f32::INFINITY) {
-                Some(h) => {
-                    let lt = match self.water_depth(h.point) {
-                        Some(_) => self.shade_water(h.point, r, t + h.t, false),
-                        None => self.shade_terrain(&self.terrain_point(&h), r, t + h.t),
-                    };
-                    let ap = self.view.aerial_perspective_f32(r, h.t);
-                    lt * ap.transmittance + ap.in_scatter
-                }
-                None => self.sky(r),
+            let (lt, tr) = match self.intersect(&rray) {
+                Some(SurfaceHit::Water { t: tr, point }) => (self.shade_water(point, r, t + tr, false), tr),
+                Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t),
+                None => (self.sky(r), f32::INFINITY),
+            };
+            if tr.is_finite() {
+                let ap = self.view.aerial_perspective_f32(r, tr);
+                lt * ap.transmittance + ap.in_scatter
+            } else {
+                lt
             }
         } else {
             self.sky(r)
