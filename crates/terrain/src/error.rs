@@ -13,6 +13,9 @@ pub enum TerrainError {
     /// height naming its cell, …).
     #[error(transparent)]
     Core(#[from] CoreError),
+    /// An error from `natura-noise` (invalid fractal parameters, lattice sizes, …).
+    #[error(transparent)]
+    Noise(#[from] natura_noise::NoiseError),
     /// A parameter is NaN, infinite or outside its physical range.
     #[error("invalid parameter `{name}` = {value}: {reason}")]
     InvalidParameter {
@@ -63,7 +66,11 @@ pub enum TerrainError {
 pub type Result<T, E = TerrainError> = std::result::Result<T, E>;
 
 /// Builds an [`TerrainError::InvalidParameter`].
-pub(crate) fn invalid(name: &'static str, value: impl std::fmt::Display, reason: impl Into<String>) -> TerrainError {
+pub(crate) fn invalid(
+    name: &'static str,
+    value: impl std::fmt::Display,
+    reason: impl Into<String>,
+) -> TerrainError {
     TerrainError::InvalidParameter {
         name,
         value: value.to_string(),
@@ -107,7 +114,13 @@ pub(crate) fn check_grid(what: &'static str, g: &natura_core::Grid2<f32>) -> Res
 }
 
 /// Refuses grids smaller than `min_x × min_y`.
-pub(crate) fn min_size(method: &'static str, nx: usize, ny: usize, min_x: usize, min_y: usize) -> Result<()> {
+pub(crate) fn min_size(
+    method: &'static str,
+    nx: usize,
+    ny: usize,
+    min_x: usize,
+    min_y: usize,
+) -> Result<()> {
     if nx >= min_x && ny >= min_y {
         Ok(())
     } else {
@@ -121,7 +134,12 @@ pub(crate) fn min_size(method: &'static str, nx: usize, ny: usize, min_x: usize,
 }
 
 /// Refuses a grid whose size differs from `(nx, ny)`.
-pub(crate) fn same_size(what: &'static str, g: &natura_core::Grid2<f32>, nx: usize, ny: usize) -> Result<()> {
+pub(crate) fn same_size(
+    what: &'static str,
+    g: &natura_core::Grid2<f32>,
+    nx: usize,
+    ny: usize,
+) -> Result<()> {
     if g.dims() == (nx, ny) {
         Ok(())
     } else {

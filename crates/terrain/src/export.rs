@@ -36,16 +36,22 @@ fn map_image(nx: usize, ny: usize, f: impl Fn(usize, usize) -> Vec3) -> Result<I
 /// with a little ambient light so shadowed slopes keep detail.
 pub fn hillshade_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     let shade = hf.hillshade(sun)?;
-    map_image(hf.nx(), hf.ny(), |x, y| Vec3::splat(0.08 + 0.92 * shade[(x, y)]))
+    map_image(hf.nx(), hf.ny(), |x, y| {
+        Vec3::splat(0.08 + 0.92 * shade[(x, y)])
+    })
 }
 
-/// A hill-shaded image tinted by altitude through natura-core's terrain ramp.
+/// A hill-shaded image tinted by altitude through natura-core's terrain ramp
+/// (the ramp's sea colours are skipped: the lowest cell is lowland green).
 pub fn relief_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     let shade = hf.hillshade(sun)?;
     let (lo, hi) = hf.min_max();
     let hi = if hi > lo { hi } else { lo + 1.0 };
+    let lo = lo - 0.3 * (hi - lo);
     let h = hf.heights();
-    map_image(hf.nx(), hf.ny(), |x, y| Ramp::Terrain.map(h[(x, y)], lo, hi) * (0.2 + 0.8 * shade[(x, y)]))
+    map_image(hf.nx(), hf.ny(), |x, y| {
+        Ramp::Terrain.map(h[(x, y)], lo, hi) * (0.2 + 0.8 * shade[(x, y)])
+    })
 }
 
 /// A flow-accumulation image: `log(area)` mapped from the smallest to the
@@ -118,7 +124,11 @@ pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
             indices.extend_from_slice(&[a, b, e, a, e, d]);
         }
     }
-    Ok(Mesh { positions, normals, indices })
+    Ok(Mesh {
+        positions,
+        normals,
+        indices,
+    })
 }
 
 /// Writes `mesh` as Wavefront OBJ (positions, normals, faces).
@@ -150,11 +160,14 @@ pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
         let q = conv(p);
         lo = lo.min(Vec3::from(q));
         hi = hi.max(Vec3::from(q));
-        q.iter().for_each(|v| bin.extend_from_slice(&v.to_le_bytes()));
+        q.iter()
+            .for_each(|v| bin.extend_from_slice(&v.to_le_bytes()));
     }
     let pos_len = bin.len();
     for &n in &m.normals {
-        conv(n).iter().for_each(|v| bin.extend_from_slice(&v.to_le_bytes()));
+        conv(n)
+            .iter()
+            .for_each(|v| bin.extend_from_slice(&v.to_le_bytes()));
     }
     let nrm_len = bin.len() - pos_len;
     for &i in &m.indices {
@@ -194,7 +207,11 @@ pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
     if total > u32::MAX as usize {
-        return Err(invalid("mesh", total, "a .glb file must be smaller than 4 GiB"));
+        return Err(invalid(
+            "mesh",
+            total,
+            "a .glb file must be smaller than 4 GiB",
+        ));
     }
     Ok(write_atomic(path, |w| {
         w.write_all(b"glTF")?;
@@ -233,7 +250,10 @@ mod tests {
         save_glb(&m, &glb).unwrap();
         let bytes = std::fs::read(&glb).unwrap();
         assert_eq!(&bytes[..4], b"glTF");
-        assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize, bytes.len());
+        assert_eq!(
+            u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
+            bytes.len()
+        );
         let obj = scratch("t.obj");
         save_obj(&m, &obj).unwrap();
         let text = std::fs::read_to_string(&obj).unwrap();

@@ -41,7 +41,11 @@ pub(crate) fn forward_real_2d(data: &[f64], nx: usize, ny: usize) -> Vec<Complex
 /// `1/(nx·ny)`. The imaginary parts of the `kx = 0` and `kx = nx/2` (even `nx`)
 /// columns after the column pass are round-off for a Hermitian spectrum; they
 /// are dropped, and the largest such residue is returned alongside the data.
-pub(crate) fn inverse_real_2d(mut spec: Vec<Complex<f64>>, nx: usize, ny: usize) -> (Vec<f64>, f64) {
+pub(crate) fn inverse_real_2d(
+    mut spec: Vec<Complex<f64>>,
+    nx: usize,
+    ny: usize,
+) -> (Vec<f64>, f64) {
     let hx = half(nx);
     columns(&mut spec, hx, ny, true);
     let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(nx);
@@ -79,7 +83,11 @@ pub(crate) fn inverse_real_2d(mut spec: Vec<Complex<f64>>, nx: usize, ny: usize)
 /// Complex FFT of every column of a `w × h` row-major array, in place.
 fn columns(spec: &mut [Complex<f64>], w: usize, h: usize, inverse: bool) {
     let mut planner = FftPlanner::<f64>::new();
-    let fft = if inverse { planner.plan_fft_inverse(h) } else { planner.plan_fft_forward(h) };
+    let fft = if inverse {
+        planner.plan_fft_inverse(h)
+    } else {
+        planner.plan_fft_forward(h)
+    };
     // Transpose into column-major, transform contiguous columns, transpose back.
     let mut t = vec![Complex::new(0.0, 0.0); w * h];
     for y in 0..h {
@@ -110,7 +118,11 @@ fn chunk_list(rows: Vec<usize>) -> Vec<Vec<usize>> {
 /// Signed integer frequency of index `k` in a transform of length `n`.
 #[inline]
 pub(crate) fn signed_freq(k: usize, n: usize) -> f64 {
-    if k <= n / 2 { k as f64 } else { k as f64 - n as f64 }
+    if k <= n / 2 {
+        k as f64
+    } else {
+        k as f64 - n as f64
+    }
 }
 
 #[cfg(test)]

@@ -74,7 +74,13 @@ impl FlowGraph {
     /// `Fill` modifies `h`.
     pub fn build(h: &mut [f32], nx: usize, ny: usize, depressions: Depressions) -> Self {
         let (receiver, distance) = d8_receivers(h, nx, ny);
-        let mut g = FlowGraph { nx, ny, receiver, distance, stack: Vec::new() };
+        let mut g = FlowGraph {
+            nx,
+            ny,
+            receiver,
+            distance,
+            stack: Vec::new(),
+        };
         g.stack = build_stack(&g.receiver);
         if depressions != Depressions::Keep && g.route_pits(h) {
             g.stack = build_stack(&g.receiver);
@@ -164,7 +170,9 @@ impl FlowGraph {
                         }
                         let pass = Pass::new(h[i].max(h[j]), i as u32, j as u32);
                         let key = (bi.min(bj), bi.max(bj));
-                        m.entry(key).and_modify(|p| *p = (*p).min(pass)).or_insert(pass);
+                        m.entry(key)
+                            .and_modify(|p| *p = (*p).min(pass))
+                            .or_insert(pass);
                     }
                 }
             }
@@ -174,7 +182,10 @@ impl FlowGraph {
         let mut merged: HashMap<(u32, u32), Pass> = HashMap::new();
         for m in band_maps {
             for (k, p) in m {
-                merged.entry(k).and_modify(|q| *q = (*q).min(p)).or_insert(p);
+                merged
+                    .entry(k)
+                    .and_modify(|q| *q = (*q).min(p))
+                    .or_insert(p);
             }
         }
         let mut keys: Vec<_> = merged.keys().copied().collect();
@@ -207,7 +218,11 @@ impl FlowGraph {
         // Reverse receivers from the pass cell inside each basin down to its pit,
         // then drain the pass cell across to the neighbouring basin.
         for (b, p) in links {
-            let (inside, outside) = if basin[p.a as usize] == b { (p.a, p.b) } else { (p.b, p.a) };
+            let (inside, outside) = if basin[p.a as usize] == b {
+                (p.a, p.b)
+            } else {
+                (p.b, p.a)
+            };
             let pit = pits[b as usize];
             let mut prev = outside;
             let mut cur = inside;
@@ -248,13 +263,23 @@ impl PartialOrd for Pass {
 }
 impl Ord for Pass {
     fn cmp(&self, o: &Self) -> Ordering {
-        self.z.total_cmp(&o.z).then(self.a.cmp(&o.a)).then(self.b.cmp(&o.b))
+        self.z
+            .total_cmp(&o.z)
+            .then(self.a.cmp(&o.a))
+            .then(self.b.cmp(&o.b))
     }
 }
 
 fn cell_distance(i: usize, j: usize, nx: usize) -> f32 {
-    let (dx, dy) = ((i % nx) as i64 - (j % nx) as i64, (i / nx) as i64 - (j / nx) as i64);
-    if dx != 0 && dy != 0 { std::f32::consts::SQRT_2 } else { 1.0 }
+    let (dx, dy) = (
+        (i % nx) as i64 - (j % nx) as i64,
+        (i / nx) as i64 - (j / nx) as i64,
+    );
+    if dx != 0 && dy != 0 {
+        std::f32::consts::SQRT_2
+    } else {
+        1.0
+    }
 }
 
 /// D8 steepest-descent receivers and distances (cells); edge cells are outlets.
@@ -345,7 +370,11 @@ pub(crate) fn fill_along(h: &mut [f32], rec: &[u32], stack: &[u32]) {
 pub(crate) fn next_up(x: f32) -> f32 {
     let step = (x.abs() * f32::EPSILON).max(1e-6);
     let y = x + step;
-    if y > x { y } else { f32::from_bits(x.to_bits() + 1) }
+    if y > x {
+        y
+    } else {
+        f32::from_bits(x.to_bits() + 1)
+    }
 }
 
 /// Fills depressions of `hf` (every cell then drains to the edge by steepest
@@ -355,8 +384,15 @@ pub fn fill_depressions(hf: &HeightField) -> crate::Result<(HeightField, Grid2<f
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut h = hf.heights().as_slice().to_vec();
     FlowGraph::build(&mut h, nx, ny, Depressions::Fill);
-    let depth: Vec<f32> = h.iter().zip(hf.heights().as_slice()).map(|(a, b)| a - b).collect();
-    Ok((HeightField::new(Grid2::from_vec(nx, ny, h)?, hf.cell_size())?, Grid2::from_vec(nx, ny, depth)?))
+    let depth: Vec<f32> = h
+        .iter()
+        .zip(hf.heights().as_slice())
+        .map(|(a, b)| a - b)
+        .collect();
+    Ok((
+        HeightField::new(Grid2::from_vec(nx, ny, h)?, hf.cell_size())?,
+        Grid2::from_vec(nx, ny, depth)?,
+    ))
 }
 
 /// Reference Priority-Flood (Barnes et al. 2014) without ε: the spill level of
@@ -413,10 +449,13 @@ mod tests {
 
     fn rough(n: usize, seed: u64) -> Vec<f32> {
         let s = Seed(seed);
-        (0..n * n).map(|i| (s.gaussian2((i % n) as i64, (i / n) as i64) * 10.0) as f32).collect()
+        (0..n * n)
+            .map(|i| (s.gaussian2((i % n) as i64, (i / n) as i64) * 10.0) as f32)
+            .collect()
     }
 
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn every_cell_reaches_the_edge_after_routing_and_fill() {
         for seed in 0..5 {
             let n = 48;
@@ -439,7 +478,12 @@ mod tests {
                     let orig = rough(n, seed);
                     let pf = priority_flood_levels(&orig, n, n);
                     for i in 0..n * n {
-                        assert!(h[i] >= pf[i] && h[i] <= pf[i] + 0.05, "cell {i}: {} vs spill {}", h[i], pf[i]);
+                        assert!(
+                            h[i] >= pf[i] && h[i] <= pf[i] + 0.05,
+                            "cell {i}: {} vs spill {}",
+                            h[i],
+                            pf[i]
+                        );
                     }
                 }
             }
@@ -459,7 +503,10 @@ mod tests {
             assert!(pos[g.receiver[i] as usize] <= pos[i]);
         }
         let a = g.area();
-        let outlets: f32 = (0..n * n).filter(|&i| g.receiver[i] as usize == i).map(|i| a[i]).sum();
+        let outlets: f32 = (0..n * n)
+            .filter(|&i| g.receiver[i] as usize == i)
+            .map(|i| a[i])
+            .sum();
         assert_eq!(outlets, (n * n) as f32);
     }
 }

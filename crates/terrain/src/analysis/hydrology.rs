@@ -48,7 +48,11 @@ fn graph(hf: &HeightField, depressions: Depressions) -> Result<(FlowGraph, Vec<f
 pub fn flow_accumulation_d8(hf: &HeightField, depressions: Depressions) -> Result<Grid2<f32>> {
     let (g, _) = graph(hf, depressions)?;
     let a = f32::powi(hf.cell_size(), 2);
-    Ok(Grid2::from_vec(hf.nx(), hf.ny(), g.area().into_iter().map(|c| c * a).collect())?)
+    Ok(Grid2::from_vec(
+        hf.nx(),
+        hf.ny(),
+        g.area().into_iter().map(|c| c * a).collect(),
+    )?)
 }
 
 /// Multiple-flow-direction accumulation (Freeman 1991; Quinn et al. 1991):
@@ -91,13 +95,21 @@ pub fn flow_accumulation_mfd(hf: &HeightField, exponent: f64) -> Result<Grid2<f3
         }
     }
     let cell = f64::from(hf.cell_size()).powi(2);
-    Ok(Grid2::from_vec(nx, ny, acc.into_iter().map(|a| (a * cell) as f32).collect())?)
+    Ok(Grid2::from_vec(
+        nx,
+        ny,
+        acc.into_iter().map(|a| (a * cell) as f32).collect(),
+    )?)
 }
 
 /// Channel mask: cells whose drainage area is at least `threshold_m2`.
 pub fn channel_network(area: &Grid2<f32>, threshold_m2: f32) -> Result<Grid2<bool>> {
     if !(threshold_m2.is_finite() && threshold_m2 > 0.0) {
-        return Err(invalid("threshold_m2", threshold_m2, "must be finite and > 0"));
+        return Err(invalid(
+            "threshold_m2",
+            threshold_m2,
+            "must be finite and > 0",
+        ));
     }
     Ok(area.map(|&a| a >= threshold_m2))
 }
@@ -106,7 +118,11 @@ pub fn channel_network(area: &Grid2<f32>, threshold_m2: f32) -> Result<Grid2<boo
 /// ≥ `threshold_m2`; 0 off the network). Depressions are routed first.
 pub fn strahler_order(hf: &HeightField, threshold_m2: f32) -> Result<Grid2<u8>> {
     if !(threshold_m2.is_finite() && threshold_m2 > 0.0) {
-        return Err(invalid("threshold_m2", threshold_m2, "must be finite and > 0"));
+        return Err(invalid(
+            "threshold_m2",
+            threshold_m2,
+            "must be finite and > 0",
+        ));
     }
     let (g, _) = graph(hf, Depressions::Route)?;
     let cell = f32::powi(hf.cell_size(), 2);
@@ -161,8 +177,14 @@ mod tests {
         let d8 = flow_accumulation_d8(&hf, Depressions::Fill).unwrap();
         assert_eq!(d8[(1, 5)], 14.0);
         let mfd = flow_accumulation_mfd(&hf, 1.1).unwrap();
-        let west: f32 = (0..10).map(|y| mfd[(0, y)]).sum();
-        assert!(west > 100.0);
+        // Everything ends on the edge outlets: their areas sum to the whole grid.
+        let edge: f32 = (0..10)
+            .flat_map(|y| (0..16).map(move |x| (x, y)))
+            .filter(|&(x, y)| x == 0 || y == 0 || x == 15 || y == 9)
+            .map(|p| mfd[p])
+            .sum();
+        assert!((edge - 160.0).abs() < 1e-3, "{edge}");
+        assert!(mfd[(0, 5)] > mfd[(15, 5)]);
         let dirs = d8_directions(&hf, Depressions::Fill).unwrap();
         assert_eq!(dirs[(5, 5)], 16);
         let so = strahler_order(&hf, 3.0).unwrap();
@@ -175,7 +197,16 @@ mod tests {
     #[test]
     fn strahler_confluence() {
         // Two valleys meeting: a V along x draining to y = 0.
-        let hf = HeightField::from_fn(21, 21, 1.0, |i, j| (i as f32 - 10.0).abs() * 2.0 + j as f32 * 0.5 + if (i as i32 - 5).abs() < 1 || (i as i32 - 15).abs() < 1 { -1.0 } else { 0.0 }).unwrap();
+        let hf = HeightField::from_fn(21, 21, 1.0, |i, j| {
+            (i as f32 - 10.0).abs() * 2.0
+                + j as f32 * 0.5
+                + if (i as i32 - 5).abs() < 1 || (i as i32 - 15).abs() < 1 {
+                    -1.0
+                } else {
+                    0.0
+                }
+        })
+        .unwrap();
         let so = strahler_order(&hf, 2.0).unwrap();
         assert!(so.as_slice().iter().copied().max().unwrap() >= 2);
     }

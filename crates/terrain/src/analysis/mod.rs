@@ -8,6 +8,12 @@ pub mod stats;
 pub mod surface;
 
 pub use flow::{Depressions, FlowGraph, fill_depressions};
-pub use hydrology::{channel_network, d8_directions, flow_accumulation_d8, flow_accumulation_mfd, strahler_order, wetness_index};
-pub use stats::{RadialSpectrum, hypsometric_curve, hypsometric_integral, radial_power_spectrum, spectral_h, variogram, variogram_h};
+pub use hydrology::{
+    channel_network, d8_directions, flow_accumulation_d8, flow_accumulation_mfd, strahler_order,
+    wetness_index,
+};
+pub use stats::{
+    RadialSpectrum, hypsometric_curve, hypsometric_integral, radial_power_spectrum, spectral_h,
+    variogram, variogram_h,
+};
 pub use surface::{Curvature, curvature, slope};

@@ -63,7 +63,13 @@ impl RadialSpectrum {
             .filter(|(f, p)| **f >= lo && **f <= hi && **p > 0.0)
             .map(|(f, p)| (f.ln(), p.ln()))
             .collect();
-        fit_slope(&pts).ok_or_else(|| invalid("band", format!("[{lo}, {hi}]"), "contains fewer than two rings"))
+        fit_slope(&pts).ok_or_else(|| {
+            invalid(
+                "band",
+                format!("[{lo}, {hi}]"),
+                "contains fewer than two rings",
+            )
+        })
     }
 }
 
@@ -98,7 +104,11 @@ pub fn radial_power_spectrum(hf: &HeightField, window: bool) -> Result<RadialSpe
         .iter()
         .enumerate()
         .map(|(k, &v)| {
-            let w = if window { hann(k % nx, nx) * hann(k / nx, ny) } else { 1.0 };
+            let w = if window {
+                hann(k % nx, nx) * hann(k / nx, ny)
+            } else {
+                1.0
+            };
             (f64::from(v) - mean) * w
         })
         .collect();
@@ -145,7 +155,11 @@ pub fn variogram(hf: &HeightField, max_lag: usize) -> Result<Vec<(f64, f64)>> {
     hf.check_finite()?;
     let (nx, ny) = (hf.nx(), hf.ny());
     if max_lag == 0 || max_lag >= nx.min(ny) {
-        return Err(invalid("max_lag", max_lag, format!("must lie in [1, {})", nx.min(ny))));
+        return Err(invalid(
+            "max_lag",
+            max_lag,
+            format!("must lie in [1, {})", nx.min(ny)),
+        ));
     }
     let h = hf.heights();
     let c = f64::from(hf.cell_size());
@@ -180,8 +194,13 @@ pub fn variogram_h(hf: &HeightField, lo: usize, hi: usize) -> Result<f64> {
         return Err(invalid("lags", format!("{lo}..={hi}"), "need 1 ≤ lo < hi"));
     }
     let v = variogram(hf, hi)?;
-    let pts: Vec<(f64, f64)> = v[lo - 1..].iter().filter(|(_, g)| *g > 0.0).map(|(r, g)| (r.ln(), g.ln())).collect();
-    let s = fit_slope(&pts).ok_or_else(|| invalid("lags", format!("{lo}..={hi}"), "variogram is zero"))?;
+    let pts: Vec<(f64, f64)> = v[lo - 1..]
+        .iter()
+        .filter(|(_, g)| *g > 0.0)
+        .map(|(r, g)| (r.ln(), g.ln()))
+        .collect();
+    let s = fit_slope(&pts)
+        .ok_or_else(|| invalid("lags", format!("{lo}..={hi}"), "variogram is zero"))?;
     Ok(s / 2.0)
 }
 

@@ -30,7 +30,11 @@ pub struct DiffusionParams {
 
 impl Default for DiffusionParams {
     fn default() -> Self {
-        Self { rate: 0.1, neighbourhood: Neighbourhood::Four, edges: Edges::Closed }
+        Self {
+            rate: 0.1,
+            neighbourhood: Neighbourhood::Four,
+            edges: Edges::Closed,
+        }
     }
 }
 
@@ -39,10 +43,18 @@ impl DiffusionParams {
     pub fn validate(&self) -> Result<()> {
         let limit = 1.0 / self.neighbourhood.count() as f64;
         if !(self.rate > 0.0 && self.rate <= limit) {
-            return Err(invalid("DiffusionParams::rate", self.rate, format!("must lie in (0, {limit}] (1 / neighbours, FTCS stability)")));
+            return Err(invalid(
+                "DiffusionParams::rate",
+                self.rate,
+                format!("must lie in (0, {limit}] (1 / neighbours, FTCS stability)"),
+            ));
         }
         if self.edges == Edges::Open {
-            return Err(invalid("DiffusionParams::edges", "Open", "diffusion conserves material: use Closed or Periodic"));
+            return Err(invalid(
+                "DiffusionParams::edges",
+                "Open",
+                "diffusion conserves material: use Closed or Periodic",
+            ));
         }
         Ok(())
     }
@@ -63,14 +75,24 @@ impl Diffusion {
     pub fn new(p: DiffusionParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("diffusion", hf)?;
-        Ok(Self { p, nx: hf.nx(), ny: hf.ny(), next: Grid2::new(hf.nx(), hf.ny(), 0.0)?, erodibility: None })
+        Ok(Self {
+            p,
+            nx: hf.nx(),
+            ny: hf.ny(),
+            next: Grid2::new(hf.nx(), hf.ny(), 0.0)?,
+            erodibility: None,
+        })
     }
 
     /// Scales the exchange between two cells by the smaller of their erodibilities.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.rate * self.p.neighbourhood.count() as f64 > 1.0 {
-            return Err(invalid("erodibility", e.max(), "max × rate × neighbours must be ≤ 1 (stability)"));
+            return Err(invalid(
+                "erodibility",
+                e.max(),
+                "max × rate × neighbours must be ≤ 1 (stability)",
+            ));
         }
         self.erodibility = Some(e);
         Ok(self)
@@ -116,12 +138,20 @@ impl Diffusion {
                 let dn = &src[(y + 1) * nx..(y + 2) * nx];
                 let n = nx - 2;
                 let o = &mut row[1..nx - 1];
-                let (ml, mc, mr, uc, dc) = (&mid[..n], &mid[1..=n], &mid[2..], &up[1..=n], &dn[1..=n]);
+                let (ml, mc, mr, uc, dc) =
+                    (&mid[..n], &mid[1..=n], &mid[2..], &up[1..=n], &dn[1..=n]);
                 if eight {
                     let (ul, ur, dl, dr) = (&up[..n], &up[2..], &dn[..n], &dn[2..]);
                     for i in 0..n {
                         let a = mc[i];
-                        let s = (ml[i] - a) + (mr[i] - a) + (uc[i] - a) + (dc[i] - a) + (ul[i] - a) + (ur[i] - a) + (dl[i] - a) + (dr[i] - a);
+                        let s = (ml[i] - a)
+                            + (mr[i] - a)
+                            + (uc[i] - a)
+                            + (dc[i] - a)
+                            + (ul[i] - a)
+                            + (ur[i] - a)
+                            + (dl[i] - a)
+                            + (dr[i] - a);
                         o[i] = a + c * s;
                     }
                 } else {
@@ -139,7 +169,16 @@ impl Diffusion {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn general(src: &[f32], erod: Option<&[f32]>, x: usize, y: usize, nx: usize, ny: usize, p: &DiffusionParams, c: f32) -> f32 {
+fn general(
+    src: &[f32],
+    erod: Option<&[f32]>,
+    x: usize,
+    y: usize,
+    nx: usize,
+    ny: usize,
+    p: &DiffusionParams,
+    c: f32,
+) -> f32 {
     let i = y * nx + x;
     let a = src[i];
     let mut s = 0.0f32;
@@ -162,9 +201,19 @@ mod tests {
     #[test]
     fn fourier_mode_decays_exactly() {
         let (n, m) = (32usize, 16usize);
-        let (kx, ky) = (2.0 * std::f64::consts::PI * 3.0 / n as f64, 2.0 * std::f64::consts::PI * 2.0 / m as f64);
-        let mut hf = HeightField::from_fn(n, m, 1.0, |i, j| (100.0 * (kx * i as f64 + ky * j as f64).cos()) as f32).unwrap();
-        let p = DiffusionParams { rate: 0.2, edges: Edges::Periodic, ..Default::default() };
+        let (kx, ky) = (
+            2.0 * std::f64::consts::PI * 3.0 / n as f64,
+            2.0 * std::f64::consts::PI * 2.0 / m as f64,
+        );
+        let mut hf = HeightField::from_fn(n, m, 1.0, |i, j| {
+            (100.0 * (kx * i as f64 + ky * j as f64).cos()) as f32
+        })
+        .unwrap();
+        let p = DiffusionParams {
+            rate: 0.2,
+            edges: Edges::Periodic,
+            ..Default::default()
+        };
         let mut d = Diffusion::new(p, &hf).unwrap();
         let steps = 5;
         d.run(&mut hf, steps, &NoProgress).unwrap();
@@ -180,22 +229,52 @@ mod tests {
 
     #[test]
     fn conserves_smooths_and_keeps_constants() {
-        let mut hf = HeightField::from_fn(20, 13, 1.0, |i, j| ((i * 7 + j * 13) % 5) as f32).unwrap();
+        let mut hf =
+            HeightField::from_fn(20, 13, 1.0, |i, j| ((i * 7 + j * 13) % 5) as f32).unwrap();
         let var = |h: &HeightField| {
             let m = h.heights().mean();
-            h.heights().as_slice().iter().map(|&v| (f64::from(v) - m).powi(2)).sum::<f64>()
+            h.heights()
+                .as_slice()
+                .iter()
+                .map(|&v| (f64::from(v) - m).powi(2))
+                .sum::<f64>()
         };
         let (m0, v0) = (hf.heights().sum(), var(&hf));
         for nb in [Neighbourhood::Four, Neighbourhood::Eight] {
-            let mut d = Diffusion::new(DiffusionParams { rate: 0.12, neighbourhood: nb, ..Default::default() }, &hf).unwrap();
+            let mut d = Diffusion::new(
+                DiffusionParams {
+                    rate: 0.12,
+                    neighbourhood: nb,
+                    ..Default::default()
+                },
+                &hf,
+            )
+            .unwrap();
             d.run(&mut hf, 10, &NoProgress).unwrap();
         }
         assert!((hf.heights().sum() - m0).abs() < 1e-4 * m0);
         assert!(var(&hf) < v0);
         let mut flat = HeightField::flat(9, 9, 1.0, 3.5).unwrap();
-        Diffusion::new(DiffusionParams::default(), &flat).unwrap().run(&mut flat, 5, &NoProgress).unwrap();
+        Diffusion::new(DiffusionParams::default(), &flat)
+            .unwrap()
+            .run(&mut flat, 5, &NoProgress)
+            .unwrap();
         assert!(flat.heights().as_slice().iter().all(|&v| v == 3.5));
-        assert!(DiffusionParams { rate: 0.3, ..Default::default() }.validate().is_err());
-        assert!(DiffusionParams { rate: -0.1, ..Default::default() }.validate().is_err());
+        assert!(
+            DiffusionParams {
+                rate: 0.3,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert!(
+            DiffusionParams {
+                rate: -0.1,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
     }
 }

@@ -15,7 +15,12 @@
 //! at the start of the batch, recording its height changes; the changes are
 //! then applied in droplet order. Batches depend only on the droplet index,
 //! never on the thread count, so results are bit-identical on any number of
-//! threads. Mass is conserved: sediment still carried when a droplet dies is
+//! threads. The default `batch = 1` is Beyer's sequential algorithm exactly.
+//! Larger batches are an approximation: droplets of one batch do not see each
+//! other, so several can dig the same rim or fill the same pit, each up to
+//! its own limit; where many droplets meet (dense batches on small maps) this
+//! over-digs and can run away. Keep `batch` far below
+//! `cells / (lifetime · brush area)`. Mass is conserved: sediment still carried when a droplet dies is
 //! deposited where it stops; sediment carried off the edge is counted.
 
 use natura_core::{Grid2, HeightField, Progress, Seed};
@@ -49,7 +54,8 @@ pub struct DropletParams {
     pub initial_water: f64,
     /// Initial speed. Default 1.
     pub initial_speed: f64,
-    /// Droplets simulated together against a frozen terrain (1..=65536). Default 512.
+    /// Droplets simulated together against a frozen terrain (1..=65536). Default 1
+    /// (sequential, exact); see the module docs before raising it.
     pub batch: u32,
 }
 
@@ -67,7 +73,7 @@ impl Default for DropletParams {
             lifetime: 30,
             initial_water: 1.0,
             initial_speed: 1.0,
-            batch: 512,
+            batch: 1,
         }
     }
 }
@@ -76,26 +82,46 @@ impl DropletParams {
     /// Checks every field's range (see the field docs).
     pub fn validate(&self) -> Result<()> {
         if !(self.inertia >= 0.0 && self.inertia < 1.0) {
-            return Err(invalid("DropletParams::inertia", self.inertia, "must lie in [0, 1)"));
+            return Err(invalid(
+                "DropletParams::inertia",
+                self.inertia,
+                "must lie in [0, 1)",
+            ));
         }
         non_negative("DropletParams::capacity", self.capacity)?;
         non_negative("DropletParams::min_slope", self.min_slope)?;
         in_range("DropletParams::erode", self.erode, 0.0, 1.0)?;
         in_range("DropletParams::deposit", self.deposit, 0.0, 1.0)?;
         if !(self.evaporate >= 0.0 && self.evaporate < 1.0) {
-            return Err(invalid("DropletParams::evaporate", self.evaporate, "must lie in [0, 1)"));
+            return Err(invalid(
+                "DropletParams::evaporate",
+                self.evaporate,
+                "must lie in [0, 1)",
+            ));
         }
         non_negative("DropletParams::gravity", self.gravity)?;
         if !(1..=16).contains(&self.radius) {
-            return Err(invalid("DropletParams::radius", self.radius, "must lie in [1, 16] cells"));
+            return Err(invalid(
+                "DropletParams::radius",
+                self.radius,
+                "must lie in [1, 16] cells",
+            ));
         }
         if !(1..=1000).contains(&self.lifetime) {
-            return Err(invalid("DropletParams::lifetime", self.lifetime, "must lie in [1, 1000] steps"));
+            return Err(invalid(
+                "DropletParams::lifetime",
+                self.lifetime,
+                "must lie in [1, 1000] steps",
+            ));
         }
         positive("DropletParams::initial_water", self.initial_water)?;
         non_negative("DropletParams::initial_speed", self.initial_speed)?;
         if !(1..=65536).contains(&self.batch) {
-            return Err(invalid("DropletParams::batch", self.batch, "must lie in [1, 65536]"));
+            return Err(invalid(
+                "DropletParams::batch",
+                self.batch,
+                "must lie in [1, 65536]",
+            ));
         }
         Ok(())
     }
@@ -163,23 +189,45 @@ impl DropletErosion {
     }
 
     /// Simulates `droplets` more droplets.
-    pub fn run(&mut self, hf: &mut HeightField, droplets: u64, progress: &dyn Progress) -> Result<()> {
+    pub fn run(
+        &mut self,
+        hf: &mut HeightField,
+        droplets: u64,
+        progress: &dyn Progress,
+    ) -> Result<()> {
         check_field("droplet erosion", hf, self.nx, self.ny)?;
         progress.start("droplets", droplets);
         let batch = u64::from(self.p.batch);
         let mut left = droplets;
+        let mut since = 0u64;
         while left > 0 {
             let k = left.min(batch);
             self.batch(hf, self.next_droplet, k);
             self.next_droplet += k;
             left -= k;
-            progress.advance(k);
+            since += k;
+            if since >= 1024 || left == 0 {
+                progress.advance(since);
+                since = 0;
+            }
         }
         progress.finish();
         Ok(())
     }
 
     fn batch(&mut self, hf: &mut HeightField, first: u64, count: u64) {
+        if count == 1 {
+            // Sequential: no thread hand-off for a single droplet.
+            let mut deltas = Vec::with_capacity(1024);
+            let out = self.simulate(hf.heights().as_slice(), first, &mut deltas);
+            let hm = hf.heights_mut().as_mut_slice();
+            for (i, d) in deltas {
+                hm[i as usize] += d;
+                self.deposition[i as usize] += d;
+            }
+            self.outflow += out;
+            return;
+        }
         let h = hf.heights().as_slice();
         let ids: Vec<u64> = (first..first + count).collect();
         let chunks: Vec<Vec<u64>> = ids.chunks(16).map(<[u64]>::to_vec).collect();
@@ -212,7 +260,8 @@ impl DropletErosion {
         let (h00, h10, h01, h11) = (h[i], h[i + 1], h[i + nx], h[i + nx + 1]);
         let gx = (h10 - h00) * (1.0 - v) + (h11 - h01) * v;
         let gy = (h01 - h00) * (1.0 - u) + (h11 - h10) * u;
-        let z = h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
+        let z =
+            h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
         (z, gx, gy)
     }
 
@@ -248,7 +297,8 @@ impl DropletErosion {
                 dx /= len;
                 dy /= len;
             } else {
-                let a = self.seed.uniform(&[key, i64::from(step), 2]) as f32 * std::f32::consts::TAU;
+                let a =
+                    self.seed.uniform(&[key, i64::from(step), 2]) as f32 * std::f32::consts::TAU;
                 dx = a.cos();
                 dy = a.sin();
             }
@@ -260,7 +310,11 @@ impl DropletErosion {
             let dh = nz - z;
             let cap = (-dh).max(p.min_slope as f32) * speed * water * p.capacity as f32;
             if sed > cap || dh > 0.0 {
-                let amount = if dh > 0.0 { dh.min(sed) } else { (sed - cap) * p.deposit as f32 };
+                let amount = if dh > 0.0 {
+                    dh.min(sed)
+                } else {
+                    (sed - cap) * p.deposit as f32
+                };
                 if amount > 0.0 {
                     sed -= amount;
                     deposit_at(x, y, amount, deltas);
@@ -324,7 +378,13 @@ mod tests {
         d.run(&mut hf, 5000, &NoProgress).unwrap();
         let m1 = hf.heights().sum() + d.outflow();
         assert!((m1 - m0).abs() < 1e-4 * m0, "{m0} → {m1}");
-        assert!(d.deposition().unwrap().as_slice().iter().any(|&v| v < -0.01));
+        assert!(
+            d.deposition()
+                .unwrap()
+                .as_slice()
+                .iter()
+                .any(|&v| v < -0.01)
+        );
         assert!(hf.check_finite().is_ok());
     }
 
@@ -332,11 +392,26 @@ mod tests {
     fn refuses_bad_params() {
         let hf = cone(16);
         for p in [
-            DropletParams { inertia: 1.0, ..Default::default() },
-            DropletParams { radius: 0, ..Default::default() },
-            DropletParams { erode: -0.1, ..Default::default() },
-            DropletParams { lifetime: 0, ..Default::default() },
-            DropletParams { capacity: f64::NAN, ..Default::default() },
+            DropletParams {
+                inertia: 1.0,
+                ..Default::default()
+            },
+            DropletParams {
+                radius: 0,
+                ..Default::default()
+            },
+            DropletParams {
+                erode: -0.1,
+                ..Default::default()
+            },
+            DropletParams {
+                lifetime: 0,
+                ..Default::default()
+            },
+            DropletParams {
+                capacity: f64::NAN,
+                ..Default::default()
+            },
         ] {
             assert!(DropletErosion::new(p, &hf, Seed(1)).is_err());
         }

@@ -75,7 +75,11 @@ impl RainLaw {
                 non_negative("RainLaw::AltitudeLinear::k", k)?;
                 non_negative("RainLaw::AltitudeLinear::base_m", base_m)?;
                 if k > 1.0 {
-                    return Err(invalid("RainLaw::AltitudeLinear::k", k, "must be ≤ 1 (rain deeper than the terrain is high)"));
+                    return Err(invalid(
+                        "RainLaw::AltitudeLinear::k",
+                        k,
+                        "must be ≤ 1 (rain deeper than the terrain is high)",
+                    ));
                 }
                 Ok(())
             }
@@ -115,7 +119,10 @@ impl Default for MusgraveParams {
             k_c: 5.0,
             k_d: 0.1,
             k_s: 0.3,
-            rain: RainLaw::AltitudeLinear { k: 0.001, base_m: 0.0 },
+            rain: RainLaw::AltitudeLinear {
+                k: 0.001,
+                base_m: 0.0,
+            },
             rain_period: 65,
             transfer: 0.5,
             evaporation: 0.0,
@@ -134,7 +141,11 @@ impl MusgraveParams {
         in_range("MusgraveParams::k_d", self.k_d, 0.0, 1.0)?;
         in_range("MusgraveParams::k_s", self.k_s, 0.0, 1.0)?;
         if !(self.transfer > 0.0 && self.transfer <= 1.0) {
-            return Err(invalid("MusgraveParams::transfer", self.transfer, "must lie in (0, 1]"));
+            return Err(invalid(
+                "MusgraveParams::transfer",
+                self.transfer,
+                "must lie in (0, 1]",
+            ));
         }
         in_range("MusgraveParams::evaporation", self.evaporation, 0.0, 1.0)?;
         self.rain.validate()
@@ -186,7 +197,10 @@ impl MusgraveHydraulic {
         check_model_size("hydraulic erosion", hf)?;
         let (nx, ny) = (hf.nx(), hf.ny());
         let z = || Grid2::new(nx, ny, 0.0f32);
-        let ledger = MassLedger { initial_material: hf.heights().sum(), ..Default::default() };
+        let ledger = MassLedger {
+            initial_material: hf.heights().sum(),
+            ..Default::default()
+        };
         Ok(Self {
             p,
             nx,
@@ -220,7 +234,11 @@ impl MusgraveHydraulic {
         crate::error::same_size("water", &water, self.nx, self.ny)?;
         crate::error::check_grid("water", &water)?;
         if let Some((x, y, &v)) = water.find(|&v| v < 0.0) {
-            return Err(invalid("water", format!("{v} at cell ({x}, {y})"), "must be >= 0"));
+            return Err(invalid(
+                "water",
+                format!("{v} at cell ({x}, {y})"),
+                "must be >= 0",
+            ));
         }
         self.ledger.initial_water += water.sum() - self.water.sum();
         self.water = water;
@@ -270,9 +288,10 @@ impl MusgraveHydraulic {
         Ok(())
     }
 
+    #[allow(clippy::needless_range_loop)]
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
-        let p = self.p.clone();
+        let p = &self.p.clone();
         if p.rain_period > 0 && self.step % u64::from(p.rain_period) == 0 {
             let a = hf.heights().as_slice();
             let mut added = 0.0f64;
@@ -284,13 +303,29 @@ impl MusgraveHydraulic {
             self.ledger.rain += added;
         }
         let offsets = p.neighbourhood.offsets();
+        // Neighbour index deltas for interior cells (no edge handling needed).
+        let deltas: Vec<isize> = offsets
+            .iter()
+            .map(|&(dx, dy, _)| dy as isize * nx as isize + dx as isize)
+            .collect();
+        let deltas = &deltas;
+        let nbr = move |x: usize, y: usize, i: usize, k: usize| -> Option<usize> {
+            if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                Some((i as isize + deltas[k]) as usize)
+            } else {
+                let (dx, dy, _) = offsets[k];
+                p.edges.resolve(x, y, dx, dy, nx, ny)
+            }
+        };
         let (kc, kd, ks, tr) = (p.k_c as f32, p.k_d as f32, p.k_s as f32, p.transfer as f32);
         // ---- pass 1: per cell, what leaves and where (reads state t only).
         let a = hf.heights().as_slice();
         let w = self.water.as_slice();
         let s = self.sediment.as_slice();
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
-        let [f0, f1, f2, f3, f4, f5, f6, f7] = &mut self.frac[..] else { unreachable!("eight planes") };
+        let [f0, f1, f2, f3, f4, f5, f6, f7] = &mut self.frac[..] else {
+            unreachable!("eight planes")
+        };
         let outs = [
             self.a1.as_mut_slice(),
             self.w_keep.as_mut_slice(),
@@ -319,8 +354,8 @@ impl MusgraveHydraulic {
                     let mut total = 0.0f32;
                     let mut biggest = 0.0f32;
                     let mut lowest_bed = f32::INFINITY;
-                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
-                        let d = match p.edges.resolve(x, y, dx, dy, nx, ny) {
+                    for k in 0..offsets.len() {
+                        let d = match nbr(x, y, i, k) {
                             Some(j) => {
                                 let d = level - (a[j] + w[j]);
                                 if d > 0.0 {
@@ -380,12 +415,9 @@ impl MusgraveHydraulic {
                     for k in 0..8 {
                         let f = drops[k] * inv;
                         o[5 + k][r] = f;
-                        if f > 0.0 && k < offsets.len() {
-                            let (dx, dy, _) = offsets[k];
-                            if p.edges.resolve(x, y, dx, dy, nx, ny).is_none() {
-                                out_w += f64::from(dw * f);
-                                out_s += f64::from(sent * f);
-                            }
+                        if f > 0.0 && k < offsets.len() && p.edges == Edges::Open && nbr(x, y, i, k).is_none() {
+                            out_w += f64::from(dw * f);
+                            out_s += f64::from(sent * f);
                         }
                     }
                 }
@@ -397,39 +429,55 @@ impl MusgraveHydraulic {
             self.ledger.outflow_sediment += os;
         }
         // ---- pass 2: gather what neighbours send.
-        let (a1, wk, sk, ws, ss) = (self.a1.as_slice(), self.w_keep.as_slice(), self.s_keep.as_slice(), self.w_sent.as_slice(), self.s_sent.as_slice());
+        let (a1, wk, sk, ws, ss) = (
+            self.a1.as_slice(),
+            self.w_keep.as_slice(),
+            self.s_keep.as_slice(),
+            self.w_sent.as_slice(),
+            self.s_sent.as_slice(),
+        );
         let frac: Vec<&[f32]> = self.frac.iter().map(Vec::as_slice).collect();
         // Direction index of the opposite offset.
         let opposite: Vec<usize> = offsets
             .iter()
-            .map(|&(dx, dy, _)| offsets.iter().position(|&(ex, ey, _)| ex == -dx && ey == -dy).unwrap_or(0))
+            .map(|&(dx, dy, _)| {
+                offsets
+                    .iter()
+                    .position(|&(ex, ey, _)| ex == -dx && ey == -dy)
+                    .unwrap_or(0)
+            })
             .collect();
         let evap = p.evaporation as f32;
-        let evaporated: Vec<f64> = par::map_bands(nx, ny, [self.water.as_mut_slice(), self.sediment.as_mut_slice()], |y0, y1, [wo, so]| {
-            let mut ev = 0.0f64;
-            for y in y0..y1 {
-                for x in 0..nx {
-                    let i = y * nx + x;
-                    let r = (y - y0) * nx + x;
-                    let mut wn = wk[i];
-                    let mut sn = sk[i];
-                    for (k, &(dx, dy, _)) in offsets.iter().enumerate() {
-                        if let Some(j) = p.edges.resolve(x, y, dx, dy, nx, ny) {
-                            let f = frac[opposite[k]][j];
-                            if f > 0.0 {
-                                wn += ws[j] * f;
-                                sn += ss[j] * f;
+        let evaporated: Vec<f64> = par::map_bands(
+            nx,
+            ny,
+            [self.water.as_mut_slice(), self.sediment.as_mut_slice()],
+            |y0, y1, [wo, so]| {
+                let mut ev = 0.0f64;
+                for y in y0..y1 {
+                    for x in 0..nx {
+                        let i = y * nx + x;
+                        let r = (y - y0) * nx + x;
+                        let mut wn = wk[i];
+                        let mut sn = sk[i];
+                        for k in 0..offsets.len() {
+                            if let Some(j) = nbr(x, y, i, k) {
+                                let f = frac[opposite[k]][j];
+                                if f > 0.0 {
+                                    wn += ws[j] * f;
+                                    sn += ss[j] * f;
+                                }
                             }
                         }
+                        let lost = wn * evap;
+                        ev += f64::from(lost);
+                        wo[r] = wn - lost;
+                        so[r] = sn;
                     }
-                    let lost = wn * evap;
-                    ev += f64::from(lost);
-                    wo[r] = wn - lost;
-                    so[r] = sn;
                 }
-            }
-            ev
-        });
+                ev
+            },
+        );
         self.ledger.evaporated += evaporated.iter().sum::<f64>();
         hf.heights_mut().as_mut_slice().copy_from_slice(a1);
         self.step += 1;
@@ -443,7 +491,10 @@ mod tests {
 
     fn tilted(n: usize) -> HeightField {
         let s = Seed(8);
-        HeightField::from_fn(n, n, 1.0, |i, j| 50.0 + 0.3 * i as f32 + 0.1 * j as f32 + 2.0 * s.gaussian2(i as i64, j as i64) as f32).unwrap()
+        HeightField::from_fn(n, n, 1.0, |i, j| {
+            50.0 + 0.3 * i as f32 + 0.1 * j as f32 + 2.0 * s.gaussian2(i as i64, j as i64) as f32
+        })
+        .unwrap()
     }
 
     fn totals(m: &MusgraveHydraulic, hf: &HeightField) -> (f64, f64) {
@@ -453,20 +504,36 @@ mod tests {
     #[test]
     fn conserves_material_and_water_closed() {
         let mut hf = tilted(32);
-        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 20, ..Default::default() }, &hf).unwrap();
+        let mut m = MusgraveHydraulic::new(
+            MusgraveParams {
+                rain_period: 20,
+                ..Default::default()
+            },
+            &hf,
+        )
+        .unwrap();
         let (mat0, _) = totals(&m, &hf);
         m.run(&mut hf, 500, &NoProgress).unwrap();
         let (mat, water) = totals(&m, &hf);
         let l = m.ledger();
         assert!((mat - mat0).abs() <= 1e-4 * mat0, "material {mat0} → {mat}");
-        assert!((water - l.rain).abs() <= 1e-4 * l.rain, "water {water} vs rain {}", l.rain);
+        assert!(
+            (water - l.rain).abs() <= 1e-4 * l.rain,
+            "water {water} vs rain {}",
+            l.rain
+        );
         assert!(m.water().min() >= 0.0 && m.sediment().min() >= 0.0);
     }
 
     #[test]
     fn conserves_with_open_edges_and_evaporation() {
         let mut hf = tilted(24);
-        let p = MusgraveParams { edges: Edges::Open, evaporation: 0.01, rain_period: 10, ..Default::default() };
+        let p = MusgraveParams {
+            edges: Edges::Open,
+            evaporation: 0.01,
+            rain_period: 10,
+            ..Default::default()
+        };
         let mut m = MusgraveHydraulic::new(p, &hf).unwrap();
         let (mat0, _) = totals(&m, &hf);
         m.run(&mut hf, 500, &NoProgress).unwrap();
@@ -475,7 +542,10 @@ mod tests {
         assert!(l.outflow_water > 0.0 && l.evaporated > 0.0);
         assert!((mat + l.outflow_sediment - mat0).abs() <= 1e-4 * mat0);
         let budget = l.rain - l.evaporated - l.outflow_water;
-        assert!((water - budget).abs() <= 1e-4 * l.rain, "{water} vs {budget}");
+        assert!(
+            (water - budget).abs() <= 1e-4 * l.rain,
+            "{water} vs {budget}"
+        );
     }
 
     #[test]
@@ -483,11 +553,25 @@ mod tests {
         // Dry terrain is unchanged; a flat lake is unchanged.
         let mut hf = tilted(12);
         let before = hf.clone();
-        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, ..Default::default() }, &hf).unwrap();
+        let mut m = MusgraveHydraulic::new(
+            MusgraveParams {
+                rain_period: 0,
+                ..Default::default()
+            },
+            &hf,
+        )
+        .unwrap();
         m.run(&mut hf, 5, &NoProgress).unwrap();
         assert_eq!(hf, before);
         let mut flat = HeightField::flat(8, 8, 1.0, 10.0).unwrap();
-        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, ..Default::default() }, &flat).unwrap();
+        let mut m = MusgraveHydraulic::new(
+            MusgraveParams {
+                rain_period: 0,
+                ..Default::default()
+            },
+            &flat,
+        )
+        .unwrap();
         m.set_water(Grid2::new(8, 8, 0.5).unwrap()).unwrap();
         m.run(&mut flat, 5, &NoProgress).unwrap();
         assert!(m.water().as_slice().iter().all(|&w| w == 0.5));
@@ -497,7 +581,16 @@ mod tests {
     #[test]
     fn equalising_transfer_never_inverts_levels() {
         let mut hf = HeightField::from_fn(3, 3, 1.0, |_, _| 0.0).unwrap();
-        let mut m = MusgraveHydraulic::new(MusgraveParams { rain_period: 0, k_c: 0.0, neighbourhood: Neighbourhood::Four, ..Default::default() }, &hf).unwrap();
+        let mut m = MusgraveHydraulic::new(
+            MusgraveParams {
+                rain_period: 0,
+                k_c: 0.0,
+                neighbourhood: Neighbourhood::Four,
+                ..Default::default()
+            },
+            &hf,
+        )
+        .unwrap();
         let mut w = Grid2::new(3, 3, 0.0f32).unwrap();
         w[(0, 0)] = 4.0;
         m.set_water(w).unwrap();
@@ -514,12 +607,33 @@ mod tests {
     fn refuses_bad_params() {
         let hf = tilted(8);
         for p in [
-            MusgraveParams { k_d: 1.5, ..Default::default() },
-            MusgraveParams { k_s: -0.1, ..Default::default() },
-            MusgraveParams { k_c: f64::NAN, ..Default::default() },
-            MusgraveParams { transfer: 0.0, ..Default::default() },
-            MusgraveParams { rain: RainLaw::Uniform { depth_m: -1.0 }, ..Default::default() },
-            MusgraveParams { rain: RainLaw::AltitudeLinear { k: 1e9, base_m: 0.0 }, ..Default::default() },
+            MusgraveParams {
+                k_d: 1.5,
+                ..Default::default()
+            },
+            MusgraveParams {
+                k_s: -0.1,
+                ..Default::default()
+            },
+            MusgraveParams {
+                k_c: f64::NAN,
+                ..Default::default()
+            },
+            MusgraveParams {
+                transfer: 0.0,
+                ..Default::default()
+            },
+            MusgraveParams {
+                rain: RainLaw::Uniform { depth_m: -1.0 },
+                ..Default::default()
+            },
+            MusgraveParams {
+                rain: RainLaw::AltitudeLinear {
+                    k: 1e9,
+                    base_m: 0.0,
+                },
+                ..Default::default()
+            },
         ] {
             assert!(MusgraveHydraulic::new(p, &hf).is_err());
         }

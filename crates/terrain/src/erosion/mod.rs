@@ -90,7 +90,15 @@ impl Edges {
     /// The neighbour of `(x, y)` at offset `(dx, dy)`: `Some(index)` inside (or
     /// wrapped), `None` across a closed or open edge.
     #[inline]
-    pub(crate) fn resolve(self, x: usize, y: usize, dx: i32, dy: i32, nx: usize, ny: usize) -> Option<usize> {
+    pub(crate) fn resolve(
+        self,
+        x: usize,
+        y: usize,
+        dx: i32,
+        dy: i32,
+        nx: usize,
+        ny: usize,
+    ) -> Option<usize> {
         let (mut i, mut j) = (x as i64 + i64::from(dx), y as i64 + i64::from(dy));
         let inside = i >= 0 && j >= 0 && i < nx as i64 && j < ny as i64;
         if inside {
@@ -122,7 +130,11 @@ impl Erodibility {
     pub fn new(map: Grid2<f32>) -> Result<Self> {
         check_grid("erodibility", &map)?;
         if let Some((x, y, &v)) = map.find(|&v| v < 0.0) {
-            return Err(invalid("erodibility", format!("{v} at cell ({x}, {y})"), "must be >= 0"));
+            return Err(invalid(
+                "erodibility",
+                format!("{v} at cell ({x}, {y})"),
+                "must be >= 0",
+            ));
         }
         let max = map.max();
         Ok(Self { map, max })
@@ -132,7 +144,13 @@ impl Erodibility {
     /// alternating between `soft` and `hard` multipliers with a smooth
     /// transition, indexed by the cell's altitude in `hf` plus an optional
     /// perturbation field (metres, e.g. fBm) that warps the beds.
-    pub fn strata(hf: &HeightField, bed_m: f32, soft: f32, hard: f32, warp: Option<&Grid2<f32>>) -> Result<Self> {
+    pub fn strata(
+        hf: &HeightField,
+        bed_m: f32,
+        soft: f32,
+        hard: f32,
+        warp: Option<&Grid2<f32>>,
+    ) -> Result<Self> {
         crate::error::positive("strata bed_m", f64::from(bed_m))?;
         crate::error::non_negative("strata soft", f64::from(soft))?;
         crate::error::non_negative("strata hard", f64::from(hard))?;
@@ -165,7 +183,12 @@ impl Erodibility {
 }
 
 /// Checks a height field for use by a grid model of size `(nx, ny)`.
-pub(crate) fn check_field(method: &'static str, hf: &HeightField, nx: usize, ny: usize) -> Result<()> {
+pub(crate) fn check_field(
+    method: &'static str,
+    hf: &HeightField,
+    nx: usize,
+    ny: usize,
+) -> Result<()> {
     if (hf.nx(), hf.ny()) != (nx, ny) {
         return Err(TerrainError::SizeMismatch {
             what: "height field",

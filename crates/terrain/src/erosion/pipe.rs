@@ -180,7 +180,10 @@ impl PipeModel {
             vel: [z(), z()],
             bed: z(),
             erodibility: None,
-            ledger: PipeLedger { initial_material: hf.heights().sum(), ..Default::default() },
+            ledger: PipeLedger {
+                initial_material: hf.heights().sum(),
+                ..Default::default()
+            },
             deposit: z(),
         })
     }
@@ -200,7 +203,11 @@ impl PipeModel {
         crate::error::same_size("water", water, self.nx, self.ny)?;
         crate::error::check_grid("water", water)?;
         if let Some((x, y, &v)) = water.find(|&v| v < 0.0) {
-            return Err(invalid("water", format!("{v} at cell ({x}, {y})"), "must be >= 0"));
+            return Err(invalid(
+                "water",
+                format!("{v} at cell ({x}, {y})"),
+                "must be >= 0",
+            ));
         }
         self.ledger.rain += water.sum() - par::sum_f32(&self.water);
         self.water.copy_from_slice(water.as_slice());
@@ -224,7 +231,10 @@ impl PipeModel {
 
     /// Water velocity `(u, v)` of the last step, m/s.
     pub fn velocity(&self) -> Result<(Grid2<f32>, Grid2<f32>)> {
-        Ok((Grid2::from_vec(self.nx, self.ny, self.vel[0].clone())?, Grid2::from_vec(self.nx, self.ny, self.vel[1].clone())?))
+        Ok((
+            Grid2::from_vec(self.nx, self.ny, self.vel[0].clone())?,
+            Grid2::from_vec(self.nx, self.ny, self.vel[1].clone())?,
+        ))
     }
 
     /// Σ water depth, metres.
@@ -264,7 +274,7 @@ impl PipeModel {
         Ok(())
     }
 
-    #[allow(clippy::too_many_lines)]
+    #[allow(clippy::too_many_lines, clippy::needless_range_loop)]
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
         let p = &self.p;
@@ -277,6 +287,11 @@ impl PipeModel {
         let open = edges == Edges::Open;
         let periodic = edges == Edges::Periodic;
         let nb = |x: usize, y: usize, k: usize| -> Option<usize> {
+            if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                // Interior: no edge handling needed.
+                let i = y * nx + x;
+                return Some([i - 1, i + 1, i - nx, i + nx][k]);
+            }
             let (dx, dy) = [(-1, 0), (1, 0), (0, -1), (0, 1)][k];
             edges.resolve(x, y, dx, dy, nx, ny)
         };
@@ -285,7 +300,13 @@ impl PipeModel {
         {
             let water = &self.water;
             let [fl, fr, fb, ft] = &mut self.flux;
-            let outs = [self.water1.as_mut_slice(), fl.as_mut_slice(), fr.as_mut_slice(), fb.as_mut_slice(), ft.as_mut_slice()];
+            let outs = [
+                self.water1.as_mut_slice(),
+                fl.as_mut_slice(),
+                fr.as_mut_slice(),
+                fb.as_mut_slice(),
+                ft.as_mut_slice(),
+            ];
             par::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
                 for y in y0..y1 {
                     let r0 = (y - y0) * nx;
@@ -297,12 +318,32 @@ impl PipeModel {
                             let i = i0 + x;
                             let d1 = water[i] + rain;
                             let h = bed[i] + d1;
-                            let hl = if x > 0 { bed[i - 1] + water[i - 1] + rain } else if open { bed[i] } else { f32::INFINITY };
-                            let hr = if x + 1 < nx { bed[i + 1] + water[i + 1] + rain } else if open { bed[i] } else { f32::INFINITY };
+                            let hl = if x > 0 {
+                                bed[i - 1] + water[i - 1] + rain
+                            } else if open {
+                                bed[i]
+                            } else {
+                                f32::INFINITY
+                            };
+                            let hr = if x + 1 < nx {
+                                bed[i + 1] + water[i + 1] + rain
+                            } else if open {
+                                bed[i]
+                            } else {
+                                f32::INFINITY
+                            };
                             let hb = bed[i - nx] + water[i - nx] + rain;
                             let ht = bed[i + nx] + water[i + nx] + rain;
                             let r = r0 + x;
-                            flux_update(d1, h, [hl, hr, hb, ht], [&mut fl[r], &mut fr[r], &mut fb[r], &mut ft[r]], kflux, dt, area);
+                            flux_update(
+                                d1,
+                                h,
+                                [hl, hr, hb, ht],
+                                [&mut fl[r], &mut fr[r], &mut fb[r], &mut ft[r]],
+                                kflux,
+                                dt,
+                                area,
+                            );
                             d1o[r] = d1;
                         }
                     } else {
@@ -316,7 +357,15 @@ impl PipeModel {
                                 None => f32::INFINITY,
                             });
                             let r = r0 + x;
-                            flux_update(d1, h, hn, [&mut fl[r], &mut fr[r], &mut fb[r], &mut ft[r]], kflux, dt, area);
+                            flux_update(
+                                d1,
+                                h,
+                                hn,
+                                [&mut fl[r], &mut fr[r], &mut fb[r], &mut ft[r]],
+                                kflux,
+                                dt,
+                                area,
+                            );
                             d1o[r] = d1;
                         }
                     }
@@ -337,7 +386,14 @@ impl PipeModel {
             let f = &self.flux;
             let s0 = &self.sediment;
             let [u, v] = &mut self.vel;
-            let outs = [self.water.as_mut_slice(), self.bed.as_mut_slice(), self.sediment1.as_mut_slice(), u.as_mut_slice(), v.as_mut_slice(), self.deposit.as_mut_slice()];
+            let outs = [
+                self.water.as_mut_slice(),
+                self.bed.as_mut_slice(),
+                self.sediment1.as_mut_slice(),
+                u.as_mut_slice(),
+                v.as_mut_slice(),
+                self.deposit.as_mut_slice(),
+            ];
             par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo, depo]| {
                 let mut evaporated = 0.0f64;
                 let mut out_w = 0.0f64;
@@ -424,7 +480,13 @@ impl PipeModel {
                         for x in 0..nx {
                             let i = y * nx + x;
                             // Fraction of a cell's water that leaves through pipe k this step.
-                            let frac = |j: usize, k: usize| if d1[j] > 0.0 { (f[k][j] * dt / (d1[j] * area)).min(1.0) } else { 0.0 };
+                            let frac = |j: usize, k: usize| {
+                                if d1[j] > 0.0 {
+                                    (f[k][j] * dt / (d1[j] * area)).min(1.0)
+                                } else {
+                                    0.0
+                                }
+                            };
                             let mut keep = 1.0f32;
                             let mut gained = 0.0f32;
                             for k in 0..4 {
@@ -474,7 +536,11 @@ fn flux_update(d1: f32, h: f32, hn: [f32; 4], f: [&mut f32; 4], kflux: f32, dt: 
         nf[k] = v;
         sum += v;
     }
-    let scale = if sum * dt > d1 * area { d1 * area / (sum * dt) } else { 1.0 };
+    let scale = if sum * dt > d1 * area {
+        d1 * area / (sum * dt)
+    } else {
+        1.0
+    };
     for k in 0..4 {
         *f[k] = nf[k] * scale;
     }
@@ -484,7 +550,13 @@ fn flux_update(d1: f32, h: f32, hn: [f32; 4], f: [&mut f32; 4], kflux: f32, dt: 
 fn sample(g: &[f32], nx: usize, ny: usize, x: f32, y: f32, wrap: bool) -> f32 {
     let (fx, fy) = (x.floor(), y.floor());
     let (tx, ty) = (x - fx, y - fy);
-    let idx = |i: i64, n: usize| if wrap { i.rem_euclid(n as i64) as usize } else { i.clamp(0, n as i64 - 1) as usize };
+    let idx = |i: i64, n: usize| {
+        if wrap {
+            i.rem_euclid(n as i64) as usize
+        } else {
+            i.clamp(0, n as i64 - 1) as usize
+        }
+    };
     let (x0, x1) = (idx(fx as i64, nx), idx(fx as i64 + 1, nx));
     let (y0, y1) = (idx(fy as i64, ny), idx(fy as i64 + 1, ny));
     let a = g[y0 * nx + x0] + (g[y0 * nx + x1] - g[y0 * nx + x0]) * tx;
@@ -501,7 +573,9 @@ mod tests {
         let s = Seed(2);
         HeightField::from_fn(n, n, 2.0, |i, j| {
             let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
-            30.0 * (3.0 * x).sin() * (2.0 * y).cos() + 40.0 * x + s.gaussian2(i as i64, j as i64) as f32
+            30.0 * (3.0 * x).sin() * (2.0 * y).cos()
+                + 40.0 * x
+                + s.gaussian2(i as i64, j as i64) as f32
         })
         .unwrap()
     }
@@ -510,15 +584,28 @@ mod tests {
     fn conserves_mass_closed_and_open() {
         for edges in [Edges::Closed, Edges::Open, Edges::Periodic] {
             let mut hf = hills(40);
-            let mut m = PipeModel::new(PipeParams { edges, ..Default::default() }, &hf).unwrap();
+            let mut m = PipeModel::new(
+                PipeParams {
+                    edges,
+                    ..Default::default()
+                },
+                &hf,
+            )
+            .unwrap();
             let mat0 = hf.heights().sum();
             m.run(&mut hf, 500, &NoProgress).unwrap();
             let l = m.ledger();
             let mat = hf.heights().sum() + m.total_sediment() + l.outflow_sediment;
-            assert!((mat - mat0).abs() <= 1e-4 * mat0.abs(), "{edges:?}: material {mat0} → {mat}");
+            assert!(
+                (mat - mat0).abs() <= 1e-4 * mat0.abs(),
+                "{edges:?}: material {mat0} → {mat}"
+            );
             let water = m.total_water();
             let budget = l.rain - l.evaporated - l.outflow_water;
-            assert!((water - budget).abs() <= 1e-4 * l.rain, "{edges:?}: water {water} vs {budget}");
+            assert!(
+                (water - budget).abs() <= 1e-4 * l.rain,
+                "{edges:?}: water {water} vs {budget}"
+            );
             assert!(m.water.iter().all(|&w| w >= 0.0) && m.sediment.iter().all(|&s| s >= 0.0));
             if edges == Edges::Open {
                 assert!(l.outflow_water > 0.0);
@@ -530,9 +617,22 @@ mod tests {
     fn extreme_params_stay_finite_or_are_refused() {
         let mut hf = hills(16);
         for p in [
-            PipeParams { dt: 10.0, rain_m_per_s: 1.0, k_e: 0.0, ..Default::default() },
-            PipeParams { k_c: 100.0, k_s: 1.0, ..Default::default() },
-            PipeParams { transport: SedimentTransport::SemiLagrangian, dt: 5.0, ..Default::default() },
+            PipeParams {
+                dt: 10.0,
+                rain_m_per_s: 1.0,
+                k_e: 0.0,
+                ..Default::default()
+            },
+            PipeParams {
+                k_c: 100.0,
+                k_s: 1.0,
+                ..Default::default()
+            },
+            PipeParams {
+                transport: SedimentTransport::SemiLagrangian,
+                dt: 5.0,
+                ..Default::default()
+            },
         ] {
             let mut m = PipeModel::new(p, &hf).unwrap();
             m.run(&mut hf, 100, &NoProgress).unwrap();
@@ -540,11 +640,26 @@ mod tests {
             assert!(m.water.iter().all(|w| w.is_finite() && *w >= 0.0));
         }
         for p in [
-            PipeParams { dt: 0.0, ..Default::default() },
-            PipeParams { dt: -1.0, ..Default::default() },
-            PipeParams { dt: 1e9, ..Default::default() },
-            PipeParams { k_s: 2.0, ..Default::default() },
-            PipeParams { rain_m_per_s: -1.0, ..Default::default() },
+            PipeParams {
+                dt: 0.0,
+                ..Default::default()
+            },
+            PipeParams {
+                dt: -1.0,
+                ..Default::default()
+            },
+            PipeParams {
+                dt: 1e9,
+                ..Default::default()
+            },
+            PipeParams {
+                k_s: 2.0,
+                ..Default::default()
+            },
+            PipeParams {
+                rain_m_per_s: -1.0,
+                ..Default::default()
+            },
         ] {
             assert!(PipeModel::new(p, &hf).is_err());
         }

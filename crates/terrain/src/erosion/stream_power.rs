@@ -19,8 +19,8 @@
 use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Erodibility, check_erodibility, check_field, check_model_size};
-use crate::analysis::flow::FlowGraph;
 pub use crate::analysis::flow::Depressions;
+use crate::analysis::flow::FlowGraph;
 use crate::error::{Result, in_range, invalid, non_negative, positive};
 
 /// Parameters of [`StreamPower`].
@@ -42,7 +42,14 @@ pub struct StreamPowerParams {
 
 impl Default for StreamPowerParams {
     fn default() -> Self {
-        Self { k: 2e-5, m: 0.5, n: 1.0, uplift_m_per_yr: 5e-4, dt_yr: 5000.0, depressions: Depressions::Fill }
+        Self {
+            k: 2e-5,
+            m: 0.5,
+            n: 1.0,
+            uplift_m_per_yr: 5e-4,
+            dt_yr: 5000.0,
+            depressions: Depressions::Fill,
+        }
     }
 }
 
@@ -54,13 +61,26 @@ impl StreamPowerParams {
         in_range("StreamPowerParams::m", self.m, 0.0, 2.0)?;
         in_range("StreamPowerParams::n", self.n, 0.5, 4.0)?;
         non_negative("StreamPowerParams::uplift_m_per_yr", self.uplift_m_per_yr)?;
-        in_range("StreamPowerParams::uplift_m_per_yr", self.uplift_m_per_yr, 0.0, 1.0)?;
+        in_range(
+            "StreamPowerParams::uplift_m_per_yr",
+            self.uplift_m_per_yr,
+            0.0,
+            1.0,
+        )?;
         positive("StreamPowerParams::dt_yr", self.dt_yr)?;
         if self.dt_yr > 1e7 {
-            return Err(invalid("StreamPowerParams::dt_yr", self.dt_yr, "must be ≤ 1e7 years"));
+            return Err(invalid(
+                "StreamPowerParams::dt_yr",
+                self.dt_yr,
+                "must be ≤ 1e7 years",
+            ));
         }
         if self.depressions == Depressions::Keep {
-            return Err(invalid("StreamPowerParams::depressions", "Keep", "pits must be routed or filled so rivers reach the edge"));
+            return Err(invalid(
+                "StreamPowerParams::depressions",
+                "Keep",
+                "pits must be routed or filled so rivers reach the edge",
+            ));
         }
         Ok(())
     }
@@ -84,7 +104,15 @@ impl StreamPower {
         p.validate()?;
         check_model_size("stream-power erosion", hf)?;
         let n = hf.nx() * hf.ny();
-        Ok(Self { p, nx: hf.nx(), ny: hf.ny(), erodibility: None, area: vec![0.0; n], graph: None, sediment: vec![0.0; n] })
+        Ok(Self {
+            p,
+            nx: hf.nx(),
+            ny: hf.ny(),
+            erodibility: None,
+            area: vec![0.0; n],
+            graph: None,
+            sediment: vec![0.0; n],
+        })
     }
 
     /// Scales `K` per cell (rock strata, DIS:L1190).
@@ -168,7 +196,8 @@ impl StreamPower {
                 continue; // inside a lake: no incision
             }
             let len = f64::from(g.distance[i]) * cell;
-            let kf = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * f64::from(self.area[i]).powf(m) / len.powf(n);
+            let kf = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * f64::from(self.area[i]).powf(m)
+                / len.powf(n);
             let z = if n == 1.0 {
                 (z0 + kf * zr) / (1.0 + kf)
             } else {
@@ -206,10 +235,17 @@ mod tests {
         let s = Seed(3);
         let mut hf = HeightField::from_fn(n, n, 100.0, |i, j| {
             let edge = i == 0 || j == 0 || i == n - 1 || j == n - 1;
-            if edge { 0.0 } else { 1.0 + s.uniform2(i as i64, j as i64) as f32 }
+            if edge {
+                0.0
+            } else {
+                1.0 + s.uniform2(i as i64, j as i64) as f32
+            }
         })
         .unwrap();
-        let p = StreamPowerParams { dt_yr: 20_000.0, ..Default::default() };
+        let p = StreamPowerParams {
+            dt_yr: 20_000.0,
+            ..Default::default()
+        };
         let mut sp = StreamPower::new(p.clone(), &hf).unwrap();
         sp.run(&mut hf, 3000, &NoProgress).unwrap();
         // One more step must change nothing (steady state) and S = U / (K A^m).
@@ -223,12 +259,19 @@ mod tests {
             if r == i {
                 continue;
             }
-            let slope = f64::from(hf.heights().as_slice()[i] - hf.heights().as_slice()[r]) / (f64::from(g.distance[i]) * 100.0);
+            let slope = f64::from(hf.heights().as_slice()[i] - hf.heights().as_slice()[r])
+                / (f64::from(g.distance[i]) * 100.0);
             let want = p.uplift_m_per_yr / (p.k * f64::from(area.as_slice()[i]).powf(p.m));
             worst = worst.max((slope / want - 1.0).abs());
         }
         assert!(worst < 0.02, "slope–area misfit {worst}");
-        let change = hf.heights().as_slice().iter().zip(before.heights().as_slice()).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+        let change = hf
+            .heights()
+            .as_slice()
+            .iter()
+            .zip(before.heights().as_slice())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
         assert!(change < 1e-3, "not steady: {change}");
     }
 
@@ -236,16 +279,53 @@ mod tests {
     fn nonlinear_n_and_route_mode_stay_finite() {
         let s = Seed(1);
         for p in [
-            StreamPowerParams { n: 2.0, k: 1e-7, ..Default::default() },
-            StreamPowerParams { depressions: Depressions::Route, ..Default::default() },
-            StreamPowerParams { dt_yr: 1e7, ..Default::default() },
+            StreamPowerParams {
+                n: 2.0,
+                k: 1e-7,
+                ..Default::default()
+            },
+            StreamPowerParams {
+                depressions: Depressions::Route,
+                ..Default::default()
+            },
+            StreamPowerParams {
+                dt_yr: 1e7,
+                ..Default::default()
+            },
         ] {
-            let mut hf = HeightField::from_fn(24, 24, 50.0, |i, j| 100.0 * s.uniform2(i as i64, j as i64) as f32).unwrap();
-            StreamPower::new(p, &hf).unwrap().run(&mut hf, 20, &NoProgress).unwrap();
+            let mut hf = HeightField::from_fn(24, 24, 50.0, |i, j| {
+                100.0 * s.uniform2(i as i64, j as i64) as f32
+            })
+            .unwrap();
+            StreamPower::new(p, &hf)
+                .unwrap()
+                .run(&mut hf, 20, &NoProgress)
+                .unwrap();
             assert!(hf.check_finite().is_ok());
         }
-        assert!(StreamPowerParams { dt_yr: 0.0, ..Default::default() }.validate().is_err());
-        assert!(StreamPowerParams { k: -1.0, ..Default::default() }.validate().is_err());
-        assert!(StreamPowerParams { depressions: Depressions::Keep, ..Default::default() }.validate().is_err());
+        assert!(
+            StreamPowerParams {
+                dt_yr: 0.0,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert!(
+            StreamPowerParams {
+                k: -1.0,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert!(
+            StreamPowerParams {
+                depressions: Depressions::Keep,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
     }
 }

@@ -56,14 +56,26 @@ impl ThermalParams {
     /// and open edges.
     pub fn validate(&self) -> Result<()> {
         if !(self.talus_angle >= 0.0 && self.talus_angle < std::f64::consts::FRAC_PI_2) {
-            return Err(invalid("ThermalParams::talus_angle", self.talus_angle, "must lie in [0, π/2) radians (below 90°)"));
+            return Err(invalid(
+                "ThermalParams::talus_angle",
+                self.talus_angle,
+                "must lie in [0, π/2) radians (below 90°)",
+            ));
         }
         let limit = 1.0 / self.neighbourhood.count() as f64;
         if !(self.talus_rate > 0.0 && self.talus_rate <= limit) {
-            return Err(invalid("ThermalParams::talus_rate", self.talus_rate, format!("must lie in (0, {limit}] (1 / neighbours, for stability)")));
+            return Err(invalid(
+                "ThermalParams::talus_rate",
+                self.talus_rate,
+                format!("must lie in (0, {limit}] (1 / neighbours, for stability)"),
+            ));
         }
         if self.edges == Edges::Open {
-            return Err(invalid("ThermalParams::edges", "Open", "thermal weathering conserves material: use Closed or Periodic"));
+            return Err(invalid(
+                "ThermalParams::edges",
+                "Open",
+                "thermal weathering conserves material: use Closed or Periodic",
+            ));
         }
         Ok(())
     }
@@ -100,7 +112,11 @@ impl Thermal {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         let limit = 1.0 / (self.p.neighbourhood.count() as f64 * self.p.talus_rate);
         if f64::from(e.max()) > limit {
-            return Err(invalid("erodibility", e.max(), format!("max must be ≤ {limit} for this talus_rate (stability)")));
+            return Err(invalid(
+                "erodibility",
+                e.max(),
+                format!("max must be ≤ {limit} for this talus_rate (stability)"),
+            ));
         }
         self.erodibility = Some(e);
         Ok(self)
@@ -158,7 +174,11 @@ impl Thermal {
                     None => interior(up, mid, dn, &mut row[1..nx - 1], c, t1, t2, eight),
                     Some(e) => interior_erod(
                         [up, mid, dn],
-                        [&e[(y - 1) * nx..y * nx], &e[y * nx..(y + 1) * nx], &e[(y + 1) * nx..(y + 2) * nx]],
+                        [
+                            &e[(y - 1) * nx..y * nx],
+                            &e[y * nx..(y + 1) * nx],
+                            &e[(y + 1) * nx..(y + 2) * nx],
+                        ],
                         &mut row[1..nx - 1],
                         c,
                         t1,
@@ -190,7 +210,16 @@ fn exchange_e(b: f32, eb: f32, a: f32, ea: f32, t: f32) -> f32 {
 
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn interior(up: &[f32], mid: &[f32], dn: &[f32], out: &mut [f32], c: f32, t1: f32, t2: f32, eight: bool) {
+fn interior(
+    up: &[f32],
+    mid: &[f32],
+    dn: &[f32],
+    out: &mut [f32],
+    c: f32,
+    t1: f32,
+    t2: f32,
+    eight: bool,
+) {
     let n = out.len();
     let (ul, uc, ur) = (&up[..n], &up[1..=n], &up[2..n + 2]);
     let (ml, mc, mr) = (&mid[..n], &mid[1..=n], &mid[2..n + 2]);
@@ -198,21 +227,38 @@ fn interior(up: &[f32], mid: &[f32], dn: &[f32], out: &mut [f32], c: f32, t1: f3
     if eight {
         for i in 0..n {
             let a = mc[i];
-            let axial = exchange(ml[i], a, t1) + exchange(mr[i], a, t1) + exchange(uc[i], a, t1) + exchange(dc[i], a, t1);
-            let diag = exchange(ul[i], a, t2) + exchange(ur[i], a, t2) + exchange(dl[i], a, t2) + exchange(dr[i], a, t2);
+            let axial = exchange(ml[i], a, t1)
+                + exchange(mr[i], a, t1)
+                + exchange(uc[i], a, t1)
+                + exchange(dc[i], a, t1);
+            let diag = exchange(ul[i], a, t2)
+                + exchange(ur[i], a, t2)
+                + exchange(dl[i], a, t2)
+                + exchange(dr[i], a, t2);
             out[i] = a + c * (axial + diag);
         }
     } else {
         for i in 0..n {
             let a = mc[i];
-            let axial = exchange(ml[i], a, t1) + exchange(mr[i], a, t1) + exchange(uc[i], a, t1) + exchange(dc[i], a, t1);
+            let axial = exchange(ml[i], a, t1)
+                + exchange(mr[i], a, t1)
+                + exchange(uc[i], a, t1)
+                + exchange(dc[i], a, t1);
             out[i] = a + c * axial;
         }
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn interior_erod(h: [&[f32]; 3], e: [&[f32]; 3], out: &mut [f32], c: f32, t1: f32, t2: f32, eight: bool) {
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
+fn interior_erod(
+    h: [&[f32]; 3],
+    e: [&[f32]; 3],
+    out: &mut [f32],
+    c: f32,
+    t1: f32,
+    t2: f32,
+    eight: bool,
+) {
     let n = out.len();
     for i in 0..n {
         let x = i + 1;
@@ -232,7 +278,18 @@ fn interior_erod(h: [&[f32]; 3], e: [&[f32]; 3], out: &mut [f32], c: f32, t1: f3
 }
 
 #[allow(clippy::too_many_arguments)]
-fn border(src: &[f32], erod: Option<&[f32]>, x: usize, y: usize, nx: usize, ny: usize, p: &ThermalParams, t1: f32, t2: f32, c: f32) -> f32 {
+fn border(
+    src: &[f32],
+    erod: Option<&[f32]>,
+    x: usize,
+    y: usize,
+    nx: usize,
+    ny: usize,
+    p: &ThermalParams,
+    t1: f32,
+    t2: f32,
+    c: f32,
+) -> f32 {
     let i = y * nx + x;
     let a = src[i];
     let mut s = 0.0f32;
@@ -275,14 +332,25 @@ mod tests {
     use natura_core::NoProgress;
 
     fn spike(n: usize) -> HeightField {
-        HeightField::from_fn(n, n, 1.0, |i, j| if i == n / 2 && j == n / 2 { 50.0 } else { 0.0 }).unwrap()
+        HeightField::from_fn(
+            n,
+            n,
+            1.0,
+            |i, j| if i == n / 2 && j == n / 2 { 50.0 } else { 0.0 },
+        )
+        .unwrap()
     }
 
     #[test]
     fn conserves_and_converges() {
         for edges in [Edges::Closed, Edges::Periodic] {
             for neighbourhood in [Neighbourhood::Four, Neighbourhood::Eight] {
-                let p = ThermalParams { talus_rate: 0.1, edges, neighbourhood, ..Default::default() };
+                let p = ThermalParams {
+                    talus_rate: 0.1,
+                    edges,
+                    neighbourhood,
+                    ..Default::default()
+                };
                 let mut hf = spike(21);
                 let m0 = hf.heights().sum();
                 let (lo0, hi0) = hf.min_max();
@@ -291,14 +359,23 @@ mod tests {
                 for _ in 0..50 {
                     t.step(&mut hf).unwrap();
                     let (lo, hi) = hf.min_max();
-                    assert!(hi <= prev_hi + 1e-5 && lo >= lo0 - 1e-5, "maximum principle");
+                    assert!(
+                        hi <= prev_hi + 1e-5 && lo >= lo0 - 1e-5,
+                        "maximum principle"
+                    );
                     prev_hi = hi;
                 }
                 t.run(&mut hf, 2000, &NoProgress).unwrap();
                 let m1 = hf.heights().sum();
-                assert!((m1 - m0).abs() <= 1e-5 * m0, "{edges:?} {neighbourhood:?}: {m0} → {m1}");
+                assert!(
+                    (m1 - m0).abs() <= 1e-5 * m0,
+                    "{edges:?} {neighbourhood:?}: {m0} → {m1}"
+                );
                 let excess = max_talus_excess(&hf, &p);
-                assert!(excess <= 1e-3, "{edges:?} {neighbourhood:?}: excess {excess}");
+                assert!(
+                    excess <= 1e-3,
+                    "{edges:?} {neighbourhood:?}: excess {excess}"
+                );
                 assert!(hi0 > hf.min_max().1);
             }
         }
@@ -308,9 +385,15 @@ mod tests {
     fn stable_terrain_is_a_fixed_point() {
         let p = ThermalParams::default();
         let slope = 0.5 * p.talus_angle.tan() as f32;
-        let mut hf = HeightField::from_fn(10, 8, 2.0, |i, j| slope * 2.0 * (i as f32 + 0.5 * j as f32) * 0.9).unwrap();
+        let mut hf = HeightField::from_fn(10, 8, 2.0, |i, j| {
+            slope * 2.0 * (i as f32 + 0.5 * j as f32) * 0.9
+        })
+        .unwrap();
         let before = hf.clone();
-        Thermal::new(p, &hf).unwrap().run(&mut hf, 10, &NoProgress).unwrap();
+        Thermal::new(p, &hf)
+            .unwrap()
+            .run(&mut hf, 10, &NoProgress)
+            .unwrap();
         assert_eq!(hf, before);
     }
 
@@ -318,16 +401,40 @@ mod tests {
     fn refuses_bad_input() {
         let hf = spike(8);
         for p in [
-            ThermalParams { talus_angle: std::f64::consts::FRAC_PI_2, ..Default::default() },
-            ThermalParams { talus_angle: -0.1, ..Default::default() },
-            ThermalParams { talus_rate: 0.0, ..Default::default() },
-            ThermalParams { talus_rate: 0.2, ..Default::default() },
-            ThermalParams { talus_rate: f64::NAN, ..Default::default() },
-            ThermalParams { edges: Edges::Open, ..Default::default() },
+            ThermalParams {
+                talus_angle: std::f64::consts::FRAC_PI_2,
+                ..Default::default()
+            },
+            ThermalParams {
+                talus_angle: -0.1,
+                ..Default::default()
+            },
+            ThermalParams {
+                talus_rate: 0.0,
+                ..Default::default()
+            },
+            ThermalParams {
+                talus_rate: 0.2,
+                ..Default::default()
+            },
+            ThermalParams {
+                talus_rate: f64::NAN,
+                ..Default::default()
+            },
+            ThermalParams {
+                edges: Edges::Open,
+                ..Default::default()
+            },
         ] {
             assert!(Thermal::new(p, &hf).is_err());
         }
-        assert!(Thermal::new(ThermalParams::default(), &HeightField::flat(2, 9, 1.0, 0.0).unwrap()).is_err());
+        assert!(
+            Thermal::new(
+                ThermalParams::default(),
+                &HeightField::flat(2, 9, 1.0, 0.0).unwrap()
+            )
+            .is_err()
+        );
         let mut t = Thermal::new(ThermalParams::default(), &hf).unwrap();
         let mut bad = spike(8);
         bad.heights_mut()[(3, 5)] = f32::NAN;

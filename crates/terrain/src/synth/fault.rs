@@ -28,7 +28,10 @@ pub struct FaultParams {
 
 impl Default for FaultParams {
     fn default() -> Self {
-        Self { faults: 1000, amplitude_m: 10.0 }
+        Self {
+            faults: 1000,
+            amplitude_m: 10.0,
+        }
     }
 }
 
@@ -36,7 +39,11 @@ impl FaultParams {
     /// `faults ≥ 1` and at most 10⁸; `amplitude_m` finite and ≥ 0.
     pub fn validate(&self) -> Result<()> {
         if self.faults == 0 || self.faults > 100_000_000 {
-            return Err(invalid("FaultParams::faults", self.faults, "must lie in [1, 1e8]"));
+            return Err(invalid(
+                "FaultParams::faults",
+                self.faults,
+                "must lie in [1, 1e8]",
+            ));
         }
         non_negative("FaultParams::amplitude_m", self.amplitude_m)
     }
@@ -51,7 +58,13 @@ pub(crate) fn stream_gauss(rng: &mut impl Rng) -> f64 {
 
 /// An `nx × ny` field made by `p.faults` random step faults. Deterministic per
 /// seed; rows in parallel.
-pub fn poisson_faults(nx: usize, ny: usize, cell_size: f32, p: &FaultParams, seed: Seed) -> Result<HeightField> {
+pub fn poisson_faults(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    p: &FaultParams,
+    seed: Seed,
+) -> Result<HeightField> {
     p.validate()?;
     min_size("poisson_faults", nx, ny, 1, 1)?;
     natura_core::positive_finite("cell_size", f64::from(cell_size))?;
@@ -131,7 +144,10 @@ mod tests {
     /// The difference-array fast path equals the brute-force sum over faults.
     #[test]
     fn fast_path_matches_brute_force() {
-        let p = FaultParams { faults: 300, amplitude_m: 2.0 };
+        let p = FaultParams {
+            faults: 300,
+            amplitude_m: 2.0,
+        };
         let (nx, ny) = (37, 23);
         let hf = poisson_faults(nx, ny, 1.0, &p, Seed(5)).unwrap();
         let mut rng = Seed(5).derive("poisson-faults").rng();
@@ -153,7 +169,10 @@ mod tests {
                     z += if side > 0.0 { a / 2.0 } else { -a / 2.0 };
                 }
                 let got = f64::from(hf.heights()[(i, j)]);
-                assert!((got - z).abs() < 1e-4 * (1.0 + z.abs()), "({i},{j}) {got} vs {z}");
+                assert!(
+                    (got - z).abs() < 1e-4 * (1.0 + z.abs()),
+                    "({i},{j}) {got} vs {z}"
+                );
             }
         }
     }
@@ -167,7 +186,21 @@ mod tests {
         // Mean is a sum of 1000 zero-mean terms of σ ≈ 5 m·(imbalance): loose bound.
         let m = a.heights().mean();
         assert!(m.abs() < 60.0, "{m}");
-        assert!(FaultParams { faults: 0, amplitude_m: 1.0 }.validate().is_err());
-        assert!(FaultParams { faults: 1, amplitude_m: -1.0 }.validate().is_err());
+        assert!(
+            FaultParams {
+                faults: 0,
+                amplitude_m: 1.0
+            }
+            .validate()
+            .is_err()
+        );
+        assert!(
+            FaultParams {
+                faults: 1,
+                amplitude_m: -1.0
+            }
+            .validate()
+            .is_err()
+        );
     }
 }

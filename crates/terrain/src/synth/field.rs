@@ -5,10 +5,14 @@
 //! friendly (MKM:L71, DIS:L663-665): each sample needs no neighbours and no
 //! global state. [`fill_field`] takes any `Fn(f64, f64) -> f64 + Sync` (f64
 //! points, one call per sample); [`fill_rows`] takes a batch row filler (one
-//! call per row, f32 output), the fast path for SIMD noise.
+//! call per row, f32 output); [`fill_noise`] fills from any natura-noise
+//! [`Field`] (fBm, hetero terrain, hybrid and ridged multifractals,
+//! statistics-by-altitude, Musgrave's large-scale terrain, …) through its
+//! SIMD row path, rows in parallel.
 
 use glam::DVec2;
 use natura_core::{Grid2, HeightField};
+use natura_noise::Field;
 
 use crate::error::{Result, TerrainError, invalid, min_size};
 use crate::par;
@@ -32,7 +36,12 @@ pub struct FieldMapping {
 
 impl Default for FieldMapping {
     fn default() -> Self {
-        Self { origin: DVec2::ZERO, frequency: 1.0 / 1000.0, height_m: 500.0, offset_m: 0.0 }
+        Self {
+            origin: DVec2::ZERO,
+            frequency: 1.0 / 1000.0,
+            height_m: 500.0,
+            offset_m: 0.0,
+        }
     }
 }
 
@@ -40,16 +49,32 @@ impl FieldMapping {
     /// Every value must be finite; `frequency` and `height_m` non-zero.
     pub fn validate(&self) -> Result<()> {
         if !self.origin.is_finite() {
-            return Err(invalid("FieldMapping::origin", self.origin, "must be finite"));
+            return Err(invalid(
+                "FieldMapping::origin",
+                self.origin,
+                "must be finite",
+            ));
         }
         if !(self.frequency.is_finite() && self.frequency != 0.0) {
-            return Err(invalid("FieldMapping::frequency", self.frequency, "must be finite and non-zero"));
+            return Err(invalid(
+                "FieldMapping::frequency",
+                self.frequency,
+                "must be finite and non-zero",
+            ));
         }
         if !self.height_m.is_finite() {
-            return Err(invalid("FieldMapping::height_m", self.height_m, "must be finite"));
+            return Err(invalid(
+                "FieldMapping::height_m",
+                self.height_m,
+                "must be finite",
+            ));
         }
         if !self.offset_m.is_finite() {
-            return Err(invalid("FieldMapping::offset_m", self.offset_m, "must be finite"));
+            return Err(invalid(
+                "FieldMapping::offset_m",
+                self.offset_m,
+                "must be finite",
+            ));
         }
         Ok(())
     }
@@ -65,7 +90,13 @@ impl FieldMapping {
 /// Fills an `nx × ny` field from `field(x, y)` at f64 points, rows in parallel.
 ///
 /// A non-finite field value is an error naming the first such cell.
-pub fn fill_field<F>(nx: usize, ny: usize, cell_size: f32, map: &FieldMapping, field: &F) -> Result<HeightField>
+pub fn fill_field<F>(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    map: &FieldMapping,
+    field: &F,
+) -> Result<HeightField>
 where
     F: Fn(f64, f64) -> f64 + Sync + ?Sized,
 {
@@ -87,7 +118,13 @@ where
 /// Fills an `nx × ny` field one row at a time: `row(x0, y, dx, out)` must write
 /// the field at `(x0 + k·dx, y)` into `out[k]` (field units). Values are then
 /// mapped to metres. This is the batch path for SIMD noise implementations.
-pub fn fill_rows<F>(nx: usize, ny: usize, cell_size: f32, map: &FieldMapping, row: &F) -> Result<HeightField>
+pub fn fill_rows<F>(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    map: &FieldMapping,
+    row: &F,
+) -> Result<HeightField>
 where
     F: Fn(f64, f64, f64, &mut [f32]) + Sync + ?Sized,
 {
@@ -108,9 +145,35 @@ where
     finish(g, cell_size)
 }
 
+/// Fills an `nx × ny` field from a natura-noise [`Field`] (2-D evaluation) with
+/// its batch row fill (SIMD, run-time dispatch), rows in parallel; heights in
+/// metres through `map`. Equals [`fill_field`] with `field.eval2` to f32 rounding.
+pub fn fill_noise<F: Field + ?Sized>(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    map: &FieldMapping,
+    field: &F,
+) -> Result<HeightField> {
+    fill_rows(
+        nx,
+        ny,
+        cell_size,
+        map,
+        &|x0: f64, y: f64, dx: f64, out: &mut [f32]| {
+            field.fill_row2(DVec2::new(x0, y), dx, out);
+        },
+    )
+}
+
 fn finish(g: Grid2<f32>, cell_size: f32) -> Result<HeightField> {
     if let Some((x, y, &value)) = g.find(|v| !v.is_finite()) {
-        return Err(TerrainError::NonFinite { what: "field value", x, y, value });
+        return Err(TerrainError::NonFinite {
+            what: "field value",
+            x,
+            y,
+            value,
+        });
     }
     Ok(HeightField::new(g, cell_size)?)
 }
@@ -122,19 +185,48 @@ mod tests {
     #[test]
     fn point_and_row_paths_agree() {
         let f = |x: f64, y: f64| (x * 1.3).sin() * (y * 0.7).cos();
-        let map = FieldMapping { origin: DVec2::new(10.0, -5.0), frequency: 0.01, height_m: 100.0, offset_m: 20.0 };
+        let map = FieldMapping {
+            origin: DVec2::new(10.0, -5.0),
+            frequency: 0.01,
+            height_m: 100.0,
+            offset_m: 20.0,
+        };
         let a = fill_field(33, 17, 3.0, &map, &f).unwrap();
-        let b = fill_rows(33, 17, 3.0, &map, &|x0: f64, y: f64, dx: f64, out: &mut [f32]| {
-            for (k, v) in out.iter_mut().enumerate() {
-                *v = f(x0 + k as f64 * dx, y) as f32;
-            }
-        })
+        let b = fill_rows(
+            33,
+            17,
+            3.0,
+            &map,
+            &|x0: f64, y: f64, dx: f64, out: &mut [f32]| {
+                for (k, v) in out.iter_mut().enumerate() {
+                    *v = f(x0 + k as f64 * dx, y) as f32;
+                }
+            },
+        )
         .unwrap();
         for (p, q) in a.heights().as_slice().iter().zip(b.heights().as_slice()) {
             assert!((p - q).abs() < 1e-4);
         }
         assert_eq!(a.heights()[(0, 0)], (20.0 + 100.0 * f(0.1, -0.05)) as f32);
-        let err = fill_field(4, 4, 1.0, &map, &|x: f64, _| if x > 0.11 { f64::NAN } else { 0.0 }).unwrap_err();
-        assert!(err.to_string().contains("(1, 0)"), "{err}");
+        // A natura-noise field through the SIMD row path matches point evaluation.
+        let fbm = natura_noise::Fbm::new(
+            natura_noise::Perlin::new(3),
+            natura_noise::Spectral::default().with_h(0.8),
+        )
+        .unwrap();
+        let a = fill_noise(40, 9, 3.0, &map, &fbm).unwrap();
+        let b = fill_field(40, 9, 3.0, &map, &|x: f64, y: f64| {
+            fbm.eval2(DVec2::new(x, y))
+        })
+        .unwrap();
+        for (p, q) in a.heights().as_slice().iter().zip(b.heights().as_slice()) {
+            assert!((p - q).abs() < 1e-3, "{p} vs {q}");
+        }
+        let err = fill_field(4, 4, 1.0, &map, &|x: f64, _| {
+            if x > 0.11 { f64::NAN } else { 0.0 }
+        })
+        .unwrap_err();
+        // Cell (1, 0) sits at exactly x = 0.11, so the first bad cell is (2, 0).
+        assert!(err.to_string().contains("(2, 0)"), "{err}");
     }
 }

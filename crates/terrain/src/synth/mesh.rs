@@ -47,7 +47,11 @@ impl TriMesh {
 
     /// A mesh with caller-chosen vertex identifiers (shared vertices of separate
     /// meshes must carry the same id) and face-averaged normals.
-    pub fn with_ids(positions: Vec<DVec3>, ids: Vec<u64>, triangles: Vec<[u32; 3]>) -> Result<Self> {
+    pub fn with_ids(
+        positions: Vec<DVec3>,
+        ids: Vec<u64>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Result<Self> {
         let mut normals = vec![DVec3::ZERO; positions.len()];
         validate_topology(&positions, &ids, &triangles)?;
         for t in &triangles {
@@ -57,19 +61,44 @@ impl TriMesh {
                 normals[i as usize] += n;
             }
         }
-        let normals = normals.into_iter().map(|n| n.normalize_or(DVec3::Z)).collect();
-        Ok(Self { positions, normals, ids, triangles })
+        let normals = normals
+            .into_iter()
+            .map(|n| n.normalize_or(DVec3::Z))
+            .collect();
+        Ok(Self {
+            positions,
+            normals,
+            ids,
+            triangles,
+        })
     }
 
     /// A mesh with explicit normals (e.g. shared between tiles so that
     /// independently subdivided tiles agree on shared edges).
-    pub fn with_normals(positions: Vec<DVec3>, normals: Vec<DVec3>, ids: Vec<u64>, triangles: Vec<[u32; 3]>) -> Result<Self> {
+    pub fn with_normals(
+        positions: Vec<DVec3>,
+        normals: Vec<DVec3>,
+        ids: Vec<u64>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Result<Self> {
         validate_topology(&positions, &ids, &triangles)?;
         if normals.len() != positions.len() {
-            return Err(TerrainError::SizeMismatch { what: "normals", expected: positions.len().to_string(), actual: normals.len().to_string() });
+            return Err(TerrainError::SizeMismatch {
+                what: "normals",
+                expected: positions.len().to_string(),
+                actual: normals.len().to_string(),
+            });
         }
-        let normals = normals.into_iter().map(|n| n.normalize_or(DVec3::Z)).collect();
-        Ok(Self { positions, normals, ids, triangles })
+        let normals = normals
+            .into_iter()
+            .map(|n| n.normalize_or(DVec3::Z))
+            .collect();
+        Ok(Self {
+            positions,
+            normals,
+            ids,
+            triangles,
+        })
     }
 
     /// Length of the longest edge.
@@ -85,23 +114,47 @@ impl TriMesh {
 
 fn validate_topology(positions: &[DVec3], ids: &[u64], triangles: &[[u32; 3]]) -> Result<()> {
     if ids.len() != positions.len() {
-        return Err(TerrainError::SizeMismatch { what: "vertex ids", expected: positions.len().to_string(), actual: ids.len().to_string() });
+        return Err(TerrainError::SizeMismatch {
+            what: "vertex ids",
+            expected: positions.len().to_string(),
+            actual: ids.len().to_string(),
+        });
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(invalid("positions", format!("vertex {i} = {}", positions[i]), "must be finite"));
+        return Err(invalid(
+            "positions",
+            format!("vertex {i} = {}", positions[i]),
+            "must be finite",
+        ));
     }
-    if let Some(t) = triangles.iter().position(|t| t.iter().any(|&i| i as usize >= positions.len())) {
-        return Err(invalid("triangles", format!("triangle {t} = {:?}", triangles[t]), "refers to a vertex that does not exist"));
+    if let Some(t) = triangles
+        .iter()
+        .position(|t| t.iter().any(|&i| i as usize >= positions.len()))
+    {
+        return Err(invalid(
+            "triangles",
+            format!("triangle {t} = {:?}", triangles[t]),
+            "refers to a vertex that does not exist",
+        ));
     }
     Ok(())
 }
 
 /// Subdivides `mesh` `levels` times (FFC fractal triangles): `4^levels` times as many
 /// triangles; for a single triangle `(2^L + 1)(2^L + 2)/2` vertices.
-pub fn subdivide_mesh(mesh: &TriMesh, p: &MidpointParams, levels: u32, seed: Seed) -> Result<TriMesh> {
+pub fn subdivide_mesh(
+    mesh: &TriMesh,
+    p: &MidpointParams,
+    levels: u32,
+    seed: Seed,
+) -> Result<TriMesh> {
     p.validate()?;
     if levels > MAX_MESH_LEVELS {
-        return Err(invalid("levels", levels, format!("must be at most {MAX_MESH_LEVELS}")));
+        return Err(invalid(
+            "levels",
+            levels,
+            format!("must be at most {MAX_MESH_LEVELS}"),
+        ));
     }
     let std = p.level_std(levels);
     let seed = seed.derive("ffc-mesh");
@@ -114,7 +167,12 @@ pub fn subdivide_mesh(mesh: &TriMesh, p: &MidpointParams, levels: u32, seed: See
 
 /// Subdivides until no edge is longer than `max_edge` metres (FFC:L327-329).
 /// Fails if that would take more than [`MAX_MESH_LEVELS`] levels.
-pub fn subdivide_mesh_until(mesh: &TriMesh, p: &MidpointParams, max_edge: f64, seed: Seed) -> Result<TriMesh> {
+pub fn subdivide_mesh_until(
+    mesh: &TriMesh,
+    p: &MidpointParams,
+    max_edge: f64,
+    seed: Seed,
+) -> Result<TriMesh> {
     p.validate()?;
     if !(max_edge.is_finite() && max_edge > 0.0) {
         return Err(invalid("max_edge", max_edge, "must be finite and > 0"));
@@ -125,7 +183,11 @@ pub fn subdivide_mesh_until(mesh: &TriMesh, p: &MidpointParams, max_edge: f64, s
     let mut l = 0;
     while m.max_edge() > max_edge {
         if l == MAX_MESH_LEVELS {
-            return Err(invalid("max_edge", max_edge, format!("needs more than {MAX_MESH_LEVELS} levels")));
+            return Err(invalid(
+                "max_edge",
+                max_edge,
+                format!("needs more than {MAX_MESH_LEVELS} levels"),
+            ));
         }
         l += 1;
         m = split_once(&m, std[l as usize], seed);
@@ -142,7 +204,11 @@ fn split_once(m: &TriMesh, sd: f64, seed: Seed) -> TriMesh {
     };
     let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
     let mut midpoint = |a: u32, b: u32, out: &mut TriMesh| -> u32 {
-        let (lo, hi) = if m.ids[a as usize] <= m.ids[b as usize] { (a, b) } else { (b, a) };
+        let (lo, hi) = if m.ids[a as usize] <= m.ids[b as usize] {
+            (a, b)
+        } else {
+            (b, a)
+        };
         *edges.entry((lo, hi)).or_insert_with(|| {
             let (ia, ib) = (m.ids[lo as usize], m.ids[hi as usize]);
             let id = seed.hash(&[ia as i64, ib as i64]);
@@ -150,7 +216,11 @@ fn split_once(m: &TriMesh, sd: f64, seed: Seed) -> TriMesh {
             let g = Seed(id ^ seed.0).gaussian(&[1]);
             let p = (m.positions[lo as usize] + m.positions[hi as usize]) * 0.5 + n * (g * sd);
             out.positions.push(p);
-            out.normals.push(if n == DVec3::ZERO { m.normals[lo as usize] } else { n });
+            out.normals.push(if n == DVec3::ZERO {
+                m.normals[lo as usize]
+            } else {
+                n
+            });
             out.ids.push(id);
             (out.positions.len() - 1) as u32
         })
@@ -159,7 +229,8 @@ fn split_once(m: &TriMesh, sd: f64, seed: Seed) -> TriMesh {
         let ab = midpoint(a, b, &mut out);
         let bc = midpoint(b, c, &mut out);
         let ca = midpoint(c, a, &mut out);
-        out.triangles.extend_from_slice(&[[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        out.triangles
+            .extend_from_slice(&[[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
     }
     out
 }
@@ -170,8 +241,15 @@ mod tests {
 
     #[test]
     fn counts_and_fixed_vertices() {
-        let tri = TriMesh::new(vec![DVec3::ZERO, DVec3::X * 100.0, DVec3::Y * 100.0], vec![[0, 1, 2]]).unwrap();
-        let p = MidpointParams { scale: 10.0, ..Default::default() };
+        let tri = TriMesh::new(
+            vec![DVec3::ZERO, DVec3::X * 100.0, DVec3::Y * 100.0],
+            vec![[0, 1, 2]],
+        )
+        .unwrap();
+        let p = MidpointParams {
+            scale: 10.0,
+            ..Default::default()
+        };
         for l in 0..5u32 {
             let s = subdivide_mesh(&tri, &p, l, Seed(1)).unwrap();
             assert_eq!(s.triangles.len(), 4usize.pow(l));
@@ -179,7 +257,16 @@ mod tests {
             assert_eq!(s.positions.len(), n * (n + 1) / 2);
             assert_eq!(&s.positions[..3], &tri.positions[..]);
         }
-        let s = subdivide_mesh_until(&tri, &MidpointParams { scale: 0.0, ..Default::default() }, 10.0, Seed(1)).unwrap();
+        let s = subdivide_mesh_until(
+            &tri,
+            &MidpointParams {
+                scale: 0.0,
+                ..Default::default()
+            },
+            10.0,
+            Seed(1),
+        )
+        .unwrap();
         assert!(s.max_edge() <= 10.0);
     }
 
@@ -188,9 +275,24 @@ mod tests {
         // Two non-coplanar triangles sharing the edge (ids 10, 11); shared normals given.
         let (a, b) = (DVec3::ZERO, DVec3::X * 100.0);
         let n = vec![DVec3::Z; 3];
-        let t1 = TriMesh::with_normals(vec![a, b, DVec3::new(50.0, 80.0, 30.0)], n.clone(), vec![10, 11, 12], vec![[0, 1, 2]]).unwrap();
-        let t2 = TriMesh::with_normals(vec![b, a, DVec3::new(50.0, -80.0, -20.0)], n, vec![11, 10, 13], vec![[0, 1, 2]]).unwrap();
-        let p = MidpointParams { scale: 10.0, ..Default::default() };
+        let t1 = TriMesh::with_normals(
+            vec![a, b, DVec3::new(50.0, 80.0, 30.0)],
+            n.clone(),
+            vec![10, 11, 12],
+            vec![[0, 1, 2]],
+        )
+        .unwrap();
+        let t2 = TriMesh::with_normals(
+            vec![b, a, DVec3::new(50.0, -80.0, -20.0)],
+            n,
+            vec![11, 10, 13],
+            vec![[0, 1, 2]],
+        )
+        .unwrap();
+        let p = MidpointParams {
+            scale: 10.0,
+            ..Default::default()
+        };
         let s1 = subdivide_mesh(&t1, &p, 4, Seed(3)).unwrap();
         let s2 = subdivide_mesh(&t2, &p, 4, Seed(3)).unwrap();
         let on_edge = |m: &TriMesh| {
@@ -206,8 +308,18 @@ mod tests {
         };
         let (e1, e2) = (on_edge(&s1), on_edge(&s2));
         // Every vertex keyed from the shared edge appears in both with equal bits.
-        let ids1: std::collections::HashMap<u64, [u64; 3]> = s1.ids.iter().copied().zip(s1.positions.iter().map(|q| q.to_array().map(f64::to_bits))).collect();
-        let ids2: std::collections::HashMap<u64, [u64; 3]> = s2.ids.iter().copied().zip(s2.positions.iter().map(|q| q.to_array().map(f64::to_bits))).collect();
+        let ids1: std::collections::HashMap<u64, [u64; 3]> = s1
+            .ids
+            .iter()
+            .copied()
+            .zip(s1.positions.iter().map(|q| q.to_array().map(f64::to_bits)))
+            .collect();
+        let ids2: std::collections::HashMap<u64, [u64; 3]> = s2
+            .ids
+            .iter()
+            .copied()
+            .zip(s2.positions.iter().map(|q| q.to_array().map(f64::to_bits)))
+            .collect();
         let shared: Vec<_> = ids1.keys().filter(|k| ids2.contains_key(k)).collect();
         assert_eq!(shared.len(), 17, "2^4 + 1 points on the shared edge");
         for k in shared {

@@ -10,8 +10,11 @@ pub mod sra;
 pub mod subdivision;
 
 pub use fault::{FaultParams, poisson_faults};
-pub use field::{FieldMapping, fill_field, fill_rows};
+pub use field::{FieldMapping, fill_field, fill_noise, fill_rows};
 pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};
 pub use spectral::{SpectralParams, spectral_synthesis};
 pub use sra::{SraParams, successive_random_additions};
-pub use subdivision::{EndpointMode, MidpointParams, Scheme, SubdivisionParams, fractal_polyline, fractal_polyline_ids, midpoint_1d, subdivide};
+pub use subdivision::{
+    EndpointMode, MidpointParams, Scheme, SubdivisionParams, fractal_polyline,
+    fractal_polyline_ids, midpoint_1d, subdivide,
+};

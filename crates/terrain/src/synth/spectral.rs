@@ -32,7 +32,12 @@ pub struct SpectralParams {
 
 impl Default for SpectralParams {
     fn default() -> Self {
-        Self { h: 0.8, sigma_m: 100.0, low_cut: 0.0, high_cut: None }
+        Self {
+            h: 0.8,
+            sigma_m: 100.0,
+            low_cut: 0.0,
+            high_cut: None,
+        }
     }
 }
 
@@ -40,13 +45,21 @@ impl SpectralParams {
     /// `h ∈ (0, 1]`, `sigma_m ≥ 0`, `low_cut ≥ 0`, `high_cut > low_cut`.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
-            return Err(invalid("SpectralParams::h", self.h, "Hurst exponent must lie in (0, 1]"));
+            return Err(invalid(
+                "SpectralParams::h",
+                self.h,
+                "Hurst exponent must lie in (0, 1]",
+            ));
         }
         non_negative("SpectralParams::sigma_m", self.sigma_m)?;
         non_negative("SpectralParams::low_cut", self.low_cut)?;
         if let Some(hc) = self.high_cut {
             if !(hc.is_finite() && hc > self.low_cut) {
-                return Err(invalid("SpectralParams::high_cut", hc, "must be finite and > low_cut"));
+                return Err(invalid(
+                    "SpectralParams::high_cut",
+                    hc,
+                    "must be finite and > low_cut",
+                ));
             }
         }
         Ok(())
@@ -54,13 +67,25 @@ impl SpectralParams {
 }
 
 /// A periodic `nx × ny` fBm-like tile by spectral synthesis. Needs at least 2 × 2 samples.
-pub fn spectral_synthesis(nx: usize, ny: usize, cell_size: f32, p: &SpectralParams, seed: Seed) -> Result<HeightField> {
+pub fn spectral_synthesis(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    p: &SpectralParams,
+    seed: Seed,
+) -> Result<HeightField> {
     Ok(spectral_with_residue(nx, ny, cell_size, p, seed)?.0)
 }
 
 /// [`spectral_synthesis`] plus the largest imaginary residue dropped by the
 /// inverse transform (relative to the largest height), for testing realness.
-pub(crate) fn spectral_with_residue(nx: usize, ny: usize, cell_size: f32, p: &SpectralParams, seed: Seed) -> Result<(HeightField, f64)> {
+pub(crate) fn spectral_with_residue(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    p: &SpectralParams,
+    seed: Seed,
+) -> Result<(HeightField, f64)> {
     p.validate()?;
     min_size("spectral_synthesis", nx, ny, 2, 2)?;
     natura_core::positive_finite("cell_size", f64::from(cell_size))?;
@@ -95,7 +120,11 @@ pub(crate) fn spectral_with_residue(nx: usize, ny: usize, cell_size: f32, p: &Sp
             power += a * a;
         }
     }
-    let norm = if power > 0.0 { p.sigma_m / (power / (nx * ny) as f64).sqrt() } else { 0.0 };
+    let norm = if power > 0.0 {
+        p.sigma_m / (power / (nx * ny) as f64).sqrt()
+    } else {
+        0.0
+    };
     let hx = fft::half(nx);
     for ky in 0..ny {
         let fy = fft::signed_freq(ky, ny);
@@ -104,7 +133,10 @@ pub(crate) fn spectral_with_residue(nx: usize, ny: usize, cell_size: f32, p: &Sp
         }
     }
     let (data, residue) = fft::inverse_real_2d(spec, nx, ny);
-    let max = data.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let max = data
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
     let heights = Grid2::from_vec(nx, ny, data.iter().map(|&v| v as f32).collect())?;
     Ok((HeightField::new(heights, cell_size)?, residue / max))
 }
@@ -116,11 +148,19 @@ mod tests {
     #[test]
     fn real_zero_mean_any_size() {
         for (nx, ny) in [(64, 64), (45, 30)] {
-            let (hf, residue) = spectral_with_residue(nx, ny, 1.0, &SpectralParams::default(), Seed(4)).unwrap();
+            let (hf, residue) =
+                spectral_with_residue(nx, ny, 1.0, &SpectralParams::default(), Seed(4)).unwrap();
             assert!(residue < 1e-10, "imaginary residue {residue}");
             let mean = hf.heights().mean();
             assert!(mean.abs() < 1e-3, "mean {mean}");
-            let sd = (hf.heights().as_slice().iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / (nx * ny) as f64).sqrt();
+            let sd = (hf
+                .heights()
+                .as_slice()
+                .iter()
+                .map(|&v| f64::from(v).powi(2))
+                .sum::<f64>()
+                / (nx * ny) as f64)
+                .sqrt();
             assert!(sd > 20.0 && sd < 400.0, "sd {sd}");
         }
         assert!(spectral_synthesis(1, 8, 1.0, &SpectralParams::default(), Seed(1)).is_err());

@@ -26,7 +26,11 @@ pub struct SraParams {
 
 impl Default for SraParams {
     fn default() -> Self {
-        Self { h: 0.8, lacunarity: 2.0, sigma_m: 100.0 }
+        Self {
+            h: 0.8,
+            lacunarity: 2.0,
+            sigma_m: 100.0,
+        }
     }
 }
 
@@ -34,10 +38,18 @@ impl SraParams {
     /// `h ∈ (0, 1]`, `lacunarity ∈ (1, 16]`, `sigma_m ≥ 0` and finite.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
-            return Err(invalid("SraParams::h", self.h, "Hurst exponent must lie in (0, 1]"));
+            return Err(invalid(
+                "SraParams::h",
+                self.h,
+                "Hurst exponent must lie in (0, 1]",
+            ));
         }
-        if !(self.lacunarity > 1.0) {
-            return Err(invalid("SraParams::lacunarity", self.lacunarity, "must be > 1"));
+        if self.lacunarity.is_nan() || self.lacunarity <= 1.0 {
+            return Err(invalid(
+                "SraParams::lacunarity",
+                self.lacunarity,
+                "must be > 1",
+            ));
         }
         in_range("SraParams::lacunarity", self.lacunarity, 1.0, 16.0)?;
         non_negative("SraParams::sigma_m", self.sigma_m)
@@ -53,7 +65,13 @@ impl SraParams {
 
 /// An `nx × ny` surface by successive random additions. Generation `g` has
 /// lattice spacing `λ^(G−g)` cells and deviation `sigma_m · λ^(−H·g)`.
-pub fn successive_random_additions(nx: usize, ny: usize, cell_size: f32, p: &SraParams, seed: Seed) -> Result<HeightField> {
+pub fn successive_random_additions(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    p: &SraParams,
+    seed: Seed,
+) -> Result<HeightField> {
     p.validate()?;
     min_size("successive_random_additions", nx, ny, 1, 1)?;
     let seed = seed.derive("sra");
@@ -63,10 +81,15 @@ pub fn successive_random_additions(nx: usize, ny: usize, cell_size: f32, p: &Sra
     let spacing = |g: u32| lat.powi((gens - g) as i32);
     let dims = |g: u32| {
         let s = spacing(g);
-        (((nx - 1) as f64 / s).floor() as usize + 2, ((ny - 1) as f64 / s).floor() as usize + 2)
+        (
+            ((nx - 1) as f64 / s).floor() as usize + 2,
+            ((ny - 1) as f64 / s).floor() as usize + 2,
+        )
     };
     let (w0, h0) = dims(0);
-    let mut prev = Grid2::from_fn(w0, h0, |i, j| seed.gaussian(&[0, i as i64, j as i64]) * p.sigma_m)?;
+    let mut prev = Grid2::from_fn(w0, h0, |i, j| {
+        seed.gaussian(&[0, i as i64, j as i64]) * p.sigma_m
+    })?;
     for g in 1..=gens {
         let (w, h) = if g == gens { (nx, ny) } else { dims(g) };
         let sd = p.sigma_m * lat.powf(-p.h * f64::from(g));
@@ -78,7 +101,8 @@ pub fn successive_random_additions(nx: usize, ny: usize, cell_size: f32, p: &Sra
                 let fy = j as f64 / lat;
                 for (i, v) in row.iter_mut().enumerate() {
                     let fx = i as f64 / lat;
-                    *v = bilinear(pr, fx, fy) + seed.gaussian(&[i64::from(g), i as i64, j as i64]) * sd;
+                    *v = bilinear(pr, fx, fy)
+                        + seed.gaussian(&[i64::from(g), i as i64, j as i64]) * sd;
                 }
             }
         });
@@ -110,11 +134,31 @@ mod tests {
 
     #[test]
     fn any_size_and_deterministic() {
-        let p = SraParams { lacunarity: 1.7, ..Default::default() };
+        let p = SraParams {
+            lacunarity: 1.7,
+            ..Default::default()
+        };
         let a = successive_random_additions(45, 31, 2.0, &p, Seed(2)).unwrap();
         assert_eq!((a.nx(), a.ny()), (45, 31));
-        assert_eq!(a, successive_random_additions(45, 31, 2.0, &p, Seed(2)).unwrap());
-        assert!(SraParams { lacunarity: 1.0, ..Default::default() }.validate().is_err());
-        assert!(SraParams { h: 1.5, ..Default::default() }.validate().is_err());
+        assert_eq!(
+            a,
+            successive_random_additions(45, 31, 2.0, &p, Seed(2)).unwrap()
+        );
+        assert!(
+            SraParams {
+                lacunarity: 1.0,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert!(
+            SraParams {
+                h: 1.5,
+                ..Default::default()
+            }
+            .validate()
+            .is_err()
+        );
     }
 }

@@ -90,7 +90,11 @@ impl MidpointParams {
         non_negative("MidpointParams::scale", self.scale)?;
         if let EndpointMode::Fixed(a, b) = self.endpoints {
             if !(a.is_finite() && b.is_finite()) {
-                return Err(invalid("MidpointParams::endpoints", format!("({a}, {b})"), "must be finite"));
+                return Err(invalid(
+                    "MidpointParams::endpoints",
+                    format!("({a}, {b})"),
+                    "must be finite",
+                ));
             }
         }
         Ok(())
@@ -136,7 +140,11 @@ impl MidpointParams {
 pub fn midpoint_1d(p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<f64>> {
     p.validate()?;
     if levels > MAX_LEVELS {
-        return Err(invalid("levels", levels, format!("must be at most {MAX_LEVELS}")));
+        return Err(invalid(
+            "levels",
+            levels,
+            format!("must be at most {MAX_LEVELS}"),
+        ));
     }
     let n = (1usize << levels) + 1;
     let mut f = vec![0.0f64; n];
@@ -168,9 +176,20 @@ pub fn midpoint_1d(p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<f6
 /// Deviations are `level_std` times the original edge length, so `scale` is
 /// relative roughness. The edge is always computed in canonical order
 /// (smaller id first) so both polygons sharing it produce identical points.
-fn subdivide_edge(a: DVec2, b: DVec2, ids: (u64, u64), std: &[f64], levels: u32, seed: Seed) -> Vec<DVec2> {
+fn subdivide_edge(
+    a: DVec2,
+    b: DVec2,
+    ids: (u64, u64),
+    std: &[f64],
+    levels: u32,
+    seed: Seed,
+) -> Vec<DVec2> {
     let flip = ids.0 > ids.1;
-    let (p, q, lo, hi) = if flip { (b, a, ids.1, ids.0) } else { (a, b, ids.0, ids.1) };
+    let (p, q, lo, hi) = if flip {
+        (b, a, ids.1, ids.0)
+    } else {
+        (a, b, ids.0, ids.1)
+    };
     let edge_seed = Seed(seed.hash(&[lo as i64, hi as i64]));
     let len = (q - p).length();
     let n = (1usize << levels) + 1;
@@ -202,7 +221,13 @@ fn subdivide_edge(a: DVec2, b: DVec2, ids: (u64, u64), std: &[f64], levels: u32,
 /// length; the given vertices are kept exactly. With `closed`, the last vertex
 /// joins the first. Vertex `i` is identified by `i` for seeding; use
 /// [`fractal_polyline_ids`] to share edges between polylines.
-pub fn fractal_polyline(vertices: &[DVec2], closed: bool, p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<DVec2>> {
+pub fn fractal_polyline(
+    vertices: &[DVec2],
+    closed: bool,
+    p: &MidpointParams,
+    levels: u32,
+    seed: Seed,
+) -> Result<Vec<DVec2>> {
     let ids: Vec<u64> = (0..vertices.len() as u64).collect();
     fractal_polyline_ids(vertices, &ids, closed, p, levels, seed)
 }
@@ -210,13 +235,28 @@ pub fn fractal_polyline(vertices: &[DVec2], closed: bool, p: &MidpointParams, le
 /// [`fractal_polyline`] with explicit invariant vertex identifiers: two
 /// polylines that share an edge (same pair of ids, either direction) produce
 /// bit-identical points on it (external consistency, FFC:L149-153, L263).
-pub fn fractal_polyline_ids(vertices: &[DVec2], ids: &[u64], closed: bool, p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<DVec2>> {
+pub fn fractal_polyline_ids(
+    vertices: &[DVec2],
+    ids: &[u64],
+    closed: bool,
+    p: &MidpointParams,
+    levels: u32,
+    seed: Seed,
+) -> Result<Vec<DVec2>> {
     p.validate()?;
     if levels > 20 {
-        return Err(invalid("levels", levels, "must be at most 20 for polylines"));
+        return Err(invalid(
+            "levels",
+            levels,
+            "must be at most 20 for polylines",
+        ));
     }
     if vertices.len() < 2 {
-        return Err(invalid("vertices", vertices.len(), "a polyline needs at least 2 vertices"));
+        return Err(invalid(
+            "vertices",
+            vertices.len(),
+            "a polyline needs at least 2 vertices",
+        ));
     }
     if ids.len() != vertices.len() {
         return Err(TerrainError::SizeMismatch {
@@ -226,15 +266,30 @@ pub fn fractal_polyline_ids(vertices: &[DVec2], ids: &[u64], closed: bool, p: &M
         });
     }
     if let Some(i) = vertices.iter().position(|v| !v.is_finite()) {
-        return Err(invalid("vertices", format!("vertex {i} = {}", vertices[i]), "must be finite"));
+        return Err(invalid(
+            "vertices",
+            format!("vertex {i} = {}", vertices[i]),
+            "must be finite",
+        ));
     }
     let std = p.level_std(levels);
-    let nseg = if closed { vertices.len() } else { vertices.len() - 1 };
+    let nseg = if closed {
+        vertices.len()
+    } else {
+        vertices.len() - 1
+    };
     let mut out = Vec::with_capacity(nseg << levels | 1);
     for s in 0..nseg {
         let (i, j) = (s, (s + 1) % vertices.len());
         out.push(vertices[i]);
-        out.extend(subdivide_edge(vertices[i], vertices[j], (ids[i], ids[j]), &std, levels, seed));
+        out.extend(subdivide_edge(
+            vertices[i],
+            vertices[j],
+            (ids[i], ids[j]),
+            &std,
+            levels,
+            seed,
+        ));
     }
     if !closed {
         out.push(vertices[vertices.len() - 1]);
@@ -256,8 +311,8 @@ pub enum Scheme {
     Quad,
     /// FFC's non-Markovian grid fill (Fig. 16, FFC:L353-359), i.e. Miller's
     /// diamond-square: centres from the 4 diagonal neighbours, then sides from
-    /// the 4 axial neighbours (the tile border uses the 1-D rule so that tiles
-    /// share edges exactly).
+    /// the 4 axial neighbours; the edges of each base tile (a patch) use the
+    /// 1-D rule, so tiles share edges exactly (FFC:L357).
     DiamondSquare,
 }
 
@@ -289,7 +344,11 @@ impl SubdivisionParams {
         self.midpoint.validate()?;
         if let Some(l) = self.levels {
             if l > 16 {
-                return Err(invalid("SubdivisionParams::levels", l, "must be at most 16 (65 537 cells per tile side)"));
+                return Err(invalid(
+                    "SubdivisionParams::levels",
+                    l,
+                    "must be at most 16 (65 537 cells per tile side)",
+                ));
             }
         }
         Ok(())
@@ -314,7 +373,13 @@ fn auto_levels(n: usize) -> u32 {
 /// on `(seed, i / 2^L, j / 2^L)`, so a run with depth `L − k` and
 /// `(nx − 1) / 2^k + 1` samples is exactly the fine run subsampled every `2^k`
 /// cells. Parallel over rows within each level; bit-identical on any thread count.
-pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, seed: Seed) -> Result<HeightField> {
+pub fn subdivide(
+    nx: usize,
+    ny: usize,
+    cell_size: f32,
+    p: &SubdivisionParams,
+    seed: Seed,
+) -> Result<HeightField> {
     p.validate()?;
     crate::error::min_size("subdivide", nx, ny, 1, 1)?;
     let levels = p.levels.unwrap_or_else(|| auto_levels(nx.max(ny)));
@@ -338,7 +403,9 @@ pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, se
     for l in 1..=levels {
         let s = 1usize << (levels - l);
         let sd = std[l as usize];
-        let gauss = |a: usize, b: usize, tag: i64| seed.gaussian(&[i64::from(l), a as i64, b as i64, tag]) * sd;
+        let gauss = |a: usize, b: usize, tag: i64| {
+            seed.gaussian(&[i64::from(l), a as i64, b as i64, tag]) * sd
+        };
         match p.scheme {
             Scheme::Triangle => level_pass(&mut g, s, |g, a, b| {
                 let (i, j) = (a * s, b * s);
@@ -374,7 +441,11 @@ pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, se
                 level_pass(&mut g, s, |g, a, b| {
                     if a % 2 == 1 && b % 2 == 1 {
                         let (i, j) = (a * s, b * s);
-                        let m = (g[(i - s, j - s)] + g[(i + s, j - s)] + g[(i - s, j + s)] + g[(i + s, j + s)]) / 4.0;
+                        let m = (g[(i - s, j - s)]
+                            + g[(i + s, j - s)]
+                            + g[(i - s, j + s)]
+                            + g[(i + s, j + s)])
+                            / 4.0;
                         Some(m + gauss(a, b, 0))
                     } else {
                         None
@@ -382,11 +453,15 @@ pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, se
                 });
                 level_pass(&mut g, s, |g, a, b| {
                     let (i, j) = (a * s, b * s);
-                    let (w, h) = g.dims();
+                    // Tile edges are patch boundaries computed by the 1-D rule
+                    // (FFC:L357), so tiles share edges exactly and the result does
+                    // not depend on how many tiles the grid spans.
                     let m = match (a % 2, b % 2) {
-                        (1, 0) if j == 0 || j == h - 1 => (g[(i - s, j)] + g[(i + s, j)]) / 2.0,
-                        (0, 1) if i == 0 || i == w - 1 => (g[(i, j - s)] + g[(i, j + s)]) / 2.0,
-                        (1, 0) | (0, 1) => (g[(i - s, j)] + g[(i + s, j)] + g[(i, j - s)] + g[(i, j + s)]) / 4.0,
+                        (1, 0) if j % tile == 0 => (g[(i - s, j)] + g[(i + s, j)]) / 2.0,
+                        (0, 1) if i % tile == 0 => (g[(i, j - s)] + g[(i, j + s)]) / 2.0,
+                        (1, 0) | (0, 1) => {
+                            (g[(i - s, j)] + g[(i + s, j)] + g[(i, j - s)] + g[(i, j + s)]) / 4.0
+                        }
                         _ => return None,
                     };
                     Some(m + gauss(a, b, 0))
@@ -402,13 +477,19 @@ pub fn subdivide(nx: usize, ny: usize, cell_size: f32, p: &SubdivisionParams, se
 /// value of point `(a·s, b·s)` or `None` to leave it. Reads see the grid as it
 /// was before the pass (values are written after all rows are computed), so the
 /// pass is order-independent and parallel over rows.
-fn level_pass(g: &mut Grid2<f64>, s: usize, f: impl Fn(&Grid2<f64>, usize, usize) -> Option<f64> + Sync + Send) {
+fn level_pass(
+    g: &mut Grid2<f64>,
+    s: usize,
+    f: impl Fn(&Grid2<f64>, usize, usize) -> Option<f64> + Sync + Send,
+) {
     let (w, h) = g.dims();
     let (na, nb) = ((w - 1) / s + 1, (h - 1) / s + 1);
     let rows: Vec<usize> = (0..nb).collect();
     let gr = &*g;
     let updates: Vec<Vec<(usize, f64)>> = par::run(rows, |b| {
-        (0..na).filter_map(|a| f(gr, a, b).map(|v| (a, v))).collect()
+        (0..na)
+            .filter_map(|a| f(gr, a, b).map(|v| (a, v)))
+            .collect()
     });
     for (b, row) in updates.into_iter().enumerate() {
         for (a, v) in row {
@@ -423,7 +504,11 @@ mod tests {
 
     #[test]
     fn ratio_is_two_to_minus_h() {
-        let p = MidpointParams { h: 0.5, scale: 2.0, ..Default::default() };
+        let p = MidpointParams {
+            h: 0.5,
+            scale: 2.0,
+            ..Default::default()
+        };
         let s = p.level_std(3);
         assert_eq!(s[0], 2.0);
         approx::assert_relative_eq!(s[1], 2.0 * 0.5f64.sqrt(), epsilon = 1e-15);
@@ -444,7 +529,10 @@ mod tests {
 
     #[test]
     fn fixed_endpoints_are_kept() {
-        let p = MidpointParams { endpoints: EndpointMode::Fixed(1.5, -2.0), ..Default::default() };
+        let p = MidpointParams {
+            endpoints: EndpointMode::Fixed(1.5, -2.0),
+            ..Default::default()
+        };
         let f = midpoint_1d(&p, 6, Seed(1)).unwrap();
         assert_eq!(f[0], 1.5);
         assert_eq!(f[64], -2.0);
@@ -452,7 +540,11 @@ mod tests {
 
     #[test]
     fn polyline_keeps_vertices_and_shares_edges() {
-        let p = MidpointParams { h: 0.7, scale: 0.1, ..Default::default() };
+        let p = MidpointParams {
+            h: 0.7,
+            scale: 0.1,
+            ..Default::default()
+        };
         let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
         let out = fractal_polyline(&square, true, &p, 5, Seed(9)).unwrap();
         assert_eq!(out.len(), 4 * 32);
@@ -460,18 +552,37 @@ mod tests {
             assert_eq!(out[i * 32], *v);
         }
         // The same edge walked backwards by another polyline gives the same points reversed.
-        let a = fractal_polyline_ids(&[DVec2::X, DVec2::ZERO], &[1, 0], false, &p, 5, Seed(9)).unwrap();
+        let a =
+            fractal_polyline_ids(&[DVec2::X, DVec2::ZERO], &[1, 0], false, &p, 5, Seed(9)).unwrap();
         let first_edge: Vec<_> = out[1..32].iter().rev().copied().collect();
         assert_eq!(&a[1..32], &first_edge[..]);
         // h = 1 and scale → 0 converges to the base polygon.
-        let flat = fractal_polyline(&square, true, &MidpointParams { h: 1.0, scale: 0.0, ..Default::default() }, 4, Seed(9)).unwrap();
-        assert!(flat.iter().all(|v| v.x.min(v.y) >= 0.0 && v.x.max(v.y) <= 1.0));
+        let flat = fractal_polyline(
+            &square,
+            true,
+            &MidpointParams {
+                h: 1.0,
+                scale: 0.0,
+                ..Default::default()
+            },
+            4,
+            Seed(9),
+        )
+        .unwrap();
+        assert!(
+            flat.iter()
+                .all(|v| v.x.min(v.y) >= 0.0 && v.x.max(v.y) <= 1.0)
+        );
     }
 
     #[test]
     fn grid_lod_consistency_every_scheme() {
         for scheme in [Scheme::Triangle, Scheme::Quad, Scheme::DiamondSquare] {
-            let mut p = SubdivisionParams { scheme, levels: Some(7), ..Default::default() };
+            let mut p = SubdivisionParams {
+                scheme,
+                levels: Some(7),
+                ..Default::default()
+            };
             let fine = subdivide(200, 150, 1.0, &p, Seed(11)).unwrap();
             p.levels = Some(5);
             let coarse = subdivide(50, 38, 4.0, &p, Seed(11)).unwrap();
