@@ -1,6 +1,59 @@
 //! # natura-atmos
 //!
-//! Aerial perspective, sky, spectral colour, rainbow and mirage.
+//! Aerial perspective, the physical sky, spectral colour, the rainbow and
+//! mirages, after Musgrave's dissertation *Methods for Realistic Landscape
+//! Imaging* (1993, chapter 4; seed `000`, cited `D:line`) and the SIGGRAPH
+//! 2001 course *Simulating Nature* (seed `004`, `C:line`), with the errata of
+//! the spec digest `atmosphere.md` corrected and the later physical models
+//! (Nishita 1993, Hillaire 2020, Jakob–Hanika 2019) added.
+//!
+//! | module | what | source |
+//! |---|---|---|
+//! | [`medium`] | the [`Medium`] trait: homogeneous fog, exponential mist, exact radial (planetary) atmosphere, umbra | D:1514-1642 |
+//! | [`scatter`] | Rayleigh, Henyey–Greenstein, Cornette–Shanks phase functions; physical Rayleigh coefficient | D:1484-1488, C:2152 |
+//! | [`sky`] | Rayleigh + Mie + ozone sky: Nishita ray marching, Hillaire LUTs, aerial perspective, sun disc | spec §15.2 |
+//! | [`spectrum`] | CIE 1931 CMFs, Wyman fit, XYZ → sRGB, Bradford, illuminants, sampling, upsampling, Musgrave's tables | D:1810-1886 |
+//! | [`rainbow`] | Descartes paths, Fresnel, Cauchy water, the deviation/intensity table, empirical bow | D:1768-1800, D:1890-1953 |
+//! | [`mirage`] | Gladstone–Dale stratified air, adaptive RK ray paths, Musgrave's planar mirage with TIR | D:1959-2001 |
+//! | [`optics`] | Snell, Fresnel, critical and Brewster angles, dispersion | D:1724-1794, C:1121-1157 |
+//!
+//! **Errata corrected** (each is documented where it is fixed): the radial
+//! fog integral of eq. 4.1.13 uses signed along-line distances and gains
+//! `√π/(2k)`, and is evaluated with `erfcx` so Earth-thin atmospheres show no
+//! "ozone hole" ([`medium::RadialAtmosphere`]); eq. 4.1.5 is a mean
+//! coefficient and is evaluated without cancellation
+//! ([`medium::ExponentialMist`]); the 1 : 3 : 20 Rayleigh ratio is not the
+//! λ⁻⁴ of its wavelengths ([`medium::RayleighRgb`]); a flat spectrum is not
+//! sRGB white without adaptation ([`spectrum::bradford`]); the garbled linear
+//! dispersion constant ([`optics::LinearAbbe`]); the course notes'
+//! unnormalised Henyey–Greenstein and "Brewster" critical angle
+//! ([`scatter`], [`optics`]).
+//!
+//! Conventions: world frame z up, metres, radians, wavelengths in vacuum
+//! nanometres; `f64` for every integral, `f32` linear RGB on the per-pixel
+//! paths ([`sky::SkyView`]). Directions are [`Dir3`]s, which can only be
+//! built by normalising a finite non-zero vector. Bad input returns
+//! [`AtmosError`]; nothing panics on user input.
+//!
+//! ```
+//! use glam::DVec3;
+//! use natura_atmos::{Dir3, Medium, medium::ExponentialMist};
+//! // Musgrave's mist with his Rayleigh-ish extinction vector: distant ridges go blue.
+//! let mist = ExponentialMist::new(
+//!     natura_atmos::medium::RayleighRgb::musgrave_1_3_20(2e-5),
+//!     DVec3::new(0.6, 0.7, 0.9),
+//!     0.0,
+//!     1500.0,
+//! )?;
+//! let eye = DVec3::new(0.0, 0.0, 500.0);
+//! let ridge = mist.composite(eye, DVec3::new(30_000.0, 0.0, 800.0), DVec3::splat(0.1));
+//! assert!(ridge.z > ridge.x);
+//! // A horizontal ray has the exact limit, not a division by zero.
+//! let flat = mist.optical_depth(eye, DVec3::new(1000.0, 0.0, 500.0));
+//! assert!(flat.is_finite());
+//! # let _ = Dir3::UP;
+//! # Ok::<(), natura_atmos::AtmosError>(())
+//! ```
 #![forbid(unsafe_code)]
 
 mod dir;

@@ -616,7 +616,7 @@ impl PlanarMirage {
             return None;
         }
         let t = (self.height_m - origin.z) / d.z;
-        if !(t > 0.0) {
+        if t.is_nan() || t <= 0.0 {
             return None;
         }
         let point = origin + d * t;

@@ -311,7 +311,7 @@ mod tests {
 
         /// O4: refraction gives a unit vector obeying Snell; TIR gives None.
         #[test]
-        fn refraction_obeys_snell(n1 in 1.0f64..2.0, n2 in 1.0f64..2.0, ti in 0.0f64..1.55, ph in 0.0f64..6.28) {
+        fn refraction_obeys_snell(n1 in 1.0f64..2.0, n2 in 1.0f64..2.0, ti in 0.0f64..1.55, ph in 0.0f64..std::f64::consts::TAU) {
             let n = Dir3::UP;
             let d = Dir3::new(DVec3::new(ti.sin() * ph.cos(), ti.sin() * ph.sin(), -ti.cos())).unwrap();
             match refract(d, n, n1 / n2) {

@@ -42,7 +42,7 @@ pub fn exit_angle(b: f64, n: f64, k: u32) -> f64 {
 /// or `n ≥ k + 1` (no stationary point).
 #[must_use]
 pub fn descartes_impact(n: f64, k: u32) -> Option<f64> {
-    if k == 0 || !(n > 1.0) {
+    if k == 0 || n.is_nan() || n <= 1.0 {
         return None;
     }
     let kk = k as f64;
@@ -412,6 +412,28 @@ impl Rainbow {
             -(-rain_extinction * distance_m).exp_m1()
         };
         Ok(sun_irradiance * self.table.lookup(Self::antisolar_angle(view, sun)) * cover)
+    }
+}
+
+impl Rainbow {
+    /// Returns `background` seen through `distance_m` of rain plus the rainbow:
+    /// `background·e^{−βd} + E·P(θ)·(1 − e^{−βd})` (see [`Rainbow::radiance`]).
+    pub fn apply(
+        &self,
+        background: DVec3,
+        view: Dir3,
+        sun: Dir3,
+        sun_irradiance: DVec3,
+        rain_extinction: f64,
+        distance_m: f64,
+    ) -> Result<DVec3> {
+        let add = self.radiance(view, sun, sun_irradiance, rain_extinction, distance_m)?;
+        let t = if rain_extinction == 0.0 {
+            1.0
+        } else {
+            (-rain_extinction * distance_m).exp()
+        };
+        Ok(background * t + add)
     }
 }
 

@@ -117,6 +117,7 @@ pub fn integrate(
     rel_tol: f64,
     max_depth: u32,
 ) -> f64 {
+    #[allow(clippy::too_many_arguments)]
     fn rec(
         f: &mut impl FnMut(f64) -> f64,
         a: f64,
@@ -124,22 +125,27 @@ pub fn integrate(
         whole: (f64, f64),
         tol: f64,
         depth: u32,
+        budget: &mut u32,
     ) -> f64 {
         let (v, err) = whole;
-        if err <= tol || depth == 0 {
+        // Stop at the tolerance, at the rounding floor of this piece, or when out of budget.
+        if err <= tol || err <= 50.0 * f64::EPSILON * v.abs() || depth == 0 || *budget == 0 {
             return v;
         }
+        *budget -= 1;
         let m = 0.5 * (a + b);
         let l = gk15(f, a, m);
         let r = gk15(f, m, b);
-        rec(f, a, m, l, 0.5 * tol, depth - 1) + rec(f, m, b, r, 0.5 * tol, depth - 1)
+        rec(f, a, m, l, 0.5 * tol, depth - 1, budget)
+            + rec(f, m, b, r, 0.5 * tol, depth - 1, budget)
     }
     if a == b {
         return 0.0;
     }
     let first = gk15(&mut f, a, b);
     let tol = (rel_tol * first.0.abs()).max(1e-300);
-    rec(&mut f, a, b, first, tol, max_depth)
+    let mut budget = 20_000;
+    rec(&mut f, a, b, first, tol, max_depth, &mut budget)
 }
 
 /// 8-point Gauss–Legendre nodes (positive half) and weights on `[−1, 1]`.

@@ -249,7 +249,7 @@ fn no_ozone_hole() {
             }
             prev = Some(tau);
             let nv = naive(eye, d);
-            if !(nv > 0.0) || rel(nv, tau) > 0.01 {
+            if nv.is_nan() || nv <= 0.0 || rel(nv, tau) > 0.01 {
                 naive_failed = true;
             }
         }

@@ -37,6 +37,7 @@
 mod data;
 mod model;
 mod params;
+mod render;
 mod spec;
 mod view;
 
@@ -49,6 +50,7 @@ pub use model::{RGB_WAVELENGTHS_NM, SPECTRAL_BANDS};
 pub use params::{
     AtmosphereParams, Evaluation, LutSettings, MieParams, MiePhase, OzoneParams, RayleighParams,
 };
+pub use render::{Ground, Projection, auto_exposure};
 pub use view::{ApSample, SkyView};
 
 use crate::Dir3;
@@ -60,15 +62,21 @@ use spec::S;
 /// The model in RGB or spectral channels.
 #[derive(Debug)]
 pub(crate) enum Inner {
-    Rgb(Model<3>),
-    Spectral(Model<SPECTRAL_BANDS>),
+    Rgb(Box<Model<3>>),
+    Spectral(Box<Model<SPECTRAL_BANDS>>),
 }
 
 macro_rules! with_model {
     ($inner:expr, $m:ident => $body:expr) => {
         match $inner {
-            Inner::Rgb($m) => $body,
-            Inner::Spectral($m) => $body,
+            Inner::Rgb(b) => {
+                let $m = &**b;
+                $body
+            }
+            Inner::Spectral(b) => {
+                let $m = &**b;
+                $body
+            }
         }
     };
 }
@@ -133,8 +141,8 @@ impl Atmosphere {
     /// Like [`Atmosphere::new`], reporting each LUT build to `progress`.
     pub fn with_progress(params: AtmosphereParams, progress: &dyn Progress) -> Result<Self> {
         let inner = match params.evaluation {
-            Evaluation::Rgb => Inner::Rgb(Model::new(params, progress)?),
-            Evaluation::Spectral => Inner::Spectral(Model::new(params, progress)?),
+            Evaluation::Rgb => Inner::Rgb(Box::new(Model::new(params, progress)?)),
+            Evaluation::Spectral => Inner::Spectral(Box::new(Model::new(params, progress)?)),
         };
         Ok(Self {
             inner: Arc::new(inner),
@@ -327,7 +335,7 @@ impl Atmosphere {
         SunlitAtmosphere { atm: self, sun }
     }
 
-    /// Checks a world point for the other modules.
+    /// The channel model, for the other sky modules.
     pub(crate) fn inner(&self) -> &Inner {
         &self.inner
     }

@@ -13,7 +13,6 @@ use crate::error::Result;
 use crate::scatter::{
     ISOTROPIC, cornette_shanks, henyey_greenstein, rayleigh_coefficient, rayleigh_phase,
 };
-use crate::special::gauss_legendre8;
 use crate::spectrum::{cie::XYZ_TO_SRGB, cmf_1931};
 
 /// Number of spectral bands in [`Evaluation::Spectral`] (25 nm over 380–780 nm).
@@ -178,13 +177,6 @@ impl<const N: usize> Model<N> {
         (rr, rm, ro)
     }
 
-    /// Extinction coefficient at altitude `h`, m⁻¹.
-    #[inline]
-    pub fn extinction(&self, h: f64) -> S<N> {
-        let (rr, rm, ro) = self.densities(h);
-        self.rayleigh * rr + self.mie_ext * rm + self.ozone * ro
-    }
-
     /// The Mie phase function.
     #[inline]
     pub fn mie_phase(&self, nu: f64) -> f64 {
@@ -194,27 +186,37 @@ impl<const N: usize> Model<N> {
         }
     }
 
-    /// Optical depth from `(r, mu)` over distance `d`, by composite Gauss–Legendre.
+    /// Optical depth from `(r, mu)` over distance `d`, by composite 8-point
+    /// Gauss–Legendre over `segments` equal pieces (all three densities per node).
     pub fn optical_depth(&self, r: f64, mu: f64, d: f64, segments: usize) -> S<N> {
-        let mut tau = S::ZERO;
+        const X: [f64; 4] = [
+            0.183_434_642_495_649_8,
+            0.525_532_409_916_329,
+            0.796_666_477_413_626_7,
+            0.960_289_856_497_536_3,
+        ];
+        const W: [f64; 4] = [
+            0.362_683_783_378_362,
+            0.313_706_645_877_887_3,
+            0.222_381_034_453_374_5,
+            0.101_228_536_290_376_3,
+        ];
         let seg = d / segments as f64;
+        let half = 0.5 * seg;
+        let (mut cr, mut cm, mut co) = (0.0, 0.0, 0.0);
         for k in 0..segments {
-            let (a, b) = (k as f64 * seg, (k + 1) as f64 * seg);
-            let mut acc = [0.0; 3];
-            for (idx, slot) in acc.iter_mut().enumerate() {
-                *slot = gauss_legendre8(
-                    |t| {
-                        let rt = (t * t + 2.0 * r * mu * t + r * r).sqrt();
-                        let d = self.densities(rt - self.bottom());
-                        [d.0, d.1, d.2][idx]
-                    },
-                    a,
-                    b,
-                );
+            let c = (k as f64 + 0.5) * seg;
+            for i in 0..4 {
+                for t in [c - half * X[i], c + half * X[i]] {
+                    let rt = (t * t + 2.0 * r * mu * t + r * r).sqrt();
+                    let (a, b, o) = self.densities(rt - self.bottom());
+                    cr += W[i] * a;
+                    cm += W[i] * b;
+                    co += W[i] * o;
+                }
             }
-            tau += self.rayleigh * acc[0] + self.mie_ext * acc[1] + self.ozone * acc[2];
         }
-        tau
+        self.rayleigh * (cr * half) + self.mie_ext * (cm * half) + self.ozone * (co * half)
     }
 
     /// `(r, μ)` of transmittance-LUT coordinates (Bruneton & Neyret 2008 mapping).
@@ -237,7 +239,7 @@ impl<const N: usize> Model<N> {
     fn transmittance_texel(&self, x_mu: f64, x_r: f64) -> S<N> {
         let (r, mu) = self.trans_r_mu(x_mu, x_r);
         let d = dist_top(r, mu, self.top());
-        self.optical_depth(r, mu, d, 24).exp_neg()
+        self.optical_depth(r, mu, d, 16).exp_neg()
     }
 
     /// Transmittance from `(r, mu)` to the top of the atmosphere (LUT; the ray

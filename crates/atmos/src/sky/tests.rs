@@ -6,9 +6,11 @@ use glam::DVec3;
 use super::*;
 
 fn atm(ms: bool, eval: Evaluation) -> Atmosphere {
-    let mut p = AtmosphereParams::default();
-    p.multiple_scattering = ms;
-    p.evaluation = eval;
+    let p = AtmosphereParams {
+        multiple_scattering: ms,
+        evaluation: eval,
+        ..AtmosphereParams::default()
+    };
     Atmosphere::new(p).unwrap()
 }
 
@@ -265,18 +267,41 @@ fn deterministic_across_thread_counts() {
 
 #[test]
 fn bad_input_is_refused() {
-    let mut p = AtmosphereParams::default();
-    p.top_radius_m = p.bottom_radius_m;
-    assert!(Atmosphere::new(p).is_err());
-    let mut p = AtmosphereParams::default();
-    p.rayleigh.scale_height_m = -1.0;
-    assert!(Atmosphere::new(p).is_err());
-    let mut p = AtmosphereParams::default();
-    p.mie.g = f64::NAN;
-    assert!(Atmosphere::new(p).is_err());
-    let mut p = AtmosphereParams::default();
-    p.lut.sky_view = (0, 10);
-    assert!(Atmosphere::new(p).is_err());
+    let d = AtmosphereParams::default();
+    let bad = [
+        AtmosphereParams {
+            top_radius_m: d.bottom_radius_m,
+            ..d
+        },
+        AtmosphereParams {
+            rayleigh: RayleighParams {
+                scale_height_m: -1.0,
+                ..d.rayleigh
+            },
+            ..d
+        },
+        AtmosphereParams {
+            mie: MieParams {
+                g: f64::NAN,
+                ..d.mie
+            },
+            ..d
+        },
+        AtmosphereParams {
+            lut: LutSettings {
+                sky_view: (0, 10),
+                ..d.lut
+            },
+            ..d
+        },
+        AtmosphereParams {
+            ground_albedo: 1.5,
+            ..d
+        },
+    ];
+    for p in bad {
+        assert!(Atmosphere::new(p).is_err(), "{p:?}");
+    }
     let a = atm(false, Evaluation::Rgb);
     assert!(a.sky_view(DVec3::new(0.0, 0.0, -100.0), Dir3::UP).is_err());
     assert!(

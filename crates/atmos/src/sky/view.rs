@@ -63,6 +63,17 @@ pub struct SkyView {
     sun_radius: f32,
     cos_sun_radius: f32,
     ambient: Vec3,
+    sun_e: Vec3,
+}
+
+/// `acos(x)` in `f32` to 7e-5 rad (Abramowitz & Stegun 4.4.45), several times
+/// cheaper than `f32::acos`; ample for indexing LUTs whose texels span ~0.02 rad.
+#[inline]
+fn fast_acos(x: f32) -> f32 {
+    let a = x.abs().min(1.0);
+    let p = ((-0.018_729_3 * a + 0.074_261) * a - 0.212_114_4) * a + 1.570_728_8;
+    let r = p * (1.0 - a).sqrt();
+    if x < 0.0 { PI - r } else { r }
 }
 
 /// Zenith angle → `[0, 1]`, concentrating texels at the horizon `θ_h` (Hillaire §5.3).
@@ -233,8 +244,10 @@ pub(crate) fn build(model: Arc<Inner>, params: AtmosphereParams, q: DVec3, sun: 
         sun_radius: params.sun_angular_radius as f32,
         cos_sun_radius: params.sun_angular_radius.cos() as f32,
         ambient: Vec3::ZERO,
+        sun_e: Vec3::ZERO,
     };
     view.ambient = view.integrate_irradiance();
+    view.sun_e = view.sun_irradiance();
     view
 }
 
@@ -251,7 +264,10 @@ impl SkyView {
         } else {
             1.0
         };
-        (az_to_u(cos_phi.acos()), zen_to_v(mu.acos(), self.theta_h))
+        (
+            az_to_u(fast_acos(cos_phi)),
+            zen_to_v(fast_acos(mu), self.theta_h),
+        )
     }
 
     /// Sky radiance (linear RGB, without the sun disc) along `view`, from the
@@ -286,7 +302,14 @@ impl SkyView {
     /// Sun-disc radiance along `view` (limb-darkened, after transmittance); zero off the disc.
     #[must_use]
     pub fn sun_disc(&self, view: Dir3) -> Vec3 {
-        let c = view.as_vec3().dot(self.sun_f);
+        self.sun_disc_f32(view.as_vec3())
+    }
+
+    /// [`SkyView::sun_disc`] for a unit `f32` direction (hot path).
+    #[inline]
+    #[must_use]
+    pub fn sun_disc_f32(&self, view: Vec3) -> Vec3 {
+        let c = view.dot(self.sun_f);
         if c < self.cos_sun_radius {
             return Vec3::ZERO;
         }
@@ -391,6 +414,23 @@ impl SkyView {
         atm.sun_irradiance(p, self.sun)
             .map(|v| v.as_vec3())
             .unwrap_or(Vec3::ZERO)
+    }
+
+    /// Planet-centred camera position.
+    pub(crate) fn camera_planet(&self) -> DVec3 {
+        self.q
+    }
+
+    pub(crate) fn bottom_radius(&self) -> f64 {
+        self.params.bottom_radius_m
+    }
+
+    pub(crate) fn aerial_range(&self) -> f64 {
+        f64::from(self.ap_max)
+    }
+
+    pub(crate) fn sun_irradiance_cached(&self) -> Vec3 {
+        self.sun_e
     }
 
     /// The sun direction this view was built for.

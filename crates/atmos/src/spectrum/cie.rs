@@ -287,7 +287,7 @@ mod tests {
         // λ⁻⁴ over 380-780 nm is in gamut and blue (spec §5.1).
         let xyz = spectrum_to_xyz(
             |l| {
-                if l <= 780.0 && l >= 380.0 {
+                if (380.0..=780.0).contains(&l) {
                     (550.0 / l).powi(4)
                 } else {
                     0.0

@@ -1,0 +1,247 @@
+//! Whole-image sky renders from a [`SkyView`]: fisheye, panorama and pinhole
+//! projections, with an optional Lambertian ground seen through the aerial
+//! perspective. Used by the examples and benchmarks, and as a backdrop.
+
+use glam::{DVec3, Vec3};
+use natura_core::{Grid2, Image};
+
+use super::SkyView;
+use crate::Dir3;
+use crate::error::{Result, in_range, invalid};
+
+/// How image pixels map to view directions (world frame, z up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// The upper hemisphere, equidistant fisheye: zenith at the centre, the
+    /// horizon on the inscribed circle, north (+y) up, east (+x) right.
+    Fisheye,
+    /// Equirectangular: azimuth 0–360° across (+x at the left edge, turning
+    /// towards +y), elevation from `max_elevation` (top) to `min_elevation`
+    /// (bottom), radians.
+    Panorama {
+        /// Lowest elevation shown, radians.
+        min_elevation: f64,
+        /// Highest elevation shown, radians.
+        max_elevation: f64,
+    },
+    /// A pinhole camera with vertical field of view `fov_y` (radians), looking
+    /// towards azimuth `yaw` (from +x towards +y) and elevation `pitch`.
+    Pinhole {
+        /// Vertical field of view, radians.
+        fov_y: f64,
+        /// Azimuth of the view axis, radians.
+        yaw: f64,
+        /// Elevation of the view axis, radians.
+        pitch: f64,
+    },
+}
+
+impl Projection {
+    fn validate(&self) -> Result<()> {
+        match *self {
+            Projection::Fisheye => Ok(()),
+            Projection::Panorama {
+                min_elevation,
+                max_elevation,
+            } => {
+                in_range(
+                    "min_elevation",
+                    min_elevation,
+                    -std::f64::consts::FRAC_PI_2,
+                    std::f64::consts::FRAC_PI_2,
+                    "must lie in [−π/2, π/2]",
+                )?;
+                in_range(
+                    "max_elevation",
+                    max_elevation,
+                    -std::f64::consts::FRAC_PI_2,
+                    std::f64::consts::FRAC_PI_2,
+                    "must lie in [−π/2, π/2]",
+                )?;
+                if max_elevation <= min_elevation {
+                    return Err(invalid(
+                        "max_elevation",
+                        max_elevation,
+                        "must exceed min_elevation",
+                    ));
+                }
+                Ok(())
+            }
+            Projection::Pinhole { fov_y, yaw, pitch } => {
+                in_range("fov_y", fov_y, 1e-4, 3.1, "must lie in (0, 3.1] rad")?;
+                crate::error::finite("yaw", yaw)?;
+                in_range("pitch", pitch, -1.5, 1.5, "must lie in [−1.5, 1.5] rad")?;
+                Ok(())
+            }
+        }
+    }
+
+    /// The unit view direction of pixel centre `(x, y)` in a `w × h` image, or
+    /// `None` outside the projection (fisheye corners).
+    #[inline]
+    #[must_use]
+    pub fn direction(&self, x: usize, y: usize, w: usize, h: usize) -> Option<Vec3> {
+        let (fx, fy) = (x as f32 + 0.5, y as f32 + 0.5);
+        match *self {
+            Projection::Fisheye => {
+                let s = w.min(h) as f32;
+                let u = (2.0 * fx - w as f32) / s;
+                let v = (h as f32 - 2.0 * fy) / s;
+                let rr = (u * u + v * v).sqrt();
+                if rr > 1.0 {
+                    return None;
+                }
+                let theta = rr * std::f32::consts::FRAC_PI_2;
+                let (st, ct) = theta.sin_cos();
+                let (cu, cv) = if rr > 0.0 {
+                    (u / rr, v / rr)
+                } else {
+                    (0.0, 0.0)
+                };
+                Some(Vec3::new(st * cu, st * cv, ct))
+            }
+            Projection::Panorama {
+                min_elevation,
+                max_elevation,
+            } => {
+                let az = fx / w as f32 * std::f32::consts::TAU;
+                let el =
+                    max_elevation as f32 - (max_elevation - min_elevation) as f32 * fy / h as f32;
+                let (se, ce) = el.sin_cos();
+                Some(Vec3::new(ce * az.cos(), ce * az.sin(), se))
+            }
+            Projection::Pinhole { fov_y, yaw, pitch } => {
+                let t = (0.5 * fov_y as f32).tan();
+                let aspect = w as f32 / h as f32;
+                let sx = (2.0 * fx / w as f32 - 1.0) * t * aspect;
+                let sy = (1.0 - 2.0 * fy / h as f32) * t;
+                let (sp, cp) = (pitch as f32).sin_cos();
+                let (sy_, cy_) = (yaw as f32).sin_cos();
+                let fwd = Vec3::new(cp * cy_, cp * sy_, sp);
+                let right = Vec3::new(sy_, -cy_, 0.0);
+                let up = right.cross(fwd);
+                Some((fwd + right * sx + up * sy).normalize())
+            }
+        }
+    }
+}
+
+/// A Lambertian ground (the planet's surface) under the sun and the sky.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ground {
+    /// Diffuse albedo (linear RGB, each in `[0, 1]`).
+    pub albedo: Vec3,
+}
+
+impl SkyView {
+    /// Distance from the camera along `view` to the planet's surface, if the ray meets it.
+    #[must_use]
+    pub fn ground_distance(&self, view: Vec3) -> Option<f32> {
+        let q = self.camera_planet();
+        let d = view.as_dvec3();
+        let r = self.bottom_radius();
+        let b = q.dot(d);
+        let c = q.length_squared() - r * r;
+        let disc = b * b - c;
+        (b < 0.0 && disc >= 0.0).then(|| (c.max(0.0) / (-b + disc.sqrt())) as f32)
+    }
+
+    /// Radiance of the Lambertian `ground` seen along `view` at distance `d`
+    /// (sunlight with the camera's transmittance and the sky's irradiance),
+    /// through the aerial perspective.
+    #[must_use]
+    pub fn ground_radiance(&self, view: Vec3, d: f32, ground: &Ground) -> Vec3 {
+        // The surface normal at the hit: (q + d·v)/R, with q the planet-centred camera.
+        let q = self.camera_planet();
+        let r = self.bottom_radius();
+        let n = (q / r).as_vec3() + view * (d / r as f32);
+        let cos = n.dot(self.sun().as_vec3()).max(0.0) / n.length();
+        let e = self.sun_irradiance_cached() * cos + self.sky_irradiance();
+        let l = ground.albedo * e * std::f32::consts::FRAC_1_PI;
+        let ap = if f64::from(d) <= self.aerial_range() {
+            self.aerial_perspective_f32(view, d)
+        } else {
+            self.aerial_perspective(Dir3::from_f32(view).unwrap_or(Dir3::DOWN), f64::from(d))
+                .unwrap_or(super::ApSample {
+                    transmittance: Vec3::ZERO,
+                    in_scatter: Vec3::ZERO,
+                })
+        };
+        ap.apply(l)
+    }
+
+    /// Renders linear radiance for every pixel: sky (with the sun disc if
+    /// `sun_disc`), and the ground if given (otherwise the sky LUT's value below
+    /// the horizon). Pixels outside the projection are black. Rows run in parallel.
+    pub fn render(
+        &self,
+        projection: Projection,
+        w: usize,
+        h: usize,
+        ground: Option<Ground>,
+        sun_disc: bool,
+    ) -> Result<Image> {
+        projection.validate()?;
+        if let Some(g) = ground {
+            crate::error::non_negative3("albedo", g.albedo.as_dvec3())?;
+        }
+        let mut grid = Grid2::new(w, h, Vec3::ZERO)?;
+        let shade = |x: usize, y: usize| -> Vec3 {
+            let Some(d) = projection.direction(x, y, w, h) else {
+                return Vec3::ZERO;
+            };
+            if let Some(g) = &ground {
+                if let Some(t) = self.ground_distance(d) {
+                    return self.ground_radiance(d, t, g);
+                }
+            }
+            let mut l = self.radiance_f32(d);
+            if sun_disc {
+                l += self.sun_disc_f32(d);
+            }
+            l
+        };
+        #[cfg(feature = "parallel")]
+        grid.par_rows_mut(|y, row| {
+            for (x, px) in row.iter_mut().enumerate() {
+                *px = shade(x, y);
+            }
+        });
+        #[cfg(not(feature = "parallel"))]
+        for y in 0..h {
+            for (x, px) in grid.row_mut(y).iter_mut().enumerate() {
+                *px = shade(x, y);
+            }
+        }
+        Ok(Image::from_grid(grid))
+    }
+}
+
+/// Returns the exposure (in stops) that maps the mean luminance of the
+/// non-black pixels of `img` to `key` (0.18 for mid-grey), like a camera's
+/// automatic exposure; 0 for a black image.
+#[must_use]
+pub fn auto_exposure(img: &Image, key: f32) -> f32 {
+    let mut sum = 0.0f64;
+    let mut n = 0usize;
+    for c in img.pixels().as_slice() {
+        let y = natura_core::colour::luminance(*c);
+        if y > 0.0 && y.is_finite() {
+            sum += f64::from(y).ln();
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return 0.0;
+    }
+    let mean = (sum / n as f64).exp() as f32;
+    (key / mean).log2()
+}
+
+#[allow(dead_code)]
+fn _assert_send_sync() {
+    fn is<T: Send + Sync>() {}
+    is::<SkyView>();
+    is::<super::Atmosphere>();
+    let _ = DVec3::ZERO;
+}
