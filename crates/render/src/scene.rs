@@ -103,16 +103,33 @@ pub struct ErosionDesc {
     pub uplift_m_per_yr: f64,
     /// Stream-power time step, years.
     pub stream_power_dt_yr: f64,
-    /// Virtual-pipe hydraulic erosion steps (0 = off): fine gullies and sediment fans.
+    /// The hydraulic model that adds gullies and sediment after stream power.
+    pub hydraulic_model: HydraulicModel,
+    /// Droplets for the droplet model (0 = off).
+    pub droplets: u64,
+    /// Erosion brush radius of the droplets, cells.
+    pub droplet_radius: u32,
+    /// Virtual-pipe hydraulic erosion steps for the pipe model (0 = off).
     pub hydraulic_steps: u32,
-    /// Rain for the hydraulic model, metres of water per second.
+    /// Rain for the pipe model, metres of water per second.
     pub rain_m_per_s: f64,
-    /// Sediment capacity constant of the hydraulic model.
+    /// Sediment capacity constant of the pipe model.
     pub sediment_capacity: f64,
     /// Thermal weathering steps (0 = off): scree slopes at the talus angle.
     pub thermal_steps: u32,
     /// Talus angle, degrees.
     pub talus_deg: f64,
+}
+
+/// Which hydraulic erosion model adds the fine detail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HydraulicModel {
+    /// Particle (droplet) erosion: cheap, carves gullies on every slope.
+    Droplets,
+    /// Mei–Decaudin–Hu virtual-pipe shallow water: physically fuller, needs
+    /// many steps to show at landscape scale.
+    Pipe,
 }
 
 /// The water body.
@@ -314,6 +331,9 @@ impl Default for ErosionDesc {
             stream_power_m: 0.5,
             uplift_m_per_yr: 0.0,
             stream_power_dt_yr: 2000.0,
+            hydraulic_model: HydraulicModel::Droplets,
+            droplets: 400_000,
+            droplet_radius: 3,
             hydraulic_steps: 120,
             rain_m_per_s: 0.01,
             sediment_capacity: 0.05,
@@ -447,6 +467,8 @@ impl SceneDesc {
         in_range("erosion.stream_power_m", e.stream_power_m, 0.0, 2.0)?;
         in_range("erosion.uplift_m_per_yr", e.uplift_m_per_yr, 0.0, 1.0)?;
         in_range("erosion.stream_power_dt_yr", e.stream_power_dt_yr, 1e-6, 1e7)?;
+        in_range("erosion.droplets", e.droplets as f64, 0.0, 1e9)?;
+        in_range("erosion.droplet_radius", f64::from(e.droplet_radius), 1.0, 16.0)?;
         in_range("erosion.hydraulic_steps", f64::from(e.hydraulic_steps), 0.0, 100_000.0)?;
         in_range("erosion.rain_m_per_s", e.rain_m_per_s, 0.0, 1.0)?;
         in_range("erosion.sediment_capacity", e.sediment_capacity, 0.0, 100.0)?;

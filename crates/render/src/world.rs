@@ -17,12 +17,12 @@ use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
 use natura_noise::{Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura_terrain::erosion::{
-    Depressions, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
+    Depressions, DropletErosion, DropletParams, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
 };
 use natura_terrain::synth::{FieldMapping, fill_field};
 
 use crate::error::Result;
-use crate::scene::{SceneDesc, TerrainGenerator};
+use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
 
 /// The fractal terrain function of a scene, before normalisation: a ridged,
 /// hybrid or ridged-times-hybrid multifractal over Perlin noise, with an
@@ -302,7 +302,31 @@ fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Re
         }
         area = Some(sp.drainage_area()?);
     }
-    if e.hydraulic_steps > 0 {
+    if e.hydraulic_model == HydraulicModel::Droplets && e.droplets > 0 {
+        // Beyer's droplet constants assume heights measured in cells (his
+        // capacity and erosion scale with the height drop per step), so run
+        // the droplets on the field scaled to cell units and scale back.
+        let cell = hf.cell_size();
+        let mut scaled = HeightField::new(hf.heights().map(|&h| h / cell), 1.0)?;
+        let p = DropletParams {
+            radius: e.droplet_radius,
+            capacity: 1.0,
+            erode: 0.1,
+            deposit: 0.1,
+            evaporate: 0.02,
+            ..DropletParams::default()
+        };
+        let mut drops = DropletErosion::new(p, &scaled, Seed(scene.seed).derive("droplets"))?;
+        drops.run(&mut scaled, e.droplets, progress)?;
+        let dep = drops.deposition()?;
+        for (h, s) in hf.heights_mut().as_mut_slice().iter_mut().zip(scaled.heights().as_slice()) {
+            *h = s * cell;
+        }
+        for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
+            *d += s.max(0.0) * cell;
+        }
+    }
+    if e.hydraulic_model == HydraulicModel::Pipe && e.hydraulic_steps > 0 {
         let p = PipeParams { rain_m_per_s: e.rain_m_per_s, k_c: e.sediment_capacity, ..PipeParams::default() };
         let mut pipe = PipeModel::new(p, hf)?;
         pipe.run(hf, e.hydraulic_steps, progress)?;
