@@ -332,7 +332,7 @@ impl Default for ErosionDesc {
             uplift_m_per_yr: 0.0,
             stream_power_dt_yr: 2000.0,
             hydraulic_model: HydraulicModel::Droplets,
-            droplets: 400_000,
+            droplets: 1_000_000,
             droplet_radius: 3,
             hydraulic_steps: 120,
             rain_m_per_s: 0.01,

@@ -156,6 +156,28 @@ impl World {
         Ok(World { scene: scene.clone(), terrain, deposition, wetness, water_level, surface, sun, atmosphere, times })
     }
 
+    /// A world over a given height field (a DEM, or terrain made elsewhere):
+    /// no synthesis or erosion; deposition is zero and wetness comes from D8
+    /// flow accumulation. The scene's terrain and erosion sections are ignored.
+    pub fn from_height_field(scene: &SceneDesc, terrain: HeightField, progress: &dyn Progress) -> Result<World> {
+        scene.validate()?;
+        terrain.check_finite()?;
+        let mut times = StageTimes::default();
+        let (nx, ny) = (terrain.nx(), terrain.ny());
+        let deposition = Grid2::new(nx, ny, 0.0f32)?;
+        let wetness = times.time("analysis", || -> Result<Grid2<f32>> {
+            let area = natura_terrain::analysis::flow_accumulation_d8(&terrain, Depressions::Fill)?;
+            Ok(wetness_from_area(&area, terrain.cell_size()))
+        })?;
+        let water_level = scene.water.enabled.then(|| water_level(scene, &terrain));
+        let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
+        let sun = sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg);
+        let atmosphere = times.time("atmosphere", || {
+            Atmosphere::with_progress(atmosphere_params(scene, &terrain), progress)
+        })?;
+        Ok(World { scene: scene.clone(), terrain, deposition, wetness, water_level, surface, sun, atmosphere, times })
+    }
+
     /// The eye position the scene's camera description gives: above the terrain
     /// (or water) at `position_uv` by `height_above_ground_m`.
     #[must_use]
@@ -345,12 +367,15 @@ fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Re
         Some(a) => a,
         None => natura_terrain::analysis::flow_accumulation_d8(hf, Depressions::Fill)?,
     };
-    // Wetness: log drainage area in cells, from 50 cells (damp hollows) to
-    // 50 000 cells (the main rivers).
-    let cell = f64::from(hf.cell_size()).powi(2);
+    Ok((deposition, wetness_from_area(&area, hf.cell_size())))
+}
+
+/// Wetness from drainage area (m²): log area in cells, from 50 cells (damp
+/// hollows) to 50 000 cells (the main rivers), mapped to `[0, 1]`.
+fn wetness_from_area(area: &Grid2<f32>, cell_size: f32) -> Grid2<f32> {
+    let cell = f64::from(cell_size).powi(2);
     let (lo, hi) = (50f64.ln(), 50_000f64.ln());
-    let wetness = area.map(|&a| (((f64::from(a) / cell).max(1.0).ln() - lo) / (hi - lo)).clamp(0.0, 1.0) as f32);
-    Ok((deposition, wetness))
+    area.map(|&a| (((f64::from(a) / cell).max(1.0).ln() - lo) / (hi - lo)).clamp(0.0, 1.0) as f32)
 }
 
 /// Lakes shallower than this (metres) are left dry: puddles in the
