@@ -100,7 +100,10 @@ where
     let tiles = (tx as usize) * (ty as usize);
     progress.start("tracing", u64::from(width) * u64::from(height));
     let run = |k: usize| {
-        let (bx, by) = ((k % tx as usize) as u32 * tile, (k / tx as usize) as u32 * tile);
+        let (bx, by) = (
+            (k % tx as usize) as u32 * tile,
+            (k / tx as usize) as u32 * tile,
+        );
         let (w, h) = (tile.min(width - bx), tile.min(height - by));
         let mut out = Vec::with_capacity((w * h) as usize);
         for y in by..by + h {
@@ -119,7 +122,10 @@ where
     #[cfg(not(feature = "parallel"))]
     let done: Vec<Vec<T>> = (0..tiles).map(run).collect();
     for (k, out) in done.into_iter().enumerate() {
-        let (bx, by) = ((k % tx as usize) as u32 * tile, (k / tx as usize) as u32 * tile);
+        let (bx, by) = (
+            (k % tx as usize) as u32 * tile,
+            (k / tx as usize) as u32 * tile,
+        );
         let w = tile.min(width - bx) as usize;
         for (r, row) in out.chunks_exact(w).enumerate() {
             let y = by as usize + r;

@@ -32,8 +32,8 @@ use natura_core::HeightField;
 use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
-use crate::ray::{Hit, Ray, TraceStats};
 use crate::leaf::{Exit, leaf, nearer};
+use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::CellHit;
 use crate::tracer::Tracer;
 
@@ -219,7 +219,9 @@ impl<'a> GridTracer<'a> {
                 }
             }
             let (i, j) = (v.cell.x, v.cell.y);
-            if let Some(h) = leaf::<ANY>(&self.f, &r, i, j, v.t_in, v.t_out, walk.exit, first, stats) {
+            if let Some(h) =
+                leaf::<ANY>(&self.f, &r, i, j, v.t_in, v.t_out, walk.exit, first, stats)
+            {
                 let h = nearer(pending, h);
                 if ANY || h.t <= v.t_out + r.ttol {
                     return Some(h);

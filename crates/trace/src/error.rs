@@ -37,7 +37,11 @@ pub enum TraceError {
 }
 
 impl TraceError {
-    pub(crate) fn param(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> Self {
+    pub(crate) fn param(
+        name: &'static str,
+        value: impl std::fmt::Display,
+        reason: &'static str,
+    ) -> Self {
         TraceError::InvalidParameter {
             name,
             value: value.to_string(),

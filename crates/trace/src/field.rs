@@ -34,7 +34,7 @@ impl<'a> FieldView<'a> {
         let bad = |reason: String| TraceError::Field { nx, ny, reason };
         if nx < 2 || ny < 2 {
             return Err(bad(
-                "at least 2 × 2 samples are needed to form a cell".into(),
+                "at least 2 × 2 samples are needed to form a cell".into()
             ));
         }
         if nx > MAX_SAMPLES_PER_AXIS || ny > MAX_SAMPLES_PER_AXIS {

@@ -124,7 +124,11 @@ impl GridRay {
         }
         let inv = Vec2::new(1.0 / d.x, 1.0 / d.y);
         let dxy = d.x.abs().max(d.y.abs());
-        let ttol = if dxy > 0.0 { xyeps / dxy } else { f32::INFINITY };
+        let ttol = if dxy > 0.0 {
+            xyeps / dxy
+        } else {
+            f32::INFINITY
+        };
         Some(Self {
             o,
             d,
@@ -144,13 +148,25 @@ impl GridRay {
     /// Whether the clipped range is empty (the ray misses the box within `[t_min, t_max]`).
     #[inline]
     pub fn misses_box(&self) -> bool {
-        !(self.t0 <= self.t1)
+        !matches!(
+            self.t0.partial_cmp(&self.t1),
+            Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+        )
     }
 
     /// The cell holding the clipped entry point, clamped to the grid.
     #[inline]
     pub fn entry_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
         let p = self.o + self.t0 * self.d;
+        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
+        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
+        (i, j)
+    }
+
+    /// The cell holding the clipped exit point, clamped to the grid.
+    #[inline]
+    pub fn exit_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
+        let p = self.o + self.t1 * self.d;
         let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
         let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
         (i, j)

@@ -18,6 +18,18 @@ pub(crate) enum Exit {
     End,
 }
 
+/// `min` without NaN handling (operands are never NaN here): one instruction.
+#[inline(always)]
+pub(crate) fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// `max` without NaN handling.
+#[inline(always)]
+pub(crate) fn fmax(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
 /// Keeps the nearer of two hits (the first on a tie).
 #[inline(always)]
 pub(crate) fn nearer(a: Option<CellHit>, b: CellHit) -> CellHit {
@@ -59,8 +71,8 @@ pub(crate) fn leaf<const ANY: bool>(
     let c = f.corners(i, j);
     let (za, zb) = (r.z_at(t_in), r.z_at(t_out));
     let (zlo, zhi) = if za <= zb { (za, zb) } else { (zb, za) };
-    let cmax = c[0].max(c[1]).max(c[2].max(c[3]));
-    let cmin = c[0].min(c[1]).min(c[2].min(c[3]));
+    let cmax = fmax(fmax(c[0], c[1]), fmax(c[2], c[3]));
+    let cmin = fmin(fmin(c[0], c[1]), fmin(c[2], c[3]));
     if !(zlo <= cmax + r.zm && zhi >= cmin - r.zm) {
         return None;
     }

@@ -147,11 +147,7 @@ pub(crate) fn make_hit(f: &FieldView<'_>, ray: &Ray, h: CellHit) -> Hit {
     let corners = h.triangle.corners();
     let height = |(di, dj): (u32, u32)| c[(di + 2 * dj) as usize];
     let world = |(di, dj): (u32, u32)| {
-        Vec3::new(
-            (i + di) as f32 * s,
-            (j + dj) as f32 * s,
-            height((di, dj)),
-        )
+        Vec3::new((i + di) as f32 * s, (j + dj) as f32 * s, height((di, dj)))
     };
     let w = h.bary;
     let point = world(corners[0]) * w.x + world(corners[1]) * w.y + world(corners[2]) * w.z;

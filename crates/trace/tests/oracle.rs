@@ -23,8 +23,7 @@ fn same(a: &Hit, b: &Hit, scale: f32) -> Result<(), String> {
     if (a.t - b.t).abs() > tol {
         return Err(format!("t {} vs oracle {}", a.t, b.t));
     }
-    if (a.cell, a.triangle) != (b.cell, b.triangle) && (a.point - b.point).length() > 1e-3 * scale
-    {
+    if (a.cell, a.triangle) != (b.cell, b.triangle) && (a.point - b.point).length() > 1e-3 * scale {
         return Err(format!(
             "different triangle away from a shared edge: {:?}/{:?} at {} vs oracle {:?}/{:?} at {}",
             a.cell, a.triangle, a.point, b.cell, b.triangle, b.point

@@ -74,7 +74,11 @@ pub(crate) fn frame(dir: Vec3, up: Vec3) -> Result<(Vec3, Vec3, Vec3)> {
         .ok_or_else(|| TraceError::param("direction", dir, "must be non-zero (eye ≠ target)"))?;
     // Seed 000, line 3133: "The view and up directions are identical?"
     let r = f.cross(up).try_normalize().ok_or_else(|| {
-        TraceError::param("up", up, "must be non-zero and not parallel to the view direction")
+        TraceError::param(
+            "up",
+            up,
+            "must be non-zero and not parallel to the view direction",
+        )
     })?;
     let u = r.cross(f);
     Ok((f, r, u))

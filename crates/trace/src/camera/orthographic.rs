@@ -40,7 +40,11 @@ impl OrthographicCamera {
         check_vec("eye", eye)?;
         check_vec("target", target)?;
         if !(view_height.is_finite() && view_height > 0.0) {
-            return Err(TraceError::param("view_height", view_height, "must be finite and > 0 metres"));
+            return Err(TraceError::param(
+                "view_height",
+                view_height,
+                "must be finite and > 0 metres",
+            ));
         }
         let (forward, right, up) = frame(target - eye, up)?;
         let half_h = 0.5 * view_height;

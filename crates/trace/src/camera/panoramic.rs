@@ -110,10 +110,18 @@ impl PanoramicCamera {
         let forward = (look_dir - look_dir.dot(up) * up)
             .try_normalize()
             .ok_or_else(|| {
-                TraceError::param("look_dir", look_dir, "must be non-zero and not parallel to up")
+                TraceError::param(
+                    "look_dir",
+                    look_dir,
+                    "must be non-zero and not parallel to up",
+                )
             })?;
         if !(hfov.is_finite() && hfov > 0.0) {
-            return Err(TraceError::param("hfov", hfov, "must be finite and > 0 radians"));
+            return Err(TraceError::param(
+                "hfov",
+                hfov,
+                "must be finite and > 0 radians",
+            ));
         }
         let vmax = match projection {
             Projection::Cylindrical => std::f32::consts::PI,

@@ -34,7 +34,7 @@ impl PinholeCamera {
     ///
     /// Fails if a vector is not finite, `eye == target`, `up` is zero or
     /// parallel to the view direction, `vfov` is out of range, or the
-    /// resolution is zero or over [`super::MAX_RESOLUTION`].
+    /// resolution is zero or over [`crate::MAX_RESOLUTION`].
     pub fn look_at(
         eye: Vec3,
         target: Vec3,
@@ -67,7 +67,11 @@ impl PinholeCamera {
     /// Fails unless `aspect` is finite and positive.
     pub fn with_aspect(mut self, aspect: f32) -> Result<Self> {
         if !(aspect.is_finite() && aspect > 0.0) {
-            return Err(TraceError::param("aspect", aspect, "must be finite and > 0"));
+            return Err(TraceError::param(
+                "aspect",
+                aspect,
+                "must be finite and > 0",
+            ));
         }
         self.aspect = aspect;
         Ok(self)

@@ -34,9 +34,7 @@ pub fn field(kind: Kind, nx: usize, ny: usize, cell: f32, seed: u64) -> HeightFi
                 }
             }
             Kind::Plateau => (4.0 * u).floor() * 2.5,
-            Kind::Smooth => {
-                5.0 * ((i as f32 * 0.4).sin() + (j as f32 * 0.3).cos()) + 0.5 * u
-            }
+            Kind::Smooth => 5.0 * ((i as f32 * 0.4).sin() + (j as f32 * 0.3).cos()) + 0.5 * u,
             Kind::Plane => 0.7 * i as f32 - 0.4 * j as f32 + 2.0,
         }
     })
