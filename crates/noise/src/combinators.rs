@@ -43,11 +43,19 @@ impl<B: Field> Field for Ridged<B> {
     }
     fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
         self.0.fill_row2_with(simd, origin, step, out);
-        run(simd, || out.iter_mut().for_each(|v| *v = 1.0 - v.abs()));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = 1.0 - v.abs()),
+        );
     }
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         self.0.fill_row3_with(simd, origin, step, out);
-        run(simd, || out.iter_mut().for_each(|v| *v = 1.0 - v.abs()));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = 1.0 - v.abs()),
+        );
     }
 }
 
@@ -81,11 +89,19 @@ impl<B: Field> Field for Abs<B> {
     }
     fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
         self.0.fill_row2_with(simd, origin, step, out);
-        run(simd, || out.iter_mut().for_each(|v| *v = v.abs()));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = v.abs()),
+        );
     }
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         self.0.fill_row3_with(simd, origin, step, out);
-        run(simd, || out.iter_mut().for_each(|v| *v = v.abs()));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = v.abs()),
+        );
     }
 }
 
@@ -181,13 +197,21 @@ impl<B: Field> Field for Transform<B> {
         self.field
             .fill_row2_with(simd, o, step * self.frequency, out);
         let (a, b) = (self.amplitude as f32, self.bias as f32);
-        run(simd, || out.iter_mut().for_each(|v| *v = a * *v + b));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = a * *v + b),
+        );
     }
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         let o = origin * self.frequency + self.offset;
         self.field
             .fill_row3_with(simd, o, step * self.frequency, out);
         let (a, b) = (self.amplitude as f32, self.bias as f32);
-        run(simd, || out.iter_mut().for_each(|v| *v = a * *v + b));
+        run(
+            simd,
+            #[inline(always)]
+            || out.iter_mut().for_each(|v| *v = a * *v + b),
+        );
     }
 }

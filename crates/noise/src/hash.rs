@@ -93,6 +93,26 @@ pub(crate) const fn corner(x: u32, row: u32) -> u32 {
     mix32(x.wrapping_mul(PX) ^ row)
 }
 
+/// Hash of the 2-D lattice point `(x, y)` in one step (simplex lattices,
+/// whose rows are skewed so nothing can be hoisted).
+#[inline(always)]
+#[must_use]
+pub(crate) const fn flat2(x: u32, y: u32, seed: u32) -> u32 {
+    mix32(x.wrapping_mul(PX).wrapping_add(y.wrapping_mul(PY)) ^ seed)
+}
+
+/// Hash of the 3-D lattice point `(x, y, z)` in one step.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn flat3(x: u32, y: u32, z: u32, seed: u32) -> u32 {
+    mix32(
+        x.wrapping_mul(PX)
+            .wrapping_add(y.wrapping_mul(PY))
+            .wrapping_add(z.wrapping_mul(PZ))
+            ^ seed,
+    )
+}
+
 /// A value uniform in `[-1, 1)` (24 bits) drawn from hash `h`.
 #[inline(always)]
 #[must_use]

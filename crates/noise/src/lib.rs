@@ -10,12 +10,25 @@
 //!   constants (for ray marchers), and f32 batch fills of rows and regular
 //!   lattices (SIMD with run-time dispatch: AVX-512, AVX2, SSE4.1, scalar),
 //!   callable concurrently from rayon workers.
-//! * **Bases** ([`basis`]): [`Perlin`] gradient noise (1-D to 4-D).
+//! * **Bases** ([`basis`]): [`Perlin`] gradient noise (1-D to 4-D, quintic or
+//!   the sources' cubic fade), [`Value`] noise (1-D to 4-D; "Linear"),
+//!   [`Simplex`] (2-D, 3-D), [`Worley`] (F1–F4, F2−F1…, Euclidean, squared,
+//!   Manhattan, Chebyshev; exact search), [`SparseConvolution`], and
+//!   Musgrave's [`Sine`], [`Steps`] and [`Checkerboard`]; all seeded by a hash
+//!   of lattice position and seed (no 256-periodic table). Combinators:
+//!   [`Ridged`], [`Abs`], [`Transform`].
 //! * **Fractals** ([`fractal`]): [`Fbm`], [`Turbulence`], [`Multifractal`]
 //!   (multiplicative cascade), [`HeteroTerrain`], [`HybridMultifractal`],
-//!   [`RidgedMultifractal`], [`StatsByAltitude`], parameterised by
-//!   [`Spectral`] (H, lacunarity, real-valued octaves, frequency) with
-//!   precomputed octave weights.
+//!   [`RidgedMultifractal`], [`StatsByAltitude`] (and the legacy C `hfBm`),
+//!   [`CrossoverFbm`], [`FilteredFbm`], and [`Driven`] (any parameter given by
+//!   a field), parameterised by [`Spectral`] (H, lacunarity, real-valued
+//!   octaves, frequency, amplitude convention) with precomputed octave weights.
+//! * **Vector noise and distortion** ([`vector`], [`warp`]): [`DNoise`],
+//!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
+//!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
+//!
+//! Every type documents its source (seed file and lines), the errata it
+//! corrects, its bound and its Lipschitz constant.
 //!
 //! ```
 //! use natura_noise::{Field, Fbm, Perlin, Spectral, Lattice2};
@@ -51,17 +64,32 @@ mod field;
 pub mod fractal;
 mod hash;
 mod simd;
+pub mod vector;
+pub mod warp;
 
 pub use basis::Fade;
+pub use basis::cellular::{Metric, Worley, WorleyFeature, WorleyParams};
+pub use basis::checker::Checkerboard;
 pub use basis::perlin::Perlin;
+pub use basis::simplex::Simplex;
+pub use basis::sine::Sine;
+pub use basis::sparse::{Kernel, SparseConvolution, SparseParams};
+pub use basis::steps::Steps;
+pub use basis::value::{Value, ValueInterp};
 pub use combinators::{Abs, Ridged, Transform};
 pub use error::{NoiseError, Result};
 pub use field::{Constant, Field, Lattice2, Lattice3};
 pub use fractal::altitude::{StatsByAltitude, StatsByAltitudeLegacy, StatsByAltitudeParams};
 pub use fractal::cascade::{CascadeForm, Multifractal, MultifractalParams};
+pub use fractal::crossover::CrossoverFbm;
+#[cfg(feature = "alloc")]
+pub use fractal::driven::{Driven, DrivenKind, Param};
 pub use fractal::fbm::{Fbm, Turbulence};
+pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_OCTAVES, Octaves, Spectral};
 pub use simd::{Simd, SimdLevel};
+pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
+pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};

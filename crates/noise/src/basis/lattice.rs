@@ -1,7 +1,6 @@
 //! Shared lattice machinery for gradient and value noise: corner hashes and
 //! the generic n-D point evaluator (value and analytic gradient, in f64).
 
-use crate::basis::Fade;
 use crate::hash::{corner, row1, row2, row3, row4};
 use crate::simd::split;
 
@@ -22,7 +21,7 @@ pub(crate) fn corner_hash<const N: usize>(idx: [u32; N], seed: u32) -> u32 {
 #[inline(always)]
 pub(crate) fn lattice_sum<const N: usize>(
     seed: u32,
-    fade: Fade,
+    interp: impl Fn(f64) -> (f64, f64),
     p: [f64; N],
     corner_fn: impl Fn(u32, [f64; N]) -> (f64, [f64; N]),
 ) -> (f64, [f64; N]) {
@@ -34,8 +33,9 @@ pub(crate) fn lattice_sum<const N: usize>(
         let (i, t) = split(p[a]);
         base[a] = i;
         f[a] = t;
-        u[a] = fade.eval(t);
-        du[a] = fade.deriv(t);
+        let (w, dw) = interp(t);
+        u[a] = w;
+        du[a] = dw;
     }
     let mut value = 0.0;
     let mut grad = [0.0; N];

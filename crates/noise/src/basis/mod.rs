@@ -6,8 +6,15 @@
 //! exactly their supremum (found by maximising over every gradient choice, see
 //! each type), so `|N| ≤ 1` and the bound is attained.
 
+pub mod cellular;
+pub mod checker;
 pub(crate) mod lattice;
 pub mod perlin;
+pub mod simplex;
+pub mod sine;
+pub mod sparse;
+pub mod steps;
+pub mod value;
 
 /// The interpolant ("fade") used across a lattice cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -9,7 +9,7 @@
 //! * Gradients: 1-D uniform in `[-1, 1)`; 2-D one of 8 unit vectors (axes and
 //!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002);
 //!   4-D one of the 32 tesseract edges. Drawn from a hash of the lattice
-//!   position and seed (no 256-periodic table; [`crate::hash`]).
+//!   position and seed (no 256-periodic table).
 //! * Fade: quintic by default (C²); [`Fade::Cubic`] reproduces the sources
 //!   (C¹ only — erratum 9 of spec §10 corrects their "C²" claim).
 //! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is exactly
@@ -126,6 +126,11 @@ impl Perlin {
         self.fade
     }
 
+    fn interp(&self) -> impl Fn(f64) -> (f64, f64) {
+        let f = self.fade;
+        move |t| (f.eval(t), f.deriv(t))
+    }
+
     fn scale(&self, dim: usize) -> f64 {
         let q = self.fade == Fade::Quintic;
         1.0 / match dim {
@@ -148,7 +153,7 @@ impl Perlin {
     #[must_use]
     pub fn eval_grad1(&self, x: f64) -> (f64, f64) {
         let k = self.scale(1);
-        let (v, g) = lattice_sum::<1>(self.s, self.fade, [x], |h, d| {
+        let (v, g) = lattice_sum::<1>(self.s, self.interp(), [x], |h, d| {
             let g = f64::from(grad1(h));
             (g * d[0], [g])
         });
@@ -165,7 +170,7 @@ impl Perlin {
     #[must_use]
     pub fn eval_grad4(&self, p: DVec4) -> (f64, DVec4) {
         let k = self.scale(4);
-        let (v, g) = lattice_sum::<4>(self.s, self.fade, p.to_array(), |h, d| {
+        let (v, g) = lattice_sum::<4>(self.s, self.interp(), p.to_array(), |h, d| {
             let g = grad4(h).map(f64::from);
             (g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3], g)
         });
@@ -181,7 +186,7 @@ impl Perlin {
     /// Reference 2-D evaluation through the generic lattice sum.
     fn grad2_impl(&self, p: DVec2) -> (f64, DVec2) {
         let k = self.scale(2);
-        let (v, g) = lattice_sum::<2>(self.s, self.fade, p.to_array(), |h, d| {
+        let (v, g) = lattice_sum::<2>(self.s, self.interp(), p.to_array(), |h, d| {
             let (gx, gy) = grad2(h);
             let g = [f64::from(gx), f64::from(gy)];
             (g[0] * d[0] + g[1] * d[1], g)
@@ -191,7 +196,7 @@ impl Perlin {
 
     fn grad3_impl(&self, p: DVec3) -> (f64, DVec3) {
         let k = self.scale(3);
-        let (v, g) = lattice_sum::<3>(self.s, self.fade, p.to_array(), |h, d| {
+        let (v, g) = lattice_sum::<3>(self.s, self.interp(), p.to_array(), |h, d| {
             let (gx, gy, gz) = grad3(h);
             let g = [f64::from(gx), f64::from(gy), f64::from(gz)];
             (g[0] * d[0] + g[1] * d[1] + g[2] * d[2], g)
@@ -284,15 +289,19 @@ impl Field for Perlin {
         let rows = RowCoeffs::new2(self.s, self.fade, origin.y);
         let k = self.scale(2);
         let (s, fade) = (self.s, self.fade);
-        run(simd, || {
-            if step > 0.0 && step <= SPAN_MAX_STEP {
-                row_spans(fade, origin.x, step, k, out, |ix, fy| rows.cell2(s, ix, fy));
-            } else {
-                with_fade32!(fade, |f| perlin2_row(
-                    f, &rows, origin.x, step, k as f32, out
-                ));
-            }
-        });
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix, fy| rows.cell2(s, ix, fy));
+                } else {
+                    with_fade32!(fade, |f| perlin2_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
@@ -309,15 +318,19 @@ impl Field for Perlin {
         let rows = RowCoeffs::new3(self.s, self.fade, origin.y, origin.z);
         let k = self.scale(3);
         let fade = self.fade;
-        run(simd, || {
-            if step > 0.0 && step <= SPAN_MAX_STEP {
-                row_spans(fade, origin.x, step, k, out, |ix, _| rows.cell3(ix));
-            } else {
-                with_fade32!(fade, |f| perlin3_row(
-                    f, &rows, origin.x, step, k as f32, out
-                ));
-            }
-        });
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix, _| rows.cell3(ix));
+                } else {
+                    with_fade32!(fade, |f| perlin3_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
     }
 }
 

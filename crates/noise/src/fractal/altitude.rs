@@ -136,18 +136,27 @@ impl<B: Field> StatsByAltitude<B> {
         let q = &self.params;
         let (shift, scale, sea) = (q.shift as f32, q.scale as f32, q.sea_level as f32);
         let o = &self.oct;
-        octave_rows(&self.basis, simd, o, origin, step, out, |k, n, acc, _| {
-            if k == 0 {
-                for (a, &v) in acc.iter_mut().zip(n) {
-                    *a = (v + shift) * scale + sea;
+        octave_rows(
+            &self.basis,
+            simd,
+            o,
+            origin,
+            step,
+            out,
+            #[inline(always)]
+            |k, n, acc, _| {
+                if k == 0 {
+                    for (a, &v) in acc.iter_mut().zip(n) {
+                        *a = (v + shift) * scale + sea;
+                    }
+                } else {
+                    let c = scale * o.weight(k) as f32;
+                    for (a, &v) in acc.iter_mut().zip(n) {
+                        *a += *a * (v + shift) * c;
+                    }
                 }
-            } else {
-                let c = scale * o.weight(k) as f32;
-                for (a, &v) in acc.iter_mut().zip(n) {
-                    *a += *a * (v + shift) * c;
-                }
-            }
-        });
+            },
+        );
     }
 }
 

@@ -157,21 +157,30 @@ impl<B: Field> Multifractal<B> {
         let o = &self.oct;
         let off = self.params.offset as f32;
         let additive = self.params.form == CascadeForm::Additive;
-        octave_rows(&self.basis, simd, o, origin, step, out, |k, n, acc, _| {
-            let a = o.amplitude(k) as f32;
-            let t = o.partial(k) as f32;
-            let (c0, c1) = if additive { (off, a) } else { (off * a, a) };
-            // factor = 1 + t·(c0 + c1·n − 1)
-            if k == 0 {
-                for (r, &v) in acc.iter_mut().zip(n) {
-                    *r = 1.0 + t * (c0 + c1 * v - 1.0);
+        octave_rows(
+            &self.basis,
+            simd,
+            o,
+            origin,
+            step,
+            out,
+            #[inline(always)]
+            |k, n, acc, _| {
+                let a = o.amplitude(k) as f32;
+                let t = o.partial(k) as f32;
+                let (c0, c1) = if additive { (off, a) } else { (off * a, a) };
+                // factor = 1 + t·(c0 + c1·n − 1)
+                if k == 0 {
+                    for (r, &v) in acc.iter_mut().zip(n) {
+                        *r = 1.0 + t * (c0 + c1 * v - 1.0);
+                    }
+                } else {
+                    for (r, &v) in acc.iter_mut().zip(n) {
+                        *r *= 1.0 + t * (c0 + c1 * v - 1.0);
+                    }
                 }
-            } else {
-                for (r, &v) in acc.iter_mut().zip(n) {
-                    *r *= 1.0 + t * (c0 + c1 * v - 1.0);
-                }
-            }
-        });
+            },
+        );
     }
 }
 

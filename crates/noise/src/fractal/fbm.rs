@@ -133,18 +133,27 @@ fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
     out: &mut [f32],
     abs: bool,
 ) {
-    octave_rows(basis, simd, oct, origin, step, out, |k, n, acc, _| {
-        let w = oct.weight(k) as f32;
-        if k == 0 {
-            for (a, &v) in acc.iter_mut().zip(n) {
-                *a = w * if abs { v.abs() } else { v };
+    octave_rows(
+        basis,
+        simd,
+        oct,
+        origin,
+        step,
+        out,
+        #[inline(always)]
+        |k, n, acc, _| {
+            let w = oct.weight(k) as f32;
+            if k == 0 {
+                for (a, &v) in acc.iter_mut().zip(n) {
+                    *a = w * if abs { v.abs() } else { v };
+                }
+            } else {
+                for (a, &v) in acc.iter_mut().zip(n) {
+                    *a += w * if abs { v.abs() } else { v };
+                }
             }
-        } else {
-            for (a, &v) in acc.iter_mut().zip(n) {
-                *a += w * if abs { v.abs() } else { v };
-            }
-        }
-    });
+        },
+    );
 }
 
 /// Turbulence: `Σ_k w_k·|N(f_k·p)|`, fBm of the absolute basis.

@@ -158,6 +158,7 @@ impl<B: Field> HeteroTerrain<B> {
             origin,
             step,
             out,
+            #[inline(always)]
             |k, n, acc, signal| {
                 if k == 0 {
                     let t = o.partial(0) as f32;

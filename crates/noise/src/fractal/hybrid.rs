@@ -156,6 +156,7 @@ impl<B: Field> HybridMultifractal<B> {
             origin,
             step,
             out,
+            #[inline(always)]
             |k, n, acc, weight| {
                 let a = o.amplitude(k) as f32;
                 let t = o.partial(k) as f32;

@@ -25,7 +25,11 @@
 
 pub mod altitude;
 pub mod cascade;
+pub mod crossover;
+#[cfg(feature = "alloc")]
+pub mod driven;
 pub mod fbm;
+pub mod filtered;
 pub mod hetero;
 pub mod hybrid;
 pub mod ridged;
@@ -78,7 +82,7 @@ pub struct Spectral {
 }
 
 impl Default for Spectral {
-    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 ([T] defaults, MojoWorld λ).
+    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 (the RenderMan defaults of [T 47], MojoWorld λ).
     fn default() -> Self {
         Self {
             h: 0.5,

@@ -155,6 +155,7 @@ impl<B: Field> RidgedMultifractal<B> {
             origin,
             step,
             out,
+            #[inline(always)]
             |k, n, acc, signal| {
                 let w = o.weight(k) as f32;
                 if k == 0 {

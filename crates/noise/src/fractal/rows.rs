@@ -64,7 +64,11 @@ pub(crate) fn octave_rows<P: RowPoint, B: Field + ?Sized>(
         for k in 0..oct.count() {
             let f = oct.frequency(k);
             start.scaled(f).fill(basis, simd, step * f, &mut tmp[..m]);
-            run(simd, || combine(k, &tmp[..m], chunk, &mut state[..m]));
+            run(
+                simd,
+                #[inline(always)]
+                || combine(k, &tmp[..m], chunk, &mut state[..m]),
+            );
         }
     }
 }

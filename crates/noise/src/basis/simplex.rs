@@ -1,0 +1,313 @@
+//! Simplex noise (Perlin 2001), 2-D and 3-D.
+//!
+//! Gradient noise on the simplex lattice (triangles in 2-D, tetrahedra in 3-D):
+//! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of
+//! the `n + 1` corners of its simplex. Outside the sources (spec §2.5 lists
+//! "Perlin basis" variants); offered because it is cheaper in 3-D and has no
+//! axis-aligned artefacts. Kernel radius² ½ in both dimensions, so the noise is
+//! continuous (C³ kernel) — unlike the common 0.6 in 3-D, which leaves small
+//! jumps at simplex faces. Zero at lattice points like Perlin noise.
+//!
+//! Gradients are the same sets as [`Perlin`](crate::Perlin)'s (8 unit vectors
+//! in 2-D, 12 cube edges in 3-D), hashed from the lattice coordinates. Values
+//! are scaled by `1/sup|raw|` (numerically maximised over the simplex with
+//! every corner picking its worst gradient), so [`Field::bound`] is 1 and
+//! attained; the Lipschitz constants are the maximised gradient norms of the
+//! scaled noise, rounded up by 1%.
+
+use glam::{DVec2, DVec3};
+
+use crate::field::Field;
+use crate::hash::{flat2, flat3, grad2, grad3, seed32};
+use crate::simd::{Simd, run, split, split_fast};
+
+/// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
+pub const SIMPLEX2_SUP: f64 = 0.010_080_205;
+/// sup |raw 3-D simplex noise| with the ½-radius kernel and edge gradients.
+pub const SIMPLEX3_SUP: f64 = 0.013_007_158;
+const L2: f64 = 7.43;
+const L3: f64 = 7.04;
+
+const F2: f64 = 0.366_025_403_784_438_6; // (√3 − 1)/2
+const G2: f64 = 0.211_324_865_405_187_1; // (3 − √3)/6
+const F3: f64 = 1.0 / 3.0;
+const G3: f64 = 1.0 / 6.0;
+
+const SALT: u64 = 0x5349_4D50; // "SIMP"
+
+/// Simplex gradient noise; unit lattice, values in `[-1, 1]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Simplex {
+    seed: u64,
+    s: u32,
+}
+
+impl Default for Simplex {
+    fn default() -> Self {
+        Simplex::new(0)
+    }
+}
+
+/// Skews a 2-D point onto the simplex lattice: the base corner's indices and
+/// the offset from it (f64, shared by the point and batch paths).
+#[inline(always)]
+fn skew2(x: f64, y: f64, fast: bool) -> (u32, u32, f64, f64) {
+    let s = (x + y) * F2;
+    let (xs, ys) = (x + s, y + s);
+    let ((i, fx), (j, fy)) = if fast {
+        (split_fast(xs), split_fast(ys))
+    } else {
+        (split(xs), split(ys))
+    };
+    let (fi, fj) = (xs - fx, ys - fy);
+    let t = (fi + fj) * G2;
+    (i, j, x - fi + t, y - fj + t)
+}
+
+#[inline(always)]
+fn skew3(p: [f64; 3], fast: bool) -> ([u32; 3], [f64; 3]) {
+    let s = (p[0] + p[1] + p[2]) * F3;
+    let mut idx = [0u32; 3];
+    let mut fl = [0.0; 3];
+    for a in 0..3 {
+        let v = p[a] + s;
+        let (i, f) = if fast { split_fast(v) } else { split(v) };
+        idx[a] = i;
+        fl[a] = v - f;
+    }
+    let t = (fl[0] + fl[1] + fl[2]) * G3;
+    (idx, [p[0] - fl[0] + t, p[1] - fl[1] + t, p[2] - fl[2] + t])
+}
+
+/// The corner offsets of the 3-D simplex containing offset `d` (Gustavson's ranking).
+#[inline(always)]
+fn order3(x: f64, y: f64, z: f64) -> ([u32; 3], [u32; 3]) {
+    if x >= y {
+        if y >= z {
+            ([1, 0, 0], [1, 1, 0])
+        } else if x >= z {
+            ([1, 0, 0], [1, 0, 1])
+        } else {
+            ([0, 0, 1], [1, 0, 1])
+        }
+    } else if y < z {
+        ([0, 0, 1], [0, 1, 1])
+    } else if x < z {
+        ([0, 1, 0], [0, 1, 1])
+    } else {
+        ([0, 1, 0], [1, 1, 0])
+    }
+}
+
+impl Simplex {
+    /// Simplex noise with `seed`.
+    #[must_use]
+    pub const fn new(seed: u64) -> Self {
+        Self {
+            seed,
+            s: seed32(seed, SALT),
+        }
+    }
+
+    /// The seed.
+    #[must_use]
+    pub const fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    fn grad2_impl(&self, p: DVec2) -> (f64, DVec2) {
+        let (i, j, x0, y0) = skew2(p.x, p.y, false);
+        let (i1, j1) = if x0 > y0 { (1u32, 0u32) } else { (0, 1) };
+        let corners = [
+            (0u32, 0u32, x0, y0),
+            (i1, j1, x0 - f64::from(i1) + G2, y0 - f64::from(j1) + G2),
+            (1, 1, x0 - 1.0 + 2.0 * G2, y0 - 1.0 + 2.0 * G2),
+        ];
+        let mut v = 0.0;
+        let mut g = DVec2::ZERO;
+        for (a, b, x, y) in corners {
+            let t = 0.5 - x * x - y * y;
+            if t > 0.0 {
+                let (gx, gy) = grad2(flat2(i.wrapping_add(a), j.wrapping_add(b), self.s));
+                let (gx, gy) = (f64::from(gx), f64::from(gy));
+                let gd = gx * x + gy * y;
+                let t2 = t * t;
+                v += t2 * t2 * gd;
+                g += DVec2::new(gx, gy) * (t2 * t2) - DVec2::new(x, y) * (8.0 * t2 * t * gd);
+            }
+        }
+        let k = 1.0 / SIMPLEX2_SUP;
+        (v * k, g * k)
+    }
+
+    fn grad3_impl(&self, p: DVec3) -> (f64, DVec3) {
+        let (idx, d0) = skew3(p.to_array(), false);
+        let (o1, o2) = order3(d0[0], d0[1], d0[2]);
+        let mut v = 0.0;
+        let mut g = DVec3::ZERO;
+        for (c, off) in [[0u32; 3], o1, o2, [1, 1, 1]].into_iter().enumerate() {
+            let d = DVec3::new(
+                d0[0] - f64::from(off[0]) + c as f64 * G3,
+                d0[1] - f64::from(off[1]) + c as f64 * G3,
+                d0[2] - f64::from(off[2]) + c as f64 * G3,
+            );
+            let t = 0.5 - d.length_squared();
+            if t > 0.0 {
+                let h = flat3(
+                    idx[0].wrapping_add(off[0]),
+                    idx[1].wrapping_add(off[1]),
+                    idx[2].wrapping_add(off[2]),
+                    self.s,
+                );
+                let (gx, gy, gz) = grad3(h);
+                let gv = DVec3::new(f64::from(gx), f64::from(gy), f64::from(gz));
+                let gd = gv.dot(d);
+                let t2 = t * t;
+                v += t2 * t2 * gd;
+                g += gv * (t2 * t2) - d * (8.0 * t2 * t * gd);
+            }
+        }
+        let k = 1.0 / SIMPLEX3_SUP;
+        (v * k, g * k)
+    }
+}
+
+impl Field for Simplex {
+    fn eval2(&self, p: DVec2) -> f64 {
+        self.grad2_impl(p).0
+    }
+    fn eval3(&self, p: DVec3) -> f64 {
+        self.grad3_impl(p).0
+    }
+    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+        self.grad2_impl(p)
+    }
+    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+        self.grad3_impl(p)
+    }
+    fn bound(&self) -> f64 {
+        1.0
+    }
+    fn lipschitz2(&self) -> f64 {
+        L2
+    }
+    fn lipschitz3(&self) -> f64 {
+        L3
+    }
+
+    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+        let ok = crate::basis::row_in_fast_range(origin.x + origin.y, step, out.len())
+            && origin.y.is_finite()
+            && origin.x.abs() < 1e14
+            && origin.y.abs() < 1e14;
+        if !ok {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
+            }
+            return;
+        }
+        let s = self.s;
+        let k = (1.0 / SIMPLEX2_SUP) as f32;
+        run(
+            simd,
+            #[inline(always)]
+            || simplex2_row(s, origin, step, k, out),
+        );
+    }
+
+    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+        let ok = crate::basis::row_in_fast_range(origin.x, step, out.len())
+            && origin.is_finite()
+            && origin.abs().max_element() < 1e14;
+        if !ok {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval3(DVec3::new(origin.x + i as f64 * step, origin.y, origin.z)) as f32;
+            }
+            return;
+        }
+        let s = self.s;
+        let k = (1.0 / SIMPLEX3_SUP) as f32;
+        run(
+            simd,
+            #[inline(always)]
+            || simplex3_row(s, origin, step, k, out),
+        );
+    }
+}
+
+#[inline(always)]
+fn contrib2(h: u32, x: f32, y: f32) -> f32 {
+    let t = (0.5 - x * x - y * y).max(0.0);
+    let (gx, gy) = grad2(h);
+    let t2 = t * t;
+    t2 * t2 * (gx * x + gy * y)
+}
+
+#[inline(always)]
+fn simplex2_row(s: u32, origin: DVec2, step: f64, k: f32, out: &mut [f32]) {
+    const G: f32 = G2 as f32;
+    let y = origin.y;
+    for (n, o) in out.iter_mut().enumerate() {
+        let x = origin.x + (n as i32) as f64 * step;
+        let (i, j, x0, y0) = skew2(x, y, true);
+        let upper = x0 > y0;
+        let (x0, y0) = (x0 as f32, y0 as f32);
+        let (i1, j1) = if upper { (1u32, 0u32) } else { (0, 1) };
+        let x1 = x0 - i1 as f32 + G;
+        let y1 = y0 - j1 as f32 + G;
+        let x2 = x0 - 1.0 + 2.0 * G;
+        let y2 = y0 - 1.0 + 2.0 * G;
+        let v = contrib2(flat2(i, j, s), x0, y0)
+            + contrib2(flat2(i.wrapping_add(i1), j.wrapping_add(j1), s), x1, y1)
+            + contrib2(flat2(i.wrapping_add(1), j.wrapping_add(1), s), x2, y2);
+        *o = v * k;
+    }
+}
+
+#[inline(always)]
+fn contrib3(h: u32, x: f32, y: f32, z: f32) -> f32 {
+    let t = (0.5 - x * x - y * y - z * z).max(0.0);
+    let (gx, gy, gz) = grad3(h);
+    let t2 = t * t;
+    t2 * t2 * (gx * x + gy * y + gz * z)
+}
+
+#[inline(always)]
+fn simplex3_row(s: u32, origin: DVec3, step: f64, k: f32, out: &mut [f32]) {
+    const G: f32 = G3 as f32;
+    for (n, o) in out.iter_mut().enumerate() {
+        let x = origin.x + (n as i32) as f64 * step;
+        let (idx, d) = skew3([x, origin.y, origin.z], true);
+        let (o1, o2) = order3(d[0], d[1], d[2]);
+        let (x0, y0, z0) = (d[0] as f32, d[1] as f32, d[2] as f32);
+        let mut v = contrib3(flat3(idx[0], idx[1], idx[2], s), x0, y0, z0);
+        for (c, off) in [o1, o2].into_iter().enumerate() {
+            let g = (c + 1) as f32 * G;
+            let h = flat3(
+                idx[0].wrapping_add(off[0]),
+                idx[1].wrapping_add(off[1]),
+                idx[2].wrapping_add(off[2]),
+                s,
+            );
+            v += contrib3(
+                h,
+                x0 - off[0] as f32 + g,
+                y0 - off[1] as f32 + g,
+                z0 - off[2] as f32 + g,
+            );
+        }
+        let h = flat3(
+            idx[0].wrapping_add(1),
+            idx[1].wrapping_add(1),
+            idx[2].wrapping_add(1),
+            s,
+        );
+        v += contrib3(
+            h,
+            x0 - 1.0 + 3.0 * G,
+            y0 - 1.0 + 3.0 * G,
+            z0 - 1.0 + 3.0 * G,
+        );
+        *o = v * k;
+    }
+}

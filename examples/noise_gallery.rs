@@ -1,0 +1,423 @@
+//! Writes one false-colour picture per natura-noise basis and fractal, all
+//! with the same seed, plus a contact sheet of them all.
+//!
+//! ```text
+//! cargo run --release --example noise_gallery                 # 512² tiles into docs/gallery/noise
+//! cargo run --release --example noise_gallery -- --quick --out /tmp/noise
+//! ```
+//!
+//! Each file is named after what it shows (`basis_perlin.png`,
+//! `fractal_ridged_multifractal.png`, …); `contact_sheet.png` tiles them in
+//! the order of `index.md`. Values are mapped through the viridis ramp from
+//! each picture's own minimum to maximum (terrain-like fractals use the
+//! terrain ramp).
+
+mod common;
+
+use natura::core::glam::DVec2;
+use natura::core::{Grid2, Image, Ramp, io};
+use natura::noise::*;
+
+struct Tile {
+    name: &'static str,
+    what: &'static str,
+    field: Box<dyn Field>,
+    /// Lattice cells across the picture.
+    span: f64,
+    ramp: Ramp,
+}
+
+fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
+    let p = Perlin::new(seed);
+    let s = Spectral::default();
+    let t = |name, what, field: Box<dyn Field>, span, ramp| Tile {
+        name,
+        what,
+        field,
+        span,
+        ramp,
+    };
+    let worley = |feature, metric| {
+        Worley::new(
+            seed,
+            WorleyParams {
+                feature,
+                metric,
+                jitter: 1.0,
+            },
+        )
+    };
+    let v = Ramp::Viridis;
+    let terrain = Ramp::Terrain;
+    Ok(vec![
+        t(
+            "basis_perlin",
+            "Perlin gradient noise, quintic fade [D 826-856]",
+            Box::new(p),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_perlin_cubic",
+            "Perlin noise with the sources' cubic fade",
+            Box::new(Perlin::with_fade(seed, Fade::Cubic)),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_value_linear",
+            "value noise, linear interpolation (\"Linear\" [M 508-513])",
+            Box::new(Value::new(seed)),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_value_quintic",
+            "value noise, quintic fade",
+            Box::new(Value::with_interp(seed, ValueInterp::Quintic)),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_simplex",
+            "simplex noise",
+            Box::new(Simplex::new(seed)),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f1",
+            "Worley F1, Euclidean [M 477-486]",
+            Box::new(worley(WorleyFeature::F1, Metric::Euclidean)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f1_squared",
+            "Worley F1, distance squared",
+            Box::new(worley(WorleyFeature::F1, Metric::EuclideanSquared)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f2",
+            "Worley F2",
+            Box::new(worley(WorleyFeature::F2, Metric::Euclidean)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f2_minus_f1",
+            "Worley F2 − F1 (cell edges)",
+            Box::new(worley(WorleyFeature::F2MinusF1, Metric::Euclidean)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f1_manhattan",
+            "Worley F1, Manhattan",
+            Box::new(worley(WorleyFeature::F1, Metric::Manhattan)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_worley_f1_chebyshev",
+            "Worley F1, Chebyshev",
+            Box::new(worley(WorleyFeature::F1, Metric::Chebyshev)?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_sparse_convolution",
+            "sparse convolution, cone kernel [M 488-495]",
+            Box::new(SparseConvolution::new(seed, SparseParams::default())?),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_sine",
+            "sine product [M 501-506]",
+            Box::new(Sine),
+            25.0,
+            v,
+        ),
+        t(
+            "basis_steps",
+            "steps [M 515-520]",
+            Box::new(Steps::new(seed)),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_checkerboard",
+            "checkerboard [M 522-527]",
+            Box::new(Checkerboard),
+            8.0,
+            v,
+        ),
+        t(
+            "basis_ridged",
+            "ridged basis 1 − |N| [D 1106]",
+            Box::new(Ridged(p)),
+            8.0,
+            v,
+        ),
+        t(
+            "fractal_fbm",
+            "fBm, H = 0.5, λ = e − ½, 8 octaves [D 858-908]",
+            Box::new(Fbm::new(p, s)?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_fbm_h08",
+            "fBm, H = 0.8 (terrain-like)",
+            Box::new(Fbm::new(p, s.with_h(0.8))?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_turbulence",
+            "turbulence Σ w|N|",
+            Box::new(Turbulence::new(p, s)?),
+            4.0,
+            v,
+        ),
+        t(
+            "fractal_multifractal",
+            "multiplicative cascade",
+            Box::new(Multifractal::new(p, MultifractalParams::default())?),
+            4.0,
+            Ramp::Magma,
+        ),
+        t(
+            "fractal_hetero_terrain",
+            "heterogeneous terrain [D 1017-1108]",
+            Box::new(HeteroTerrain::new(p, HeteroTerrainParams::default())?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_hell",
+            "heterogeneous terrain of the ridged basis (\"Hell\", Plate 2.9)",
+            Box::new(HeteroTerrain::new(
+                Ridged(p),
+                HeteroTerrainParams::default(),
+            )?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_hybrid_multifractal",
+            "hybrid multifractal",
+            Box::new(HybridMultifractal::new(p, HybridParams::default())?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_ridged_multifractal",
+            "ridged multifractal (\"Emil\")",
+            Box::new(RidgedMultifractal::new(p, RidgedParams::default())?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_stats_by_altitude",
+            "statistics by altitude (hfBm equation) [D 930]",
+            Box::new(StatsByAltitude::new(p, StatsByAltitudeParams::default())?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_fbm_of_worley",
+            "fBm of Worley F1",
+            Box::new(Fbm::new(worley(WorleyFeature::F1, Metric::Euclidean)?, s)?),
+            4.0,
+            v,
+        ),
+        t(
+            "fractal_fbm_simplex",
+            "fBm of simplex noise",
+            Box::new(Fbm::new(Simplex::new(seed), s)?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_crossover",
+            "crossover: Perlin at large scales, Worley at small",
+            Box::new(CrossoverFbm::new(
+                p,
+                worley(WorleyFeature::F1, Metric::Euclidean)?,
+                s,
+                0.5,
+                0.1,
+            )?),
+            4.0,
+            v,
+        ),
+        t(
+            "fractal_filtered_fbm",
+            "filtered fBm (octaves finer than 1/64 dropped)",
+            Box::new(FilteredFbm::new(p, s, 1.0 / 64.0)?),
+            4.0,
+            terrain,
+        ),
+        t(
+            "fractal_driven_h",
+            "fBm with H varying 0 → 1 across the picture [D 910-914]",
+            Box::new(Driven::new(p, s, DrivenKind::Fbm)?.with_h(Param::Field(
+                std::sync::Arc::new(Transform::new(XRamp).with_range(0.5, 0.5)),
+            ))),
+            4.0,
+            terrain,
+        ),
+        t(
+            "distortion_distnoise",
+            "DistNoise, d = 1 [T 71-89]",
+            Box::new(DistNoise::dist_noise(p, 1.0)?),
+            8.0,
+            v,
+        ),
+        t(
+            "distortion_vlnoise",
+            "VLNoise (C form) [D 2077-2098]",
+            Box::new(VlNoise::vl_noise(p, 1.0)?),
+            8.0,
+            v,
+        ),
+        t(
+            "distortion_fbm_distnoise",
+            "fBm of DistNoise (Plate 2.7d)",
+            Box::new(Fbm::new(
+                DistNoise::dist_noise(p, 1.0)?,
+                s.with_octaves(6.0),
+            )?),
+            4.0,
+            v,
+        ),
+        t(
+            "distortion_cyclone",
+            "cyclone twist of fBm [D 2169-2218]",
+            Box::new(Warped {
+                field: Fbm::new(p, s)?,
+                warp: Twist::new(TwistLaw::Cyclone {
+                    max_radius: 1.6,
+                    twist: 0.5,
+                    power: 2.0,
+                })?,
+            }),
+            4.0,
+            v,
+        ),
+        t(
+            "distortion_vector_fbm",
+            "fBm displaced by vector fBm (\"cotton\", Fig 15.3)",
+            Box::new(Warped {
+                field: Fbm::new(p, s)?,
+                warp: Displace::new(VectorFbm::new(VecNoise::new(p), s.with_octaves(4.0))?, 0.5)?,
+            }),
+            4.0,
+            v,
+        ),
+    ])
+}
+
+/// x across the picture, from −1 to 1 (drives H in `fractal_driven_h`).
+#[derive(Debug)]
+struct XRamp;
+
+impl Field for XRamp {
+    fn eval2(&self, p: DVec2) -> f64 {
+        (p.x / 2.0).clamp(-1.0, 1.0)
+    }
+    fn eval3(&self, p: natura::core::glam::DVec3) -> f64 {
+        (p.x / 2.0).clamp(-1.0, 1.0)
+    }
+    fn bound(&self) -> f64 {
+        1.0
+    }
+    fn lipschitz2(&self) -> f64 {
+        0.5
+    }
+    fn lipschitz3(&self) -> f64 {
+        0.5
+    }
+}
+
+fn main() {
+    let mut args = common::Args::from_env();
+    let quick = args.switch("--quick", "small and fast (CI)");
+    let size: usize = args.value(
+        "--size",
+        if quick { 96 } else { 256 },
+        "pixels per side of each picture",
+    );
+    let seed: u64 = args.value("--seed", 7, "random seed");
+    let out = args.out_dir("docs/gallery/noise");
+    args.finish();
+    if size < 8 {
+        common::fail("--size must be at least 8");
+    }
+
+    let tiles = common::check(tiles(seed));
+    let bar = common::Bar::new();
+    natura::core::Progress::start(&bar, "pictures", tiles.len() as u64);
+    let mut thumbs = Vec::new();
+    let mut index = String::from(
+        "# natura-noise gallery\n\nSame seed for every picture; contact_sheet.png tiles them in this order (left to right, top to bottom).\n\n| file | what |\n|---|---|\n",
+    );
+    for t in &tiles {
+        let mut g = common::check(Grid2::new(size, size, 0.0f32));
+        let step = t.span / size as f64;
+        // Centre the picture on the origin; rows in parallel, each a batch fill.
+        let origin = -t.span / 2.0;
+        let field = &t.field;
+        g.par_rows_mut(|j, row| {
+            let y = origin + (size - 1 - j) as f64 * step;
+            field.fill_row2(DVec2::new(origin, y), step, row);
+        });
+        if let Some((x, y, v)) = g.find(|v| !v.is_finite()) {
+            common::fail(&format!("{}: non-finite value {v} at ({x}, {y})", t.name));
+        }
+        let img = Image::false_colour_auto(&g, t.ramp);
+        let path = out.join(format!("{}.png", t.name));
+        common::check(img.save_png(&path));
+        index.push_str(&format!("| `{}.png` | {} |\n", t.name, t.what));
+        thumbs.push(img);
+        natura::core::Progress::advance(&bar, 1);
+    }
+    natura::core::Progress::finish(&bar);
+
+    // Contact sheet: 6 columns of thumbnails (at most 128 px), 2-pixel dark gutters.
+    let cols = 6;
+    let rows = thumbs.len().div_ceil(cols);
+    let gut = 2;
+    let th = size.min(128);
+    let (w, h) = (cols * (th + gut) + gut, rows * (th + gut) + gut);
+    let sheet = common::check(Image::from_fn(w, h, |x, y| {
+        let (cx, cy) = (
+            x.saturating_sub(gut) / (th + gut),
+            y.saturating_sub(gut) / (th + gut),
+        );
+        let (ox, oy) = (
+            x.saturating_sub(gut) % (th + gut),
+            y.saturating_sub(gut) % (th + gut),
+        );
+        match thumbs.get(cy * cols + cx) {
+            Some(img) if x >= gut && y >= gut && ox < th && oy < th => {
+                img.get(ox * size / th, oy * size / th).unwrap_or_default()
+            }
+            _ => natura::core::glam::Vec3::splat(0.02),
+        }
+    }));
+    common::check(sheet.save_png(out.join("contact_sheet.png")));
+    common::check(io::write_bytes_atomic(
+        out.join("index.md"),
+        index.as_bytes(),
+    ));
+    println!(
+        "wrote {} pictures, contact_sheet.png and index.md to {}",
+        tiles.len(),
+        out.display()
+    );
+}
