@@ -15,7 +15,10 @@ use glam::{DVec2, DVec3, Vec3};
 use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
-use natura_noise::{Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal, RidgedParams, Spectral};
+use natura_noise::{
+    Displace, Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal, RidgedParams, Spectral, VecNoise,
+    VectorFbm, Warped,
+};
 use natura_terrain::erosion::{
     Depressions, DropletErosion, DropletParams, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
 };
@@ -24,18 +27,18 @@ use natura_terrain::synth::{FieldMapping, fill_field};
 use crate::error::Result;
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
 
+/// The warp of the terrain's domain: displacement by vector fBm of Perlin
+/// noise (the general distortion `F(p + s·V(p))`, spec `noise.md` §5.1).
+type TerrainWarp = Displace<VectorFbm<VecNoise<Perlin>>>;
+
 /// The fractal terrain function of a scene, before normalisation: a ridged,
-/// hybrid or ridged-times-hybrid multifractal over Perlin noise, with an
-/// optional domain distortion (a general warp `p + w·(f₁(p), f₂(p))`, spec
-/// `noise.md` §5.1). Evaluated in units of the first octave's wavelength.
+/// hybrid or ridged-times-hybrid multifractal over Perlin noise, evaluated at
+/// warped points. Evaluated in units of the first octave's wavelength.
 #[derive(Debug)]
 pub struct TerrainFunction {
     generator: TerrainGenerator,
-    ridged: RidgedMultifractal<Perlin>,
-    hybrid: HybridMultifractal<Perlin>,
-    warp: f64,
-    warp_x: Fbm<Perlin>,
-    warp_y: Fbm<Perlin>,
+    ridged: Warped<RidgedMultifractal<Perlin>, TerrainWarp>,
+    hybrid: Warped<HybridMultifractal<Perlin>, TerrainWarp>,
 }
 
 impl TerrainFunction {
@@ -55,25 +58,23 @@ impl TerrainFunction {
             Perlin::new(seed.derive("hybrid").0),
             HybridParams { spectral: spectral.with_h(0.25).with_octaves(t.octaves.min(8.0)), offset: 0.7 },
         )?;
-        let warp_spec = Spectral::default().with_h(0.5).with_octaves(4.0).with_frequency(1.0);
+        let warp = Displace::new(
+            VectorFbm::new(
+                VecNoise::new(Perlin::new(seed.derive("warp").0)),
+                Spectral::default().with_h(0.5).with_octaves(4.0).with_frequency(1.0),
+            )?,
+            t.warp,
+        )?;
         Ok(Self {
             generator: t.generator,
-            ridged,
-            hybrid,
-            warp: t.warp,
-            warp_x: Fbm::new(Perlin::new(seed.derive("warp-x").0), warp_spec)?,
-            warp_y: Fbm::new(Perlin::new(seed.derive("warp-y").0), warp_spec)?,
+            ridged: Warped { field: ridged, warp: warp.clone() },
+            hybrid: Warped { field: hybrid, warp },
         })
     }
 
     /// The (unnormalised) terrain value at `q`, in first-octave units.
     #[must_use]
     pub fn eval(&self, q: DVec2) -> f64 {
-        let q = if self.warp > 0.0 {
-            q + self.warp * DVec2::new(self.warp_x.eval2(q), self.warp_y.eval2(q + DVec2::new(5.2, 1.3)))
-        } else {
-            q
-        };
         match self.generator {
             TerrainGenerator::Ridged => self.ridged.eval2(q),
             TerrainGenerator::Hybrid => self.hybrid.eval2(q),
