@@ -1,1 +1,113 @@
-//! Scenes that compose the natura crates into images.
+//! # natura-render
+//!
+//! Scenes that compose the natura crates into images: Musgrave's landscape
+//! pipeline — fractal terrain ([`natura_noise`]), erosion
+//! ([`natura_terrain`]), grid tracing ([`natura_trace`]), aerial perspective
+//! and sky ([`natura_atmos`]) — as one library call.
+//!
+//! * [`SceneDesc`]: the whole scene as a `serde` struct, loadable from TOML,
+//!   with a built-in default ([`DEFAULT_SCENE_TOML`]).
+//! * [`World::build`]: synthesis, erosion, maps and atmosphere.
+//! * [`Renderer`]: the integrator (primary rays by maximum-mipmap grid
+//!   tracing, sun shadows by any-hit rays, water reflection and refraction,
+//!   aerial perspective per segment, sky for escaped rays, stratified
+//!   samples, rainbow in rain), tile-parallel and deterministic.
+//! * [`render_scene`]: all of it, with stage timings, returning a linear
+//!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
+//!
+//! ```no_run
+//! use natura_core::NoProgress;
+//! use natura_render::{SceneDesc, render_scene};
+//! let mut scene = SceneDesc::default();
+//! scene.terrain.size = 256;
+//! scene.render.width = 320;
+//! scene.render.height = 180;
+//! let out = render_scene(&scene, &NoProgress)?;
+//! out.save("landscape.png", "landscape.exr")?;
+//! # Ok::<(), natura_render::RenderError>(())
+//! ```
+#![forbid(unsafe_code)]
+
+mod error;
+mod integrator;
+pub mod material;
+pub mod scene;
+mod world;
+
+use std::path::Path;
+
+use natura_core::colour::luminance;
+use natura_core::{Image, Progress};
+
+pub use error::{RenderError, Result};
+pub use integrator::{Renderer, SceneCamera, WATER_IOR};
+pub use scene::{DEFAULT_SCENE_TOML, SceneDesc};
+pub use world::{StageTimes, TerrainFunction, World, sun_direction};
+
+/// The result of rendering a scene.
+#[derive(Debug)]
+pub struct Rendered {
+    /// Linear scene-referred radiance (the EXR's content).
+    pub image: Image,
+    /// Exposure in stops applied before tone mapping (given or automatic).
+    pub exposure_ev: f32,
+    /// The scene's tone map.
+    pub tone_map: natura_core::ToneMap,
+    /// Time per stage.
+    pub times: StageTimes,
+}
+
+impl Rendered {
+    /// The display image: exposed and tone-mapped, values in `[0, 1]`.
+    #[must_use]
+    pub fn display(&self) -> Image {
+        self.image.tone_mapped(self.exposure_ev, self.tone_map)
+    }
+
+    /// Writes the tone-mapped 8-bit sRGB PNG and the linear EXR (each atomically).
+    pub fn save(&self, png: impl AsRef<Path>, exr: impl AsRef<Path>) -> Result<()> {
+        self.image.save_exr(exr)?;
+        self.display().save_png(png)?;
+        Ok(())
+    }
+}
+
+/// The exposure (stops) that maps the image's log-average luminance to 18 %
+/// grey (Reinhard et al.'s key value), ignoring non-finite pixels.
+#[must_use]
+pub fn auto_exposure(image: &Image) -> f32 {
+    let mut sum = 0.0f64;
+    let mut n = 0usize;
+    for c in image.pixels().as_slice() {
+        let y = luminance(*c);
+        if y.is_finite() && y >= 0.0 {
+            sum += f64::from(1e-4 + y).ln();
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return 0.0;
+    }
+    let avg = (sum / n as f64).exp();
+    (0.18 / avg).log2() as f32
+}
+
+/// Validates `scene`, builds its world, renders it, and picks the exposure.
+///
+/// Stages reported to `progress`: synthesis, stream power, pipe erosion,
+/// thermal erosion, atmosphere tables, acceleration, tracing.
+pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Rendered> {
+    let world = World::build(scene, progress)?;
+    render_world(&world, progress)
+}
+
+/// Renders an already built [`World`] (see [`render_scene`]); the stage
+/// times include the world's.
+pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
+    let scene = &world.scene;
+    let mut times = world.times.clone();
+    let renderer = times.time("acceleration", || Renderer::new(world, progress))?;
+    let image = times.time("render", || renderer.render(progress))?;
+    let exposure_ev = scene.render.exposure_ev.unwrap_or_else(|| auto_exposure(&image));
+    Ok(Rendered { image, exposure_ev, tone_map: scene.render.tone_map, times })
+}

@@ -1,0 +1,44 @@
+//! The error type of `natura-render`.
+
+/// Everything that can go wrong while describing, building or rendering a scene.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// A scene file could not be read or parsed (message names file, line and key).
+    #[error("{0}")]
+    Scene(String),
+    /// A scene value is out of range.
+    #[error("invalid scene value `{name}` = {value}: {reason}")]
+    Invalid {
+        /// Dotted key of the value.
+        name: &'static str,
+        /// The value, formatted.
+        value: String,
+        /// What is allowed.
+        reason: String,
+    },
+    /// From natura-core (I/O, sizes).
+    #[error(transparent)]
+    Core(#[from] natura_core::CoreError),
+    /// From natura-noise.
+    #[error("noise: {0}")]
+    Noise(#[from] natura_noise::NoiseError),
+    /// From natura-terrain.
+    #[error(transparent)]
+    Terrain(#[from] natura_terrain::TerrainError),
+    /// From natura-trace.
+    #[error(transparent)]
+    Trace(#[from] natura_trace::TraceError),
+    /// From natura-atmos.
+    #[error(transparent)]
+    Atmos(#[from] natura_atmos::AtmosError),
+}
+
+impl RenderError {
+    pub(crate) fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &str) -> Self {
+        RenderError::Invalid { name, value: value.to_string(), reason: reason.to_owned() }
+    }
+}
+
+/// Shorthand for `Result<T, RenderError>`.
+pub type Result<T, E = RenderError> = std::result::Result<T, E>;

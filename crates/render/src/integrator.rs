@@ -1,0 +1,440 @@
+//! The integrator: radiance along camera rays through the world.
+//!
+//! Primary rays are grid-traced against the terrain (maximum mipmaps), sun
+//! shadows come from any-hit rays, the water plane reflects (traced terrain
+//! or sky) and refracts (the lake bed seen through absorbing water) with
+//! exact Fresnel weights, aerial perspective is applied to every segment
+//! that reaches the camera, escaped rays see the sky with its sun disc, and
+//! rain shows a rainbow opposite the sun. This is the shading pipeline of
+//! Musgrave's landscapes (seed 000 ch. 3–4) with physical sky and haze.
+
+use glam::{DVec2, Vec3};
+use natura_atmos::Dir3;
+use natura_atmos::optics::fresnel;
+use natura_atmos::rainbow::{Rainbow, RainbowParams};
+use natura_atmos::sky::SkyView;
+use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
+use natura_noise::{Fbm, Field, Perlin, Spectral};
+use natura_trace::{Camera, Hit, MipmapTracer, PanoramicCamera, PinholeCamera, Projection, Ray, Tracer};
+
+use crate::error::Result;
+use crate::material::{Materials, SurfaceSample};
+use crate::scene::CameraKind;
+use crate::world::World;
+
+/// Refractive index of water used for the lake surface.
+pub const WATER_IOR: f64 = 1.333;
+
+/// The camera of a scene.
+#[derive(Clone, Copy, Debug)]
+pub enum SceneCamera {
+    /// A pinhole camera.
+    Pinhole(PinholeCamera),
+    /// A cylindrical or spherical panorama.
+    Panoramic(PanoramicCamera),
+}
+
+impl SceneCamera {
+    fn camera(&self) -> &dyn Camera {
+        match self {
+            SceneCamera::Pinhole(c) => c,
+            SceneCamera::Panoramic(c) => c,
+        }
+    }
+}
+
+/// Everything needed per sample, built once per render from a [`World`].
+pub struct Renderer<'w> {
+    world: &'w World,
+    /// The terrain with lakes and sea on top: primary, shadow and reflection rays.
+    tracer: MipmapTracer<'w>,
+    /// The bare terrain: rays refracted into the water.
+    ground: MipmapTracer<'w>,
+    view: SkyView,
+    camera: SceneCamera,
+    materials: Materials,
+    ripples: Fbm<Perlin>,
+    rainbow: Option<Rainbow>,
+    sun: Vec3,
+    sun_irradiance: Vec3,
+    sky_irradiance: Vec3,
+    eye: Vec3,
+    pixel_angle: f32,
+    width: u32,
+    height: u32,
+    spp: u32,
+    seed: Seed,
+}
+
+impl std::fmt::Debug for Renderer<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Renderer")
+            .field("eye", &self.eye)
+            .field("sun", &self.sun)
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("spp", &self.spp)
+            .finish_non_exhaustive()
+    }
+}
+
+/// What a ray meets first.
+enum SurfaceHit {
+    /// Dry terrain.
+    Terrain(Hit),
+    /// A lake or the sea, at ray parameter `t`.
+    Water {
+        /// Ray parameter.
+        t: f32,
+        /// The point on the water surface.
+        point: Vec3,
+    },
+}
+
+/// Surface point of a terrain hit, in the form shading needs.
+struct TerrainPoint {
+    point: Vec3,
+    geo: Vec3,
+    smooth: Vec3,
+}
+
+impl<'w> Renderer<'w> {
+    /// Builds the acceleration structure, the sky view at the eye, the camera,
+    /// materials and (with rain) the rainbow table.
+    pub fn new(world: &'w World, progress: &dyn Progress) -> Result<Self> {
+        let scene = &world.scene;
+        let r = &scene.render;
+        progress.start("acceleration", 2);
+        let tracer = MipmapTracer::new(&world.surface)?;
+        progress.advance(1);
+        let ground = MipmapTracer::new(&world.terrain)?;
+        progress.advance(1);
+        progress.finish();
+
+        let eye = world.eye();
+        let dir = world.view_direction();
+        let c = &scene.camera;
+        let camera = match c.kind {
+            CameraKind::Pinhole => SceneCamera::Pinhole(PinholeCamera::look_at(
+                eye,
+                eye + dir,
+                Vec3::Z,
+                (c.vfov_deg as f32).to_radians(),
+                r.width,
+                r.height,
+            )?),
+            CameraKind::Cylindrical | CameraKind::Spherical => SceneCamera::Panoramic(PanoramicCamera::new(
+                eye,
+                dir,
+                Vec3::Z,
+                (c.hfov_deg as f32).to_radians(),
+                (c.vfov_deg as f32).to_radians(),
+                if c.kind == CameraKind::Cylindrical { Projection::Cylindrical } else { Projection::Spherical },
+                r.width,
+                r.height,
+            )?),
+        };
+        let pixel_angle = (c.vfov_deg as f32).to_radians() / r.height as f32;
+
+        let sun_dir = world.sun_dir();
+        let view = world.atmosphere.sky_view(eye.as_dvec3(), sun_dir)?;
+        let sun_irradiance = view.sun_irradiance();
+        let sky_irradiance = view.sky_irradiance();
+        let seed = Seed(scene.seed);
+        let materials = Materials::new(&scene.materials, world.water_level, seed.derive("materials"))?;
+        let w = &scene.water;
+        let ripples = Fbm::new(
+            Perlin::new(seed.derive("ripples").0),
+            Spectral::default().with_h(0.5).with_octaves(5.0).with_frequency(1.0 / w.ripple_size_m),
+        )?;
+        let rainbow = if scene.atmosphere.rain_extinction_per_m > 0.0 {
+            progress.start("rainbow table", 1);
+            let params = RainbowParams { rays_per_wavelength: 20_000, ..RainbowParams::default() };
+            let rb = Rainbow::new(&params)?;
+            progress.advance(1);
+            progress.finish();
+            Some(rb)
+        } else {
+            None
+        };
+        Ok(Self {
+            world,
+            tracer,
+            ground,
+            view,
+            camera,
+            materials,
+            ripples,
+            rainbow,
+            sun: world.sun,
+            sun_irradiance,
+            sky_irradiance,
+            eye,
+            pixel_angle,
+            width: r.width,
+            height: r.height,
+            spp: r.spp,
+            seed: seed.derive("pixels"),
+        })
+    }
+
+    /// The camera.
+    #[must_use]
+    pub fn camera(&self) -> &SceneCamera {
+        &self.camera
+    }
+
+    /// Bytes of the acceleration structure.
+    #[must_use]
+    pub fn acceleration_bytes(&self) -> usize {
+        self.tracer.memory_bytes() + self.ground.memory_bytes()
+    }
+
+    /// Renders the linear (scene-referred) image in parallel tiles.
+    ///
+    /// Each pixel averages `spp` stratified samples whose positions are
+    /// random numbers indexed by pixel and sample, so the image is
+    /// bit-identical for any thread count.
+    pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
+        let grid = natura_trace::render(self.width, self.height, natura_trace::DEFAULT_TILE, progress, |x, y| {
+            self.pixel(x, y)
+        })?;
+        Ok(Image::from_grid(grid))
+    }
+
+    /// The average radiance of pixel `(x, y)` over its stratified samples.
+    #[must_use]
+    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        let n = self.spp;
+        let side = (n as f32).sqrt().ceil() as u32;
+        let mut sum = Vec3::ZERO;
+        for s in 0..n {
+            let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
+            let (jx, jy) = (unit_f64(h) as f32, unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32);
+            let jitter = if n == 1 {
+                glam::Vec2::splat(0.5)
+            } else {
+                // Stratum (s mod side, s / side) of a side × side grid, jittered inside.
+                let (sx, sy) = ((s % side) as f32, (s / side) as f32);
+                glam::Vec2::new((sx + jx) / side as f32, ((sy + jy) / side as f32).min(1.0 - f32::EPSILON))
+            };
+            let ray = self.camera.camera().ray(x, y, jitter);
+            sum += self.radiance(&ray);
+        }
+        sum / n as f32
+    }
+
+    /// Radiance arriving at the camera along a primary `ray`.
+    #[must_use]
+    pub fn radiance(&self, ray: &Ray) -> Vec3 {
+        let d = ray.dir.normalize();
+        let ray = Ray::new(ray.origin, d);
+        let (mut l, dist) = match self.intersect(&ray) {
+            Some(SurfaceHit::Water { t, point }) => (self.shade_water(point, d, t, true), t),
+            Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t),
+            None => (self.sky(d), f32::INFINITY),
+        };
+        if dist.is_finite() {
+            let ap = self.view.aerial_perspective_f32(d, dist);
+            l = l * ap.transmittance + ap.in_scatter;
+        }
+        if let Some(rb) = &self.rainbow {
+            l = self.rain(rb, d, dist, l);
+        }
+        l
+    }
+
+    /// The first thing `ray` (unit direction) meets: dry terrain or a water
+    /// surface, or nothing.
+    ///
+    /// The `surface` field holds the lakes and sea on top of the terrain, so
+    /// it finds where a ray reaches water; but its triangles along a shore
+    /// slope from the water level up to the bank. A hit there is resolved
+    /// exactly: the water is the plane at the lake's level `L` (the lowest
+    /// surface sample of the hit cell), and the ray either meets the bare
+    /// terrain before that plane (the bank) or the plane itself.
+    fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let Some(h) = self.tracer.trace(ray, 0.0, f32::INFINITY) else {
+            // Beyond the terrain the sea plane goes on to the horizon.
+            return self.sea_t(ray.origin, ray.dir).map(|t| SurfaceHit::Water { t, point: ray.at(t) });
+        };
+        if self.water_depth(h.point).is_none() {
+            return Some(SurfaceHit::Terrain(h));
+        }
+        let level = self.cell_level(h.cell);
+        if h.point.z - level <= 1e-3 * (1.0 + level.abs()) || ray.dir.z >= 0.0 {
+            return Some(SurfaceHit::Water { t: h.t, point: h.point });
+        }
+        let t_plane = (level - ray.origin.z) / ray.dir.z;
+        match self.ground.trace(ray, (h.t - 1e-3 * h.t.max(1.0)).max(0.0), t_plane) {
+            Some(g) => Some(SurfaceHit::Terrain(g)),
+            None => Some(SurfaceHit::Water { t: t_plane, point: ray.at(t_plane) }),
+        }
+    }
+
+    /// The water level of the cell `(i, j)` of the surface: its lowest corner.
+    fn cell_level(&self, cell: glam::UVec2) -> f32 {
+        let s = self.world.surface.heights();
+        let (i, j) = (cell.x as usize, cell.y as usize);
+        let (i1, j1) = ((i + 1).min(s.width() - 1), (j + 1).min(s.height() - 1));
+        s[(i, j)].min(s[(i1, j)]).min(s[(i, j1)]).min(s[(i1, j1)])
+    }
+
+    /// Depth of water at a surface point, if it is wet (lake or sea).
+    fn water_depth(&self, p: Vec3) -> Option<f32> {
+        self.world.water_level?;
+        let w = self.world;
+        let inv = 1.0 / w.terrain.cell_size();
+        let s = w.surface.heights().sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
+        let g = w.terrain.heights().sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
+        let depth = s - g;
+        (depth > 0.02).then_some(depth)
+    }
+
+    /// Distance to the sea plane along `d` from `o`, if the ray goes down onto it.
+    fn sea_t(&self, o: Vec3, d: Vec3) -> Option<f32> {
+        let level = self.world.water_level?;
+        (o.z > level && d.z < 0.0).then(|| (level - o.z) / d.z).filter(|t| t.is_finite() && *t > 0.0)
+    }
+
+    fn sky(&self, d: Vec3) -> Vec3 {
+        let sky = self.view.radiance_f32(d);
+        match Dir3::from_f32(d) {
+            Ok(dir) => sky + self.view.sun_disc(dir),
+            Err(_) => sky,
+        }
+    }
+
+    fn terrain_point(&self, h: &Hit) -> TerrainPoint {
+        TerrainPoint { point: h.point, geo: h.geometric_normal, smooth: h.smooth_normal }
+    }
+
+    /// Radiance leaving a terrain point toward `-d`, at distance `t` from the viewer.
+    fn shade_terrain(&self, tp: &TerrainPoint, d: Vec3, t: f32) -> Vec3 {
+        let w = self.world;
+        let cell = w.terrain.cell_size();
+        let (gx, gy) = (tp.point.x / cell, tp.point.y / cell);
+        let sample = SurfaceSample {
+            point: tp.point,
+            normal: tp.smooth,
+            deposition_m: w.deposition.sample_bilinear(gx, gy, Boundary::Clamp),
+            wetness: w.wetness.sample_bilinear(gx, gy, Boundary::Clamp),
+        };
+        let albedo = self.materials.albedo(&sample);
+        let footprint = t * self.pixel_angle;
+        let n = self.materials.bumped_normal(tp.point, tp.smooth, footprint);
+        let v = -d;
+        let mut l = Vec3::ZERO;
+
+        // Direct sun, with a shadow ray from just above the surface.
+        let cos_i = n.dot(self.sun);
+        if cos_i > 0.0 && tp.geo.dot(self.sun) > -0.05 {
+            let eps = 1e-2 * cell + 1e-5 * tp.point.abs().max_element();
+            let shadow = Ray::new(tp.point + tp.geo * eps, self.sun);
+            if !self.tracer.occluded(&shadow, eps, f32::INFINITY) {
+                let f = self.materials.diffuse_factor(n, self.sun, v);
+                l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
+            }
+        }
+        // Sky light over the visible hemisphere, plus light bounced off the
+        // surroundings for normals that face down-slope.
+        let up = 0.5 * (1.0 + n.z);
+        let bounce = 0.5 * (1.0 - n.z) * 0.25 * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
+        l += albedo / std::f32::consts::PI * (self.sky_irradiance * up + bounce);
+        l
+    }
+
+    /// Radiance leaving the water surface at `p` toward `-d` (`reflect_terrain`:
+    /// whether reflection rays may hit the terrain, off for secondary bounces).
+    fn shade_water(&self, p: Vec3, d: Vec3, t: f32, reflect_terrain: bool) -> Vec3 {
+        let wdesc = &self.world.scene.water;
+        let footprint = t * self.pixel_angle;
+        let size = wdesc.ripple_size_m as f32;
+        let fade = 1.0 - crate::material::smoothstep(0.02 * size, 0.25 * size, footprint);
+        let n = if fade > 0.0 && wdesc.ripple_height_m > 0.0 {
+            let (_, g) = self.ripples.eval_grad2(DVec2::new(f64::from(p.x), f64::from(p.y)));
+            let g = g.as_vec2() * (wdesc.ripple_height_m as f32 * fade);
+            Vec3::new(-g.x, -g.y, 1.0).normalize()
+        } else {
+            Vec3::Z
+        };
+        let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+        let fr = fresnel(1.0, WATER_IOR, f64::from(cos_i)).unpolarized() as f32;
+
+        // Reflection: the terrain (mountains mirrored in the lake) or the sky and sun.
+        let mut r = d - 2.0 * d.dot(n) * n;
+        if r.z < 1e-4 {
+            r.z = r.z.abs().max(1e-4);
+            r = r.normalize();
+        }
+        let reflected = if reflect_terrain {
+            let rray = Ray::new(p + Vec3::Z * 1e-2, r);
+            let (lt, tr) = match self.intersect(&rray) {
+                Some(SurfaceHit::Water { t: tr, point }) => (self.shade_water(point, r, t + tr, false), tr),
+                Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t),
+                None => (self.sky(r), f32::INFINITY),
+            };
+            if tr.is_finite() {
+                let ap = self.view.aerial_perspective_f32(r, tr);
+                lt * ap.transmittance + ap.in_scatter
+            } else {
+                lt
+            }
+        } else {
+            self.sky(r)
+        };
+
+        // Transmission: the bed seen through absorbing, scattering water.
+        let sigma = Vec3::from(wdesc.extinction_per_m);
+        let albedo = Vec3::from(wdesc.scatter_albedo);
+        let ambient = self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance;
+        let body = albedo * ambient / std::f32::consts::PI;
+        let eta = (1.0 / WATER_IOR) as f32;
+        let cos_t2 = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+        let transmitted = if cos_t2 > 0.0 {
+            let tdir = (eta * d + (eta * cos_i - cos_t2.sqrt()) * n).normalize();
+            let tray = Ray::new(p - Vec3::Z * 1e-2, tdir);
+            match self.ground.trace(&tray, 0.0, 2_000.0) {
+                Some(h) => {
+                    let tp = self.terrain_point(&h);
+                    let water_depth = (p.z - h.point.z).max(0.0);
+                    let sun_path = water_depth / self.sun.z.max(0.05);
+                    let bed = self.shade_terrain(&tp, tdir, t + h.t) * exp3(-sigma * sun_path);
+                    let att = exp3(-sigma * h.t);
+                    bed * att + body * (Vec3::ONE - att)
+                }
+                None => body,
+            }
+        } else {
+            Vec3::ZERO
+        };
+        fr * reflected + (1.0 - fr) * transmitted
+    }
+
+    /// Rain between `rain_distance_m` and the hit: extinction of what is behind
+    /// and the rainbow's single scattering (spec `atmosphere.md` §7.5).
+    fn rain(&self, rb: &Rainbow, d: Vec3, dist: f32, behind: Vec3) -> Vec3 {
+        let a = &self.world.scene.atmosphere;
+        let start = a.rain_distance_m as f32;
+        let end = dist.min(start + 6_000.0);
+        if end <= start {
+            return behind;
+        }
+        let len = f64::from(end - start);
+        let beta = a.rain_extinction_per_m;
+        let (Ok(view), sun) = (Dir3::from_f32(d), self.world.sun_dir()) else {
+            return behind;
+        };
+        let bow = rb
+            .radiance(view, sun, self.sun_irradiance.as_dvec3(), beta, len)
+            .map(|v| v.as_vec3())
+            .unwrap_or(Vec3::ZERO);
+        let ap = self.view.aerial_perspective_f32(d, start);
+        behind * (-(beta * len) as f32).exp() + bow * ap.transmittance
+    }
+}
+
+#[inline]
+fn exp3(v: Vec3) -> Vec3 {
+    Vec3::new(v.x.exp(), v.y.exp(), v.z.exp())
+}

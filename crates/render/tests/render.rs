@@ -1,0 +1,165 @@
+//! Image sanity of the landscape integrator on small worlds.
+
+use glam::Vec3;
+use natura_core::{Grid2, HeightField, NoProgress};
+use natura_render::{Renderer, SceneDesc, World, render_world, sun_direction};
+use natura_trace::Ray;
+
+/// The default scene shrunk to a 128² terrain and a 64 × 36 image.
+fn small_scene() -> SceneDesc {
+    let mut s = SceneDesc::default();
+    s.terrain.size = 128;
+    s.terrain.cell_size_m = 480.0;
+    s.erosion.stream_power_steps = 3;
+    s.erosion.droplets = 2_000;
+    s.erosion.thermal_steps = 3;
+    s.render.width = 64;
+    s.render.height = 36;
+    s.render.spp = 2;
+    s
+}
+
+/// A flat world at sea level with no water: terrain shading and sky only.
+fn flat_world(scene: &mut SceneDesc, hf: HeightField) -> World {
+    scene.water.enabled = false;
+    scene.camera.position_uv = [0.1, 0.5];
+    scene.camera.target_uv = [0.9, 0.5];
+    scene.camera.height_above_ground_m = 200.0;
+    scene.camera.pitch_deg = -2.0;
+    World::from_height_field(scene, hf, &NoProgress).unwrap()
+}
+
+fn luma(c: Vec3) -> f32 {
+    natura_core::colour::luminance(c)
+}
+
+#[test]
+fn same_image_on_one_and_two_threads() {
+    let scene = small_scene();
+    let world = World::build(&scene, &NoProgress).unwrap();
+    let render = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| render_world(&world, &NoProgress).unwrap())
+    };
+    let a = render(1);
+    let b = render(2);
+    let bits = |r: &natura_render::Rendered| -> Vec<u32> {
+        r.image.pixels().as_slice().iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()
+    };
+    assert_eq!(bits(&a), bits(&b));
+    assert_eq!(a.exposure_ev.to_bits(), b.exposure_ev.to_bits());
+}
+
+#[test]
+fn default_scene_small_render_is_finite_and_has_sky_and_land() {
+    let scene = small_scene();
+    let world = World::build(&scene, &NoProgress).unwrap();
+    let out = render_world(&world, &NoProgress).unwrap();
+    let px = out.image.pixels().as_slice();
+    assert!(px.iter().all(|c| c.is_finite() && c.min_element() >= 0.0));
+    // The top row is sky, the bottom row is land or water: they differ.
+    let top: f32 = out.image.pixels().row(0).iter().map(|&c| luma(c)).sum();
+    assert!(top > 0.0);
+    let display = out.display();
+    assert!(display.pixels().as_slice().iter().all(|c| c.max_element() <= 1.0));
+}
+
+#[test]
+fn zenith_is_bluer_than_horizon_at_noon() {
+    let mut scene = small_scene();
+    scene.sun.elevation_deg = 75.0;
+    let world = flat_world(&mut scene, HeightField::flat(64, 64, 50.0, 0.0).unwrap());
+    let r = Renderer::new(&world, &NoProgress).unwrap();
+    let eye = world.eye();
+    let blue = |c: Vec3| c.z / (c.x + c.y + c.z);
+    let zenith = r.radiance(&Ray::new(eye, Vec3::Z));
+    let horizon = r.radiance(&Ray::new(eye, Vec3::new(1.0, 0.0, 0.02).normalize()));
+    assert!(blue(zenith) > blue(horizon), "zenith {zenith} horizon {horizon}");
+}
+
+#[test]
+fn aerial_perspective_lowers_terrain_contrast_with_distance() {
+    let mut scene = small_scene();
+    scene.sun.elevation_deg = 30.0;
+    let world = flat_world(&mut scene, HeightField::flat(512, 512, 100.0, 0.0).unwrap());
+    let r = Renderer::new(&world, &NoProgress).unwrap();
+    let eye = world.eye();
+    let horizon = r.radiance(&Ray::new(eye, Vec3::new(1.0, 0.0, 0.01).normalize()));
+    // Average ground radiance over a fan of rays hitting at distance ≈ `dist`.
+    let ground = |dist: f32| {
+        let mut sum = Vec3::ZERO;
+        for k in 0..32 {
+            let yaw = (k as f32 - 15.5) * 0.01;
+            let d = Vec3::new(dist * yaw.cos(), dist * yaw.sin(), -eye.z).normalize();
+            sum += r.radiance(&Ray::new(eye, d));
+        }
+        sum / 32.0
+    };
+    let contrast = |g: Vec3| (luma(g) - luma(horizon)).abs() / (luma(g) + luma(horizon));
+    let near = contrast(ground(400.0));
+    let far = contrast(ground(40_000.0));
+    assert!(far < 0.6 * near, "near {near} far {far}");
+}
+
+#[test]
+fn shadowed_ground_is_darker_than_lit_ground() {
+    // Flat ground with a 600 m wall along x = 3.2 km; the sun in the west
+    // (azimuth 270°, the −x side) at 10° casts the wall's shadow eastward.
+    let n = 128;
+    let cell = 50.0;
+    let hf = HeightField::new(
+        Grid2::from_fn(n, n, |i, _| if (63..=65).contains(&i) { 600.0 } else { 0.0 }).unwrap(),
+        cell,
+    )
+    .unwrap();
+    let mut scene = small_scene();
+    scene.sun.elevation_deg = 10.0;
+    scene.sun.azimuth_deg = 270.0;
+    scene.materials.bump_strength = 0.0;
+    let world = flat_world(&mut scene, hf);
+    assert!((world.sun - sun_direction(10.0, 270.0)).length() < 1e-6);
+    let r = Renderer::new(&world, &NoProgress).unwrap();
+    let look_down = |x: f32, y: f32| r.radiance(&Ray::new(Vec3::new(x, y, 1000.0), Vec3::NEG_Z));
+    let mut lit = 0.0;
+    let mut shadow = 0.0;
+    for k in 0..16 {
+        let y = 1000.0 + 250.0 * k as f32;
+        lit += luma(look_down(2000.0, y)); // west of the wall: in the sun
+        shadow += luma(look_down(3700.0, y)); // 400 m east of the wall: in its shadow
+    }
+    assert!(lit > 2.0 * shadow && shadow > 0.0, "lit {lit} shadow {shadow}");
+}
+
+#[test]
+fn rain_shows_a_bow_with_a_dark_band_outside_it() {
+    let mut scene = small_scene();
+    scene.sun.elevation_deg = 5.0;
+    scene.sun.azimuth_deg = 270.0; // sun in the west, bow in the east
+    scene.atmosphere.rain_extinction_per_m = 2e-3;
+    scene.atmosphere.rain_distance_m = 100.0;
+    let world = flat_world(&mut scene, HeightField::flat(64, 64, 50.0, 0.0).unwrap());
+    let r = Renderer::new(&world, &NoProgress).unwrap();
+    let eye = world.eye();
+    // The antisolar point is 5° below the eastern horizon; look up from it by θ.
+    let at = |theta_deg: f32| {
+        let e = (theta_deg - 5.0).to_radians();
+        r.radiance(&Ray::new(eye, Vec3::new(e.cos(), 0.0, e.sin())))
+    };
+    let bow = luma(at(41.5));
+    let band = luma(at(46.5));
+    let inside = luma(at(30.0));
+    assert!(bow > band, "bow {bow} band {band}");
+    assert!(inside > band, "inside {inside} band {band}");
+    // Red outside, blue inside the primary bow.
+    let red = at(42.3);
+    let blue = at(40.6);
+    assert!(red.x / red.z > blue.x / blue.z, "red edge {red} blue edge {blue}");
+}
+
+#[test]
+fn unwritable_output_and_bad_scene_are_refused_before_work() {
+    let mut scene = small_scene();
+    scene.render.spp = 0;
+    assert!(World::build(&scene, &NoProgress).unwrap_err().to_string().contains("render.spp"));
+    assert!(natura_core::io::check_writable("/no/such/dir/landscape.png").is_err());
+}

@@ -1,0 +1,95 @@
+//! The main natura picture: an eroded fractal landscape under a physical sky.
+//!
+//! ```text
+//! cargo run --release --example landscape                    # the built-in scene
+//! cargo run --release --example landscape -- --quick         # small and fast
+//! cargo run --release --example landscape -- --scene my.toml --spp 16 --out renders
+//! cargo run --release --example landscape -- --print-scene > my.toml
+//! ```
+//!
+//! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
+//! radiance) into `--out` (default: the current directory), with a progress
+//! bar per stage.
+
+mod common;
+
+use std::path::PathBuf;
+
+use natura::render::{SceneDesc, World, render_world};
+
+fn main() {
+    let mut args = common::Args::from_env();
+    let quick = args.switch("--quick", "small terrain and image (CI)");
+    let print = args.switch("--print-scene", "print the scene as TOML and exit");
+    let maps = args.switch("--maps", "also write the terrain's relief map and 16-bit height map");
+    let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
+    let seed: Option<u64> = args.optional("--seed", "random seed");
+    let size: Option<usize> = args.optional("--size", "terrain samples per side");
+    let width: Option<u32> = args.optional("--width", "image width, pixels");
+    let height: Option<u32> = args.optional("--height", "image height, pixels");
+    let spp: Option<u32> = args.optional("--spp", "samples per pixel");
+    let out = args.out_dir(".");
+    args.finish();
+
+    let mut scene = match &scene_file {
+        Some(p) => common::check(SceneDesc::load(p)),
+        None => SceneDesc::default(),
+    };
+    if quick {
+        scene.terrain.size = 256;
+        scene.terrain.cell_size_m *= 8.0;
+        scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
+        scene.erosion.droplets = scene.erosion.droplets.min(10_000);
+        scene.erosion.hydraulic_steps = scene.erosion.hydraulic_steps.min(20);
+        scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
+        scene.render.width = 320;
+        scene.render.height = 180;
+        scene.render.spp = 1;
+    }
+    if let Some(s) = seed {
+        scene.seed = s;
+    }
+    if let Some(s) = size {
+        // Keep the world the same size in metres.
+        scene.terrain.cell_size_m *= scene.terrain.size as f32 / s as f32;
+        scene.terrain.size = s;
+    }
+    if let Some(w) = width {
+        scene.render.width = w;
+    }
+    if let Some(h) = height {
+        scene.render.height = h;
+    }
+    if let Some(s) = spp {
+        scene.render.spp = s;
+    }
+    if print {
+        print!("{}", common::check(scene.to_toml_string()));
+        return;
+    }
+    common::check(scene.validate());
+    let png = out.join("landscape.png");
+    let exr = out.join("landscape.exr");
+    // Refuse unwritable outputs before minutes of work.
+    common::check(natura::core::io::check_writable(&png));
+    common::check(natura::core::io::check_writable(&exr));
+
+    let bar = common::Bar::new();
+    let world = common::check(World::build(&scene, &bar));
+    if maps {
+        let relief = out.join("landscape_relief.png");
+        let height = out.join("landscape_height.png");
+        common::check(common::check(world.relief_map()).save_png(&relief));
+        common::check(world.terrain.save_png16(&height, world.terrain.min_max()));
+        println!("wrote {} and {}", relief.display(), height.display());
+    }
+    let rendered = common::check(render_world(&world, &bar));
+    common::check(rendered.save(&png, &exr));
+    for (stage, d) in &rendered.times.stages {
+        println!("{stage:>14}: {:7.2} s", d.as_secs_f64());
+    }
+    println!("{:>14}: {:7.2} s", "total", rendered.times.total().as_secs_f64());
+    println!("exposure {:+.2} EV", rendered.exposure_ev);
+    println!("wrote {}", png.display());
+    println!("wrote {}", exr.display());
+}
