@@ -21,7 +21,10 @@ fn world() -> &'static World {
         scene.render.spp = 1;
         let t0 = Instant::now();
         let w = World::build(&scene, &NoProgress).expect("default scene builds");
-        println!("world build (default scene, {} threads):", rayon::current_num_threads());
+        println!(
+            "world build (default scene, {} threads):",
+            rayon::current_num_threads()
+        );
         for (stage, d) in &w.times.stages {
             println!("  {stage:>12}: {:8.3} s", d.as_secs_f64());
         }
@@ -35,10 +38,14 @@ fn render(c: &mut Criterion) {
     let mut g = c.benchmark_group("render");
     g.sample_size(10);
     g.measurement_time(std::time::Duration::from_secs(20));
-    g.bench_function("acceleration_build", |b| b.iter(|| Renderer::new(w, &NoProgress).unwrap()));
+    g.bench_function("acceleration_build", |b| {
+        b.iter(|| Renderer::new(w, &NoProgress).unwrap())
+    });
     let r = Renderer::new(w, &NoProgress).unwrap();
     g.throughput(Throughput::Elements(1280 * 720));
-    g.bench_function("render_1280x720_1spp", |b| b.iter(|| r.render(&NoProgress).unwrap()));
+    g.bench_function("render_1280x720_1spp", |b| {
+        b.iter(|| r.render(&NoProgress).unwrap())
+    });
     g.finish();
 }
 

@@ -21,7 +21,10 @@ fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small terrain and image (CI)");
     let print = args.switch("--print-scene", "print the scene as TOML and exit");
-    let maps = args.switch("--maps", "also write the terrain's relief map and 16-bit height map");
+    let maps = args.switch(
+        "--maps",
+        "also write the terrain's relief map and 16-bit height map",
+    );
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
     let size: Option<usize> = args.optional("--size", "terrain samples per side");
@@ -88,7 +91,11 @@ fn main() {
     for (stage, d) in &rendered.times.stages {
         println!("{stage:>14}: {:7.2} s", d.as_secs_f64());
     }
-    println!("{:>14}: {:7.2} s", "total", rendered.times.total().as_secs_f64());
+    println!(
+        "{:>14}: {:7.2} s",
+        "total",
+        rendered.times.total().as_secs_f64()
+    );
     println!("exposure {:+.2} EV", rendered.exposure_ev);
     println!("wrote {}", png.display());
     println!("wrote {}", exr.display());

@@ -29,7 +29,11 @@ fn main() {
         Some(p) => common::check(SceneDesc::load(p)),
         None => SceneDesc::default(),
     };
-    scene.camera.kind = if spherical { CameraKind::Spherical } else { CameraKind::Cylindrical };
+    scene.camera.kind = if spherical {
+        CameraKind::Spherical
+    } else {
+        CameraKind::Cylindrical
+    };
     scene.camera.hfov_deg = hfov;
     scene.camera.vfov_deg = vfov;
     scene.render.width = width;

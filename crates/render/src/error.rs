@@ -32,11 +32,18 @@ pub enum RenderError {
     /// From natura-atmos.
     #[error(transparent)]
     Atmos(#[from] natura_atmos::AtmosError),
+    /// From natura-ocean.
+    #[error(transparent)]
+    Ocean(#[from] natura_ocean::OceanError),
 }
 
 impl RenderError {
     pub(crate) fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &str) -> Self {
-        RenderError::Invalid { name, value: value.to_string(), reason: reason.to_owned() }
+        RenderError::Invalid {
+            name,
+            value: value.to_string(),
+            reason: reason.to_owned(),
+        }
     }
 }
 

@@ -8,18 +8,21 @@
 //! rain shows a rainbow opposite the sun. This is the shading pipeline of
 //! Musgrave's landscapes (seed 000 ch. 3–4) with physical sky and haze.
 
-use glam::{DVec2, Vec3};
+use glam::{DVec2, Vec2, Vec3};
 use natura_atmos::Dir3;
 use natura_atmos::optics::fresnel;
 use natura_atmos::rainbow::{Rainbow, RainbowParams};
 use natura_atmos::sky::SkyView;
 use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
-use natura_noise::{Fbm, Field, Perlin, Spectral};
-use natura_trace::{Camera, Hit, MipmapTracer, PanoramicCamera, PinholeCamera, Projection, Ray, Tracer};
+use natura_noise::{FilteredFbm, Perlin, Spectral};
+use natura_ocean::{Ocean, OceanParams, Phillips, Surface, WaterSurface};
+use natura_trace::{
+    Camera, Hit, MipmapTracer, PanoramicCamera, PinholeCamera, Projection, Ray, Tracer,
+};
 
 use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
-use crate::scene::CameraKind;
+use crate::scene::{CameraKind, WaterWaves};
 use crate::world::World;
 
 /// Refractive index of water used for the lake surface.
@@ -35,7 +38,9 @@ pub enum SceneCamera {
 }
 
 impl SceneCamera {
-    fn camera(&self) -> &dyn Camera {
+    /// The camera as a natura-trace [`Camera`] (primary rays per pixel).
+    #[must_use]
+    pub fn camera(&self) -> &dyn Camera {
         match self {
             SceneCamera::Pinhole(c) => c,
             SceneCamera::Panoramic(c) => c,
@@ -53,7 +58,9 @@ pub struct Renderer<'w> {
     view: SkyView,
     camera: SceneCamera,
     materials: Materials,
-    ripples: Fbm<Perlin>,
+    ripples: FilteredFbm<Perlin>,
+    /// The ocean patch whose normals shade the water (`waves = "ocean"`).
+    ocean: Option<Surface>,
     rainbow: Option<Rainbow>,
     sun: Vec3,
     sun_irradiance: Vec3,
@@ -123,16 +130,22 @@ impl<'w> Renderer<'w> {
                 r.width,
                 r.height,
             )?),
-            CameraKind::Cylindrical | CameraKind::Spherical => SceneCamera::Panoramic(PanoramicCamera::new(
-                eye,
-                dir,
-                Vec3::Z,
-                (c.hfov_deg as f32).to_radians(),
-                (c.vfov_deg as f32).to_radians(),
-                if c.kind == CameraKind::Cylindrical { Projection::Cylindrical } else { Projection::Spherical },
-                r.width,
-                r.height,
-            )?),
+            CameraKind::Cylindrical | CameraKind::Spherical => {
+                SceneCamera::Panoramic(PanoramicCamera::new(
+                    eye,
+                    dir,
+                    Vec3::Z,
+                    (c.hfov_deg as f32).to_radians(),
+                    (c.vfov_deg as f32).to_radians(),
+                    if c.kind == CameraKind::Cylindrical {
+                        Projection::Cylindrical
+                    } else {
+                        Projection::Spherical
+                    },
+                    r.width,
+                    r.height,
+                )?)
+            }
         };
         let pixel_angle = (c.vfov_deg as f32).to_radians() / r.height as f32;
 
@@ -141,15 +154,53 @@ impl<'w> Renderer<'w> {
         let sun_irradiance = view.sun_irradiance();
         let sky_irradiance = view.sky_irradiance();
         let seed = Seed(scene.seed);
-        let materials = Materials::new(&scene.materials, world.water_level, seed.derive("materials"))?;
-        let w = &scene.water;
-        let ripples = Fbm::new(
-            Perlin::new(seed.derive("ripples").0),
-            Spectral::default().with_h(0.5).with_octaves(5.0).with_frequency(1.0 / w.ripple_size_m),
+        let materials = Materials::new(
+            &scene.materials,
+            world.water_level,
+            seed.derive("materials"),
         )?;
+        let w = &scene.water;
+        let ripples = FilteredFbm::new(
+            Perlin::new(seed.derive("ripples").0),
+            Spectral::default()
+                .with_h(0.5)
+                .with_octaves(8.0)
+                .with_frequency(1.0 / w.ripple_size_m),
+            0.0,
+        )?;
+        let ocean = match w.waves {
+            WaterWaves::Ripples => None,
+            WaterWaves::Ocean => {
+                progress.start("ocean", 1);
+                let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
+                let params = OceanParams {
+                    nx: n,
+                    ny: n,
+                    lx: l,
+                    ly: l,
+                    choppiness: 1.0,
+                    ..OceanParams::default()
+                };
+                let spectrum = Phillips {
+                    wind_speed: w.wind_speed_m_s,
+                    // Compass azimuth (clockwise from +y) to the angle from +x.
+                    wind_direction: (90.0 - w.wind_azimuth_deg).to_radians(),
+                    small_wave_length: l / n as f64,
+                    ..Phillips::default()
+                };
+                let ocean = Ocean::new(&params, &spectrum, seed.derive("ocean"))?;
+                let surface = Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?;
+                progress.advance(1);
+                progress.finish();
+                Some(surface)
+            }
+        };
         let rainbow = if scene.atmosphere.rain_extinction_per_m > 0.0 {
             progress.start("rainbow table", 1);
-            let params = RainbowParams { rays_per_wavelength: 20_000, ..RainbowParams::default() };
+            let params = RainbowParams {
+                rays_per_wavelength: 20_000,
+                ..RainbowParams::default()
+            };
             let rb = Rainbow::new(&params)?;
             progress.advance(1);
             progress.finish();
@@ -165,6 +216,7 @@ impl<'w> Renderer<'w> {
             camera,
             materials,
             ripples,
+            ocean,
             rainbow,
             sun: world.sun,
             sun_irradiance,
@@ -196,9 +248,13 @@ impl<'w> Renderer<'w> {
     /// random numbers indexed by pixel and sample, so the image is
     /// bit-identical for any thread count.
     pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
-        let grid = natura_trace::render(self.width, self.height, natura_trace::DEFAULT_TILE, progress, |x, y| {
-            self.pixel(x, y)
-        })?;
+        let grid = natura_trace::render(
+            self.width,
+            self.height,
+            natura_trace::DEFAULT_TILE,
+            progress,
+            |x, y| self.pixel(x, y),
+        )?;
         Ok(Image::from_grid(grid))
     }
 
@@ -210,13 +266,19 @@ impl<'w> Renderer<'w> {
         let mut sum = Vec3::ZERO;
         for s in 0..n {
             let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
-            let (jx, jy) = (unit_f64(h) as f32, unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32);
+            let (jx, jy) = (
+                unit_f64(h) as f32,
+                unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
+            );
             let jitter = if n == 1 {
                 glam::Vec2::splat(0.5)
             } else {
                 // Stratum (s mod side, s / side) of a side × side grid, jittered inside.
                 let (sx, sy) = ((s % side) as f32, (s / side) as f32);
-                glam::Vec2::new((sx + jx) / side as f32, ((sy + jy) / side as f32).min(1.0 - f32::EPSILON))
+                glam::Vec2::new(
+                    (sx + jx) / side as f32,
+                    ((sy + jy) / side as f32).min(1.0 - f32::EPSILON),
+                )
             };
             let ray = self.camera.camera().ray(x, y, jitter);
             sum += self.radiance(&ray);
@@ -231,7 +293,9 @@ impl<'w> Renderer<'w> {
         let ray = Ray::new(ray.origin, d);
         let (mut l, dist) = match self.intersect(&ray) {
             Some(SurfaceHit::Water { t, point }) => (self.shade_water(point, d, t, true), t),
-            Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t),
+            Some(SurfaceHit::Terrain(h)) => {
+                (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t)
+            }
             None => (self.sky(d), f32::INFINITY),
         };
         if dist.is_finite() {
@@ -256,19 +320,37 @@ impl<'w> Renderer<'w> {
     fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let Some(h) = self.tracer.trace(ray, 0.0, f32::INFINITY) else {
             // Beyond the terrain the sea plane goes on to the horizon.
-            return self.sea_t(ray.origin, ray.dir).map(|t| SurfaceHit::Water { t, point: ray.at(t) });
+            return self.sea_t(ray.origin, ray.dir).map(|t| SurfaceHit::Water {
+                t,
+                point: ray.at(t),
+            });
         };
         if self.water_depth(h.point).is_none() {
             return Some(SurfaceHit::Terrain(h));
         }
         let level = self.cell_level(h.cell);
-        if h.point.z - level <= 1e-3 * (1.0 + level.abs()) || ray.dir.z >= 0.0 {
-            return Some(SurfaceHit::Water { t: h.t, point: h.point });
+        if h.point.z - level <= 1e-3 * (1.0 + level.abs()) {
+            return Some(SurfaceHit::Water {
+                t: h.t,
+                point: h.point,
+            });
+        }
+        let t0 = (h.t - 1e-3 * h.t.max(1.0)).max(0.0);
+        if ray.dir.z >= 0.0 {
+            // A rising ray above the water level never meets the plane: what
+            // it hit on the shore triangle is the bare bank (or nothing).
+            return self
+                .ground
+                .trace(ray, t0, f32::INFINITY)
+                .map(SurfaceHit::Terrain);
         }
         let t_plane = (level - ray.origin.z) / ray.dir.z;
-        match self.ground.trace(ray, (h.t - 1e-3 * h.t.max(1.0)).max(0.0), t_plane) {
+        match self.ground.trace(ray, t0, t_plane) {
             Some(g) => Some(SurfaceHit::Terrain(g)),
-            None => Some(SurfaceHit::Water { t: t_plane, point: ray.at(t_plane) }),
+            None => Some(SurfaceHit::Water {
+                t: t_plane,
+                point: ray.at(t_plane),
+            }),
         }
     }
 
@@ -280,13 +362,28 @@ impl<'w> Renderer<'w> {
         s[(i, j)].min(s[(i1, j)]).min(s[(i, j1)]).min(s[(i1, j1)])
     }
 
+    /// Height of the traced surface (terrain, lakes and sea) below `p`.
+    fn surface_height(&self, p: Vec3) -> f32 {
+        let inv = 1.0 / self.world.terrain.cell_size();
+        self.world
+            .surface
+            .heights()
+            .sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp)
+    }
+
     /// Depth of water at a surface point, if it is wet (lake or sea).
     fn water_depth(&self, p: Vec3) -> Option<f32> {
         self.world.water_level?;
         let w = self.world;
         let inv = 1.0 / w.terrain.cell_size();
-        let s = w.surface.heights().sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
-        let g = w.terrain.heights().sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
+        let s = w
+            .surface
+            .heights()
+            .sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
+        let g = w
+            .terrain
+            .heights()
+            .sample_bilinear(p.x * inv, p.y * inv, Boundary::Clamp);
         let depth = s - g;
         (depth > 0.02).then_some(depth)
     }
@@ -294,7 +391,9 @@ impl<'w> Renderer<'w> {
     /// Distance to the sea plane along `d` from `o`, if the ray goes down onto it.
     fn sea_t(&self, o: Vec3, d: Vec3) -> Option<f32> {
         let level = self.world.water_level?;
-        (o.z > level && d.z < 0.0).then(|| (level - o.z) / d.z).filter(|t| t.is_finite() && *t > 0.0)
+        (o.z > level && d.z < 0.0)
+            .then(|| (level - o.z) / d.z)
+            .filter(|t| t.is_finite() && *t > 0.0)
     }
 
     fn sky(&self, d: Vec3) -> Vec3 {
@@ -306,7 +405,11 @@ impl<'w> Renderer<'w> {
     }
 
     fn terrain_point(&self, h: &Hit) -> TerrainPoint {
-        TerrainPoint { point: h.point, geo: h.geometric_normal, smooth: h.smooth_normal }
+        TerrainPoint {
+            point: h.point,
+            geo: h.geometric_normal,
+            smooth: h.smooth_normal,
+        }
     }
 
     /// Radiance leaving a terrain point toward `-d`, at distance `t` from the viewer.
@@ -339,24 +442,52 @@ impl<'w> Renderer<'w> {
         // Sky light over the visible hemisphere, plus light bounced off the
         // surroundings for normals that face down-slope.
         let up = 0.5 * (1.0 + n.z);
-        let bounce = 0.5 * (1.0 - n.z) * 0.25 * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
+        let bounce = 0.5
+            * (1.0 - n.z)
+            * 0.25
+            * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
         l += albedo / std::f32::consts::PI * (self.sky_irradiance * up + bounce);
         l
+    }
+
+    /// The normal of the fBm ripples at `p`, band-limited to a pixel of the
+    /// given footprint (metres): octaves finer than the footprint fade out
+    /// (the RenderMan `vfBm` filter of natura-noise's [`FilteredFbm`]), so
+    /// distant water tends to its mean plane instead of aliasing into glitter.
+    fn ripple_normal(&self, p: Vec3, footprint: f32) -> Vec3 {
+        let wdesc = &self.world.scene.water;
+        if wdesc.ripple_height_m <= 0.0 {
+            return Vec3::Z;
+        }
+        let width = f64::from(footprint);
+        let q = DVec2::new(f64::from(p.x), f64::from(p.y));
+        // Central differences at a tenth of the finest wavelength kept.
+        let h = (0.1 * width).max(0.01 * wdesc.ripple_size_m / 128.0);
+        let fx = self.ripples.eval2_width(q + DVec2::X * h, width)
+            - self.ripples.eval2_width(q - DVec2::X * h, width);
+        let fy = self.ripples.eval2_width(q + DVec2::Y * h, width)
+            - self.ripples.eval2_width(q - DVec2::Y * h, width);
+        let g = DVec2::new(fx, fy) * (wdesc.ripple_height_m / (2.0 * h));
+        Vec3::new(-g.x as f32, -g.y as f32, 1.0).normalize()
     }
 
     /// Radiance leaving the water surface at `p` toward `-d` (`reflect_terrain`:
     /// whether reflection rays may hit the terrain, off for secondary bounces).
     fn shade_water(&self, p: Vec3, d: Vec3, t: f32, reflect_terrain: bool) -> Vec3 {
         let wdesc = &self.world.scene.water;
-        let footprint = t * self.pixel_angle;
-        let size = wdesc.ripple_size_m as f32;
-        let fade = 1.0 - crate::material::smoothstep(0.02 * size, 0.25 * size, footprint);
-        let n = if fade > 0.0 && wdesc.ripple_height_m > 0.0 {
-            let (_, g) = self.ripples.eval_grad2(DVec2::new(f64::from(p.x), f64::from(p.y)));
-            let g = g.as_vec2() * (wdesc.ripple_height_m as f32 * fade);
-            Vec3::new(-g.x, -g.y, 1.0).normalize()
+        // A pixel's footprint on the water: t·α across the view, stretched by
+        // 1/|d_z| along it at grazing angles; their geometric mean is the
+        // isotropic filter width.
+        let footprint = t * self.pixel_angle / d.z.abs().max(1e-3).sqrt();
+        let n = if let Some(ocean) = &self.ocean {
+            // Normals of the wind sea, flattened where a pixel covers many
+            // wavelengths (the mean normal of a rough patch is its plane).
+            let patch = wdesc.ocean_patch_m as f32;
+            let fade = 1.0 - crate::material::smoothstep(0.01 * patch, 0.2 * patch, footprint);
+            let n = ocean.normal_at(Vec2::new(p.x, p.y));
+            (Vec3::Z + (n - Vec3::Z) * fade).normalize()
         } else {
-            Vec3::Z
+            self.ripple_normal(p, footprint)
         };
         let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
         let fr = fresnel(1.0, WATER_IOR, f64::from(cos_i)).unpolarized() as f32;
@@ -369,9 +500,24 @@ impl<'w> Renderer<'w> {
         }
         let reflected = if reflect_terrain {
             let rray = Ray::new(p + Vec3::Z * 1e-2, r);
-            let (lt, tr) = match self.intersect(&rray) {
-                Some(SurfaceHit::Water { t: tr, point }) => (self.shade_water(point, r, t + tr, false), tr),
-                Some(SurfaceHit::Terrain(h)) => (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t),
+            // At a shoreline the exact water plane lies below the interpolated
+            // surface of its cell; a ray leaving it starts under the traced
+            // surface, so it sees only the bare terrain (the rising shore).
+            let under = self.surface_height(rray.origin) > rray.origin.z;
+            let hit = if under {
+                self.ground
+                    .trace(&rray, 0.0, f32::INFINITY)
+                    .map(SurfaceHit::Terrain)
+            } else {
+                self.intersect(&rray)
+            };
+            let (lt, tr) = match hit {
+                Some(SurfaceHit::Water { t: tr, point }) => {
+                    (self.shade_water(point, r, t + tr, false), tr)
+                }
+                Some(SurfaceHit::Terrain(h)) => {
+                    (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t)
+                }
                 None => (self.sky(r), f32::INFINITY),
             };
             if tr.is_finite() {

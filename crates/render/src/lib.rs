@@ -41,7 +41,11 @@ use natura_core::{Image, Progress};
 
 pub use error::{RenderError, Result};
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
-pub use scene::{DEFAULT_SCENE_TOML, SceneDesc};
+pub use scene::{
+    AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, Diffuse, ErosionDesc,
+    HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
+    WaterDesc, WaterWaves,
+};
 pub use world::{StageTimes, TerrainFunction, World, sun_direction};
 
 /// The result of rendering a scene.
@@ -108,6 +112,14 @@ pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> 
     let mut times = world.times.clone();
     let renderer = times.time("acceleration", || Renderer::new(world, progress))?;
     let image = times.time("render", || renderer.render(progress))?;
-    let exposure_ev = scene.render.exposure_ev.unwrap_or_else(|| auto_exposure(&image));
-    Ok(Rendered { image, exposure_ev, tone_map: scene.render.tone_map, times })
+    let exposure_ev = scene
+        .render
+        .exposure_ev
+        .unwrap_or_else(|| auto_exposure(&image));
+    Ok(Rendered {
+        image,
+        exposure_ev,
+        tone_map: scene.render.tone_map,
+        times,
+    })
 }

@@ -67,21 +67,38 @@ pub fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 impl Materials {
     /// Builds the mapping from the scene's material description (validated by
     /// [`crate::SceneDesc::validate`]), the water level, and a seed.
-    pub fn new(desc: &MaterialDesc, water_level: Option<f32>, seed: natura_core::Seed) -> Result<Self> {
+    pub fn new(
+        desc: &MaterialDesc,
+        water_level: Option<f32>,
+        seed: natura_core::Seed,
+    ) -> Result<Self> {
         let lin = |c: [f32; 3]| srgb_decode_rgb(Vec3::from(c));
         let s = |name: &str| seed.derive(name).0;
         let large = Fbm::new(
             Perlin::new(s("snow-line")),
-            Spectral::default().with_h(0.8).with_octaves(5.0).with_frequency(1.0 / 900.0),
+            Spectral::default()
+                .with_h(0.8)
+                .with_octaves(5.0)
+                .with_frequency(1.0 / 900.0),
         )?;
         let mottle = Fbm::new(
             Perlin::new(s("mottle")),
-            Spectral::default().with_h(0.6).with_octaves(4.0).with_frequency(1.0 / 60.0),
+            Spectral::default()
+                .with_h(0.6)
+                .with_octaves(4.0)
+                .with_frequency(1.0 / 60.0),
         )?;
-        let bump_freq = if desc.bump_size_m > 0.0 { 1.0 / f64::from(desc.bump_size_m) } else { 1.0 };
+        let bump_freq = if desc.bump_size_m > 0.0 {
+            1.0 / f64::from(desc.bump_size_m)
+        } else {
+            1.0
+        };
         let bump = Fbm::new(
             Perlin::new(s("bump")),
-            Spectral::default().with_h(0.7).with_octaves(4.0).with_frequency(bump_freq),
+            Spectral::default()
+                .with_h(0.7)
+                .with_octaves(4.0)
+                .with_frequency(bump_freq),
         )?;
         let band = 5f32.to_radians();
         let rock = desc.rock_slope_deg.to_radians();
@@ -147,7 +164,8 @@ impl Materials {
             c = c.lerp(a.sand, beach);
         }
         let line = d.snow_line_m + d.snow_line_noise_m * large;
-        let snow = smoothstep(line - 40.0, line + 40.0, h) * smoothstep(self.cos_snow.1, self.cos_snow.0, nz);
+        let snow = smoothstep(line - 40.0, line + 40.0, h)
+            * smoothstep(self.cos_snow.1, self.cos_snow.0, nz);
         c = c.lerp(a.snow, snow);
         // Mottling: ±15 % brightness variation, less on snow.
         (c * (1.0 + (0.15 - 0.1 * snow) * mottle)).clamp(Vec3::ZERO, Vec3::ONE)
@@ -193,7 +211,11 @@ pub fn oren_nayar(a: f32, b: f32, n: Vec3, l: Vec3, v: Vec3) -> f32 {
     let lp = l - n * ci;
     let vp = v - n * cr;
     let denom = (lp.length_squared() * vp.length_squared()).sqrt();
-    let cos_phi = if denom > 1e-12 { (lp.dot(vp) / denom).max(0.0) } else { 0.0 };
+    let cos_phi = if denom > 1e-12 {
+        (lp.dot(vp) / denom).max(0.0)
+    } else {
+        0.0
+    };
     // α = max(θi, θr) has the smaller cosine; β = min(θi, θr) the larger.
     let (c_alpha, c_beta) = if ci < cr { (ci, cr) } else { (cr, ci) };
     let sin_alpha = (1.0 - c_alpha * c_alpha).max(0.0).sqrt();
@@ -208,12 +230,20 @@ mod tests {
     use natura_core::Seed;
 
     fn materials(diffuse: Diffuse) -> Materials {
-        let desc = MaterialDesc { diffuse, ..MaterialDesc::default() };
+        let desc = MaterialDesc {
+            diffuse,
+            ..MaterialDesc::default()
+        };
         Materials::new(&desc, Some(100.0), Seed(1)).unwrap()
     }
 
     fn sample(z: f32, normal: Vec3) -> SurfaceSample {
-        SurfaceSample { point: Vec3::new(1234.0, 567.0, z), normal: normal.normalize(), deposition_m: 0.0, wetness: 0.2 }
+        SurfaceSample {
+            point: Vec3::new(1234.0, 567.0, z),
+            normal: normal.normalize(),
+            deposition_m: 0.0,
+            wetness: 0.2,
+        }
     }
 
     #[test]
@@ -224,11 +254,20 @@ mod tests {
         let high = m.albedo(&sample(d.snow_line_m + 3.0 * d.snow_line_noise_m, flat));
         let low = m.albedo(&sample(d.tree_line_m - 500.0, flat));
         let steep = m.albedo(&sample(d.tree_line_m - 500.0, Vec3::new(1.0, 0.0, 0.4)));
-        let steep_high = m.albedo(&sample(d.snow_line_m + 3.0 * d.snow_line_noise_m, Vec3::new(1.0, 0.0, 0.3)));
+        let steep_high = m.albedo(&sample(
+            d.snow_line_m + 3.0 * d.snow_line_noise_m,
+            Vec3::new(1.0, 0.0, 0.3),
+        ));
         assert!(high.min_element() > 0.6, "snow is white: {high}");
         assert!(low.y > low.z && low.y > 0.05, "low ground is green: {low}");
-        assert!((steep.x - steep.y).abs() < 0.1, "steep ground is grey rock: {steep}");
-        assert!(steep_high.max_element() < 0.6, "snow does not hold on cliffs: {steep_high}");
+        assert!(
+            (steep.x - steep.y).abs() < 0.1,
+            "steep ground is grey rock: {steep}"
+        );
+        assert!(
+            steep_high.max_element() < 0.6,
+            "snow does not hold on cliffs: {steep_high}"
+        );
     }
 
     #[test]
@@ -242,19 +281,36 @@ mod tests {
                 m.albedo(&s).x
             })
             .fold(0.0f32, f32::max);
-        assert!(sandy > 0.3, "beach sand is light: {sandy}");
+        // Inland grass at the same spots is darker than the brightest shore.
+        let grass = (0..64)
+            .map(|k| {
+                let mut s = sample(130.0, Vec3::Z);
+                s.point.x += 37.0 * k as f32;
+                m.albedo(&s).x
+            })
+            .fold(0.0f32, f32::max);
+        assert!(
+            sandy > grass + 0.03,
+            "beach sand {sandy} is lighter than grass {grass}"
+        );
         let mut s = sample(101.0, Vec3::Z);
         s.point.z = 400.0;
         let plain = m.albedo(&s);
         s.deposition_m = 5.0;
         let gravel = m.albedo(&s);
-        assert!(gravel.min_element() > plain.min_element(), "{gravel} vs {plain}");
+        assert!(
+            gravel.min_element() > plain.min_element(),
+            "{gravel} vs {plain}"
+        );
     }
 
     #[test]
     fn oren_nayar_reduces_to_lambert_at_zero_roughness_and_is_bounded() {
         let n = Vec3::Z;
-        for (l, v) in [(Vec3::new(0.3, 0.1, 0.9), Vec3::new(-0.5, 0.2, 0.8)), (Vec3::new(0.9, 0.0, 0.1), Vec3::new(0.8, 0.1, 0.2))] {
+        for (l, v) in [
+            (Vec3::new(0.3, 0.1, 0.9), Vec3::new(-0.5, 0.2, 0.8)),
+            (Vec3::new(0.9, 0.0, 0.1), Vec3::new(0.8, 0.1, 0.2)),
+        ] {
             let (l, v) = (l.normalize(), v.normalize());
             assert!((oren_nayar(1.0, 0.0, n, l, v) - 1.0).abs() < 1e-6);
             let m = materials(Diffuse::OrenNayar { sigma_deg: 30.0 });

@@ -142,14 +142,43 @@ pub struct WaterDesc {
     pub level_m: Option<f64>,
     /// Water level as the fraction of land cells it floods (0–1).
     pub level_quantile: f64,
-    /// Wave height scale of the ripples, metres.
+    /// What shapes the surface's normals: fBm ripples (lakes) or a
+    /// Tessendorf ocean patch from natura-ocean (seas).
+    pub waves: WaterWaves,
+    /// Wave height scale of the ripples, metres (`waves = "ripples"`).
     pub ripple_height_m: f64,
     /// Wavelength of the largest ripples, metres.
     pub ripple_size_m: f64,
+    /// Wind speed 10 m above the sea driving the ocean's Phillips spectrum,
+    /// m/s (`waves = "ocean"`).
+    pub wind_speed_m_s: f64,
+    /// Compass direction the wind blows toward, degrees clockwise from north
+    /// (+y) toward east (+x) (`waves = "ocean"`).
+    pub wind_azimuth_deg: f64,
+    /// Side of the periodic ocean patch, metres (`waves = "ocean"`).
+    pub ocean_patch_m: f64,
+    /// FFT samples along each side of the ocean patch, a power of two
+    /// (`waves = "ocean"`).
+    pub ocean_resolution: usize,
+    /// Time of the ocean snapshot, seconds (`waves = "ocean"`).
+    pub ocean_time_s: f64,
     /// Extinction of light in the water per metre, linear RGB (red goes first).
     pub extinction_per_m: [f32; 3],
     /// Colour scattered back up by the water body (linear RGB albedo).
     pub scatter_albedo: [f32; 3],
+}
+
+/// The normals of the water surface (its height stays at the water level:
+/// the surface is traced flat and shaded with these normals).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WaterWaves {
+    /// Isotropic fBm ripples of `ripple_size_m` and `ripple_height_m`.
+    #[default]
+    Ripples,
+    /// A wind-driven Tessendorf FFT ocean patch (Phillips spectrum), tiled
+    /// over the water (natura-ocean's [`Surface`](natura_ocean::Surface)).
+    Ocean,
 }
 
 /// The sun.
@@ -349,8 +378,14 @@ impl Default for WaterDesc {
             enabled: true,
             level_m: None,
             level_quantile: 0.12,
-            ripple_height_m: 0.25,
+            waves: WaterWaves::Ripples,
+            ripple_height_m: 0.12,
             ripple_size_m: 40.0,
+            wind_speed_m_s: 8.0,
+            wind_azimuth_deg: 200.0,
+            ocean_patch_m: 256.0,
+            ocean_resolution: 256,
+            ocean_time_s: 0.0,
             extinction_per_m: [0.45, 0.09, 0.06],
             scatter_albedo: [0.02, 0.08, 0.10],
         }
@@ -359,7 +394,12 @@ impl Default for WaterDesc {
 
 impl Default for SunDesc {
     fn default() -> Self {
-        Self { elevation_deg: 9.0, azimuth_deg: 235.0, angular_diameter_deg: 0.53, allow_below_horizon: false }
+        Self {
+            elevation_deg: 9.0,
+            azimuth_deg: 235.0,
+            angular_diameter_deg: 0.53,
+            allow_below_horizon: false,
+        }
     }
 }
 
@@ -392,8 +432,8 @@ impl Default for MaterialDesc {
             grass: [0.33, 0.40, 0.18],
             forest: [0.13, 0.20, 0.10],
             soil: [0.45, 0.38, 0.29],
-            sediment: [0.58, 0.55, 0.50],
-            sand: [0.76, 0.70, 0.56],
+            sediment: [0.36, 0.33, 0.28],
+            sand: [0.50, 0.45, 0.35],
             bump_size_m: 6.0,
             bump_strength: 0.12,
         }
@@ -416,7 +456,13 @@ impl Default for CameraDesc {
 
 impl Default for RenderDesc {
     fn default() -> Self {
-        Self { width: 1920, height: 1080, spp: 4, exposure_ev: None, tone_map: ToneMap::AcesFilmic }
+        Self {
+            width: 1920,
+            height: 1080,
+            spp: 4,
+            exposure_ev: None,
+            tone_map: ToneMap::AcesFilmic,
+        }
     }
 }
 
@@ -433,8 +479,9 @@ impl SceneDesc {
     /// Reads and parses a scene file. A missing or unreadable file is an error naming it.
     pub fn load(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| RenderError::Scene(format!("{}: cannot read scene file: {e}", path.display())))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            RenderError::Scene(format!("{}: cannot read scene file: {e}", path.display()))
+        })?;
         let scene = Self::from_toml_str(&text, &path.display().to_string())?;
         scene.validate()?;
         Ok(scene)
@@ -442,7 +489,8 @@ impl SceneDesc {
 
     /// The scene as TOML text (every key written out).
     pub fn to_toml_string(&self) -> Result<String> {
-        toml::to_string_pretty(self).map_err(|e| RenderError::Scene(format!("cannot write scene as TOML: {e}")))
+        toml::to_string_pretty(self)
+            .map_err(|e| RenderError::Scene(format!("cannot write scene as TOML: {e}")))
     }
 
     /// Checks every value before any work starts, naming the first bad key.
@@ -462,17 +510,42 @@ impl SceneDesc {
         in_range("terrain.coast_depth_m", t.coast_depth_m, 0.0, 20_000.0)?;
 
         let e = &self.erosion;
-        in_range("erosion.stream_power_steps", f64::from(e.stream_power_steps), 0.0, 10_000.0)?;
+        in_range(
+            "erosion.stream_power_steps",
+            f64::from(e.stream_power_steps),
+            0.0,
+            10_000.0,
+        )?;
         in_range("erosion.stream_power_k", e.stream_power_k, 0.0, 1.0)?;
         in_range("erosion.stream_power_m", e.stream_power_m, 0.0, 2.0)?;
         in_range("erosion.uplift_m_per_yr", e.uplift_m_per_yr, 0.0, 1.0)?;
-        in_range("erosion.stream_power_dt_yr", e.stream_power_dt_yr, 1e-6, 1e7)?;
+        in_range(
+            "erosion.stream_power_dt_yr",
+            e.stream_power_dt_yr,
+            1e-6,
+            1e7,
+        )?;
         in_range("erosion.droplets", e.droplets as f64, 0.0, 1e9)?;
-        in_range("erosion.droplet_radius", f64::from(e.droplet_radius), 1.0, 16.0)?;
-        in_range("erosion.hydraulic_steps", f64::from(e.hydraulic_steps), 0.0, 100_000.0)?;
+        in_range(
+            "erosion.droplet_radius",
+            f64::from(e.droplet_radius),
+            1.0,
+            16.0,
+        )?;
+        in_range(
+            "erosion.hydraulic_steps",
+            f64::from(e.hydraulic_steps),
+            0.0,
+            100_000.0,
+        )?;
         in_range("erosion.rain_m_per_s", e.rain_m_per_s, 0.0, 1.0)?;
         in_range("erosion.sediment_capacity", e.sediment_capacity, 0.0, 100.0)?;
-        in_range("erosion.thermal_steps", f64::from(e.thermal_steps), 0.0, 100_000.0)?;
+        in_range(
+            "erosion.thermal_steps",
+            f64::from(e.thermal_steps),
+            0.0,
+            100_000.0,
+        )?;
         in_range("erosion.talus_deg", e.talus_deg, 1.0, 89.0)?;
 
         let w = &self.water;
@@ -482,17 +555,56 @@ impl SceneDesc {
         in_range("water.level_quantile", w.level_quantile, 0.0, 1.0)?;
         in_range("water.ripple_height_m", w.ripple_height_m, 0.0, 100.0)?;
         positive("water.ripple_size_m", w.ripple_size_m)?;
+        in_range("water.wind_speed_m_s", w.wind_speed_m_s, 0.1, 60.0)?;
+        finite("water.wind_azimuth_deg", w.wind_azimuth_deg)?;
+        in_range("water.ocean_patch_m", w.ocean_patch_m, 1.0, 1e5)?;
+        in_range("water.ocean_time_s", w.ocean_time_s, -1e6, 1e6)?;
+        let n = w.ocean_resolution;
+        if !n.is_power_of_two() || !(natura_ocean::MIN_SIZE..=natura_ocean::MAX_SIZE).contains(&n) {
+            return Err(RenderError::Invalid {
+                name: "water.ocean_resolution",
+                value: n.to_string(),
+                reason: format!(
+                    "must be a power of two in {}..={}",
+                    natura_ocean::MIN_SIZE,
+                    natura_ocean::MAX_SIZE
+                ),
+            });
+        }
         for (i, v) in w.extinction_per_m.iter().enumerate() {
-            in_range(["water.extinction_per_m[0]", "water.extinction_per_m[1]", "water.extinction_per_m[2]"][i], f64::from(*v), 0.0, 1e3)?;
+            in_range(
+                [
+                    "water.extinction_per_m[0]",
+                    "water.extinction_per_m[1]",
+                    "water.extinction_per_m[2]",
+                ][i],
+                f64::from(*v),
+                0.0,
+                1e3,
+            )?;
         }
         for (i, v) in w.scatter_albedo.iter().enumerate() {
-            in_range(["water.scatter_albedo[0]", "water.scatter_albedo[1]", "water.scatter_albedo[2]"][i], f64::from(*v), 0.0, 1.0)?;
+            in_range(
+                [
+                    "water.scatter_albedo[0]",
+                    "water.scatter_albedo[1]",
+                    "water.scatter_albedo[2]",
+                ][i],
+                f64::from(*v),
+                0.0,
+                1.0,
+            )?;
         }
 
         let s = &self.sun;
         in_range("sun.elevation_deg", s.elevation_deg, -90.0, 90.0)?;
         finite("sun.azimuth_deg", s.azimuth_deg)?;
-        in_range("sun.angular_diameter_deg", s.angular_diameter_deg, 0.01, 20.0)?;
+        in_range(
+            "sun.angular_diameter_deg",
+            s.angular_diameter_deg,
+            0.01,
+            20.0,
+        )?;
         if !s.allow_below_horizon && s.elevation_deg < 0.0 {
             return Err(RenderError::invalid(
                 "sun.elevation_deg",
@@ -504,19 +616,54 @@ impl SceneDesc {
         let a = &self.atmosphere;
         in_range("atmosphere.haze", a.haze, 0.0, 100.0)?;
         in_range("atmosphere.mie_g", a.mie_g, 0.0, 0.99)?;
-        in_range("atmosphere.rain_extinction_per_m", a.rain_extinction_per_m, 0.0, 1.0)?;
+        in_range(
+            "atmosphere.rain_extinction_per_m",
+            a.rain_extinction_per_m,
+            0.0,
+            1.0,
+        )?;
         in_range("atmosphere.rain_distance_m", a.rain_distance_m, 0.0, 1e6)?;
 
         let m = &self.materials;
         finite("materials.snow_line_m", f64::from(m.snow_line_m))?;
-        in_range("materials.snow_line_noise_m", f64::from(m.snow_line_noise_m), 0.0, 1e4)?;
-        in_range("materials.snow_max_slope_deg", f64::from(m.snow_max_slope_deg), 0.0, 90.0)?;
-        in_range("materials.rock_slope_deg", f64::from(m.rock_slope_deg), 0.0, 90.0)?;
+        in_range(
+            "materials.snow_line_noise_m",
+            f64::from(m.snow_line_noise_m),
+            0.0,
+            1e4,
+        )?;
+        in_range(
+            "materials.snow_max_slope_deg",
+            f64::from(m.snow_max_slope_deg),
+            0.0,
+            90.0,
+        )?;
+        in_range(
+            "materials.rock_slope_deg",
+            f64::from(m.rock_slope_deg),
+            0.0,
+            90.0,
+        )?;
         finite("materials.tree_line_m", f64::from(m.tree_line_m))?;
-        in_range("materials.sediment_min_m", f64::from(m.sediment_min_m), 0.0, 1e4)?;
-        in_range("materials.beach_height_m", f64::from(m.beach_height_m), 0.0, 1e3)?;
+        in_range(
+            "materials.sediment_min_m",
+            f64::from(m.sediment_min_m),
+            0.0,
+            1e4,
+        )?;
+        in_range(
+            "materials.beach_height_m",
+            f64::from(m.beach_height_m),
+            0.0,
+            1e3,
+        )?;
         if let Diffuse::OrenNayar { sigma_deg } = m.diffuse {
-            in_range("materials.diffuse.sigma_deg", f64::from(sigma_deg), 0.0, 90.0)?;
+            in_range(
+                "materials.diffuse.sigma_deg",
+                f64::from(sigma_deg),
+                0.0,
+                90.0,
+            )?;
         }
         for (name, c) in [
             ("materials.snow", m.snow),
@@ -532,7 +679,12 @@ impl SceneDesc {
             }
         }
         in_range("materials.bump_size_m", f64::from(m.bump_size_m), 0.0, 1e4)?;
-        in_range("materials.bump_strength", f64::from(m.bump_strength), 0.0, 10.0)?;
+        in_range(
+            "materials.bump_strength",
+            f64::from(m.bump_strength),
+            0.0,
+            10.0,
+        )?;
 
         let c = &self.camera;
         for (name, v) in [
@@ -544,9 +696,18 @@ impl SceneDesc {
             in_range(name, v, 0.0, 1.0)?;
         }
         if c.position_uv == c.target_uv {
-            return Err(RenderError::invalid("camera.target_uv", format!("{:?}", c.target_uv), "must differ from camera.position_uv"));
+            return Err(RenderError::invalid(
+                "camera.target_uv",
+                format!("{:?}", c.target_uv),
+                "must differ from camera.position_uv",
+            ));
         }
-        in_range("camera.height_above_ground_m", c.height_above_ground_m, 0.01, 1e6)?;
+        in_range(
+            "camera.height_above_ground_m",
+            c.height_above_ground_m,
+            0.01,
+            1e6,
+        )?;
         in_range("camera.pitch_deg", c.pitch_deg, -89.0, 89.0)?;
         match c.kind {
             CameraKind::Pinhole => in_range("camera.vfov_deg", c.vfov_deg, 0.1, 179.0)?,
@@ -568,18 +729,30 @@ impl SceneDesc {
 }
 
 fn finite(name: &'static str, v: f64) -> Result<()> {
-    if v.is_finite() { Ok(()) } else { Err(RenderError::invalid(name, v, "must be finite")) }
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(RenderError::invalid(name, v, "must be finite"))
+    }
 }
 
 fn positive(name: &'static str, v: f64) -> Result<()> {
-    if v.is_finite() && v > 0.0 { Ok(()) } else { Err(RenderError::invalid(name, v, "must be finite and > 0")) }
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(RenderError::invalid(name, v, "must be finite and > 0"))
+    }
 }
 
 fn in_range(name: &'static str, v: f64, lo: f64, hi: f64) -> Result<()> {
     if v.is_finite() && v >= lo && v <= hi {
         Ok(())
     } else {
-        Err(RenderError::Invalid { name, value: format!("{v}"), reason: format!("must lie in [{lo}, {hi}]") })
+        Err(RenderError::Invalid {
+            name,
+            value: format!("{v}"),
+            reason: format!("must lie in [{lo}, {hi}]"),
+        })
     }
 }
 
@@ -608,8 +781,14 @@ fn dotted_key(text: &str, pos: usize) -> Option<String> {
     let line = text[line_start..line_end].trim();
     let header = |l: &str| -> Option<String> {
         let l = l.trim();
-        (l.starts_with('[') && !l.starts_with("[["))
-            .then(|| l.trim_start_matches('[').split(']').next().unwrap_or("").trim().to_owned())
+        (l.starts_with('[') && !l.starts_with("[[")).then(|| {
+            l.trim_start_matches('[')
+                .split(']')
+                .next()
+                .unwrap_or("")
+                .trim()
+                .to_owned()
+        })
     };
     if let Some(h) = header(line) {
         return Some(h);
@@ -650,13 +829,18 @@ mod tests {
 
     #[test]
     fn empty_file_is_the_default_scene() {
-        assert_eq!(SceneDesc::from_toml_str("", "empty").unwrap(), SceneDesc::default());
+        assert_eq!(
+            SceneDesc::from_toml_str("", "empty").unwrap(),
+            SceneDesc::default()
+        );
     }
 
     #[test]
     fn unknown_key_names_line_and_key() {
         let text = "seed = 3\n\n[sun]\nelevation_deg = 10.0\nelevaton = 5\n";
-        let err = SceneDesc::from_toml_str(text, "scene.toml").unwrap_err().to_string();
+        let err = SceneDesc::from_toml_str(text, "scene.toml")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("scene.toml:5:"), "{err}");
         assert!(err.contains("sun.elevaton"), "{err}");
     }
@@ -664,7 +848,9 @@ mod tests {
     #[test]
     fn wrong_type_names_line_and_key() {
         let text = "[camera]\nvfov_deg = 30.0\n\n[render]\nwidth = \"wide\"\n";
-        let err = SceneDesc::from_toml_str(text, "s.toml").unwrap_err().to_string();
+        let err = SceneDesc::from_toml_str(text, "s.toml")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("s.toml:5:"), "{err}");
         assert!(err.contains("render.width"), "{err}");
     }
@@ -672,7 +858,9 @@ mod tests {
     #[test]
     fn syntax_error_names_line() {
         let text = "seed = 3\n[terrain\nsize = 4\n";
-        let err = SceneDesc::from_toml_str(text, "bad.toml").unwrap_err().to_string();
+        let err = SceneDesc::from_toml_str(text, "bad.toml")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("bad.toml:2:"), "{err}");
     }
 
@@ -682,11 +870,31 @@ mod tests {
             ("render.spp", Box::new(|s| s.render.spp = 0)),
             ("render.width", Box::new(|s| s.render.width = 0)),
             ("terrain.size", Box::new(|s| s.terrain.size = 3)),
-            ("terrain.cell_size_m", Box::new(|s| s.terrain.cell_size_m = -1.0)),
+            (
+                "terrain.cell_size_m",
+                Box::new(|s| s.terrain.cell_size_m = -1.0),
+            ),
             ("terrain.h", Box::new(|s| s.terrain.h = f64::NAN)),
-            ("sun.elevation_deg", Box::new(|s| s.sun.elevation_deg = -5.0)),
-            ("erosion.talus_deg", Box::new(|s| s.erosion.talus_deg = 90.0)),
-            ("camera.target_uv", Box::new(|s| s.camera.target_uv = s.camera.position_uv)),
+            (
+                "sun.elevation_deg",
+                Box::new(|s| s.sun.elevation_deg = -5.0),
+            ),
+            (
+                "erosion.talus_deg",
+                Box::new(|s| s.erosion.talus_deg = 90.0),
+            ),
+            (
+                "camera.target_uv",
+                Box::new(|s| s.camera.target_uv = s.camera.position_uv),
+            ),
+            (
+                "water.ocean_resolution",
+                Box::new(|s| s.water.ocean_resolution = 300),
+            ),
+            (
+                "water.wind_speed_m_s",
+                Box::new(|s| s.water.wind_speed_m_s = 0.0),
+            ),
         ];
         for (key, mutate) in cases {
             let mut s = SceneDesc::default();
@@ -702,7 +910,9 @@ mod tests {
 
     #[test]
     fn missing_file_is_named() {
-        let err = SceneDesc::load("/no/such/scene.toml").unwrap_err().to_string();
+        let err = SceneDesc::load("/no/such/scene.toml")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("/no/such/scene.toml"), "{err}");
     }
 }

@@ -16,11 +16,12 @@ use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
 use natura_noise::{
-    Displace, Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal, RidgedParams, Spectral, VecNoise,
-    VectorFbm, Warped,
+    Displace, Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal,
+    RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
 use natura_terrain::erosion::{
-    Depressions, DropletErosion, DropletParams, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
+    Depressions, DropletErosion, DropletParams, PipeModel, PipeParams, StreamPower,
+    StreamPowerParams, Thermal, ThermalParams,
 };
 use natura_terrain::synth::{FieldMapping, fill_field};
 
@@ -52,23 +53,39 @@ impl TerrainFunction {
             .with_frequency(1.0);
         let ridged = RidgedMultifractal::new(
             Perlin::new(seed.derive("ridged").0),
-            RidgedParams { spectral, offset: t.offset, gain: t.gain },
+            RidgedParams {
+                spectral,
+                offset: t.offset,
+                gain: t.gain,
+            },
         )?;
         let hybrid = HybridMultifractal::new(
             Perlin::new(seed.derive("hybrid").0),
-            HybridParams { spectral: spectral.with_h(0.25).with_octaves(t.octaves.min(8.0)), offset: 0.7 },
+            HybridParams {
+                spectral: spectral.with_h(0.25).with_octaves(t.octaves.min(8.0)),
+                offset: 0.7,
+            },
         )?;
         let warp = Displace::new(
             VectorFbm::new(
                 VecNoise::new(Perlin::new(seed.derive("warp").0)),
-                Spectral::default().with_h(0.5).with_octaves(4.0).with_frequency(1.0),
+                Spectral::default()
+                    .with_h(0.5)
+                    .with_octaves(4.0)
+                    .with_frequency(1.0),
             )?,
             t.warp,
         )?;
         Ok(Self {
             generator: t.generator,
-            ridged: Warped { field: ridged, warp: warp.clone() },
-            hybrid: Warped { field: hybrid, warp },
+            ridged: Warped {
+                field: ridged,
+                warp: warp.clone(),
+            },
+            hybrid: Warped {
+                field: hybrid,
+                warp,
+            },
         })
     }
 
@@ -81,7 +98,8 @@ impl TerrainFunction {
             TerrainGenerator::RidgedHybrid => {
                 // The hybrid multifractal at half frequency decides where the
                 // ranges are; the ridged multifractal supplies the ranges.
-                let mask = (0.5 + 0.35 * self.hybrid.eval2(q * 0.5 + DVec2::new(17.0, -3.0))).clamp(0.0, 1.5);
+                let mask = (0.5 + 0.35 * self.hybrid.eval2(q * 0.5 + DVec2::new(17.0, -3.0)))
+                    .clamp(0.0, 1.5);
                 self.ridged.eval2(q) * mask + 0.25 * mask
             }
         }
@@ -145,7 +163,8 @@ impl World {
         let mut times = StageTimes::default();
 
         let mut terrain = times.time("synthesis", || synthesize(scene, seed, progress))?;
-        let (deposition, wetness) = times.time("erosion", || erode(scene, &mut terrain, progress))?;
+        let (deposition, wetness) =
+            times.time("erosion", || erode(scene, &mut terrain, progress))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
         let water_level = scene.water.enabled.then(|| water_level(scene, &terrain));
         let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
@@ -154,13 +173,27 @@ impl World {
         let atmosphere = times.time("atmosphere", || {
             Atmosphere::with_progress(atmosphere_params(scene, &terrain), progress)
         })?;
-        Ok(World { scene: scene.clone(), terrain, deposition, wetness, water_level, surface, sun, atmosphere, times })
+        Ok(World {
+            scene: scene.clone(),
+            terrain,
+            deposition,
+            wetness,
+            water_level,
+            surface,
+            sun,
+            atmosphere,
+            times,
+        })
     }
 
     /// A world over a given height field (a DEM, or terrain made elsewhere):
     /// no synthesis or erosion; deposition is zero and wetness comes from D8
     /// flow accumulation. The scene's terrain and erosion sections are ignored.
-    pub fn from_height_field(scene: &SceneDesc, terrain: HeightField, progress: &dyn Progress) -> Result<World> {
+    pub fn from_height_field(
+        scene: &SceneDesc,
+        terrain: HeightField,
+        progress: &dyn Progress,
+    ) -> Result<World> {
         scene.validate()?;
         terrain.check_finite()?;
         let mut times = StageTimes::default();
@@ -176,7 +209,17 @@ impl World {
         let atmosphere = times.time("atmosphere", || {
             Atmosphere::with_progress(atmosphere_params(scene, &terrain), progress)
         })?;
-        Ok(World { scene: scene.clone(), terrain, deposition, wetness, water_level, surface, sun, atmosphere, times })
+        Ok(World {
+            scene: scene.clone(),
+            terrain,
+            deposition,
+            wetness,
+            water_level,
+            surface,
+            sun,
+            atmosphere,
+            times,
+        })
     }
 
     /// The eye position the scene's camera description gives: above the terrain
@@ -252,9 +295,16 @@ pub fn sun_direction(elevation_deg: f64, azimuth_deg: f64) -> Vec3 {
 fn synthesize(scene: &SceneDesc, seed: Seed, progress: &dyn Progress) -> Result<HeightField> {
     let t = &scene.terrain;
     let f = TerrainFunction::new(scene, seed.derive("terrain"))?;
-    let map = FieldMapping { origin: DVec2::ZERO, frequency: 1.0 / t.feature_size_m, height_m: 1.0, offset_m: 0.0 };
+    let map = FieldMapping {
+        origin: DVec2::ZERO,
+        frequency: 1.0 / t.feature_size_m,
+        height_m: 1.0,
+        offset_m: 0.0,
+    };
     progress.start("synthesis", 1);
-    let mut hf = fill_field(t.size, t.size, t.cell_size_m, &map, &|x, y| f.eval(DVec2::new(x, y)))?;
+    let mut hf = fill_field(t.size, t.size, t.cell_size_m, &map, &|x, y| {
+        f.eval(DVec2::new(x, y))
+    })?;
     let (lo, hi) = hf.min_max();
     let span = (hi - lo).max(f32::MIN_POSITIVE);
     let relief = t.relief_m as f32;
@@ -279,7 +329,10 @@ fn sink_coast(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()>
     let depth = t.coast_depth_m as f32;
     let wander = Fbm::new(
         Perlin::new(seed.derive("coast").0),
-        Spectral::default().with_h(0.6).with_octaves(5.0).with_frequency(6.0),
+        Spectral::default()
+            .with_h(0.6)
+            .with_octaves(5.0)
+            .with_frequency(6.0),
     )?;
     let (nx, ny) = (hf.nx(), hf.ny());
     let g = hf.heights_mut();
@@ -288,7 +341,8 @@ fn sink_coast(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()>
         for i in 0..nx {
             let u = i as f32 / (nx - 1) as f32;
             let edge = u.min(1.0 - u).min(v).min(1.0 - v);
-            let d = edge + 0.35 * coast * wander.eval2(DVec2::new(f64::from(u), f64::from(v))) as f32;
+            let d =
+                edge + 0.35 * coast * wander.eval2(DVec2::new(f64::from(u), f64::from(v))) as f32;
             let m = crate::material::smoothstep(0.0, coast, d);
             let h = g[(i, j)];
             g[(i, j)] = -depth + (h + depth) * m;
@@ -300,7 +354,11 @@ fn sink_coast(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()>
 
 /// Stream power, then the pipe model, then thermal weathering. Returns the
 /// deposition map (metres, ≥ 0) and the wetness map (0–1).
-fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Result<(Grid2<f32>, Grid2<f32>)> {
+fn erode(
+    scene: &SceneDesc,
+    hf: &mut HeightField,
+    progress: &dyn Progress,
+) -> Result<(Grid2<f32>, Grid2<f32>)> {
     let e = &scene.erosion;
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut deposition = Grid2::new(nx, ny, 0.0f32)?;
@@ -326,11 +384,8 @@ fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Re
         area = Some(sp.drainage_area()?);
     }
     if e.hydraulic_model == HydraulicModel::Droplets && e.droplets > 0 {
-        // Beyer's droplet constants assume heights measured in cells (his
-        // capacity and erosion scale with the height drop per step), so run
-        // the droplets on the field scaled to cell units and scale back.
-        let cell = hf.cell_size();
-        let mut scaled = HeightField::new(hf.heights().map(|&h| h / cell), 1.0)?;
+        // The droplet model runs in cell units internally (heights / cell
+        // size), so Beyer's constants hold at any resolution.
         let p = DropletParams {
             radius: e.droplet_radius,
             capacity: 1.0,
@@ -339,18 +394,19 @@ fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Re
             evaporate: 0.02,
             ..DropletParams::default()
         };
-        let mut drops = DropletErosion::new(p, &scaled, Seed(scene.seed).derive("droplets"))?;
-        drops.run(&mut scaled, e.droplets, progress)?;
+        let mut drops = DropletErosion::new(p, hf, Seed(scene.seed).derive("droplets"))?;
+        drops.run(hf, e.droplets, progress)?;
         let dep = drops.deposition()?;
-        for (h, s) in hf.heights_mut().as_mut_slice().iter_mut().zip(scaled.heights().as_slice()) {
-            *h = s * cell;
-        }
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
-            *d += s.max(0.0) * cell;
+            *d += s.max(0.0);
         }
     }
     if e.hydraulic_model == HydraulicModel::Pipe && e.hydraulic_steps > 0 {
-        let p = PipeParams { rain_m_per_s: e.rain_m_per_s, k_c: e.sediment_capacity, ..PipeParams::default() };
+        let p = PipeParams {
+            rain_m_per_s: e.rain_m_per_s,
+            k_c: e.sediment_capacity,
+            ..PipeParams::default()
+        };
         let mut pipe = PipeModel::new(p, hf)?;
         pipe.run(hf, e.hydraulic_steps, progress)?;
         let dep = pipe.deposition()?;
@@ -359,7 +415,11 @@ fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Re
         }
     }
     if e.thermal_steps > 0 {
-        let p = ThermalParams { talus_angle: e.talus_deg.to_radians(), talus_rate: 0.1, ..ThermalParams::default() };
+        let p = ThermalParams {
+            talus_angle: e.talus_deg.to_radians(),
+            talus_rate: 0.1,
+            ..ThermalParams::default()
+        };
         let mut th = Thermal::new(p, hf)?;
         th.run(hf, e.thermal_steps, progress)?;
     }
@@ -390,10 +450,16 @@ pub const MIN_LAKE_SAMPLES: usize = 48;
 /// level (Priority-Flood) where deeper than [`MIN_LAKE_DEPTH_M`], and
 /// everything below `sea` raised to it. Without water, the terrain itself.
 fn water_surface(terrain: &HeightField, sea: Option<f32>) -> Result<HeightField> {
-    let Some(sea) = sea else { return Ok(terrain.clone()) };
+    let Some(sea) = sea else {
+        return Ok(terrain.clone());
+    };
     let (filled, depth) = natura_terrain::analysis::fill_depressions(terrain)?;
     let (nx, ny) = (terrain.nx(), terrain.ny());
-    let wet: Vec<bool> = depth.as_slice().iter().map(|&d| d > MIN_LAKE_DEPTH_M).collect();
+    let wet: Vec<bool> = depth
+        .as_slice()
+        .iter()
+        .map(|&d| d > MIN_LAKE_DEPTH_M)
+        .collect();
     let keep = large_components(&wet, nx, ny, MIN_LAKE_SAMPLES);
     let mut s = terrain.clone();
     let levels = filled.heights().as_slice();
