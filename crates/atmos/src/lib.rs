@@ -54,7 +54,9 @@
 //! # let _ = Dir3::UP;
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
-#![forbid(unsafe_code)]
+// `unsafe` is denied crate-wide; the only exceptions are the two calls into
+// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
+#![deny(unsafe_code)]
 
 mod dir;
 mod error;
@@ -63,6 +65,7 @@ pub mod mirage;
 pub mod optics;
 pub mod rainbow;
 pub mod scatter;
+pub mod simd;
 pub mod sky;
 pub mod special;
 pub mod spectrum;

@@ -186,33 +186,14 @@ impl SkyView {
             crate::error::non_negative3("albedo", g.albedo.as_dvec3())?;
         }
         let mut grid = Grid2::new(w, h, Vec3::ZERO)?;
-        let shade = |x: usize, y: usize| -> Vec3 {
-            let Some(d) = projection.direction(x, y, w, h) else {
-                return Vec3::ZERO;
-            };
-            if let Some(g) = &ground {
-                if let Some(t) = self.ground_distance(d) {
-                    return self.ground_radiance(d, t, g);
-                }
-            }
-            let mut l = self.radiance_f32(d);
-            if sun_disc {
-                l += self.sun_disc_f32(d);
-            }
-            l
-        };
-        #[cfg(feature = "parallel")]
-        grid.par_rows_mut(|y, row| {
-            for (x, px) in row.iter_mut().enumerate() {
-                *px = shade(x, y);
-            }
-        });
-        #[cfg(not(feature = "parallel"))]
-        for y in 0..h {
-            for (x, px) in grid.row_mut(y).iter_mut().enumerate() {
-                *px = shade(x, y);
-            }
-        }
+        let rays = super::batch::RowRays::new(projection, w, h);
+        self.render_rows(
+            crate::simd::Simd::best(),
+            &rays,
+            &mut grid,
+            ground,
+            sun_disc,
+        );
         Ok(Image::from_grid(grid))
     }
 }
