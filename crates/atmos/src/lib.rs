@@ -16,6 +16,7 @@
 //! | [`rainbow`] | Descartes paths, Fresnel, Cauchy water, the deviation/intensity table, empirical bow | D:1768-1800, D:1890-1953 |
 //! | [`mirage`] | Gladstone–Dale stratified air, adaptive RK ray paths, Musgrave's planar mirage with TIR | D:1959-2001 |
 //! | [`optics`] | Snell, Fresnel, critical and Brewster angles, dispersion | D:1724-1794, C:1121-1157 |
+//! | [`simd`] | run-time SIMD dispatch for the batch sky lookups ([`sky::SkyView::radiance_batch`]) | |
 //!
 //! **Errata corrected** (each is documented where it is fixed): the radial
 //! fog integral of eq. 4.1.13 uses signed along-line distances and gains
