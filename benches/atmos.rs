@@ -15,7 +15,7 @@ use natura::atmos::medium::{ExponentialMist, RadialAtmosphere};
 use natura::atmos::mirage::{GrinTracer, StratifiedAir, TemperatureProfile};
 use natura::atmos::rainbow::{RainbowParams, RainbowTable};
 use natura::atmos::sky::{
-    Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, Projection,
+    ApSample, Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, Projection,
 };
 use natura::core::glam::{DVec3, Vec3};
 
@@ -85,6 +85,13 @@ fn sky(c: &mut Criterion) {
             black_box(acc)
         })
     });
+    let mut out = vec![Vec3::ZERO; dirs_f.len()];
+    g.bench_function("lut_sky_view_batch", |b| {
+        b.iter(|| {
+            view.radiance_batch(&dirs_f, &mut out).unwrap();
+            black_box(out[17])
+        })
+    });
     g.bench_function("lut_aerial_perspective_f32", |b| {
         b.iter(|| {
             let mut acc = Vec3::ZERO;
@@ -92,6 +99,15 @@ fn sky(c: &mut Criterion) {
                 acc += view.aerial_perspective_f32(d, 250.0 * i as f32).in_scatter;
             }
             black_box(acc)
+        })
+    });
+    let dist: Vec<f32> = (0..dirs_f.len()).map(|i| 250.0 * i as f32).collect();
+    let mut ap = vec![ApSample::NONE; dirs_f.len()];
+    g.bench_function("lut_aerial_perspective_batch", |b| {
+        b.iter(|| {
+            view.aerial_perspective_batch(&dirs_f, &dist, &mut ap)
+                .unwrap();
+            black_box(ap[17])
         })
     });
     g.finish();
@@ -132,6 +148,20 @@ fn sky(c: &mut Criterion) {
     let ground = Ground {
         albedo: Vec3::new(0.15, 0.13, 0.1),
     };
+    let pool1 = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    g.bench_function("sky_1920x1080_aerial_perspective_1_thread", |b| {
+        b.iter(|| {
+            pool1.install(|| {
+                black_box(
+                    view.render(projection, 1920, 1080, Some(ground), true)
+                        .unwrap(),
+                )
+            })
+        })
+    });
     g.bench_function("sky_1920x1080_aerial_perspective_2_threads", |b| {
         b.iter(|| {
             pool.install(|| {

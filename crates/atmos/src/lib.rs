@@ -16,6 +16,7 @@
 //! | [`rainbow`] | Descartes paths, Fresnel, Cauchy water, the deviation/intensity table, empirical bow | D:1768-1800, D:1890-1953 |
 //! | [`mirage`] | Gladstone–Dale stratified air, adaptive RK ray paths, Musgrave's planar mirage with TIR | D:1959-2001 |
 //! | [`optics`] | Snell, Fresnel, critical and Brewster angles, dispersion | D:1724-1794, C:1121-1157 |
+//! | [`simd`] | run-time SIMD dispatch for the batch sky lookups ([`sky::SkyView::radiance_batch`]) | |
 //!
 //! **Errata corrected** (each is documented where it is fixed): the radial
 //! fog integral of eq. 4.1.13 uses signed along-line distances and gains
@@ -54,7 +55,9 @@
 //! # let _ = Dir3::UP;
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
-#![forbid(unsafe_code)]
+// `unsafe` is denied crate-wide; the only exceptions are the two calls into
+// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
+#![deny(unsafe_code)]
 
 mod dir;
 mod error;
@@ -63,6 +66,7 @@ pub mod mirage;
 pub mod optics;
 pub mod rainbow;
 pub mod scatter;
+pub mod simd;
 pub mod sky;
 pub mod special;
 pub mod spectrum;

@@ -34,6 +34,7 @@
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
 
+mod batch;
 mod data;
 mod model;
 mod params;

@@ -263,6 +263,13 @@ impl AtmosphereParams {
         size("lut.aerial.0", l.aerial.0, 2)?;
         size("lut.aerial.1", l.aerial.1, 4)?;
         size("lut.aerial.2", l.aerial.2, 2)?;
+        if l.aerial.0 * l.aerial.1 * l.aerial.2 > 1 << 26 {
+            return Err(invalid(
+                "lut.aerial",
+                format!("{:?}", l.aerial),
+                "aerial volume too large (at most 2^26 texels, 2 GiB)",
+            ));
+        }
         positive("lut.aerial_max_distance_m", l.aerial_max_distance_m)?;
         Ok(())
     }

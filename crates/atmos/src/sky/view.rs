@@ -10,7 +10,7 @@
 use std::f32::consts::PI;
 use std::sync::Arc;
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec4};
 
 use super::model::Model;
 use super::params::AtmosphereParams;
@@ -30,6 +30,12 @@ pub struct ApSample {
 }
 
 impl ApSample {
+    /// No attenuation: transmittance 1, no in-scatter.
+    pub const NONE: ApSample = ApSample {
+        transmittance: Vec3::ONE,
+        in_scatter: Vec3::ZERO,
+    };
+
     /// Returns `surface` as seen through the air.
     #[inline]
     #[must_use]
@@ -43,47 +49,28 @@ impl ApSample {
 /// irradiance; `Send + Sync`. Built by [`Atmosphere::sky_view`](super::Atmosphere::sky_view).
 #[derive(Clone, Debug)]
 pub struct SkyView {
-    model: Arc<Inner>,
-    params: AtmosphereParams,
-    q: DVec3,
-    up: Vec3,
-    sun: Dir3,
-    sun_f: Vec3,
-    mu_s: f32,
-    sin_s: f32,
-    theta_h: f32,
-    sky: Vec<Vec3>,
-    sky_w: usize,
-    sky_h: usize,
-    ap: Vec<[Vec3; 2]>,
-    ap_dims: (usize, usize, usize),
-    ap_max: f32,
-    sun_centre: Vec3,
-    limb: Vec3,
-    sun_radius: f32,
-    cos_sun_radius: f32,
-    ambient: Vec3,
-    sun_e: Vec3,
-}
-
-/// `acos(x)` in `f32` to 7e-5 rad (Abramowitz & Stegun 4.4.45), several times
-/// cheaper than `f32::acos`; ample for indexing LUTs whose texels span ~0.02 rad.
-#[inline]
-fn fast_acos(x: f32) -> f32 {
-    let a = x.abs().min(1.0);
-    let p = ((-0.018_729_3 * a + 0.074_261) * a - 0.212_114_4) * a + 1.570_728_8;
-    let r = p * (1.0 - a).sqrt();
-    if x < 0.0 { PI - r } else { r }
-}
-
-/// Zenith angle → `[0, 1]`, concentrating texels at the horizon `θ_h` (Hillaire §5.3).
-#[inline]
-fn zen_to_v(theta: f32, theta_h: f32) -> f32 {
-    if theta < theta_h {
-        0.5 * (1.0 - (1.0 - theta / theta_h).max(0.0).sqrt())
-    } else {
-        0.5 + 0.5 * ((theta - theta_h) / (PI - theta_h)).clamp(0.0, 1.0).sqrt()
-    }
+    pub(super) model: Arc<Inner>,
+    pub(super) params: AtmosphereParams,
+    pub(super) q: DVec3,
+    pub(super) up: Vec3,
+    pub(super) sun: Dir3,
+    pub(super) sun_f: Vec3,
+    pub(super) mu_s: f32,
+    pub(super) sin_s: f32,
+    pub(super) theta_h: f32,
+    pub(super) sky: Vec<Vec4>,
+    pub(super) sky_w: usize,
+    pub(super) sky_h: usize,
+    pub(super) ap: Vec<[Vec4; 2]>,
+    pub(super) ap_dims: (usize, usize, usize),
+    pub(super) ap_max: f32,
+    pub(super) sun_centre: Vec3,
+    pub(super) limb: Vec3,
+    pub(super) sun_radius: f32,
+    pub(super) cos_sun_radius: f32,
+    pub(super) ambient: Vec3,
+    pub(super) sun_e: Vec3,
+    pub(super) lanes: super::batch::LaneConsts,
 }
 
 #[inline]
@@ -95,12 +82,6 @@ fn v_to_zen(v: f64, theta_h: f64) -> f64 {
         let t = 2.0 * v - 1.0;
         theta_h + (std::f64::consts::PI - theta_h) * t * t
     }
-}
-
-/// Relative azimuth `φ ∈ [0, π]` → `[0, 1]`, concentrating texels towards the sun.
-#[inline]
-fn az_to_u(phi: f32) -> f32 {
-    (phi / PI).clamp(0.0, 1.0).sqrt()
 }
 
 #[inline]
@@ -233,10 +214,13 @@ pub(crate) fn build(model: Arc<Inner>, params: AtmosphereParams, q: DVec3, sun: 
         mu_s: mu_s as f32,
         sin_s: (1.0 - mu_s * mu_s).max(0.0).sqrt() as f32,
         theta_h: theta_h as f32,
-        sky,
+        sky: sky.iter().map(|c| c.extend(0.0)).collect(),
         sky_w: params.lut.sky_view.0,
         sky_h: params.lut.sky_view.1,
-        ap,
+        ap: ap
+            .iter()
+            .map(|[l, t]| [l.extend(0.0), t.extend(0.0)])
+            .collect(),
         ap_dims: params.lut.aerial,
         ap_max: params.lut.aerial_max_distance_m as f32,
         sun_centre,
@@ -245,31 +229,15 @@ pub(crate) fn build(model: Arc<Inner>, params: AtmosphereParams, q: DVec3, sun: 
         cos_sun_radius: params.sun_angular_radius.cos() as f32,
         ambient: Vec3::ZERO,
         sun_e: Vec3::ZERO,
+        lanes: super::batch::LaneConsts::ZERO,
     };
+    view.lanes = super::batch::LaneConsts::new(&view, q.length(), params.bottom_radius_m);
     view.ambient = view.integrate_irradiance();
     view.sun_e = view.sun_irradiance();
     view
 }
 
 impl SkyView {
-    /// `(u, v)` LUT coordinates of a view direction (`v` zenith, `u` azimuth from the sun).
-    #[inline]
-    fn uv(&self, d: Vec3) -> (f32, f32) {
-        let mu = d.dot(self.up).clamp(-1.0, 1.0);
-        let nu = d.dot(self.sun_f);
-        let st = (1.0 - mu * mu).max(0.0).sqrt();
-        let denom = st * self.sin_s;
-        let cos_phi = if denom > 1e-6 {
-            ((nu - mu * self.mu_s) / denom).clamp(-1.0, 1.0)
-        } else {
-            1.0
-        };
-        (
-            az_to_u(fast_acos(cos_phi)),
-            zen_to_v(fast_acos(mu), self.theta_h),
-        )
-    }
-
     /// Sky radiance (linear RGB, without the sun disc) along `view`, from the
     /// sky-view LUT. Below the horizon it is the light scattered in front of
     /// the ground; add the ground's own radiance through [`SkyView::aerial_perspective`].
@@ -284,19 +252,12 @@ impl SkyView {
     #[inline]
     #[must_use]
     pub fn radiance_f32(&self, d: Vec3) -> Vec3 {
-        if (d.length_squared() - 1.0).abs() > 2e-3 || !d.is_finite() {
+        let c = &self.lanes;
+        let Some((mu, nu)) = c.cosines(d) else {
             return Vec3::ZERO;
-        }
-        let (u, v) = self.uv(d);
-        let fx = u * (self.sky_w - 1) as f32;
-        let fy = v * (self.sky_h - 1) as f32;
-        let i = (fx as usize).min(self.sky_w - 2);
-        let j = (fy as usize).min(self.sky_h - 2);
-        let (tx, ty) = (fx - i as f32, fy - j as f32);
-        let w = self.sky_w;
-        let a = self.sky[j * w + i].lerp(self.sky[j * w + i + 1], tx);
-        let b = self.sky[(j + 1) * w + i].lerp(self.sky[(j + 1) * w + i + 1], tx);
-        a.lerp(b, ty)
+        };
+        let (u, v) = c.uv(mu, nu);
+        self.sky_at(u, v).truncate()
     }
 
     /// Sun-disc radiance along `view` (limb-darkened, after transmittance); zero off the disc.
@@ -359,39 +320,18 @@ impl SkyView {
     #[inline]
     #[must_use]
     pub fn aerial_perspective_f32(&self, d: Vec3, distance_m: f32) -> ApSample {
-        if (d.length_squared() - 1.0).abs() > 2e-3 || !d.is_finite() || distance_m.is_nan() {
-            return ApSample {
-                transmittance: Vec3::ONE,
-                in_scatter: Vec3::ZERO,
-            };
-        }
-        let (na, nz, nd) = self.ap_dims;
-        let (u, v) = self.uv(d);
-        let w = (distance_m.max(0.0) / self.ap_max).min(1.0).sqrt();
-        let fa = u * (na - 1) as f32;
-        let fz = v * (nz - 1) as f32;
-        let fd = w * (nd - 1) as f32;
-        let (ia, iz, id) = (
-            (fa as usize).min(na - 2),
-            (fz as usize).min(nz - 2),
-            (fd as usize).min(nd - 2),
-        );
-        let (ta, tz, td) = (fa - ia as f32, fz - iz as f32, fd - id as f32);
-        let idx = |z: usize, a: usize| (z * na + a) * nd + id;
-        let mut l = Vec3::ZERO;
-        let mut t = Vec3::ZERO;
-        for (z, wz) in [(iz, 1.0 - tz), (iz + 1, tz)] {
-            for (a, wa) in [(ia, 1.0 - ta), (ia + 1, ta)] {
-                let k = idx(z, a);
-                let wgt = wz * wa;
-                let (c0, c1) = (self.ap[k], self.ap[k + 1]);
-                l += c0[0].lerp(c1[0], td) * wgt;
-                t += c0[1].lerp(c1[1], td) * wgt;
+        let c = &self.lanes;
+        let cos = c.cosines(d);
+        match cos {
+            Some((mu, nu)) if !distance_m.is_nan() => {
+                let (u, v) = c.uv(mu, nu);
+                let (l, t) = self.ap_at(u, v, c.depth(distance_m));
+                ApSample {
+                    transmittance: t.truncate(),
+                    in_scatter: l.truncate(),
+                }
             }
-        }
-        ApSample {
-            transmittance: t,
-            in_scatter: l,
+            _ => ApSample::NONE,
         }
     }
 
