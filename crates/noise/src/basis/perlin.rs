@@ -19,6 +19,13 @@
 //!   3-D 1.0363 (quintic) / 1.0449 (cubic), 4-D see [`PERLIN4_SUP_QUINTIC`].
 //! * Lipschitz constants are the maximised `|∇N|` of the normalised noise,
 //!   rounded up by 1%.
+//! * Batch rows: for steps up to 1/16 of a cell a row is evaluated span by
+//!   span (four coefficients per cell, each lattice column hashed once per
+//!   row, whole 16-lane groups); larger steps run a per-lane kernel whose
+//!   32-point blocks are rebased to a local origin (one f64 split per block,
+//!   then f32/u32 lanes from precomputed lane offsets), so lattice indices stay
+//!   exact at planet-scale coordinates while every lane runs at the full f32
+//!   width. Both equal the f64 point path within 1e-5.
 
 use glam::{DVec2, DVec3, DVec4};
 

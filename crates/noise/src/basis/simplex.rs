@@ -14,6 +14,11 @@
 //! every corner picking its worst gradient), so [`Field::bound`] is 1 and
 //! attained; the Lipschitz constants are the maximised gradient norms of the
 //! scaled noise, rounded up by 1%.
+//!
+//! Batch rows rebase each 32-point block to its first point's simplex cell:
+//! along a row the skewed coordinates advance linearly, so the lanes add
+//! precomputed f32 offsets to the block's exact lattice index and fraction
+//! and never touch f64.
 
 use glam::{DVec2, DVec3};
 
