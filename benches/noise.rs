@@ -8,6 +8,10 @@
 //! * W5 2-D Worley F1 (Euclidean), 1024² grid
 //!
 //! Throughput is reported in points per second (`Throughput::Elements`).
+//! Besides criterion's wall-clock figures, each single-thread contender's rate
+//! per second of *thread CPU time* is printed (`[noise] cpu ...`), which stays
+//! meaningful when the machine is shared (a loaded machine deschedules the
+//! thread, stretching wall-clock time but not CPU time).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fastnoise_lite::{
@@ -52,6 +56,36 @@ fn fill_noise_rs(f: &impl NoiseFn<f64, 2>, out: &mut [f32]) {
     }
 }
 
+/// CPU seconds used by the calling thread so far (Linux; nanosecond resolution).
+fn thread_cpu() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
+/// Prints points per CPU second of `f` over `n` points, repeating until at
+/// least 0.5 s of CPU time.
+fn cpu_rate(name: &str, n: usize, mut f: impl FnMut()) {
+    let Some(c0) = thread_cpu() else { return };
+    f();
+    let c0 = thread_cpu().unwrap_or(c0);
+    let mut reps = 0;
+    let mut used;
+    loop {
+        f();
+        reps += 1;
+        used = thread_cpu().unwrap_or(c0) - c0;
+        if used >= 0.5 {
+            break;
+        }
+    }
+    eprintln!(
+        "[noise] cpu {name}: {:.2} Mpts per CPU-second ({:.3} ns/pt; {n} pts x {reps})",
+        (n * reps) as f64 / used / 1e6,
+        used * 1e9 / (n * reps) as f64,
+    );
+}
+
 fn group<'a>(
     c: &'a mut Criterion,
     name: &str,
@@ -92,6 +126,12 @@ fn w1_perlin2(c: &mut Criterion) {
         })
     });
     g.finish();
+    cpu_rate("W1 natura", N * N, || {
+        p.fill_grid2(&l, black_box(&mut out)).unwrap()
+    });
+    cpu_rate("W1 fastnoise-lite", N * N, || {
+        fill_fnl(&f, black_box(&mut out))
+    });
 }
 
 fn w2_simplex2(c: &mut Criterion) {
@@ -121,6 +161,17 @@ fn w2_simplex2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
+    cpu_rate("W2 natura", N * N, || {
+        s.fill_grid2(&l, black_box(&mut out)).unwrap()
+    });
+    cpu_rate("W2 simdnoise gradient_2d", N * N, || {
+        black_box(
+            NoiseBuilder::gradient_2d(N, N)
+                .with_freq(FREQ as f32)
+                .with_seed(1)
+                .generate(),
+        );
+    });
 }
 
 fn fbm8() -> Fbm<Perlin> {
@@ -180,6 +231,20 @@ fn w3_fbm2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
+    cpu_rate("W3 natura", N * N, || {
+        f.fill_grid2(&l, black_box(&mut out)).unwrap()
+    });
+    cpu_rate("W3 simdnoise fbm_2d", N * N, || {
+        black_box(
+            NoiseBuilder::fbm_2d(N, N)
+                .with_freq(FREQ as f32)
+                .with_octaves(8)
+                .with_lacunarity(2.0)
+                .with_gain(0.5)
+                .with_seed(1)
+                .generate(),
+        );
+    });
 }
 
 fn w4_perlin3(c: &mut Criterion) {
@@ -216,6 +281,17 @@ fn w4_perlin3(c: &mut Criterion) {
         })
     });
     g.finish();
+    cpu_rate("W4 natura", M * M * M, || {
+        p.fill_grid3(&l, black_box(&mut out)).unwrap()
+    });
+    cpu_rate("W4 simdnoise gradient_3d", M * M * M, || {
+        black_box(
+            NoiseBuilder::gradient_3d(M, M, M)
+                .with_freq(F3 as f32)
+                .with_seed(1)
+                .generate(),
+        );
+    });
 }
 
 fn w5_worley2(c: &mut Criterion) {
@@ -248,6 +324,12 @@ fn w5_worley2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
+    cpu_rate("W5 natura", N * N, || {
+        w.fill_grid2(&l, black_box(&mut out)).unwrap()
+    });
+    cpu_rate("W5 fastnoise-lite cellular", N * N, || {
+        fill_fnl(&f, black_box(&mut out))
+    });
 }
 
 criterion_group!(

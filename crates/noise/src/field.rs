@@ -203,7 +203,7 @@ impl Lattice2 {
         self.origin + DVec2::new(i as f64, j as f64) * self.step
     }
 
-    fn check(&self, len: usize) -> Result<()> {
+    pub(crate) fn check(&self, len: usize) -> Result<()> {
         self.validate()?;
         if len != self.len() {
             return Err(NoiseError::BufferLength {
@@ -299,7 +299,7 @@ impl Lattice3 {
         self.origin + DVec3::new(i as f64, j as f64, k as f64) * self.step
     }
 
-    fn check(&self, len: usize) -> Result<()> {
+    pub(crate) fn check(&self, len: usize) -> Result<()> {
         self.validate()?;
         if len != self.len() {
             return Err(NoiseError::BufferLength {

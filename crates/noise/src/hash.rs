@@ -164,8 +164,10 @@ pub(crate) fn grad2(h: u32) -> (f32, f32) {
     } else {
         1.0
     };
-    let gx = if h & 0x8000_0000 != 0 { -ax } else { ax };
-    let gy = if h & 0x4000_0000 != 0 { -ay } else { ay };
+    // Bits 31 and 30 are the signs: flip the sign bits directly (the same
+    // values as negating, without a compare and select per component).
+    let gx = f32::from_bits(ax.to_bits() ^ (h & 0x8000_0000));
+    let gy = f32::from_bits(ay.to_bits() ^ ((h << 1) & 0x8000_0000));
     (gx, gy)
 }
 

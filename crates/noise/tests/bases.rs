@@ -178,3 +178,48 @@ fn worley_rejects_bad_jitter_and_propagates_nan() {
     assert!(w.eval2(DVec2::new(f64::NAN, 1.0)).is_nan());
     assert!(w.eval3(DVec3::new(1.0, f64::INFINITY, 1.0)).is_nan());
 }
+
+/// The batch rows split each block's first point in f64 and run the lanes in
+/// f32 from that local origin: far from the origin (planet-scale coordinates)
+/// they must still match the f64 point path within 1e-5 at every SIMD level,
+/// for steps on both sides of the span path's limit and long rows (many blocks).
+#[test]
+fn rebased_rows_match_point_path_far_from_origin() {
+    use natura_noise::{Fade, Perlin, Simd};
+    let fields: [&dyn Field; 3] = [
+        &Perlin::new(5),
+        &Perlin::with_fade(6, Fade::Cubic),
+        &Simplex::new(7),
+    ];
+    let n = 300;
+    for f in fields {
+        for (a, &o) in [1.0e6 + 0.37, -3.3e8 - 0.61, 4.0e9 + 0.125, -6.0e9 + 0.3]
+            .iter()
+            .enumerate()
+        {
+            for &step in &[0.013, 0.07, 0.9, 3.7] {
+                let o2 = DVec2::new(o, 0.5 * o + 0.21);
+                let o3 = DVec3::new(o, -0.25 * o + 0.4, 0.125 * o - 0.7);
+                for simd in Simd::supported() {
+                    let mut row = vec![0.0f32; n];
+                    f.fill_row2_with(simd, o2, step, &mut row);
+                    for (i, &v) in row.iter().enumerate() {
+                        let e = f.eval2(DVec2::new(o2.x + i as f64 * step, o2.y));
+                        assert!(
+                            (f64::from(v) - e).abs() <= 1e-5,
+                            "2-D {simd:?} origin #{a} step {step} i {i}: {v} vs {e}"
+                        );
+                    }
+                    f.fill_row3_with(simd, o3, step, &mut row);
+                    for (i, &v) in row.iter().enumerate() {
+                        let e = f.eval3(DVec3::new(o3.x + i as f64 * step, o3.y, o3.z));
+                        assert!(
+                            (f64::from(v) - e).abs() <= 1e-5,
+                            "3-D {simd:?} origin #{a} step {step} i {i}: {v} vs {e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

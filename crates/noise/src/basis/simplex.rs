@@ -14,12 +14,17 @@
 //! every corner picking its worst gradient), so [`Field::bound`] is 1 and
 //! attained; the Lipschitz constants are the maximised gradient norms of the
 //! scaled noise, rounded up by 1%.
+//!
+//! Batch rows rebase each 32-point block to its first point's simplex cell:
+//! along a row the skewed coordinates advance linearly, so the lanes add
+//! precomputed f32 offsets to the block's exact lattice index and fraction
+//! and never touch f64.
 
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::hash::{flat2, flat3, grad2, grad3, seed32};
-use crate::simd::{Simd, run, split, split_fast};
+use crate::simd::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;
@@ -243,24 +248,43 @@ fn contrib2(h: u32, x: f32, y: f32) -> f32 {
     t2 * t2 * (gx * x + gy * y)
 }
 
+/// The 2-D row kernel. Along a row both skewed coordinates advance linearly
+/// (`xs += step·(1 + F2)`, `ys += step·F2`), so each block of lanes is rebased
+/// to its first point's simplex cell ([`LaneOffsets`]) and the rest is f32/u32.
+/// The unskewed offset from the cell's base corner is `d = f − (fx + fy)·G2`
+/// for skewed fractions `f` (the point path's `x − (i − (i + j)·G2)`,
+/// re-associated).
 #[inline(always)]
 fn simplex2_row(s: u32, origin: DVec2, step: f64, k: f32, out: &mut [f32]) {
     const G: f32 = G2 as f32;
     let y = origin.y;
-    for (n, o) in out.iter_mut().enumerate() {
-        let x = origin.x + (n as i32) as f64 * step;
-        let (i, j, x0, y0) = skew2(x, y, true);
-        let upper = x0 > y0;
-        let (x0, y0) = (x0 as f32, y0 as f32);
-        let (i1, j1) = if upper { (1u32, 0u32) } else { (0, 1) };
-        let x1 = x0 - i1 as f32 + G;
-        let y1 = y0 - j1 as f32 + G;
-        let x2 = x0 - 1.0 + 2.0 * G;
-        let y2 = y0 - 1.0 + 2.0 * G;
-        let v = contrib2(flat2(i, j, s), x0, y0)
-            + contrib2(flat2(i.wrapping_add(i1), j.wrapping_add(j1), s), x1, y1)
-            + contrib2(flat2(i.wrapping_add(1), j.wrapping_add(1), s), x2, y2);
-        *o = v * k;
+    let lx = LaneOffsets::new(step * (1.0 + F2));
+    let ly = LaneOffsets::new(step * F2);
+    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
+        let x = origin.x + (b * BLOCK) as f64 * step;
+        let sk = (x + y) * F2;
+        let (bi, bfx) = LaneOffsets::base(x + sk);
+        let (bj, bfy) = LaneOffsets::base(y + sk);
+        let lanes = block
+            .iter_mut()
+            .zip(lx.cell.iter().zip(&lx.frac))
+            .zip(ly.cell.iter().zip(&ly.frac));
+        for ((o, (&cx, &gx)), (&cy, &gy)) in lanes {
+            let (i, fx) = rebase(bi, bfx, cx, gx);
+            let (j, fy) = rebase(bj, bfy, cy, gy);
+            let t = (fx + fy) * G;
+            let (x0, y0) = (fx - t, fy - t);
+            let upper = fx > fy;
+            let (i1, j1) = if upper { (1u32, 0u32) } else { (0, 1) };
+            let x1 = x0 - i1 as f32 + G;
+            let y1 = y0 - j1 as f32 + G;
+            let x2 = x0 - 1.0 + 2.0 * G;
+            let y2 = y0 - 1.0 + 2.0 * G;
+            let v = contrib2(flat2(i, j, s), x0, y0)
+                + contrib2(flat2(i.wrapping_add(i1), j.wrapping_add(j1), s), x1, y1)
+                + contrib2(flat2(i.wrapping_add(1), j.wrapping_add(1), s), x2, y2);
+            *o = v * k;
+        }
     }
 }
 
@@ -272,42 +296,61 @@ fn contrib3(h: u32, x: f32, y: f32, z: f32) -> f32 {
     t2 * t2 * (gx * x + gy * y + gz * z)
 }
 
+/// The 3-D row kernel, rebased per block like [`simplex2_row`]: along a row
+/// the skewed x advances by `step·(1 + F3)` and the skewed y and z by
+/// `step·F3`; the simplex ranking and offsets come from the f32 fractions.
 #[inline(always)]
 fn simplex3_row(s: u32, origin: DVec3, step: f64, k: f32, out: &mut [f32]) {
     const G: f32 = G3 as f32;
-    for (n, o) in out.iter_mut().enumerate() {
-        let x = origin.x + (n as i32) as f64 * step;
-        let (idx, d) = skew3([x, origin.y, origin.z], true);
-        let (o1, o2) = order3(d[0], d[1], d[2]);
-        let (x0, y0, z0) = (d[0] as f32, d[1] as f32, d[2] as f32);
-        let mut v = contrib3(flat3(idx[0], idx[1], idx[2], s), x0, y0, z0);
-        for (c, off) in [o1, o2].into_iter().enumerate() {
-            let g = (c + 1) as f32 * G;
-            let h = flat3(
-                idx[0].wrapping_add(off[0]),
-                idx[1].wrapping_add(off[1]),
-                idx[2].wrapping_add(off[2]),
-                s,
-            );
+    let lx = LaneOffsets::new(step * (1.0 + F3));
+    let lyz = LaneOffsets::new(step * F3);
+    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
+        let x = origin.x + (b * BLOCK) as f64 * step;
+        let sk = (x + origin.y + origin.z) * F3;
+        let (bi, bfx) = LaneOffsets::base(x + sk);
+        let (bj, bfy) = LaneOffsets::base(origin.y + sk);
+        let (bk, bfz) = LaneOffsets::base(origin.z + sk);
+        let lanes = block
+            .iter_mut()
+            .zip(lx.cell.iter().zip(&lx.frac))
+            .zip(lyz.cell.iter().zip(&lyz.frac));
+        for ((o, (&cx, &gx)), (&cyz, &gyz)) in lanes {
+            let (i, fx) = rebase(bi, bfx, cx, gx);
+            let (j, fy) = rebase(bj, bfy, cyz, gyz);
+            let (kk, fz) = rebase(bk, bfz, cyz, gyz);
+            let t = (fx + fy + fz) * G;
+            let (x0, y0, z0) = (fx - t, fy - t, fz - t);
+            // Branch-free ranking of the offsets (Gustavson's order, ties
+            // broken the same way): the largest axis steps first.
+            let rx = u32::from(x0 >= y0) + u32::from(x0 >= z0);
+            let ry = u32::from(y0 > x0) + u32::from(y0 >= z0);
+            let rz = u32::from(z0 > x0) + u32::from(z0 > y0);
+            let o1 = [u32::from(rx == 2), u32::from(ry == 2), u32::from(rz == 2)];
+            let o2 = [u32::from(rx >= 1), u32::from(ry >= 1), u32::from(rz >= 1)];
+            let mut v = contrib3(flat3(i, j, kk, s), x0, y0, z0);
+            for (c, off) in [o1, o2].into_iter().enumerate() {
+                let g = (c + 1) as f32 * G;
+                let h = flat3(
+                    i.wrapping_add(off[0]),
+                    j.wrapping_add(off[1]),
+                    kk.wrapping_add(off[2]),
+                    s,
+                );
+                v += contrib3(
+                    h,
+                    x0 - off[0] as f32 + g,
+                    y0 - off[1] as f32 + g,
+                    z0 - off[2] as f32 + g,
+                );
+            }
+            let h = flat3(i.wrapping_add(1), j.wrapping_add(1), kk.wrapping_add(1), s);
             v += contrib3(
                 h,
-                x0 - off[0] as f32 + g,
-                y0 - off[1] as f32 + g,
-                z0 - off[2] as f32 + g,
+                x0 - 1.0 + 3.0 * G,
+                y0 - 1.0 + 3.0 * G,
+                z0 - 1.0 + 3.0 * G,
             );
+            *o = v * k;
         }
-        let h = flat3(
-            idx[0].wrapping_add(1),
-            idx[1].wrapping_add(1),
-            idx[2].wrapping_add(1),
-            s,
-        );
-        v += contrib3(
-            h,
-            x0 - 1.0 + 3.0 * G,
-            y0 - 1.0 + 3.0 * G,
-            z0 - 1.0 + 3.0 * G,
-        );
-        *o = v * k;
     }
 }
