@@ -12,7 +12,7 @@ mod common;
 use natura::core::glam::Vec3;
 use natura::core::{Grid2, Image};
 use natura::fluid::grid::Dims;
-use natura::fluid::liquid::{Liquid, LiquidParams};
+use natura::fluid::liquid::{Liquid, LiquidParams, ParticleCorrection};
 use natura::fluid::shape::{Obstacle, Shape};
 
 fn main() {
@@ -29,13 +29,25 @@ fn main() {
         "simulated time (s)",
     );
     let frames: usize = args.value("--frames", if quick { 3 } else { 12 }, "PNG frames");
+    let paper = args.switch(
+        "--paper-correction",
+        "Foster & Fedkiw's curvature-gated particle correction instead of the particle level set",
+    );
     let out = args.out_dir("docs/gallery/fluid");
     args.finish();
 
     let width = 2.0f32;
     let h = width / nx as f32;
     let dims = common::check(Dims::plane(nx, nx / 2));
-    let mut liquid = common::check(Liquid::new(dims, h, LiquidParams::default()));
+    let params = LiquidParams {
+        correction: if paper {
+            ParticleCorrection::Curvature
+        } else {
+            ParticleCorrection::Escaped
+        },
+        ..LiquidParams::default()
+    };
+    let mut liquid = common::check(Liquid::new(dims, h, params));
     common::check(liquid.fill(
         Shape::Cuboid {
             min: Vec3::new(0.0, 0.0, 0.0),
@@ -55,9 +67,11 @@ fn main() {
     natura::core::Progress::start(&bar, "dam break", frames as u64);
     let mut shots = Vec::new();
     let mut ns = 0u64;
+    let mut volumes = Vec::new();
     for f in 0..frames {
         let rep = common::check(liquid.step(frame_dt));
         ns += u64::from(rep.substeps);
+        volumes.push(liquid.volume());
         let img = render(&liquid, 4);
         common::check(img.save_png(frame_dir.join(format!("frame_{:03}.png", f + 1))));
         if f + 1 == frames / 4 || f + 1 == frames / 2 || f + 1 == frames {
@@ -67,6 +81,11 @@ fn main() {
     }
     natura::core::Progress::finish(&bar);
     let v1 = liquid.volume();
+    let drift: Vec<String> = volumes
+        .iter()
+        .map(|v| format!("{:+.1}", 100.0 * (v - v0) / v0))
+        .collect();
+    println!("volume drift per frame (%): {}", drift.join(" "));
     println!(
         "{} particles, {ns} surface sub-steps, volume {:.4} → {:.4} m² ({:+.2} %)",
         liquid.particles().len(),

@@ -144,26 +144,67 @@ impl LevelSet {
     }
 
     /// Reinitialises φ toward a signed distance (|∇φ| = 1) with `iterations`
-    /// pseudo-time steps of eq. 5.1, keeping the zero set (to first order).
+    /// pseudo-time steps of eq. 5.1.
+    ///
+    /// Cells next to the zero set use the sub-cell fix of Russo & Smereka
+    /// (2000, beyond the paper): instead of the upwind gradient, which drags
+    /// the interface and is the main source of level-set volume loss, they
+    /// relax toward `D = φ₀/|∇φ₀|`, the distance to the *initial* zero
+    /// crossing, so the zero set stays where φ₀ put it.
     pub fn reinitialize(&mut self, iterations: u32) {
         let d = self.dims;
         let h = self.h;
-        let s0: Vec<f32> = self
-            .phi
-            .as_slice()
-            .iter()
-            .map(|&p| p / (p * p + h * h).sqrt())
+        let g0 = self.phi.as_slice().to_vec();
+        let s0: Vec<f32> = g0.iter().map(|&p| p / (p * p + h * h).sqrt()).collect();
+        // Interface cells and their target distances D = h φ₀ / Δφ₀.
+        let target: Vec<Option<f32>> = (0..d.cells())
+            .map(|ci| {
+                let c = d.ijk(ci);
+                let f0 = g0[ci];
+                let mut crossing = false;
+                let mut grad2 = 0.0f32;
+                for a in 0..3 {
+                    if !d.active(a) {
+                        continue;
+                    }
+                    let n = d.n()[a];
+                    let lo = (c[a] > 0).then(|| at(d, &g0, c, a, -1));
+                    let hi = (c[a] + 1 < n).then(|| at(d, &g0, c, a, 1));
+                    let mut m = 0.0f32;
+                    if let Some(l) = lo {
+                        crossing |= (l < 0.0) != (f0 < 0.0);
+                        m = m.max((f0 - l).abs());
+                    }
+                    if let Some(u) = hi {
+                        crossing |= (u < 0.0) != (f0 < 0.0);
+                        m = m.max((u - f0).abs());
+                    }
+                    if let (Some(l), Some(u)) = (lo, hi) {
+                        m = m.max(0.5 * (u - l).abs());
+                    }
+                    grad2 += m * m;
+                }
+                let grad = grad2.sqrt();
+                (crossing && grad > 1e-12).then(|| h * f0 / grad)
+            })
             .collect();
         let dtau = 0.5 * h;
         for _ in 0..iterations {
             let g = self.phi.as_slice().to_vec();
             let gr = &g;
             let s0r = &s0;
+            let tr = &target;
+            let g0r = &g0;
             par::for_chunks(self.phi.as_mut_slice(), d.nx, |r, row| {
                 let (j, k) = (r % d.ny, r / d.ny);
                 for (i, o) in row.iter_mut().enumerate() {
                     let c = [i, j, k];
                     let ci = d.idx(i, j, k);
+                    if let Some(dist) = tr[ci] {
+                        let sgn = if g0r[ci] < 0.0 { -1.0 } else { 1.0 };
+                        *o = gr[ci] - (dtau / h) * (sgn * gr[ci].abs() - dist);
+                        continue;
+                    }
                     let s = s0r[ci];
                     let mut g2 = 0.0f32;
                     for a in 0..3 {

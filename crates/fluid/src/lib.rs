@@ -40,6 +40,9 @@
 //! # Ok::<(), natura_fluid::FluidError>(())
 //! ```
 #![forbid(unsafe_code)]
+// Loops over axes and cells index several parallel arrays at once, as the
+// equations do; iterator chains would hide that.
+#![allow(clippy::needless_range_loop)]
 
 pub mod advect;
 mod error;

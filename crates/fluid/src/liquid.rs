@@ -3,7 +3,8 @@
 //!
 //! Per call of [`Liquid::step`] the frame time is split into Navier–Stokes
 //! steps no longer than [`LiquidParams::max_cfl`] times the CFL step
-//! `h / max|u|` (L2456, L2553). Each Navier–Stokes step:
+//! `h / max|u|` (L2456, L2553; one CFL step by default, not the paper's
+//! five, which loses volume). Each Navier–Stokes step:
 //!
 //! 1. classifies cells from φ (< 0 is liquid, L2409): *full* liquid cells,
 //!    *surface* cells (liquid with an empty neighbour) and *empty* cells
@@ -20,16 +21,29 @@
 //!    atmospheric pressure (Dirichlet) and objects Neumann (L2474-2492). The
 //!    paper's matrix has a negative diagonal (L2486-2488, erratum E5); the
 //!    solver uses its negation, which is positive definite, with CG;
-//! 5. makes every surface cell divergence-free by setting its faces to empty
-//!    neighbours (L2472; the paper leaves the split open, here the missing
-//!    flux is shared equally), zeroes empty–empty faces (L2468) and then
+//! 5. makes every surface cell divergence-free by correcting its faces to empty
+//!    neighbours (L2472; the paper leaves the split open, here the divergence
+//!    is removed in equal shares, the smallest change, so a free-falling
+//!    droplet keeps its velocity), zeroes empty–empty faces (L2468) and then
 //!    extrapolates velocity a few cells into the air (beyond the paper) so
 //!    back-traces and particles see a sensible field;
 //! 6. moves particles (trilinear velocity, RK2, L2396) and φ (ENO2 upwind,
 //!    L2431) in CFL-limited sub-steps that add up to the step (L2456);
-//! 7. corrects φ with particles where the surface curvature is high
-//!    (`φ ← min(φ, φ_p)`, L2441-2448), reinitialises φ (eq. 5.1), deletes
-//!    particles deep inside and reseeds sparse cells near the surface (L2437).
+//! 7. corrects φ with particles (`φ ← min(φ, φ_p)`, L2441-2448): where the
+//!    surface curvature is high as in the paper, or — the default — with
+//!    every escaped particle as in the particle level set of Enright et al.
+//!    2002 ([`ParticleCorrection`]); reinitialises φ (eq. 5.1, with the
+//!    Russo–Smereka sub-cell fix that keeps the zero set in place), corrects
+//!    again, deletes particles deep inside and reseeds sparse cells near the
+//!    surface (L2437). Particles beyond the extrapolated velocity band fly
+//!    ballistically (escaped spray, L2450).
+//!
+//! Volume: the 2.4 s dam break of the `liquid2d` example (2 m × 1 m tank,
+//! 0.7 m × 0.8 m column) stays within 5 % at 80 × 40 cells at every frame
+//! (tested) and within 7 % at the default 160 × 80 (+5.6 % at the end: the
+//! one-sided correction only ever adds liquid; positive particles, as in
+//! Enright et al., would balance it). With the paper's five-CFL steps and
+//! curvature-gated correction the same run lost over half its volume.
 //!
 //! 2-D (x–z plane, `ny = 1`) and 3-D grids are both supported.
 
@@ -54,6 +68,27 @@ pub enum ObjectMode {
     StickyNormal,
 }
 
+/// How marker particles correct the level set (L2441-2448).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ParticleCorrection {
+    /// Foster & Fedkiw 2001 as written: particles within two cells of the
+    /// surface that poke out of it modify φ only where the interpolated
+    /// curvature `|κ|·h` exceeds [`LiquidParams::curvature_threshold`]
+    /// (L2441-2448), with the uniform radius [`LiquidParams::particle_radius`].
+    Curvature,
+    /// The particle level set of Enright, Fedkiw, Ferziger & Mitchell (2002),
+    /// the paper's direct successor (beyond the paper; default): every
+    /// particle carries its own radius `r_p = clamp(−φ(x_p), 0.1 h, r_max)`,
+    /// so it touches the surface it was seeded under, and a particle that has
+    /// *escaped* — `φ(x_p) > r_p`, on the air side by more than its radius —
+    /// restores the liquid it stands for wherever it is, before and after
+    /// reinitialisation. This is what keeps the volume of splashing liquid;
+    /// the curvature gate lets thin sheets and flat-but-drifting surfaces
+    /// lose volume.
+    #[default]
+    Escaped,
+}
+
 /// The role of a cell in the liquid solver (L2468-2472).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum LiquidCell {
@@ -76,12 +111,20 @@ pub struct LiquidParams {
     pub viscosity: f32,
     /// Gravity (m/s²). Default `(0, 0, −9.81)`.
     pub gravity: Vec3,
-    /// Navier–Stokes step as a multiple of the CFL step (paper: "around five", L2456).
+    /// Navier–Stokes step as a multiple of the CFL step. Default 1. The
+    /// paper takes "around five" (L2456), moving the surface up to five
+    /// cells through a velocity field frozen at the start of the step and
+    /// divergence-free only where the liquid was: in a dam break that loses
+    /// a quarter of the volume in the first step and most of it within
+    /// 2.4 s, where one CFL step keeps it within a few percent.
     pub max_cfl: f32,
     /// Marker particles seeded per liquid cell.
     pub particles_per_cell: usize,
-    /// Particle radius in cells (the `r` of `φ_p = |x − x_p| − r`, L2402).
+    /// Particle radius in cells (the `r` of `φ_p = |x − x_p| − r`, L2402);
+    /// with [`ParticleCorrection::Escaped`] the largest radius.
     pub particle_radius: f32,
+    /// How particles correct φ.
+    pub correction: ParticleCorrection,
     /// Particles deeper than this many cells inside are deleted (L2437).
     pub delete_band: f32,
     /// Particles correct φ where `|κ|·h` exceeds this (L2441).
@@ -107,12 +150,13 @@ impl Default for LiquidParams {
         Self {
             viscosity: 1e-6,
             gravity: Vec3::new(0.0, 0.0, -9.81),
-            max_cfl: 5.0,
+            max_cfl: 1.0,
             particles_per_cell: 4,
             particle_radius: 0.5,
+            correction: ParticleCorrection::Escaped,
             delete_band: 3.0,
             curvature_threshold: 1.0,
-            reinit_iterations: 1,
+            reinit_iterations: 2,
             extrapolation_layers: 4,
             object_mode: ObjectMode::Separating,
             advection: Advection::default(),
@@ -158,6 +202,11 @@ pub struct Liquid {
     vel: MacVelocity,
     phi: LevelSet,
     particles: Vec<Vec3>,
+    /// Per-particle radius (m), parallel to `particles`.
+    radii: Vec<f32>,
+    /// Per-particle velocity (m/s) of the last move; escaped particles
+    /// beyond the extrapolated velocity band fly ballistically with it.
+    pvel: Vec<Vec3>,
     cells: Grid3<LiquidCell>,
     owner: Vec<u16>,
     obstacles: Vec<Obstacle>,
@@ -179,6 +228,8 @@ impl Liquid {
             vel: MacVelocity::zeros(dims)?,
             phi: LevelSet::new(Grid3::new(dims.nx, dims.ny, dims.nz, far)?, h)?,
             particles: Vec::new(),
+            radii: Vec::new(),
+            pvel: Vec::new(),
             cells: Grid3::new(dims.nx, dims.ny, dims.nz, LiquidCell::Empty)?,
             owner: vec![u16::MAX; dims.cells()],
             obstacles: Vec::new(),
@@ -236,6 +287,15 @@ impl Liquid {
                 }
             }
         }
+        // The union of distances is a distance only outside; inside (and for
+        // shapes thinner than the grid's flat axis) make it one, keeping the
+        // zero set.
+        let span = d.nx.max(d.ny).max(d.nz) as u32;
+        self.phi.reinitialize(2 * span.min(64));
+        let rmax = self.params.particle_radius * h;
+        self.radii.resize(self.particles.len(), rmax);
+        self.pvel.resize(self.particles.len(), velocity);
+        self.update_radii();
         // Give the new liquid its velocity on faces inside the shape.
         for a in 0..3 {
             if !d.active(a) {
@@ -265,14 +325,15 @@ impl Liquid {
         let r = self.params.particle_radius * h;
         let far = 3.0 * h;
         self.phi.phi_mut().as_mut_slice().fill(far);
-        self.splat_particles(&self.particles.clone(), r, None);
+        let radii = vec![r; self.particles.len()];
+        self.splat_particles(&self.particles.clone(), &radii, None);
         self.phi
             .reinitialize(2 * (d.nx.max(d.ny).max(d.nz) as u32).min(64));
     }
 
     /// `φ ← min(φ, |x − x_p| − r)` at cells within two cells of each particle
     /// (all particles, or those flagged).
-    fn splat_particles(&mut self, ps: &[Vec3], r: f32, only: Option<&[bool]>) {
+    fn splat_particles(&mut self, ps: &[Vec3], radii: &[f32], only: Option<&[bool]>) {
         let d = self.dims;
         let h = self.h;
         let n = d.n();
@@ -291,7 +352,7 @@ impl Liquid {
                 for j in range(1) {
                     for i in range(0) {
                         let x = grid::cell_centre([i, j, k], h);
-                        let v = (x - *p).length() - r;
+                        let v = (x - *p).length() - radii[pi];
                         let s = &mut phi[(i, j, k)];
                         *s = s.min(v);
                     }
@@ -533,6 +594,11 @@ impl Liquid {
         // 7. Particle correction, reinitialisation, particle maintenance.
         self.correct_with_particles();
         self.phi.reinitialize(self.params.reinit_iterations);
+        if self.params.correction == ParticleCorrection::Escaped {
+            // Enright et al.: correct again after reinitialisation, which
+            // may have moved the surface past particles.
+            self.correct_with_particles();
+        }
         self.maintain_particles();
         grid::check_grid(self.phi.phi(), "phi", "reinitialisation")?;
         if self.obstacles.iter().any(Obstacle::is_moving) {
@@ -671,10 +737,17 @@ impl Liquid {
             if air.is_empty() {
                 continue;
             }
-            // Σ_air sign·u = −net, shared equally.
-            let share = -net / air.len() as f32;
+            // Σ_air sign·u = −net: the smallest change to the air faces
+            // (the divergence shared equally), which keeps their current
+            // velocities — a free-falling droplet keeps falling.
+            let div = net
+                + air
+                    .iter()
+                    .map(|&(a, f, sign)| sign * self.vel.comp(a)[(f[0], f[1], f[2])])
+                    .sum::<f32>();
+            let share = div / air.len() as f32;
             for (a, f, sign) in air {
-                self.vel.comp_mut(a)[(f[0], f[1], f[2])] = sign * share;
+                self.vel.comp_mut(a)[(f[0], f[1], f[2])] -= sign * share;
             }
         }
     }
@@ -780,26 +853,45 @@ impl Liquid {
         }
     }
 
+    /// Moves particles with the grid velocity (trilinear, RK2, L2396);
+    /// particles further into the air than the extrapolated velocity band
+    /// (escaped spray, L2450) fly ballistically under gravity until they
+    /// come back into the band.
     fn move_particles(&mut self, dt: f32) {
         let d = self.dims;
         let h = self.h;
+        let g = self.params.gravity;
         let vs = VelSampler::mac(&self.vel);
         let ext: [f32; 3] = std::array::from_fn(|a| d.n()[a] as f32 * h);
-        let moved: Vec<Vec3> = crate::par::map_collect(self.particles.len(), |i| {
+        let band = (self.params.extrapolation_layers.max(2) - 1) as f32 * h;
+        let phi = &self.phi;
+        let moved: Vec<(Vec3, Vec3)> = crate::par::map_collect(self.particles.len(), |i| {
             let p = self.particles[i];
-            let v1 = Vec3::from_array(vs.at((p / h).to_array()));
-            let mid = p + 0.5 * dt * v1;
-            let v2 = Vec3::from_array(vs.at((mid / h).to_array()));
-            let q = p + dt * v2;
-            Vec3::from_array(std::array::from_fn(|a| {
+            let (q, v) = if phi.value_at(p) > band {
+                let v = self.pvel[i] + dt * g;
+                (p + dt * v, v)
+            } else {
+                let v1 = Vec3::from_array(vs.at((p / h).to_array()));
+                let mid = p + 0.5 * dt * v1;
+                let v2 = Vec3::from_array(vs.at((mid / h).to_array()));
+                (p + dt * v2, v2)
+            };
+            let mut v = v;
+            let q = Vec3::from_array(std::array::from_fn(|a| {
                 if d.active(a) {
-                    q[a].clamp(1e-3 * h, ext[a] - 1e-3 * h)
+                    let c = q[a].clamp(1e-3 * h, ext[a] - 1e-3 * h);
+                    if c != q[a] {
+                        v[a] = 0.0;
+                    }
+                    c
                 } else {
                     p[a]
                 }
-            }))
+            }));
+            (q, v)
         });
-        self.particles = moved;
+        self.particles = moved.iter().map(|m| m.0).collect();
+        self.pvel = moved.iter().map(|m| m.1).collect();
         self.push_particles_out();
     }
 
@@ -826,30 +918,61 @@ impl Liquid {
         }
     }
 
-    /// Particle correction at high curvature (L2441-2448): only ever adds liquid.
+    /// Particle correction (L2441-2448): only ever adds liquid
+    /// (`φ ← min(φ, |x − x_p| − r_p)` near flagged particles).
     fn correct_with_particles(&mut self) {
         let h = self.h;
-        let kappa = self.phi.curvature();
-        let ks = crate::interp::Sampler::new(
-            kappa.as_slice(),
-            [kappa.nx(), kappa.ny(), kappa.nz()],
-            [0.5; 3],
-            false,
-        );
-        let r = self.params.particle_radius * h;
-        let thr = self.params.curvature_threshold / h;
-        let flags: Vec<bool> = self
-            .particles
-            .iter()
-            .map(|p| {
-                // A particle carries liquid: where the level set has it in the
-                // air (it "pokes out") near the surface, it restores the liquid.
-                let phi = self.phi.value_at(*p);
-                phi > 0.0 && phi < 2.0 * h && ks.linear((*p / h).to_array()).abs() > thr
-            })
-            .collect();
+        let flags: Vec<bool> = match self.params.correction {
+            ParticleCorrection::Curvature => {
+                let kappa = self.phi.curvature();
+                let ks = crate::interp::Sampler::new(
+                    kappa.as_slice(),
+                    [kappa.nx(), kappa.ny(), kappa.nz()],
+                    [0.5; 3],
+                    false,
+                );
+                let thr = self.params.curvature_threshold / h;
+                self.particles
+                    .iter()
+                    .map(|p| {
+                        // A particle carries liquid: where the level set has it
+                        // in the air (it "pokes out") near the surface, it
+                        // restores the liquid.
+                        let phi = self.phi.value_at(*p);
+                        phi > 0.0 && phi < 2.0 * h && ks.linear((*p / h).to_array()).abs() > thr
+                    })
+                    .collect()
+            }
+            ParticleCorrection::Escaped => self
+                .particles
+                .iter()
+                .zip(&self.radii)
+                .map(|(p, &r)| self.phi.value_at(*p) > r)
+                .collect(),
+        };
+        let radii = match self.params.correction {
+            ParticleCorrection::Curvature => {
+                vec![self.params.particle_radius * h; self.particles.len()]
+            }
+            ParticleCorrection::Escaped => self.radii.clone(),
+        };
         let ps = self.particles.clone();
-        self.splat_particles(&ps, r, Some(&flags));
+        self.splat_particles(&ps, &radii, Some(&flags));
+    }
+
+    /// Sets each non-escaped particle's radius to its depth below the
+    /// surface, clamped to `[0.1 h, r_max]` (Enright et al. 2002).
+    fn update_radii(&mut self) {
+        let h = self.h;
+        let rmax = self.params.particle_radius * h;
+        let rmin = (0.1 * h).min(rmax);
+        let phi = &self.phi;
+        for (p, r) in self.particles.iter().zip(self.radii.iter_mut()) {
+            let v = phi.value_at(*p);
+            if v <= *r {
+                *r = (-v).clamp(rmin, rmax);
+            }
+        }
     }
 
     /// Deletes particles deep inside and reseeds sparse near-surface cells (L2437).
@@ -858,13 +981,24 @@ impl Liquid {
         let h = self.h;
         let band = self.params.delete_band * h;
         let phi = &self.phi;
-        self.particles.retain(|p| phi.value_at(*p) >= -band);
+        let keep: Vec<bool> = self
+            .particles
+            .iter()
+            .map(|p| phi.value_at(*p) >= -band)
+            .collect();
+        let mut it = keep.iter();
+        self.particles.retain(|_| *it.next().expect("same length"));
+        let mut it = keep.iter();
+        self.radii.retain(|_| *it.next().expect("same length"));
+        let mut it = keep.iter();
+        self.pvel.retain(|_| *it.next().expect("same length"));
         let mut count = vec![0u32; d.cells()];
         for p in &self.particles {
             let c: [usize; 3] = std::array::from_fn(|a| ((p[a] / h) as usize).min(d.n()[a] - 1));
             count[d.idx(c[0], c[1], c[2])] += 1;
         }
         let ppc = self.params.particles_per_cell;
+        let rmax = self.params.particle_radius * h;
         let seed = Seed(self.params.seed)
             .derive("reseed")
             .derive_index(self.steps);
@@ -881,9 +1015,12 @@ impl Liquid {
                 let p = jitter(seed, c, q, ijk, d, h);
                 if self.phi.value_at(p) < 0.0 {
                     self.particles.push(p);
+                    self.radii.push(rmax);
+                    self.pvel.push(Vec3::ZERO);
                 }
             }
         }
+        self.update_radii();
     }
 }
 

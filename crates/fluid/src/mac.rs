@@ -402,7 +402,9 @@ pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Gri
                 let len = eta.length();
                 // Guard: a gradient below ~1e-6 of |ω|/h carries no direction.
                 let ci = d.idx(i, j, k);
-                if !(len > 1e-6 * (mag[ci] / h).max(f32::MIN_POSITIVE)) {
+                if len.partial_cmp(&(1e-6 * (mag[ci] / h).max(f32::MIN_POSITIVE)))
+                    != Some(std::cmp::Ordering::Greater)
+                {
                     return glam::Vec3::ZERO;
                 }
                 let nn = eta / len;

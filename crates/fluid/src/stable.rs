@@ -575,6 +575,12 @@ impl BoundedFluid {
         Ok(&mut self.subs.fields[id.0])
     }
 
+    /// Pressure of the last projection (m²/s², unit density).
+    #[must_use]
+    pub fn pressure(&self) -> Option<Grid3<f32>> {
+        self.projector.pressure(self.dims)
+    }
+
     /// Projects the current velocity (e.g. after setting it by hand).
     pub fn project(&mut self, dt: f32) -> Result<crate::pressure::SolveStats> {
         let sv = crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
