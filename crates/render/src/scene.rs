@@ -817,8 +817,10 @@ mod tests {
 
     #[test]
     fn round_trips_through_toml() {
-        let mut s = SceneDesc::default();
-        s.seed = 99;
+        let mut s = SceneDesc {
+            seed: 99,
+            ..SceneDesc::default()
+        };
         s.water.level_m = Some(12.5);
         s.render.exposure_ev = Some(-3.5);
         s.materials.diffuse = Diffuse::Lambert;
@@ -866,7 +868,8 @@ mod tests {
 
     #[test]
     fn impossible_values_are_refused_by_name() {
-        let cases: Vec<(&str, Box<dyn Fn(&mut SceneDesc)>)> = vec![
+        type Mutation = Box<dyn Fn(&mut SceneDesc)>;
+        let cases: Vec<(&str, Mutation)> = vec![
             ("render.spp", Box::new(|s| s.render.spp = 0)),
             ("render.width", Box::new(|s| s.render.width = 0)),
             ("terrain.size", Box::new(|s| s.terrain.size = 3)),
