@@ -46,7 +46,9 @@ pub use scene::{
     HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
     WaterDesc, WaterWaves,
 };
-pub use world::{StageTimes, TerrainFunction, World, sun_direction};
+pub use world::{
+    MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,
+};
 
 /// The result of rendering a scene.
 #[derive(Debug)]
