@@ -55,9 +55,7 @@
 //! # let _ = Dir3::UP;
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
-// `unsafe` is denied crate-wide; the only exceptions are the two calls into
-// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 mod dir;
 mod error;
@@ -66,7 +64,9 @@ pub mod mirage;
 pub mod optics;
 pub mod rainbow;
 pub mod scatter;
-pub mod simd;
+/// Run-time SIMD dispatch (natura-core's, re-exported): the [`simd::Simd`]
+/// token the `*_batch_with` methods take.
+pub use natura_core::simd;
 pub mod sky;
 pub mod special;
 pub mod spectrum;

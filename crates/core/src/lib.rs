@@ -20,7 +20,9 @@
 //! assert_eq!(hf.extent().x, 630.0);
 //! # Ok::<(), natura_core::CoreError>(())
 //! ```
-#![forbid(unsafe_code)]
+// `unsafe` is denied crate-wide; the only exceptions are the two calls into
+// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
+#![deny(unsafe_code)]
 
 pub mod colour;
 mod error;
@@ -32,6 +34,7 @@ pub mod io;
 mod progress;
 mod sample;
 mod seed;
+pub mod simd;
 
 pub use colour::{Ramp, ToneMap};
 pub use error::{CoreError, Result, finite, positive_finite};

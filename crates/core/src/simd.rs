@@ -1,4 +1,5 @@
-//! Run-time SIMD dispatch for the `f32` batch kernels of [`SkyView`](crate::sky::SkyView).
+//! Run-time SIMD dispatch for the workspace's `f32` batch kernels (the sky
+//! lookups of natura-atmos, the spectrum and transpose loops of natura-ocean, …).
 //!
 //! The lane kernels are written once as plain loops over fixed-size `[f32; L]`
 //! arrays (no intrinsics, safe code) and instantiated inside functions
@@ -108,7 +109,7 @@ impl Default for Simd {
 /// inlined into each `#[target_feature]` trampoline and so compiled for that
 /// instruction set. (A closure would not do: closures cannot be marked
 /// `#[inline(always)]` on stable Rust, and a large one is not inlined.)
-pub(crate) trait Kernel {
+pub trait Kernel {
     /// What the kernel returns.
     type Out;
     /// Runs the kernel; implementations must be `#[inline(always)]`.
@@ -116,8 +117,11 @@ pub(crate) trait Kernel {
 }
 
 /// Runs kernel `f` compiled for the token's instruction set.
+///
+/// Safe to call: a [`Simd`] token can only be obtained from detection, so the
+/// instruction set it names is known to be supported.
 #[inline(always)]
-pub(crate) fn run<K: Kernel>(simd: Simd, f: K) -> K::Out {
+pub fn run<K: Kernel>(simd: Simd, f: K) -> K::Out {
     match simd.0 {
         #[cfg(target_arch = "x86_64")]
         SimdLevel::Avx512 => {
