@@ -15,16 +15,21 @@ pub(crate) fn sin_cos(theta: f32) -> (f32, f32) {
     const PIO2_LO: f32 = 4.838_268e-4;
     // Round to nearest with the 1.5·2²³ trick, which vectorises on plain SSE2.
     const MAGIC: f32 = 12_582_912.0;
-    let q = (theta * TWO_OVER_PI + MAGIC) - MAGIC;
+    let qm = theta * TWO_OVER_PI + MAGIC;
+    let q = qm - MAGIC;
     let r = (theta - q * PIO2_HI) - q * PIO2_LO;
     let r2 = r * r;
     let s = r + r * r2 * (-1.666_665_5e-1 + r2 * (8.332_161e-3 + r2 * -1.951_529_6e-4));
     let c =
         1.0 - 0.5 * r2 + r2 * r2 * (4.166_664_6e-2 + r2 * (-1.388_731_6e-3 + r2 * 2.443_315_7e-5));
-    let qi = q as i32;
-    let (a, b) = if qi & 1 != 0 { (c, s) } else { (s, c) };
-    let sa = if qi & 2 != 0 { -a } else { a };
-    let cb = if (qi + 1) & 2 != 0 { -b } else { b };
+    // `qm`'s mantissa holds 2²² + q, so its low bits are q's (mod 4); reading
+    // them from the bits, and flipping signs by xor, keeps the loop free of
+    // float → int conversions and branches, so it vectorises.
+    let qi = qm.to_bits();
+    let swap = qi & 1 != 0;
+    let (a, b) = (if swap { c } else { s }, if swap { s } else { c });
+    let sa = f32::from_bits(a.to_bits() ^ ((qi & 2) << 30));
+    let cb = f32::from_bits(b.to_bits() ^ ((qi.wrapping_add(1) & 2) << 30));
     (sa, cb)
 }
 

@@ -12,13 +12,18 @@
 //!    iλk_y h̃/k and −λk_y² h̃/k; the k_x factors are applied afterwards.
 //! 3. Two real fields a and b share one complex row transform of a + i b.
 //!
-//! The spectrum is built column by column, right before its transforms, in
-//! the layout those transforms read (no transpose on the way in). The
-//! transpose between the passes is blocked by 16 rows and fused with the
-//! unfolding of the half spectrum and the pairing. Work is split over
-//! columns and row blocks; each column and row is transformed the same way
-//! whatever thread runs it, so results do not depend on the thread count.
+//! The spectrum is built a group of 16 columns at a time, right before its
+//! transforms, in the layout those transforms read (no transpose on the way
+//! in). The one transpose between the passes happens while the group is
+//! still in cache: it writes each row's 16 values contiguously. The row pass
+//! then reads its rows sequentially, unfolds and pairs them in SIMD lanes,
+//! transforms each row and unpacks it while it is in L1. The lane loops are
+//! compiled for the widest instruction set the CPU has (natura-core's
+//! run-time dispatch). Work is split over column groups and rows; each column
+//! and row is transformed the same way whatever thread runs it, so results do
+//! not depend on the thread count or the instruction set.
 
+use natura_core::simd::{self, Kernel, Simd};
 use rustfft::num_complex::Complex;
 
 use crate::fastmath::{phase, sin_cos};
@@ -27,9 +32,6 @@ use crate::patch::Ocean;
 
 type C32 = Complex<f32>;
 
-/// Rows per block of the row pass.
-pub(crate) const BLOCK: usize = 16;
-
 /// Number of column sources.
 pub(crate) const SOURCES: usize = 5;
 
@@ -37,6 +39,14 @@ pub(crate) const SOURCES: usize = 5;
 pub(crate) const PAIRS: usize = 4;
 
 pub(crate) fn evaluate(ocean: &Ocean, t: f64, frame: &mut Frame) {
+    // The spectrum, transpose and unpack loops are compiled for the widest
+    // instruction set the CPU has (the FFTs dispatch on their own).
+    evaluate_with(ocean, t, frame, Simd::best());
+}
+
+/// [`evaluate`] with the lane loops compiled for `simd` (every level gives
+/// bit-identical fields).
+pub(crate) fn evaluate_with(ocean: &Ocean, t: f64, frame: &mut Frame, simd: Simd) {
     let ny = ocean.params.ny;
     let Frame {
         fields, work, time, ..
@@ -51,7 +61,7 @@ pub(crate) fn evaluate(ocean: &Ocean, t: f64, frame: &mut Frame) {
         c3.as_mut_slice(),
         c4.as_mut_slice(),
     ];
-    column_pass(ocean, t, cols, 0, slots);
+    column_pass(ocean, t, cols, 0, slots, simd);
     let cols = [
         c0.as_slice(),
         c1.as_slice(),
@@ -71,7 +81,7 @@ pub(crate) fn evaluate(ocean: &Ocean, t: f64, frame: &mut Frame) {
         f7.as_mut_slice(),
     ];
     let _ = ny;
-    row_pass(ocean, &cols, outs, 0, slots);
+    row_pass(ocean, &cols, outs, 0, slots, simd);
 }
 
 /// Whether the choppy fields need computing (with zero choppiness they are
@@ -97,31 +107,38 @@ fn split_all<'a, const K: usize, T>(
     (heads, tails)
 }
 
-/// Columns per group of the tiled column-pass output.
+/// Columns per group of the column pass.
 #[inline]
 pub(crate) fn group_width(nx: usize) -> usize {
     (nx / 2).min(16)
 }
 
-/// Index in a tiled column buffer of column `n`, rows `y0 .. y0 + BLOCK`.
-///
-/// The buffer is laid out [group of `gw` columns][block of BLOCK rows]
-/// [column in group][row in block], so the row pass reads each block of
-/// rows as a few long contiguous runs (a plain column-major layout would
-/// touch one page per column and thrash the TLB), and the column pass can
-/// be split between threads at group boundaries.
-#[inline]
-fn tile_index(n: usize, y0: usize, ny: usize, gw: usize) -> usize {
-    (n / gw) * ny * gw + (y0 / BLOCK) * gw * BLOCK + (n % gw) * BLOCK
+/// Padding (complex values) after each column of a slot's group buffer, so
+/// the columns of a group do not all map to the same L1 sets.
+const COL_PAD: usize = 8;
+
+/// Length of a slot's group buffer: every source's columns of one group.
+pub(crate) fn group_buffer_len(nx: usize, ny: usize) -> usize {
+    SOURCES * group_width(nx) * (ny + COL_PAD)
+}
+
+/// Length of a slot's row buffer: one row.
+pub(crate) fn row_buffer_len(nx: usize) -> usize {
+    nx
 }
 
 /// Builds and transforms the columns of groups `g0 ..` covered by `cols`.
+///
+/// `cols` is laid out [group of `gw` columns][row][column in group]: a group
+/// is contiguous (so threads split at group boundaries) and so is each
+/// row's run of `gw` values in it (so the row pass reads sequentially).
 fn column_pass(
     ocean: &Ocean,
     t: f64,
     cols: [&mut [C32]; SOURCES],
     g0: usize,
     slots: &mut [crate::frame::Slot],
+    simd: Simd,
 ) {
     let (nx, ny) = (ocean.params.nx, ocean.params.ny);
     let gw = group_width(nx);
@@ -134,43 +151,112 @@ fn column_pass(
             let (sa, sb) = slots.split_at_mut(left_slots);
             let (ca, cb) = split_all(cols, left * ny * gw);
             rayon::join(
-                || column_pass(ocean, t, ca, g0, sa),
-                || column_pass(ocean, t, cb, g0 + left, sb),
+                || column_pass(ocean, t, ca, g0, sa, simd),
+                || column_pass(ocean, t, cb, g0 + left, sb, simd),
             );
             return;
         }
     }
-    let slot = &mut slots[0];
-    let lam = ocean.params.choppiness as f32;
-    let chop = choppy(ocean);
-    let used = if chop { SOURCES } else { 2 };
-    let mut cols = cols;
-    for c in 0..groups * gw {
-        let n = g0 * gw + c;
-        {
-            let (c0, rest) = slot.col.split_at_mut(ny);
-            let (c1, rest) = rest.split_at_mut(ny);
-            let (c2, rest) = rest.split_at_mut(ny);
-            let (c3, c4) = rest.split_at_mut(ny);
-            fill_column(ocean, t, lam, chop, n * ny, [c0, c1, c2, c3, c4]);
+    simd::run(
+        simd,
+        ColumnLeaf {
+            ocean,
+            t,
+            cols,
+            g0,
+            slot: &mut slots[0],
+        },
+    );
+}
+
+/// The serial part of [`column_pass`], compiled per instruction set.
+struct ColumnLeaf<'a, 'b> {
+    ocean: &'a Ocean,
+    t: f64,
+    cols: [&'b mut [C32]; SOURCES],
+    g0: usize,
+    slot: &'b mut crate::frame::Slot,
+}
+
+impl Kernel for ColumnLeaf<'_, '_> {
+    type Out = ();
+    #[inline(always)]
+    fn call(self) {
+        let ColumnLeaf {
+            ocean,
+            t,
+            mut cols,
+            g0,
+            slot,
+        } = self;
+        let (nx, ny) = (ocean.params.nx, ocean.params.ny);
+        let gw = group_width(nx);
+        let cs = ny + COL_PAD;
+        let groups = cols[0].len() / (ny * gw);
+        let lam = ocean.params.choppiness as f32;
+        let chop = choppy(ocean);
+        let used = if chop { SOURCES } else { 2 };
+        let buf = &mut slot.col[..SOURCES * gw * cs];
+        for g in 0..groups {
+            // Fill and transform the group's columns, source-major.
+            for c in 0..gw {
+                let n = (g0 + g) * gw + c;
+                let mut parts = buf
+                    .chunks_exact_mut(gw * cs)
+                    .map(|b| &mut b[c * cs..c * cs + ny]);
+                let out: [&mut [C32]; SOURCES] =
+                    std::array::from_fn(|_| parts.next().expect("one buffer per source"));
+                fill_column(ocean, t, lam, chop, n * ny, out);
+            }
+            for s in 0..used {
+                for c in 0..gw {
+                    let at = (s * gw + c) * cs;
+                    ocean
+                        .col_fft
+                        .process_with_scratch(&mut buf[at..at + ny], &mut slot.scratch);
+                }
+            }
+            // Transpose into [row][column in group].
+            for (s, dst) in cols.iter_mut().enumerate().take(used) {
+                let src = &buf[s * gw * cs..(s + 1) * gw * cs];
+                let dst = &mut dst[g * ny * gw..(g + 1) * ny * gw];
+                transpose_group(src, dst, gw, cs, ny);
+            }
         }
-        // One call transforms every length-M chunk (the `used` columns).
-        ocean
-            .col_fft
-            .process_with_scratch(&mut slot.col[..used * ny], &mut slot.scratch);
-        // Scatter into the tiled layout, relative to this range's first group.
-        for (s, dst) in cols.iter_mut().enumerate().take(used) {
-            let src = &slot.col[s * ny..(s + 1) * ny];
-            for y0 in (0..ny).step_by(BLOCK) {
-                let at = tile_index(c, y0, ny, gw);
-                dst[at..at + BLOCK].copy_from_slice(&src[y0..y0 + BLOCK]);
+    }
+}
+
+/// Writes `dst[y·gw + c] = src[c·cs + y]` for `c < gw`, `y < ny`.
+#[inline(always)]
+fn transpose_group(src: &[C32], dst: &mut [C32], gw: usize, cs: usize, ny: usize) {
+    /// Rows per register block.
+    const R: usize = 8;
+    if gw == 16 && ny % R == 0 {
+        // 16 × 8 blocks: contiguous loads of 8 rows per column, then
+        // contiguous stores of 16 columns per row (no gathers).
+        for y0 in (0..ny).step_by(R) {
+            let mut tile = [[C32::new(0.0, 0.0); R]; 16];
+            for (c, t) in tile.iter_mut().enumerate() {
+                t.copy_from_slice(&src[c * cs + y0..c * cs + y0 + R]);
+            }
+            let out = &mut dst[y0 * 16..(y0 + R) * 16];
+            for (y, row) in out.chunks_exact_mut(16).enumerate() {
+                for (c, v) in row.iter_mut().enumerate() {
+                    *v = tile[c][y];
+                }
+            }
+        }
+    } else {
+        for (y, row) in dst.chunks_exact_mut(gw).enumerate().take(ny) {
+            for (c, v) in row.iter_mut().enumerate() {
+                *v = src[c * cs + y];
             }
         }
     }
 }
 
 /// Writes the five source spectra of column `base / M` at time `t`.
-#[inline]
+#[inline(always)]
 fn fill_column(
     ocean: &Ocean,
     t: f64,
@@ -179,6 +265,9 @@ fn fill_column(
     base: usize,
     out: [&mut [C32]; SOURCES],
 ) {
+    /// Lanes per chunk: the phase and the sine/cosine run on plain arrays
+    /// (which vectorise), the complex stores after them.
+    const L: usize = 16;
     let ny = ocean.params.ny;
     let [o0, o1, o2, o3, o4] = out;
     let nu = &ocean.nu[base..base + ny];
@@ -188,174 +277,262 @@ fn fill_column(
     let qi = &ocean.q_im[base..base + ny];
     let ik = &ocean.inv_k[base..base + ny];
     let kys = &ocean.ky[..ny];
-    let (o0, o1) = (&mut o0[..ny], &mut o1[..ny]);
-    if !chop {
-        for m in 0..ny {
+    let mut m0 = 0;
+    while m0 < ny {
+        let w = L.min(ny - m0);
+        let mut hr = [0.0f32; L];
+        let mut hi = [0.0f32; L];
+        for j in 0..w {
+            let m = m0 + j;
             let (s, c) = sin_cos(phase(nu[m] * t));
-            let hr = pr[m] * c + qi[m] * s;
-            let hi = pi[m] * c - qr[m] * s;
-            let ky = kys[m];
-            o0[m] = C32::new(hr, hi);
-            o1[m] = C32::new(-ky * hi, ky * hr);
+            // h̃ = h̃₀(k) e^{−iθ} + h̃₀*(−k) e^{iθ} = p cos θ − i q sin θ.
+            hr[j] = pr[m] * c + qi[m] * s;
+            hi[j] = pi[m] * c - qr[m] * s;
         }
-        return;
-    }
-    let (o2, o3, o4) = (&mut o2[..ny], &mut o3[..ny], &mut o4[..ny]);
-    for m in 0..ny {
-        let (s, c) = sin_cos(phase(nu[m] * t));
-        // h̃ = h̃₀(k) e^{−iθ} + h̃₀*(−k) e^{iθ} = p cos θ − i q sin θ.
-        let hr = pr[m] * c + qi[m] * s;
-        let hi = pi[m] * c - qr[m] * s;
-        let ky = kys[m];
-        let l = lam * ik[m];
-        let (lr, li) = (l * hr, l * hi);
-        o0[m] = C32::new(hr, hi);
-        o1[m] = C32::new(-ky * hi, ky * hr);
-        o2[m] = C32::new(lr, li);
-        o3[m] = C32::new(-ky * li, ky * lr);
-        o4[m] = C32::new(-ky * ky * lr, -ky * ky * li);
+        for j in 0..w {
+            let m = m0 + j;
+            let ky = kys[m];
+            o0[m] = C32::new(hr[j], hi[j]);
+            o1[m] = C32::new(-ky * hi[j], ky * hr[j]);
+        }
+        if chop {
+            for j in 0..w {
+                let m = m0 + j;
+                let ky = kys[m];
+                let l = lam * ik[m];
+                let (lr, li) = (l * hr[j], l * hi[j]);
+                o2[m] = C32::new(lr, li);
+                o3[m] = C32::new(-ky * li, ky * lr);
+                o4[m] = C32::new(-ky * ky * lr, -ky * ky * li);
+            }
+        }
+        m0 += w;
     }
 }
 
-/// Unfolds, pairs and row-transforms rows `y0 .. y0 + outs[0].len()/N`.
+/// Unfolds, pairs, row-transforms and unpacks rows `y0 .. y0 + outs[0].len()/N`.
 fn row_pass(
     ocean: &Ocean,
     cols: &[&[C32]; SOURCES],
     outs: [&mut [f32]; 8],
     y0: usize,
     slots: &mut [crate::frame::Slot],
+    simd: Simd,
 ) {
     let nx = ocean.params.nx;
     let nrows = outs[0].len() / nx;
     #[cfg(feature = "parallel")]
-    if slots.len() > 1 && nrows > BLOCK {
+    if slots.len() > 1 && nrows > 1 {
         let left_slots = slots.len() / 2;
-        let blocks = nrows.div_ceil(BLOCK);
-        let left_rows = (blocks * left_slots / slots.len()) * BLOCK;
+        let left_rows = nrows * left_slots / slots.len();
         if left_rows > 0 && left_rows < nrows {
             let (sa, sb) = slots.split_at_mut(left_slots);
             let (oa, ob) = split_all(outs, left_rows * nx);
             rayon::join(
-                || row_pass(ocean, cols, oa, y0, sa),
-                || row_pass(ocean, cols, ob, y0 + left_rows, sb),
+                || row_pass(ocean, cols, oa, y0, sa, simd),
+                || row_pass(ocean, cols, ob, y0 + left_rows, sb, simd),
             );
             return;
         }
     }
-    let slot = &mut slots[0];
-    let mut outs = outs;
-    let mut y = 0;
-    while y < nrows {
-        let b = BLOCK.min(nrows - y);
-        row_block(ocean, cols, &mut outs, y0 + y, y, b, slot);
-        y += b;
+    simd::run(
+        simd,
+        RowLeaf {
+            ocean,
+            cols,
+            outs,
+            y0,
+            slot: &mut slots[0],
+        },
+    );
+}
+
+/// The serial part of [`row_pass`], compiled per instruction set.
+struct RowLeaf<'a, 'b> {
+    ocean: &'a Ocean,
+    cols: &'a [&'a [C32]; SOURCES],
+    outs: [&'b mut [f32]; 8],
+    y0: usize,
+    slot: &'b mut crate::frame::Slot,
+}
+
+impl Kernel for RowLeaf<'_, '_> {
+    type Out = ();
+    #[inline(always)]
+    fn call(self) {
+        let RowLeaf {
+            ocean,
+            cols,
+            mut outs,
+            y0,
+            slot,
+        } = self;
+        let nx = ocean.params.nx;
+        let nrows = outs[0].len() / nx;
+        for r in 0..nrows {
+            row(ocean, cols, &mut outs, y0 + r, r, slot);
+        }
     }
 }
 
-/// One block of `b` rows starting at global row `gy` (local row `ly` of `outs`).
-fn row_block(
+/// Field pairs of the row transforms: (source of a, factor of a, source of
+/// b, factor of b), each field a real part and b the imaginary part.
+const PLAN: [(usize, Factor, usize, Factor); PAIRS] = [
+    (0, Factor::One, 0, Factor::IKx),    // h, ε_x
+    (1, Factor::One, 3, Factor::One),    // ε_y, d_y
+    (2, Factor::IKx, 2, Factor::NegKx2), // d_x, ∂d_x/∂x
+    (4, Factor::One, 3, Factor::IKx),    // ∂d_y/∂y, ∂d_x/∂y
+];
+
+/// Output fields of each pair and what is added to them (the diagonal
+/// Jacobian terms get their identity).
+const OUT: [(usize, f32, usize, f32); PAIRS] = [
+    (0, 0.0, 1, 0.0),
+    (2, 0.0, 4, 0.0),
+    (3, 0.0, 5, 1.0),
+    (6, 1.0, 7, 0.0),
+];
+
+/// Global row `gy` (local row `ly` of `outs`): every pair's unfolding,
+/// transform and unpacking.
+#[inline(always)]
+fn row(
     ocean: &Ocean,
     cols: &[&[C32]; SOURCES],
     outs: &mut [&mut [f32]; 8],
     gy: usize,
     ly: usize,
-    b: usize,
     slot: &mut crate::frame::Slot,
 ) {
     let nx = ocean.params.nx;
-    let ny = ocean.params.ny;
     let half = nx / 2;
-    // Rows are padded so the b rows of a block do not all map to the same
-    // cache sets (a power-of-two stride would make the unfolding below
-    // thrash L1).
-    let stride = row_stride(nx);
-    let rows = &mut slot.rows[..PAIRS * b * stride];
-    // (source of a, factor of a, source of b, factor of b).
-    const PLAN: [(usize, Factor, usize, Factor); PAIRS] = [
-        (0, Factor::One, 0, Factor::IKx),    // h, ε_x
-        (1, Factor::One, 3, Factor::One),    // ε_y, d_y
-        (2, Factor::IKx, 2, Factor::NegKx2), // d_x, ∂d_x/∂x
-        (4, Factor::One, 3, Factor::IKx),    // ∂d_y/∂y, ∂d_x/∂y
-    ];
+    let gw = group_width(nx);
     let chop = choppy(ocean);
     let pairs = if chop { PAIRS } else { 2 };
-    for (p, &(sa, fa, sb, fb)) in PLAN.iter().enumerate().take(pairs) {
-        let g = &mut rows[p * b * stride..(p + 1) * b * stride];
+    let g = &mut slot.rows[..nx];
+    for (p, &(sa, fa, sb, fb)) in PLAN.iter().enumerate() {
+        let (ia, oa, ib, ob) = OUT[p];
+        let (da, db) = two_mut(outs, ia, ib);
+        let (da, db) = (
+            &mut da[ly * nx..(ly + 1) * nx],
+            &mut db[ly * nx..(ly + 1) * nx],
+        );
+        if p >= pairs {
+            // Without choppiness d_x and the Jacobian are exactly 0 and 1.
+            da.fill(oa);
+            db.fill(ob);
+            continue;
+        }
+        // Without choppiness d_y (source 3) is exactly 0 and not transformed.
+        let b_zero = !chop && sb == 3;
         let (ca, cb) = (cols[sa], cols[sb]);
+        match (fa, fb, b_zero) {
+            (_, _, true) => unfold::<F_ONE, F_ZERO>(ocean, ca, cb, g, gy),
+            (Factor::One, Factor::IKx, _) => unfold::<F_ONE, F_IKX>(ocean, ca, cb, g, gy),
+            (Factor::One, Factor::One, _) => unfold::<F_ONE, F_ONE>(ocean, ca, cb, g, gy),
+            (Factor::IKx, Factor::NegKx2, _) => {
+                unfold::<F_IKX, F_NEG_KX2>(ocean, ca, cb, g, gy);
+            }
+            _ => unreachable!("every pair of the plan has a kernel"),
+        }
         // k_x = 0: the column of a real field is real; the Nyquist bin is 0.
-        let gw = group_width(nx);
         {
-            let at = tile_index(0, gy, ny, gw);
-            let va = &ca[at..at + b];
-            let vb = &cb[at..at + b];
-            let (ma, mb) = (fa.multiplier(0.0), fb.multiplier(0.0));
-            for r in 0..b {
-                let row = &mut g[r * stride..r * stride + nx];
-                row[0] = C32::new((va[r] * ma).re, (vb[r] * mb).re);
-                row[half] = C32::new(0.0, 0.0);
-            }
+            let at = gy * gw;
+            let a = cols[sa][at] * fa.multiplier(0.0);
+            let bb = if b_zero {
+                C32::new(0.0, 0.0)
+            } else {
+                cols[sb][at] * fb.multiplier(0.0)
+            };
+            g[0] = C32::new(a.re, bb.re);
+            g[half] = C32::new(0.0, 0.0);
         }
-        for n in 1..half {
-            let kx = ocean.kx[n];
-            let (ma, mb) = (fa.multiplier(kx), fb.multiplier(kx));
-            let at = tile_index(n, gy, ny, gw);
-            let va = &ca[at..at + b];
-            let vb = &cb[at..at + b];
-            for r in 0..b {
-                let a = va[r] * ma;
-                let bb = vb[r] * mb;
-                let o = r * stride;
-                // G(n) = A + iB, G(N−n) = A* + iB*.
-                g[o + n] = C32::new(a.re - bb.im, a.im + bb.re);
-                g[o + nx - n] = C32::new(a.re + bb.im, bb.re - a.im);
-            }
-        }
-        for r in 0..b {
-            ocean
-                .row_fft
-                .process_with_scratch(&mut g[r * stride..r * stride + nx], &mut slot.scratch);
-        }
-    }
-    // Unpack: real parts are field a, imaginary parts field b; the diagonal
-    // Jacobian terms get their identity added.
-    const OUT: [(usize, f32, usize, f32); PAIRS] = [
-        (0, 0.0, 1, 0.0),
-        (2, 0.0, 4, 0.0),
-        (3, 0.0, 5, 1.0),
-        (6, 1.0, 7, 0.0),
-    ];
-    for (p, &(ia, oa, ib, ob)) in OUT.iter().enumerate() {
-        let (fa, fb) = two_mut(outs, ia, ib);
-        for r in 0..b {
-            let range = (ly + r) * nx..(ly + r + 1) * nx;
-            let (da, db) = (&mut fa[range.clone()], &mut fb[range]);
-            if p >= pairs {
-                da.fill(oa);
-                db.fill(ob);
-                continue;
-            }
-            let o = p * b * stride + r * stride;
-            let g = &rows[o..o + nx];
-            if p == 1 && !chop {
-                // d_y shares a transform with ε_y; without chop it is exactly 0.
-                for (x, a) in g.iter().zip(da.iter_mut()) {
-                    *a = x.re;
-                }
-                db.fill(0.0);
-                continue;
-            }
-            for ((x, a), bb) in g.iter().zip(da.iter_mut()).zip(db.iter_mut()) {
+        ocean
+            .row_fft
+            .process_with_scratch(&mut g[..nx], &mut slot.scratch);
+        // Unpack: real parts are field a, imaginary parts field b.
+        if b_zero {
+            for (x, a) in g[..nx].iter().zip(da.iter_mut()) {
                 *a = x.re + oa;
-                *bb = x.im + ob;
             }
+            db.fill(0.0);
+            continue;
+        }
+        for ((x, a), b) in g[..nx].iter().zip(da.iter_mut()).zip(db.iter_mut()) {
+            *a = x.re + oa;
+            *b = x.im + ob;
         }
     }
 }
 
-/// Padded row length (complex values) of the row-pass buffers.
-#[inline]
-pub(crate) fn row_stride(nx: usize) -> usize {
-    nx + 16
+/// Factor codes for [`unfold`] (const generics keep its loop branch-free).
+const F_ZERO: u8 = 0;
+const F_ONE: u8 = 1;
+const F_IKX: u8 = 2;
+const F_NEG_KX2: u8 = 3;
+
+/// Multiplies `v` by the factor with code `F` at wavenumber `kx`.
+#[inline(always)]
+fn apply<const F: u8>(v: C32, kx: f32) -> C32 {
+    match F {
+        F_ZERO => C32::new(0.0, 0.0),
+        F_ONE => v,
+        F_IKX => C32::new(-kx * v.im, kx * v.re),
+        _ => {
+            let s = -kx * kx;
+            C32::new(s * v.re, s * v.im)
+        }
+    }
+}
+
+/// Unfolds the half spectra `ca`, `cb` of row `gy` (times their factors) into
+/// the full row `g` of G = A + iB: G(n) = A + iB, G(N−n) = A* + iB* for
+/// 0 < n < N/2 (bins 0 and N/2 are left to the caller).
+#[inline(always)]
+fn unfold<const FA: u8, const FB: u8>(
+    ocean: &Ocean,
+    ca: &[C32],
+    cb: &[C32],
+    g: &mut [C32],
+    gy: usize,
+) {
+    let (nx, ny) = (ocean.params.nx, ocean.params.ny);
+    let gw = group_width(nx);
+    if gw != 16 {
+        for n in 1..nx / 2 {
+            let at = (n / gw) * ny * gw + gy * gw + n % gw;
+            let a = apply::<FA>(ca[at], ocean.kx[n]);
+            let b = apply::<FB>(cb[at], ocean.kx[n]);
+            g[n] = C32::new(a.re - b.im, a.im + b.re);
+            g[nx - n] = C32::new(a.re + b.im, b.re - a.im);
+        }
+        return;
+    }
+    for grp in 0..nx / 2 / 16 {
+        let at = grp * ny * 16 + gy * 16;
+        let va: &[C32; 16] = ca[at..at + 16].try_into().expect("16 values");
+        let vb: &[C32; 16] = cb[at..at + 16].try_into().expect("16 values");
+        let kx: &[f32; 16] = ocean.kx[grp * 16..grp * 16 + 16]
+            .try_into()
+            .expect("16 wavenumbers");
+        let mut fwd = [C32::new(0.0, 0.0); 16];
+        let mut rev = [C32::new(0.0, 0.0); 16];
+        for c in 0..16 {
+            let a = apply::<FA>(va[c], kx[c]);
+            let b = apply::<FB>(vb[c], kx[c]);
+            fwd[c] = C32::new(a.re - b.im, a.im + b.re);
+            rev[15 - c] = C32::new(a.re + b.im, b.re - a.im);
+        }
+        let n0 = grp * 16;
+        if n0 > 0 {
+            g[n0..n0 + 16].copy_from_slice(&fwd);
+            g[nx - n0 - 15..=nx - n0].copy_from_slice(&rev);
+        } else {
+            // Bin 0 is the caller's; its mirror would be bin N.
+            g[1..16].copy_from_slice(&fwd[1..]);
+            g[nx - 15..nx].copy_from_slice(&rev[..15]);
+        }
+    }
 }
 
 /// Borrows two distinct elements of `outs` mutably.
@@ -384,6 +561,43 @@ impl Factor {
             Factor::One => C32::new(1.0, 0.0),
             Factor::IKx => C32::new(0.0, kx),
             Factor::NegKx2 => C32::new(-kx * kx, 0.0),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{OceanParams, Phillips, Seed};
+
+    /// Every instruction set gives bit-identical fields, for a size with
+    /// 16-column groups and one with narrower groups, with and without chop.
+    #[test]
+    fn every_simd_level_gives_identical_fields() {
+        for (n, m, chop) in [(64, 32, 1.3), (16, 32, 0.8), (32, 16, 0.0)] {
+            let params = OceanParams {
+                nx: n,
+                ny: m,
+                lx: 80.0,
+                ly: 40.0,
+                choppiness: chop,
+                ..OceanParams::default()
+            };
+            let o = Ocean::new(&params, &Phillips::default(), Seed(9)).expect("ocean");
+            let mut want = Frame::new(&o).expect("frame");
+            evaluate_with(&o, 3.7, &mut want, Simd::baseline());
+            for simd in Simd::supported() {
+                let mut got = Frame::new(&o).expect("frame");
+                evaluate_with(&o, 3.7, &mut got, simd);
+                for (a, b) in got.fields.iter().zip(&want.fields) {
+                    let same = a
+                        .as_slice()
+                        .iter()
+                        .zip(b.as_slice())
+                        .all(|(x, y)| x.to_bits() == y.to_bits());
+                    assert!(same, "{:?} differs at n = {n}", simd.level());
+                }
+            }
         }
     }
 }

@@ -7,7 +7,7 @@ use natura_core::Grid2;
 use rustfft::num_complex::Complex;
 
 use crate::error::{OceanError, Result};
-use crate::fft::{BLOCK, PAIRS, SOURCES};
+use crate::fft::SOURCES;
 use crate::patch::Ocean;
 
 /// Per-worker scratch of the FFT passes.
@@ -15,7 +15,7 @@ use crate::patch::Ocean;
 pub(crate) struct Slot {
     pub(crate) rows: Vec<Complex<f32>>,
     pub(crate) scratch: Vec<Complex<f32>>,
-    /// One column of each source.
+    /// One group of columns of each source (padded).
     pub(crate) col: Vec<Complex<f32>>,
 }
 
@@ -121,9 +121,9 @@ impl Frame {
             .get_inplace_scratch_len()
             .max(ocean.row_fft.get_inplace_scratch_len());
         let slot = Slot {
-            rows: vec![zero; PAIRS * BLOCK.min(ny) * crate::fft::row_stride(nx)],
+            rows: vec![zero; crate::fft::row_buffer_len(nx)],
             scratch: vec![zero; scratch],
-            col: vec![zero; SOURCES * ny],
+            col: vec![zero; crate::fft::group_buffer_len(nx, ny)],
         };
         Ok(Self {
             fields: std::array::from_fn(|_| grid.clone()),
