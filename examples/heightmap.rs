@@ -12,8 +12,9 @@
 
 mod common;
 
+use common::scene::{LatticeTerrain, lattice_terrain};
 use natura::core::glam::Vec3;
-use natura::core::{Boundary, Grid2, HeightField, Image, Ramp, Seed};
+use natura::core::{HeightField, Image, Ramp, Seed};
 
 fn main() {
     let mut args = common::Args::from_env();
@@ -44,7 +45,12 @@ fn main() {
     });
     let hf = match input {
         Some(path) => common::check(HeightField::load(&path, cell, range)),
-        None => common::check(synthetic(size, cell.unwrap_or(10.0), Seed(seed))),
+        None => common::check(lattice_terrain(
+            size,
+            cell.unwrap_or(10.0),
+            Seed(seed),
+            &LatticeTerrain::FBM,
+        )),
     };
 
     let (lo, hi) = hf.min_max();
@@ -60,28 +66,4 @@ fn main() {
     common::check(img.save_png(&png));
     println!("{nx} × {ny} samples, heights {lo:.1} … {hi:.1} m");
     println!("wrote {}", png.display());
-}
-
-/// Sum of octaves of bilinearly interpolated Gaussian lattice values, amplitude
-/// halving as frequency doubles (H = 1).
-fn synthetic(n: usize, cell: f32, seed: Seed) -> natura::core::Result<HeightField> {
-    let mut octaves = Vec::new();
-    let mut lattice = 4usize;
-    while lattice <= n / 2 {
-        let s = seed.derive_index(lattice as u64);
-        octaves.push(Grid2::from_fn(lattice + 1, lattice + 1, |i, j| {
-            s.gaussian2(i as i64, j as i64) as f32
-        })?);
-        lattice *= 2;
-    }
-    HeightField::from_fn(n, n, cell, |i, j| {
-        let mut h = 0.0;
-        let mut amp = 400.0;
-        for g in &octaves {
-            let k = (g.width() - 1) as f32 / (n - 1) as f32;
-            h += amp * g.sample_bilinear(i as f32 * k, j as f32 * k, Boundary::Clamp);
-            amp *= 0.5;
-        }
-        h
-    })
 }

@@ -15,8 +15,9 @@
 
 mod common;
 
+use common::scene::{LatticeTerrain, albedo, lattice_terrain};
 use natura::core::glam::Vec3;
-use natura::core::{Boundary, Grid2, HeightField, Seed};
+use natura::core::{HeightField, Seed};
 use natura::trace::{
     Camera, MipmapTracer, OrthographicCamera, PinholeCamera, Ray, RenderOptions, Tracer,
     render_camera,
@@ -84,10 +85,11 @@ fn main() {
     let hf = match &input {
         Some(path) => common::check(HeightField::load(path, cell, range)),
         // Keep the synthetic landscape about 20 km across whatever its resolution.
-        None => common::check(synthetic(
+        None => common::check(lattice_terrain(
             size,
             cell.unwrap_or(20480.0 / (size.max(2) - 1) as f32),
             Seed(seed),
+            &LatticeTerrain::HETERO,
         )),
     };
     let bar = common::Bar::new();
@@ -189,48 +191,4 @@ fn main() {
 fn fmt_res(cam: &impl Camera) -> String {
     let r = cam.resolution();
     format!("{} × {} pixels", r.x, r.y)
-}
-
-/// A plain natural albedo: grass low and gentle, rock on steep slopes, snow high.
-fn albedo(height01: f32, normal_z: f32) -> Vec3 {
-    let grass = Vec3::new(0.16, 0.22, 0.08);
-    let rock = Vec3::new(0.30, 0.27, 0.24);
-    let snow = Vec3::new(0.85, 0.87, 0.9);
-    let steep = ((0.92 - normal_z) / 0.2).clamp(0.0, 1.0);
-    let ground = grass.lerp(rock, steep.max(((height01 - 0.35) / 0.3).clamp(0.0, 1.0)));
-    let snowy = (((height01 - 0.72) / 0.1).clamp(0.0, 1.0)) * (1.0 - steep * 0.8);
-    ground.lerp(snow, snowy)
-}
-
-/// Heterogeneous terrain over bilinear Gaussian lattices (natura-core only):
-/// each octave's amplitude scales with the altitude so far, so lowlands are
-/// smooth and highlands rough (Musgrave's "hetero terrain" idea).
-fn synthetic(n: usize, cell: f32, seed: Seed) -> natura::core::Result<HeightField> {
-    let mut octaves = Vec::new();
-    let mut lattice = 3usize;
-    while lattice <= n / 2 {
-        let s = seed.derive_index(lattice as u64);
-        octaves.push(Grid2::from_fn(lattice + 1, lattice + 1, |i, j| {
-            s.gaussian2(i as i64, j as i64) as f32
-        })?);
-        lattice *= 2;
-    }
-    let g = Grid2::<f32>::par_from_fn(n, n, |i, j| {
-        let mut h = 0.0f32;
-        let mut amp = 1.0f32;
-        for (k, g) in octaves.iter().enumerate() {
-            let f = (g.width() - 1) as f32 / (n - 1) as f32;
-            let v = g.sample_bilinear(i as f32 * f, j as f32 * f, Boundary::Clamp);
-            let w = if k == 0 {
-                1.0
-            } else {
-                (0.5 + 0.6 * h).clamp(0.03, 1.6)
-            };
-            h += amp * w * v;
-            amp *= 0.5;
-        }
-        // Flood the lowest ground into flat water-level plains.
-        900.0 * h.max(-0.6) + 600.0
-    })?;
-    HeightField::new(g, cell)
 }

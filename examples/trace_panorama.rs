@@ -13,8 +13,9 @@
 
 mod common;
 
+use common::scene::{LatticeTerrain, albedo, lattice_terrain};
 use natura::core::glam::Vec3;
-use natura::core::{Boundary, Grid2, HeightField, Seed};
+use natura::core::Seed;
 use natura::trace::{
     Eye, MipmapTracer, PanoramicCamera, Projection, Ray, RenderOptions, Stereo, Tracer,
     render_camera,
@@ -53,10 +54,11 @@ fn main() {
         )),
     };
     let height = ((width as f32 * vfov / hfov).round() as u32).max(1);
-    let hf = common::check(synthetic(
+    let hf = common::check(lattice_terrain(
         size,
         25600.0 / (size.max(2) - 1) as f32,
         Seed(seed),
+        &LatticeTerrain::HETERO,
     ));
     let tracer = common::check(MipmapTracer::new(&hf));
     let (lo, hi) = hf.min_max();
@@ -129,45 +131,4 @@ fn main() {
         common::check(img.save_png(&path));
         println!("wrote {} ({width} × {height}, {proj})", path.display());
     }
-}
-
-/// A plain natural albedo: grass low and gentle, rock on steep slopes, snow high.
-fn albedo(height01: f32, normal_z: f32) -> Vec3 {
-    let grass = Vec3::new(0.16, 0.22, 0.08);
-    let rock = Vec3::new(0.30, 0.27, 0.24);
-    let snow = Vec3::new(0.85, 0.87, 0.9);
-    let steep = ((0.92 - normal_z) / 0.2).clamp(0.0, 1.0);
-    let ground = grass.lerp(rock, steep.max(((height01 - 0.35) / 0.3).clamp(0.0, 1.0)));
-    let snowy = (((height01 - 0.72) / 0.1).clamp(0.0, 1.0)) * (1.0 - steep * 0.8);
-    ground.lerp(snow, snowy)
-}
-
-/// Heterogeneous terrain over bilinear Gaussian lattices (natura-core only).
-fn synthetic(n: usize, cell: f32, seed: Seed) -> natura::core::Result<HeightField> {
-    let mut octaves = Vec::new();
-    let mut lattice = 3usize;
-    while lattice <= n / 2 {
-        let s = seed.derive_index(lattice as u64);
-        octaves.push(Grid2::from_fn(lattice + 1, lattice + 1, |i, j| {
-            s.gaussian2(i as i64, j as i64) as f32
-        })?);
-        lattice *= 2;
-    }
-    let g = Grid2::<f32>::par_from_fn(n, n, |i, j| {
-        let mut h = 0.0f32;
-        let mut amp = 1.0f32;
-        for (k, g) in octaves.iter().enumerate() {
-            let f = (g.width() - 1) as f32 / (n - 1) as f32;
-            let v = g.sample_bilinear(i as f32 * f, j as f32 * f, Boundary::Clamp);
-            let w = if k == 0 {
-                1.0
-            } else {
-                (0.5 + 0.6 * h).clamp(0.03, 1.6)
-            };
-            h += amp * w * v;
-            amp *= 0.5;
-        }
-        900.0 * h.max(-0.6) + 600.0
-    })?;
-    HeightField::new(g, cell)
 }

@@ -1,6 +1,10 @@
-//! Shared helpers for the example programs: flag parsing and an `indicatif`
-//! binding of `natura_core::Progress`. Algorithms never live here.
+//! Shared helpers for the example programs: flag parsing, an `indicatif`
+//! binding of `natura_core::Progress`, and demo data ([`scene`]). Algorithms
+//! never live here.
 #![allow(dead_code)]
+
+#[cfg(feature = "core")]
+pub mod scene;
 
 use std::path::PathBuf;
 use std::str::FromStr;
