@@ -83,6 +83,20 @@ pub(crate) fn face_fixed(
         || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
 }
 
+/// Per face of component `a` (x fastest): 1 where the face is fixed (a wall
+/// or touching a solid, see [`face_fixed`]), 0 where it is free.
+pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize) -> Vec<u8> {
+    let fd = d.face_dims(a);
+    let mut out = vec![0u8; fd[0] * fd[1] * fd[2]];
+    par::for_chunks(&mut out, fd[0], |r, row| {
+        let (j, k) = (r % fd[1], r / fd[1]);
+        for (i, v) in row.iter_mut().enumerate() {
+            *v = u8::from(face_fixed(d, kinds, bounds, a, [i, j, k]));
+        }
+    });
+    out
+}
+
 /// Sets wall faces to zero and faces touching solid cells to `solid_vel(a, face_index)`.
 pub(crate) fn enforce_solids(
     vel: &mut MacVelocity,

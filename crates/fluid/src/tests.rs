@@ -30,3 +30,29 @@ fn implicit_diffusion_is_a_contraction_and_conserves_mass() {
     let after: f64 = y.iter().map(|&v| f64::from(v)).sum();
     assert!(after < before);
 }
+
+#[test]
+fn row_wise_diffusion_matches_general_form() {
+    use crate::diffuse::{EXCLUDED, diffuse_ref};
+    for n in [[23usize, 1, 19], [9, 7, 11], [1, 1, 40]] {
+        let len = n[0] * n[1] * n[2];
+        let data: Vec<f32> = (0..len)
+            .map(|i| ((natura_core::mix64(i as u64 ^ 77) % 1000) as f32) / 100.0 - 3.0)
+            .collect();
+        let role: Vec<u8> = (0..len)
+            .map(|i| match natura_core::mix64(i as u64 ^ 99) % 9 {
+                0 => DIRICHLET,
+                1 => EXCLUDED,
+                _ => FREE,
+            })
+            .collect();
+        for coef in [0.05f32, 2.5] {
+            let (mut a, mut b) = (data.clone(), data.clone());
+            diffuse(&mut a, n, coef, &role);
+            diffuse_ref(&mut b, n, coef, &role);
+            for (i, (&x, &y)) in a.iter().zip(&b).enumerate() {
+                assert!((x - y).abs() <= 1e-4, "{n:?} coef {coef} [{i}]: {x} vs {y}");
+            }
+        }
+    }
+}
