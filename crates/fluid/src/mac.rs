@@ -83,6 +83,54 @@ pub(crate) fn face_fixed(
         || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
 }
 
+/// [`face_fixed`] for the whole face row `(·, j, k)` of component `a`
+/// (`j`, `k` in face coordinates), written to `out` (one flag per face).
+/// Row-wise so that per-face loops need no index arithmetic per lookup.
+pub(crate) fn fixed_row(
+    d: Dims,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    a: usize,
+    j: usize,
+    k: usize,
+    out: &mut [bool],
+) {
+    let n = d.n();
+    let solid = |r: &[CellKind], i: usize| r[i] == CellKind::Solid;
+    if a == 0 {
+        let kr = &kinds[d.idx(0, j, k)..d.idx(0, j, k) + n[0]];
+        out[0] = bounds.side(0, 0) == Side::Wall || solid(kr, 0);
+        out[n[0]] = bounds.side(0, 1) == Side::Wall || solid(kr, n[0] - 1);
+        for i in 1..n[0] {
+            out[i] = solid(kr, i - 1) || solid(kr, i);
+        }
+        return;
+    }
+    let f = if a == 1 { j } else { k };
+    let row = |c: usize| {
+        let s = if a == 1 {
+            d.idx(0, c, k)
+        } else {
+            d.idx(0, j, c)
+        };
+        &kinds[s..s + n[0]]
+    };
+    if (f == 0 && bounds.side(a, 0) == Side::Wall) || (f == n[a] && bounds.side(a, 1) == Side::Wall)
+    {
+        out.fill(true);
+    } else if f == 0 || f == n[a] {
+        let kr = row(if f == 0 { 0 } else { f - 1 });
+        for (o, &kk) in out.iter_mut().zip(kr) {
+            *o = kk == CellKind::Solid;
+        }
+    } else {
+        let (k0, k1) = (row(f - 1), row(f));
+        for ((o, &p), &q) in out.iter_mut().zip(k0).zip(k1) {
+            *o = p == CellKind::Solid || q == CellKind::Solid;
+        }
+    }
+}
+
 /// Per face of component `a` (x fastest): 1 where the face is fixed (a wall
 /// or touching a solid, see [`face_fixed`]), 0 where it is free.
 pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize) -> Vec<u8> {
@@ -90,8 +138,10 @@ pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: u
     let mut out = vec![0u8; fd[0] * fd[1] * fd[2]];
     par::for_chunks(&mut out, fd[0], |r, row| {
         let (j, k) = (r % fd[1], r / fd[1]);
-        for (i, v) in row.iter_mut().enumerate() {
-            *v = u8::from(face_fixed(d, kinds, bounds, a, [i, j, k]));
+        let mut fx = vec![false; row.len()];
+        fixed_row(d, kinds, bounds, a, j, k, &mut fx);
+        for (v, &x) in row.iter_mut().zip(&fx) {
+            *v = u8::from(x);
         }
     });
     out
@@ -112,9 +162,11 @@ pub(crate) fn enforce_solids(
         let fn_ = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fn_[0], |r, row| {
             let (j, k) = (r % fn_[1], r / fn_[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
             for (i, v) in row.iter_mut().enumerate() {
                 let f = [i, j, k];
-                if !face_fixed(d, kinds, bounds, a, f) {
+                if !fx[i] {
                     continue;
                 }
                 let on_wall = (f[a] == 0 || f[a] == d.n()[a])
@@ -145,9 +197,11 @@ pub(crate) fn add_centre_forces(
         let fd = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
             for (i, v) in row.iter_mut().enumerate() {
                 let f = [i, j, k];
-                if face_fixed(d, kinds, bounds, a, f) {
+                if fx[i] {
                     continue;
                 }
                 let mut c0 = f;
@@ -275,9 +329,11 @@ pub(crate) fn apply_pressure(
         let fd = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
             for (i, v) in row.iter_mut().enumerate() {
                 let f = [i, j, k];
-                if face_fixed(d, kinds, bounds, a, f) {
+                if fx[i] {
                     continue;
                 }
                 let mut lo = f;
