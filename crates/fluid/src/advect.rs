@@ -351,6 +351,52 @@ pub(crate) fn advect(
     }
 }
 
+/// Advects several fields that share one sample geometry (the samplers'
+/// `n` and `off`) through the same velocity: with plain semi-Lagrangian
+/// advection every path is traced once and each field sampled at its foot,
+/// bit-identical to calling [`advect`] per field. Other schemes advect
+/// field by field.
+pub(crate) fn advect_many(
+    dsts: &mut [&mut [f32]],
+    srcs: &[Sampler<'_>],
+    vel: &VelSampler<'_>,
+    dt_h: f32,
+    adv: &Advection,
+    solids: Option<&Solids<'_>>,
+) {
+    debug_assert_eq!(dsts.len(), srcs.len());
+    let shared = srcs
+        .windows(2)
+        .all(|w| w[0].n == w[1].n && w[0].off == w[1].off);
+    if adv.scheme != Scheme::SemiLagrangian || srcs.len() < 2 || !shared {
+        for (d, s) in dsts.iter_mut().zip(srcs) {
+            advect(d, s, vel, dt_h, adv, solids);
+        }
+        return;
+    }
+    let (n, off) = (srcs[0].n, srcs[0].off);
+    let w = vel.grid_weights(n, off);
+    let w = &w;
+    let mut feet = vec![[0.0f32; 3]; n[0] * n[1] * n[2]];
+    par::for_chunks(&mut feet, n[0], |r, row| {
+        let (j, k) = (r % n[1], r / n[1]);
+        for (i, q) in row.iter_mut().enumerate() {
+            let p = [i as f32 + off[0], j as f32 + off[1], k as f32 + off[2]];
+            let v1 = vel.at_grid(w, i, j, k);
+            *q = backtrace_from(p, v1, vel, dt_h, adv.tracer, solids);
+        }
+    });
+    let feet = &feet;
+    for (d, s) in dsts.iter_mut().zip(srcs) {
+        par::for_chunks(d, n[0], |r, row| {
+            let fr = &feet[r * n[0]..r * n[0] + row.len()];
+            for (o, &q) in row.iter_mut().zip(fr) {
+                *o = s.sample(q, adv.interpolation);
+            }
+        });
+    }
+}
+
 /// Advects a cell-centred scalar grid through a MAC velocity field.
 ///
 /// `dt` in seconds, `h` the cell size in metres. With `solids`, paths are
