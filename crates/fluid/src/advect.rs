@@ -19,7 +19,7 @@
 use natura_core::Grid3;
 
 use crate::grid::{CellKind, Dims, MacVelocity};
-use crate::interp::{Interpolation, Sampler};
+use crate::interp::{AxisW, Interpolation, Sampler};
 use crate::par;
 
 /// The advection scheme.
@@ -84,11 +84,53 @@ impl<'a> VelSampler<'a> {
     }
 
     /// Velocity at `p` (cell units), in metres per second.
-    #[inline]
+    #[inline(always)]
     pub fn at(&self, p: [f32; 3]) -> [f32; 3] {
         std::array::from_fn(|a| {
             if self.active[a] {
                 self.comps[a].linear(p)
+            } else {
+                0.0
+            }
+        })
+    }
+}
+
+impl VelSampler<'_> {
+    /// Per component and axis, the linear weights at the grid coordinates
+    /// `i + off[e]`, `i < n[e]`: the velocity at every sample point of a
+    /// grid without per-point index arithmetic ([`Self::at_grid`]).
+    pub(crate) fn grid_weights(&self, n: [usize; 3], off: [f32; 3]) -> [[Vec<AxisW>; 3]; 3] {
+        std::array::from_fn(|b| {
+            std::array::from_fn(|e| {
+                if !self.active[b] {
+                    return Vec::new();
+                }
+                (0..n[e])
+                    .map(|i| self.comps[b].axis_weights(e, i as f32 + off[e]))
+                    .collect()
+            })
+        })
+    }
+
+    /// Velocity at grid point `(i, j, k)` of the grid `w` was built for;
+    /// bit-identical to [`Self::at`] at that point.
+    #[inline(always)]
+    pub(crate) fn at_grid(
+        &self,
+        w: &[[Vec<AxisW>; 3]; 3],
+        i: usize,
+        j: usize,
+        k: usize,
+    ) -> [f32; 3] {
+        std::array::from_fn(|b| {
+            if self.active[b] {
+                let y = if self.comps[b].n[1] == 1 {
+                    (0, 0, 0.0)
+                } else {
+                    w[b][1][j]
+                };
+                self.comps[b].linear_w(w[b][0][i], y, w[b][2][k])
             } else {
                 0.0
             }
@@ -127,10 +169,17 @@ impl Solids<'_> {
 
     /// Clips the segment `from → to` at the first solid cell it enters
     /// (Smoke Fig. 2): marches in steps of at most ¼ cell, then bisects.
+    #[inline(always)]
     fn clip(&self, from: [f32; 3], to: [f32; 3]) -> [f32; 3] {
         if !self.is_solid(to) || self.is_solid(from) {
             return to;
         }
+        self.clip_slow(from, to)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn clip_slow(&self, from: [f32; 3], to: [f32; 3]) -> [f32; 3] {
         let d: [f32; 3] = std::array::from_fn(|a| to[a] - from[a]);
         let len = d.iter().map(|v| v.abs()).fold(0.0f32, f32::max);
         let steps = ((len * 4.0).ceil() as usize).clamp(1, 4096);
@@ -158,7 +207,7 @@ impl Solids<'_> {
 }
 
 /// Traces `p` (cell units) back through `vel` for `dt_h = dt / h` seconds per metre.
-#[inline]
+#[inline(always)]
 pub(crate) fn backtrace(
     p: [f32; 3],
     vel: &VelSampler<'_>,
@@ -166,7 +215,19 @@ pub(crate) fn backtrace(
     tracer: Tracer,
     solids: Option<&Solids<'_>>,
 ) -> [f32; 3] {
-    let v1 = vel.at(p);
+    backtrace_from(p, vel.at(p), vel, dt_h, tracer, solids)
+}
+
+/// [`backtrace`] given the velocity `v1 = vel.at(p)` at the start point.
+#[inline(always)]
+fn backtrace_from(
+    p: [f32; 3],
+    v1: [f32; 3],
+    vel: &VelSampler<'_>,
+    dt_h: f32,
+    tracer: Tracer,
+    solids: Option<&Solids<'_>>,
+) -> [f32; 3] {
     let q = match tracer {
         Tracer::Euler => std::array::from_fn(|a| p[a] - dt_h * v1[a]),
         Tracer::Rk2 => {
@@ -201,10 +262,15 @@ fn sl_pass(
             (r / n[1]) as f32 + off[2],
         ]
     };
+    // The start velocity of every path is read at grid points: weights per axis.
+    let w = vel.grid_weights(n, off);
+    let w = &w;
     match range {
         None => par::for_chunks(dst, n[0], |r, row| {
+            let (j, k) = (r % n[1], r / n[1]);
             for (i, out) in row.iter_mut().enumerate() {
-                let q = backtrace(pos(r, i), vel, dt_h, adv.tracer, solids);
+                let v1 = vel.at_grid(w, i, j, k);
+                let q = backtrace_from(pos(r, i), v1, vel, dt_h, adv.tracer, solids);
                 *out = src.sample(q, adv.interpolation);
             }
         }),
@@ -212,8 +278,10 @@ fn sl_pass(
             // Three outputs per row: zip the range buffers row by row.
             let mut lohi: Vec<(f32, f32)> = vec![(0.0, 0.0); dst.len()];
             par::for_chunks2(dst, &mut lohi, n[0], |r, row, rr| {
+                let (j, k) = (r % n[1], r / n[1]);
                 for (i, (out, lh)) in row.iter_mut().zip(rr.iter_mut()).enumerate() {
-                    let q = backtrace(pos(r, i), vel, dt_h, adv.tracer, solids);
+                    let v1 = vel.at_grid(w, i, j, k);
+                    let q = backtrace_from(pos(r, i), v1, vel, dt_h, adv.tracer, solids);
                     *out = src.sample(q, adv.interpolation);
                     *lh = src.stencil_range(q);
                 }
@@ -280,6 +348,52 @@ pub(crate) fn advect(
                 dst[c] = dst[c].clamp(lo[c], hi[c].max(lo[c]));
             }
         }
+    }
+}
+
+/// Advects several fields that share one sample geometry (the samplers'
+/// `n` and `off`) through the same velocity: with plain semi-Lagrangian
+/// advection every path is traced once and each field sampled at its foot,
+/// bit-identical to calling [`advect`] per field. Other schemes advect
+/// field by field.
+pub(crate) fn advect_many(
+    dsts: &mut [&mut [f32]],
+    srcs: &[Sampler<'_>],
+    vel: &VelSampler<'_>,
+    dt_h: f32,
+    adv: &Advection,
+    solids: Option<&Solids<'_>>,
+) {
+    debug_assert_eq!(dsts.len(), srcs.len());
+    let shared = srcs
+        .windows(2)
+        .all(|w| w[0].n == w[1].n && w[0].off == w[1].off);
+    if adv.scheme != Scheme::SemiLagrangian || srcs.len() < 2 || !shared {
+        for (d, s) in dsts.iter_mut().zip(srcs) {
+            advect(d, s, vel, dt_h, adv, solids);
+        }
+        return;
+    }
+    let (n, off) = (srcs[0].n, srcs[0].off);
+    let w = vel.grid_weights(n, off);
+    let w = &w;
+    let mut feet = vec![[0.0f32; 3]; n[0] * n[1] * n[2]];
+    par::for_chunks(&mut feet, n[0], |r, row| {
+        let (j, k) = (r % n[1], r / n[1]);
+        for (i, q) in row.iter_mut().enumerate() {
+            let p = [i as f32 + off[0], j as f32 + off[1], k as f32 + off[2]];
+            let v1 = vel.at_grid(w, i, j, k);
+            *q = backtrace_from(p, v1, vel, dt_h, adv.tracer, solids);
+        }
+    });
+    let feet = &feet;
+    for (d, s) in dsts.iter_mut().zip(srcs) {
+        par::for_chunks(d, n[0], |r, row| {
+            let fr = &feet[r * n[0]..r * n[0] + row.len()];
+            for (o, &q) in row.iter_mut().zip(fr) {
+                *o = s.sample(q, adv.interpolation);
+            }
+        });
     }
 }
 

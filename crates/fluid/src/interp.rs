@@ -71,6 +71,9 @@ pub fn monotone_cubic(fm: f32, f0: f32, f1: f32, f2: f32, s: f32, limiter: Cubic
     ((a3 * s + a2) * s + d0) * s + f0
 }
 
+/// Lower index, upper index and weight of a linear sample along one axis.
+pub(crate) type AxisW = (usize, usize, f32);
+
 /// A read-only view of one gridded component for interpolation.
 ///
 /// Sample `i` along axis `a` sits at `i + off[a]` in cell units (0.5 for
@@ -116,10 +119,23 @@ impl<'a> Sampler<'a> {
     }
 
     /// Multilinear interpolation at `p` (cell units).
-    #[inline]
+    #[inline(always)]
     pub fn linear(&self, p: [f32; 3]) -> f32 {
-        let (x0, x1, tx) = self.axis(0, p[0]);
-        let (z0, z1, tz) = self.axis(2, p[2]);
+        let x = self.axis(0, p[0]);
+        let z = self.axis(2, p[2]);
+        if self.n[1] == 1 {
+            return self.linear_w(x, (0, 0, 0.0), z);
+        }
+        self.linear_w(x, self.axis(1, p[1]), z)
+    }
+
+    /// Multilinear interpolation from per-axis `(lower, upper, weight)`
+    /// triples as [`Self::axis_weights`] returns them (bit-identical to
+    /// [`Self::linear`] at the same point).
+    #[inline(always)]
+    pub fn linear_w(&self, x: AxisW, y: AxisW, z: AxisW) -> f32 {
+        let (x0, x1, tx) = x;
+        let (z0, z1, tz) = z;
         let nx = self.n[0];
         let sz = nx * self.n[1];
         let d = self.data;
@@ -130,7 +146,7 @@ impl<'a> Sampler<'a> {
             let b = d[r1 + x0] + (d[r1 + x1] - d[r1 + x0]) * tx;
             return a + (b - a) * tz;
         }
-        let (y0, y1, ty) = self.axis(1, p[1]);
+        let (y0, y1, ty) = y;
         let row = |y: usize, z: usize| {
             let r = z * sz + y * nx;
             d[r + x0] + (d[r + x1] - d[r + x0]) * tx
@@ -142,6 +158,13 @@ impl<'a> Sampler<'a> {
         let lo = a + (b - a) * ty;
         let hi = c + (e - c) * ty;
         lo + (hi - lo) * tz
+    }
+
+    /// The linear `(lower, upper, weight)` along axis `a` at coordinate `p`
+    /// (cell units), for [`Self::linear_w`].
+    #[inline(always)]
+    pub fn axis_weights(&self, a: usize, p: f32) -> AxisW {
+        self.axis(a, p)
     }
 
     /// Min and max of the 2ᵈ samples the linear interpolant at `p` uses.

@@ -83,6 +83,121 @@ pub(crate) fn face_fixed(
         || kinds[d.idx(f[0], f[1], f[2])] == CellKind::Solid
 }
 
+/// [`face_fixed`] for the whole face row `(·, j, k)` of component `a`
+/// (`j`, `k` in face coordinates), written to `out` (one flag per face).
+/// Row-wise so that per-face loops need no index arithmetic per lookup.
+pub(crate) fn fixed_row(
+    d: Dims,
+    kinds: &[CellKind],
+    bounds: &Boundaries,
+    a: usize,
+    j: usize,
+    k: usize,
+    out: &mut [bool],
+) {
+    let n = d.n();
+    let solid = |r: &[CellKind], i: usize| r[i] == CellKind::Solid;
+    if a == 0 {
+        let kr = &kinds[d.idx(0, j, k)..d.idx(0, j, k) + n[0]];
+        out[0] = bounds.side(0, 0) == Side::Wall || solid(kr, 0);
+        out[n[0]] = bounds.side(0, 1) == Side::Wall || solid(kr, n[0] - 1);
+        for i in 1..n[0] {
+            out[i] = solid(kr, i - 1) || solid(kr, i);
+        }
+        return;
+    }
+    let f = if a == 1 { j } else { k };
+    let row = |c: usize| {
+        let s = if a == 1 {
+            d.idx(0, c, k)
+        } else {
+            d.idx(0, j, c)
+        };
+        &kinds[s..s + n[0]]
+    };
+    if (f == 0 && bounds.side(a, 0) == Side::Wall) || (f == n[a] && bounds.side(a, 1) == Side::Wall)
+    {
+        out.fill(true);
+    } else if f == 0 || f == n[a] {
+        let kr = row(if f == 0 { 0 } else { f - 1 });
+        for (o, &kk) in out.iter_mut().zip(kr) {
+            *o = kk == CellKind::Solid;
+        }
+    } else {
+        let (k0, k1) = (row(f - 1), row(f));
+        for ((o, &p), &q) in out.iter_mut().zip(k0).zip(k1) {
+            *o = p == CellKind::Solid || q == CellKind::Solid;
+        }
+    }
+}
+
+/// For the face row `(·, j, k)` of component `a` (face coordinates), maps
+/// a face index `i` to the linear indices of the cells on its low and high
+/// side (`None` beyond the domain).
+#[inline]
+pub(crate) fn face_cells(
+    d: Dims,
+    a: usize,
+    j: usize,
+    k: usize,
+) -> (
+    impl Fn(usize) -> Option<usize>,
+    impl Fn(usize) -> Option<usize>,
+) {
+    let n = d.n();
+    // (row start of the low / high cell row, whether x shifts by one).
+    let (lo_row, hi_row, along_x) = if a == 0 {
+        let b = d.idx(0, j, k);
+        (Some(b), Some(b), true)
+    } else {
+        let f = if a == 1 { j } else { k };
+        let base = |c: usize| {
+            if a == 1 {
+                d.idx(0, c, k)
+            } else {
+                d.idx(0, j, c)
+            }
+        };
+        (
+            (f > 0).then(|| base(f - 1)),
+            (f < n[a]).then(|| base(f)),
+            false,
+        )
+    };
+    let n0 = n[0];
+    let lo = move |i: usize| {
+        if along_x {
+            (i > 0).then(|| lo_row.map(|b| b + i - 1)).flatten()
+        } else {
+            lo_row.map(|b| b + i)
+        }
+    };
+    let hi = move |i: usize| {
+        if along_x {
+            (i < n0).then(|| hi_row.map(|b| b + i)).flatten()
+        } else {
+            hi_row.map(|b| b + i)
+        }
+    };
+    (lo, hi)
+}
+
+/// Per face of component `a` (x fastest): 1 where the face is fixed (a wall
+/// or touching a solid, see [`face_fixed`]), 0 where it is free.
+pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize) -> Vec<u8> {
+    let fd = d.face_dims(a);
+    let mut out = vec![0u8; fd[0] * fd[1] * fd[2]];
+    par::for_chunks(&mut out, fd[0], |r, row| {
+        let (j, k) = (r % fd[1], r / fd[1]);
+        let mut fx = vec![false; row.len()];
+        fixed_row(d, kinds, bounds, a, j, k, &mut fx);
+        for (v, &x) in row.iter_mut().zip(&fx) {
+            *v = u8::from(x);
+        }
+    });
+    out
+}
+
 /// Sets wall faces to zero and faces touching solid cells to `solid_vel(a, face_index)`.
 pub(crate) fn enforce_solids(
     vel: &mut MacVelocity,
@@ -98,9 +213,11 @@ pub(crate) fn enforce_solids(
         let fn_ = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fn_[0], |r, row| {
             let (j, k) = (r % fn_[1], r / fn_[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
             for (i, v) in row.iter_mut().enumerate() {
                 let f = [i, j, k];
-                if !face_fixed(d, kinds, bounds, a, f) {
+                if !fx[i] {
                     continue;
                 }
                 let on_wall = (f[a] == 0 || f[a] == d.n()[a])
@@ -122,7 +239,6 @@ pub(crate) fn add_centre_forces(
     bounds: &Boundaries,
 ) {
     let d = vel.dims();
-    let n = d.n();
     for a in 0..3 {
         if !d.active(a) {
             continue;
@@ -131,21 +247,17 @@ pub(crate) fn add_centre_forces(
         let fd = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
+            let (lo, hi) = face_cells(d, a, j, k);
             for (i, v) in row.iter_mut().enumerate() {
-                let f = [i, j, k];
-                if face_fixed(d, kinds, bounds, a, f) {
+                if fx[i] {
                     continue;
                 }
-                let mut c0 = f;
-                let hi = f;
-                let val = if f[a] == 0 {
-                    fa[d.idx(hi[0], hi[1], hi[2])]
-                } else if f[a] == n[a] {
-                    c0[a] -= 1;
-                    fa[d.idx(c0[0], c0[1], c0[2])]
-                } else {
-                    c0[a] -= 1;
-                    0.5 * (fa[d.idx(c0[0], c0[1], c0[2])] + fa[d.idx(hi[0], hi[1], hi[2])])
+                let val = match (lo(i), hi(i)) {
+                    (Some(c0), Some(c1)) => 0.5 * (fa[c0] + fa[c1]),
+                    (Some(c), None) | (None, Some(c)) => fa[c],
+                    (None, None) => 0.0,
                 };
                 *v += dt * val;
             }
@@ -244,10 +356,8 @@ pub(crate) fn apply_pressure(
     p: &[f64],
 ) {
     let d = vel.dims();
-    let n = d.n();
     let inv = 1.0 / f64::from(h);
-    let pv = |c: [usize; 3]| -> f64 {
-        let i = d.idx(c[0], c[1], c[2]);
+    let pv = |i: usize| -> f64 {
         if kinds[i] == CellKind::Fluid {
             p[i]
         } else {
@@ -261,36 +371,22 @@ pub(crate) fn apply_pressure(
         let fd = d.face_dims(a);
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
+            let mut fx = vec![false; row.len()];
+            fixed_row(d, kinds, bounds, a, j, k, &mut fx);
+            let (lo, hi) = face_cells(d, a, j, k);
             for (i, v) in row.iter_mut().enumerate() {
-                let f = [i, j, k];
-                if face_fixed(d, kinds, bounds, a, f) {
+                if fx[i] {
                     continue;
                 }
-                let mut lo = f;
-                let (p0, p1, any_fluid) = if f[a] == 0 {
-                    (
-                        0.0,
-                        pv(f),
-                        kinds[d.idx(f[0], f[1], f[2])] == CellKind::Fluid,
-                    )
-                } else if f[a] == n[a] {
-                    lo[a] -= 1;
-                    (
-                        pv(lo),
-                        0.0,
-                        kinds[d.idx(lo[0], lo[1], lo[2])] == CellKind::Fluid,
-                    )
-                } else {
-                    lo[a] -= 1;
-                    let k0 = kinds[d.idx(lo[0], lo[1], lo[2])];
-                    let k1 = kinds[d.idx(f[0], f[1], f[2])];
-                    (
-                        pv(lo),
-                        pv(f),
-                        k0 == CellKind::Fluid || k1 == CellKind::Fluid,
-                    )
+                let (p0, f0) = match lo(i) {
+                    Some(c) => (pv(c), kinds[c] == CellKind::Fluid),
+                    None => (0.0, false),
                 };
-                if any_fluid {
+                let (p1, f1) = match hi(i) {
+                    Some(c) => (pv(c), kinds[c] == CellKind::Fluid),
+                    None => (0.0, false),
+                };
+                if f0 || f1 {
                     *v = (f64::from(*v) - (p1 - p0) * inv) as f32;
                 }
             }

@@ -386,22 +386,22 @@ impl Smoke {
         )?;
         self.vel.check_finite("projection")?;
         // 4. Advect T and ρ with the new velocity.
+        // Both share the cell-centred geometry: each path is traced once.
         let vs = VelSampler::mac(&self.vel);
-        for (g, name) in [
-            (&mut self.temperature, "temperature"),
-            (&mut self.density, "density"),
-        ] {
-            let src = g.clone();
-            advect::advect(
-                g.as_mut_slice(),
-                &advect::centre_sampler(&src, false),
-                &vs,
-                dt / h,
-                &self.params.advection,
-                clip,
-            );
-            grid::check_grid(g, name, "scalar advection")?;
-        }
+        let (t0, d0) = (self.temperature.clone(), self.density.clone());
+        advect::advect_many(
+            &mut [self.temperature.as_mut_slice(), self.density.as_mut_slice()],
+            &[
+                advect::centre_sampler(&t0, false),
+                advect::centre_sampler(&d0, false),
+            ],
+            &vs,
+            dt / h,
+            &self.params.advection,
+            clip,
+        );
+        grid::check_grid(&self.temperature, "temperature", "scalar advection")?;
+        grid::check_grid(&self.density, "density", "scalar advection")?;
         // 5. Sources and object rules.
         for (s, cells) in self.sources.iter().zip(&self.source_cells) {
             for &c in cells {

@@ -24,7 +24,7 @@ use glam::Vec3;
 use natura_core::Grid3;
 
 use crate::advect::{self, Advection, Solids, VelSampler};
-use crate::diffuse::{self, DIRICHLET, EXCLUDED, FREE};
+use crate::diffuse::{self, EXCLUDED, FREE};
 use crate::error::{self, FluidError, Result};
 use crate::fft::{self, DiffusionFilter, Fft3, FftVariant};
 use crate::grid::{self, Boundaries, CellKind, Dims, MacVelocity, StepReport};
@@ -641,16 +641,9 @@ impl BoundedFluid {
                     continue;
                 }
                 let n = dims.face_dims(a);
-                let role: Vec<u8> = (0..n[0] * n[1] * n[2])
-                    .map(|s| {
-                        let fidx = [s % n[0], (s / n[0]) % n[1], s / (n[0] * n[1])];
-                        if mac::face_fixed(dims, self.kinds.as_slice(), &bounds, a, fidx) {
-                            DIRICHLET
-                        } else {
-                            FREE
-                        }
-                    })
-                    .collect();
+                // Fixed faces (1) are Dirichlet data, free faces (0) unknowns.
+                const _: () = assert!(diffuse::FREE == 0 && diffuse::DIRICHLET == 1);
+                let role = mac::fixed_faces(dims, self.kinds.as_slice(), &bounds, a);
                 diffuse::diffuse(vel.comp_mut(a).as_mut_slice(), n, coef, &role);
             }
         }

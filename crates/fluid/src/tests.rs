@@ -30,3 +30,181 @@ fn implicit_diffusion_is_a_contraction_and_conserves_mass() {
     let after: f64 = y.iter().map(|&v| f64::from(v)).sum();
     assert!(after < before);
 }
+
+#[test]
+fn row_wise_diffusion_matches_general_form() {
+    use crate::diffuse::{EXCLUDED, diffuse_ref};
+    for n in [[23usize, 1, 19], [9, 7, 11], [1, 1, 40]] {
+        let len = n[0] * n[1] * n[2];
+        let data: Vec<f32> = (0..len)
+            .map(|i| ((natura_core::mix64(i as u64 ^ 77) % 1000) as f32) / 100.0 - 3.0)
+            .collect();
+        let role: Vec<u8> = (0..len)
+            .map(|i| match natura_core::mix64(i as u64 ^ 99) % 9 {
+                0 => DIRICHLET,
+                1 => EXCLUDED,
+                _ => FREE,
+            })
+            .collect();
+        for coef in [0.05f32, 2.5] {
+            let (mut a, mut b) = (data.clone(), data.clone());
+            diffuse(&mut a, n, coef, &role);
+            diffuse_ref(&mut b, n, coef, &role);
+            for (i, (&x, &y)) in a.iter().zip(&b).enumerate() {
+                assert!((x - y).abs() <= 1e-4, "{n:?} coef {coef} [{i}]: {x} vs {y}");
+            }
+        }
+    }
+}
+
+#[test]
+fn row_wise_fixed_faces_match_per_face_rule() {
+    use crate::grid::{Boundaries, CellKind, Dims, Side};
+    use crate::mac::{face_fixed, fixed_row};
+    let mut mixed = Boundaries::closed();
+    mixed.x[1] = Side::Open;
+    mixed.z[1] = Side::Open;
+    mixed.y[0] = Side::Open;
+    for d in [Dims::plane(13, 9).unwrap(), Dims::new(7, 6, 5).unwrap()] {
+        let kinds: Vec<CellKind> = (0..d.cells())
+            .map(|c| match natura_core::mix64(c as u64 ^ 5) % 5 {
+                0 => CellKind::Solid,
+                1 => CellKind::Air,
+                _ => CellKind::Fluid,
+            })
+            .collect();
+        for bounds in [Boundaries::closed(), mixed] {
+            for a in (0..3).filter(|&a| d.active(a)) {
+                let fd = d.face_dims(a);
+                for k in 0..fd[2] {
+                    for j in 0..fd[1] {
+                        let mut row = vec![false; fd[0]];
+                        fixed_row(d, &kinds, &bounds, a, j, k, &mut row);
+                        for (i, &v) in row.iter().enumerate() {
+                            assert_eq!(v, face_fixed(d, &kinds, &bounds, a, [i, j, k]));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn grid_point_velocity_matches_general_sampling_bit_for_bit() {
+    use crate::advect::{VelSampler, centre_sampler, face_sampler};
+    use crate::grid::{Dims, MacVelocity};
+    for d in [Dims::plane(11, 8).unwrap(), Dims::new(6, 5, 7).unwrap()] {
+        let mut vel = MacVelocity::zeros(d).unwrap();
+        for a in 0..3 {
+            for (i, v) in vel.comp_mut(a).as_mut_slice().iter_mut().enumerate() {
+                *v = ((natura_core::mix64((a * 1000 + i) as u64) % 2001) as f32 / 1000.0) - 1.0;
+            }
+        }
+        let vs = VelSampler::mac(&vel);
+        let centre = d.zeros().unwrap();
+        let mut grids = vec![centre_sampler(&centre, false)];
+        for a in (0..3).filter(|&a| d.active(a)) {
+            grids.push(face_sampler(vel.comp(a), a));
+        }
+        for g in grids {
+            let w = vs.grid_weights(g.n, g.off);
+            for k in 0..g.n[2] {
+                for j in 0..g.n[1] {
+                    for i in 0..g.n[0] {
+                        let p = [
+                            i as f32 + g.off[0],
+                            j as f32 + g.off[1],
+                            k as f32 + g.off[2],
+                        ];
+                        let a = vs.at_grid(&w, i, j, k);
+                        let b = vs.at(p);
+                        for c in 0..3 {
+                            assert_eq!(a[c].to_bits(), b[c].to_bits(), "{d:?} {p:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn shared_path_advection_matches_per_field_bit_for_bit() {
+    use crate::advect::{Advection, Solids, VelSampler, advect, advect_many, centre_sampler};
+    use crate::grid::{CellKind, Dims, MacVelocity};
+    for d in [Dims::plane(17, 13).unwrap(), Dims::new(9, 8, 10).unwrap()] {
+        let mut vel = MacVelocity::zeros(d).unwrap();
+        for a in 0..3 {
+            for (i, v) in vel.comp_mut(a).as_mut_slice().iter_mut().enumerate() {
+                *v = ((natura_core::mix64((a * 7919 + i) as u64) % 2001) as f32 / 400.0) - 2.5;
+            }
+        }
+        let kinds: Vec<CellKind> = (0..d.cells())
+            .map(|c| {
+                if natura_core::mix64(c as u64 ^ 3) % 7 == 0 {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
+            .collect();
+        let solids = Solids {
+            kinds: &kinds,
+            dims: d,
+        };
+        let f: Vec<natura_core::Grid3<f32>> = (0..2u64)
+            .map(|s| {
+                let mut g = d.zeros().unwrap();
+                for (i, v) in g.as_mut_slice().iter_mut().enumerate() {
+                    *v = (natura_core::mix64(i as u64 ^ (s << 20)) % 1000) as f32;
+                }
+                g
+            })
+            .collect();
+        let vs = VelSampler::mac(&vel);
+        let adv = Advection::default();
+        let (mut a0, mut a1) = (f[0].as_slice().to_vec(), f[1].as_slice().to_vec());
+        let (mut b0, mut b1) = (a0.clone(), a1.clone());
+        let srcs = [centre_sampler(&f[0], false), centre_sampler(&f[1], false)];
+        advect_many(
+            &mut [&mut a0, &mut a1],
+            &srcs,
+            &vs,
+            0.7,
+            &adv,
+            Some(&solids),
+        );
+        advect(&mut b0, &srcs[0], &vs, 0.7, &adv, Some(&solids));
+        advect(&mut b1, &srcs[1], &vs, 0.7, &adv, Some(&solids));
+        assert!(a0.iter().zip(&b0).all(|(x, y)| x.to_bits() == y.to_bits()));
+        assert!(a1.iter().zip(&b1).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+}
+
+#[test]
+fn face_cell_rows_match_face_coordinates() {
+    use crate::grid::Dims;
+    use crate::mac::face_cells;
+    for d in [Dims::plane(6, 5).unwrap(), Dims::new(4, 3, 5).unwrap()] {
+        let n = d.n();
+        for a in (0..3).filter(|&a| d.active(a)) {
+            let fd = d.face_dims(a);
+            for k in 0..fd[2] {
+                for j in 0..fd[1] {
+                    let (lo, hi) = face_cells(d, a, j, k);
+                    for i in 0..fd[0] {
+                        let f = [i, j, k];
+                        let want_lo = (f[a] > 0).then(|| {
+                            let mut c = f;
+                            c[a] -= 1;
+                            d.idx(c[0], c[1], c[2])
+                        });
+                        let want_hi = (f[a] < n[a]).then(|| d.idx(f[0], f[1], f[2]));
+                        assert_eq!((lo(i), hi(i)), (want_lo, want_hi), "{d:?} a{a} {f:?}");
+                    }
+                }
+            }
+        }
+    }
+}

@@ -62,6 +62,13 @@ pub(crate) struct Level {
     pub kinds: Vec<CellKind>,
     /// Open sides (Dirichlet outside) `[axis][end]`.
     pub open: [[bool; 2]; 3],
+    /// Per padded cell: the diagonal `A_cc` as `f32`, 0 off the unknowns.
+    pub diag: Vec<f32>,
+    /// Per padded cell: `1 / A_cc`, 0 off the unknowns.
+    pub invd: Vec<f32>,
+    /// Per colour (`(i + j + k) mod 2`): `1 / A_cc` on that colour's
+    /// unknowns, 0 elsewhere — the red–black smoother's update weights.
+    pub invc: [Vec<f32>; 2],
     /// Work vectors (padded).
     pub x: Vec<f32>,
     pub b: Vec<f32>,
@@ -89,6 +96,9 @@ impl Level {
             act,
             periodic: std::array::from_fn(|a| periodic[a] && n[a] > 1),
             mask: vec![0; len],
+            diag: vec![0.0; len],
+            invd: vec![0.0; len],
+            invc: [vec![0.0; len], vec![0.0; len]],
             kinds,
             open,
             x: vec![0.0; len],
@@ -96,6 +106,16 @@ impl Level {
             t: vec![0.0; len],
         };
         lvl.build_mask();
+        for (p, &m) in lvl.mask.iter().enumerate() {
+            if m != 0 {
+                let d = f32::from(m >> 8);
+                lvl.diag[p] = d;
+                lvl.invd[p] = 1.0 / d;
+            }
+        }
+        let mut invc = std::mem::take(&mut lvl.invc);
+        lvl.for_each_cell(|c, p| invc[(c[0] + c[1] + c[2]) & 1][p] = lvl.invd[p]);
+        lvl.invc = invc;
         lvl
     }
 
@@ -180,14 +200,6 @@ impl Level {
         (inside(jp, 1) && inside(kp, 2)).then_some(G + r * self.m[0])
     }
 
-    /// Parity of the first interior cell of row `r` ((j + k) mod 2).
-    #[inline]
-    fn row_parity(&self, r: usize) -> usize {
-        let jp = r % self.m[1] - self.pad[1];
-        let kp = r / self.m[1] - self.pad[2];
-        (jp + kp) & 1
-    }
-
     /// Copies wrapped values into the ghost layers of periodic axes.
     pub fn fill_ghosts<T: Copy>(&self, v: &mut [T]) {
         for a in 0..3 {
@@ -237,7 +249,79 @@ impl Level {
         std::array::from_fn(|q| self.st[self.act[q]])
     }
 
+    // The row kernels below rely on one invariant of every vector they read:
+    // values are zero on padded cells that are not unknowns (solid, air,
+    // isolated fluid, non-periodic ghosts), and periodic ghosts hold wrapped
+    // copies. Then the coupling `Σ_n x_n` over the coupled neighbours equals
+    // the plain sum over all 2K face neighbours (solid and Dirichlet
+    // neighbours contribute zero), so the stencil needs no per-cell mask
+    // decoding and the loops vectorise. `pad_into`, the restriction and
+    // prolongation, and the smoother all preserve the invariant.
+
     fn apply_k<const K: usize, T: Real>(&self, x: &[T], y: &mut [T]) {
+        let st = self.strides::<K>();
+        let (p0, n0) = (self.pad[0], self.n[0]);
+        self.rows_par(y, |_, base, yrow| {
+            let s = base + p0;
+            let out = &mut yrow[p0..p0 + n0];
+            let mut acc = [T::default(); CH];
+            for i0 in (0..n0).step_by(CH) {
+                let w = CH.min(n0 - i0);
+                let a = &mut acc[..w];
+                let c = s + i0;
+                neighbour_sum::<K, T>(x, c, st, a);
+                let xs = &x[c..c + w];
+                let ds = &self.diag[c..c + w];
+                for (((o, &xv), &d), &off) in out[i0..i0 + w].iter_mut().zip(xs).zip(ds).zip(&*a) {
+                    let v = T::from(d) * xv - off;
+                    *o = if d != 0.0 { v } else { T::default() };
+                }
+            }
+        });
+    }
+
+    /// One red or black half sweep of Gauss–Seidel, out of place:
+    /// `out` = `x` with cells of parity `colour` updated from `b`.
+    pub fn gs_half(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
+        match self.act.len() {
+            0 => self.gs_half_k::<0>(x, b, out, colour),
+            1 => self.gs_half_k::<1>(x, b, out, colour),
+            2 => self.gs_half_k::<2>(x, b, out, colour),
+            _ => self.gs_half_k::<3>(x, b, out, colour),
+        }
+    }
+
+    fn gs_half_k<const K: usize>(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
+        let st = self.strides::<K>();
+        let (p0, n0) = (self.pad[0], self.n[0]);
+        self.rows_par(out, |_, base, orow| {
+            let s = base + p0;
+            let o = &mut orow[p0..p0 + n0];
+            // Cells of parity `colour` have a non-zero weight in invc[colour].
+            let wc = &self.invc[colour];
+            let mut acc = [0.0f32; CH];
+            for i0 in (0..n0).step_by(CH) {
+                let w = CH.min(n0 - i0);
+                let a = &mut acc[..w];
+                let c = s + i0;
+                neighbour_sum::<K, f32>(x, c, st, a);
+                let xs = &x[c..c + w];
+                let bs = &b[c..c + w];
+                let ws = &wc[c..c + w];
+                for ((((ov, &xv), &bv), &iv), &off) in
+                    o[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ws).zip(&*a)
+                {
+                    let v = (bv + off) * iv;
+                    // A select, not a branch, so the loop vectorises.
+                    *ov = if iv != 0.0 { v } else { xv };
+                }
+            }
+        });
+    }
+
+    /// Mask-decoding form of `apply` (the general per-cell stencil), for tests.
+    #[cfg(test)]
+    pub fn apply_ref_k<const K: usize, T: Real>(&self, x: &[T], y: &mut [T]) {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
         self.rows_par(y, |_, base, yrow| {
@@ -260,18 +344,15 @@ impl Level {
         });
     }
 
-    /// One red or black half sweep of Gauss–Seidel, out of place:
-    /// `out` = `x` with cells of parity `colour` updated from `b`.
-    pub fn gs_half(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
-        match self.act.len() {
-            0 => self.gs_half_k::<0>(x, b, out, colour),
-            1 => self.gs_half_k::<1>(x, b, out, colour),
-            2 => self.gs_half_k::<2>(x, b, out, colour),
-            _ => self.gs_half_k::<3>(x, b, out, colour),
-        }
-    }
-
-    fn gs_half_k<const K: usize>(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
+    /// Mask-decoding form of `gs_half`, for tests.
+    #[cfg(test)]
+    pub fn gs_half_ref_k<const K: usize>(
+        &self,
+        x: &[f32],
+        b: &[f32],
+        out: &mut [f32],
+        colour: usize,
+    ) {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
         self.rows_par(out, |r, base, orow| {
@@ -283,7 +364,11 @@ impl Level {
             let hi: [&[f32]; K] = std::array::from_fn(|q| &x[s + st[q]..s + st[q] + n0]);
             let o = &mut orow[p0..p0 + n0];
             // Interior cell i is updated when (i + j + k) ≡ colour (mod 2).
-            let want = (colour + self.row_parity(r)) & 1;
+            let want = {
+                let jp = r % self.m[1] - self.pad[1];
+                let kp = r / self.m[1] - self.pad[2];
+                (colour + jp + kp) & 1
+            };
             for (i, ov) in o.iter_mut().enumerate() {
                 let m = ms[i];
                 let mut off = 0.0f32;
@@ -322,15 +407,37 @@ impl Level {
         if self.periodic.iter().any(|&p| p) {
             self.fill_ghosts(x);
         }
-        self.apply(x, r);
-        let m0 = self.m[0];
+        match self.act.len() {
+            0 => self.residual_k::<0, T>(b, x, r),
+            1 => self.residual_k::<1, T>(b, x, r),
+            2 => self.residual_k::<2, T>(b, x, r),
+            _ => self.residual_k::<3, T>(b, x, r),
+        }
+    }
+
+    fn residual_k<const K: usize, T: Real>(&self, b: &[T], x: &[T], r: &mut [T]) {
+        let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
-        self.rows_par(r, |_, base, row| {
-            for i in p0..p0 + n0 {
-                row[i] = b[base + i] - row[i];
+        self.rows_par(r, |_, base, rrow| {
+            let s = base + p0;
+            let out = &mut rrow[p0..p0 + n0];
+            let mut acc = [T::default(); CH];
+            for i0 in (0..n0).step_by(CH) {
+                let w = CH.min(n0 - i0);
+                let a = &mut acc[..w];
+                let c = s + i0;
+                neighbour_sum::<K, T>(x, c, st, a);
+                let xs = &x[c..c + w];
+                let bs = &b[c..c + w];
+                let ds = &self.diag[c..c + w];
+                for ((((o, &xv), &bv), &d), &off) in
+                    out[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ds).zip(&*a)
+                {
+                    let v = bv - (T::from(d) * xv - off);
+                    *o = if d != 0.0 { v } else { T::default() };
+                }
             }
         });
-        let _ = m0;
     }
 
     /// `Σ a·b` over interior cells, in `f64`, deterministic.
@@ -352,6 +459,28 @@ impl Level {
             }
             None => 0.0,
         })
+    }
+
+    /// `Σ v` over interior cells, in `f64`, deterministic.
+    pub fn sum<T: Copy + Into<f64> + Sync>(&self, v: &[T]) -> f64 {
+        let (p0, n0) = (self.pad[0], self.n[0]);
+        par::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
+            Some(base) => v[base + p0..base + p0 + n0].iter().map(|&x| x.into()).sum(),
+            None => 0.0,
+        })
+    }
+
+    /// `v −= m` on the unknowns (other cells keep their zero).
+    pub fn sub_on_unknowns<T: Real>(&self, v: &mut [T], m: f64) {
+        let (p0, n0) = (self.pad[0], self.n[0]);
+        let mt = T::from_f64(m);
+        self.rows_par(v, |_, base, row| {
+            let ds = &self.diag[base + p0..base + p0 + n0];
+            for (o, &d) in row[p0..p0 + n0].iter_mut().zip(ds) {
+                let y = *o - mt;
+                *o = if d != 0.0 { y } else { *o };
+            }
+        });
     }
 
     /// Visits every interior padded index sequentially with its unpadded coordinates.
@@ -446,7 +575,163 @@ impl Transfer {
     }
 
     /// `coarse.b = scale · Pᵀ r` (fine residual `r`), on coarse fluid cells.
+    ///
+    /// Separable: each contributing fine row is first restricted along x
+    /// (interior coarse cells with the fixed ¼ ¾ ¾ ¼ weights, the two ends
+    /// from the general weight lists), then the rows are summed with their
+    /// y/z weights.
     pub fn restrict(&self, fine: &Level, r: &[f32], coarse: &mut Level) {
+        let mut cb = std::mem::take(&mut coarse.b);
+        let m0 = coarse.m[0];
+        let (p0, n0) = (coarse.pad[0], coarse.n[0]);
+        let nf0 = fine.n[0];
+        let cl: &Level = coarse;
+        let body = &mut cb[G..G + cl.rows() * m0];
+        // Coarse x cells whose four fine children 2c−1..=2c+2 are interior
+        // with the standard weights.
+        let (lo_c, hi_c) = interior_range(n0, nf0, fine.n[0] > 1);
+        par::for_chunks(body, m0, |row_i, row| {
+            let Some(base) = cl.row_base(row_i) else {
+                return;
+            };
+            let jc = row_i % cl.m[1] - cl.pad[1];
+            let kc = row_i / cl.m[1] - cl.pad[2];
+            let out = &mut row[p0..p0 + n0];
+            out.fill(0.0);
+            for &(fk, wk) in &self.down[2][kc] {
+                for &(fj, wj) in &self.down[1][jc] {
+                    let w = wj * wk * self.scale;
+                    let fb = fine.pidx([0, fj, fk]);
+                    let fr = &r[fb..fb + nf0];
+                    for ic in 0..lo_c.min(n0) {
+                        let mut v = 0.0f32;
+                        for &(fi, wi) in &self.down[0][ic] {
+                            v += wi * fr[fi];
+                        }
+                        out[ic] += w * v;
+                    }
+                    if hi_c > lo_c {
+                        // Fine cells 2c−1 ..= 2c+2 for c in lo_c..hi_c.
+                        let span = &fr[2 * lo_c - 1..2 * hi_c + 1];
+                        for (k, o) in out[lo_c..hi_c].iter_mut().enumerate() {
+                            let q = &span[2 * k..2 * k + 4];
+                            *o += w * (0.25 * (q[0] + q[3]) + 0.75 * (q[1] + q[2]));
+                        }
+                    }
+                    for ic in hi_c.max(lo_c)..n0 {
+                        let mut v = 0.0f32;
+                        for &(fi, wi) in &self.down[0][ic] {
+                            v += wi * fr[fi];
+                        }
+                        out[ic] += w * v;
+                    }
+                }
+            }
+            let ds = &cl.diag[base + p0..base + p0 + n0];
+            for (o, &d) in out.iter_mut().zip(ds) {
+                if d == 0.0 {
+                    *o = 0.0;
+                }
+            }
+        });
+        coarse.b = cb;
+    }
+
+    /// `fine.x += P coarse.x` on fine fluid cells.
+    ///
+    /// Separable: the (up to four) contributing coarse rows are first
+    /// combined with their y/z weights into one coarse row, which is then
+    /// interpolated along x (¾ ¼ weights; the ends from the general lists).
+    pub fn prolong_add(&self, coarse: &Level, fine: &mut Level) {
+        let mut fx = std::mem::take(&mut fine.x);
+        let m0 = fine.m[0];
+        let (p0, n0) = (fine.pad[0], fine.n[0]);
+        let nc0 = coarse.n[0];
+        let fl: &Level = fine;
+        let cx = &coarse.x;
+        let body = &mut fx[G..G + fl.rows() * m0];
+        let (wjp, wjn) = if fl.n[1] > 1 {
+            (0.75, 0.25)
+        } else {
+            (1.0, 0.0)
+        };
+        let (wkp, wkn) = if fl.n[2] > 1 {
+            (0.75, 0.25)
+        } else {
+            (1.0, 0.0)
+        };
+        let active_x = fl.n[0] > 1;
+        par::for_chunks(body, m0, |row_i, row| {
+            let Some(base) = fl.row_base(row_i) else {
+                return;
+            };
+            let jf = row_i % fl.m[1] - fl.pad[1];
+            let kf = row_i / fl.m[1] - fl.pad[2];
+            let (jp, jn) = self.up[1][jf];
+            let (kp, kn) = self.up[2][kf];
+            let rows = [
+                (coarse.pidx([0, jp, kp]), wjp * wkp),
+                (coarse.pidx([0, jn, kp]), wjn * wkp),
+                (coarse.pidx([0, jp, kn]), wjp * wkn),
+                (coarse.pidx([0, jn, kn]), wjn * wkn),
+            ];
+            // Combined coarse row c[0..nc0].
+            let mut c = vec![0.0f32; nc0];
+            for &(rb, w) in &rows {
+                if w != 0.0 {
+                    for (o, &v) in c.iter_mut().zip(&cx[rb..rb + nc0]) {
+                        *o += w * v;
+                    }
+                }
+            }
+            let ds = &fl.diag[base + p0..base + p0 + n0];
+            let out = &mut row[p0..p0 + n0];
+            if !active_x {
+                for (i, o) in out.iter_mut().enumerate() {
+                    if ds[i] != 0.0 {
+                        *o += c[self.up[0][i].0];
+                    }
+                }
+                return;
+            }
+            // Fine i = 2q (q ≥ 1) takes ¾ c[q] + ¼ c[q−1]; i = 2q+1 (q + 1 < nc0)
+            // takes ¾ c[q] + ¼ c[q+1]. The ends use the general lists.
+            let general = |i: usize| {
+                let (ip, inb) = self.up[0][i];
+                0.75 * c[ip] + 0.25 * c[inb]
+            };
+            let mut add = vec![0.0f32; n0];
+            for q in 0..nc0 {
+                let i = 2 * q;
+                if i >= n0 {
+                    break;
+                }
+                let even = if q >= 1 {
+                    0.75 * c[q] + 0.25 * c[q - 1]
+                } else {
+                    general(i)
+                };
+                add[i] = even;
+                if i + 1 < n0 {
+                    add[i + 1] = if q + 1 < nc0 {
+                        0.75 * c[q] + 0.25 * c[q + 1]
+                    } else {
+                        general(i + 1)
+                    };
+                }
+            }
+            for ((o, &a), &d) in out.iter_mut().zip(&add).zip(ds) {
+                if d != 0.0 {
+                    *o += a;
+                }
+            }
+        });
+        fine.x = fx;
+    }
+
+    /// Reference restriction (the general per-cell form), for tests.
+    #[cfg(test)]
+    pub fn restrict_ref(&self, fine: &Level, r: &[f32], coarse: &mut Level) {
         let cb = std::mem::take(&mut coarse.b);
         let mut cb = cb;
         let m0 = coarse.m[0];
@@ -481,8 +766,9 @@ impl Transfer {
         coarse.b = cb;
     }
 
-    /// `fine.x += P coarse.x` on fine fluid cells.
-    pub fn prolong_add(&self, coarse: &Level, fine: &mut Level) {
+    /// Reference prolongation (the general per-cell form), for tests.
+    #[cfg(test)]
+    pub fn prolong_add_ref(&self, coarse: &Level, fine: &mut Level) {
         let mut fx = std::mem::take(&mut fine.x);
         let m0 = fine.m[0];
         let (p0, n0) = (fine.pad[0], fine.n[0]);
@@ -534,6 +820,35 @@ impl Transfer {
         });
         fine.x = fx;
     }
+}
+
+/// Row block length of the stencil kernels (even, so colour parity is per block).
+const CH: usize = 256;
+
+/// `acc[k] = Σ_q x[c + k − st_q] + x[c + k + st_q]` for `k < acc.len()`:
+/// the sum of the 2K face neighbours along the active axes with strides `st`.
+#[inline(always)]
+fn neighbour_sum<const K: usize, T: Real>(x: &[T], c: usize, st: [usize; K], acc: &mut [T]) {
+    let w = acc.len();
+    acc.fill(T::default());
+    for q in 0..K {
+        let lo = &x[c - st[q]..c - st[q] + w];
+        let hi = &x[c + st[q]..c + st[q] + w];
+        for ((a, &l), &h) in acc.iter_mut().zip(lo).zip(hi) {
+            *a = *a + (l + h);
+        }
+    }
+}
+
+/// Coarse x cells `lo..hi` whose fine children `2c−1 ..= 2c+2` all exist
+/// and carry the standard ¼ ¾ ¾ ¼ restriction weights (`nc` coarse and `nf`
+/// fine cells; `(0, 0)` on a flat axis).
+fn interior_range(nc: usize, nf: usize, active: bool) -> (usize, usize) {
+    if !active || nc < 2 {
+        return (0, 0);
+    }
+    let hi = (nc - 1).min((nf - 1) / 2).max(1);
+    (1, hi)
 }
 
 /// Coarsens cell kinds by 2 along active axes: air wins, then fluid, then solid.

@@ -131,6 +131,8 @@ pub struct PoissonSystem {
     comp: Vec<u32>,
     /// Fluid-cell counts of the singular components.
     comp_cells: Vec<u64>,
+    /// Number of unknowns on the finest level.
+    unknowns: usize,
     mic: Option<Vec<f32>>,
     r: Vec<f32>,
     z: Vec<f32>,
@@ -183,12 +185,14 @@ impl PoissonSystem {
             transfers,
             comp: Vec::new(),
             comp_cells: Vec::new(),
+            unknowns: 0,
             mic: None,
             r: vec![0.0; len],
             z: vec![0.0; len],
             d: vec![0.0; len],
             q: vec![0.0; len],
         };
+        sys.unknowns = sys.levels[0].unknowns();
         sys.label_components();
         Ok(sys)
     }
@@ -208,7 +212,7 @@ impl PoissonSystem {
     /// Number of pressure unknowns (fluid cells with a non-solid neighbour).
     #[must_use]
     pub fn unknowns(&self) -> usize {
-        self.levels[0].unknowns()
+        self.unknowns
     }
 
     /// Number of connected fluid regions with no air or open side (each
@@ -291,6 +295,14 @@ impl PoissonSystem {
     /// Removes the mean of `v` on each singular component.
     fn project_null<T: level::Real>(&self, v: &mut [T]) {
         if self.comp_cells.is_empty() {
+            return;
+        }
+        if self.comp_cells.len() == 1 && self.comp_cells[0] == self.unknowns as u64 {
+            // One closed component holding every unknown (a closed box): the
+            // vector is zero off the unknowns, so its mean is the plain sum.
+            let l = &self.levels[0];
+            let m = l.sum(v) / self.comp_cells[0] as f64;
+            l.sub_on_unknowns(v, m);
             return;
         }
         let mut sums = vec![0.0f64; self.comp_cells.len()];

@@ -200,3 +200,119 @@ fn bad_params_are_refused() {
         Err(FluidError::SizeMismatch { .. })
     ));
 }
+
+/// Kinds with a solid block and a few air cells, so levels mix Neumann
+/// and Dirichlet couplings.
+fn mixed_kinds(d: Dims) -> Vec<CellKind> {
+    let mut k = kinds_with_block(d);
+    for (c, v) in k.iter_mut().enumerate() {
+        if natura_core::mix64(c as u64 ^ 0x5eed) % 17 == 0 && *v == CellKind::Fluid {
+            *v = CellKind::Air;
+        }
+    }
+    k
+}
+
+/// A padded vector with random values on the unknowns and zero elsewhere
+/// (the invariant the row kernels rely on), ghosts filled when periodic.
+fn padded_random(l: &Level, seed: u64) -> Vec<f32> {
+    let mut v = vec![0.0f32; l.len()];
+    for (p, o) in v.iter_mut().enumerate() {
+        if l.mask[p] != 0 {
+            *o = ((natura_core::mix64(seed ^ p as u64) % 2001) as f32 / 1000.0) - 1.0;
+        }
+    }
+    l.fill_ghosts(&mut v);
+    v
+}
+
+fn configs() -> Vec<(Dims, [bool; 3], Boundaries)> {
+    let mut open = Boundaries::closed();
+    open.z[1] = Side::Open;
+    vec![
+        (
+            Dims::plane(37, 29).unwrap(),
+            [false; 3],
+            Boundaries::closed(),
+        ),
+        (Dims::plane(32, 40).unwrap(), [true, false, false], open),
+        (Dims::new(13, 11, 9).unwrap(), [false; 3], open),
+        (
+            Dims::new(16, 8, 12).unwrap(),
+            [true, true, false],
+            Boundaries::closed(),
+        ),
+    ]
+}
+
+fn assert_close(a: &[f32], b: &[f32], what: &str) {
+    for (i, (&x, &y)) in a.iter().zip(b).enumerate() {
+        assert!(
+            (x - y).abs() <= 1e-5 * (1.0 + y.abs()),
+            "{what}[{i}]: {x} vs {y}"
+        );
+    }
+}
+
+#[test]
+fn row_kernels_match_general_stencil() {
+    for (d, per, bounds) in configs() {
+        let sys = PoissonSystem::new(d, &mixed_kinds(d), &bounds, per).unwrap();
+        for l in &sys.levels {
+            let x = padded_random(l, 3);
+            let b = padded_random(l, 4);
+            let (mut y, mut yr) = (vec![0.0f32; l.len()], vec![0.0f32; l.len()]);
+            l.apply(&x, &mut y);
+            match l.act.len() {
+                1 => l.apply_ref_k::<1, f32>(&x, &mut yr),
+                2 => l.apply_ref_k::<2, f32>(&x, &mut yr),
+                _ => l.apply_ref_k::<3, f32>(&x, &mut yr),
+            }
+            assert_close(&y, &yr, "apply");
+            let mut xm = x.clone();
+            let mut r = vec![0.0f32; l.len()];
+            l.residual(&b, &mut xm, &mut r);
+            // Ghosts (periodic copies) and non-unknowns get no residual.
+            let want: Vec<f32> = (0..l.len())
+                .map(|p| if l.mask[p] != 0 { b[p] - yr[p] } else { 0.0 })
+                .collect();
+            assert_close(&r, &want, "residual");
+            for colour in 0..2 {
+                let (mut o, mut or) = (x.clone(), x.clone());
+                l.gs_half(&x, &b, &mut o, colour);
+                match l.act.len() {
+                    1 => l.gs_half_ref_k::<1>(&x, &b, &mut or, colour),
+                    2 => l.gs_half_ref_k::<2>(&x, &b, &mut or, colour),
+                    _ => l.gs_half_ref_k::<3>(&x, &b, &mut or, colour),
+                }
+                assert_close(&o, &or, "gs_half");
+            }
+        }
+    }
+}
+
+#[test]
+fn separable_transfers_match_general_weights() {
+    for (d, per, bounds) in configs() {
+        let sys = PoissonSystem::new(d, &mixed_kinds(d), &bounds, per).unwrap();
+        assert!(sys.levels.len() >= 2, "{d:?} must coarsen");
+        for (li, tr) in sys.transfers.iter().enumerate() {
+            let fine = &sys.levels[li];
+            let r = padded_random(fine, 11 + li as u64);
+            let (mut c1, mut c2) = (sys.levels[li + 1].clone(), sys.levels[li + 1].clone());
+            c1.b.fill(7.0);
+            c2.b.fill(7.0);
+            tr.restrict(fine, &r, &mut c1);
+            tr.restrict_ref(fine, &r, &mut c2);
+            assert_close(&c1.b, &c2.b, "restrict");
+            let mut coarse = sys.levels[li + 1].clone();
+            coarse.x = padded_random(&coarse, 21 + li as u64);
+            let (mut f1, mut f2) = (fine.clone(), fine.clone());
+            f1.x = padded_random(fine, 31);
+            f2.x = f1.x.clone();
+            tr.prolong_add(&coarse, &mut f1);
+            tr.prolong_add_ref(&coarse, &mut f2);
+            assert_close(&f1.x, &f2.x, "prolong");
+        }
+    }
+}
