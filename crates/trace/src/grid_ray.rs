@@ -145,6 +145,24 @@ impl GridRay {
         })
     }
 
+    /// A placeholder for batch slots whose ray is not traced.
+    pub fn idle() -> Self {
+        Self {
+            o: Vec3::ZERO,
+            d: Vec3::Z,
+            inv: Vec2::ZERO,
+            t_min: 0.0,
+            t_max: 0.0,
+            t0: f32::INFINITY,
+            t1: f32::NEG_INFINITY,
+            zeps: 0.0,
+            xyeps: 0.0,
+            ttol: 0.0,
+            zm: 0.0,
+            shear: Shear::new(Vec3::Z),
+        }
+    }
+
     /// Whether the clipped range is empty (the ray misses the box within `[t_min, t_max]`).
     #[inline]
     pub fn misses_box(&self) -> bool {

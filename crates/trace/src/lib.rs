@@ -71,7 +71,9 @@
 //! assert!(tracer.occluded(&ray, 0.0, hit.t + 1e-3));
 //! # Ok::<(), natura_trace::TraceError>(())
 //! ```
-#![forbid(unsafe_code)]
+// `unsafe` is denied crate-wide; the only exceptions are the two calls into
+// run-time-dispatched `#[target_feature]` lane kernels in `packet.rs`.
+#![deny(unsafe_code)]
 
 mod batch;
 mod brute;
@@ -82,12 +84,13 @@ mod field;
 mod grid_ray;
 mod leaf;
 mod max_mipmap;
+mod packet;
 mod ray;
 mod ray_cell;
 mod surface;
 mod tracer;
 
-pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera};
+pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, trace_image};
 pub use brute::brute_force;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,

@@ -1,0 +1,449 @@
+//! Many rays at once: the empty-space part of the max-mipmap walk run for
+//! [`LANES`] rays in lock step, without data-dependent branches.
+//!
+//! A grazing ray spends most of its walk (about 21 of 25 steps on the
+//! benchmark's 4096² view) descending from the coarse levels and stepping
+//! past nodes above it before it first reaches a cell. Done one ray at a
+//! time, each of those steps waits on a node load and then on a branch that
+//! goes either way (descend or advance, across x or across y), so the
+//! processor mostly waits. Here each step computes both outcomes and selects
+//! one, and [`LANES`] independent rays are stepped in turn, so their loads
+//! overlap. A lane whose ray reaches its first cell (or leaves the field)
+//! is parked and refilled with the next ray; the parked ray then finishes
+//! its walk one at a time from exactly that point
+//! ([`MipmapTracer::walk`]), with the cell tests of the single-ray path.
+//!
+//! The lane step computes the same `f32` and integer values in the same
+//! order as the single-ray walk's node steps, so the walk reaches the same
+//! first cell at the same `t` and returns the same hit, bit for bit (tested
+//! against the single-ray path and against brute force).
+
+use crate::grid_ray::GridRay;
+use crate::leaf::{fmax, fmin};
+use crate::max_mipmap::{Cursor, MipmapTracer};
+
+/// Rays stepped together.
+pub(crate) const LANES: usize = 16;
+
+/// Per-lane ray constants and walk state, struct-of-arrays.
+#[derive(Clone, Copy)]
+struct Lanes {
+    ox: [f32; LANES],
+    oy: [f32; LANES],
+    dx: [f32; LANES],
+    dy: [f32; LANES],
+    ix: [f32; LANES],
+    iy: [f32; LANES],
+    oq: [f32; LANES],
+    dq: [f32; LANES],
+    mq: [f32; LANES],
+    t_end: [f32; LANES],
+    t: [f32; LANES],
+    ci: [u32; LANES],
+    cj: [u32; LANES],
+    level: [u32; LANES],
+    /// Bits: 1 `dx > 0`, 2 `dx < 0`, 4 `dy > 0`, 8 `dy < 0`.
+    sign: [u32; LANES],
+    ray: [usize; LANES],
+    live: [bool; LANES],
+}
+
+/// What a lane step leads to.
+const GOING: u32 = 0;
+const AT_CELL: u32 = 1;
+const LEFT: u32 = 2;
+
+impl Lanes {
+    fn new() -> Self {
+        Self {
+            ox: [0.0; LANES],
+            oy: [0.0; LANES],
+            dx: [0.0; LANES],
+            dy: [0.0; LANES],
+            ix: [0.0; LANES],
+            iy: [0.0; LANES],
+            oq: [0.0; LANES],
+            dq: [0.0; LANES],
+            mq: [0.0; LANES],
+            t_end: [0.0; LANES],
+            t: [0.0; LANES],
+            ci: [0; LANES],
+            cj: [0; LANES],
+            level: [0; LANES],
+            sign: [0; LANES],
+            ray: [0; LANES],
+            live: [false; LANES],
+        }
+    }
+
+    #[inline]
+    fn load(&mut self, l: usize, k: usize, r: &GridRay, c: Cursor, lo: f32, scale: f32) {
+        self.ox[l] = r.o.x;
+        self.oy[l] = r.o.y;
+        self.dx[l] = r.d.x;
+        self.dy[l] = r.d.y;
+        self.ix[l] = r.inv.x;
+        self.iy[l] = r.inv.y;
+        // As in the single-ray walk: altitude and margin in quantised units.
+        self.oq[l] = (r.o.z - lo) / scale;
+        self.dq[l] = r.d.z / scale;
+        self.mq[l] = 1.0 + r.zm / scale;
+        self.t_end[l] = r.t1;
+        self.t[l] = c.t;
+        self.ci[l] = c.ci;
+        self.cj[l] = c.cj;
+        self.level[l] = c.level;
+        self.sign[l] = u32::from(r.d.x > 0.0)
+            | u32::from(r.d.x < 0.0) << 1
+            | u32::from(r.d.y > 0.0) << 2
+            | u32::from(r.d.y < 0.0) << 3;
+        self.ray[l] = k;
+        self.live[l] = true;
+    }
+}
+
+/// What every lane step needs besides the lanes.
+struct Consts<'a> {
+    nodes: &'a [u32],
+    offset: &'a [u32; 32],
+    width: &'a [u32; 32],
+    ncx: u32,
+    ncy: u32,
+    top: u32,
+}
+
+/// One step of every lane, written without data-dependent branches so that
+/// LLVM vectorises the loop over lanes (gathering the nodes) when compiled
+/// for AVX2 or AVX-512. Dead lanes compute and are ignored (their state is
+/// kept, so their loads stay in bounds).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+    assert!(!k.nodes.is_empty());
+    let last = k.nodes.len() - 1;
+    for l in 0..LANES {
+        let (ci, cj, t, lev) = (s.ci[l], s.cj[l], s.t[l], s.level[l]);
+        let sign = s.sign[l];
+        let (xpos, xneg, ypos, yneg) = (sign & 1 != 0, sign & 2 != 0, sign & 4 != 0, sign & 8 != 0);
+        let size = 1u32 << (lev & 31);
+        let mask = !(size - 1);
+        let (nx0, ny0) = (ci & mask, cj & mask);
+        // The node's exits, as in the single-ray walk (coordinates < 2²⁴,
+        // so the `i32` conversions are exact).
+        let bx = if xpos { nx0 + size } else { nx0 };
+        let by = if ypos { ny0 + size } else { ny0 };
+        let tx = if xpos | xneg {
+            (bx as i32 as f32 - s.ox[l]) * s.ix[l]
+        } else {
+            f32::INFINITY
+        };
+        let ty = if ypos | yneg {
+            (by as i32 as f32 - s.oy[l]) * s.iy[l]
+        } else {
+            f32::INFINITY
+        };
+        let t_end = s.t_end[l];
+        let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+        // The cull against the node's quantised [min, max].
+        let lv = (lev & 31) as usize;
+        let idx = k.offset[lv]
+            .wrapping_add((cj >> (lev & 31)).wrapping_mul(k.width[lv]))
+            .wrapping_add(ci >> (lev & 31));
+        let q = k.nodes[(idx as usize).min(last)];
+        let (qlo, qhi) = ((q & 0xffff) as i32 as f32, (q >> 16) as i32 as f32);
+        let (za, zb) = (s.oq[l] + t * s.dq[l], s.oq[l] + t_exit * s.dq[l]);
+        let (zlo, zhi) = (fmin(za, zb), fmax(za, zb));
+        let mq = s.mq[l];
+        let pass = (zlo <= qhi + mq) & (zhi >= qlo - mq);
+        // The step across x: the next column, and the row where the ray
+        // meets it, clamped to the node (clamping before the truncation is
+        // the walk's `floor`, `max`, `min`: the bounds are whole numbers).
+        let cix = if xpos {
+            nx0 + size
+        } else {
+            nx0.wrapping_sub(1)
+        };
+        let outx = if xpos { cix >= k.ncx } else { nx0 == 0 };
+        let hiy = (ny0 + size).min(k.ncy) - 1;
+        let yv = s.oy[l] + t_exit * s.dy[l];
+        let yc = trunc(fmin(fmax_nan_lo(yv, ny0 as i32 as f32), hiy as i32 as f32));
+        let cjx = if ypos {
+            cj.max(yc)
+        } else if yneg {
+            cj.min(yc)
+        } else {
+            cj
+        };
+        // The step across y.
+        let cjy = if ypos {
+            ny0 + size
+        } else {
+            ny0.wrapping_sub(1)
+        };
+        let outy = if ypos { cjy >= k.ncy } else { ny0 == 0 };
+        let hix = (nx0 + size).min(k.ncx) - 1;
+        let xv = s.ox[l] + t_exit * s.dx[l];
+        let xc = trunc(fmin(fmax_nan_lo(xv, nx0 as i32 as f32), hix as i32 as f32));
+        let ciy = if xpos {
+            ci.max(xc)
+        } else if xneg {
+            ci.min(xc)
+        } else {
+            ci
+        };
+        let xstep = tx <= ty;
+        let nci = if xstep { cix } else { ciy };
+        let ncj = if xstep { cjx } else { cjy };
+        let out = if xstep { outx } else { outy };
+        let done = (t_exit >= t_end) | out;
+        // Ascend one level when the step leaves the parent node.
+        let up = (lev < k.top) & (((nci ^ ci) | (ncj ^ cj)) >> ((lev + 1) & 31) != 0);
+        let live = s.live[l];
+        let go = live & !pass;
+        s.ci[l] = if go { nci } else { ci };
+        s.cj[l] = if go { ncj } else { cj };
+        s.t[l] = if go { t_exit } else { t };
+        let down = live & pass;
+        s.level[l] = if down {
+            lev - 1
+        } else if go {
+            lev + u32::from(up)
+        } else {
+            lev
+        };
+        // `down` and `go` exclude each other.
+        events[l] = u32::from(down & (lev == 1)) * AT_CELL + u32::from(go & done) * LEFT;
+    }
+}
+
+/// `v as u32` for `v` in `[0, 2²⁴)` (a clamped cell coordinate).
+#[inline(always)]
+fn trunc(v: f32) -> u32 {
+    debug_assert!((0.0..16_777_216.0).contains(&v));
+    #[allow(unsafe_code)]
+    // SAFETY: `v` is clamped between two cell coordinates, whole numbers in
+    // `[0, 2²⁴)` (`MAX_SAMPLES_PER_AXIS`), before this is called, so it is
+    // finite and its truncation fits an `i32`.
+    let i = unsafe { v.to_int_unchecked::<i32>() };
+    i as u32
+}
+
+/// `max(v, lo)` for a whole number `lo`, returning `lo` when `v` is NaN (as
+/// `f32::max` does), in a form that vectorises to one compare and blend.
+#[inline(always)]
+fn fmax_nan_lo(v: f32, lo: f32) -> f32 {
+    if v > lo { v } else { lo }
+}
+
+/// The instruction set the lane steps run with, detected at run time.
+#[derive(Clone, Copy, Debug)]
+enum Level {
+    Scalar,
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
+}
+
+impl Level {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx512dq")
+                && std::is_x86_feature_detected!("avx512bw")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                return Level::Avx512;
+            }
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                return Level::Avx2;
+            }
+        }
+        Level::Scalar
+    }
+
+    #[inline(always)]
+    fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+        match self {
+            Level::Scalar => step(s, k, events),
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx2` is only returned by `detect` after the CPU
+            // reported AVX2 and FMA, the features `step_avx2` is compiled for.
+            Level::Avx2 => unsafe { step_avx2(s, k, events) },
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx512` is only returned by `detect` after the
+            // CPU reported every feature `step_avx512` is compiled for.
+            Level::Avx512 => unsafe { step_avx512(s, k, events) },
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+    step(s, k, events);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+    step(s, k, events);
+}
+
+/// Walks every ray of `rays` whose cursor in `cur` is above the cells
+/// (`level > 0`) down to its first cell visit: on return `cur[k]` is the
+/// cursor there (`level == 0`), or `None` if the ray leaves the field's
+/// box without visiting a cell. Cursors already at level 0 and `None`
+/// entries are left as they are.
+pub(crate) fn to_first_cell(tr: &MipmapTracer<'_>, rays: &[GridRay], cur: &mut [Option<Cursor>]) {
+    to_first_cell_with(Level::detect(), tr, rays, cur);
+}
+
+/// [`to_first_cell`] with the lane steps compiled for `level`.
+fn to_first_cell_with(
+    level: Level,
+    tr: &MipmapTracer<'_>,
+    rays: &[GridRay],
+    cur: &mut [Option<Cursor>],
+) {
+    let m = &tr.mip;
+    let (ncx, ncy) = (tr.f.ncx, tr.f.ncy);
+    let (lo, scale, top) = (m.lo, m.scale, m.top);
+    let nodes = m.nodes.as_slice();
+    // Node indices in 32 bits (the kernel's gathers); larger pyramids take
+    // the single-ray walk.
+    if nodes.len() > u32::MAX as usize {
+        return;
+    }
+    let mut offset = [0u32; 32];
+    for (o, &m) in offset.iter_mut().zip(&m.offset) {
+        *o = m as u32;
+    }
+    let offset = &offset;
+    let width = &m.width;
+
+    // The next ray to walk at or after `*next`.
+    let take = |next: &mut usize, cur: &[Option<Cursor>]| -> Option<(usize, Cursor)> {
+        while *next < cur.len() {
+            let k = *next;
+            *next += 1;
+            if let Some(c) = cur[k] {
+                if c.level > 0 {
+                    return Some((k, c));
+                }
+            }
+        }
+        None
+    };
+    let mut next = 0;
+    let mut s = Lanes::new();
+    let mut live = 0;
+    for l in 0..LANES {
+        if let Some((k, c)) = take(&mut next, cur) {
+            s.load(l, k, &rays[k], c, lo, scale);
+            live += 1;
+        }
+    }
+    let k = Consts {
+        nodes,
+        offset,
+        width,
+        ncx,
+        ncy,
+        top,
+    };
+    while live > 0 {
+        let mut events = [GOING; LANES];
+        level.step(&mut s, &k, &mut events);
+        if events.iter().all(|&e| e == GOING) {
+            continue;
+        }
+        for (l, &ev) in events.iter().enumerate() {
+            if ev == GOING {
+                continue;
+            }
+            let k = s.ray[l];
+            cur[k] = (ev == AT_CELL).then_some(Cursor {
+                ci: s.ci[l],
+                cj: s.cj[l],
+                t: s.t[l],
+                level: 0,
+            });
+            match take(&mut next, cur) {
+                Some((k, c)) => s.load(l, k, &rays[k], c, lo, scale),
+                None => {
+                    s.live[l] = false;
+                    live -= 1;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Ray;
+    use glam::Vec3;
+    use natura_core::{HeightField, Seed};
+
+    /// Every instruction set this CPU supports walks the rays to the same
+    /// cursors as the portable code, bit for bit.
+    #[test]
+    fn every_level_gives_the_same_cursors() {
+        let s = Seed(7);
+        let hf = HeightField::from_fn(300, 213, 2.0, |i, j| {
+            40.0 * s.uniform2(i as i64 / 9, j as i64 / 7) as f32
+                + 3.0 * s.uniform2(i as i64, j as i64) as f32
+        })
+        .unwrap();
+        let tr = MipmapTracer::new(&hf).unwrap();
+        let mut rays = Vec::new();
+        for k in 0..3000i64 {
+            let u = |c: i64| s.uniform2(k, c) as f32;
+            let o = Vec3::new(600.0 * u(0) - 20.0, 430.0 * u(1) - 20.0, 60.0 * u(2) - 5.0);
+            let d = Vec3::new(u(3) - 0.5, u(4) - 0.5, 0.2 * (u(5) - 0.6));
+            rays.push(Ray::new(o, d));
+        }
+        let grid: Vec<GridRay> = rays
+            .iter()
+            .map(|r| {
+                tr.setup(r, 0.0, f32::INFINITY)
+                    .unwrap_or_else(GridRay::idle)
+            })
+            .collect();
+        let start: Vec<Option<Cursor>> = rays
+            .iter()
+            .map(|r| tr.setup(r, 0.0, f32::INFINITY).map(|g| tr.start(&g)))
+            .collect();
+        let mut want = start.clone();
+        to_first_cell_with(Level::Scalar, &tr, &grid, &mut want);
+        assert!(want.iter().filter(|c| c.is_some()).count() > 1000);
+        let mut levels = vec![];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                levels.push(Level::Avx2);
+            }
+            if matches!(Level::detect(), Level::Avx512) {
+                levels.push(Level::Avx512);
+            }
+        }
+        for level in levels {
+            let mut got = start.clone();
+            to_first_cell_with(level, &tr, &grid, &mut got);
+            for (g, w) in got.iter().zip(&want) {
+                assert_eq!(
+                    g.map(|c| (c.ci, c.cj, c.t.to_bits(), c.level)),
+                    w.map(|c| (c.ci, c.cj, c.t.to_bits(), c.level)),
+                    "{level:?}"
+                );
+            }
+        }
+    }
+}
