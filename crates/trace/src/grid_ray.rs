@@ -175,18 +175,22 @@ impl GridRay {
     /// The cell holding the clipped entry point, clamped to the grid.
     #[inline]
     pub fn entry_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
-        let p = self.o + self.t0 * self.d;
-        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
-        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
-        (i, j)
+        Self::cell_of(self.o + self.t0 * self.d, f)
     }
 
     /// The cell holding the clipped exit point, clamped to the grid.
     #[inline]
     pub fn exit_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
-        let p = self.o + self.t1 * self.d;
-        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
-        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
+        Self::cell_of(self.o + self.t1 * self.d, f)
+    }
+
+    /// The cell holding grid point `p`, clamped to the grid. `max(0)` then
+    /// truncation is `floor(·).max(0)` (and NaN goes to 0 either way), without
+    /// a library call on targets lacking a rounding instruction.
+    #[inline(always)]
+    fn cell_of(p: Vec3, f: &FieldView<'_>) -> (u32, u32) {
+        let i = (p.x.max(0.0) as u32).min(f.ncx - 1);
+        let j = (p.y.max(0.0) as u32).min(f.ncy - 1);
         (i, j)
     }
 
