@@ -34,19 +34,25 @@ impl Shear {
         };
         let mut kx = (kz + 1) % 3;
         let mut ky = (kx + 1) % 3;
+        // Plain arrays: indices below 3 need no checks (glam's `Index` does).
+        let d = d.to_array();
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
         let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
-        let mut px = Vec3::ZERO;
+        let mut px = [0.0; 3];
         px[kx] = 1.0;
         px[kz] = -sx;
-        let mut py = Vec3::ZERO;
+        let mut py = [0.0; 3];
         py[ky] = 1.0;
         py[kz] = -sy;
-        let mut pz = Vec3::ZERO;
+        let mut pz = [0.0; 3];
         pz[kz] = sz;
-        Self { px, py, pz }
+        Self {
+            px: Vec3::from_array(px),
+            py: Vec3::from_array(py),
+            pz: Vec3::from_array(pz),
+        }
     }
 }
 
@@ -108,7 +114,9 @@ impl GridRay {
         let lo = Vec3::new(-xyeps, -xyeps, f.zmin - zeps);
         let hi = Vec3::new(f.ncx as f32 + xyeps, f.ncy as f32 + xyeps, f.zmax + zeps);
         let (mut t0, mut t1) = (t_min, t_max);
+        let (oa, da, loa, hia) = (o.to_array(), d.to_array(), lo.to_array(), hi.to_array());
         for k in 0..3 {
+            let (o, d, lo, hi) = (oa, da, loa, hia);
             if d[k] == 0.0 {
                 if o[k] < lo[k] || o[k] > hi[k] {
                     // Parallel to this slab and outside it: an empty range.

@@ -16,8 +16,9 @@
 //! * Cameras implementing [`Camera`]: [`PinholeCamera`], [`OrthographicCamera`]
 //!   and the panoramic virtual screens of the dissertation's appendix B
 //!   ([`PanoramicCamera`], cylindrical or spherical, optionally stereo).
-//! * [`render`] / [`render_camera`]: deterministic tile-parallel batch tracing
-//!   with progress reporting.
+//! * [`render`] / [`render_camera`] / [`trace_image`]: deterministic
+//!   tile-parallel batch tracing with progress reporting; [`trace_image`]
+//!   traces each tile's rays together through the batch path.
 //!
 //! ## The surface
 //!
@@ -47,6 +48,14 @@
 //! `f32` field, which it borrows) and takes O(log N)-like steps per ray where
 //! [`GridTracer`] takes O(√N); figures against the plain DDA and parry3d are
 //! in `docs/performance.md`. Both are `Sync`: share one tracer across threads.
+//!
+//! Trace rays in batches where you can: [`MipmapTracer::trace_many`] and
+//! [`MipmapTracer::occluded_many`] (also through [`Tracer::trace_many`], and
+//! [`trace_image`] for whole images) run the empty-space part of the walks —
+//! most of a grazing ray's steps — for 16 rays in lock step without
+//! data-dependent branches, vectorised with AVX-512 or AVX2 where the CPU has
+//! them (detected at run time; portable code otherwise), and return exactly
+//! the hits of one call per ray.
 //!
 //! ## Errata corrected (spec `gridtrace.md` §9)
 //!

@@ -27,6 +27,7 @@ use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
 use crate::leaf::{Exit, fmax, fmin, leaf, nearer};
+use crate::packet::Outcome;
 use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::CellHit;
 use crate::tracer::Tracer;
@@ -288,8 +289,8 @@ impl<'a> MipmapTracer<'a> {
         out
     }
 
-    /// Runs `rays` in chunks: set-up, the lock-step walk to each ray's first
-    /// cell, then each ray's own walk from there; `emit(k, hit)` in order.
+    /// Runs `rays` in chunks: set-up, the lock-step walks, and the single-ray
+    /// walk for the few rays the lanes hand back; `emit(k, hit)` in order.
     fn many<const ANY: bool>(
         &self,
         rays: &[Ray],
@@ -300,6 +301,7 @@ impl<'a> MipmapTracer<'a> {
         const CHUNK: usize = 256;
         let mut grid = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut cur = Vec::with_capacity(CHUNK.min(rays.len()));
+        let mut ends = Vec::with_capacity(CHUNK.min(rays.len()));
         for (n, chunk) in rays.chunks(CHUNK).enumerate() {
             grid.clear();
             cur.clear();
@@ -316,10 +318,14 @@ impl<'a> MipmapTracer<'a> {
                     }
                 }
             }
-            crate::packet::to_first_cell(self, &grid, &mut cur);
+            crate::packet::walk_lanes::<ANY>(self, &grid, &cur, &mut ends);
             let mut stats = TraceStats::default();
-            for (k, (r, c)) in grid.iter().zip(&cur).enumerate() {
-                let h = c.and_then(|c| self.walk::<ANY>(r, c, &mut stats));
+            for (k, (r, end)) in grid.iter().zip(&ends).enumerate() {
+                let h = match *end {
+                    Outcome::Miss => None,
+                    Outcome::Hit(h) => Some(h),
+                    Outcome::Walk(c) => self.walk::<ANY>(r, c, &mut stats),
+                };
                 emit(n * CHUNK + k, h);
             }
         }

@@ -1,26 +1,32 @@
-//! Many rays at once: the empty-space part of the max-mipmap walk run for
-//! [`LANES`] rays in lock step, without data-dependent branches.
+//! Many rays at once: the max-mipmap walk run for [`LANES`] rays in lock
+//! step, without data-dependent branches.
 //!
 //! A grazing ray spends most of its walk (about 21 of 25 steps on the
 //! benchmark's 4096² view) descending from the coarse levels and stepping
 //! past nodes above it before it first reaches a cell. Done one ray at a
 //! time, each of those steps waits on a node load and then on a branch that
-//! goes either way (descend or advance, across x or across y), so the
-//! processor mostly waits. Here each step computes both outcomes and selects
-//! one, and [`LANES`] independent rays are stepped in turn, so their loads
-//! overlap. A lane whose ray reaches its first cell (or leaves the field)
-//! is parked and refilled with the next ray; the parked ray then finishes
-//! its walk one at a time from exactly that point
-//! ([`MipmapTracer::walk`]), with the cell tests of the single-ray path.
+//! goes either way (descend or advance, across x or across y). Here each
+//! step computes both outcomes and selects one, for [`LANES`] independent
+//! rays at once; the loop over lanes is vectorised (with gathers of the
+//! nodes) for AVX-512 or AVX2, chosen at run time. A lane whose ray reaches
+//! a cell parks: the cell's exact test ([`leaf`], the single-ray walk's)
+//! runs for it alone; on a miss the lane steps on, on a hit (or when it
+//! leaves the field) it is refilled with the next ray. A hit that a later
+//! cell could still beat (one across an edge within rounding distance, rare)
+//! hands the ray to the single-ray walk ([`MipmapTracer::walk`]) from that
+//! cell.
 //!
 //! The lane step computes the same `f32` and integer values in the same
-//! order as the single-ray walk's node steps, so the walk reaches the same
-//! first cell at the same `t` and returns the same hit, bit for bit (tested
-//! against the single-ray path and against brute force).
+//! order as the single-ray walk's node steps, so every ray visits the same
+//! cells at the same `t` and returns the same hit, bit for bit (tested
+//! against the single-ray path, at every instruction set, and against brute
+//! force).
 
 use crate::grid_ray::GridRay;
-use crate::leaf::{fmax, fmin};
+use crate::leaf::{Exit, fmax, fmin, leaf};
 use crate::max_mipmap::{Cursor, MipmapTracer};
+use crate::ray::TraceStats;
+use crate::ray_cell::CellHit;
 
 /// Rays stepped together.
 pub(crate) const LANES: usize = 16;
@@ -46,6 +52,8 @@ struct Lanes {
     sign: [u32; LANES],
     ray: [usize; LANES],
     live: [bool; LANES],
+    /// The lane's cell has been tested and missed: step on past it.
+    skip: [bool; LANES],
 }
 
 /// What a lane step leads to.
@@ -73,6 +81,7 @@ impl Lanes {
             sign: [0; LANES],
             ray: [0; LANES],
             live: [false; LANES],
+            skip: [false; LANES],
         }
     }
 
@@ -99,6 +108,7 @@ impl Lanes {
             | u32::from(r.d.y < 0.0) << 3;
         self.ray[l] = k;
         self.live[l] = true;
+        self.skip[l] = false;
     }
 }
 
@@ -118,7 +128,7 @@ struct Consts<'a> {
 /// kept, so their loads stay in bounds).
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
-fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
     assert!(!k.nodes.is_empty());
     let last = k.nodes.len() - 1;
     for l in 0..LANES {
@@ -154,7 +164,10 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
         let (za, zb) = (s.oq[l] + t * s.dq[l], s.oq[l] + t_exit * s.dq[l]);
         let (zlo, zhi) = (fmin(za, zb), fmax(za, zb));
         let mq = s.mq[l];
-        let pass = (zlo <= qhi + mq) & (zhi >= qlo - mq);
+        // At a cell (level 0) the lane parks for the exact test, or, once
+        // that missed, steps on like a failed cull.
+        let at0 = lev == 0;
+        let pass = !at0 & (zlo <= qhi + mq) & (zhi >= qlo - mq);
         // The step across x: the next column, and the row where the ray
         // meets it, clamped to the node (clamping before the truncation is
         // the walk's `floor`, `max`, `min`: the bounds are whole numbers).
@@ -167,7 +180,10 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
         let hiy = (ny0 + size).min(k.ncy) - 1;
         let yv = s.oy[l] + t_exit * s.dy[l];
         let yc = trunc(fmin(fmax_nan_lo(yv, ny0 as i32 as f32), hiy as i32 as f32));
-        let cjx = if ypos {
+        // (Steps between cells keep the other coordinate.)
+        let cjx = if at0 {
+            cj
+        } else if ypos {
             cj.max(yc)
         } else if yneg {
             cj.min(yc)
@@ -184,7 +200,9 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
         let hix = (nx0 + size).min(k.ncx) - 1;
         let xv = s.ox[l] + t_exit * s.dx[l];
         let xc = trunc(fmin(fmax_nan_lo(xv, nx0 as i32 as f32), hix as i32 as f32));
-        let ciy = if xpos {
+        let ciy = if at0 {
+            ci
+        } else if xpos {
             ci.max(xc)
         } else if xneg {
             ci.min(xc)
@@ -199,7 +217,9 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
         // Ascend one level when the step leaves the parent node.
         let up = (lev < k.top) & (((nci ^ ci) | (ncj ^ cj)) >> ((lev + 1) & 31) != 0);
         let live = s.live[l];
-        let go = live & !pass;
+        let park = live & at0 & !s.skip[l];
+        s.skip[l] = false;
+        let go = live & !pass & !park;
         s.ci[l] = if go { nci } else { ci };
         s.cj[l] = if go { ncj } else { cj };
         s.t[l] = if go { t_exit } else { t };
@@ -212,8 +232,15 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
             lev
         };
         // `down` and `go` exclude each other.
-        events[l] = u32::from(down & (lev == 1)) * AT_CELL + u32::from(go & done) * LEFT;
+        // `park` and `go` exclude each other.
+        events[l] = u32::from(park) * AT_CELL + u32::from(go & done) * LEFT;
     }
+    // Bit `l` set: lane `l` parked or left.
+    let mut mask = 0;
+    for (l, &e) in events.iter().enumerate() {
+        mask |= u32::from(e != GOING) << l;
+    }
+    mask
 }
 
 /// `v as u32` for `v` in `[0, 2²⁴)` (a clamped cell coordinate).
@@ -266,7 +293,7 @@ impl Level {
     }
 
     #[inline(always)]
-    fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
+    fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         match self {
             Level::Scalar => step(s, k, events),
             #[cfg(target_arch = "x86_64")]
@@ -285,34 +312,53 @@ impl Level {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
-    step(s, k, events);
+fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
-fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
-    step(s, k, events);
+fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
 }
 
-/// Walks every ray of `rays` whose cursor in `cur` is above the cells
-/// (`level > 0`) down to its first cell visit: on return `cur[k]` is the
-/// cursor there (`level == 0`), or `None` if the ray leaves the field's
-/// box without visiting a cell. Cursors already at level 0 and `None`
-/// entries are left as they are.
-pub(crate) fn to_first_cell(tr: &MipmapTracer<'_>, rays: &[GridRay], cur: &mut [Option<Cursor>]) {
-    to_first_cell_with(Level::detect(), tr, rays, cur);
+/// How a ray's walk in the lanes ended.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Outcome {
+    /// It left the field's box: no hit.
+    Miss,
+    /// Its first hit (with `ANY`, a hit).
+    Hit(CellHit),
+    /// It found a hit that a later cell could still beat (across an edge
+    /// within rounding distance), or the lanes could not take it: the
+    /// single-ray walk finishes it from this cursor (re-testing its cell).
+    Walk(Cursor),
 }
 
-/// [`to_first_cell`] with the lane steps compiled for `level`.
-fn to_first_cell_with(
+/// Walks every ray of `rays` with a cursor in `cur` (`None`: nothing to
+/// trace) to its end, [`LANES`] at a time, running the cell tests of parked
+/// lanes one by one: `out[k]` says how ray `k` ended.
+pub(crate) fn walk_lanes<const ANY: bool>(
+    tr: &MipmapTracer<'_>,
+    rays: &[GridRay],
+    cur: &[Option<Cursor>],
+    out: &mut Vec<Outcome>,
+) {
+    walk_lanes_with::<ANY>(Level::detect(), tr, rays, cur, out);
+}
+
+/// [`walk_lanes`] with the lane steps compiled for `level`.
+fn walk_lanes_with<const ANY: bool>(
     level: Level,
     tr: &MipmapTracer<'_>,
     rays: &[GridRay],
-    cur: &mut [Option<Cursor>],
+    cur: &[Option<Cursor>],
+    out: &mut Vec<Outcome>,
 ) {
+    out.clear();
+    out.extend(cur.iter().map(|c| c.map_or(Outcome::Miss, Outcome::Walk)));
+    let f = &tr.f;
     let m = &tr.mip;
-    let (ncx, ncy) = (tr.f.ncx, tr.f.ncy);
     let (lo, scale, top) = (m.lo, m.scale, m.top);
     let nodes = m.nodes.as_slice();
     // Node indices in 32 bits (the kernel's gathers); larger pyramids take
@@ -324,18 +370,22 @@ fn to_first_cell_with(
     for (o, &m) in offset.iter_mut().zip(&m.offset) {
         *o = m as u32;
     }
-    let offset = &offset;
-    let width = &m.width;
+    let k = Consts {
+        nodes,
+        offset: &offset,
+        width: &m.width,
+        ncx: f.ncx,
+        ncy: f.ncy,
+        top,
+    };
 
     // The next ray to walk at or after `*next`.
-    let take = |next: &mut usize, cur: &[Option<Cursor>]| -> Option<(usize, Cursor)> {
+    let take = |next: &mut usize| -> Option<(usize, Cursor)> {
         while *next < cur.len() {
             let k = *next;
             *next += 1;
             if let Some(c) = cur[k] {
-                if c.level > 0 {
-                    return Some((k, c));
-                }
+                return Some((k, c));
             }
         }
         None
@@ -344,37 +394,68 @@ fn to_first_cell_with(
     let mut s = Lanes::new();
     let mut live = 0;
     for l in 0..LANES {
-        if let Some((k, c)) = take(&mut next, cur) {
+        if let Some((k, c)) = take(&mut next) {
             s.load(l, k, &rays[k], c, lo, scale);
             live += 1;
         }
     }
-    let k = Consts {
-        nodes,
-        offset,
-        width,
-        ncx,
-        ncy,
-        top,
-    };
+    let mut stats = TraceStats::default();
     while live > 0 {
         let mut events = [GOING; LANES];
-        level.step(&mut s, &k, &mut events);
-        if events.iter().all(|&e| e == GOING) {
-            continue;
-        }
-        for (l, &ev) in events.iter().enumerate() {
-            if ev == GOING {
-                continue;
+        let mut mask = level.step(&mut s, &k, &mut events);
+        while mask != 0 {
+            let l = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let ev = events[l];
+            let kr = s.ray[l];
+            if ev == AT_CELL {
+                // The cell step of the single-ray walk, with nothing pending.
+                let r = &rays[kr];
+                let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
+                let (o, d, inv) = (r.o, r.d, r.inv);
+                let tx = if d.x > 0.0 {
+                    ((ci + 1) as f32 - o.x) * inv.x
+                } else if d.x < 0.0 {
+                    (ci as f32 - o.x) * inv.x
+                } else {
+                    f32::INFINITY
+                };
+                let ty = if d.y > 0.0 {
+                    ((cj + 1) as f32 - o.y) * inv.y
+                } else if d.y < 0.0 {
+                    (cj as f32 - o.y) * inv.y
+                } else {
+                    f32::INFINITY
+                };
+                let t_end = r.t1;
+                let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+                let exit = if t_exit >= t_end {
+                    Exit::End
+                } else if tx <= ty {
+                    Exit::X
+                } else {
+                    Exit::Y
+                };
+                let first = t == r.t0;
+                match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
+                    None => {
+                        s.skip[l] = true;
+                        continue;
+                    }
+                    Some(h) if ANY || h.t <= t_exit + r.ttol => out[kr] = Outcome::Hit(h),
+                    Some(_) => {
+                        out[kr] = Outcome::Walk(Cursor {
+                            ci,
+                            cj,
+                            t,
+                            level: 0,
+                        });
+                    }
+                }
+            } else {
+                out[kr] = Outcome::Miss;
             }
-            let k = s.ray[l];
-            cur[k] = (ev == AT_CELL).then_some(Cursor {
-                ci: s.ci[l],
-                cj: s.cj[l],
-                t: s.t[l],
-                level: 0,
-            });
-            match take(&mut next, cur) {
+            match take(&mut next) {
                 Some((k, c)) => s.load(l, k, &rays[k], c, lo, scale),
                 None => {
                     s.live[l] = false;
@@ -392,10 +473,10 @@ mod tests {
     use glam::Vec3;
     use natura_core::{HeightField, Seed};
 
-    /// Every instruction set this CPU supports walks the rays to the same
-    /// cursors as the portable code, bit for bit.
+    /// Every instruction set this CPU supports ends every walk the same way
+    /// as the portable code, bit for bit.
     #[test]
-    fn every_level_gives_the_same_cursors() {
+    fn every_level_gives_the_same_outcomes() {
         let s = Seed(7);
         let hf = HeightField::from_fn(300, 213, 2.0, |i, j| {
             40.0 * s.uniform2(i as i64 / 9, j as i64 / 7) as f32
@@ -421,9 +502,11 @@ mod tests {
             .iter()
             .map(|r| tr.setup(r, 0.0, f32::INFINITY).map(|g| tr.start(&g)))
             .collect();
-        let mut want = start.clone();
-        to_first_cell_with(Level::Scalar, &tr, &grid, &mut want);
-        assert!(want.iter().filter(|c| c.is_some()).count() > 1000);
+        let key = |o: &Outcome| match *o {
+            Outcome::Miss => (0, 0, 0, 0, 0),
+            Outcome::Hit(h) => (1, h.t.to_bits(), h.cell.0, h.cell.1, h.triangle.index()),
+            Outcome::Walk(c) => (2, c.t.to_bits(), c.ci, c.cj, c.level),
+        };
         let mut levels = vec![];
         #[cfg(target_arch = "x86_64")]
         {
@@ -434,15 +517,24 @@ mod tests {
                 levels.push(Level::Avx512);
             }
         }
-        for level in levels {
-            let mut got = start.clone();
-            to_first_cell_with(level, &tr, &grid, &mut got);
-            for (g, w) in got.iter().zip(&want) {
-                assert_eq!(
-                    g.map(|c| (c.ci, c.cj, c.t.to_bits(), c.level)),
-                    w.map(|c| (c.ci, c.cj, c.t.to_bits(), c.level)),
-                    "{level:?}"
-                );
+        for any in [false, true] {
+            let run = |level: Level| {
+                let mut out = Vec::new();
+                if any {
+                    walk_lanes_with::<true>(level, &tr, &grid, &start, &mut out);
+                } else {
+                    walk_lanes_with::<false>(level, &tr, &grid, &start, &mut out);
+                }
+                out
+            };
+            let want = run(Level::Scalar);
+            let hits = want.iter().filter(|o| matches!(o, Outcome::Hit(_))).count();
+            assert!(hits > 1000, "{hits}");
+            for &level in &levels {
+                let got = run(level);
+                for (g, w) in got.iter().zip(&want) {
+                    assert_eq!(key(g), key(w), "{level:?}");
+                }
             }
         }
     }
