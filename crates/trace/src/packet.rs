@@ -31,6 +31,10 @@ use crate::ray_cell::CellHit;
 /// Rays stepped together.
 pub(crate) const LANES: usize = 16;
 
+/// Rays whose walk starts below this level (their clipped span lies within
+/// a block of `2^MIN_LANE_LEVEL` cells) take the single-ray walk.
+const MIN_LANE_LEVEL: u32 = 4;
+
 /// Per-lane ray constants and walk state, struct-of-arrays.
 #[derive(Clone, Copy)]
 struct Lanes {
@@ -385,7 +389,11 @@ fn walk_lanes_with<const ANY: bool>(
             let k = *next;
             *next += 1;
             if let Some(c) = cur[k] {
-                return Some((k, c));
+                // Short walks (a span within a few cells: steep rays) are
+                // cheaper one at a time than through a lane.
+                if c.level >= MIN_LANE_LEVEL {
+                    return Some((k, c));
+                }
             }
         }
         None
