@@ -348,12 +348,13 @@ pub(crate) fn walk_lanes<const ANY: bool>(
     cur: &[Option<Cursor>],
     out: &mut Vec<Outcome>,
 ) {
-    walk_lanes_with::<ANY>(Level::detect(), tr, rays, cur, out);
+    walk_lanes_with::<ANY>(Level::detect(), MIN_LANE_LEVEL, tr, rays, cur, out);
 }
 
 /// [`walk_lanes`] with the lane steps compiled for `level`.
 fn walk_lanes_with<const ANY: bool>(
     level: Level,
+    min_level: u32,
     tr: &MipmapTracer<'_>,
     rays: &[GridRay],
     cur: &[Option<Cursor>],
@@ -391,7 +392,7 @@ fn walk_lanes_with<const ANY: bool>(
             if let Some(c) = cur[k] {
                 // Short walks (a span within a few cells: steep rays) are
                 // cheaper one at a time than through a lane.
-                if c.level >= MIN_LANE_LEVEL {
+                if c.level >= min_level {
                     return Some((k, c));
                 }
             }
@@ -529,9 +530,9 @@ mod tests {
             let run = |level: Level| {
                 let mut out = Vec::new();
                 if any {
-                    walk_lanes_with::<true>(level, &tr, &grid, &start, &mut out);
+                    walk_lanes_with::<true>(level, 0, &tr, &grid, &start, &mut out);
                 } else {
-                    walk_lanes_with::<false>(level, &tr, &grid, &start, &mut out);
+                    walk_lanes_with::<false>(level, 0, &tr, &grid, &start, &mut out);
                 }
                 out
             };
@@ -545,5 +546,100 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Every ray walked in the lanes from its start (whatever its level)
+    /// ends with the single-ray walk's hit, bit for bit: small fields of
+    /// every kind (flat, spiky, plateaus, tilted) and rays of every awkward
+    /// sort (axis-parallel, vertical, grazing, through corners, from below,
+    /// from inside), closest and any hit.
+    #[test]
+    fn lanes_equal_the_single_ray_walk_on_awkward_rays() {
+        let s = Seed(23);
+        let mut checked = 0;
+        for case in 0..60i64 {
+            let u = |a: i64, b: i64| s.uniform2(case * 1000 + a, b) as f32;
+            let (nx, ny) = (2 + (u(0, 0) * 40.0) as usize, 2 + (u(0, 1) * 40.0) as usize);
+            let cell = [1.0, 0.5, 2.0, 3.7][case as usize % 4];
+            let kind = case % 5;
+            let hf = HeightField::from_fn(nx, ny, cell, |i, j| {
+                let v = s.uniform2(case * 7919 + i as i64, j as i64) as f32;
+                match kind {
+                    0 => 10.0 * v,
+                    1 => 3.0,
+                    2 => {
+                        if v > 0.85 {
+                            20.0 * v
+                        } else {
+                            0.0
+                        }
+                    }
+                    3 => (4.0 * v).floor() * 2.5,
+                    _ => 0.7 * i as f32 - 0.4 * j as f32 + 2.0,
+                }
+            })
+            .unwrap();
+            let tr = MipmapTracer::new(&hf).unwrap();
+            let (lo, hi) = hf.min_max();
+            let mut rays = Vec::new();
+            for k in 0..64i64 {
+                let r = |c: i64| u(k + 1, c);
+                let o = Vec3::new(
+                    (1.6 * r(0) - 0.3) * nx as f32 * cell,
+                    (1.6 * r(1) - 0.3) * ny as f32 * cell,
+                    lo + (1.6 * r(2) - 0.3) * (hi - lo + 1.0),
+                );
+                let o = if k % 5 == 0 {
+                    (o / cell).round() * cell
+                } else {
+                    o
+                };
+                let d = match k % 6 {
+                    0 => Vec3::new(r(3) - 0.5, r(4) - 0.5, r(5) - 0.5),
+                    1 => Vec3::new(if r(3) > 0.5 { 1.0 } else { -1.0 }, 0.0, r(5) - 0.5),
+                    2 => Vec3::new(0.0, if r(3) > 0.5 { 1.0 } else { -1.0 }, r(5) - 0.5),
+                    3 => Vec3::new(0.0, 0.0, if r(3) > 0.5 { 1.0 } else { -1.0 }),
+                    4 => Vec3::new(r(3) - 0.5, r(4) - 0.5, 0.02 * (r(5) - 0.5)),
+                    _ => Vec3::new(1.0, if r(3) > 0.5 { 1.0 } else { -1.0 }, 0.3 * (r(5) - 0.5)),
+                };
+                rays.push(Ray::new(o, d * Vec3::new(cell, cell, 1.0)));
+            }
+            let grid: Vec<GridRay> = rays
+                .iter()
+                .map(|r| {
+                    tr.setup(r, 0.0, f32::INFINITY)
+                        .unwrap_or_else(GridRay::idle)
+                })
+                .collect();
+            let start: Vec<Option<Cursor>> = rays
+                .iter()
+                .map(|r| tr.setup(r, 0.0, f32::INFINITY).map(|g| tr.start(&g)))
+                .collect();
+            let key = |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
+            let mut stats = TraceStats::default();
+            let mut out = Vec::new();
+            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
+                let got = match *o {
+                    Outcome::Miss => None,
+                    Outcome::Hit(h) => Some(h),
+                    Outcome::Walk(c) => tr.walk::<false>(r, c, &mut stats),
+                };
+                let want = start[k].and_then(|c| tr.walk::<false>(r, c, &mut stats));
+                assert_eq!(key(got), key(want), "case {case}, ray {k}: {:?}", rays[k]);
+                checked += usize::from(want.is_some());
+            }
+            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
+                let got = match *o {
+                    Outcome::Miss => false,
+                    Outcome::Hit(_) => true,
+                    Outcome::Walk(c) => tr.walk::<true>(r, c, &mut stats).is_some(),
+                };
+                let want = start[k].is_some_and(|c| tr.walk::<true>(r, c, &mut stats).is_some());
+                assert_eq!(got, want, "any hit: case {case}, ray {k}");
+            }
+        }
+        assert!(checked > 500, "{checked} hits");
     }
 }
