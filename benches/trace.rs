@@ -15,8 +15,10 @@
 //! tracers are also measured on that subset single-threaded, so the ratios
 //! compare like with like. Besides criterion's wall-clock figures, each
 //! tracer's rate per second of *thread CPU time* is printed (`[trace] cpu`),
-//! which stays meaningful when the machine is shared. Figures go to
-//! docs/performance.md.
+//! which stays meaningful when the machine is shared. The mipmap tracer is
+//! measured both one `trace` call per ray and through its batch path
+//! (`trace_many` over 1024-ray chunks, `trace_image` over 32 × 32 tiles),
+//! which returns the same hits. Figures go to docs/performance.md.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -24,7 +26,10 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use natura::core::glam::Vec3;
 use natura::core::{Boundary, Grid2, HeightField, NoProgress, Seed};
-use natura::trace::{Camera, GridTracer, MipmapTracer, PinholeCamera, Ray, Tracer, render};
+use natura::trace::{
+    Camera, GridTracer, MipmapTracer, PinholeCamera, Ray, RenderOptions, Tracer, render,
+    trace_image,
+};
 
 const CELL: f32 = 10.0;
 
@@ -158,6 +163,20 @@ fn trace_all(t: &impl Tracer, rays: &[Ray]) -> usize {
         .count()
 }
 
+/// The batch path: `trace_many` over chunks of `BATCH` rays (a 32 × 32 tile's worth).
+fn trace_batched(t: &MipmapTracer<'_>, rays: &[Ray]) -> usize {
+    rays.chunks(BATCH)
+        .map(|c| {
+            t.trace_many(c, 0.0, f32::INFINITY)
+                .iter()
+                .filter(|h| h.is_some())
+                .count()
+        })
+        .sum()
+}
+
+const BATCH: usize = 1024;
+
 fn stats_line(name: &str, t: &impl Tracer, rays: &[Ray]) {
     let (mut hits, mut nodes, mut cells, mut tests) = (0u64, 0u64, 0u64, 0u64);
     for r in rays {
@@ -241,6 +260,9 @@ fn primary(c: &mut Criterion) {
         cpu_rate(&format!("{view} mipmap 1/64"), sub.len(), || {
             black_box(trace_all(&mip, &sub));
         });
+        cpu_rate(&format!("{view} mipmap trace_many 1/64"), sub.len(), || {
+            black_box(trace_batched(&mip, &sub));
+        });
         cpu_rate(&format!("{view} dda 1/64"), sub.len(), || {
             black_box(trace_all(&grid, &sub));
         });
@@ -260,6 +282,13 @@ fn primary(c: &mut Criterion) {
                 black_box(trace_all(&mip, &full));
             },
         );
+        cpu_rate(
+            &format!("{view} mipmap trace_many full frame, scanline order"),
+            full.len(),
+            || {
+                black_box(trace_batched(&mip, &full));
+            },
+        );
 
         let mut g = c.benchmark_group(format!("trace_{view}_1of64_1thread"));
         g.sample_size(10);
@@ -267,6 +296,9 @@ fn primary(c: &mut Criterion) {
         g.measurement_time(Duration::from_secs(4));
         g.throughput(Throughput::Elements(sub.len() as u64));
         g.bench_function("mipmap", |b| b.iter(|| black_box(trace_all(&mip, &sub))));
+        g.bench_function("mipmap_trace_many", |b| {
+            b.iter(|| black_box(trace_batched(&mip, &sub)))
+        });
         g.bench_function("dda", |b| b.iter(|| black_box(trace_all(&grid, &sub))));
         g.bench_function("parry3d", |b| {
             use parry3d::query::RayCast;
@@ -285,7 +317,20 @@ fn primary(c: &mut Criterion) {
         g.warm_up_time(Duration::from_millis(500));
         g.measurement_time(Duration::from_secs(4));
         g.throughput(Throughput::Elements(1920 * 1080));
-        g.bench_function("mipmap", |b| {
+        // The batch API: each 32 × 32 tile's rays traced together.
+        g.bench_function("mipmap_trace_image", |b| {
+            let options = RenderOptions::default();
+            b.iter(|| {
+                black_box(
+                    trace_image(&mip, &cam, &options, &NoProgress, |_, h| {
+                        Vec3::splat(h.map_or(0.0, |h| h.t))
+                    })
+                    .unwrap(),
+                )
+            })
+        });
+        // One `trace` call per pixel (as a per-pixel shader would).
+        g.bench_function("mipmap_per_ray", |b| {
             b.iter(|| {
                 black_box(
                     render(1920, 1080, 32, &NoProgress, |x, y| {
@@ -320,6 +365,19 @@ fn primary(c: &mut Criterion) {
         starts.len(),
         100.0 * lit as f64 / starts.len() as f64
     );
+    cpu_rate("shadow mipmap occluded_many", starts.len(), || {
+        black_box(
+            starts
+                .chunks(BATCH)
+                .map(|c| {
+                    mip.occluded_many(c, 0.0, f32::INFINITY)
+                        .iter()
+                        .filter(|&&o| o)
+                        .count()
+                })
+                .sum::<usize>(),
+        );
+    });
     cpu_rate("shadow mipmap occluded", starts.len(), || {
         black_box(
             starts
@@ -340,6 +398,21 @@ fn primary(c: &mut Criterion) {
                     .iter()
                     .filter(|r| mip.occluded(r, 0.0, f32::INFINITY))
                     .count(),
+            )
+        })
+    });
+    g.bench_function("mipmap_occluded_many_1thread", |b| {
+        b.iter(|| {
+            black_box(
+                starts
+                    .chunks(BATCH)
+                    .map(|c| {
+                        mip.occluded_many(c, 0.0, f32::INFINITY)
+                            .iter()
+                            .filter(|&&o| o)
+                            .count()
+                    })
+                    .sum::<usize>(),
             )
         })
     });
@@ -379,6 +452,13 @@ fn scaling(c: &mut Criterion) {
         cpu_rate(&format!("scaling {n}² mipmap"), sub.len(), || {
             black_box(trace_all(&mip, &sub));
         });
+        cpu_rate(
+            &format!("scaling {n}² mipmap trace_many"),
+            sub.len(),
+            || {
+                black_box(trace_batched(&mip, &sub));
+            },
+        );
         let few: Vec<Ray> = sub.iter().step_by(4).copied().collect();
         cpu_rate(&format!("scaling {n}² dda"), few.len(), || {
             black_box(trace_all(&grid, &few));

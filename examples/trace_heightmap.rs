@@ -19,8 +19,8 @@ use common::scene::{LatticeTerrain, albedo, lattice_terrain};
 use natura::core::glam::Vec3;
 use natura::core::{HeightField, Seed};
 use natura::trace::{
-    Camera, MipmapTracer, OrthographicCamera, PinholeCamera, Ray, RenderOptions, Tracer,
-    render_camera,
+    Camera, Hit, MipmapTracer, OrthographicCamera, PinholeCamera, Ray, RenderOptions, Tracer,
+    trace_image,
 };
 
 fn parse3(s: &str, flag: &str) -> Vec3 {
@@ -105,8 +105,10 @@ fn main() {
     let haze = Vec3::new(0.62, 0.72, 0.88);
     let scene_size = e.length().max(relief);
 
-    let shade = |ray: &Ray| -> Vec3 {
-        match tracer.trace(ray, 0.0, f32::INFINITY) {
+    // Primary rays are traced a tile at a time by `trace_image` (the batch
+    // path); `shade` lights each hit.
+    let shade = |ray: &Ray, hit: Option<&Hit>| -> Vec3 {
+        match hit.copied() {
             None => {
                 let up = ray.dir.z.max(0.0);
                 haze.lerp(sky_colour, up.powf(0.6))
@@ -151,7 +153,7 @@ fn main() {
             width,
             height,
         ));
-        common::check(render_camera(&cam, &options, &bar, shade))
+        common::check(trace_image(&tracer, &cam, &options, &bar, shade))
     } else {
         let eye = eye.map(|s| parse3(&s, "--eye")).unwrap_or_else(|| {
             let (x, y) = (0.1 * e.x, 0.06 * e.y);
@@ -174,7 +176,7 @@ fn main() {
             height,
         ));
         println!("camera at {eye}, looking at {target}, {}", fmt_res(&cam));
-        common::check(render_camera(&cam, &options, &bar, shade))
+        common::check(trace_image(&tracer, &cam, &options, &bar, shade))
     };
     let png = out.join("trace_heightmap.png");
     common::check(img.save_png(&png));

@@ -17,8 +17,8 @@ use common::scene::{LatticeTerrain, albedo, lattice_terrain};
 use natura::core::glam::Vec3;
 use natura::core::Seed;
 use natura::trace::{
-    Eye, MipmapTracer, PanoramicCamera, Projection, Ray, RenderOptions, Stereo, Tracer,
-    render_camera,
+    Eye, Hit, MipmapTracer, PanoramicCamera, Projection, Ray, RenderOptions, Stereo, Tracer,
+    trace_image,
 };
 
 fn main() {
@@ -71,8 +71,10 @@ fn main() {
     let sky = Vec3::new(0.35, 0.5, 0.8);
     let haze = Vec3::new(0.65, 0.74, 0.88);
     let scene = e.length();
-    let shade = |ray: &Ray| -> Vec3 {
-        match tracer.trace(ray, 0.0, f32::INFINITY) {
+    // Primary rays are traced a tile at a time by `trace_image` (the batch
+    // path); `shade` lights each hit.
+    let shade = |ray: &Ray, hit: Option<&Hit>| -> Vec3 {
+        match hit.copied() {
             None => haze.lerp(sky, ray.dir.z.max(0.0).powf(0.5)),
             Some(h) => {
                 let n = h.smooth_normal;
@@ -126,7 +128,7 @@ fn main() {
         ],
     };
     for (name, cam) in views {
-        let img = common::check(render_camera(&cam, &options, &bar, shade));
+        let img = common::check(trace_image(&tracer, &cam, &options, &bar, shade));
         let path = out.join(name);
         common::check(img.save_png(&path));
         println!("wrote {} ({width} × {height}, {proj})", path.display());

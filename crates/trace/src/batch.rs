@@ -13,7 +13,8 @@ use natura_core::{Grid2, Image, Progress, Seed};
 
 use crate::camera::{Camera, check_resolution};
 use crate::error::{Result, TraceError};
-use crate::ray::Ray;
+use crate::ray::{Hit, Ray};
+use crate::tracer::Tracer;
 
 /// Default tile side, pixels.
 pub const DEFAULT_TILE: u32 = 32;
@@ -91,6 +92,28 @@ where
     T: Send + Sync + Clone + Default,
     F: Fn(u32, u32) -> T + Sync,
 {
+    tiles(width, height, tile, progress, |bx, by, w, h, out| {
+        for y in by..by + h {
+            for x in bx..bx + w {
+                out.push(pixel(x, y));
+            }
+        }
+    })
+}
+
+/// The tile driver behind [`render`] and [`trace_image`]: `run(x0, y0, w, h,
+/// out)` pushes the `w × h` values of the tile at `(x0, y0)`, row-major.
+fn tiles<T, F>(
+    width: u32,
+    height: u32,
+    tile: u32,
+    progress: &dyn Progress,
+    run: F,
+) -> Result<Grid2<T>>
+where
+    T: Send + Sync + Clone + Default,
+    F: Fn(u32, u32, u32, u32, &mut Vec<T>) + Sync,
+{
     check_resolution(width, height)?;
     if tile == 0 {
         return Err(TraceError::param("tile", tile, "must be ≥ 1 pixel"));
@@ -106,11 +129,12 @@ where
         );
         let (w, h) = (tile.min(width - bx), tile.min(height - by));
         let mut out = Vec::with_capacity((w * h) as usize);
-        for y in by..by + h {
-            for x in bx..bx + w {
-                out.push(pixel(x, y));
-            }
-        }
+        run(bx, by, w, h, &mut out);
+        assert_eq!(
+            out.len(),
+            (w * h) as usize,
+            "a tile yields one value per pixel"
+        );
         progress.advance(u64::from(w * h));
         out
     };
@@ -134,6 +158,56 @@ where
     }
     progress.finish();
     Ok(grid)
+}
+
+/// Renders `camera`'s image with `tracer`: like [`render_camera`], but the
+/// rays of each tile (all their samples) are traced together with
+/// [`Tracer::trace_many`] over `[0, ∞)` — for a [`crate::MipmapTracer`] its
+/// lock-step lanes, about 1.5× faster than one [`Tracer::trace`] per pixel
+/// on grazing views — and `shade(ray, hit)` turns each into a linear colour;
+/// a pixel's samples are averaged.
+///
+/// The image equals [`render_camera`] with a `shade` that traces each ray
+/// itself, bit for bit, for any thread count or tile size. Fails on invalid
+/// options.
+pub fn trace_image<C, Tr, F>(
+    tracer: &Tr,
+    camera: &C,
+    options: &RenderOptions,
+    progress: &dyn Progress,
+    shade: F,
+) -> Result<Image>
+where
+    C: Camera + ?Sized,
+    Tr: Tracer + ?Sized,
+    F: Fn(&Ray, Option<&Hit>) -> Vec3 + Sync,
+{
+    options.validate()?;
+    let res = camera.resolution();
+    let n = options.samples_per_pixel;
+    let inv = 1.0 / n as f32;
+    let grid = tiles(res.x, res.y, options.tile, progress, |bx, by, w, h, out| {
+        let mut rays = Vec::with_capacity((w * h * n) as usize);
+        for y in by..by + h {
+            for x in bx..bx + w {
+                for s in 0..n {
+                    rays.push(camera.ray(x, y, options.jitter(x, y, s)));
+                }
+            }
+        }
+        let hits = tracer.trace_many(&rays, 0.0, f32::INFINITY);
+        for (r, h) in rays
+            .chunks_exact(n as usize)
+            .zip(hits.chunks_exact(n as usize))
+        {
+            let mut sum = Vec3::ZERO;
+            for (ray, hit) in r.iter().zip(h) {
+                sum += shade(ray, hit.as_ref());
+            }
+            out.push(sum * inv);
+        }
+    })?;
+    Ok(Image::from_grid(grid))
 }
 
 /// Renders `camera`'s image: for every pixel, `options.samples_per_pixel`

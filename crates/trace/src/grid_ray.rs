@@ -34,19 +34,25 @@ impl Shear {
         };
         let mut kx = (kz + 1) % 3;
         let mut ky = (kx + 1) % 3;
+        // Plain arrays: indices below 3 need no checks (glam's `Index` does).
+        let d = d.to_array();
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
         let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
-        let mut px = Vec3::ZERO;
+        let mut px = [0.0; 3];
         px[kx] = 1.0;
         px[kz] = -sx;
-        let mut py = Vec3::ZERO;
+        let mut py = [0.0; 3];
         py[ky] = 1.0;
         py[kz] = -sy;
-        let mut pz = Vec3::ZERO;
+        let mut pz = [0.0; 3];
         pz[kz] = sz;
-        Self { px, py, pz }
+        Self {
+            px: Vec3::from_array(px),
+            py: Vec3::from_array(py),
+            pz: Vec3::from_array(pz),
+        }
     }
 }
 
@@ -108,7 +114,9 @@ impl GridRay {
         let lo = Vec3::new(-xyeps, -xyeps, f.zmin - zeps);
         let hi = Vec3::new(f.ncx as f32 + xyeps, f.ncy as f32 + xyeps, f.zmax + zeps);
         let (mut t0, mut t1) = (t_min, t_max);
+        let (oa, da, loa, hia) = (o.to_array(), d.to_array(), lo.to_array(), hi.to_array());
         for k in 0..3 {
+            let (o, d, lo, hi) = (oa, da, loa, hia);
             if d[k] == 0.0 {
                 if o[k] < lo[k] || o[k] > hi[k] {
                     // Parallel to this slab and outside it: an empty range.
@@ -145,6 +153,24 @@ impl GridRay {
         })
     }
 
+    /// A placeholder for batch slots whose ray is not traced.
+    pub fn idle() -> Self {
+        Self {
+            o: Vec3::ZERO,
+            d: Vec3::Z,
+            inv: Vec2::ZERO,
+            t_min: 0.0,
+            t_max: 0.0,
+            t0: f32::INFINITY,
+            t1: f32::NEG_INFINITY,
+            zeps: 0.0,
+            xyeps: 0.0,
+            ttol: 0.0,
+            zm: 0.0,
+            shear: Shear::new(Vec3::Z),
+        }
+    }
+
     /// Whether the clipped range is empty (the ray misses the box within `[t_min, t_max]`).
     #[inline]
     pub fn misses_box(&self) -> bool {
@@ -157,18 +183,22 @@ impl GridRay {
     /// The cell holding the clipped entry point, clamped to the grid.
     #[inline]
     pub fn entry_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
-        let p = self.o + self.t0 * self.d;
-        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
-        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
-        (i, j)
+        Self::cell_of(self.o + self.t0 * self.d, f)
     }
 
     /// The cell holding the clipped exit point, clamped to the grid.
     #[inline]
     pub fn exit_cell(&self, f: &FieldView<'_>) -> (u32, u32) {
-        let p = self.o + self.t1 * self.d;
-        let i = (p.x.floor().max(0.0) as u32).min(f.ncx - 1);
-        let j = (p.y.floor().max(0.0) as u32).min(f.ncy - 1);
+        Self::cell_of(self.o + self.t1 * self.d, f)
+    }
+
+    /// The cell holding grid point `p`, clamped to the grid. `max(0)` then
+    /// truncation is `floor(·).max(0)` (and NaN goes to 0 either way), without
+    /// a library call on targets lacking a rounding instruction.
+    #[inline(always)]
+    fn cell_of(p: Vec3, f: &FieldView<'_>) -> (u32, u32) {
+        let i = (p.x.max(0.0) as u32).min(f.ncx - 1);
+        let j = (p.y.max(0.0) as u32).min(f.ncy - 1);
         (i, j)
     }
 

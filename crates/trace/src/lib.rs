@@ -16,8 +16,9 @@
 //! * Cameras implementing [`Camera`]: [`PinholeCamera`], [`OrthographicCamera`]
 //!   and the panoramic virtual screens of the dissertation's appendix B
 //!   ([`PanoramicCamera`], cylindrical or spherical, optionally stereo).
-//! * [`render`] / [`render_camera`]: deterministic tile-parallel batch tracing
-//!   with progress reporting.
+//! * [`render`] / [`render_camera`] / [`trace_image`]: deterministic
+//!   tile-parallel batch tracing with progress reporting; [`trace_image`]
+//!   traces each tile's rays together through the batch path.
 //!
 //! ## The surface
 //!
@@ -48,6 +49,14 @@
 //! [`GridTracer`] takes O(√N); figures against the plain DDA and parry3d are
 //! in `docs/performance.md`. Both are `Sync`: share one tracer across threads.
 //!
+//! Trace rays in batches where you can: [`MipmapTracer::trace_many`] and
+//! [`MipmapTracer::occluded_many`] (also through [`Tracer::trace_many`], and
+//! [`trace_image`] for whole images) walk 16 rays in lock step without
+//! data-dependent branches, vectorised with AVX-512 or AVX2 where the CPU has
+//! them (detected at run time; portable code otherwise), with each cell's
+//! exact test run per ray, and return exactly the hits of one call per ray
+//! (about 1.5× faster on long grazing rays, at par on short steep ones).
+//!
 //! ## Errata corrected (spec `gridtrace.md` §9)
 //!
 //! * The printed triangle clip `x + y ≤ cellxmax + cellymax` (seed 000,
@@ -71,7 +80,10 @@
 //! assert!(tracer.occluded(&ray, 0.0, hit.t + 1e-3));
 //! # Ok::<(), natura_trace::TraceError>(())
 //! ```
-#![forbid(unsafe_code)]
+// `unsafe` is denied crate-wide; the only exceptions are in `packet.rs`: the
+// two calls into run-time-dispatched `#[target_feature]` lane kernels and one
+// float-to-int truncation of a value clamped to cell coordinates.
+#![deny(unsafe_code)]
 
 mod batch;
 mod brute;
@@ -82,12 +94,13 @@ mod field;
 mod grid_ray;
 mod leaf;
 mod max_mipmap;
+mod packet;
 mod ray;
 mod ray_cell;
 mod surface;
 mod tracer;
 
-pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera};
+pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, trace_image};
 pub use brute::brute_force;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,

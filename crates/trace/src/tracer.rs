@@ -23,4 +23,19 @@ pub trait Tracer: Sync {
 
     /// The height field being traced.
     fn height_field(&self) -> &HeightField;
+
+    /// [`Tracer::trace`] of every ray of `rays`, in order. Tracers override
+    /// this where batches run faster ([`crate::MipmapTracer`] does); the
+    /// results are the same as one call per ray.
+    fn trace_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<Option<Hit>> {
+        rays.iter().map(|r| self.trace(r, t_min, t_max)).collect()
+    }
+
+    /// [`Tracer::occluded`] of every ray of `rays`, in order (overridden
+    /// where batches run faster, with the same results).
+    fn occluded_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<bool> {
+        rays.iter()
+            .map(|r| self.occluded(r, t_min, t_max))
+            .collect()
+    }
 }

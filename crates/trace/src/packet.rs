@@ -1,0 +1,645 @@
+//! Many rays at once: the max-mipmap walk run for [`LANES`] rays in lock
+//! step, without data-dependent branches.
+//!
+//! A grazing ray spends most of its walk (about 21 of 25 steps on the
+//! benchmark's 4096² view) descending from the coarse levels and stepping
+//! past nodes above it before it first reaches a cell. Done one ray at a
+//! time, each of those steps waits on a node load and then on a branch that
+//! goes either way (descend or advance, across x or across y). Here each
+//! step computes both outcomes and selects one, for [`LANES`] independent
+//! rays at once; the loop over lanes is vectorised (with gathers of the
+//! nodes) for AVX-512 or AVX2, chosen at run time. A lane whose ray reaches
+//! a cell parks: the cell's exact test ([`leaf`], the single-ray walk's)
+//! runs for it alone; on a miss the lane steps on, on a hit (or when it
+//! leaves the field) it is refilled with the next ray. A hit that a later
+//! cell could still beat (one across an edge within rounding distance, rare)
+//! hands the ray to the single-ray walk ([`MipmapTracer::walk`]) from that
+//! cell.
+//!
+//! The lane step computes the same `f32` and integer values in the same
+//! order as the single-ray walk's node steps, so every ray visits the same
+//! cells at the same `t` and returns the same hit, bit for bit (tested
+//! against the single-ray path, at every instruction set, and against brute
+//! force).
+
+use crate::grid_ray::GridRay;
+use crate::leaf::{Exit, fmax, fmin, leaf};
+use crate::max_mipmap::{Cursor, MipmapTracer};
+use crate::ray::TraceStats;
+use crate::ray_cell::CellHit;
+
+/// Rays stepped together.
+pub(crate) const LANES: usize = 16;
+
+/// Rays whose walk starts below this level (their clipped span lies within
+/// a block of `2^MIN_LANE_LEVEL` cells) take the single-ray walk.
+const MIN_LANE_LEVEL: u32 = 4;
+
+/// Per-lane ray constants and walk state, struct-of-arrays.
+#[derive(Clone, Copy)]
+struct Lanes {
+    ox: [f32; LANES],
+    oy: [f32; LANES],
+    dx: [f32; LANES],
+    dy: [f32; LANES],
+    ix: [f32; LANES],
+    iy: [f32; LANES],
+    oq: [f32; LANES],
+    dq: [f32; LANES],
+    mq: [f32; LANES],
+    t_end: [f32; LANES],
+    t: [f32; LANES],
+    ci: [u32; LANES],
+    cj: [u32; LANES],
+    level: [u32; LANES],
+    /// Bits: 1 `dx > 0`, 2 `dx < 0`, 4 `dy > 0`, 8 `dy < 0`.
+    sign: [u32; LANES],
+    ray: [usize; LANES],
+    live: [bool; LANES],
+    /// The lane's cell has been tested and missed: step on past it.
+    skip: [bool; LANES],
+}
+
+/// What a lane step leads to.
+const GOING: u32 = 0;
+const AT_CELL: u32 = 1;
+const LEFT: u32 = 2;
+
+impl Lanes {
+    fn new() -> Self {
+        Self {
+            ox: [0.0; LANES],
+            oy: [0.0; LANES],
+            dx: [0.0; LANES],
+            dy: [0.0; LANES],
+            ix: [0.0; LANES],
+            iy: [0.0; LANES],
+            oq: [0.0; LANES],
+            dq: [0.0; LANES],
+            mq: [0.0; LANES],
+            t_end: [0.0; LANES],
+            t: [0.0; LANES],
+            ci: [0; LANES],
+            cj: [0; LANES],
+            level: [0; LANES],
+            sign: [0; LANES],
+            ray: [0; LANES],
+            live: [false; LANES],
+            skip: [false; LANES],
+        }
+    }
+
+    #[inline]
+    fn load(&mut self, l: usize, k: usize, r: &GridRay, c: Cursor, lo: f32, scale: f32) {
+        self.ox[l] = r.o.x;
+        self.oy[l] = r.o.y;
+        self.dx[l] = r.d.x;
+        self.dy[l] = r.d.y;
+        self.ix[l] = r.inv.x;
+        self.iy[l] = r.inv.y;
+        // As in the single-ray walk: altitude and margin in quantised units.
+        self.oq[l] = (r.o.z - lo) / scale;
+        self.dq[l] = r.d.z / scale;
+        self.mq[l] = 1.0 + r.zm / scale;
+        self.t_end[l] = r.t1;
+        self.t[l] = c.t;
+        self.ci[l] = c.ci;
+        self.cj[l] = c.cj;
+        self.level[l] = c.level;
+        self.sign[l] = u32::from(r.d.x > 0.0)
+            | u32::from(r.d.x < 0.0) << 1
+            | u32::from(r.d.y > 0.0) << 2
+            | u32::from(r.d.y < 0.0) << 3;
+        self.ray[l] = k;
+        self.live[l] = true;
+        self.skip[l] = false;
+    }
+}
+
+/// What every lane step needs besides the lanes.
+struct Consts<'a> {
+    nodes: &'a [u32],
+    offset: &'a [u32; 32],
+    width: &'a [u32; 32],
+    ncx: u32,
+    ncy: u32,
+    top: u32,
+}
+
+/// One step of every lane, written without data-dependent branches so that
+/// LLVM vectorises the loop over lanes (gathering the nodes) when compiled
+/// for AVX2 or AVX-512. Dead lanes compute and are ignored (their state is
+/// kept, so their loads stay in bounds).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    assert!(!k.nodes.is_empty());
+    let last = k.nodes.len() - 1;
+    for l in 0..LANES {
+        let (ci, cj, t, lev) = (s.ci[l], s.cj[l], s.t[l], s.level[l]);
+        let sign = s.sign[l];
+        let (xpos, xneg, ypos, yneg) = (sign & 1 != 0, sign & 2 != 0, sign & 4 != 0, sign & 8 != 0);
+        let size = 1u32 << (lev & 31);
+        let mask = !(size - 1);
+        let (nx0, ny0) = (ci & mask, cj & mask);
+        // The node's exits, as in the single-ray walk (coordinates < 2²⁴,
+        // so the `i32` conversions are exact).
+        let bx = if xpos { nx0 + size } else { nx0 };
+        let by = if ypos { ny0 + size } else { ny0 };
+        let tx = if xpos | xneg {
+            (bx as i32 as f32 - s.ox[l]) * s.ix[l]
+        } else {
+            f32::INFINITY
+        };
+        let ty = if ypos | yneg {
+            (by as i32 as f32 - s.oy[l]) * s.iy[l]
+        } else {
+            f32::INFINITY
+        };
+        let t_end = s.t_end[l];
+        let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+        // The cull against the node's quantised [min, max].
+        let lv = (lev & 31) as usize;
+        let idx = k.offset[lv]
+            .wrapping_add((cj >> (lev & 31)).wrapping_mul(k.width[lv]))
+            .wrapping_add(ci >> (lev & 31));
+        let q = k.nodes[(idx as usize).min(last)];
+        let (qlo, qhi) = ((q & 0xffff) as i32 as f32, (q >> 16) as i32 as f32);
+        let (za, zb) = (s.oq[l] + t * s.dq[l], s.oq[l] + t_exit * s.dq[l]);
+        let (zlo, zhi) = (fmin(za, zb), fmax(za, zb));
+        let mq = s.mq[l];
+        // At a cell (level 0) the lane parks for the exact test, or, once
+        // that missed, steps on like a failed cull.
+        let at0 = lev == 0;
+        let pass = !at0 & (zlo <= qhi + mq) & (zhi >= qlo - mq);
+        // The step across x: the next column, and the row where the ray
+        // meets it, clamped to the node (clamping before the truncation is
+        // the walk's `floor`, `max`, `min`: the bounds are whole numbers).
+        let cix = if xpos {
+            nx0 + size
+        } else {
+            nx0.wrapping_sub(1)
+        };
+        let outx = if xpos { cix >= k.ncx } else { nx0 == 0 };
+        let hiy = (ny0 + size).min(k.ncy) - 1;
+        let yv = s.oy[l] + t_exit * s.dy[l];
+        let yc = trunc(fmin(fmax_nan_lo(yv, ny0 as i32 as f32), hiy as i32 as f32));
+        // (Steps between cells keep the other coordinate.)
+        let cjx = if at0 {
+            cj
+        } else if ypos {
+            cj.max(yc)
+        } else if yneg {
+            cj.min(yc)
+        } else {
+            cj
+        };
+        // The step across y.
+        let cjy = if ypos {
+            ny0 + size
+        } else {
+            ny0.wrapping_sub(1)
+        };
+        let outy = if ypos { cjy >= k.ncy } else { ny0 == 0 };
+        let hix = (nx0 + size).min(k.ncx) - 1;
+        let xv = s.ox[l] + t_exit * s.dx[l];
+        let xc = trunc(fmin(fmax_nan_lo(xv, nx0 as i32 as f32), hix as i32 as f32));
+        let ciy = if at0 {
+            ci
+        } else if xpos {
+            ci.max(xc)
+        } else if xneg {
+            ci.min(xc)
+        } else {
+            ci
+        };
+        let xstep = tx <= ty;
+        let nci = if xstep { cix } else { ciy };
+        let ncj = if xstep { cjx } else { cjy };
+        let out = if xstep { outx } else { outy };
+        let done = (t_exit >= t_end) | out;
+        // Ascend one level when the step leaves the parent node.
+        let up = (lev < k.top) & (((nci ^ ci) | (ncj ^ cj)) >> ((lev + 1) & 31) != 0);
+        let live = s.live[l];
+        let park = live & at0 & !s.skip[l];
+        s.skip[l] = false;
+        let go = live & !pass & !park;
+        s.ci[l] = if go { nci } else { ci };
+        s.cj[l] = if go { ncj } else { cj };
+        s.t[l] = if go { t_exit } else { t };
+        let down = live & pass;
+        s.level[l] = if down {
+            lev - 1
+        } else if go {
+            lev + u32::from(up)
+        } else {
+            lev
+        };
+        // `down` and `go` exclude each other.
+        // `park` and `go` exclude each other.
+        events[l] = u32::from(park) * AT_CELL + u32::from(go & done) * LEFT;
+    }
+    // Bit `l` set: lane `l` parked or left.
+    let mut mask = 0;
+    for (l, &e) in events.iter().enumerate() {
+        mask |= u32::from(e != GOING) << l;
+    }
+    mask
+}
+
+/// `v as u32` for `v` in `[0, 2²⁴)` (a clamped cell coordinate).
+#[inline(always)]
+fn trunc(v: f32) -> u32 {
+    debug_assert!((0.0..16_777_216.0).contains(&v));
+    #[allow(unsafe_code)]
+    // SAFETY: `v` is clamped between two cell coordinates, whole numbers in
+    // `[0, 2²⁴)` (`MAX_SAMPLES_PER_AXIS`), before this is called, so it is
+    // finite and its truncation fits an `i32`.
+    let i = unsafe { v.to_int_unchecked::<i32>() };
+    i as u32
+}
+
+/// `max(v, lo)` for a whole number `lo`, returning `lo` when `v` is NaN (as
+/// `f32::max` does), in a form that vectorises to one compare and blend.
+#[inline(always)]
+fn fmax_nan_lo(v: f32, lo: f32) -> f32 {
+    if v > lo { v } else { lo }
+}
+
+/// The instruction set the lane steps run with, detected at run time.
+#[derive(Clone, Copy, Debug)]
+enum Level {
+    Scalar,
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
+}
+
+impl Level {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx512dq")
+                && std::is_x86_feature_detected!("avx512bw")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                return Level::Avx512;
+            }
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                return Level::Avx2;
+            }
+        }
+        Level::Scalar
+    }
+
+    #[inline(always)]
+    fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+        match self {
+            Level::Scalar => step(s, k, events),
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx2` is only returned by `detect` after the CPU
+            // reported AVX2 and FMA, the features `step_avx2` is compiled for.
+            Level::Avx2 => unsafe { step_avx2(s, k, events) },
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx512` is only returned by `detect` after the
+            // CPU reported every feature `step_avx512` is compiled for.
+            Level::Avx512 => unsafe { step_avx512(s, k, events) },
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
+}
+
+/// How a ray's walk in the lanes ended.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Outcome {
+    /// It left the field's box: no hit.
+    Miss,
+    /// Its first hit (with `ANY`, a hit).
+    Hit(CellHit),
+    /// It found a hit that a later cell could still beat (across an edge
+    /// within rounding distance), or the lanes could not take it: the
+    /// single-ray walk finishes it from this cursor (re-testing its cell).
+    Walk(Cursor),
+}
+
+/// Walks every ray of `rays` with a cursor in `cur` (`None`: nothing to
+/// trace) to its end, [`LANES`] at a time, running the cell tests of parked
+/// lanes one by one: `out[k]` says how ray `k` ended.
+pub(crate) fn walk_lanes<const ANY: bool>(
+    tr: &MipmapTracer<'_>,
+    rays: &[GridRay],
+    cur: &[Option<Cursor>],
+    out: &mut Vec<Outcome>,
+) {
+    walk_lanes_with::<ANY>(Level::detect(), MIN_LANE_LEVEL, tr, rays, cur, out);
+}
+
+/// [`walk_lanes`] with the lane steps compiled for `level`.
+fn walk_lanes_with<const ANY: bool>(
+    level: Level,
+    min_level: u32,
+    tr: &MipmapTracer<'_>,
+    rays: &[GridRay],
+    cur: &[Option<Cursor>],
+    out: &mut Vec<Outcome>,
+) {
+    out.clear();
+    out.extend(cur.iter().map(|c| c.map_or(Outcome::Miss, Outcome::Walk)));
+    let f = &tr.f;
+    let m = &tr.mip;
+    let (lo, scale, top) = (m.lo, m.scale, m.top);
+    let nodes = m.nodes.as_slice();
+    // Node indices in 32 bits (the kernel's gathers); larger pyramids take
+    // the single-ray walk.
+    if nodes.len() > u32::MAX as usize {
+        return;
+    }
+    let mut offset = [0u32; 32];
+    for (o, &m) in offset.iter_mut().zip(&m.offset) {
+        *o = m as u32;
+    }
+    let k = Consts {
+        nodes,
+        offset: &offset,
+        width: &m.width,
+        ncx: f.ncx,
+        ncy: f.ncy,
+        top,
+    };
+
+    // The next ray to walk at or after `*next`.
+    let take = |next: &mut usize| -> Option<(usize, Cursor)> {
+        while *next < cur.len() {
+            let k = *next;
+            *next += 1;
+            if let Some(c) = cur[k] {
+                // Short walks (a span within a few cells: steep rays) are
+                // cheaper one at a time than through a lane.
+                if c.level >= min_level {
+                    return Some((k, c));
+                }
+            }
+        }
+        None
+    };
+    let mut next = 0;
+    let mut s = Lanes::new();
+    let mut live = 0;
+    for l in 0..LANES {
+        if let Some((k, c)) = take(&mut next) {
+            s.load(l, k, &rays[k], c, lo, scale);
+            live += 1;
+        }
+    }
+    let mut stats = TraceStats::default();
+    while live > 0 {
+        let mut events = [GOING; LANES];
+        let mut mask = level.step(&mut s, &k, &mut events);
+        while mask != 0 {
+            let l = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let ev = events[l];
+            let kr = s.ray[l];
+            if ev == AT_CELL {
+                // The cell step of the single-ray walk, with nothing pending.
+                let r = &rays[kr];
+                let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
+                let (o, d, inv) = (r.o, r.d, r.inv);
+                let tx = if d.x > 0.0 {
+                    ((ci + 1) as f32 - o.x) * inv.x
+                } else if d.x < 0.0 {
+                    (ci as f32 - o.x) * inv.x
+                } else {
+                    f32::INFINITY
+                };
+                let ty = if d.y > 0.0 {
+                    ((cj + 1) as f32 - o.y) * inv.y
+                } else if d.y < 0.0 {
+                    (cj as f32 - o.y) * inv.y
+                } else {
+                    f32::INFINITY
+                };
+                let t_end = r.t1;
+                let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+                let exit = if t_exit >= t_end {
+                    Exit::End
+                } else if tx <= ty {
+                    Exit::X
+                } else {
+                    Exit::Y
+                };
+                let first = t == r.t0;
+                match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
+                    None => {
+                        s.skip[l] = true;
+                        continue;
+                    }
+                    Some(h) if ANY || h.t <= t_exit + r.ttol => out[kr] = Outcome::Hit(h),
+                    Some(_) => {
+                        out[kr] = Outcome::Walk(Cursor {
+                            ci,
+                            cj,
+                            t,
+                            level: 0,
+                        });
+                    }
+                }
+            } else {
+                out[kr] = Outcome::Miss;
+            }
+            match take(&mut next) {
+                Some((k, c)) => s.load(l, k, &rays[k], c, lo, scale),
+                None => {
+                    s.live[l] = false;
+                    live -= 1;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Ray;
+    use glam::Vec3;
+    use natura_core::{HeightField, Seed};
+
+    /// Every instruction set this CPU supports ends every walk the same way
+    /// as the portable code, bit for bit.
+    #[test]
+    fn every_level_gives_the_same_outcomes() {
+        let s = Seed(7);
+        let hf = HeightField::from_fn(300, 213, 2.0, |i, j| {
+            40.0 * s.uniform2(i as i64 / 9, j as i64 / 7) as f32
+                + 3.0 * s.uniform2(i as i64, j as i64) as f32
+        })
+        .unwrap();
+        let tr = MipmapTracer::new(&hf).unwrap();
+        let mut rays = Vec::new();
+        for k in 0..3000i64 {
+            let u = |c: i64| s.uniform2(k, c) as f32;
+            let o = Vec3::new(600.0 * u(0) - 20.0, 430.0 * u(1) - 20.0, 60.0 * u(2) - 5.0);
+            let d = Vec3::new(u(3) - 0.5, u(4) - 0.5, 0.2 * (u(5) - 0.6));
+            rays.push(Ray::new(o, d));
+        }
+        let grid: Vec<GridRay> = rays
+            .iter()
+            .map(|r| {
+                tr.setup(r, 0.0, f32::INFINITY)
+                    .unwrap_or_else(GridRay::idle)
+            })
+            .collect();
+        let start: Vec<Option<Cursor>> = rays
+            .iter()
+            .map(|r| tr.setup(r, 0.0, f32::INFINITY).map(|g| tr.start(&g)))
+            .collect();
+        let key = |o: &Outcome| match *o {
+            Outcome::Miss => (0, 0, 0, 0, 0),
+            Outcome::Hit(h) => (1, h.t.to_bits(), h.cell.0, h.cell.1, h.triangle.index()),
+            Outcome::Walk(c) => (2, c.t.to_bits(), c.ci, c.cj, c.level),
+        };
+        let mut levels = vec![];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                levels.push(Level::Avx2);
+            }
+            if matches!(Level::detect(), Level::Avx512) {
+                levels.push(Level::Avx512);
+            }
+        }
+        for any in [false, true] {
+            let run = |level: Level| {
+                let mut out = Vec::new();
+                if any {
+                    walk_lanes_with::<true>(level, 0, &tr, &grid, &start, &mut out);
+                } else {
+                    walk_lanes_with::<false>(level, 0, &tr, &grid, &start, &mut out);
+                }
+                out
+            };
+            let want = run(Level::Scalar);
+            let hits = want.iter().filter(|o| matches!(o, Outcome::Hit(_))).count();
+            assert!(hits > 1000, "{hits}");
+            for &level in &levels {
+                let got = run(level);
+                for (g, w) in got.iter().zip(&want) {
+                    assert_eq!(key(g), key(w), "{level:?}");
+                }
+            }
+        }
+    }
+
+    /// Every ray walked in the lanes from its start (whatever its level)
+    /// ends with the single-ray walk's hit, bit for bit: small fields of
+    /// every kind (flat, spiky, plateaus, tilted) and rays of every awkward
+    /// sort (axis-parallel, vertical, grazing, through corners, from below,
+    /// from inside), closest and any hit.
+    #[test]
+    fn lanes_equal_the_single_ray_walk_on_awkward_rays() {
+        let s = Seed(23);
+        let mut checked = 0;
+        for case in 0..60i64 {
+            let u = |a: i64, b: i64| s.uniform2(case * 1000 + a, b) as f32;
+            let (nx, ny) = (2 + (u(0, 0) * 40.0) as usize, 2 + (u(0, 1) * 40.0) as usize);
+            let cell = [1.0, 0.5, 2.0, 3.7][case as usize % 4];
+            let kind = case % 5;
+            let hf = HeightField::from_fn(nx, ny, cell, |i, j| {
+                let v = s.uniform2(case * 7919 + i as i64, j as i64) as f32;
+                match kind {
+                    0 => 10.0 * v,
+                    1 => 3.0,
+                    2 => {
+                        if v > 0.85 {
+                            20.0 * v
+                        } else {
+                            0.0
+                        }
+                    }
+                    3 => (4.0 * v).floor() * 2.5,
+                    _ => 0.7 * i as f32 - 0.4 * j as f32 + 2.0,
+                }
+            })
+            .unwrap();
+            let tr = MipmapTracer::new(&hf).unwrap();
+            let (lo, hi) = hf.min_max();
+            let mut rays = Vec::new();
+            for k in 0..64i64 {
+                let r = |c: i64| u(k + 1, c);
+                let o = Vec3::new(
+                    (1.6 * r(0) - 0.3) * nx as f32 * cell,
+                    (1.6 * r(1) - 0.3) * ny as f32 * cell,
+                    lo + (1.6 * r(2) - 0.3) * (hi - lo + 1.0),
+                );
+                let o = if k % 5 == 0 {
+                    (o / cell).round() * cell
+                } else {
+                    o
+                };
+                let d = match k % 6 {
+                    0 => Vec3::new(r(3) - 0.5, r(4) - 0.5, r(5) - 0.5),
+                    1 => Vec3::new(if r(3) > 0.5 { 1.0 } else { -1.0 }, 0.0, r(5) - 0.5),
+                    2 => Vec3::new(0.0, if r(3) > 0.5 { 1.0 } else { -1.0 }, r(5) - 0.5),
+                    3 => Vec3::new(0.0, 0.0, if r(3) > 0.5 { 1.0 } else { -1.0 }),
+                    4 => Vec3::new(r(3) - 0.5, r(4) - 0.5, 0.02 * (r(5) - 0.5)),
+                    _ => Vec3::new(1.0, if r(3) > 0.5 { 1.0 } else { -1.0 }, 0.3 * (r(5) - 0.5)),
+                };
+                rays.push(Ray::new(o, d * Vec3::new(cell, cell, 1.0)));
+            }
+            let grid: Vec<GridRay> = rays
+                .iter()
+                .map(|r| {
+                    tr.setup(r, 0.0, f32::INFINITY)
+                        .unwrap_or_else(GridRay::idle)
+                })
+                .collect();
+            let start: Vec<Option<Cursor>> = rays
+                .iter()
+                .map(|r| tr.setup(r, 0.0, f32::INFINITY).map(|g| tr.start(&g)))
+                .collect();
+            let key = |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
+            let mut stats = TraceStats::default();
+            let mut out = Vec::new();
+            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
+                let got = match *o {
+                    Outcome::Miss => None,
+                    Outcome::Hit(h) => Some(h),
+                    Outcome::Walk(c) => tr.walk::<false>(r, c, &mut stats),
+                };
+                let want = start[k].and_then(|c| tr.walk::<false>(r, c, &mut stats));
+                assert_eq!(key(got), key(want), "case {case}, ray {k}: {:?}", rays[k]);
+                checked += usize::from(want.is_some());
+            }
+            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
+                let got = match *o {
+                    Outcome::Miss => false,
+                    Outcome::Hit(_) => true,
+                    Outcome::Walk(c) => tr.walk::<true>(r, c, &mut stats).is_some(),
+                };
+                let want = start[k].is_some_and(|c| tr.walk::<true>(r, c, &mut stats).is_some());
+                assert_eq!(got, want, "any hit: case {case}, ray {k}");
+            }
+        }
+        assert!(checked > 500, "{checked} hits");
+    }
+}
