@@ -64,6 +64,7 @@ pub(crate) struct StackScratch {
     offsets: Vec<u32>,
     donors: Vec<u32>,
     todo: Vec<u32>,
+    basin: Vec<u32>,
 }
 
 impl FlowGraph {
@@ -124,10 +125,12 @@ impl FlowGraph {
         self.nx = nx;
         self.ny = ny;
         d8_receivers_into(h, nx, ny, &mut self.receiver, &mut self.distance);
-        build_stack_into(&self.receiver, &mut self.stack, &mut self.scratch);
-        if depressions != Depressions::Keep && self.route_pits(h) {
-            build_stack_into(&self.receiver, &mut self.stack, &mut self.scratch);
+        // Pits are routed on the raw receivers (labelling needs no stack), so
+        // the stack is built once, on the final receivers.
+        if depressions != Depressions::Keep {
+            self.route_pits(h);
         }
+        build_stack_into(&self.receiver, &mut self.stack, &mut self.scratch);
         if depressions == Depressions::Fill {
             fill_along(h, &self.receiver, &self.stack, filled);
         }
@@ -178,26 +181,42 @@ impl FlowGraph {
     fn route_pits(&mut self, h: &[f32]) -> bool {
         let (nx, ny) = (self.nx, self.ny);
         let n = nx * ny;
-        // Basin labels in stack order; basin 0 is "the outside" (all edge outlets).
-        let mut basin = vec![0u32; n];
+        // Basin labels; basin 0 is "the outside" (all edge outlets), pits are
+        // numbered in increasing cell order. Receivers are strictly downhill
+        // here (no cycles), so every path ends at a root.
+        let mut basin = std::mem::take(&mut self.scratch.basin);
+        basin.clear();
+        basin.resize(n, u32::MAX);
         let mut pits: Vec<u32> = vec![u32::MAX]; // pit cell of each basin (index 0 unused)
-        for &i in &self.stack {
-            let i = i as usize;
-            let r = self.receiver[i] as usize;
-            if r == i {
-                if self.is_edge(i) {
-                    basin[i] = 0;
+        for (i, &r) in self.receiver.iter().enumerate() {
+            if r as usize == i {
+                basin[i] = if self.is_edge(i) {
+                    0
                 } else {
-                    basin[i] = pits.len() as u32;
                     pits.push(i as u32);
-                }
-            } else {
-                basin[i] = basin[r];
+                    (pits.len() - 1) as u32
+                };
             }
         }
         if pits.len() == 1 {
-            return false;
+            self.scratch.basin = basin;
+            return false; // no interior pit: nothing to route
         }
+        // Follow each unlabelled cell's receivers to a labelled one and label the path.
+        let mut path = std::mem::take(&mut self.scratch.todo);
+        for i in 0..n {
+            let mut c = i;
+            while basin[c] == u32::MAX {
+                path.push(c as u32);
+                c = self.receiver[c] as usize;
+            }
+            let b = basin[c];
+            for &p in &path {
+                basin[p as usize] = b;
+            }
+            path.clear();
+        }
+        self.scratch.todo = path;
         // Lowest pass between each pair of adjacent basins, found per band and
         // merged with a total order, so the result is scheduling-independent.
         let basin_ref = &basin;
@@ -285,6 +304,7 @@ impl FlowGraph {
                 cur = next;
             }
         }
+        self.scratch.basin = basin;
         true
     }
 }
@@ -398,6 +418,7 @@ pub(crate) fn build_stack_into(rec: &[u32], stack: &mut Vec<u32>, s: &mut StackS
         offsets,
         donors,
         todo,
+        ..
     } = s;
     // offsets[r] counts r's donors, then (inclusive prefix sum) marks the end of
     // its group; filling backwards moves it to the group's start, and
