@@ -34,6 +34,7 @@
 mod error;
 mod fft;
 mod par;
+mod simd;
 
 pub mod analysis;
 pub mod erosion;

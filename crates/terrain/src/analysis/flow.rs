@@ -55,6 +55,16 @@ pub struct FlowGraph {
     pub distance: Vec<f32>,
     /// Cells ordered so that every receiver precedes its donors (Braun & Willett's stack).
     pub stack: Vec<u32>,
+    scratch: StackScratch,
+}
+
+/// Reusable buffers of [`build_stack_into`].
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StackScratch {
+    offsets: Vec<u32>,
+    donors: Vec<u32>,
+    todo: Vec<u32>,
+    basin: Vec<u32>,
 }
 
 impl FlowGraph {
@@ -73,22 +83,57 @@ impl FlowGraph {
     /// D8 receivers of `h` (`nx × ny`, row-major) with depression handling;
     /// `Fill` modifies `h`.
     pub fn build(h: &mut [f32], nx: usize, ny: usize, depressions: Depressions) -> Self {
-        let (receiver, distance) = d8_receivers(h, nx, ny);
-        let mut g = FlowGraph {
-            nx,
-            ny,
-            receiver,
-            distance,
-            stack: Vec::new(),
-        };
-        g.stack = build_stack(&g.receiver);
-        if depressions != Depressions::Keep && g.route_pits(h) {
-            g.stack = build_stack(&g.receiver);
-        }
-        if depressions == Depressions::Fill {
-            fill_along(h, &g.receiver, &g.stack);
-        }
+        let mut g = Self::empty();
+        g.rebuild(h, nx, ny, depressions);
         g
+    }
+
+    /// A graph of no cells, whose buffers [`FlowGraph::rebuild`] grows.
+    pub(crate) fn empty() -> Self {
+        FlowGraph {
+            nx: 0,
+            ny: 0,
+            receiver: Vec::new(),
+            distance: Vec::new(),
+            stack: Vec::new(),
+            scratch: StackScratch::default(),
+        }
+    }
+
+    /// [`FlowGraph::build`] into this graph's buffers (no allocation once they
+    /// have grown to the grid's size): the same graph, bit for bit.
+    pub(crate) fn rebuild(
+        &mut self,
+        h: &mut [f32],
+        nx: usize,
+        ny: usize,
+        depressions: Depressions,
+    ) {
+        self.rebuild_with_fill(h, nx, ny, depressions, None);
+    }
+
+    /// [`FlowGraph::rebuild`], adding to `filled` (one value per cell) how much
+    /// `Fill` raised each cell.
+    pub(crate) fn rebuild_with_fill(
+        &mut self,
+        h: &mut [f32],
+        nx: usize,
+        ny: usize,
+        depressions: Depressions,
+        filled: Option<&mut [f32]>,
+    ) {
+        self.nx = nx;
+        self.ny = ny;
+        d8_receivers_into(h, nx, ny, &mut self.receiver, &mut self.distance);
+        // Pits are routed on the raw receivers (labelling needs no stack), so
+        // the stack is built once, on the final receivers.
+        if depressions != Depressions::Keep {
+            self.route_pits(h);
+        }
+        build_stack_into(&self.receiver, &mut self.stack, &mut self.scratch);
+        if depressions == Depressions::Fill {
+            fill_along(h, &self.receiver, &self.stack, filled);
+        }
     }
 
     /// Whether cell `i` is on the grid edge.
@@ -102,14 +147,20 @@ impl FlowGraph {
     /// Drainage area of each cell in cells (itself plus everything upstream).
     #[must_use]
     pub fn area(&self) -> Vec<f32> {
-        let mut a = vec![1.0f32; self.receiver.len()];
+        let mut a = vec![0.0f32; self.receiver.len()];
+        self.area_into(&mut a);
+        a
+    }
+
+    /// [`FlowGraph::area`] into `a` (one value per cell).
+    pub(crate) fn area_into(&self, a: &mut [f32]) {
+        a.fill(1.0);
         for &i in self.stack.iter().rev() {
             let r = self.receiver[i as usize];
             if r != i {
                 a[r as usize] += a[i as usize];
             }
         }
-        a
     }
 
     /// Follows receivers from `i` to the cell where flow stops (an outlet or a kept pit).
@@ -130,26 +181,42 @@ impl FlowGraph {
     fn route_pits(&mut self, h: &[f32]) -> bool {
         let (nx, ny) = (self.nx, self.ny);
         let n = nx * ny;
-        // Basin labels in stack order; basin 0 is "the outside" (all edge outlets).
-        let mut basin = vec![0u32; n];
+        // Basin labels; basin 0 is "the outside" (all edge outlets), pits are
+        // numbered in increasing cell order. Receivers are strictly downhill
+        // here (no cycles), so every path ends at a root.
+        let mut basin = std::mem::take(&mut self.scratch.basin);
+        basin.clear();
+        basin.resize(n, u32::MAX);
         let mut pits: Vec<u32> = vec![u32::MAX]; // pit cell of each basin (index 0 unused)
-        for &i in &self.stack {
-            let i = i as usize;
-            let r = self.receiver[i] as usize;
-            if r == i {
-                if self.is_edge(i) {
-                    basin[i] = 0;
+        for (i, &r) in self.receiver.iter().enumerate() {
+            if r as usize == i {
+                basin[i] = if self.is_edge(i) {
+                    0
                 } else {
-                    basin[i] = pits.len() as u32;
                     pits.push(i as u32);
-                }
-            } else {
-                basin[i] = basin[r];
+                    (pits.len() - 1) as u32
+                };
             }
         }
         if pits.len() == 1 {
-            return false;
+            self.scratch.basin = basin;
+            return false; // no interior pit: nothing to route
         }
+        // Follow each unlabelled cell's receivers to a labelled one and label the path.
+        let mut path = std::mem::take(&mut self.scratch.todo);
+        for i in 0..n {
+            let mut c = i;
+            while basin[c] == u32::MAX {
+                path.push(c as u32);
+                c = self.receiver[c] as usize;
+            }
+            let b = basin[c];
+            for &p in &path {
+                basin[p as usize] = b;
+            }
+            path.clear();
+        }
+        self.scratch.todo = path;
         // Lowest pass between each pair of adjacent basins, found per band and
         // merged with a total order, so the result is scheduling-independent.
         let basin_ref = &basin;
@@ -237,6 +304,7 @@ impl FlowGraph {
                 cur = next;
             }
         }
+        self.scratch.basin = basin;
         true
     }
 }
@@ -283,10 +351,25 @@ fn cell_distance(i: usize, j: usize, nx: usize) -> f32 {
 }
 
 /// D8 steepest-descent receivers and distances (cells); edge cells are outlets.
+#[cfg(test)]
 pub(crate) fn d8_receivers(h: &[f32], nx: usize, ny: usize) -> (Vec<u32>, Vec<f32>) {
+    let (mut rec, mut dist) = (Vec::new(), Vec::new());
+    d8_receivers_into(h, nx, ny, &mut rec, &mut dist);
+    (rec, dist)
+}
+
+/// D8 steepest-descent receivers and distances (cells) into reusable buffers
+/// (resized to `nx × ny`); edge cells are outlets.
+pub(crate) fn d8_receivers_into(
+    h: &[f32],
+    nx: usize,
+    ny: usize,
+    rec: &mut Vec<u32>,
+    dist: &mut Vec<f32>,
+) {
     let n = nx * ny;
-    let mut rec = vec![0u32; n];
-    let mut dist = vec![0.0f32; n];
+    rec.resize(n, 0);
+    dist.resize(n, 0.0);
     par::map_bands(nx, ny, [rec.as_mut_slice()], |y0, y1, [r]| {
         for y in y0..y1 {
             for x in 0..nx {
@@ -308,17 +391,81 @@ pub(crate) fn d8_receivers(h: &[f32], nx: usize, ny: usize) -> (Vec<u32>, Vec<f3
             }
         }
     });
-    for (i, d) in dist.iter_mut().enumerate() {
-        let r = rec[i] as usize;
-        if r != i {
-            *d = cell_distance(i, r, nx);
+    // Distances in parallel too: the receiver is a neighbour (or the cell itself).
+    par::map_bands(nx, ny, [dist.as_mut_slice()], |y0, _y1, [d]| {
+        let base = y0 * nx;
+        for (k, d) in d.iter_mut().enumerate() {
+            let i = base + k;
+            let r = rec[i] as usize;
+            *d = if r == i {
+                0.0
+            } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
+                1.0
+            } else {
+                std::f32::consts::SQRT_2
+            };
         }
-    }
-    (rec, dist)
+    });
 }
 
-/// Braun & Willett's stack: outlets (and pits) first, each followed depth-first by its donors.
-pub(crate) fn build_stack(rec: &[u32]) -> Vec<u32> {
+/// Braun & Willett's stack (outlets and pits first, each followed
+/// depth-first by its donors) into reusable buffers: donor lists by a counting sort
+/// (donors of each cell in increasing index order), then an iterative
+/// depth-first walk from every outlet. O(n).
+pub(crate) fn build_stack_into(rec: &[u32], stack: &mut Vec<u32>, s: &mut StackScratch) {
+    let n = rec.len();
+    let StackScratch {
+        offsets,
+        donors,
+        todo,
+        ..
+    } = s;
+    // offsets[r] counts r's donors, then (inclusive prefix sum) marks the end of
+    // its group; filling backwards moves it to the group's start, and
+    // offsets[r + 1] (the next group's start) is its end.
+    offsets.clear();
+    offsets.resize(n + 1, 0);
+    for (i, &r) in rec.iter().enumerate() {
+        if r as usize != i {
+            offsets[r as usize] += 1;
+        }
+    }
+    let mut acc = 0u32;
+    for o in offsets.iter_mut().take(n) {
+        acc += *o;
+        *o = acc;
+    }
+    offsets[n] = acc;
+    donors.clear();
+    donors.resize(acc as usize, 0);
+    for (i, &r) in rec.iter().enumerate().rev() {
+        if r as usize != i {
+            offsets[r as usize] -= 1;
+            donors[offsets[r as usize] as usize] = i as u32;
+        }
+    }
+    stack.clear();
+    stack.reserve(n);
+    todo.clear();
+    for (i, &r) in rec.iter().enumerate() {
+        if r as usize == i {
+            todo.push(i as u32);
+            while let Some(c) = todo.pop() {
+                stack.push(c);
+                let c = c as usize;
+                // A cell has at most 8 donors: push them one by one (a
+                // `memcpy` call per cell costs more than the copy).
+                for &d in &donors[offsets[c] as usize..offsets[c + 1] as usize] {
+                    todo.push(d);
+                }
+            }
+        }
+    }
+}
+
+/// The original two-pass stack builder, the reference for [`build_stack_into`].
+#[cfg(test)]
+fn build_stack_reference(rec: &[u32]) -> Vec<u32> {
     let n = rec.len();
     // Donor lists by counting sort.
     let mut count = vec![0u32; n + 1];
@@ -355,12 +502,21 @@ pub(crate) fn build_stack(rec: &[u32]) -> Vec<u32> {
 }
 
 /// Raises every cell not strictly above its receiver to the next representable
-/// height above it, in stack order.
-pub(crate) fn fill_along(h: &mut [f32], rec: &[u32], stack: &[u32]) {
+/// height above it, in stack order, adding each raise to `filled` if given.
+pub(crate) fn fill_along(
+    h: &mut [f32],
+    rec: &[u32],
+    stack: &[u32],
+    mut filled: Option<&mut [f32]>,
+) {
     for &i in stack {
         let (i, r) = (i as usize, rec[i as usize] as usize);
         if r != i && h[i] <= h[r] {
-            h[i] = next_up(h[r]);
+            let z = next_up(h[r]);
+            if let Some(f) = filled.as_deref_mut() {
+                f[i] += z - h[i];
+            }
+            h[i] = z;
         }
     }
 }
@@ -487,6 +643,36 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The buffer-reusing stack builder against the original one, on raw D8
+    /// graphs (with pits) and routed ones, reusing one scratch across sizes;
+    /// and a rebuilt graph against a fresh one.
+    #[test]
+    fn reused_stack_equals_reference() {
+        let mut stack = Vec::new();
+        let mut scratch = StackScratch::default();
+        for (seed, n) in [(1u64, 40usize), (2, 7), (3, 64), (4, 3)] {
+            let h = rough(n, seed);
+            let (rec, _) = d8_receivers(&h, n, n);
+            build_stack_into(&rec, &mut stack, &mut scratch);
+            assert_eq!(stack, build_stack_reference(&rec), "raw D8, n = {n}");
+            let mut hr = h.clone();
+            let g = FlowGraph::build(&mut hr, n, n, Depressions::Route);
+            build_stack_into(&g.receiver, &mut stack, &mut scratch);
+            assert_eq!(stack, build_stack_reference(&g.receiver), "routed, n = {n}");
+            assert_eq!(g.stack, stack);
+        }
+        let mut reused = FlowGraph::build(&mut rough(40, 8), 40, 40, Depressions::Fill);
+        for seed in [5u64, 6] {
+            let (mut a, mut b) = (rough(40, seed), rough(40, seed));
+            reused.rebuild(&mut a, 40, 40, Depressions::Fill);
+            let fresh = FlowGraph::build(&mut b, 40, 40, Depressions::Fill);
+            assert_eq!(a, b);
+            assert_eq!(reused.receiver, fresh.receiver);
+            assert_eq!(reused.distance, fresh.distance);
+            assert_eq!(reused.stack, fresh.stack);
         }
     }
 

@@ -22,6 +22,7 @@ use super::{Erodibility, check_erodibility, check_field, check_model_size};
 pub use crate::analysis::flow::Depressions;
 use crate::analysis::flow::FlowGraph;
 use crate::error::{Result, in_range, invalid, non_negative, positive};
+use crate::par;
 
 /// Parameters of [`StreamPower`].
 #[derive(Clone, Debug, PartialEq)]
@@ -96,6 +97,8 @@ pub struct StreamPower {
     area: Vec<f32>,
     graph: Option<FlowGraph>,
     sediment: Vec<f32>,
+    /// `F / (1 + …)` factors `K·A^m·Δt / L^n` per cell (scratch).
+    kf: Vec<f64>,
 }
 
 impl StreamPower {
@@ -112,6 +115,7 @@ impl StreamPower {
             area: vec![0.0; n],
             graph: None,
             sediment: vec![0.0; n],
+            kf: Vec::new(),
         })
     }
 
@@ -170,19 +174,35 @@ impl StreamPower {
                 *v += up;
             }
         }
-        let before: Vec<f32> = h.to_vec();
-        let g = FlowGraph::build(h, nx, ny, p.depressions);
-        for (s, (a, b)) in self.sediment.iter_mut().zip(h.iter().zip(&before)) {
-            *s += a - b;
-        }
-        let cells = g.area();
+        // Reuse the last step's graph buffers; filling deposits into `sediment`.
+        let mut g = self.graph.take().unwrap_or_else(FlowGraph::empty);
+        g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut self.sediment));
+        g.area_into(&mut self.area);
         let cell_area = (cell * cell) as f32;
-        for (a, c) in self.area.iter_mut().zip(&cells) {
-            *a = c * cell_area;
+        for a in &mut self.area {
+            *a *= cell_area;
         }
+        // The implicit factors F = K·A^m·Δt / L^n, in parallel (pure per cell).
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
         let kdt = p.k * p.dt_yr;
         let (m, n) = (p.m, p.n);
+        self.kf.resize(nx * ny, 0.0);
+        {
+            let (area, rec, dist) = (&self.area, &g.receiver, &g.distance);
+            par::map_bands(nx, ny, [self.kf.as_mut_slice()], |y0, _y1, [kf]| {
+                let base = y0 * nx;
+                for (k, f) in kf.iter_mut().enumerate() {
+                    let i = base + k;
+                    if rec[i] as usize == i {
+                        continue;
+                    }
+                    let len = f64::from(dist[i]) * cell;
+                    let am = f64::from(area[i]).powf(m);
+                    let ln = if n == 1.0 { len } else { len.powf(n) };
+                    *f = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * am / ln;
+                }
+            });
+        }
         let route = p.depressions == Depressions::Route;
         for &i in &g.stack {
             let i = i as usize;
@@ -195,9 +215,7 @@ impl StreamPower {
             if route && zr >= z0 {
                 continue; // inside a lake: no incision
             }
-            let len = f64::from(g.distance[i]) * cell;
-            let kf = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * f64::from(self.area[i]).powf(m)
-                / len.powf(n);
+            let kf = self.kf[i];
             let z = if n == 1.0 {
                 (z0 + kf * zr) / (1.0 + kf)
             } else {
