@@ -29,7 +29,7 @@
 //! assert_eq!(hf.nx(), 65);
 //! # Ok::<(), natura_terrain::TerrainError>(())
 //! ```
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 mod error;
 mod fft;

@@ -769,7 +769,7 @@ impl<'a> Around<'a> {
 
 simd::multiversion! {
 /// Pass A over the interior cells of a row (every neighbour exists).
-fn flux_row(c: &Consts, w: Around<'_>, bd: Around<'_>, outs: [&mut [f32]; 5]) {
+fn flux_row<'a>(c: &'a Consts, w: Around<'a>, bd: Around<'a>, outs: [&'a mut [f32]; 5]) {
     let [d1o, fl, fr, fb, ft] = outs;
     let m = d1o.len();
     let (fl, fr, fb, ft) = (&mut fl[..m], &mut fr[..m], &mut fb[..m], &mut ft[..m]);
@@ -811,14 +811,14 @@ const BLOCK: usize = 128;
 
 simd::multiversion! {
 /// Pass B over the interior cells of a row (uniform `K_s`); returns the water evaporated.
-fn update_row_uniform(c: &Consts, ins: &UpdateIn<'_>, outs: [&mut [f32]; 6]) -> f64 {
+fn update_row_uniform<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, outs: [&'a mut [f32]; 6]) -> f64 {
     update_row::<false>(c, ins, &[], outs)
 }
 }
 
 simd::multiversion! {
 /// Pass B over the interior cells of a row with an erodibility map; returns the water evaporated.
-fn update_row_erodible(c: &Consts, ins: &UpdateIn<'_>, erod: &[f32], outs: [&mut [f32]; 6]) -> f64 {
+fn update_row_erodible<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 6]) -> f64 {
     update_row::<true>(c, ins, erod, outs)
 }
 }
@@ -884,7 +884,7 @@ fn update_row<const ERODIBILITY: bool>(
 
 simd::multiversion! {
 /// Conservative transport over the interior cells of a row.
-fn conservative_row(c: &Consts, d1: Around<'_>, f: [Around<'_>; 4], s1: Around<'_>, so: &mut [f32]) {
+fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: Around<'a>, so: &'a mut [f32]) {
     let m = so.len();
     let d1 = d1.sub(0, m);
     let [fl, fr, fb, ft] = f.map(|p| p.sub(0, m));
@@ -909,7 +909,7 @@ simd::multiversion! {
 /// Semi-Lagrangian transport over the interior cells `1..nx − 1` of row `y`:
 /// the back-traced point lies within about one cell (velocities are capped at
 /// one cell per step), so one clamp (or wrap) per index suffices.
-fn semi_lagrangian_row(c: &Consts, u: &[f32], v: &[f32], s1: &[f32], y: usize, so: &mut [f32]) {
+fn semi_lagrangian_row<'a>(c: &'a Consts, u: &'a [f32], v: &'a [f32], s1: &'a [f32], y: usize, so: &'a mut [f32]) {
     let (nx, ny) = (c.nx as i64, c.ny as i64);
     let wrap = c.edges == Edges::Periodic;
     let m = so.len();
