@@ -14,8 +14,8 @@
 mod common;
 
 use common::scene::{LatticeTerrain, albedo, lattice_terrain};
-use natura::core::glam::Vec3;
 use natura::core::Seed;
+use natura::core::glam::Vec3;
 use natura::trace::{
     Eye, Hit, MipmapTracer, PanoramicCamera, Projection, Ray, RenderOptions, Stereo, Tracer,
     trace_image,
