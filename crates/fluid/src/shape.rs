@@ -3,7 +3,9 @@
 use glam::{Quat, Vec3};
 
 use crate::error::{FluidError, Result};
-use crate::grid::Dims;
+use natura_core::Grid3;
+
+use crate::grid::{CellKind, Dims};
 
 /// A solid region given by its signed distance (negative inside), in metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -239,6 +241,64 @@ impl Obstacle {
             crate::error::finite("obstacle temperature", f64::from(t))?;
         }
         Ok(())
+    }
+}
+
+/// The obstacles of a grid solver and what follows from them: which
+/// obstacle owns each cell (`u16::MAX` for none) and the cell kinds.
+#[derive(Clone, Debug)]
+pub(crate) struct Obstacles {
+    pub(crate) list: Vec<Obstacle>,
+    pub(crate) owner: Vec<u16>,
+    pub(crate) kinds: Grid3<CellKind>,
+}
+
+impl Obstacles {
+    /// No obstacles: every cell is fluid.
+    pub(crate) fn new(dims: Dims) -> Result<Self> {
+        Ok(Self {
+            list: Vec::new(),
+            owner: vec![u16::MAX; dims.cells()],
+            kinds: Grid3::new(dims.nx, dims.ny, dims.nz, CellKind::Fluid)?,
+        })
+    }
+
+    /// Adds an obstacle, which must be valid and lie inside the grid.
+    pub(crate) fn add(&mut self, o: Obstacle, dims: Dims, h: f32) -> Result<()> {
+        o.validate()?;
+        o.shape.check_inside(dims, h, "obstacle")?;
+        if self.list.len() >= usize::from(u16::MAX) {
+            return Err(FluidError::InvalidParameter {
+                name: "obstacles",
+                value: self.list.len().to_string(),
+                reason: "at most 65535 obstacles",
+            });
+        }
+        self.list.push(o);
+        self.revoxelise(dims, h);
+        Ok(())
+    }
+
+    /// Moves the moving obstacles on by `dt`; returns whether any moved (the
+    /// cells were then revoxelised).
+    pub(crate) fn advance(&mut self, dt: f32, dims: Dims, h: f32) -> bool {
+        if !self.list.iter().any(Obstacle::is_moving) {
+            return false;
+        }
+        self.list.iter_mut().for_each(|o| o.advance(dt));
+        self.revoxelise(dims, h);
+        true
+    }
+
+    fn revoxelise(&mut self, dims: Dims, h: f32) {
+        self.owner = voxelise(&self.list, dims, h);
+        for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
+            *k = if o == u16::MAX {
+                CellKind::Fluid
+            } else {
+                CellKind::Solid
+            };
+        }
     }
 }
 

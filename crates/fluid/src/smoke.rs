@@ -29,7 +29,7 @@ use crate::error::{self, FluidError, Result};
 use crate::grid::{self, Boundaries, CellKind, Dims, MacVelocity, StepReport};
 use crate::mac::{self, Projector};
 use crate::pressure::{SolveStats, SolverParams};
-use crate::shape::{Obstacle, Shape, solid_face_velocity, voxelise};
+use crate::shape::{Obstacle, Obstacles, Shape, solid_face_velocity, voxelise};
 
 /// Parameters of the smoke model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,9 +102,7 @@ pub struct Smoke {
     vel: MacVelocity,
     density: Grid3<f32>,
     temperature: Grid3<f32>,
-    kinds: Grid3<CellKind>,
-    owner: Vec<u16>,
-    obstacles: Vec<Obstacle>,
+    solid: Obstacles,
     sources: Vec<SmokeSource>,
     source_cells: Vec<Vec<usize>>,
     force: [Grid3<f32>; 3],
@@ -124,9 +122,7 @@ impl Smoke {
             vel: MacVelocity::zeros(dims)?,
             density: dims.zeros()?,
             temperature: Grid3::new(dims.nx, dims.ny, dims.nz, params.ambient_temperature)?,
-            kinds: Grid3::new(dims.nx, dims.ny, dims.nz, CellKind::Fluid)?,
-            owner: vec![u16::MAX; dims.cells()],
-            obstacles: Vec::new(),
+            solid: Obstacles::new(dims)?,
             sources: Vec::new(),
             source_cells: Vec::new(),
             force: [dims.zeros()?, dims.zeros()?, dims.zeros()?],
@@ -161,24 +157,13 @@ impl Smoke {
 
     /// Adds an obstacle (must lie inside the grid); its cells become occupied.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
-        o.validate()?;
-        o.shape.check_inside(self.dims, self.h, "obstacle")?;
-        if self.obstacles.len() >= usize::from(u16::MAX) {
-            return Err(FluidError::InvalidParameter {
-                name: "obstacles",
-                value: self.obstacles.len().to_string(),
-                reason: "at most 65535 obstacles",
-            });
-        }
-        self.obstacles.push(o);
-        self.revoxelise();
-        Ok(())
+        self.solid.add(o, self.dims, self.h)
     }
 
     /// The obstacles at the current time.
     #[must_use]
     pub fn obstacles(&self) -> &[Obstacle] {
-        &self.obstacles
+        &self.solid.list
     }
 
     /// Adds a smoke source (must lie inside the grid, finite values).
@@ -205,17 +190,6 @@ impl Smoke {
         );
         self.sources.push(s);
         Ok(())
-    }
-
-    fn revoxelise(&mut self) {
-        self.owner = voxelise(&self.obstacles, self.dims, self.h);
-        for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
-            *k = if o == u16::MAX {
-                CellKind::Fluid
-            } else {
-                CellKind::Solid
-            };
-        }
     }
 
     /// The MAC velocity.
@@ -254,7 +228,7 @@ impl Smoke {
     /// Occupied (solid) and fluid cells.
     #[must_use]
     pub fn cell_kinds(&self) -> &Grid3<CellKind> {
-        &self.kinds
+        &self.solid.kinds
     }
 
     /// User forces at cell centres (m/s²), cleared after each step.
@@ -308,7 +282,7 @@ impl Smoke {
         self.enforce();
         self.projector.project(
             &mut self.vel,
-            &self.kinds,
+            &self.solid.kinds,
             &self.params.bounds,
             self.h,
             dt,
@@ -317,10 +291,10 @@ impl Smoke {
     }
 
     fn enforce(&mut self) {
-        let sv = solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
+        let sv = solid_face_velocity(self.dims, self.h, &self.solid.owner, &self.solid.list);
         mac::enforce_solids(
             &mut self.vel,
-            self.kinds.as_slice(),
+            self.solid.kinds.as_slice(),
             &self.params.bounds,
             &sv,
         );
@@ -346,15 +320,15 @@ impl Smoke {
                 *o += v;
             }
         }
-        mac::add_centre_forces(&mut self.vel, &f, dt, self.kinds.as_slice(), &bounds);
+        mac::add_centre_forces(&mut self.vel, &f, dt, self.solid.kinds.as_slice(), &bounds);
         self.vel.check_finite("forces")?;
         // 2. Advect velocity from face midpoints, clipped at solids.
-        let kinds_now = self.kinds.as_slice().to_vec();
+        let kinds_now = self.solid.kinds.as_slice().to_vec();
         let solids = Solids {
             kinds: &kinds_now,
             dims,
         };
-        let clip = (!self.obstacles.is_empty()).then_some(&solids);
+        let clip = (!self.solid.list.is_empty()).then_some(&solids);
         let old = self.vel.clone();
         {
             let vs = VelSampler::mac(&old);
@@ -378,7 +352,7 @@ impl Smoke {
         self.enforce();
         let stats = self.projector.project(
             &mut self.vel,
-            &self.kinds,
+            &self.solid.kinds,
             &bounds,
             h,
             dt,
@@ -413,9 +387,7 @@ impl Smoke {
         }
         self.apply_object_rules();
         self.time += f64::from(dt);
-        if self.obstacles.iter().any(Obstacle::is_moving) {
-            self.obstacles.iter_mut().for_each(|o| o.advance(dt));
-            self.revoxelise();
+        if self.solid.advance(dt, self.dims, self.h) {
             self.apply_object_rules();
         }
         self.force
@@ -423,7 +395,7 @@ impl Smoke {
             .for_each(|g| g.as_mut_slice().fill(0.0));
         Ok(StepReport {
             pressure: Some(stats),
-            max_divergence: mac::max_fluid_divergence(&self.vel, &self.kinds, h)?,
+            max_divergence: mac::max_fluid_divergence(&self.vel, &self.solid.kinds, h)?,
             kinetic_energy: self.vel.kinetic_energy(h),
             substeps: 1,
             pressure_iterations: stats.iterations,
@@ -443,7 +415,13 @@ impl Smoke {
                     let mut hi = ijk;
                     hi[a] += 1;
                     for f in [ijk, hi] {
-                        if !mac::face_fixed(d, self.kinds.as_slice(), &self.params.bounds, a, f) {
+                        if !mac::face_fixed(
+                            d,
+                            self.solid.kinds.as_slice(),
+                            &self.params.bounds,
+                            a,
+                            f,
+                        ) {
                             self.vel.comp_mut(a)[(f[0], f[1], f[2])] = v[a];
                         }
                     }
@@ -455,18 +433,18 @@ impl Smoke {
     /// Occupied voxels: object temperature, zero density inside, and on
     /// boundary voxels the mean density of their unoccupied neighbours (L2132).
     fn apply_object_rules(&mut self) {
-        if self.obstacles.is_empty() {
+        if self.solid.list.is_empty() {
             return;
         }
         let d = self.dims;
         let n = d.n();
         let rho = self.density.clone();
         for c in 0..d.cells() {
-            let o = self.owner[c];
+            let o = self.solid.owner[c];
             if o == u16::MAX {
                 continue;
             }
-            if let Some(t) = self.obstacles[usize::from(o)].temperature {
+            if let Some(t) = self.solid.list[usize::from(o)].temperature {
                 self.temperature.as_mut_slice()[c] = t;
             }
             let ijk = d.ijk(c);
@@ -481,7 +459,7 @@ impl Smoke {
                     let mut nb = ijk;
                     nb[a] = q as usize;
                     let ni = d.idx(nb[0], nb[1], nb[2]);
-                    if self.owner[ni] == u16::MAX {
+                    if self.solid.owner[ni] == u16::MAX {
                         sum += rho.as_slice()[ni];
                         cnt += 1;
                     }

@@ -30,7 +30,7 @@ use crate::fft::{self, DiffusionFilter, Fft3, FftVariant};
 use crate::grid::{self, Boundaries, CellKind, Dims, MacVelocity, StepReport};
 use crate::mac::{self, Projector};
 use crate::pressure::SolverParams;
-use crate::shape::{Obstacle, Shape, voxelise};
+use crate::shape::{Obstacle, Obstacles, Shape, voxelise};
 
 /// A moving substance (dye, smoke density, temperature, texture coordinate).
 #[derive(Clone, Debug, PartialEq)]
@@ -453,9 +453,7 @@ pub struct BoundedFluid {
     h: f32,
     params: StableParams,
     vel: MacVelocity,
-    kinds: Grid3<CellKind>,
-    owner: Vec<u16>,
-    obstacles: Vec<Obstacle>,
+    solid: Obstacles,
     force: [Grid3<f32>; 3],
     force_sources: Vec<ForceSource>,
     subs: Substances,
@@ -472,9 +470,7 @@ impl BoundedFluid {
             h,
             params,
             vel: MacVelocity::zeros(dims)?,
-            kinds: Grid3::new(dims.nx, dims.ny, dims.nz, CellKind::Fluid)?,
-            owner: vec![u16::MAX; dims.cells()],
-            obstacles: Vec::new(),
+            solid: Obstacles::new(dims)?,
             force: zero3(dims)?,
             force_sources: Vec::new(),
             subs: Substances::default(),
@@ -496,29 +492,7 @@ impl BoundedFluid {
 
     /// Adds an obstacle; it must lie inside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
-        o.validate()?;
-        o.shape.check_inside(self.dims, self.h, "obstacle")?;
-        if self.obstacles.len() >= usize::from(u16::MAX) {
-            return Err(FluidError::InvalidParameter {
-                name: "obstacles",
-                value: self.obstacles.len().to_string(),
-                reason: "at most 65535 obstacles",
-            });
-        }
-        self.obstacles.push(o);
-        self.revoxelise();
-        Ok(())
-    }
-
-    fn revoxelise(&mut self) {
-        self.owner = voxelise(&self.obstacles, self.dims, self.h);
-        for (k, &o) in self.kinds.as_mut_slice().iter_mut().zip(&self.owner) {
-            *k = if o == u16::MAX {
-                CellKind::Fluid
-            } else {
-                CellKind::Solid
-            };
-        }
+        self.solid.add(o, self.dims, self.h)
     }
 
     /// Adds a substance.
@@ -560,7 +534,7 @@ impl BoundedFluid {
     /// Cell kinds (fluid or solid).
     #[must_use]
     pub fn cell_kinds(&self) -> &Grid3<CellKind> {
-        &self.kinds
+        &self.solid.kinds
     }
 
     /// The field of substance `id`.
@@ -583,12 +557,22 @@ impl BoundedFluid {
 
     /// Projects the current velocity (e.g. after setting it by hand).
     pub fn project(&mut self, dt: f32) -> Result<crate::pressure::SolveStats> {
-        let sv = crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
+        let sv = crate::shape::solid_face_velocity(
+            self.dims,
+            self.h,
+            &self.solid.owner,
+            &self.solid.list,
+        );
         let mut vel = self.vel.clone();
-        mac::enforce_solids(&mut vel, self.kinds.as_slice(), &self.params.bounds, &sv);
+        mac::enforce_solids(
+            &mut vel,
+            self.solid.kinds.as_slice(),
+            &self.params.bounds,
+            &sv,
+        );
         let st = self.projector.project(
             &mut vel,
-            &self.kinds,
+            &self.solid.kinds,
             &self.params.bounds,
             self.h,
             dt,
@@ -605,12 +589,12 @@ impl BoundedFluid {
         let (dims, h) = (self.dims, self.h);
         let bounds = self.params.bounds;
         let f = force_field(dims, h, &self.force_sources, &self.force)?;
-        mac::add_centre_forces(&mut self.vel, &f, dt, self.kinds.as_slice(), &bounds);
+        mac::add_centre_forces(&mut self.vel, &f, dt, self.solid.kinds.as_slice(), &bounds);
         let solids = Solids {
-            kinds: self.kinds.as_slice(),
+            kinds: self.solid.kinds.as_slice(),
             dims,
         };
-        let has_solids = self.obstacles.iter().len() > 0;
+        let has_solids = self.solid.list.iter().len() > 0;
         let w1 = self.vel.clone();
         {
             let vs = VelSampler::mac(&w1);
@@ -630,9 +614,13 @@ impl BoundedFluid {
         self.vel.check_finite("advection")?;
         let mut vel = std::mem::replace(&mut self.vel, w1);
         {
-            let sv =
-                crate::shape::solid_face_velocity(self.dims, self.h, &self.owner, &self.obstacles);
-            mac::enforce_solids(&mut vel, self.kinds.as_slice(), &bounds, &sv);
+            let sv = crate::shape::solid_face_velocity(
+                self.dims,
+                self.h,
+                &self.solid.owner,
+                &self.solid.list,
+            );
+            mac::enforce_solids(&mut vel, self.solid.kinds.as_slice(), &bounds, &sv);
         }
         let coef = self.params.viscosity * dt / (h * h);
         if coef > 0.0 {
@@ -643,19 +631,25 @@ impl BoundedFluid {
                 let n = dims.face_dims(a);
                 // Fixed faces (1) are Dirichlet data, free faces (0) unknowns.
                 const _: () = assert!(diffuse::FREE == 0 && diffuse::DIRICHLET == 1);
-                let role = mac::fixed_faces(dims, self.kinds.as_slice(), &bounds, a);
+                let role = mac::fixed_faces(dims, self.solid.kinds.as_slice(), &bounds, a);
                 diffuse::diffuse(vel.comp_mut(a).as_mut_slice(), n, coef, &role);
             }
         }
-        let stats =
-            self.projector
-                .project(&mut vel, &self.kinds, &bounds, h, dt, &self.params.solver)?;
+        let stats = self.projector.project(
+            &mut vel,
+            &self.solid.kinds,
+            &bounds,
+            h,
+            dt,
+            &self.params.solver,
+        )?;
         vel.check_finite("projection")?;
         self.vel = vel;
         // Substances.
         self.subs.add_sources(dims, h, dt);
         let vs = VelSampler::mac(&self.vel);
         let role: Vec<u8> = self
+            .solid
             .kinds
             .as_slice()
             .iter()
@@ -684,13 +678,10 @@ impl BoundedFluid {
         self.force
             .iter_mut()
             .for_each(|g| g.as_mut_slice().fill(0.0));
-        if self.obstacles.iter().any(Obstacle::is_moving) {
-            self.obstacles.iter_mut().for_each(|o| o.advance(dt));
-            self.revoxelise();
-        }
+        self.solid.advance(dt, self.dims, self.h);
         Ok(StepReport {
             pressure: Some(stats),
-            max_divergence: mac::max_fluid_divergence(&self.vel, &self.kinds, h)?,
+            max_divergence: mac::max_fluid_divergence(&self.vel, &self.solid.kinds, h)?,
             kinetic_energy: self.vel.kinetic_energy(h),
             substeps: 1,
             pressure_iterations: stats.iterations,
