@@ -262,11 +262,13 @@ fn contrib2g((gx, gy): (f32, f32), x: f32, y: f32) -> f32 {
 ///
 /// Each block is two passes: the lanes' cells and fractions first, then the
 /// corner sums. When every lane of the block lies in the same skewed cell
-/// (most blocks at low frequencies: at 0.01 cells per sample a 32-point block
-/// spans 0.44 cells), the cell's four lattice gradients are hashed once and
-/// each lane only picks its middle corner by the triangle test; otherwise
-/// every lane hashes its three corners. Both give the same values bit for
-/// bit (the same hashes and the same arithmetic).
+/// (about half the blocks at W2's 0.01 cells per sample, where a 32-point
+/// block spans 0.44 cells on the skewed x axis), the cell's four lattice
+/// gradients are hashed once (and reused by following blocks in the same
+/// cell) and each lane only picks its middle corner by the triangle test;
+/// otherwise every lane hashes its three corners. Both give the same values
+/// bit for bit (the same hashes and the same arithmetic; `CELL = false`
+/// forces the per-lane path, which the tests compare against).
 #[inline(always)]
 fn simplex2_row<const CELL: bool>(s: u32, origin: DVec2, step: f64, k: f32, out: &mut [f32]) {
     let y = origin.y;
@@ -276,6 +278,10 @@ fn simplex2_row<const CELL: bool>(s: u32, origin: DVec2, step: f64, k: f32, out:
     let mut cj = [0u32; BLOCK];
     let mut fxs = [0.0f32; BLOCK];
     let mut fys = [0.0f32; BLOCK];
+    // The last one-cell block's cell and gradients: successive blocks often
+    // share a cell at low frequencies.
+    let mut cached: Option<(u32, u32)> = None;
+    let mut grads = [(0.0f32, 0.0f32); 4];
     for (b, block) in out.chunks_mut(BLOCK).enumerate() {
         let x = origin.x + (b * BLOCK) as f64 * step;
         let sk = (x + y) * F2;
@@ -298,11 +304,27 @@ fn simplex2_row<const CELL: bool>(s: u32, origin: DVec2, step: f64, k: f32, out:
             .fold(0u32, |a, (&i, &j)| a | (i ^ i0) | (j ^ j0));
         let (fxs, fys) = (&fxs[..n], &fys[..n]);
         if CELL && diff == 0 {
-            simplex2_cell_lanes(s, i0, j0, fxs, fys, k, block);
+            if cached != Some((i0, j0)) {
+                grads = cell_grads2(s, i0, j0);
+                cached = Some((i0, j0));
+            }
+            simplex2_cell_lanes(grads, fxs, fys, k, block);
         } else {
             simplex2_lanes(s, &ci[..n], &cj[..n], fxs, fys, k, block);
         }
     }
+}
+
+/// The gradients of skewed cell `(i, j)`'s lattice points `(i, j)`,
+/// `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)`.
+#[inline(always)]
+fn cell_grads2(s: u32, i: u32, j: u32) -> [(f32, f32); 4] {
+    [
+        grad2(flat2(i, j, s)),
+        grad2(flat2(i.wrapping_add(1), j, s)),
+        grad2(flat2(i, j.wrapping_add(1), s)),
+        grad2(flat2(i.wrapping_add(1), j.wrapping_add(1), s)),
+    ]
 }
 
 /// The corners' unskewed offsets for skewed fractions `(fx, fy)`: base
@@ -321,13 +343,16 @@ fn offsets2(fx: f32, fy: f32) -> (bool, [(f32, f32); 3]) {
     (upper, [(x0, y0), (x1, y1), (x2, y2)])
 }
 
-/// Lanes that all lie in skewed cell `(i, j)`: four hashes for the block.
+/// Lanes that all lie in one skewed cell, given its four lattice gradients
+/// ([`cell_grads2`]).
 #[inline(always)]
-fn simplex2_cell_lanes(s: u32, i: u32, j: u32, fxs: &[f32], fys: &[f32], k: f32, out: &mut [f32]) {
-    let g00 = grad2(flat2(i, j, s));
-    let g10 = grad2(flat2(i.wrapping_add(1), j, s));
-    let g01 = grad2(flat2(i, j.wrapping_add(1), s));
-    let g11 = grad2(flat2(i.wrapping_add(1), j.wrapping_add(1), s));
+fn simplex2_cell_lanes(
+    [g00, g10, g01, g11]: [(f32, f32); 4],
+    fxs: &[f32],
+    fys: &[f32],
+    k: f32,
+    out: &mut [f32],
+) {
     for ((o, &fx), &fy) in out.iter_mut().zip(fxs).zip(fys) {
         let (upper, [(x0, y0), (x1, y1), (x2, y2)]) = offsets2(fx, fy);
         let g1 = if upper { g10 } else { g01 };
