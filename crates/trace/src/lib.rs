@@ -80,9 +80,9 @@
 //! assert!(tracer.occluded(&ray, 0.0, hit.t + 1e-3));
 //! # Ok::<(), natura_trace::TraceError>(())
 //! ```
-// `unsafe` is denied crate-wide; the only exception is one float-to-int
-// truncation of a value clamped to cell coordinates in `packet.rs` (the lane
-// kernels' run-time dispatch is natura-core's, in safe code).
+// `unsafe` is denied crate-wide; the only exceptions are in `packet.rs`: the
+// two calls into run-time-dispatched `#[target_feature]` lane kernels and one
+// float-to-int truncation of a value clamped to cell coordinates.
 #![deny(unsafe_code)]
 
 mod batch;

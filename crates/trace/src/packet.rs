@@ -22,8 +22,6 @@
 //! against the single-ray path, at every instruction set, and against brute
 //! force).
 
-use natura_core::simd::{self, Kernel, Simd};
-
 use crate::grid_ray::GridRay;
 use crate::leaf::{Exit, fmax, fmin, leaf};
 use crate::max_mipmap::{Cursor, MipmapTracer};
@@ -268,20 +266,64 @@ fn fmax_nan_lo(v: f32, lo: f32) -> f32 {
     if v > lo { v } else { lo }
 }
 
-/// One lane step, compiled per instruction set by natura-core's run-time
-/// dispatch (AVX-512 with node gathers, AVX2 + FMA, or the baseline).
-struct Step<'a, 'k> {
-    s: &'a mut Lanes,
-    k: &'a Consts<'k>,
-    events: &'a mut [u32; LANES],
+/// The instruction set the lane steps run with, detected at run time.
+#[derive(Clone, Copy, Debug)]
+enum Level {
+    Scalar,
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
 }
 
-impl Kernel for Step<'_, '_> {
-    type Out = u32;
-    #[inline(always)]
-    fn call(self) -> u32 {
-        step(self.s, self.k, self.events)
+impl Level {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx512dq")
+                && std::is_x86_feature_detected!("avx512bw")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                return Level::Avx512;
+            }
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                return Level::Avx2;
+            }
+        }
+        Level::Scalar
     }
+
+    #[inline(always)]
+    fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+        match self {
+            Level::Scalar => step(s, k, events),
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx2` is only returned by `detect` after the CPU
+            // reported AVX2 and FMA, the features `step_avx2` is compiled for.
+            Level::Avx2 => unsafe { step_avx2(s, k, events) },
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: `Level::Avx512` is only returned by `detect` after the
+            // CPU reported every feature `step_avx512` is compiled for.
+            Level::Avx512 => unsafe { step_avx512(s, k, events) },
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+    step(s, k, events)
 }
 
 /// How a ray's walk in the lanes ended.
@@ -306,12 +348,12 @@ pub(crate) fn walk_lanes<const ANY: bool>(
     cur: &[Option<Cursor>],
     out: &mut Vec<Outcome>,
 ) {
-    walk_lanes_with::<ANY>(Simd::best(), MIN_LANE_LEVEL, tr, rays, cur, out);
+    walk_lanes_with::<ANY>(Level::detect(), MIN_LANE_LEVEL, tr, rays, cur, out);
 }
 
 /// [`walk_lanes`] with the lane steps compiled for `level`.
 fn walk_lanes_with<const ANY: bool>(
-    level: Simd,
+    level: Level,
     min_level: u32,
     tr: &MipmapTracer<'_>,
     rays: &[GridRay],
@@ -369,14 +411,7 @@ fn walk_lanes_with<const ANY: bool>(
     let mut stats = TraceStats::default();
     while live > 0 {
         let mut events = [GOING; LANES];
-        let mut mask = simd::run(
-            level,
-            Step {
-                s: &mut s,
-                k: &k,
-                events: &mut events,
-            },
-        );
+        let mut mask = level.step(&mut s, &k, &mut events);
         while mask != 0 {
             let l = mask.trailing_zeros() as usize;
             mask &= mask - 1;
@@ -481,8 +516,18 @@ mod tests {
             Outcome::Hit(h) => (1, h.t.to_bits(), h.cell.0, h.cell.1, h.triangle.index()),
             Outcome::Walk(c) => (2, c.t.to_bits(), c.ci, c.cj, c.level),
         };
+        let mut levels = vec![];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                levels.push(Level::Avx2);
+            }
+            if matches!(Level::detect(), Level::Avx512) {
+                levels.push(Level::Avx512);
+            }
+        }
         for any in [false, true] {
-            let run = |level: Simd| {
+            let run = |level: Level| {
                 let mut out = Vec::new();
                 if any {
                     walk_lanes_with::<true>(level, 0, &tr, &grid, &start, &mut out);
@@ -491,10 +536,10 @@ mod tests {
                 }
                 out
             };
-            let want = run(Simd::baseline());
+            let want = run(Level::Scalar);
             let hits = want.iter().filter(|o| matches!(o, Outcome::Hit(_))).count();
             assert!(hits > 1000, "{hits}");
-            for level in Simd::supported() {
+            for &level in &levels {
                 let got = run(level);
                 for (g, w) in got.iter().zip(&want) {
                     assert_eq!(key(g), key(w), "{level:?}");
@@ -573,7 +618,7 @@ mod tests {
             let key = |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
             let mut stats = TraceStats::default();
             let mut out = Vec::new();
-            walk_lanes_with::<false>(Simd::best(), 0, &tr, &grid, &start, &mut out);
+            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, &mut out);
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => None,
@@ -584,7 +629,7 @@ mod tests {
                 assert_eq!(key(got), key(want), "case {case}, ray {k}: {:?}", rays[k]);
                 checked += usize::from(want.is_some());
             }
-            walk_lanes_with::<true>(Simd::best(), 0, &tr, &grid, &start, &mut out);
+            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, &mut out);
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => false,
