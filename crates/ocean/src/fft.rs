@@ -47,7 +47,6 @@ pub(crate) fn evaluate(ocean: &Ocean, t: f64, frame: &mut Frame) {
 /// [`evaluate`] with the lane loops compiled for `simd` (every level gives
 /// bit-identical fields).
 pub(crate) fn evaluate_with(ocean: &Ocean, t: f64, frame: &mut Frame, simd: Simd) {
-    let ny = ocean.params.ny;
     let Frame {
         fields, work, time, ..
     } = frame;
@@ -80,7 +79,6 @@ pub(crate) fn evaluate_with(ocean: &Ocean, t: f64, frame: &mut Frame, simd: Simd
         f6.as_mut_slice(),
         f7.as_mut_slice(),
     ];
-    let _ = ny;
     row_pass(ocean, &cols, outs, 0, slots, simd);
 }
 
@@ -377,11 +375,11 @@ impl Kernel for RowLeaf<'_, '_> {
 
 /// Field pairs of the row transforms: (source of a, factor of a, source of
 /// b, factor of b), each field a real part and b the imaginary part.
-const PLAN: [(usize, Factor, usize, Factor); PAIRS] = [
-    (0, Factor::One, 0, Factor::IKx),    // h, ε_x
-    (1, Factor::One, 3, Factor::One),    // ε_y, d_y
-    (2, Factor::IKx, 2, Factor::NegKx2), // d_x, ∂d_x/∂x
-    (4, Factor::One, 3, Factor::IKx),    // ∂d_y/∂y, ∂d_x/∂y
+const PLAN: [(usize, u8, usize, u8); PAIRS] = [
+    (0, F_ONE, 0, F_IKX),     // h, ε_x
+    (1, F_ONE, 3, F_ONE),     // ε_y, d_y
+    (2, F_IKX, 2, F_NEG_KX2), // d_x, ∂d_x/∂x
+    (4, F_ONE, 3, F_IKX),     // ∂d_y/∂y, ∂d_x/∂y
 ];
 
 /// Output fields of each pair and what is added to them (the diagonal
@@ -428,9 +426,9 @@ fn row(
         let (ca, cb) = (cols[sa], cols[sb]);
         match (fa, fb, b_zero) {
             (_, _, true) => unfold::<F_ONE, F_ZERO>(ocean, ca, cb, g, gy),
-            (Factor::One, Factor::IKx, _) => unfold::<F_ONE, F_IKX>(ocean, ca, cb, g, gy),
-            (Factor::One, Factor::One, _) => unfold::<F_ONE, F_ONE>(ocean, ca, cb, g, gy),
-            (Factor::IKx, Factor::NegKx2, _) => {
+            (F_ONE, F_IKX, _) => unfold::<F_ONE, F_IKX>(ocean, ca, cb, g, gy),
+            (F_ONE, F_ONE, _) => unfold::<F_ONE, F_ONE>(ocean, ca, cb, g, gy),
+            (F_IKX, F_NEG_KX2, _) => {
                 unfold::<F_IKX, F_NEG_KX2>(ocean, ca, cb, g, gy);
             }
             _ => unreachable!("every pair of the plan has a kernel"),
@@ -438,11 +436,11 @@ fn row(
         // k_x = 0: the column of a real field is real; the Nyquist bin is 0.
         {
             let at = gy * gw;
-            let a = cols[sa][at] * fa.multiplier(0.0);
+            let a = apply_code(fa, cols[sa][at], 0.0);
             let bb = if b_zero {
                 C32::new(0.0, 0.0)
             } else {
-                cols[sb][at] * fb.multiplier(0.0)
+                apply_code(fb, cols[sb][at], 0.0)
             };
             g[0] = C32::new(a.re, bb.re);
             g[half] = C32::new(0.0, 0.0);
@@ -546,22 +544,14 @@ fn two_mut<'a>(
     (&mut *lo[i], &mut *hi[0])
 }
 
-#[derive(Clone, Copy)]
-enum Factor {
-    One,
-    IKx,
-    NegKx2,
-}
-
-impl Factor {
-    /// Returns the complex factor for wavenumber `kx`.
-    #[inline(always)]
-    fn multiplier(self, kx: f32) -> C32 {
-        match self {
-            Factor::One => C32::new(1.0, 0.0),
-            Factor::IKx => C32::new(0.0, kx),
-            Factor::NegKx2 => C32::new(-kx * kx, 0.0),
-        }
+/// [`apply`] with the factor code known only at run time (bin 0).
+#[inline(always)]
+fn apply_code(code: u8, v: C32, kx: f32) -> C32 {
+    match code {
+        F_ZERO => apply::<F_ZERO>(v, kx),
+        F_ONE => apply::<F_ONE>(v, kx),
+        F_IKX => apply::<F_IKX>(v, kx),
+        _ => apply::<F_NEG_KX2>(v, kx),
     }
 }
 
