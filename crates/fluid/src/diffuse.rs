@@ -33,7 +33,6 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
     }
     let len = data.len();
     let n0 = n[0];
-    let rows = n[1] * n[2];
     // Diagonal (0 on fixed samples) and right-hand side (Dirichlet
     // neighbours' values moved to it), row by row.
     let mut dg = vec![0.0f32; len];
@@ -126,7 +125,6 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
             }
         });
     };
-    let _ = rows;
     let dot = |a: &[f32], b: &[f32]| {
         par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
             let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
