@@ -55,7 +55,7 @@
 //! data-dependent branches, vectorised with AVX-512 or AVX2 where the CPU has
 //! them (detected at run time; portable code otherwise), with each cell's
 //! exact test run per ray, and return exactly the hits of one call per ray
-//! (about 1.5× faster on long grazing rays, at par on short steep ones).
+//! (about 1.2–1.3× faster on long grazing rays on the quiet benchmark machine, at par on short steep ones).
 //!
 //! ## Errata corrected (spec `gridtrace.md` §9)
 //!
