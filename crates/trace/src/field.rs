@@ -21,6 +21,10 @@ pub(crate) struct FieldView<'a> {
     pub cell: f32,
     pub zmin: f32,
     pub zmax: f32,
+    /// `max(|zmin|, |zmax|)`.
+    pub zabs: f32,
+    /// `ncx + ncy` as `f32`.
+    pub nxy: f32,
     /// Largest height span `max − min` of any cell's four corners: how far the
     /// surface can move per cell of horizontal distance.
     pub smax: f32,
@@ -68,6 +72,8 @@ impl<'a> FieldView<'a> {
             cell,
             zmin,
             zmax,
+            zabs: zmin.abs().max(zmax.abs()),
+            nxy: ((nx - 1) as u32 + (ny - 1) as u32) as f32,
             smax,
         })
     }
