@@ -201,12 +201,13 @@ impl GridRay {
     }
 
     /// The cell holding grid point `p`, clamped to the grid. `max(0)` then
-    /// truncation is `floor(·).max(0)` (and NaN goes to 0 either way), without
-    /// a library call on targets lacking a rounding instruction.
+    /// truncation is `floor(·).max(0)` (and NaN goes to 0 either way: the
+    /// comparison picks 0, the conversion saturates), without a library call
+    /// on targets lacking a rounding instruction.
     #[inline(always)]
     fn cell_of(p: Vec3, f: &FieldView<'_>) -> (u32, u32) {
-        let i = (p.x.max(0.0) as u32).min(f.ncx - 1);
-        let j = (p.y.max(0.0) as u32).min(f.ncy - 1);
+        let i = (fmax(p.x, 0.0) as u32).min(f.ncx - 1);
+        let j = (fmax(p.y, 0.0) as u32).min(f.ncy - 1);
         (i, j)
     }
 

@@ -298,7 +298,7 @@ impl<'a> MipmapTracer<'a> {
         t_max: f32,
         mut emit: impl FnMut(usize, Option<CellHit>),
     ) {
-        const CHUNK: usize = 256;
+        const CHUNK: usize = 1024;
         let mut grid = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut cur = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut ends = Vec::with_capacity(CHUNK.min(rays.len()));

@@ -56,8 +56,6 @@ struct Lanes {
     sign: [u32; LANES],
     ray: [usize; LANES],
     live: [bool; LANES],
-    /// The lane's cell has been tested and missed: step on past it.
-    skip: [bool; LANES],
 }
 
 /// What a lane step leads to.
@@ -85,7 +83,6 @@ impl Lanes {
             sign: [0; LANES],
             ray: [0; LANES],
             live: [false; LANES],
-            skip: [false; LANES],
         }
     }
 
@@ -112,7 +109,6 @@ impl Lanes {
             | u32::from(r.d.y < 0.0) << 3;
         self.ray[l] = k;
         self.live[l] = true;
-        self.skip[l] = false;
     }
 }
 
@@ -221,8 +217,10 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         // Ascend one level when the step leaves the parent node.
         let up = (lev < k.top) & (((nci ^ ci) | (ncj ^ cj)) >> ((lev + 1) & 31) != 0);
         let live = s.live[l];
-        let park = live & at0 & !s.skip[l];
-        s.skip[l] = false;
+        // A lane at a cell parks (only a lane loaded at a cell starts a step
+        // there: one that descends to a cell parks in the same step, and the
+        // cell walk of a parked lane runs outside the lanes).
+        let park = live & at0;
         let go = live & !pass & !park;
         s.ci[l] = if go { nci } else { ci };
         s.cj[l] = if go { ncj } else { cj };
@@ -235,9 +233,9 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         } else {
             lev
         };
-        // `down` and `go` exclude each other.
-        // `park` and `go` exclude each other.
-        events[l] = u32::from(park) * AT_CELL + u32::from(go & done) * LEFT;
+        // `down` and `go` exclude each other, and so do `park` and `go`.
+        let arrive = down & (lev == 1);
+        events[l] = u32::from(park | arrive) * AT_CELL + u32::from(go & done) * LEFT;
     }
     // Bit `l` set: lane `l` parked or left.
     let mut mask = 0;
@@ -418,48 +416,92 @@ fn walk_lanes_with<const ANY: bool>(
             let ev = events[l];
             let kr = s.ray[l];
             if ev == AT_CELL {
-                // The cell step of the single-ray walk, with nothing pending.
+                // The single-ray walk's cell steps, with nothing pending:
+                // test the cell; on a miss step to the next cell, and go on
+                // at cells until the walk leaves the field, hits, or climbs
+                // back to level 1 (then the lane steps on).
                 let r = &rays[kr];
-                let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
                 let (o, d, inv) = (r.o, r.d, r.inv);
-                let tx = if d.x > 0.0 {
-                    ((ci + 1) as f32 - o.x) * inv.x
-                } else if d.x < 0.0 {
-                    (ci as f32 - o.x) * inv.x
-                } else {
-                    f32::INFINITY
-                };
-                let ty = if d.y > 0.0 {
-                    ((cj + 1) as f32 - o.y) * inv.y
-                } else if d.y < 0.0 {
-                    (cj as f32 - o.y) * inv.y
-                } else {
-                    f32::INFINITY
-                };
                 let t_end = r.t1;
-                let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
-                let exit = if t_exit >= t_end {
-                    Exit::End
-                } else if tx <= ty {
-                    Exit::X
-                } else {
-                    Exit::Y
+                let (mut ci, mut cj, mut t) = (s.ci[l], s.cj[l], s.t[l]);
+                let resumed = loop {
+                    let tx = if d.x > 0.0 {
+                        ((ci + 1) as f32 - o.x) * inv.x
+                    } else if d.x < 0.0 {
+                        (ci as f32 - o.x) * inv.x
+                    } else {
+                        f32::INFINITY
+                    };
+                    let ty = if d.y > 0.0 {
+                        ((cj + 1) as f32 - o.y) * inv.y
+                    } else if d.y < 0.0 {
+                        (cj as f32 - o.y) * inv.y
+                    } else {
+                        f32::INFINITY
+                    };
+                    let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+                    let exit = if t_exit >= t_end {
+                        Exit::End
+                    } else if tx <= ty {
+                        Exit::X
+                    } else {
+                        Exit::Y
+                    };
+                    let first = t == r.t0;
+                    match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
+                        Some(h) if ANY || h.t <= t_exit + r.ttol => {
+                            out[kr] = Outcome::Hit(h);
+                            break false;
+                        }
+                        Some(_) => {
+                            out[kr] = Outcome::Walk(Cursor {
+                                ci,
+                                cj,
+                                t,
+                                level: 0,
+                            });
+                            break false;
+                        }
+                        None => {}
+                    }
+                    // The walk's step past a cell (as the lane step at level 0).
+                    if exit == Exit::End {
+                        out[kr] = Outcome::Miss;
+                        break false;
+                    }
+                    let (oci, ocj) = (ci, cj);
+                    if exit == Exit::X {
+                        if d.x > 0.0 {
+                            ci += 1;
+                        } else {
+                            ci = ci.wrapping_sub(1);
+                        }
+                        if ci >= k.ncx {
+                            out[kr] = Outcome::Miss;
+                            break false;
+                        }
+                    } else {
+                        if d.y > 0.0 {
+                            cj += 1;
+                        } else {
+                            cj = cj.wrapping_sub(1);
+                        }
+                        if cj >= k.ncy {
+                            out[kr] = Outcome::Miss;
+                            break false;
+                        }
+                    }
+                    t = t_exit;
+                    if k.top > 0 && ((ci ^ oci) | (cj ^ ocj)) >> 1 != 0 {
+                        s.ci[l] = ci;
+                        s.cj[l] = cj;
+                        s.t[l] = t;
+                        s.level[l] = 1;
+                        break true;
+                    }
                 };
-                let first = t == r.t0;
-                match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
-                    None => {
-                        s.skip[l] = true;
-                        continue;
-                    }
-                    Some(h) if ANY || h.t <= t_exit + r.ttol => out[kr] = Outcome::Hit(h),
-                    Some(_) => {
-                        out[kr] = Outcome::Walk(Cursor {
-                            ci,
-                            cj,
-                            t,
-                            level: 0,
-                        });
-                    }
+                if resumed {
+                    continue;
                 }
             } else {
                 out[kr] = Outcome::Miss;
