@@ -128,9 +128,11 @@ struct Consts<'a> {
 /// kept, so their loads stay in bounds).
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
-fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
+fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
     assert!(!k.nodes.is_empty());
-    let last = k.nodes.len() - 1;
+    // Node indices stay below 2³¹ (the caller checks), so the clamped index
+    // converts to the signed 32-bit offsets of a `vpgatherdd`.
+    let last = (k.nodes.len() - 1).min(i32::MAX as usize) as u32;
     for l in 0..LANES {
         let (ci, cj, t, lev) = (s.ci[l], s.cj[l], s.t[l], s.level[l]);
         let sign = s.sign[l];
@@ -159,7 +161,7 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         let idx = k.offset[lv]
             .wrapping_add((cj >> (lev & 31)).wrapping_mul(k.width[lv]))
             .wrapping_add(ci >> (lev & 31));
-        let q = k.nodes[(idx as usize).min(last)];
+        let q = k.nodes[idx.min(last) as usize];
         let (qlo, qhi) = ((q & 0xffff) as i32 as f32, (q >> 16) as i32 as f32);
         let (za, zb) = (s.oq[l] + t * s.dq[l], s.oq[l] + t_exit * s.dq[l]);
         let (zlo, zhi) = (fmin(za, zb), fmax(za, zb));
@@ -237,7 +239,11 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         let arrive = down & (lev == 1);
         events[l] = u32::from(park | arrive) * AT_CELL + u32::from(go & done) * LEFT;
     }
-    // Bit `l` set: lane `l` parked or left.
+}
+
+/// Bit `l` set: lane `l` parked or left (`events[l] != GOING`).
+#[inline(always)]
+fn event_mask(events: &[u32; LANES]) -> u32 {
     let mut mask = 0;
     for (l, &e) in events.iter().enumerate() {
         mask |= u32::from(e != GOING) << l;
@@ -297,7 +303,10 @@ impl Level {
     #[inline(always)]
     fn step(self, s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
         match self {
-            Level::Scalar => step(s, k, events),
+            Level::Scalar => {
+                step(s, k, events);
+                event_mask(events)
+            }
             #[cfg(target_arch = "x86_64")]
             #[allow(unsafe_code)]
             // SAFETY: `Level::Avx2` is only returned by `detect` after the CPU
@@ -315,13 +324,36 @@ impl Level {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
-    step(s, k, events)
+    step(s, k, events);
+    event_mask_avx2(events)
+}
+
+/// [`event_mask`] in registers: two compares and two move-masks. The
+/// scalar loop over the just-stored events stalls on store forwarding.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn event_mask_avx2(events: &[u32; LANES]) -> u32 {
+    use std::arch::x86_64::{
+        __m256i, _mm256_castsi256_ps, _mm256_cmpeq_epi32, _mm256_loadu_si256, _mm256_movemask_ps,
+        _mm256_setzero_si256,
+    };
+    let p = events.as_ptr().cast::<__m256i>();
+    #[allow(unsafe_code)]
+    // SAFETY: `events` holds 16 `u32` (64 bytes): `p` and `p + 1` each
+    // address 32 readable bytes; unaligned loads need no alignment.
+    let (a, b) = unsafe { (_mm256_loadu_si256(p), _mm256_loadu_si256(p.add(1))) };
+    let z = _mm256_setzero_si256();
+    let lo = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, z))) as u32;
+    let hi = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(b, z))) as u32;
+    !(lo | hi << 8) & 0xffff
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
 fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
-    step(s, k, events)
+    step(s, k, events);
+    event_mask_avx2(events)
 }
 
 /// How a ray's walk in the lanes ended.
@@ -366,7 +398,7 @@ fn walk_lanes_with<const ANY: bool>(
     let nodes = m.nodes.as_slice();
     // Node indices in 32 bits (the kernel's gathers); larger pyramids take
     // the single-ray walk.
-    if nodes.len() > u32::MAX as usize {
+    if nodes.len() > i32::MAX as usize {
         return;
     }
     let mut offset = [0u32; 32];
