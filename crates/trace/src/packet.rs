@@ -116,7 +116,6 @@ impl Lanes {
 struct Consts<'a> {
     nodes: &'a [u32],
     offset: &'a [u32; 32],
-    width: &'a [u32; 32],
     ncx: u32,
     ncy: u32,
     top: u32,
@@ -158,8 +157,11 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
         let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
         // The cull against the node's quantised [min, max].
         let lv = (lev & 31) as usize;
+        // The level's width `⌈ncx / 2^lev⌉` by a shift rather than a second
+        // table gather (the same value for every level ≥ 1).
+        let width = ((k.ncx - 1) >> (lev & 31)) + 1;
         let idx = k.offset[lv]
-            .wrapping_add((cj >> (lev & 31)).wrapping_mul(k.width[lv]))
+            .wrapping_add((cj >> (lev & 31)).wrapping_mul(width))
             .wrapping_add(ci >> (lev & 31));
         let q = k.nodes[idx.min(last) as usize];
         let (qlo, qhi) = ((q & 0xffff) as i32 as f32, (q >> 16) as i32 as f32);
@@ -408,7 +410,6 @@ fn walk_lanes_with<const ANY: bool>(
     let k = Consts {
         nodes,
         offset: &offset,
-        width: &m.width,
         ncx: f.ncx,
         ncy: f.ncy,
         top,
@@ -555,6 +556,24 @@ mod tests {
     use crate::Ray;
     use glam::Vec3;
     use natura_core::{HeightField, Seed};
+
+    /// The lane step's shift form of a level's width equals the pyramid's.
+    #[test]
+    fn level_widths_by_shift() {
+        for nx in [2usize, 3, 5, 17, 64, 65, 100, 1025] {
+            let hf = HeightField::flat(nx, 3, 1.0, 0.0).unwrap();
+            let tr = MipmapTracer::new(&hf).unwrap();
+            let m = tr.mipmap();
+            let ncx = (nx - 1) as u32;
+            for k in 1..=m.top_level() {
+                assert_eq!(
+                    ((ncx - 1) >> k) + 1,
+                    m.level_dims(k).unwrap().0,
+                    "{nx}, level {k}"
+                );
+            }
+        }
+    }
 
     /// Every instruction set this CPU supports ends every walk the same way
     /// as the portable code, bit for bit.
