@@ -424,7 +424,8 @@ fn walk_lanes_with<const ANY: bool>(
                 // Short walks (a span within a few cells: steep rays) are
                 // cheaper one at a time than through a lane.
                 if c.level >= min_level {
-                    return Some((k, c));
+                    // The walk's sure descents, scalar (see `descend`).
+                    return Some((k, tr.descend(&rays[k], c, &mut TraceStats::default())));
                 }
             }
         }
@@ -556,6 +557,58 @@ mod tests {
     use crate::Ray;
     use glam::Vec3;
     use natura_core::{HeightField, Seed};
+
+    /// The single-ray walk from the scalar pre-descent's cursor ends exactly
+    /// as the walk from the start (closest and any hit), on fields with
+    /// plateaus and flats (altitudes on node bounds) and rays from inside
+    /// the box, from above, along axes and vertical; and the pre-descent
+    /// does descend for rays starting among the terrain.
+    #[test]
+    fn pre_descent_leaves_the_walk_unchanged() {
+        let s = Seed(31);
+        let mut descended = 0;
+        for (case, plateau) in [(0i64, false), (1, true), (2, true), (3, false)] {
+            let hf = HeightField::from_fn(150 + case as usize * 40, 97, 1.5, |i, j| {
+                let v = 30.0 * s.uniform2(i as i64 / 5 + case * 1000, j as i64 / 4) as f32;
+                if plateau {
+                    (v / 7.5).floor() * 7.5
+                } else {
+                    v + s.uniform2(i as i64, j as i64) as f32
+                }
+            })
+            .unwrap();
+            let tr = MipmapTracer::new(&hf).unwrap();
+            for k in 0..1500i64 {
+                let u = |c: i64| s.uniform2(case * 100_000 + k, c) as f32;
+                let o = Vec3::new(300.0 * u(0) - 30.0, 170.0 * u(1) - 15.0, 40.0 * u(2) - 5.0);
+                let o = if k % 4 == 0 { o.round() } else { o };
+                let d = match k % 5 {
+                    0 => Vec3::new(u(3) - 0.5, 0.0, 0.1 * (u(5) - 0.5)),
+                    1 => Vec3::new(0.0, 0.0, -1.0),
+                    _ => Vec3::new(u(3) - 0.5, u(4) - 0.5, 0.3 * (u(5) - 0.6)),
+                };
+                let Some(r) = tr.setup(&Ray::new(o, d), 0.0, f32::INFINITY) else {
+                    continue;
+                };
+                let c = tr.start(&r);
+                let mut st = TraceStats::default();
+                let c2 = tr.descend(&r, c, &mut st);
+                descended += usize::from(c2.level < c.level);
+                let key =
+                    |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
+                assert_eq!(
+                    key(tr.walk::<false>(&r, c2, &mut st)),
+                    key(tr.walk::<false>(&r, c, &mut st)),
+                    "case {case}, ray {k}"
+                );
+                assert_eq!(
+                    tr.walk::<true>(&r, c2, &mut st).is_some(),
+                    tr.walk::<true>(&r, c, &mut st).is_some()
+                );
+            }
+        }
+        assert!(descended > 1000, "{descended}");
+    }
 
     /// The lane step's shift form of a level's width equals the pyramid's.
     #[test]
