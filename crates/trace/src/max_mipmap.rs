@@ -355,30 +355,34 @@ impl<'a> MipmapTracer<'a> {
     }
 
     /// The walk's first descents from its start `c`, without its node steps:
-    /// while the ray's altitude at the start lies within the cull's range of
-    /// the node holding the start cell, the walk's cull passes there whatever
-    /// the rest of the ray's span over the node (the span includes the
-    /// start), so the walk would descend; this does so with one node load and
-    /// two comparisons per level. It computes the walk's values (the same
-    /// quantised altitude and margin), so the walk from the result is the
-    /// walk from `c` minus those descents, bit for bit. A ray from a camera
-    /// near the ground starts most of the way down the pyramid.
+    /// where the ray's altitude at the start lies within the quantised
+    /// `[min, max]` of the node holding the start cell, the walk's cull
+    /// passes there whatever the rest of the ray's span over the node (the
+    /// span includes the start, and the cull's margin is at least a quantum,
+    /// far more than the rounding of the altitude here), so the walk would
+    /// descend; this does so with one node load and two integer comparisons
+    /// per level. Walking from the result is walking from `c` minus those
+    /// descents, bit for bit. A ray from a camera near the ground starts most
+    /// of the way down the pyramid.
     #[inline]
     pub(crate) fn descend(&self, r: &GridRay, c: Cursor, stats: &mut TraceStats) -> Cursor {
         let m = &self.mip;
-        let oq = (r.o.z - m.lo) / m.scale;
-        let dq = r.d.z / m.scale;
-        let mq = 1.0 + r.zm / m.scale;
-        let za = oq + c.t * dq;
+        // The start altitude in quantised units; below 0 or above the range
+        // no node holds it.
+        let za = (r.z_at(c.t) - m.lo) / m.scale;
+        if !(0.0..65536.0).contains(&za) {
+            return c;
+        }
+        // `za` lies in `[zf, zc]` (whole numbers): truncation is the floor here.
+        let zf = za as u32;
+        let zc = zf + u32::from(zf as f32 != za);
         let mut level = c.level;
         while level > 0 {
             let k = level as usize;
-            let (lo, hi) = unpack(
-                m.nodes[m.offset[k]
-                    + (c.cj >> level) as usize * m.width[k] as usize
-                    + (c.ci >> level) as usize],
-            );
-            if !(za <= f32::from(hi) + mq && za >= f32::from(lo) - mq) {
+            let q = m.nodes[m.offset[k]
+                + (c.cj >> level) as usize * m.width[k] as usize
+                + (c.ci >> level) as usize];
+            if !((q & 0xffff) <= zf && q >> 16 >= zc) {
                 break;
             }
             stats.nodes_visited += 1;
