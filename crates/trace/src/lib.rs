@@ -55,7 +55,8 @@
 //! data-dependent branches, vectorised with AVX-512 or AVX2 where the CPU has
 //! them (detected at run time; portable code otherwise), with each cell's
 //! exact test run per ray, and return exactly the hits of one call per ray
-//! (about 1.2–1.3× faster on long grazing rays on the quiet benchmark machine, at par on short steep ones).
+//! (in CPU time on the benchmark machine about 1.4–1.7× faster on long grazing
+//! rays, 1.2–1.3× on short steep ones; see `docs/performance.md`).
 //!
 //! ## Errata corrected (spec `gridtrace.md` §9)
 //!

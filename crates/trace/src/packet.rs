@@ -8,13 +8,19 @@
 //! goes either way (descend or advance, across x or across y). Here each
 //! step computes both outcomes and selects one, for [`LANES`] independent
 //! rays at once; the loop over lanes is vectorised (with gathers of the
-//! nodes) for AVX-512 or AVX2, chosen at run time. A lane whose ray reaches
-//! a cell parks: the cell's exact test ([`leaf`], the single-ray walk's)
-//! runs for it alone; on a miss the lane steps on, on a hit (or when it
-//! leaves the field) it is refilled with the next ray. A hit that a later
-//! cell could still beat (one across an edge within rounding distance, rare)
-//! hands the ray to the single-ray walk ([`MipmapTracer::walk`]) from that
-//! cell.
+//! nodes) for AVX-512 or AVX2, chosen at run time.
+//!
+//! Before a ray enters a lane it takes the walk's sure descents at its start
+//! ([`MipmapTracer::descend`]: where its start altitude lies inside a node's
+//! bounds the walk descends, whatever the rest of its span), so a ray from a
+//! camera near the ground does not spend lane steps on them. A lane whose
+//! ray descends to a cell parks in that step, and the cells are walked
+//! outside the lanes ([`leaf`], the single-ray walk's exact cell test, then
+//! the walk's step to the next cell) until the ray hits, leaves the field
+//! or climbs back to level 1, when it steps on in its lane; a lane whose ray
+//! is done is refilled with the next ray. A hit that a later cell could
+//! still beat (one across an edge within rounding distance, rare) hands the
+//! ray to the single-ray walk ([`MipmapTracer::walk`]) from that cell.
 //!
 //! The lane step computes the same `f32` and integer values in the same
 //! order as the single-ray walk's node steps, so every ray visits the same
