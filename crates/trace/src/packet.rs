@@ -549,7 +549,13 @@ fn walk_lanes_with<const ANY: bool>(
             match take(&mut next) {
                 Some((k, c)) => s.load(l, k, &rays[k], c, lo, scale),
                 None => {
+                    // A dead lane keeps stepping (ignored): park its state on
+                    // cell (0, 0) so its arithmetic stays in range (a ray that
+                    // left through the low side has a wrapped coordinate).
                     s.live[l] = false;
+                    s.ci[l] = 0;
+                    s.cj[l] = 0;
+                    s.level[l] = 0;
                     live -= 1;
                 }
             }
