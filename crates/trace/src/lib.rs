@@ -82,8 +82,9 @@
 //! # Ok::<(), natura_trace::TraceError>(())
 //! ```
 // `unsafe` is denied crate-wide; the only exceptions are in `packet.rs`: the
-// two calls into run-time-dispatched `#[target_feature]` lane kernels and one
-// float-to-int truncation of a value clamped to cell coordinates.
+// two calls into run-time-dispatched `#[target_feature]` lane kernels, one
+// float-to-int truncation of a value clamped to cell coordinates, and the
+// two unaligned vector loads of the lane events (16 `u32`) forming their mask.
 #![deny(unsafe_code)]
 
 mod batch;
