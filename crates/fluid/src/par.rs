@@ -53,6 +53,40 @@ pub(crate) fn for_chunks2<T: Send, U: Send>(
         .for_each(|(i, (x, y))| f(i, x, y));
 }
 
+/// Calls `f(band_index, bands)` for each `band`-sized piece of every slice
+/// of `data` at once (all slices equally long): `bands[s]` is piece
+/// `band_index` of `data[s]`.
+pub(crate) fn for_bands(
+    data: &mut [&mut [f32]],
+    band: usize,
+    f: impl Fn(usize, &mut [&mut [f32]]) + Sync + Send,
+) {
+    let band = band.max(1);
+    let len = data.first().map_or(0, |d| d.len());
+    let mut bands: Vec<Vec<&mut [f32]>> = (0..len.div_ceil(band))
+        .map(|_| Vec::with_capacity(data.len()))
+        .collect();
+    for d in data.iter_mut() {
+        debug_assert_eq!(d.len(), len);
+        for (b, c) in d.chunks_mut(band).enumerate() {
+            bands[b].push(c);
+        }
+    }
+    #[cfg(feature = "parallel")]
+    if len >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        bands
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, mut v)| f(i, &mut v));
+        return;
+    }
+    bands
+        .into_iter()
+        .enumerate()
+        .for_each(|(i, mut v)| f(i, &mut v));
+}
+
 /// Returns `Σ_i f(i)` over `0..n` blocks, each block's partial computed
 /// independently and the partials added in index order (deterministic).
 pub(crate) fn sum_blocks(
