@@ -27,16 +27,48 @@ pub(crate) const EXCLUDED: u8 = 2;
 /// CG vector is kept zero on fixed samples, so the coupling of a free sample
 /// is the plain sum of its in-grid neighbours and the operator runs over
 /// contiguous rows without per-sample branching.
+#[cfg(test)]
 pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -> u32 {
+    diffuse_in(&mut Scratch::default(), data, n, coef, role)
+}
+
+/// Work vectors of [`diffuse_in`], kept between calls so that a solver
+/// step does not allocate (and page-fault) seven grids per component.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    v: [Vec<f32>; 7],
+}
+
+/// [`diffuse`] with caller-owned work vectors.
+pub(crate) fn diffuse_in(
+    scratch: &mut Scratch,
+    data: &mut [f32],
+    n: [usize; 3],
+    coef: f32,
+    role: &[u8],
+) -> u32 {
     if coef == 0.0 {
         return 0;
     }
     let len = data.len();
     let n0 = n[0];
+    // Every element of each work vector is written before it is read.
+    let mut take = |k: usize| {
+        let mut v = std::mem::take(&mut scratch.v[k]);
+        v.resize(len, 0.0);
+        v
+    };
+    let (mut dg, mut b, mut x, mut r, mut inv, mut p, mut q) = (
+        take(0),
+        take(1),
+        take(2),
+        take(3),
+        take(4),
+        take(5),
+        take(6),
+    );
     // Diagonal (0 on fixed samples) and right-hand side (Dirichlet
     // neighbours' values moved to it), row by row.
-    let mut dg = vec![0.0f32; len];
-    let mut b = vec![0.0f32; len];
     {
         let data: &[f32] = data;
         par::for_chunks2(&mut dg, &mut b, n0, |r, drow, brow| {
@@ -157,20 +189,15 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
                 .sum()
         })
     };
-    let mut x: Vec<f32> = data
-        .iter()
-        .zip(&dg)
-        .map(|(&v, &d)| if d != 0.0 { v } else { 0.0 })
-        .collect();
+    for ((xv, &v), &d) in x.iter_mut().zip(data.iter()).zip(&dg) {
+        *xv = if d != 0.0 { v } else { 0.0 };
+    }
     // r = b − A x, then p = z = M⁻¹ r with the Jacobi preconditioner
     // `M = diag(A)`; `inv = 1/A_ss` (0 on fixed samples).
-    let mut r = vec![0.0f32; len];
     apply(&x, &mut r);
-    let inv: Vec<f32> = dg
-        .iter()
-        .map(|&d| if d != 0.0 { 1.0 / d } else { 0.0 })
-        .collect();
-    let mut p = vec![0.0f32; len];
+    for (iv, &d) in inv.iter_mut().zip(&dg) {
+        *iv = if d != 0.0 { 1.0 / d } else { 0.0 };
+    }
     let (mut rz, mut rr) = par::for_chunks2_sum2(&mut r, &mut p, par::BLOCK, |bi, rc, pc| {
         let s0 = bi * par::BLOCK;
         let m = rc.len();
@@ -189,8 +216,6 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
         (rz, rr)
     });
     let bn = dot(&b, &b).sqrt();
-    drop(b);
-    let mut q = vec![0.0f32; len];
     let mut it = 0;
     while it < 200 && bn > 0.0 && rr.sqrt() > 1e-6 * bn {
         it += 1;
@@ -241,6 +266,7 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
             *o = xv;
         }
     }
+    scratch.v = [dg, b, x, r, inv, p, q];
     it
 }
 
