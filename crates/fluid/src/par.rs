@@ -5,6 +5,7 @@
 //! of threads (and without the feature).
 
 /// Below this many elements work runs serially (rayon's overhead dominates).
+#[cfg(feature = "parallel")]
 const SERIAL_BELOW: usize = 1 << 14;
 
 /// Calls `f(chunk_index, chunk)` for each `chunk`-sized piece of `data`.
