@@ -96,7 +96,12 @@ impl<'a> VelSampler<'a> {
     }
 }
 
-impl VelSampler<'_> {
+impl<'a> VelSampler<'a> {
+    /// The component samplers and which axes are active.
+    pub(crate) fn parts(&self) -> ([Sampler<'a>; 3], [bool; 3]) {
+        (self.comps, self.active)
+    }
+
     /// Per component and axis, the linear weights at the grid coordinates
     /// `i + off[e]`, `i < n[e]`: the velocity at every sample point of a
     /// grid without per-point index arithmetic ([`Self::at_grid`]).
@@ -170,7 +175,7 @@ impl Solids<'_> {
     /// Clips the segment `from → to` at the first solid cell it enters
     /// (Smoke Fig. 2): marches in steps of at most ¼ cell, then bisects.
     #[inline(always)]
-    fn clip(&self, from: [f32; 3], to: [f32; 3]) -> [f32; 3] {
+    pub(crate) fn clip(&self, from: [f32; 3], to: [f32; 3]) -> [f32; 3] {
         if !self.is_solid(to) || self.is_solid(from) {
             return to;
         }
@@ -245,6 +250,25 @@ fn backtrace_from(
 /// One semi-Lagrangian pass: `dst[x] = src(backtrace(x))`. Optionally
 /// records the linear stencil range at each back-traced point.
 fn sl_pass(
+    dst: &mut [f32],
+    range: Option<(&mut [f32], &mut [f32])>,
+    src: &Sampler<'_>,
+    vel: &VelSampler<'_>,
+    dt_h: f32,
+    adv: &Advection,
+    solids: Option<&Solids<'_>>,
+) {
+    if range.is_none()
+        && adv.interpolation == Interpolation::Linear
+        && crate::lanes::sl_linear(&mut [&mut *dst], &[*src], vel, dt_h, adv.tracer, solids)
+    {
+        return;
+    }
+    sl_pass_general(dst, range, src, vel, dt_h, adv, solids);
+}
+
+/// [`sl_pass`] without the lane fast path: the general code (and its oracle).
+pub(crate) fn sl_pass_general(
     dst: &mut [f32],
     range: Option<(&mut [f32], &mut [f32])>,
     src: &Sampler<'_>,
@@ -372,6 +396,11 @@ pub(crate) fn advect_many(
         for (d, s) in dsts.iter_mut().zip(srcs) {
             advect(d, s, vel, dt_h, adv, solids);
         }
+        return;
+    }
+    if adv.interpolation == Interpolation::Linear
+        && crate::lanes::sl_linear(dsts, srcs, vel, dt_h, adv.tracer, solids)
+    {
         return;
     }
     let (n, off) = (srcs[0].n, srcs[0].off);

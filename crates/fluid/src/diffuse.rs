@@ -27,16 +27,48 @@ pub(crate) const EXCLUDED: u8 = 2;
 /// CG vector is kept zero on fixed samples, so the coupling of a free sample
 /// is the plain sum of its in-grid neighbours and the operator runs over
 /// contiguous rows without per-sample branching.
+#[cfg(test)]
 pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -> u32 {
+    diffuse_in(&mut Scratch::default(), data, n, coef, role)
+}
+
+/// Work vectors of [`diffuse_in`], kept between calls so that a solver
+/// step does not allocate (and page-fault) seven grids per component.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    v: [Vec<f32>; 7],
+}
+
+/// [`diffuse`] with caller-owned work vectors.
+pub(crate) fn diffuse_in(
+    scratch: &mut Scratch,
+    data: &mut [f32],
+    n: [usize; 3],
+    coef: f32,
+    role: &[u8],
+) -> u32 {
     if coef == 0.0 {
         return 0;
     }
     let len = data.len();
     let n0 = n[0];
+    // Every element of each work vector is written before it is read.
+    let mut take = |k: usize| {
+        let mut v = std::mem::take(&mut scratch.v[k]);
+        v.resize(len, 0.0);
+        v
+    };
+    let (mut dg, mut b, mut x, mut r, mut inv, mut p, mut q) = (
+        take(0),
+        take(1),
+        take(2),
+        take(3),
+        take(4),
+        take(5),
+        take(6),
+    );
     // Diagonal (0 on fixed samples) and right-hand side (Dirichlet
     // neighbours' values moved to it), row by row.
-    let mut dg = vec![0.0f32; len];
-    let mut b = vec![0.0f32; len];
     {
         let data: &[f32] = data;
         par::for_chunks2(&mut dg, &mut b, n0, |r, drow, brow| {
@@ -51,79 +83,101 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
                 nbs[2] = (k > 0).then(|| s0 - n0 * n[1]);
                 nbs[3] = (k + 1 < n[2]).then(|| s0 + n0 * n[1]);
             }
-            for i in 0..n0 {
-                let s = s0 + i;
-                if role[s] != FREE {
-                    continue;
-                }
-                let mut d = 1.0f32;
-                let mut rhs = data[s];
-                let mut visit = |nb: usize| {
-                    if role[nb] != EXCLUDED {
-                        d += coef;
-                        if role[nb] == DIRICHLET {
-                            rhs += coef * data[nb];
-                        }
+            // Neighbour by neighbour in the general form's order (left,
+            // right, then the y and z rows), over contiguous slices.
+            for ((dv, bv), &v) in drow.iter_mut().zip(brow.iter_mut()).zip(&data[s0..s0 + n0]) {
+                *dv = 1.0;
+                *bv = v;
+            }
+            let add = |drow: &mut [f32], brow: &mut [f32], nr: &[u8], nd: &[f32]| {
+                for ((dv, bv), (&m, &v)) in
+                    drow.iter_mut().zip(brow.iter_mut()).zip(nr.iter().zip(nd))
+                {
+                    if m != EXCLUDED {
+                        *dv += coef;
                     }
-                };
-                if n0 > 1 {
-                    if i > 0 {
-                        visit(s - 1);
-                    }
-                    if i + 1 < n0 {
-                        visit(s + 1);
+                    if m == DIRICHLET {
+                        *bv += coef * v;
                     }
                 }
-                for nb in nbs.iter().flatten() {
-                    visit(nb + i);
+            };
+            if n0 > 1 {
+                let (l, h) = (s0..s0 + n0 - 1, s0 + 1..s0 + n0);
+                add(&mut drow[1..], &mut brow[1..], &role[l.clone()], &data[l]);
+                add(
+                    &mut drow[..n0 - 1],
+                    &mut brow[..n0 - 1],
+                    &role[h.clone()],
+                    &data[h],
+                );
+            }
+            for &nb in nbs.iter().flatten() {
+                add(drow, brow, &role[nb..nb + n0], &data[nb..nb + n0]);
+            }
+            for ((dv, bv), &m) in drow.iter_mut().zip(brow.iter_mut()).zip(&role[s0..s0 + n0]) {
+                if m != FREE {
+                    *dv = 0.0;
+                    *bv = 0.0;
                 }
-                drow[i] = d;
-                brow[i] = rhs;
             }
         });
     }
-    // y = A x for x zero on fixed samples.
-    let apply = |x: &[f32], y: &mut [f32]| {
-        par::for_chunks(y, n0, |r, yrow| {
+    // `y = A x` row by row (x zero on fixed samples); returns `Σ x·y` in
+    // `f64`, summed per row and the rows in order (deterministic).
+    let apply = |x: &[f32], y: &mut [f32]| -> f64 {
+        par::for_chunks_sum(y, n0, |r, yrow| {
             let s0 = r * n0;
             let (j, k) = (r % n[1], r / n[1]);
             let xr = &x[s0..s0 + n0];
-            let mut acc = vec![0.0f32; n0];
-            if n0 > 1 {
-                for (a, &v) in acc[1..].iter_mut().zip(&xr[..n0 - 1]) {
-                    *a += v;
-                }
-                for (a, &v) in acc[..n0 - 1].iter_mut().zip(&xr[1..]) {
-                    *a += v;
-                }
-            }
-            let mut add_row = |start: usize| {
-                for (a, &v) in acc.iter_mut().zip(&x[start..start + n0]) {
-                    *a += v;
-                }
-            };
+            let mut nb: [Option<&[f32]>; 4] = [None; 4];
             if n[1] > 1 {
-                if j > 0 {
-                    add_row(s0 - n0);
-                }
-                if j + 1 < n[1] {
-                    add_row(s0 + n0);
-                }
+                nb[0] = (j > 0).then(|| &x[s0 - n0..s0]);
+                nb[1] = (j + 1 < n[1]).then(|| &x[s0 + n0..s0 + 2 * n0]);
             }
             if n[2] > 1 {
-                if k > 0 {
-                    add_row(s0 - n0 * n[1]);
-                }
-                if k + 1 < n[2] {
-                    add_row(s0 + n0 * n[1]);
-                }
+                let sz = n0 * n[1];
+                nb[2] = (k > 0).then(|| &x[s0 - sz..s0 - sz + n0]);
+                nb[3] = (k + 1 < n[2]).then(|| &x[s0 + sz..s0 + sz + n0]);
             }
             let ds = &dg[s0..s0 + n0];
-            for (((o, &xv), &d), &a) in yrow.iter_mut().zip(xr).zip(ds).zip(&acc) {
-                let v = d * xv - coef * a;
-                *o = if d != 0.0 { v } else { 0.0 };
+            let mut acc = [0.0f32; CH];
+            let mut dot = 0.0f64;
+            for c0 in (0..n0).step_by(CH) {
+                let w = CH.min(n0 - c0);
+                let a = &mut acc[..w];
+                a.fill(0.0);
+                // The same summation order as the general form: left, right,
+                // then the y and z neighbour rows.
+                if n0 > 1 {
+                    let lo = c0.max(1);
+                    for (av, &v) in a[lo - c0..].iter_mut().zip(&xr[lo - 1..c0 + w - 1]) {
+                        *av += v;
+                    }
+                    let hi = (c0 + w).min(n0 - 1);
+                    for (av, &v) in a[..hi - c0].iter_mut().zip(&xr[c0 + 1..hi + 1]) {
+                        *av += v;
+                    }
+                }
+                for row in nb.iter().flatten() {
+                    for (av, &v) in a.iter_mut().zip(&row[c0..c0 + w]) {
+                        *av += v;
+                    }
+                }
+                let mut part = 0.0f64;
+                for (((o, &xv), &d), &av) in yrow[c0..c0 + w]
+                    .iter_mut()
+                    .zip(&xr[c0..c0 + w])
+                    .zip(&ds[c0..c0 + w])
+                    .zip(a.iter())
+                {
+                    let v = d * xv - coef * av;
+                    *o = if d != 0.0 { v } else { 0.0 };
+                    part += f64::from(xv) * f64::from(*o);
+                }
+                dot += part;
             }
-        });
+            dot
+        })
     };
     let dot = |a: &[f32], b: &[f32]| {
         par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
@@ -135,71 +189,75 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
                 .sum()
         })
     };
-    let mut x: Vec<f32> = data
-        .iter()
-        .zip(&dg)
-        .map(|(&v, &d)| if d != 0.0 { v } else { 0.0 })
-        .collect();
-    let mut r = vec![0.0f32; len];
+    for ((xv, &v), &d) in x.iter_mut().zip(data.iter()).zip(&dg) {
+        *xv = if d != 0.0 { v } else { 0.0 };
+    }
+    // r = b − A x, then p = z = M⁻¹ r with the Jacobi preconditioner
+    // `M = diag(A)`; `inv = 1/A_ss` (0 on fixed samples).
     apply(&x, &mut r);
-    par::for_chunks(&mut r, par::BLOCK, |bi, rc| {
+    for (iv, &d) in inv.iter_mut().zip(&dg) {
+        *iv = if d != 0.0 { 1.0 / d } else { 0.0 };
+    }
+    let (mut rz, mut rr) = par::for_chunks2_sum2(&mut r, &mut p, par::BLOCK, |bi, rc, pc| {
         let s0 = bi * par::BLOCK;
-        for (o, (&bv, &d)) in rc.iter_mut().zip(b[s0..].iter().zip(&dg[s0..])) {
-            *o = if d != 0.0 { bv - *o } else { 0.0 };
+        let m = rc.len();
+        let (mut rz, mut rr) = (0.0f64, 0.0f64);
+        for (((rv, pv), &bv), &iv) in rc
+            .iter_mut()
+            .zip(pc.iter_mut())
+            .zip(&b[s0..s0 + m])
+            .zip(&inv[s0..s0 + m])
+        {
+            *rv = if iv != 0.0 { bv - *rv } else { 0.0 };
+            *pv = *rv * iv;
+            rz += f64::from(*rv) * f64::from(*pv);
+            rr += f64::from(*rv) * f64::from(*rv);
         }
+        (rz, rr)
     });
-    // b is zero on fixed samples, so ‖b‖ is over the free ones.
     let bn = dot(&b, &b).sqrt();
-    let inv: Vec<f32> = dg
-        .iter()
-        .map(|&d| if d != 0.0 { 1.0 / d } else { 0.0 })
-        .collect();
-    let mut z: Vec<f32> = r.iter().zip(&inv).map(|(&v, &d)| v * d).collect();
-    let mut p = z.clone();
-    let mut q = vec![0.0f32; len];
-    let mut rz = dot(&r, &z);
     let mut it = 0;
-    while it < 200 && bn > 0.0 && dot(&r, &r).sqrt() > 1e-6 * bn {
+    while it < 200 && bn > 0.0 && rr.sqrt() > 1e-6 * bn {
         it += 1;
-        apply(&p, &mut q);
-        let pq = dot(&p, &q);
+        let pq = apply(&p, &mut q);
         if pq <= 0.0 {
             break;
         }
         let alpha = (rz / pq) as f32;
-        {
-            let (p, q) = (&p, &q);
-            par::for_chunks2(&mut x, &mut r, par::BLOCK, |bi, xc, rc| {
-                let s0 = bi * par::BLOCK;
-                let m = xc.len();
-                for (((xv, rv), &pv), &qv) in xc
-                    .iter_mut()
-                    .zip(rc.iter_mut())
-                    .zip(&p[s0..s0 + m])
-                    .zip(&q[s0..s0 + m])
-                {
-                    *xv += alpha * pv;
-                    *rv -= alpha * qv;
-                }
-            });
-            let r = &r;
-            par::for_chunks(&mut z, par::BLOCK, |bi, zc| {
-                let s0 = bi * par::BLOCK;
-                let m = zc.len();
-                for ((zv, &rv), &iv) in zc.iter_mut().zip(&r[s0..s0 + m]).zip(&inv[s0..s0 + m]) {
-                    *zv = rv * iv;
-                }
-            });
+        // x += αp, r −= αq, and the new r·z and r·r (z = M⁻¹r not stored).
+        let (p_ref, q_ref) = (&p, &q);
+        let (rz2, rr2) = par::for_chunks2_sum2(&mut x, &mut r, par::BLOCK, |bi, xc, rc| {
+            let s0 = bi * par::BLOCK;
+            let m = xc.len();
+            let (mut rz, mut rr) = (0.0f64, 0.0f64);
+            for ((((xv, rv), &pv), &qv), &iv) in xc
+                .iter_mut()
+                .zip(rc.iter_mut())
+                .zip(&p_ref[s0..s0 + m])
+                .zip(&q_ref[s0..s0 + m])
+                .zip(&inv[s0..s0 + m])
+            {
+                *xv += alpha * pv;
+                *rv -= alpha * qv;
+                let zv = *rv * iv;
+                rz += f64::from(*rv) * f64::from(zv);
+                rr += f64::from(*rv) * f64::from(*rv);
+            }
+            (rz, rr)
+        });
+        rr = rr2;
+        let unconverged = rr.sqrt() > 1e-6 * bn;
+        if !unconverged {
+            break;
         }
-        let rz2 = dot(&r, &z);
         let beta = (rz2 / rz) as f32;
         rz = rz2;
-        let z = &z;
+        let r_ref = &r;
         par::for_chunks(&mut p, par::BLOCK, |bi, pc| {
             let s0 = bi * par::BLOCK;
             let m = pc.len();
-            for (pv, &zv) in pc.iter_mut().zip(&z[s0..s0 + m]) {
-                *pv = zv + beta * *pv;
+            for ((pv, &rv), &iv) in pc.iter_mut().zip(&r_ref[s0..s0 + m]).zip(&inv[s0..s0 + m]) {
+                *pv = rv * iv + beta * *pv;
             }
         });
     }
@@ -208,8 +266,12 @@ pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -
             *o = xv;
         }
     }
+    scratch.v = [dg, b, x, r, inv, p, q];
     it
 }
+
+/// Row block length of the operator (stack accumulator).
+const CH: usize = 256;
 
 /// The general per-sample form of [`diffuse`], kept as its test oracle.
 #[cfg(test)]

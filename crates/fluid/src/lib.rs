@@ -48,6 +48,7 @@ pub mod advect;
 mod error;
 pub mod grid;
 pub mod interp;
+mod lanes;
 mod par;
 pub mod pressure;
 

@@ -23,18 +23,28 @@ pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
     let inv = 1.0 / h;
     let n = d.n();
     let c = vel.comps();
-    par::for_chunks(out.as_mut_slice(), n[0], |r, row| {
+    // Row slices of the face grids (same sums in the same order as the
+    // per-face form).
+    let (u, v, w) = (c[0].as_slice(), c[1].as_slice(), c[2].as_slice());
+    let act = [d.active(0), d.active(1), d.active(2)];
+    let n0 = n[0];
+    par::for_chunks(out.as_mut_slice(), n0, |r, row| {
         let (j, k) = (r % n[1], r / n[1]);
+        let ur = &u[(k * n[1] + j) * (n0 + 1)..][..n0 + 1];
+        let vr0 = &v[(k * (n[1] + 1) + j) * n0..][..n0];
+        let vr1 = &v[(k * (n[1] + 1) + j + 1) * n0..][..n0];
+        let wr0 = &w[(k * n[1] + j) * n0..][..n0];
+        let wr1 = &w[((k + 1) * n[1] + j) * n0..][..n0];
         for (i, o) in row.iter_mut().enumerate() {
             let mut s = 0.0;
-            if d.active(0) {
-                s += c[0][(i + 1, j, k)] - c[0][(i, j, k)];
+            if act[0] {
+                s += ur[i + 1] - ur[i];
             }
-            if d.active(1) {
-                s += c[1][(i, j + 1, k)] - c[1][(i, j, k)];
+            if act[1] {
+                s += vr1[i] - vr0[i];
             }
-            if d.active(2) {
-                s += c[2][(i, j, k + 1)] - c[2][(i, j, k)];
+            if act[2] {
+                s += wr1[i] - wr0[i];
             }
             *o = s * inv;
         }

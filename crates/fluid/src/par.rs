@@ -5,6 +5,7 @@
 //! of threads (and without the feature).
 
 /// Below this many elements work runs serially (rayon's overhead dominates).
+#[cfg(feature = "parallel")]
 const SERIAL_BELOW: usize = 1 << 14;
 
 /// Calls `f(chunk_index, chunk)` for each `chunk`-sized piece of `data`.
@@ -51,6 +52,94 @@ pub(crate) fn for_chunks2<T: Send, U: Send>(
         .zip(b.chunks_mut(chunk))
         .enumerate()
         .for_each(|(i, (x, y))| f(i, x, y));
+}
+
+/// Calls `f(band_index, bands)` for each `band`-sized piece of every slice
+/// of `data` at once (all slices equally long): `bands[s]` is piece
+/// `band_index` of `data[s]`.
+pub(crate) fn for_bands(
+    data: &mut [&mut [f32]],
+    band: usize,
+    f: impl Fn(usize, &mut [&mut [f32]]) + Sync + Send,
+) {
+    let band = band.max(1);
+    let len = data.first().map_or(0, |d| d.len());
+    let mut bands: Vec<Vec<&mut [f32]>> = (0..len.div_ceil(band))
+        .map(|_| Vec::with_capacity(data.len()))
+        .collect();
+    for d in data.iter_mut() {
+        debug_assert_eq!(d.len(), len);
+        for (b, c) in d.chunks_mut(band).enumerate() {
+            bands[b].push(c);
+        }
+    }
+    #[cfg(feature = "parallel")]
+    if len >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        bands
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, mut v)| f(i, &mut v));
+        return;
+    }
+    bands
+        .into_iter()
+        .enumerate()
+        .for_each(|(i, mut v)| f(i, &mut v));
+}
+
+/// Like [`for_chunks`], returning `Σ f(chunk_index, chunk)` with the
+/// per-chunk partials added in chunk order (deterministic).
+pub(crate) fn for_chunks_sum<T: Send>(
+    data: &mut [T],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T]) -> f64 + Sync + Send,
+) -> f64 {
+    let chunk = chunk.max(1);
+    #[cfg(feature = "parallel")]
+    if data.len() >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        let parts: Vec<f64> = data
+            .par_chunks_mut(chunk)
+            .with_min_len((4096 / chunk).max(1))
+            .enumerate()
+            .map(|(i, c)| f(i, c))
+            .collect();
+        return parts.into_iter().sum();
+    }
+    data.chunks_mut(chunk)
+        .enumerate()
+        .map(|(i, c)| f(i, c))
+        .sum()
+}
+
+/// Like [`for_chunks2`], returning the chunk-ordered sums of the two
+/// partials `f` returns per chunk (deterministic).
+pub(crate) fn for_chunks2_sum2<T: Send, U: Send>(
+    a: &mut [T],
+    b: &mut [U],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T], &mut [U]) -> (f64, f64) + Sync + Send,
+) -> (f64, f64) {
+    let chunk = chunk.max(1);
+    let add = |(s, t): (f64, f64), (x, y): (f64, f64)| (s + x, t + y);
+    #[cfg(feature = "parallel")]
+    if a.len() >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        let parts: Vec<(f64, f64)> = a
+            .par_chunks_mut(chunk)
+            .zip(b.par_chunks_mut(chunk))
+            .with_min_len((4096 / chunk).max(1))
+            .enumerate()
+            .map(|(i, (x, y))| f(i, x, y))
+            .collect();
+        return parts.into_iter().fold((0.0, 0.0), add);
+    }
+    a.chunks_mut(chunk)
+        .zip(b.chunks_mut(chunk))
+        .enumerate()
+        .map(|(i, (x, y))| f(i, x, y))
+        .fold((0.0, 0.0), add)
 }
 
 /// Returns `Σ_i f(i)` over `0..n` blocks, each block's partial computed

@@ -458,6 +458,8 @@ pub struct BoundedFluid {
     force_sources: Vec<ForceSource>,
     subs: Substances,
     projector: Projector,
+    /// Work vectors of the implicit diffusion, reused every step.
+    scratch: diffuse::Scratch,
 }
 
 impl BoundedFluid {
@@ -475,6 +477,7 @@ impl BoundedFluid {
             force_sources: Vec::new(),
             subs: Substances::default(),
             projector: Projector::new(),
+            scratch: diffuse::Scratch::default(),
         })
     }
 
@@ -632,7 +635,13 @@ impl BoundedFluid {
                 // Fixed faces (1) are Dirichlet data, free faces (0) unknowns.
                 const _: () = assert!(diffuse::FREE == 0 && diffuse::DIRICHLET == 1);
                 let role = mac::fixed_faces(dims, self.solid.kinds.as_slice(), &bounds, a);
-                diffuse::diffuse(vel.comp_mut(a).as_mut_slice(), n, coef, &role);
+                diffuse::diffuse_in(
+                    &mut self.scratch,
+                    vel.comp_mut(a).as_mut_slice(),
+                    n,
+                    coef,
+                    &role,
+                );
             }
         }
         let stats = self.projector.project(
@@ -665,7 +674,8 @@ impl BoundedFluid {
                 &self.params.advection,
                 has_solids.then_some(&solids),
             );
-            diffuse::diffuse(
+            diffuse::diffuse_in(
+                &mut self.scratch,
                 field.as_mut_slice(),
                 dims.n(),
                 s.diffusion * dt / (h * h),

@@ -208,3 +208,158 @@ fn face_cell_rows_match_face_coordinates() {
         }
     }
 }
+
+#[test]
+fn lane_advection_matches_general_code_bit_for_bit() {
+    use crate::advect::{
+        Advection, Solids, Tracer, VelSampler, centre_sampler, face_sampler, sl_pass_general,
+    };
+    use crate::grid::{CellKind, Dims, MacVelocity};
+    use crate::lanes::sl_linear;
+    // Sizes that are not multiples of the 16 lanes, thin grids, 2-D and 3-D.
+    for d in [
+        Dims::plane(37, 21).unwrap(),
+        Dims::plane(2, 2).unwrap(),
+        Dims::new(19, 7, 11).unwrap(),
+        Dims::new(2, 2, 3).unwrap(),
+    ] {
+        let mut vel = MacVelocity::zeros(d).unwrap();
+        for a in 0..3 {
+            for (i, v) in vel.comp_mut(a).as_mut_slice().iter_mut().enumerate() {
+                *v = ((natura_core::mix64((a * 7919 + i) as u64) % 2001) as f32 / 400.0) - 2.5;
+            }
+        }
+        let kinds: Vec<CellKind> = (0..d.cells())
+            .map(|c| {
+                if natura_core::mix64(c as u64 ^ 5) % 6 == 0 {
+                    CellKind::Solid
+                } else {
+                    CellKind::Fluid
+                }
+            })
+            .collect();
+        let solids = Solids {
+            kinds: &kinds,
+            dims: d,
+        };
+        let vs = VelSampler::mac(&vel);
+        let f: natura_core::Grid3<f32> = {
+            let mut g = d.zeros().unwrap();
+            for (i, v) in g.as_mut_slice().iter_mut().enumerate() {
+                *v = (natura_core::mix64(i as u64 ^ 77) % 1000) as f32 / 7.0;
+            }
+            g
+        };
+        let mut samplers = vec![centre_sampler(&f, false)];
+        for a in (0..3).filter(|&a| d.active(a)) {
+            samplers.push(face_sampler(vel.comp(a), a));
+        }
+        for tracer in [Tracer::Euler, Tracer::Rk2] {
+            let adv = Advection {
+                tracer,
+                ..Default::default()
+            };
+            // Small, large (feet far outside) and negative (backward) steps.
+            for dt_h in [0.3f32, 4.0, -1.7] {
+                for sol in [None, Some(&solids)] {
+                    for src in &samplers {
+                        let mut fast = vec![f32::NAN; src.data.len()];
+                        let mut slow = fast.clone();
+                        assert!(sl_linear(&mut [&mut fast], &[*src], &vs, dt_h, tracer, sol));
+                        sl_pass_general(&mut slow, None, src, &vs, dt_h, &adv, sol);
+                        for (c, (x, y)) in fast.iter().zip(&slow).enumerate() {
+                            assert_eq!(
+                                x.to_bits(),
+                                y.to_bits(),
+                                "{d:?} {tracer:?} dt_h {dt_h} off {:?} sample {c}: {x} vs {y}",
+                                src.off
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn lane_advection_declines_periodic_grids() {
+    use crate::advect::{Tracer, VelSampler, centre_sampler};
+    use crate::grid::Dims;
+    use crate::lanes::sl_linear;
+    let d = Dims::plane(8, 8).unwrap();
+    let comps = [d.zeros().unwrap(), d.zeros().unwrap(), d.zeros().unwrap()];
+    let vs = VelSampler::collocated(&comps, d);
+    let f = d.zeros().unwrap();
+    let mut out = vec![0.0f32; 64];
+    assert!(!sl_linear(
+        &mut [&mut out],
+        &[centre_sampler(&f, true)],
+        &vs,
+        0.5,
+        Tracer::Rk2,
+        None
+    ));
+}
+
+#[test]
+fn diffusion_with_reused_work_vectors_matches_fresh_ones() {
+    use crate::diffuse::{Scratch, diffuse_in};
+    let mut scratch = Scratch::default();
+    // Dirty the work vectors with a larger, different problem first.
+    let mut big: Vec<f32> = (0..40 * 30).map(|i| (i % 17) as f32).collect();
+    diffuse_in(
+        &mut scratch,
+        &mut big,
+        [40, 1, 30],
+        1.5,
+        &vec![FREE; 40 * 30],
+    );
+    let n = [23usize, 1, 19];
+    let len = n[0] * n[2];
+    let data: Vec<f32> = (0..len)
+        .map(|i| ((natura_core::mix64(i as u64 ^ 5) % 1000) as f32) / 100.0)
+        .collect();
+    let role: Vec<u8> = (0..len)
+        .map(|i| if i % 11 == 0 { DIRICHLET } else { FREE })
+        .collect();
+    let (mut a, mut b) = (data.clone(), data);
+    let ia = diffuse_in(&mut scratch, &mut a, n, 0.7, &role);
+    let ib = diffuse(&mut b, n, 0.7, &role);
+    assert_eq!(ia, ib);
+    assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+}
+
+#[test]
+fn row_slice_divergence_matches_per_face_form() {
+    use crate::grid::{Dims, MacVelocity};
+    use crate::mac::divergence;
+    for d in [Dims::plane(13, 9).unwrap(), Dims::new(7, 6, 5).unwrap()] {
+        let mut vel = MacVelocity::zeros(d).unwrap();
+        for a in 0..3 {
+            for (i, v) in vel.comp_mut(a).as_mut_slice().iter_mut().enumerate() {
+                *v = ((natura_core::mix64((a * 31 + i) as u64) % 2001) as f32 / 1000.0) - 1.0;
+            }
+        }
+        let h = 0.37;
+        let div = divergence(&vel, h).unwrap();
+        let c = vel.comps();
+        for k in 0..d.n()[2] {
+            for j in 0..d.n()[1] {
+                for i in 0..d.n()[0] {
+                    let mut s = 0.0f32;
+                    if d.active(0) {
+                        s += c[0][(i + 1, j, k)] - c[0][(i, j, k)];
+                    }
+                    if d.active(1) {
+                        s += c[1][(i, j + 1, k)] - c[1][(i, j, k)];
+                    }
+                    if d.active(2) {
+                        s += c[2][(i, j, k + 1)] - c[2][(i, j, k)];
+                    }
+                    assert_eq!(div[(i, j, k)].to_bits(), (s * (1.0 / h)).to_bits());
+                }
+            }
+        }
+    }
+}

@@ -138,6 +138,13 @@ pub struct PoissonSystem {
     z: Vec<f32>,
     d: Vec<f32>,
     q: Vec<f32>,
+    /// Padded right-hand side and iterate of `solve`, and the `f64`
+    /// right-hand side and residual of `pcg`: kept between solves so that
+    /// a step does not allocate them.
+    pb: Vec<f32>,
+    px: Vec<f64>,
+    b64: Vec<f64>,
+    r64: Vec<f64>,
 }
 
 impl PoissonSystem {
@@ -191,6 +198,10 @@ impl PoissonSystem {
             z: vec![0.0; len],
             d: vec![0.0; len],
             q: vec![0.0; len],
+            pb: Vec::new(),
+            px: Vec::new(),
+            b64: Vec::new(),
+            r64: Vec::new(),
         };
         sys.unknowns = sys.levels[0].unknowns();
         sys.label_components();
@@ -377,7 +388,9 @@ impl PoissonSystem {
         self.check_len(b.len(), "b")?;
         self.check_len(x.len(), "x")?;
         let len = self.levels[0].len();
-        let mut pb = vec![0.0f32; len];
+        let mut pb = std::mem::take(&mut self.pb);
+        pb.clear();
+        pb.resize(len, 0.0);
         self.pad_into(b, &mut pb);
         if let Some(i) = pb.iter().position(|v| !v.is_finite()) {
             let l = &self.levels[0];
@@ -387,15 +400,19 @@ impl PoissonSystem {
                 (q / l.m[0]) % l.m[1] - l.pad[1],
                 q / (l.m[0] * l.m[1]) - l.pad[2],
             ];
+            let value = pb[i];
+            self.pb = pb;
             return Err(FluidError::NonFinite {
                 field: "pressure right-hand side",
                 index: c,
-                value: pb[i],
+                value,
                 stage: "projection",
             });
         }
         self.project_null(&mut pb);
-        let mut px = vec![0.0f64; len];
+        let mut px = std::mem::take(&mut self.px);
+        px.clear();
+        px.resize(len, 0.0);
         self.pad_into(x, &mut px);
         self.project_null(&mut px);
         let stats = match params.solver {
@@ -404,6 +421,8 @@ impl PoissonSystem {
         };
         self.project_null(&mut px);
         self.unpad_into(&px, x);
+        self.pb = pb;
+        self.px = px;
         Ok(stats)
     }
 
@@ -522,8 +541,12 @@ impl PoissonSystem {
             self.build_mic();
         }
         let len = x.len();
-        let b64: Vec<f64> = b.iter().map(|&v| f64::from(v)).collect();
-        let mut r = vec![0.0f64; len];
+        let mut b64 = std::mem::take(&mut self.b64);
+        b64.clear();
+        b64.extend(b.iter().map(|&v| f64::from(v)));
+        let mut r = std::mem::take(&mut self.r64);
+        r.clear();
+        r.resize(len, 0.0);
         let tol = p.tolerance;
         let mut it = 0u32;
         let mut restarts = 0;
@@ -579,6 +602,8 @@ impl PoissonSystem {
                 });
             }
         }
+        self.b64 = b64;
+        self.r64 = r;
         let rel = rn / bn;
         SolveStats {
             iterations: it,
