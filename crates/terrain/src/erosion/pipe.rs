@@ -987,6 +987,10 @@ struct Consts {
     evap: f32,
     min_tilt: f32,
     inv_dref: f32,
+    /// `Δt / l²`.
+    dt_area: f32,
+    /// `1 / (2l)`.
+    inv_2cell: f32,
     vmax: f32,
     sl_step: f32,
 }
@@ -1009,6 +1013,8 @@ impl Consts {
             evap: (p.k_e * p.dt) as f32,
             min_tilt: p.min_tilt as f32,
             inv_dref: 1.0 / p.depth_ref as f32,
+            dt_area: (p.dt / (f64::from(l) * f64::from(l))) as f32,
+            inv_2cell: (0.5 / f64::from(l)) as f32,
             vmax: l / dt,
             sl_step: dt / l,
         }
@@ -1124,19 +1130,21 @@ impl Consts {
         let [fl, fr, fb, ft] = c.fo;
         let [in_l, in_r, in_b, in_t] = c.fin;
         let out = fl + fr + fb + ft;
-        let d2 = (c.d1 + self.dt * (in_l + in_r + in_b + in_t - out) / self.area).max(0.0);
+        let d2 = (c.d1 + (in_l + in_r + in_b + in_t - out) * self.dt_area).max(0.0);
         let mean_d = 0.5 * (c.d1 + d2);
         let wx = 0.5 * (in_l - fl + fr - in_r);
         let wy = 0.5 * (in_b - fb + ft - in_t);
         let wet = mean_d > 1e-6;
-        let vu = if wet { wx / (self.cell * mean_d) } else { 0.0 };
-        let vv = if wet { wy / (self.cell * mean_d) } else { 0.0 };
+        // One division for both components.
+        let inv = 1.0 / (self.cell * mean_d);
+        let vu = if wet { wx * inv } else { 0.0 };
+        let vv = if wet { wy * inv } else { 0.0 };
         let vu = clamp(vu, self.vmax);
         let vv = clamp(vv, self.vmax);
         // Local tilt from central differences of the bed.
         let [bl, br, bb, bt] = c.bn;
-        let gx = (br - bl) / (2.0 * self.cell);
-        let gy = (bt - bb) / (2.0 * self.cell);
+        let gx = (br - bl) * self.inv_2cell;
+        let gy = (bt - bb) * self.inv_2cell;
         let g2 = gx * gx + gy * gy;
         let sin_a = (g2 / (1.0 + g2)).sqrt().max(self.min_tilt);
         let speed = (vu * vu + vv * vv).sqrt();
@@ -1186,8 +1194,15 @@ impl Consts {
     /// Fraction of a cell's water `d1` that leaves through a pipe of flux `f` this step.
     #[inline(always)]
     fn frac(&self, d1: f32, f: f32) -> f32 {
-        let q = (f * self.dt / (d1 * self.area)).min(1.0);
-        if d1 > 0.0 { q } else { 0.0 }
+        (f * self.per_flux(d1)).min(1.0)
+    }
+
+    /// `Δt / (d₁·l²)`, the fraction of a cell's water a unit flux carries
+    /// away in one step (0 for a dry cell): one division per cell, shared by
+    /// its four pipes.
+    #[inline(always)]
+    fn per_flux(&self, d1: f32) -> f32 {
+        if d1 > 0.0 { self.dt_area / d1 } else { 0.0 }
     }
 }
 
@@ -1359,17 +1374,18 @@ fn update_row<const ERODIBILITY: bool>(
             depo[k] = o.dep;
             lost[k] = o.lost;
         }
-        let mut acc = [0.0f32; 8];
+        // Summed in f64 (eight partial sums) like the per-cell path's ledger.
+        let mut acc = [0.0f64; 8];
         let mut chunks = lost.chunks_exact(8);
         for ch in &mut chunks {
             for (s, &x) in acc.iter_mut().zip(ch) {
-                *s += x;
+                *s += f64::from(x);
             }
         }
         for (s, &x) in acc.iter_mut().zip(chunks.remainder()) {
-            *s += x;
+            *s += f64::from(x);
         }
-        total += acc.iter().map(|&x| f64::from(x)).sum::<f64>();
+        total += acc.iter().sum::<f64>();
         a = b;
     }
     total
@@ -1382,17 +1398,19 @@ fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: A
     let d1 = d1.sub(0, m);
     let [fl, fr, fb, ft] = f.map(|p| p.sub(0, m));
     let s1 = s1.sub(0, m);
+    let frac = |q: f32, f: f32| (f * q).min(1.0);
     for k in 0..m {
+        let q = c.per_flux(d1.c[k]);
         let mut keep = 1.0f32;
         let mut gained = 0.0f32;
-        keep -= c.frac(d1.c[k], fl.c[k]);
-        gained += s1.l[k] * c.frac(d1.l[k], fr.l[k]);
-        keep -= c.frac(d1.c[k], fr.c[k]);
-        gained += s1.r[k] * c.frac(d1.r[k], fl.r[k]);
-        keep -= c.frac(d1.c[k], fb.c[k]);
-        gained += s1.b[k] * c.frac(d1.b[k], ft.b[k]);
-        keep -= c.frac(d1.c[k], ft.c[k]);
-        gained += s1.t[k] * c.frac(d1.t[k], fb.t[k]);
+        keep -= frac(q, fl.c[k]);
+        gained += s1.l[k] * frac(c.per_flux(d1.l[k]), fr.l[k]);
+        keep -= frac(q, fr.c[k]);
+        gained += s1.r[k] * frac(c.per_flux(d1.r[k]), fl.r[k]);
+        keep -= frac(q, fb.c[k]);
+        gained += s1.b[k] * frac(c.per_flux(d1.b[k]), ft.b[k]);
+        keep -= frac(q, ft.c[k]);
+        gained += s1.t[k] * frac(c.per_flux(d1.t[k]), fb.t[k]);
         so[k] = s1.c[k] * keep.max(0.0) + gained;
     }
 }
