@@ -476,24 +476,39 @@ pub(crate) fn build_stack_into(rec: &[u32], stack: &mut Vec<u32>, s: &mut StackS
             donors[offsets[r as usize] as usize] = i as u32;
         }
     }
-    stack.clear();
-    stack.reserve(n);
+    // The trees of different outlets are disjoint: walk groups of outlets
+    // (consecutive in index order, a fixed number per group) in parallel and
+    // concatenate their stacks in group order — the same stack as one walk.
     todo.clear();
-    for (i, &r) in rec.iter().enumerate() {
-        if r as usize == i {
-            todo.push(i as u32);
-            while let Some(c) = todo.pop() {
-                stack.push(c);
+    todo.extend((0..n as u32).filter(|&i| rec[i as usize] == i));
+    let per = todo.len().div_ceil(STACK_GROUPS).max(1);
+    let (offsets, donors) = (&*offsets, &*donors);
+    let parts: Vec<Vec<u32>> = par::run(todo.chunks(per).collect(), |roots: &[u32]| {
+        let mut part = Vec::new();
+        let mut work = Vec::new();
+        for &root in roots {
+            work.push(root);
+            while let Some(c) = work.pop() {
+                part.push(c);
                 let c = c as usize;
                 // A cell has at most 8 donors: push them one by one (a
                 // `memcpy` call per cell costs more than the copy).
                 for &d in &donors[offsets[c] as usize..offsets[c + 1] as usize] {
-                    todo.push(d);
+                    work.push(d);
                 }
             }
         }
+        part
+    });
+    stack.clear();
+    stack.reserve(n);
+    for part in parts {
+        stack.extend_from_slice(&part);
     }
 }
+
+/// Outlet groups walked in parallel by [`build_stack_into`].
+const STACK_GROUPS: usize = 64;
 
 /// The original two-pass stack builder, the reference for [`build_stack_into`].
 #[cfg(test)]
