@@ -319,7 +319,9 @@ impl PipeModel {
     /// rows each, depending only on the grid size (never on the thread count).
     fn chunks(&self) -> Vec<(usize, usize)> {
         let ny = self.ny;
-        let n = ny.div_ceil(self.chunk_rows.max(1)).max(1);
+        // At most eight chunks: halos cost rows, and two to eight cores share them.
+        let rows = self.chunk_rows.max(ny / 8).max(1);
+        let n = ny.div_ceil(rows).max(1);
         (0..n).map(|k| (k * ny / n, (k + 1) * ny / n)).collect()
     }
 
