@@ -372,22 +372,17 @@ pub(crate) fn d8_receivers_into(
     dist.resize(n, 0.0);
     par::map_bands(nx, ny, [rec.as_mut_slice()], |y0, y1, [r]| {
         for y in y0..y1 {
-            for x in 0..nx {
-                let i = y * nx + x;
-                let mut best = i as u32;
-                if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
-                    let hi = h[i];
-                    let mut slope = 0.0f32;
-                    for &(dx, dy, d) in &D8 {
-                        let j = (i as i64 + i64::from(dy) * nx as i64 + i64::from(dx)) as usize;
-                        let s = (hi - h[j]) / d;
-                        if s > slope {
-                            slope = s;
-                            best = j as u32;
-                        }
-                    }
+            let row = &mut r[(y - y0) * nx..(y - y0 + 1) * nx];
+            let i0 = y * nx;
+            // Edge cells are outlets.
+            row[0] = i0 as u32;
+            row[nx - 1] = (i0 + nx - 1) as u32;
+            if y == 0 || y == ny - 1 || nx < 3 {
+                for (x, v) in row.iter_mut().enumerate() {
+                    *v = (i0 + x) as u32;
                 }
-                r[(y - y0) * nx + x] = best;
+            } else {
+                d8_row(h, i0 + 1, nx, &mut row[1..nx - 1]);
             }
         }
     });
@@ -406,6 +401,43 @@ pub(crate) fn d8_receivers_into(
             };
         }
     });
+}
+
+crate::simd::multiversion! {
+/// D8 steepest descent for the interior cells `i0..i0 + out.len()` of one
+/// row (all eight neighbours exist): the same divisions and comparisons, in
+/// the order of [`D8`], as a per-cell loop (dividing by an axial distance of
+/// 1 is the identity), written over row slices so it vectorises.
+fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32]) {
+    let m = out.len();
+    let at = |o: usize| &h[o..o + m];
+    let c = at(i0);
+    let (e, w, n, s) = (at(i0 + 1), at(i0 - 1), at(i0 + nx), at(i0 - nx));
+    let (ne, nw, se, sw) = (at(i0 + nx + 1), at(i0 + nx - 1), at(i0 - nx + 1), at(i0 - nx - 1));
+    let r2 = std::f32::consts::SQRT_2;
+    let nx32 = nx as u32;
+    for x in 0..m {
+        let hi = c[x];
+        let i = (i0 + x) as u32;
+        let mut slope = 0.0f32;
+        let mut best = i;
+        let mut step = |s: f32, j: u32| {
+            if s > slope {
+                slope = s;
+                best = j;
+            }
+        };
+        step(hi - e[x], i + 1);
+        step(hi - w[x], i - 1);
+        step(hi - n[x], i + nx32);
+        step(hi - s[x], i - nx32);
+        step((hi - ne[x]) / r2, i + nx32 + 1);
+        step((hi - nw[x]) / r2, i + nx32 - 1);
+        step((hi - se[x]) / r2, i - nx32 + 1);
+        step((hi - sw[x]) / r2, i - nx32 - 1);
+        out[x] = best;
+    }
+}
 }
 
 /// Braun & Willett's stack (outlets and pits first, each followed
@@ -444,24 +476,39 @@ pub(crate) fn build_stack_into(rec: &[u32], stack: &mut Vec<u32>, s: &mut StackS
             donors[offsets[r as usize] as usize] = i as u32;
         }
     }
-    stack.clear();
-    stack.reserve(n);
+    // The trees of different outlets are disjoint: walk groups of outlets
+    // (consecutive in index order, a fixed number per group) in parallel and
+    // concatenate their stacks in group order — the same stack as one walk.
     todo.clear();
-    for (i, &r) in rec.iter().enumerate() {
-        if r as usize == i {
-            todo.push(i as u32);
-            while let Some(c) = todo.pop() {
-                stack.push(c);
+    todo.extend((0..n as u32).filter(|&i| rec[i as usize] == i));
+    let per = todo.len().div_ceil(STACK_GROUPS).max(1);
+    let (offsets, donors) = (&*offsets, &*donors);
+    let parts: Vec<Vec<u32>> = par::run(todo.chunks(per).collect(), |roots: &[u32]| {
+        let mut part = Vec::new();
+        let mut work = Vec::new();
+        for &root in roots {
+            work.push(root);
+            while let Some(c) = work.pop() {
+                part.push(c);
                 let c = c as usize;
                 // A cell has at most 8 donors: push them one by one (a
                 // `memcpy` call per cell costs more than the copy).
                 for &d in &donors[offsets[c] as usize..offsets[c + 1] as usize] {
-                    todo.push(d);
+                    work.push(d);
                 }
             }
         }
+        part
+    });
+    stack.clear();
+    stack.reserve(n);
+    for part in parts {
+        stack.extend_from_slice(&part);
     }
 }
+
+/// Outlet groups walked in parallel by [`build_stack_into`].
+const STACK_GROUPS: usize = 64;
 
 /// The original two-pass stack builder, the reference for [`build_stack_into`].
 #[cfg(test)]
@@ -608,6 +655,52 @@ mod tests {
         (0..n * n)
             .map(|i| (s.gaussian2((i % n) as i64, (i / n) as i64) * 10.0) as f32)
             .collect()
+    }
+
+    /// The row kernel of the D8 receivers against the per-cell loop over
+    /// [`D8`] it replaced, on rough fields with plateaus (ties), odd widths
+    /// and thin grids: the same receivers and distances, bit for bit.
+    #[test]
+    fn d8_row_kernel_equals_per_cell_loop() {
+        for (nx, ny, seed) in [
+            (37usize, 29usize, 1u64),
+            (3, 17, 2),
+            (130, 5, 3),
+            (64, 64, 4),
+        ] {
+            let s = Seed(seed);
+            // Quantised heights: many exact ties between neighbours.
+            let h: Vec<f32> = (0..nx * ny)
+                .map(|i| (8.0 * s.uniform2((i % nx) as i64, (i / nx) as i64)).floor() as f32)
+                .collect();
+            let (rec, dist) = d8_receivers(&h, nx, ny);
+            for y in 0..ny {
+                for x in 0..nx {
+                    let i = y * nx + x;
+                    let mut best = i;
+                    if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                        let mut slope = 0.0f32;
+                        for &(dx, dy, d) in &D8 {
+                            let j = (i as i64 + i64::from(dy) * nx as i64 + i64::from(dx)) as usize;
+                            let sl = (h[i] - h[j]) / d;
+                            if sl > slope {
+                                slope = sl;
+                                best = j;
+                            }
+                        }
+                    }
+                    assert_eq!(rec[i] as usize, best, "{nx}×{ny}: cell ({x}, {y})");
+                    let want = if best == i {
+                        0.0
+                    } else if best % nx == x || best / nx == y {
+                        1.0
+                    } else {
+                        std::f32::consts::SQRT_2
+                    };
+                    assert_eq!(dist[i], want);
+                }
+            }
+        }
     }
 
     #[test]

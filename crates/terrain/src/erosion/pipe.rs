@@ -159,7 +159,16 @@ pub struct PipeModel {
     /// Interior cells through the row kernels (false only in tests: every
     /// cell through the general per-cell path, the fast path's oracle).
     fast: bool,
+    /// Conservative transport as one fused sweep (false only in tests: the
+    /// three-pass path, the fused sweep's oracle).
+    fused: bool,
+    /// Rows per chunk of the fused sweep.
+    chunk_rows: usize,
 }
+
+/// Rows per chunk of the fused sweep: enough chunks to balance the cores,
+/// few enough that the halos recomputed at chunk boundaries stay cheap.
+const CHUNK_ROWS: usize = 64;
 
 const L: usize = 0;
 const R: usize = 1;
@@ -180,9 +189,9 @@ impl PipeModel {
             ny: hf.ny(),
             cell: hf.cell_size(),
             water: z(),
-            water1: z(),
+            water1: Vec::new(),
             sediment: z(),
-            sediment1: z(),
+            sediment1: Vec::new(),
             flux: [z(), z(), z(), z()],
             vel: [z(), z()],
             bed: Grid2::from_vec(hf.nx(), hf.ny(), z())?,
@@ -193,6 +202,8 @@ impl PipeModel {
             },
             deposit: z(),
             fast: true,
+            fused: true,
+            chunk_rows: CHUNK_ROWS,
         })
     }
 
@@ -282,21 +293,130 @@ impl PipeModel {
         Ok(())
     }
 
-    /// One step. Every pass is a gather over row bands: the interior of each
-    /// row runs through branch-free slice kernels (vectorised at the CPU's
-    /// widest SIMD level), the grid's edge cells through the general per-cell
-    /// code that resolves closed, open and periodic neighbours. Both compute
-    /// the same operations in the same order, so the split changes no bit of
-    /// the fields (only the order in which the evaporation ledger is summed).
-    #[allow(clippy::too_many_lines)]
+    /// One step. With the default conservative transport the whole step is
+    /// one fused sweep per chunk of rows ([`Self::step_fused`]); the
+    /// semi-Lagrangian transport (which gathers from up to two rows away)
+    /// runs as three passes over the grid ([`Self::step_passes`]). Both use
+    /// the same row functions, which send the interior of each row through
+    /// branch-free slice kernels (vectorised at the CPU's widest SIMD level)
+    /// and the grid's edge cells through the general per-cell code that
+    /// resolves closed, open and periodic neighbours; every path computes the
+    /// same operations in the same order, so they agree bit for bit (only the
+    /// evaporation ledger is summed in a different order).
     fn step_unchecked(&mut self, hf: &mut HeightField) {
+        let c = Consts::new(&self.p, self.cell, self.nx, self.ny);
+        if self.fast && self.fused && self.p.transport == SedimentTransport::Conservative {
+            self.step_fused(&c, hf);
+        } else {
+            self.step_passes(&c, hf, self.fast);
+        }
+        self.ledger.rain += f64::from(c.rain) * (self.nx * self.ny) as f64;
+        // The new bed becomes the field's heights; the old heights become scratch.
+        std::mem::swap(hf.heights_mut(), &mut self.bed);
+    }
+
+    /// Rows `[y0, y1)` of each chunk of the fused sweep: about `chunk_rows`
+    /// rows each, depending only on the grid size (never on the thread count).
+    fn chunks(&self) -> Vec<(usize, usize)> {
+        let ny = self.ny;
+        // At most eight chunks: halos cost rows, and two to eight cores share them.
+        let rows = self.chunk_rows.max(ny / 8).max(1);
+        let n = ny.div_ceil(rows).max(1);
+        (0..n).map(|k| (k * ny / n, (k + 1) * ny / n)).collect()
+    }
+
+    /// The step as one sweep per chunk of rows. Within a chunk, iteration
+    /// `t` runs pass A (rain, fluxes) on row `t`, pass B (depth, velocity,
+    /// erosion, evaporation) on row `t − 1` and the conservative transport
+    /// (pass C) on row `t − 2`, so each row of every plane is read from
+    /// memory once per step while its neighbours are still in cache. Water,
+    /// fluxes and sediment are updated in place: pass A of row `t` reads the
+    /// old water of row `t − 1` before pass B overwrites it, and `d₁` and the
+    /// post-erosion sediment live in four-row rings. What a chunk needs of
+    /// the rows just outside it (old water, `d₁`, new fluxes, post-erosion
+    /// sediment) is computed first, from the untouched state, by [`halo`].
+    fn step_fused(&mut self, c: &Consts, hf: &HeightField) {
+        let nx = self.nx;
+        let chunks = self.chunks();
+        let periodic = self.p.edges == Edges::Periodic;
+        let bed = hf.heights().as_slice();
+        let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
+        // Halo index of the boundary below each chunk (none below row 0 unless periodic).
+        let mut bounds = Vec::new();
+        let mut below = Vec::with_capacity(chunks.len());
+        for &(y0, _) in &chunks {
+            if y0 > 0 || periodic {
+                below.push(Some(bounds.len()));
+                bounds.push(y0);
+            } else {
+                below.push(None);
+            }
+        }
+        let halos: Vec<Halo> = {
+            let st = Planes {
+                water: &self.water,
+                sediment: &self.sediment,
+                flux: &self.flux,
+                bed,
+                deposit: &self.deposit,
+                erod,
+            };
+            par::run(bounds, |yb| halo(c, &st, yb))
+        };
+        let [u, v] = &mut self.vel;
+        let [f0, f1, f2, f3] = &mut self.flux;
+        let planes = [
+            self.water.as_mut_slice(),
+            self.sediment.as_mut_slice(),
+            f0.as_mut_slice(),
+            f1.as_mut_slice(),
+            f2.as_mut_slice(),
+            f3.as_mut_slice(),
+            self.bed.as_mut_slice(),
+            u.as_mut_slice(),
+            v.as_mut_slice(),
+            self.deposit.as_mut_slice(),
+        ];
+        let mut parts = planes.map(|p| split_rows(p, nx, &chunks).into_iter());
+        let n = chunks.len();
+        let jobs: Vec<_> = (0..n)
+            .map(|k| {
+                let planes: [&mut [f32]; 10] =
+                    std::array::from_fn(|i| parts[i].next().expect("one part per chunk"));
+                let lower = below[k].map(|h| &halos[h]);
+                let upper = if k + 1 < n {
+                    below[k + 1].map(|h| &halos[h])
+                } else {
+                    below[0].map(|h| &halos[h])
+                };
+                (chunks[k], planes, lower, upper)
+            })
+            .collect();
+        let results = par::run(jobs, |((y0, y1), planes, lower, upper)| {
+            sweep(c, y0, y1, planes, bed, erod, lower, upper)
+        });
+        let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
+        for (e, w, s) in results {
+            self.ledger.evaporated += e;
+            out_w.extend(w);
+            out_s.extend(s);
+        }
+        replay(&mut self.ledger.outflow_water, &out_w);
+        replay(&mut self.ledger.outflow_sediment, &out_s);
+    }
+
+    /// The step as three passes over the grid (rain and fluxes; depth,
+    /// velocity, erosion and evaporation; sediment transport), each a gather
+    /// over row bands. `simd` sends the interior of each row through the
+    /// slice kernels; without it every cell takes the general path (the
+    /// oracle of the tests).
+    fn step_passes(&mut self, c: &Consts, hf: &HeightField, simd: bool) {
         let (nx, ny) = (self.nx, self.ny);
-        let c = Consts::new(&self.p, self.cell, nx, ny);
-        let fast = self.fast;
-        let interior = |y: usize| fast && y > 0 && y + 1 < ny;
+        self.water1.resize(nx * ny, 0.0);
+        self.sediment1.resize(nx * ny, 0.0);
+        let bed = hf.heights().as_slice();
         // ---- pass A: rain and outflow fluxes (in place: each cell owns its 4 pipes).
         {
-            let bed = hf.heights().as_slice();
             let water = &self.water;
             let [fl, fr, fb, ft] = &mut self.flux;
             let outs = [
@@ -307,48 +427,27 @@ impl PipeModel {
                 ft.as_mut_slice(),
             ];
             par::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
-                {
-                    for y in y0..y1 {
-                        let r0 = (y - y0) * nx;
-                        let mut cell = |x: usize| {
-                            let r = r0 + x;
-                            d1o[r] = c.flux_cell(
-                                water,
-                                bed,
-                                x,
-                                y,
-                                [&mut fl[r], &mut fr[r], &mut fb[r], &mut ft[r]],
-                            );
-                        };
-                        if !interior(y) {
-                            (0..nx).for_each(&mut cell);
-                            continue;
-                        }
-                        cell(0);
-                        cell(nx - 1);
-                        let (a, b) = (r0 + 1, r0 + nx - 1);
-                        let i0 = y * nx + 1;
-                        flux_row(
-                            &c,
-                            Around::new(water, i0, nx, nx - 2),
-                            Around::new(bed, i0, nx, nx - 2),
-                            [
-                                &mut d1o[a..b],
-                                &mut fl[a..b],
-                                &mut fr[a..b],
-                                &mut fb[a..b],
-                                &mut ft[a..b],
-                            ],
-                        );
-                    }
-                };
+                for y in y0..y1 {
+                    let r = (y - y0) * nx..(y - y0 + 1) * nx;
+                    a_row(
+                        c,
+                        simd,
+                        c.rows(water, y),
+                        c.rows(bed, y),
+                        [
+                            &mut fl[r.clone()],
+                            &mut fr[r.clone()],
+                            &mut fb[r.clone()],
+                            &mut ft[r.clone()],
+                        ],
+                        &mut d1o[r],
+                    );
+                }
             });
         }
-        self.ledger.rain += f64::from(c.rain) * (nx * ny) as f64;
         // ---- pass B: depth, velocity, erosion / deposition, evaporation.
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
-        let results: Vec<(f64, f64)> = {
-            let bed = hf.heights().as_slice();
+        let results: Vec<(f64, Vec<(usize, f64)>)> = {
             let d1 = &self.water1;
             let f = &self.flux;
             let s0 = &self.sediment;
@@ -363,117 +462,513 @@ impl PipeModel {
             ];
             par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo, depo]| {
                 let mut evaporated = 0.0f64;
-                let mut out_w = 0.0f64;
+                let mut out_w = Vec::new();
                 for y in y0..y1 {
-                    let r0 = (y - y0) * nx;
-                    let mut cell = |x: usize| {
-                        let r = r0 + x;
-                        let (lost, o) = c.update_cell(
-                            d1,
-                            f,
-                            s0,
-                            bed,
-                            erod,
-                            x,
-                            y,
-                            [
-                                &mut wo[r],
-                                &mut bo[r],
-                                &mut so[r],
-                                &mut uo[r],
-                                &mut vo[r],
-                                &mut depo[r],
-                            ],
-                        );
-                        evaporated += f64::from(lost);
-                        out_w += o;
-                    };
-                    if !interior(y) {
-                        (0..nx).for_each(&mut cell);
-                        continue;
-                    }
-                    cell(0);
-                    cell(nx - 1);
-                    let (a, b) = (r0 + 1, r0 + nx - 1);
-                    let (i0, m) = (y * nx + 1, nx - 2);
-                    let ins = UpdateIn {
-                        d1: &d1[i0..i0 + m],
-                        f: [
-                            Around::new(&f[L], i0, nx, m),
-                            Around::new(&f[R], i0, nx, m),
-                            Around::new(&f[B], i0, nx, m),
-                            Around::new(&f[T], i0, nx, m),
-                        ],
-                        s0: &s0[i0..i0 + m],
-                        bed: Around::new(bed, i0, nx, m),
+                    let r = (y - y0) * nx..(y - y0 + 1) * nx;
+                    let g = y * nx..(y + 1) * nx;
+                    let ins = BIn {
+                        d1: &d1[g.clone()],
+                        f: std::array::from_fn(|k| c.rows(&f[k], y)),
+                        s0: &s0[g.clone()],
+                        bed: c.rows(bed, y),
+                        erod: erod.map(|e| &e[g.clone()]),
                     };
                     let outs = [
-                        &mut wo[a..b],
-                        &mut bo[a..b],
-                        &mut so[a..b],
-                        &mut uo[a..b],
-                        &mut vo[a..b],
-                        &mut depo[a..b],
+                        &mut wo[r.clone()],
+                        &mut bo[r.clone()],
+                        &mut so[r.clone()],
+                        &mut uo[r.clone()],
+                        &mut vo[r.clone()],
+                        &mut depo[r],
                     ];
-                    evaporated += match erod {
-                        Some(e) => update_row_erodible(&c, &ins, &e[i0..i0 + m], outs),
-                        None => update_row_uniform(&c, &ins, outs),
-                    };
+                    evaporated += b_row(c, simd, &ins, outs, y, &mut out_w);
                 }
                 (evaporated, out_w)
             })
         };
+        let mut out_w = Vec::new();
         for (e, o) in results {
             self.ledger.evaporated += e;
-            self.ledger.outflow_water += o;
+            out_w.extend(o);
         }
+        replay(&mut self.ledger.outflow_water, &out_w);
         // ---- pass C: sediment transport.
         let s1 = &self.sediment1;
         let d1 = &self.water1;
         let f = &self.flux;
         let (u, v) = (&self.vel[0], &self.vel[1]);
         let transport = self.p.transport;
-        let outflow_s: Vec<f64> =
+        let outflow_s: Vec<Vec<(usize, f64)>> =
             par::map_bands(nx, ny, [self.sediment.as_mut_slice()], |y0, y1, [so]| {
-                let mut out_s = 0.0f64;
+                let mut out_s = Vec::new();
                 for y in y0..y1 {
-                    let r0 = (y - y0) * nx;
-                    let mut cell = |x: usize| {
-                        let (s, o) = c.transport_cell(transport, d1, f, s1, u, v, x, y);
-                        so[r0 + x] = s;
-                        out_s += o;
-                    };
-                    if !interior(y) {
-                        (0..nx).for_each(&mut cell);
-                        continue;
-                    }
-                    cell(0);
-                    cell(nx - 1);
-                    let (i0, m) = (y * nx + 1, nx - 2);
-                    let out = &mut so[r0 + 1..r0 + nx - 1];
+                    let row = &mut so[(y - y0) * nx..(y - y0 + 1) * nx];
                     match transport {
-                        SedimentTransport::Conservative => conservative_row(
-                            &c,
-                            Around::new(d1, i0, nx, m),
-                            [
-                                Around::new(&f[L], i0, nx, m),
-                                Around::new(&f[R], i0, nx, m),
-                                Around::new(&f[B], i0, nx, m),
-                                Around::new(&f[T], i0, nx, m),
-                            ],
-                            Around::new(s1, i0, nx, m),
-                            out,
+                        SedimentTransport::Conservative => c_row(
+                            c,
+                            simd,
+                            c.rows(d1, y),
+                            std::array::from_fn(|k| c.rows(&f[k], y)),
+                            c.rows(s1, y),
+                            row,
+                            y,
+                            &mut out_s,
                         ),
-                        SedimentTransport::SemiLagrangian => {
-                            semi_lagrangian_row(&c, &u[i0..i0 + m], &v[i0..i0 + m], s1, y, out)
-                        }
+                        SedimentTransport::SemiLagrangian => sl_row(c, simd, u, v, s1, y, row),
                     }
                 }
                 out_s
             });
-        self.ledger.outflow_sediment += outflow_s.iter().sum::<f64>();
-        // The new bed becomes the field's heights; the old heights become scratch.
-        std::mem::swap(hf.heights_mut(), &mut self.bed);
+        replay(&mut self.ledger.outflow_sediment, &outflow_s.concat());
+    }
+}
+
+/// Adds per-cell outflows (`(row, amount)`, in row order) to a ledger the way
+/// the band passes sum them: per band of [`par::BAND_ROWS`] rows from zero,
+/// then band by band, so every path gives the same ledger bit for bit.
+fn replay(ledger: &mut f64, contributions: &[(usize, f64)]) {
+    let mut i = 0;
+    while i < contributions.len() {
+        let band = contributions[i].0 / par::BAND_ROWS;
+        let mut acc = 0.0f64;
+        while i < contributions.len() && contributions[i].0 / par::BAND_ROWS == band {
+            acc += contributions[i].1;
+            i += 1;
+        }
+        *ledger += acc;
+    }
+}
+
+/// Splits a row-major plane `nx` wide into the rows of each chunk.
+fn split_rows<'a>(
+    mut p: &'a mut [f32],
+    nx: usize,
+    chunks: &[(usize, usize)],
+) -> Vec<&'a mut [f32]> {
+    let mut parts = Vec::with_capacity(chunks.len());
+    for &(y0, y1) in chunks {
+        let (a, b) = std::mem::take(&mut p).split_at_mut((y1 - y0) * nx);
+        parts.push(a);
+        p = b;
+    }
+    parts
+}
+
+/// The state a halo is computed from (untouched during the halo pass).
+struct Planes<'a> {
+    water: &'a [f32],
+    sediment: &'a [f32],
+    flux: &'a [Vec<f32>; 4],
+    bed: &'a [f32],
+    deposit: &'a [f32],
+    erod: Option<&'a [f32]>,
+}
+
+/// What the chunks on either side of the boundary below row `yb` need of
+/// each other's rows: rows `yb − 1` (index 0) and `yb` (index 1, wrapped) of
+/// the old water, `d₁`, the new fluxes and the post-erosion sediment.
+struct Halo {
+    w: [Vec<f32>; 2],
+    d1: [Vec<f32>; 2],
+    f: [[Vec<f32>; 4]; 2],
+    s1: [Vec<f32>; 2],
+}
+
+/// Computes the halo of the boundary below row `yb` from the untouched
+/// state: pass A on rows `yb − 2 … yb + 1` (those that exist) and pass B on
+/// rows `yb − 1` and `yb`, with the same row functions as the sweep, so the
+/// values are bit-identical to the ones the owning chunk computes.
+fn halo(c: &Consts, st: &Planes<'_>, yb: usize) -> Halo {
+    let nx = c.nx;
+    let row = |g: &[f32], j: usize| g[j * nx..(j + 1) * nx].to_vec();
+    let rs: [Option<usize>; 4] = std::array::from_fn(|s| c.row_at(yb as isize + s as isize - 2));
+    let mut fa: [Option<[Vec<f32>; 4]>; 4] = Default::default();
+    let mut d1a: [Vec<f32>; 4] = Default::default();
+    for s in 0..4 {
+        if let Some(r) = rs[s] {
+            let mut f = st.flux.each_ref().map(|p| row(p, r));
+            let mut d1 = vec![0.0f32; nx];
+            let [a, b, cc, d] = &mut f;
+            a_row(
+                c,
+                true,
+                c.rows(st.water, r),
+                c.rows(st.bed, r),
+                [a, b, cc, d],
+                &mut d1,
+            );
+            fa[s] = Some(f);
+            d1a[s] = d1;
+        }
+    }
+    let mut s1: [Vec<f32>; 2] = Default::default();
+    for (h, s) in [(0usize, 1usize), (1, 2)] {
+        let r = rs[s].expect("the rows on both sides of a boundary exist");
+        let frows = |k: usize| Rows {
+            b: fa[s - 1].as_ref().map(|f| f[k].as_slice()),
+            c: fa[s].as_ref().map_or(&[][..], |f| f[k].as_slice()),
+            t: fa[s + 1].as_ref().map(|f| f[k].as_slice()),
+        };
+        let g = r * nx..(r + 1) * nx;
+        let ins = BIn {
+            d1: &d1a[s],
+            f: std::array::from_fn(frows),
+            s0: &st.sediment[g.clone()],
+            bed: c.rows(st.bed, r),
+            erod: st.erod.map(|e| &e[g.clone()]),
+        };
+        let mut scratch: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0f32; nx]);
+        let mut dep = row(st.deposit, r);
+        let mut out = vec![0.0f32; nx];
+        let [w, b, u, v] = &mut scratch;
+        b_row(
+            c,
+            true,
+            &ins,
+            [w, b, &mut out, u, v, &mut dep],
+            r,
+            &mut Vec::new(),
+        );
+        s1[h] = out;
+    }
+    let rl = rs[1].expect("row below the boundary");
+    let rh = rs[2].expect("row above the boundary");
+    let [_, f1, f2, _] = fa;
+    Halo {
+        w: [row(st.water, rl), row(st.water, rh)],
+        d1: [std::mem::take(&mut d1a[1]), std::mem::take(&mut d1a[2])],
+        f: [
+            f1.expect("row below the boundary"),
+            f2.expect("row above the boundary"),
+        ],
+        s1,
+    }
+}
+
+/// One chunk `[y0, y1)` of the fused step (see [`PipeModel::step_fused`]);
+/// `planes` are the chunk's rows of water, sediment, the four fluxes, the
+/// new bed, u, v and the deposit. Returns the water evaporated and the
+/// per-cell water and sediment outflows through open edges, in row order.
+#[allow(clippy::too_many_arguments)]
+fn sweep(
+    c: &Consts,
+    y0: usize,
+    y1: usize,
+    planes: [&mut [f32]; 10],
+    bed: &[f32],
+    erod: Option<&[f32]>,
+    lower: Option<&Halo>,
+    upper: Option<&Halo>,
+) -> (f64, Outflows, Outflows) {
+    let nx = c.nx;
+    let [w, s, f0, f1, f2, f3, bn, u, v, dep] = planes;
+    let mut f = [f0, f1, f2, f3];
+    let mut d1r = vec![0.0f32; 4 * nx];
+    let mut s1r = vec![0.0f32; 4 * nx];
+    let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
+    let ring = |y: usize| (y % 4) * nx..(y % 4 + 1) * nx;
+    // A plane's rows around `y` from the chunk (`inside`, indexed by `at`) or the halos.
+    fn around<'a>(
+        y: usize,
+        y0: usize,
+        y1: usize,
+        inside: &'a [f32],
+        at: impl Fn(usize) -> std::ops::Range<usize>,
+        lo: Option<&'a [f32]>,
+        hi: Option<&'a [f32]>,
+    ) -> Rows<'a> {
+        Rows {
+            b: if y == y0 {
+                lo
+            } else {
+                Some(&inside[at(y - 1)])
+            },
+            c: &inside[at(y)],
+            t: if y + 1 == y1 {
+                hi
+            } else {
+                Some(&inside[at(y + 1)])
+            },
+        }
+    }
+    let mut evaporated = 0.0f64;
+    let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
+    for t in y0..y1 + 2 {
+        if t < y1 {
+            // Pass A on row t (reads the old water of rows t − 1 … t + 1).
+            let wr = around(
+                t,
+                y0,
+                y1,
+                w,
+                loc,
+                lower.map(|h| h.w[0].as_slice()),
+                upper.map(|h| h.w[1].as_slice()),
+            );
+            let [a, b, cc, d] = &mut f;
+            a_row(
+                c,
+                true,
+                wr,
+                c.rows(bed, t),
+                [
+                    &mut a[loc(t)],
+                    &mut b[loc(t)],
+                    &mut cc[loc(t)],
+                    &mut d[loc(t)],
+                ],
+                &mut d1r[ring(t)],
+            );
+        }
+        if t > y0 && t - 1 < y1 {
+            // Pass B on row y = t − 1 (new fluxes of rows y − 1 … y + 1 are known).
+            let y = t - 1;
+            let ins = BIn {
+                d1: &d1r[ring(y)],
+                f: std::array::from_fn(|k| {
+                    around(
+                        y,
+                        y0,
+                        y1,
+                        f[k],
+                        loc,
+                        lower.map(|h| h.f[0][k].as_slice()),
+                        upper.map(|h| h.f[1][k].as_slice()),
+                    )
+                }),
+                s0: &s[loc(y)],
+                bed: c.rows(bed, y),
+                erod: erod.map(|e| &e[y * nx..(y + 1) * nx]),
+            };
+            let outs = [
+                &mut w[loc(y)],
+                &mut bn[loc(y)],
+                &mut s1r[ring(y)],
+                &mut u[loc(y)],
+                &mut v[loc(y)],
+                &mut dep[loc(y)],
+            ];
+            evaporated += b_row(c, true, &ins, outs, y, &mut out_w);
+        }
+        if t >= y0 + 2 {
+            // Pass C on row y = t − 2 (post-erosion sediment of rows y − 1 … y + 1 is known).
+            let y = t - 2;
+            let d1 = around(
+                y,
+                y0,
+                y1,
+                &d1r,
+                ring,
+                lower.map(|h| h.d1[0].as_slice()),
+                upper.map(|h| h.d1[1].as_slice()),
+            );
+            let fr = std::array::from_fn(|k| {
+                around(
+                    y,
+                    y0,
+                    y1,
+                    f[k],
+                    loc,
+                    lower.map(|h| h.f[0][k].as_slice()),
+                    upper.map(|h| h.f[1][k].as_slice()),
+                )
+            });
+            let s1 = around(
+                y,
+                y0,
+                y1,
+                &s1r,
+                ring,
+                lower.map(|h| h.s1[0].as_slice()),
+                upper.map(|h| h.s1[1].as_slice()),
+            );
+            c_row(c, true, d1, fr, s1, &mut s[loc(y)], y, &mut out_s);
+        }
+    }
+    (evaporated, out_w, out_s)
+}
+
+/// Per-cell outflows through open edges, `(row, amount)` in row order.
+type Outflows = Vec<(usize, f64)>;
+
+/// Rows `y − 1`, `y` and `y + 1` of a plane; `None` beyond a closed or open
+/// edge (periodic edges give the wrapped row).
+#[derive(Clone, Copy)]
+struct Rows<'a> {
+    b: Option<&'a [f32]>,
+    c: &'a [f32],
+    t: Option<&'a [f32]>,
+}
+
+impl<'a> Rows<'a> {
+    /// The interior cells `1..nx − 1` and their four neighbours, if both
+    /// neighbouring rows exist.
+    #[inline]
+    fn around(self) -> Option<Around<'a>> {
+        let (b, t) = (self.b?, self.t?);
+        let n = self.c.len();
+        Some(Around {
+            c: &self.c[1..n - 1],
+            l: &self.c[..n - 2],
+            r: &self.c[2..],
+            b: &b[1..n - 1],
+            t: &t[1..n - 1],
+        })
+    }
+}
+
+/// Pass A over a row: `d₁` and the in-place update of the row's fluxes.
+fn a_row(c: &Consts, simd: bool, w: Rows<'_>, bed: Rows<'_>, f: [&mut [f32]; 4], d1o: &mut [f32]) {
+    let nx = c.nx;
+    let [fl, fr, fb, ft] = f;
+    if let (true, Some(wa), Some(ba)) = (simd, w.around(), bed.around()) {
+        for x in [0, nx - 1] {
+            d1o[x] = c.flux_cell(x, w, bed, [&mut fl[x], &mut fr[x], &mut fb[x], &mut ft[x]]);
+        }
+        let m = 1..nx - 1;
+        flux_row(
+            c,
+            wa,
+            ba,
+            [
+                &mut d1o[m.clone()],
+                &mut fl[m.clone()],
+                &mut fr[m.clone()],
+                &mut fb[m.clone()],
+                &mut ft[m],
+            ],
+        );
+    } else {
+        for x in 0..nx {
+            d1o[x] = c.flux_cell(x, w, bed, [&mut fl[x], &mut fr[x], &mut fb[x], &mut ft[x]]);
+        }
+    }
+}
+
+/// Pass-B inputs of one row.
+#[derive(Clone, Copy)]
+struct BIn<'a> {
+    d1: &'a [f32],
+    f: [Rows<'a>; 4],
+    s0: &'a [f32],
+    bed: Rows<'a>,
+    erod: Option<&'a [f32]>,
+}
+
+/// Pass B over row `y`: writes water, bed, post-erosion sediment, u, v and
+/// updates the deposit; returns the water evaporated and appends each
+/// cell's outflow through open edges to `out`.
+fn b_row(
+    c: &Consts,
+    simd: bool,
+    ins: &BIn<'_>,
+    outs: [&mut [f32]; 6],
+    y: usize,
+    out: &mut Vec<(usize, f64)>,
+) -> f64 {
+    let nx = c.nx;
+    let [wo, bo, so, uo, vo, depo] = outs;
+    let mut evaporated = 0.0f64;
+    let mut cell = |x: usize| {
+        let (lost, o) = c.update_cell(
+            x,
+            ins,
+            [
+                &mut wo[x],
+                &mut bo[x],
+                &mut so[x],
+                &mut uo[x],
+                &mut vo[x],
+                &mut depo[x],
+            ],
+        );
+        evaporated += f64::from(lost);
+        if o != 0.0 {
+            out.push((y, o));
+        }
+    };
+    let f = ins.f.map(Rows::around);
+    if let (true, [Some(fl), Some(fr), Some(fb), Some(ft)], Some(bed)) = (simd, f, ins.bed.around())
+    {
+        cell(0);
+        cell(nx - 1);
+        let m = 1..nx - 1;
+        let ui = UpdateIn {
+            d1: &ins.d1[m.clone()],
+            f: [fl, fr, fb, ft],
+            s0: &ins.s0[m.clone()],
+            bed,
+        };
+        let outs = [
+            &mut wo[m.clone()],
+            &mut bo[m.clone()],
+            &mut so[m.clone()],
+            &mut uo[m.clone()],
+            &mut vo[m.clone()],
+            &mut depo[m.clone()],
+        ];
+        evaporated += match ins.erod {
+            Some(e) => update_row_erodible(c, &ui, &e[m], outs),
+            None => update_row_uniform(c, &ui, outs),
+        };
+    } else {
+        (0..nx).for_each(cell);
+    }
+    evaporated
+}
+
+/// Conservative transport over row `y`; appends each cell's sediment
+/// outflow through open edges to `out`.
+#[allow(clippy::too_many_arguments)]
+fn c_row(
+    c: &Consts,
+    simd: bool,
+    d1: Rows<'_>,
+    f: [Rows<'_>; 4],
+    s1: Rows<'_>,
+    so: &mut [f32],
+    y: usize,
+    out: &mut Vec<(usize, f64)>,
+) {
+    let nx = c.nx;
+    let mut cell = |x: usize| {
+        let (s, o) = c.conservative_cell(x, d1, &f, s1);
+        so[x] = s;
+        if o != 0.0 {
+            out.push((y, o));
+        }
+    };
+    let fa = f.map(Rows::around);
+    if let (true, Some(da), [Some(fl), Some(fr), Some(fb), Some(ft)], Some(sa)) =
+        (simd, d1.around(), fa, s1.around())
+    {
+        cell(0);
+        cell(nx - 1);
+        conservative_row(c, da, [fl, fr, fb, ft], sa, &mut so[1..nx - 1]);
+    } else {
+        (0..nx).for_each(cell);
+    }
+}
+
+/// Semi-Lagrangian transport over row `y` (interior cells of interior rows
+/// through the slice kernel).
+fn sl_row(c: &Consts, simd: bool, u: &[f32], v: &[f32], s1: &[f32], y: usize, so: &mut [f32]) {
+    let (nx, ny) = (c.nx, c.ny);
+    let wrap = c.edges == Edges::Periodic;
+    let mut cell = |x: usize| {
+        let i = y * nx + x;
+        let px = x as f32 - u[i] * c.sl_step;
+        let py = y as f32 - v[i] * c.sl_step;
+        so[x] = sample(s1, nx, ny, px, py, wrap);
+    };
+    if simd && y > 0 && y + 1 < ny {
+        cell(0);
+        cell(nx - 1);
+        let i0 = y * nx + 1;
+        let m = nx - 2;
+        semi_lagrangian_row(c, &u[i0..i0 + m], &v[i0..i0 + m], s1, y, &mut so[1..nx - 1]);
+    } else {
+        (0..nx).for_each(cell);
     }
 }
 
@@ -494,6 +989,10 @@ struct Consts {
     evap: f32,
     min_tilt: f32,
     inv_dref: f32,
+    /// `Δt / l²`.
+    dt_area: f32,
+    /// `1 / (2l)`.
+    inv_2cell: f32,
     vmax: f32,
     sl_step: f32,
 }
@@ -516,30 +1015,65 @@ impl Consts {
             evap: (p.k_e * p.dt) as f32,
             min_tilt: p.min_tilt as f32,
             inv_dref: 1.0 / p.depth_ref as f32,
+            dt_area: (p.dt / (f64::from(l) * f64::from(l))) as f32,
+            inv_2cell: (0.5 / f64::from(l)) as f32,
             vmax: l / dt,
             sl_step: dt / l,
         }
     }
 
-    /// Neighbour `k` (L, R, B, T) of `(x, y)`, resolved through the edges.
+    /// Row `y` (which may lie outside `0..ny`) resolved through the edges.
     #[inline]
-    fn nb(&self, x: usize, y: usize, k: usize) -> Option<usize> {
-        let (dx, dy) = [(-1, 0), (1, 0), (0, -1), (0, 1)][k];
-        self.edges.resolve(x, y, dx, dy, self.nx, self.ny)
+    fn row_at(&self, y: isize) -> Option<usize> {
+        let ny = self.ny as isize;
+        if (0..ny).contains(&y) {
+            Some(y as usize)
+        } else if self.edges == Edges::Periodic {
+            Some(y.rem_euclid(ny) as usize)
+        } else {
+            None
+        }
+    }
+
+    /// Rows `y − 1`, `y`, `y + 1` of the full plane `g`.
+    #[inline]
+    fn rows<'a>(&self, g: &'a [f32], y: usize) -> Rows<'a> {
+        let nx = self.nx;
+        let row = |j: usize| &g[j * nx..(j + 1) * nx];
+        Rows {
+            b: self.row_at(y as isize - 1).map(row),
+            c: row(y),
+            t: self.row_at(y as isize + 1).map(row),
+        }
+    }
+
+    /// Neighbour `k` (L, R, B, T) of cell `x` of the centre row of `p`, resolved through the edges.
+    #[inline]
+    fn nb(&self, p: Rows<'_>, x: usize, k: usize) -> Option<f32> {
+        let nx = self.nx;
+        let periodic = self.edges == Edges::Periodic;
+        match k {
+            L if x > 0 => Some(p.c[x - 1]),
+            L => periodic.then(|| p.c[nx - 1]),
+            R if x + 1 < nx => Some(p.c[x + 1]),
+            R => periodic.then(|| p.c[0]),
+            B => p.b.map(|r| r[x]),
+            _ => p.t.map(|r| r[x]),
+        }
     }
 
     /// Pass A for one cell: returns `d₁` and updates the cell's four fluxes.
     #[inline]
-    fn flux_cell(&self, water: &[f32], bed: &[f32], x: usize, y: usize, f: [&mut f32; 4]) -> f32 {
-        let i = y * self.nx + x;
-        let d1 = water[i] + self.rain;
-        let h = bed[i] + d1;
+    fn flux_cell(&self, x: usize, water: Rows<'_>, bed: Rows<'_>, f: [&mut f32; 4]) -> f32 {
+        let d1 = water.c[x] + self.rain;
+        let h = bed.c[x] + d1;
         let open = self.edges == Edges::Open;
-        let hn: [f32; 4] = std::array::from_fn(|k| match self.nb(x, y, k) {
-            Some(j) => bed[j] + water[j] + self.rain,
-            None if open => bed[i],
-            None => f32::INFINITY,
-        });
+        let hn: [f32; 4] =
+            std::array::from_fn(|k| match (self.nb(bed, x, k), self.nb(water, x, k)) {
+                (Some(b), Some(w)) => b + w + self.rain,
+                _ if open => bed.c[x],
+                _ => f32::INFINITY,
+            });
         let mut nf = [0.0f32; 4];
         let mut sum = 0.0;
         for k in 0..4 {
@@ -557,21 +1091,14 @@ impl Consts {
     /// Pass B for one cell: writes water, bed, sediment, u, v and updates the
     /// deposit; returns the water evaporated and the water lost through open edges.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
     fn update_cell(
         &self,
-        d1: &[f32],
-        f: &[Vec<f32>; 4],
-        s0: &[f32],
-        bed: &[f32],
-        erod: Option<&[f32]>,
         x: usize,
-        y: usize,
+        ins: &BIn<'_>,
         [wo, bo, so, uo, vo, depo]: [&mut f32; 6],
     ) -> (f32, f64) {
-        let i = y * self.nx + x;
-        let nb = |k: usize| self.nb(x, y, k);
-        let get = |k: usize, dir: usize| nb(k).map_or(0.0, |j| f[dir][j]);
+        let f = &ins.f;
+        let get = |k: usize, dir: usize| self.nb(f[dir], x, k).unwrap_or(0.0);
         let in_l = get(L, R);
         let in_r = get(R, L);
         let in_b = get(B, T);
@@ -579,45 +1106,47 @@ impl Consts {
         let mut out_w = 0.0f64;
         if self.edges == Edges::Open {
             for k in 0..4 {
-                if nb(k).is_none() {
-                    out_w += f64::from(f[k][i] * self.dt / self.area);
+                if self.nb(ins.bed, x, k).is_none() {
+                    out_w += f64::from(f[k].c[x] * self.dt / self.area);
                 }
             }
         }
-        let bn = |k: usize| nb(k).map_or(bed[i], |j| bed[j]);
+        let bed = ins.bed.c[x];
+        let bn = |k: usize| self.nb(ins.bed, x, k).unwrap_or(bed);
         let cell = CellIn {
-            d1: d1[i],
-            fo: [f[L][i], f[R][i], f[B][i], f[T][i]],
+            d1: ins.d1[x],
+            fo: [f[L].c[x], f[R].c[x], f[B].c[x], f[T].c[x]],
             fin: [in_l, in_r, in_b, in_t],
-            s: s0[i],
-            bed: bed[i],
+            s: ins.s0[x],
+            bed,
             bn: [bn(L), bn(R), bn(B), bn(T)],
-            ks: erod.map_or(self.ks, |e| self.ks * e[i]),
+            ks: ins.erod.map_or(self.ks, |e| self.ks * e[x]),
         };
         let o = self.update(&cell, *depo);
         [*wo, *bo, *so, *uo, *vo, *depo] = [o.w, o.b, o.s, o.u, o.v, o.dep];
         (o.lost, out_w)
     }
-
     /// The arithmetic of pass B for one cell, shared by both paths.
     #[inline(always)]
     fn update(&self, c: &CellIn, dep0: f32) -> CellOut {
         let [fl, fr, fb, ft] = c.fo;
         let [in_l, in_r, in_b, in_t] = c.fin;
         let out = fl + fr + fb + ft;
-        let d2 = (c.d1 + self.dt * (in_l + in_r + in_b + in_t - out) / self.area).max(0.0);
+        let d2 = (c.d1 + (in_l + in_r + in_b + in_t - out) * self.dt_area).max(0.0);
         let mean_d = 0.5 * (c.d1 + d2);
         let wx = 0.5 * (in_l - fl + fr - in_r);
         let wy = 0.5 * (in_b - fb + ft - in_t);
         let wet = mean_d > 1e-6;
-        let vu = if wet { wx / (self.cell * mean_d) } else { 0.0 };
-        let vv = if wet { wy / (self.cell * mean_d) } else { 0.0 };
+        // One division for both components.
+        let inv = 1.0 / (self.cell * mean_d);
+        let vu = if wet { wx * inv } else { 0.0 };
+        let vv = if wet { wy * inv } else { 0.0 };
         let vu = clamp(vu, self.vmax);
         let vv = clamp(vv, self.vmax);
         // Local tilt from central differences of the bed.
         let [bl, br, bb, bt] = c.bn;
-        let gx = (br - bl) / (2.0 * self.cell);
-        let gy = (bt - bb) / (2.0 * self.cell);
+        let gx = (br - bl) * self.inv_2cell;
+        let gy = (bt - bb) * self.inv_2cell;
         let g2 = gx * gx + gy * gy;
         let sin_a = (g2 / (1.0 + g2)).sqrt().max(self.min_tilt);
         let speed = (vu * vu + vv * vv).sqrt();
@@ -638,51 +1167,44 @@ impl Consts {
         }
     }
 
-    /// Pass C for one cell: the new sediment and what left through open edges.
+    /// Conservative transport for one cell: the new sediment and what left through open edges.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
-    fn transport_cell(
+    fn conservative_cell(
         &self,
-        transport: SedimentTransport,
-        d1: &[f32],
-        f: &[Vec<f32>; 4],
-        s1: &[f32],
-        u: &[f32],
-        v: &[f32],
         x: usize,
-        y: usize,
+        d1: Rows<'_>,
+        f: &[Rows<'_>; 4],
+        s1: Rows<'_>,
     ) -> (f32, f64) {
-        let i = y * self.nx + x;
-        match transport {
-            SedimentTransport::Conservative => {
-                let frac = |j: usize, k: usize| self.frac(d1[j], f[k][j]);
-                let mut out_s = 0.0f64;
-                let mut keep = 1.0f32;
-                let mut gained = 0.0f32;
-                for k in 0..4 {
-                    let fo = frac(i, k);
-                    keep -= fo;
-                    match self.nb(x, y, k) {
-                        Some(j) => gained += s1[j] * frac(j, k ^ 1),
-                        None => out_s += f64::from(s1[i] * fo),
-                    }
-                }
-                (s1[i] * keep.max(0.0) + gained, out_s)
-            }
-            SedimentTransport::SemiLagrangian => {
-                let px = x as f32 - u[i] * self.sl_step;
-                let py = y as f32 - v[i] * self.sl_step;
-                let wrap = self.edges == Edges::Periodic;
-                (sample(s1, self.nx, self.ny, px, py, wrap), 0.0)
+        let mut out_s = 0.0f64;
+        let mut keep = 1.0f32;
+        let mut gained = 0.0f32;
+        for k in 0..4 {
+            let fo = self.frac(d1.c[x], f[k].c[x]);
+            keep -= fo;
+            match (
+                self.nb(d1, x, k),
+                self.nb(f[k ^ 1], x, k),
+                self.nb(s1, x, k),
+            ) {
+                (Some(dj), Some(fj), Some(sj)) => gained += sj * self.frac(dj, fj),
+                _ => out_s += f64::from(s1.c[x] * fo),
             }
         }
+        (s1.c[x] * keep.max(0.0) + gained, out_s)
     }
-
     /// Fraction of a cell's water `d1` that leaves through a pipe of flux `f` this step.
     #[inline(always)]
     fn frac(&self, d1: f32, f: f32) -> f32 {
-        let q = (f * self.dt / (d1 * self.area)).min(1.0);
-        if d1 > 0.0 { q } else { 0.0 }
+        (f * self.per_flux(d1)).min(1.0)
+    }
+
+    /// `Δt / (d₁·l²)`, the fraction of a cell's water a unit flux carries
+    /// away in one step (0 for a dry cell): one division per cell, shared by
+    /// its four pipes.
+    #[inline(always)]
+    fn per_flux(&self, d1: f32) -> f32 {
+        if d1 > 0.0 { self.dt_area / d1 } else { 0.0 }
     }
 }
 
@@ -742,18 +1264,6 @@ struct Around<'a> {
 }
 
 impl<'a> Around<'a> {
-    /// `g` row-major with width `nx`; needs `nx ≤ i0 − 1` and `i0 + m + nx ≤ g.len()`.
-    #[inline(always)]
-    fn new(g: &'a [f32], i0: usize, nx: usize, m: usize) -> Self {
-        Self {
-            c: &g[i0..i0 + m],
-            l: &g[i0 - 1..i0 - 1 + m],
-            r: &g[i0 + 1..i0 + 1 + m],
-            b: &g[i0 - nx..i0 - nx + m],
-            t: &g[i0 + nx..i0 + nx + m],
-        }
-    }
-
     /// The same view restricted to the cells `a..b` of the row.
     #[inline(always)]
     fn sub(&self, a: usize, b: usize) -> Self {
@@ -866,17 +1376,18 @@ fn update_row<const ERODIBILITY: bool>(
             depo[k] = o.dep;
             lost[k] = o.lost;
         }
-        let mut acc = [0.0f32; 8];
+        // Summed in f64 (eight partial sums) like the per-cell path's ledger.
+        let mut acc = [0.0f64; 8];
         let mut chunks = lost.chunks_exact(8);
         for ch in &mut chunks {
             for (s, &x) in acc.iter_mut().zip(ch) {
-                *s += x;
+                *s += f64::from(x);
             }
         }
         for (s, &x) in acc.iter_mut().zip(chunks.remainder()) {
-            *s += x;
+            *s += f64::from(x);
         }
-        total += acc.iter().map(|&x| f64::from(x)).sum::<f64>();
+        total += acc.iter().sum::<f64>();
         a = b;
     }
     total
@@ -889,17 +1400,19 @@ fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: A
     let d1 = d1.sub(0, m);
     let [fl, fr, fb, ft] = f.map(|p| p.sub(0, m));
     let s1 = s1.sub(0, m);
+    let frac = |q: f32, f: f32| (f * q).min(1.0);
     for k in 0..m {
+        let q = c.per_flux(d1.c[k]);
         let mut keep = 1.0f32;
         let mut gained = 0.0f32;
-        keep -= c.frac(d1.c[k], fl.c[k]);
-        gained += s1.l[k] * c.frac(d1.l[k], fr.l[k]);
-        keep -= c.frac(d1.c[k], fr.c[k]);
-        gained += s1.r[k] * c.frac(d1.r[k], fl.r[k]);
-        keep -= c.frac(d1.c[k], fb.c[k]);
-        gained += s1.b[k] * c.frac(d1.b[k], ft.b[k]);
-        keep -= c.frac(d1.c[k], ft.c[k]);
-        gained += s1.t[k] * c.frac(d1.t[k], fb.t[k]);
+        keep -= frac(q, fl.c[k]);
+        gained += s1.l[k] * frac(c.per_flux(d1.l[k]), fr.l[k]);
+        keep -= frac(q, fr.c[k]);
+        gained += s1.r[k] * frac(c.per_flux(d1.r[k]), fl.r[k]);
+        keep -= frac(q, fb.c[k]);
+        gained += s1.b[k] * frac(c.per_flux(d1.b[k]), ft.b[k]);
+        keep -= frac(q, ft.c[k]);
+        gained += s1.t[k] * frac(c.per_flux(d1.t[k]), fb.t[k]);
         so[k] = s1.c[k] * keep.max(0.0) + gained;
     }
 }
@@ -1089,6 +1602,108 @@ mod tests {
                 a.evaporated,
                 b.evaporated
             );
+        }
+    }
+
+    /// The fused sweep (chunks, halos, in-place updates, row rings) against
+    /// the previous three-pass path, with and without the row kernels, on
+    /// rough random fields for every edge mode, with and without an
+    /// erodibility map, for chunkings from one row per chunk to one chunk
+    /// (and grids only three rows tall): every field must match bit for bit,
+    /// the outflow ledgers exactly and the evaporation ledger to 1e-7 (the row
+    /// kernel sums it in `f32` blocks). The
+    /// fused sweep must also give the same bits on one and on two threads.
+    #[test]
+    fn fused_sweep_equals_three_pass_path() {
+        let s = Seed(23);
+        let g = |k: u64, i: usize, j: usize| s.derive_index(k).uniform2(i as i64, j as i64);
+        let cases = [
+            (Edges::Closed, false, 41, 57, 7),
+            (Edges::Open, true, 40, 57, 9),
+            (Edges::Periodic, false, 19, 50, 6),
+            (Edges::Open, false, 23, 11, 1),
+            (Edges::Periodic, true, 17, 3, 1),
+            (Edges::Closed, true, 9, 3, 64),
+            (Edges::Periodic, false, 21, 30, 64),
+            (Edges::Open, true, 6, 70, 64),
+        ];
+        for (case, &(edges, erodible, nx, ny, chunk_rows)) in cases.iter().enumerate() {
+            let hf = HeightField::from_fn(nx, ny, 1.5, |i, j| 20.0 * g(1, i, j) as f32).unwrap();
+            let water = Grid2::from_fn(nx, ny, |i, j| {
+                let w = g(2, i, j);
+                if w < 0.2 { 0.0 } else { 2.0 * w as f32 }
+            })
+            .unwrap();
+            let p = PipeParams {
+                edges,
+                dt: 0.2,
+                k_c: 0.5,
+                ..Default::default()
+            };
+            let build = |fast: bool, fused: bool, threads: usize| {
+                let mut m = PipeModel::new(p.clone(), &hf).unwrap();
+                if erodible {
+                    let e = Grid2::from_fn(nx, ny, |i, j| 0.5 + g(3, i, j) as f32).unwrap();
+                    m = m.with_erodibility(Erodibility::new(e).unwrap()).unwrap();
+                }
+                m.set_water(&water).unwrap();
+                m.fast = fast;
+                m.fused = fused;
+                m.chunk_rows = chunk_rows;
+                let mut h = hf.clone();
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| m.run(&mut h, 30, &NoProgress)).unwrap();
+                (m, h)
+            };
+            let (fused, hf_fused) = build(true, true, 2);
+            for (what, (other, hf_other)) in [
+                ("three passes", build(true, false, 2)),
+                ("general", build(false, false, 1)),
+                ("fused, 1 thread", build(true, true, 1)),
+            ] {
+                let same = |field: &str, a: &[f32], b: &[f32]| {
+                    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                        assert!(
+                            x.to_bits() == y.to_bits() || (*x == 0.0 && *y == 0.0),
+                            "case {case}: {field}[{k}] fused {x} vs {what} {y}"
+                        );
+                    }
+                };
+                same(
+                    "bed",
+                    hf_fused.heights().as_slice(),
+                    hf_other.heights().as_slice(),
+                );
+                same("water", &fused.water, &other.water);
+                same("sediment", &fused.sediment, &other.sediment);
+                same("deposit", &fused.deposit, &other.deposit);
+                same("u", &fused.vel[0], &other.vel[0]);
+                same("v", &fused.vel[1], &other.vel[1]);
+                for k in 0..4 {
+                    same("flux", &fused.flux[k], &other.flux[k]);
+                }
+                let (a, b) = (fused.ledger(), other.ledger());
+                assert_eq!(a.rain, b.rain);
+                assert_eq!(a.outflow_water, b.outflow_water, "case {case}: {what}");
+                assert_eq!(
+                    a.outflow_sediment, b.outflow_sediment,
+                    "case {case}: {what}"
+                );
+                // The row kernel sums evaporation in f32 per block of cells.
+                assert!(
+                    (a.evaporated - b.evaporated).abs() <= 1e-7 * b.evaporated.max(1.0),
+                    "case {case}: evaporated {} vs {what} {}",
+                    a.evaporated,
+                    b.evaporated
+                );
+            }
+            assert!(fused.total_sediment() > 0.0, "case {case}: nothing eroded");
+            if edges == Edges::Open {
+                assert!(fused.ledger().outflow_sediment > 0.0, "case {case}");
+            }
         }
     }
 

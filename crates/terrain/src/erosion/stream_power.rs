@@ -169,11 +169,14 @@ impl StreamPower {
         let up = (p.uplift_m_per_yr * p.dt_yr) as f32;
         let h = hf.heights_mut().as_mut_slice();
         // Uplift everything but the base level.
-        for y in 1..ny - 1 {
-            for v in &mut h[y * nx + 1..(y + 1) * nx - 1] {
-                *v += up;
+        par::map_bands(nx, ny, [&mut *h], |y0, y1, [hb]| {
+            for y in y0.max(1)..y1.min(ny - 1) {
+                let r = (y - y0) * nx;
+                for v in &mut hb[r + 1..r + nx - 1] {
+                    *v += up;
+                }
             }
-        }
+        });
         // Reuse the last step's graph buffers; filling deposits into `sediment`.
         let mut g = self.graph.take().unwrap_or_else(FlowGraph::empty);
         g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut self.sediment));
@@ -197,7 +200,15 @@ impl StreamPower {
                         continue;
                     }
                     let len = f64::from(dist[i]) * cell;
-                    let am = f64::from(area[i]).powf(m);
+                    // A^m: a square root for the default m = ½ (no `powf`).
+                    let a = f64::from(area[i]);
+                    let am = if m == 0.5 {
+                        a.sqrt()
+                    } else if m == 1.0 {
+                        a
+                    } else {
+                        a.powf(m)
+                    };
                     let ln = if n == 1.0 { len } else { len.powf(n) };
                     *f = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * am / ln;
                 }
