@@ -84,6 +84,7 @@ fn calibration(c: &mut Criterion) {
         .collect();
     let mut b = vec![Complex::new(0.0f32, 0.0); n * n];
     let mut scratch = vec![Complex::new(0.0f32, 0.0); fft.get_inplace_scratch_len()];
+    interleaved_ratio(&fft, &input);
     let mut group = c.benchmark_group("ocean_calibration");
     group.sample_size(20);
     group.measurement_time(Duration::from_secs(3));
@@ -104,6 +105,69 @@ fn calibration(c: &mut Criterion) {
         )
     });
     group.finish();
+}
+
+/// The frame ÷ calibration ratio measured robustly against this machine's
+/// drifting speed: 512² frames (one thread) and calibration transforms
+/// alternate, one of each per pair, so both see the same conditions; prints
+/// the minimum and median of each and the median of the per-pair ratios.
+fn interleaved_ratio(
+    fft: &std::sync::Arc<dyn rustfft::Fft<f32>>,
+    input: &[rustfft::num_complex::Complex<f32>],
+) {
+    use std::time::Instant;
+    let n = 512;
+    let o = ocean(n);
+    let p = pool(1);
+    let mut b = vec![rustfft::num_complex::Complex::new(0.0f32, 0.0); n * n];
+    let mut scratch =
+        vec![rustfft::num_complex::Complex::new(0.0f32, 0.0); fft.get_inplace_scratch_len()];
+    let pairs = 200;
+    let (mut frames, mut calib, mut ratios) = (vec![], vec![], vec![]);
+    p.install(|| {
+        let mut frame = Frame::new(&o).expect("frame");
+        let mut t = 0.0;
+        for i in 0..pairs + 10 {
+            t += 0.04;
+            let s = Instant::now();
+            o.evaluate_into(t, &mut frame).expect("evaluate");
+            black_box(frame.height().as_slice()[0]);
+            let f = s.elapsed().as_secs_f64() * 1e3;
+            let mut a = input.to_vec();
+            let s = Instant::now();
+            fft.process_with_scratch(&mut a, &mut scratch);
+            for y in 0..n {
+                for x in 0..n {
+                    b[x * n + y] = a[y * n + x];
+                }
+            }
+            fft.process_with_scratch(&mut b, &mut scratch);
+            black_box(b[1]);
+            let c = s.elapsed().as_secs_f64() * 1e3;
+            if i >= 10 {
+                frames.push(f);
+                calib.push(c);
+                ratios.push(f / c);
+            }
+        }
+    });
+    let sorted = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let (frames, calib, ratios) = (sorted(frames), sorted(calib), sorted(ratios));
+    let mid = pairs / 2;
+    println!(
+        "[ocean] interleaved 512² 1 thread, {pairs} pairs: frame min {:.3} ms, median {:.3} ms; \
+         calibration min {:.3} ms, median {:.3} ms; frame ÷ calibration: of the minima {:.2}×, \
+         median per pair {:.2}×",
+        frames[0],
+        frames[mid],
+        calib[0],
+        calib[mid],
+        frames[0] / calib[0],
+        ratios[mid],
+    );
 }
 
 criterion_group!(benches, full_frame, calibration);

@@ -275,36 +275,39 @@ fn fill_column(
     let qi = &ocean.q_im[base..base + ny];
     let ik = &ocean.inv_k[base..base + ny];
     let kys = &ocean.ky[..ny];
-    let mut m0 = 0;
-    while m0 < ny {
-        let w = L.min(ny - m0);
+    // `ny` is a power of two ≥ 16, so every chunk is full: fixed-length
+    // loops over arrays, which vectorise (complex stores included).
+    debug_assert_eq!(ny % L, 0);
+    for m0 in (0..ny).step_by(L) {
         let mut hr = [0.0f32; L];
         let mut hi = [0.0f32; L];
-        for j in 0..w {
+        for j in 0..L {
             let m = m0 + j;
             let (s, c) = sin_cos(phase(nu[m] * t));
             // h̃ = h̃₀(k) e^{−iθ} + h̃₀*(−k) e^{iθ} = p cos θ − i q sin θ.
             hr[j] = pr[m] * c + qi[m] * s;
             hi[j] = pi[m] * c - qr[m] * s;
         }
-        for j in 0..w {
-            let m = m0 + j;
-            let ky = kys[m];
-            o0[m] = C32::new(hr[j], hi[j]);
-            o1[m] = C32::new(-ky * hi[j], ky * hr[j]);
+        let ky: &[f32; L] = kys[m0..m0 + L].try_into().expect("L wavenumbers");
+        let o0: &mut [C32; L] = (&mut o0[m0..m0 + L]).try_into().expect("L values");
+        let o1: &mut [C32; L] = (&mut o1[m0..m0 + L]).try_into().expect("L values");
+        for j in 0..L {
+            o0[j] = C32::new(hr[j], hi[j]);
+            o1[j] = C32::new(-ky[j] * hi[j], ky[j] * hr[j]);
         }
         if chop {
-            for j in 0..w {
-                let m = m0 + j;
-                let ky = kys[m];
-                let l = lam * ik[m];
+            let ik: &[f32; L] = ik[m0..m0 + L].try_into().expect("L values");
+            let o2: &mut [C32; L] = (&mut o2[m0..m0 + L]).try_into().expect("L values");
+            let o3: &mut [C32; L] = (&mut o3[m0..m0 + L]).try_into().expect("L values");
+            let o4: &mut [C32; L] = (&mut o4[m0..m0 + L]).try_into().expect("L values");
+            for j in 0..L {
+                let l = lam * ik[j];
                 let (lr, li) = (l * hr[j], l * hi[j]);
-                o2[m] = C32::new(lr, li);
-                o3[m] = C32::new(-ky * li, ky * lr);
-                o4[m] = C32::new(-ky * ky * lr, -ky * ky * li);
+                o2[j] = C32::new(lr, li);
+                o3[j] = C32::new(-ky[j] * li, ky[j] * lr);
+                o4[j] = C32::new(-ky[j] * ky[j] * lr, -ky[j] * ky[j] * li);
             }
         }
-        m0 += w;
     }
 }
 
