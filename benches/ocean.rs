@@ -84,7 +84,9 @@ fn calibration(c: &mut Criterion) {
         .collect();
     let mut b = vec![Complex::new(0.0f32, 0.0); n * n];
     let mut scratch = vec![Complex::new(0.0f32, 0.0); fft.get_inplace_scratch_len()];
-    interleaved_ratio(&fft, &input);
+    if selected("ocean_calibration/interleaved_ratio") {
+        interleaved_ratio(&fft, &input);
+    }
     let mut group = c.benchmark_group("ocean_calibration");
     group.sample_size(20);
     group.measurement_time(Duration::from_secs(3));
@@ -105,6 +107,16 @@ fn calibration(c: &mut Criterion) {
         )
     });
     group.finish();
+}
+
+/// Whether the command line's filters (criterion's positional arguments,
+/// matched here as substrings) select `name`; no filter selects everything.
+fn selected(name: &str) -> bool {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
+        .collect();
+    filters.is_empty() || filters.iter().any(|f| name.contains(f.as_str()))
 }
 
 /// The frame ÷ calibration ratio measured robustly against this machine's
