@@ -111,6 +111,23 @@ pub(crate) fn group_width(nx: usize) -> usize {
     (nx / 2).min(16)
 }
 
+/// Padding (complex values) after each column group of the intermediate
+/// planes. Unpadded, a group spans `ny · 16` values (64 KiB at 512²), so
+/// the 16 groups' values of one row all fell into the same L1 and L2 cache
+/// sets, and the row pass's reads of a row evicted each other.
+const GROUP_PAD: usize = 16;
+
+/// Distance (complex values) between column groups in the intermediate
+/// planes: the group's `ny` rows of `gw` values, then [`GROUP_PAD`].
+pub(crate) fn group_stride(nx: usize, ny: usize) -> usize {
+    ny * group_width(nx) + GROUP_PAD
+}
+
+/// Length of each intermediate plane: every column group with its padding.
+pub(crate) fn plane_len(nx: usize, ny: usize) -> usize {
+    nx / 2 / group_width(nx) * group_stride(nx, ny)
+}
+
 /// Padding (complex values) after each column of a slot's group buffer, so
 /// the columns of a group do not all map to the same L1 sets.
 const COL_PAD: usize = 8;
@@ -140,14 +157,15 @@ fn column_pass(
 ) {
     let (nx, ny) = (ocean.params.nx, ocean.params.ny);
     let gw = group_width(nx);
-    let groups = cols[0].len() / (ny * gw);
+    let stride = group_stride(nx, ny);
+    let groups = cols[0].len() / stride;
     #[cfg(feature = "parallel")]
     if slots.len() > 1 && groups > 1 {
         let left_slots = slots.len() / 2;
         let left = groups * left_slots / slots.len();
         if left > 0 {
             let (sa, sb) = slots.split_at_mut(left_slots);
-            let (ca, cb) = split_all(cols, left * ny * gw);
+            let (ca, cb) = split_all(cols, left * stride);
             rayon::join(
                 || column_pass(ocean, t, ca, g0, sa, simd),
                 || column_pass(ocean, t, cb, g0 + left, sb, simd),
@@ -190,7 +208,8 @@ impl Kernel for ColumnLeaf<'_, '_> {
         let (nx, ny) = (ocean.params.nx, ocean.params.ny);
         let gw = group_width(nx);
         let cs = ny + COL_PAD;
-        let groups = cols[0].len() / (ny * gw);
+        let stride = group_stride(nx, ny);
+        let groups = cols[0].len() / stride;
         let lam = ocean.params.choppiness as f32;
         let chop = choppy(ocean);
         let used = if chop { SOURCES } else { 2 };
@@ -217,7 +236,7 @@ impl Kernel for ColumnLeaf<'_, '_> {
             // Transpose into [row][column in group].
             for (s, dst) in cols.iter_mut().enumerate().take(used) {
                 let src = &buf[s * gw * cs..(s + 1) * gw * cs];
-                let dst = &mut dst[g * ny * gw..(g + 1) * ny * gw];
+                let dst = &mut dst[g * stride..g * stride + ny * gw];
                 transpose_group(src, dst, gw, cs, ny);
             }
         }
@@ -499,9 +518,10 @@ fn unfold<const FA: u8, const FB: u8>(
 ) {
     let (nx, ny) = (ocean.params.nx, ocean.params.ny);
     let gw = group_width(nx);
+    let stride = group_stride(nx, ny);
     if gw != 16 {
         for n in 1..nx / 2 {
-            let at = (n / gw) * ny * gw + gy * gw + n % gw;
+            let at = (n / gw) * stride + gy * gw + n % gw;
             let a = apply::<FA>(ca[at], ocean.kx[n]);
             let b = apply::<FB>(cb[at], ocean.kx[n]);
             g[n] = C32::new(a.re - b.im, a.im + b.re);
@@ -510,7 +530,7 @@ fn unfold<const FA: u8, const FB: u8>(
         return;
     }
     for grp in 0..nx / 2 / 16 {
-        let at = grp * ny * 16 + gy * 16;
+        let at = grp * stride + gy * 16;
         let va: &[C32; 16] = ca[at..at + 16].try_into().expect("16 values");
         let vb: &[C32; 16] = cb[at..at + 16].try_into().expect("16 values");
         let kx: &[f32; 16] = ocean.kx[grp * 16..grp * 16 + 16]

@@ -111,7 +111,7 @@ impl Frame {
         let (nx, ny) = (p.nx, p.ny);
         let grid = Grid2::new(nx, ny, 0.0f32)?;
         let zero = Complex::new(0.0f32, 0.0);
-        let half = nx / 2 * ny;
+        let plane = crate::fft::plane_len(nx, ny);
         #[cfg(feature = "parallel")]
         let workers = rayon::current_num_threads().clamp(1, 64);
         #[cfg(not(feature = "parallel"))]
@@ -128,7 +128,7 @@ impl Frame {
         Ok(Self {
             fields: std::array::from_fn(|_| grid.clone()),
             work: Workspace {
-                cols: std::array::from_fn(|_| vec![zero; half]),
+                cols: std::array::from_fn(|_| vec![zero; plane]),
                 slots: vec![slot; workers],
             },
             time: 0.0,
@@ -140,7 +140,7 @@ impl Frame {
     pub(crate) fn check_matches(&self, ocean: &Ocean) -> Result<()> {
         let p = ocean.params();
         let (w, h) = self.fields[0].dims();
-        let expected_cols = p.nx / 2 * p.ny;
+        let expected_cols = crate::fft::plane_len(p.nx, p.ny);
         if (w, h) != (p.nx, p.ny) || self.work.cols[0].len() != expected_cols {
             return Err(OceanError::SizeMismatch {
                 expected: format!("a frame of {} × {}", p.nx, p.ny),
