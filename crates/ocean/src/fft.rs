@@ -156,7 +156,6 @@ fn column_pass(
     simd: Simd,
 ) {
     let (nx, ny) = (ocean.params.nx, ocean.params.ny);
-    let gw = group_width(nx);
     let stride = group_stride(nx, ny);
     let groups = cols[0].len() / stride;
     #[cfg(feature = "parallel")]
