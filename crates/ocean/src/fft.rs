@@ -155,14 +155,13 @@ fn column_pass(
     slots: &mut [crate::frame::Slot],
     simd: Simd,
 ) {
-    let (nx, ny) = (ocean.params.nx, ocean.params.ny);
-    let stride = group_stride(nx, ny);
-    let groups = cols[0].len() / stride;
     #[cfg(feature = "parallel")]
-    if slots.len() > 1 && groups > 1 {
+    if slots.len() > 1 {
+        let stride = group_stride(ocean.params.nx, ocean.params.ny);
+        let groups = cols[0].len() / stride;
         let left_slots = slots.len() / 2;
         let left = groups * left_slots / slots.len();
-        if left > 0 {
+        if left > 0 && left < groups {
             let (sa, sb) = slots.split_at_mut(left_slots);
             let (ca, cb) = split_all(cols, left * stride);
             rayon::join(
@@ -338,10 +337,10 @@ fn row_pass(
     slots: &mut [crate::frame::Slot],
     simd: Simd,
 ) {
-    let nx = ocean.params.nx;
-    let nrows = outs[0].len() / nx;
     #[cfg(feature = "parallel")]
-    if slots.len() > 1 && nrows > 1 {
+    if slots.len() > 1 {
+        let nx = ocean.params.nx;
+        let nrows = outs[0].len() / nx;
         let left_slots = slots.len() / 2;
         let left_rows = nrows * left_slots / slots.len();
         if left_rows > 0 && left_rows < nrows {
