@@ -91,6 +91,7 @@ fn choppy(ocean: &Ocean) -> bool {
 }
 
 /// Splits `slices` at element `at` (each), returning the heads and tails.
+#[cfg(feature = "parallel")]
 fn split_all<'a, const K: usize, T>(
     slices: [&'a mut [T]; K],
     at: usize,
