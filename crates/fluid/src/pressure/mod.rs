@@ -590,7 +590,6 @@ impl PoissonSystem {
                         let n = xc.len();
                         let dd = &d[s..s + n];
                         let qq = &q[s..s + n];
-                        let mut acc = 0.0f64;
                         for ((((xv, rv), o), &dv), &qv) in xc
                             .iter_mut()
                             .zip(rc.iter_mut())
@@ -602,9 +601,19 @@ impl PoissonSystem {
                             let nr = *rv - alpha * f64::from(qv);
                             *rv = nr;
                             *o = nr as f32;
-                            acc += nr * nr;
                         }
-                        acc
+                        // r·r of the block while it is in cache: eight
+                        // lane sums (a single running sum would keep the
+                        // loop scalar), added in a fixed order.
+                        let mut lanes = [0.0f64; 8];
+                        let mut it8 = rc.chunks_exact(8);
+                        for c in &mut it8 {
+                            for (a, &v) in lanes.iter_mut().zip(c) {
+                                *a += v * v;
+                            }
+                        }
+                        let tail: f64 = it8.remainder().iter().map(|&v| v * v).sum();
+                        lanes.iter().sum::<f64>() + tail
                     },
                 );
                 self.d = d;
