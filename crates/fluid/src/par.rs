@@ -142,6 +142,38 @@ pub(crate) fn for_chunks2_sum2<T: Send, U: Send>(
         .fold((0.0, 0.0), add)
 }
 
+/// Like [`for_chunks2`] over three equally chunked slices, returning
+/// `Σ f(chunk_index, a, b, c)` with the partials added in chunk order
+/// (deterministic).
+pub(crate) fn for_chunks3_sum<T: Send, U: Send, V: Send>(
+    a: &mut [T],
+    b: &mut [U],
+    c: &mut [V],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T], &mut [U], &mut [V]) -> f64 + Sync + Send,
+) -> f64 {
+    let chunk = chunk.max(1);
+    #[cfg(feature = "parallel")]
+    if a.len() >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        let parts: Vec<f64> = a
+            .par_chunks_mut(chunk)
+            .zip(b.par_chunks_mut(chunk))
+            .zip(c.par_chunks_mut(chunk))
+            .with_min_len((4096 / chunk).max(1))
+            .enumerate()
+            .map(|(i, ((x, y), z))| f(i, x, y, z))
+            .collect();
+        return parts.into_iter().sum();
+    }
+    a.chunks_mut(chunk)
+        .zip(b.chunks_mut(chunk))
+        .zip(c.chunks_mut(chunk))
+        .enumerate()
+        .map(|(i, ((x, y), z))| f(i, x, y, z))
+        .sum()
+}
+
 /// Returns `Σ_i f(i)` over `0..n` blocks, each block's partial computed
 /// independently and the partials added in index order (deterministic).
 pub(crate) fn sum_blocks(

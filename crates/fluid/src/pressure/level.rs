@@ -245,6 +245,49 @@ impl Level {
         }
     }
 
+    /// `y = A x` as [`Level::apply`], returning `x·y` over the interior
+    /// cells in `f64`: the same per-row sums, added in the same row order,
+    /// as [`Level::dot`]`(x, y)` after `apply` (bit-identical), in one pass.
+    pub fn apply_dot(&self, x: &[f32], y: &mut [f32]) -> f64 {
+        match self.act.len() {
+            0 => self.apply_dot_k::<0>(x, y),
+            1 => self.apply_dot_k::<1>(x, y),
+            2 => self.apply_dot_k::<2>(x, y),
+            _ => self.apply_dot_k::<3>(x, y),
+        }
+    }
+
+    fn apply_dot_k<const K: usize>(&self, x: &[f32], y: &mut [f32]) -> f64 {
+        let st = self.strides::<K>();
+        let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
+        let body = &mut y[G..G + self.rows() * m0];
+        par::for_chunks_sum(body, m0, |r, yrow| {
+            let Some(base) = self.row_base(r) else {
+                return 0.0;
+            };
+            let s = base + p0;
+            let out = &mut yrow[p0..p0 + n0];
+            let mut acc = [0.0f32; CH];
+            for i0 in (0..n0).step_by(CH) {
+                let w = CH.min(n0 - i0);
+                let a = &mut acc[..w];
+                let c = s + i0;
+                neighbour_sum::<K, f32>(x, c, st, a);
+                let xs = &x[c..c + w];
+                let ds = &self.diag[c..c + w];
+                for (((o, &xv), &d), &off) in out[i0..i0 + w].iter_mut().zip(xs).zip(ds).zip(&*a) {
+                    let v = d * xv - off;
+                    *o = if d != 0.0 { v } else { 0.0 };
+                }
+            }
+            x[s..s + n0]
+                .iter()
+                .zip(&*out)
+                .map(|(&a, &b)| f64::from(a) * f64::from(b))
+                .sum()
+        })
+    }
+
     fn strides<const K: usize>(&self) -> [usize; K] {
         std::array::from_fn(|q| self.st[self.act[q]])
     }
@@ -394,6 +437,35 @@ impl Level {
             self.fill_ghosts(&mut x);
         }
         self.gs_half(&x, &self.b, &mut t, first);
+        if self.periodic.iter().any(|&p| p) {
+            self.fill_ghosts(&mut t);
+        }
+        self.gs_half(&t, &self.b, &mut x, 1 - first);
+        self.x = x;
+        self.t = t;
+    }
+
+    /// `smooth(first)` from a zero iterate, without reading `self.x`: the
+    /// first half sweep's neighbour sum is zero, so it is the weighted
+    /// right-hand side `(b + 0)·w_first` (bit-identical to `gs_half` on a
+    /// zero `x`, signed zeros included). Writes every interior cell of
+    /// `self.x`; padding is never written by the smoother, so the caller
+    /// need not clear `x` first (periodic ghosts are refilled before reads).
+    pub fn smooth_from_zero(&mut self, first: usize) {
+        let mut x = std::mem::take(&mut self.x);
+        let mut t = std::mem::take(&mut self.t);
+        let wc = &self.invc[first];
+        let b = &self.b;
+        par::for_chunks(&mut t, par::BLOCK, |bi, tc| {
+            let s = bi * par::BLOCK;
+            let n = tc.len();
+            for ((o, &bv), &iv) in tc.iter_mut().zip(&b[s..s + n]).zip(&wc[s..s + n]) {
+                // `+ 0.0` turns a −0 right-hand side into +0, as the
+                // general sweep's `b + Σ 0` does.
+                let v = (bv + 0.0) * iv;
+                *o = if iv != 0.0 { v } else { 0.0 };
+            }
+        });
         if self.periodic.iter().any(|&p| p) {
             self.fill_ghosts(&mut t);
         }

@@ -493,17 +493,21 @@ impl PoissonSystem {
     fn vcycle(&mut self, li: usize) {
         let last = li + 1 == self.levels.len();
         let l = &mut self.levels[li];
-        l.x.fill(0.0);
+        // The iterate starts at zero: the first sweep pair skips reading it
+        // (`smooth_from_zero`), which also writes every unknown of `x`.
         if last {
             let sweeps = l.act.iter().map(|&a| l.n[a]).max().unwrap_or(1) * 2 + 8;
-            for _ in 0..sweeps {
+            l.smooth_from_zero(0);
+            l.smooth(1);
+            for _ in 1..sweeps {
                 l.smooth(0);
                 l.smooth(1);
             }
             return;
         }
         const NU: usize = 2;
-        for _ in 0..NU {
+        l.smooth_from_zero(0);
+        for _ in 1..NU {
             l.smooth(0);
         }
         // Residual into t (t is scratch for smoothing, free now).
@@ -566,29 +570,57 @@ impl PoissonSystem {
                 let l = &self.levels[0];
                 let mut d = std::mem::take(&mut self.d);
                 l.fill_ghosts(&mut d);
-                l.apply(&d, &mut self.q);
-                let dq = l.dot(&d, &self.q);
+                let dq = l.apply_dot(&d, &mut self.q);
                 if dq <= 0.0 || !dq.is_finite() {
                     self.d = d;
                     continue 'outer;
                 }
                 let alpha = rz / dq;
+                // One pass: x += αd, r −= αq, the f32 copy of r the
+                // preconditioner reads, and r·r. Every vector is zero off
+                // the unknowns, so the flat sum equals the interior one.
                 let q = &self.q;
-                crate::par::for_chunks2(x, &mut r, crate::par::BLOCK, |bi, xc, rc| {
-                    let s = bi * crate::par::BLOCK;
-                    let dd = &d[s..s + xc.len()];
-                    let qq = &q[s..s + xc.len()];
-                    for (((xv, rv), &dv), &qv) in xc.iter_mut().zip(rc.iter_mut()).zip(dd).zip(qq) {
-                        *xv += alpha * f64::from(dv);
-                        *rv -= alpha * f64::from(qv);
-                    }
-                });
+                let rr = crate::par::for_chunks3_sum(
+                    x,
+                    &mut r,
+                    &mut self.r,
+                    crate::par::BLOCK,
+                    |bi, xc, rc, r32| {
+                        let s = bi * crate::par::BLOCK;
+                        let n = xc.len();
+                        let dd = &d[s..s + n];
+                        let qq = &q[s..s + n];
+                        for ((((xv, rv), o), &dv), &qv) in xc
+                            .iter_mut()
+                            .zip(rc.iter_mut())
+                            .zip(r32.iter_mut())
+                            .zip(dd)
+                            .zip(qq)
+                        {
+                            *xv += alpha * f64::from(dv);
+                            let nr = *rv - alpha * f64::from(qv);
+                            *rv = nr;
+                            *o = nr as f32;
+                        }
+                        // r·r of the block while it is in cache: eight
+                        // lane sums (a single running sum would keep the
+                        // loop scalar), added in a fixed order.
+                        let mut lanes = [0.0f64; 8];
+                        let mut it8 = rc.chunks_exact(8);
+                        for c in &mut it8 {
+                            for (a, &v) in lanes.iter_mut().zip(c) {
+                                *a += v * v;
+                            }
+                        }
+                        let tail: f64 = it8.remainder().iter().map(|&v| v * v).sum();
+                        lanes.iter().sum::<f64>() + tail
+                    },
+                );
                 self.d = d;
-                let rr = self.levels[0].dot(&r, &r);
                 if rr.sqrt() / bn <= tol {
                     continue 'outer;
                 }
-                self.precondition_from(&r, p.solver);
+                self.precondition(p.solver);
                 let rz_new = self.levels[0].dot(&r, &self.z);
                 let beta = (rz_new / rz) as f32;
                 rz = rz_new;
