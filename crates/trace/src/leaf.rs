@@ -18,6 +18,24 @@ pub(crate) enum Exit {
     End,
 }
 
+impl Exit {
+    /// How a ray leaves a cell whose x and y boundaries it reaches at `tx`
+    /// and `ty`, when its clipped range ends at `t_end`: the traversal's
+    /// exit t (never before `t`) and the side.
+    #[inline(always)]
+    pub(crate) fn of(tx: f32, ty: f32, t_end: f32, t: f32) -> (f32, Exit) {
+        let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+        let exit = if t_exit >= t_end {
+            Exit::End
+        } else if tx <= ty {
+            Exit::X
+        } else {
+            Exit::Y
+        };
+        (t_exit, exit)
+    }
+}
+
 /// `min` without NaN handling (operands are never NaN here): one instruction.
 #[inline(always)]
 pub(crate) fn fmin(a: f32, b: f32) -> f32 {

@@ -446,15 +446,8 @@ impl<'a> MipmapTracer<'a> {
             } else {
                 f32::INFINITY
             };
-            let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+            let (t_exit, exit) = Exit::of(tx, ty, t_end, t);
             if level == 0 {
-                let exit = if t_exit >= t_end {
-                    Exit::End
-                } else if tx <= ty {
-                    Exit::X
-                } else {
-                    Exit::Y
-                };
                 let first = t == r.t0;
                 if let Some(h) = leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, stats) {
                     let h = nearer(pending, h);

@@ -479,14 +479,7 @@ fn walk_lanes_with<const ANY: bool>(
                     } else {
                         f32::INFINITY
                     };
-                    let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
-                    let exit = if t_exit >= t_end {
-                        Exit::End
-                    } else if tx <= ty {
-                        Exit::X
-                    } else {
-                        Exit::Y
-                    };
+                    let (t_exit, exit) = Exit::of(tx, ty, t_end, t);
                     let first = t == r.t0;
                     match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
                         Some(h) if ANY || h.t <= t_exit + r.ttol => {
