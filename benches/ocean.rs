@@ -94,19 +94,31 @@ fn calibration(c: &mut Criterion) {
         bch.iter_batched_ref(
             || input.clone(),
             |a| {
-                fft.process_with_scratch(a, &mut scratch);
-                for y in 0..n {
-                    for x in 0..n {
-                        b[x * n + y] = a[y * n + x];
-                    }
-                }
-                fft.process_with_scratch(&mut b, &mut scratch);
+                calibration_transform(fft.as_ref(), a, &mut b, &mut scratch);
                 black_box(b[1])
             },
             BatchSize::LargeInput,
         )
     });
     group.finish();
+}
+
+/// The calibration workload on an n × n grid `a`: row transforms, a plain
+/// transpose into `b`, row transforms of `b` (the result stays transposed).
+fn calibration_transform(
+    fft: &dyn rustfft::Fft<f32>,
+    a: &mut [rustfft::num_complex::Complex<f32>],
+    b: &mut [rustfft::num_complex::Complex<f32>],
+    scratch: &mut [rustfft::num_complex::Complex<f32>],
+) {
+    let n = fft.len();
+    fft.process_with_scratch(a, scratch);
+    for y in 0..n {
+        for x in 0..n {
+            b[x * n + y] = a[y * n + x];
+        }
+    }
+    fft.process_with_scratch(b, scratch);
 }
 
 /// Whether the command line's filters (criterion's positional arguments,
@@ -147,13 +159,7 @@ fn interleaved_ratio(
             let f = s.elapsed().as_secs_f64() * 1e3;
             let mut a = input.to_vec();
             let s = Instant::now();
-            fft.process_with_scratch(&mut a, &mut scratch);
-            for y in 0..n {
-                for x in 0..n {
-                    b[x * n + y] = a[y * n + x];
-                }
-            }
-            fft.process_with_scratch(&mut b, &mut scratch);
+            calibration_transform(fft.as_ref(), &mut a, &mut b, &mut scratch);
             black_box(b[1]);
             let c = s.elapsed().as_secs_f64() * 1e3;
             if i >= 10 {
