@@ -267,19 +267,7 @@ impl Level {
             };
             let s = base + p0;
             let out = &mut yrow[p0..p0 + n0];
-            let mut acc = [0.0f32; CH];
-            for i0 in (0..n0).step_by(CH) {
-                let w = CH.min(n0 - i0);
-                let a = &mut acc[..w];
-                let c = s + i0;
-                neighbour_sum::<K, f32>(x, c, st, a);
-                let xs = &x[c..c + w];
-                let ds = &self.diag[c..c + w];
-                for (((o, &xv), &d), &off) in out[i0..i0 + w].iter_mut().zip(xs).zip(ds).zip(&*a) {
-                    let v = d * xv - off;
-                    *o = if d != 0.0 { v } else { 0.0 };
-                }
-            }
+            self.apply_row::<K, f32>(x, s, st, out);
             x[s..s + n0]
                 .iter()
                 .zip(&*out)
@@ -305,22 +293,27 @@ impl Level {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
         self.rows_par(y, |_, base, yrow| {
-            let s = base + p0;
-            let out = &mut yrow[p0..p0 + n0];
-            let mut acc = [T::default(); CH];
-            for i0 in (0..n0).step_by(CH) {
-                let w = CH.min(n0 - i0);
-                let a = &mut acc[..w];
-                let c = s + i0;
-                neighbour_sum::<K, T>(x, c, st, a);
-                let xs = &x[c..c + w];
-                let ds = &self.diag[c..c + w];
-                for (((o, &xv), &d), &off) in out[i0..i0 + w].iter_mut().zip(xs).zip(ds).zip(&*a) {
-                    let v = T::from(d) * xv - off;
-                    *o = if d != 0.0 { v } else { T::default() };
-                }
-            }
+            self.apply_row::<K, T>(x, base + p0, st, &mut yrow[p0..p0 + n0]);
         });
+    }
+
+    /// `out` = (A x) over the row of unknowns starting at padded index `s`.
+    #[inline(always)]
+    fn apply_row<const K: usize, T: Real>(&self, x: &[T], s: usize, st: [usize; K], out: &mut [T]) {
+        let n0 = out.len();
+        let mut acc = [T::default(); CH];
+        for i0 in (0..n0).step_by(CH) {
+            let w = CH.min(n0 - i0);
+            let a = &mut acc[..w];
+            let c = s + i0;
+            neighbour_sum::<K, T>(x, c, st, a);
+            let xs = &x[c..c + w];
+            let ds = &self.diag[c..c + w];
+            for (((o, &xv), &d), &off) in out[i0..i0 + w].iter_mut().zip(xs).zip(ds).zip(&*a) {
+                let v = T::from(d) * xv - off;
+                *o = if d != 0.0 { v } else { T::default() };
+            }
+        }
     }
 
     /// One red or black half sweep of Gauss–Seidel, out of place:
