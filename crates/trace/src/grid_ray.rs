@@ -218,6 +218,248 @@ impl GridRay {
     }
 }
 
+/// Rays set up together by [`setup_lanes`].
+pub(crate) const SETUP_LANES: usize = 16;
+
+/// The set-up of [`SETUP_LANES`] rays, struct-of-arrays: each field is the
+/// [`GridRay`] field of the same name for every lane, plus the walk's start
+/// ([`crate::MipmapTracer`]'s entry cell and level).
+#[derive(Clone, Copy)]
+pub(crate) struct SetupLanes {
+    /// The ray is valid and meets the box within its range (`setup` is `Some`).
+    pub ok: [bool; SETUP_LANES],
+    pub o: [[f32; SETUP_LANES]; 3],
+    pub d: [[f32; SETUP_LANES]; 3],
+    pub inv: [[f32; SETUP_LANES]; 2],
+    pub t0: [f32; SETUP_LANES],
+    pub t1: [f32; SETUP_LANES],
+    pub zeps: [f32; SETUP_LANES],
+    pub xyeps: [f32; SETUP_LANES],
+    pub ttol: [f32; SETUP_LANES],
+    pub zm: [f32; SETUP_LANES],
+    pub px: [[f32; SETUP_LANES]; 3],
+    pub py: [[f32; SETUP_LANES]; 3],
+    pub pz: [[f32; SETUP_LANES]; 3],
+    /// Entry cell and start level of the hierarchical walk.
+    pub ci: [u32; SETUP_LANES],
+    pub cj: [u32; SETUP_LANES],
+    pub level: [u32; SETUP_LANES],
+}
+
+impl SetupLanes {
+    /// All zero (every lane not `ok`).
+    pub fn new() -> Self {
+        Self {
+            ok: [false; SETUP_LANES],
+            o: [[0.0; SETUP_LANES]; 3],
+            d: [[0.0; SETUP_LANES]; 3],
+            inv: [[0.0; SETUP_LANES]; 2],
+            t0: [0.0; SETUP_LANES],
+            t1: [0.0; SETUP_LANES],
+            zeps: [0.0; SETUP_LANES],
+            xyeps: [0.0; SETUP_LANES],
+            ttol: [0.0; SETUP_LANES],
+            zm: [0.0; SETUP_LANES],
+            px: [[0.0; SETUP_LANES]; 3],
+            py: [[0.0; SETUP_LANES]; 3],
+            pz: [[0.0; SETUP_LANES]; 3],
+            ci: [0; SETUP_LANES],
+            cj: [0; SETUP_LANES],
+            level: [0; SETUP_LANES],
+        }
+    }
+
+    /// Lane `l`'s ray, as [`GridRay::new`] would set it up over `[t_min, t_max]`.
+    #[inline(always)]
+    pub fn ray(&self, l: usize, t_min: f32, t_max: f32) -> GridRay {
+        let v = |a: &[[f32; SETUP_LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        GridRay {
+            o: v(&self.o),
+            d: v(&self.d),
+            inv: Vec2::new(self.inv[0][l], self.inv[1][l]),
+            t_min,
+            t_max,
+            t0: self.t0[l],
+            t1: self.t1[l],
+            zeps: self.zeps[l],
+            xyeps: self.xyeps[l],
+            ttol: self.ttol[l],
+            zm: self.zm[l],
+            shear: Shear {
+                px: v(&self.px),
+                py: v(&self.py),
+                pz: v(&self.pz),
+            },
+        }
+    }
+}
+
+/// [`GridRay::new`], the box test and the walk's start cell and level
+/// ([`crate::MipmapTracer`]'s `start`) for [`SETUP_LANES`] rays at once,
+/// written without data-dependent branches so that the loop over lanes
+/// vectorises (one vector division per quotient for all lanes). Every lane
+/// computes the same `f32` operations in the same order as the single-ray
+/// set-up, so the results are equal bit for bit (tested). The range must be
+/// valid (not NaN, `t_min ≤ t_max`); `top` is the pyramid's top level.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+pub(crate) fn setup_lanes(
+    f: &FieldView<'_>,
+    rays: &[Ray; SETUP_LANES],
+    t_min: f32,
+    t_max: f32,
+    top: u32,
+    s: &mut SetupLanes,
+) {
+    let mut ro = [[0.0f32; SETUP_LANES]; 3];
+    let mut rd = [[0.0f32; SETUP_LANES]; 3];
+    for l in 0..SETUP_LANES {
+        let (o, d) = (rays[l].origin, rays[l].dir);
+        ro[0][l] = o.x;
+        ro[1][l] = o.y;
+        ro[2][l] = o.z;
+        rd[0][l] = d.x;
+        rd[1][l] = d.y;
+        rd[2][l] = d.z;
+    }
+    let eps = f32::EPSILON;
+    let (cell, zabs, nxy, smax) = (f.cell, f.zabs, f.nxy, f.smax);
+    let (ncx, ncy) = (f.ncx as f32, f.ncy as f32);
+    let (cx, cy) = ((f.ncx - 1) as f32, (f.ncy - 1) as f32);
+    let (zlo, zhi) = (f.zmin, f.zmax);
+    for l in 0..SETUP_LANES {
+        let o = [ro[0][l] / cell, ro[1][l] / cell, ro[2][l]];
+        let d = [rd[0][l] / cell, rd[1][l] / cell, rd[2][l]];
+        let finite = (o[0] * 0.0 + d[0] * 0.0 == 0.0)
+            & (o[1] * 0.0 + d[1] * 0.0 == 0.0)
+            & (o[2] * 0.0 + d[2] * 0.0 == 0.0);
+        let zero = (d[0] == 0.0) & (d[1] == 0.0) & (d[2] == 0.0);
+        let zeps = 16.0 * eps * (o[2].abs() + zabs) + 1e-30;
+        let o1 = o[0].abs() + o[1].abs() + o[2].abs();
+        let xyeps = 4.0 * eps * (o1 + nxy + zabs + 2.0);
+        // The slabs, as in `GridRay::new`, with both outcomes computed.
+        let mut t0 = t_min;
+        let mut t1 = t_max;
+        let bounds = [
+            (-xyeps, ncx + xyeps),
+            (-xyeps, ncy + xyeps),
+            (zlo - zeps, zhi + zeps),
+        ];
+        for k in 0..3 {
+            let (lo, hi) = bounds[k];
+            let (o, d) = (o[k], d[k]);
+            let a = (lo - o) / d;
+            let b = (hi - o) / d;
+            let (near, far) = if a < b { (a, b) } else { (b, a) };
+            let outside = (o < lo) | (o > hi);
+            let flat = d == 0.0;
+            t0 = if flat {
+                if outside { f32::INFINITY } else { t0 }
+            } else {
+                fmax(t0, near)
+            };
+            t1 = if flat {
+                if outside { f32::NEG_INFINITY } else { t1 }
+            } else {
+                fmin(t1, far)
+            };
+        }
+        let dxy = fmax(d[0].abs(), d[1].abs());
+        let ttol = if dxy > 0.0 {
+            xyeps / dxy
+        } else {
+            f32::INFINITY
+        };
+        // The shear (`Shear::new`): the axis of the largest |d| is z, the
+        // other two follow cyclically, swapped when d[kz] < 0.
+        let a = [d[0].abs(), d[1].abs(), d[2].abs()];
+        let kz: u32 = if a[0] >= a[1] && a[0] >= a[2] {
+            0
+        } else if a[1] >= a[2] {
+            1
+        } else {
+            2
+        };
+        let dkz = if kz == 0 {
+            d[0]
+        } else if kz == 1 {
+            d[1]
+        } else {
+            d[2]
+        };
+        let (kx0, dx0) = if kz == 0 {
+            (1, d[1])
+        } else if kz == 1 {
+            (2, d[2])
+        } else {
+            (0, d[0])
+        };
+        let (ky0, dy0) = if kz == 0 {
+            (2, d[2])
+        } else if kz == 1 {
+            (0, d[0])
+        } else {
+            (1, d[1])
+        };
+        let neg = dkz < 0.0;
+        let (kx, dkx) = if neg { (ky0, dy0) } else { (kx0, dx0) };
+        let (ky, dky) = if neg { (kx0, dx0) } else { (ky0, dy0) };
+        let (sx, sy, sz) = (dkx / dkz, dky / dkz, 1.0 / dkz);
+        for c in 0..3u32 {
+            let cz = c == kz;
+            s.px[c as usize][l] = if c == kx {
+                1.0
+            } else if cz {
+                -sx
+            } else {
+                0.0
+            };
+            s.py[c as usize][l] = if c == ky {
+                1.0
+            } else if cz {
+                -sy
+            } else {
+                0.0
+            };
+            s.pz[c as usize][l] = if cz { sz } else { 0.0 };
+        }
+        // The walk's start: entry and exit cells (`GridRay::cell_of`: clamping
+        // before the truncation is the same, the bounds being whole numbers)
+        // and the finest level holding both.
+        let cell_of = |t: f32, k: usize, hi: f32| -> u32 {
+            let p = o[k] + t * d[k];
+            let v = fmin(fmax(p, 0.0), hi);
+            // `v` is in `[0, 2²⁴)`.
+            v as i32 as u32
+        };
+        let (ci, cj) = (cell_of(t0, 0, cx), cell_of(t0, 1, cy));
+        let (ei, ej) = (cell_of(t1, 0, cx), cell_of(t1, 1, cy));
+        let spread = (ci ^ ei) | (cj ^ ej);
+        // Bit length of `spread` (< 2²⁴, exact in f32) from its exponent.
+        let bits = if spread == 0 {
+            0
+        } else {
+            ((spread as i32 as f32).to_bits() >> 23) - 126
+        };
+        s.ok[l] = finite & !zero & (t0 <= t1);
+        for k in 0..3 {
+            s.o[k][l] = o[k];
+            s.d[k][l] = d[k];
+        }
+        s.inv[0][l] = 1.0 / d[0];
+        s.inv[1][l] = 1.0 / d[1];
+        s.t0[l] = t0;
+        s.t1[l] = t1;
+        s.zeps[l] = zeps;
+        s.xyeps[l] = xyeps;
+        s.ttol[l] = ttol;
+        s.zm[l] = zeps + 2.0 * smax * xyeps;
+        s.ci[l] = ci;
+        s.cj[l] = cj;
+        s.level[l] = bits.min(top);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -25,11 +25,11 @@ use natura_core::HeightField;
 
 use crate::error::Result;
 use crate::field::FieldView;
-use crate::grid_ray::GridRay;
+use crate::grid_ray::{GridRay, SETUP_LANES, SetupLanes};
 use crate::leaf::{Exit, fmax, fmin, leaf, nearer};
 use crate::packet::Outcome;
 use crate::ray::{Hit, Ray, TraceStats};
-use crate::ray_cell::CellHit;
+use crate::ray_cell::{CellHit, HIT_LANES, HitLanes};
 use crate::tracer::Tracer;
 
 /// Headroom below `u16::MAX` so rounding a maximum up never overflows.
@@ -273,9 +273,25 @@ impl<'a> MipmapTracer<'a> {
     #[must_use]
     pub fn trace_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<Option<Hit>> {
         let mut out = Vec::with_capacity(rays.len());
+        // Hit records in a second pass, `HIT_LANES` hits at a time.
+        let level = crate::packet::Level::detect();
+        let mut lanes = HitLanes::new();
+        let mut slot = [0usize; HIT_LANES];
+        let mut n = 0;
         self.many::<false>(rays, t_min, t_max, |k, h| {
-            out.push(h.map(|h| crate::ray_cell::make_hit(&self.f, &rays[k], h)));
+            out.push(None);
+            if let Some(h) = h {
+                lanes.hit[n] = h;
+                lanes.dir[n] = rays[k].dir;
+                slot[n] = k;
+                n += 1;
+                if n == HIT_LANES {
+                    crate::packet::hits_with(level, &self.f, &lanes, n, &mut out, &slot);
+                    n = 0;
+                }
+            }
         });
+        crate::packet::hits_with(level, &self.f, &lanes, n, &mut out, &slot);
         out
     }
 
@@ -302,19 +318,44 @@ impl<'a> MipmapTracer<'a> {
         let mut grid = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut cur = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut ends = Vec::with_capacity(CHUNK.min(rays.len()));
+        // The set-up of `GridRay::new` needs a valid range; with an invalid
+        // one no ray is traced.
+        let range_ok = !(t_min.is_nan() || t_max.is_nan() || t_min > t_max);
+        let level = crate::packet::Level::detect();
+        let idle = GridRay::idle();
+        let mut lanes = SetupLanes::new();
         for (n, chunk) in rays.chunks(CHUNK).enumerate() {
             grid.clear();
             cur.clear();
-            for ray in chunk {
-                match self.setup(ray, t_min, t_max) {
-                    Some(r) => {
-                        cur.push(Some(self.start(&r)));
-                        grid.push(r);
-                    }
-                    None => {
-                        cur.push(None);
+            // The set-up of `SETUP_LANES` rays at once (the tail padded with
+            // copies of its first ray).
+            for group in chunk.chunks(SETUP_LANES) {
+                let mut g = [group[0]; SETUP_LANES];
+                g[..group.len()].copy_from_slice(group);
+                if range_ok {
+                    crate::packet::setup_with(
+                        level,
+                        &self.f,
+                        &g,
+                        t_min,
+                        t_max,
+                        self.mip.top,
+                        &mut lanes,
+                    );
+                }
+                for l in 0..group.len() {
+                    if range_ok && lanes.ok[l] {
+                        grid.push(lanes.ray(l, t_min, t_max));
+                        cur.push(Some(Cursor {
+                            ci: lanes.ci[l],
+                            cj: lanes.cj[l],
+                            t: lanes.t0[l],
+                            level: lanes.level[l],
+                        }));
+                    } else {
                         // A stand-in, never walked (its cursor is `None`).
-                        grid.push(GridRay::idle());
+                        grid.push(idle);
+                        cur.push(None);
                     }
                 }
             }

@@ -28,11 +28,12 @@
 //! against the single-ray path, at every instruction set, and against brute
 //! force).
 
-use crate::grid_ray::GridRay;
+use crate::field::FieldView;
+use crate::grid_ray::{GridRay, SETUP_LANES, SetupLanes, setup_lanes};
 use crate::leaf::{Exit, fmax, fmin, leaf};
 use crate::max_mipmap::{Cursor, MipmapTracer};
-use crate::ray::TraceStats;
-use crate::ray_cell::CellHit;
+use crate::ray::{Hit, Ray, TraceStats};
+use crate::ray_cell::{CellHit, HIT_LANES, HitLanes, hit_lanes};
 
 /// Rays stepped together.
 pub(crate) const LANES: usize = 16;
@@ -280,7 +281,7 @@ fn fmax_nan_lo(v: f32, lo: f32) -> f32 {
 
 /// The instruction set the lane steps run with, detected at run time.
 #[derive(Clone, Copy, Debug)]
-enum Level {
+pub(crate) enum Level {
     Scalar,
     #[cfg(target_arch = "x86_64")]
     Avx2,
@@ -289,7 +290,7 @@ enum Level {
 }
 
 impl Level {
-    fn detect() -> Self {
+    pub(crate) fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx512f")
@@ -362,6 +363,105 @@ fn event_mask_avx2(events: &[u32; LANES]) -> u32 {
 fn step_avx512(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
     step(s, k, events);
     event_mask_avx2(events)
+}
+
+/// [`setup_lanes`] compiled for `level` (the loop over lanes vectorises
+/// for AVX2 and AVX-512).
+#[inline]
+pub(crate) fn setup_with(
+    level: Level,
+    f: &FieldView<'_>,
+    rays: &[Ray; SETUP_LANES],
+    t_min: f32,
+    t_max: f32,
+    top: u32,
+    s: &mut SetupLanes,
+) {
+    match level {
+        Level::Scalar => setup_lanes(f, rays, t_min, t_max, top, s),
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: `Level::Avx2` is only returned by `detect` after the CPU
+        // reported AVX2 and FMA, the features `setup_avx2` is compiled for.
+        Level::Avx2 => unsafe { setup_avx2(f, rays, t_min, t_max, top, s) },
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: as for `step_avx512`.
+        Level::Avx512 => unsafe { setup_avx512(f, rays, t_min, t_max, top, s) },
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn setup_avx2(
+    f: &FieldView<'_>,
+    rays: &[Ray; SETUP_LANES],
+    t_min: f32,
+    t_max: f32,
+    top: u32,
+    s: &mut SetupLanes,
+) {
+    setup_lanes(f, rays, t_min, t_max, top, s);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn setup_avx512(
+    f: &FieldView<'_>,
+    rays: &[Ray; SETUP_LANES],
+    t_min: f32,
+    t_max: f32,
+    top: u32,
+    s: &mut SetupLanes,
+) {
+    setup_lanes(f, rays, t_min, t_max, top, s);
+}
+
+/// [`hit_lanes`] compiled for `level`.
+#[inline]
+pub(crate) fn hits_with(
+    level: Level,
+    f: &FieldView<'_>,
+    s: &HitLanes,
+    n: usize,
+    out: &mut [Option<Hit>],
+    slot: &[usize; HIT_LANES],
+) {
+    match level {
+        Level::Scalar => hit_lanes(f, s, n, |l, h| out[slot[l]] = Some(h)),
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: as for `setup_avx2`.
+        Level::Avx2 => unsafe { hits_avx2(f, s, n, out, slot) },
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: as for `step_avx512`.
+        Level::Avx512 => unsafe { hits_avx512(f, s, n, out, slot) },
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn hits_avx2(
+    f: &FieldView<'_>,
+    s: &HitLanes,
+    n: usize,
+    out: &mut [Option<Hit>],
+    slot: &[usize; HIT_LANES],
+) {
+    hit_lanes(f, s, n, |l, h| out[slot[l]] = Some(h));
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn hits_avx512(
+    f: &FieldView<'_>,
+    s: &HitLanes,
+    n: usize,
+    out: &mut [Option<Hit>],
+    slot: &[usize; HIT_LANES],
+) {
+    hit_lanes(f, s, n, |l, h| out[slot[l]] = Some(h));
 }
 
 /// How a ray's walk in the lanes ended.
@@ -613,6 +713,203 @@ mod tests {
             }
         }
         assert!(descended > 1000, "{descended}");
+    }
+
+    /// The instruction sets this CPU supports, portable code first.
+    fn levels() -> Vec<Level> {
+        #[allow(unused_mut)]
+        let mut v = vec![Level::Scalar];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                v.push(Level::Avx2);
+            }
+            if matches!(Level::detect(), Level::Avx512) {
+                v.push(Level::Avx512);
+            }
+        }
+        v
+    }
+
+    /// The set-up in lanes equals `setup` (`GridRay::new` and the box test)
+    /// and `start` bit for bit, at every instruction set: rays with zero,
+    /// tiny, huge, infinite and NaN components, zero directions, axis-parallel
+    /// and vertical rays, rays through grid points, inside and outside the
+    /// box, over several ranges.
+    #[test]
+    fn lane_set_up_equals_the_single_ray_set_up() {
+        let s = Seed(41);
+        let hf = HeightField::from_fn(77, 45, 2.5, |i, j| {
+            30.0 * s.uniform2(i as i64, j as i64) as f32 - 4.0
+        })
+        .unwrap();
+        let tr = MipmapTracer::new(&hf).unwrap();
+        let f = &tr.f;
+        let pick = |k: i64, c: i64, scale: f32, off: f32| {
+            let u = s.uniform2(1000 + k, c) as f32;
+            match (k + c) % 23 {
+                0 => 0.0,
+                1 => f32::NAN,
+                2 => f32::INFINITY,
+                3 => -1e30,
+                4 => 1e-30,
+                5 => (scale * u + off).round(),
+                _ => scale * u + off,
+            }
+        };
+        let mut rays = Vec::new();
+        for k in 0..4000i64 {
+            let o = Vec3::new(
+                pick(k, 0, 260.0, -30.0),
+                pick(k, 1, 160.0, -20.0),
+                pick(k, 2, 60.0, -10.0),
+            );
+            let mut d = Vec3::new(
+                pick(k, 3, 2.0, -1.0),
+                pick(k, 4, 2.0, -1.0),
+                pick(k, 5, 2.0, -1.0),
+            );
+            match k % 6 {
+                0 => d.x = 0.0,
+                1 => d.y = 0.0,
+                2 => d = Vec3::new(0.0, 0.0, d.z),
+                3 => d = Vec3::ZERO,
+                _ => {}
+            }
+            rays.push(Ray::new(o, d));
+        }
+        let bits3 = |v: Vec3| v.to_array().map(f32::to_bits);
+        let mut met = 0;
+        for (t_min, t_max) in [
+            (0.0, f32::INFINITY),
+            (f32::NEG_INFINITY, f32::INFINITY),
+            (-3.0, 70.0),
+            (2.0, 2.0),
+        ] {
+            for &level in &levels() {
+                let mut lanes = SetupLanes::new();
+                for group in rays.chunks_exact(SETUP_LANES) {
+                    let g: &[Ray; SETUP_LANES] = group.try_into().unwrap();
+                    setup_with(level, f, g, t_min, t_max, tr.mip.top, &mut lanes);
+                    for (l, ray) in group.iter().enumerate() {
+                        let want = tr.setup(ray, t_min, t_max);
+                        assert_eq!(lanes.ok[l], want.is_some(), "{level:?} {ray:?}");
+                        let Some(w) = want else { continue };
+                        met += 1;
+                        let g = lanes.ray(l, t_min, t_max);
+                        let key = |r: &GridRay| {
+                            (
+                                bits3(r.o),
+                                bits3(r.d),
+                                [r.inv.x, r.inv.y, r.t_min, r.t_max, r.t0, r.t1].map(f32::to_bits),
+                                [r.zeps, r.xyeps, r.ttol, r.zm].map(f32::to_bits),
+                                [bits3(r.shear.px), bits3(r.shear.py), bits3(r.shear.pz)],
+                            )
+                        };
+                        assert_eq!(key(&g), key(&w), "{level:?} {ray:?}");
+                        let c = tr.start(&w);
+                        assert_eq!(
+                            (lanes.ci[l], lanes.cj[l], lanes.level[l]),
+                            (c.ci, c.cj, c.level),
+                            "{level:?} {ray:?}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(met > 5000, "{met} rays meet the box");
+    }
+
+    /// The hit records filled in lanes equal `make_hit`'s bit for bit, at
+    /// every instruction set: fields too small for interior cells, border and
+    /// interior cells, both triangles, barycentrics on corners and edges, flat
+    /// (zero-gradient) and steep fields, partial groups.
+    #[test]
+    fn hit_lanes_equal_make_hit() {
+        use crate::ray::Triangle;
+        use crate::ray_cell::make_hit;
+        let s = Seed(43);
+        let mut checked = 0;
+        for (case, (nx, ny, cell)) in [
+            (2, 2, 1.0),
+            (3, 5, 0.5),
+            (4, 4, 2.0),
+            (37, 23, 3.7),
+            (64, 65, 10.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            for kind in 0..3 {
+                let hf = HeightField::from_fn(nx, ny, cell, |i, j| {
+                    let v = s.uniform2(case as i64 * 100 + i as i64, j as i64) as f32;
+                    match kind {
+                        0 => 5.0,
+                        1 => 300.0 * v - 50.0,
+                        _ => (3.0 * v).floor() * 1e-3 + 1e4,
+                    }
+                })
+                .unwrap();
+                let tr = MipmapTracer::new(&hf).unwrap();
+                let f = &tr.f;
+                let mut lanes = HitLanes::new();
+                let mut rays = Vec::new();
+                for k in 0..200i64 {
+                    let u = |c: i64| s.uniform2(k + 7919 * case as i64, c + 10 * kind) as f32;
+                    let (i, j) = ((u(0) * f.ncx as f32) as u32, (u(1) * f.ncy as f32) as u32);
+                    let (i, j) = (i.min(f.ncx - 1), j.min(f.ncy - 1));
+                    let bary = match k % 5 {
+                        0 => Vec3::new(1.0, 0.0, 0.0),
+                        1 => Vec3::new(0.5, 0.5, 0.0),
+                        _ => {
+                            let (a, b) = (u(2), u(3) * (1.0 - u(2)));
+                            Vec3::new(a, b, 1.0 - a - b)
+                        }
+                    };
+                    let triangle = if k % 2 == 0 {
+                        Triangle::Lower
+                    } else {
+                        Triangle::Upper
+                    };
+                    let hit = CellHit {
+                        t: u(4) * 100.0,
+                        cell: (i, j),
+                        triangle,
+                        bary,
+                    };
+                    let ray = Ray::new(Vec3::ZERO, Vec3::new(u(5) - 0.5, u(6) - 0.5, u(7) - 0.7));
+                    rays.push((hit, ray));
+                }
+                for &level in &levels() {
+                    for group in rays.chunks(HIT_LANES) {
+                        for (l, (h, r)) in group.iter().enumerate() {
+                            lanes.hit[l] = *h;
+                            lanes.dir[l] = r.dir;
+                        }
+                        let mut out = vec![None; group.len()];
+                        let slot: [usize; HIT_LANES] = std::array::from_fn(|l| l);
+                        hits_with(level, f, &lanes, group.len(), &mut out, &slot);
+                        for ((h, r), got) in group.iter().zip(&out) {
+                            let want = make_hit(f, r, *h);
+                            let got = got.expect("every lane is filled in");
+                            let key = |h: &Hit| {
+                                (
+                                    h.t.to_bits(),
+                                    [h.point, h.geometric_normal, h.smooth_normal, h.barycentric]
+                                        .map(|v| v.to_array().map(f32::to_bits)),
+                                    h.cell,
+                                    h.triangle,
+                                    h.from_above,
+                                )
+                            };
+                            assert_eq!(key(&got), key(&want), "{level:?}, {nx} × {ny}, {h:?}");
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 5000, "{checked}");
     }
 
     /// The lane step's shift form of a level's width equals the pyramid's.

@@ -161,6 +161,12 @@ fn sample_normal(f: &FieldView<'_>, x: usize, y: usize) -> Vec3 {
 
 /// Fills in the world-space details of a cell hit.
 pub(crate) fn make_hit(f: &FieldView<'_>, ray: &Ray, h: CellHit) -> Hit {
+    make_hit_dir(f, ray.dir, h)
+}
+
+/// [`make_hit`] for a ray of direction `dir`.
+#[inline]
+fn make_hit_dir(f: &FieldView<'_>, dir: Vec3, h: CellHit) -> Hit {
     let (i, j) = h.cell;
     let c = f.corners(i, j);
     let s = f.cell;
@@ -189,7 +195,199 @@ pub(crate) fn make_hit(f: &FieldView<'_>, ray: &Ray, h: CellHit) -> Hit {
         cell: UVec2::new(i, j),
         triangle: h.triangle,
         barycentric: w,
-        from_above: ray.dir.dot(geometric_normal) < 0.0,
+        from_above: dir.dot(geometric_normal) < 0.0,
+    }
+}
+
+/// Hits whose records [`hit_lanes`] fills in together.
+pub(crate) const HIT_LANES: usize = 16;
+
+/// The inputs of [`hit_lanes`], struct-of-arrays: for each lane a cell hit
+/// and its ray's direction.
+#[derive(Clone, Copy)]
+pub(crate) struct HitLanes {
+    pub hit: [CellHit; HIT_LANES],
+    pub dir: [Vec3; HIT_LANES],
+}
+
+impl HitLanes {
+    pub fn new() -> Self {
+        Self {
+            hit: [CellHit {
+                t: 0.0,
+                cell: (0, 0),
+                triangle: Triangle::Lower,
+                bary: Vec3::ZERO,
+            }; HIT_LANES],
+            dir: [Vec3::Z; HIT_LANES],
+        }
+    }
+}
+
+/// [`make_hit`] for the first `n` lanes of `s` at once: `emit(l, hit)` with
+/// exactly `make_hit`'s record for lane `l` (bit for bit, tested). The
+/// heights around each cell (its corners and the central differences'
+/// neighbours) are gathered into struct-of-arrays form, then the points and
+/// both normals are computed for all lanes with the same `f32` operations in
+/// the same order as `make_hit`, in a loop without data-dependent branches
+/// that vectorises (divisions and square roots included). Cells on the
+/// field's border, whose corner normals clamp their differences, take
+/// `make_hit` itself.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+pub(crate) fn hit_lanes(
+    f: &FieldView<'_>,
+    s: &HitLanes,
+    n: usize,
+    mut emit: impl FnMut(usize, Hit),
+) {
+    const N: usize = HIT_LANES;
+    let nx = f.nx;
+    let ny = f.ncy as usize + 1;
+    // The 4 × 4 block of samples around cell (i, j), rows j − 1 ..= j + 2,
+    // without its 4 outer corners: 12 heights, named by (column, row)
+    // offsets from (i − 1, j − 1).
+    const TAPS: [(usize, usize); 12] = [
+        (1, 0),
+        (2, 0),
+        (0, 1),
+        (1, 1),
+        (2, 1),
+        (3, 1),
+        (0, 2),
+        (1, 2),
+        (2, 2),
+        (3, 2),
+        (1, 3),
+        (2, 3),
+    ];
+    let mut g = [[0.0f32; N]; 12];
+    let mut border = [true; N];
+    let mut ci = [0u32; N];
+    let mut cj = [0u32; N];
+    let mut upper = [false; N];
+    let mut w = [[0.0f32; N]; 3];
+    let mut dir = [[0.0f32; N]; 3];
+    let interior = nx >= 4 && ny >= 4;
+    for l in 0..n {
+        let h = &s.hit[l];
+        let (i, j) = (h.cell.0 as usize, h.cell.1 as usize);
+        let b = i == 0 || j == 0 || i + 2 >= nx || j + 2 >= ny;
+        border[l] = b;
+        ci[l] = h.cell.0;
+        cj[l] = h.cell.1;
+        upper[l] = h.triangle == Triangle::Upper;
+        w[0][l] = h.bary.x;
+        w[1][l] = h.bary.y;
+        w[2][l] = h.bary.z;
+        dir[0][l] = s.dir[l].x;
+        dir[1][l] = s.dir[l].y;
+        dir[2][l] = s.dir[l].z;
+        if interior {
+            // Border lanes read a stand-in block (their records come from `make_hit`).
+            let (i0, j0) = if b { (0, 0) } else { (i - 1, j - 1) };
+            let base = j0 * nx + i0;
+            let rows = &f.h[base..base + 3 * nx + 4];
+            for (tap, &(a, r)) in TAPS.iter().enumerate() {
+                g[tap][l] = rows[r * nx + a];
+            }
+        }
+    }
+    let cell = f.cell;
+    let span = 2.0 * cell;
+    let mut point = [[0.0f32; N]; 3];
+    let mut gn = [[0.0f32; N]; 3];
+    let mut sn = [[0.0f32; N]; 3];
+    let mut above = [false; N];
+    for l in 0..N {
+        let tap = |k: usize| g[k][l];
+        // Corner heights [h00, h10, h01, h11].
+        let c = [tap(3), tap(4), tap(7), tap(8)];
+        // Corner normals by central differences (`sample_normal`).
+        let normal = |west: usize, east: usize, south: usize, north: usize| {
+            let gx = (tap(east) - tap(west)) / span;
+            let gy = (tap(north) - tap(south)) / span;
+            let v = [-gx, -gy, 1.0f32];
+            let r = 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            [v[0] * r, v[1] * r, v[2] * r]
+        };
+        let n00 = normal(2, 4, 0, 7);
+        let n10 = normal(3, 5, 1, 8);
+        let n01 = normal(6, 8, 3, 10);
+        let n11 = normal(7, 9, 4, 11);
+        let up = upper[l];
+        // The triangle's corners in barycentric order (`Triangle::corners`):
+        // lower (0,0), (1,0), (0,1); upper (1,1), (0,1), (1,0).
+        let (ai, aj, ah, an) = if up {
+            (1, 1, c[3], n11)
+        } else {
+            (0, 0, c[0], n00)
+        };
+        let (bi, bj, bh, bn) = if up {
+            (0, 1, c[2], n01)
+        } else {
+            (1, 0, c[1], n10)
+        };
+        let (ki, kj, kh, kn) = if up {
+            (1, 0, c[1], n10)
+        } else {
+            (0, 1, c[2], n01)
+        };
+        let (i, j) = (ci[l], cj[l]);
+        let world = |di: u32, dj: u32, h: f32| {
+            [
+                // Cell coordinates are below 2²⁴: the `i32` conversion is exact.
+                i.wrapping_add(di) as i32 as f32 * cell,
+                j.wrapping_add(dj) as i32 as f32 * cell,
+                h,
+            ]
+        };
+        let (pa, pb, pc) = (world(ai, aj, ah), world(bi, bj, bh), world(ki, kj, kh));
+        let (wx, wy, wz) = (w[0][l], w[1][l], w[2][l]);
+        for k in 0..3 {
+            point[k][l] = pa[k] * wx + pb[k] * wy + pc[k] * wz;
+        }
+        let (b, cc) = if up {
+            (c[3] - c[2], c[3] - c[1])
+        } else {
+            (c[1] - c[0], c[2] - c[0])
+        };
+        let v = [-b / cell, -cc / cell, 1.0f32];
+        let r = 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let gv = [v[0] * r, v[1] * r, v[2] * r];
+        let m = [
+            an[0] * wx + bn[0] * wy + kn[0] * wz,
+            an[1] * wx + bn[1] * wy + kn[1] * wz,
+            an[2] * wx + bn[2] * wy + kn[2] * wz,
+        ];
+        let rm = 1.0 / (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+        let ok = rm.is_finite() & (rm > 0.0);
+        for k in 0..3 {
+            gn[k][l] = gv[k];
+            sn[k][l] = if ok { m[k] * rm } else { gv[k] };
+        }
+        above[l] = dir[0][l] * gv[0] + dir[1][l] * gv[1] + dir[2][l] * gv[2] < 0.0;
+    }
+    for l in 0..n {
+        let h = s.hit[l];
+        if border[l] || !interior {
+            emit(l, make_hit_dir(f, s.dir[l], h));
+            continue;
+        }
+        let v = |a: &[[f32; N]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        emit(
+            l,
+            Hit {
+                t: h.t,
+                point: v(&point),
+                geometric_normal: v(&gn),
+                smooth_normal: v(&sn),
+                cell: UVec2::new(h.cell.0, h.cell.1),
+                triangle: h.triangle,
+                barycentric: h.bary,
+                from_above: above[l],
+            },
+        );
     }
 }
 
