@@ -29,10 +29,12 @@
 //! force).
 
 use crate::field::FieldView;
+use glam::Vec3;
+
 use crate::grid_ray::{GridRay, SETUP_LANES, SetupLanes, setup_lanes};
 use crate::leaf::{Exit, fmax, fmin, leaf};
 use crate::max_mipmap::{Cursor, MipmapTracer};
-use crate::ray::{Hit, Ray, TraceStats};
+use crate::ray::{Hit, Ray, TraceStats, Triangle};
 use crate::ray_cell::{CellHit, HIT_LANES, HitLanes, hit_lanes};
 
 /// Rays stepped together.
@@ -55,6 +57,8 @@ struct Lanes {
     dq: [f32; LANES],
     mq: [f32; LANES],
     t_end: [f32; LANES],
+    /// The clipped range's start (`GridRay::t0`): a cell entered there is the first.
+    t0: [f32; LANES],
     t: [f32; LANES],
     ci: [u32; LANES],
     cj: [u32; LANES],
@@ -83,6 +87,7 @@ impl Lanes {
             dq: [0.0; LANES],
             mq: [0.0; LANES],
             t_end: [0.0; LANES],
+            t0: [0.0; LANES],
             t: [0.0; LANES],
             ci: [0; LANES],
             cj: [0; LANES],
@@ -106,6 +111,7 @@ impl Lanes {
         self.dq[l] = r.d.z / scale;
         self.mq[l] = 1.0 + r.zm / scale;
         self.t_end[l] = r.t1;
+        self.t0[l] = r.t0;
         self.t[l] = c.t;
         self.ci[l] = c.ci;
         self.cj[l] = c.cj;
@@ -330,6 +336,23 @@ impl Level {
     }
 }
 
+impl Level {
+    #[inline(always)]
+    fn cells<const ANY: bool>(self, s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+        match self {
+            Level::Scalar => cells::<ANY>(s, x, c, o),
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: as for `step_avx2`.
+            Level::Avx2 => unsafe { cells_avx2::<ANY>(s, x, c, o) },
+            #[cfg(target_arch = "x86_64")]
+            #[allow(unsafe_code)]
+            // SAFETY: as for `step_avx512`.
+            Level::Avx512 => unsafe { cells_avx512::<ANY>(s, x, c, o) },
+        }
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
@@ -539,121 +562,383 @@ fn walk_lanes_with<const ANY: bool>(
     };
     let mut next = 0;
     let mut s = Lanes::new();
-    let mut live = 0;
+    let mut x = Exact::new();
+    let mut live = 0u32;
     for l in 0..LANES {
-        if let Some((k, c)) = take(&mut next) {
-            s.load(l, k, &rays[k], c, lo, scale);
-            live += 1;
+        if let Some((kr, c)) = take(&mut next) {
+            s.load(l, kr, &rays[kr], c, lo, scale);
+            x.load(l, &rays[kr]);
+            live |= 1 << l;
         }
     }
     let mut stats = TraceStats::default();
-    while live > 0 {
-        let mut events = [GOING; LANES];
-        let mut mask = level.step(&mut s, &k, &mut events);
-        while mask != 0 {
-            let l = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            let ev = events[l];
+    // Lanes waiting at a cell for the exact test. They stay put in the lane
+    // steps (a lane at level 0 parks) until enough of them wait, and then
+    // take one cell each in a lane pass of exact tests.
+    let mut parked = 0u32;
+    let mut corners = [[0.0f32; LANES]; 4];
+    let mut co = CellOut::new();
+    while live != 0 {
+        if live & !parked != 0 && parked.count_ones() < PARK_BATCH {
+            let mut events = [GOING; LANES];
+            let mut mask = level.step(&mut s, &k, &mut events);
+            while mask != 0 {
+                let l = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if events[l] == AT_CELL {
+                    parked |= 1 << l;
+                } else {
+                    out[s.ray[l]] = Outcome::Miss;
+                    refill(
+                        &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
+                    );
+                }
+            }
+            continue;
+        }
+        // One cell for every parked lane: the exact tests in lanes, then
+        // per lane the walk's bookkeeping (as the single-ray walk's cell steps).
+        let mut pm = parked;
+        while pm != 0 {
+            let l = pm.trailing_zeros() as usize;
+            pm &= pm - 1;
+            let c = f.corners(s.ci[l], s.cj[l]);
+            for (q, &v) in c.iter().enumerate() {
+                corners[q][l] = v;
+            }
+        }
+        level.cells::<ANY>(&s, &x, &corners, &mut co);
+        let mut pm = parked;
+        while pm != 0 {
+            let l = pm.trailing_zeros() as usize;
+            pm &= pm - 1;
             let kr = s.ray[l];
-            if ev == AT_CELL {
-                // The single-ray walk's cell steps, with nothing pending:
-                // test the cell; on a miss step to the next cell, and go on
-                // at cells until the walk leaves the field, hits, or climbs
-                // back to level 1 (then the lane steps on).
-                let r = &rays[kr];
-                let (o, d, inv) = (r.o, r.d, r.inv);
-                let t_end = r.t1;
-                let (mut ci, mut cj, mut t) = (s.ci[l], s.cj[l], s.t[l]);
-                let resumed = loop {
-                    let tx = if d.x > 0.0 {
-                        ((ci + 1) as f32 - o.x) * inv.x
-                    } else if d.x < 0.0 {
-                        (ci as f32 - o.x) * inv.x
+            let r = &rays[kr];
+            let (mut ci, mut cj, t) = (s.ci[l], s.cj[l], s.t[l]);
+            let t_exit = co.t_exit[l];
+            let exit = match co.exit[l] {
+                EXIT_X => Exit::X,
+                EXIT_Y => Exit::Y,
+                _ => Exit::End,
+            };
+            let flags = co.flags[l];
+            let h = if flags & SCALAR != 0 {
+                // Within rounding distance of an edge, or a zero edge
+                // function: the single-ray walk's cell test, neighbours and all.
+                let first = t == r.t0;
+                leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats)
+            } else if flags & FOUND != 0 {
+                Some(CellHit {
+                    t: co.t[l],
+                    cell: (ci, cj),
+                    triangle: if co.upper[l] {
+                        Triangle::Upper
                     } else {
-                        f32::INFINITY
-                    };
-                    let ty = if d.y > 0.0 {
-                        ((cj + 1) as f32 - o.y) * inv.y
-                    } else if d.y < 0.0 {
-                        (cj as f32 - o.y) * inv.y
-                    } else {
-                        f32::INFINITY
-                    };
-                    let (t_exit, exit) = Exit::of(tx, ty, t_end, t);
-                    let first = t == r.t0;
-                    match leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats) {
-                        Some(h) if ANY || h.t <= t_exit + r.ttol => {
-                            out[kr] = Outcome::Hit(h);
-                            break false;
-                        }
-                        Some(_) => {
-                            out[kr] = Outcome::Walk(Cursor {
-                                ci,
-                                cj,
-                                t,
-                                level: 0,
-                            });
-                            break false;
-                        }
-                        None => {}
-                    }
+                        Triangle::Lower
+                    },
+                    bary: Vec3::new(co.bary[0][l], co.bary[1][l], co.bary[2][l]),
+                })
+            } else {
+                None
+            };
+            let end = match h {
+                Some(h) if ANY || h.t <= t_exit + r.ttol => Some(Outcome::Hit(h)),
+                Some(_) => Some(Outcome::Walk(Cursor {
+                    ci,
+                    cj,
+                    t,
+                    level: 0,
+                })),
+                None => {
                     // The walk's step past a cell (as the lane step at level 0).
-                    if exit == Exit::End {
-                        out[kr] = Outcome::Miss;
-                        break false;
-                    }
                     let (oci, ocj) = (ci, cj);
-                    if exit == Exit::X {
-                        if d.x > 0.0 {
-                            ci += 1;
-                        } else {
-                            ci = ci.wrapping_sub(1);
+                    let left = match exit {
+                        Exit::End => true,
+                        Exit::X => {
+                            ci = if r.d.x > 0.0 {
+                                ci + 1
+                            } else {
+                                ci.wrapping_sub(1)
+                            };
+                            ci >= k.ncx
                         }
-                        if ci >= k.ncx {
-                            out[kr] = Outcome::Miss;
-                            break false;
+                        Exit::Y => {
+                            cj = if r.d.y > 0.0 {
+                                cj + 1
+                            } else {
+                                cj.wrapping_sub(1)
+                            };
+                            cj >= k.ncy
                         }
+                    };
+                    if left {
+                        Some(Outcome::Miss)
                     } else {
-                        if d.y > 0.0 {
-                            cj += 1;
-                        } else {
-                            cj = cj.wrapping_sub(1);
-                        }
-                        if cj >= k.ncy {
-                            out[kr] = Outcome::Miss;
-                            break false;
-                        }
-                    }
-                    t = t_exit;
-                    if k.top > 0 && ((ci ^ oci) | (cj ^ ocj)) >> 1 != 0 {
                         s.ci[l] = ci;
                         s.cj[l] = cj;
-                        s.t[l] = t;
-                        s.level[l] = 1;
-                        break true;
+                        s.t[l] = t_exit;
+                        if k.top > 0 && ((ci ^ oci) | (cj ^ ocj)) >> 1 != 0 {
+                            // Back to the nodes: the lane steps on at level 1.
+                            s.level[l] = 1;
+                            parked &= !(1 << l);
+                        }
+                        None
                     }
-                };
-                if resumed {
-                    continue;
                 }
-            } else {
-                out[kr] = Outcome::Miss;
-            }
-            match take(&mut next) {
-                Some((k, c)) => s.load(l, k, &rays[k], c, lo, scale),
-                None => {
-                    // A dead lane keeps stepping (ignored): park its state on
-                    // cell (0, 0) so its arithmetic stays in range (a ray that
-                    // left through the low side has a wrapped coordinate).
-                    s.live[l] = false;
-                    s.ci[l] = 0;
-                    s.cj[l] = 0;
-                    s.level[l] = 0;
-                    live -= 1;
-                }
+            };
+            if let Some(e) = end {
+                out[kr] = e;
+                parked &= !(1 << l);
+                refill(
+                    &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
+                );
             }
         }
     }
+}
+
+/// Lanes parked at cells before a pass of exact tests runs (unless no lane
+/// is stepping).
+const PARK_BATCH: u32 = 8;
+
+/// Loads lane `l` with the next ray, or retires it when there is none.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn refill(
+    s: &mut Lanes,
+    x: &mut Exact,
+    live: &mut u32,
+    next: &mut usize,
+    l: usize,
+    take: &impl Fn(&mut usize) -> Option<(usize, Cursor)>,
+    rays: &[GridRay],
+    lo: f32,
+    scale: f32,
+) {
+    match take(next) {
+        Some((kr, c)) => {
+            s.load(l, kr, &rays[kr], c, lo, scale);
+            x.load(l, &rays[kr]);
+        }
+        None => {
+            // A dead lane keeps stepping (ignored): park its state on
+            // cell (0, 0) so its arithmetic stays in range (a ray that
+            // left through the low side has a wrapped coordinate).
+            s.live[l] = false;
+            s.ci[l] = 0;
+            s.cj[l] = 0;
+            s.level[l] = 0;
+            *live &= !(1 << l);
+        }
+    }
+}
+
+/// The per-lane ray constants of the exact cell test (struct-of-arrays
+/// copies of [`GridRay`] fields the node steps do not need).
+#[derive(Clone, Copy)]
+struct Exact {
+    oz: [f32; LANES],
+    dz: [f32; LANES],
+    zm: [f32; LANES],
+    t_min: [f32; LANES],
+    t_max: [f32; LANES],
+    xyeps: [f32; LANES],
+    /// The shear's rows `px, py, pz`, three components each.
+    sh: [[f32; LANES]; 9],
+}
+
+impl Exact {
+    fn new() -> Self {
+        Self {
+            oz: [0.0; LANES],
+            dz: [0.0; LANES],
+            zm: [0.0; LANES],
+            t_min: [0.0; LANES],
+            t_max: [0.0; LANES],
+            xyeps: [0.0; LANES],
+            sh: [[0.0; LANES]; 9],
+        }
+    }
+
+    #[inline]
+    fn load(&mut self, l: usize, r: &GridRay) {
+        self.oz[l] = r.o.z;
+        self.dz[l] = r.d.z;
+        self.zm[l] = r.zm;
+        self.t_min[l] = r.t_min;
+        self.t_max[l] = r.t_max;
+        self.xyeps[l] = r.xyeps;
+        let rows = [r.shear.px, r.shear.py, r.shear.pz];
+        for (q, v) in rows.iter().enumerate() {
+            self.sh[3 * q][l] = v.x;
+            self.sh[3 * q + 1][l] = v.y;
+            self.sh[3 * q + 2][l] = v.z;
+        }
+    }
+}
+
+/// How each lane's cell test came out.
+#[derive(Clone, Copy)]
+struct CellOut {
+    t_exit: [f32; LANES],
+    exit: [u32; LANES],
+    flags: [u32; LANES],
+    t: [f32; LANES],
+    upper: [bool; LANES],
+    bary: [[f32; LANES]; 3],
+}
+
+impl CellOut {
+    fn new() -> Self {
+        Self {
+            t_exit: [0.0; LANES],
+            exit: [0; LANES],
+            flags: [0; LANES],
+            t: [0.0; LANES],
+            upper: [false; LANES],
+            bary: [[0.0; LANES]; 3],
+        }
+    }
+}
+
+const EXIT_END: u32 = 0;
+const EXIT_X: u32 = 1;
+const EXIT_Y: u32 = 2;
+/// `CellOut::flags`: a triangle was hit (`t`, `upper`, `bary` hold it).
+const FOUND: u32 = 1;
+/// `CellOut::flags`: the single-ray [`leaf`] must decide (a zero edge
+/// function, or an edge or corner within rounding distance whose
+/// neighbouring cells the leaf tests too).
+const SCALAR: u32 = 2;
+
+/// The exact test of every lane's cell at once, as the single-ray walk's
+/// cell step: the cell's exit ([`Exit::of`]), the two-sided z cull and the
+/// watertight pair of triangle tests ([`crate::ray_cell`]), with the same
+/// `f32` operations in the same order per lane and both triangles' outcomes
+/// computed and selected, so the loop over lanes vectorises. Lanes whose
+/// test needs more than that (a zero edge function, the neighbours of an
+/// edge within rounding distance) are flagged [`SCALAR`].
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+fn cells<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+    for l in 0..LANES {
+        let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
+        let sign = s.sign[l];
+        let (xpos, xneg, ypos, yneg) = (sign & 1 != 0, sign & 2 != 0, sign & 4 != 0, sign & 8 != 0);
+        // Cell coordinates are below 2²⁴ (dead lanes sit at 0): the `i32`
+        // conversions are exact.
+        let (x0, x1) = (ci as i32 as f32, ci.wrapping_add(1) as i32 as f32);
+        let (y0, y1) = (cj as i32 as f32, cj.wrapping_add(1) as i32 as f32);
+        let (ox, oy, oz) = (s.ox[l], s.oy[l], x.oz[l]);
+        let tx = if xpos {
+            (x1 - ox) * s.ix[l]
+        } else if xneg {
+            (x0 - ox) * s.ix[l]
+        } else {
+            f32::INFINITY
+        };
+        let ty = if ypos {
+            (y1 - oy) * s.iy[l]
+        } else if yneg {
+            (y0 - oy) * s.iy[l]
+        } else {
+            f32::INFINITY
+        };
+        let t_end = s.t_end[l];
+        // `Exit::of`.
+        let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
+        let exit = if t_exit >= t_end {
+            EXIT_END
+        } else if tx <= ty {
+            EXIT_X
+        } else {
+            EXIT_Y
+        };
+        // The cull (`leaf`).
+        let h = [c[0][l], c[1][l], c[2][l], c[3][l]];
+        let (za, zb) = (oz + t * x.dz[l], oz + t_exit * x.dz[l]);
+        let (zlo, zhi) = if za <= zb { (za, zb) } else { (zb, za) };
+        let cmax = fmax(fmax(h[0], h[1]), fmax(h[2], h[3]));
+        let cmin = fmin(fmin(h[0], h[1]), fmin(h[2], h[3]));
+        let zm = x.zm[l];
+        let pass = (zlo <= cmax + zm) & (zhi >= cmin - zm);
+        // The watertight pair (`intersect_cell`).
+        let sh = |q: usize| x.sh[q][l];
+        let project = |px: f32, py: f32, ph: f32| {
+            let rel = [px - ox, py - oy, ph - oz];
+            let dot = |q: usize| sh(q) * rel[0] + sh(q + 1) * rel[1] + sh(q + 2) * rel[2];
+            [dot(0), dot(3), dot(6)]
+        };
+        let p00 = project(x0, y0, h[0]);
+        let p10 = project(x1, y0, h[1]);
+        let p01 = project(x0, y1, h[2]);
+        let p11 = project(x1, y1, h[3]);
+        let edge = |a: [f32; 3], b: [f32; 3]| a[0] * b[1] - a[1] * b[0];
+        let diag = edge(p01, p10);
+        let left = edge(p00, p01);
+        let bottom = edge(p10, p00);
+        let right = edge(p11, p10);
+        let top = edge(p01, p11);
+        let zero = (diag == 0.0) | (left == 0.0) | (bottom == 0.0) | (right == 0.0) | (top == 0.0);
+        let (t_min, t_max) = (x.t_min[l], x.t_max[l]);
+        let tri = |u: f32, v: f32, w: f32, z: [f32; 3]| {
+            let det = u + v + w;
+            let inside = ((det > 0.0) & (u >= 0.0) & (v >= 0.0) & (w >= 0.0))
+                | ((det < 0.0) & (u <= 0.0) & (v <= 0.0) & (w <= 0.0));
+            let inv = 1.0 / det;
+            let tt = (u * z[0] + v * z[1] + w * z[2]) * inv;
+            let ok = inside & (tt >= t_min) & (tt <= t_max);
+            (ok, tt, [u * inv, v * inv, w * inv])
+        };
+        let (lok, lt, lb) = tri(diag, left, bottom, [p00[2], p10[2], p01[2]]);
+        let (uok, ut, ub) = tri(-diag, right, top, [p11[2], p01[2], p10[2]]);
+        let pick_upper = uok & (!lok | (!ANY & (ut < lt)));
+        let found = lok | uok;
+        o.t[l] = if pick_upper { ut } else { lt };
+        o.upper[l] = pick_upper;
+        for q in 0..3 {
+            o.bary[q][l] = if pick_upper { ub[q] } else { lb[q] };
+        }
+        // The edges and corners within rounding distance (`leaf`'s `near`).
+        let e = x.xyeps[l];
+        let near = |tn: f32| {
+            let (px, py) = (ox + tn * s.dx[l], oy + tn * s.dy[l]);
+            (
+                px < x0 + e,
+                px > x0 + 1.0 - e,
+                py < y0 + e,
+                py > y0 + 1.0 - e,
+            )
+        };
+        let (axm, axp, aym, ayp) = near(t);
+        let (bxm, bxp, bym, byp) = near(t_exit);
+        let first = t == s.t0[l];
+        let at_in = first & (axm | axp | aym | ayp);
+        let at_out = if exit == EXIT_END {
+            bxm | bxp | bym | byp
+        } else if exit == EXIT_X {
+            bym | byp
+        } else {
+            bxm | bxp
+        };
+        let neighbours = !(ANY & found) & (at_in | at_out);
+        let scalar = pass & (zero | neighbours);
+        o.flags[l] = u32::from(pass & found) * FOUND + u32::from(scalar) * SCALAR;
+        o.t_exit[l] = t_exit;
+        o.exit[l] = exit;
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn cells_avx2<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+    cells::<ANY>(s, x, c, o);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn cells_avx512<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+    cells::<ANY>(s, x, c, o);
 }
 
 #[cfg(test)]
