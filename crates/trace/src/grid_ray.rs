@@ -428,9 +428,8 @@ pub(crate) fn setup_lanes(
         // and the finest level holding both.
         let cell_of = |t: f32, k: usize, hi: f32| -> u32 {
             let p = o[k] + t * d[k];
-            let v = fmin(fmax(p, 0.0), hi);
-            // `v` is in `[0, 2²⁴)`.
-            v as i32 as u32
+            // `v` is in `[0, 2²⁴)` (NaN goes to 0).
+            crate::packet::trunc(fmin(fmax(p, 0.0), hi))
         };
         let (ci, cj) = (cell_of(t0, 0, cx), cell_of(t0, 1, cy));
         let (ei, ej) = (cell_of(t1, 0, cx), cell_of(t1, 1, cy));

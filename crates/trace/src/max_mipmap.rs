@@ -324,9 +324,18 @@ impl<'a> MipmapTracer<'a> {
         let level = crate::packet::Level::detect();
         let idle = GridRay::idle();
         let mut lanes = SetupLanes::new();
+        let mut dl = [0u32; SETUP_LANES];
+        let mut descended = Vec::with_capacity(CHUNK.min(rays.len()));
+        let mut offset = [0u32; 32];
+        for (o, &m) in offset.iter_mut().zip(&self.mip.offset) {
+            // Offsets beyond 32 bits only occur in pyramids the lanes leave
+            // to the single-ray walk (see `walk_lanes`).
+            *o = m as u32;
+        }
         for (n, chunk) in rays.chunks(CHUNK).enumerate() {
             grid.clear();
             cur.clear();
+            descended.clear();
             // The set-up of `SETUP_LANES` rays at once (the tail padded with
             // copies of its first ray).
             for group in chunk.chunks(SETUP_LANES) {
@@ -342,7 +351,9 @@ impl<'a> MipmapTracer<'a> {
                         self.mip.top,
                         &mut lanes,
                     );
+                    crate::packet::descend_with(level, self, &offset, &lanes, &mut dl);
                 }
+                #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
                 for l in 0..group.len() {
                     if range_ok && lanes.ok[l] {
                         grid.push(lanes.ray(l, t_min, t_max));
@@ -352,14 +363,16 @@ impl<'a> MipmapTracer<'a> {
                             t: lanes.t0[l],
                             level: lanes.level[l],
                         }));
+                        descended.push(dl[l]);
                     } else {
                         // A stand-in, never walked (its cursor is `None`).
                         grid.push(idle);
                         cur.push(None);
+                        descended.push(0);
                     }
                 }
             }
-            crate::packet::walk_lanes::<ANY>(self, &grid, &cur, &mut ends);
+            crate::packet::walk_lanes::<ANY>(level, self, &grid, &cur, Some(&descended), &mut ends);
             let mut stats = TraceStats::default();
             for (k, (r, end)) in grid.iter().zip(&ends).enumerate() {
                 let h = match *end {

@@ -268,7 +268,7 @@ fn event_mask(events: &[u32; LANES]) -> u32 {
 
 /// `v as u32` for `v` in `[0, 2²⁴)` (a clamped cell coordinate).
 #[inline(always)]
-fn trunc(v: f32) -> u32 {
+pub(crate) fn trunc(v: f32) -> u32 {
     debug_assert!((0.0..16_777_216.0).contains(&v));
     #[allow(unsafe_code)]
     // SAFETY: `v` is clamped between two cell coordinates, whole numbers in
@@ -440,6 +440,109 @@ fn setup_avx512(
     setup_lanes(f, rays, t_min, t_max, top, s);
 }
 
+/// [`MipmapTracer::descend`] of the [`SETUP_LANES`] rays set up in `s`
+/// (from their walks' starts), in lanes: `out[l]` is the level lane `l`'s
+/// walk descends to. Each round loads every lane's node (a gather) and
+/// compares it with the start altitude in integers, as the single-ray
+/// descent does level by level; lanes that stop are masked. Only lanes
+/// that are `ok` matter (the others stay in range and are ignored).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+fn descend_lanes(
+    tr: &MipmapTracer<'_>,
+    offset: &[u32; 32],
+    s: &SetupLanes,
+    out: &mut [u32; SETUP_LANES],
+) {
+    let m = &tr.mip;
+    let nodes = m.nodes.as_slice();
+    // (A pyramid has at least one level of one node.) With this the
+    // clamped index below needs no bounds check, and the loop vectorises.
+    assert!(!nodes.is_empty());
+    let last = (nodes.len() - 1).min(i32::MAX as usize) as u32;
+    let ncx = tr.f.ncx;
+    let (lo, scale) = (m.lo, m.scale);
+    let mut zf = [0u32; SETUP_LANES];
+    let mut zc = [0u32; SETUP_LANES];
+    let mut on = [false; SETUP_LANES];
+    for l in 0..SETUP_LANES {
+        // As `descend`: the start altitude in quantised units; below 0 or
+        // above the range no node holds it.
+        let za = (s.o[2][l] + s.t0[l] * s.d[2][l] - lo) / scale;
+        let inside = (0.0..65536.0).contains(&za);
+        // Truncation is the floor here (`za` ≥ 0 where it counts).
+        let f = trunc(if inside { za } else { 0.0 });
+        zf[l] = f;
+        zc[l] = f + u32::from(f as i32 as f32 != za);
+        out[l] = s.level[l];
+        on[l] = inside & (s.level[l] > 0);
+    }
+    for _ in 0..m.top {
+        let mut more = false;
+        for l in 0..SETUP_LANES {
+            let lev = out[l];
+            let sh = lev & 31;
+            let width = ((ncx - 1) >> sh) + 1;
+            let idx = offset[sh as usize]
+                .wrapping_add((s.cj[l] >> sh).wrapping_mul(width))
+                .wrapping_add(s.ci[l] >> sh);
+            let q = nodes[idx.min(last) as usize];
+            let down = on[l] & ((q & 0xffff) <= zf[l]) & ((q >> 16) >= zc[l]);
+            let lev = lev - u32::from(down);
+            out[l] = lev;
+            on[l] = down & (lev > 0);
+            more |= on[l];
+        }
+        if !more {
+            break;
+        }
+    }
+}
+
+/// [`descend_lanes`] compiled for `level`.
+#[inline]
+pub(crate) fn descend_with(
+    level: Level,
+    tr: &MipmapTracer<'_>,
+    offset: &[u32; 32],
+    s: &SetupLanes,
+    out: &mut [u32; SETUP_LANES],
+) {
+    match level {
+        Level::Scalar => descend_lanes(tr, offset, s, out),
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: as for `setup_avx2`.
+        Level::Avx2 => unsafe { descend_avx2(tr, offset, s, out) },
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unsafe_code)]
+        // SAFETY: as for `step_avx512`.
+        Level::Avx512 => unsafe { descend_avx512(tr, offset, s, out) },
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn descend_avx2(
+    tr: &MipmapTracer<'_>,
+    offset: &[u32; 32],
+    s: &SetupLanes,
+    out: &mut [u32; SETUP_LANES],
+) {
+    descend_lanes(tr, offset, s, out);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
+fn descend_avx512(
+    tr: &MipmapTracer<'_>,
+    offset: &[u32; 32],
+    s: &SetupLanes,
+    out: &mut [u32; SETUP_LANES],
+) {
+    descend_lanes(tr, offset, s, out);
+}
+
 /// [`hit_lanes`] compiled for `level`.
 #[inline]
 pub(crate) fn hits_with(
@@ -504,12 +607,14 @@ pub(crate) enum Outcome {
 /// trace) to its end, [`LANES`] at a time, running the cell tests of parked
 /// lanes one by one: `out[k]` says how ray `k` ended.
 pub(crate) fn walk_lanes<const ANY: bool>(
+    level: Level,
     tr: &MipmapTracer<'_>,
     rays: &[GridRay],
     cur: &[Option<Cursor>],
+    descended: Option<&[u32]>,
     out: &mut Vec<Outcome>,
 ) {
-    walk_lanes_with::<ANY>(Level::detect(), MIN_LANE_LEVEL, tr, rays, cur, out);
+    walk_lanes_with::<ANY>(level, MIN_LANE_LEVEL, tr, rays, cur, descended, out);
 }
 
 /// [`walk_lanes`] with the lane steps compiled for `level`.
@@ -519,6 +624,7 @@ fn walk_lanes_with<const ANY: bool>(
     tr: &MipmapTracer<'_>,
     rays: &[GridRay],
     cur: &[Option<Cursor>],
+    descended: Option<&[u32]>,
     out: &mut Vec<Outcome>,
 ) {
     out.clear();
@@ -553,8 +659,15 @@ fn walk_lanes_with<const ANY: bool>(
                 // Short walks (a span within a few cells: steep rays) are
                 // cheaper one at a time than through a lane.
                 if c.level >= min_level {
-                    // The walk's sure descents, scalar (see `descend`).
-                    return Some((k, tr.descend(&rays[k], c, &mut TraceStats::default())));
+                    // The walk's sure descents (see `descend`), taken in
+                    // lanes at the set-up or here.
+                    return Some((
+                        k,
+                        match descended {
+                            Some(d) => Cursor { level: d[k], ..c },
+                            None => tr.descend(&rays[k], c, &mut TraceStats::default()),
+                        },
+                    ));
                 }
             }
         }
@@ -1016,8 +1129,8 @@ mod tests {
         v
     }
 
-    /// The set-up in lanes equals `setup` (`GridRay::new` and the box test)
-    /// and `start` bit for bit, at every instruction set: rays with zero,
+    /// The set-up in lanes equals `setup` (`GridRay::new` and the box test),
+    /// `start` and `descend` bit for bit, at every instruction set: rays with zero,
     /// tiny, huge, infinite and NaN components, zero directions, axis-parallel
     /// and vertical rays, rays through grid points, inside and outside the
     /// box, over several ranges.
@@ -1065,6 +1178,7 @@ mod tests {
         }
         let bits3 = |v: Vec3| v.to_array().map(f32::to_bits);
         let mut met = 0;
+        let mut descents = 0;
         for (t_min, t_max) in [
             (0.0, f32::INFINITY),
             (f32::NEG_INFINITY, f32::INFINITY),
@@ -1073,9 +1187,15 @@ mod tests {
         ] {
             for &level in &levels() {
                 let mut lanes = SetupLanes::new();
+                let mut offset = [0u32; 32];
+                for (o, &m) in offset.iter_mut().zip(&tr.mip.offset) {
+                    *o = m as u32;
+                }
+                let mut dl = [0u32; SETUP_LANES];
                 for group in rays.chunks_exact(SETUP_LANES) {
                     let g: &[Ray; SETUP_LANES] = group.try_into().unwrap();
                     setup_with(level, f, g, t_min, t_max, tr.mip.top, &mut lanes);
+                    descend_with(level, &tr, &offset, &lanes, &mut dl);
                     for (l, ray) in group.iter().enumerate() {
                         let want = tr.setup(ray, t_min, t_max);
                         assert_eq!(lanes.ok[l], want.is_some(), "{level:?} {ray:?}");
@@ -1098,11 +1218,15 @@ mod tests {
                             (c.ci, c.cj, c.level),
                             "{level:?} {ray:?}"
                         );
+                        let dc = tr.descend(&w, c, &mut TraceStats::default());
+                        assert_eq!(dl[l], dc.level, "descent: {level:?} {ray:?}");
+                        descents += usize::from(dc.level < c.level);
                     }
                 }
             }
         }
         assert!(met > 5000, "{met} rays meet the box");
+        assert!(descents > 1000, "{descents} rays descend at the start");
     }
 
     /// The hit records filled in lanes equal `make_hit`'s bit for bit, at
@@ -1263,9 +1387,9 @@ mod tests {
             let run = |level: Level| {
                 let mut out = Vec::new();
                 if any {
-                    walk_lanes_with::<true>(level, 0, &tr, &grid, &start, &mut out);
+                    walk_lanes_with::<true>(level, 0, &tr, &grid, &start, None, &mut out);
                 } else {
-                    walk_lanes_with::<false>(level, 0, &tr, &grid, &start, &mut out);
+                    walk_lanes_with::<false>(level, 0, &tr, &grid, &start, None, &mut out);
                 }
                 out
             };
@@ -1351,7 +1475,7 @@ mod tests {
             let key = |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
             let mut stats = TraceStats::default();
             let mut out = Vec::new();
-            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, None, &mut out);
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => None,
@@ -1362,7 +1486,7 @@ mod tests {
                 assert_eq!(key(got), key(want), "case {case}, ray {k}: {:?}", rays[k]);
                 checked += usize::from(want.is_some());
             }
-            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, &mut out);
+            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, None, &mut out);
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => false,
