@@ -338,17 +338,25 @@ impl Level {
 
 impl Level {
     #[inline(always)]
-    fn cells<const ANY: bool>(self, s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+    fn cells<const ANY: bool>(
+        self,
+        s: &mut Lanes,
+        k: &Consts<'_>,
+        x: &Exact,
+        c: &[[f32; LANES]; 4],
+        parked: u32,
+        o: &mut CellOut,
+    ) {
         match self {
-            Level::Scalar => cells::<ANY>(s, x, c, o),
+            Level::Scalar => cells::<ANY>(s, k, x, c, parked, o),
             #[cfg(target_arch = "x86_64")]
             #[allow(unsafe_code)]
             // SAFETY: as for `step_avx2`.
-            Level::Avx2 => unsafe { cells_avx2::<ANY>(s, x, c, o) },
+            Level::Avx2 => unsafe { cells_avx2::<ANY>(s, k, x, c, parked, o) },
             #[cfg(target_arch = "x86_64")]
             #[allow(unsafe_code)]
             // SAFETY: as for `step_avx512`.
-            Level::Avx512 => unsafe { cells_avx512::<ANY>(s, x, c, o) },
+            Level::Avx512 => unsafe { cells_avx512::<ANY>(s, k, x, c, parked, o) },
         }
     }
 }
@@ -720,11 +728,21 @@ fn walk_lanes_with<const ANY: bool>(
                 corners[q][l] = v;
             }
         }
-        level.cells::<ANY>(&s, &x, &corners, &mut co);
+        level.cells::<ANY>(&mut s, &k, &x, &corners, parked, &mut co);
         let mut pm = parked;
         while pm != 0 {
             let l = pm.trailing_zeros() as usize;
             pm &= pm - 1;
+            match co.ev[l] {
+                // A miss, stepped on to the next cell in the lanes.
+                EV_NONE => continue,
+                // The same, into a new level-1 node: back to the lane steps.
+                EV_CLIMB => {
+                    parked &= !(1 << l);
+                    continue;
+                }
+                _ => {}
+            }
             let kr = s.ray[l];
             let r = &rays[kr];
             let (mut ci, mut cj, t) = (s.ci[l], s.cj[l], s.t[l]);
@@ -893,6 +911,8 @@ impl Exact {
 /// How each lane's cell test came out.
 #[derive(Clone, Copy)]
 struct CellOut {
+    /// [`EV_NONE`], [`EV_CLIMB`] or [`EV_DONE`].
+    ev: [u32; LANES],
     t_exit: [f32; LANES],
     exit: [u32; LANES],
     flags: [u32; LANES],
@@ -904,6 +924,7 @@ struct CellOut {
 impl CellOut {
     fn new() -> Self {
         Self {
+            ev: [0; LANES],
             t_exit: [0.0; LANES],
             exit: [0; LANES],
             flags: [0; LANES],
@@ -914,6 +935,15 @@ impl CellOut {
     }
 }
 
+/// `CellOut::ev`: nothing for the driver (a miss stepped on to the next
+/// cell, or a lane not parked).
+const EV_NONE: u32 = 0;
+/// `CellOut::ev`: a miss stepped on into a new level-1 node (the lane is at
+/// level 1 and steps on in the lanes).
+const EV_CLIMB: u32 = 1;
+/// `CellOut::ev`: the driver decides (a hit, a [`SCALAR`] lane, or the ray
+/// left the field); the lane's cursor is unchanged.
+const EV_DONE: u32 = 2;
 const EXIT_END: u32 = 0;
 const EXIT_X: u32 = 1;
 const EXIT_Y: u32 = 2;
@@ -933,7 +963,14 @@ const SCALAR: u32 = 2;
 /// edge within rounding distance) are flagged [`SCALAR`].
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
-fn cells<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
+fn cells<const ANY: bool>(
+    s: &mut Lanes,
+    k: &Consts<'_>,
+    x: &Exact,
+    c: &[[f32; LANES]; 4],
+    parked: u32,
+    o: &mut CellOut,
+) {
     for l in 0..LANES {
         let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
         let sign = s.sign[l];
@@ -1036,22 +1073,67 @@ fn cells<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut C
         };
         let neighbours = !(ANY & found) & (at_in | at_out);
         let scalar = pass & (zero | neighbours);
-        o.flags[l] = u32::from(pass & found) * FOUND + u32::from(scalar) * SCALAR;
+        let hit = pass & found;
+        o.flags[l] = u32::from(hit) * FOUND + u32::from(scalar) * SCALAR;
         o.t_exit[l] = t_exit;
         o.exit[l] = exit;
+        // A parked lane whose cell test settled a miss takes the walk's step
+        // past the cell here (as the lane step at level 0).
+        let is_parked = (parked >> l) & 1 != 0;
+        let xstep = exit == EXIT_X;
+        let nci = if !xstep {
+            ci
+        } else if xpos {
+            ci.wrapping_add(1)
+        } else {
+            ci.wrapping_sub(1)
+        };
+        let ncj = if xstep {
+            cj
+        } else if ypos {
+            cj.wrapping_add(1)
+        } else {
+            cj.wrapping_sub(1)
+        };
+        let left = (exit == EXIT_END) | (nci >= k.ncx) | (ncj >= k.ncy);
+        let climb = (k.top > 0) & (((nci ^ ci) | (ncj ^ cj)) >> 1 != 0);
+        let mv = is_parked & !hit & !scalar & !left;
+        s.ci[l] = if mv { nci } else { ci };
+        s.cj[l] = if mv { ncj } else { cj };
+        s.t[l] = if mv { t_exit } else { t };
+        s.level[l] = if mv & climb { 1 } else { s.level[l] };
+        o.ev[l] = if mv {
+            u32::from(climb) * EV_CLIMB
+        } else {
+            u32::from(is_parked) * EV_DONE
+        };
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn cells_avx2<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
-    cells::<ANY>(s, x, c, o);
+fn cells_avx2<const ANY: bool>(
+    s: &mut Lanes,
+    k: &Consts<'_>,
+    x: &Exact,
+    c: &[[f32; LANES]; 4],
+    parked: u32,
+    o: &mut CellOut,
+) {
+    cells::<ANY>(s, k, x, c, parked, o);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
-fn cells_avx512<const ANY: bool>(s: &Lanes, x: &Exact, c: &[[f32; LANES]; 4], o: &mut CellOut) {
-    cells::<ANY>(s, x, c, o);
+fn cells_avx512<const ANY: bool>(
+    s: &mut Lanes,
+    k: &Consts<'_>,
+    x: &Exact,
+    c: &[[f32; LANES]; 4],
+    parked: u32,
+    o: &mut CellOut,
+) {
+    cells::<ANY>(s, k, x, c, parked, o);
 }
 
 #[cfg(test)]
