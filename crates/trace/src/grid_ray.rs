@@ -161,7 +161,8 @@ impl GridRay {
         })
     }
 
-    /// A placeholder for batch slots whose ray is not traced.
+    /// A placeholder for batch slots whose ray is not traced (tests).
+    #[cfg(test)]
     pub fn idle() -> Self {
         Self {
             o: Vec3::ZERO,

@@ -27,7 +27,7 @@ use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::{GridRay, SETUP_LANES, SetupLanes};
 use crate::leaf::{Exit, fmax, fmin, leaf, nearer};
-use crate::packet::Outcome;
+use crate::packet::{Outcome, Rays, SoaRays};
 use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::{CellHit, HIT_LANES, HitLanes};
 use crate::tracer::Tracer;
@@ -315,17 +315,15 @@ impl<'a> MipmapTracer<'a> {
         mut emit: impl FnMut(usize, Option<CellHit>),
     ) {
         const CHUNK: usize = 1024;
-        let mut grid = Vec::with_capacity(CHUNK.min(rays.len()));
+        let mut groups = Vec::with_capacity(CHUNK.div_ceil(SETUP_LANES));
         let mut cur = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut ends = Vec::with_capacity(CHUNK.min(rays.len()));
+        let mut descended = Vec::with_capacity(CHUNK.min(rays.len()));
         // The set-up of `GridRay::new` needs a valid range; with an invalid
         // one no ray is traced.
         let range_ok = !(t_min.is_nan() || t_max.is_nan() || t_min > t_max);
         let level = crate::packet::Level::detect();
-        let idle = GridRay::idle();
-        let mut lanes = SetupLanes::new();
         let mut dl = [0u32; SETUP_LANES];
-        let mut descended = Vec::with_capacity(CHUNK.min(rays.len()));
         let mut offset = [0u32; 32];
         for (o, &m) in offset.iter_mut().zip(&self.mip.offset) {
             // Offsets beyond 32 bits only occur in pyramids the lanes leave
@@ -333,12 +331,14 @@ impl<'a> MipmapTracer<'a> {
             *o = m as u32;
         }
         for (n, chunk) in rays.chunks(CHUNK).enumerate() {
-            grid.clear();
             cur.clear();
             descended.clear();
             // The set-up of `SETUP_LANES` rays at once (the tail padded with
-            // copies of its first ray).
-            for group in chunk.chunks(SETUP_LANES) {
+            // copies of its first ray), kept in lanes: the lane walk loads
+            // rays from there, and a `GridRay` is only built for the few
+            // rays that need the single-ray walk.
+            groups.resize(chunk.len().div_ceil(SETUP_LANES), SetupLanes::new());
+            for (group, lanes) in chunk.chunks(SETUP_LANES).zip(groups.iter_mut()) {
                 let mut g = [group[0]; SETUP_LANES];
                 g[..group.len()].copy_from_slice(group);
                 if range_ok {
@@ -349,14 +349,13 @@ impl<'a> MipmapTracer<'a> {
                         t_min,
                         t_max,
                         self.mip.top,
-                        &mut lanes,
+                        lanes,
                     );
-                    crate::packet::descend_with(level, self, &offset, &lanes, &mut dl);
+                    crate::packet::descend_with(level, self, &offset, lanes, &mut dl);
                 }
                 #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
                 for l in 0..group.len() {
                     if range_ok && lanes.ok[l] {
-                        grid.push(lanes.ray(l, t_min, t_max));
                         cur.push(Some(Cursor {
                             ci: lanes.ci[l],
                             cj: lanes.cj[l],
@@ -365,20 +364,31 @@ impl<'a> MipmapTracer<'a> {
                         }));
                         descended.push(dl[l]);
                     } else {
-                        // A stand-in, never walked (its cursor is `None`).
-                        grid.push(idle);
+                        // Never walked.
                         cur.push(None);
                         descended.push(0);
                     }
                 }
             }
-            crate::packet::walk_lanes::<ANY>(level, self, &grid, &cur, Some(&descended), &mut ends);
+            let soa = SoaRays {
+                groups: &groups,
+                t_min,
+                t_max,
+            };
+            crate::packet::walk_lanes::<ANY, _>(
+                level,
+                self,
+                &soa,
+                &cur,
+                Some(&descended),
+                &mut ends,
+            );
             let mut stats = TraceStats::default();
-            for (k, (r, end)) in grid.iter().zip(&ends).enumerate() {
+            for (k, end) in ends.iter().enumerate() {
                 let h = match *end {
                     Outcome::Miss => None,
                     Outcome::Hit(h) => Some(h),
-                    Outcome::Walk(c) => self.walk::<ANY>(r, c, &mut stats),
+                    Outcome::Walk(c) => self.walk::<ANY>(&soa.ray(k), c, &mut stats),
                 };
                 emit(n * CHUNK + k, h);
             }

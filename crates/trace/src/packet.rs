@@ -46,7 +46,7 @@ const MIN_LANE_LEVEL: u32 = 4;
 
 /// Per-lane ray constants and walk state, struct-of-arrays.
 #[derive(Clone, Copy)]
-struct Lanes {
+pub(crate) struct Lanes {
     ox: [f32; LANES],
     oy: [f32; LANES],
     dx: [f32; LANES],
@@ -99,29 +99,146 @@ impl Lanes {
     }
 
     #[inline]
-    fn load(&mut self, l: usize, k: usize, r: &GridRay, c: Cursor, lo: f32, scale: f32) {
-        self.ox[l] = r.o.x;
-        self.oy[l] = r.o.y;
-        self.dx[l] = r.d.x;
-        self.dy[l] = r.d.y;
-        self.ix[l] = r.inv.x;
-        self.iy[l] = r.inv.y;
+    #[allow(clippy::too_many_arguments)]
+    fn load(
+        &mut self,
+        l: usize,
+        k: usize,
+        o: Vec3,
+        d: Vec3,
+        ix: f32,
+        iy: f32,
+        zm: f32,
+        t0: f32,
+        t1: f32,
+        c: Cursor,
+        lo: f32,
+        scale: f32,
+    ) {
+        self.ox[l] = o.x;
+        self.oy[l] = o.y;
+        self.dx[l] = d.x;
+        self.dy[l] = d.y;
+        self.ix[l] = ix;
+        self.iy[l] = iy;
         // As in the single-ray walk: altitude and margin in quantised units.
-        self.oq[l] = (r.o.z - lo) / scale;
-        self.dq[l] = r.d.z / scale;
-        self.mq[l] = 1.0 + r.zm / scale;
-        self.t_end[l] = r.t1;
-        self.t0[l] = r.t0;
+        self.oq[l] = (o.z - lo) / scale;
+        self.dq[l] = d.z / scale;
+        self.mq[l] = 1.0 + zm / scale;
+        self.t_end[l] = t1;
+        self.t0[l] = t0;
         self.t[l] = c.t;
         self.ci[l] = c.ci;
         self.cj[l] = c.cj;
         self.level[l] = c.level;
-        self.sign[l] = u32::from(r.d.x > 0.0)
-            | u32::from(r.d.x < 0.0) << 1
-            | u32::from(r.d.y > 0.0) << 2
-            | u32::from(r.d.y < 0.0) << 3;
+        self.sign[l] = u32::from(d.x > 0.0)
+            | u32::from(d.x < 0.0) << 1
+            | u32::from(d.y > 0.0) << 2
+            | u32::from(d.y < 0.0) << 3;
         self.ray[l] = k;
         self.live[l] = true;
+    }
+}
+
+/// The rays a lane walk reads: set up one by one ([`GridRay`]s) or in
+/// lanes ([`SoaRays`], the batch path, which never builds a `GridRay` for a
+/// ray the lanes finish).
+pub(crate) trait Rays {
+    /// Ray `k` as a [`GridRay`] (for the single-ray walk's cell test).
+    fn ray(&self, k: usize) -> GridRay;
+    /// Loads ray `k`, starting at `c`, into lane `l`.
+    #[allow(clippy::too_many_arguments)]
+    fn load(
+        &self,
+        k: usize,
+        s: &mut Lanes,
+        x: &mut Exact,
+        l: usize,
+        c: Cursor,
+        lo: f32,
+        scale: f32,
+    );
+}
+
+impl Rays for [GridRay] {
+    #[inline]
+    fn ray(&self, k: usize) -> GridRay {
+        self[k]
+    }
+
+    #[inline]
+    fn load(
+        &self,
+        k: usize,
+        s: &mut Lanes,
+        x: &mut Exact,
+        l: usize,
+        c: Cursor,
+        lo: f32,
+        scale: f32,
+    ) {
+        let r = &self[k];
+        s.load(
+            l, k, r.o, r.d, r.inv.x, r.inv.y, r.zm, r.t0, r.t1, c, lo, scale,
+        );
+        x.load(l, r.o.z, r.d.z, r);
+    }
+}
+
+/// Rays set up in lanes: ray `k` is lane `k % SETUP_LANES` of group `k / SETUP_LANES`.
+pub(crate) struct SoaRays<'a> {
+    pub groups: &'a [SetupLanes],
+    pub t_min: f32,
+    pub t_max: f32,
+}
+
+impl Rays for SoaRays<'_> {
+    #[inline]
+    fn ray(&self, k: usize) -> GridRay {
+        self.groups[k / SETUP_LANES].ray(k % SETUP_LANES, self.t_min, self.t_max)
+    }
+
+    #[inline]
+    fn load(
+        &self,
+        k: usize,
+        s: &mut Lanes,
+        x: &mut Exact,
+        l: usize,
+        c: Cursor,
+        lo: f32,
+        scale: f32,
+    ) {
+        let g = &self.groups[k / SETUP_LANES];
+        let m = k % SETUP_LANES;
+        let o = Vec3::new(g.o[0][m], g.o[1][m], g.o[2][m]);
+        let d = Vec3::new(g.d[0][m], g.d[1][m], g.d[2][m]);
+        s.load(
+            l,
+            k,
+            o,
+            d,
+            g.inv[0][m],
+            g.inv[1][m],
+            g.zm[m],
+            g.t0[m],
+            g.t1[m],
+            c,
+            lo,
+            scale,
+        );
+        x.oz[l] = o.z;
+        x.dz[l] = d.z;
+        x.zm[l] = g.zm[m];
+        x.t_min[l] = self.t_min;
+        x.t_max[l] = self.t_max;
+        x.xyeps[l] = g.xyeps[m];
+        x.ttol[l] = g.ttol[m];
+        for q in 0..3 {
+            x.sh[q][l] = g.px[q][m];
+            x.sh[3 + q][l] = g.py[q][m];
+            x.sh[6 + q][l] = g.pz[q][m];
+        }
     }
 }
 
@@ -614,23 +731,23 @@ pub(crate) enum Outcome {
 /// Walks every ray of `rays` with a cursor in `cur` (`None`: nothing to
 /// trace) to its end, [`LANES`] at a time, running the cell tests of parked
 /// lanes one by one: `out[k]` says how ray `k` ended.
-pub(crate) fn walk_lanes<const ANY: bool>(
+pub(crate) fn walk_lanes<const ANY: bool, R: Rays + ?Sized>(
     level: Level,
     tr: &MipmapTracer<'_>,
-    rays: &[GridRay],
+    rays: &R,
     cur: &[Option<Cursor>],
     descended: Option<&[u32]>,
     out: &mut Vec<Outcome>,
 ) {
-    walk_lanes_with::<ANY>(level, MIN_LANE_LEVEL, tr, rays, cur, descended, out);
+    walk_lanes_with::<ANY, R>(level, MIN_LANE_LEVEL, tr, rays, cur, descended, out);
 }
 
 /// [`walk_lanes`] with the lane steps compiled for `level`.
-fn walk_lanes_with<const ANY: bool>(
+fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
     level: Level,
     min_level: u32,
     tr: &MipmapTracer<'_>,
-    rays: &[GridRay],
+    rays: &R,
     cur: &[Option<Cursor>],
     descended: Option<&[u32]>,
     out: &mut Vec<Outcome>,
@@ -673,7 +790,7 @@ fn walk_lanes_with<const ANY: bool>(
                         k,
                         match descended {
                             Some(d) => Cursor { level: d[k], ..c },
-                            None => tr.descend(&rays[k], c, &mut TraceStats::default()),
+                            None => tr.descend(&rays.ray(k), c, &mut TraceStats::default()),
                         },
                     ));
                 }
@@ -687,8 +804,7 @@ fn walk_lanes_with<const ANY: bool>(
     let mut live = 0u32;
     for l in 0..LANES {
         if let Some((kr, c)) = take(&mut next) {
-            s.load(l, kr, &rays[kr], c, lo, scale);
-            x.load(l, &rays[kr]);
+            rays.load(kr, &mut s, &mut x, l, c, lo, scale);
             live |= 1 << l;
         }
     }
@@ -744,7 +860,6 @@ fn walk_lanes_with<const ANY: bool>(
                 _ => {}
             }
             let kr = s.ray[l];
-            let r = &rays[kr];
             let (mut ci, mut cj, t) = (s.ci[l], s.cj[l], s.t[l]);
             let t_exit = co.t_exit[l];
             let exit = match co.exit[l] {
@@ -756,8 +871,8 @@ fn walk_lanes_with<const ANY: bool>(
             let h = if flags & SCALAR != 0 {
                 // Within rounding distance of an edge, or a zero edge
                 // function: the single-ray walk's cell test, neighbours and all.
-                let first = t == r.t0;
-                leaf::<ANY>(f, r, ci, cj, t, t_exit, exit, first, &mut stats)
+                let first = t == s.t0[l];
+                leaf::<ANY>(f, &rays.ray(kr), ci, cj, t, t_exit, exit, first, &mut stats)
             } else if flags & FOUND != 0 {
                 Some(CellHit {
                     t: co.t[l],
@@ -773,7 +888,7 @@ fn walk_lanes_with<const ANY: bool>(
                 None
             };
             let end = match h {
-                Some(h) if ANY || h.t <= t_exit + r.ttol => Some(Outcome::Hit(h)),
+                Some(h) if ANY || h.t <= t_exit + x.ttol[l] => Some(Outcome::Hit(h)),
                 Some(_) => Some(Outcome::Walk(Cursor {
                     ci,
                     cj,
@@ -786,7 +901,7 @@ fn walk_lanes_with<const ANY: bool>(
                     let left = match exit {
                         Exit::End => true,
                         Exit::X => {
-                            ci = if r.d.x > 0.0 {
+                            ci = if s.sign[l] & 1 != 0 {
                                 ci + 1
                             } else {
                                 ci.wrapping_sub(1)
@@ -794,7 +909,7 @@ fn walk_lanes_with<const ANY: bool>(
                             ci >= k.ncx
                         }
                         Exit::Y => {
-                            cj = if r.d.y > 0.0 {
+                            cj = if s.sign[l] & 4 != 0 {
                                 cj + 1
                             } else {
                                 cj.wrapping_sub(1)
@@ -835,21 +950,20 @@ const PARK_BATCH: u32 = 8;
 /// Loads lane `l` with the next ray, or retires it when there is none.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn refill(
+fn refill<R: Rays + ?Sized>(
     s: &mut Lanes,
     x: &mut Exact,
     live: &mut u32,
     next: &mut usize,
     l: usize,
     take: &impl Fn(&mut usize) -> Option<(usize, Cursor)>,
-    rays: &[GridRay],
+    rays: &R,
     lo: f32,
     scale: f32,
 ) {
     match take(next) {
         Some((kr, c)) => {
-            s.load(l, kr, &rays[kr], c, lo, scale);
-            x.load(l, &rays[kr]);
+            rays.load(kr, s, x, l, c, lo, scale);
         }
         None => {
             // A dead lane keeps stepping (ignored): park its state on
@@ -867,13 +981,14 @@ fn refill(
 /// The per-lane ray constants of the exact cell test (struct-of-arrays
 /// copies of [`GridRay`] fields the node steps do not need).
 #[derive(Clone, Copy)]
-struct Exact {
+pub(crate) struct Exact {
     oz: [f32; LANES],
     dz: [f32; LANES],
     zm: [f32; LANES],
     t_min: [f32; LANES],
     t_max: [f32; LANES],
     xyeps: [f32; LANES],
+    ttol: [f32; LANES],
     /// The shear's rows `px, py, pz`, three components each.
     sh: [[f32; LANES]; 9],
 }
@@ -887,14 +1002,16 @@ impl Exact {
             t_min: [0.0; LANES],
             t_max: [0.0; LANES],
             xyeps: [0.0; LANES],
+            ttol: [0.0; LANES],
             sh: [[0.0; LANES]; 9],
         }
     }
 
     #[inline]
-    fn load(&mut self, l: usize, r: &GridRay) {
-        self.oz[l] = r.o.z;
-        self.dz[l] = r.d.z;
+    fn load(&mut self, l: usize, oz: f32, dz: f32, r: &GridRay) {
+        self.oz[l] = oz;
+        self.dz[l] = dz;
+        self.ttol[l] = r.ttol;
         self.zm[l] = r.zm;
         self.t_min[l] = r.t_min;
         self.t_max[l] = r.t_max;
@@ -1469,9 +1586,25 @@ mod tests {
             let run = |level: Level| {
                 let mut out = Vec::new();
                 if any {
-                    walk_lanes_with::<true>(level, 0, &tr, &grid, &start, None, &mut out);
+                    walk_lanes_with::<true, [GridRay]>(
+                        level,
+                        0,
+                        &tr,
+                        grid.as_slice(),
+                        &start,
+                        None,
+                        &mut out,
+                    );
                 } else {
-                    walk_lanes_with::<false>(level, 0, &tr, &grid, &start, None, &mut out);
+                    walk_lanes_with::<false, [GridRay]>(
+                        level,
+                        0,
+                        &tr,
+                        grid.as_slice(),
+                        &start,
+                        None,
+                        &mut out,
+                    );
                 }
                 out
             };
@@ -1482,6 +1615,58 @@ mod tests {
                 let got = run(level);
                 for (g, w) in got.iter().zip(&want) {
                     assert_eq!(key(g), key(w), "{level:?}");
+                }
+            }
+            // The batch path's rays, set up in lanes (and walked from the
+            // lane pre-descent), end the same way at every instruction set.
+            for level in levels.iter().copied().chain([Level::Scalar]) {
+                let mut groups = vec![SetupLanes::new(); rays.len().div_ceil(SETUP_LANES)];
+                let mut dl = vec![0u32; groups.len() * SETUP_LANES];
+                let mut offset = [0u32; 32];
+                for (o, &m) in offset.iter_mut().zip(&tr.mip.offset) {
+                    *o = m as u32;
+                }
+                for (g, (chunk, d)) in groups
+                    .iter_mut()
+                    .zip(rays.chunks(SETUP_LANES).zip(dl.chunks_mut(SETUP_LANES)))
+                {
+                    let mut a = [chunk[0]; SETUP_LANES];
+                    a[..chunk.len()].copy_from_slice(chunk);
+                    setup_with(level, &tr.f, &a, 0.0, f32::INFINITY, tr.mip.top, g);
+                    descend_with(level, &tr, &offset, g, d.try_into().unwrap());
+                }
+                let soa = SoaRays {
+                    groups: &groups,
+                    t_min: 0.0,
+                    t_max: f32::INFINITY,
+                };
+                let mut got = Vec::new();
+                if any {
+                    walk_lanes_with::<true, _>(level, 0, &tr, &soa, &start, Some(&dl), &mut got);
+                } else {
+                    walk_lanes_with::<false, _>(level, 0, &tr, &soa, &start, Some(&dl), &mut got);
+                }
+                let mut stats = TraceStats::default();
+                for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+                    // Hand-overs to the single-ray walk may start from a
+                    // different cursor (the lanes walked from the descent):
+                    // compare where the walks end.
+                    let mut end = |o: &Outcome| match *o {
+                        Outcome::Walk(c) => match if any {
+                            tr.walk::<true>(&grid[k], c, &mut stats)
+                        } else {
+                            tr.walk::<false>(&grid[k], c, &mut stats)
+                        } {
+                            Some(h) => Outcome::Hit(h),
+                            None => Outcome::Miss,
+                        },
+                        o => o,
+                    };
+                    assert_eq!(
+                        key(&end(g)),
+                        key(&end(w)),
+                        "lane set-up, {level:?}, ray {k}"
+                    );
                 }
             }
         }
@@ -1557,7 +1742,15 @@ mod tests {
             let key = |h: Option<CellHit>| h.map(|h| (h.t.to_bits(), h.cell, h.triangle.index()));
             let mut stats = TraceStats::default();
             let mut out = Vec::new();
-            walk_lanes_with::<false>(Level::detect(), 0, &tr, &grid, &start, None, &mut out);
+            walk_lanes_with::<false, [GridRay]>(
+                Level::detect(),
+                0,
+                &tr,
+                grid.as_slice(),
+                &start,
+                None,
+                &mut out,
+            );
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => None,
@@ -1568,7 +1761,15 @@ mod tests {
                 assert_eq!(key(got), key(want), "case {case}, ray {k}: {:?}", rays[k]);
                 checked += usize::from(want.is_some());
             }
-            walk_lanes_with::<true>(Level::detect(), 0, &tr, &grid, &start, None, &mut out);
+            walk_lanes_with::<true, [GridRay]>(
+                Level::detect(),
+                0,
+                &tr,
+                grid.as_slice(),
+                &start,
+                None,
+                &mut out,
+            );
             for (k, (r, o)) in grid.iter().zip(&out).enumerate() {
                 let got = match *o {
                     Outcome::Miss => false,
