@@ -10,23 +10,36 @@
 //! rays at once; the loop over lanes is vectorised (with gathers of the
 //! nodes) for AVX-512 or AVX2, chosen at run time.
 //!
-//! Before a ray enters a lane it takes the walk's sure descents at its start
-//! ([`MipmapTracer::descend`]: where its start altitude lies inside a node's
-//! bounds the walk descends, whatever the rest of its span), so a ray from a
-//! camera near the ground does not spend lane steps on them. A lane whose
-//! ray descends to a cell parks in that step, and the cells are walked
-//! outside the lanes ([`leaf`], the single-ray walk's exact cell test, then
-//! the walk's step to the next cell) until the ray hits, leaves the field
-//! or climbs back to level 1, when it steps on in its lane; a lane whose ray
-//! is done is refilled with the next ray. A hit that a later cell could
-//! still beat (one across an edge within rounding distance, rare) hands the
-//! ray to the single-ray walk ([`MipmapTracer::walk`]) from that cell.
+//! The batch path keeps every per-ray stage in lanes of 16 as well, each a
+//! loop over lanes without data-dependent branches that LLVM vectorises
+//! (inside `#[target_feature]` functions chosen at run time): the set-up
+//! ([`crate::grid_ray::setup_lanes`]: clip, shear, rounding bounds, start
+//! cell and level, kept in struct-of-arrays form so no per-ray `GridRay` is
+//! built unless the single-ray walk needs one), the walk's sure descents at
+//! its start ([`MipmapTracer::descend`] in lanes: where the start altitude
+//! lies inside a node's bounds the walk descends, whatever the rest of its
+//! span), the exact cell tests, and the hit records
+//! ([`crate::ray_cell::hit_lanes`]).
 //!
-//! The lane step computes the same `f32` and integer values in the same
-//! order as the single-ray walk's node steps, so every ray visits the same
-//! cells at the same `t` and returns the same hit, bit for bit (tested
-//! against the single-ray path, at every instruction set, and against brute
-//! force).
+//! A lane whose ray descends to a cell parks in that step and waits while
+//! the other lanes step on; once [`PARK_BATCH`] lanes wait (or no lane is
+//! stepping), one pass of exact tests takes one cell for every parked lane
+//! at once (the single-ray walk's cull and watertight pair, both triangles
+//! computed and selected) and steps the lanes that missed on to their next
+//! cell; a lane whose walk climbs back to level 1 steps on in the lanes, and
+//! a lane whose ray is done is refilled with the next ray. Cells the lane
+//! test cannot settle alone (a zero edge function, or an edge or corner
+//! within rounding distance, whose neighbours the single-ray [`leaf`] also
+//! tests) take `leaf` itself. A hit that a later cell could still beat
+//! (rare) hands the ray to the single-ray walk ([`MipmapTracer::walk`])
+//! from that cell.
+//!
+//! Every lane stage computes the same `f32` and integer values in the same
+//! order as the single-ray path (set-up, node steps, cell tests, hit
+//! records), so every ray visits the same cells at the same `t` and returns
+//! the same hit, bit for bit (tested stage by stage against the single-ray
+//! code at every instruction set, end to end against `trace`/`occluded`,
+//! and against brute force).
 
 use crate::field::FieldView;
 use glam::Vec3;
