@@ -828,10 +828,12 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
     let mut parked = 0u32;
     let mut corners = [[0.0f32; LANES]; 4];
     let mut co = CellOut::new();
+    // (Every lane step writes every lane's event.)
+    let mut events = [GOING; LANES];
     while live != 0 {
         if live & !parked != 0 && parked.count_ones() < PARK_BATCH {
-            let mut events = [GOING; LANES];
-            let mut mask = level.step(&mut s, &k, &mut events);
+            // Lanes already parked report `AT_CELL` again: nothing new.
+            let mut mask = level.step(&mut s, &k, &mut events) & !parked;
             while mask != 0 {
                 let l = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -958,7 +960,7 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
 
 /// Lanes parked at cells before a pass of exact tests runs (unless no lane
 /// is stepping).
-const PARK_BATCH: u32 = 8;
+const PARK_BATCH: u32 = 6;
 
 /// Loads lane `l` with the next ray, or retires it when there is none.
 #[inline(always)]
