@@ -14,7 +14,7 @@
 //! deterministic.
 
 use std::cmp::Ordering;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 use natura_core::{Grid2, HeightField};
 
@@ -55,16 +55,53 @@ pub struct FlowGraph {
     pub distance: Vec<f32>,
     /// Cells ordered so that every receiver precedes its donors (Braun & Willett's stack).
     pub stack: Vec<u32>,
+    /// Bounds of the stack's outlet groups: group `k` is `stack[groups[k]..groups[k + 1]]`
+    /// and holds whole drainage trees, so the groups can be processed independently.
+    pub(crate) groups: Vec<usize>,
+    /// For each stack entry, the position of its receiver within its group
+    /// (its own position for outlets).
+    pub(crate) rpos: Vec<u32>,
     scratch: StackScratch,
 }
 
-/// Reusable buffers of [`build_stack_into`].
+/// Reusable buffers of the graph builder.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct StackScratch {
-    offsets: Vec<u32>,
-    donors: Vec<u32>,
-    todo: Vec<u32>,
+    /// Donor bit masks per cell (bit `k`: the neighbour at [`NB`]`[k]` drains here).
+    masks: Vec<u8>,
+    /// Cells that are their own receiver (outlets and pits), increasing.
+    roots: Vec<u32>,
+    /// Basin label per cell during pit routing; all zero between calls.
     basin: Vec<u32>,
+}
+
+/// The eight neighbours in increasing index order (raster order of the 3 × 3
+/// block): bit `k` of a donor mask stands for the neighbour at `NB[k]`.
+const NB: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// Index offsets of [`NB`] on a grid `nx` wide.
+#[inline]
+fn nb_offsets(nx: usize) -> [isize; 8] {
+    NB.map(|(dx, dy)| dy * nx as isize + dx)
+}
+
+/// The bit of neighbour `d` in the donor mask of cell `r` (8-neighbours).
+#[inline]
+fn nb_bit(r: usize, d: usize, nx: usize) -> u8 {
+    let dx = (d % nx) as isize - (r % nx) as isize;
+    let dy = (d / nx) as isize - (r / nx) as isize;
+    let idx = (dy + 1) * 3 + (dx + 1);
+    debug_assert!((0..9).contains(&idx) && idx != 4, "not a neighbour");
+    1u8 << (idx - isize::from(idx > 4))
 }
 
 impl FlowGraph {
@@ -96,6 +133,8 @@ impl FlowGraph {
             receiver: Vec::new(),
             distance: Vec::new(),
             stack: Vec::new(),
+            groups: Vec::new(),
+            rpos: Vec::new(),
             scratch: StackScratch::default(),
         }
     }
@@ -122,18 +161,89 @@ impl FlowGraph {
         depressions: Depressions,
         filled: Option<&mut [f32]>,
     ) {
-        self.nx = nx;
-        self.ny = ny;
-        d8_receivers_into(h, nx, ny, &mut self.receiver, &mut self.distance);
-        // Pits are routed on the raw receivers (labelling needs no stack), so
-        // the stack is built once, on the final receivers.
-        if depressions != Depressions::Keep {
-            self.route_pits(h);
-        }
-        build_stack_into(&self.receiver, &mut self.stack, &mut self.scratch);
+        self.rebuild_graph(h, nx, ny, depressions);
         if depressions == Depressions::Fill {
             fill_along(h, &self.receiver, &self.stack, filled);
         }
+    }
+
+    /// Receivers, pit routing (`Route` and `Fill` route alike) and the stack,
+    /// without filling: `h` is not modified.
+    pub(crate) fn rebuild_graph(
+        &mut self,
+        h: &[f32],
+        nx: usize,
+        ny: usize,
+        depressions: Depressions,
+    ) {
+        self.nx = nx;
+        self.ny = ny;
+        d8_receivers_into(h, nx, ny, &mut self.receiver, &mut self.distance);
+        find_roots(&self.receiver, nx, ny, &mut self.scratch.roots);
+        donor_masks_into(&self.receiver, nx, ny, &mut self.scratch.masks);
+        // Pits are routed on the raw receivers (labelling walks the donor
+        // masks from each pit), so the stack is built once, on the final receivers.
+        if depressions != Depressions::Keep {
+            self.route_pits(h);
+        }
+        self.build_stack();
+    }
+
+    /// Braun & Willett's stack (outlets and pits first, each followed
+    /// depth-first by its donors, visited in increasing index order) from the
+    /// roots and donor masks: groups of consecutive roots are walked in
+    /// parallel and concatenated in order (the same stack as one walk), and
+    /// the group bounds and each entry's receiver position are kept for the
+    /// group-parallel passes. O(n).
+    fn build_stack(&mut self) {
+        let n = self.receiver.len();
+        let off = nb_offsets(self.nx);
+        let roots = &self.scratch.roots;
+        let masks = &self.scratch.masks;
+        let per = roots.len().div_ceil(STACK_GROUPS).max(1);
+        let parts: Vec<(Vec<u32>, Vec<u32>)> =
+            par::run(roots.chunks(per).collect(), |roots: &[u32]| {
+                let mut part = Vec::new();
+                let mut rp = Vec::new();
+                let mut work: Vec<(u32, u32)> = Vec::new();
+                for &root in roots {
+                    work.push((root, u32::MAX));
+                    while let Some((c, r)) = work.pop() {
+                        let k = part.len() as u32;
+                        part.push(c);
+                        rp.push(if r == u32::MAX { k } else { r });
+                        let mut m = masks[c as usize];
+                        while m != 0 {
+                            let b = m.trailing_zeros() as usize;
+                            m &= m - 1;
+                            work.push(((c as isize + off[b]) as u32, k));
+                        }
+                    }
+                }
+                (part, rp)
+            });
+        self.groups.clear();
+        self.groups.push(0);
+        for (part, _) in &parts {
+            self.groups
+                .push(self.groups.last().copied().unwrap_or(0) + part.len());
+        }
+        debug_assert_eq!(self.groups.last().copied(), Some(n));
+        self.stack.resize(n, 0);
+        self.rpos.resize(n, 0);
+        let mut jobs = Vec::with_capacity(parts.len());
+        let (mut st, mut rp) = (self.stack.as_mut_slice(), self.rpos.as_mut_slice());
+        for part in parts {
+            let (a, b) = std::mem::take(&mut st).split_at_mut(part.0.len());
+            let (c, d) = std::mem::take(&mut rp).split_at_mut(part.0.len());
+            st = b;
+            rp = d;
+            jobs.push((a, c, part));
+        }
+        par::run(jobs, |(a, c, (p, r))| {
+            a.copy_from_slice(&p);
+            c.copy_from_slice(&r);
+        });
     }
 
     /// Whether cell `i` is on the grid edge.
@@ -177,17 +287,259 @@ impl FlowGraph {
     }
 
     /// Links every closed basin to the edge through its lowest pass; returns whether
-    /// any receiver changed.
+    /// any receiver changed. Costs O(cells in closed basins) plus O(b log b)
+    /// for b basins: nothing is scanned when no interior pit exists.
     fn route_pits(&mut self, h: &[f32]) -> bool {
+        let (nx, n) = (self.nx, self.nx * self.ny);
+        let off = nb_offsets(nx);
+        // Basin 0 is "the outside" (all edge outlets); pits are numbered from 1
+        // in increasing cell order.
+        let mut pits: Vec<u32> = vec![u32::MAX]; // pit cell of each basin (index 0 unused)
+        pits.extend(
+            self.scratch
+                .roots
+                .iter()
+                .copied()
+                .filter(|&i| !self.is_edge(i as usize)),
+        );
+        if pits.len() == 1 {
+            return false; // no interior pit: nothing to route
+        }
+        let StackScratch {
+            masks,
+            roots,
+            basin,
+        } = &mut self.scratch;
+        if basin.len() != n {
+            basin.clear();
+            basin.resize(n, 0);
+        }
+        // Walk each pit's basin over the donor masks (groups of pits in
+        // parallel), then label the cells: `cells` lists each basin's cells in
+        // pit order.
+        let nb_basins = pits.len() - 1;
+        let per = nb_basins.div_ceil(64).max(1);
+        let masks_ref = &*masks;
+        let walks: Vec<Vec<u32>> = par::run(pits[1..].chunks(per).collect(), |group: &[u32]| {
+            let mut out = Vec::new();
+            let mut work: Vec<u32> = Vec::new();
+            for &pit in group {
+                // Each basin's cells end with a marker: its pit, flagged.
+                work.push(pit);
+                while let Some(c) = work.pop() {
+                    out.push(c);
+                    let mut m = masks_ref[c as usize];
+                    while m != 0 {
+                        let k = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        work.push((c as isize + off[k]) as u32);
+                    }
+                }
+                out.push(u32::MAX);
+            }
+            out
+        });
+        let mut cells: Vec<u32> = Vec::new();
+        let mut b = 1u32;
+        for w in &walks {
+            for &c in w {
+                if c == u32::MAX {
+                    b += 1;
+                } else {
+                    basin[c as usize] = b;
+                    cells.push(c);
+                }
+            }
+        }
+        drop(walks);
+        // Lowest pass between each pair of adjacent basins: every cell of a
+        // closed basin is interior, so all eight neighbours exist. Equal
+        // ranges of the basins' cells are scanned in parallel, each keeping
+        // its lowest pass per basin pair; the pairs are then merged by
+        // sorting, so the result is scheduling-independent (the same passes
+        // as a scan of every edge of the grid: a pass is the same seen from
+        // either side).
+        let per = cells.len().div_ceil(64).max(1);
+        let basin_ref = &*basin;
+        let found: Vec<Vec<(u32, u32, Pass)>> =
+            par::run(cells.chunks(per).collect(), |part: &[u32]| {
+                let mut out: Vec<(u32, u32, Pass)> = Vec::new();
+                for &c in part {
+                    let c = c as usize;
+                    let bc = basin_ref[c];
+                    for &o in &off {
+                        let j = (c as isize + o) as usize;
+                        let bj = basin_ref[j];
+                        if bj != bc {
+                            let p = Pass::new(h[c].max(h[j]), c.min(j) as u32, c.max(j) as u32);
+                            out.push((bc.min(bj), bc.max(bj), p));
+                        }
+                    }
+                }
+                out.sort_unstable();
+                out.dedup_by_key(|e| (e.0, e.1));
+                out
+            });
+        let mut pairs: Vec<(u32, u32, Pass)> = found.concat();
+        pairs.sort_unstable();
+        pairs.dedup_by_key(|e| (e.0, e.1));
+        let mut adjacency: Vec<Vec<(u32, Pass)>> = vec![Vec::new(); pits.len()];
+        for &(a, b, p) in &pairs {
+            adjacency[a as usize].push((b, p));
+            adjacency[b as usize].push((a, p));
+        }
+        let links = minimax_links(&adjacency);
+        // Reverse receivers from the pass cell inside each basin down to its pit,
+        // then drain the pass cell across to the neighbouring basin; the donor
+        // masks follow every change.
+        for (b, p) in links {
+            let (inside, outside) = if basin[p.a as usize] == b {
+                (p.a, p.b)
+            } else {
+                (p.b, p.a)
+            };
+            let pit = pits[b as usize];
+            let mut prev = outside;
+            let mut cur = inside;
+            loop {
+                let (c, pv) = (cur as usize, prev as usize);
+                let next = self.receiver[c];
+                if next != cur {
+                    masks[next as usize] &= !nb_bit(next as usize, c, nx);
+                }
+                masks[pv] |= nb_bit(pv, c, nx);
+                self.receiver[c] = prev;
+                self.distance[c] = cell_distance(c, pv, nx);
+                if cur == pit || next == cur {
+                    break;
+                }
+                prev = cur;
+                cur = next;
+            }
+        }
+        for &c in &cells {
+            basin[c as usize] = 0;
+        }
+        // Every pit now drains across its pass: only the edge outlets stay roots.
+        let rec = &self.receiver;
+        roots.retain(|&i| rec[i as usize] == i);
+        true
+    }
+}
+
+/// Prim's algorithm from the outside (basin 0) over the basin graph: a
+/// minimax spanning tree, as `(basin, pass to its parent)` in the order the
+/// basins join.
+fn minimax_links(adjacency: &[Vec<(u32, Pass)>]) -> Vec<(u32, Pass)> {
+    let mut done = vec![false; adjacency.len()];
+    let mut heap = BinaryHeap::new();
+    done[0] = true;
+    for &(b, p) in &adjacency[0] {
+        heap.push(std::cmp::Reverse((p, b)));
+    }
+    let mut links: Vec<(u32, Pass)> = Vec::new();
+    while let Some(std::cmp::Reverse((p, b))) = heap.pop() {
+        if done[b as usize] {
+            continue;
+        }
+        done[b as usize] = true;
+        links.push((b, p));
+        for &(c, q) in &adjacency[b as usize] {
+            if !done[c as usize] {
+                heap.push(std::cmp::Reverse((q, c)));
+            }
+        }
+    }
+    links
+}
+
+/// Cells that are their own receiver (outlets and pits), in increasing order.
+fn find_roots(rec: &[u32], nx: usize, ny: usize, roots: &mut Vec<u32>) {
+    let bands = par::reduce_bands(ny, |y0, y1| {
+        (y0 * nx..y1 * nx)
+            .filter(|&i| rec[i] as usize == i)
+            .map(|i| i as u32)
+            .collect::<Vec<u32>>()
+    });
+    roots.clear();
+    for b in bands {
+        roots.extend_from_slice(&b);
+    }
+}
+
+/// Donor masks of every cell: bit `k` set when the neighbour at [`NB`]`[k]`
+/// has this cell as its receiver. Pure per cell, in parallel over bands.
+fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
+    masks.resize(nx * ny, 0);
+    par::map_bands(nx, ny, [masks.as_mut_slice()], |y0, y1, [m]| {
+        for y in y0..y1 {
+            let row = &mut m[(y - y0) * nx..(y - y0 + 1) * nx];
+            let general = |x: usize| {
+                let i = y * nx + x;
+                let mut bits = 0u8;
+                for (k, &(dx, dy)) in NB.iter().enumerate() {
+                    let (xj, yj) = (x as isize + dx, y as isize + dy);
+                    if xj >= 0 && yj >= 0 && (xj as usize) < nx && (yj as usize) < ny {
+                        let j = yj as usize * nx + xj as usize;
+                        if rec[j] as usize == i {
+                            bits |= 1 << k;
+                        }
+                    }
+                }
+                bits
+            };
+            if y == 0 || y + 1 == ny || nx < 3 {
+                for (x, v) in row.iter_mut().enumerate() {
+                    *v = general(x);
+                }
+            } else {
+                row[0] = general(0);
+                row[nx - 1] = general(nx - 1);
+                let rows = [
+                    &rec[(y - 1) * nx..y * nx],
+                    &rec[y * nx..(y + 1) * nx],
+                    &rec[(y + 1) * nx..(y + 2) * nx],
+                ];
+                masks_row(rows, (y * nx) as u32, &mut row[1..nx - 1]);
+            }
+        }
+    });
+}
+
+crate::simd::multiversion! {
+/// Donor masks of the interior cells `1..nx − 1` of a row whose first cell
+/// has index `i0`, from the receivers of the rows below, at and above it.
+fn masks_row<'a>(rows: [&'a [u32]; 3], i0: u32, out: &'a mut [u8]) {
+    let m = out.len();
+    let [dn, md, up] = rows;
+    let (d0, d1, d2) = (&dn[..m], &dn[1..m + 1], &dn[2..m + 2]);
+    let (m0, m2) = (&md[..m], &md[2..m + 2]);
+    let (u0, u1, u2) = (&up[..m], &up[1..m + 1], &up[2..m + 2]);
+    for x in 0..m {
+        let i = i0 + 1 + x as u32;
+        out[x] = u8::from(d0[x] == i)
+            | u8::from(d1[x] == i) << 1
+            | u8::from(d2[x] == i) << 2
+            | u8::from(m0[x] == i) << 3
+            | u8::from(m2[x] == i) << 4
+            | u8::from(u0[x] == i) << 5
+            | u8::from(u1[x] == i) << 6
+            | u8::from(u2[x] == i) << 7;
+    }
+}
+}
+
+impl FlowGraph {
+    /// The original pit routing (labels by following receivers, lowest passes
+    /// by a scan of every grid edge into hash maps), the reference for
+    /// [`FlowGraph::route_pits`]: the same receivers and distances.
+    #[cfg(test)]
+    fn route_pits_reference(&mut self, h: &[f32]) -> bool {
+        use std::collections::HashMap;
         let (nx, ny) = (self.nx, self.ny);
         let n = nx * ny;
-        // Basin labels; basin 0 is "the outside" (all edge outlets), pits are
-        // numbered in increasing cell order. Receivers are strictly downhill
-        // here (no cycles), so every path ends at a root.
-        let mut basin = std::mem::take(&mut self.scratch.basin);
-        basin.clear();
-        basin.resize(n, u32::MAX);
-        let mut pits: Vec<u32> = vec![u32::MAX]; // pit cell of each basin (index 0 unused)
+        let mut basin = vec![u32::MAX; n];
+        let mut pits: Vec<u32> = vec![u32::MAX];
         for (i, &r) in self.receiver.iter().enumerate() {
             if r as usize == i {
                 basin[i] = if self.is_edge(i) {
@@ -199,11 +551,9 @@ impl FlowGraph {
             }
         }
         if pits.len() == 1 {
-            self.scratch.basin = basin;
-            return false; // no interior pit: nothing to route
+            return false;
         }
-        // Follow each unlabelled cell's receivers to a labelled one and label the path.
-        let mut path = std::mem::take(&mut self.scratch.todo);
+        let mut path = Vec::new();
         for i in 0..n {
             let mut c = i;
             while basin[c] == u32::MAX {
@@ -216,45 +566,29 @@ impl FlowGraph {
             }
             path.clear();
         }
-        self.scratch.todo = path;
-        // Lowest pass between each pair of adjacent basins, found per band and
-        // merged with a total order, so the result is scheduling-independent.
-        let basin_ref = &basin;
-        let band_maps: Vec<HashMap<(u32, u32), Pass>> = par::reduce_bands(ny, |y0, y1| {
-            let mut m: HashMap<(u32, u32), Pass> = HashMap::new();
-            for y in y0..y1 {
-                for x in 0..nx {
-                    let i = y * nx + x;
-                    for &(dx, dy) in &[(1i32, 0i32), (0, 1), (1, 1), (-1, 1)] {
-                        let (xj, yj) = (x as i64 + i64::from(dx), y as i64 + i64::from(dy));
-                        if xj < 0 || yj >= ny as i64 || xj >= nx as i64 {
-                            continue;
-                        }
-                        let j = yj as usize * nx + xj as usize;
-                        let (bi, bj) = (basin_ref[i], basin_ref[j]);
-                        if bi == bj {
-                            continue;
-                        }
-                        let pass = Pass::new(h[i].max(h[j]), i as u32, j as u32);
-                        let key = (bi.min(bj), bi.max(bj));
-                        m.entry(key)
-                            .and_modify(|p| *p = (*p).min(pass))
-                            .or_insert(pass);
+        let mut merged: HashMap<(u32, u32), Pass> = HashMap::new();
+        for y in 0..ny {
+            for x in 0..nx {
+                let i = y * nx + x;
+                for &(dx, dy) in &[(1i64, 0i64), (0, 1), (1, 1), (-1, 1)] {
+                    let (xj, yj) = (x as i64 + dx, y as i64 + dy);
+                    if xj < 0 || yj >= ny as i64 || xj >= nx as i64 {
+                        continue;
                     }
+                    let j = yj as usize * nx + xj as usize;
+                    let (bi, bj) = (basin[i], basin[j]);
+                    if bi == bj {
+                        continue;
+                    }
+                    let pass = Pass::new(h[i].max(h[j]), i as u32, j as u32);
+                    merged
+                        .entry((bi.min(bj), bi.max(bj)))
+                        .and_modify(|p| *p = (*p).min(pass))
+                        .or_insert(pass);
                 }
             }
-            m
-        });
-        let mut adjacency: Vec<Vec<(u32, Pass)>> = vec![Vec::new(); pits.len()];
-        let mut merged: HashMap<(u32, u32), Pass> = HashMap::new();
-        for m in band_maps {
-            for (k, p) in m {
-                merged
-                    .entry(k)
-                    .and_modify(|q| *q = (*q).min(p))
-                    .or_insert(p);
-            }
         }
+        let mut adjacency: Vec<Vec<(u32, Pass)>> = vec![Vec::new(); pits.len()];
         let mut keys: Vec<_> = merged.keys().copied().collect();
         keys.sort_unstable();
         for k in keys {
@@ -262,29 +596,7 @@ impl FlowGraph {
             adjacency[k.0 as usize].push((k.1, p));
             adjacency[k.1 as usize].push((k.0, p));
         }
-        // Prim's algorithm from the outside: a minimax spanning tree.
-        let mut done = vec![false; pits.len()];
-        let mut heap = BinaryHeap::new();
-        done[0] = true;
-        for &(b, p) in &adjacency[0] {
-            heap.push(std::cmp::Reverse((p, b)));
-        }
-        let mut links: Vec<(u32, Pass)> = Vec::new();
-        while let Some(std::cmp::Reverse((p, b))) = heap.pop() {
-            if done[b as usize] {
-                continue;
-            }
-            done[b as usize] = true;
-            links.push((b, p));
-            for &(c, q) in &adjacency[b as usize] {
-                if !done[c as usize] {
-                    heap.push(std::cmp::Reverse((q, c)));
-                }
-            }
-        }
-        // Reverse receivers from the pass cell inside each basin down to its pit,
-        // then drain the pass cell across to the neighbouring basin.
-        for (b, p) in links {
+        for (b, p) in minimax_links(&adjacency) {
             let (inside, outside) = if basin[p.a as usize] == b {
                 (p.a, p.b)
             } else {
@@ -304,7 +616,6 @@ impl FlowGraph {
                 cur = next;
             }
         }
-        self.scratch.basin = basin;
         true
     }
 }
@@ -440,74 +751,29 @@ fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32]) {
 }
 }
 
-/// Braun & Willett's stack (outlets and pits first, each followed
-/// depth-first by its donors) into reusable buffers: donor lists by a counting sort
-/// (donors of each cell in increasing index order), then an iterative
-/// depth-first walk from every outlet. O(n).
-pub(crate) fn build_stack_into(rec: &[u32], stack: &mut Vec<u32>, s: &mut StackScratch) {
-    let n = rec.len();
-    let StackScratch {
-        offsets,
-        donors,
-        todo,
-        ..
-    } = s;
-    // offsets[r] counts r's donors, then (inclusive prefix sum) marks the end of
-    // its group; filling backwards moves it to the group's start, and
-    // offsets[r + 1] (the next group's start) is its end.
-    offsets.clear();
-    offsets.resize(n + 1, 0);
-    for (i, &r) in rec.iter().enumerate() {
-        if r as usize != i {
-            offsets[r as usize] += 1;
-        }
-    }
-    let mut acc = 0u32;
-    for o in offsets.iter_mut().take(n) {
-        acc += *o;
-        *o = acc;
-    }
-    offsets[n] = acc;
-    donors.clear();
-    donors.resize(acc as usize, 0);
-    for (i, &r) in rec.iter().enumerate().rev() {
-        if r as usize != i {
-            offsets[r as usize] -= 1;
-            donors[offsets[r as usize] as usize] = i as u32;
-        }
-    }
-    // The trees of different outlets are disjoint: walk groups of outlets
-    // (consecutive in index order, a fixed number per group) in parallel and
-    // concatenate their stacks in group order — the same stack as one walk.
-    todo.clear();
-    todo.extend((0..n as u32).filter(|&i| rec[i as usize] == i));
-    let per = todo.len().div_ceil(STACK_GROUPS).max(1);
-    let (offsets, donors) = (&*offsets, &*donors);
-    let parts: Vec<Vec<u32>> = par::run(todo.chunks(per).collect(), |roots: &[u32]| {
-        let mut part = Vec::new();
-        let mut work = Vec::new();
-        for &root in roots {
-            work.push(root);
-            while let Some(c) = work.pop() {
-                part.push(c);
-                let c = c as usize;
-                // A cell has at most 8 donors: push them one by one (a
-                // `memcpy` call per cell costs more than the copy).
-                for &d in &donors[offsets[c] as usize..offsets[c + 1] as usize] {
-                    work.push(d);
-                }
-            }
-        }
-        part
-    });
-    stack.clear();
-    stack.reserve(n);
-    for part in parts {
-        stack.extend_from_slice(&part);
-    }
+/// The stack of receivers `rec` (`nx × ny`) through the graph builder's own
+/// path (roots, donor masks, grouped walk), for tests against the reference.
+#[cfg(test)]
+pub(crate) fn build_stack_into(
+    rec: &[u32],
+    nx: usize,
+    ny: usize,
+    stack: &mut Vec<u32>,
+    s: &mut StackScratch,
+) {
+    let mut g = FlowGraph::empty();
+    g.nx = nx;
+    g.ny = ny;
+    g.receiver = rec.to_vec();
+    g.scratch = std::mem::take(s);
+    find_roots(rec, nx, ny, &mut g.scratch.roots);
+    donor_masks_into(rec, nx, ny, &mut g.scratch.masks);
+    g.build_stack();
+    *stack = std::mem::take(&mut g.stack);
+    *s = g.scratch;
 }
 
-/// Outlet groups walked in parallel by [`build_stack_into`].
+/// Outlet groups walked in parallel by [`FlowGraph::build_stack`].
 const STACK_GROUPS: usize = 64;
 
 /// The original two-pass stack builder, the reference for [`build_stack_into`].
@@ -749,11 +1015,11 @@ mod tests {
         for (seed, n) in [(1u64, 40usize), (2, 7), (3, 64), (4, 3)] {
             let h = rough(n, seed);
             let (rec, _) = d8_receivers(&h, n, n);
-            build_stack_into(&rec, &mut stack, &mut scratch);
+            build_stack_into(&rec, n, n, &mut stack, &mut scratch);
             assert_eq!(stack, build_stack_reference(&rec), "raw D8, n = {n}");
             let mut hr = h.clone();
             let g = FlowGraph::build(&mut hr, n, n, Depressions::Route);
-            build_stack_into(&g.receiver, &mut stack, &mut scratch);
+            build_stack_into(&g.receiver, n, n, &mut stack, &mut scratch);
             assert_eq!(stack, build_stack_reference(&g.receiver), "routed, n = {n}");
             assert_eq!(g.stack, stack);
         }
@@ -766,6 +1032,52 @@ mod tests {
             assert_eq!(reused.receiver, fresh.receiver);
             assert_eq!(reused.distance, fresh.distance);
             assert_eq!(reused.stack, fresh.stack);
+        }
+    }
+
+    /// Pit routing over donor masks and per-basin pass lists against the
+    /// original (receiver-following labels, a hash map over every grid edge),
+    /// on rough fields with many pits, quantised fields (ties between passes)
+    /// and thin grids: the same receivers and distances; and the group
+    /// bounds and receiver positions of the stack agree with the stack.
+    #[test]
+    fn routing_equals_reference_routing() {
+        for (nx, ny, seed, quantised) in [
+            (48usize, 48usize, 1u64, false),
+            (64, 33, 2, true),
+            (5, 70, 3, false),
+            (129, 4, 4, true),
+            (97, 101, 5, false),
+        ] {
+            let s = Seed(seed);
+            let h: Vec<f32> = (0..nx * ny)
+                .map(|i| {
+                    let v = 10.0 * s.gaussian2((i % nx) as i64, (i / nx) as i64);
+                    (if quantised { v.floor() } else { v }) as f32
+                })
+                .collect();
+            let g = FlowGraph::build(&mut h.clone(), nx, ny, Depressions::Route);
+            let mut r = FlowGraph::empty();
+            r.nx = nx;
+            r.ny = ny;
+            d8_receivers_into(&h, nx, ny, &mut r.receiver, &mut r.distance);
+            let pits = (0..nx * ny)
+                .filter(|&i| r.receiver[i] as usize == i && !r.is_edge(i))
+                .count();
+            assert!(nx < 8 || ny < 8 || pits > 3, "{nx}×{ny}: only {pits} pits");
+            r.route_pits_reference(&h);
+            assert_eq!(g.receiver, r.receiver, "{nx}×{ny} seed {seed}");
+            assert_eq!(g.distance, r.distance, "{nx}×{ny} seed {seed}");
+            assert_eq!(g.stack, build_stack_reference(&g.receiver));
+            assert_eq!(g.groups.first(), Some(&0));
+            assert_eq!(g.groups.last(), Some(&(nx * ny)));
+            for w in g.groups.windows(2) {
+                for k in w[0]..w[1] {
+                    let rp = w[0] + g.rpos[k] as usize;
+                    assert!(rp < w[1] && rp <= k);
+                    assert_eq!(g.stack[rp], g.receiver[g.stack[k] as usize]);
+                }
+            }
         }
     }
 

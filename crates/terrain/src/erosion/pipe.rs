@@ -1077,7 +1077,7 @@ impl Consts {
         let mut nf = [0.0f32; 4];
         let mut sum = 0.0;
         for k in 0..4 {
-            let v = (*f[k] + self.kflux * (h - hn[k])).max(0.0);
+            let v = fmax(*f[k] + self.kflux * (h - hn[k]), 0.0);
             nf[k] = v;
             sum += v;
         }
@@ -1132,15 +1132,19 @@ impl Consts {
         let [fl, fr, fb, ft] = c.fo;
         let [in_l, in_r, in_b, in_t] = c.fin;
         let out = fl + fr + fb + ft;
-        let d2 = (c.d1 + (in_l + in_r + in_b + in_t - out) * self.dt_area).max(0.0);
+        let d2 = fmax(c.d1 + (in_l + in_r + in_b + in_t - out) * self.dt_area, 0.0);
         let mean_d = 0.5 * (c.d1 + d2);
         let wx = 0.5 * (in_l - fl + fr - in_r);
         let wy = 0.5 * (in_b - fb + ft - in_t);
         let wet = mean_d > 1e-6;
-        // One division for both components.
-        let inv = 1.0 / (self.cell * mean_d);
-        let vu = if wet { wx * inv } else { 0.0 };
-        let vv = if wet { wy * inv } else { 0.0 };
+        // One division for both components, computed for every cell and
+        // masked by a multiply: a division under the `wet` condition is
+        // turned into a branch that keeps the AVX2 build scalar. (A dry
+        // cell's velocity is ±0.)
+        let inv = 1.0 / (self.cell * if wet { mean_d } else { 1.0 });
+        let inv = inv * if wet { 1.0 } else { 0.0 };
+        let vu = wx * inv;
+        let vv = wy * inv;
         let vu = clamp(vu, self.vmax);
         let vv = clamp(vv, self.vmax);
         // Local tilt from central differences of the bed.
@@ -1148,9 +1152,9 @@ impl Consts {
         let gx = (br - bl) * self.inv_2cell;
         let gy = (bt - bb) * self.inv_2cell;
         let g2 = gx * gx + gy * gy;
-        let sin_a = (g2 / (1.0 + g2)).sqrt().max(self.min_tilt);
+        let sin_a = fmax((g2 / (1.0 + g2)).sqrt(), self.min_tilt);
         let speed = (vu * vu + vv * vv).sqrt();
-        let cap = self.kc * sin_a * speed * (d2 * self.inv_dref).min(1.0);
+        let cap = self.kc * sin_a * speed * fmin(d2 * self.inv_dref, 1.0);
         let s = c.s;
         let e = c.ks * (cap - s);
         let dep = self.kd * (s - cap);
@@ -1191,12 +1195,12 @@ impl Consts {
                 _ => out_s += f64::from(s1.c[x] * fo),
             }
         }
-        (s1.c[x] * keep.max(0.0) + gained, out_s)
+        (s1.c[x] * fmax(keep, 0.0) + gained, out_s)
     }
     /// Fraction of a cell's water `d1` that leaves through a pipe of flux `f` this step.
     #[inline(always)]
     fn frac(&self, d1: f32, f: f32) -> f32 {
-        (f * self.per_flux(d1)).min(1.0)
+        fmin(f * self.per_flux(d1), 1.0)
     }
 
     /// `Δt / (d₁·l²)`, the fraction of a cell's water a unit flux carries
@@ -1204,8 +1208,25 @@ impl Consts {
     /// its four pipes.
     #[inline(always)]
     fn per_flux(&self, d1: f32) -> f32 {
-        if d1 > 0.0 { self.dt_area / d1 } else { 0.0 }
+        // Divided unconditionally (a dry cell's infinity is selected away):
+        // a division under a condition keeps the AVX2 build scalar.
+        let q = self.dt_area / d1;
+        if d1 > 0.0 { q } else { 0.0 }
     }
+}
+
+/// `a.min(b)` for non-NaN operands as one compare and select: `f32::min`'s
+/// NaN rule costs a blend sequence per vector on AVX2, enough for LLVM to
+/// leave whole kernels scalar there.
+#[inline(always)]
+fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// `a.max(b)` for non-NaN operands as one compare and select (see [`fmin`]).
+#[inline(always)]
+fn fmax(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
 }
 
 /// `x.clamp(-m, m)` without `clamp`'s bounds assertion (which blocks
@@ -1220,11 +1241,9 @@ fn clamp(x: f32, m: f32) -> f32 {
 /// sending more water than it holds.
 #[inline(always)]
 fn flux_scale(sum: f32, d1: f32, dt: f32, area: f32) -> f32 {
-    if sum * dt > d1 * area {
-        d1 * area / (sum * dt)
-    } else {
-        1.0
-    }
+    // Divided unconditionally (see `Consts::per_flux`).
+    let k = d1 * area / (sum * dt);
+    if sum * dt > d1 * area { k } else { 1.0 }
 }
 
 /// Pass-B inputs of one cell.
@@ -1289,10 +1308,10 @@ fn flux_row<'a>(c: &'a Consts, w: Around<'a>, bd: Around<'a>, outs: [&'a mut [f3
     for k in 0..m {
         let d1 = wc[k] + rain;
         let h = bc[k] + d1;
-        let vl = (fl[k] + kflux * (h - (bl[k] + wl[k] + rain))).max(0.0);
-        let vr = (fr[k] + kflux * (h - (br[k] + wr[k] + rain))).max(0.0);
-        let vb = (fb[k] + kflux * (h - (bb[k] + wb[k] + rain))).max(0.0);
-        let vt = (ft[k] + kflux * (h - (bt[k] + wt[k] + rain))).max(0.0);
+        let vl = fmax(fl[k] + kflux * (h - (bl[k] + wl[k] + rain)), 0.0);
+        let vr = fmax(fr[k] + kflux * (h - (br[k] + wr[k] + rain)), 0.0);
+        let vb = fmax(fb[k] + kflux * (h - (bb[k] + wb[k] + rain)), 0.0);
+        let vt = fmax(ft[k] + kflux * (h - (bt[k] + wt[k] + rain)), 0.0);
         let mut sum = 0.0;
         sum += vl;
         sum += vr;
@@ -1357,24 +1376,46 @@ fn update_row<const ERODIBILITY: bool>(
         let (wo, bo, so) = (&mut wo[a..b], &mut bo[a..b], &mut so[a..b]);
         let (uo, vo, depo) = (&mut uo[a..b], &mut vo[a..b], &mut depo[a..b]);
         let lost = &mut lost[..n];
-        for k in 0..n {
-            let cell = CellIn {
-                d1: d1[k],
-                fo: [fl.c[k], fr.c[k], fb.c[k], ft.c[k]],
-                fin: [fr.l[k], fl.r[k], ft.b[k], fb.t[k]],
-                s: s0[k],
-                bed: bed.c[k],
-                bn: [bed.l[k], bed.r[k], bed.b[k], bed.t[k]],
-                ks: if ERODIBILITY { c.ks * er[k] } else { c.ks },
-            };
-            let o = c.update(&cell, depo[k]);
-            wo[k] = o.w;
-            bo[k] = o.b;
-            so[k] = o.s;
-            uo[k] = o.u;
-            vo[k] = o.v;
-            depo[k] = o.dep;
-            lost[k] = o.lost;
+        // Lanes of LANES cells through local arrays (no aliasing between the
+        // row slices for the vectoriser to check); the last one padded.
+        let mut k0 = 0;
+        while k0 < n {
+            let w = (n - k0).min(LANES);
+            let g = |s: &[f32]| take::<LANES>(s, k0, w);
+            let (dd, s, dep0) = (g(d1), g(s0), g(depo));
+            let (flc, frc, fbc, ftc) = (g(fl.c), g(fr.c), g(fb.c), g(ft.c));
+            let (frl, flr, ftb, fbt) = (g(fr.l), g(fl.r), g(ft.b), g(fb.t));
+            let (bc, bl, br, bb, bt) = (g(bed.c), g(bed.l), g(bed.r), g(bed.b), g(bed.t));
+            let e = if ERODIBILITY { g(er) } else { [1.0f32; LANES] };
+            let mut o = [[0.0f32; LANES]; 7];
+            for k in 0..LANES {
+                let cell = CellIn {
+                    d1: dd[k],
+                    fo: [flc[k], frc[k], fbc[k], ftc[k]],
+                    fin: [frl[k], flr[k], ftb[k], fbt[k]],
+                    s: s[k],
+                    bed: bc[k],
+                    bn: [bl[k], br[k], bb[k], bt[k]],
+                    ks: if ERODIBILITY { c.ks * e[k] } else { c.ks },
+                };
+                let r = c.update(&cell, dep0[k]);
+                o[0][k] = r.w;
+                o[1][k] = r.b;
+                o[2][k] = r.s;
+                o[3][k] = r.u;
+                o[4][k] = r.v;
+                o[5][k] = r.dep;
+                o[6][k] = r.lost;
+            }
+            for (d, v) in [
+                &mut *wo, &mut *bo, &mut *so, &mut *uo, &mut *vo, &mut *depo, &mut *lost,
+            ]
+            .into_iter()
+            .zip(&o)
+            {
+                put(d, k0, w, v);
+            }
+            k0 += w;
         }
         // Summed in f64 (eight partial sums) like the per-cell path's ledger.
         let mut acc = [0.0f64; 8];
@@ -1400,22 +1441,63 @@ fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: A
     let d1 = d1.sub(0, m);
     let [fl, fr, fb, ft] = f.map(|p| p.sub(0, m));
     let s1 = s1.sub(0, m);
-    let frac = |q: f32, f: f32| (f * q).min(1.0);
-    for k in 0..m {
-        let q = c.per_flux(d1.c[k]);
-        let mut keep = 1.0f32;
-        let mut gained = 0.0f32;
-        keep -= frac(q, fl.c[k]);
-        gained += s1.l[k] * frac(c.per_flux(d1.l[k]), fr.l[k]);
-        keep -= frac(q, fr.c[k]);
-        gained += s1.r[k] * frac(c.per_flux(d1.r[k]), fl.r[k]);
-        keep -= frac(q, fb.c[k]);
-        gained += s1.b[k] * frac(c.per_flux(d1.b[k]), ft.b[k]);
-        keep -= frac(q, ft.c[k]);
-        gained += s1.t[k] * frac(c.per_flux(d1.t[k]), fb.t[k]);
-        so[k] = s1.c[k] * keep.max(0.0) + gained;
+    let frac = |q: f32, f: f32| fmin(f * q, 1.0);
+    // Lanes of LANES cells through local arrays (no aliasing between the
+    // row slices for the vectoriser to check); the last one padded.
+    let mut a = 0;
+    while a < m {
+        let w = (m - a).min(LANES);
+        let g = |s: &[f32]| take::<LANES>(s, a, w);
+        let (dc, dl, dr, db, dt) = (g(d1.c), g(d1.l), g(d1.r), g(d1.b), g(d1.t));
+        let (sc, sl, sr, sb, st) = (g(s1.c), g(s1.l), g(s1.r), g(s1.b), g(s1.t));
+        let (flc, frc, fbc, ftc) = (g(fl.c), g(fr.c), g(fb.c), g(ft.c));
+        let (frl, flr, ftb, fbt) = (g(fr.l), g(fl.r), g(ft.b), g(fb.t));
+        let mut out = [0.0f32; LANES];
+        for k in 0..LANES {
+            let q = c.per_flux(dc[k]);
+            let mut keep = 1.0f32;
+            let mut gained = 0.0f32;
+            keep -= frac(q, flc[k]);
+            gained += sl[k] * frac(c.per_flux(dl[k]), frl[k]);
+            keep -= frac(q, frc[k]);
+            gained += sr[k] * frac(c.per_flux(dr[k]), flr[k]);
+            keep -= frac(q, fbc[k]);
+            gained += sb[k] * frac(c.per_flux(db[k]), ftb[k]);
+            keep -= frac(q, ftc[k]);
+            gained += st[k] * frac(c.per_flux(dt[k]), fbt[k]);
+            out[k] = sc[k] * fmax(keep, 0.0) + gained;
+        }
+        put(so, a, w, &out);
+        a += w;
     }
 }
+}
+
+/// Cells per lane group of the pass-B and transport kernels (a multiple of
+/// the 8 and 16 `f32` lanes of AVX2 and AVX-512).
+const LANES: usize = 16;
+
+/// `s[a..a + n]` in a local array, padded with zeros (`n ≤ N`): every lane
+/// group has a fixed width, and a padded lane's result is never stored.
+#[inline(always)]
+fn take<const N: usize>(s: &[f32], a: usize, n: usize) -> [f32; N] {
+    let mut x = [0.0f32; N];
+    if n == N {
+        x.copy_from_slice(&s[a..a + N]);
+    } else {
+        x[..n].copy_from_slice(&s[a..a + n]);
+    }
+    x
+}
+
+/// Stores the first `n` lanes of `x` at `d[a..a + n]`.
+#[inline(always)]
+fn put<const N: usize>(d: &mut [f32], a: usize, n: usize, x: &[f32; N]) {
+    if n == N {
+        d[a..a + N].copy_from_slice(x);
+    } else {
+        d[a..a + n].copy_from_slice(&x[..n]);
+    }
 }
 
 simd::multiversion! {
@@ -1705,6 +1787,39 @@ mod tests {
                 assert!(fused.ledger().outflow_sediment > 0.0, "case {case}");
             }
         }
+    }
+
+    /// A few steps at 1024² (`PIPE_N`, `PIPE_STEPS` to change) on a spectral
+    /// terrain, for profilers (`valgrind --tool=callgrind` runs the AVX2 build):
+    /// `cargo test --release -p natura-terrain --lib pipe_profile_run -- --ignored`.
+    #[test]
+    #[ignore = "profiling harness"]
+    fn pipe_profile_run() {
+        let var = |k: &str, d: usize| {
+            std::env::var(k)
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(d)
+        };
+        let n = var("PIPE_N", 1024);
+        let sp = crate::synth::SpectralParams {
+            sigma_m: 200.0,
+            ..Default::default()
+        };
+        let mut hf = crate::synth::spectral_synthesis(n, n, 10.0, &sp, Seed(1)).unwrap();
+        let mut m = PipeModel::new(PipeParams::default(), &hf).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let t0 = std::time::Instant::now();
+        let steps = var("PIPE_STEPS", 5) as u32;
+        pool.install(|| m.run(&mut hf, steps, &NoProgress)).unwrap();
+        let s = t0.elapsed().as_secs_f64();
+        eprintln!(
+            "{:.1} M cell-steps/s",
+            (n * n) as f64 * f64::from(steps) / s / 1e6
+        );
     }
 
     #[test]

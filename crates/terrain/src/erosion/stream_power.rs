@@ -20,7 +20,7 @@ use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Erodibility, check_erodibility, check_field, check_model_size};
 pub use crate::analysis::flow::Depressions;
-use crate::analysis::flow::FlowGraph;
+use crate::analysis::flow::{FlowGraph, next_up};
 use crate::error::{Result, in_range, invalid, non_negative, positive};
 use crate::par;
 
@@ -97,8 +97,23 @@ pub struct StreamPower {
     area: Vec<f32>,
     graph: Option<FlowGraph>,
     sediment: Vec<f32>,
-    /// `F / (1 + …)` factors `K·A^m·Δt / L^n` per cell (scratch).
-    kf: Vec<f64>,
+    /// Per-step scratch in stack order.
+    ord: Ordered,
+}
+
+/// Per-step buffers in stack order (entry `k` is cell `stack[k]`).
+#[derive(Debug, Default)]
+struct Ordered {
+    /// Heights (filled, then solved).
+    h: Vec<f32>,
+    /// Drainage area, cells.
+    area: Vec<f32>,
+    /// How much the fill raised each entry.
+    filled: Vec<f32>,
+    /// How much the implicit solve changed each entry.
+    solved: Vec<f32>,
+    /// Stack position of each cell (the inverse permutation).
+    pos: Vec<u32>,
 }
 
 impl StreamPower {
@@ -115,7 +130,7 @@ impl StreamPower {
             area: vec![0.0; n],
             graph: None,
             sediment: vec![0.0; n],
-            kf: Vec::new(),
+            ord: Ordered::default(),
         })
     }
 
@@ -177,79 +192,210 @@ impl StreamPower {
                 }
             }
         });
-        // Reuse the last step's graph buffers; filling deposits into `sediment`.
+        // Reuse the last step's graph buffers.
         let mut g = self.graph.take().unwrap_or_else(FlowGraph::empty);
-        g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut self.sediment));
-        g.area_into(&mut self.area);
-        let cell_area = (cell * cell) as f32;
-        for a in &mut self.area {
-            *a *= cell_area;
+        g.rebuild_graph(h, nx, ny, p.depressions);
+        let c = SolveConsts {
+            fill: p.depressions == Depressions::Fill,
+            route: p.depressions == Depressions::Route,
+            cell,
+            cell_area: (cell * cell) as f32,
+            kdt: p.k * p.dt_yr,
+            m: p.m,
+            n: p.n,
+        };
+        let erodibility = self.erodibility.take();
+        let erod = erodibility.as_ref().map(|e| e.map().as_slice());
+        self.solve_ordered(&g, h, erod, &c);
+        self.erodibility = erodibility;
+        self.graph = Some(g);
+    }
+
+    /// Fill, drainage area and the implicit solve, each in stack order, run
+    /// per outlet group of the stack in parallel (the groups hold whole
+    /// drainage trees, so they share no cell), on copies of the heights in
+    /// stack order; then the heights, areas and deposits go back to the grid.
+    /// The same operations in the same order per cell as the serial passes
+    /// ([`fill_along`](crate::analysis::flow), area accumulation, the solve
+    /// loop), so the results are bit-identical to them on any thread count.
+    fn solve_ordered(
+        &mut self,
+        g: &FlowGraph,
+        h: &mut [f32],
+        erod: Option<&[f32]>,
+        c: &SolveConsts,
+    ) {
+        let n = h.len();
+        let o = &mut self.ord;
+        for v in [&mut o.h, &mut o.area, &mut o.filled, &mut o.solved] {
+            v.resize(n, 0.0);
         }
-        // The implicit factors F = K·A^m·Δt / L^n, in parallel (pure per cell).
-        let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
-        let kdt = p.k * p.dt_yr;
-        let (m, n) = (p.m, p.n);
-        self.kf.resize(nx * ny, 0.0);
+        o.pos.resize(n, 0);
         {
-            let (area, rec, dist) = (&self.area, &g.receiver, &g.distance);
-            par::map_bands(nx, ny, [self.kf.as_mut_slice()], |y0, _y1, [kf]| {
-                let base = y0 * nx;
-                for (k, f) in kf.iter_mut().enumerate() {
-                    let i = base + k;
-                    if rec[i] as usize == i {
-                        continue;
-                    }
-                    let len = f64::from(dist[i]) * cell;
-                    // A^m: a square root for the default m = ½ (no `powf`).
-                    let a = f64::from(area[i]);
-                    let am = if m == 0.5 {
-                        a.sqrt()
-                    } else if m == 1.0 {
-                        a
-                    } else {
-                        a.powf(m)
-                    };
-                    let ln = if n == 1.0 { len } else { len.powf(n) };
-                    *f = kdt * erod.map_or(1.0, |e| f64::from(e[i])) * am / ln;
-                }
+            let hr: &[f32] = h;
+            let dist = &g.distance;
+            let mut jobs = Vec::with_capacity(g.groups.len());
+            let (mut hs, mut asr, mut fs, mut ss) = (
+                o.h.as_mut_slice(),
+                o.area.as_mut_slice(),
+                o.filled.as_mut_slice(),
+                o.solved.as_mut_slice(),
+            );
+            for w in g.groups.windows(2) {
+                let len = w[1] - w[0];
+                let (a, rest) = std::mem::take(&mut hs).split_at_mut(len);
+                hs = rest;
+                let (b, rest) = std::mem::take(&mut asr).split_at_mut(len);
+                asr = rest;
+                let (f, rest) = std::mem::take(&mut fs).split_at_mut(len);
+                fs = rest;
+                let (s, rest) = std::mem::take(&mut ss).split_at_mut(len);
+                ss = rest;
+                let seg = w[0]..w[1];
+                jobs.push((&g.stack[seg.clone()], &g.rpos[seg], [a, b, f, s]));
+            }
+            par::run(jobs, |(stack, rpos, outs)| {
+                solve_group(c, stack, rpos, hr, dist, erod, outs);
             });
         }
-        let route = p.depressions == Depressions::Route;
-        for &i in &g.stack {
-            let i = i as usize;
-            let r = g.receiver[i] as usize;
-            if r == i {
-                continue;
-            }
-            let zr = f64::from(h[r]);
-            let z0 = f64::from(h[i]);
-            if route && zr >= z0 {
-                continue; // inside a lake: no incision
-            }
-            let kf = self.kf[i];
-            let z = if n == 1.0 {
-                (z0 + kf * zr) / (1.0 + kf)
-            } else {
-                // Solve z − z0 + kf·(z − zr)^n = 0 on (zr, z0] by Newton from z0.
-                let mut z = z0;
-                for _ in 0..50 {
-                    let d = (z - zr).max(0.0);
-                    let f = z - z0 + kf * d.powf(n);
-                    let df = 1.0 + kf * n * d.powf(n - 1.0);
-                    let next = (z - f / df).max(zr);
-                    if (next - z).abs() <= 1e-9 * (1.0 + z.abs()) {
-                        z = next;
-                        break;
-                    }
-                    z = next;
-                }
-                z
-            };
-            let z = z.max(zr) as f32;
-            self.sediment[i] += z - h[i];
-            h[i] = z;
+        for (k, &i) in g.stack.iter().enumerate() {
+            o.pos[i as usize] = k as u32;
         }
-        self.graph = Some(g);
+        let nx = self.nx;
+        let (pos, hs, asr, fs, ss) = (&o.pos, &o.h, &o.area, &o.filled, &o.solved);
+        let cell_area = c.cell_area;
+        par::map_bands(
+            nx,
+            self.ny,
+            [h, self.area.as_mut_slice(), self.sediment.as_mut_slice()],
+            |y0, _y1, [hb, ab, sb]| {
+                let base = y0 * nx;
+                for x in 0..hb.len() {
+                    let k = pos[base + x] as usize;
+                    hb[x] = hs[k];
+                    ab[x] = asr[k] * cell_area;
+                    // Adding 0 leaves a deposit unchanged (it is never −0).
+                    sb[x] = (sb[x] + fs[k]) + ss[k];
+                }
+            },
+        );
+    }
+}
+
+/// Constants of the ordered passes.
+struct SolveConsts {
+    fill: bool,
+    route: bool,
+    cell: f64,
+    cell_area: f32,
+    kdt: f64,
+    m: f64,
+    n: f64,
+}
+
+/// One outlet group: gathers its heights into stack order, fills (raising
+/// every entry not strictly above its receiver to just above it), sums the
+/// drainage areas from the leaves down, and solves the implicit stream-power
+/// equation from the outlets up. `outs` are the group's heights, areas (in
+/// cells), fill raises and solve changes, in stack order.
+fn solve_group(
+    c: &SolveConsts,
+    stack: &[u32],
+    rpos: &[u32],
+    h: &[f32],
+    dist: &[f32],
+    erod: Option<&[f32]>,
+    outs: [&mut [f32]; 4],
+) {
+    let [hs, area, filled, solved] = outs;
+    let len = stack.len();
+    let (rpos, hs, area, filled, solved) = (
+        &rpos[..len],
+        &mut hs[..len],
+        &mut area[..len],
+        &mut filled[..len],
+        &mut solved[..len],
+    );
+    for k in 0..len {
+        hs[k] = h[stack[k] as usize];
+    }
+    filled.fill(0.0);
+    if c.fill {
+        for k in 0..len {
+            let r = rpos[k] as usize;
+            if r != k && hs[k] <= hs[r] {
+                let z = next_up(hs[r]);
+                filled[k] = z - hs[k];
+                hs[k] = z;
+            }
+        }
+    }
+    area.fill(1.0);
+    for k in (0..len).rev() {
+        let r = rpos[k] as usize;
+        if r != k {
+            area[r] += area[k];
+        }
+    }
+    for k in 0..len {
+        solved[k] = 0.0;
+        let r = rpos[k] as usize;
+        if r == k {
+            continue;
+        }
+        let i = stack[k] as usize;
+        let zr = f64::from(hs[r]);
+        let z0 = f64::from(hs[k]);
+        if c.route && zr >= z0 {
+            continue; // inside a lake: no incision
+        }
+        let kf = factor(c, area[k] * c.cell_area, dist[i], erod.map(|e| e[i]));
+        let z = implicit(z0, zr, kf, c.n);
+        let z = z.max(zr) as f32;
+        solved[k] = z - hs[k];
+        hs[k] = z;
+    }
+}
+
+/// The implicit factor `F = K·A^m·Δt / L^n` of a cell of drainage area `a`
+/// (m²), receiver distance `d` (cells) and erodibility `e`.
+#[inline]
+fn factor(c: &SolveConsts, a: f32, d: f32, e: Option<f32>) -> f64 {
+    let len = f64::from(d) * c.cell;
+    // A^m: a square root for the default m = ½ (no `powf`).
+    let a = f64::from(a);
+    let am = if c.m == 0.5 {
+        a.sqrt()
+    } else if c.m == 1.0 {
+        a
+    } else {
+        a.powf(c.m)
+    };
+    let ln = if c.n == 1.0 { len } else { len.powf(c.n) };
+    c.kdt * e.map_or(1.0, f64::from) * am / ln
+}
+
+/// The implicit update of a cell at `z0` above a receiver at `zr` (already
+/// updated): for `n = 1` in closed form, otherwise by Newton on
+/// `z − z0 + F·(z − zr)^n = 0` over `(zr, z0]`.
+#[inline]
+fn implicit(z0: f64, zr: f64, kf: f64, n: f64) -> f64 {
+    if n == 1.0 {
+        (z0 + kf * zr) / (1.0 + kf)
+    } else {
+        let mut z = z0;
+        for _ in 0..50 {
+            let d = (z - zr).max(0.0);
+            let f = z - z0 + kf * d.powf(n);
+            let df = 1.0 + kf * n * d.powf(n - 1.0);
+            let next = (z - f / df).max(zr);
+            if (next - z).abs() <= 1e-9 * (1.0 + z.abs()) {
+                z = next;
+                break;
+            }
+            z = next;
+        }
+        z
     }
 }
 
@@ -257,6 +403,178 @@ impl StreamPower {
 mod tests {
     use super::*;
     use natura_core::{NoProgress, Seed};
+
+    /// The serial step the group-parallel one replaced: fill along the whole
+    /// stack, areas by one reverse walk, the factors per cell, one solve walk.
+    fn step_reference(sp: &mut StreamPower, hf: &mut HeightField) {
+        let (nx, ny) = (sp.nx, sp.ny);
+        let cell = f64::from(hf.cell_size());
+        let p = sp.p.clone();
+        let up = (p.uplift_m_per_yr * p.dt_yr) as f32;
+        let h = hf.heights_mut().as_mut_slice();
+        for y in 1..ny - 1 {
+            for v in &mut h[y * nx + 1..y * nx + nx - 1] {
+                *v += up;
+            }
+        }
+        let mut g = sp.graph.take().unwrap_or_else(FlowGraph::empty);
+        g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut sp.sediment));
+        g.area_into(&mut sp.area);
+        let cell_area = (cell * cell) as f32;
+        for a in &mut sp.area {
+            *a *= cell_area;
+        }
+        let c = SolveConsts {
+            fill: false,
+            route: p.depressions == Depressions::Route,
+            cell,
+            cell_area,
+            kdt: p.k * p.dt_yr,
+            m: p.m,
+            n: p.n,
+        };
+        let erod = sp.erodibility.as_ref().map(|e| e.map().as_slice().to_vec());
+        let kf: Vec<f64> = (0..nx * ny)
+            .map(|i| factor(&c, sp.area[i], g.distance[i], erod.as_ref().map(|e| e[i])))
+            .collect();
+        for &i in &g.stack {
+            let i = i as usize;
+            let r = g.receiver[i] as usize;
+            if r == i {
+                continue;
+            }
+            let (zr, z0) = (f64::from(h[r]), f64::from(h[i]));
+            if c.route && zr >= z0 {
+                continue;
+            }
+            let z = implicit(z0, zr, kf[i], p.n).max(zr) as f32;
+            sp.sediment[i] += z - h[i];
+            h[i] = z;
+        }
+        sp.graph = Some(g);
+    }
+
+    /// The group-parallel fill, areas and solve against the serial passes
+    /// ([`step_reference`]) on rough random terrains full of pits, for fill
+    /// and lake routing, `n = 1` and `n = 2`, with and without an
+    /// erodibility map, on one and two threads: heights, deposits and areas
+    /// bit for bit after several steps (new pits appear as the terrain erodes).
+    #[test]
+    fn group_parallel_passes_equal_serial_passes() {
+        let s = Seed(17);
+        for (case, (nx, ny, depressions, n, erodible)) in [
+            (61usize, 47usize, Depressions::Fill, 1.0, false),
+            (40, 64, Depressions::Route, 1.0, true),
+            (33, 35, Depressions::Fill, 2.0, true),
+            (130, 9, Depressions::Fill, 1.0, false),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let hf = HeightField::from_fn(nx, ny, 30.0, |i, j| {
+                (50.0 * s.derive_index(case as u64).gaussian2(i as i64, j as i64)) as f32
+            })
+            .unwrap();
+            let p = StreamPowerParams {
+                depressions,
+                n,
+                k: if n == 1.0 { 1e-4 } else { 1e-7 },
+                ..Default::default()
+            };
+            let build = || {
+                let mut sp = StreamPower::new(p.clone(), &hf).unwrap();
+                if erodible {
+                    let e = Grid2::from_fn(nx, ny, |i, j| {
+                        0.5 + s.derive_index(99).uniform2(i as i64, j as i64) as f32
+                    })
+                    .unwrap();
+                    sp = sp.with_erodibility(Erodibility::new(e).unwrap()).unwrap();
+                }
+                sp
+            };
+            let mut reference = build();
+            let mut hr = hf.clone();
+            for _ in 0..6 {
+                step_reference(&mut reference, &mut hr);
+            }
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let mut sp = build();
+                let mut h = hf.clone();
+                pool.install(|| sp.run(&mut h, 6, &NoProgress)).unwrap();
+                let same = |what: &str, a: &[f32], b: &[f32]| {
+                    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                        assert!(
+                            x.to_bits() == y.to_bits(),
+                            "case {case}, {threads} threads: {what}[{k}] {x} vs serial {y}"
+                        );
+                    }
+                };
+                same("height", h.heights().as_slice(), hr.heights().as_slice());
+                same("deposit", &sp.sediment, &reference.sediment);
+                same("area", &sp.area, &reference.area);
+                let (g, gr) = (sp.flow_graph().unwrap(), reference.flow_graph().unwrap());
+                assert_eq!(g.receiver, gr.receiver, "case {case}");
+                assert_eq!(g.stack, gr.stack, "case {case}");
+            }
+            assert!(
+                depressions == Depressions::Route || reference.sediment.iter().any(|&d| d > 0.0),
+                "case {case}: nothing filled"
+            );
+            assert!(
+                reference.sediment.iter().any(|&d| d < 0.0),
+                "case {case}: nothing eroded"
+            );
+        }
+    }
+
+    /// Wall and CPU time per step at 4096² (`SP_N` to change) on the bench's
+    /// terrain, two threads: `cargo test --release -p natura-terrain --lib
+    /// stream_power_step_times -- --ignored --nocapture`.
+    #[test]
+    #[ignore = "timing harness"]
+    fn stream_power_step_times() {
+        let cpu = || {
+            let s = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+            let f: Vec<&str> = s
+                .rsplit(')')
+                .next()
+                .unwrap_or("")
+                .split_whitespace()
+                .collect();
+            f.get(11..13).map_or(0.0, |v| {
+                v.iter()
+                    .map(|x| x.parse::<f64>().unwrap_or(0.0))
+                    .sum::<f64>()
+                    / 100.0
+            })
+        };
+        let n: usize = std::env::var("SP_N")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(4096);
+        let sp = crate::synth::SpectralParams {
+            sigma_m: 200.0,
+            ..Default::default()
+        };
+        let mut hf = crate::synth::spectral_synthesis(n, n, 10.0, &sp, Seed(1)).unwrap();
+        let mut m = StreamPower::new(StreamPowerParams::default(), &hf).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for step in 0..6 {
+            let (t0, c0) = (std::time::Instant::now(), cpu());
+            pool.install(|| m.step(&mut hf)).unwrap();
+            let (w, c) = (t0.elapsed().as_secs_f64(), cpu() - c0);
+            eprintln!("step {step}: wall {:.0} ms, cpu {:.0} ms", w * 1e3, c * 1e3);
+        }
+        let sum: f64 = hf.heights().as_slice().iter().map(|&v| f64::from(v)).sum();
+        eprintln!("checksum {sum}");
+    }
 
     #[test]
     fn steady_state_follows_slope_area_law() {
