@@ -10,6 +10,7 @@
 
 use crate::grid::{Boundaries, CellKind, Side};
 use crate::par;
+use natura_core::simd::{self, Kernel, Simd};
 
 /// The float types the operator is applied to (f32 work vectors, f64 CG iterate).
 pub(crate) trait Real:
@@ -260,6 +261,7 @@ impl Level {
     fn apply_dot_k<const K: usize>(&self, x: &[f32], y: &mut [f32]) -> f64 {
         let st = self.strides::<K>();
         let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
+        let simd = Simd::best();
         let body = &mut y[G..G + self.rows() * m0];
         par::for_chunks_sum(body, m0, |r, yrow| {
             let Some(base) = self.row_base(r) else {
@@ -267,7 +269,16 @@ impl Level {
             };
             let s = base + p0;
             let out = &mut yrow[p0..p0 + n0];
-            self.apply_row::<K, f32>(x, s, st, out);
+            simd::run(
+                simd,
+                ApplyRow::<K, f32> {
+                    lvl: self,
+                    x,
+                    s,
+                    st,
+                    out: &mut *out,
+                },
+            );
             x[s..s + n0]
                 .iter()
                 .zip(&*out)
@@ -292,8 +303,18 @@ impl Level {
     fn apply_k<const K: usize, T: Real>(&self, x: &[T], y: &mut [T]) {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
+        let simd = Simd::best();
         self.rows_par(y, |_, base, yrow| {
-            self.apply_row::<K, T>(x, base + p0, st, &mut yrow[p0..p0 + n0]);
+            simd::run(
+                simd,
+                ApplyRow::<K, T> {
+                    lvl: self,
+                    x,
+                    s: base + p0,
+                    st,
+                    out: &mut yrow[p0..p0 + n0],
+                },
+            );
         });
     }
 
@@ -344,28 +365,21 @@ impl Level {
     fn gs_half_k<const K: usize>(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
+        // Cells of parity `colour` have a non-zero weight in invc[colour].
+        let wc = &self.invc[colour];
+        let simd = Simd::best();
         self.rows_par(out, |_, base, orow| {
-            let s = base + p0;
-            let o = &mut orow[p0..p0 + n0];
-            // Cells of parity `colour` have a non-zero weight in invc[colour].
-            let wc = &self.invc[colour];
-            let mut acc = [0.0f32; CH];
-            for i0 in (0..n0).step_by(CH) {
-                let w = CH.min(n0 - i0);
-                let a = &mut acc[..w];
-                let c = s + i0;
-                neighbour_sum::<K, f32>(x, c, st, a);
-                let xs = &x[c..c + w];
-                let bs = &b[c..c + w];
-                let ws = &wc[c..c + w];
-                for ((((ov, &xv), &bv), &iv), &off) in
-                    o[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ws).zip(&*a)
-                {
-                    let v = (bv + off) * iv;
-                    // A select, not a branch, so the loop vectorises.
-                    *ov = if iv != 0.0 { v } else { xv };
-                }
-            }
+            simd::run(
+                simd,
+                GsRow::<K> {
+                    x,
+                    b,
+                    wc,
+                    s: base + p0,
+                    st,
+                    out: &mut orow[p0..p0 + n0],
+                },
+            );
         });
     }
 
@@ -497,25 +511,19 @@ impl Level {
     fn residual_k<const K: usize, T: Real>(&self, b: &[T], x: &[T], r: &mut [T]) {
         let st = self.strides::<K>();
         let (p0, n0) = (self.pad[0], self.n[0]);
+        let simd = Simd::best();
         self.rows_par(r, |_, base, rrow| {
-            let s = base + p0;
-            let out = &mut rrow[p0..p0 + n0];
-            let mut acc = [T::default(); CH];
-            for i0 in (0..n0).step_by(CH) {
-                let w = CH.min(n0 - i0);
-                let a = &mut acc[..w];
-                let c = s + i0;
-                neighbour_sum::<K, T>(x, c, st, a);
-                let xs = &x[c..c + w];
-                let bs = &b[c..c + w];
-                let ds = &self.diag[c..c + w];
-                for ((((o, &xv), &bv), &d), &off) in
-                    out[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ds).zip(&*a)
-                {
-                    let v = bv - (T::from(d) * xv - off);
-                    *o = if d != 0.0 { v } else { T::default() };
-                }
-            }
+            simd::run(
+                simd,
+                ResidualRow::<K, T> {
+                    x,
+                    b,
+                    diag: &self.diag,
+                    s: base + p0,
+                    st,
+                    out: &mut rrow[p0..p0 + n0],
+                },
+            );
         });
     }
 
@@ -901,6 +909,115 @@ impl Transfer {
     }
 }
 
+/// One row of [`Level::apply`] as a SIMD-dispatched kernel (the same
+/// element-wise arithmetic at every width, so bit-identical results).
+struct ApplyRow<'a, const K: usize, T> {
+    lvl: &'a Level,
+    x: &'a [T],
+    s: usize,
+    st: [usize; K],
+    out: &'a mut [T],
+}
+
+impl<const K: usize, T: Real> Kernel for ApplyRow<'_, K, T> {
+    type Out = ();
+
+    #[inline(always)]
+    fn call(self) {
+        self.lvl
+            .apply_row::<K, T>(self.x, self.s, self.st, self.out);
+    }
+}
+
+/// One row of a red–black half sweep ([`Level::gs_half`]) as a
+/// SIMD-dispatched kernel: `out` = `x` with the cells of non-zero weight
+/// `wc` replaced by `(b + Σ neighbours)·wc`.
+struct GsRow<'a, const K: usize> {
+    x: &'a [f32],
+    b: &'a [f32],
+    wc: &'a [f32],
+    s: usize,
+    st: [usize; K],
+    out: &'a mut [f32],
+}
+
+impl<const K: usize> Kernel for GsRow<'_, K> {
+    type Out = ();
+
+    #[inline(always)]
+    fn call(self) {
+        let Self {
+            x,
+            b,
+            wc,
+            s,
+            st,
+            out,
+        } = self;
+        let n0 = out.len();
+        let mut acc = [0.0f32; CH];
+        for i0 in (0..n0).step_by(CH) {
+            let w = CH.min(n0 - i0);
+            let a = &mut acc[..w];
+            let c = s + i0;
+            neighbour_sum::<K, f32>(x, c, st, a);
+            let xs = &x[c..c + w];
+            let bs = &b[c..c + w];
+            let ws = &wc[c..c + w];
+            for ((((ov, &xv), &bv), &iv), &off) in
+                out[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ws).zip(&*a)
+            {
+                let v = (bv + off) * iv;
+                // A select, not a branch, so the loop vectorises.
+                *ov = if iv != 0.0 { v } else { xv };
+            }
+        }
+    }
+}
+
+/// One row of [`Level::residual`] as a SIMD-dispatched kernel.
+struct ResidualRow<'a, const K: usize, T> {
+    x: &'a [T],
+    b: &'a [T],
+    diag: &'a [f32],
+    s: usize,
+    st: [usize; K],
+    out: &'a mut [T],
+}
+
+impl<const K: usize, T: Real> Kernel for ResidualRow<'_, K, T> {
+    type Out = ();
+
+    #[inline(always)]
+    fn call(self) {
+        let Self {
+            x,
+            b,
+            diag,
+            s,
+            st,
+            out,
+        } = self;
+        let n0 = out.len();
+        let mut acc = [T::default(); CH];
+        for i0 in (0..n0).step_by(CH) {
+            let w = CH.min(n0 - i0);
+            let a = &mut acc[..w];
+            let c = s + i0;
+            neighbour_sum::<K, T>(x, c, st, a);
+            let xs = &x[c..c + w];
+            let bs = &b[c..c + w];
+            let ds = &diag[c..c + w];
+            for ((((o, &xv), &bv), &d), &off) in
+                out[i0..i0 + w].iter_mut().zip(xs).zip(bs).zip(ds).zip(&*a)
+            {
+                let v = bv - (T::from(d) * xv - off);
+                *o = if d != 0.0 { v } else { T::default() };
+            }
+        }
+    }
+}
+
 /// Row block length of the stencil kernels (even, so colour parity is per block).
 const CH: usize = 256;
 
@@ -984,4 +1101,141 @@ pub(crate) fn coarsen(fine: &Level) -> ([usize; 3], Vec<CellKind>) {
         })
         .collect();
     (nc, kinds)
+}
+
+#[cfg(test)]
+mod simd_tests {
+    use super::*;
+
+    fn level(n: [usize; 3], periodic: [bool; 3]) -> Level {
+        let kinds: Vec<CellKind> = (0..n[0] * n[1] * n[2])
+            .map(|c| match natura_core::mix64(c as u64 ^ 0x51d) % 11 {
+                0 => CellKind::Solid,
+                1 => CellKind::Air,
+                _ => CellKind::Fluid,
+            })
+            .collect();
+        Level::new(n, kinds, [[false; 2]; 3], periodic)
+    }
+
+    fn random(l: &Level, seed: u64) -> Vec<f32> {
+        let mut v: Vec<f32> = (0..l.len())
+            .map(|p| {
+                if l.mask[p] != 0 {
+                    (natura_core::mix64(seed ^ p as u64) % 2001) as f32 / 997.0 - 1.0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        l.fill_ghosts(&mut v);
+        v
+    }
+
+    /// Runs `row(simd, s, out)` over every interior row at every supported
+    /// SIMD level and checks each level's output equals the baseline's bit
+    /// for bit.
+    fn same_at_every_level<T: Real + PartialEq + std::fmt::Debug>(
+        l: &Level,
+        row: impl Fn(Simd, usize, &mut [T]),
+    ) {
+        let (p0, n0) = (l.pad[0], l.n[0]);
+        for r in 0..l.rows() {
+            let Some(base) = l.row_base(r) else { continue };
+            let s = base + p0;
+            let mut want = vec![T::default(); n0];
+            row(Simd::baseline(), s, &mut want);
+            for simd in Simd::supported() {
+                let mut got = vec![T::default(); n0];
+                row(simd, s, &mut got);
+                for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+                    let (g, w): (f64, f64) = ((*g).into(), (*w).into());
+                    assert_eq!(g.to_bits(), w.to_bits(), "{:?} row {r} [{i}]", simd.level());
+                }
+            }
+        }
+    }
+
+    fn check<const K: usize>(l: &Level) {
+        let st = l.strides::<K>();
+        let x = random(l, 1);
+        let b = random(l, 2);
+        let x64: Vec<f64> = x.iter().map(|&v| f64::from(v) * 3.0 + 1e3).collect();
+        let b64: Vec<f64> = b.iter().map(|&v| f64::from(v)).collect();
+        for colour in 0..2 {
+            same_at_every_level::<f32>(l, |simd, s, out| {
+                simd::run(
+                    simd,
+                    GsRow::<K> {
+                        x: &x,
+                        b: &b,
+                        wc: &l.invc[colour],
+                        s,
+                        st,
+                        out,
+                    },
+                )
+            });
+        }
+        same_at_every_level::<f32>(l, |simd, s, out| {
+            simd::run(
+                simd,
+                ResidualRow::<K, f32> {
+                    x: &x,
+                    b: &b,
+                    diag: &l.diag,
+                    s,
+                    st,
+                    out,
+                },
+            )
+        });
+        same_at_every_level::<f64>(l, |simd, s, out| {
+            simd::run(
+                simd,
+                ResidualRow::<K, f64> {
+                    x: &x64,
+                    b: &b64,
+                    diag: &l.diag,
+                    s,
+                    st,
+                    out,
+                },
+            )
+        });
+        same_at_every_level::<f32>(l, |simd, s, out| {
+            simd::run(
+                simd,
+                ApplyRow::<K, f32> {
+                    lvl: l,
+                    x: &x,
+                    s,
+                    st,
+                    out,
+                },
+            )
+        });
+        same_at_every_level::<f64>(l, |simd, s, out| {
+            simd::run(
+                simd,
+                ApplyRow::<K, f64> {
+                    lvl: l,
+                    x: &x64,
+                    s,
+                    st,
+                    out,
+                },
+            )
+        });
+    }
+
+    /// The dispatched row kernels (smoother half sweep, residual, operator)
+    /// give the same bits at every SIMD level as the baseline build.
+    #[test]
+    fn row_kernels_are_bit_identical_at_every_simd_level() {
+        check::<2>(&level([300, 1, 37], [false; 3]));
+        check::<2>(&level([64, 1, 40], [true, false, false]));
+        check::<3>(&level([21, 13, 9], [false; 3]));
+        check::<3>(&level([16, 8, 12], [true, true, false]));
+    }
 }
