@@ -670,56 +670,28 @@ impl Transfer {
     pub fn restrict(&self, fine: &Level, r: &[f32], coarse: &mut Level) {
         let mut cb = std::mem::take(&mut coarse.b);
         let m0 = coarse.m[0];
-        let (p0, n0) = (coarse.pad[0], coarse.n[0]);
+        let n0 = coarse.n[0];
         let nf0 = fine.n[0];
         let cl: &Level = coarse;
         let body = &mut cb[G..G + cl.rows() * m0];
         // Coarse x cells whose four fine children 2c−1..=2c+2 are interior
         // with the standard weights.
         let (lo_c, hi_c) = interior_range(n0, nf0, fine.n[0] > 1);
+        let simd = Simd::best();
         par::for_chunks(body, m0, |row_i, row| {
-            let Some(base) = cl.row_base(row_i) else {
-                return;
-            };
-            let jc = row_i % cl.m[1] - cl.pad[1];
-            let kc = row_i / cl.m[1] - cl.pad[2];
-            let out = &mut row[p0..p0 + n0];
-            out.fill(0.0);
-            for &(fk, wk) in &self.down[2][kc] {
-                for &(fj, wj) in &self.down[1][jc] {
-                    let w = wj * wk * self.scale;
-                    let fb = fine.pidx([0, fj, fk]);
-                    let fr = &r[fb..fb + nf0];
-                    for ic in 0..lo_c.min(n0) {
-                        let mut v = 0.0f32;
-                        for &(fi, wi) in &self.down[0][ic] {
-                            v += wi * fr[fi];
-                        }
-                        out[ic] += w * v;
-                    }
-                    if hi_c > lo_c {
-                        // Fine cells 2c−1 ..= 2c+2 for c in lo_c..hi_c.
-                        let span = &fr[2 * lo_c - 1..2 * hi_c + 1];
-                        for (k, o) in out[lo_c..hi_c].iter_mut().enumerate() {
-                            let q = &span[2 * k..2 * k + 4];
-                            *o += w * (0.25 * (q[0] + q[3]) + 0.75 * (q[1] + q[2]));
-                        }
-                    }
-                    for ic in hi_c.max(lo_c)..n0 {
-                        let mut v = 0.0f32;
-                        for &(fi, wi) in &self.down[0][ic] {
-                            v += wi * fr[fi];
-                        }
-                        out[ic] += w * v;
-                    }
-                }
-            }
-            let ds = &cl.diag[base + p0..base + p0 + n0];
-            for (o, &d) in out.iter_mut().zip(ds) {
-                if d == 0.0 {
-                    *o = 0.0;
-                }
-            }
+            simd::run(
+                simd,
+                RestrictRow {
+                    tr: self,
+                    fine,
+                    r,
+                    cl,
+                    lo_c,
+                    hi_c,
+                    row_i,
+                    row,
+                },
+            );
         });
         coarse.b = cb;
     }
@@ -732,86 +704,20 @@ impl Transfer {
     pub fn prolong_add(&self, coarse: &Level, fine: &mut Level) {
         let mut fx = std::mem::take(&mut fine.x);
         let m0 = fine.m[0];
-        let (p0, n0) = (fine.pad[0], fine.n[0]);
-        let nc0 = coarse.n[0];
         let fl: &Level = fine;
-        let cx = &coarse.x;
         let body = &mut fx[G..G + fl.rows() * m0];
-        let (wjp, wjn) = if fl.n[1] > 1 {
-            (0.75, 0.25)
-        } else {
-            (1.0, 0.0)
-        };
-        let (wkp, wkn) = if fl.n[2] > 1 {
-            (0.75, 0.25)
-        } else {
-            (1.0, 0.0)
-        };
-        let active_x = fl.n[0] > 1;
+        let simd = Simd::best();
         par::for_chunks(body, m0, |row_i, row| {
-            let Some(base) = fl.row_base(row_i) else {
-                return;
-            };
-            let jf = row_i % fl.m[1] - fl.pad[1];
-            let kf = row_i / fl.m[1] - fl.pad[2];
-            let (jp, jn) = self.up[1][jf];
-            let (kp, kn) = self.up[2][kf];
-            let rows = [
-                (coarse.pidx([0, jp, kp]), wjp * wkp),
-                (coarse.pidx([0, jn, kp]), wjn * wkp),
-                (coarse.pidx([0, jp, kn]), wjp * wkn),
-                (coarse.pidx([0, jn, kn]), wjn * wkn),
-            ];
-            // Combined coarse row c[0..nc0].
-            let mut c = vec![0.0f32; nc0];
-            for &(rb, w) in &rows {
-                if w != 0.0 {
-                    for (o, &v) in c.iter_mut().zip(&cx[rb..rb + nc0]) {
-                        *o += w * v;
-                    }
-                }
-            }
-            let ds = &fl.diag[base + p0..base + p0 + n0];
-            let out = &mut row[p0..p0 + n0];
-            if !active_x {
-                for (i, o) in out.iter_mut().enumerate() {
-                    if ds[i] != 0.0 {
-                        *o += c[self.up[0][i].0];
-                    }
-                }
-                return;
-            }
-            // Fine i = 2q (q ≥ 1) takes ¾ c[q] + ¼ c[q−1]; i = 2q+1 (q + 1 < nc0)
-            // takes ¾ c[q] + ¼ c[q+1]. The ends use the general lists.
-            let general = |i: usize| {
-                let (ip, inb) = self.up[0][i];
-                0.75 * c[ip] + 0.25 * c[inb]
-            };
-            let mut add = vec![0.0f32; n0];
-            for q in 0..nc0 {
-                let i = 2 * q;
-                if i >= n0 {
-                    break;
-                }
-                let even = if q >= 1 {
-                    0.75 * c[q] + 0.25 * c[q - 1]
-                } else {
-                    general(i)
-                };
-                add[i] = even;
-                if i + 1 < n0 {
-                    add[i + 1] = if q + 1 < nc0 {
-                        0.75 * c[q] + 0.25 * c[q + 1]
-                    } else {
-                        general(i + 1)
-                    };
-                }
-            }
-            for ((o, &a), &d) in out.iter_mut().zip(&add).zip(ds) {
-                if d != 0.0 {
-                    *o += a;
-                }
-            }
+            simd::run(
+                simd,
+                ProlongRow {
+                    tr: self,
+                    coarse,
+                    fl,
+                    row_i,
+                    row,
+                },
+            );
         });
         fine.x = fx;
     }
@@ -1013,6 +919,182 @@ impl<const K: usize, T: Real> Kernel for ResidualRow<'_, K, T> {
             {
                 let v = bv - (T::from(d) * xv - off);
                 *o = if d != 0.0 { v } else { T::default() };
+            }
+        }
+    }
+}
+
+/// One coarse row of [`Transfer::restrict`] as a SIMD-dispatched kernel.
+struct RestrictRow<'a> {
+    tr: &'a Transfer,
+    fine: &'a Level,
+    r: &'a [f32],
+    cl: &'a Level,
+    lo_c: usize,
+    hi_c: usize,
+    row_i: usize,
+    row: &'a mut [f32],
+}
+
+impl Kernel for RestrictRow<'_> {
+    type Out = ();
+
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
+    fn call(self) {
+        let Self {
+            tr,
+            fine,
+            r,
+            cl,
+            lo_c,
+            hi_c,
+            row_i,
+            row,
+        } = self;
+        let (p0, n0) = (cl.pad[0], cl.n[0]);
+        let nf0 = fine.n[0];
+        let Some(base) = cl.row_base(row_i) else {
+            return;
+        };
+        let jc = row_i % cl.m[1] - cl.pad[1];
+        let kc = row_i / cl.m[1] - cl.pad[2];
+        let out = &mut row[p0..p0 + n0];
+        out.fill(0.0);
+        for &(fk, wk) in &tr.down[2][kc] {
+            for &(fj, wj) in &tr.down[1][jc] {
+                let w = wj * wk * tr.scale;
+                let fb = fine.pidx([0, fj, fk]);
+                let fr = &r[fb..fb + nf0];
+                for ic in 0..lo_c.min(n0) {
+                    let mut v = 0.0f32;
+                    for &(fi, wi) in &tr.down[0][ic] {
+                        v += wi * fr[fi];
+                    }
+                    out[ic] += w * v;
+                }
+                if hi_c > lo_c {
+                    // Fine cells 2c−1 ..= 2c+2 for c in lo_c..hi_c.
+                    let span = &fr[2 * lo_c - 1..2 * hi_c + 1];
+                    for (k, o) in out[lo_c..hi_c].iter_mut().enumerate() {
+                        let q = &span[2 * k..2 * k + 4];
+                        *o += w * (0.25 * (q[0] + q[3]) + 0.75 * (q[1] + q[2]));
+                    }
+                }
+                for ic in hi_c.max(lo_c)..n0 {
+                    let mut v = 0.0f32;
+                    for &(fi, wi) in &tr.down[0][ic] {
+                        v += wi * fr[fi];
+                    }
+                    out[ic] += w * v;
+                }
+            }
+        }
+        let ds = &cl.diag[base + p0..base + p0 + n0];
+        for (o, &d) in out.iter_mut().zip(ds) {
+            if d == 0.0 {
+                *o = 0.0;
+            }
+        }
+    }
+}
+
+/// One fine row of [`Transfer::prolong_add`] as a SIMD-dispatched kernel.
+struct ProlongRow<'a> {
+    tr: &'a Transfer,
+    coarse: &'a Level,
+    fl: &'a Level,
+    row_i: usize,
+    row: &'a mut [f32],
+}
+
+impl Kernel for ProlongRow<'_> {
+    type Out = ();
+
+    #[inline(always)]
+    fn call(self) {
+        let Self {
+            tr,
+            coarse,
+            fl,
+            row_i,
+            row,
+        } = self;
+        let (p0, n0) = (fl.pad[0], fl.n[0]);
+        let nc0 = coarse.n[0];
+        let cx = &coarse.x;
+        let (wjp, wjn) = if fl.n[1] > 1 {
+            (0.75, 0.25)
+        } else {
+            (1.0, 0.0)
+        };
+        let (wkp, wkn) = if fl.n[2] > 1 {
+            (0.75, 0.25)
+        } else {
+            (1.0, 0.0)
+        };
+        let active_x = fl.n[0] > 1;
+        let Some(base) = fl.row_base(row_i) else {
+            return;
+        };
+        let jf = row_i % fl.m[1] - fl.pad[1];
+        let kf = row_i / fl.m[1] - fl.pad[2];
+        let (jp, jn) = tr.up[1][jf];
+        let (kp, kn) = tr.up[2][kf];
+        let rows = [
+            (coarse.pidx([0, jp, kp]), wjp * wkp),
+            (coarse.pidx([0, jn, kp]), wjn * wkp),
+            (coarse.pidx([0, jp, kn]), wjp * wkn),
+            (coarse.pidx([0, jn, kn]), wjn * wkn),
+        ];
+        // Combined coarse row c[0..nc0].
+        let mut c = vec![0.0f32; nc0];
+        for &(rb, w) in &rows {
+            if w != 0.0 {
+                for (o, &v) in c.iter_mut().zip(&cx[rb..rb + nc0]) {
+                    *o += w * v;
+                }
+            }
+        }
+        let ds = &fl.diag[base + p0..base + p0 + n0];
+        let out = &mut row[p0..p0 + n0];
+        if !active_x {
+            for (i, o) in out.iter_mut().enumerate() {
+                if ds[i] != 0.0 {
+                    *o += c[tr.up[0][i].0];
+                }
+            }
+            return;
+        }
+        // Fine i = 2q (q ≥ 1) takes ¾ c[q] + ¼ c[q−1]; i = 2q+1 (q + 1 < nc0)
+        // takes ¾ c[q] + ¼ c[q+1]. The ends use the general lists.
+        let general = |i: usize| {
+            let (ip, inb) = tr.up[0][i];
+            0.75 * c[ip] + 0.25 * c[inb]
+        };
+        let mut add = vec![0.0f32; n0];
+        for q in 0..nc0 {
+            let i = 2 * q;
+            if i >= n0 {
+                break;
+            }
+            let even = if q >= 1 {
+                0.75 * c[q] + 0.25 * c[q - 1]
+            } else {
+                general(i)
+            };
+            add[i] = even;
+            if i + 1 < n0 {
+                add[i + 1] = if q + 1 < nc0 {
+                    0.75 * c[q] + 0.25 * c[q + 1]
+                } else {
+                    general(i + 1)
+                };
+            }
+        }
+        for ((o, &a), &d) in out.iter_mut().zip(&add).zip(ds) {
+            if d != 0.0 {
+                *o += a;
             }
         }
     }
@@ -1229,13 +1311,77 @@ mod simd_tests {
         });
     }
 
-    /// The dispatched row kernels (smoother half sweep, residual, operator)
-    /// give the same bits at every SIMD level as the baseline build.
+    /// Restriction and prolongation rows at every SIMD level against the
+    /// baseline, bit for bit.
+    fn check_transfers(fine: &Level) {
+        let (nc, ck) = coarsen(fine);
+        let mut coarse = Level::new(nc, ck, fine.open, fine.periodic);
+        coarse.x = random(&coarse, 5);
+        let tr = Transfer::new(fine, &coarse);
+        let r = random(fine, 6);
+        let (lo_c, hi_c) = interior_range(coarse.n[0], fine.n[0], fine.n[0] > 1);
+        let restrict = |simd: Simd| -> Vec<f32> {
+            let mut out = vec![0.0f32; coarse.len()];
+            let m0 = coarse.m[0];
+            for (row_i, row) in out[G..G + coarse.rows() * m0].chunks_mut(m0).enumerate() {
+                simd::run(
+                    simd,
+                    RestrictRow {
+                        tr: &tr,
+                        fine,
+                        r: &r,
+                        cl: &coarse,
+                        lo_c,
+                        hi_c,
+                        row_i,
+                        row,
+                    },
+                );
+            }
+            out
+        };
+        let prolong = |simd: Simd| -> Vec<f32> {
+            let mut out = random(fine, 7);
+            let m0 = fine.m[0];
+            for (row_i, row) in out[G..G + fine.rows() * m0].chunks_mut(m0).enumerate() {
+                simd::run(
+                    simd,
+                    ProlongRow {
+                        tr: &tr,
+                        coarse: &coarse,
+                        fl: fine,
+                        row_i,
+                        row,
+                    },
+                );
+            }
+            out
+        };
+        let (rw, pw) = (restrict(Simd::baseline()), prolong(Simd::baseline()));
+        for simd in Simd::supported() {
+            let (rg, pg) = (restrict(simd), prolong(simd));
+            assert!(rg.iter().zip(&rw).all(|(a, b)| a.to_bits() == b.to_bits()));
+            assert!(pg.iter().zip(&pw).all(|(a, b)| a.to_bits() == b.to_bits()));
+        }
+    }
+
+    /// The dispatched row kernels (smoother half sweep, residual, operator,
+    /// restriction, prolongation) give the same bits at every SIMD level as
+    /// the baseline build.
     #[test]
     fn row_kernels_are_bit_identical_at_every_simd_level() {
-        check::<2>(&level([300, 1, 37], [false; 3]));
-        check::<2>(&level([64, 1, 40], [true, false, false]));
-        check::<3>(&level([21, 13, 9], [false; 3]));
-        check::<3>(&level([16, 8, 12], [true, true, false]));
+        for (l, three) in [
+            (level([300, 1, 37], [false; 3]), false),
+            (level([64, 1, 40], [true, false, false]), false),
+            (level([21, 13, 9], [false; 3]), true),
+            (level([16, 8, 12], [true, true, false]), true),
+        ] {
+            if three {
+                check::<3>(&l);
+            } else {
+                check::<2>(&l);
+            }
+            check_transfers(&l);
+        }
     }
 }
