@@ -163,7 +163,6 @@ pub(crate) fn diffuse_in(
                         *av += v;
                     }
                 }
-                let mut part = 0.0f64;
                 for (((o, &xv), &d), &av) in yrow[c0..c0 + w]
                     .iter_mut()
                     .zip(&xr[c0..c0 + w])
@@ -172,9 +171,8 @@ pub(crate) fn diffuse_in(
                 {
                     let v = d * xv - coef * av;
                     *o = if d != 0.0 { v } else { 0.0 };
-                    part += f64::from(xv) * f64::from(*o);
                 }
-                dot += part;
+                dot += lane_dot(&xr[c0..c0 + w], &yrow[c0..c0 + w]);
             }
             dot
         })
@@ -229,19 +227,34 @@ pub(crate) fn diffuse_in(
         let (rz2, rr2) = par::for_chunks2_sum2(&mut x, &mut r, par::BLOCK, |bi, xc, rc| {
             let s0 = bi * par::BLOCK;
             let m = xc.len();
-            let (mut rz, mut rr) = (0.0f64, 0.0f64);
-            for ((((xv, rv), &pv), &qv), &iv) in xc
+            for (((xv, rv), &pv), &qv) in xc
                 .iter_mut()
                 .zip(rc.iter_mut())
                 .zip(&p_ref[s0..s0 + m])
                 .zip(&q_ref[s0..s0 + m])
-                .zip(&inv[s0..s0 + m])
             {
                 *xv += alpha * pv;
                 *rv -= alpha * qv;
-                let zv = *rv * iv;
-                rz += f64::from(*rv) * f64::from(zv);
-                rr += f64::from(*rv) * f64::from(*rv);
+            }
+            // r·z (z = r/A_ss, rounded to f32 as before) and r·r of the
+            // block while it is in cache, in eight lane sums so that both
+            // loops vectorise (a single running sum keeps them scalar).
+            let rc: &[f32] = rc;
+            let iv = &inv[s0..s0 + m];
+            let (mut lz, mut lr) = ([0.0f64; 8], [0.0f64; 8]);
+            let (r8, i8) = (rc.chunks_exact(8), iv.chunks_exact(8));
+            let (rt, it) = (r8.remainder(), i8.remainder());
+            for (rs, is) in r8.zip(i8) {
+                for l in 0..8 {
+                    let rv = f64::from(rs[l]);
+                    lz[l] += rv * f64::from(rs[l] * is[l]);
+                    lr[l] += rv * rv;
+                }
+            }
+            let (mut rz, mut rr) = (lz.iter().sum::<f64>(), lr.iter().sum::<f64>());
+            for (&r, &i) in rt.iter().zip(it) {
+                rz += f64::from(r) * f64::from(r * i);
+                rr += f64::from(r) * f64::from(r);
             }
             (rz, rr)
         });
@@ -272,6 +285,25 @@ pub(crate) fn diffuse_in(
 
 /// Row block length of the operator (stack accumulator).
 const CH: usize = 256;
+
+/// `Σ a·b` in `f64`, in eight lane sums added in a fixed order (so the
+/// loop vectorises; deterministic).
+#[inline(always)]
+fn lane_dot(a: &[f32], b: &[f32]) -> f64 {
+    let mut lanes = [0.0f64; 8];
+    let (a8, b8) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (at, bt) = (a8.remainder(), b8.remainder());
+    for (x, y) in a8.zip(b8) {
+        for l in 0..8 {
+            lanes[l] += f64::from(x[l]) * f64::from(y[l]);
+        }
+    }
+    let mut s = lanes.iter().sum::<f64>();
+    for (&x, &y) in at.iter().zip(bt) {
+        s += f64::from(x) * f64::from(y);
+    }
+    s
+}
 
 /// The general per-sample form of [`diffuse`], kept as its test oracle.
 #[cfg(test)]

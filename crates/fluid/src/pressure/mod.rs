@@ -622,6 +622,12 @@ impl PoissonSystem {
                 }
                 self.precondition(p.solver);
                 let rz_new = self.levels[0].dot(&r, &self.z);
+                if !(rz_new > 0.0 && rz_new.is_finite()) {
+                    // The preconditioned residual lost positivity (round-off
+                    // in a nearly converged direction): restart from the
+                    // true residual instead of stepping with a negative β.
+                    continue 'outer;
+                }
                 let beta = (rz_new / rz) as f32;
                 rz = rz_new;
                 let z = &self.z;
