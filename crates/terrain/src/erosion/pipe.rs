@@ -1387,26 +1387,50 @@ fn update_row<const ERODIBILITY: bool>(
             let (frl, flr, ftb, fbt) = (g(fr.l), g(fl.r), g(ft.b), g(fb.t));
             let (bc, bl, br, bb, bt) = (g(bed.c), g(bed.l), g(bed.r), g(bed.b), g(bed.t));
             let e = if ERODIBILITY { g(er) } else { [1.0f32; LANES] };
-            let mut o = [[0.0f32; LANES]; 7];
-            for k in 0..LANES {
-                let cell = CellIn {
-                    d1: dd[k],
-                    fo: [flc[k], frc[k], fbc[k], ftc[k]],
-                    fin: [frl[k], flr[k], ftb[k], fbt[k]],
-                    s: s[k],
-                    bed: bc[k],
-                    bn: [bl[k], br[k], bb[k], bt[k]],
-                    ks: if ERODIBILITY { c.ks * e[k] } else { c.ks },
-                };
-                let r = c.update(&cell, dep0[k]);
-                o[0][k] = r.w;
-                o[1][k] = r.b;
-                o[2][k] = r.s;
-                o[3][k] = r.u;
-                o[4][k] = r.v;
-                o[5][k] = r.dep;
-                o[6][k] = r.lost;
-            }
+            let ks = if ERODIBILITY {
+                lane(|k| c.ks * e[k])
+            } else {
+                [c.ks; LANES]
+            };
+            // The arithmetic of `Consts::update`, stage by stage over the
+            // lane arrays: every stage is a plain map (its choices are bit
+            // blends), which the AVX2 build vectorises too; the operations
+            // and their order per cell are those of `update`.
+            let out = lane(|k| flc[k] + frc[k] + fbc[k] + ftc[k]);
+            let d2 = lane(|k| {
+                let inflow = frl[k] + flr[k] + ftb[k] + fbt[k];
+                fmax(dd[k] + (inflow - out[k]) * c.dt_area, 0.0)
+            });
+            let mean_d = lane(|k| 0.5 * (dd[k] + d2[k]));
+            let inv = lane(|k| {
+                let wet = mean_d[k] > 1e-6;
+                let inv = 1.0 / (c.cell * pick(wet, mean_d[k], 1.0));
+                inv * pick(wet, 1.0, 0.0)
+            });
+            let vu = lane(|k| clamp(0.5 * (frl[k] - flc[k] + frc[k] - flr[k]) * inv[k], c.vmax));
+            let vv = lane(|k| clamp(0.5 * (ftb[k] - fbc[k] + ftc[k] - fbt[k]) * inv[k], c.vmax));
+            let sin_a = lane(|k| {
+                let gx = (br[k] - bl[k]) * c.inv_2cell;
+                let gy = (bt[k] - bb[k]) * c.inv_2cell;
+                let g2 = gx * gx + gy * gy;
+                fmax((g2 / (1.0 + g2)).sqrt(), c.min_tilt)
+            });
+            let cap = lane(|k| {
+                let speed = (vu[k] * vu[k] + vv[k] * vv[k]).sqrt();
+                c.kc * sin_a[k] * speed * fmin(d2[k] * c.inv_dref, 1.0)
+            });
+            let ero = lane(|k| ks[k] * (cap[k] - s[k]));
+            let dep = lane(|k| c.kd * (s[k] - cap[k]));
+            let lost_k = lane(|k| d2[k] * c.evap);
+            let o = [
+                lane(|k| d2[k] - lost_k[k]),
+                lane(|k| pick(cap[k] > s[k], bc[k] - ero[k], bc[k] + dep[k])),
+                lane(|k| pick(cap[k] > s[k], s[k] + ero[k], s[k] - dep[k])),
+                vu,
+                vv,
+                lane(|k| pick(cap[k] > s[k], dep0[k] - ero[k], dep0[k] + dep[k])),
+                lost_k,
+            ];
             for (d, v) in [
                 &mut *wo, &mut *bo, &mut *so, &mut *uo, &mut *vo, &mut *depo, &mut *lost,
             ]
@@ -1476,6 +1500,25 @@ fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: A
 /// Cells per lane group of the pass-B and transport kernels (a multiple of
 /// the 8 and 16 `f32` lanes of AVX2 and AVX-512).
 const LANES: usize = 16;
+
+/// One stage of a lane-group kernel: `f` applied to every lane.
+#[inline(always)]
+fn lane(mut f: impl FnMut(usize) -> f32) -> [f32; LANES] {
+    // A plain loop: `std::array::from_fn` leaves its closure call out of line.
+    let mut x = [0.0f32; LANES];
+    for (k, v) in x.iter_mut().enumerate() {
+        *v = f(k);
+    }
+    x
+}
+
+/// `if m { a } else { b }` as a bit blend: a select LLVM keeps as a vector
+/// blend on AVX2 instead of turning it into a branch.
+#[inline(always)]
+fn pick(m: bool, a: f32, b: f32) -> f32 {
+    let mask = u32::from(m).wrapping_neg();
+    f32::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
+}
 
 /// `s[a..a + n]` in a local array, padded with zeros (`n ≤ N`): every lane
 /// group has a fixed width, and a padded lane's result is never stored.
