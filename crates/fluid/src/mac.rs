@@ -18,49 +18,72 @@ use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 
 /// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (L2240).
 pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
-    let d = vel.dims();
-    let mut out = d.zeros()?;
-    let inv = 1.0 / h;
-    let n = d.n();
-    let c = vel.comps();
-    // Row slices of the face grids (same sums in the same order as the
-    // per-face form).
-    let (u, v, w) = (c[0].as_slice(), c[1].as_slice(), c[2].as_slice());
-    let act = [d.active(0), d.active(1), d.active(2)];
-    let n0 = n[0];
-    par::for_chunks(out.as_mut_slice(), n0, |r, row| {
-        let (j, k) = (r % n[1], r / n[1]);
-        let ur = &u[(k * n[1] + j) * (n0 + 1)..][..n0 + 1];
-        let vr0 = &v[(k * (n[1] + 1) + j) * n0..][..n0];
-        let vr1 = &v[(k * (n[1] + 1) + j + 1) * n0..][..n0];
-        let wr0 = &w[(k * n[1] + j) * n0..][..n0];
-        let wr1 = &w[((k + 1) * n[1] + j) * n0..][..n0];
-        for (i, o) in row.iter_mut().enumerate() {
-            let mut s = 0.0;
-            if act[0] {
-                s += ur[i + 1] - ur[i];
-            }
-            if act[1] {
-                s += vr1[i] - vr0[i];
-            }
-            if act[2] {
-                s += wr1[i] - wr0[i];
-            }
-            *o = s * inv;
-        }
+    let mut out = vel.dims().zeros()?;
+    par::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
+        divergence_row(vel, h, r, row);
     });
     Ok(out)
 }
 
+/// The MAC divergence of cell row `r` (`r = k·ny + j`) into `row`.
+/// Row slices of the face grids (same sums in the same order as the
+/// per-face form).
+#[inline]
+fn divergence_row(vel: &MacVelocity, h: f32, r: usize, row: &mut [f32]) {
+    let d = vel.dims();
+    let inv = 1.0 / h;
+    let n = d.n();
+    let c = vel.comps();
+    let (u, v, w) = (c[0].as_slice(), c[1].as_slice(), c[2].as_slice());
+    let act = [d.active(0), d.active(1), d.active(2)];
+    let n0 = n[0];
+    let (j, k) = (r % n[1], r / n[1]);
+    let ur = &u[(k * n[1] + j) * (n0 + 1)..][..n0 + 1];
+    let vr0 = &v[(k * (n[1] + 1) + j) * n0..][..n0];
+    let vr1 = &v[(k * (n[1] + 1) + j + 1) * n0..][..n0];
+    let wr0 = &w[(k * n[1] + j) * n0..][..n0];
+    let wr1 = &w[((k + 1) * n[1] + j) * n0..][..n0];
+    for (i, o) in row.iter_mut().enumerate() {
+        let mut s = 0.0;
+        if act[0] {
+            s += ur[i + 1] - ur[i];
+        }
+        if act[1] {
+            s += vr1[i] - vr0[i];
+        }
+        if act[2] {
+            s += wr1[i] - wr0[i];
+        }
+        *o = s * inv;
+    }
+}
+
 /// Largest `|∇·u|` over cells of kind [`CellKind::Fluid`].
+///
+/// One pass over the faces, row by row, with no divergence grid: each row's
+/// divergence goes to a row buffer and is folded at once (the same values
+/// as [`divergence`]; the maximum does not depend on the order).
 pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) -> Result<f32> {
-    let div = divergence(vel, h)?;
-    Ok(div
-        .as_slice()
-        .iter()
-        .zip(kinds.as_slice())
-        .filter(|(_, k)| **k == CellKind::Fluid)
-        .fold(0.0f32, |m, (v, _)| m.max(v.abs())))
+    let d = vel.dims();
+    let n0 = d.n()[0];
+    let rows = d.cells() / n0;
+    let ks = kinds.as_slice();
+    let fold = |r0: usize, r1: usize| {
+        let mut buf = vec![0.0f32; n0];
+        let mut m = 0.0f32;
+        for r in r0..r1 {
+            divergence_row(vel, h, r, &mut buf);
+            // Zipped like the grid form: a short `kinds` ends the fold.
+            let kr = ks.get(r * n0..).unwrap_or(&[]);
+            m = buf
+                .iter()
+                .zip(kr)
+                .filter(|(_, k)| **k == CellKind::Fluid)
+                .fold(m, |m, (v, _)| m.max(v.abs()));
+        }
+        m
+    };
+    Ok(par::max_over_rows(rows, n0, fold))
 }
 
 /// Whether face `f` (index into component `a`'s grid) is fixed — a domain

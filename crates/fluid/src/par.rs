@@ -203,3 +203,23 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
 
 /// Fixed block length for deterministic reductions over flat arrays.
 pub(crate) const BLOCK: usize = 8192;
+
+/// `max(f(r0, r1))` over bands `[r0, r1)` of `rows` rows of `row_len`
+/// elements each (`f` folds a band and returns its maximum; `f32::max`, so
+/// the result does not depend on how the rows are split into bands).
+pub(crate) fn max_over_rows(
+    rows: usize,
+    row_len: usize,
+    f: impl Fn(usize, usize) -> f32 + Sync + Send,
+) -> f32 {
+    #[cfg(feature = "parallel")]
+    if rows * row_len >= SERIAL_BELOW {
+        use rayon::prelude::*;
+        let band = (4096 / row_len.max(1)).max(1);
+        return (0..rows.div_ceil(band))
+            .into_par_iter()
+            .map(|b| f(b * band, ((b + 1) * band).min(rows)))
+            .reduce(|| 0.0f32, f32::max);
+    }
+    f(0, rows)
+}
