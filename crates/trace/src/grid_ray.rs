@@ -225,7 +225,7 @@ pub(crate) const SETUP_LANES: usize = 16;
 /// The set-up of [`SETUP_LANES`] rays, struct-of-arrays: each field is the
 /// [`GridRay`] field of the same name for every lane, plus the walk's start
 /// ([`crate::MipmapTracer`]'s entry cell and level).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 pub(crate) struct SetupLanes {
     /// The ray is valid and meets the box within its range (`setup` is `Some`).
     pub ok: [bool; SETUP_LANES],
@@ -250,24 +250,7 @@ pub(crate) struct SetupLanes {
 impl SetupLanes {
     /// All zero (every lane not `ok`).
     pub fn new() -> Self {
-        Self {
-            ok: [false; SETUP_LANES],
-            o: [[0.0; SETUP_LANES]; 3],
-            d: [[0.0; SETUP_LANES]; 3],
-            inv: [[0.0; SETUP_LANES]; 2],
-            t0: [0.0; SETUP_LANES],
-            t1: [0.0; SETUP_LANES],
-            zeps: [0.0; SETUP_LANES],
-            xyeps: [0.0; SETUP_LANES],
-            ttol: [0.0; SETUP_LANES],
-            zm: [0.0; SETUP_LANES],
-            px: [[0.0; SETUP_LANES]; 3],
-            py: [[0.0; SETUP_LANES]; 3],
-            pz: [[0.0; SETUP_LANES]; 3],
-            ci: [0; SETUP_LANES],
-            cj: [0; SETUP_LANES],
-            level: [0; SETUP_LANES],
-        }
+        Self::default()
     }
 
     /// Lane `l`'s ray, as [`GridRay::new`] would set it up over `[t_min, t_max]`.

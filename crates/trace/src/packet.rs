@@ -995,7 +995,7 @@ fn refill<R: Rays + ?Sized>(
 
 /// The per-lane ray constants of the exact cell test (struct-of-arrays
 /// copies of [`GridRay`] fields the node steps do not need).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 pub(crate) struct Exact {
     oz: [f32; LANES],
     dz: [f32; LANES],
@@ -1010,16 +1010,7 @@ pub(crate) struct Exact {
 
 impl Exact {
     fn new() -> Self {
-        Self {
-            oz: [0.0; LANES],
-            dz: [0.0; LANES],
-            zm: [0.0; LANES],
-            t_min: [0.0; LANES],
-            t_max: [0.0; LANES],
-            xyeps: [0.0; LANES],
-            ttol: [0.0; LANES],
-            sh: [[0.0; LANES]; 9],
-        }
+        Self::default()
     }
 
     #[inline]
@@ -1041,7 +1032,7 @@ impl Exact {
 }
 
 /// How each lane's cell test came out.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct CellOut {
     /// [`EV_NONE`], [`EV_CLIMB`] or [`EV_DONE`].
     ev: [u32; LANES],
@@ -1055,15 +1046,7 @@ struct CellOut {
 
 impl CellOut {
     fn new() -> Self {
-        Self {
-            ev: [0; LANES],
-            t_exit: [0.0; LANES],
-            exit: [0; LANES],
-            flags: [0; LANES],
-            t: [0.0; LANES],
-            upper: [false; LANES],
-            bary: [[0.0; LANES]; 3],
-        }
+        Self::default()
     }
 }
 
