@@ -724,9 +724,19 @@ pub(crate) fn d8_receivers_into(
     let n = nx * ny;
     rec.resize(n, 0);
     dist.resize(n, 0.0);
-    par::map_bands(nx, ny, [rec.as_mut_slice()], |y0, y1, [r]| {
-        for y in y0..y1 {
-            let row = &mut r[(y - y0) * nx..(y - y0 + 1) * nx];
+    // Receivers and distances row by row in bands of rows (the distances of
+    // a row from its receivers while they are in cache): pure per cell, so
+    // any band split gives the same values.
+    let band = nx * par::BAND_ROWS;
+    let jobs: Vec<_> = rec
+        .chunks_mut(band)
+        .zip(dist.chunks_mut(band))
+        .enumerate()
+        .collect();
+    par::run(jobs, |(b, (r, d))| {
+        let y0 = b * par::BAND_ROWS;
+        for (k, (row, drow)) in r.chunks_mut(nx).zip(d.chunks_mut(nx)).enumerate() {
+            let y = y0 + k;
             let i0 = y * nx;
             // Edge cells are outlets.
             row[0] = i0 as u32;
@@ -738,21 +748,17 @@ pub(crate) fn d8_receivers_into(
             } else {
                 d8_row(h, i0 + 1, nx, &mut row[1..nx - 1]);
             }
-        }
-    });
-    // Distances in parallel too: the receiver is a neighbour (or the cell itself).
-    par::map_bands(nx, ny, [dist.as_mut_slice()], |y0, _y1, [d]| {
-        let base = y0 * nx;
-        for (k, d) in d.iter_mut().enumerate() {
-            let i = base + k;
-            let r = rec[i] as usize;
-            *d = if r == i {
-                0.0
-            } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
-                1.0
-            } else {
-                std::f32::consts::SQRT_2
-            };
+            // The receiver is a neighbour (or the cell itself).
+            for (x, (&r, dv)) in row.iter().zip(drow.iter_mut()).enumerate() {
+                let (i, r) = (i0 + x, r as usize);
+                *dv = if r == i {
+                    0.0
+                } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
+                    1.0
+                } else {
+                    std::f32::consts::SQRT_2
+                };
+            }
         }
     });
 }
