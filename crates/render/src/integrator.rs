@@ -246,14 +246,33 @@ impl<'w> Renderer<'w> {
     ///
     /// Each pixel averages `spp` stratified samples whose positions are
     /// random numbers indexed by pixel and sample, so the image is
-    /// bit-identical for any thread count.
+    /// bit-identical for any thread count. The primary rays of a tile (all
+    /// their samples) are traced together with [`Tracer::trace_many`], the
+    /// mipmap tracer's lock-step lanes; every pixel equals [`Self::pixel`]
+    /// bit for bit.
     pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
-        let grid = natura_trace::render(
+        let n = self.spp as usize;
+        let grid = natura_trace::render_tiles(
             self.width,
             self.height,
             natura_trace::DEFAULT_TILE,
             progress,
-            |x, y| self.pixel(x, y),
+            |bx, by, w, h, out| {
+                let mut rays = Vec::with_capacity((w * h) as usize * n);
+                for y in by..by + h {
+                    for x in bx..bx + w {
+                        rays.extend((0..self.spp).map(|s| self.primary_ray(x, y, s)));
+                    }
+                }
+                let hits = self.tracer.trace_many(&rays, 0.0, f32::INFINITY);
+                for (r, h) in rays.chunks_exact(n).zip(hits.chunks_exact(n)) {
+                    let mut sum = Vec3::ZERO;
+                    for (ray, hit) in r.iter().zip(h) {
+                        sum += self.radiance_traced(ray, hit.as_ref());
+                    }
+                    out.push(sum / self.spp as f32);
+                }
+            },
         )?;
         Ok(Image::from_grid(grid))
     }
@@ -261,37 +280,52 @@ impl<'w> Renderer<'w> {
     /// The average radiance of pixel `(x, y)` over its stratified samples.
     #[must_use]
     pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        let mut sum = Vec3::ZERO;
+        for s in 0..self.spp {
+            let ray = self.primary_ray(x, y, s);
+            let hit = self.tracer.trace(&ray, 0.0, f32::INFINITY);
+            sum += self.radiance_traced(&ray, hit.as_ref());
+        }
+        sum / self.spp as f32
+    }
+
+    /// Sample `s` of pixel `(x, y)`: the camera ray through its jittered
+    /// position in a stratified `⌈√spp⌉²` grid, with a unit direction.
+    fn primary_ray(&self, x: u32, y: u32, s: u32) -> Ray {
         let n = self.spp;
         let side = (n as f32).sqrt().ceil() as u32;
-        let mut sum = Vec3::ZERO;
-        for s in 0..n {
-            let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
-            let (jx, jy) = (
-                unit_f64(h) as f32,
-                unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
-            );
-            let jitter = if n == 1 {
-                glam::Vec2::splat(0.5)
-            } else {
-                // Stratum (s mod side, s / side) of a side × side grid, jittered inside.
-                let (sx, sy) = ((s % side) as f32, (s / side) as f32);
-                glam::Vec2::new(
-                    (sx + jx) / side as f32,
-                    ((sy + jy) / side as f32).min(1.0 - f32::EPSILON),
-                )
-            };
-            let ray = self.camera.camera().ray(x, y, jitter);
-            sum += self.radiance(&ray);
-        }
-        sum / n as f32
+        let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
+        let (jx, jy) = (
+            unit_f64(h) as f32,
+            unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
+        );
+        let jitter = if n == 1 {
+            glam::Vec2::splat(0.5)
+        } else {
+            // Stratum (s mod side, s / side) of a side × side grid, jittered inside.
+            let (sx, sy) = ((s % side) as f32, (s / side) as f32);
+            glam::Vec2::new(
+                (sx + jx) / side as f32,
+                ((sy + jy) / side as f32).min(1.0 - f32::EPSILON),
+            )
+        };
+        let ray = self.camera.camera().ray(x, y, jitter);
+        Ray::new(ray.origin, ray.dir.normalize())
     }
 
     /// Radiance arriving at the camera along a primary `ray`.
     #[must_use]
     pub fn radiance(&self, ray: &Ray) -> Vec3 {
-        let d = ray.dir.normalize();
-        let ray = Ray::new(ray.origin, d);
-        let (mut l, dist) = match self.intersect(&ray) {
+        let ray = Ray::new(ray.origin, ray.dir.normalize());
+        let hit = self.tracer.trace(&ray, 0.0, f32::INFINITY);
+        self.radiance_traced(&ray, hit.as_ref())
+    }
+
+    /// [`Self::radiance`] along a unit-direction `ray` whose first hit on the
+    /// traced surface over `[0, ∞)` is `hit`.
+    fn radiance_traced(&self, ray: &Ray, hit: Option<&Hit>) -> Vec3 {
+        let d = ray.dir;
+        let (mut l, dist) = match self.intersect(ray, hit) {
             Some(SurfaceHit::Water { t, point }) => (self.shade_water(point, d, t, true), t),
             Some(SurfaceHit::Terrain(h)) => {
                 (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t)
@@ -317,8 +351,9 @@ impl<'w> Renderer<'w> {
     /// exactly: the water is the plane at the lake's level `L` (the lowest
     /// surface sample of the hit cell), and the ray either meets the bare
     /// terrain before that plane (the bank) or the plane itself.
-    fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
-        let Some(h) = self.tracer.trace(ray, 0.0, f32::INFINITY) else {
+    /// `hit` is the ray's first hit on the traced surface over `[0, ∞)`.
+    fn intersect(&self, ray: &Ray, hit: Option<&Hit>) -> Option<SurfaceHit> {
+        let Some(&h) = hit else {
             // Beyond the terrain the sea plane goes on to the horizon.
             return self.sea_t(ray.origin, ray.dir).map(|t| SurfaceHit::Water {
                 t,
@@ -509,7 +544,8 @@ impl<'w> Renderer<'w> {
                     .trace(&rray, 0.0, f32::INFINITY)
                     .map(SurfaceHit::Terrain)
             } else {
-                self.intersect(&rray)
+                let first = self.tracer.trace(&rray, 0.0, f32::INFINITY);
+                self.intersect(&rray, first.as_ref())
             };
             let (lt, tr) = match hit {
                 Some(SurfaceHit::Water { t: tr, point }) => {

@@ -58,6 +58,39 @@ fn same_image_on_one_and_two_threads() {
     assert_eq!(a.exposure_ev.to_bits(), b.exposure_ev.to_bits());
 }
 
+/// The tile renderer traces each tile's primary rays together (the mipmap
+/// tracer's lanes); every pixel must equal the one-ray-at-a-time
+/// [`Renderer::pixel`] bit for bit: with lakes, sea and rain, for one, two and
+/// three samples per pixel (a non-square stratification), and through a
+/// panoramic camera.
+#[test]
+fn tile_render_equals_per_pixel_samples() {
+    for (spp, panorama) in [(1, false), (2, false), (3, true)] {
+        let mut scene = small_scene();
+        scene.render.width = 40;
+        scene.render.height = 24;
+        scene.render.spp = spp;
+        scene.atmosphere.rain_extinction_per_m = 2e-4;
+        if panorama {
+            scene.camera.kind = natura_render::CameraKind::Cylindrical;
+        }
+        let world = World::build(&scene, &NoProgress).unwrap();
+        let r = Renderer::new(&world, &NoProgress).unwrap();
+        let image = r.render(&NoProgress).unwrap();
+        let px = image.pixels();
+        for y in 0..24u32 {
+            for x in 0..40u32 {
+                let (a, b) = (px[(x as usize, y as usize)], r.pixel(x, y));
+                assert_eq!(
+                    a.to_array().map(f32::to_bits),
+                    b.to_array().map(f32::to_bits),
+                    "spp {spp}, pixel ({x}, {y}): {a} vs {b}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn default_scene_small_render_is_finite_and_has_sky_and_land() {
     let scene = small_scene();

@@ -101,6 +101,33 @@ where
     })
 }
 
+/// Computes an image tile by tile: `run(x0, y0, w, h, out)` pushes the
+/// `w × h` values of the tile whose top-left pixel is `(x0, y0)`, row-major,
+/// into `out`. Tiles of side `tile` run in parallel (feature `parallel`) and
+/// are reported to `progress` as they complete, one unit per pixel.
+///
+/// This is the driver behind [`render`] and [`trace_image`], for renderers
+/// that need the whole tile at once — to trace its primary rays together with
+/// [`Tracer::trace_many`], for instance. As long as `run` computes each pixel
+/// from its coordinates alone, the result does not depend on the thread count
+/// or the tile size. Fails on a zero or oversize resolution or a zero tile.
+///
+/// # Panics
+/// If `run` pushes a number of values other than `w × h`.
+pub fn render_tiles<T, F>(
+    width: u32,
+    height: u32,
+    tile: u32,
+    progress: &dyn Progress,
+    run: F,
+) -> Result<Grid2<T>>
+where
+    T: Send + Sync + Clone + Default,
+    F: Fn(u32, u32, u32, u32, &mut Vec<T>) + Sync,
+{
+    tiles(width, height, tile, progress, run)
+}
+
 /// The tile driver behind [`render`] and [`trace_image`]: `run(x0, y0, w, h,
 /// out)` pushes the `w × h` values of the tile at `(x0, y0)`, row-major.
 fn tiles<T, F>(

@@ -105,7 +105,7 @@ mod ray_cell;
 mod surface;
 mod tracer;
 
-pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, trace_image};
+pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, render_tiles, trace_image};
 pub use brute::brute_force;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
