@@ -161,7 +161,8 @@ where
 }
 
 /// Renders `camera`'s image with `tracer`: like [`render_camera`], but the
-/// rays of each tile (all their samples) are traced together with
+/// rays of each tile (all their samples, generated together by
+/// [`Camera::rays_into`]) are traced together with
 /// [`Tracer::trace_many`] over `[0, ∞)` — for a [`crate::MipmapTracer`] its
 /// lock-step lanes, about 2.8× faster than one [`Tracer::trace`] per pixel
 /// on grazing views (CPU time) — and `shade(ray, hit)` turns each into a linear colour;
@@ -187,14 +188,8 @@ where
     let n = options.samples_per_pixel;
     let inv = 1.0 / n as f32;
     let grid = tiles(res.x, res.y, options.tile, progress, |bx, by, w, h, out| {
-        let mut rays = Vec::with_capacity((w * h * n) as usize);
-        for y in by..by + h {
-            for x in bx..bx + w {
-                for s in 0..n {
-                    rays.push(camera.ray(x, y, options.jitter(x, y, s)));
-                }
-            }
-        }
+        let mut rays = Vec::new();
+        camera.rays_into(bx, by, w, h, options, &mut rays);
         let hits = tracer.trace_many(&rays, 0.0, f32::INFINITY);
         for (r, h) in rays
             .chunks_exact(n as usize)

@@ -109,7 +109,7 @@ pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, trace_image}
 pub use brute::brute_force;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
-    Stereo,
+    RAY_LANES, Stereo,
 };
 pub use dda::{CellVisit, CellWalk, GridTracer};
 pub use error::{Result, TraceError};
