@@ -82,6 +82,9 @@ pub(crate) struct Lanes {
     live: [bool; LANES],
 }
 
+/// All [`LANES`] bits.
+const LANE_MASK: u32 = (1 << LANES) - 1;
+
 /// What a lane step leads to.
 const GOING: u32 = 0;
 const AT_CELL: u32 = 1;
@@ -151,6 +154,30 @@ impl Lanes {
         self.ray[l] = k;
         self.live[l] = true;
     }
+
+    /// Loads lane `l` with ray `m` of a set-up group whose walk constants
+    /// the lane pre-descent computed (the same values as [`Lanes::load`]).
+    #[inline(always)]
+    fn load_soa(&mut self, l: usize, k: usize, g: &SetupLanes, m: usize, c: Cursor) {
+        self.ox[l] = g.o[0][m];
+        self.oy[l] = g.o[1][m];
+        self.dx[l] = g.d[0][m];
+        self.dy[l] = g.d[1][m];
+        self.ix[l] = g.inv[0][m];
+        self.iy[l] = g.inv[1][m];
+        self.oq[l] = g.oq[m];
+        self.dq[l] = g.dq[m];
+        self.mq[l] = g.mq[m];
+        self.t_end[l] = g.t1[m];
+        self.t0[l] = g.t0[m];
+        self.t[l] = c.t;
+        self.ci[l] = c.ci;
+        self.cj[l] = c.cj;
+        self.level[l] = c.level;
+        self.sign[l] = g.sign[m];
+        self.ray[l] = k;
+        self.live[l] = true;
+    }
 }
 
 /// The rays a lane walk reads: set up one by one ([`GridRay`]s) or in
@@ -198,7 +225,9 @@ impl Rays for [GridRay] {
     }
 }
 
-/// Rays set up in lanes: ray `k` is lane `k % SETUP_LANES` of group `k / SETUP_LANES`.
+/// Rays set up in lanes: ray `k` is lane `k % SETUP_LANES` of group `k / SETUP_LANES`
+/// (each group through [`setup_lanes`] and then the lane pre-descent, which
+/// stores the walk constants the lanes load).
 pub(crate) struct SoaRays<'a> {
     pub groups: &'a [SetupLanes],
     pub t_min: f32,
@@ -219,29 +248,15 @@ impl Rays for SoaRays<'_> {
         x: &mut Exact,
         l: usize,
         c: Cursor,
-        lo: f32,
-        scale: f32,
+        _lo: f32,
+        _scale: f32,
     ) {
         let g = &self.groups[k / SETUP_LANES];
         let m = k % SETUP_LANES;
-        let o = Vec3::new(g.o[0][m], g.o[1][m], g.o[2][m]);
-        let d = Vec3::new(g.d[0][m], g.d[1][m], g.d[2][m]);
-        s.load(
-            l,
-            k,
-            o,
-            d,
-            g.inv[0][m],
-            g.inv[1][m],
-            g.zm[m],
-            g.t0[m],
-            g.t1[m],
-            c,
-            lo,
-            scale,
-        );
-        x.oz[l] = o.z;
-        x.dz[l] = d.z;
+        // (The walk constants were computed in lanes: `descend_lanes`.)
+        s.load_soa(l, k, g, m, c);
+        x.oz[l] = g.o[2][m];
+        x.dz[l] = g.d[2][m];
         x.zm[l] = g.zm[m];
         x.t_min[l] = self.t_min;
         x.t_max[l] = self.t_max;
@@ -386,12 +401,13 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
     }
 }
 
-/// Bit `l` set: lane `l` parked or left (`events[l] != GOING`).
+/// The step's events as two lane masks: bit `l` of the low half set when
+/// lane `l` reports [`AT_CELL`], of the high half when it reports [`LEFT`].
 #[inline(always)]
 fn event_mask(events: &[u32; LANES]) -> u32 {
     let mut mask = 0;
     for (l, &e) in events.iter().enumerate() {
-        mask |= u32::from(e != GOING) << l;
+        mask |= u32::from(e == AT_CELL) << l | u32::from(e == LEFT) << (l + LANES);
     }
     mask
 }
@@ -498,7 +514,7 @@ fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
     event_mask_avx2(events)
 }
 
-/// [`event_mask`] in registers: two compares and two move-masks. The
+/// [`event_mask`] in registers: four compares and four move-masks. The
 /// scalar loop over the just-stored events stalls on store forwarding.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
@@ -506,17 +522,20 @@ fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
 fn event_mask_avx2(events: &[u32; LANES]) -> u32 {
     use std::arch::x86_64::{
         __m256i, _mm256_castsi256_ps, _mm256_cmpeq_epi32, _mm256_loadu_si256, _mm256_movemask_ps,
-        _mm256_setzero_si256,
+        _mm256_set1_epi32,
     };
     let p = events.as_ptr().cast::<__m256i>();
     #[allow(unsafe_code)]
     // SAFETY: `events` holds 16 `u32` (64 bytes): `p` and `p + 1` each
     // address 32 readable bytes; unaligned loads need no alignment.
     let (a, b) = unsafe { (_mm256_loadu_si256(p), _mm256_loadu_si256(p.add(1))) };
-    let z = _mm256_setzero_si256();
-    let lo = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, z))) as u32;
-    let hi = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(b, z))) as u32;
-    !(lo | hi << 8) & 0xffff
+    let bits = |e: u32| {
+        let v = _mm256_set1_epi32(e as i32);
+        let lo = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, v))) as u32;
+        let hi = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(b, v))) as u32;
+        lo | hi << 8
+    };
+    bits(AT_CELL) | bits(LEFT) << LANES
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -580,7 +599,8 @@ fn setup_avx512(
 
 /// [`MipmapTracer::descend`] of the [`SETUP_LANES`] rays set up in `s`
 /// (from their walks' starts), in lanes: `out[l]` is the level lane `l`'s
-/// walk descends to. Each round loads every lane's node (a gather) and
+/// walk descends to. Also stores the lane walk's per-ray constants in `s`
+/// (`oq`, `dq`, `mq`, `sign`: the same operations as `Lanes::load`). Each round loads every lane's node (a gather) and
 /// compares it with the start altitude in integers, as the single-ray
 /// descent does level by level; lanes that stop are masked. Only lanes
 /// that are `ok` matter (the others stay in range and are ignored).
@@ -589,7 +609,7 @@ fn setup_avx512(
 fn descend_lanes(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     let m = &tr.mip;
@@ -604,6 +624,15 @@ fn descend_lanes(
     let mut zc = [0u32; SETUP_LANES];
     let mut on = [false; SETUP_LANES];
     for l in 0..SETUP_LANES {
+        // As `Lanes::load`: altitude and margin in quantised units.
+        s.oq[l] = (s.o[2][l] - lo) / scale;
+        s.dq[l] = s.d[2][l] / scale;
+        s.mq[l] = 1.0 + s.zm[l] / scale;
+        let (dx, dy) = (s.d[0][l], s.d[1][l]);
+        s.sign[l] = u32::from(dx > 0.0)
+            | u32::from(dx < 0.0) << 1
+            | u32::from(dy > 0.0) << 2
+            | u32::from(dy < 0.0) << 3;
         // As `descend`: the start altitude in quantised units; below 0 or
         // above the range no node holds it.
         let za = (s.o[2][l] + s.t0[l] * s.d[2][l] - lo) / scale;
@@ -643,7 +672,7 @@ pub(crate) fn descend_with(
     level: Level,
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     match level {
@@ -664,7 +693,7 @@ pub(crate) fn descend_with(
 fn descend_avx2(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     descend_lanes(tr, offset, s, out);
@@ -675,7 +704,7 @@ fn descend_avx2(
 fn descend_avx512(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     descend_lanes(tr, offset, s, out);
@@ -788,28 +817,30 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
         top,
     };
 
-    // The next ray to walk at or after `*next`.
+    // The rays the lanes walk, in order. Short walks (a span within a few
+    // cells: steep rays) are cheaper one at a time than through a lane.
+    let queue: Vec<(u32, Cursor)> = cur
+        .iter()
+        .enumerate()
+        .filter_map(|(k, c)| match *c {
+            Some(c) if c.level >= min_level => Some((k as u32, c)),
+            _ => None,
+        })
+        .collect();
+    // The next ray to walk: the `*next`-th of the queue.
     let take = |next: &mut usize| -> Option<(usize, Cursor)> {
-        while *next < cur.len() {
-            let k = *next;
-            *next += 1;
-            if let Some(c) = cur[k] {
-                // Short walks (a span within a few cells: steep rays) are
-                // cheaper one at a time than through a lane.
-                if c.level >= min_level {
-                    // The walk's sure descents (see `descend`), taken in
-                    // lanes at the set-up or here.
-                    return Some((
-                        k,
-                        match descended {
-                            Some(d) => Cursor { level: d[k], ..c },
-                            None => tr.descend(&rays.ray(k), c, &mut TraceStats::default()),
-                        },
-                    ));
-                }
-            }
-        }
-        None
+        let &(k, c) = queue.get(*next)?;
+        *next += 1;
+        let k = k as usize;
+        // The walk's sure descents (see `descend`), taken in lanes at the
+        // set-up or here.
+        Some((
+            k,
+            match descended {
+                Some(d) => Cursor { level: d[k], ..c },
+                None => tr.descend(&rays.ray(k), c, &mut TraceStats::default()),
+            },
+        ))
     };
     let mut next = 0;
     let mut s = Lanes::new();
@@ -833,18 +864,16 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
     while live != 0 {
         if live & !parked != 0 && parked.count_ones() < PARK_BATCH {
             // Lanes already parked report `AT_CELL` again: nothing new.
-            let mut mask = level.step(&mut s, &k, &mut events) & !parked;
-            while mask != 0 {
-                let l = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if events[l] == AT_CELL {
-                    parked |= 1 << l;
-                } else {
-                    out[s.ray[l]] = Outcome::Miss;
-                    refill(
-                        &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
-                    );
-                }
+            let ev = level.step(&mut s, &k, &mut events);
+            parked |= ev & LANE_MASK;
+            let mut left = (ev >> LANES) & !parked;
+            while left != 0 {
+                let l = left.trailing_zeros() as usize;
+                left &= left - 1;
+                out[s.ray[l]] = Outcome::Miss;
+                refill(
+                    &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
+                );
             }
             continue;
         }
@@ -860,20 +889,19 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
             }
         }
         level.cells::<ANY>(&mut s, &k, &x, &corners, parked, &mut co);
-        let mut pm = parked;
+        // Lanes whose miss stepped on to the next cell stay parked (`EV_NONE`);
+        // into a new level-1 node, they go back to the lane steps (`EV_CLIMB`);
+        // the others (`EV_DONE`, only parked lanes) are decided one by one.
+        let (mut climb, mut done) = (0u32, 0u32);
+        for (l, &e) in co.ev.iter().enumerate() {
+            climb |= u32::from(e == EV_CLIMB) << l;
+            done |= u32::from(e == EV_DONE) << l;
+        }
+        parked &= !climb;
+        let mut pm = done;
         while pm != 0 {
             let l = pm.trailing_zeros() as usize;
             pm &= pm - 1;
-            match co.ev[l] {
-                // A miss, stepped on to the next cell in the lanes.
-                EV_NONE => continue,
-                // The same, into a new level-1 node: back to the lane steps.
-                EV_CLIMB => {
-                    parked &= !(1 << l);
-                    continue;
-                }
-                _ => {}
-            }
             let kr = s.ray[l];
             let (mut ci, mut cj, t) = (s.ci[l], s.cj[l], s.t[l]);
             let t_exit = co.t_exit[l];
@@ -1218,7 +1246,7 @@ fn cells<const ANY: bool>(
         s.t[l] = if mv { t_exit } else { t };
         s.level[l] = if mv & climb { 1 } else { s.level[l] };
         o.ev[l] = if mv {
-            u32::from(climb) * EV_CLIMB
+            if climb { EV_CLIMB } else { EV_NONE }
         } else {
             u32::from(is_parked) * EV_DONE
         };
@@ -1392,7 +1420,7 @@ mod tests {
                 for group in rays.chunks_exact(SETUP_LANES) {
                     let g: &[Ray; SETUP_LANES] = group.try_into().unwrap();
                     setup_with(level, f, g, t_min, t_max, tr.mip.top, &mut lanes);
-                    descend_with(level, &tr, &offset, &lanes, &mut dl);
+                    descend_with(level, &tr, &offset, &mut lanes, &mut dl);
                     for (l, ray) in group.iter().enumerate() {
                         let want = tr.setup(ray, t_min, t_max);
                         assert_eq!(lanes.ok[l], want.is_some(), "{level:?} {ray:?}");
