@@ -889,16 +889,11 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
             }
         }
         level.cells::<ANY>(&mut s, &k, &x, &corners, parked, &mut co);
-        // Lanes whose miss stepped on to the next cell stay parked (`EV_NONE`);
-        // into a new level-1 node, they go back to the lane steps (`EV_CLIMB`);
-        // the others (`EV_DONE`, only parked lanes) are decided one by one.
-        let (mut climb, mut done) = (0u32, 0u32);
-        for (l, &e) in co.ev.iter().enumerate() {
-            climb |= u32::from(e == EV_CLIMB) << l;
-            done |= u32::from(e == EV_DONE) << l;
-        }
-        parked &= !climb;
-        let mut pm = done;
+        // Lanes whose miss stepped on to the next cell stay parked; into a
+        // new level-1 node, they go back to the lane steps; the others are
+        // decided one by one.
+        parked &= !co.climb;
+        let mut pm = co.done;
         while pm != 0 {
             let l = pm.trailing_zeros() as usize;
             pm &= pm - 1;
@@ -1062,8 +1057,13 @@ impl Exact {
 /// How each lane's cell test came out.
 #[derive(Clone, Copy, Default)]
 struct CellOut {
-    /// [`EV_NONE`], [`EV_CLIMB`] or [`EV_DONE`].
-    ev: [u32; LANES],
+    /// Bit `l` set: parked lane `l` missed and stepped on into a new
+    /// level-1 node (it is at level 1 and steps on in the lanes). A parked
+    /// lane that missed and stepped on within its level-1 node stays parked.
+    climb: u32,
+    /// Bit `l` set: the driver decides parked lane `l` (a hit, a [`SCALAR`]
+    /// lane, or the ray left the field); its cursor is unchanged.
+    done: u32,
     t_exit: [f32; LANES],
     exit: [u32; LANES],
     flags: [u32; LANES],
@@ -1078,15 +1078,6 @@ impl CellOut {
     }
 }
 
-/// `CellOut::ev`: nothing for the driver (a miss stepped on to the next
-/// cell, or a lane not parked).
-const EV_NONE: u32 = 0;
-/// `CellOut::ev`: a miss stepped on into a new level-1 node (the lane is at
-/// level 1 and steps on in the lanes).
-const EV_CLIMB: u32 = 1;
-/// `CellOut::ev`: the driver decides (a hit, a [`SCALAR`] lane, or the ray
-/// left the field); the lane's cursor is unchanged.
-const EV_DONE: u32 = 2;
 const EXIT_END: u32 = 0;
 const EXIT_X: u32 = 1;
 const EXIT_Y: u32 = 2;
@@ -1114,6 +1105,7 @@ fn cells<const ANY: bool>(
     parked: u32,
     o: &mut CellOut,
 ) {
+    let (mut climbed, mut done) = (0u32, 0u32);
     for l in 0..LANES {
         let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
         let sign = s.sign[l];
@@ -1245,12 +1237,11 @@ fn cells<const ANY: bool>(
         s.cj[l] = if mv { ncj } else { cj };
         s.t[l] = if mv { t_exit } else { t };
         s.level[l] = if mv & climb { 1 } else { s.level[l] };
-        o.ev[l] = if mv {
-            if climb { EV_CLIMB } else { EV_NONE }
-        } else {
-            u32::from(is_parked) * EV_DONE
-        };
+        climbed |= u32::from(mv & climb) << l;
+        done |= u32::from(is_parked & !mv) << l;
     }
+    o.climb = climbed;
+    o.done = done;
 }
 
 #[cfg(target_arch = "x86_64")]
