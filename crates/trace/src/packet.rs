@@ -1329,6 +1329,39 @@ mod tests {
         assert!(descended > 1000, "{descended}");
     }
 
+    /// The step's event masks (parked lanes in the low half, departed lanes
+    /// in the high half) are the same from the portable loop and the AVX2
+    /// compares, and say exactly which lanes report which event.
+    #[test]
+    fn event_masks_agree_at_every_instruction_set() {
+        let s = Seed(5);
+        for k in 0..4000i64 {
+            let mut events = [GOING; LANES];
+            for (l, e) in events.iter_mut().enumerate() {
+                *e = match (s.uniform2(k, l as i64) * 3.0) as u32 {
+                    0 => GOING,
+                    1 => AT_CELL,
+                    _ => LEFT,
+                };
+            }
+            if k % 7 == 0 {
+                events = [[GOING, AT_CELL, LEFT][(k / 7 % 3) as usize]; LANES];
+            }
+            let m = event_mask(&events);
+            for (l, &e) in events.iter().enumerate() {
+                assert_eq!((m >> l) & 1 == 1, e == AT_CELL);
+                assert_eq!((m >> (l + LANES)) & 1 == 1, e == LEFT);
+            }
+            #[cfg(target_arch = "x86_64")]
+            if std::is_x86_feature_detected!("avx2") {
+                #[allow(unsafe_code)]
+                // SAFETY: the CPU reported AVX2.
+                let v = unsafe { event_mask_avx2(&events) };
+                assert_eq!(v, m, "{events:?}");
+            }
+        }
+    }
+
     /// The instruction sets this CPU supports, portable code first.
     fn levels() -> Vec<Level> {
         #[allow(unused_mut)]
