@@ -372,3 +372,38 @@ fn block_rays_equal_per_pixel_rays_bit_for_bit() {
     big.rays_into(3, 3, 5, 0, &RenderOptions::default(), &mut v);
     assert!(v.is_empty());
 }
+
+/// The tile driver puts every pixel in its place: `render` equals the
+/// per-pixel grid for tiles of one pixel, ragged edges, one tile larger than
+/// the image and square tiles, on 1 and 2 threads, reports every pixel once,
+/// and refuses a zero tile or resolution.
+#[test]
+fn render_places_every_pixel_for_any_tile_and_thread_count() {
+    use natura_core::{CountingProgress, Grid2, NoProgress};
+    use natura_trace::render;
+    let f = |x: u32, y: u32| (u64::from(y) << 32 | u64::from(x)).wrapping_mul(0x9E37_79B9);
+    for (w, h) in [(1u32, 1u32), (37, 23), (64, 64), (130, 3)] {
+        let want = Grid2::from_fn(w as usize, h as usize, |x, y| f(x as u32, y as u32)).unwrap();
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for tile in [1u32, 5, 16, 32, 200] {
+                let p = CountingProgress::new();
+                let got = pool.install(|| render(w, h, tile, &p, f)).unwrap();
+                assert_eq!(got.dims(), want.dims());
+                assert_eq!(
+                    got.as_slice(),
+                    want.as_slice(),
+                    "{w}×{h}, tile {tile}, {threads} threads"
+                );
+                assert_eq!(p.advanced(), u64::from(w * h));
+                assert_eq!(p.finished(), 1);
+            }
+        }
+    }
+    assert!(render(8, 8, 0, &NoProgress, f).is_err());
+    assert!(render(0, 8, 4, &NoProgress, f).is_err());
+    assert!(render(8, 0, 4, &NoProgress, f).is_err());
+}
