@@ -130,6 +130,13 @@ where
 
 /// The tile driver behind [`render`] and [`trace_image`]: `run(x0, y0, w, h,
 /// out)` pushes the `w × h` values of the tile at `(x0, y0)`, row-major.
+///
+/// Each tile's values are copied into the image by the thread that computed
+/// them, through the tile's own disjoint row slices, and the image's memory is
+/// first filled in parallel: nothing proportional to the pixel count runs on
+/// one thread, and a tile's buffer is freed (and its memory reused by the next
+/// tile) at once, instead of every tile's buffer (as much fresh memory as the
+/// image, page faults and all) living until a serial assembly at the end.
 fn tiles<T, F>(
     width: u32,
     height: u32,
@@ -145,15 +152,41 @@ where
     if tile == 0 {
         return Err(TraceError::param("tile", tile, "must be ≥ 1 pixel"));
     }
-    let mut grid = Grid2::new(width as usize, height as usize, T::default())?;
-    let (tx, ty) = (width.div_ceil(tile), height.div_ceil(tile));
-    let tiles = (tx as usize) * (ty as usize);
+    let (wu, hu) = (width as usize, height as usize);
+    // Checked before anything is allocated (a typed error beyond MAX_GRID_BYTES).
+    let len = natura_core::checked_len::<T>(&[wu, hu])?;
+    #[cfg(feature = "parallel")]
+    let mut data: Vec<T> = {
+        use rayon::prelude::*;
+        let mut data = Vec::new();
+        (0..len)
+            .into_par_iter()
+            .map(|_| T::default())
+            .collect_into_vec(&mut data);
+        data
+    };
+    #[cfg(not(feature = "parallel"))]
+    let mut data: Vec<T> = vec![T::default(); len];
+    let (tx, ty) = (
+        width.div_ceil(tile) as usize,
+        height.div_ceil(tile) as usize,
+    );
+    let t = tile as usize;
+    // Every tile's rows as disjoint slices of the image, tiles row-major.
+    let mut slots: Vec<Vec<&mut [T]>> = (0..tx * ty)
+        .map(|k| Vec::with_capacity(t.min(hu - (k / tx) * t)))
+        .collect();
+    for (y, row) in data.chunks_exact_mut(wu).enumerate() {
+        let mut rest = row;
+        for slot in &mut slots[(y / t) * tx..(y / t + 1) * tx] {
+            let (mine, next) = rest.split_at_mut(t.min(rest.len()));
+            slot.push(mine);
+            rest = next;
+        }
+    }
     progress.start("tracing", u64::from(width) * u64::from(height));
-    let run = |k: usize| {
-        let (bx, by) = (
-            (k % tx as usize) as u32 * tile,
-            (k / tx as usize) as u32 * tile,
-        );
+    let fill = |(k, rows): (usize, Vec<&mut [T]>)| {
+        let (bx, by) = (((k % tx) * t) as u32, ((k / tx) * t) as u32);
         let (w, h) = (tile.min(width - bx), tile.min(height - by));
         let mut out = Vec::with_capacity((w * h) as usize);
         run(bx, by, w, h, &mut out);
@@ -162,33 +195,25 @@ where
             (w * h) as usize,
             "a tile yields one value per pixel"
         );
+        for (row, values) in rows.into_iter().zip(out.chunks_exact(w as usize)) {
+            row.clone_from_slice(values);
+        }
         progress.advance(u64::from(w * h));
-        out
     };
     #[cfg(feature = "parallel")]
-    let done: Vec<Vec<T>> = {
+    {
         use rayon::prelude::*;
-        (0..tiles).into_par_iter().map(run).collect()
-    };
-    #[cfg(not(feature = "parallel"))]
-    let done: Vec<Vec<T>> = (0..tiles).map(run).collect();
-    for (k, out) in done.into_iter().enumerate() {
-        let (bx, by) = (
-            (k % tx as usize) as u32 * tile,
-            (k / tx as usize) as u32 * tile,
-        );
-        let w = tile.min(width - bx) as usize;
-        for (r, row) in out.chunks_exact(w).enumerate() {
-            let y = by as usize + r;
-            grid.row_mut(y)[bx as usize..bx as usize + w].clone_from_slice(row);
-        }
+        slots.into_par_iter().enumerate().for_each(fill);
     }
+    #[cfg(not(feature = "parallel"))]
+    slots.into_iter().enumerate().for_each(fill);
     progress.finish();
-    Ok(grid)
+    Ok(Grid2::from_vec(wu, hu, data)?)
 }
 
 /// Renders `camera`'s image with `tracer`: like [`render_camera`], but the
-/// rays of each tile (all their samples) are traced together with
+/// rays of each tile (all their samples, generated together by
+/// [`Camera::rays_into`]) are traced together with
 /// [`Tracer::trace_many`] over `[0, ∞)` — for a [`crate::MipmapTracer`] its
 /// lock-step lanes, about 2.8× faster than one [`Tracer::trace`] per pixel
 /// on grazing views (CPU time) — and `shade(ray, hit)` turns each into a linear colour;
@@ -214,14 +239,8 @@ where
     let n = options.samples_per_pixel;
     let inv = 1.0 / n as f32;
     let grid = tiles(res.x, res.y, options.tile, progress, |bx, by, w, h, out| {
-        let mut rays = Vec::with_capacity((w * h * n) as usize);
-        for y in by..by + h {
-            for x in bx..bx + w {
-                for s in 0..n {
-                    rays.push(camera.ray(x, y, options.jitter(x, y, s)));
-                }
-            }
-        }
+        let mut rays = Vec::new();
+        camera.rays_into(bx, by, w, h, options, &mut rays);
         let hits = tracer.trace_many(&rays, 0.0, f32::INFINITY);
         for (r, h) in rays
             .chunks_exact(n as usize)

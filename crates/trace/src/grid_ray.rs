@@ -245,6 +245,13 @@ pub(crate) struct SetupLanes {
     pub ci: [u32; SETUP_LANES],
     pub cj: [u32; SETUP_LANES],
     pub level: [u32; SETUP_LANES],
+    /// The lane walk's altitude, climb and margin in the pyramid's
+    /// quantised units, and the direction's sign bits (as `Lanes::load`
+    /// computes them one ray at a time), set by the lane pre-descent.
+    pub oq: [f32; SETUP_LANES],
+    pub dq: [f32; SETUP_LANES],
+    pub mq: [f32; SETUP_LANES],
+    pub sign: [u32; SETUP_LANES],
 }
 
 impl SetupLanes {

@@ -82,6 +82,9 @@ pub(crate) struct Lanes {
     live: [bool; LANES],
 }
 
+/// All [`LANES`] bits.
+const LANE_MASK: u32 = (1 << LANES) - 1;
+
 /// What a lane step leads to.
 const GOING: u32 = 0;
 const AT_CELL: u32 = 1;
@@ -151,6 +154,30 @@ impl Lanes {
         self.ray[l] = k;
         self.live[l] = true;
     }
+
+    /// Loads lane `l` with ray `m` of a set-up group whose walk constants
+    /// the lane pre-descent computed (the same values as [`Lanes::load`]).
+    #[inline(always)]
+    fn load_soa(&mut self, l: usize, k: usize, g: &SetupLanes, m: usize, c: Cursor) {
+        self.ox[l] = g.o[0][m];
+        self.oy[l] = g.o[1][m];
+        self.dx[l] = g.d[0][m];
+        self.dy[l] = g.d[1][m];
+        self.ix[l] = g.inv[0][m];
+        self.iy[l] = g.inv[1][m];
+        self.oq[l] = g.oq[m];
+        self.dq[l] = g.dq[m];
+        self.mq[l] = g.mq[m];
+        self.t_end[l] = g.t1[m];
+        self.t0[l] = g.t0[m];
+        self.t[l] = c.t;
+        self.ci[l] = c.ci;
+        self.cj[l] = c.cj;
+        self.level[l] = c.level;
+        self.sign[l] = g.sign[m];
+        self.ray[l] = k;
+        self.live[l] = true;
+    }
 }
 
 /// The rays a lane walk reads: set up one by one ([`GridRay`]s) or in
@@ -198,7 +225,9 @@ impl Rays for [GridRay] {
     }
 }
 
-/// Rays set up in lanes: ray `k` is lane `k % SETUP_LANES` of group `k / SETUP_LANES`.
+/// Rays set up in lanes: ray `k` is lane `k % SETUP_LANES` of group `k / SETUP_LANES`
+/// (each group through [`setup_lanes`] and then the lane pre-descent, which
+/// stores the walk constants the lanes load).
 pub(crate) struct SoaRays<'a> {
     pub groups: &'a [SetupLanes],
     pub t_min: f32,
@@ -219,29 +248,15 @@ impl Rays for SoaRays<'_> {
         x: &mut Exact,
         l: usize,
         c: Cursor,
-        lo: f32,
-        scale: f32,
+        _lo: f32,
+        _scale: f32,
     ) {
         let g = &self.groups[k / SETUP_LANES];
         let m = k % SETUP_LANES;
-        let o = Vec3::new(g.o[0][m], g.o[1][m], g.o[2][m]);
-        let d = Vec3::new(g.d[0][m], g.d[1][m], g.d[2][m]);
-        s.load(
-            l,
-            k,
-            o,
-            d,
-            g.inv[0][m],
-            g.inv[1][m],
-            g.zm[m],
-            g.t0[m],
-            g.t1[m],
-            c,
-            lo,
-            scale,
-        );
-        x.oz[l] = o.z;
-        x.dz[l] = d.z;
+        // (The walk constants were computed in lanes: `descend_lanes`.)
+        s.load_soa(l, k, g, m, c);
+        x.oz[l] = g.o[2][m];
+        x.dz[l] = g.d[2][m];
         x.zm[l] = g.zm[m];
         x.t_min[l] = self.t_min;
         x.t_max[l] = self.t_max;
@@ -386,12 +401,13 @@ fn step(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) {
     }
 }
 
-/// Bit `l` set: lane `l` parked or left (`events[l] != GOING`).
+/// The step's events as two lane masks: bit `l` of the low half set when
+/// lane `l` reports [`AT_CELL`], of the high half when it reports [`LEFT`].
 #[inline(always)]
 fn event_mask(events: &[u32; LANES]) -> u32 {
     let mut mask = 0;
     for (l, &e) in events.iter().enumerate() {
-        mask |= u32::from(e != GOING) << l;
+        mask |= u32::from(e == AT_CELL) << l | u32::from(e == LEFT) << (l + LANES);
     }
     mask
 }
@@ -498,7 +514,7 @@ fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
     event_mask_avx2(events)
 }
 
-/// [`event_mask`] in registers: two compares and two move-masks. The
+/// [`event_mask`] in registers: four compares and four move-masks. The
 /// scalar loop over the just-stored events stalls on store forwarding.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
@@ -506,17 +522,20 @@ fn step_avx2(s: &mut Lanes, k: &Consts<'_>, events: &mut [u32; LANES]) -> u32 {
 fn event_mask_avx2(events: &[u32; LANES]) -> u32 {
     use std::arch::x86_64::{
         __m256i, _mm256_castsi256_ps, _mm256_cmpeq_epi32, _mm256_loadu_si256, _mm256_movemask_ps,
-        _mm256_setzero_si256,
+        _mm256_set1_epi32,
     };
     let p = events.as_ptr().cast::<__m256i>();
     #[allow(unsafe_code)]
     // SAFETY: `events` holds 16 `u32` (64 bytes): `p` and `p + 1` each
     // address 32 readable bytes; unaligned loads need no alignment.
     let (a, b) = unsafe { (_mm256_loadu_si256(p), _mm256_loadu_si256(p.add(1))) };
-    let z = _mm256_setzero_si256();
-    let lo = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, z))) as u32;
-    let hi = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(b, z))) as u32;
-    !(lo | hi << 8) & 0xffff
+    let bits = |e: u32| {
+        let v = _mm256_set1_epi32(e as i32);
+        let lo = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, v))) as u32;
+        let hi = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(b, v))) as u32;
+        lo | hi << 8
+    };
+    bits(AT_CELL) | bits(LEFT) << LANES
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -580,7 +599,8 @@ fn setup_avx512(
 
 /// [`MipmapTracer::descend`] of the [`SETUP_LANES`] rays set up in `s`
 /// (from their walks' starts), in lanes: `out[l]` is the level lane `l`'s
-/// walk descends to. Each round loads every lane's node (a gather) and
+/// walk descends to. Also stores the lane walk's per-ray constants in `s`
+/// (`oq`, `dq`, `mq`, `sign`: the same operations as `Lanes::load`). Each round loads every lane's node (a gather) and
 /// compares it with the start altitude in integers, as the single-ray
 /// descent does level by level; lanes that stop are masked. Only lanes
 /// that are `ok` matter (the others stay in range and are ignored).
@@ -589,7 +609,7 @@ fn setup_avx512(
 fn descend_lanes(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     let m = &tr.mip;
@@ -604,6 +624,15 @@ fn descend_lanes(
     let mut zc = [0u32; SETUP_LANES];
     let mut on = [false; SETUP_LANES];
     for l in 0..SETUP_LANES {
+        // As `Lanes::load`: altitude and margin in quantised units.
+        s.oq[l] = (s.o[2][l] - lo) / scale;
+        s.dq[l] = s.d[2][l] / scale;
+        s.mq[l] = 1.0 + s.zm[l] / scale;
+        let (dx, dy) = (s.d[0][l], s.d[1][l]);
+        s.sign[l] = u32::from(dx > 0.0)
+            | u32::from(dx < 0.0) << 1
+            | u32::from(dy > 0.0) << 2
+            | u32::from(dy < 0.0) << 3;
         // As `descend`: the start altitude in quantised units; below 0 or
         // above the range no node holds it.
         let za = (s.o[2][l] + s.t0[l] * s.d[2][l] - lo) / scale;
@@ -643,7 +672,7 @@ pub(crate) fn descend_with(
     level: Level,
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     match level {
@@ -664,7 +693,7 @@ pub(crate) fn descend_with(
 fn descend_avx2(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     descend_lanes(tr, offset, s, out);
@@ -675,7 +704,7 @@ fn descend_avx2(
 fn descend_avx512(
     tr: &MipmapTracer<'_>,
     offset: &[u32; 32],
-    s: &SetupLanes,
+    s: &mut SetupLanes,
     out: &mut [u32; SETUP_LANES],
 ) {
     descend_lanes(tr, offset, s, out);
@@ -788,28 +817,30 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
         top,
     };
 
-    // The next ray to walk at or after `*next`.
+    // The rays the lanes walk, in order. Short walks (a span within a few
+    // cells: steep rays) are cheaper one at a time than through a lane.
+    let queue: Vec<(u32, Cursor)> = cur
+        .iter()
+        .enumerate()
+        .filter_map(|(k, c)| match *c {
+            Some(c) if c.level >= min_level => Some((k as u32, c)),
+            _ => None,
+        })
+        .collect();
+    // The next ray to walk: the `*next`-th of the queue.
     let take = |next: &mut usize| -> Option<(usize, Cursor)> {
-        while *next < cur.len() {
-            let k = *next;
-            *next += 1;
-            if let Some(c) = cur[k] {
-                // Short walks (a span within a few cells: steep rays) are
-                // cheaper one at a time than through a lane.
-                if c.level >= min_level {
-                    // The walk's sure descents (see `descend`), taken in
-                    // lanes at the set-up or here.
-                    return Some((
-                        k,
-                        match descended {
-                            Some(d) => Cursor { level: d[k], ..c },
-                            None => tr.descend(&rays.ray(k), c, &mut TraceStats::default()),
-                        },
-                    ));
-                }
-            }
-        }
-        None
+        let &(k, c) = queue.get(*next)?;
+        *next += 1;
+        let k = k as usize;
+        // The walk's sure descents (see `descend`), taken in lanes at the
+        // set-up or here.
+        Some((
+            k,
+            match descended {
+                Some(d) => Cursor { level: d[k], ..c },
+                None => tr.descend(&rays.ray(k), c, &mut TraceStats::default()),
+            },
+        ))
     };
     let mut next = 0;
     let mut s = Lanes::new();
@@ -833,18 +864,16 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
     while live != 0 {
         if live & !parked != 0 && parked.count_ones() < PARK_BATCH {
             // Lanes already parked report `AT_CELL` again: nothing new.
-            let mut mask = level.step(&mut s, &k, &mut events) & !parked;
-            while mask != 0 {
-                let l = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if events[l] == AT_CELL {
-                    parked |= 1 << l;
-                } else {
-                    out[s.ray[l]] = Outcome::Miss;
-                    refill(
-                        &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
-                    );
-                }
+            let ev = level.step(&mut s, &k, &mut events);
+            parked |= ev & LANE_MASK;
+            let mut left = (ev >> LANES) & !parked;
+            while left != 0 {
+                let l = left.trailing_zeros() as usize;
+                left &= left - 1;
+                out[s.ray[l]] = Outcome::Miss;
+                refill(
+                    &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
+                );
             }
             continue;
         }
@@ -860,20 +889,14 @@ fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
             }
         }
         level.cells::<ANY>(&mut s, &k, &x, &corners, parked, &mut co);
-        let mut pm = parked;
+        // Lanes whose miss stepped on to the next cell stay parked; into a
+        // new level-1 node, they go back to the lane steps; the others are
+        // decided one by one.
+        parked &= !co.climb;
+        let mut pm = co.done;
         while pm != 0 {
             let l = pm.trailing_zeros() as usize;
             pm &= pm - 1;
-            match co.ev[l] {
-                // A miss, stepped on to the next cell in the lanes.
-                EV_NONE => continue,
-                // The same, into a new level-1 node: back to the lane steps.
-                EV_CLIMB => {
-                    parked &= !(1 << l);
-                    continue;
-                }
-                _ => {}
-            }
             let kr = s.ray[l];
             let (mut ci, mut cj, t) = (s.ci[l], s.cj[l], s.t[l]);
             let t_exit = co.t_exit[l];
@@ -1034,8 +1057,13 @@ impl Exact {
 /// How each lane's cell test came out.
 #[derive(Clone, Copy, Default)]
 struct CellOut {
-    /// [`EV_NONE`], [`EV_CLIMB`] or [`EV_DONE`].
-    ev: [u32; LANES],
+    /// Bit `l` set: parked lane `l` missed and stepped on into a new
+    /// level-1 node (it is at level 1 and steps on in the lanes). A parked
+    /// lane that missed and stepped on within its level-1 node stays parked.
+    climb: u32,
+    /// Bit `l` set: the driver decides parked lane `l` (a hit, a [`SCALAR`]
+    /// lane, or the ray left the field); its cursor is unchanged.
+    done: u32,
     t_exit: [f32; LANES],
     exit: [u32; LANES],
     flags: [u32; LANES],
@@ -1050,15 +1078,6 @@ impl CellOut {
     }
 }
 
-/// `CellOut::ev`: nothing for the driver (a miss stepped on to the next
-/// cell, or a lane not parked).
-const EV_NONE: u32 = 0;
-/// `CellOut::ev`: a miss stepped on into a new level-1 node (the lane is at
-/// level 1 and steps on in the lanes).
-const EV_CLIMB: u32 = 1;
-/// `CellOut::ev`: the driver decides (a hit, a [`SCALAR`] lane, or the ray
-/// left the field); the lane's cursor is unchanged.
-const EV_DONE: u32 = 2;
 const EXIT_END: u32 = 0;
 const EXIT_X: u32 = 1;
 const EXIT_Y: u32 = 2;
@@ -1086,6 +1105,7 @@ fn cells<const ANY: bool>(
     parked: u32,
     o: &mut CellOut,
 ) {
+    let (mut climbed, mut done) = (0u32, 0u32);
     for l in 0..LANES {
         let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
         let sign = s.sign[l];
@@ -1217,12 +1237,11 @@ fn cells<const ANY: bool>(
         s.cj[l] = if mv { ncj } else { cj };
         s.t[l] = if mv { t_exit } else { t };
         s.level[l] = if mv & climb { 1 } else { s.level[l] };
-        o.ev[l] = if mv {
-            u32::from(climb) * EV_CLIMB
-        } else {
-            u32::from(is_parked) * EV_DONE
-        };
+        climbed |= u32::from(mv & climb) << l;
+        done |= u32::from(is_parked & !mv) << l;
     }
+    o.climb = climbed;
+    o.done = done;
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -1310,6 +1329,39 @@ mod tests {
         assert!(descended > 1000, "{descended}");
     }
 
+    /// The step's event masks (parked lanes in the low half, departed lanes
+    /// in the high half) are the same from the portable loop and the AVX2
+    /// compares, and say exactly which lanes report which event.
+    #[test]
+    fn event_masks_agree_at_every_instruction_set() {
+        let s = Seed(5);
+        for k in 0..4000i64 {
+            let mut events = [GOING; LANES];
+            for (l, e) in events.iter_mut().enumerate() {
+                *e = match (s.uniform2(k, l as i64) * 3.0) as u32 {
+                    0 => GOING,
+                    1 => AT_CELL,
+                    _ => LEFT,
+                };
+            }
+            if k % 7 == 0 {
+                events = [[GOING, AT_CELL, LEFT][(k / 7 % 3) as usize]; LANES];
+            }
+            let m = event_mask(&events);
+            for (l, &e) in events.iter().enumerate() {
+                assert_eq!((m >> l) & 1 == 1, e == AT_CELL);
+                assert_eq!((m >> (l + LANES)) & 1 == 1, e == LEFT);
+            }
+            #[cfg(target_arch = "x86_64")]
+            if std::is_x86_feature_detected!("avx2") {
+                #[allow(unsafe_code)]
+                // SAFETY: the CPU reported AVX2.
+                let v = unsafe { event_mask_avx2(&events) };
+                assert_eq!(v, m, "{events:?}");
+            }
+        }
+    }
+
     /// The instruction sets this CPU supports, portable code first.
     fn levels() -> Vec<Level> {
         #[allow(unused_mut)]
@@ -1392,7 +1444,7 @@ mod tests {
                 for group in rays.chunks_exact(SETUP_LANES) {
                     let g: &[Ray; SETUP_LANES] = group.try_into().unwrap();
                     setup_with(level, f, g, t_min, t_max, tr.mip.top, &mut lanes);
-                    descend_with(level, &tr, &offset, &lanes, &mut dl);
+                    descend_with(level, &tr, &offset, &mut lanes, &mut dl);
                     for (l, ray) in group.iter().enumerate() {
                         let want = tr.setup(ray, t_min, t_max);
                         assert_eq!(lanes.ok[l], want.is_some(), "{level:?} {ray:?}");

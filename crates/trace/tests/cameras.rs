@@ -2,8 +2,10 @@
 
 use approx::assert_relative_eq;
 use glam::{Vec2, Vec3};
+use natura_core::Seed;
 use natura_trace::{
-    Camera, Eye, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection, Stereo,
+    Camera, Eye, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection, Ray,
+    RenderOptions, Stereo,
 };
 use std::f32::consts::{FRAC_PI_2, PI, TAU};
 
@@ -251,4 +253,157 @@ fn bad_camera_parameters_are_refused() {
         .unwrap_err()
         .to_string();
     assert!(msg.contains("vfov"), "{msg}");
+}
+
+/// `Camera::rays_into` (the lane generation of the pinhole and orthographic
+/// cameras, the per-pixel default of the panoramic one) returns exactly the
+/// rays `Camera::ray(x, y, options.jitter(x, y, s))`, bit for bit and in
+/// order: blocks of every shape (narrower and wider than the 16 lanes, not a
+/// multiple of them, single pixels, image edges), one and several samples
+/// per pixel, square and non-square pixels, views from every side.
+#[test]
+fn block_rays_equal_per_pixel_rays_bit_for_bit() {
+    let bits = |r: &Ray| {
+        let (o, d) = (r.origin, r.dir);
+        [o.x, o.y, o.z, d.x, d.y, d.z].map(f32::to_bits)
+    };
+    let (w, h) = (203u32, 117u32);
+    let mut cams: Vec<Box<dyn Camera>> = Vec::new();
+    for (k, (eye, target, up)) in [
+        (
+            Vec3::new(10.0, -5.0, 30.0),
+            Vec3::new(200.0, 150.0, 0.0),
+            Vec3::Z,
+        ),
+        (
+            Vec3::new(-3.5, 7.25, 1e4),
+            Vec3::new(-3.0, 7.0, 0.0),
+            Vec3::Y,
+        ),
+        (
+            Vec3::new(4e4, 3e4, 12.0),
+            Vec3::new(0.0, 0.0, 900.0),
+            Vec3::Z,
+        ),
+        (
+            Vec3::new(0.1, 0.2, 0.3),
+            Vec3::new(0.1, -50.0, -0.3),
+            Vec3::new(0.3, 0.0, 1.0),
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let vfov = (20.0 + 37.0 * k as f32).to_radians();
+        let p = PinholeCamera::look_at(eye, target, up, vfov, w, h).unwrap();
+        cams.push(Box::new(p));
+        cams.push(Box::new(p.with_aspect(0.37 + k as f32).unwrap()));
+        cams.push(Box::new(
+            OrthographicCamera::look_at(eye, target, up, 3.0 + 400.0 * k as f32, w, h).unwrap(),
+        ));
+    }
+    cams.push(Box::new(
+        PanoramicCamera::new(
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::X,
+            Vec3::Z,
+            2.0,
+            1.0,
+            Projection::Cylindrical,
+            w,
+            h,
+        )
+        .unwrap(),
+    ));
+    let big = PinholeCamera::look_at(Vec3::ZERO, Vec3::X, Vec3::Z, 0.7, 1920, 1080).unwrap();
+    let blocks = [
+        (0u32, 0u32, w, h),
+        (0, 0, 1, 1),
+        (w - 1, h - 1, 1, 1),
+        (5, 9, 15, 3),
+        (17, 2, 16, 5),
+        (w - 11, 40, 11, 17),
+        (64, h - 7, 33, 7),
+        (31, 31, 1, 40),
+    ];
+    let mut n_rays = 0;
+    for samples in [1u32, 3] {
+        let options = RenderOptions {
+            samples_per_pixel: samples,
+            seed: Seed(7),
+            ..RenderOptions::default()
+        };
+        let mut check = |cam: &dyn Camera, (x0, y0, bw, bh): (u32, u32, u32, u32)| {
+            let mut got = vec![Ray::new(Vec3::NAN, Vec3::NAN)];
+            cam.rays_into(x0, y0, bw, bh, &options, &mut got);
+            let mut want = vec![Ray::new(Vec3::NAN, Vec3::NAN)];
+            for y in y0..y0 + bh {
+                for x in x0..x0 + bw {
+                    for s in 0..samples {
+                        want.push(cam.ray(x, y, options.jitter(x, y, s)));
+                    }
+                }
+            }
+            assert_eq!(got.len(), want.len(), "{x0} {y0} {bw} {bh}");
+            // (Appends: the first element is kept.)
+            assert!(got[0].origin.x.is_nan());
+            for (a, b) in got.iter().zip(&want).skip(1) {
+                assert_eq!(
+                    bits(a),
+                    bits(b),
+                    "{a:?} vs {b:?} in block {x0} {y0} {bw} {bh}"
+                );
+            }
+            n_rays += want.len() - 1;
+        };
+        for cam in &cams {
+            for &b in &blocks {
+                check(cam.as_ref(), b);
+            }
+        }
+        for b in [(0, 0, 32, 32), (1888, 1056, 32, 24), (960, 540, 1, 1)] {
+            check(&big, b);
+        }
+    }
+    assert!(n_rays > 500_000, "{n_rays}");
+    // An empty block appends nothing.
+    let mut v = Vec::new();
+    big.rays_into(3, 3, 0, 5, &RenderOptions::default(), &mut v);
+    big.rays_into(3, 3, 5, 0, &RenderOptions::default(), &mut v);
+    assert!(v.is_empty());
+}
+
+/// The tile driver puts every pixel in its place: `render` equals the
+/// per-pixel grid for tiles of one pixel, ragged edges, one tile larger than
+/// the image and square tiles, on 1 and 2 threads, reports every pixel once,
+/// and refuses a zero tile or resolution.
+#[test]
+fn render_places_every_pixel_for_any_tile_and_thread_count() {
+    use natura_core::{CountingProgress, Grid2, NoProgress};
+    use natura_trace::render;
+    let f = |x: u32, y: u32| (u64::from(y) << 32 | u64::from(x)).wrapping_mul(0x9E37_79B9);
+    for (w, h) in [(1u32, 1u32), (37, 23), (64, 64), (130, 3)] {
+        let want = Grid2::from_fn(w as usize, h as usize, |x, y| f(x as u32, y as u32)).unwrap();
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for tile in [1u32, 5, 16, 32, 200] {
+                let p = CountingProgress::new();
+                let got = pool.install(|| render(w, h, tile, &p, f)).unwrap();
+                assert_eq!(got.dims(), want.dims());
+                assert_eq!(
+                    got.as_slice(),
+                    want.as_slice(),
+                    "{w}×{h}, tile {tile}, {threads} threads"
+                );
+                assert_eq!(p.advanced(), u64::from(w * h));
+                assert_eq!(p.finished(), 1);
+            }
+        }
+    }
+    assert!(render(8, 8, 0, &NoProgress, f).is_err());
+    assert!(render(0, 8, 4, &NoProgress, f).is_err());
+    assert!(render(8, 0, 4, &NoProgress, f).is_err());
 }
