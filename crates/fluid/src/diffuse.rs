@@ -67,11 +67,17 @@ pub(crate) fn diffuse_in(
         take(5),
         take(6),
     );
-    // Diagonal (0 on fixed samples) and right-hand side (Dirichlet
-    // neighbours' values moved to it), row by row.
+    // Diagonal (0 on fixed samples), right-hand side (Dirichlet
+    // neighbours' values moved to it), the initial iterate (the data on
+    // free samples, 0 on fixed ones) and the Jacobi weights `1/A_ss` (0 on
+    // fixed samples), row by row in one parallel pass.
     {
         let data: &[f32] = data;
-        par::for_chunks2(&mut dg, &mut b, n0, |r, drow, brow| {
+        let mut vs: [&mut [f32]; 4] = [&mut dg, &mut b, &mut x, &mut inv];
+        par::for_bands(&mut vs, n0, |r, rows| {
+            let [drow, brow, xrow, irow] = rows else {
+                unreachable!("four vectors per band")
+            };
             let s0 = r * n0;
             let (j, k) = (r % n[1], r / n[1]);
             let mut nbs: [Option<usize>; 4] = [None; 4];
@@ -93,12 +99,11 @@ pub(crate) fn diffuse_in(
                 for ((dv, bv), (&m, &v)) in
                     drow.iter_mut().zip(brow.iter_mut()).zip(nr.iter().zip(nd))
                 {
-                    if m != EXCLUDED {
-                        *dv += coef;
-                    }
-                    if m == DIRICHLET {
-                        *bv += coef * v;
-                    }
+                    // Selects, not branches (conditional stores), so the
+                    // loop vectorises; the same values.
+                    let (d1, b1) = (*dv + coef, *bv + coef * v);
+                    *dv = if m != EXCLUDED { d1 } else { *dv };
+                    *bv = if m == DIRICHLET { b1 } else { *bv };
                 }
             };
             if n0 > 1 {
@@ -115,10 +120,18 @@ pub(crate) fn diffuse_in(
                 add(drow, brow, &role[nb..nb + n0], &data[nb..nb + n0]);
             }
             for ((dv, bv), &m) in drow.iter_mut().zip(brow.iter_mut()).zip(&role[s0..s0 + n0]) {
-                if m != FREE {
-                    *dv = 0.0;
-                    *bv = 0.0;
-                }
+                let free = m == FREE;
+                *dv = if free { *dv } else { 0.0 };
+                *bv = if free { *bv } else { 0.0 };
+            }
+            for (((xv, iv), &d), &v) in xrow
+                .iter_mut()
+                .zip(irow.iter_mut())
+                .zip(drow.iter())
+                .zip(&data[s0..s0 + n0])
+            {
+                *xv = if d != 0.0 { v } else { 0.0 };
+                *iv = if d != 0.0 { 1.0 / d } else { 0.0 };
             }
         });
     }
@@ -180,26 +193,15 @@ pub(crate) fn diffuse_in(
     let dot = |a: &[f32], b: &[f32]| {
         par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
             let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
-            a[r.clone()]
-                .iter()
-                .zip(&b[r])
-                .map(|(&x, &y)| f64::from(x) * f64::from(y))
-                .sum()
+            lane_dot(&a[r.clone()], &b[r])
         })
     };
-    for ((xv, &v), &d) in x.iter_mut().zip(data.iter()).zip(&dg) {
-        *xv = if d != 0.0 { v } else { 0.0 };
-    }
     // r = b − A x, then p = z = M⁻¹ r with the Jacobi preconditioner
-    // `M = diag(A)`; `inv = 1/A_ss` (0 on fixed samples).
+    // `M = diag(A)`.
     apply(&x, &mut r);
-    for (iv, &d) in inv.iter_mut().zip(&dg) {
-        *iv = if d != 0.0 { 1.0 / d } else { 0.0 };
-    }
     let (mut rz, mut rr) = par::for_chunks2_sum2(&mut r, &mut p, par::BLOCK, |bi, rc, pc| {
         let s0 = bi * par::BLOCK;
         let m = rc.len();
-        let (mut rz, mut rr) = (0.0f64, 0.0f64);
         for (((rv, pv), &bv), &iv) in rc
             .iter_mut()
             .zip(pc.iter_mut())
@@ -208,10 +210,9 @@ pub(crate) fn diffuse_in(
         {
             *rv = if iv != 0.0 { bv - *rv } else { 0.0 };
             *pv = *rv * iv;
-            rz += f64::from(*rv) * f64::from(*pv);
-            rr += f64::from(*rv) * f64::from(*rv);
         }
-        (rz, rr)
+        // r·z and r·r in lane sums (as in the iteration below).
+        (lane_dot(rc, pc), lane_dot(rc, rc))
     });
     let bn = dot(&b, &b).sqrt();
     let mut it = 0;

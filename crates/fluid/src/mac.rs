@@ -168,6 +168,7 @@ pub(crate) fn fixed_row(
 /// a face index `i` to the linear indices of the cells on its low and high
 /// side (`None` beyond the domain).
 #[inline]
+#[cfg(test)]
 pub(crate) fn face_cells(
     d: Dims,
     a: usize,
@@ -278,21 +279,60 @@ pub(crate) fn add_centre_forces(
         }
         let fa = force[a].as_slice();
         let fd = d.face_dims(a);
+        let n = d.n();
+        let n0 = n[0];
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
             let mut fx = vec![false; row.len()];
             fixed_row(d, kinds, bounds, a, j, k, &mut fx);
-            let (lo, hi) = face_cells(d, a, j, k);
-            for (i, v) in row.iter_mut().enumerate() {
-                if fx[i] {
-                    continue;
+            // A select rather than a branch so the loops vectorise.
+            let add = |v: &mut f32, fixed: bool, val: f32| {
+                let t = *v + dt * val;
+                *v = if fixed { *v } else { t };
+            };
+            if a == 0 {
+                // Faces 0 and n0 have one cell; face i the cells i − 1 and i.
+                let fr = &fa[d.idx(0, j, k)..d.idx(0, j, k) + n0];
+                add(&mut row[0], fx[0], fr[0]);
+                add(&mut row[n0], fx[n0], fr[n0 - 1]);
+                for (((v, &fixed), &f0), &f1) in row[1..n0]
+                    .iter_mut()
+                    .zip(&fx[1..n0])
+                    .zip(&fr[..n0 - 1])
+                    .zip(&fr[1..])
+                {
+                    add(v, fixed, 0.5 * (f0 + f1));
                 }
-                let val = match (lo(i), hi(i)) {
-                    (Some(c0), Some(c1)) => 0.5 * (fa[c0] + fa[c1]),
-                    (Some(c), None) | (None, Some(c)) => fa[c],
-                    (None, None) => 0.0,
+                return;
+            }
+            let f = if a == 1 { j } else { k };
+            let cell_row = |c: usize| {
+                let b = if a == 1 {
+                    d.idx(0, c, k)
+                } else {
+                    d.idx(0, j, c)
                 };
-                *v += dt * val;
+                &fa[b..b + n0]
+            };
+            match (
+                (f > 0).then(|| cell_row(f - 1)),
+                (f < n[a]).then(|| cell_row(f)),
+            ) {
+                (Some(lo), Some(hi)) => {
+                    for (((v, &fixed), &f0), &f1) in row.iter_mut().zip(&fx).zip(lo).zip(hi) {
+                        add(v, fixed, 0.5 * (f0 + f1));
+                    }
+                }
+                (Some(c), None) | (None, Some(c)) => {
+                    for ((v, &fixed), &fc) in row.iter_mut().zip(&fx).zip(c) {
+                        add(v, fixed, fc);
+                    }
+                }
+                (None, None) => {
+                    for (v, &fixed) in row.iter_mut().zip(&fx) {
+                        add(v, fixed, 0.0);
+                    }
+                }
             }
         });
     }
@@ -390,37 +430,60 @@ pub(crate) fn apply_pressure(
 ) {
     let d = vel.dims();
     let inv = 1.0 / f64::from(h);
-    let pv = |i: usize| -> f64 {
-        if kinds[i] == CellKind::Fluid {
-            p[i]
-        } else {
-            0.0
-        }
-    };
     for a in 0..3 {
         if !d.active(a) {
             continue;
         }
         let fd = d.face_dims(a);
+        let n = d.n();
+        let n0 = n[0];
         par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
             let mut fx = vec![false; row.len()];
             fixed_row(d, kinds, bounds, a, j, k, &mut fx);
-            let (lo, hi) = face_cells(d, a, j, k);
-            for (i, v) in row.iter_mut().enumerate() {
-                if fx[i] {
-                    continue;
+            // The low and high cell of face i: cells i − 1 and i of the same
+            // row along x, else cell i of the neighbouring cell rows.
+            let (lo_row, hi_row) = if a == 0 {
+                let b = d.idx(0, j, k);
+                (Some(b), Some(b))
+            } else {
+                let f = if a == 1 { j } else { k };
+                let base = |c: usize| {
+                    if a == 1 {
+                        d.idx(0, c, k)
+                    } else {
+                        d.idx(0, j, c)
+                    }
+                };
+                ((f > 0).then(|| base(f - 1)), (f < n[a]).then(|| base(f)))
+            };
+            let cells = |b: Option<usize>| b.map(|b| (&kinds[b..b + n0], &p[b..b + n0]));
+            let (lo, hi) = (cells(lo_row), cells(hi_row));
+            // Face update from its two cells' (pressure, is-fluid); a select
+            // rather than branches so the interior loop vectorises.
+            let update =
+                |v: &mut f32, fixed: bool, (p0, f0): (f64, bool), (p1, f1): (f64, bool)| {
+                    let t = (f64::from(*v) - (p1 - p0) * inv) as f32;
+                    *v = if !fixed && (f0 || f1) { t } else { *v };
+                };
+            let at = |c: Option<(&[CellKind], &[f64])>, i: usize| match c {
+                Some((kr, pr)) => {
+                    let f = kr[i] == CellKind::Fluid;
+                    (if f { pr[i] } else { 0.0 }, f)
                 }
-                let (p0, f0) = match lo(i) {
-                    Some(c) => (pv(c), kinds[c] == CellKind::Fluid),
-                    None => (0.0, false),
-                };
-                let (p1, f1) = match hi(i) {
-                    Some(c) => (pv(c), kinds[c] == CellKind::Fluid),
-                    None => (0.0, false),
-                };
-                if f0 || f1 {
-                    *v = (f64::from(*v) - (p1 - p0) * inv) as f32;
+                None => (0.0, false),
+            };
+            if a == 0 {
+                update(&mut row[0], fx[0], (0.0, false), at(hi, 0));
+                update(&mut row[n0], fx[n0], at(lo, n0 - 1), (0.0, false));
+                let (kr, pr) = lo.expect("x faces have both cell rows");
+                let inner = &mut row[1..n0];
+                for (i, (v, &fixed)) in inner.iter_mut().zip(&fx[1..n0]).enumerate() {
+                    update(v, fixed, at(Some((kr, pr)), i), at(Some((kr, pr)), i + 1));
+                }
+            } else {
+                for (i, (v, &fixed)) in row.iter_mut().zip(&fx).enumerate() {
+                    update(v, fixed, at(lo, i), at(hi, i));
                 }
             }
         });

@@ -460,6 +460,9 @@ pub struct BoundedFluid {
     projector: Projector,
     /// Work vectors of the implicit diffusion, reused every step.
     scratch: diffuse::Scratch,
+    /// The step's copy of the velocity before advection, kept between
+    /// steps so that a step does not allocate (and page-fault) it.
+    spare: MacVelocity,
 }
 
 impl BoundedFluid {
@@ -478,6 +481,7 @@ impl BoundedFluid {
             subs: Substances::default(),
             projector: Projector::new(),
             scratch: diffuse::Scratch::default(),
+            spare: MacVelocity::zeros(dims)?,
         })
     }
 
@@ -598,9 +602,17 @@ impl BoundedFluid {
             dims,
         };
         let has_solids = self.solid.list.iter().len() > 0;
-        let w1 = self.vel.clone();
+        // w1: the velocity the advection reads, copied into the spare
+        // buffer (no allocation).
+        for a in 0..3 {
+            self.spare
+                .comp_mut(a)
+                .as_mut_slice()
+                .copy_from_slice(self.vel.comp(a).as_slice());
+        }
+        let w1 = &self.spare;
         {
-            let vs = VelSampler::mac(&w1);
+            let vs = VelSampler::mac(w1);
             for a in 0..3 {
                 if dims.active(a) {
                     advect::advect(
@@ -615,7 +627,10 @@ impl BoundedFluid {
             }
         }
         self.vel.check_finite("advection")?;
-        let mut vel = std::mem::replace(&mut self.vel, w1);
+        // Work on the advected field in the spare slot; `self.vel` holds
+        // the step's start velocity until the swap after the projection.
+        std::mem::swap(&mut self.vel, &mut self.spare);
+        let vel = &mut self.spare;
         {
             let sv = crate::shape::solid_face_velocity(
                 self.dims,
@@ -623,7 +638,7 @@ impl BoundedFluid {
                 &self.solid.owner,
                 &self.solid.list,
             );
-            mac::enforce_solids(&mut vel, self.solid.kinds.as_slice(), &bounds, &sv);
+            mac::enforce_solids(vel, self.solid.kinds.as_slice(), &bounds, &sv);
         }
         let coef = self.params.viscosity * dt / (h * h);
         if coef > 0.0 {
@@ -644,16 +659,12 @@ impl BoundedFluid {
                 );
             }
         }
-        let stats = self.projector.project(
-            &mut vel,
-            &self.solid.kinds,
-            &bounds,
-            h,
-            dt,
-            &self.params.solver,
-        )?;
+        let stats =
+            self.projector
+                .project(vel, &self.solid.kinds, &bounds, h, dt, &self.params.solver)?;
         vel.check_finite("projection")?;
-        self.vel = vel;
+        // The start velocity's buffer becomes the next step's spare.
+        std::mem::swap(&mut self.vel, &mut self.spare);
         // Substances.
         self.subs.add_sources(dims, h, dt);
         let vs = VelSampler::mac(&self.vel);

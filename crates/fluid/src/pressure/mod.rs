@@ -335,19 +335,45 @@ impl PoissonSystem {
         }
     }
 
-    fn pad_into<T: Copy + Default>(&self, src: &[T], dst: &mut [T]) {
+    /// Copies the unknowns of the unpadded `src` into the padded `dst`
+    /// (zero elsewhere), row by row in parallel.
+    fn pad_into<T: Copy + Default + Send + Sync>(&self, src: &[T], dst: &mut [T]) {
         let l = &self.levels[0];
-        dst.fill(T::default());
-        l.for_each_cell(|c, p| {
-            if l.mask[p] != 0 {
-                dst[p] = src[l.uidx(c)];
+        let (p0, n0, m0) = (l.pad[0], l.n[0], l.m[0]);
+        let n1 = l.n[1];
+        dst[..G].fill(T::default());
+        let end = G + l.rows() * m0;
+        dst[end..].fill(T::default());
+        crate::par::for_chunks(&mut dst[G..end], m0, |r, row| {
+            let Some(base) = l.row_base(r) else {
+                row.fill(T::default());
+                return;
+            };
+            let (j, k) = (r % l.m[1] - l.pad[1], r / l.m[1] - l.pad[2]);
+            let u = (k * n1 + j) * n0;
+            let (head, rest) = row.split_at_mut(p0);
+            head.fill(T::default());
+            let (body, tail) = rest.split_at_mut(n0);
+            tail.fill(T::default());
+            let ms = &l.mask[base + p0..base + p0 + n0];
+            for ((o, &v), &m) in body.iter_mut().zip(&src[u..u + n0]).zip(ms) {
+                *o = if m != 0 { v } else { T::default() };
             }
         });
     }
 
-    fn unpad_into<T: Copy + Default>(&self, src: &[T], dst: &mut [T]) {
+    /// Copies the padded `src` back to the unpadded `dst` (zero off the
+    /// unknowns), row by row in parallel.
+    fn unpad_into<T: Copy + Default + Send + Sync>(&self, src: &[T], dst: &mut [T]) {
         let l = &self.levels[0];
-        l.for_each_cell(|c, p| dst[l.uidx(c)] = if l.mask[p] != 0 { src[p] } else { T::default() });
+        let (n0, n1) = (l.n[0], l.n[1]);
+        crate::par::for_chunks(dst, n0, |u, row| {
+            let s = l.pidx([0, u % n1, u / n1]);
+            let ms = &l.mask[s..s + n0];
+            for ((o, &v), &m) in row.iter_mut().zip(&src[s..s + n0]).zip(ms) {
+                *o = if m != 0 { v } else { T::default() };
+            }
+        });
     }
 
     /// Returns `A x` for an unpadded `x` (one value per cell; zero on non-fluid cells).
@@ -388,8 +414,8 @@ impl PoissonSystem {
         self.check_len(b.len(), "b")?;
         self.check_len(x.len(), "x")?;
         let len = self.levels[0].len();
+        // `pad_into` writes every element: no clearing needed.
         let mut pb = std::mem::take(&mut self.pb);
-        pb.clear();
         pb.resize(len, 0.0);
         self.pad_into(b, &mut pb);
         if let Some(i) = pb.iter().position(|v| !v.is_finite()) {
@@ -411,7 +437,6 @@ impl PoissonSystem {
         }
         self.project_null(&mut pb);
         let mut px = std::mem::take(&mut self.px);
-        px.clear();
         px.resize(len, 0.0);
         self.pad_into(x, &mut px);
         self.project_null(&mut px);

@@ -480,3 +480,92 @@ fn reused_workspace_solves_like_a_fresh_one() {
         }
     }
 }
+
+/// The row-wise parallel `pad_into` / `unpad_into` equal the per-cell
+/// copies they replaced, bit for bit (every padded element written, stale
+/// values in the destination overwritten).
+#[test]
+fn row_wise_padding_matches_per_cell_copy() {
+    for (d, per, bounds) in configs() {
+        let sys = PoissonSystem::new(d, &mixed_kinds(d), &bounds, per).unwrap();
+        let l = &sys.levels[0];
+        let src = rhs(d.cells(), 5);
+        let mut want = vec![0.0f32; l.len()];
+        l.for_each_cell(|c, p| {
+            if l.mask[p] != 0 {
+                want[p] = src[l.uidx(c)];
+            }
+        });
+        let mut got = vec![7.0f32; l.len()];
+        sys.pad_into(&src, &mut got);
+        for (p, (a, b)) in got.iter().zip(&want).enumerate() {
+            assert_eq!(a.to_bits(), b.to_bits(), "pad[{p}] on {d:?}");
+        }
+        let padded = padded_random(l, 9);
+        let mut want = vec![0.0f32; d.cells()];
+        l.for_each_cell(|c, p| want[l.uidx(c)] = if l.mask[p] != 0 { padded[p] } else { 0.0 });
+        let mut got = vec![7.0f32; d.cells()];
+        sys.unpad_into(&padded, &mut got);
+        for (u, (a, b)) in got.iter().zip(&want).enumerate() {
+            assert_eq!(a.to_bits(), b.to_bits(), "unpad[{u}] on {d:?}");
+        }
+    }
+}
+
+/// The lane-summed reductions equal an exact (compensated, `f64` pairs of
+/// sums) evaluation to round-off, at every level and in the mixed
+/// `f64`·`f32` form CG uses, and do not depend on the thread count.
+#[test]
+fn lane_reductions_match_exact_sums() {
+    // Two-sum accumulation: the exact result to ~1e-16 relative.
+    fn exact(terms: impl Iterator<Item = f64>) -> f64 {
+        let (mut s, mut c) = (0.0f64, 0.0f64);
+        for t in terms {
+            let y = t - c;
+            let u = s + y;
+            c = (u - s) - y;
+            s = u;
+        }
+        s
+    }
+    for (d, per, bounds) in configs() {
+        let sys = PoissonSystem::new(d, &mixed_kinds(d), &bounds, per).unwrap();
+        for l in &sys.levels {
+            let a = padded_random(l, 21);
+            let b: Vec<f64> = padded_random(l, 22)
+                .iter()
+                .map(|&v| f64::from(v) * 1.000_000_1)
+                .collect();
+            let mut terms = Vec::new();
+            let mut plain = Vec::new();
+            let mut abs = 0.0;
+            l.for_each_cell(|_, p| {
+                terms.push(f64::from(a[p]) * b[p]);
+                plain.push(f64::from(a[p]));
+                abs += (f64::from(a[p]) * b[p]).abs() + f64::from(a[p]).abs();
+            });
+            let tol = 1e-14 * (1.0 + abs);
+            let dot = l.dot(&a, &b);
+            assert!(
+                (dot - exact(terms.into_iter())).abs() <= tol,
+                "dot on {:?}",
+                l.n
+            );
+            let sum = l.sum(&a);
+            assert!(
+                (sum - exact(plain.into_iter())).abs() <= tol,
+                "sum on {:?}",
+                l.n
+            );
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let (d2, s2) = pool.install(|| (l.dot(&a, &b), l.sum(&a)));
+                assert_eq!(d2.to_bits(), dot.to_bits());
+                assert_eq!(s2.to_bits(), sum.to_bits());
+            }
+        }
+    }
+}
