@@ -73,14 +73,7 @@ pub(crate) struct StackScratch {
     roots: Vec<u32>,
     /// Basin label per cell during pit routing; all zero between calls.
     basin: Vec<u32>,
-    /// Each outlet group's walk (cells, receiver positions), kept between
-    /// steps so the walks reuse their memory; their lengths also order the
-    /// next step's walks, largest first.
-    walks: Vec<Walk>,
 }
-
-/// One outlet group's part of the stack: its cells and their receivers' positions.
-type Walk = (Vec<u32>, Vec<u32>);
 
 /// The eight neighbours in increasing index order (raster order of the 3 × 3
 /// block): bit `k` of a donor mask stands for the neighbour at `NB[k]`.
@@ -129,8 +122,6 @@ impl FlowGraph {
     pub fn build(h: &mut [f32], nx: usize, ny: usize, depressions: Depressions) -> Self {
         let mut g = Self::empty();
         g.rebuild(h, nx, ny, depressions);
-        // A one-off graph keeps no walk buffers (a model's graph reuses them).
-        g.scratch.walks = Vec::new();
         g
     }
 
@@ -210,41 +201,27 @@ impl FlowGraph {
         let roots = &self.scratch.roots;
         let masks = &self.scratch.masks;
         let per = roots.len().div_ceil(STACK_GROUPS).max(1);
-        let chunks: Vec<&[u32]> = roots.chunks(per).collect();
-        let mut walks = std::mem::take(&mut self.scratch.walks);
-        walks.resize_with(chunks.len(), Default::default);
-        // Largest group first (by its size in the last step), so the long
-        // walks start early and the short ones fill in around them; the
-        // parts are put back in root order, so the stack does not depend on it.
-        let mut jobs: Vec<(usize, &[u32], Walk)> = chunks
-            .into_iter()
-            .zip(walks.drain(..))
-            .enumerate()
-            .map(|(k, (r, w))| (k, r, w))
-            .collect();
-        jobs.sort_by_key(|j| std::cmp::Reverse(j.2.0.len()));
-        let mut parts: Vec<(usize, Walk)> = par::run(jobs, |(idx, roots, (mut part, mut rp))| {
-            part.clear();
-            rp.clear();
-            let mut work: Vec<(u32, u32)> = Vec::new();
-            for &root in roots {
-                work.push((root, u32::MAX));
-                while let Some((c, r)) = work.pop() {
-                    let k = part.len() as u32;
-                    part.push(c);
-                    rp.push(if r == u32::MAX { k } else { r });
-                    let mut m = masks[c as usize];
-                    while m != 0 {
-                        let b = m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        work.push(((c as isize + off[b]) as u32, k));
+        let parts: Vec<(Vec<u32>, Vec<u32>)> =
+            par::run(roots.chunks(per).collect(), |roots: &[u32]| {
+                let mut part = Vec::new();
+                let mut rp = Vec::new();
+                let mut work: Vec<(u32, u32)> = Vec::new();
+                for &root in roots {
+                    work.push((root, u32::MAX));
+                    while let Some((c, r)) = work.pop() {
+                        let k = part.len() as u32;
+                        part.push(c);
+                        rp.push(if r == u32::MAX { k } else { r });
+                        let mut m = masks[c as usize];
+                        while m != 0 {
+                            let b = m.trailing_zeros() as usize;
+                            m &= m - 1;
+                            work.push(((c as isize + off[b]) as u32, k));
+                        }
                     }
                 }
-            }
-            (idx, (part, rp))
-        });
-        parts.sort_unstable_by_key(|p| p.0);
-        let parts: Vec<Walk> = parts.into_iter().map(|p| p.1).collect();
+                (part, rp)
+            });
         self.groups.clear();
         self.groups.push(0);
         for (part, _) in &parts {
@@ -263,10 +240,9 @@ impl FlowGraph {
             rp = d;
             jobs.push((a, c, part));
         }
-        self.scratch.walks = par::run(jobs, |(a, c, (p, r))| {
+        par::run(jobs, |(a, c, (p, r))| {
             a.copy_from_slice(&p);
             c.copy_from_slice(&r);
-            (p, r)
         });
     }
 
@@ -333,7 +309,6 @@ impl FlowGraph {
             masks,
             roots,
             basin,
-            ..
         } = &mut self.scratch;
         if basin.len() != n {
             basin.clear();
@@ -389,36 +364,18 @@ impl FlowGraph {
         let found: Vec<Vec<(u32, u32, Pass)>> =
             par::run(cells.chunks(per).collect(), |part: &[u32]| {
                 let mut out: Vec<(u32, u32, Pass)> = Vec::new();
-                // The lowest pass to each neighbouring basin of the basin being
-                // scanned (a basin's cells are consecutive in `cells`), flushed
-                // when the basin changes or the list grows long: one candidate
-                // per basin pair instead of one per boundary edge.
-                let mut near: Vec<(u32, Pass)> = Vec::new();
-                let mut cur = u32::MAX;
-                let flush =
-                    |cur: u32, near: &mut Vec<(u32, Pass)>, out: &mut Vec<(u32, u32, Pass)>| {
-                        out.extend(near.drain(..).map(|(bj, p)| (cur.min(bj), cur.max(bj), p)));
-                    };
                 for &c in part {
                     let c = c as usize;
                     let bc = basin_ref[c];
-                    if bc != cur || near.len() >= 64 {
-                        flush(cur, &mut near, &mut out);
-                        cur = bc;
-                    }
                     for &o in &off {
                         let j = (c as isize + o) as usize;
                         let bj = basin_ref[j];
                         if bj != bc {
                             let p = Pass::new(h[c].max(h[j]), c.min(j) as u32, c.max(j) as u32);
-                            match near.iter_mut().find(|e| e.0 == bj) {
-                                Some(e) => e.1 = e.1.min(p),
-                                None => near.push((bj, p)),
-                            }
+                            out.push((bc.min(bj), bc.max(bj), p));
                         }
                     }
                 }
-                flush(cur, &mut near, &mut out);
                 out.sort_unstable();
                 out.dedup_by_key(|e| (e.0, e.1));
                 out
@@ -724,19 +681,9 @@ pub(crate) fn d8_receivers_into(
     let n = nx * ny;
     rec.resize(n, 0);
     dist.resize(n, 0.0);
-    // Receivers and distances row by row in bands of rows (the distances of
-    // a row from its receivers while they are in cache): pure per cell, so
-    // any band split gives the same values.
-    let band = nx * par::BAND_ROWS;
-    let jobs: Vec<_> = rec
-        .chunks_mut(band)
-        .zip(dist.chunks_mut(band))
-        .enumerate()
-        .collect();
-    par::run(jobs, |(b, (r, d))| {
-        let y0 = b * par::BAND_ROWS;
-        for (k, (row, drow)) in r.chunks_mut(nx).zip(d.chunks_mut(nx)).enumerate() {
-            let y = y0 + k;
+    par::map_bands(nx, ny, [rec.as_mut_slice()], |y0, y1, [r]| {
+        for y in y0..y1 {
+            let row = &mut r[(y - y0) * nx..(y - y0 + 1) * nx];
             let i0 = y * nx;
             // Edge cells are outlets.
             row[0] = i0 as u32;
@@ -748,17 +695,21 @@ pub(crate) fn d8_receivers_into(
             } else {
                 d8_row(h, i0 + 1, nx, &mut row[1..nx - 1]);
             }
-            // The receiver is a neighbour (or the cell itself).
-            for (x, (&r, dv)) in row.iter().zip(drow.iter_mut()).enumerate() {
-                let (i, r) = (i0 + x, r as usize);
-                *dv = if r == i {
-                    0.0
-                } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
-                    1.0
-                } else {
-                    std::f32::consts::SQRT_2
-                };
-            }
+        }
+    });
+    // Distances in parallel too: the receiver is a neighbour (or the cell itself).
+    par::map_bands(nx, ny, [dist.as_mut_slice()], |y0, _y1, [d]| {
+        let base = y0 * nx;
+        for (k, d) in d.iter_mut().enumerate() {
+            let i = base + k;
+            let r = rec[i] as usize;
+            *d = if r == i {
+                0.0
+            } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
+                1.0
+            } else {
+                std::f32::consts::SQRT_2
+            };
         }
     });
 }

@@ -23,7 +23,6 @@ pub use crate::analysis::flow::Depressions;
 use crate::analysis::flow::{FlowGraph, next_up};
 use crate::error::{Result, in_range, invalid, non_negative, positive};
 use crate::par;
-use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 /// Parameters of [`StreamPower`].
 #[derive(Clone, Debug, PartialEq)]
@@ -113,10 +112,8 @@ struct Ordered {
     filled: Vec<f32>,
     /// How much the implicit solve changed each entry.
     solved: Vec<f32>,
-    /// Stack position of each cell (the inverse permutation), scattered by
-    /// the group tasks (each group's cells are disjoint; relaxed atomic
-    /// stores are plain stores, ordered by the join before they are read).
-    pos: Vec<AtomicU32>,
+    /// Stack position of each cell (the inverse permutation).
+    pos: Vec<u32>,
 }
 
 impl StreamPower {
@@ -233,14 +230,10 @@ impl StreamPower {
         for v in [&mut o.h, &mut o.area, &mut o.filled, &mut o.solved] {
             v.resize(n, 0.0);
         }
-        if o.pos.len() != n {
-            o.pos.clear();
-            o.pos.resize_with(n, || AtomicU32::new(0));
-        }
+        o.pos.resize(n, 0);
         {
             let hr: &[f32] = h;
             let dist = &g.distance;
-            let pos = &o.pos;
             let mut jobs = Vec::with_capacity(g.groups.len());
             let (mut hs, mut asr, mut fs, mut ss) = (
                 o.h.as_mut_slice(),
@@ -259,13 +252,14 @@ impl StreamPower {
                 let (s, rest) = std::mem::take(&mut ss).split_at_mut(len);
                 ss = rest;
                 let seg = w[0]..w[1];
-                jobs.push((w[0], &g.stack[seg.clone()], &g.rpos[seg], [a, b, f, s]));
+                jobs.push((&g.stack[seg.clone()], &g.rpos[seg], [a, b, f, s]));
             }
-            // Largest group first: the long ones start early, the short ones fill in.
-            jobs.sort_by_key(|j| std::cmp::Reverse(j.1.len()));
-            par::run(jobs, |(base, stack, rpos, outs)| {
-                solve_group(c, stack, rpos, hr, dist, erod, (pos, base), outs);
+            par::run(jobs, |(stack, rpos, outs)| {
+                solve_group(c, stack, rpos, hr, dist, erod, outs);
             });
+        }
+        for (k, &i) in g.stack.iter().enumerate() {
+            o.pos[i as usize] = k as u32;
         }
         let nx = self.nx;
         let (pos, hs, asr, fs, ss) = (&o.pos, &o.h, &o.area, &o.filled, &o.solved);
@@ -277,7 +271,7 @@ impl StreamPower {
             |y0, _y1, [hb, ab, sb]| {
                 let base = y0 * nx;
                 for x in 0..hb.len() {
-                    let k = pos[base + x].load(Relaxed) as usize;
+                    let k = pos[base + x] as usize;
                     hb[x] = hs[k];
                     ab[x] = asr[k] * cell_area;
                     // Adding 0 leaves a deposit unchanged (it is never −0).
@@ -303,9 +297,7 @@ struct SolveConsts {
 /// every entry not strictly above its receiver to just above it), sums the
 /// drainage areas from the leaves down, and solves the implicit stream-power
 /// equation from the outlets up. `outs` are the group's heights, areas (in
-/// cells), fill raises and solve changes, in stack order; the group's part of
-/// the inverse permutation goes to `pos` (`base`: the group's first stack position).
-#[allow(clippy::too_many_arguments)]
+/// cells), fill raises and solve changes, in stack order.
 fn solve_group(
     c: &SolveConsts,
     stack: &[u32],
@@ -313,7 +305,6 @@ fn solve_group(
     h: &[f32],
     dist: &[f32],
     erod: Option<&[f32]>,
-    (pos, base): (&[AtomicU32], usize),
     outs: [&mut [f32]; 4],
 ) {
     let [hs, area, filled, solved] = outs;
@@ -326,9 +317,7 @@ fn solve_group(
         &mut solved[..len],
     );
     for k in 0..len {
-        let i = stack[k] as usize;
-        hs[k] = h[i];
-        pos[i].store((base + k) as u32, Relaxed);
+        hs[k] = h[stack[k] as usize];
     }
     filled.fill(0.0);
     if c.fill {
@@ -543,7 +532,7 @@ mod tests {
     }
 
     /// Wall and CPU time per step at 4096² (`SP_N` to change) on the bench's
-    /// terrain, two threads (`SP_T` to change): `cargo test --release -p natura-terrain --lib
+    /// terrain, two threads: `cargo test --release -p natura-terrain --lib
     /// stream_power_step_times -- --ignored --nocapture`.
     #[test]
     #[ignore = "timing harness"]
@@ -574,12 +563,7 @@ mod tests {
         let mut hf = crate::synth::spectral_synthesis(n, n, 10.0, &sp, Seed(1)).unwrap();
         let mut m = StreamPower::new(StreamPowerParams::default(), &hf).unwrap();
         let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(
-                std::env::var("SP_T")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .unwrap_or(2),
-            )
+            .num_threads(2)
             .build()
             .unwrap();
         for step in 0..6 {
