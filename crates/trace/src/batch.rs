@@ -92,7 +92,7 @@ where
     T: Send + Sync + Clone + Default,
     F: Fn(u32, u32) -> T + Sync,
 {
-    tiles(width, height, tile, progress, |bx, by, w, h, out| {
+    render_tiles(width, height, tile, progress, |bx, by, w, h, out| {
         for y in by..by + h {
             for x in bx..bx + w {
                 out.push(pixel(x, y));
@@ -112,32 +112,16 @@ where
 /// from its coordinates alone, the result does not depend on the thread count
 /// or the tile size. Fails on a zero or oversize resolution or a zero tile.
 ///
-/// # Panics
-/// If `run` pushes a number of values other than `w × h`.
-pub fn render_tiles<T, F>(
-    width: u32,
-    height: u32,
-    tile: u32,
-    progress: &dyn Progress,
-    run: F,
-) -> Result<Grid2<T>>
-where
-    T: Send + Sync + Clone + Default,
-    F: Fn(u32, u32, u32, u32, &mut Vec<T>) + Sync,
-{
-    tiles(width, height, tile, progress, run)
-}
-
-/// The tile driver behind [`render`] and [`trace_image`]: `run(x0, y0, w, h,
-/// out)` pushes the `w × h` values of the tile at `(x0, y0)`, row-major.
-///
 /// Each tile's values are copied into the image by the thread that computed
 /// them, through the tile's own disjoint row slices, and the image's memory is
 /// first filled in parallel: nothing proportional to the pixel count runs on
 /// one thread, and a tile's buffer is freed (and its memory reused by the next
 /// tile) at once, instead of every tile's buffer (as much fresh memory as the
 /// image, page faults and all) living until a serial assembly at the end.
-fn tiles<T, F>(
+///
+/// # Panics
+/// If `run` pushes a number of values other than `w × h`.
+pub fn render_tiles<T, F>(
     width: u32,
     height: u32,
     tile: u32,
@@ -238,7 +222,7 @@ where
     let res = camera.resolution();
     let n = options.samples_per_pixel;
     let inv = 1.0 / n as f32;
-    let grid = tiles(res.x, res.y, options.tile, progress, |bx, by, w, h, out| {
+    let grid = render_tiles(res.x, res.y, options.tile, progress, |bx, by, w, h, out| {
         let mut rays = Vec::new();
         camera.rays_into(bx, by, w, h, options, &mut rays);
         let hits = tracer.trace_many(&rays, 0.0, f32::INFINITY);
