@@ -16,6 +16,8 @@
 //! At steady state `S = (U / (K·A^m))^(1/n)` exactly: the slope–area law.
 //! Time is in **years** (geological rates), lengths in metres.
 
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+
 use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Erodibility, check_erodibility, check_field, check_model_size};
@@ -94,26 +96,27 @@ pub struct StreamPower {
     nx: usize,
     ny: usize,
     erodibility: Option<Erodibility>,
-    area: Vec<f32>,
     graph: Option<FlowGraph>,
-    sediment: Vec<f32>,
+    /// Net deposit per cell, `f32` bits: the group tasks of a step read and
+    /// write their own (disjoint) cells through relaxed atomics, which are
+    /// plain loads and stores.
+    sediment: Vec<AtomicU32>,
+    /// Cell area of the last step, m² (drainage areas are kept in stack order).
+    cell_area: f32,
     /// Per-step scratch in stack order.
     ord: Ordered,
 }
 
-/// Per-step buffers in stack order (entry `k` is cell `stack[k]`).
+/// Per-step buffers: entry `k` of the stack-ordered ones is cell `stack[k]`.
 #[derive(Debug, Default)]
 struct Ordered {
-    /// Heights (filled, then solved).
-    h: Vec<f32>,
-    /// Drainage area, cells.
+    /// Filled and solved heights per stack entry.
+    z: Vec<[f32; 2]>,
+    /// Drainage area per stack entry, cells.
     area: Vec<f32>,
-    /// How much the fill raised each entry.
-    filled: Vec<f32>,
-    /// How much the implicit solve changed each entry.
-    solved: Vec<f32>,
-    /// Stack position of each cell (the inverse permutation).
-    pos: Vec<u32>,
+    /// New height per cell (`f32` bits), written by the group tasks and
+    /// copied back to the grid in raster order.
+    h: Vec<AtomicU32>,
 }
 
 impl StreamPower {
@@ -127,9 +130,9 @@ impl StreamPower {
             nx: hf.nx(),
             ny: hf.ny(),
             erodibility: None,
-            area: vec![0.0; n],
             graph: None,
-            sediment: vec![0.0; n],
+            sediment: (0..n).map(|_| AtomicU32::new(0)).collect(),
+            cell_area: 0.0,
             ord: Ordered::default(),
         })
     }
@@ -141,15 +144,27 @@ impl StreamPower {
         Ok(self)
     }
 
-    /// Drainage area of the last step, m².
+    /// Drainage area of the last step, m² (zero before the first step).
     pub fn drainage_area(&self) -> Result<Grid2<f32>> {
-        Ok(Grid2::from_vec(self.nx, self.ny, self.area.clone())?)
+        let mut a = vec![0.0f32; self.nx * self.ny];
+        if let Some(g) = &self.graph {
+            // The step keeps the areas in stack order; scatter them here.
+            for (&i, &v) in g.stack.iter().zip(&self.ord.area) {
+                a[i as usize] = v * self.cell_area;
+            }
+        }
+        Ok(Grid2::from_vec(self.nx, self.ny, a)?)
     }
 
     /// Net deposition (positive, metres: depressions filled) minus erosion since the
     /// model was built, uplift excluded.
     pub fn deposition(&self) -> Result<Grid2<f32>> {
-        Ok(Grid2::from_vec(self.nx, self.ny, self.sediment.clone())?)
+        let s = self
+            .sediment
+            .iter()
+            .map(|v| f32::from_bits(v.load(Relaxed)))
+            .collect();
+        Ok(Grid2::from_vec(self.nx, self.ny, s)?)
     }
 
     /// The flow graph of the last step.
@@ -211,11 +226,13 @@ impl StreamPower {
         self.graph = Some(g);
     }
 
-    /// Fill, drainage area and the implicit solve, each in stack order, run
-    /// per outlet group of the stack in parallel (the groups hold whole
-    /// drainage trees, so they share no cell), on copies of the heights in
-    /// stack order; then the heights, areas and deposits go back to the grid.
-    /// The same operations in the same order per cell as the serial passes
+    /// Fill, drainage area and the implicit solve in stack order, run per
+    /// outlet group of the stack in parallel (the groups hold whole drainage
+    /// trees, so they share no cell). Each group task reads its cells'
+    /// heights and deposits from the grid and writes their new values back
+    /// in stack order (neighbouring cells, so few cache misses); a raster
+    /// pass then copies the new heights into the grid. The same operations
+    /// in the same order per cell as the serial passes
     /// ([`fill_along`](crate::analysis::flow), area accumulation, the solve
     /// loop), so the results are bit-identical to them on any thread count.
     fn solve_ordered(
@@ -227,59 +244,57 @@ impl StreamPower {
     ) {
         let n = h.len();
         let o = &mut self.ord;
-        for v in [&mut o.h, &mut o.area, &mut o.filled, &mut o.solved] {
-            v.resize(n, 0.0);
+        o.z.resize(n, [0.0; 2]);
+        o.area.resize(n, 0.0);
+        if o.h.len() != n {
+            o.h = (0..n).map(|_| AtomicU32::new(0)).collect();
         }
-        o.pos.resize(n, 0);
+        self.cell_area = c.cell_area;
         {
-            let hr: &[f32] = h;
-            let dist = &g.distance;
+            let grid = Grid {
+                h,
+                dist: &g.distance,
+                erod,
+                sediment: &self.sediment,
+                out_h: &o.h,
+            };
             let mut jobs = Vec::with_capacity(g.groups.len());
-            let (mut hs, mut asr, mut fs, mut ss) = (
-                o.h.as_mut_slice(),
-                o.area.as_mut_slice(),
-                o.filled.as_mut_slice(),
-                o.solved.as_mut_slice(),
-            );
+            let (mut zs, mut asr) = (o.z.as_mut_slice(), o.area.as_mut_slice());
             for w in g.groups.windows(2) {
                 let len = w[1] - w[0];
-                let (a, rest) = std::mem::take(&mut hs).split_at_mut(len);
-                hs = rest;
+                let (a, rest) = std::mem::take(&mut zs).split_at_mut(len);
+                zs = rest;
                 let (b, rest) = std::mem::take(&mut asr).split_at_mut(len);
                 asr = rest;
-                let (f, rest) = std::mem::take(&mut fs).split_at_mut(len);
-                fs = rest;
-                let (s, rest) = std::mem::take(&mut ss).split_at_mut(len);
-                ss = rest;
                 let seg = w[0]..w[1];
-                jobs.push((&g.stack[seg.clone()], &g.rpos[seg], [a, b, f, s]));
+                jobs.push((&g.stack[seg.clone()], &g.rpos[seg], a, b));
             }
-            par::run(jobs, |(stack, rpos, outs)| {
-                solve_group(c, stack, rpos, hr, dist, erod, outs);
+            par::run(jobs, |(stack, rpos, z, area)| {
+                solve_group(c, stack, rpos, &grid, z, area);
             });
         }
-        for (k, &i) in g.stack.iter().enumerate() {
-            o.pos[i as usize] = k as u32;
-        }
-        let nx = self.nx;
-        let (pos, hs, asr, fs, ss) = (&o.pos, &o.h, &o.area, &o.filled, &o.solved);
-        let cell_area = c.cell_area;
-        par::map_bands(
-            nx,
-            self.ny,
-            [h, self.area.as_mut_slice(), self.sediment.as_mut_slice()],
-            |y0, _y1, [hb, ab, sb]| {
-                let base = y0 * nx;
-                for x in 0..hb.len() {
-                    let k = pos[base + x] as usize;
-                    hb[x] = hs[k];
-                    ab[x] = asr[k] * cell_area;
-                    // Adding 0 leaves a deposit unchanged (it is never −0).
-                    sb[x] = (sb[x] + fs[k]) + ss[k];
-                }
-            },
-        );
+        let out = &o.h;
+        par::map_bands(self.nx, self.ny, [h], |y0, _y1, [hb]| {
+            let src = &out[y0 * self.nx..y0 * self.nx + hb.len()];
+            for (d, s) in hb.iter_mut().zip(src) {
+                *d = f32::from_bits(s.load(Relaxed));
+            }
+        });
     }
+}
+
+/// What the group tasks read and write per cell (raster order).
+struct Grid<'a> {
+    /// Heights before the solve.
+    h: &'a [f32],
+    /// Receiver distances, cells.
+    dist: &'a [f32],
+    /// Erodibility factors.
+    erod: Option<&'a [f32]>,
+    /// Deposits, updated in place (each cell by its own group).
+    sediment: &'a [AtomicU32],
+    /// New heights.
+    out_h: &'a [AtomicU32],
 }
 
 /// Constants of the ordered passes.
@@ -293,43 +308,22 @@ struct SolveConsts {
     n: f64,
 }
 
-/// One outlet group: gathers its heights into stack order, fills (raising
-/// every entry not strictly above its receiver to just above it), sums the
-/// drainage areas from the leaves down, and solves the implicit stream-power
-/// equation from the outlets up. `outs` are the group's heights, areas (in
-/// cells), fill raises and solve changes, in stack order.
+/// One outlet group: sums the drainage areas from the leaves down (in
+/// cells, into `area`), then in one pass from the outlets up fills (raising
+/// every entry not strictly above its receiver's filled height to just above
+/// it) and solves the implicit stream-power equation against the receiver's
+/// new height, keeping both heights per entry in `z` and writing the new
+/// height and deposit of each cell to `grid`.
 fn solve_group(
     c: &SolveConsts,
     stack: &[u32],
     rpos: &[u32],
-    h: &[f32],
-    dist: &[f32],
-    erod: Option<&[f32]>,
-    outs: [&mut [f32]; 4],
+    grid: &Grid<'_>,
+    z: &mut [[f32; 2]],
+    area: &mut [f32],
 ) {
-    let [hs, area, filled, solved] = outs;
     let len = stack.len();
-    let (rpos, hs, area, filled, solved) = (
-        &rpos[..len],
-        &mut hs[..len],
-        &mut area[..len],
-        &mut filled[..len],
-        &mut solved[..len],
-    );
-    for k in 0..len {
-        hs[k] = h[stack[k] as usize];
-    }
-    filled.fill(0.0);
-    if c.fill {
-        for k in 0..len {
-            let r = rpos[k] as usize;
-            if r != k && hs[k] <= hs[r] {
-                let z = next_up(hs[r]);
-                filled[k] = z - hs[k];
-                hs[k] = z;
-            }
-        }
-    }
+    let (rpos, z, area) = (&rpos[..len], &mut z[..len], &mut area[..len]);
     area.fill(1.0);
     for k in (0..len).rev() {
         let r = rpos[k] as usize;
@@ -338,22 +332,41 @@ fn solve_group(
         }
     }
     for k in 0..len {
-        solved[k] = 0.0;
-        let r = rpos[k] as usize;
-        if r == k {
-            continue;
-        }
         let i = stack[k] as usize;
-        let zr = f64::from(hs[r]);
-        let z0 = f64::from(hs[k]);
-        if c.route && zr >= z0 {
-            continue; // inside a lake: no incision
+        let r = rpos[k] as usize;
+        let h0 = grid.h[i];
+        let (mut hf, mut hs) = (h0, h0);
+        // The fill raise and the solve change (added to the deposit even when
+        // zero, as the serial passes do; a deposit is never −0).
+        let (mut filled, mut solved) = (0.0f32, 0.0f32);
+        if r != k {
+            let [rf, rs] = z[r];
+            if c.fill && hf <= rf {
+                let up = next_up(rf);
+                filled = up - hf;
+                hf = up;
+            }
+            hs = hf;
+            let zr = f64::from(rs);
+            let z0 = f64::from(hf);
+            // Inside a lake (routing): no incision.
+            if !(c.route && zr >= z0) {
+                let kf = factor(
+                    c,
+                    area[k] * c.cell_area,
+                    grid.dist[i],
+                    grid.erod.map(|e| e[i]),
+                );
+                let zn = implicit(z0, zr, kf, c.n).max(zr) as f32;
+                solved = zn - hf;
+                hs = zn;
+            }
         }
-        let kf = factor(c, area[k] * c.cell_area, dist[i], erod.map(|e| e[i]));
-        let z = implicit(z0, zr, kf, c.n);
-        let z = z.max(zr) as f32;
-        solved[k] = z - hs[k];
-        hs[k] = z;
+        z[k] = [hf, hs];
+        grid.out_h[i].store(hs.to_bits(), Relaxed);
+        let s = &grid.sediment[i];
+        let d = (f32::from_bits(s.load(Relaxed)) + filled) + solved;
+        s.store(d.to_bits(), Relaxed);
     }
 }
 
@@ -404,9 +417,15 @@ mod tests {
     use super::*;
     use natura_core::{NoProgress, Seed};
 
+    /// The drainage areas (m²) and deposits of [`step_reference`].
+    struct Serial {
+        area: Vec<f32>,
+        sediment: Vec<f32>,
+    }
+
     /// The serial step the group-parallel one replaced: fill along the whole
     /// stack, areas by one reverse walk, the factors per cell, one solve walk.
-    fn step_reference(sp: &mut StreamPower, hf: &mut HeightField) {
+    fn step_reference(sp: &mut StreamPower, hf: &mut HeightField, out: &mut Serial) {
         let (nx, ny) = (sp.nx, sp.ny);
         let cell = f64::from(hf.cell_size());
         let p = sp.p.clone();
@@ -418,10 +437,10 @@ mod tests {
             }
         }
         let mut g = sp.graph.take().unwrap_or_else(FlowGraph::empty);
-        g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut sp.sediment));
-        g.area_into(&mut sp.area);
+        g.rebuild_with_fill(h, nx, ny, p.depressions, Some(&mut out.sediment));
+        g.area_into(&mut out.area);
         let cell_area = (cell * cell) as f32;
-        for a in &mut sp.area {
+        for a in &mut out.area {
             *a *= cell_area;
         }
         let c = SolveConsts {
@@ -435,7 +454,7 @@ mod tests {
         };
         let erod = sp.erodibility.as_ref().map(|e| e.map().as_slice().to_vec());
         let kf: Vec<f64> = (0..nx * ny)
-            .map(|i| factor(&c, sp.area[i], g.distance[i], erod.as_ref().map(|e| e[i])))
+            .map(|i| factor(&c, out.area[i], g.distance[i], erod.as_ref().map(|e| e[i])))
             .collect();
         for &i in &g.stack {
             let i = i as usize;
@@ -448,7 +467,7 @@ mod tests {
                 continue;
             }
             let z = implicit(z0, zr, kf[i], p.n).max(zr) as f32;
-            sp.sediment[i] += z - h[i];
+            out.sediment[i] += z - h[i];
             h[i] = z;
         }
         sp.graph = Some(g);
@@ -493,9 +512,13 @@ mod tests {
                 sp
             };
             let mut reference = build();
+            let mut serial = Serial {
+                area: vec![0.0; nx * ny],
+                sediment: vec![0.0; nx * ny],
+            };
             let mut hr = hf.clone();
             for _ in 0..6 {
-                step_reference(&mut reference, &mut hr);
+                step_reference(&mut reference, &mut hr, &mut serial);
             }
             for threads in [1, 2] {
                 let pool = rayon::ThreadPoolBuilder::new()
@@ -514,18 +537,22 @@ mod tests {
                     }
                 };
                 same("height", h.heights().as_slice(), hr.heights().as_slice());
-                same("deposit", &sp.sediment, &reference.sediment);
-                same("area", &sp.area, &reference.area);
+                same(
+                    "deposit",
+                    sp.deposition().unwrap().as_slice(),
+                    &serial.sediment,
+                );
+                same("area", sp.drainage_area().unwrap().as_slice(), &serial.area);
                 let (g, gr) = (sp.flow_graph().unwrap(), reference.flow_graph().unwrap());
                 assert_eq!(g.receiver, gr.receiver, "case {case}");
                 assert_eq!(g.stack, gr.stack, "case {case}");
             }
             assert!(
-                depressions == Depressions::Route || reference.sediment.iter().any(|&d| d > 0.0),
+                depressions == Depressions::Route || serial.sediment.iter().any(|&d| d > 0.0),
                 "case {case}: nothing filled"
             );
             assert!(
-                reference.sediment.iter().any(|&d| d < 0.0),
+                serial.sediment.iter().any(|&d| d < 0.0),
                 "case {case}: nothing eroded"
             );
         }
