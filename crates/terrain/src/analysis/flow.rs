@@ -681,46 +681,43 @@ pub(crate) fn d8_receivers_into(
     let n = nx * ny;
     rec.resize(n, 0);
     dist.resize(n, 0.0);
-    par::map_bands(nx, ny, [rec.as_mut_slice()], |y0, y1, [r]| {
-        for y in y0..y1 {
-            let row = &mut r[(y - y0) * nx..(y - y0 + 1) * nx];
+    // Receivers and distances of each band of rows in one task.
+    let chunk = nx * par::BAND_ROWS;
+    let jobs: Vec<_> = rec
+        .chunks_mut(chunk.max(1))
+        .zip(dist.chunks_mut(chunk.max(1)))
+        .enumerate()
+        .collect();
+    par::run(jobs, |(b, (r, d))| {
+        let y0 = b * par::BAND_ROWS;
+        for (y, (row, drow)) in (y0..).zip(r.chunks_mut(nx).zip(d.chunks_mut(nx))) {
             let i0 = y * nx;
-            // Edge cells are outlets.
-            row[0] = i0 as u32;
-            row[nx - 1] = (i0 + nx - 1) as u32;
             if y == 0 || y == ny - 1 || nx < 3 {
+                // Edge cells are outlets.
                 for (x, v) in row.iter_mut().enumerate() {
                     *v = (i0 + x) as u32;
                 }
+                drow.fill(0.0);
             } else {
-                d8_row(h, i0 + 1, nx, &mut row[1..nx - 1]);
+                row[0] = i0 as u32;
+                row[nx - 1] = (i0 + nx - 1) as u32;
+                drow[0] = 0.0;
+                drow[nx - 1] = 0.0;
+                d8_row(h, i0 + 1, nx, &mut row[1..nx - 1], &mut drow[1..nx - 1]);
             }
-        }
-    });
-    // Distances in parallel too: the receiver is a neighbour (or the cell itself).
-    par::map_bands(nx, ny, [dist.as_mut_slice()], |y0, _y1, [d]| {
-        let base = y0 * nx;
-        for (k, d) in d.iter_mut().enumerate() {
-            let i = base + k;
-            let r = rec[i] as usize;
-            *d = if r == i {
-                0.0
-            } else if r + 1 == i || i + 1 == r || r + nx == i || i + nx == r {
-                1.0
-            } else {
-                std::f32::consts::SQRT_2
-            };
         }
     });
 }
 
 crate::simd::multiversion! {
 /// D8 steepest descent for the interior cells `i0..i0 + out.len()` of one
-/// row (all eight neighbours exist): the same divisions and comparisons, in
+/// row (all eight neighbours exist), with the distance to the receiver
+/// (cells; 0 for a pit) into `dist`: the same divisions and comparisons, in
 /// the order of [`D8`], as a per-cell loop (dividing by an axial distance of
 /// 1 is the identity), written over row slices so it vectorises.
-fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32]) {
+fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32], dist: &'a mut [f32]) {
     let m = out.len();
+    let dist = &mut dist[..m];
     let at = |o: usize| &h[o..o + m];
     let c = at(i0);
     let (e, w, n, s) = (at(i0 + 1), at(i0 - 1), at(i0 + nx), at(i0 - nx));
@@ -732,21 +729,24 @@ fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32]) {
         let i = (i0 + x) as u32;
         let mut slope = 0.0f32;
         let mut best = i;
-        let mut step = |s: f32, j: u32| {
+        let mut bd = 0.0f32;
+        let mut step = |s: f32, j: u32, d: f32| {
             if s > slope {
                 slope = s;
                 best = j;
+                bd = d;
             }
         };
-        step(hi - e[x], i + 1);
-        step(hi - w[x], i - 1);
-        step(hi - n[x], i + nx32);
-        step(hi - s[x], i - nx32);
-        step((hi - ne[x]) / r2, i + nx32 + 1);
-        step((hi - nw[x]) / r2, i + nx32 - 1);
-        step((hi - se[x]) / r2, i - nx32 + 1);
-        step((hi - sw[x]) / r2, i - nx32 - 1);
+        step(hi - e[x], i + 1, 1.0);
+        step(hi - w[x], i - 1, 1.0);
+        step(hi - n[x], i + nx32, 1.0);
+        step(hi - s[x], i - nx32, 1.0);
+        step((hi - ne[x]) / r2, i + nx32 + 1, r2);
+        step((hi - nw[x]) / r2, i + nx32 - 1, r2);
+        step((hi - se[x]) / r2, i - nx32 + 1, r2);
+        step((hi - sw[x]) / r2, i - nx32 - 1, r2);
         out[x] = best;
+        dist[x] = bd;
     }
 }
 }
@@ -964,6 +964,50 @@ mod tests {
                         std::f32::consts::SQRT_2
                     };
                     assert_eq!(dist[i], want);
+                }
+            }
+        }
+    }
+
+    /// The vectorised receivers and distances against the per-cell loop over
+    /// [`D8`] on continuous random fields and on plateaus (large flat blocks
+    /// and steps of one value: ties everywhere, flat pits), row widths that
+    /// leave every SIMD tail length.
+    #[test]
+    fn d8_row_kernel_equals_per_cell_loop_on_plateaus() {
+        for (nx, ny, seed) in [(40usize, 23usize, 5u64), (53, 19, 6), (18, 34, 7)] {
+            let s = Seed(seed);
+            let fields: [Vec<f32>; 2] = [
+                (0..nx * ny)
+                    .map(|i| (50.0 * s.gaussian2((i % nx) as i64, (i / nx) as i64)) as f32)
+                    .collect(),
+                (0..nx * ny)
+                    .map(|i| {
+                        let (x, y) = ((i % nx) as i64 / 5, (i / nx) as i64 / 4);
+                        (2.0 * s.uniform2(x, y)).floor() as f32
+                    })
+                    .collect(),
+            ];
+            for h in &fields {
+                let (rec, dist) = d8_receivers(h, nx, ny);
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let i = y * nx + x;
+                        let (mut best, mut bd) = (i, 0.0f32);
+                        if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+                            let mut slope = 0.0f32;
+                            for &(dx, dy, d) in &D8 {
+                                let j =
+                                    (i as i64 + i64::from(dy) * nx as i64 + i64::from(dx)) as usize;
+                                let sl = (h[i] - h[j]) / d;
+                                if sl > slope {
+                                    (slope, best, bd) = (sl, j, d);
+                                }
+                            }
+                        }
+                        assert_eq!(rec[i] as usize, best, "{nx}×{ny}: cell ({x}, {y})");
+                        assert_eq!(dist[i].to_bits(), bd.to_bits(), "{nx}×{ny}: ({x}, {y})");
+                    }
                 }
             }
         }
