@@ -67,8 +67,7 @@ pub struct FlowGraph {
 /// Reusable buffers of the graph builder.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct StackScratch {
-    /// Donor bit masks per cell (bit `k`: the neighbour at [`NB`]`[k]` drains
-    /// here), stored in 8 × 8 tiles (see [`tile_index`]).
+    /// Donor bit masks per cell (bit `k`: the neighbour at [`NB`]`[k]` drains here).
     masks: Vec<u8>,
     /// Cells that are their own receiver (outlets and pits), increasing.
     roots: Vec<u32>,
@@ -88,22 +87,6 @@ const NB: [(isize, isize); 8] = [
     (0, 1),
     (1, 1),
 ];
-
-/// Where the donor mask of cell `(x, y)` is stored on a grid `tx` tiles wide:
-/// the masks are kept in tiles of 8 × 8 cells, one 64-byte cache line each,
-/// row-major within a tile and tiles row-major, so the stack walk, which moves
-/// from a cell to its neighbours, mostly stays within a cache line (in raster
-/// order a step along y is a new line).
-#[inline]
-fn tile_index(x: usize, y: usize, tx: usize) -> usize {
-    (((y >> 3) * tx + (x >> 3)) << 6) | ((y & 7) << 3) | (x & 7)
-}
-
-/// [`tile_index`] of cell `c` on a grid `nx` wide.
-#[inline]
-fn mask_index(c: usize, nx: usize) -> usize {
-    tile_index(c % nx, c / nx, nx.div_ceil(8))
-}
 
 /// Index offsets of [`NB`] on a grid `nx` wide.
 #[inline]
@@ -214,9 +197,7 @@ impl FlowGraph {
     /// group-parallel passes. O(n).
     fn build_stack(&mut self) {
         let n = self.receiver.len();
-        let nx = self.nx;
-        let tx = nx.div_ceil(8);
-        let off = nb_offsets(nx);
+        let off = nb_offsets(self.nx);
         let roots = &self.scratch.roots;
         let masks = &self.scratch.masks;
         let per = roots.len().div_ceil(STACK_GROUPS).max(1);
@@ -224,27 +205,18 @@ impl FlowGraph {
             par::run(roots.chunks(per).collect(), |roots: &[u32]| {
                 let mut part = Vec::new();
                 let mut rp = Vec::new();
-                // Cell, its receiver's position, and the cell's column and row
-                // (to find its mask without a division).
-                let mut work: Vec<(u32, u32, u32, u32)> = Vec::new();
+                let mut work: Vec<(u32, u32)> = Vec::new();
                 for &root in roots {
-                    let root_u = root as usize;
-                    work.push((root, u32::MAX, (root_u % nx) as u32, (root_u / nx) as u32));
-                    while let Some((c, r, x, y)) = work.pop() {
+                    work.push((root, u32::MAX));
+                    while let Some((c, r)) = work.pop() {
                         let k = part.len() as u32;
                         part.push(c);
                         rp.push(if r == u32::MAX { k } else { r });
-                        let mut m = masks[tile_index(x as usize, y as usize, tx)];
+                        let mut m = masks[c as usize];
                         while m != 0 {
                             let b = m.trailing_zeros() as usize;
                             m &= m - 1;
-                            let (dx, dy) = NB[b];
-                            work.push((
-                                (c as isize + off[b]) as u32,
-                                k,
-                                (x as isize + dx) as u32,
-                                (y as isize + dy) as u32,
-                            ));
+                            work.push(((c as isize + off[b]) as u32, k));
                         }
                     }
                 }
@@ -356,7 +328,7 @@ impl FlowGraph {
                 work.push(pit);
                 while let Some(c) = work.pop() {
                     out.push(c);
-                    let mut m = masks_ref[mask_index(c as usize, nx)];
+                    let mut m = masks_ref[c as usize];
                     while m != 0 {
                         let k = m.trailing_zeros() as usize;
                         m &= m - 1;
@@ -433,9 +405,9 @@ impl FlowGraph {
                 let (c, pv) = (cur as usize, prev as usize);
                 let next = self.receiver[c];
                 if next != cur {
-                    masks[mask_index(next as usize, nx)] &= !nb_bit(next as usize, c, nx);
+                    masks[next as usize] &= !nb_bit(next as usize, c, nx);
                 }
-                masks[mask_index(pv, nx)] |= nb_bit(pv, c, nx);
+                masks[pv] |= nb_bit(pv, c, nx);
                 self.receiver[c] = prev;
                 self.distance[c] = cell_distance(c, pv, nx);
                 if cur == pit || next == cur {
@@ -495,23 +467,13 @@ fn find_roots(rec: &[u32], nx: usize, ny: usize, roots: &mut Vec<u32>) {
     }
 }
 
-/// Donor masks of every cell, in tiles ([`tile_index`]): bit `k` set when
-/// the neighbour at [`NB`]`[k]` has this cell as its receiver. Pure per
-/// cell, in parallel over bands of rows (whole tile rows each).
+/// Donor masks of every cell: bit `k` set when the neighbour at [`NB`]`[k]`
+/// has this cell as its receiver. Pure per cell, in parallel over bands.
 fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
-    const _: () = assert!(par::BAND_ROWS % 8 == 0);
-    let tx = nx.div_ceil(8);
-    masks.resize(tx * ny.div_ceil(8) * 64, 0);
-    let jobs: Vec<_> = masks
-        .chunks_mut(tx * 64 * (par::BAND_ROWS / 8))
-        .enumerate()
-        .collect();
-    par::run(jobs, |(b, m)| {
-        let y0 = b * par::BAND_ROWS;
-        let y1 = (y0 + par::BAND_ROWS).min(ny);
-        let mut row = vec![0u8; nx];
+    masks.resize(nx * ny, 0);
+    par::map_bands(nx, ny, [masks.as_mut_slice()], |y0, y1, [m]| {
         for y in y0..y1 {
-            let row = row.as_mut_slice();
+            let row = &mut m[(y - y0) * nx..(y - y0 + 1) * nx];
             let general = |x: usize| {
                 let i = y * nx + x;
                 let mut bits = 0u8;
@@ -539,11 +501,6 @@ fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
                     &rec[(y + 1) * nx..(y + 2) * nx],
                 ];
                 masks_row(rows, (y * nx) as u32, &mut row[1..nx - 1]);
-            }
-            // Into the tiles: eight cells of the row per tile.
-            let base = (y - y0) / 8 * tx * 64 + (y & 7) * 8;
-            for (t, cells) in row.chunks(8).enumerate() {
-                m[base + t * 64..base + t * 64 + cells.len()].copy_from_slice(cells);
             }
         }
     });

@@ -114,8 +114,8 @@ struct Ordered {
     z: Vec<[f32; 2]>,
     /// Drainage area per stack entry, cells.
     area: Vec<f32>,
-    /// Height per cell (`f32` bits): the uplifted heights, solved in place by
-    /// the group tasks, then copied back to the grid in raster order.
+    /// New height per cell (`f32` bits), written by the group tasks and
+    /// copied back to the grid in raster order.
     h: Vec<AtomicU32>,
 }
 
@@ -198,22 +198,13 @@ impl StreamPower {
         let p = &self.p;
         let up = (p.uplift_m_per_yr * p.dt_yr) as f32;
         let h = hf.heights_mut().as_mut_slice();
-        let n = nx * ny;
-        if self.ord.h.len() != n {
-            self.ord.h = (0..n).map(|_| AtomicU32::new(0)).collect();
-        }
-        // Uplift everything but the base level, keeping a copy for the solve.
-        let hz = &self.ord.h;
+        // Uplift everything but the base level.
         par::map_bands(nx, ny, [&mut *h], |y0, y1, [hb]| {
             for y in y0.max(1)..y1.min(ny - 1) {
                 let r = (y - y0) * nx;
                 for v in &mut hb[r + 1..r + nx - 1] {
                     *v += up;
                 }
-            }
-            let z = &hz[y0 * nx..y1 * nx];
-            for (d, &v) in z.iter().zip(hb.iter()) {
-                d.store(v.to_bits(), Relaxed);
             }
         });
         // Reuse the last step's graph buffers.
@@ -255,13 +246,17 @@ impl StreamPower {
         let o = &mut self.ord;
         o.z.resize(n, [0.0; 2]);
         o.area.resize(n, 0.0);
+        if o.h.len() != n {
+            o.h = (0..n).map(|_| AtomicU32::new(0)).collect();
+        }
         self.cell_area = c.cell_area;
         {
             let grid = Grid {
-                h: &o.h,
-                nx: self.nx,
+                h,
+                dist: &g.distance,
                 erod,
                 sediment: &self.sediment,
+                out_h: &o.h,
             };
             let mut jobs = Vec::with_capacity(g.groups.len());
             let (mut zs, mut asr) = (o.z.as_mut_slice(), o.area.as_mut_slice());
@@ -288,18 +283,18 @@ impl StreamPower {
     }
 }
 
-/// What the group tasks read and write per cell (raster order; each cell
-/// by its own group only).
+/// What the group tasks read and write per cell (raster order).
 struct Grid<'a> {
-    /// Heights, updated in place: the uplifted heights before the solve, the
-    /// new heights after it.
-    h: &'a [AtomicU32],
-    /// Grid width (a receiver one or `nx` cells away is an axial neighbour).
-    nx: usize,
+    /// Heights before the solve.
+    h: &'a [f32],
+    /// Receiver distances, cells.
+    dist: &'a [f32],
     /// Erodibility factors.
     erod: Option<&'a [f32]>,
-    /// Deposits, updated in place.
+    /// Deposits, updated in place (each cell by its own group).
     sediment: &'a [AtomicU32],
+    /// New heights.
+    out_h: &'a [AtomicU32],
 }
 
 /// Constants of the ordered passes.
@@ -339,7 +334,7 @@ fn solve_group(
     for k in 0..len {
         let i = stack[k] as usize;
         let r = rpos[k] as usize;
-        let h0 = f32::from_bits(grid.h[i].load(Relaxed));
+        let h0 = grid.h[i];
         let (mut hf, mut hs) = (h0, h0);
         // The fill raise and the solve change (added to the deposit even when
         // zero, as the serial passes do; a deposit is never −0).
@@ -356,23 +351,19 @@ fn solve_group(
             let z0 = f64::from(hf);
             // Inside a lake (routing): no incision.
             if !(c.route && zr >= z0) {
-                // The receiver's distance (cells), as the graph's: its
-                // receiver is a neighbour, found from the group's stack
-                // (near `k`, so cached) rather than a grid of distances.
-                let step = i.abs_diff(stack[r] as usize);
-                let d = if step == 1 || step == grid.nx {
-                    1.0
-                } else {
-                    std::f32::consts::SQRT_2
-                };
-                let kf = factor(c, area[k] * c.cell_area, d, grid.erod.map(|e| e[i]));
+                let kf = factor(
+                    c,
+                    area[k] * c.cell_area,
+                    grid.dist[i],
+                    grid.erod.map(|e| e[i]),
+                );
                 let zn = implicit(z0, zr, kf, c.n).max(zr) as f32;
                 solved = zn - hf;
                 hs = zn;
             }
         }
         z[k] = [hf, hs];
-        grid.h[i].store(hs.to_bits(), Relaxed);
+        grid.out_h[i].store(hs.to_bits(), Relaxed);
         let s = &grid.sediment[i];
         let d = (f32::from_bits(s.load(Relaxed)) + filled) + solved;
         s.store(d.to_bits(), Relaxed);
