@@ -150,9 +150,15 @@ pub struct PipeModel {
     sediment: Vec<f32>,
     sediment1: Vec<f32>,
     flux: [Vec<f32>; 4], // to x−1, x+1, y−1, y+1
+    /// u and v of the last step: empty unless recorded ([`Self::with_velocity`])
+    /// or needed (semi-Lagrangian transport).
     vel: [Vec<f32>; 2],
+    record_velocity: bool,
     /// The next step's bed (swapped with the field's heights after each step).
     bed: Grid2<f32>,
+    /// The field's heights when the current `run` / `step` call began (its
+    /// net change is added to `deposit` when the call ends).
+    bed_start: Grid2<f32>,
     erodibility: Option<Erodibility>,
     ledger: PipeLedger,
     deposit: Vec<f32>,
@@ -193,8 +199,10 @@ impl PipeModel {
             sediment: z(),
             sediment1: Vec::new(),
             flux: [z(), z(), z(), z()],
-            vel: [z(), z()],
+            vel: [Vec::new(), Vec::new()],
+            record_velocity: false,
             bed: Grid2::from_vec(hf.nx(), hf.ny(), z())?,
+            bed_start: Grid2::from_vec(hf.nx(), hf.ny(), z())?,
             erodibility: None,
             ledger: PipeLedger {
                 initial_material: hf.heights().sum(),
@@ -215,6 +223,22 @@ impl PipeModel {
         }
         self.erodibility = Some(e);
         Ok(self)
+    }
+
+    /// Keeps (`true`) or drops (`false`, the default) the water velocity of
+    /// each step for [`Self::velocity`]. Recording writes two more planes per
+    /// step (about a fifth of the step's memory traffic), so the model only
+    /// does it when asked; the semi-Lagrangian transport needs the velocity
+    /// and always keeps it. Nothing else the model computes depends on this.
+    #[must_use]
+    pub fn with_velocity(mut self, record: bool) -> Self {
+        self.record_velocity = record;
+        self
+    }
+
+    /// Whether the steps keep u and v.
+    fn keeps_velocity(&self) -> bool {
+        self.record_velocity || self.p.transport == SedimentTransport::SemiLagrangian
     }
 
     /// Sets the water depth (metres ≥ 0, finite).
@@ -243,13 +267,30 @@ impl PipeModel {
         Ok(Grid2::from_vec(self.nx, self.ny, self.sediment.clone())?)
     }
 
-    /// Net deposition since the model was built (positive: material laid down), metres.
+    /// Net deposition since the model was built (positive: material laid
+    /// down), metres: the sum over the model's `run` / `step` calls of the
+    /// bed's change during each call (so changes made to the field between
+    /// calls, by other models, are not counted).
     pub fn deposition(&self) -> Result<Grid2<f32>> {
         Ok(Grid2::from_vec(self.nx, self.ny, self.deposit.clone())?)
     }
 
-    /// Water velocity `(u, v)` of the last step, m/s.
+    /// Water velocity `(u, v)` of the last step, m/s. Kept only by a model
+    /// built [`with_velocity(true)`](Self::with_velocity) or with the
+    /// semi-Lagrangian transport; otherwise an error says so. Before the
+    /// first step it is zero.
     pub fn velocity(&self) -> Result<(Grid2<f32>, Grid2<f32>)> {
+        if !self.keeps_velocity() {
+            return Err(invalid(
+                "PipeModel::velocity",
+                "not recorded",
+                "build the model with `with_velocity(true)` to keep the velocity",
+            ));
+        }
+        if self.vel[0].is_empty() {
+            let z = Grid2::from_vec(self.nx, self.ny, vec![0.0f32; self.nx * self.ny])?;
+            return Ok((z.clone(), z));
+        }
         Ok((
             Grid2::from_vec(self.nx, self.ny, self.vel[0].clone())?,
             Grid2::from_vec(self.nx, self.ny, self.vel[1].clone())?,
@@ -278,9 +319,17 @@ impl PipeModel {
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("pipe-model erosion", hf, self.nx, self.ny)?;
         progress.start("pipe model", u64::from(steps));
-        for _ in 0..steps {
+        for k in 0..steps {
             self.step_unchecked(hf);
+            if k == 0 {
+                // Keep the heights the call began with; the steps alternate
+                // between the field and the other buffer.
+                std::mem::swap(&mut self.bed, &mut self.bed_start);
+            }
             progress.advance(1);
+        }
+        if steps > 0 {
+            self.add_deposit(hf);
         }
         progress.finish();
         Ok(())
@@ -290,7 +339,23 @@ impl PipeModel {
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("pipe-model erosion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);
+        std::mem::swap(&mut self.bed, &mut self.bed_start);
+        self.add_deposit(hf);
         Ok(())
+    }
+
+    /// Adds the bed's change over the call that just ended (`hf` now against
+    /// `bed_start`) to the deposit: the deposit mirrors the bed to one
+    /// rounding, and the steps need not read and write a deposit plane.
+    fn add_deposit(&mut self, hf: &HeightField) {
+        let nx = self.nx;
+        let (now, start) = (hf.heights().as_slice(), self.bed_start.as_slice());
+        par::map_bands(nx, self.ny, [self.deposit.as_mut_slice()], |y0, y1, [d]| {
+            let (now, start) = (&now[y0 * nx..y1 * nx], &start[y0 * nx..y1 * nx]);
+            for ((d, &h), &h0) in d.iter_mut().zip(now).zip(start) {
+                *d += h - h0;
+            }
+        });
     }
 
     /// One step. With the default conservative transport the whole step is
@@ -305,6 +370,14 @@ impl PipeModel {
     /// evaporation ledger is summed in a different order).
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let c = Consts::new(&self.p, self.cell, self.nx, self.ny);
+        let n = if self.keeps_velocity() {
+            self.nx * self.ny
+        } else {
+            0
+        };
+        for p in &mut self.vel {
+            p.resize(n, 0.0);
+        }
         if self.fast && self.fused && self.p.transport == SedimentTransport::Conservative {
             self.step_fused(&c, hf);
         } else {
@@ -358,7 +431,6 @@ impl PipeModel {
                 sediment: &self.sediment,
                 flux: &self.flux,
                 bed,
-                deposit: &self.deposit,
                 erod,
             };
             par::run(bounds, |yb| halo(c, &st, yb))
@@ -375,13 +447,12 @@ impl PipeModel {
             self.bed.as_mut_slice(),
             u.as_mut_slice(),
             v.as_mut_slice(),
-            self.deposit.as_mut_slice(),
         ];
         let mut parts = planes.map(|p| split_rows(p, nx, &chunks).into_iter());
         let n = chunks.len();
         let jobs: Vec<_> = (0..n)
             .map(|k| {
-                let planes: [&mut [f32]; 10] =
+                let planes: [&mut [f32]; 9] =
                     std::array::from_fn(|i| parts[i].next().expect("one part per chunk"));
                 let lower = below[k].map(|h| &halos[h]);
                 let upper = if k + 1 < n {
@@ -447,6 +518,10 @@ impl PipeModel {
         }
         // ---- pass B: depth, velocity, erosion / deposition, evaporation.
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
+        // The three passes always compute u and v (the semi-Lagrangian transport reads them).
+        for p in &mut self.vel {
+            p.resize(nx * ny, 0.0);
+        }
         let results: Vec<(f64, Vec<(usize, f64)>)> = {
             let d1 = &self.water1;
             let f = &self.flux;
@@ -458,9 +533,8 @@ impl PipeModel {
                 self.sediment1.as_mut_slice(),
                 u.as_mut_slice(),
                 v.as_mut_slice(),
-                self.deposit.as_mut_slice(),
             ];
-            par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo, depo]| {
+            par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo]| {
                 let mut evaporated = 0.0f64;
                 let mut out_w = Vec::new();
                 for y in y0..y1 {
@@ -478,8 +552,7 @@ impl PipeModel {
                         &mut bo[r.clone()],
                         &mut so[r.clone()],
                         &mut uo[r.clone()],
-                        &mut vo[r.clone()],
-                        &mut depo[r],
+                        &mut vo[r],
                     ];
                     evaporated += b_row(c, simd, &ins, outs, y, &mut out_w);
                 }
@@ -546,6 +619,11 @@ fn split_rows<'a>(
     chunks: &[(usize, usize)],
 ) -> Vec<&'a mut [f32]> {
     let mut parts = Vec::with_capacity(chunks.len());
+    if p.is_empty() {
+        // A plane not kept (u, v): an empty part per chunk.
+        parts.resize_with(chunks.len(), || &mut [][..]);
+        return parts;
+    }
     for &(y0, y1) in chunks {
         let (a, b) = std::mem::take(&mut p).split_at_mut((y1 - y0) * nx);
         parts.push(a);
@@ -560,7 +638,6 @@ struct Planes<'a> {
     sediment: &'a [f32],
     flux: &'a [Vec<f32>; 4],
     bed: &'a [f32],
-    deposit: &'a [f32],
     erod: Option<&'a [f32]>,
 }
 
@@ -617,15 +694,14 @@ fn halo(c: &Consts, st: &Planes<'_>, yb: usize) -> Halo {
             bed: c.rows(st.bed, r),
             erod: st.erod.map(|e| &e[g.clone()]),
         };
-        let mut scratch: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0f32; nx]);
-        let mut dep = row(st.deposit, r);
+        let mut scratch: [Vec<f32>; 2] = std::array::from_fn(|_| vec![0.0f32; nx]);
         let mut out = vec![0.0f32; nx];
-        let [w, b, u, v] = &mut scratch;
+        let [w, b] = &mut scratch;
         b_row(
             c,
             true,
             &ins,
-            [w, b, &mut out, u, v, &mut dep],
+            [w, b, &mut out, &mut [], &mut []],
             r,
             &mut Vec::new(),
         );
@@ -647,21 +723,21 @@ fn halo(c: &Consts, st: &Planes<'_>, yb: usize) -> Halo {
 
 /// One chunk `[y0, y1)` of the fused step (see [`PipeModel::step_fused`]);
 /// `planes` are the chunk's rows of water, sediment, the four fluxes, the
-/// new bed, u, v and the deposit. Returns the water evaporated and the
+/// new bed, u and v (empty when not kept). Returns the water evaporated and the
 /// per-cell water and sediment outflows through open edges, in row order.
 #[allow(clippy::too_many_arguments)]
 fn sweep(
     c: &Consts,
     y0: usize,
     y1: usize,
-    planes: [&mut [f32]; 10],
+    planes: [&mut [f32]; 9],
     bed: &[f32],
     erod: Option<&[f32]>,
     lower: Option<&Halo>,
     upper: Option<&Halo>,
 ) -> (f64, Outflows, Outflows) {
     let nx = c.nx;
-    let [w, s, f0, f1, f2, f3, bn, u, v, dep] = planes;
+    let [w, s, f0, f1, f2, f3, bn, u, v] = planes;
     let mut f = [f0, f1, f2, f3];
     let mut d1r = vec![0.0f32; 4 * nx];
     let mut s1r = vec![0.0f32; 4 * nx];
@@ -744,9 +820,8 @@ fn sweep(
                 &mut w[loc(y)],
                 &mut bn[loc(y)],
                 &mut s1r[ring(y)],
-                &mut u[loc(y)],
-                &mut v[loc(y)],
-                &mut dep[loc(y)],
+                opt_rows(u, loc(y)),
+                opt_rows(v, loc(y)),
             ];
             evaporated += b_row(c, true, &ins, outs, y, &mut out_w);
         }
@@ -786,6 +861,12 @@ fn sweep(
         }
     }
     (evaporated, out_w, out_s)
+}
+
+/// `p[r]`, or `p` itself if it is empty (a plane not kept).
+#[inline]
+fn opt_rows(p: &mut [f32], r: std::ops::Range<usize>) -> &mut [f32] {
+    if p.is_empty() { p } else { &mut p[r] }
 }
 
 /// Per-cell outflows through open edges, `(row, amount)` in row order.
@@ -855,33 +936,26 @@ struct BIn<'a> {
     erod: Option<&'a [f32]>,
 }
 
-/// Pass B over row `y`: writes water, bed, post-erosion sediment, u, v and
-/// updates the deposit; returns the water evaporated and appends each
+/// Pass B over row `y`: writes water, bed, post-erosion sediment and (unless
+/// their slices are empty) u and v; returns the water evaporated and appends each
 /// cell's outflow through open edges to `out`.
 fn b_row(
     c: &Consts,
     simd: bool,
     ins: &BIn<'_>,
-    outs: [&mut [f32]; 6],
+    outs: [&mut [f32]; 5],
     y: usize,
     out: &mut Vec<(usize, f64)>,
 ) -> f64 {
     let nx = c.nx;
-    let [wo, bo, so, uo, vo, depo] = outs;
+    let [wo, bo, so, uo, vo] = outs;
+    let vel = !uo.is_empty();
     let mut evaporated = 0.0f64;
     let mut cell = |x: usize| {
-        let (lost, o) = c.update_cell(
-            x,
-            ins,
-            [
-                &mut wo[x],
-                &mut bo[x],
-                &mut so[x],
-                &mut uo[x],
-                &mut vo[x],
-                &mut depo[x],
-            ],
-        );
+        let (lost, o, [u, v]) = c.update_cell(x, ins, [&mut wo[x], &mut bo[x], &mut so[x]]);
+        if vel {
+            (uo[x], vo[x]) = (u, v);
+        }
         evaporated += f64::from(lost);
         if o != 0.0 {
             out.push((y, o));
@@ -903,9 +977,8 @@ fn b_row(
             &mut wo[m.clone()],
             &mut bo[m.clone()],
             &mut so[m.clone()],
-            &mut uo[m.clone()],
-            &mut vo[m.clone()],
-            &mut depo[m.clone()],
+            opt_rows(uo, m.clone()),
+            opt_rows(vo, m.clone()),
         ];
         evaporated += match ins.erod {
             Some(e) => update_row_erodible(c, &ui, &e[m], outs),
@@ -1088,15 +1161,15 @@ impl Consts {
         d1
     }
 
-    /// Pass B for one cell: writes water, bed, sediment, u, v and updates the
-    /// deposit; returns the water evaporated and the water lost through open edges.
+    /// Pass B for one cell: writes water, bed and sediment; returns the water
+    /// evaporated, the water lost through open edges and the velocity.
     #[inline]
     fn update_cell(
         &self,
         x: usize,
         ins: &BIn<'_>,
-        [wo, bo, so, uo, vo, depo]: [&mut f32; 6],
-    ) -> (f32, f64) {
+        [wo, bo, so]: [&mut f32; 3],
+    ) -> (f32, f64, [f32; 2]) {
         let f = &ins.f;
         let get = |k: usize, dir: usize| self.nb(f[dir], x, k).unwrap_or(0.0);
         let in_l = get(L, R);
@@ -1122,13 +1195,13 @@ impl Consts {
             bn: [bn(L), bn(R), bn(B), bn(T)],
             ks: ins.erod.map_or(self.ks, |e| self.ks * e[x]),
         };
-        let o = self.update(&cell, *depo);
-        [*wo, *bo, *so, *uo, *vo, *depo] = [o.w, o.b, o.s, o.u, o.v, o.dep];
-        (o.lost, out_w)
+        let o = self.update(&cell);
+        [*wo, *bo, *so] = [o.w, o.b, o.s];
+        (o.lost, out_w, [o.u, o.v])
     }
     /// The arithmetic of pass B for one cell, shared by both paths.
     #[inline(always)]
-    fn update(&self, c: &CellIn, dep0: f32) -> CellOut {
+    fn update(&self, c: &CellIn) -> CellOut {
         let [fl, fr, fb, ft] = c.fo;
         let [in_l, in_r, in_b, in_t] = c.fin;
         let out = fl + fr + fb + ft;
@@ -1166,7 +1239,6 @@ impl Consts {
             s: if erode { s + e } else { s - dep },
             u: vu,
             v: vv,
-            dep: if erode { dep0 - e } else { dep0 + dep },
             lost,
         }
     }
@@ -1267,7 +1339,6 @@ struct CellOut {
     s: f32,
     u: f32,
     v: f32,
-    dep: f32,
     lost: f32,
 }
 
@@ -1340,28 +1411,30 @@ const BLOCK: usize = 128;
 
 simd::multiversion! {
 /// Pass B over the interior cells of a row (uniform `K_s`); returns the water evaporated.
-fn update_row_uniform<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, outs: [&'a mut [f32]; 6]) -> f64 {
+fn update_row_uniform<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, outs: [&'a mut [f32]; 5]) -> f64 {
     update_row::<false>(c, ins, &[], outs)
 }
 }
 
 simd::multiversion! {
 /// Pass B over the interior cells of a row with an erodibility map; returns the water evaporated.
-fn update_row_erodible<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 6]) -> f64 {
+fn update_row_erodible<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 5]) -> f64 {
     update_row::<true>(c, ins, erod, outs)
 }
 }
 
 /// Pass B over the interior cells of a row; returns the water evaporated.
+/// `u` and `v` are stored only if their slices are not empty.
 #[inline(always)]
 fn update_row<const ERODIBILITY: bool>(
     c: &Consts,
     ins: &UpdateIn<'_>,
     erod: &[f32],
-    outs: [&mut [f32]; 6],
+    outs: [&mut [f32]; 5],
 ) -> f64 {
-    let [wo, bo, so, uo, vo, depo] = outs;
+    let [wo, bo, so, uo, vo] = outs;
     let m = wo.len();
+    let vel = !uo.is_empty();
     let mut total = 0.0f64;
     let mut lost = [0.0f32; BLOCK];
     let mut a = 0;
@@ -1374,7 +1447,7 @@ fn update_row<const ERODIBILITY: bool>(
         let bed = ins.bed.sub(a, b);
         let er = if ERODIBILITY { &erod[a..b] } else { &[][..] };
         let (wo, bo, so) = (&mut wo[a..b], &mut bo[a..b], &mut so[a..b]);
-        let (uo, vo, depo) = (&mut uo[a..b], &mut vo[a..b], &mut depo[a..b]);
+        let (uo, vo) = (opt_rows(uo, a..b), opt_rows(vo, a..b));
         let lost = &mut lost[..n];
         // Lanes of LANES cells through local arrays (no aliasing between the
         // row slices for the vectoriser to check); the last one padded.
@@ -1382,7 +1455,7 @@ fn update_row<const ERODIBILITY: bool>(
         while k0 < n {
             let w = (n - k0).min(LANES);
             let g = |s: &[f32]| take::<LANES>(s, k0, w);
-            let (dd, s, dep0) = (g(d1), g(s0), g(depo));
+            let (dd, s) = (g(d1), g(s0));
             let (flc, frc, fbc, ftc) = (g(fl.c), g(fr.c), g(fb.c), g(ft.c));
             let (frl, flr, ftb, fbt) = (g(fr.l), g(fl.r), g(ft.b), g(fb.t));
             let (bc, bl, br, bb, bt) = (g(bed.c), g(bed.l), g(bed.r), g(bed.b), g(bed.t));
@@ -1426,18 +1499,17 @@ fn update_row<const ERODIBILITY: bool>(
                 lane(|k| d2[k] - lost_k[k]),
                 lane(|k| pick(cap[k] > s[k], bc[k] - ero[k], bc[k] + dep[k])),
                 lane(|k| pick(cap[k] > s[k], s[k] + ero[k], s[k] - dep[k])),
-                vu,
-                vv,
-                lane(|k| pick(cap[k] > s[k], dep0[k] - ero[k], dep0[k] + dep[k])),
                 lost_k,
             ];
-            for (d, v) in [
-                &mut *wo, &mut *bo, &mut *so, &mut *uo, &mut *vo, &mut *depo, &mut *lost,
-            ]
-            .into_iter()
-            .zip(&o)
+            for (d, v) in [&mut *wo, &mut *bo, &mut *so, &mut *lost]
+                .into_iter()
+                .zip(&o)
             {
                 put(d, k0, w, v);
+            }
+            if vel {
+                put(uo, k0, w, &vu);
+                put(vo, k0, w, &vv);
             }
             k0 += w;
         }
@@ -1692,6 +1764,7 @@ mod tests {
                 }
                 m.set_water(&water).unwrap();
                 m.fast = fast;
+                m.record_velocity = true;
                 let mut h = hf.clone();
                 m.run(&mut h, 40, &NoProgress).unwrap();
                 (m, h)
@@ -1774,6 +1847,7 @@ mod tests {
                 m.set_water(&water).unwrap();
                 m.fast = fast;
                 m.fused = fused;
+                m.record_velocity = true;
                 m.chunk_rows = chunk_rows;
                 let mut h = hf.clone();
                 let pool = rayon::ThreadPoolBuilder::new()
@@ -1828,6 +1902,99 @@ mod tests {
             assert!(fused.total_sediment() > 0.0, "case {case}: nothing eroded");
             if edges == Edges::Open {
                 assert!(fused.ledger().outflow_sediment > 0.0, "case {case}");
+            }
+        }
+    }
+
+    /// Recording the velocity changes nothing else (bit for bit, fused and
+    /// three-pass paths); without it `velocity()` is a typed error. The
+    /// deposit mirrors the bed: after runs and single steps (split in several
+    /// calls) it equals the field's change since the model was built to
+    /// within the rounding of the heights, and calls that split the same steps
+    /// differently agree to that rounding too.
+    #[test]
+    fn velocity_on_request_and_deposit_from_the_bed() {
+        let s = Seed(31);
+        let (nx, ny) = (45, 38);
+        let g = |k: u64, i: usize, j: usize| s.derive_index(k).uniform2(i as i64, j as i64);
+        let hf0 = HeightField::from_fn(nx, ny, 1.5, |i, j| 20.0 * g(1, i, j) as f32).unwrap();
+        let water = Grid2::from_fn(nx, ny, |i, j| 2.0 * g(2, i, j) as f32).unwrap();
+        for edges in [Edges::Closed, Edges::Open, Edges::Periodic] {
+            let p = PipeParams {
+                edges,
+                dt: 0.2,
+                k_c: 0.5,
+                ..Default::default()
+            };
+            let build = |record: bool, fused: bool, calls: &[u32]| {
+                let mut m = PipeModel::new(p.clone(), &hf0)
+                    .unwrap()
+                    .with_velocity(record);
+                m.set_water(&water).unwrap();
+                m.fused = fused;
+                m.chunk_rows = 8;
+                let mut h = hf0.clone();
+                for &n in calls {
+                    if n == 0 {
+                        m.step(&mut h).unwrap();
+                    } else {
+                        m.run(&mut h, n, &NoProgress).unwrap();
+                    }
+                }
+                (m, h)
+            };
+            let (plain, h_plain) = build(false, true, &[25]);
+            assert!(
+                plain.velocity().is_err(),
+                "{edges:?}: velocity not recorded"
+            );
+            assert!(plain.vel[0].is_empty() && plain.vel[1].is_empty());
+            for (what, (m, h)) in [
+                ("recorded", build(true, true, &[25])),
+                ("three passes", build(false, false, &[25])),
+            ] {
+                let same = |field: &str, a: &[f32], b: &[f32]| {
+                    assert_eq!(a.len(), b.len());
+                    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                        assert!(
+                            x.to_bits() == y.to_bits(),
+                            "{edges:?}: {field}[{k}] {x} vs {what} {y}"
+                        );
+                    }
+                };
+                same("bed", h_plain.heights().as_slice(), h.heights().as_slice());
+                same("water", &plain.water, &m.water);
+                same("sediment", &plain.sediment, &m.sediment);
+                same("deposit", &plain.deposit, &m.deposit);
+                for k in 0..4 {
+                    same("flux", &plain.flux[k], &m.flux[k]);
+                }
+            }
+            let (rec, _) = build(true, true, &[25]);
+            let (u, v) = rec.velocity().unwrap();
+            assert!(u.as_slice().iter().chain(v.as_slice()).any(|&x| x != 0.0));
+            // The deposit against the field's change, for one call and for several.
+            let (split, h_split) = build(false, true, &[0, 7, 0, 0, 16]);
+            same_to_rounding(&plain.deposit, &h_plain, &hf0, edges);
+            same_to_rounding(&split.deposit, &h_split, &hf0, edges);
+            let eroded = plain.deposit.iter().filter(|&&d| d < 0.0).count();
+            assert!(eroded > 0, "{edges:?}: nothing eroded");
+        }
+        /// `dep = h − h₀` cell by cell, to a few roundings of the heights
+        /// (the field is at most 20 m high: an ulp of 2⁻¹⁹ m).
+        fn same_to_rounding(dep: &[f32], h: &HeightField, h0: &HeightField, edges: Edges) {
+            let tol = 6.0 * 2f32.powi(-19);
+            for (k, ((&d, &a), &b)) in dep
+                .iter()
+                .zip(h.heights().as_slice())
+                .zip(h0.heights().as_slice())
+                .enumerate()
+            {
+                assert!(
+                    (d - (a - b)).abs() <= tol,
+                    "{edges:?}: deposit[{k}] {d} vs change {}",
+                    a - b
+                );
             }
         }
     }
