@@ -311,7 +311,7 @@ const CH: usize = 256;
 /// `Σ a·b` in `f64`, in eight lane sums added in a fixed order (so the
 /// loop vectorises; deterministic).
 #[inline(always)]
-fn lane_dot(a: &[f32], b: &[f32]) -> f64 {
+pub(crate) fn lane_dot(a: &[f32], b: &[f32]) -> f64 {
     let mut lanes = [0.0f64; 8];
     let (a8, b8) = (a.chunks_exact(8), b.chunks_exact(8));
     let (at, bt) = (a8.remainder(), b8.remainder());

@@ -175,13 +175,20 @@ impl Substances {
     }
 }
 
+/// The step's force field: `extra` (the user's per-step field) plus the
+/// persistent force sources, written into `f` (cell-sized grids; a user
+/// field of another size is an error).
 fn force_field(
+    f: &mut [Grid3<f32>; 3],
     dims: Dims,
     h: f32,
     sources: &[ForceSource],
     extra: &[Grid3<f32>; 3],
-) -> Result<[Grid3<f32>; 3]> {
-    let mut f = extra.clone();
+) -> Result<()> {
+    for (o, e) in f.iter_mut().zip(extra) {
+        grid::check_cell_grid(e, dims, "force field")?;
+        o.as_mut_slice().copy_from_slice(e.as_slice());
+    }
     for s in sources {
         let mask = voxelise(&[Obstacle::fixed(s.shape)], dims, h);
         for (c, m) in mask.into_iter().enumerate() {
@@ -194,7 +201,7 @@ fn force_field(
             }
         }
     }
-    Ok(f)
+    Ok(())
 }
 
 fn check_force_source(dims: Dims, h: f32, s: &ForceSource) -> Result<()> {
@@ -341,7 +348,8 @@ impl PeriodicFluid {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
         // w1 = w0 + dt f
-        let f = force_field(dims, h, &self.force_sources, &self.force)?;
+        let mut f = zero3(dims)?;
+        force_field(&mut f, dims, h, &self.force_sources, &self.force)?;
         for a in 0..3 {
             if dims.active(a) {
                 for (v, &fv) in self.vel[a].as_mut_slice().iter_mut().zip(f[a].as_slice()) {
@@ -465,6 +473,9 @@ pub struct BoundedFluid {
     spare: MacVelocity,
     /// Diffusion roles of faces and cells, rebuilt when the solids move.
     roles: Roles,
+    /// The step's force field (user field plus sources), kept between
+    /// steps so that a step does not allocate it.
+    fbuf: [Grid3<f32>; 3],
 }
 
 /// The implicit diffusion's sample roles (faces per axis, cells), which
@@ -525,6 +536,7 @@ impl BoundedFluid {
             scratch: diffuse::Scratch::default(),
             spare: MacVelocity::zeros(dims)?,
             roles: Roles::default(),
+            fbuf: zero3(dims)?,
         })
     }
 
@@ -644,8 +656,14 @@ impl BoundedFluid {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
         let bounds = self.params.bounds;
-        let f = force_field(dims, h, &self.force_sources, &self.force)?;
-        mac::add_centre_forces(&mut self.vel, &f, dt, self.solid.kinds.as_slice(), &bounds);
+        force_field(&mut self.fbuf, dims, h, &self.force_sources, &self.force)?;
+        mac::add_centre_forces(
+            &mut self.vel,
+            &self.fbuf,
+            dt,
+            self.solid.kinds.as_slice(),
+            &bounds,
+        );
         let solids = Solids {
             kinds: self.solid.kinds.as_slice(),
             dims,
