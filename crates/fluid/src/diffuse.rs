@@ -5,10 +5,13 @@
 //! M-matrix, so the solution never exceeds the data's range and its energy
 //! never grows (spec §6.4 S2). Samples marked fixed keep their values and act
 //! as Dirichlet data; neighbours beyond the grid edge are omitted (zero-flux
-//! Neumann), so the sum is conserved in a closed box. Solved by
-//! Jacobi-preconditioned conjugate gradient to a relative residual of 1e-6.
+//! Neumann), so the sum is conserved in a closed box. Solved by Chebyshev
+//! iteration on the Gershgorin bounds of the spectrum to a relative residual
+//! of 1e-6 (the general-form conjugate-gradient solve is kept as the test
+//! oracle).
 
 use crate::par;
+use natura_core::simd::{self, Kernel, Simd};
 
 /// An unknown sample.
 pub(crate) const FREE: u8 = 0;
@@ -21,25 +24,46 @@ pub(crate) const EXCLUDED: u8 = 2;
 ///
 /// `n`: sample counts; `coef = ν dt / h²`; `role[s]` is [`FREE`],
 /// [`DIRICHLET`] (keeps its value, feeds neighbours) or [`EXCLUDED`]
-/// (keeps its value, acts as a zero-flux wall). Returns the CG iteration count.
+/// (keeps its value, acts as a zero-flux wall). Returns the iteration count.
 ///
-/// Row-wise form of [`diffuse_ref`] (same system, same stopping rule): every
-/// CG vector is kept zero on fixed samples, so the coupling of a free sample
-/// is the plain sum of its in-grid neighbours and the operator runs over
-/// contiguous rows without per-sample branching.
+/// Same system and stopping rule as [`diffuse_ref`] (relative residual
+/// `‖b − A x‖₂ ≤ 1e-6 ‖b‖₂`), solved by Chebyshev iteration instead of
+/// conjugate gradients; see [`diffuse_in`].
 #[cfg(test)]
 pub(crate) fn diffuse(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8]) -> u32 {
     diffuse_in(&mut Scratch::default(), data, n, coef, role)
 }
 
 /// Work vectors of [`diffuse_in`], kept between calls so that a solver
-/// step does not allocate (and page-fault) seven grids per component.
+/// step does not allocate (and page-fault) its grids per component.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scratch {
-    v: [Vec<f32>; 7],
+    v: [Vec<f32>; 3],
 }
 
+/// Relative residual the diffusion solve reaches.
+const TOL: f64 = 1e-6;
+/// Iteration cap (never reached for `coef` below ≈ 10⁴ in 3-D).
+const MAX_ITER: u32 = 10_000;
+
 /// [`diffuse`] with caller-owned work vectors.
+///
+/// **Chebyshev iteration** (Saad, *Iterative Methods for Sparse Linear
+/// Systems*, Alg. 12.1) on `A x = b`, `A = I + coef·L` restricted to the free
+/// samples. By Gershgorin every eigenvalue lies in `[1, 1 + 2·coef·deg]`
+/// (`deg` = neighbours per sample, 2 per active axis): the diagonal is
+/// `1 + coef·(non-excluded neighbours)`, the off-diagonal row sum at most
+/// `coef·(free neighbours)`. With these bounds the residual after `m` steps
+/// obeys `‖r_m‖ ≤ ‖r_0‖ / T_m(σ)`, `σ = (λmax + λmin)/(λmax − λmin)`, so
+/// the iteration stops as soon as that bound (with a factor 2 margin for
+/// round-off) or the residual measured in the pass is below `1e-6 ‖b‖` —
+/// the conjugate-gradient solve's tolerance. Each step is one fused pass
+/// (no inner products but the residual norm, which the pass sums on the
+/// fly): it computes the true residual `r_m = b − A x_m` from `x_m`, the
+/// correction `d_m = a_m d_{m−1} + g_m r_m` and `x_{m+1} = x_m + d_m`.
+/// The iterate holds the data on fixed samples, so the operator is the
+/// plain neighbour difference `b_s − x_s + coef Σ (x_nb − x_s)` over
+/// non-excluded in-grid neighbours and nothing has to be set up per call.
 pub(crate) fn diffuse_in(
     scratch: &mut Scratch,
     data: &mut [f32],
@@ -47,241 +71,238 @@ pub(crate) fn diffuse_in(
     coef: f32,
     role: &[u8],
 ) -> u32 {
-    if coef == 0.0 {
+    let deg = 2 * n.iter().filter(|&&m| m > 1).count();
+    if coef == 0.0 || deg == 0 || data.is_empty() {
         return 0;
     }
     let len = data.len();
     let n0 = n[0];
+    let masked = role.contains(&EXCLUDED);
+    let (lmin, lmax) = (1.0f64, 1.0 + 2.0 * f64::from(coef) * deg as f64);
+    let theta = 0.5 * (lmax + lmin);
+    let delta = 0.5 * (lmax - lmin);
+    let sigma = theta / delta;
     // Every element of each work vector is written before it is read.
     let mut take = |k: usize| {
         let mut v = std::mem::take(&mut scratch.v[k]);
         v.resize(len, 0.0);
         v
     };
-    let (mut dg, mut b, mut x, mut r, mut inv, mut p, mut q) = (
-        take(0),
-        take(1),
-        take(2),
-        take(3),
-        take(4),
-        take(5),
-        take(6),
-    );
-    // Diagonal (0 on fixed samples), right-hand side (Dirichlet
-    // neighbours' values moved to it), the initial iterate (the data on
-    // free samples, 0 on fixed ones) and the Jacobi weights `1/A_ss` (0 on
-    // fixed samples), row by row in one parallel pass.
-    {
-        let data: &[f32] = data;
-        let mut vs: [&mut [f32]; 4] = [&mut dg, &mut b, &mut x, &mut inv];
-        par::for_bands(&mut vs, n0, |r, rows| {
-            let [drow, brow, xrow, irow] = rows else {
-                unreachable!("four vectors per band")
-            };
-            let s0 = r * n0;
-            let (j, k) = (r % n[1], r / n[1]);
-            let mut nbs: [Option<usize>; 4] = [None; 4];
-            if n[1] > 1 {
-                nbs[0] = (j > 0).then(|| s0 - n0);
-                nbs[1] = (j + 1 < n[1]).then(|| s0 + n0);
+    let (mut xa, mut xb, mut d) = (take(0), take(1), take(2));
+    let simd = Simd::best();
+    let pass = |x: &[f32], xo: &mut [f32], d: &mut [f32], first: bool, a: f32, g: f32| {
+        let p = Pass {
+            x,
+            b: data,
+            role,
+            n,
+            coef,
+            first,
+            a,
+            g,
+        };
+        par::for_chunks2_sum2(xo, d, n0, |r, xo, d| {
+            if masked {
+                simd::run(simd, PassRow::<true> { p: &p, r, xo, d })
+            } else {
+                simd::run(simd, PassRow::<false> { p: &p, r, xo, d })
             }
-            if n[2] > 1 {
-                nbs[2] = (k > 0).then(|| s0 - n0 * n[1]);
-                nbs[3] = (k + 1 < n[2]).then(|| s0 + n0 * n[1]);
+        })
+    };
+    // Step 0 reads the data as x_0 and writes x_1 = x_0 + r_0/θ.
+    let (rr0, bb) = pass(data, &mut xa, &mut d, true, 0.0, (1.0 / theta) as f32);
+    let tol = TOL * bb.sqrt();
+    let r0 = rr0.sqrt();
+    let mut it = 0;
+    if bb > 0.0 && r0 > tol {
+        // x_m lives in `xa`; T_{m−1}, T_m of the bound.
+        let (mut t_prev, mut t) = (1.0f64, sigma);
+        let mut rho_prev = 1.0 / sigma;
+        it = 1;
+        while r0 / t > 0.5 * tol && it < MAX_ITER {
+            let rho = 1.0 / (2.0 * sigma - rho_prev);
+            let (a, g) = ((rho * rho_prev) as f32, (2.0 * rho / delta) as f32);
+            let (rr, _) = pass(&xa, &mut xb, &mut d, false, a, g);
+            if rr.sqrt() <= tol {
+                break;
             }
-            // Neighbour by neighbour in the general form's order (left,
-            // right, then the y and z rows), over contiguous slices.
-            for ((dv, bv), &v) in drow.iter_mut().zip(brow.iter_mut()).zip(&data[s0..s0 + n0]) {
-                *dv = 1.0;
-                *bv = v;
-            }
-            let add = |drow: &mut [f32], brow: &mut [f32], nr: &[u8], nd: &[f32]| {
-                for ((dv, bv), (&m, &v)) in
-                    drow.iter_mut().zip(brow.iter_mut()).zip(nr.iter().zip(nd))
-                {
-                    // Selects, not branches (conditional stores), so the
-                    // loop vectorises; the same values.
-                    let (d1, b1) = (*dv + coef, *bv + coef * v);
-                    *dv = if m != EXCLUDED { d1 } else { *dv };
-                    *bv = if m == DIRICHLET { b1 } else { *bv };
-                }
-            };
-            if n0 > 1 {
-                let (l, h) = (s0..s0 + n0 - 1, s0 + 1..s0 + n0);
-                add(&mut drow[1..], &mut brow[1..], &role[l.clone()], &data[l]);
-                add(
-                    &mut drow[..n0 - 1],
-                    &mut brow[..n0 - 1],
-                    &role[h.clone()],
-                    &data[h],
-                );
-            }
-            for &nb in nbs.iter().flatten() {
-                add(drow, brow, &role[nb..nb + n0], &data[nb..nb + n0]);
-            }
-            for ((dv, bv), &m) in drow.iter_mut().zip(brow.iter_mut()).zip(&role[s0..s0 + n0]) {
-                let free = m == FREE;
-                *dv = if free { *dv } else { 0.0 };
-                *bv = if free { *bv } else { 0.0 };
-            }
-            for (((xv, iv), &d), &v) in xrow
-                .iter_mut()
-                .zip(irow.iter_mut())
-                .zip(drow.iter())
-                .zip(&data[s0..s0 + n0])
-            {
-                *xv = if d != 0.0 { v } else { 0.0 };
-                *iv = if d != 0.0 { 1.0 / d } else { 0.0 };
-            }
-        });
+            std::mem::swap(&mut xa, &mut xb);
+            rho_prev = rho;
+            (t_prev, t) = (t, 2.0 * sigma * t - t_prev);
+            it += 1;
+        }
+        data.copy_from_slice(&xa);
     }
-    // `y = A x` row by row (x zero on fixed samples); returns `Σ x·y` in
-    // `f64`, summed per row and the rows in order (deterministic).
-    let apply = |x: &[f32], y: &mut [f32]| -> f64 {
-        par::for_chunks_sum(y, n0, |r, yrow| {
-            let s0 = r * n0;
-            let (j, k) = (r % n[1], r / n[1]);
-            let xr = &x[s0..s0 + n0];
-            let mut nb: [Option<&[f32]>; 4] = [None; 4];
-            if n[1] > 1 {
-                nb[0] = (j > 0).then(|| &x[s0 - n0..s0]);
-                nb[1] = (j + 1 < n[1]).then(|| &x[s0 + n0..s0 + 2 * n0]);
+    scratch.v = [xa, xb, d];
+    it
+}
+
+/// One Chebyshev step over the rows (see [`diffuse_in`]).
+struct Pass<'a> {
+    /// The iterate `x_m` (data on fixed samples).
+    x: &'a [f32],
+    /// The data: the right-hand side on free samples.
+    b: &'a [f32],
+    role: &'a [u8],
+    n: [usize; 3],
+    coef: f32,
+    /// Step 0: `d_{−1}` is not read, and `‖b‖²` is summed.
+    first: bool,
+    /// `d_m = a d_{m−1} + g r_m`.
+    a: f32,
+    g: f32,
+}
+
+/// Row `r` of a [`Pass`] as a SIMD-dispatched kernel (`MASKED`: some
+/// neighbours may be excluded).
+struct PassRow<'a, const MASKED: bool> {
+    p: &'a Pass<'a>,
+    r: usize,
+    xo: &'a mut [f32],
+    d: &'a mut [f32],
+}
+
+impl<const MASKED: bool> Kernel for PassRow<'_, MASKED> {
+    type Out = (f64, f64);
+
+    /// Writes `x_{m+1}` and `d_m` of the row; returns `(‖r_m‖², ‖b‖²)` of
+    /// the row (the latter on the first step only), in lane sums.
+    #[inline(always)]
+    fn call(self) -> (f64, f64) {
+        let Self { p: this, r, xo, d } = self;
+        this.row::<MASKED>(r, xo, d)
+    }
+}
+
+impl Pass<'_> {
+    /// Body of [`PassRow`].
+    #[inline(always)]
+    fn row<const MASKED: bool>(&self, r: usize, xo: &mut [f32], d: &mut [f32]) -> (f64, f64) {
+        let (n, x, role) = (self.n, self.x, self.role);
+        let n0 = n[0];
+        let s0 = r * n0;
+        let (j, k) = (r % n[1], r / n[1]);
+        let mut nbs: [Option<usize>; 4] = [None; 4];
+        if n[1] > 1 {
+            nbs[0] = (j > 0).then(|| s0 - n0);
+            nbs[1] = (j + 1 < n[1]).then(|| s0 + n0);
+        }
+        if n[2] > 1 {
+            let sz = n0 * n[1];
+            nbs[2] = (k > 0).then(|| s0 - sz);
+            nbs[3] = (k + 1 < n[2]).then(|| s0 + sz);
+        }
+        let w_of = |m: u8| {
+            if MASKED {
+                f32::from(u8::from(m != EXCLUDED))
+            } else {
+                1.0
             }
-            if n[2] > 1 {
-                let sz = n0 * n[1];
-                nb[2] = (k > 0).then(|| &x[s0 - sz..s0 - sz + n0]);
-                nb[3] = (k + 1 < n[2]).then(|| &x[s0 + sz..s0 + sz + n0]);
+        };
+        let xr = &x[s0..s0 + n0];
+        let (mut rr, mut bb) = (0.0f64, 0.0f64);
+        let mut acc = [0.0f32; CH];
+        let mut bacc = [0.0f32; CH];
+        let mut res = [0.0f32; CH];
+        for c0 in (0..n0).step_by(CH) {
+            let w = CH.min(n0 - c0);
+            let (a, xs) = (&mut acc[..w], &xr[c0..c0 + w]);
+            a.fill(0.0);
+            // Σ w_nb (x_nb − x_s): left, right, then the y and z rows.
+            if n0 > 1 {
+                let lo = c0.max(1);
+                for ((av, &xn), (&xv, &m)) in
+                    a[lo - c0..].iter_mut().zip(&xr[lo - 1..c0 + w - 1]).zip(
+                        xr[lo..c0 + w]
+                            .iter()
+                            .zip(&role[s0 + lo - 1..s0 + c0 + w - 1]),
+                    )
+                {
+                    *av += w_of(m) * (xn - xv);
+                }
+                let hi = (c0 + w).min(n0 - 1);
+                for ((av, &xn), (&xv, &m)) in a[..hi - c0]
+                    .iter_mut()
+                    .zip(&xr[c0 + 1..hi + 1])
+                    .zip(xr[c0..hi].iter().zip(&role[s0 + c0 + 1..s0 + hi + 1]))
+                {
+                    *av += w_of(m) * (xn - xv);
+                }
             }
-            let ds = &dg[s0..s0 + n0];
-            let mut acc = [0.0f32; CH];
-            let mut dot = 0.0f64;
-            for c0 in (0..n0).step_by(CH) {
-                let w = CH.min(n0 - c0);
-                let a = &mut acc[..w];
-                a.fill(0.0);
-                // The same summation order as the general form: left, right,
-                // then the y and z neighbour rows.
+            for &o in nbs.iter().flatten() {
+                let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
+                for ((av, (&xn, &m)), &xv) in a.iter_mut().zip(xn.iter().zip(rn)).zip(xs) {
+                    *av += w_of(m) * (xn - xv);
+                }
+            }
+            if self.first {
+                // b_s = data_s + coef Σ data_nb over Dirichlet neighbours
+                // (x_0 is the data).
+                let ba = &mut bacc[..w];
+                ba.fill(0.0);
+                let dir = |m: u8| f32::from(u8::from(m == DIRICHLET));
                 if n0 > 1 {
                     let lo = c0.max(1);
-                    for (av, &v) in a[lo - c0..].iter_mut().zip(&xr[lo - 1..c0 + w - 1]) {
-                        *av += v;
+                    for ((bv, &xn), &m) in ba[lo - c0..]
+                        .iter_mut()
+                        .zip(&xr[lo - 1..c0 + w - 1])
+                        .zip(&role[s0 + lo - 1..s0 + c0 + w - 1])
+                    {
+                        *bv += dir(m) * xn;
                     }
                     let hi = (c0 + w).min(n0 - 1);
-                    for (av, &v) in a[..hi - c0].iter_mut().zip(&xr[c0 + 1..hi + 1]) {
-                        *av += v;
+                    for ((bv, &xn), &m) in ba[..hi - c0]
+                        .iter_mut()
+                        .zip(&xr[c0 + 1..hi + 1])
+                        .zip(&role[s0 + c0 + 1..s0 + hi + 1])
+                    {
+                        *bv += dir(m) * xn;
                     }
                 }
-                for row in nb.iter().flatten() {
-                    for (av, &v) in a.iter_mut().zip(&row[c0..c0 + w]) {
-                        *av += v;
+                for &o in nbs.iter().flatten() {
+                    let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
+                    for ((bv, &xn), &m) in ba.iter_mut().zip(xn).zip(rn) {
+                        *bv += dir(m) * xn;
                     }
                 }
-                for (((o, &xv), &d), &av) in yrow[c0..c0 + w]
+                for ((bv, &v), &m) in ba
                     .iter_mut()
-                    .zip(&xr[c0..c0 + w])
-                    .zip(&ds[c0..c0 + w])
-                    .zip(a.iter())
+                    .zip(&self.b[s0 + c0..s0 + c0 + w])
+                    .zip(&role[s0 + c0..s0 + c0 + w])
                 {
-                    let v = d * xv - coef * av;
-                    *o = if d != 0.0 { v } else { 0.0 };
+                    let t = v + self.coef * *bv;
+                    *bv = if m == FREE { t } else { 0.0 };
                 }
-                dot += lane_dot(&xr[c0..c0 + w], &yrow[c0..c0 + w]);
+                bb += lane_dot(ba, ba);
             }
-            dot
-        })
-    };
-    let dot = |a: &[f32], b: &[f32]| {
-        par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
-            let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
-            lane_dot(&a[r.clone()], &b[r])
-        })
-    };
-    // r = b − A x, then p = z = M⁻¹ r with the Jacobi preconditioner
-    // `M = diag(A)`.
-    apply(&x, &mut r);
-    let (mut rz, mut rr) = par::for_chunks2_sum2(&mut r, &mut p, par::BLOCK, |bi, rc, pc| {
-        let s0 = bi * par::BLOCK;
-        let m = rc.len();
-        for (((rv, pv), &bv), &iv) in rc
-            .iter_mut()
-            .zip(pc.iter_mut())
-            .zip(&b[s0..s0 + m])
-            .zip(&inv[s0..s0 + m])
-        {
-            *rv = if iv != 0.0 { bv - *rv } else { 0.0 };
-            *pv = *rv * iv;
-        }
-        // r·z and r·r in lane sums (as in the iteration below).
-        (lane_dot(rc, pc), lane_dot(rc, rc))
-    });
-    let bn = dot(&b, &b).sqrt();
-    let mut it = 0;
-    while it < 200 && bn > 0.0 && rr.sqrt() > 1e-6 * bn {
-        it += 1;
-        let pq = apply(&p, &mut q);
-        if pq <= 0.0 {
-            break;
-        }
-        let alpha = (rz / pq) as f32;
-        // x += αp, r −= αq, and the new r·z and r·r (z = M⁻¹r not stored).
-        let (p_ref, q_ref) = (&p, &q);
-        let (rz2, rr2) = par::for_chunks2_sum2(&mut x, &mut r, par::BLOCK, |bi, xc, rc| {
-            let s0 = bi * par::BLOCK;
-            let m = xc.len();
-            for (((xv, rv), &pv), &qv) in xc
+            // r = b − x + coef·acc on free samples (0 on fixed ones),
+            // d = a d + g r (d = g r on the first step), x' = x + d.
+            let rs = &mut res[..w];
+            let (coef, g, a_) = (self.coef, self.g, self.a);
+            let bs = &self.b[s0 + c0..s0 + c0 + w];
+            let ms = &role[s0 + c0..s0 + c0 + w];
+            let (ds, xos) = (&mut d[c0..c0 + w], &mut xo[c0..c0 + w]);
+            for ((((rv, &av), (&bv, &m)), &xv), (dv, xov)) in rs
                 .iter_mut()
-                .zip(rc.iter_mut())
-                .zip(&p_ref[s0..s0 + m])
-                .zip(&q_ref[s0..s0 + m])
+                .zip(a.iter())
+                .zip(bs.iter().zip(ms))
+                .zip(xs)
+                .zip(ds.iter_mut().zip(xos.iter_mut()))
             {
-                *xv += alpha * pv;
-                *rv -= alpha * qv;
+                let t = bv - xv + coef * av;
+                *rv = if m == FREE { t } else { 0.0 };
+                let dn = if self.first {
+                    g * *rv
+                } else {
+                    a_ * *dv + g * *rv
+                };
+                *dv = dn;
+                *xov = xv + dn;
             }
-            // r·z (z = r/A_ss, rounded to f32 as before) and r·r of the
-            // block while it is in cache, in eight lane sums so that both
-            // loops vectorise (a single running sum keeps them scalar).
-            let rc: &[f32] = rc;
-            let iv = &inv[s0..s0 + m];
-            let (mut lz, mut lr) = ([0.0f64; 8], [0.0f64; 8]);
-            let (r8, i8) = (rc.chunks_exact(8), iv.chunks_exact(8));
-            let (rt, it) = (r8.remainder(), i8.remainder());
-            for (rs, is) in r8.zip(i8) {
-                for l in 0..8 {
-                    let rv = f64::from(rs[l]);
-                    lz[l] += rv * f64::from(rs[l] * is[l]);
-                    lr[l] += rv * rv;
-                }
-            }
-            let (mut rz, mut rr) = (lz.iter().sum::<f64>(), lr.iter().sum::<f64>());
-            for (&r, &i) in rt.iter().zip(it) {
-                rz += f64::from(r) * f64::from(r * i);
-                rr += f64::from(r) * f64::from(r);
-            }
-            (rz, rr)
-        });
-        rr = rr2;
-        let unconverged = rr.sqrt() > 1e-6 * bn;
-        if !unconverged {
-            break;
+            rr += lane_dot(rs, rs);
         }
-        let beta = (rz2 / rz) as f32;
-        rz = rz2;
-        let r_ref = &r;
-        par::for_chunks(&mut p, par::BLOCK, |bi, pc| {
-            let s0 = bi * par::BLOCK;
-            let m = pc.len();
-            for ((pv, &rv), &iv) in pc.iter_mut().zip(&r_ref[s0..s0 + m]).zip(&inv[s0..s0 + m]) {
-                *pv = rv * iv + beta * *pv;
-            }
-        });
+        (rr, bb)
     }
-    for ((o, &xv), &d) in data.iter_mut().zip(&x).zip(&dg) {
-        if d != 0.0 {
-            *o = xv;
-        }
-    }
-    scratch.v = [dg, b, x, r, inv, p, q];
-    it
 }
 
 /// Row block length of the operator (stack accumulator).
@@ -290,7 +311,7 @@ const CH: usize = 256;
 /// `Σ a·b` in `f64`, in eight lane sums added in a fixed order (so the
 /// loop vectorises; deterministic).
 #[inline(always)]
-fn lane_dot(a: &[f32], b: &[f32]) -> f64 {
+pub(crate) fn lane_dot(a: &[f32], b: &[f32]) -> f64 {
     let mut lanes = [0.0f64; 8];
     let (a8, b8) = (a.chunks_exact(8), b.chunks_exact(8));
     let (at, bt) = (a8.remainder(), b8.remainder());

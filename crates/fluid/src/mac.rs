@@ -220,16 +220,11 @@ pub(crate) fn face_cells(
 /// or touching a solid, see [`face_fixed`]), 0 where it is free.
 pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize) -> Vec<u8> {
     let fd = d.face_dims(a);
-    let mut out = vec![0u8; fd[0] * fd[1] * fd[2]];
-    par::for_chunks(&mut out, fd[0], |r, row| {
-        let (j, k) = (r % fd[1], r / fd[1]);
-        let mut fx = vec![false; row.len()];
-        fixed_row(d, kinds, bounds, a, j, k, &mut fx);
-        for (v, &x) in row.iter_mut().zip(&fx) {
-            *v = u8::from(x);
-        }
+    let mut fx = vec![false; fd[0] * fd[1] * fd[2]];
+    par::for_chunks(&mut fx, fd[0], |r, row| {
+        fixed_row(d, kinds, bounds, a, r % fd[1], r / fd[1], row);
     });
-    out
+    fx.into_iter().map(u8::from).collect()
 }
 
 /// Sets wall faces to zero and faces touching solid cells to `solid_vel(a, face_index)`.

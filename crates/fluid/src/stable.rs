@@ -175,13 +175,20 @@ impl Substances {
     }
 }
 
+/// The step's force field: `extra` (the user's per-step field) plus the
+/// persistent force sources, written into `f` (cell-sized grids; a user
+/// field of another size is an error).
 fn force_field(
+    f: &mut [Grid3<f32>; 3],
     dims: Dims,
     h: f32,
     sources: &[ForceSource],
     extra: &[Grid3<f32>; 3],
-) -> Result<[Grid3<f32>; 3]> {
-    let mut f = extra.clone();
+) -> Result<()> {
+    for (o, e) in f.iter_mut().zip(extra) {
+        grid::check_cell_grid(e, dims, "force field")?;
+        o.as_mut_slice().copy_from_slice(e.as_slice());
+    }
     for s in sources {
         let mask = voxelise(&[Obstacle::fixed(s.shape)], dims, h);
         for (c, m) in mask.into_iter().enumerate() {
@@ -194,7 +201,7 @@ fn force_field(
             }
         }
     }
-    Ok(f)
+    Ok(())
 }
 
 fn check_force_source(dims: Dims, h: f32, s: &ForceSource) -> Result<()> {
@@ -341,7 +348,8 @@ impl PeriodicFluid {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
         // w1 = w0 + dt f
-        let f = force_field(dims, h, &self.force_sources, &self.force)?;
+        let mut f = zero3(dims)?;
+        force_field(&mut f, dims, h, &self.force_sources, &self.force)?;
         for a in 0..3 {
             if dims.active(a) {
                 for (v, &fv) in self.vel[a].as_mut_slice().iter_mut().zip(f[a].as_slice()) {
@@ -463,6 +471,51 @@ pub struct BoundedFluid {
     /// The step's copy of the velocity before advection, kept between
     /// steps so that a step does not allocate (and page-fault) it.
     spare: MacVelocity,
+    /// Diffusion roles of faces and cells, rebuilt when the solids move.
+    roles: Roles,
+    /// The step's force field (user field plus sources), kept between
+    /// steps so that a step does not allocate it.
+    fbuf: [Grid3<f32>; 3],
+}
+
+/// The implicit diffusion's sample roles (faces per axis, cells), which
+/// depend only on the cell kinds and the boundaries: cached between steps
+/// and rebuilt when either changes (a moving obstacle changes the kinds).
+#[derive(Clone, Debug, Default)]
+struct Roles {
+    /// The cell kinds and boundaries the roles were built for (`None`: not built).
+    key: Option<(Vec<CellKind>, Boundaries)>,
+    /// Per axis: fixed faces (walls, faces of solid cells) are [`DIRICHLET`]
+    /// (1), the others [`FREE`] (0).
+    faces: [Vec<u8>; 3],
+    /// Per cell: solid cells are [`EXCLUDED`], the others [`FREE`].
+    cells: Vec<u8>,
+}
+
+impl Roles {
+    /// Brings the roles up to date with `kinds` and `bounds`.
+    fn update(&mut self, dims: Dims, kinds: &[CellKind], bounds: &Boundaries) {
+        if let Some((k, b)) = &self.key
+            && k.as_slice() == kinds
+            && b == bounds
+        {
+            return;
+        }
+        // Fixed faces (1) are Dirichlet data, free faces (0) unknowns.
+        const _: () = assert!(diffuse::FREE == 0 && diffuse::DIRICHLET == 1);
+        for a in 0..3 {
+            self.faces[a] = if dims.active(a) {
+                mac::fixed_faces(dims, kinds, bounds, a)
+            } else {
+                Vec::new()
+            };
+        }
+        self.cells = kinds
+            .iter()
+            .map(|&k| if k == CellKind::Solid { EXCLUDED } else { FREE })
+            .collect();
+        self.key = Some((kinds.to_vec(), *bounds));
+    }
 }
 
 impl BoundedFluid {
@@ -482,6 +535,8 @@ impl BoundedFluid {
             projector: Projector::new(),
             scratch: diffuse::Scratch::default(),
             spare: MacVelocity::zeros(dims)?,
+            roles: Roles::default(),
+            fbuf: zero3(dims)?,
         })
     }
 
@@ -589,14 +644,26 @@ impl BoundedFluid {
         Ok(st)
     }
 
+    /// Drops the cached diffusion roles (tests: the cache against a rebuild).
+    #[cfg(test)]
+    pub(crate) fn forget_roles(&mut self) {
+        self.roles = Roles::default();
+    }
+
     /// Advances by `dt` seconds: force → advect → diffuse → project, then the
     /// substances (L1874-1890). Moving obstacles advance at the end.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
         let bounds = self.params.bounds;
-        let f = force_field(dims, h, &self.force_sources, &self.force)?;
-        mac::add_centre_forces(&mut self.vel, &f, dt, self.solid.kinds.as_slice(), &bounds);
+        force_field(&mut self.fbuf, dims, h, &self.force_sources, &self.force)?;
+        mac::add_centre_forces(
+            &mut self.vel,
+            &self.fbuf,
+            dt,
+            self.solid.kinds.as_slice(),
+            &bounds,
+        );
         let solids = Solids {
             kinds: self.solid.kinds.as_slice(),
             dims,
@@ -647,15 +714,15 @@ impl BoundedFluid {
                     continue;
                 }
                 let n = dims.face_dims(a);
-                // Fixed faces (1) are Dirichlet data, free faces (0) unknowns.
-                const _: () = assert!(diffuse::FREE == 0 && diffuse::DIRICHLET == 1);
-                let role = mac::fixed_faces(dims, self.solid.kinds.as_slice(), &bounds, a);
+                self.roles
+                    .update(dims, self.solid.kinds.as_slice(), &bounds);
+                let role = &self.roles.faces[a];
                 diffuse::diffuse_in(
                     &mut self.scratch,
                     vel.comp_mut(a).as_mut_slice(),
                     n,
                     coef,
-                    &role,
+                    role,
                 );
             }
         }
@@ -668,13 +735,11 @@ impl BoundedFluid {
         // Substances.
         self.subs.add_sources(dims, h, dt);
         let vs = VelSampler::mac(&self.vel);
-        let role: Vec<u8> = self
-            .solid
-            .kinds
-            .as_slice()
-            .iter()
-            .map(|&k| if k == CellKind::Solid { EXCLUDED } else { FREE })
-            .collect();
+        if self.subs.specs.iter().any(|s| s.diffusion > 0.0) {
+            self.roles
+                .update(dims, self.solid.kinds.as_slice(), &bounds);
+        }
+        let role = &self.roles.cells;
         for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
             let old = field.clone();
             advect::advect(
@@ -690,7 +755,7 @@ impl BoundedFluid {
                 field.as_mut_slice(),
                 dims.n(),
                 s.diffusion * dt / (h * h),
-                &role,
+                role,
             );
             let k = 1.0 / (1.0 + dt * s.dissipation);
             field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
