@@ -98,6 +98,7 @@ mod camera;
 mod dda;
 mod error;
 mod field;
+mod frustum;
 mod grid_ray;
 mod leaf;
 mod max_mipmap;

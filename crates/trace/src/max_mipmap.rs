@@ -32,6 +32,10 @@ use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::{CellHit, HIT_LANES, HitLanes};
 use crate::tracer::Tracer;
 
+/// Set-up groups of [`SETUP_LANES`] rays per packet of the packet skip
+/// ([`MipmapTracer::packet_skip`]).
+const PACKET_GROUPS: usize = 8;
+
 /// Headroom below `u16::MAX` so rounding a maximum up never overflows.
 const Q_RANGE: f32 = 65000.0;
 
@@ -338,10 +342,10 @@ impl<'a> MipmapTracer<'a> {
             // rays from there, and a `GridRay` is only built for the few
             // rays that need the single-ray walk.
             groups.resize(chunk.len().div_ceil(SETUP_LANES), SetupLanes::new());
-            for (group, lanes) in chunk.chunks(SETUP_LANES).zip(groups.iter_mut()) {
-                let mut g = [group[0]; SETUP_LANES];
-                g[..group.len()].copy_from_slice(group);
-                if range_ok {
+            if range_ok {
+                for (group, lanes) in chunk.chunks(SETUP_LANES).zip(groups.iter_mut()) {
+                    let mut g = [group[0]; SETUP_LANES];
+                    g[..group.len()].copy_from_slice(group);
                     crate::packet::setup_with(
                         level,
                         &self.f,
@@ -351,6 +355,23 @@ impl<'a> MipmapTracer<'a> {
                         self.mip.top,
                         lanes,
                     );
+                }
+                // Packets of rays from one origin (a camera tile's primary
+                // rays) skip the empty space they provably cross together.
+                for (k, packet) in groups.chunks_mut(PACKET_GROUPS).enumerate() {
+                    let mut lens = [0usize; PACKET_GROUPS];
+                    for (i, len) in lens.iter_mut().enumerate() {
+                        let first = (k * PACKET_GROUPS + i) * SETUP_LANES;
+                        *len = chunk.len().saturating_sub(first).min(SETUP_LANES);
+                    }
+                    let lens = &lens[..packet.len()];
+                    if let Some(s) = self.packet_bound(packet, lens, 0.0) {
+                        self.packet_skip(packet, lens, s);
+                    }
+                }
+            }
+            for (group, lanes) in chunk.chunks(SETUP_LANES).zip(groups.iter_mut()) {
+                if range_ok {
                     crate::packet::descend_with(level, self, &offset, lanes, &mut dl);
                 }
                 #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
