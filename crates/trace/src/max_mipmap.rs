@@ -32,6 +32,10 @@ use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::{CellHit, HIT_LANES, HitLanes};
 use crate::tracer::Tracer;
 
+/// Set-up groups of [`SETUP_LANES`] rays per packet of the packet skip
+/// ([`MipmapTracer::packet_skip`]).
+const PACKET_GROUPS: usize = 8;
+
 /// Headroom below `u16::MAX` so rounding a maximum up never overflows.
 const Q_RANGE: f32 = 65000.0;
 
@@ -338,35 +342,59 @@ impl<'a> MipmapTracer<'a> {
             // rays from there, and a `GridRay` is only built for the few
             // rays that need the single-ray walk.
             groups.resize(chunk.len().div_ceil(SETUP_LANES), SetupLanes::new());
-            for (group, lanes) in chunk.chunks(SETUP_LANES).zip(groups.iter_mut()) {
-                let mut g = [group[0]; SETUP_LANES];
-                g[..group.len()].copy_from_slice(group);
+            // Packet by packet (8 groups, so the set-up stays in L1 between
+            // its stages): set-up, the packet skip, pre-descent, cursors.
+            let rays_per_packet = PACKET_GROUPS * SETUP_LANES;
+            for (packet_rays, packet) in chunk
+                .chunks(rays_per_packet)
+                .zip(groups.chunks_mut(PACKET_GROUPS))
+            {
+                let mut lens = [0usize; PACKET_GROUPS];
                 if range_ok {
-                    crate::packet::setup_with(
-                        level,
-                        &self.f,
-                        &g,
-                        t_min,
-                        t_max,
-                        self.mip.top,
-                        lanes,
-                    );
-                    crate::packet::descend_with(level, self, &offset, lanes, &mut dl);
+                    for ((group, lanes), len) in packet_rays
+                        .chunks(SETUP_LANES)
+                        .zip(packet.iter_mut())
+                        .zip(lens.iter_mut())
+                    {
+                        let mut g = [group[0]; SETUP_LANES];
+                        g[..group.len()].copy_from_slice(group);
+                        crate::packet::setup_with(
+                            level,
+                            &self.f,
+                            &g,
+                            t_min,
+                            t_max,
+                            self.mip.top,
+                            lanes,
+                        );
+                        *len = group.len();
+                    }
+                    // Rays from one origin (a camera tile's primary rays)
+                    // skip the empty space they provably cross together.
+                    let lens = &lens[..packet.len()];
+                    if let Some(s) = self.packet_bound(packet, lens, 0.0) {
+                        self.packet_skip(packet, lens, s);
+                    }
                 }
-                #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
-                for l in 0..group.len() {
-                    if range_ok && lanes.ok[l] {
-                        cur.push(Some(Cursor {
-                            ci: lanes.ci[l],
-                            cj: lanes.cj[l],
-                            t: lanes.t0[l],
-                            level: lanes.level[l],
-                        }));
-                        descended.push(dl[l]);
-                    } else {
-                        // Never walked.
-                        cur.push(None);
-                        descended.push(0);
+                for (group, lanes) in packet_rays.chunks(SETUP_LANES).zip(packet.iter_mut()) {
+                    if range_ok {
+                        crate::packet::descend_with(level, self, &offset, lanes, &mut dl);
+                    }
+                    #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
+                    for l in 0..group.len() {
+                        if range_ok && lanes.ok[l] {
+                            cur.push(Some(Cursor {
+                                ci: lanes.ci[l],
+                                cj: lanes.cj[l],
+                                t: lanes.t0[l],
+                                level: lanes.level[l],
+                            }));
+                            descended.push(dl[l]);
+                        } else {
+                            // Never walked.
+                            cur.push(None);
+                            descended.push(0);
+                        }
                     }
                 }
             }

@@ -273,3 +273,159 @@ fn bad_input() {
     assert_eq!(mip.trace_many(&bad, 2.0, 1.0), vec![None; 4]);
     assert_eq!(mip.occluded_many(&bad, f32::NAN, 1.0), vec![false; 4]);
 }
+
+/// Packets of rays from one origin (what the packet skip bounds as a
+/// whole): a random origin in or around the box (also below the surface
+/// and on lattice points), a random base direction (axis-parallel,
+/// vertical, grazing, diagonal …) and directions spread around it from
+/// not at all to fully divergent, some made exactly axis-parallel or
+/// vertical, over random ranges.
+fn packet_scene() -> impl Strategy<Value = (HeightField, Vec<Ray>, (f32, f32))> {
+    any_field().prop_flat_map(|hf| {
+        (
+            ray_for(&hf),
+            ray_for(&hf),
+            prop_oneof![Just(0.0f32), 0.0f32..0.05, 0.0f32..2.0],
+            1usize..160,
+            any::<u64>(),
+            t_range(),
+            Just(hf),
+        )
+            .prop_map(|(o, base, spread, n, seed, range, hf)| {
+                let s = Seed(seed);
+                let cell = hf.cell_size();
+                let rays = (0..n as i64)
+                    .map(|k| {
+                        let j = Vec3::new(
+                            s.uniform2(k, 0) as f32 - 0.5,
+                            s.uniform2(k, 1) as f32 - 0.5,
+                            s.uniform2(k, 2) as f32 - 0.5,
+                        );
+                        let mut d = base.dir + spread * 2.0 * j * Vec3::new(cell, cell, 1.0);
+                        match s.uniform2(k, 3) {
+                            u if u < 0.05 => d.y = 0.0,
+                            u if u < 0.10 => d.x = 0.0,
+                            u if u < 0.13 => d = Vec3::new(0.0, 0.0, d.z),
+                            _ => {}
+                        }
+                        Ray::new(o.origin, d)
+                    })
+                    .collect::<Vec<_>>();
+                (hf, rays, range)
+            })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// One-origin packets (the packet skip's case), converging or
+    /// diverging: each batch result is the single-ray result bit for bit,
+    /// and the brute-force hit.
+    #[test]
+    fn one_origin_packets_match_single_rays_and_brute_force((hf, rays, (t0, t1)) in packet_scene()) {
+        let mip = MipmapTracer::new(&hf).unwrap();
+        let (lo, hi) = hf.min_max();
+        let scale = (hi - lo).max(hf.extent().max_element()).max(1.0);
+        let many = mip.trace_many(&rays, t0, t1);
+        let occ = mip.occluded_many(&rays, t0, t1);
+        for (k, r) in rays.iter().enumerate() {
+            let one = mip.trace(r, t0, t1);
+            prop_assert_eq!(key(&many[k]), key(&one), "ray {} {:?}", k, r);
+            prop_assert_eq!(many[k], one);
+            prop_assert_eq!(occ[k], mip.occluded(r, t0, t1));
+            if k % 3 == 0 {
+                let want = brute_force(&hf, r, t0, t1).unwrap();
+                near_oracle(&many[k], &want, scale).map_err(TestCaseError::fail)?;
+            }
+        }
+    }
+}
+
+/// Camera tiles through the batch path (one origin per tile, traced in tile
+/// order as `trace_image` does) on a 513² terrain equal one `trace` per ray
+/// bit for bit: the grazing and top-down views, a camera looking exactly
+/// along +x and along −y (axis-parallel rays in the middle row and column),
+/// one inside the box below the highest peaks, one below the surface, and a
+/// 170° field of view (strongly diverging packets).
+#[test]
+fn camera_tiles_equal_single_rays() {
+    let hf = terrain(513, 10.0, 8);
+    let mip = MipmapTracer::new(&hf).unwrap();
+    let e = hf.extent();
+    let (lo, hi) = hf.min_max();
+    let at = |x: f32, y: f32| hf.height_at(x, y).unwrap();
+    let [grazing, topdown] = views(&hf, 96, 64);
+    let (x0, y0) = (0.1 * e.x, 0.5 * e.y);
+    let along_x = PinholeCamera::look_at(
+        Vec3::new(x0, y0, at(x0, y0) + 5.0),
+        Vec3::new(e.x, y0, at(x0, y0) - 20.0),
+        Vec3::Z,
+        0.5,
+        65,
+        33,
+    )
+    .unwrap();
+    let (x1, y1) = (0.6 * e.x, 0.9 * e.y);
+    let along_y = PinholeCamera::look_at(
+        Vec3::new(x1, y1, 0.5 * (lo + hi)),
+        Vec3::new(x1, 0.0, lo),
+        Vec3::Z,
+        0.8,
+        33,
+        65,
+    )
+    .unwrap();
+    let (x2, y2) = (0.3 * e.x, 0.7 * e.y);
+    let below = PinholeCamera::look_at(
+        Vec3::new(x2, y2, at(x2, y2) - 3.0),
+        Vec3::new(0.9 * e.x, 0.1 * e.y, hi),
+        Vec3::Z,
+        1.0,
+        48,
+        48,
+    )
+    .unwrap();
+    let wide = PinholeCamera::look_at(
+        Vec3::new(0.5 * e.x, 0.5 * e.y, hi + 50.0),
+        Vec3::new(0.9 * e.x, 0.6 * e.y, lo),
+        Vec3::Z,
+        170f32.to_radians(),
+        80,
+        48,
+    )
+    .unwrap();
+    let options = RenderOptions::default();
+    for (name, cam) in [
+        ("grazing", grazing),
+        ("topdown", topdown),
+        ("along x", along_x),
+        ("along y", along_y),
+        ("below", below),
+        ("wide", wide),
+    ] {
+        let res = cam.resolution();
+        let mut hits = 0;
+        for tile in [32, 13] {
+            for by in (0..res.y).step_by(tile as usize) {
+                for bx in (0..res.x).step_by(tile as usize) {
+                    let (w, h) = (tile.min(res.x - bx), tile.min(res.y - by));
+                    let mut rays = Vec::new();
+                    cam.rays_into(bx, by, w, h, &options, &mut rays);
+                    let many = mip.trace_many(&rays, 0.0, f32::INFINITY);
+                    for (k, r) in rays.iter().enumerate() {
+                        let one = mip.trace(r, 0.0, f32::INFINITY);
+                        assert_eq!(
+                            key(&many[k]),
+                            key(&one),
+                            "{name}: tile ({bx}, {by}) ray {k}"
+                        );
+                        assert_eq!(many[k], one, "{name}");
+                        hits += usize::from(one.is_some());
+                    }
+                }
+            }
+        }
+        assert!(hits > 0, "{name}: no hits");
+    }
+}
