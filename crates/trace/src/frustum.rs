@@ -44,7 +44,7 @@
 //! batch path with one [`crate::Tracer::trace`] per ray on grazing, top-down,
 //! axis-parallel, random and strongly diverging packets, and with brute force.
 
-use crate::grid_ray::{SETUP_LANES, SetupLanes};
+use crate::grid_ray::{SETUP_LANES, SetupLanes, walk_start};
 use crate::max_mipmap::MipmapTracer;
 
 /// The finest level the packet walk steps at; below it the per-ray walks
@@ -200,27 +200,15 @@ impl MipmapTracer<'_> {
                 let (t0, t1) = (g.t0[l], g.t1[l]);
                 let later = g.ok[l] & (l < n) & (ts > t0);
                 // The entry cell and start level, as `setup_lanes` computes them.
-                let cell_of = |t: f32, k: usize, hi: f32| -> u32 {
-                    let p = g.o[k][l] + t * g.d[k][l];
-                    // `v` is in `[0, 2²⁴)` (NaN goes to 0).
-                    crate::packet::trunc(crate::leaf::fmin(crate::leaf::fmax(p, 0.0), hi))
-                };
                 let tn = if later { ts } else { t0 };
-                let (ci, cj) = (cell_of(tn, 0, cx), cell_of(tn, 1, cy));
-                let (ei, ej) = (cell_of(t1, 0, cx), cell_of(t1, 1, cy));
-                let spread = (ci ^ ei) | (cj ^ ej);
-                // Bit length of `spread` (< 2²⁴, exact in f32) from its exponent.
-                let bits = if spread == 0 {
-                    0
-                } else {
-                    ((spread as i32 as f32).to_bits() >> 23) - 126
-                };
+                let (ci, cj, level) =
+                    walk_start([g.o[0][l], g.o[1][l]], [dx, dy], tn, t1, [cx, cy], top);
                 // A ray whose whole clipped range lies before `t_start` misses.
                 g.ok[l] &= !(later & (ts > t1));
                 g.t0[l] = tn;
                 g.ci[l] = if later { ci } else { g.ci[l] };
                 g.cj[l] = if later { cj } else { g.cj[l] };
-                g.level[l] = if later { bits.min(top) } else { g.level[l] };
+                g.level[l] = if later { level } else { g.level[l] };
             }
         }
     }

@@ -417,20 +417,7 @@ pub(crate) fn setup_lanes(
         // The walk's start: entry and exit cells (`GridRay::cell_of`: clamping
         // before the truncation is the same, the bounds being whole numbers)
         // and the finest level holding both.
-        let cell_of = |t: f32, k: usize, hi: f32| -> u32 {
-            let p = o[k] + t * d[k];
-            // `v` is in `[0, 2²⁴)` (NaN goes to 0).
-            crate::packet::trunc(fmin(fmax(p, 0.0), hi))
-        };
-        let (ci, cj) = (cell_of(t0, 0, cx), cell_of(t0, 1, cy));
-        let (ei, ej) = (cell_of(t1, 0, cx), cell_of(t1, 1, cy));
-        let spread = (ci ^ ei) | (cj ^ ej);
-        // Bit length of `spread` (< 2²⁴, exact in f32) from its exponent.
-        let bits = if spread == 0 {
-            0
-        } else {
-            ((spread as i32 as f32).to_bits() >> 23) - 126
-        };
+        let (ci, cj, level) = walk_start([o[0], o[1]], [d[0], d[1]], t0, t1, [cx, cy], top);
         s.ok[l] = finite & !zero & (t0 <= t1);
         for k in 0..3 {
             s.o[k][l] = o[k];
@@ -446,8 +433,39 @@ pub(crate) fn setup_lanes(
         s.zm[l] = zeps + 2.0 * smax * xyeps;
         s.ci[l] = ci;
         s.cj[l] = cj;
-        s.level[l] = bits.min(top);
+        s.level[l] = level;
     }
+}
+
+/// The walk's start for a ray `o + t·d` (grid space, `x`, `y`) clipped to
+/// `[t0, t1]`: the entry cell, clamped to `[0, hi]` per axis
+/// (`GridRay::cell_of`: clamping before the truncation is the same, the
+/// bounds being whole numbers), and the finest pyramid level (at most
+/// `top`) whose node holds both the entry and the exit cell. Shared by the
+/// lane set-up and the packet skip, so a walk started later is set up
+/// exactly as the set-up would have set it up.
+#[inline(always)]
+pub(crate) fn walk_start(
+    o: [f32; 2],
+    d: [f32; 2],
+    t0: f32,
+    t1: f32,
+    hi: [f32; 2],
+    top: u32,
+) -> (u32, u32, u32) {
+    // `v` is in `[0, 2²⁴)` (NaN goes to 0).
+    let cell_of =
+        |t: f32, k: usize| -> u32 { crate::packet::trunc(fmin(fmax(o[k] + t * d[k], 0.0), hi[k])) };
+    let (ci, cj) = (cell_of(t0, 0), cell_of(t0, 1));
+    let (ei, ej) = (cell_of(t1, 0), cell_of(t1, 1));
+    let spread = (ci ^ ei) | (cj ^ ej);
+    // Bit length of `spread` (< 2²⁴, exact in f32) from its exponent.
+    let bits = if spread == 0 {
+        0
+    } else {
+        ((spread as i32 as f32).to_bits() >> 23) - 126
+    };
+    (ci, cj, bits.min(top))
 }
 
 #[cfg(test)]
