@@ -31,21 +31,30 @@ fn implicit_diffusion_is_a_contraction_and_conserves_mass() {
     assert!(after < before);
 }
 
+/// Hashed diffusion data in `[−shift, 10 − shift)` on an `n` grid and
+/// sample roles (one in `roles` Dirichlet, one excluded, the rest free);
+/// `salt` seeds the data and the roles.
+fn diffusion_case(n: [usize; 3], salt: [u64; 2], shift: f32, roles: u64) -> (Vec<f32>, Vec<u8>) {
+    use crate::diffuse::EXCLUDED;
+    let len = n[0] * n[1] * n[2];
+    let data = (0..len)
+        .map(|i| ((natura_core::mix64(i as u64 ^ salt[0]) % 1000) as f32) / 100.0 - shift)
+        .collect();
+    let role = (0..len)
+        .map(|i| match natura_core::mix64(i as u64 ^ salt[1]) % roles {
+            0 => DIRICHLET,
+            1 => EXCLUDED,
+            _ => FREE,
+        })
+        .collect();
+    (data, role)
+}
+
 #[test]
 fn row_wise_diffusion_matches_general_form() {
-    use crate::diffuse::{EXCLUDED, diffuse_ref};
+    use crate::diffuse::diffuse_ref;
     for n in [[23usize, 1, 19], [9, 7, 11], [1, 1, 40]] {
-        let len = n[0] * n[1] * n[2];
-        let data: Vec<f32> = (0..len)
-            .map(|i| ((natura_core::mix64(i as u64 ^ 77) % 1000) as f32) / 100.0 - 3.0)
-            .collect();
-        let role: Vec<u8> = (0..len)
-            .map(|i| match natura_core::mix64(i as u64 ^ 99) % 9 {
-                0 => DIRICHLET,
-                1 => EXCLUDED,
-                _ => FREE,
-            })
-            .collect();
+        let (data, role) = diffusion_case(n, [77, 99], 3.0, 9);
         for coef in [0.05f32, 2.5] {
             let (mut a, mut b) = (data.clone(), data.clone());
             diffuse(&mut a, n, coef, &role);
@@ -654,24 +663,14 @@ fn chebyshev_diffusion_meets_the_stated_residual() {
     // in f64 from the general form of the system, is at most 1e-6 (f32
     // round-off allowed for), for mild and stiff systems, 1-D to 3-D.
     for n in [[31usize, 1, 27], [9, 7, 11], [1, 1, 40], [64, 1, 64]] {
-        let len = n[0] * n[1] * n[2];
-        let data: Vec<f32> = (0..len)
-            .map(|i| ((natura_core::mix64(i as u64 ^ 11) % 1000) as f32) / 100.0 - 2.0)
-            .collect();
-        let role: Vec<u8> = (0..len)
-            .map(|i| match natura_core::mix64(i as u64 ^ 13) % 10 {
-                0 => DIRICHLET,
-                1 => EXCLUDED,
-                _ => FREE,
-            })
-            .collect();
+        let (data, role) = diffusion_case(n, [11, 13], 2.0, 10);
         for coef in [0.05f32, 0.5, 20.0] {
             let mut x = data.clone();
             let it = diffuse(&mut x, n, coef, &role);
             assert!(it > 0);
             let st = [1usize, n[0], n[0] * n[1]];
             let (mut rr, mut bb) = (0.0f64, 0.0f64);
-            for s in 0..len {
+            for s in 0..data.len() {
                 if role[s] != FREE {
                     assert_eq!(
                         x[s].to_bits(),
