@@ -707,6 +707,11 @@ impl BoundedFluid {
             );
             mac::enforce_solids(vel, self.solid.kinds.as_slice(), &bounds, &sv);
         }
+        // The cell kinds do not change until the obstacles advance at the
+        // end of the step: one check of the cached roles serves the
+        // velocity's and the substances' diffusion.
+        self.roles
+            .update(dims, self.solid.kinds.as_slice(), &bounds);
         let coef = self.params.viscosity * dt / (h * h);
         if coef > 0.0 {
             for a in 0..3 {
@@ -714,8 +719,6 @@ impl BoundedFluid {
                     continue;
                 }
                 let n = dims.face_dims(a);
-                self.roles
-                    .update(dims, self.solid.kinds.as_slice(), &bounds);
                 let role = &self.roles.faces[a];
                 diffuse::diffuse_in(
                     &mut self.scratch,
@@ -735,10 +738,6 @@ impl BoundedFluid {
         // Substances.
         self.subs.add_sources(dims, h, dt);
         let vs = VelSampler::mac(&self.vel);
-        if self.subs.specs.iter().any(|s| s.diffusion > 0.0) {
-            self.roles
-                .update(dims, self.solid.kinds.as_slice(), &bounds);
-        }
         let role = &self.roles.cells;
         for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
             let old = field.clone();
