@@ -20,9 +20,7 @@
 //! assert_eq!(hf.extent().x, 630.0);
 //! # Ok::<(), natura_core::CoreError>(())
 //! ```
-// `unsafe` is denied crate-wide; the only exceptions are the two calls into
-// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 pub mod colour;
 mod error;
@@ -34,7 +32,6 @@ pub mod io;
 mod progress;
 mod sample;
 mod seed;
-pub mod simd;
 
 pub use colour::{Ramp, ToneMap};
 pub use error::{CoreError, Result, finite, positive_finite};
@@ -45,6 +42,10 @@ pub use image::Image;
 pub use progress::{CountingProgress, NoProgress, Progress};
 pub use sample::{Boundary, Interpolate};
 pub use seed::{Seed, mix64, unit_f64};
+
+/// Run-time SIMD levels and dispatch (re-export of `natura-simd`), so the
+/// crates above core share one token type and one set of trampolines.
+pub use natura_simd as simd;
 
 /// Re-export of `glam`, so users need not pin the same version themselves.
 pub use glam;

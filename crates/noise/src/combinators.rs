@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::fractal::fbm::sign;
-use crate::simd::{Simd, run};
+use crate::lanes::{Simd, run};
 
 /// The ridged basis `1 − |N|` [D 1106, M 464-475] (range `[1 − B, 1]`, so
 /// `[0, 1]` for a unit basis; exactly 1 on gradient noise's lattice).

@@ -48,9 +48,7 @@
 //! Kolb & Mace 1989 (seed 001), `[T]` *Texturing & Modeling* ch. 15 (seed
 //! 003), `[M]` SIGGRAPH 2001 course notes (seed 004), with line numbers.
 #![no_std]
-// `unsafe` is denied crate-wide; the only exceptions are the three calls into
-// `#[target_feature]` trampolines in `simd::run`, each after CPU detection.
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 #[cfg(feature = "alloc")]
 extern crate alloc;
@@ -63,7 +61,7 @@ mod error;
 mod field;
 pub mod fractal;
 mod hash;
-mod simd;
+mod lanes;
 pub mod vector;
 pub mod warp;
 
@@ -90,6 +88,6 @@ pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_OCTAVES, Octaves, Spectral};
-pub use simd::{Simd, SimdLevel};
+pub use natura_simd::{Simd, SimdLevel};
 pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
 pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};

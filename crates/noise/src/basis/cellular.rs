@@ -21,7 +21,7 @@ use glam::{DVec2, DVec3};
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::hash::{corner, rehash, row2, row3, seed32, unit_hi, unit_lo};
-use crate::simd::{Simd, run, split, split_fast};
+use crate::lanes::{Simd, run, split, split_fast};
 
 /// The distance metric between a point and a feature point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -3,7 +3,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
-use crate::simd::split;
+use crate::lanes::split;
 
 /// `+1` / `−1` alternating over unit lattice cells [M 522-527]: `+1` where
 /// `⌊x⌋ + ⌊y⌋ (+ ⌊z⌋)` is even. Discontinuous (infinite Lipschitz constant,

@@ -57,11 +57,11 @@ macro_rules! with_fade32 {
     ($fade:expr, |$f:ident| $body:expr) => {
         match $fade {
             $crate::basis::Fade::Quintic => {
-                let $f = $crate::simd::quintic32;
+                let $f = $crate::lanes::quintic32;
                 $body
             }
             $crate::basis::Fade::Cubic => {
-                let $f = $crate::simd::cubic32;
+                let $f = $crate::lanes::cubic32;
                 $body
             }
         }

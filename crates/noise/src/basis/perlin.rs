@@ -33,7 +33,7 @@ use crate::basis::lattice::lattice_sum;
 use crate::basis::{Fade, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad1, grad2, grad3, grad4, row2, row3, seed32};
-use crate::simd::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
 /// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
 pub const PERLIN1_SUP: f64 = 0.5;

@@ -24,7 +24,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::hash::{PX, PY, flat2, flat3, grad2, grad3, mix32, seed32};
-use crate::simd::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;

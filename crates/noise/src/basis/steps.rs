@@ -4,7 +4,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
-use crate::simd::split;
+use crate::lanes::split;
 
 const SALT: u64 = 0x5354_4550; // "STEP"
 

@@ -14,7 +14,7 @@ use crate::basis::perlin::SPAN_MAX_STEP;
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
-use crate::simd::{Simd, run, split_fast};
+use crate::lanes::{Simd, run, split_fast};
 
 /// How value noise interpolates across a cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -223,12 +223,12 @@ impl Value {
                             }
                             ValueInterp::Cubic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::simd::cubic32(t0 + k as f32 * s32);
+                                    *o = a + b * crate::lanes::cubic32(t0 + k as f32 * s32);
                                 }
                             }
                             ValueInterp::Quintic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::simd::quintic32(t0 + k as f32 * s32);
+                                    *o = a + b * crate::lanes::quintic32(t0 + k as f32 * s32);
                                 }
                             }
                         }
@@ -243,8 +243,8 @@ impl Value {
                         let fx = fx as f32;
                         let u = match interp {
                             ValueInterp::Linear => fx,
-                            ValueInterp::Cubic => crate::simd::cubic32(fx),
-                            ValueInterp::Quintic => crate::simd::quintic32(fx),
+                            ValueInterp::Cubic => crate::lanes::cubic32(fx),
+                            ValueInterp::Quintic => crate::lanes::quintic32(fx),
                         };
                         let mut acc = 0.0f32;
                         for r in 0..nr {

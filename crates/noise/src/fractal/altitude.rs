@@ -5,7 +5,7 @@ use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
-use crate::simd::Simd;
+use crate::lanes::Simd;
 use glam::{DVec2, DVec3};
 
 /// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of [D 930]).

@@ -4,7 +4,7 @@ use crate::error::{Result, finite};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
-use crate::simd::Simd;
+use crate::lanes::Simd;
 
 /// Where the octave amplitude enters each factor of the cascade.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::field::Field;
 use crate::fractal::rows::octave_rows;
 use crate::fractal::{Octaves, Spectral};
-use crate::simd::Simd;
+use crate::lanes::Simd;
 
 /// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and
 /// `w_k = λ^(−kH)` (spec §3.1; [D 858-908], [E89 150-160]).

@@ -4,7 +4,7 @@ use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
-use crate::simd::Simd;
+use crate::lanes::Simd;
 
 /// Parameters of [`HeteroTerrain`].
 #[derive(Clone, Copy, Debug, PartialEq)]

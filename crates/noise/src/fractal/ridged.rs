@@ -5,7 +5,7 @@ use crate::field::Field;
 use crate::fractal::fbm::sign;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
-use crate::simd::Simd;
+use crate::lanes::Simd;
 
 /// Parameters of [`RidgedMultifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]

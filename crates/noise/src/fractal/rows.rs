@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::fractal::{CHUNK, Octaves};
-use crate::simd::{Simd, run};
+use crate::lanes::{Simd, run};
 
 /// A row start point of any dimension, scaled by an octave frequency.
 pub(crate) trait RowPoint: Copy {
@@ -138,7 +138,7 @@ macro_rules! impl_fractal_field {
             }
             fn fill_row2_with(
                 &self,
-                simd: $crate::simd::Simd,
+                simd: $crate::lanes::Simd,
                 origin: glam::DVec2,
                 step: f64,
                 out: &mut [f32],
@@ -147,7 +147,7 @@ macro_rules! impl_fractal_field {
             }
             fn fill_row3_with(
                 &self,
-                simd: $crate::simd::Simd,
+                simd: $crate::lanes::Simd,
                 origin: glam::DVec3,
                 step: f64,
                 out: &mut [f32],
