@@ -34,7 +34,6 @@
 mod error;
 mod fft;
 mod par;
-mod simd;
 
 pub mod analysis;
 pub mod erosion;

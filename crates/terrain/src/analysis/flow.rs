@@ -506,7 +506,7 @@ fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
     });
 }
 
-crate::simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Donor masks of the interior cells `1..nx − 1` of a row whose first cell
 /// has index `i0`, from the receivers of the rows below, at and above it.
 fn masks_row<'a>(rows: [&'a [u32]; 3], i0: u32, out: &'a mut [u8]) {
@@ -709,7 +709,7 @@ pub(crate) fn d8_receivers_into(
     });
 }
 
-crate::simd::multiversion! {
+natura_core::simd::multiversion! {
 /// D8 steepest descent for the interior cells `i0..i0 + out.len()` of one
 /// row (all eight neighbours exist), with the distance to the receiver
 /// (cells; 0 for a pit) into `dist`: the same divisions and comparisons, in

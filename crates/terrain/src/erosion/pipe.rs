@@ -37,7 +37,7 @@ use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Edges, Erodibility, check_erodibility, check_field, check_model_size};
 use crate::error::{Result, in_range, invalid, non_negative, positive};
-use crate::{par, simd};
+use crate::par;
 
 /// How suspended sediment moves with the water.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1367,7 +1367,7 @@ impl<'a> Around<'a> {
     }
 }
 
-simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Pass A over the interior cells of a row (every neighbour exists).
 fn flux_row<'a>(c: &'a Consts, w: Around<'a>, bd: Around<'a>, outs: [&'a mut [f32]; 5]) {
     let [d1o, fl, fr, fb, ft] = outs;
@@ -1409,14 +1409,14 @@ struct UpdateIn<'a> {
 /// Cells per block of [`update_row`] (the evaporation of a block is summed on the stack).
 const BLOCK: usize = 128;
 
-simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Pass B over the interior cells of a row (uniform `K_s`); returns the water evaporated.
 fn update_row_uniform<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, outs: [&'a mut [f32]; 5]) -> f64 {
     update_row::<false>(c, ins, &[], outs)
 }
 }
 
-simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Pass B over the interior cells of a row with an erodibility map; returns the water evaporated.
 fn update_row_erodible<'a>(c: &'a Consts, ins: &'a UpdateIn<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 5]) -> f64 {
     update_row::<true>(c, ins, erod, outs)
@@ -1530,7 +1530,7 @@ fn update_row<const ERODIBILITY: bool>(
     total
 }
 
-simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Conservative transport over the interior cells of a row.
 fn conservative_row<'a>(c: &'a Consts, d1: Around<'a>, f: [Around<'a>; 4], s1: Around<'a>, so: &'a mut [f32]) {
     let m = so.len();
@@ -1615,7 +1615,7 @@ fn put<const N: usize>(d: &mut [f32], a: usize, n: usize, x: &[f32; N]) {
     }
 }
 
-simd::multiversion! {
+natura_core::simd::multiversion! {
 /// Semi-Lagrangian transport over the interior cells `1..nx − 1` of row `y`:
 /// the back-traced point lies within about one cell (velocities are capped at
 /// one cell per step), so one clamp (or wrap) per index suffices.
