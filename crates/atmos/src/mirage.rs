@@ -6,14 +6,14 @@
 //!   aloft (inversion) the **superior** one.
 //! * [`GrinTracer`]: the ray equation `d/ds(n dx/ds) = ∇n` integrated with an
 //!   adaptive Dormand–Prince 5(4) Runge–Kutta scheme. In a smooth profile the
-//!   turning point is smooth (spec §8.3): the Khular/Fabri picture (D:1967-1981)
+//!   turning point is smooth: the Khular/Fabri picture (Musgrave 1993, §4.3.2)
 //!   is right for smooth profiles and Musgrave's kinked "reflected hyperbola"
-//!   (D:1977-1983) only for a sharp interface, which is
-//! * [`PlanarMirage`]: Musgrave's semi-physical model (D:557-563,
-//!   D:1959-2001): one planar index discontinuity, optionally with a perturbed
+//!   (Musgrave 1993, §4.3.2) only for a sharp interface, which is
+//! * [`PlanarMirage`]: Musgrave's semi-physical model (Musgrave 1993, §1.2.4.4,
+//!   Musgrave 1993, §4.3–4.3.3): one planar index discontinuity, optionally with a perturbed
 //!   (fBm-bumped) normal, and total internal reflection for glancing rays
 //!   going from higher to lower index. TIR rays are reflected, never dropped
-//!   (D:1995-2001).
+//!   (Musgrave 1993, §4.3.3).
 
 use glam::DVec3;
 
@@ -530,7 +530,8 @@ impl GrinTracer {
 }
 
 /// Returns the largest relative drift of Snell's invariant `n(z)·cos(elevation)`
-/// along a path in a horizontally stratified `field` (the accuracy check of spec §8.3).
+/// along a path in a horizontally stratified `field` (an accuracy check: the invariant
+/// holds exactly along true paths).
 #[must_use]
 pub fn invariant_drift(path: &RayPath, field: &impl IndexField) -> f64 {
     let inv = |p: DVec3, d: DVec3| field.n(p) * d.truncate().length();
@@ -559,7 +560,7 @@ pub struct Interaction {
 }
 
 /// Musgrave's mirage: a horizontal plane at `height_m` separating air of index
-/// `n_above` from hotter, optically thinner air `n_below` (D:559, D:1987).
+/// `n_above` from hotter, optically thinner air `n_below` (Musgrave 1993, §1.2.4.4, §4.3.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PlanarMirage {

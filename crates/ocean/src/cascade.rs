@@ -1,9 +1,9 @@
 //! Cascades: two to four patches of different sizes whose spectra are split
-//! into disjoint wavenumber bands and summed (beyond the notes, spec §13).
+//! into disjoint wavenumber bands and summed (beyond the notes; a common production technique).
 //!
 //! One patch of size L and N samples covers wavenumbers 2π/L … πN/L; its
-//! period L shows as repetition when the view is much larger (seed 004,
-//! L905, L1528). A cascade gives the long waves to a large patch and the
+//! period L shows as repetition when the view is much larger (Tessendorf
+//! 2001, §3.3; slides "Random surface generation"). A cascade gives the long waves to a large patch and the
 //! short ones to smaller patches with other, incommensurate periods, so the
 //! sum repeats far less visibly and covers a wider band than a single
 //! 2048² grid. Each band is kept by exactly one patch, so no energy is

@@ -2,8 +2,8 @@
 //!
 //! The notes suggest that the folded region (J < 0) "might actually be a
 //! useful effect to signal the production of spray, foam and/or breaking
-//! waves" but do not say how (seed 004, L1031). This module uses the common
-//! later recipe (spec §13; after Dupuy & Bruneton 2012 and Horvath 2015):
+//! waves" but do not say how (Tessendorf 2001, §3.7). This module uses the common
+//! later recipe (after Dupuy & Bruneton 2012 and Horvath 2015):
 //! new foam appears where J drops below a threshold, in proportion to how
 //! far below, and old foam decays exponentially:
 //!

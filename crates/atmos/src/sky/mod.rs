@@ -7,10 +7,10 @@
 //! sunset and twilight colours follow from the transmittance.
 //!
 //! This is the physical successor of Musgrave's per-ray aerial perspective
-//! (spec §15.2): the density profiles are independent of the scattering model
-//! (D:1494), the phase functions are those the dissertation asks for
-//! (D:1648, D:1672), and multiple scattering answers its complaint that single
-//! scattering "simply isn't blue enough when the sun is low" (D:2751-2755).
+//! (Musgrave 1993, §4.1): the density profiles are independent of the scattering model
+//! (Musgrave 1993, §4.1.2), the phase functions are those the dissertation asks for
+//! (Musgrave 1993, §4.1.7), and multiple scattering answers its complaint that single
+//! scattering "simply isn't blue enough when the sun is low" (Musgrave 1993, §6.4.1.1).
 //!
 //! # Frames and units
 //! World positions are metres, z up, with the ground (sea level) at `z = 0`

@@ -35,7 +35,7 @@ fn table_lerp(lambda_nm: f64) -> Result<(usize, f64)> {
 /// to the CIE 1931 2° colour-matching functions at any wavelength (nm).
 ///
 /// A fast path and fallback outside the table; its error against the table is
-/// at most about 0.02 (measured in this crate's tests, spec §6.6).
+/// at most about 0.02 (measured in this crate's tests).
 #[inline]
 #[must_use]
 pub fn cmf_wyman_2013(lambda_nm: f64) -> DVec3 {
@@ -128,7 +128,7 @@ pub fn xyz_to_xy(xyz: DVec3) -> (f64, f64) {
     }
 }
 
-/// XYZ → linear sRGB (IEC 61966-2-1, D65 white), rows as in spec §6.6.
+/// XYZ → linear sRGB (IEC 61966-2-1, D65 white).
 pub const XYZ_TO_SRGB: DMat3 = DMat3::from_cols_array(&[
     3.240_454_2,
     -0.969_266,
@@ -205,7 +205,7 @@ mod tests {
         assert!((ysum - 106.857).abs() < 1e-3);
         let e = spectrum_to_xyz(|_| 1.0, 1.0).unwrap();
         assert!((e.y - 1.0).abs() < 1e-12);
-        // S1: flat spectrum has x = y = 1/3.
+        // Flat spectrum has x = y = 1/3.
         let (x, y) = xyz_to_xy(e);
         assert!(
             (x - 1.0 / 3.0).abs() < 1e-3 && (y - 1.0 / 3.0).abs() < 1e-3,
@@ -242,7 +242,7 @@ mod tests {
 
     #[test]
     fn srgb_white_points_and_adaptation() {
-        // S2: D65 white → (1, 1, 1).
+        // D65 white → (1, 1, 1).
         let d65 = DVec3::new(0.95047, 1.0, 1.08883);
         let rgb = xyz_to_linear_srgb(d65);
         assert!((rgb - DVec3::ONE).abs().max_element() < 1e-6, "{rgb}");
@@ -276,7 +276,7 @@ mod tests {
 
     #[test]
     fn monochromatic_colours_are_out_of_gamut() {
-        // S3: every λ in 400-700 nm has a negative linear-sRGB component.
+        // Every λ in 400-700 nm has a negative linear-sRGB component.
         for l in 400..=700 {
             let rgb = xyz_to_linear_srgb(cmf_1931(l as f64).unwrap());
             assert!(rgb.min_element() < 0.0, "{l}: {rgb}");
@@ -284,7 +284,7 @@ mod tests {
         let g = xyz_to_linear_srgb(cmf_1931(500.0).unwrap());
         let g = g / g.max_element();
         assert!(g.x < -0.9 && g.z > 0.2, "{g}");
-        // λ⁻⁴ over 380-780 nm is in gamut and blue (spec §5.1).
+        // λ⁻⁴ over 380-780 nm is in gamut and blue.
         let xyz = spectrum_to_xyz(
             |l| {
                 if (380.0..=780.0).contains(&l) {

@@ -1,5 +1,6 @@
 //! Directional spectra: a frequency spectrum spread over directions and
-//! converted to wave vectors (not from the sources; spec §13).
+//! converted to wave vectors (not from the sources: Pierson & Moskowitz 1964, Hasselmann
+//! et al. 1973 and the spreading functions of oceanography).
 
 use glam::DVec2;
 

@@ -1,7 +1,7 @@
 //! Frequency spectra S(ω) of oceanography: Pierson–Moskowitz, JONSWAP and
 //! TMA. **Not from the sources**: the course only names JONSWAP on a slide,
-//! with no constants (seed 004, L1492-1494); the forms and constants here are
-//! the standard ones (spec §13; Hasselmann et al. 1973, Bouws et al. 1985).
+//! with no constants (Tessendorf 2001, slides "Oceanography"); the forms and
+//! constants here are the standard ones (Pierson & Moskowitz 1964; Hasselmann et al. 1973, Bouws et al. 1985).
 
 use crate::dispersion::G;
 use crate::error::{Result, positive};
