@@ -69,7 +69,7 @@ fn full_frame(c: &mut Criterion) {
     group.finish();
 }
 
-/// The calibration workload: one 512² complex 2-D FFT with rustfft
+/// The calibration workload: one 512² complex 2-D FFT with rustfft
 /// and a plain transpose (batched row transforms, a plain transpose, row
 /// transforms; the result stays transposed), timed on fresh input each
 /// iteration, so the frame times can be compared across machines.

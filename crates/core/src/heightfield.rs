@@ -1,9 +1,9 @@
 //! `HeightField`: a regular grid of altitudes in metres with a horizontal cell size.
 //!
-//! Conventions (see ARCHITECTURE.md): z up, metres. Sample `(i, j)` of the
+//! Conventions: z up, metres. Sample `(i, j)` of the
 //! grid sits at world position `(i·cell_size, j·cell_size, h[i, j])`, so the
 //! field covers `[0, (nx − 1)·cell_size] × [0, (ny − 1)·cell_size]`. This is
-//! Musgrave's "regular height field" (seed 001, line 45).
+//! Musgrave's "regular height field" (Musgrave et al. 1989, §2).
 //!
 //! Files (PNG, EXR, raw) store rows in **map order**: the first row in the
 //! file is the row of largest y (north up), as DEM tools and image viewers

@@ -1,7 +1,7 @@
 //! Building the world a scene describes: fractal terrain, erosion, the maps
 //! materials read (deposition, wetness), the water level and the atmosphere.
 //!
-//! This is Musgrave's landscape pipeline (seed 000 ch. 2–4; seed 001): noise
+//! This is Musgrave's landscape pipeline (Musgrave 1993, ch. 2–4; Musgrave et al. 1989): noise
 //! synthesis of a multifractal height field, erosion that carves drainage
 //! into it, then rendering. Erosion runs in three passes, coarse to fine:
 //! Braun–Willett stream power carves the valley network (the "fractal
@@ -29,7 +29,7 @@ use crate::error::Result;
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
 
 /// The warp of the terrain's domain: displacement by vector fBm of Perlin
-/// noise (the general distortion `F(p + s·V(p))`, spec `noise.md` §5.1).
+/// noise (the general distortion `F(p + s·V(p))` of Musgrave 2001, "Domain Distortion").
 type TerrainWarp = Displace<VectorFbm<VecNoise<Perlin>>>;
 
 /// The fractal terrain function of a scene, before normalisation: a ridged,
