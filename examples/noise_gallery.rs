@@ -52,7 +52,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
     Ok(vec![
         t(
             "basis_perlin",
-            "Perlin gradient noise, quintic fade (Musgrave 1993, §2.3.1–2.3.2)",
+            "Perlin gradient noise, quintic fade (Musgrave 1993, §2.3.1)",
             Box::new(p),
             8.0,
             v,
@@ -192,7 +192,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "fractal_hetero_terrain",
-            "heterogeneous terrain (Musgrave 1993, §2.3.2.5–2.4)",
+            "heterogeneous terrain (Musgrave 1993, §2.3.2.5)",
             Box::new(HeteroTerrain::new(p, HeteroTerrainParams::default())?),
             4.0,
             terrain,
