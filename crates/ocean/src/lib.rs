@@ -70,7 +70,7 @@ pub use dispersion::{Dispersion, DispersionRelation, G, Quantized};
 pub use error::{OceanError, Result};
 
 pub use foam::{Foam, FoamParams};
-pub use frame::{Field, Frame, JacobianEigen, normal_from};
+pub use frame::{Frame, FrameField, JacobianEigen, normal_from};
 
 pub use gerstner::{GerstnerSea, GerstnerWave};
 pub use patch::{AmplitudeScheme, DirectSample, MAX_SIZE, MIN_SIZE, Ocean, OceanParams};

@@ -19,7 +19,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec3, Vec4};
 
-use super::render::{Ground, Projection};
+use super::render::{Ground, SkyProjection};
 use super::view::{ApSample, SkyView};
 use crate::error::{Result, invalid};
 use crate::simd::{self, Kernel, Simd};
@@ -578,14 +578,14 @@ pub(crate) enum RowRays {
         right: Vec3,
         up: Vec3,
     },
-    /// Any other projection, per pixel through [`Projection::direction`].
-    General { projection: Projection, h: usize },
+    /// Any other projection, per pixel through [`SkyProjection::direction`].
+    General { projection: SkyProjection, h: usize },
 }
 
 impl RowRays {
-    pub(crate) fn new(projection: Projection, w: usize, h: usize) -> Self {
+    pub(crate) fn new(projection: SkyProjection, w: usize, h: usize) -> Self {
         match projection {
-            Projection::Pinhole { fov_y, yaw, pitch } => {
+            SkyProjection::Pinhole { fov_y, yaw, pitch } => {
                 let t = (0.5 * fov_y as f32).tan();
                 let aspect = w as f32 / h as f32;
                 let sx = (0..w.next_multiple_of(L))

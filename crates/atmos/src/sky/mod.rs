@@ -51,7 +51,7 @@ pub use model::{RGB_WAVELENGTHS_NM, SPECTRAL_BANDS};
 pub use params::{
     AtmosphereParams, Evaluation, LutSettings, MieParams, MiePhase, OzoneParams, RayleighParams,
 };
-pub use render::{Ground, Projection, auto_exposure};
+pub use render::{Ground, SkyProjection, auto_exposure};
 pub use view::{ApSample, SkyView};
 
 use crate::Dir3;
