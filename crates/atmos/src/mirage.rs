@@ -196,6 +196,11 @@ impl StratifiedAir {
     /// standard), Gladstone–Dale constant [`GLADSTONE_DALE_AIR`].
     ///
     /// Refuses non-physical temperatures, thicknesses or pressures.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-physical temperature profile (non-positive or
+    /// NaN temperatures or thicknesses) or pressure.
     pub fn new(profile: TemperatureProfile, pressure_pa: f64) -> Result<Self> {
         profile.validate()?;
         positive("pressure_pa", pressure_pa)?;
@@ -377,6 +382,11 @@ const DP_E: [f64; 7] = [
 
 impl GrinTracer {
     /// Refuses non-positive or NaN settings.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] naming the first setting that is non-positive or NaN, or a
+    /// `top_z` not above `ground_z`.
     pub fn validate(&self) -> Result<()> {
         positive("tolerance_m", self.tolerance_m)?;
         positive("initial_step_m", self.initial_step_m)?;
@@ -395,8 +405,12 @@ impl GrinTracer {
 
     /// Traces the ray from `origin` in direction `dir` through `field`.
     ///
-    /// Fails on bad settings, an origin outside the slab, or an index field
-    /// that returns NaN or non-positive values.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for bad settings, an origin outside the slab or an index
+    /// field that gives NaN or non-positive values, and
+    /// [`AtmosError::NoConvergence`] if the step size
+    /// collapses before the path leaves the slab.
     pub fn trace(&self, field: &impl IndexField, origin: DVec3, dir: Dir3) -> Result<RayPath> {
         self.validate()?;
         crate::error::finite3("origin", origin)?;
@@ -571,6 +585,10 @@ pub struct PlanarMirage {
 
 impl PlanarMirage {
     /// A mirage plane; refuses NaN heights and non-positive indices.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a NaN height or a non-positive or NaN index.
     pub fn new(height_m: f64, n_above: f64, n_below: f64) -> Result<Self> {
         finite("height_m", height_m)?;
         crate::optics::check_ior("n_above", n_above)?;
@@ -583,6 +601,11 @@ impl PlanarMirage {
     }
 
     /// The plane from air temperatures above and below (Gladstone–Dale at `pressure_pa`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] if a temperature or the pressure is not finite and
+    /// positive.
     pub fn from_temperatures(
         height_m: f64,
         above_k: f64,

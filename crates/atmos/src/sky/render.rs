@@ -177,6 +177,11 @@ impl SkyView {
     /// the CPU has (see [`crate::simd`]); the result equals per-pixel
     /// [`SkyView::radiance_f32`] / [`SkyView::ground_radiance`] shading to
     /// 1e-4 relative, and is bit-identical for any thread count.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for an invalid projection, a negative or non-finite
+    /// ground albedo, and a zero or oversized image (through natura-core's size checks).
     pub fn render(
         &self,
         projection: SkyProjection,
