@@ -69,6 +69,10 @@ impl Default for Dispersion {
 
 impl Dispersion {
     /// Checks that every parameter is finite and positive.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first parameter that is not finite and positive.
     pub fn validate(&self) -> Result<()> {
         match *self {
             Dispersion::Deep { g } => positive("g", g).map(|_| ()),
@@ -196,6 +200,11 @@ pub struct Quantized {
 
 impl Quantized {
     /// Returns the quantised relation of `base` with repeat time `period` seconds.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `base` fails [`Dispersion::validate`] or `period` is not finite
+    /// and positive.
     pub fn new(base: Dispersion, period: f64) -> Result<Self> {
         base.validate()?;
         positive("period", period)?;

@@ -41,6 +41,10 @@ impl Default for FoamParams {
 
 impl FoamParams {
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`] for a non-finite threshold or a non-positive range or decay time.
     pub fn validate(&self) -> Result<()> {
         finite("threshold", f64::from(self.threshold))?;
         positive("range", f64::from(self.range))?;
@@ -66,6 +70,11 @@ pub struct Foam {
 
 impl Foam {
     /// Returns an empty foam map of `nx × ny` samples.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of [`FoamParams::validate`], and
+    /// [`OceanError::Core`] for a zero or oversized grid.
     pub fn new(nx: usize, ny: usize, params: FoamParams) -> Result<Self> {
         params.validate()?;
         Ok(Self {
@@ -76,6 +85,10 @@ impl Foam {
     }
 
     /// Returns an empty foam map sized for `frame`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Foam::new`].
     pub fn for_frame(frame: &Frame, params: FoamParams) -> Result<Self> {
         let (nx, ny) = frame.dims();
         Self::new(nx, ny, params)
@@ -104,7 +117,10 @@ impl Foam {
     /// e^{−Δt/τ} (Δt since the previous update; the first update only
     /// deposits) and deposits new foam where the Jacobian is low.
     ///
-    /// Fails if the frame's size differs or time went backwards.
+    /// # Errors
+    ///
+    /// Returns [`OceanError::SizeMismatch`] if the frame's size differs and [`OceanError::InvalidParameter`] if its time is
+    /// earlier than the previous update's.
     pub fn update(&mut self, frame: &Frame) -> Result<()> {
         if frame.dims() != self.coverage.dims() {
             return Err(OceanError::SizeMismatch {

@@ -106,6 +106,10 @@ impl Frame {
     /// With the `parallel` feature the scratch is split for the current
     /// rayon pool's thread count; using the frame in a larger pool uses at
     /// most that many threads. Results never depend on it.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`](crate::OceanError::Core) if the grids exceed natura-core's memory cap.
     pub fn new(ocean: &Ocean) -> Result<Self> {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);

@@ -102,6 +102,12 @@ fn check_size(name: &'static str, n: usize) -> Result<()> {
 
 impl OceanParams {
     /// Checks every parameter and returns a typed error naming the first bad one.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidSize`](crate::OceanError::InvalidSize) for grid sides that are not powers of two in 16..=2048, and
+    /// [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first other parameter that is NaN, non-positive where it
+    /// must be positive, or `k_max ≤ k_min`.
     pub fn validate(&self) -> Result<()> {
         check_size("nx", self.nx)?;
         check_size("ny", self.ny)?;
@@ -196,9 +202,11 @@ impl Ocean {
     /// count, and changing N or M with the same patch size keeps the
     /// coarse waves identical.
     ///
-    /// Fails on invalid parameters (sizes not powers of two in 16..=2048,
-    /// non-positive lengths or depth, NaN anywhere) or a spectrum returning a
-    /// negative or non-finite density.
+    /// # Errors
+    ///
+    /// Returns the errors of [`OceanParams::validate`] and the spectrum's own
+    /// `validate`, and [`OceanError::BadSpectrum`](crate::OceanError::BadSpectrum) if the spectrum
+    /// returns a negative or non-finite density.
     pub fn new(params: &OceanParams, spectrum: &dyn Spectrum, seed: Seed) -> Result<Self> {
         params.validate()?;
         spectrum.validate()?;
@@ -364,8 +372,12 @@ impl Ocean {
     /// height, slope, displacement and the Jacobian terms (see [`Frame`]).
     ///
     /// Costs four complex FFT passes over half the spectrum plus four
-    /// row passes, and allocates nothing. Fails if `t` is not finite or the
-    /// frame was made for a patch of another size.
+    /// row passes, and allocates nothing.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite and [`OceanError::SizeMismatch`](crate::OceanError::SizeMismatch) if `frame` was made for a
+    /// patch of another size.
     pub fn evaluate_into(&self, t: f64, frame: &mut Frame) -> Result<()> {
         crate::error::finite("t", t)?;
         frame.check_matches(self)?;
@@ -375,6 +387,10 @@ impl Ocean {
 
     /// Returns a new [`Frame`] evaluated at time `t` (allocates; prefer
     /// [`Ocean::evaluate_into`] in a loop).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite.
     pub fn evaluate(&self, t: f64) -> Result<Frame> {
         let mut f = Frame::new(self)?;
         self.evaluate_into(t, &mut f)?;

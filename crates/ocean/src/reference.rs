@@ -51,6 +51,11 @@ impl std::fmt::Debug for Reference {
 
 impl Reference {
     /// Prepares the straightforward evaluation of `ocean`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`](crate::OceanError::Core) if the fields' grids exceed natura-core's
+    /// memory cap.
     pub fn new(ocean: &Ocean) -> Result<Self> {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);
@@ -97,6 +102,10 @@ impl Reference {
     }
 
     /// Evaluates all eight fields at time `t`, one complex 2-D FFT each.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite.
     pub fn evaluate(&mut self, t: f64) -> Result<()> {
         crate::error::finite("t", t)?;
         let (nx, ny) = (self.nx, self.ny);
