@@ -75,17 +75,19 @@ impl Dispersion {
     /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first parameter that is not finite and positive.
     pub fn validate(&self) -> Result<()> {
         match *self {
-            Dispersion::Deep { g } => positive("g", g).map(|_| ()),
+            Dispersion::Deep { g } => positive("g", g).map(|_| ()).map_err(Into::into),
             Dispersion::FiniteDepth { g, depth } => {
                 positive("g", g)?;
-                positive("depth", depth).map(|_| ())
+                positive("depth", depth).map(|_| ()).map_err(Into::into)
             }
             Dispersion::Capillary {
                 g,
                 capillary_length,
             } => {
                 positive("g", g)?;
-                positive("capillary_length", capillary_length).map(|_| ())
+                positive("capillary_length", capillary_length)
+                    .map(|_| ())
+                    .map_err(Into::into)
             }
         }
     }

@@ -387,7 +387,7 @@ impl Atmosphere {
         if d == 0.0 {
             return Ok(0.0);
         }
-        positive("distance_m", d)
+        Ok(positive("distance_m", d)?)
     }
 }
 
