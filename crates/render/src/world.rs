@@ -383,7 +383,8 @@ fn erode(
         }
         area = Some(sp.drainage_area()?);
     }
-    if e.hydraulic_model == HydraulicModel::Droplets && e.droplets > 0 {
+    let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
+    if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
         // The droplet model runs in cell units internally (heights / cell
         // size), so Beyer's constants hold at any resolution.
         let p = DropletParams {
@@ -392,10 +393,13 @@ fn erode(
             erode: 0.1,
             deposit: 0.1,
             evaporate: 0.02,
+            // Rounds of droplets in row bands: both cores at work, every
+            // droplet still on the live terrain (see `DropletErosion`).
+            batch: 1 << 16,
             ..DropletParams::default()
         };
         let mut drops = DropletErosion::new(p, hf, Seed(scene.seed).derive("droplets"))?;
-        drops.run(hf, e.droplets, progress)?;
+        drops.run(hf, droplets, progress)?;
         let dep = drops.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
             *d += s.max(0.0);
