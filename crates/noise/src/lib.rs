@@ -87,7 +87,7 @@ pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
-pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_OCTAVES, Octaves, Spectral};
+pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};
 pub use natura_simd::{Simd, SimdLevel};
 pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
 pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};

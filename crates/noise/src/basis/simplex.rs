@@ -177,17 +177,31 @@ impl Simplex {
     }
 }
 
+// A non-finite point gives NaN, as every other basis does: simplex noise
+// would otherwise give 0 (its kernels' `t > 0` tests fail on NaN).
 impl Field for Simplex {
     fn eval2(&self, p: DVec2) -> f64 {
+        if !p.is_finite() {
+            return f64::NAN;
+        }
         self.grad2_impl(p).0
     }
     fn eval3(&self, p: DVec3) -> f64 {
+        if !p.is_finite() {
+            return f64::NAN;
+        }
         self.grad3_impl(p).0
     }
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+        if !p.is_finite() {
+            return (f64::NAN, DVec2::NAN);
+        }
         self.grad2_impl(p)
     }
     fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+        if !p.is_finite() {
+            return (f64::NAN, DVec3::NAN);
+        }
         self.grad3_impl(p)
     }
     fn bound(&self) -> f64 {

@@ -41,11 +41,13 @@ impl<B: Field> Fbm<B> {
     /// fBm of `basis` with `spectral` parameters (validated).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
-        Ok(Self {
+        let f = Self {
             basis,
             spectral,
             oct,
-        })
+        };
+        crate::error::bounded("Fbm", f.bound())?;
+        Ok(f)
     }
 
     /// The basis.
@@ -174,11 +176,13 @@ impl<B: Field> Turbulence<B> {
     /// Turbulence of `basis` with `spectral` parameters (validated).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
-        Ok(Self {
+        let f = Self {
             basis,
             spectral,
             oct,
-        })
+        };
+        crate::error::bounded("Turbulence", f.bound())?;
+        Ok(f)
     }
 
     /// The spectral parameters.

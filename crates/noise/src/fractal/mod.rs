@@ -40,6 +40,11 @@ use crate::error::{NoiseError, Result, finite, in_range};
 /// The largest octave count any fractal accepts.
 pub const MAX_OCTAVES: usize = 64;
 
+/// The largest bound on `|f|` a fractal may have: every value then fits an
+/// `f32` with a wide margin, and no intermediate overflows `f64`. Parameters
+/// that would exceed it are refused ([`NoiseError::Unbounded`](crate::NoiseError::Unbounded)).
+pub const MAX_BOUND: f64 = 1e30;
+
 /// The highest octave's frequency may be at most this multiple of the base
 /// frequency: beyond it, `f64` coordinates of order 1 no longer resolve the
 /// lattice cell finely (≈ 2⁻²⁰ of a cell at 2³²).
@@ -164,6 +169,14 @@ impl Spectral {
                 name: "frequency",
                 value: self.frequency,
                 expected: "must be finite and > 0",
+            });
+        }
+        let amplitudes = Octaves::new(self).weight_sum();
+        if !(amplitudes.is_finite() && amplitudes <= MAX_BOUND) {
+            return Err(NoiseError::InvalidParam {
+                name: "h",
+                value: self.h,
+                expected: "the octave amplitudes it gives must sum to at most 1e30",
             });
         }
         let top = libm::pow(self.lacunarity, libm::ceil(self.octaves) - 1.0);
