@@ -93,9 +93,31 @@ impl From<std::io::Error> for WriteError {
 }
 
 /// Reads a whole file, mapping OS errors to [`CoreError::Io`] naming the file.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Io`] naming `path` if it cannot be opened or read.
 pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<u8>> {
     let path = path.as_ref();
     std::fs::read(path).map_err(|e| CoreError::io(path, e))
+}
+
+/// Reads at most `limit` bytes of a file (or stream) from its start, so an
+/// endless or oversized input cannot exhaust memory; compare the length with
+/// what was expected to detect a longer file.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Io`] naming `path` if it cannot be opened or read.
+pub fn read_file_at_most(path: impl AsRef<Path>, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let path = path.as_ref();
+    let file = File::open(path).map_err(|e| CoreError::io(path, e))?;
+    let mut bytes = Vec::new();
+    file.take(limit)
+        .read_to_end(&mut bytes)
+        .map_err(|e| CoreError::io(path, e))?;
+    Ok(bytes)
 }
 
 #[cfg(test)]
