@@ -46,7 +46,7 @@ fn main() {
     let bow = common::check(Rainbow::new(&params));
     let atm = common::check(Atmosphere::new(AtmosphereParams::default()));
     // The sun behind the camera (azimuth 180°), the camera looking at azimuth 0.
-    let sun = Dir3::from_angles(sun_el.to_radians(), std::f64::consts::PI);
+    let sun = common::check(Dir3::from_angles(sun_el.to_radians(), std::f64::consts::PI));
     let view = common::check(atm.sky_view(DVec3::new(0.0, 0.0, 2.0), sun));
     let projection = SkyProjection::Pinhole {
         fov_y: 62f64.to_radians(),

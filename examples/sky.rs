@@ -49,7 +49,7 @@ fn main() {
     };
     for (k, &el) in elevations.iter().enumerate() {
         bar.start(&format!("sun {el:+}°"), 2);
-        let sun = Atmosphere::sun_at_elevation_deg(el);
+        let sun = common::check(Atmosphere::sun_at_elevation_deg(el));
         let view = common::check(atm.sky_view(camera, sun));
         let dome = common::check(view.render(SkyProjection::Fisheye, size, size, None, true));
         let pano = common::check(view.render(

@@ -716,7 +716,7 @@ mod tests {
             ..GrinTracer::default()
         };
         // From 1.5 m, 0.12° below the horizontal: the ray bends back up before the road.
-        let d = Dir3::from_angles(-0.12f64.to_radians(), 0.0);
+        let d = Dir3::from_angles(-0.12f64.to_radians(), 0.0).unwrap();
         let p = t.trace(&air, DVec3::new(0.0, 0.0, 1.5), d).unwrap();
         assert!(p.min_z() > 0.0, "min z {}", p.min_z());
         assert!(p.final_direction().z > 0.0, "{:?}", p.end);
@@ -730,7 +730,7 @@ mod tests {
             .trace(
                 &air,
                 DVec3::new(0.0, 0.0, 1.5),
-                Dir3::from_angles(-1f64.to_radians(), 0.0),
+                Dir3::from_angles(-1f64.to_radians(), 0.0).unwrap(),
             )
             .unwrap();
         assert!(matches!(steep.end, PathEnd::Ground { .. }));
@@ -744,7 +744,7 @@ mod tests {
             top_z: 200.0,
             ..GrinTracer::default()
         };
-        let d = Dir3::from_angles(0.05f64.to_radians(), 0.0);
+        let d = Dir3::from_angles(0.05f64.to_radians(), 0.0).unwrap();
         let p = t.trace(&air, DVec3::new(0.0, 0.0, 5.0), d).unwrap();
         let zmax = p.points.iter().map(|q| q.z).fold(f64::MIN, f64::max);
         assert!(zmax < 30.0, "trapped below the inversion top: {zmax}");
@@ -762,7 +762,11 @@ mod tests {
         };
         let o = DVec3::new(0.0, 0.0, 1.5);
         let fwd = t
-            .trace(&air, o, Dir3::from_angles(-0.1f64.to_radians(), 0.3))
+            .trace(
+                &air,
+                o,
+                Dir3::from_angles(-0.1f64.to_radians(), 0.3).unwrap(),
+            )
             .unwrap();
         let end = *fwd.points.last().unwrap();
         let back_dir = Dir3::new(-fwd.final_direction()).unwrap();
@@ -788,19 +792,19 @@ mod tests {
         );
         let o = DVec3::new(0.0, 0.0, 2.0);
         let below = m
-            .interact(o, Dir3::from_angles(-(crit * 0.999), 0.0), None)
+            .interact(o, Dir3::from_angles(-(crit * 0.999), 0.0).unwrap(), None)
             .unwrap();
         assert!(below.refracted.is_none() && below.reflectance == 1.0);
         assert!(below.reflected.get().z > 0.0);
         let above = m
-            .interact(o, Dir3::from_angles(-(crit * 1.001), 0.0), None)
+            .interact(o, Dir3::from_angles(-(crit * 1.001), 0.0).unwrap(), None)
             .unwrap();
         assert!(above.refracted.is_some() && above.reflectance < 1.0);
         // Going up from the thin layer never reflects totally.
         let up = m
             .interact(
                 DVec3::new(0.0, 0.0, 0.1),
-                Dir3::from_angles(0.001, 0.0),
+                Dir3::from_angles(0.001, 0.0).unwrap(),
                 None,
             )
             .unwrap();
@@ -808,7 +812,7 @@ mod tests {
         // A bumped normal changes the reflection but never yields NaN.
         let bump = Dir3::new(DVec3::new(0.01, 0.0, 1.0)).unwrap();
         let b = m
-            .interact(o, Dir3::from_angles(-0.002, 0.0), Some(bump))
+            .interact(o, Dir3::from_angles(-0.002, 0.0).unwrap(), Some(bump))
             .unwrap();
         assert!(b.reflected.get().is_finite());
         assert!(m.interact(o, Dir3::UP, None).is_none());

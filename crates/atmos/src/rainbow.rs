@@ -638,7 +638,7 @@ mod tests {
             ..RainbowParams::default()
         })
         .unwrap();
-        let sun = Dir3::from_angles(0.3, 0.0);
+        let sun = Dir3::from_angles(0.3, 0.0).unwrap();
         let anti = sun.reversed().get();
         // A view 41.5° from the antisolar point, in the vertical plane.
         let axis = anti.cross(DVec3::Y).normalize();
@@ -687,7 +687,7 @@ mod tests {
             cos_start: 42f64.to_radians().cos(),
             width_scale: 400.0,
         };
-        let sun = Dir3::from_angles(0.0, 0.0);
+        let sun = Dir3::from_angles(0.0, 0.0).unwrap();
         let anti = sun.reversed().get();
         let mut last = None;
         let mut seen = 0;

@@ -25,11 +25,11 @@
 //! use natura_atmos::{Dir3, sky::{Atmosphere, AtmosphereParams}};
 //! use glam::DVec3;
 //! let atm = Atmosphere::new(AtmosphereParams::default())?;
-//! let sun = Dir3::from_angles(10f64.to_radians(), 0.0);
+//! let sun = Dir3::from_angles(10f64.to_radians(), 0.0)?;
 //! let view = atm.sky_view(DVec3::new(0.0, 0.0, 300.0), sun)?;
 //! let zenith = view.radiance(Dir3::UP);
 //! assert!(zenith.z > zenith.x, "the zenith is blue");
-//! let haze = view.aerial_perspective(Dir3::from_angles(-0.01, 1.0), 20_000.0)?;
+//! let haze = view.aerial_perspective(Dir3::from_angles(-0.01, 1.0)?, 20_000.0)?;
 //! assert!(haze.transmittance.max_element() < 1.0);
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
@@ -377,8 +377,12 @@ impl Atmosphere {
     }
 
     /// Convenience for tests and examples: the sun at elevation `deg` degrees and azimuth 0.
-    #[must_use]
-    pub fn sun_at_elevation_deg(deg: f64) -> Dir3 {
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `deg` is NaN
+    /// or infinite.
+    pub fn sun_at_elevation_deg(deg: f64) -> Result<Dir3> {
         Dir3::from_angles(deg.to_radians(), 0.0)
     }
 

@@ -42,7 +42,7 @@ pub const MAX_OCTAVES: usize = 64;
 
 /// The largest bound on `|f|` a fractal may have: every value then fits an
 /// `f32` with a wide margin, and no intermediate overflows `f64`. Parameters
-/// that would exceed it are refused ([`NoiseError::Unbounded`](crate::NoiseError::Unbounded)).
+/// that would exceed it are refused ([`NoiseError::Unbounded`]).
 pub const MAX_BOUND: f64 = 1e30;
 
 /// The highest octave's frequency may be at most this multiple of the base
