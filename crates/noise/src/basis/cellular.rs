@@ -18,8 +18,8 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::basis::SPAN_MAX_STEP;
 use crate::basis::cellular_rows::{chunk2, chunk3};
-use crate::basis::perlin::SPAN_MAX_STEP;
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::hash::{PX, PY, PZ, corner, corner_spread, rehash, row2, row3, seed32};

@@ -11,6 +11,7 @@ pub(crate) mod cellular_rows;
 pub mod checker;
 pub(crate) mod lattice;
 pub mod perlin;
+mod perlin_rows;
 pub mod simplex;
 pub mod sine;
 pub mod sparse;
@@ -69,6 +70,10 @@ macro_rules! with_fade32 {
     };
 }
 pub(crate) use with_fade32;
+
+/// Largest lattice step for which a row is evaluated span by span (≥ 16
+/// points per cell, so the per-cell set-up is amortised).
+pub(crate) const SPAN_MAX_STEP: f64 = 1.0 / 16.0;
 
 /// Whether a batch row of `n` points from `x0` with spacing `step` stays in the
 /// range where the branch-free floor is exact (and everything is finite).

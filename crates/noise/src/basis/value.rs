@@ -9,8 +9,8 @@
 
 use glam::{DVec2, DVec3, DVec4};
 
+use crate::basis::SPAN_MAX_STEP;
 use crate::basis::lattice::lattice_sum;
-use crate::basis::perlin::SPAN_MAX_STEP;
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};

@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 use crate::error::Result;
 use crate::field::Field;
 use crate::fractal::rows::octave_rows;
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::{MAX_OCTAVES, Octaves, Spectral};
 use crate::lanes::Simd;
 
 /// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and
@@ -65,18 +65,20 @@ impl<B: Field> Fbm<B> {
 }
 
 impl<B: Field> Field for Fbm<B> {
+    #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)))
-            .sum()
+        let mut n = [0.0; MAX_OCTAVES];
+        let n = &mut n[..self.oct.count()];
+        self.basis.eval2_scaled(p, self.oct.frequencies(), n);
+        weighted_sum(self.oct.weights(), n, false)
     }
 
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)))
-            .sum()
+        let mut n = [0.0; MAX_OCTAVES];
+        let n = &mut n[..self.oct.count()];
+        self.basis.eval3_scaled(p, self.oct.frequencies(), n);
+        weighted_sum(self.oct.weights(), n, false)
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -188,18 +190,20 @@ impl<B: Field> Turbulence<B> {
 }
 
 impl<B: Field> Field for Turbulence<B> {
+    #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)).abs())
-            .sum()
+        let mut n = [0.0; MAX_OCTAVES];
+        let n = &mut n[..self.oct.count()];
+        self.basis.eval2_scaled(p, self.oct.frequencies(), n);
+        weighted_sum(self.oct.weights(), n, true)
     }
 
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)).abs())
-            .sum()
+        let mut n = [0.0; MAX_OCTAVES];
+        let n = &mut n[..self.oct.count()];
+        self.basis.eval3_scaled(p, self.oct.frequencies(), n);
+        weighted_sum(self.oct.weights(), n, true)
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -245,6 +249,15 @@ impl<B: Field> Field for Turbulence<B> {
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
     }
+}
+
+/// `Σ_k w_k·n_k` (of `|n_k|` when `abs`), summed lowest octave first.
+#[inline(always)]
+fn weighted_sum(w: &[f64], n: &[f64], abs: bool) -> f64 {
+    w.iter()
+        .zip(n)
+        .map(|(w, &n)| w * if abs { n.abs() } else { n })
+        .sum()
 }
 
 /// The sign used for one-sided derivatives of `|x|` (0 at 0).

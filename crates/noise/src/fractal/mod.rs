@@ -202,6 +202,8 @@ impl Spectral {
 pub struct Octaves {
     freq: [f64; MAX_OCTAVES],
     amp: [f64; MAX_OCTAVES],
+    /// `amp[k]` times the partial factor of octave `k`.
+    weight: [f64; MAX_OCTAVES],
     count: usize,
     fraction: f64,
 }
@@ -225,12 +227,17 @@ impl Octaves {
             };
             f *= s.lacunarity;
         }
-        Self {
+        let mut o = Self {
             freq,
             amp,
+            weight: [0.0; MAX_OCTAVES],
             count,
             fraction,
+        };
+        for k in 0..count {
+            o.weight[k] = o.amp[k] * o.partial(k);
         }
+        o
     }
 
     /// Number of octaves evaluated (the partial one included).
@@ -264,8 +271,23 @@ impl Octaves {
 
     /// Amplitude × partial factor of octave `k`: the fBm weight.
     #[must_use]
+    #[inline]
     pub fn weight(&self, k: usize) -> f64 {
-        self.amp[k] * self.partial(k)
+        self.weight[k]
+    }
+
+    /// The frequencies of the octaves evaluated, lowest first.
+    #[must_use]
+    #[inline]
+    pub fn frequencies(&self) -> &[f64] {
+        &self.freq[..self.count]
+    }
+
+    /// The weights (amplitude × partial factor) of the octaves evaluated.
+    #[must_use]
+    #[inline]
+    pub fn weights(&self) -> &[f64] {
+        &self.weight[..self.count]
     }
 
     /// `Σ_k weight(k)`.
