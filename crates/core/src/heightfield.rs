@@ -145,6 +145,11 @@ impl HeightField {
     }
 
     /// World position of sample `(i, j)`.
+    ///
+    /// # Panics
+    ///
+    /// Panics if `i ≥ nx` or `j ≥ ny` (an index bug in the caller); use
+    /// [`try_point`](Self::try_point) for indices that come from user data.
     #[inline]
     #[must_use]
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
@@ -153,6 +158,14 @@ impl HeightField {
             j as f32 * self.cell_size,
             self.heights[(i, j)],
         )
+    }
+
+    /// World position of sample `(i, j)`, or `None` outside the grid.
+    #[inline]
+    #[must_use]
+    pub fn try_point(&self, i: usize, j: usize) -> Option<Vec3> {
+        self.get(i, j)
+            .map(|z| Vec3::new(i as f32 * self.cell_size, j as f32 * self.cell_size, z))
     }
 
     /// Bilinearly interpolated height at world `(x, y)`; `None` outside the field or for NaN.

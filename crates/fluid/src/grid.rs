@@ -28,6 +28,12 @@ pub const MAX_CELLS: usize = 1 << 30;
 
 impl Dims {
     /// Returns `nx × ny × nz` cells, refusing zero sizes and more than [`MAX_CELLS`].
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidSize`] if a side is zero or the cell count
+    /// (or the face count, one more per axis) exceeds the cap; sizes near
+    /// `usize::MAX` are refused without overflow.
     pub fn new(nx: usize, ny: usize, nz: usize) -> Result<Self> {
         let dims = format!("{nx} × {ny} × {nz}");
         if nx == 0 || ny == 0 || nz == 0 {
@@ -36,10 +42,16 @@ impl Dims {
                 reason: "every dimension must be at least 1",
             });
         }
-        let cells = (nx as u128) * (ny as u128) * (nz as u128);
         // Face grids have one more sample per axis; keep those within the cap too.
-        let faces = ((nx + 1) as u128) * ((ny + 1) as u128) * ((nz + 1) as u128);
-        if cells > MAX_CELLS as u128 || faces > 4 * MAX_CELLS as u128 {
+        // Any side above the cap fails before a product could overflow.
+        let within = |cap: usize, extra: usize| {
+            [nx, ny, nz].iter().try_fold(1usize, |acc, &n| {
+                n.checked_add(extra)
+                    .and_then(|m| acc.checked_mul(m))
+                    .filter(|&p| p <= cap)
+            })
+        };
+        if within(MAX_CELLS, 0).is_none() || within(4 * MAX_CELLS, 1).is_none() {
             return Err(FluidError::InvalidSize {
                 dims,
                 reason: "more than 2^30 cells",
@@ -49,6 +61,10 @@ impl Dims {
     }
 
     /// A 2-D grid of `nx × nz` cells in the vertical x–z plane (`ny = 1`).
+    ///
+    /// # Errors
+    ///
+    /// As [`Dims::new`].
     pub fn plane(nx: usize, nz: usize) -> Result<Self> {
         Self::new(nx, 1, nz)
     }

@@ -103,6 +103,12 @@ pub enum LiquidCell {
     Object,
 }
 
+/// The most Navier–Stokes (CFL) steps one call of [`Liquid::step`] takes.
+pub const MAX_SUBSTEPS: u32 = 10_000;
+
+/// Largest gravity magnitude accepted, m/s² (about 1000 g).
+pub const MAX_GRAVITY: f32 = 1e4;
+
 /// Parameters of the liquid model. The paper gives none of these values
 /// (spec §4.2); defaults are library choices.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -169,16 +175,29 @@ impl Default for LiquidParams {
 
 impl LiquidParams {
     /// Checks every parameter.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that
+    /// is NaN, infinite or out of its range (gravity above [`MAX_GRAVITY`],
+    /// `max_cfl` above 100, `particles_per_cell` outside 1..=64, …).
     pub fn validate(&self) -> Result<()> {
         error::non_negative("viscosity", f64::from(self.viscosity))?;
-        if !self.gravity.is_finite() {
+        if !(self.gravity.is_finite() && self.gravity.length() <= MAX_GRAVITY) {
             return Err(FluidError::InvalidParameter {
                 name: "gravity",
                 value: format!("{:?}", self.gravity),
-                reason: "must be finite",
+                reason: "must be finite with magnitude ≤ 1e4 m/s² (about 1000 g)",
             });
         }
         error::positive("max_cfl", f64::from(self.max_cfl))?;
+        if self.max_cfl > 100.0 {
+            return Err(FluidError::InvalidParameter {
+                name: "max_cfl",
+                value: self.max_cfl.to_string(),
+                reason: "must be in (0, 100] (the source takes about 5)",
+            });
+        }
         if self.particles_per_cell == 0 || self.particles_per_cell > 64 {
             return Err(FluidError::InvalidParameter {
                 name: "particles_per_cell",
@@ -469,21 +488,47 @@ impl Liquid {
 
     /// Advances by `dt` seconds in as many Navier–Stokes steps as the CFL
     /// condition requires.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` if it is not
+    /// finite and positive, or if it would need more than [`MAX_SUBSTEPS`]
+    /// CFL steps at the current speeds (estimated before anything changes;
+    /// should the flow speed up so much that the cap is reached part-way, the
+    /// liquid has advanced by the steps taken and the same error is returned).
+    /// Returns [`FluidError::NonFinite`] if a step produces a NaN or infinite
+    /// value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
-        let mut done = 0.0f32;
+        let too_many = || FluidError::InvalidParameter {
+            name: "dt",
+            value: dt.to_string(),
+            reason: "needs more than MAX_SUBSTEPS (10 000) CFL steps in one call: advance in shorter intervals",
+        };
+        let first = f64::from(self.params.max_cfl * self.h / self.cfl_speed().max(1e-6));
+        if f64::from(dt) / first > f64::from(MAX_SUBSTEPS) {
+            return Err(too_many());
+        }
+        let total = f64::from(dt);
+        let mut done = 0.0f64;
+        let mut taken = 0u32;
         let mut report = StepReport::default();
-        while done < dt {
-            let cfl = self.h / self.cfl_speed().max(1e-6);
-            let mut sub = (self.params.max_cfl * cfl).min(dt - done);
-            if dt - done - sub < 1e-4 * dt {
-                sub = dt - done;
+        while done < total {
+            if taken == MAX_SUBSTEPS {
+                return Err(too_many());
             }
-            let r = self.ns_step(sub)?;
+            let cfl = f64::from(self.h / self.cfl_speed().max(1e-6));
+            let left = total - done;
+            let mut sub = (f64::from(self.params.max_cfl) * cfl).min(left);
+            if left - sub < 1e-4 * total {
+                sub = left;
+            }
+            let r = self.ns_step(sub as f32)?;
             report.substeps += r.substeps;
             report.pressure_iterations += r.pressure_iterations;
             report.pressure = r.pressure;
             done += sub;
+            taken += 1;
         }
         report.kinetic_energy = self.vel.kinetic_energy(self.h);
         report.max_divergence =
