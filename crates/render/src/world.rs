@@ -186,6 +186,23 @@ impl World {
         })
     }
 
+    /// The terrain alone, exactly as [`World::build`] makes it (synthesis,
+    /// erosion, the sunken coast), without maps or atmosphere: for sweeps,
+    /// caches and exports.
+    ///
+    /// # Errors
+    ///
+    /// Returns the scene's validation errors and any error of synthesis or
+    /// erosion.
+    pub fn build_terrain(scene: &SceneDesc, progress: &dyn Progress) -> Result<HeightField> {
+        scene.validate()?;
+        let seed = Seed(scene.seed);
+        let mut terrain = synthesize(scene, seed, progress)?;
+        erode(scene, &mut terrain, progress)?;
+        sink_coast(scene, seed, &mut terrain)?;
+        Ok(terrain)
+    }
+
     /// A world over a given height field (a DEM, or terrain made elsewhere):
     /// no synthesis or erosion; deposition is zero and wetness comes from D8
     /// flow accumulation. The scene's terrain and erosion sections are ignored.

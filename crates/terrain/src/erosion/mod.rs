@@ -208,7 +208,10 @@ pub const MAX_HEIGHT: f32 = 1e6;
 /// Checks every height is finite and within ±[`MAX_HEIGHT`], naming the first
 /// one that is not.
 pub(crate) fn check_heights(hf: &HeightField) -> Result<()> {
-    match hf.heights().find(|v| !v.is_finite() || v.abs() > MAX_HEIGHT) {
+    match hf
+        .heights()
+        .find(|v| !v.is_finite() || v.abs() > MAX_HEIGHT)
+    {
         None => Ok(()),
         Some((x, y, &value)) if !value.is_finite() => {
             Err(natura_core::CoreError::NonFinite { x, y, value }.into())
