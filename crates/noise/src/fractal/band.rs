@@ -90,9 +90,11 @@ impl Octaves {
 }
 
 impl<B: Field> Fbm<B> {
-    /// The fBm at the 3-D point `p` summed over `visible` octaves (see the
-    /// [module docs](self)); equal to [`Field::eval3`] for `visible ≥` the
-    /// octave count.
+    /// The fBm at the 3-D point `p` summed over `visible` octaves: octave
+    /// `k` keeps [`Octaves::band_factor`] `= clamp(visible − k, 0, 1)` of its
+    /// weight, so the sum is continuous in `visible` and the detail finer
+    /// than a pixel footprint can be dropped without popping (Musgrave 1993,
+    /// §5.1.2). Equal to [`Field::eval3`] for `visible ≥` the octave count.
     #[must_use]
     pub fn eval3_band(&self, p: DVec3, visible: f64) -> f64 {
         let o = self.octaves();
