@@ -20,6 +20,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::fractal::Octaves;
+use crate::fractal::cascade::{CascadeForm, Multifractal};
 use crate::fractal::fbm::{Fbm, Turbulence, sign};
 use crate::vector::{VectorFbm, VectorField};
 
@@ -112,6 +113,25 @@ impl<B: Field> Fbm<B> {
             .sum()
     }
 
+    /// The weighted terms `band_weight(k)·N(f_k·p)` of the octaves `k` in
+    /// `first..first + out.len()` of a sum over `visible` octaves, written to
+    /// `out` in order (0 for octaves beyond the band). Summing them in order
+    /// after the terms of the earlier octaves gives
+    /// [`eval3_band`](Self::eval3_band) bit for bit, so a caller can sum a
+    /// fractal incrementally and stop early.
+    pub fn eval3_band_terms(&self, p: DVec3, visible: f64, first: usize, out: &mut [f64]) {
+        let o = self.octaves();
+        let n = o.band_count(visible);
+        for (i, term) in out.iter_mut().enumerate() {
+            let k = first + i;
+            *term = if k < n {
+                o.band_weight(k, visible) * self.basis().eval3(p * o.frequency(k))
+            } else {
+                0.0
+            };
+        }
+    }
+
     /// The value and analytic gradient of [`eval3_band`](Self::eval3_band).
     #[must_use]
     pub fn eval_grad3_band(&self, p: DVec3, visible: f64) -> (f64, DVec3) {
@@ -167,6 +187,40 @@ impl<B: Field> Turbulence<B> {
     }
 }
 
+impl<B: Field> Multifractal<B> {
+    /// The cascade at the 3-D point `p` with only `visible` octaves'
+    /// noise: a cascade is a product, so dropping a factor would change its
+    /// magnitude; instead each octave's basis value is faded towards its
+    /// mean 0 by [`Octaves::band_factor`] (the RenderMan `filteredsnoise`
+    /// way), so an unresolved octave contributes its mean factor (`offset`
+    /// in the additive form, `offset·w_k` in the weighted one). Equal to
+    /// [`Field::eval3`] for `visible ≥` the octave count.
+    #[must_use]
+    pub fn eval3_band(&self, p: DVec3, visible: f64) -> f64 {
+        if visible.is_nan() {
+            return f64::NAN;
+        }
+        let o = self.octaves();
+        let q = self.params();
+        let mut v = 1.0;
+        for k in 0..o.count() {
+            let fade = (visible - k as f64).clamp(0.0, 1.0);
+            let n = if fade > 0.0 {
+                self.basis().eval3(p * o.frequency(k)) * fade
+            } else {
+                0.0
+            };
+            let a = o.amplitude(k);
+            let f = match q.form {
+                CascadeForm::Weighted => (n + q.offset) * a,
+                CascadeForm::Additive => q.offset + a * n,
+            };
+            v *= 1.0 + o.partial(k) * (f - 1.0);
+        }
+        v
+    }
+}
+
 impl<V: VectorField> VectorFbm<V> {
     /// The vector fBm at the 3-D point `p` summed over `visible` octaves.
     #[must_use]
@@ -187,7 +241,7 @@ impl<V: VectorField> VectorFbm<V> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{GainConvention, Perlin, Spectral, VecNoise};
+    use crate::{GainConvention, Multifractal, Perlin, Spectral, VecNoise};
 
     fn fbm(octaves: f64) -> Fbm<Perlin> {
         Fbm::new(
@@ -239,6 +293,19 @@ mod tests {
     }
 
     #[test]
+    fn terms_sum_to_the_band_bit_for_bit() {
+        let f = fbm(9.5);
+        let p = DVec3::new(0.7, -2.3, 4.1);
+        for v in [0.0, 2.5, 7.0, 9.5, 30.0] {
+            let mut terms = [0.0; 12];
+            f.eval3_band_terms(p, v, 0, &mut terms[..5]);
+            f.eval3_band_terms(p, v, 5, &mut terms[5..]);
+            let sum = terms.iter().fold(0.0, |a, t| a + t);
+            assert_eq!(sum.to_bits(), (f.eval3_band(p, v) + 0.0).to_bits(), "v={v}");
+        }
+    }
+
+    #[test]
     fn band_bounds_hold_and_shrink() {
         let f = fbm(8.0);
         let mut last = f64::INFINITY;
@@ -251,6 +318,18 @@ mod tests {
                 assert!(f.eval3_band(p, v).abs() <= f.bound_band(v));
             }
         }
+    }
+
+    #[test]
+    fn cascade_band_fades_factors_to_their_mean() {
+        let m = Multifractal::new(Perlin::new(5), crate::MultifractalParams::multicolor()).unwrap();
+        let p = DVec3::new(0.3, -1.2, 2.2);
+        assert_eq!(m.eval3_band(p, 8.0), m.eval3(p));
+        assert_eq!(m.eval3_band(p, 100.0), m.eval3(p));
+        // No octave resolved: every factor is its mean, the zero offset.
+        let mean = libm::pow(0.2, 8.0);
+        assert!((m.eval3_band(p, 0.0) - mean).abs() < 1e-18);
+        assert!(m.eval3_band(p, f64::NAN).is_nan());
     }
 
     #[test]
