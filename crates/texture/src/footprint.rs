@@ -19,12 +19,15 @@
 //! almost all its power below one cycle per cell, so such an octave is
 //! sampled at least twice per period of its highest significant frequency),
 //! and fades out linearly in `log f` until `width·f_k = ½·λ`. Single noise
-//! evaluations (a distortion vector, a crater ray) use the RenderMan
-//! `filteredsnoise` fade of Musgrave 1998, "Distortion for Cirrus Clouds"
-//! (`1 − smoothstep(0.2, 0.6, width·f)`), natura-noise's [`filter_fade`].
+//! evaluations (a distortion vector, a crater ray) fade by the same rule
+//! with `λ = 2` ([`Footprint::fade`]); the shaders of Musgrave 1998 fade them
+//! with `filteredsnoise`, `1 − smoothstep(0.2, 0.6, width·f)` (natura-noise's
+//! `filter_fade`), which drops a distortion while the footprint still
+//! resolves it and so makes a wide footprint's value depart from the
+//! filtered texture; the octave rule keeps every noise consistent.
 
 use glam::DVec3;
-use natura_noise::{Fbm, Field, Spectral, Turbulence, VectorFbm, VectorField, filter_fade};
+use natura_noise::{Fbm, Field, Spectral, Turbulence, VectorFbm, VectorField};
 
 use crate::error::{Result, invalid};
 
@@ -102,11 +105,12 @@ impl Footprint {
         self.visible_octaves(spectral.frequency, spectral.lacunarity)
     }
 
-    /// The fade of one noise evaluation at lattice frequency `frequency`:
-    /// 1 while the footprint covers at most 0.2 cells, 0 from 0.6 cells on.
+    /// The weight of one noise evaluation at lattice frequency `frequency`:
+    /// the octave rule with `λ = 2` — 1 while the footprint covers at most
+    /// half a cell, falling linearly in `log f` to 0 at a whole cell.
     #[must_use]
     pub fn fade(self, frequency: f64) -> f64 {
-        filter_fade(self.width * frequency)
+        self.visible_octaves(frequency, 2.0).min(1.0)
     }
 }
 

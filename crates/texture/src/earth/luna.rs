@@ -223,7 +223,8 @@ impl Luna {
         if !(pd >= q.rim_rad && pd < 0.4) {
             return 0.0;
         }
-        let filtered = |x: f64, w: f64| self.rays.eval1(x) * natura_noise::filter_fade(w);
+        let filtered =
+            |x: f64, w: f64| self.rays.eval1(x) * Footprint::new(w).map_or(0.0, |fp| fp.fade(1.0));
         let mut lighten = smoothstep(0.15, 0.5, filtered(62.0 * u, 62.0 * fw_u));
         let wrapped = (u + 0.022).rem_euclid(1.0);
         let raydist = 0.2 + 0.2 * filtered(20.0 * wrapped, 20.0 * fw_u);
