@@ -55,10 +55,11 @@ impl MulticolorParams {
 /// ```
 ///
 /// **Erratum corrected.** The listing's "clamp" sets `c = 1 − |c|` when
-/// `|c| > 1`, which is negative for `c > 2` and leaves `c ∈ (−1, 0)`
-/// negative; here every channel is folded (reflected at 0 and 1) into
-/// `[0, 1]`, which agrees with the listing on `(1, 2]` and keeps the
-/// texture's aim, a colour that averages to 50% grey. The cascade is a
+/// `|c| > 1`, which is negative for every such `c` (`1 − 1.3 = −0.3`), and
+/// leaves `c ∈ (−1, 0)` negative; the evident intent is a reflection back into
+/// the cube, so every channel is folded (reflected at 0 and at 1) into
+/// `[0, 1]`, which keeps the texture's aim, a colour that averages to 50%
+/// grey. The cascade is a
 /// product, so its unresolved octaves are not dropped but faded to their
 /// mean factor (natura-noise's `Multifractal::eval3_band`).
 #[derive(Clone, Debug)]

@@ -10,8 +10,11 @@ use natura_texture::air::{PlanetClouds, PlanetCloudsParams};
 use natura_texture::earth::{Terran, TerranParams};
 use natura_texture::water::{Ripples, RipplesParams};
 
-/// Scalar fractal fields of three textures, all octaves at a point sample.
-fn fields() -> Vec<(&'static str, Box<dyn Fn(DVec3, Footprint) -> f64>)> {
+/// A scalar field of a texture, filtered to a footprint.
+type ScalarField = Box<dyn Fn(DVec3, Footprint) -> f64>;
+
+/// Scalar fractal fields of three textures.
+fn fields() -> Vec<(&'static str, ScalarField)> {
     let terran = Terran::new(TerranParams {
         seed: 4,
         ..TerranParams::default()

@@ -243,8 +243,11 @@ pub struct Terran {
 /// The colour [`Terran::shade`] gives, and whether it is land.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TerranShade {
-    /// The colour, each channel in `[0, 1]`.
+    /// The colour, linear RGB, each channel in `[0, 1]`.
     pub colour: DVec3,
+    /// The same colour as the listing computes it (display values, clamped
+    /// to `[0, 1]`).
+    pub display: DVec3,
     /// Whether the point is above sea level.
     pub land: bool,
 }
@@ -438,8 +441,10 @@ impl Terran {
             let depth = ((chaos - q.sea_level) * q.depth_scale).max(-q.depth_max);
             q.ocean_colour * (1.0 + depth)
         };
+        let display = colour.clamp(DVec3::ZERO, DVec3::ONE);
         TerranShade {
-            colour: display_to_linear(colour),
+            colour: display_to_linear(display),
+            display,
             land,
         }
     }

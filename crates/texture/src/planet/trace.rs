@@ -160,7 +160,7 @@ impl Planet {
             let (t0, _) = sphere_hits(o, d, self.radius())?;
             return (t0 >= 0.0).then_some(t0);
         }
-        let (start, t_end, _) = self.shell(o, d)?;
+        let (start, t_end, crosses) = self.shell(o, d)?;
         let g = |t: f64| self.gap(o, d, t, pixel_angle);
         let mut a = start;
         if g(a) <= 0.0 {
@@ -182,7 +182,9 @@ impl Planet {
             }
             a = b;
         }
-        None
+        // The sea-level sphere lies on or below the surface, so a ray that
+        // reaches it has met the surface by then (rounding aside).
+        crosses.then_some(t_end)
     }
 
     /// Whether the terrain blocks the sun from the surface point `p`
