@@ -25,8 +25,8 @@ fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
     let view: String = args.value("--view", "orbit".to_string(), "orbit or ground");
-    let width: u32 = args.value("--width", if quick { 240 } else { 1920 }, "image width");
-    let height: u32 = args.value("--height", if quick { 135 } else { 1080 }, "image height");
+    let width: Option<u32> = args.optional("--width", "image width (1920 orbit, 1280 ground)");
+    let height: Option<u32> = args.optional("--height", "image height (1080 orbit, 720 ground)");
     let seed: u64 = args.value("--seed", 3, "random seed");
     let exr = args.switch("--exr", "also write the linear render as EXR");
     let cube: usize = args.value(
@@ -41,16 +41,10 @@ fn main() {
         0.62,
         "orbit view: vertical field of view, radians",
     );
-    let lat: f64 = args.value(
-        "--lat",
-        0.35,
-        "orbit view: latitude below the camera, radians",
-    );
-    let lon: f64 = args.value(
-        "--lon",
-        0.25,
-        "orbit view: longitude below the camera, radians",
-    );
+    let lat: Option<f64> = args.optional("--lat", "latitude below the camera, radians");
+    let lon: Option<f64> = args.optional("--lon", "longitude below the camera, radians");
+    let search: f64 = args.value("--search", 150_000.0, "ground view: peak search radius, m");
+    let heading: f64 = args.value("--heading", 0.2, "ground view: compass heading, radians");
     let ev: Option<f32> = args.optional("--ev", "exposure in stops (default 0 orbit, +1.5 ground)");
     let out = args.out_dir("docs/gallery/texture");
     args.finish();
@@ -60,6 +54,15 @@ fn main() {
         "ground" => "planet_ground",
         other => common::fail(&format!("--view {other}: expected orbit or ground")),
     };
+    let orbit = name == "planet_orbit";
+    let (w0, h0) = match (quick, orbit) {
+        (true, _) => (240, 135),
+        (false, true) => (1920, 1080),
+        (false, false) => (1280, 720),
+    };
+    let (width, height) = (width.unwrap_or(w0), height.unwrap_or(h0));
+    let lat = lat.unwrap_or(if orbit { 0.35 } else { 0.3 });
+    let lon = lon.unwrap_or(if orbit { 0.25 } else { 2.1 });
     let png = out.join(format!("{name}.png"));
     common::check(check_writable(&png));
     if exr {
@@ -76,20 +79,23 @@ fn main() {
     if let Some(c) = &mut params.clouds {
         c.clouds.seed = seed;
     }
-    // The sun 75° round from the view (orbit) or low in the west (ground).
-    params.light.sun = if view == "orbit" {
+    // The sun 75° round from the view (orbit), or low in the east (ground).
+    params.light.sun = if orbit {
         direction(0.2, lon + 1.3)
     } else {
-        direction(0.25, 0.3 - 1.1)
+        direction(lat - 0.1, lon + 1.25)
     };
     let planet = common::check(Planet::new(params));
-    let camera = if name == "planet_orbit" {
+    let camera = if orbit {
         common::check(planet.orbit_view(altitude, lat, lon, vfov, width, height))
     } else {
-        let mut g = GroundViewParams::default();
-        if quick {
-            g.search_radius_m = 100_000.0;
-        }
+        let g = GroundViewParams {
+            latitude: lat,
+            longitude: lon,
+            search_radius_m: if quick { 100_000.0 } else { search },
+            heading,
+            ..GroundViewParams::default()
+        };
         common::check(planet.ground_view(&g, width, height))
     };
     let bar = common::Bar::new();
@@ -99,7 +105,7 @@ fn main() {
         "rendered {width}×{height} in {:.2} s",
         started.elapsed().as_secs_f64()
     );
-    let ev = ev.unwrap_or(if name == "planet_orbit" { 0.0 } else { 1.5 });
+    let ev = ev.unwrap_or(if orbit { 0.0 } else { 1.5 });
     save(&image, &png, exr, ev);
 
     if cube > 0 {

@@ -251,14 +251,7 @@ impl Relief {
     /// (metres per texture unit).
     #[must_use]
     pub fn height_grad(&self, dir: DVec3, fp: Footprint) -> (f64, DVec3) {
-        let q = self.texture_point(dir);
-        let (mut b, mut g) = self.terran.bump_grad(q, fp);
-        if let Some(d) = &self.detail {
-            let v = self.visible(fp) - d.first as f64;
-            let (db, dg) = d.fbm.eval_grad3_band(q, v);
-            b += d.scale * db;
-            g += dg * d.scale;
-        }
+        let (b, g) = self.bump_grad(dir, fp);
         if self.terran.is_land(b) {
             (self.height_of(b), g * self.metres)
         } else {
@@ -270,11 +263,38 @@ impl Relief {
     /// `p` (on or near the surface).
     #[must_use]
     pub fn normal(&self, p: DVec3, fp: Footprint) -> DVec3 {
+        self.normal_and_bump(p, fp).0
+    }
+
+    /// The outward unit normal at `p` and the bump value there (one
+    /// evaluation of the fractal and its gradient).
+    #[must_use]
+    pub fn normal_and_bump(&self, p: DVec3, fp: Footprint) -> (DVec3, f64) {
         let r = p.length();
         let n = p / r;
-        let (_, g) = self.height_grad(n, fp);
+        let (b, g) = self.bump_grad(n, fp);
+        let g = if self.terran.is_land(b) {
+            g * self.metres
+        } else {
+            DVec3::ZERO
+        };
         let tangential = g - n * n.dot(g);
-        (n - tangential * (self.scale / r)).normalize()
+        ((n - tangential * (self.scale / r)).normalize(), b)
+    }
+
+    /// The bump value and its gradient with respect to the texture-sphere
+    /// point, continents and detail.
+    #[must_use]
+    pub fn bump_grad(&self, dir: DVec3, fp: Footprint) -> (f64, DVec3) {
+        let q = self.texture_point(dir);
+        let (mut b, mut g) = self.terran.bump_grad(q, fp);
+        if let Some(d) = &self.detail {
+            let v = self.visible(fp) - d.first as f64;
+            let (db, dg) = d.fbm.eval_grad3_band(q, v);
+            b += d.scale * db;
+            g += dg * d.scale;
+        }
+        (b, g)
     }
 
     /// A Lipschitz constant of the height along the surface: metres of

@@ -221,8 +221,7 @@ impl Planet {
         match &self.surface {
             Surface::Terrain(relief) => {
                 let fp = h.footprint;
-                let n = relief.normal(p, fp);
-                let b = relief.bump(dir, fp);
+                let (n, b) = relief.normal_and_bump(p, fp);
                 let t = relief.terran();
                 let mottle = t.mottle(relief.texture_point(dir), fp);
                 let shade = t.shade(b, dir.z.abs(), mottle);

@@ -101,9 +101,9 @@ impl Planet {
         }
     }
 
-    /// Sphere traces the ray from `o` in unit direction `d` whose pixels
-    /// subtend `pixel_angle` radians: the first point where it meets the
-    /// surface, or `None`.
+    /// Sphere traces (Hart 1996) the ray from `o` in unit direction `d` whose
+    /// pixels subtend `pixel_angle` radians: the first point where it meets
+    /// the surface, or `None`.
     ///
     /// Each step advances by the gap to the surface divided by a Lipschitz
     /// bound of the gap along the ray, `√(1 + L_h²) + |∂h/∂v|/(t·ln λ)`

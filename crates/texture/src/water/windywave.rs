@@ -76,7 +76,7 @@ impl WindyWaveParams {
 /// ripples. natura follows the text: the wind is the large scale (at
 /// `windfreq`, as its name says) and the ripples are `ripple_ratio = 8`
 /// times finer. `turbulence()` is not defined in the source; it is Perlin's
-/// sum of `|noise|` (natura-noise's `Turbulence`).
+/// sum of `|noise|` (Perlin 1985; natura-noise's `Turbulence`).
 #[derive(Clone, Debug)]
 pub struct WindyWave {
     params: WindyWaveParams,
