@@ -15,7 +15,7 @@ use natura::atmos::medium::{ExponentialMist, RadialAtmosphere};
 use natura::atmos::mirage::{GrinTracer, StratifiedAir, TemperatureProfile};
 use natura::atmos::rainbow::{RainbowParams, RainbowTable};
 use natura::atmos::sky::{
-    ApSample, Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, Projection,
+    ApSample, Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, SkyProjection,
 };
 use natura::core::glam::{DVec3, Vec3};
 
@@ -140,7 +140,7 @@ fn sky(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(4))
         .warm_up_time(Duration::from_secs(1));
     g.throughput(Throughput::Elements(1920 * 1080));
-    let projection = Projection::Pinhole {
+    let projection = SkyProjection::Pinhole {
         fov_y: 0.9,
         yaw: 1.0,
         pitch: 0.05,

@@ -1,4 +1,5 @@
-//! natura-fluid throughput: the issue 9 workloads on 2 threads.
+//! natura-fluid throughput on 2 threads: 2-D stable fluids, 3-D smoke, and the
+//! projection against Gauss–Seidel.
 //!
 //! * 2-D Stable Fluids, 512², bounded box, projection to relative residual 1e-5;
 //! * 3-D smoke, 128³, vorticity confinement, same tolerance;
@@ -8,7 +9,7 @@
 //!   marked as such).
 //!
 //! No crates.io fluid solver is a maintained peer; the Gauss–Seidel baseline
-//! is the comparison the issue asks for.
+//! is the comparison that matters.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};

@@ -62,14 +62,14 @@ fn full_frame(c: &mut Criterion) {
             b.iter(|| {
                 t += 0.04;
                 r.evaluate(t).expect("evaluate");
-                black_box(r.field(natura::ocean::Field::Height).as_slice()[0])
+                black_box(r.field(natura::ocean::FrameField::Height).as_slice()[0])
             })
         });
     }
     group.finish();
 }
 
-/// The calibration workload: one 512² complex 2-D FFT with rustfft
+/// The calibration workload: one 512² complex 2-D FFT with rustfft
 /// and a plain transpose (batched row transforms, a plain transpose, row
 /// transforms; the result stays transposed), timed on fresh input each
 /// iteration, so the frame times can be compared across machines.

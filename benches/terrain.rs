@@ -4,7 +4,7 @@
 //!
 //! No peer crate is named for these workloads (there is no maintained Rust
 //! erosion crate to measure against); the figures are compared with the
-//! issue's absolute targets in docs/performance.md.
+//! absolute targets in docs/performance.md.
 
 use std::time::Duration;
 

@@ -42,7 +42,6 @@ fn main() {
         scene.terrain.size = 256;
         scene.terrain.cell_size_m *= 8.0;
         scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
-        scene.erosion.droplets = scene.erosion.droplets.min(10_000);
         scene.erosion.hydraulic_steps = scene.erosion.hydraulic_steps.min(20);
         scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
         scene.render.width = 320;

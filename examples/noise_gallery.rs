@@ -52,7 +52,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
     Ok(vec![
         t(
             "basis_perlin",
-            "Perlin gradient noise, quintic fade [D 826-856]",
+            "Perlin gradient noise, quintic fade (Musgrave 1993, §2.3.1)",
             Box::new(p),
             8.0,
             v,
@@ -157,14 +157,14 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "basis_ridged",
-            "ridged basis 1 − |N| [D 1106]",
+            "ridged basis 1 − |N| (Musgrave 1993, §2.3.2.5.3)",
             Box::new(Ridged(p)),
             8.0,
             v,
         ),
         t(
             "fractal_fbm",
-            "fBm, H = 0.5, λ = e − ½, 8 octaves [D 858-908]",
+            "fBm, H = 0.5, λ = e − ½, 8 octaves (Musgrave 1993, §2.3.2.1)",
             Box::new(Fbm::new(p, s)?),
             4.0,
             terrain,
@@ -192,7 +192,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "fractal_hetero_terrain",
-            "heterogeneous terrain [D 1017-1108]",
+            "heterogeneous terrain (Musgrave 1993, §2.3.2.5)",
             Box::new(HeteroTerrain::new(p, HeteroTerrainParams::default())?),
             4.0,
             terrain,
@@ -223,7 +223,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "fractal_stats_by_altitude",
-            "statistics by altitude (hfBm equation) [D 930]",
+            "statistics by altitude (hfBm equation) (Musgrave 1993, §2.3.2.3.1)",
             Box::new(StatsByAltitude::new(p, StatsByAltitudeParams::default())?),
             4.0,
             terrain,
@@ -264,7 +264,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "fractal_driven_h",
-            "fBm with H varying 0 → 1 across the picture [D 910-914]",
+            "fBm with H varying 0 → 1 across the picture (Musgrave 1993, §2.3.2.2)",
             Box::new(Driven::new(p, s, DrivenKind::Fbm)?.with_h(Param::Field(
                 std::sync::Arc::new(Transform::new(XRamp).with_range(0.5, 0.5)),
             ))),
@@ -280,7 +280,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "distortion_vlnoise",
-            "VLNoise (C form) [D 2077-2098]",
+            "VLNoise (C form) (Musgrave 1993, §5.2)",
             Box::new(VlNoise::vl_noise(p, 1.0)?),
             8.0,
             v,
@@ -297,7 +297,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "distortion_cyclone",
-            "cyclone twist of fBm [D 2169-2218]",
+            "cyclone twist of fBm (Musgrave 1993, §5.3)",
             Box::new(Warped {
                 field: Fbm::new(p, s)?,
                 warp: Twist::new(TwistLaw::Cyclone {

@@ -152,7 +152,7 @@ fn height_picture(f: &Frame) -> Image {
     Image::false_colour(&flip(f.height()), Ramp::Coolwarm, -m, m)
 }
 
-/// Greyscale x-slope, ±3σ (the notes' Fig. 7, L955).
+/// Greyscale x-slope, ±3σ (Tessendorf 2001, fig. 7).
 fn slope_picture(f: &Frame) -> Image {
     let s = f.slope_x();
     let sd = (s.as_slice().iter().map(|v| v * v).sum::<f32>() / s.len() as f32).sqrt();

@@ -44,7 +44,6 @@ fn main() {
         scene.terrain.size = 256;
         scene.terrain.cell_size_m *= 8.0;
         scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
-        scene.erosion.droplets = scene.erosion.droplets.min(10_000);
         scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
         scene.render.width = 480;
         scene.render.height = ((480.0 * vfov / hfov).round() as u32).max(1);

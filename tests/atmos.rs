@@ -4,7 +4,7 @@
 use natura::atmos::Dir3;
 use natura::atmos::medium::Medium;
 use natura::atmos::rainbow::{Rainbow, RainbowParams};
-use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, Projection};
+use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, SkyProjection};
 use natura::core::glam::{DVec3, Vec3};
 
 fn small() -> AtmosphereParams {
@@ -48,7 +48,7 @@ fn rendered_sky_is_deterministic_across_thread_counts() {
     let view = atm
         .sky_view(DVec3::new(0.0, 0.0, 200.0), Dir3::from_angles(0.05, 0.0))
         .unwrap();
-    let proj = Projection::Pinhole {
+    let proj = SkyProjection::Pinhole {
         fov_y: 1.0,
         yaw: 0.3,
         pitch: 0.0,

@@ -25,11 +25,19 @@ impl Dir3 {
     pub const Y: Dir3 = Dir3(DVec3::Y);
 
     /// Returns `v / |v|`, or [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
     pub fn new(v: DVec3) -> Result<Self> {
         Self::named("direction", v)
     }
 
     /// Like [`Dir3::new`], naming the argument `name` in the error.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] naming `name` if `v` is zero, NaN or infinite.
     pub fn named(name: &'static str, v: DVec3) -> Result<Self> {
         // Scale by the largest component first so tiny and huge vectors neither
         // underflow nor overflow when squared.
@@ -48,6 +56,10 @@ impl Dir3 {
     }
 
     /// Returns the normalised `f32` vector `v` as a direction (see [`Dir3::new`]).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
     pub fn from_f32(v: Vec3) -> Result<Self> {
         Self::new(v.as_dvec3())
     }

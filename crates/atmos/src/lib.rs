@@ -2,20 +2,21 @@
 //!
 //! Aerial perspective, the physical sky, spectral colour, the rainbow and
 //! mirages, after Musgrave's dissertation *Methods for Realistic Landscape
-//! Imaging* (1993, chapter 4; seed `000`, cited `D:line`) and the SIGGRAPH
-//! 2001 course *Simulating Nature* (seed `004`, `C:line`), with the errata of
-//! the spec digest `atmosphere.md` corrected and the later physical models
-//! (Nishita 1993, Hillaire 2020, Jakob–Hanika 2019) added.
+//! Imaging* (Musgrave 1993, ch. 4) and the SIGGRAPH 2001 course *Simulating
+//! Nature* (Tessendorf 2001, Fedkiw et al. 2001), with the sources' errata
+//! corrected (each stated where it is fixed) and the later physical models
+//! (Nishita et al. 1993, Hillaire 2020, Jakob & Hanika 2019) added. The
+//! bibliography is the repository's `docs/sources.md`.
 //!
 //! | module | what | source |
 //! |---|---|---|
-//! | [`medium`] | the [`Medium`] trait: homogeneous fog, exponential mist, exact radial (planetary) atmosphere, umbra | D:1514-1642 |
-//! | [`scatter`] | Rayleigh, Henyey–Greenstein, Cornette–Shanks phase functions; physical Rayleigh coefficient | D:1484-1488, C:2152 |
-//! | [`sky`] | Rayleigh + Mie + ozone sky: Nishita ray marching, Hillaire LUTs, aerial perspective, sun disc | spec §15.2 |
-//! | [`spectrum`] | CIE 1931 CMFs, Wyman fit, XYZ → sRGB, Bradford, illuminants, sampling, upsampling, Musgrave's tables | D:1810-1886 |
-//! | [`rainbow`] | Descartes paths, Fresnel, Cauchy water, the deviation/intensity table, empirical bow | D:1768-1800, D:1890-1953 |
-//! | [`mirage`] | Gladstone–Dale stratified air, adaptive RK ray paths, Musgrave's planar mirage with TIR | D:1959-2001 |
-//! | [`optics`] | Snell, Fresnel, critical and Brewster angles, dispersion | D:1724-1794, C:1121-1157 |
+//! | [`medium`] | the [`Medium`] trait: homogeneous fog, exponential mist, exact radial (planetary) atmosphere, umbra | Musgrave 1993, §4.1.4–4.1.6.5 |
+//! | [`scatter`] | Rayleigh, Henyey–Greenstein, Cornette–Shanks phase functions; physical Rayleigh coefficient | Musgrave 1993, §4.1.2; Fedkiw et al. 2001, §5, eq. 12 |
+//! | [`sky`] | Rayleigh + Mie + ozone sky: Nishita ray marching, Hillaire LUTs, aerial perspective, sun disc | Nishita et al. 1993; Hillaire 2020 |
+//! | [`spectrum`] | CIE 1931 CMFs, Wyman fit, XYZ → sRGB, Bradford, illuminants, sampling, upsampling, Musgrave's tables | Musgrave 1993, §4.2.4.1–4.2.4.2.2 |
+//! | [`rainbow`] | Descartes paths, Fresnel, Cauchy water, the deviation/intensity table, empirical bow | Musgrave 1993, §4.2.3.3, §4.2.4.3.1–4.2.4.3.2 |
+//! | [`mirage`] | Gladstone–Dale stratified air, adaptive RK ray paths, Musgrave's planar mirage with TIR | Musgrave 1993, §4.3–4.3.3 |
+//! | [`optics`] | Snell, Fresnel, critical and Brewster angles, dispersion | Musgrave 1993, §4.2.3.1–4.2.3.3; Tessendorf 2001, §4.1–4.2 |
 //! | [`simd`] | run-time SIMD dispatch for the batch sky lookups ([`sky::SkyView::radiance_batch`]) | |
 //!
 //! **Errata corrected** (each is documented where it is fixed): the radial

@@ -6,14 +6,14 @@
 //!   aloft (inversion) the **superior** one.
 //! * [`GrinTracer`]: the ray equation `d/ds(n dx/ds) = ∇n` integrated with an
 //!   adaptive Dormand–Prince 5(4) Runge–Kutta scheme. In a smooth profile the
-//!   turning point is smooth (spec §8.3): the Khular/Fabri picture (D:1967-1981)
+//!   turning point is smooth: the Khular/Fabri picture (Musgrave 1993, §4.3.2)
 //!   is right for smooth profiles and Musgrave's kinked "reflected hyperbola"
-//!   (D:1977-1983) only for a sharp interface, which is
-//! * [`PlanarMirage`]: Musgrave's semi-physical model (D:557-563,
-//!   D:1959-2001): one planar index discontinuity, optionally with a perturbed
+//!   (Musgrave 1993, §4.3.2) only for a sharp interface, which is
+//! * [`PlanarMirage`]: Musgrave's semi-physical model (Musgrave 1993, §1.2.4.4,
+//!   Musgrave 1993, §4.3–4.3.3): one planar index discontinuity, optionally with a perturbed
 //!   (fBm-bumped) normal, and total internal reflection for glancing rays
 //!   going from higher to lower index. TIR rays are reflected, never dropped
-//!   (D:1995-2001).
+//!   (Musgrave 1993, §4.3.3).
 
 use glam::DVec3;
 
@@ -196,6 +196,11 @@ impl StratifiedAir {
     /// standard), Gladstone–Dale constant [`GLADSTONE_DALE_AIR`].
     ///
     /// Refuses non-physical temperatures, thicknesses or pressures.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-physical temperature profile (non-positive or
+    /// NaN temperatures or thicknesses) or pressure.
     pub fn new(profile: TemperatureProfile, pressure_pa: f64) -> Result<Self> {
         profile.validate()?;
         positive("pressure_pa", pressure_pa)?;
@@ -377,6 +382,11 @@ const DP_E: [f64; 7] = [
 
 impl GrinTracer {
     /// Refuses non-positive or NaN settings.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] naming the first setting that is non-positive or NaN, or a
+    /// `top_z` not above `ground_z`.
     pub fn validate(&self) -> Result<()> {
         positive("tolerance_m", self.tolerance_m)?;
         positive("initial_step_m", self.initial_step_m)?;
@@ -395,8 +405,12 @@ impl GrinTracer {
 
     /// Traces the ray from `origin` in direction `dir` through `field`.
     ///
-    /// Fails on bad settings, an origin outside the slab, or an index field
-    /// that returns NaN or non-positive values.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for bad settings, an origin outside the slab or an index
+    /// field that gives NaN or non-positive values, and
+    /// [`AtmosError::NoConvergence`] if the step size
+    /// collapses before the path leaves the slab.
     pub fn trace(&self, field: &impl IndexField, origin: DVec3, dir: Dir3) -> Result<RayPath> {
         self.validate()?;
         crate::error::finite3("origin", origin)?;
@@ -530,7 +544,8 @@ impl GrinTracer {
 }
 
 /// Returns the largest relative drift of Snell's invariant `n(z)·cos(elevation)`
-/// along a path in a horizontally stratified `field` (the accuracy check of spec §8.3).
+/// along a path in a horizontally stratified `field` (an accuracy check: the invariant
+/// holds exactly along true paths).
 #[must_use]
 pub fn invariant_drift(path: &RayPath, field: &impl IndexField) -> f64 {
     let inv = |p: DVec3, d: DVec3| field.n(p) * d.truncate().length();
@@ -559,7 +574,7 @@ pub struct Interaction {
 }
 
 /// Musgrave's mirage: a horizontal plane at `height_m` separating air of index
-/// `n_above` from hotter, optically thinner air `n_below` (D:559, D:1987).
+/// `n_above` from hotter, optically thinner air `n_below` (Musgrave 1993, §1.2.4.4, §4.3.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PlanarMirage {
@@ -570,6 +585,10 @@ pub struct PlanarMirage {
 
 impl PlanarMirage {
     /// A mirage plane; refuses NaN heights and non-positive indices.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a NaN height or a non-positive or NaN index.
     pub fn new(height_m: f64, n_above: f64, n_below: f64) -> Result<Self> {
         finite("height_m", height_m)?;
         crate::optics::check_ior("n_above", n_above)?;
@@ -582,6 +601,11 @@ impl PlanarMirage {
     }
 
     /// The plane from air temperatures above and below (Gladstone–Dale at `pressure_pa`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] if a temperature or the pressure is not finite and
+    /// positive.
     pub fn from_temperatures(
         height_m: f64,
         above_k: f64,

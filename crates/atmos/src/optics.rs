@@ -2,15 +2,16 @@
 //! reflectance per polarisation, critical and Brewster angles, and
 //! dispersion models `n(λ)`.
 //!
-//! Snell: `η₁ sin θ_i = η₂ sin θ_t` (eq. 4.2.1, seed D:1724; C:1121 eq. 40).
+//! Snell: `η₁ sin θ_i = η₂ sin θ_t` (eq. 4.2.1, Musgrave 1993, §4.2.3.1; Tessendorf 2001,
+//! §4.1, eq. 40).
 //! Fresnel for a dielectric with zero extinction (eqs. 4.2.5-4.2.7,
-//! D:1786-1794): the cosine form is used, which is well defined at normal
-//! incidence, unlike the sin/tan form of C:1146 (eq. 44), which is 0/0 there.
+//! Musgrave 1993, §4.2.3.3): the cosine form is used, which is well defined at normal
+//! incidence, unlike the sin/tan form of Tessendorf 2001, §4.2 (eq. 44), which is 0/0 there.
 //! Beyond the critical angle the reflectance is exactly 1 (total internal
 //! reflection); nothing here ever returns NaN from `asin(> 1)`.
 //!
 //! Note: the course notes call the water→air critical angle "Brewster's
-//! angle" (C:1155-1157); that is a misnomer, and the two are kept distinct
+//! angle" (Tessendorf 2001, §4.2); that is a misnomer, and the two are kept distinct
 //! here ([`critical_angle`], [`brewster_angle`]).
 
 use glam::DVec3;
@@ -18,9 +19,9 @@ use glam::DVec3;
 use crate::Dir3;
 use crate::error::{AtmosError, Result, positive};
 
-/// Refractive index of air used by Musgrave's rainbow simulation (D:1939).
+/// Refractive index of air used by Musgrave's rainbow simulation (Musgrave 1993, §4.2.4.3.2).
 pub const AIR_MUSGRAVE_RAINBOW: f64 = 1.0003;
-/// Refractive index of air "at room temperature and pressure" (D:1987).
+/// Refractive index of air "at room temperature and pressure" (Musgrave 1993, §4.3.2).
 pub const AIR_ROOM: f64 = 1.00027;
 
 /// Fresnel power reflectances of the two linear polarisations.
@@ -33,7 +34,7 @@ pub struct Fresnel {
 }
 
 impl Fresnel {
-    /// Reflectance of unpolarised light, `(r∥² + r⊥²)/2` (eq. 4.2.7, D:1794).
+    /// Reflectance of unpolarised light, `(r∥² + r⊥²)/2` (eq. 4.2.7, Musgrave 1993, §4.2.3.3).
     #[inline]
     #[must_use]
     pub fn unpolarized(&self) -> f64 {
@@ -105,6 +106,10 @@ pub fn refract(d: Dir3, n: Dir3, eta: f64) -> Option<Dir3> {
 
 /// Returns the critical angle (from the normal) for light going from `n_from`
 /// into the less dense `n_to`, or `None` if `n_to ≥ n_from` (no TIR).
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either index is not finite and positive.
 pub fn critical_angle(n_from: f64, n_to: f64) -> Result<Option<f64>> {
     positive("n_from", n_from)?;
     positive("n_to", n_to)?;
@@ -112,17 +117,21 @@ pub fn critical_angle(n_from: f64, n_to: f64) -> Result<Option<f64>> {
 }
 
 /// Returns Brewster's angle `atan(n_to/n_from)` (from the normal), where `r∥ = 0`.
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either index is not finite and positive.
 pub fn brewster_angle(n_from: f64, n_to: f64) -> Result<f64> {
     positive("n_from", n_from)?;
     positive("n_to", n_to)?;
     Ok((n_to / n_from).atan())
 }
 
-/// Fraunhofer C line (Hα), nm (D:1742).
+/// Fraunhofer C line (Hα), nm (Musgrave 1993, §4.2.3.2).
 pub const FRAUNHOFER_C_NM: f64 = 656.3;
-/// Fraunhofer D line (sodium), nm (D:1742; the source's "hydrogen" attribution is wrong).
+/// Fraunhofer D line (sodium), nm (Musgrave 1993, §4.2.3.2; the source's "hydrogen" attribution is wrong).
 pub const FRAUNHOFER_D_NM: f64 = 589.3;
-/// Fraunhofer F line (Hβ), nm (D:1742).
+/// Fraunhofer F line (Hβ), nm (Musgrave 1993, §4.2.3.2).
 pub const FRAUNHOFER_F_NM: f64 = 486.1;
 
 /// A refractive index as a function of vacuum wavelength in nanometres.
@@ -130,13 +139,13 @@ pub trait Dispersion: Send + Sync {
     /// The refractive index at `lambda_nm`.
     fn ior(&self, lambda_nm: f64) -> f64;
 
-    /// The Abbe number `ν = (n_D − 1)/(n_F − n_C)` (D:1732-1736).
+    /// The Abbe number `ν = (n_D − 1)/(n_F − n_C)` (Musgrave 1993, §4.2.3.2).
     fn abbe_number(&self) -> f64 {
         (self.ior(FRAUNHOFER_D_NM) - 1.0) / (self.ior(FRAUNHOFER_F_NM) - self.ior(FRAUNHOFER_C_NM))
     }
 }
 
-/// Cauchy's two-term dispersion `n(λ) = a + b/λ²`, λ in nm (D:1758).
+/// Cauchy's two-term dispersion `n(λ) = a + b/λ²`, λ in nm (Musgrave 1993, §4.2.3.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Cauchy {
@@ -148,14 +157,18 @@ pub struct Cauchy {
 
 impl Cauchy {
     /// Musgrave's fit to water (Kaye & Laby), `a = 1.3239`, `b = 3116.3 nm²`
-    /// (D:1933-1939), stated valid over 405-670 nm to a few 1e-4 (the source's
-    /// "±0.0001, or 0.8%" contradicts itself, spec §7.2).
+    /// (Musgrave 1993, §4.2.4.3.2), stated valid over 405-670 nm to a few 1e-4 (the source's
+    /// "±0.0001, or 0.8%" contradicts itself: 0.0001 is 0.008 %).
     pub const WATER_MUSGRAVE: Cauchy = Cauchy {
         a: 1.3239,
         b_nm2: 3116.3,
     };
 
     /// A Cauchy model; refuses non-finite or non-positive `a` and negative `b`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-finite or non-positive `a` or a negative or NaN `b`.
     pub fn new(a: f64, b_nm2: f64) -> Result<Self> {
         positive("a", a)?;
         crate::error::non_negative("b_nm2", b_nm2)?;
@@ -170,10 +183,10 @@ impl Dispersion for Cauchy {
     }
 }
 
-/// Musgrave's linear dispersion over normalised frequency (D:1824-1834), corrected.
+/// Musgrave's linear dispersion over normalised frequency (Musgrave 1993, §4.2.4.1), corrected.
 ///
 /// The source's per-surface constant `c_s = (w(η − 1) − η)/0.76` is garbled
-/// (it gives `η(0) = 0`, spec §6.2). The consistent linear model is
+/// (it gives `η(0) = 0`). The consistent linear model is
 /// `η(f) = η_red + f·w(η_red − 1)/κ`, with `f ∈ [0, 1]` running from the red to
 /// the violet end of the sampled range, `w` the dispersive power and `κ` the
 /// fraction of the range between the C and F lines (0.76 "per source";
@@ -191,6 +204,11 @@ pub struct LinearAbbe {
 
 impl LinearAbbe {
     /// A linear model; refuses non-positive `n_red`/`kappa` or negative power.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-positive `n_red` or `kappa` or a negative
+    /// dispersive power.
     pub fn new(n_red: f64, dispersive_power: f64, kappa: f64) -> Result<Self> {
         positive("n_red", n_red)?;
         crate::error::non_negative("dispersive_power", dispersive_power)?;
@@ -238,10 +256,10 @@ mod tests {
 
     #[test]
     fn known_values() {
-        // O1: normal incidence.
+        // Normal incidence.
         assert!((fresnel(1.0, 1.333, 1.0).unpolarized() - 0.020_37).abs() < 1e-5);
         assert!((fresnel(1.0, 1.34, 1.0).unpolarized() - 0.021_11).abs() < 1e-5);
-        // O2: Brewster (r∥ = 0) and critical angle.
+        // Brewster (r∥ = 0) and critical angle.
         let b = brewster_angle(1.0, 1.333).unwrap();
         assert!((b.to_degrees() - 53.12).abs() < 0.01);
         assert!(fresnel(1.0, 1.333, b.cos()).r_par < 1e-20);
@@ -251,7 +269,7 @@ mod tests {
         assert!(fresnel(1.333, 1.0, (c + 1e-9).cos()).is_total());
         assert!(!fresnel(1.333, 1.0, (c - 1e-9).cos()).is_total());
         assert!(critical_angle(f64::NAN, 1.0).is_err());
-        // B1: Musgrave's water.
+        // Musgrave's water.
         let w = Cauchy::WATER_MUSGRAVE;
         assert!((w.ior(656.3) - 1.33113).abs() < 1e-5);
         assert!((w.ior(589.3) - 1.33287).abs() < 1e-5);
@@ -282,7 +300,7 @@ mod tests {
 
     #[test]
     fn linear_abbe_corrected() {
-        // S5: η(0) = η_red; F − C difference = w(η_D − 1) within the linearisation.
+        // η(0) = η_red; F − C difference = w(η_D − 1) within the linearisation.
         let m = LinearAbbe::new(1.5, 1.0 / 60.0, 0.76).unwrap();
         assert_eq!(m.ior_at(0.0), 1.5);
         let df = m.ior_at(0.76) - m.ior_at(0.0);
@@ -290,7 +308,7 @@ mod tests {
     }
 
     proptest! {
-        /// O1, O3: energy, bounds, reciprocity, and the two Fresnel forms agree.
+        /// Energy, bounds, reciprocity, and the two Fresnel forms agree.
         #[test]
         fn fresnel_properties(n1 in 1.0f64..2.0, n2 in 1.0f64..2.0, ti in 0.01f64..1.5) {
             let f = fresnel(n1, n2, ti.cos());
@@ -309,7 +327,7 @@ mod tests {
             }
         }
 
-        /// O4: refraction gives a unit vector obeying Snell; TIR gives None.
+        /// Refraction gives a unit vector obeying Snell; TIR gives None.
         #[test]
         fn refraction_obeys_snell(n1 in 1.0f64..2.0, n2 in 1.0f64..2.0, ti in 0.0f64..1.55, ph in 0.0f64..std::f64::consts::TAU) {
             let n = Dir3::UP;

@@ -1,14 +1,14 @@
 //! The rainbow: geometric optics of a spherical water drop (Descartes),
 //! Fresnel weighting per polarisation, Cauchy dispersion of water, and
 //! Musgrave's precomputed deviation/intensity table convolved with the sun's
-//! disc (seed D:1768-1800, D:1919-1953); plus his empirical 13-fog rainbow
-//! (D:1890-1917).
+//! disc (Musgrave 1993, §4.2.3.3, §4.2.4.3.2); plus his empirical 13-fog rainbow
+//! (Musgrave 1993, §4.2.4.3.1).
 //!
 //! Angles are measured **from the antisolar point** (the direction of the
 //! sunlight's propagation, seen by an observer with the sun behind them). The
 //! primary bow (one internal reflection) lies near 42° with red outside; the
 //! secondary (two) near 51° with the order reversed; between them no singly
-//! or doubly reflected light arrives — Alexander's dark band (D:1780).
+//! or doubly reflected light arrives — Alexander's dark band (Musgrave 1993, §4.2.3.3).
 
 use std::f64::consts::PI;
 
@@ -24,7 +24,8 @@ use crate::spectrum::{SpectralRgbTable, WavelengthSampler};
 /// sphere of relative index `n` after `k` internal reflections, for impact
 /// parameter `b ∈ [0, 1]` (`sin i = b`).
 ///
-/// The total deviation is `D = 2(i − r) + k(π − 2r)` (spec §7.3); the angle
+/// The total deviation is `D = 2(i − r) + k(π − 2r)` (Descartes' construction, Musgrave
+/// 1993, §4.2.3.3); the angle
 /// from the antisolar point is `π − ψ` with `ψ ∈ [0, π]` the angle between the
 /// incident and exit directions.
 #[must_use]
@@ -37,7 +38,7 @@ pub fn exit_angle(b: f64, n: f64, k: u32) -> f64 {
 }
 
 /// Returns the impact parameter of the Descartes (minimum-deviation) ray for
-/// `k ≥ 1` internal reflections: `cos² i = (n² − 1)/(k² + 2k)` (spec §7.3:
+/// `k ≥ 1` internal reflections: `cos² i = (n² − 1)/(k² + 2k)` (from dD/di = 0:
 /// `(n² − 1)/3` for the primary, `/8` for the secondary), or `None` if `n ≤ 1`
 /// or `n ≥ k + 1` (no stationary point).
 #[must_use]
@@ -69,7 +70,7 @@ pub struct DropPath {
 }
 
 /// Traces a ray of impact parameter `b` through a sphere of relative index `n`
-/// with `k` internal reflections (D:1925-1931): refraction in, `k` internal
+/// with `k` internal reflections (Musgrave 1993, §4.2.4.3.2): refraction in, `k` internal
 /// reflections, refraction out. All internal incidence angles equal the first
 /// refraction angle, and each polarisation keeps its orientation, so the
 /// fractions are `(1 − R)²·R^k` per polarisation.
@@ -91,21 +92,21 @@ pub fn trace_drop(b: f64, n: f64, k: u32) -> DropPath {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ImpactWeight {
     /// Each impact parameter weighs `2b`: the annulus a 3-D drop presents to
-    /// parallel light (physically correct; spec §7.5 note).
+    /// parallel light (physically correct).
     Annulus,
-    /// Uniform in `b`, as in the dissertation's 2-D simulation (D:1921).
+    /// Uniform in `b`, as in the dissertation's 2-D simulation (Musgrave 1993, §4.2.4.3.2).
     UniformSource,
 }
 
 /// Parameters of the precomputed rainbow table. `Default` is the
 /// dissertation's: 13 wavelengths over 380–800 nm, 50 000 rays per wavelength,
 /// 1800 bins of 0.1° over 180°, orders 1 and 2, Musgrave's water and air,
-/// a 0.5° sun (D:1921-1949); with jittered wavelengths and 3-D impact weights.
+/// a 0.5° sun (Musgrave 1993, §4.2.4.3.2); with jittered wavelengths and 3-D impact weights.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RainbowParams {
     /// Wavelength strata.
     pub wavelengths: WavelengthSampler,
-    /// Jitter each ray's wavelength within its stratum (fix (a) of D:1945-1947)
+    /// Jitter each ray's wavelength within its stratum (fix (a) of Musgrave 1993, §4.2.4.3.2)
     /// instead of using the stratum centre (which shows spectral aliasing rings).
     pub jitter: bool,
     /// Rays per wavelength.
@@ -145,6 +146,11 @@ impl Default for RainbowParams {
 
 impl RainbowParams {
     /// Refuses empty or oversized tables, bad orders or indices.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) naming the first bad field: empty or oversized tables,
+    /// an order list that is empty or out of range, or non-physical indices and sun size.
     pub fn validate(&self) -> Result<()> {
         if self.rays_per_wavelength == 0 || self.rays_per_wavelength > 100_000_000 {
             return Err(invalid(
@@ -191,7 +197,7 @@ impl RainbowParams {
 ///
 /// `∫ table(θ)·2π sin θ dθ` is the fraction of intercepted light scattered into
 /// the included orders (≈ 4% primary + secondary, spectral colours summing to
-/// white, eq. "4.2.14" D:1846).
+/// white, eq. "4.2.14" Musgrave 1993, §4.2.4.2).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RainbowTable {
     bin_rad: f64,
@@ -199,11 +205,15 @@ pub struct RainbowTable {
 }
 
 impl RainbowTable {
-    /// Simulates the table (D:1921-1941): for each wavelength, rays over impact
+    /// Simulates the table (Musgrave 1993, §4.2.4.3.2): for each wavelength, rays over impact
     /// parameter (stratified), each order, Fresnel-weighted per polarisation,
     /// binned by angle; each wavelength's bins coloured by the CIE-derived
     /// spectral rgb table (columns summing to white) and summed; then convolved
-    /// with the sun's disc (D:1949).
+    /// with the sun's disc (Musgrave 1993, §4.2.4.3.2).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `p` fails [`RainbowParams::validate`].
     pub fn simulate(p: &RainbowParams) -> Result<Self> {
         p.validate()?;
         let colours = SpectralRgbTable::from_cie(p.wavelengths, crate::spectrum::Illuminant::E)?;
@@ -268,7 +278,7 @@ impl RainbowTable {
 
     /// The semicircular sun-disc kernel for `bins` of width `bin_rad` and a sun
     /// of angular diameter `diameter_rad`: taps at whole bins within the
-    /// radius, weights `√(1 − (x/ρ)²)`, normalised to sum 1 (D:1949; 5 taps for
+    /// radius, weights `√(1 − (x/ρ)²)`, normalised to sum 1 (Musgrave 1993, §4.2.4.3.2; 5 taps for
     /// 0.5° at 0.1°).
     #[must_use]
     pub fn sun_kernel(bin_rad: f64, diameter_rad: f64) -> Vec<f64> {
@@ -362,6 +372,10 @@ pub struct Rainbow {
 
 impl Rainbow {
     /// Simulates the table for `params`.
+    ///
+    /// # Errors
+    ///
+    /// As [`RainbowTable::simulate`].
     pub fn new(params: &RainbowParams) -> Result<Self> {
         Ok(Self {
             table: RainbowTable::simulate(params)?,
@@ -385,10 +399,15 @@ impl Rainbow {
     /// metres of rain with geometric extinction `rain_extinction` (m⁻¹: drop
     /// cross-section per volume), lit by sunlight of irradiance
     /// `sun_irradiance`: single scattering `E·P(θ)·(1 − e^{−βd})`, the additive
-    /// in-scatter the spec recommends over the source's ambiguous fog
-    /// replacement (spec §7.5 step 5).
+    /// in-scatter, rather than the source's fog replacement, which leaves
+    /// unclear what the bow's colour replaces (Musgrave 1993, §4.2.4.3.2).
     ///
     /// Fails on negative or NaN extinction or distance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a negative or NaN `rain_extinction` or `distance_m`, or a
+    /// negative or non-finite `sun_irradiance`.
     pub fn radiance(
         &self,
         view: Dir3,
@@ -418,6 +437,10 @@ impl Rainbow {
 impl Rainbow {
     /// Returns `background` seen through `distance_m` of rain plus the rainbow:
     /// `background·e^{−βd} + E·P(θ)·(1 − e^{−βd})` (see [`Rainbow::radiance`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`Rainbow::radiance`].
     pub fn apply(
         &self,
         background: DVec3,
@@ -439,7 +462,7 @@ impl Rainbow {
 
 /// Musgrave's empirical ("impressionistic") rainbow: 13 coloured fogs in
 /// cones about the antisolar vector, indexed linearly in the cosine
-/// (D:1905-1913, verbatim semantics).
+/// (Musgrave 1993, §4.2.4.3.1, verbatim semantics).
 ///
 /// `rainbow_angle` is a **cosine** (cos 42° ≈ 0.743), not an angle (spec
 /// §7.4 pitfall); index 0 is the outer edge and should be red.
@@ -499,7 +522,7 @@ mod tests {
         assert!(descartes_impact(1.0, 1).is_none());
     }
 
-    /// B3: closed-form stationary points equal a brute-force search.
+    /// Closed-form stationary points equal a brute-force search.
     #[test]
     fn descartes_matches_brute_force() {
         for l in [400.0, 550.0, 700.0] {
@@ -556,7 +579,7 @@ mod tests {
             }
             assert!(t.bins()[i].max_element() >= 0.0);
         }
-        // Energy fractions with uniform b (spec §7.5): ≈ 3.1% + 0.35%.
+        // Energy fractions with uniform b: ≈ 3.1% + 0.35%.
         let tot = t.total();
         assert!((tot.y - 0.0345).abs() < 0.003, "{tot}");
     }
@@ -591,7 +614,7 @@ mod tests {
         assert_eq!(t.lookup(-1.0), DVec3::ZERO);
     }
 
-    /// B5: the sun kernel has 5 taps summing to 1; convolution keeps the integral.
+    /// The sun kernel has 5 taps summing to 1; convolution keeps the integral.
     #[test]
     fn sun_kernel_preserves_energy() {
         let k = RainbowTable::sun_kernel(0.1f64.to_radians(), 0.5f64.to_radians());
@@ -651,7 +674,7 @@ mod tests {
         assert!(RainbowTable::simulate(&bad).is_err());
     }
 
-    /// B6: the empirical rainbow's index is None outside [0, 13) and monotone in cos θ.
+    /// The empirical rainbow's index is None outside [0, 13) and monotone in cos θ.
     #[test]
     fn empirical_rainbow() {
         let r = EmpiricalRainbow {

@@ -1,9 +1,9 @@
 //! Scattering by molecules and aerosols: phase functions (normalised so that
 //! `∫ p dω = 1` over the sphere) and the physical Rayleigh coefficient.
 //!
-//! Conventions differ between the sources (spec §11.9): the dissertation's
-//! `¾(1 + cos²θ)` (D:1486) has mean 1 (integral 4π), and the course notes'
-//! Henyey–Greenstein (C:2152, eq. 12) omits `1/(4π)`. Here every phase
+//! Conventions differ between the sources: the dissertation's
+//! `¾(1 + cos²θ)` (Musgrave 1993, §4.1.2) has mean 1 (integral 4π), and the course notes'
+//! Henyey–Greenstein (Fedkiw et al. 2001, §5, eq. 12) omits `1/(4π)`. Here every phase
 //! function is `1/(4π)`-normalised.
 
 use std::f64::consts::PI;
@@ -13,14 +13,15 @@ use crate::error::{Result, in_range, positive};
 /// The isotropic phase function `1/(4π)`.
 pub const ISOTROPIC: f64 = 1.0 / (4.0 * PI);
 
-/// Rayleigh phase `3(1 + cos²θ)/(16π)` (D:1486 with the `1/(4π)` normalisation).
+/// Rayleigh phase `3(1 + cos²θ)/(16π)` (Musgrave 1993, §4.1.2 with the `1/(4π)` normalisation).
 #[inline]
 #[must_use]
 pub fn rayleigh_phase(cos_theta: f64) -> f64 {
     3.0 / (16.0 * PI) * (1.0 + cos_theta * cos_theta)
 }
 
-/// Henyey–Greenstein phase `(1 − g²)/(4π(1 + g² − 2g cosθ)^{3/2})` (C:2152, normalised).
+/// Henyey–Greenstein phase `(1 − g²)/(4π(1 + g² − 2g cosθ)^{3/2})` (Fedkiw et al. 2001, §5,
+/// eq. 12, normalised).
 #[inline]
 #[must_use]
 pub fn henyey_greenstein(g: f64, cos_theta: f64) -> f64 {
@@ -55,6 +56,10 @@ pub enum Phase {
 
 impl Phase {
     /// Refuses `|g| ≥ 1` or NaN.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `|g| ≥ 1` or `g` is NaN.
     pub fn validate(&self) -> Result<()> {
         match *self {
             Phase::HenyeyGreenstein(g) | Phase::CornetteShanks(g) => {
@@ -88,11 +93,15 @@ impl Phase {
 /// at `lambda_nm`, for refractive index `n = 1 + n_minus_1`, molecular number
 /// density `number_density` (m⁻³) and King correction factor `king`.
 ///
-/// This is eq. 4.0's angular coefficient integrated over the sphere (D:1484-1488,
-/// spec §5.1). With `n` held fixed the coefficient follows λ⁻⁴ exactly. With
-/// `n − 1 = 0.0003`, `N = 2.545e25` and `F_K = 1` it is 1.28e-5 m⁻¹ at 550 nm
-/// (spec Y4). The coefficient scales with the local density as `β₀ρ/ρ₀`: do not
-/// divide by the local `N` while holding `n` fixed (spec §11.8).
+/// This is eq. 4.0's angular coefficient integrated over the sphere (Musgrave 1993,
+/// §4.1.2). With `n` held fixed the coefficient follows λ⁻⁴ exactly. With
+/// `n − 1 = 0.0003`, `N = 2.545e25` and `F_K = 1` it is 1.28e-5 m⁻¹ at 550 nm.
+/// The coefficient scales with the local density as `β₀ρ/ρ₀`: do not
+/// divide by the local `N` while holding `n` fixed (that would count the density twice).
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if any argument is not finite and positive.
 pub fn rayleigh_coefficient(
     lambda_nm: f64,
     n_minus_1: f64,

@@ -20,7 +20,7 @@ fn exp_x2(x: f64) -> f64 {
 /// `+∞`). For `x ≥ 10` a continued fraction is used, so the value stays accurate
 /// where `erfc` alone underflows (x ≳ 26.5): this is what lets a thin,
 /// Earth-like radial atmosphere be integrated without the "ozone hole"
-/// (spec `atmosphere.md` §4.2 item 4, seed D:1628).
+/// (Musgrave 1993, §4.1.6.4, where the `erf` difference saturates).
 #[must_use]
 pub fn erfcx(x: f64) -> f64 {
     if x.is_nan() {
@@ -48,7 +48,7 @@ pub fn erfcx(x: f64) -> f64 {
 /// Returns `(1 − e^{−x})/x` (and its limit 1 at `x = 0`), accurate for every finite `x`.
 ///
 /// This is the factor that turns the exponential-mist integral into a robust
-/// closed form (spec §3.2): never `(e^{−z₁} − e^{−z₂})/(z₂ − z₁)`.
+/// closed form: never `(e^{−z₁} − e^{−z₂})/(z₂ − z₁)`.
 #[inline]
 #[must_use]
 pub fn exprel_neg(x: f64) -> f64 {

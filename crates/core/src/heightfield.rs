@@ -1,9 +1,9 @@
 //! `HeightField`: a regular grid of altitudes in metres with a horizontal cell size.
 //!
-//! Conventions (see ARCHITECTURE.md): z up, metres. Sample `(i, j)` of the
+//! Conventions: z up, metres. Sample `(i, j)` of the
 //! grid sits at world position `(i·cell_size, j·cell_size, h[i, j])`, so the
 //! field covers `[0, (nx − 1)·cell_size] × [0, (ny − 1)·cell_size]`. This is
-//! Musgrave's "regular height field" (seed 001, line 45).
+//! Musgrave's "regular height field" (Musgrave et al. 1989, §2).
 //!
 //! Files (PNG, EXR, raw) store rows in **map order**: the first row in the
 //! file is the row of largest y (north up), as DEM tools and image viewers
@@ -14,7 +14,8 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use crate::error::{CoreError, Result, positive_finite};
+use crate::check::positive;
+use crate::error::{CoreError, Result};
 use crate::grid2::{Grid2, checked_len};
 use crate::io::exr::{read_exr, write_exr};
 use crate::io::{WriteError, read_file, write_atomic};
@@ -70,7 +71,7 @@ pub struct HeightField {
 impl HeightField {
     /// Wraps a grid of heights (metres) with `cell_size` metres between samples.
     pub fn new(heights: Grid2<f32>, cell_size: f32) -> Result<Self> {
-        positive_finite("cell_size", f64::from(cell_size))?;
+        positive("cell_size", f64::from(cell_size))?;
         heights.check_finite()?;
         Ok(Self { heights, cell_size })
     }
@@ -538,7 +539,7 @@ fn from_map_rows(
 ) -> Result<HeightField> {
     let file = Grid2::from_vec(nx, ny, values)?;
     let grid = Grid2::from_fn(nx, ny, |i, j| file[(i, ny - 1 - j)])?;
-    positive_finite("cell_size", f64::from(cell))?;
+    positive("cell_size", f64::from(cell))?;
     if let Some((x, y, &v)) = grid.find(|v| !v.is_finite()) {
         return Err(CoreError::format(
             path,

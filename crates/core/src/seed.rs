@@ -8,7 +8,7 @@
 //!   [`Seed::gaussian2`] and friends hash an integer lattice position with the
 //!   seed into a value that does not depend on evaluation order, level of
 //!   detail or thread count. This is Fournier, Fussell & Carpenter's
-//!   `GAUSS(seed, index)` (seed 002, line 185; spec `terrain.md` §1.2): a point
+//!   `GAUSS(seed, index)` (Fournier et al. 1982, §3.2.3): a point
 //!   gets the same random number however and whenever it is computed, which is
 //!   what makes subdivision consistent across levels and tiles.
 //!

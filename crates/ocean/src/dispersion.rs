@@ -1,10 +1,10 @@
 //! Dispersion relations ω(k): how fast a wave of wavenumber k oscillates.
 //!
-//! Tessendorf, *Simulating Ocean Water* (seed 004, notes §3.2, L846-885):
-//! deep water ω² = g k (eq. 14, L850), finite depth ω² = g k tanh(k D)
-//! (eq. 15, L856), surface tension ω² = g k (1 + k² ℓ_c²) (eq. 16, L860-864),
+//! Tessendorf, *Simulating Ocean Water* (Tessendorf 2001, §3.2):
+//! deep water ω² = g k (eq. 14), finite depth ω² = g k tanh(k D)
+//! (eq. 15), surface tension ω² = g k (1 + k² ℓ_c²) (eq. 16),
 //! and the quantised relation ω̄ = ⌊ω/ω₀⌋ ω₀ with ω₀ = 2π/T that makes an
-//! animation repeat exactly after T seconds (eqs. 17-18, L866-876).
+//! animation repeat exactly after T seconds (eqs. 17-18).
 //!
 //! The notes call the capillary length `L`, which collides with the Phillips
 //! `L = V²/g`; here it is `capillary_length`. The notes give no value for it;
@@ -13,7 +13,7 @@
 
 use crate::error::{Result, positive};
 
-/// Standard gravity used by the source, m/s² ("nominally 9.8", notes L852).
+/// Standard gravity used by the source, m/s² ("nominally 9.8", Tessendorf 2001, §3.2).
 pub const G: f64 = 9.8;
 
 /// Capillary length √(σ/(ρ g)) of clean water at 20 °C, metres
@@ -38,21 +38,21 @@ pub trait DispersionRelation: Send + Sync + std::fmt::Debug {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Dispersion {
-    /// Deep water, ω² = g k (eq. 14, L850).
+    /// Deep water, ω² = g k (eq. 14).
     Deep {
         /// Gravity, m/s².
         g: f64,
     },
-    /// Water of finite depth, ω² = g k tanh(k D) (eq. 15, L856); the deep
-    /// relation is recovered as D → ∞ (L858).
+    /// Water of finite depth, ω² = g k tanh(k D) (eq. 15); the deep
+    /// relation is recovered as D → ∞.
     FiniteDepth {
         /// Gravity, m/s².
         g: f64,
         /// Depth D of the bottom below mean level, metres.
         depth: f64,
     },
-    /// Deep water with surface tension, ω² = g k (1 + k² ℓ_c²) (eq. 16,
-    /// L860-864); matters for wavelengths of about a centimetre and less.
+    /// Deep water with surface tension, ω² = g k (1 + k² ℓ_c²) (eq. 16);
+    /// matters for wavelengths of about a centimetre and less.
     Capillary {
         /// Gravity, m/s².
         g: f64,
@@ -69,19 +69,25 @@ impl Default for Dispersion {
 
 impl Dispersion {
     /// Checks that every parameter is finite and positive.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first parameter that is not finite and positive.
     pub fn validate(&self) -> Result<()> {
         match *self {
-            Dispersion::Deep { g } => positive("g", g).map(|_| ()),
+            Dispersion::Deep { g } => positive("g", g).map(|_| ()).map_err(Into::into),
             Dispersion::FiniteDepth { g, depth } => {
                 positive("g", g)?;
-                positive("depth", depth).map(|_| ())
+                positive("depth", depth).map(|_| ()).map_err(Into::into)
             }
             Dispersion::Capillary {
                 g,
                 capillary_length,
             } => {
                 positive("g", g)?;
-                positive("capillary_length", capillary_length).map(|_| ())
+                positive("capillary_length", capillary_length)
+                    .map(|_| ())
+                    .map_err(Into::into)
             }
         }
     }
@@ -180,11 +186,11 @@ impl DispersionRelation for Dispersion {
 
 /// A dispersion relation quantised to multiples of ω₀ = 2π/T so that every
 /// wave, and therefore the whole surface, repeats exactly after `period` T
-/// seconds (notes eqs. 17-18, L866-876; slides L1576-1585).
+/// seconds (Tessendorf 2001, eqs. 17-18; slides "Looping in Time").
 ///
 /// ω̄(k) = ⌊ω(k)/ω₀⌋ ω₀: the integer part, so ω̄ ≤ ω and ω − ω̄ < ω₀.
-/// Waves slower than ω₀ get ω̄ = 0 and stand still (derived, spec §2); a
-/// longer T tracks the true relation more closely (Fig. 5, L885).
+/// Waves slower than ω₀ get ω̄ = 0 and stand still (derived from eq. 18); a
+/// longer T tracks the true relation more closely (Tessendorf 2001, fig. 5).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Quantized {
@@ -196,6 +202,11 @@ pub struct Quantized {
 
 impl Quantized {
     /// Returns the quantised relation of `base` with repeat time `period` seconds.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `base` fails [`Dispersion::validate`] or `period` is not finite
+    /// and positive.
     pub fn new(base: Dispersion, period: f64) -> Result<Self> {
         base.validate()?;
         positive("period", period)?;
@@ -230,7 +241,7 @@ mod tests {
     fn limits_agree_with_deep_water() {
         let deep = Dispersion::Deep { g: G };
         let k = 0.37;
-        // tanh form → √(gk) when kD ≫ 1 (spec §12.10).
+        // tanh form → √(gk) when kD ≫ 1.
         let fd = Dispersion::FiniteDepth {
             g: G,
             depth: 20.0 / k,
@@ -298,7 +309,7 @@ mod tests {
         // T → ∞ recovers ω.
         let q = Quantized::new(base, 1e9).unwrap();
         assert_relative_eq!(q.omega(0.5), base.omega(0.5), max_relative = 1e-7);
-        // 20 s freezes the 1000 m patch's fundamental (spec §2).
+        // 20 s freezes the 1000 m patch's fundamental (its ω < ω₀).
         let q = Quantized::new(base, 20.0).unwrap();
         assert_eq!(q.omega(std::f64::consts::TAU / 1000.0), 0.0);
     }

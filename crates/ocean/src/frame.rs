@@ -1,6 +1,6 @@
 //! The fields of an ocean patch at one time, and what follows from them:
 //! normals, the Jacobian of the choppy map, its eigen-decomposition and
-//! folding (Tessendorf, seed 004, notes eqs. 20, 29-36, L895-903, L1004-1099).
+//! folding (Tessendorf 2001, eqs. 20, 29-36, §3.3 and §3.7).
 
 use glam::{Vec2, Vec3};
 use natura_core::Grid2;
@@ -28,7 +28,7 @@ pub(crate) struct Workspace {
 
 /// The eight real fields of a [`Frame`], in storage order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Field {
+pub enum FrameField {
     /// Height h, metres.
     Height = 0,
     /// Slope ∂h/∂x.
@@ -47,17 +47,17 @@ pub enum Field {
     Jxy = 7,
 }
 
-impl Field {
+impl FrameField {
     /// All fields in storage order.
-    pub const ALL: [Field; 8] = [
-        Field::Height,
-        Field::SlopeX,
-        Field::SlopeY,
-        Field::DispX,
-        Field::DispY,
-        Field::Jxx,
-        Field::Jyy,
-        Field::Jxy,
+    pub const ALL: [FrameField; 8] = [
+        FrameField::Height,
+        FrameField::SlopeX,
+        FrameField::SlopeY,
+        FrameField::DispX,
+        FrameField::DispY,
+        FrameField::Jxx,
+        FrameField::Jyy,
+        FrameField::Jxy,
     ];
 
     /// Returns a short name (`"height"`, `"slope_x"`, …), used as EXR channel names.
@@ -69,14 +69,14 @@ impl Field {
     }
 }
 
-const HEIGHT: usize = Field::Height as usize;
-const SLOPE_X: usize = Field::SlopeX as usize;
-const SLOPE_Y: usize = Field::SlopeY as usize;
-const DISP_X: usize = Field::DispX as usize;
-const DISP_Y: usize = Field::DispY as usize;
-const JXX: usize = Field::Jxx as usize;
-const JYY: usize = Field::Jyy as usize;
-const JXY: usize = Field::Jxy as usize;
+const HEIGHT: usize = FrameField::Height as usize;
+const SLOPE_X: usize = FrameField::SlopeX as usize;
+const SLOPE_Y: usize = FrameField::SlopeY as usize;
+const DISP_X: usize = FrameField::DispX as usize;
+const DISP_Y: usize = FrameField::DispY as usize;
+const JXX: usize = FrameField::Jxx as usize;
+const JYY: usize = FrameField::Jyy as usize;
+const JXY: usize = FrameField::Jxy as usize;
 
 /// Every field of an ocean patch at one time, on the rest (Lagrangian) grid:
 /// sample (i, j) belongs to the water particle whose rest position is
@@ -106,6 +106,10 @@ impl Frame {
     /// With the `parallel` feature the scratch is split for the current
     /// rayon pool's thread count; using the frame in a larger pool uses at
     /// most that many threads. Results never depend on it.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`](crate::OceanError::Core) if the grids exceed natura-core's memory cap.
     pub fn new(ocean: &Ocean) -> Result<Self> {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);
@@ -177,7 +181,7 @@ impl Frame {
 
     /// Returns field `f`.
     #[must_use]
-    pub fn field(&self, f: Field) -> &Grid2<f32> {
+    pub fn field(&self, f: FrameField) -> &Grid2<f32> {
         &self.fields[f as usize]
     }
 
@@ -186,7 +190,7 @@ impl Frame {
     pub fn height(&self) -> &Grid2<f32> {
         &self.fields[HEIGHT]
     }
-    /// Returns the slope ∂h/∂x, computed by FFT (eq. 20; preferred over finite differences, L903).
+    /// Returns the slope ∂h/∂x, computed by FFT (eq. 20; preferred over finite differences, §3.3).
     #[must_use]
     pub fn slope_x(&self) -> &Grid2<f32> {
         &self.fields[SLOPE_X]
@@ -236,7 +240,7 @@ impl Frame {
     }
 
     /// Returns the Jacobian determinant J = J_xx J_yy − J_xy² of sample (i, j)
-    /// (eq. 30); J < 0 where the surface folds over itself (L1031, L1039).
+    /// (eq. 30); J < 0 where the surface folds over itself (§3.7).
     #[must_use]
     pub fn jacobian(&self, i: usize, j: usize) -> f32 {
         let k = self.fields[0].index(i, j);
@@ -286,7 +290,7 @@ impl Frame {
     /// (J_xy ε_y − J_yy ε_x, J_xy ε_x − J_xx ε_y, J).
     ///
     /// Without choppiness it is eq. 36's (−ε_x, −ε_y, 1)/√(1 + ε²); the
-    /// source gives no normal for the displaced surface (derived, spec §4).
+    /// source gives no normal for the displaced surface (derived here from ∂P/∂x × ∂P/∂y).
     /// Where the surface folds (J < 0) the normal points down, as the
     /// folded sheet does; [`Frame::normal_up`] flips it up instead.
     #[must_use]
@@ -342,11 +346,11 @@ pub fn normal_from(ex: f32, ey: f32, jxx: f32, jyy: f32, jxy: f32) -> Vec3 {
     if l > 0.0 { n / l } else { Vec3::Z }
 }
 
-/// The eigen-decomposition of the symmetric 2 × 2 Jacobian (notes eqs. 31-34,
-/// L1041-1065): J_ab = J₋ ê₋ₐ ê₋ᵦ + J₊ ê₊ₐ ê₊ᵦ with J₋ ≤ J₊.
+/// The eigen-decomposition of the symmetric 2 × 2 Jacobian (Tessendorf 2001,
+/// eqs. 31-34): J_ab = J₋ ê₋ₐ ê₋ᵦ + J₊ ê₊ₐ ê₊ᵦ with J₋ ≤ J₊.
 ///
 /// Folding means J₋ < 0 while J₊ > 0; ê₋ is the horizontal direction along
-/// which the surface folds (L1049, slides L1656-1658).
+/// which the surface folds (§3.7; slides "Choppy waves").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JacobianEigen {
     /// The smaller eigenvalue J₋.
@@ -364,7 +368,7 @@ impl JacobianEigen {
     ///
     /// Eq. 32 for the eigenvalues; eqs. 33-34 give ê± = (1, q±)/√(1+q±²),
     /// q± = (J± − J_xx)/J_xy, which is singular when J_xy = 0; the matrix is
-    /// then diagonal and the eigenvectors are the axes (derived, spec §5.4).
+    /// then diagonal and the eigenvectors are the axes.
     /// Here ê₊ is computed in whichever of the two equivalent forms is
     /// better conditioned, and ê₋ is its perpendicular.
     #[must_use]

@@ -1,5 +1,5 @@
 //! Gerstner waves: the Lagrangian model in which every surface particle
-//! moves on a circle (Tessendorf, seed 004, notes §3.1, L816-844; Fournier &
+//! moves on a circle (Tessendorf 2001, §3.1; Fournier &
 //! Reeves 1986).
 //!
 //! A particle at rest position x₀ = (x₀, y₀) is at
@@ -7,11 +7,11 @@
 //! x = x₀ − Σᵢ k̂ᵢ Aᵢ sin(kᵢ·x₀ − ωᵢt + φᵢ),  z = Σᵢ Aᵢ cos(kᵢ·x₀ − ωᵢt + φᵢ)
 //!
 //! (eqs. 12-13, z up). The steepness kA controls the shape: crests sharpen
-//! as kA → 1, and for kA > 1 the crest loops over itself (L830). Each wave
+//! as kA → 1, and for kA > 1 the crest loops over itself. Each wave
 //! must have kA < 1 ([`GerstnerSea::new`] refuses steeper ones); Σ kA < 1
 //! guarantees no loops at all (derived: the horizontal map's Jacobian is
-//! I − Σ k̂ᵢk̂ᵢᵀ kᵢAᵢ cos θᵢ, spec §1), which [`GerstnerSea::is_loop_free`]
-//! reports. ωᵢ comes from a dispersion relation (L848-852); with a
+//! I − Σ k̂ᵢk̂ᵢᵀ kᵢAᵢ cos θᵢ), which [`GerstnerSea::is_loop_free`]
+//! reports. ωᵢ comes from a dispersion relation (§3.2); with a
 //! [`crate::Quantized`] one the sea repeats exactly after its period.
 
 use glam::{DMat2, DVec2, DVec3};
@@ -92,8 +92,12 @@ pub struct GerstnerSea {
 }
 
 impl GerstnerSea {
-    /// Returns the sum of `waves`; fails if any wave has kA ≥ 1 or a
-    /// non-finite parameter.
+    /// Returns the sum of `waves`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::TooSteep`] if a wave has kA ≥ 1 and
+    /// [`OceanError::InvalidParameter`] if a wave has a non-finite or non-positive parameter.
     pub fn new(waves: Vec<GerstnerWave>) -> Result<Self> {
         for (i, w) in waves.iter().enumerate() {
             w.validate(i)?;
@@ -136,7 +140,7 @@ impl GerstnerSea {
     }
 
     /// Returns the Jacobian ∂x/∂x₀ of the horizontal map at `x0`, time `t`:
-    /// I − Σ k̂k̂ᵀ kA cos θ (derived, spec §1). Its determinant is ≤ 0 where
+    /// I − Σ k̂k̂ᵀ kA cos θ (derived from eqs. 12-13). Its determinant is ≤ 0 where
     /// the surface loops.
     #[must_use]
     pub fn jacobian(&self, x0: DVec2, t: f64) -> DMat2 {

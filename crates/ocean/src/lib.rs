@@ -1,7 +1,7 @@
 //! # natura-ocean
 //!
-//! Ocean waves after Jerry Tessendorf's *Simulating Ocean Water* (SIGGRAPH
-//! 2001 course 47, seed 004: notes L699-1302, slides L1306-1687): random
+//! Ocean waves after Jerry Tessendorf's *Simulating Ocean Water* (Tessendorf 2001,
+//! notes and slides in the SIGGRAPH 2001 course *Simulating Nature*): random
 //! wave spectra evolved in closed form and summed by FFT on a periodic
 //! patch, with slopes, choppy displacement, the Jacobian and its folds, foam,
 //! normals, Gerstner waves and the optics of the water surface.
@@ -22,14 +22,14 @@
 //!
 //! | item | what | source |
 //! |---|---|---|
-//! | [`spectrum`] | [`Phillips`], [`PiersonMoskowitz`], [`Jonswap`], [`Tma`], [`Spreading`] | eqs. 23-24; §13 of the spec |
+//! | [`spectrum`] | [`Phillips`], [`PiersonMoskowitz`], [`Jonswap`], [`Tma`], [`Spreading`] | eqs. 23-24; Pierson & Moskowitz 1964, Hasselmann et al. 1973 |
 //! | [`dispersion`] | deep, finite depth, capillary, quantised (looping) | eqs. 14-18 |
 //! | [`Ocean`], [`Frame`] | height, slope, choppy displacement, Jacobian, normals | eqs. 19-36 |
 //! | [`foam`] | whitecaps accumulated from the Jacobian | beyond the notes |
 //! | [`surface`] | periodic bilinear sampler at world (x, y) | |
 //! | [`cascade`] | 2-3 patches with split spectral bands | beyond the notes |
 //! | [`gerstner`] | sums of Gerstner waves with steepness checks | eqs. 9-13 |
-//! | [`optics`] | Fresnel, reflect/refract, critical angle, water shading | eqs. 37-45, L1161-1218 |
+//! | [`optics`] | Fresnel, reflect/refract, critical angle, water shading | eqs. 37-45, §4.3 |
 //! | [`export`] | EXR maps and frame sequences | |
 //! | [`reference`](mod@reference) | the straightforward one-FFT-per-field evaluation (oracle, baseline) | |
 //!
@@ -37,7 +37,7 @@
 //!
 //! * **z up.** The notes are y-up with horizontal (x, z); here horizontal is
 //!   (x, y) and height is z. Units are metres, seconds, radians.
-//! * **Time sign** e^{−iωt} (slides L1343), so a spectrum's P(k) is energy
+//! * **Time sign** e^{−iωt} (the slides' "FFT solution"), so a spectrum's P(k) is energy
 //!   travelling along +k̂; the notes' eq. 26 has the opposite sign.
 //! * **Variance**: E|h̃(k,t)|² = ½(P(k) + P(−k)) Δk², not P(k) as eq. 22
 //!   implies (see [`spectrum`]).
@@ -46,7 +46,7 @@
 //!   [`OceanParams::choppiness`] is −λ so crests sharpen.
 //! * **Eq. 42** (refraction) has the wrong overall sign; [`optics::refract`]
 //!   uses the corrected form.
-//! * **"Brewster's angle"** (L1157) is the critical angle, 48.6° from the
+//! * **"Brewster's angle"** (§4.2) is the critical angle, 48.6° from the
 //!   normal (41.4° from the surface, not 41.1°): [`optics::critical_angle`].
 #![forbid(unsafe_code)]
 
@@ -70,7 +70,7 @@ pub use dispersion::{Dispersion, DispersionRelation, G, Quantized};
 pub use error::{OceanError, Result};
 
 pub use foam::{Foam, FoamParams};
-pub use frame::{Field, Frame, JacobianEigen, normal_from};
+pub use frame::{Frame, FrameField, JacobianEigen, normal_from};
 
 pub use gerstner::{GerstnerSea, GerstnerWave};
 pub use patch::{AmplitudeScheme, DirectSample, MAX_SIZE, MIN_SIZE, Ocean, OceanParams};

@@ -1,9 +1,9 @@
-//! Optics of the water surface (Tessendorf, seed 004, notes §4, L1067-1218;
-//! volume effects §5, L1220-1290).
+//! Optics of the water surface (Tessendorf 2001, §4;
+//! volume effects §5).
 //!
 //! * [`reflect`] (eq. 37) and [`refract`] (eqs. 38-42, **corrected**: the
 //!   printed Γ of eq. 42 has the wrong overall sign and gives a refracted
-//!   vector of length 0.5 at normal incidence, spec §6.3);
+//!   vector of length 0.5 at normal incidence);
 //! * [`fresnel_reflectance`]: the exact unpolarised reflectivity of eq. 44,
 //!   in a form with no 0/0 at normal incidence, = 1 beyond the critical
 //!   angle; transmittance T = 1 − R (eq. 43);
@@ -11,11 +11,11 @@
 //!   for water → air, i.e. 41.4° from the surface. The notes call it
 //!   "Brewster's angle" and print 41.1°; both are errata. The true Brewster
 //!   angle is [`brewster_angle`];
-//! * [`WaterShader`]: the notes' `watercolorshader` (L1161-1218) with sky
+//! * [`WaterShader`]: the notes' `watercolorshader` (§4.3) with sky
 //!   radiance looked up along the reflected ray (the source looks it up by
 //!   the normal), plus a sun glitter term (not in the sources: the promised
-//!   glitter model is missing, L1069);
-//! * [`WaterIop`]: the attenuation recipe of §5 (L1237-1247).
+//!   glitter model is missing, §4);
+//! * [`WaterIop`]: the attenuation recipe of Tessendorf 2001, §5.1.
 //!
 //! Directions are propagation directions: `incident` points from the eye
 //! toward the surface. Normals are unit vectors; z is up.
@@ -24,13 +24,13 @@ use glam::{DVec3, Vec3};
 
 use crate::error::{Result, invalid, non_negative, positive};
 
-/// Refractive index of water used in the text, ≈ 4/3 (L1111).
+/// Refractive index of water used in the text, ≈ 4/3 (Tessendorf 2001, §4.1).
 pub const N_WATER: f64 = 4.0 / 3.0;
-/// Refractive index of water used by the notes' shader (L1176).
+/// Refractive index of water used by the notes' shader (Tessendorf 2001, §4.3).
 pub const N_WATER_SHADER: f64 = 1.34;
 /// Refractive index of air.
 pub const N_AIR: f64 = 1.0;
-/// Bulk (Lambertian) reflectivity of the water volume, ≈ 0.04 (L1247).
+/// Bulk (Lambertian) reflectivity of the water volume, ≈ 0.04 (Tessendorf 2001, §5.1).
 pub const BULK_REFLECTIVITY: f64 = 0.04;
 
 macro_rules! vector_optics {
@@ -47,7 +47,7 @@ macro_rules! vector_optics {
         /// with unit `normal`, from index `n_i` into `n_t`, or `None` beyond
         /// the critical angle (total internal reflection).
         ///
-        /// Eqs. 41-42 corrected (spec §6.3): n̂_t = η n̂_i + Γ n̂ with η = n_i/n_t
+        /// Eqs. 41-42 corrected (the printed Γ has the wrong overall sign): n̂_t = η n̂_i + Γ n̂ with η = n_i/n_t
         /// and Γ = −η (n̂_i·n̂) ∓ √(1 − η² |n̂_i × n̂|²), "−" when n̂_i·n̂ < 0
         /// and "+" when > 0. The result is a unit vector that satisfies
         /// Snell's law and stays on the far side of the surface; the normal
@@ -85,7 +85,7 @@ vector_optics!(reflect_f64, refract_f64, DVec3, f64);
 /// r_s = (n_i cos θ_i − n_t cos θ_t)/(n_i cos θ_i + n_t cos θ_t) and
 /// r_p = (n_t cos θ_i − n_i cos θ_t)/(n_t cos θ_i + n_i cos θ_t), which are
 /// continuous at normal incidence (R = ((n_i−n_t)/(n_i+n_t))², the shader's
-/// special case, L1188-1191). Returns 1 beyond the critical angle.
+/// special case, §4.3). Returns 1 beyond the critical angle.
 /// `cos_i` is clamped to [0, 1] only to absorb round-off in callers' dot
 /// products.
 #[must_use]
@@ -110,7 +110,7 @@ pub fn fresnel_transmittance(cos_i: f64, n_i: f64, n_t: f64) -> f64 {
 
 /// Returns the critical angle θ_c = asin(n_t/n_i) from the normal (radians),
 /// beyond which light from index `n_i` is totally reflected, or `None` when
-/// n_t ≥ n_i (eq. 45; the notes' "Brewster's angle", L1157).
+/// n_t ≥ n_i (eq. 45; the notes' "Brewster's angle", §4.2).
 #[must_use]
 pub fn critical_angle(n_i: f64, n_t: f64) -> Option<f64> {
     (n_t < n_i).then(|| (n_t / n_i).asin())
@@ -124,18 +124,18 @@ pub fn brewster_angle(n_i: f64, n_t: f64) -> f64 {
 }
 
 /// Shades the water surface seen from the air, after the notes'
-/// `watercolorshader` (L1161-1218):
+/// `watercolorshader` (Tessendorf 2001, §4.3):
 ///
 /// C = f·(R·L_sky(r̂) + R·L_sun,glitter + (1 − R)·upwelling) + (1 − f)·air,
 /// f = exp(−`aerial_fade` · distance).
 ///
 /// R is the Fresnel reflectance at the facet (eq. 44), r̂ the reflected
-/// view ray (the shader looks the sky up by the normal instead, an erratum
-/// of convenience, spec §6.5), `upwelling` the light scattered up out of the
+/// view ray (the shader looks the sky up by the normal instead, which is wrong
+/// for any facet not facing the eye), `upwelling` the light scattered up out of the
 /// water. The sun adds a glitter lobe for slopes finer than the grid
 /// resolves: Cox–Munk's isotropic Gaussian slope distribution with variance
 /// `slope_variance`, L = R E_sun p(facet) / (4 cos θ_v cos⁴ β) (not from the
-/// sources, which promise a glitter model but never give it, L1069).
+/// sources, which promise a glitter model but never give it, §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WaterShader {
@@ -179,6 +179,11 @@ impl Default for WaterShader {
 
 impl WaterShader {
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) for negative or non-finite colours, a water index not above 1,
+    /// a negative aerial fade or a non-positive slope variance.
     pub fn validate(&self) -> Result<()> {
         for (name, v) in [
             ("upwelling", self.upwelling),
@@ -228,7 +233,7 @@ impl WaterShader {
         let r = fresnel_reflectance(f64::from(cos_i), 1.0, f64::from(self.n_water)) as f32;
         let mut dir = reflect(incident, n);
         // A reflected ray heading down would hit the water again; the single
-        // interaction model (L739, L805) mirrors it up into the sky instead.
+        // interaction model (Tessendorf 2001, §2) mirrors it up into the sky instead.
         dir.z = dir.z.abs();
         let sky_l = match sky {
             Some(f) => f(dir),
@@ -262,9 +267,9 @@ impl WaterShader {
     }
 }
 
-/// Inherent optical properties of the water volume (notes §5, L1237-1245),
+/// Inherent optical properties of the water volume (Tessendorf 2001, §5.1),
 /// all per metre: absorption a, scattering b, extinction c = a + b and
-/// diffuse extinction K, with a < K < c (L1239).
+/// diffuse extinction K, with a < K < c.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WaterIop {
@@ -272,12 +277,17 @@ pub struct WaterIop {
     pub absorption: f64,
     /// Scattering coefficient b, 1/m.
     pub scattering: f64,
-    /// Diffuse extinction K, 1/m (typically 0.03-0.1, L1239).
+    /// Diffuse extinction K, 1/m (typically 0.03-0.1, Tessendorf 2001, §5.1).
     pub diffuse_extinction: f64,
 }
 
 impl WaterIop {
-    /// Returns validated properties; fails unless 0 < a < K < a + b.
+    /// Returns validated properties.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) unless every property is finite and positive and
+    /// 0 < a < K < a + b.
     pub fn new(absorption: f64, scattering: f64, diffuse_extinction: f64) -> Result<Self> {
         positive("absorption", absorption)?;
         positive("scattering", scattering)?;
@@ -286,7 +296,7 @@ impl WaterIop {
             return Err(invalid(
                 "diffuse_extinction",
                 diffuse_extinction,
-                "must lie between absorption a and extinction c = a + b (L1239)",
+                "must lie between absorption a and extinction c = a + b",
             ));
         }
         Ok(Self {
@@ -302,7 +312,7 @@ impl WaterIop {
         self.absorption + self.scattering
     }
 
-    /// Returns the intensity I₀ e^{−c s} left after path `s` metres (L1241).
+    /// Returns the intensity I₀ e^{−c s} left after path `s` metres (Tessendorf 2001, §5.1).
     #[must_use]
     pub fn direct(&self, i0: f64, s: f64) -> f64 {
         i0 * (-self.extinction() * s).exp()
@@ -310,7 +320,7 @@ impl WaterIop {
 
     /// Returns the multiply-scattered light reaching the camera,
     /// b I₀ e^{−c s} e^{−K s_c}, from a scatter point `s` metres along the
-    /// sun ray and `s_cam` metres from the camera (L1243-1245).
+    /// sun ray and `s_cam` metres from the camera (Tessendorf 2001, §5.1).
     #[must_use]
     pub fn scattered_to_camera(&self, i0: f64, s: f64, s_cam: f64) -> f64 {
         self.scattering * self.direct(i0, s) * (-self.diffuse_extinction * s_cam).exp()

@@ -1,5 +1,5 @@
-//! The statistical FFT wave model on a periodic patch (Tessendorf, seed 004,
-//! notes §3.3-3.5 and §3.7, L878-1065; slides L1341-1528, L1610-1660).
+//! The statistical FFT wave model on a periodic patch (Tessendorf 2001,
+//! §3.3-3.5 and §3.7; slides "Random surface generation", "Choppy waves").
 
 use std::sync::Arc;
 
@@ -13,34 +13,34 @@ use crate::error::{OceanError, Result, invalid, non_negative, positive};
 use crate::frame::Frame;
 use crate::spectrum::Spectrum;
 
-/// Smallest and largest grid side the FFT model accepts (notes L939).
+/// Smallest and largest grid side the FFT model accepts (Tessendorf 2001, §3.4).
 pub const MIN_SIZE: usize = 16;
 /// Largest grid side; above it "the limits of numerical accuracy for floating
-/// point calculations can become noticeable" (notes L939).
+/// point calculations can become noticeable" (Tessendorf 2001, §3.4).
 pub const MAX_SIZE: usize = 2048;
 
 /// How the random amplitudes h̃₀(k) are drawn. Both give E|h̃₀|² = ½ P Δk².
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum AmplitudeScheme {
-    /// The notes' eq. 25 (L925-929): (ξ_r + i ξ_i)/√2 · √(½ P Δk²) with
+    /// The notes' eq. 25 (§3.4): (ξ_r + i ξ_i)/√2 · √(½ P Δk²) with
     /// ξ_r, ξ_i ~ N(0, 1): a circular complex Gaussian, matching the
     /// "statistically stationary, independent, gaussian fluctuations" the
-    /// data show (L907-911).
+    /// data show (§3.3).
     #[default]
     ComplexGaussian,
-    /// The slides' form (L1506-1514): ξ e^{iθ} √(½ P Δk²), ξ ~ N(0, 1),
+    /// The slides' form ("Simulation of a Random Surface"): ξ e^{iθ} √(½ P Δk²), ξ ~ N(0, 1),
     /// θ ~ U[0, 2π): same variance, but |h̃₀| is half-normal, not Rayleigh.
     GaussianUniformPhase,
 }
 
 /// Parameters of an ocean patch. `Default` is the source's Figs. 6-8 grid:
-/// 512 × 512 samples over 1000 m × 1000 m (L949), deep water, no chop.
+/// 512 × 512 samples over 1000 m × 1000 m (§3.5), deep water, no chop.
 ///
 /// The world is z-up: the notes' horizontal (x, z) become (x, y) here and
 /// their height y becomes z. Sample (i, j) sits at rest position
-/// (i·Lx/N, j·Ly/M), i.e. Δx = Lx/N and Δy = Ly/M (the notes' L941 swaps N
-/// and M; eq. 19 at L893 is right).
+/// (i·Lx/N, j·Ly/M), i.e. Δx = Lx/N and Δy = Ly/M (the resolution paragraph of §3.4
+/// swaps N and M; eq. 19 is right).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OceanParams {
@@ -61,9 +61,10 @@ pub struct OceanParams {
     /// crests and flattens the troughs; folds appear where the Jacobian < 0.
     ///
     /// Erratum: with the notes' eq. 29 displacement D and x + λD, λ > 0
-    /// folds the *troughs* (spec §5.2). Here the displacement is
+    /// folds the *troughs*: the displaced point x + λD moves toward the
+    /// crest under a trough. Here the displacement is
     /// d = −λ D, i.e. `choppiness` = −λ_Tessendorf, which sharpens crests as
-    /// the text (L1014, L1020) and Gerstner's eq. 9 intend.
+    /// the text of §3.7 and Gerstner's eq. 9 intend.
     pub choppiness: f64,
     /// How the random amplitudes are drawn.
     pub amplitudes: AmplitudeScheme,
@@ -101,6 +102,12 @@ fn check_size(name: &'static str, n: usize) -> Result<()> {
 
 impl OceanParams {
     /// Checks every parameter and returns a typed error naming the first bad one.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidSize`](crate::OceanError::InvalidSize) for grid sides that are not powers of two in 16..=2048, and
+    /// [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first other parameter that is NaN, non-positive where it
+    /// must be positive, or `k_max ≤ k_min`.
     pub fn validate(&self) -> Result<()> {
         check_size("nx", self.nx)?;
         check_size("ny", self.ny)?;
@@ -145,14 +152,14 @@ pub(crate) fn signed(i: usize, n: usize) -> i64 {
 /// Build it once with [`Ocean::new`]; then [`Ocean::evaluate_into`] fills a
 /// reusable [`Frame`] for any time t with no allocation. Evaluation is
 /// closed-form in t (eq. 26; "the wave field at any chosen time can be
-/// computed without computing the field at any other time", L935), so frames
+/// computed without computing the field at any other time", §3.4), so frames
 /// may be computed in any order, and `&Ocean` may be shared between threads.
 ///
 /// Time sign: the slides' h̃(k,t) = h̃₀(k) e^{−iωt} + h̃₀*(−k) e^{+iωt}
-/// (L1343, L1467), under which energy at k travels along +k̂. The Nyquist
+/// ("FFT solution"), under which energy at k travels along +k̂. The Nyquist
 /// row and column (n = −N/2 or m = −M/2) are zeroed: they are their own
-/// partner, so their slope and displacement would not be real (spec §3.4,
-/// §4), and k = 0 is zeroed so the mean height is exactly 0.
+/// partner, so their slope and displacement would not be real (a wave
+/// with no partner at −k gives a complex field), and k = 0 is zeroed so the mean height is exactly 0.
 #[derive(Clone)]
 pub struct Ocean {
     pub(crate) params: OceanParams,
@@ -195,9 +202,11 @@ impl Ocean {
     /// count, and changing N or M with the same patch size keeps the
     /// coarse waves identical.
     ///
-    /// Fails on invalid parameters (sizes not powers of two in 16..=2048,
-    /// non-positive lengths or depth, NaN anywhere) or a spectrum returning a
-    /// negative or non-finite density.
+    /// # Errors
+    ///
+    /// Returns the errors of [`OceanParams::validate`] and the spectrum's own
+    /// `validate`, and [`OceanError::BadSpectrum`](crate::OceanError::BadSpectrum) if the spectrum
+    /// returns a negative or non-finite density.
     pub fn new(params: &OceanParams, spectrum: &dyn Spectrum, seed: Seed) -> Result<Self> {
         params.validate()?;
         spectrum.validate()?;
@@ -363,8 +372,12 @@ impl Ocean {
     /// height, slope, displacement and the Jacobian terms (see [`Frame`]).
     ///
     /// Costs four complex FFT passes over half the spectrum plus four
-    /// row passes, and allocates nothing. Fails if `t` is not finite or the
-    /// frame was made for a patch of another size.
+    /// row passes, and allocates nothing.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite and [`OceanError::SizeMismatch`](crate::OceanError::SizeMismatch) if `frame` was made for a
+    /// patch of another size.
     pub fn evaluate_into(&self, t: f64, frame: &mut Frame) -> Result<()> {
         crate::error::finite("t", t)?;
         frame.check_matches(self)?;
@@ -374,6 +387,10 @@ impl Ocean {
 
     /// Returns a new [`Frame`] evaluated at time `t` (allocates; prefer
     /// [`Ocean::evaluate_into`] in a loop).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite.
     pub fn evaluate(&self, t: f64) -> Result<Frame> {
         let mut f = Frame::new(self)?;
         self.evaluate_into(t, &mut f)?;
@@ -382,7 +399,7 @@ impl Ocean {
 
     /// Evaluates the fields at rest position (`x`, `y`) and time `t` by the
     /// direct sum over all waves (eq. 19, "switching to a discrete fourier
-    /// transform", L893) in `f64`: exact between grid points, O(N·M) per call.
+    /// transform", eq. 19) in `f64`: exact between grid points, O(N·M) per call.
     /// The reference the FFT path is tested against.
     #[must_use]
     pub fn sample_direct(&self, x: f64, y: f64, t: f64) -> DirectSample {

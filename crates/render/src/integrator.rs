@@ -6,7 +6,7 @@
 //! exact Fresnel weights, aerial perspective is applied to every segment
 //! that reaches the camera, escaped rays see the sky with its sun disc, and
 //! rain shows a rainbow opposite the sun. This is the shading pipeline of
-//! Musgrave's landscapes (seed 000 ch. 3–4) with physical sky and haze.
+//! Musgrave's landscapes (Musgrave 1993, ch. 3–4) with physical sky and haze.
 
 use glam::{DVec2, Vec2, Vec3};
 use natura_atmos::Dir3;
@@ -594,7 +594,7 @@ impl<'w> Renderer<'w> {
     }
 
     /// Rain between `rain_distance_m` and the hit: extinction of what is behind
-    /// and the rainbow's single scattering (spec `atmosphere.md` §7.5).
+    /// and the rainbow's single scattering (Musgrave 1993, §4.2.4.3.2).
     fn rain(&self, rb: &Rainbow, d: Vec3, dist: f32, behind: Vec3) -> Vec3 {
         let a = &self.world.scene.atmosphere;
         let start = a.rain_distance_m as f32;

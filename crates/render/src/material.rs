@@ -2,7 +2,7 @@
 //! perturbed by fractal noise, with Lambert or Oren–Nayar diffuse reflection.
 //!
 //! The layering follows Musgrave's practice of "driving parameters with
-//! functions" (spec `noise.md` §3.3, seed 004 lines 630–636): the snow line is
+//! functions" (Musgrave 2001, "Driving Function Parameters with Functions"): the snow line is
 //! `altitude + fractal` thresholded, so its edge is fractal; rock shows where
 //! the slope exceeds a threshold; vegetation grows below the tree line,
 //! densest where the drainage network keeps the ground wet; sediment shows

@@ -1,7 +1,7 @@
 //! Building the world a scene describes: fractal terrain, erosion, the maps
 //! materials read (deposition, wetness), the water level and the atmosphere.
 //!
-//! This is Musgrave's landscape pipeline (seed 000 ch. 2–4; seed 001): noise
+//! This is Musgrave's landscape pipeline (Musgrave 1993, ch. 2–4; Musgrave et al. 1989): noise
 //! synthesis of a multifractal height field, erosion that carves drainage
 //! into it, then rendering. Erosion runs in three passes, coarse to fine:
 //! Braun–Willett stream power carves the valley network (the "fractal
@@ -29,7 +29,7 @@ use crate::error::Result;
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
 
 /// The warp of the terrain's domain: displacement by vector fBm of Perlin
-/// noise (the general distortion `F(p + s·V(p))`, spec `noise.md` §5.1).
+/// noise (the general distortion `F(p + s·V(p))` of Musgrave 2001, "Domain Distortion").
 type TerrainWarp = Displace<VectorFbm<VecNoise<Perlin>>>;
 
 /// The fractal terrain function of a scene, before normalisation: a ridged,
@@ -383,7 +383,8 @@ fn erode(
         }
         area = Some(sp.drainage_area()?);
     }
-    if e.hydraulic_model == HydraulicModel::Droplets && e.droplets > 0 {
+    let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
+    if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
         // The droplet model runs in cell units internally (heights / cell
         // size), so Beyer's constants hold at any resolution.
         let p = DropletParams {
@@ -392,10 +393,13 @@ fn erode(
             erode: 0.1,
             deposit: 0.1,
             evaporate: 0.02,
+            // Rounds of droplets in row bands: both cores at work, every
+            // droplet still on the live terrain (see `DropletErosion`).
+            batch: 1 << 16,
             ..DropletParams::default()
         };
         let mut drops = DropletErosion::new(p, hf, Seed(scene.seed).derive("droplets"))?;
-        drops.run(hf, e.droplets, progress)?;
+        drops.run(hf, droplets, progress)?;
         let dep = drops.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
             *d += s.max(0.0);

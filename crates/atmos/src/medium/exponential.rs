@@ -1,4 +1,4 @@
-//! Exponential mist: density falling with altitude (seed D:1534-1568).
+//! Exponential mist: density falling with altitude (Musgrave 1993, §4.1.5).
 
 use glam::DVec3;
 
@@ -10,14 +10,13 @@ use crate::special::exprel_neg;
 /// Mist whose density falls exponentially with altitude z:
 /// `ρ(z) = e^{−(z − z₀)/H}`, extinction `ε̄·ρ`.
 ///
-/// Musgrave's eq. 4.1.5 (D:1554) gives the *mean* extinction over the vertical
-/// span (the source labels it τ; τ is that mean times the Euclidean length,
-/// spec §3.1). The source's near-horizontal fallbacks (eqs. 4.1.6/4.1.7,
-/// D:1558-1566) are only first/second-order accurate; this model instead uses
+/// Musgrave's eq. 4.1.5 (Musgrave 1993, §4.1.5) gives the *mean* extinction over the vertical
+/// span (the source labels it τ; τ is that mean times the Euclidean length). The source's near-horizontal fallbacks (eqs. 4.1.6/4.1.7,
+/// Musgrave 1993, §4.1.5) are only first/second-order accurate; this model instead uses
 /// the exact closed form `τ = ε̄·d·e^{−(z_min − z₀)/H}·(1 − e^{−Δ/H})/(Δ/H)`
 /// evaluated with `expm1`, which is exact for horizontal rays (Δ = 0) and
-/// never divides by a small difference (spec §3.2). Lynch's receding ridges
-/// (D:1536-1540) come from this model.
+/// never divides by a small difference. Lynch's receding ridges
+/// (Musgrave 1993, §4.1.5) come from this model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ExponentialMist {
@@ -30,7 +29,10 @@ impl ExponentialMist {
     /// Mist with extinction `extinction` (per metre) at altitude `base_altitude`
     /// (m), falling by `e` every `scale_height` metres.
     ///
-    /// Refuses NaN, negative extinction or colour, and non-positive scale heights.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for NaN, negative extinction or colour, a non-finite base
+    /// altitude, and non-positive scale heights.
     pub fn new(
         extinction: DVec3,
         fog_colour: DVec3,

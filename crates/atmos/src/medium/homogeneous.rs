@@ -1,4 +1,4 @@
-//! Homogeneous fog: constant extinction everywhere (seed D:1514-1532).
+//! Homogeneous fog: constant extinction everywhere (Musgrave 1993, §4.1.4).
 
 use glam::DVec3;
 
@@ -6,11 +6,11 @@ use super::{Attenuation, BeerParams, Medium, scale_column};
 use crate::Dir3;
 use crate::error::Result;
 
-/// Musgrave's homogeneous fog: `σ = e^{−ε·|b − a|}` per channel (eq. 4.1.1, D:1518).
+/// Musgrave's homogeneous fog: `σ = e^{−ε·|b − a|}` per channel (eq. 4.1.1, Musgrave 1993, §4.1.4).
 ///
 /// Isotropic and the same everywhere; a ray that misses all geometry has
 /// infinite optical depth and shows the pure fog colour (the flaw the radial
-/// model fixes, D:531, D:1576).
+/// model fixes, Musgrave 1993, §1.2.4.1, §4.1.6.1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HomogeneousFog {
@@ -19,6 +19,10 @@ pub struct HomogeneousFog {
 
 impl HomogeneousFog {
     /// A fog with per-metre `extinction` and colour `fog_colour`; refuses negative or NaN values.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or NaN extinction or colour.
     pub fn new(extinction: DVec3, fog_colour: DVec3) -> Result<Self> {
         let beer = BeerParams {
             extinction,

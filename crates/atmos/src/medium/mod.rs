@@ -2,19 +2,19 @@
 //!
 //! Every model implements one trait, [`Medium`], in `f64`: the per-channel
 //! optical depth τ along a segment (or a ray to infinity), the transmittance
-//! `σ = e^{−τ}` (eq. 4.1.1, seed D:1518) and Musgrave's Beer-law blend
-//! `I = σ·I_s + (1 − σ)·I_a` (eq. 4.1.2, D:1528) as an [`Attenuation`].
+//! `σ = e^{−τ}` (eq. 4.1.1, Musgrave 1993, §4.1.4) and Musgrave's Beer-law blend
+//! `I = σ·I_s + (1 − σ)·I_a` (eq. 4.1.2, Musgrave 1993, §4.1.4) as an [`Attenuation`].
 //!
 //! | model | source | optical depth |
 //! |---|---|---|
-//! | [`HomogeneousFog`] | D:1514-1532 | `ε·δ` |
-//! | [`ExponentialMist`] | D:1534-1568 | closed form with `(1 − e^{−x})/x`, exact for horizontal rays |
-//! | [`RadialAtmosphere`] | D:1570-1628 | exact Gaussian-radial line integral with `erf`/`erfcx` |
-//! | [`Umbra`] | D:1630-1642 | day/night media switched on a shadow cylinder |
+//! | [`HomogeneousFog`] | Musgrave 1993, §4.1.4 | `ε·δ` |
+//! | [`ExponentialMist`] | Musgrave 1993, §4.1.5 | closed form with `(1 − e^{−x})/x`, exact for horizontal rays |
+//! | [`RadialAtmosphere`] | Musgrave 1993, §4.1.6–4.1.6.4 | exact Gaussian-radial line integral with `erf`/`erfcx` |
+//! | [`Umbra`] | Musgrave 1993, §4.1.6.5 | day/night media switched on a shadow cylinder |
 //!
 //! Colours are linear RGB `DVec3` (or any three channels); each channel has its
 //! own extinction, which is all of Musgrave's Rayleigh approximation
-//! ([`RayleighRgb`], D:1644-1672).
+//! ([`RayleighRgb`], Musgrave 1993, §4.1.7).
 
 mod exponential;
 mod homogeneous;
@@ -47,7 +47,7 @@ impl Attenuation {
         in_scatter: DVec3::ZERO,
     };
 
-    /// Musgrave's Beer blend for optical depth `tau` and fog colour `fog` (D:1528).
+    /// Musgrave's Beer blend for optical depth `tau` and fog colour `fog` (Musgrave 1993, §4.1.4).
     #[inline]
     #[must_use]
     pub fn beer(tau: DVec3, fog: DVec3) -> Self {
@@ -125,14 +125,18 @@ pub trait Medium: Send + Sync {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BeerParams {
-    /// Per-channel extinction coefficient ε̄ at reference density, per metre (D:1516, D:1658).
+    /// Per-channel extinction coefficient ε̄ at reference density, per metre (Musgrave 1993, §4.1.4, §4.1.7).
     pub extinction: DVec3,
-    /// The fog colour `I_a` that distant objects fade to (D:1530).
+    /// The fog colour `I_a` that distant objects fade to (Musgrave 1993, §4.1.4).
     pub fog_colour: DVec3,
 }
 
 impl BeerParams {
     /// Refuses negative or non-finite extinction or colour.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or non-finite extinction or colour.
     pub fn validate(&self) -> Result<()> {
         non_negative3("extinction", self.extinction)?;
         non_negative3("fog_colour", self.fog_colour)?;
@@ -140,16 +144,16 @@ impl BeerParams {
     }
 }
 
-/// Musgrave's per-channel "Rayleigh" extinction vectors (D:1644-1672).
+/// Musgrave's per-channel "Rayleigh" extinction vectors (Musgrave 1993, §4.1.7).
 ///
 /// The source's ratio 1 : 3 : 20 is said to be the λ⁻⁴ of 800, 500 and 380 nm
-/// (D:1666); those wavelengths actually give 1 : 6.55 : 19.64 (spec §5.2
-/// erratum), so both are offered.
+/// (Musgrave 1993, §4.1.7); those wavelengths actually give 1 : 6.55 : 19.64 (an
+/// erratum of the source), so both are offered.
 #[derive(Clone, Copy, Debug)]
 pub struct RayleighRgb;
 
 impl RayleighRgb {
-    /// The source's extinction vector `k·(1, 3, 20)` (D:1666).
+    /// The source's extinction vector `k·(1, 3, 20)` (Musgrave 1993, §4.1.7).
     #[must_use]
     pub fn musgrave_1_3_20(k: f64) -> DVec3 {
         DVec3::new(1.0, 3.0, 20.0) * k
@@ -157,7 +161,10 @@ impl RayleighRgb {
 
     /// `k·(λ_r/λ_r, (λ_r/λ_g)⁴, (λ_r/λ_b)⁴)`: true λ⁻⁴ ratios, red normalised to `k`.
     ///
-    /// Fails if a wavelength is not finite and positive.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if a wavelength is not finite and positive or `k` is
+    /// negative.
     pub fn from_wavelengths(lambda_nm: [f64; 3], k: f64) -> Result<DVec3> {
         for l in lambda_nm {
             crate::error::positive("lambda_nm", l)?;

@@ -1,5 +1,5 @@
 //! Radial fog: a planetary atmosphere whose density depends on the distance
-//! from the planet's centre (seed D:1570-1628), integrated exactly.
+//! from the planet's centre (Musgrave 1993, §4.1.6–4.1.6.4), integrated exactly.
 
 use glam::DVec3;
 
@@ -14,16 +14,16 @@ const HALF_SQRT_PI: f64 = 0.886_226_925_452_758;
 /// Musgrave's radial ("Gaussian gas planet") atmosphere, parameterised as a
 /// planetary exponential atmosphere of surface radius `R` and scale height `H`.
 ///
-/// Density is `ρ(r) = e^{−k²(r² − R²)}` with `k = 1/√(2RH)` (eq. 4.1.8, D:1586,
+/// Density is `ρ(r) = e^{−k²(r² − R²)}` with `k = 1/√(2RH)` (eq. 4.1.8, Musgrave 1993, §4.1.6.2,
 /// normalised to 1 at the surface). Near the surface `r² − R² ≈ 2R(r − R)`, so
 /// this *is* an exponential atmosphere of scale height `H`, and its grazing
-/// column matches Chapman's `e^{−h/H}·√(2πRH)` (spec §4.2 item 3).
+/// column matches Chapman's `e^{−h/H}·√(2πRH)`.
 ///
-/// **Errata corrected** (spec §4.2): eq. 4.1.13 (D:1624) integrates between
+/// **Errata corrected**: eq. 4.1.13 (Musgrave 1993, §4.1.6.4) integrates between
 /// the wrong distances (from the centre, not signed along the line from the
 /// closest-approach point) and drops the factor `√π/(2k)`; eq. 4.1.11 is exact,
 /// not an approximation. The source's `erf`/`erfc` difference saturates for
-/// Earth-thin atmospheres and shows an "ozone hole" (D:1628); here segments
+/// Earth-thin atmospheres and shows an "ozone hole" (Musgrave 1993, §4.1.6.4); here segments
 /// that straddle the closest point use `erf(ks₂) − erf(ks₁)` (no cancellation),
 /// one-sided segments use `ρ(r₁)·erfcx(ks₁) − ρ(r₂)·erfcx(ks₂)` with the
 /// exponents combined, and short segments (density varying by less than a
@@ -42,6 +42,12 @@ impl RadialAtmosphere {
     /// An atmosphere around `centre` with surface radius `surface_radius` (m),
     /// scale height `scale_height` (m), surface extinction `extinction` (per m)
     /// and fog colour `fog_colour`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or non-finite extinction or colour, a
+    /// non-finite centre, non-positive radii or scale heights, or a scale height so small
+    /// that the density exponent overflows.
     pub fn new(
         extinction: DVec3,
         fog_colour: DVec3,
@@ -206,7 +212,7 @@ impl RadialAtmosphere {
     }
 
     /// `∫ρ ds` from `origin` along `dir` until the ray leaves the atmosphere
-    /// (finite for every ray, D:1576-1578) or meets the ground (spec §4.2 item 6).
+    /// (finite for every ray, Musgrave 1993, §4.1.6.1) or meets the ground.
     /// `+∞` if `origin` is below the surface.
     #[must_use]
     pub fn column_to_infinity(&self, origin: DVec3, dir: Dir3) -> f64 {

@@ -1,6 +1,6 @@
 //! Oracle tests for the aerial-perspective media: closed forms against
 //! adaptive quadrature, additivity, symmetry, horizontal-ray limits and the
-//! "ozone hole" regression (spec `atmosphere.md` §12 H1-H3, E1-E4, R1-R5).
+//! "ozone hole" regression of Musgrave 1993, §4.1.6.4.
 
 use glam::DVec3;
 use proptest::prelude::*;
@@ -99,7 +99,7 @@ fn mist_upward_ray_to_infinity() {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 200, .. ProptestConfig::default() })]
 
-    /// E1/E3: closed form = quadrature, symmetric, additive, from −2H to 20H.
+    /// Closed form = quadrature, symmetric, additive, from −2H to 20H.
     #[test]
     fn mist_matches_quadrature(
         x1 in -5e3f64..5e3, y1 in -5e3f64..5e3, z1 in -1900.0f64..20_000.0,
@@ -120,7 +120,7 @@ proptest! {
         prop_assert!((split - t).abs().max_element() < 1e-12);
     }
 
-    /// R1: the radial closed form equals quadrature of ρ(|x − c|) along
+    /// The radial closed form equals quadrature of ρ(|x − c|) along
     /// arbitrary segments: straddling the closest point, before it, after it.
     #[test]
     fn radial_matches_quadrature(
@@ -161,7 +161,7 @@ fn radial_segment_cases_match_quadrature() {
     }
 }
 
-/// R2: Earth numbers from the spec (R = 6371 km, H = 8 km, kR = 19.95).
+/// Earth numbers (R = 6371 km, H = 8 km, kR = 19.95).
 #[test]
 fn radial_earth_columns() {
     let atm = earth();
@@ -186,7 +186,7 @@ fn radial_earth_columns() {
 
 /// The grazing test: the radial (Gaussian) model equals numeric
 /// integration of the true exponential atmosphere `e^{−(r−R)/H}` for grazing
-/// rays, to the accuracy the spec derives (< 0.1% for full tangent columns).
+/// rays, to < 0.1 % for full tangent columns.
 #[test]
 fn radial_matches_exponential_atmosphere_for_grazing_rays() {
     let atm = earth();
@@ -215,7 +215,7 @@ fn radial_matches_exponential_atmosphere_for_grazing_rays() {
     }
 }
 
-/// R3/R4: no ozone hole. A planet seen from 2R, 4R, 100R: τ > 0, finite, continuous.
+/// No ozone hole. A planet seen from 2R, 4R, 100R: τ > 0, finite, continuous.
 /// A naive `erf` difference (the source's eq. 4.1.13 with corrected arguments) fails.
 #[test]
 fn no_ozone_hole() {
@@ -258,7 +258,7 @@ fn no_ozone_hole() {
         naive_failed,
         "the naive erf form should show the ozone hole"
     );
-    // R4: misses are finite for any closest approach, including far above.
+    // Misses are finite for any closest approach, including far above.
     for rp in [0.0, 1.0, 1e3, 1e5, 1e7, 1e9] {
         let o = DVec3::new(-1e10, 0.0, R_EARTH + rp);
         let t = atm.column_to_infinity(o, Dir3::X);
@@ -286,7 +286,7 @@ fn umbra_switches_day_and_night() {
     .unwrap();
     let eps = 10.0;
     let u = Umbra::new(day, night, DVec3::ZERO, R_EARTH, eps, Dir3::X).unwrap();
-    // R5: inside the cylinder on the night side → night; day side never.
+    // Inside the cylinder on the night side → night; day side never.
     assert!(u.in_shadow(DVec3::new(-R_EARTH - 100.0, 0.0, R_EARTH + 5.0)));
     assert!(!u.in_shadow(DVec3::new(-R_EARTH - 100.0, 0.0, R_EARTH + eps + 1.0)));
     assert!(!u.in_shadow(DVec3::new(R_EARTH + 100.0, 0.0, 0.0)));

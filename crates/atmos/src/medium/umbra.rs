@@ -1,5 +1,5 @@
 //! The atmospheric umbra: the planet's shadow cylinder switches the
-//! atmosphere to night parameters (seed D:1630-1642, Plate 4.5 D:3883).
+//! atmosphere to night parameters (Musgrave 1993, §4.1.6.5, Musgrave 1993, plate 4.5).
 
 use glam::DVec3;
 
@@ -9,13 +9,13 @@ use crate::error::{Result, finite3, positive};
 
 /// A day medium and a night medium, switched on the planet's umbra: the
 /// half-infinite cylinder of radius `R + ε` behind the planet, with its axis
-/// through the centre along the light direction (D:1634-1638).
+/// through the centre along the light direction (Musgrave 1993, §4.1.6.5).
 ///
 /// Segments are split exactly where they cross the cylinder, and the pieces
 /// are composited front to back, so an object in the shadow is seen through
 /// the night atmosphere and a distant one through day, night and day again.
 ///
-/// **Pitfall** (D:1640, Plate 4.5): the cylinder radius must exceed the planet
+/// **Pitfall** (Musgrave 1993, §4.1.6.5, Plate 4.5): the cylinder radius must exceed the planet
 /// radius by more than the renderer's ray-offset epsilon, or rays re-spawned at
 /// the cylinder start inside the planet and draw a bright terminator line;
 /// [`Umbra::new`] therefore takes `epsilon > 0` explicitly. The penumbra is
@@ -34,6 +34,11 @@ impl<D: Medium, N: Medium> Umbra<D, N> {
     /// The umbra of a planet at `centre` of radius `planet_radius`, lit from
     /// `to_light` (towards the light source), with cylinder radius
     /// `planet_radius + epsilon`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a non-finite centre or a non-positive radius or
+    /// `epsilon`.
     pub fn new(
         day: D,
         night: N,

@@ -9,7 +9,7 @@ pub struct RayleighParams {
     /// Scale height of the exponential density profile, m (8000).
     pub scale_height_m: f64,
     /// Sea-level refractive index minus one, held fixed over wavelength so the
-    /// coefficient follows λ⁻⁴ exactly (0.0003, D:1939).
+    /// coefficient follows λ⁻⁴ exactly (0.0003, Musgrave 1993, §4.2.4.3.2).
     pub n_minus_1: f64,
     /// Sea-level molecular number density, m⁻³ (2.545e25).
     pub number_density: f64,
@@ -48,7 +48,7 @@ pub struct MieParams {
     pub scattering: f64,
     /// Sea-level absorption coefficient at 550 nm, m⁻¹ (0.444e-6, Hillaire 2020).
     pub absorption: f64,
-    /// Ångström exponent α of `β ∝ (λ/550)^{−α}` (0: wavelength-independent, D:1646).
+    /// Ångström exponent α of `β ∝ (λ/550)^{−α}` (0: wavelength-independent, Musgrave 1993, §4.1.7).
     pub angstrom_exponent: f64,
     /// Asymmetry parameter `g` (0.8).
     pub g: f64,
@@ -189,6 +189,11 @@ impl Default for AtmosphereParams {
 
 impl AtmosphereParams {
     /// Refuses NaN, negative or inconsistent values with a typed error naming the field.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) naming the first field that is NaN, negative or
+    /// inconsistent with the others.
     pub fn validate(&self) -> Result<()> {
         positive("bottom_radius_m", self.bottom_radius_m)?;
         positive("top_radius_m", self.top_radius_m)?;

@@ -425,7 +425,7 @@ mod batch {
     /// the row kernels of `render`.
     fn reference_pixel(
         v: &SkyView,
-        p: Projection,
+        p: SkyProjection,
         x: usize,
         y: usize,
         w: usize,
@@ -455,13 +455,13 @@ mod batch {
         };
         let (w, h) = (157, 93);
         for p in [
-            Projection::Pinhole {
+            SkyProjection::Pinhole {
                 fov_y: 0.8,
                 yaw: 1.3,
                 pitch: 0.02,
             },
-            Projection::Fisheye,
-            Projection::Panorama {
+            SkyProjection::Fisheye,
+            SkyProjection::Panorama {
                 min_elevation: -0.3,
                 max_elevation: 1.2,
             },

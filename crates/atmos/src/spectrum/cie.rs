@@ -10,6 +10,11 @@ use crate::error::{AtmosError, Result, positive};
 /// Returns the tabulated CIE 1931 2° colour-matching functions `(x̄, ȳ, z̄)` at
 /// `lambda_nm`, linearly interpolated in the 1 nm table (CIE 015:2018), or an
 /// error outside 360–830 nm or for NaN.
+///
+/// # Errors
+///
+/// Returns [`AtmosError::WavelengthOutOfRange`]
+/// outside 360–830 nm or for NaN.
 pub fn cmf_1931(lambda_nm: f64) -> Result<DVec3> {
     table_lerp(lambda_nm).map(|(i, f)| {
         let a = DVec3::from(CMF_1931[i]);
@@ -35,7 +40,7 @@ fn table_lerp(lambda_nm: f64) -> Result<(usize, f64)> {
 /// to the CIE 1931 2° colour-matching functions at any wavelength (nm).
 ///
 /// A fast path and fallback outside the table; its error against the table is
-/// at most about 0.02 (measured in this crate's tests, spec §6.6).
+/// at most about 0.02 (measured in this crate's tests).
 #[inline]
 #[must_use]
 pub fn cmf_wyman_2013(lambda_nm: f64) -> DVec3 {
@@ -66,6 +71,12 @@ pub enum Illuminant {
 impl Illuminant {
     /// Relative spectral power at `lambda_nm` (D65: 100 at 560 nm, table 360–830 nm;
     /// E: 100 everywhere).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-positive or NaN wavelength and
+    /// [`AtmosError::WavelengthOutOfRange`] outside
+    /// the D65 table.
     pub fn spd(self, lambda_nm: f64) -> Result<f64> {
         match self {
             Illuminant::E => {
@@ -99,7 +110,9 @@ impl Illuminant {
 /// CMFs and step `step_nm` (midpoint rule), so that a flat spectrum of value 1
 /// has `Y = 1`.
 ///
-/// Fails on a non-positive step.
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] for a non-positive or NaN `step_nm`.
 pub fn spectrum_to_xyz(s: impl Fn(f64) -> f64, step_nm: f64) -> Result<DVec3> {
     positive("step_nm", step_nm)?;
     let n = ((TABLE_MAX_NM - TABLE_MIN_NM) / step_nm).round().max(1.0) as usize;
@@ -128,7 +141,7 @@ pub fn xyz_to_xy(xyz: DVec3) -> (f64, f64) {
     }
 }
 
-/// XYZ → linear sRGB (IEC 61966-2-1, D65 white), rows as in spec §6.6.
+/// XYZ → linear sRGB (IEC 61966-2-1, D65 white).
 pub const XYZ_TO_SRGB: DMat3 = DMat3::from_cols_array(&[
     3.240_454_2,
     -0.969_266,
@@ -177,7 +190,9 @@ const BRADFORD: DMat3 = DMat3::from_cols_array(&[
 /// Returns the Bradford chromatic-adaptation matrix taking XYZ colours seen
 /// under white `from_white` to the corresponding colours under `to_white`.
 ///
-/// Fails if either white has a non-positive or non-finite component.
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either white has a non-positive or non-finite component.
 pub fn bradford(from_white: DVec3, to_white: DVec3) -> Result<DMat3> {
     for (name, w) in [("from_white", from_white), ("to_white", to_white)] {
         if !(w.is_finite() && w.min_element() > 0.0) {
@@ -205,7 +220,7 @@ mod tests {
         assert!((ysum - 106.857).abs() < 1e-3);
         let e = spectrum_to_xyz(|_| 1.0, 1.0).unwrap();
         assert!((e.y - 1.0).abs() < 1e-12);
-        // S1: flat spectrum has x = y = 1/3.
+        // Flat spectrum has x = y = 1/3.
         let (x, y) = xyz_to_xy(e);
         assert!(
             (x - 1.0 / 3.0).abs() < 1e-3 && (y - 1.0 / 3.0).abs() < 1e-3,
@@ -242,7 +257,7 @@ mod tests {
 
     #[test]
     fn srgb_white_points_and_adaptation() {
-        // S2: D65 white → (1, 1, 1).
+        // D65 white → (1, 1, 1).
         let d65 = DVec3::new(0.95047, 1.0, 1.08883);
         let rgb = xyz_to_linear_srgb(d65);
         assert!((rgb - DVec3::ONE).abs().max_element() < 1e-6, "{rgb}");
@@ -276,7 +291,7 @@ mod tests {
 
     #[test]
     fn monochromatic_colours_are_out_of_gamut() {
-        // S3: every λ in 400-700 nm has a negative linear-sRGB component.
+        // Every λ in 400-700 nm has a negative linear-sRGB component.
         for l in 400..=700 {
             let rgb = xyz_to_linear_srgb(cmf_1931(l as f64).unwrap());
             assert!(rgb.min_element() < 0.0, "{l}: {rgb}");
@@ -284,7 +299,7 @@ mod tests {
         let g = xyz_to_linear_srgb(cmf_1931(500.0).unwrap());
         let g = g / g.max_element();
         assert!(g.x < -0.9 && g.z > 0.2, "{g}");
-        // λ⁻⁴ over 380-780 nm is in gamut and blue (spec §5.1).
+        // λ⁻⁴ over 380-780 nm is in gamut and blue.
         let xyz = spectrum_to_xyz(
             |l| {
                 if (380.0..=780.0).contains(&l) {

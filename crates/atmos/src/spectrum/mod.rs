@@ -3,7 +3,7 @@
 //! RGB → spectrum upsampling, and Musgrave's 13-sample spectral rgb tables.
 //!
 //! Wavelengths are **vacuum wavelengths in nanometres** throughout (the
-//! dissertation mixes frequency and wavelength, D:1718 vs D:1941; spec §11.18).
+//! dissertation mixes frequency and wavelength, Musgrave 1993, §4.2.3.1 vs §4.2.4.3.2).
 //! Colours are linear sRGB (Rec. 709 primaries, D65 white) in `DVec3`.
 
 pub mod cie;
@@ -22,5 +22,5 @@ pub use musgrave::{SpectralRgbTable, clamp_sum};
 pub use sampling::{HeroWavelengths, WavelengthSampler};
 pub use upsample::SigmoidSpectrum;
 
-/// Musgrave's visible range, 380–800 nm (eq. 4.2.8, D:1812).
+/// Musgrave's visible range, 380–800 nm (eq. 4.2.8, Musgrave 1993, §4.2.4.1).
 pub const VISIBLE_MUSGRAVE: (f64, f64) = (380.0, 800.0);

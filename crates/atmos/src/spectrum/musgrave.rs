@@ -1,5 +1,5 @@
 //! Musgrave's spectral rgb tables: one metameric rgb per wavelength sample,
-//! columns summing to white (D:1836-1886).
+//! columns summing to white (Musgrave 1993, §4.2.4.2–4.2.4.2.2).
 
 use glam::DVec3;
 
@@ -8,7 +8,7 @@ use super::sampling::WavelengthSampler;
 use crate::error::Result;
 
 /// A table of `n` wavelength samples and their display rgb, with every
-/// channel summing to exactly 1 over the samples (eq. "4.2.14", D:1846-1854),
+/// channel summing to exactly 1 over the samples (eq. "4.2.14", Musgrave 1993, §4.2.4.2),
 /// so that full-intensity samples add up to white.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpectralRgbTable {
@@ -17,11 +17,11 @@ pub struct SpectralRgbTable {
 }
 
 impl SpectralRgbTable {
-    /// Musgrave's linear model with 13 samples over 380–800 nm (D:1856-1872).
+    /// Musgrave's linear model with 13 samples over 380–800 nm (Musgrave 1993, §4.2.4.2.1).
     ///
     /// Figure 4.2.4 is not in the text, so the curves are a reconstruction
     /// with the properties the text states: piecewise-linear red, green and
-    /// blue ramps; violet shown as magenta (red + blue, D:1860); steep roll-off
+    /// blue ramps; violet shown as magenta (red + blue, Musgrave 1993, §4.2.4.2.1); steep roll-off
     /// at both ends; samples at the 13 stratum centres (396.2 + 32.31·k nm).
     /// Each channel is then renormalised to sum to 1.
     #[must_use]
@@ -64,10 +64,13 @@ impl SpectralRgbTable {
 
     /// A table built from the CIE 1931 CMFs: the XYZ of each sample (weighted by
     /// `illuminant`) mapped to linear sRGB, negatives clipped to 0, then each
-    /// channel renormalised to sum to 1 (spec §6.4-6.5; the source used
-    /// illuminant B and an unpublished monitor matrix, D:1874-1880).
+    /// channel renormalised to sum to 1 (the source used
+    /// illuminant B and an unpublished monitor matrix, Musgrave 1993, §4.2.4.2.2).
     ///
-    /// Fails if the sampler's range leaves the 360–830 nm table.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::WavelengthOutOfRange`](crate::AtmosError::WavelengthOutOfRange)
+    /// if the sampler's range leaves the 360–830 nm table.
     pub fn from_cie(sampler: WavelengthSampler, illuminant: Illuminant) -> Result<Self> {
         let mut rgb = Vec::with_capacity(sampler.len());
         for i in 0..sampler.len() {
@@ -120,7 +123,7 @@ impl SpectralRgbTable {
     }
 }
 
-/// Clamps each channel of a jittered spectral sum to at most 1 (D:1868-1872),
+/// Clamps each channel of a jittered spectral sum to at most 1 (Musgrave 1993, §4.2.4.2.1),
 /// so that an over-white sum never overflows (8-bit wrap-around to black in the
 /// source's era).
 #[inline]
@@ -170,7 +173,7 @@ mod tests {
         assert_eq!(t.rgb_at(900.0), DVec3::ZERO);
     }
 
-    /// S4: jittered sums scatter around white, are clamped to ≤ 1, average ≈ 1.
+    /// Jittered sums scatter around white, are clamped to ≤ 1, average ≈ 1.
     #[test]
     fn jittered_sums_average_to_white() {
         let t = SpectralRgbTable::linear_musgrave13();

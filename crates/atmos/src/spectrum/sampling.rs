@@ -1,4 +1,4 @@
-//! Wavelength sampling: stratified with Cook's jitter (D:1810-1834) and
+//! Wavelength sampling: stratified with Cook's jitter (Musgrave 1993, §4.2.4.1) and
 //! hero wavelengths (Wilkie, Nawaz, Droske, Weidlich & Hanika, EGSR 2014).
 
 use crate::error::{Result, invalid, positive};
@@ -6,7 +6,7 @@ use crate::error::{Result, invalid, positive};
 /// `n` strata over `[min, max]` nm, each sample jittered within its stratum.
 ///
 /// A sample at centre `c` representing width `Δ` is placed at `c + Δ(u − ½)`
-/// (D:1822): uniform within the stratum. With `u = ½` the centres are returned,
+/// (Musgrave 1993, §4.2.4.1): uniform within the stratum. With `u = ½` the centres are returned,
 /// which alias spectrally (Plate 4.10); jittering turns aliasing into noise.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -18,6 +18,11 @@ pub struct WavelengthSampler {
 
 impl WavelengthSampler {
     /// `n ≥ 1` strata over `[min_nm, max_nm]`, `0 < min < max`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `n` is 0, a bound is not finite and positive, or
+    /// `max_nm ≤ min_nm`.
     pub fn new(n: usize, min_nm: f64, max_nm: f64) -> Result<Self> {
         if n == 0 {
             return Err(invalid("n", n, "need at least one stratum"));
@@ -34,7 +39,7 @@ impl WavelengthSampler {
         })
     }
 
-    /// Musgrave's 13 strata over 380–800 nm (D:1868, D:1921).
+    /// Musgrave's 13 strata over 380–800 nm (Musgrave 1993, §4.2.4.2.1, §4.2.4.3.2).
     #[must_use]
     pub fn musgrave13() -> Self {
         Self {
@@ -93,6 +98,10 @@ pub struct HeroWavelengths {
 
 impl HeroWavelengths {
     /// Hero sampling over `[min_nm, max_nm]`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if a bound is not finite and positive, or `max_nm ≤ min_nm`.
     pub fn new(min_nm: f64, max_nm: f64) -> Result<Self> {
         WavelengthSampler::new(1, min_nm, max_nm)?;
         Ok(Self {

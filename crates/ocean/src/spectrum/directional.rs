@@ -1,5 +1,6 @@
 //! Directional spectra: a frequency spectrum spread over directions and
-//! converted to wave vectors (not from the sources; spec §13).
+//! converted to wave vectors (not from the sources: Pierson & Moskowitz 1964, Hasselmann
+//! et al. 1973 and the spreading functions of oceanography).
 
 use glam::DVec2;
 
@@ -69,6 +70,10 @@ impl Spreading {
     }
 
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) for a negative or NaN spreading exponent.
     pub fn validate(&self) -> Result<()> {
         if let Spreading::Cos2s { s } = *self {
             non_negative("s", s)?;

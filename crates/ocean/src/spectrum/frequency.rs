@@ -1,7 +1,7 @@
 //! Frequency spectra S(ω) of oceanography: Pierson–Moskowitz, JONSWAP and
 //! TMA. **Not from the sources**: the course only names JONSWAP on a slide,
-//! with no constants (seed 004, L1492-1494); the forms and constants here are
-//! the standard ones (spec §13; Hasselmann et al. 1973, Bouws et al. 1985).
+//! with no constants (Tessendorf 2001, slides "Oceanography"); the forms and
+//! constants here are the standard ones (Pierson & Moskowitz 1964; Hasselmann et al. 1973, Bouws et al. 1985).
 
 use crate::dispersion::G;
 use crate::error::{Result, positive};
@@ -75,7 +75,7 @@ impl FrequencySpectrum for PiersonMoskowitz {
     }
     fn validate(&self) -> Result<()> {
         positive("wind_speed", self.wind_speed)?;
-        positive("g", self.g).map(|_| ())
+        positive("g", self.g).map(|_| ()).map_err(Into::into)
     }
 }
 
@@ -155,7 +155,7 @@ impl FrequencySpectrum for Jonswap {
         positive("gamma", self.gamma)?;
         positive("sigma_low", self.sigma_low)?;
         positive("sigma_high", self.sigma_high)?;
-        positive("g", self.g).map(|_| ())
+        positive("g", self.g).map(|_| ()).map_err(Into::into)
     }
 }
 
@@ -204,7 +204,9 @@ impl FrequencySpectrum for Tma {
     }
     fn validate(&self) -> Result<()> {
         self.jonswap.validate()?;
-        positive("depth", self.depth).map(|_| ())
+        positive("depth", self.depth)
+            .map(|_| ())
+            .map_err(Into::into)
     }
 }
 

@@ -2,13 +2,14 @@
 //! vectors, behind one trait, [`Spectrum`].
 //!
 //! * [`Phillips`]: Tessendorf's eq. 23 with the small-wave suppression of
-//!   eq. 24 and a configurable directional exponent (seed 004, L913-962).
+//!   eq. 24 and a configurable directional exponent (Tessendorf 2001, §3.3-3.5).
 //! * [`Directional`]: a frequency spectrum S(ω) ([`PiersonMoskowitz`],
 //!   [`Jonswap`], [`Tma`]) times a directional spreading function
 //!   ([`Spreading`]: Hasselmann et al. 1980 or a fixed cos-2s), converted to
 //!   wave vectors through a dispersion relation. The sources only name
-//!   JONSWAP on a slide (L1492-1494) with no constants; the standard
-//!   oceanographic forms used here are **not from the sources** (spec §13).
+//!   JONSWAP on a slide ("Oceanography") with no constants; the standard
+//!   oceanographic forms used here are **not from the sources** (Pierson &
+//!   Moskowitz 1964, Hasselmann et al. 1973).
 //!
 //! ## Normalisation and direction (errata)
 //!
@@ -18,11 +19,11 @@
 //! E|h̃(k,t)|² = ½ (P(k) + P(−k)) Δk_x Δk_y and the expected height variance is
 //! Σ_k P(k) Δk_x Δk_y ≈ ∫ P d²k, independent of grid size. The notes instead
 //! set E|h̃₀|² = P (eq. 25) while defining P as E|h̃|² (eq. 22), which is off
-//! by the factor 2 that E|h̃(k,t)|² = P(k) + P(−k) shows (spec §3.4); with
+//! by the factor 2 that E|h̃(k,t)|² = P(k) + P(−k) shows; with
 //! their bare constant A that factor only rescaled the waves, but a
 //! physical spectrum needs it right.
 //!
-//! Direction follows the slides' time sign e^{−iωt} (L1343, L1467), under
+//! Direction follows the slides' time sign e^{−iωt} ("FFT solution"), under
 //! which the component at k travels along +k̂ (the notes' e^{+iωt}, eq. 26,
 //! would make it travel along −k̂).
 
@@ -41,7 +42,7 @@ use crate::error::Result;
 /// A directional wave spectrum: the variance density P(k) (m⁴) of waves
 /// travelling along the unit vector k̂ = k/|k|.
 ///
-/// Implement it to "roll your own" spectrum (notes L921). Implementations
+/// Implement it to "roll your own" spectrum (Tessendorf 2001, §3.3). Implementations
 /// must return a finite value ≥ 0 for every k, and 0 at k = 0.
 pub trait Spectrum: Send + Sync + std::fmt::Debug {
     /// Returns P(k) in m⁴ for wave vector `k` (rad/m, x east, y north).

@@ -1,5 +1,5 @@
-//! The Phillips spectrum (Tessendorf, seed 004, eq. 23-24, L913-921; Fig. 8
-//! for the exponent 6, L958-962).
+//! The Phillips spectrum (Tessendorf 2001, §3.3, eqs. 23-24; fig. 8
+//! for the exponent 6).
 
 use glam::DVec2;
 
@@ -16,7 +16,7 @@ use crate::error::{Result, finite, invalid, non_negative, positive};
 /// wind"). L is the largest wave a wind of speed V raises; the radial factor
 /// peaks at k = 1/(√2 L). P(0) = 0 (the formula is 0/0 there).
 ///
-/// The source gives no value for A (L917). Here P is a density (see the
+/// The source gives no value for A. Here P is a density (see the
 /// [module docs](super)), so A is dimensionless, and the default
 /// A = 0.0081/(2π) is the Phillips constant α = 0.0081 of Pierson–Moskowitz
 /// spread with cos²: the height variance is then A π L²/2 (p = 2, ℓ = 0).
@@ -24,7 +24,7 @@ use crate::error::{Result, finite, invalid, non_negative, positive};
 /// `against_wind` multiplies P where k̂·ŵ < 0, i.e. for waves travelling
 /// against the wind under the slides' time sign. 1 keeps the source's
 /// symmetric spectrum; 0 removes those waves (a common later modification,
-/// not in these sources, spec §13).
+/// not in these sources).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Phillips {
@@ -46,7 +46,7 @@ pub struct Phillips {
 }
 
 impl Default for Phillips {
-    /// The source's Figs. 6-7: V = 31 m/s along +x, ℓ = 1 m, p = 2 (L949).
+    /// The source's Figs. 6-7: V = 31 m/s along +x, ℓ = 1 m, p = 2 (§3.5).
     fn default() -> Self {
         Self {
             amplitude: 0.0081 / std::f64::consts::TAU,
