@@ -35,6 +35,8 @@ use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad1, grad2, grad3, grad4, row2, row3, seed32};
 use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
+mod points;
+
 /// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
 pub const PERLIN1_SUP: f64 = 0.5;
 /// sup |raw 2-D gradient noise| (either fade): √2/2, at the cell centre with

@@ -101,6 +101,16 @@ impl<B: Field> Multifractal<B> {
         &self.params
     }
 
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
+    }
+
     /// Factor of octave `k` for basis value `n`, and its derivative in `n`.
     #[inline]
     fn factor(&self, k: usize, n: f64) -> (f64, f64) {

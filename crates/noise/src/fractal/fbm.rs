@@ -189,6 +189,16 @@ impl<B: Field> Turbulence<B> {
     pub fn spectral(&self) -> &Spectral {
         &self.spectral
     }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
+    }
 }
 
 impl<B: Field> Field for Turbulence<B> {

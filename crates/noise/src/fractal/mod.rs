@@ -24,6 +24,7 @@
 //! non-integer default avoids that coincidence.
 
 pub mod altitude;
+mod band;
 pub mod cascade;
 pub mod crossover;
 #[cfg(feature = "alloc")]
@@ -34,6 +35,7 @@ pub mod hetero;
 pub mod hybrid;
 pub mod ridged;
 pub(crate) mod rows;
+pub mod vector_multifractal;
 
 use crate::error::{NoiseError, Result, finite, in_range};
 
