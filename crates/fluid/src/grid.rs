@@ -138,7 +138,7 @@ impl std::fmt::Display for Dims {
 /// What lies beyond one side of the domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Side {
-    /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Smoke L2076).
+    /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Fedkiw et al. 2001, §2).
     #[default]
     Wall,
     /// An open side at atmospheric pressure (`p = 0` just outside): flow may
@@ -195,7 +195,7 @@ pub enum CellKind {
 }
 
 /// A velocity field on the staggered MAC grid (Fedkiw et al. App. A,
-/// seed 004 L2230-2236): `u` on x-faces (`(nx+1) × ny × nz`), `v` on
+/// Fedkiw et al. 2001, App. A): `u` on x-faces (`(nx+1) × ny × nz`), `v` on
 /// y-faces, `w` on z-faces. Face `u[i, j, k]` sits at `(i, j+½, k+½)·h`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MacVelocity {
@@ -272,7 +272,7 @@ impl MacVelocity {
     }
 
     /// The velocity at cell centre `(i, j, k)`: the average of the two faces
-    /// along each axis (Fedkiw et al. App. A, L2248).
+    /// along each axis (Fedkiw et al. Fedkiw et al. 2001, App. A).
     #[inline]
     #[must_use]
     pub fn centre(&self, i: usize, j: usize, k: usize) -> glam::Vec3 {
