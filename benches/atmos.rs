@@ -15,7 +15,7 @@ use natura::atmos::medium::{ExponentialMist, RadialAtmosphere};
 use natura::atmos::mirage::{GrinTracer, StratifiedAir, TemperatureProfile};
 use natura::atmos::rainbow::{RainbowParams, RainbowTable};
 use natura::atmos::sky::{
-    ApSample, Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, Projection,
+    ApSample, Atmosphere, AtmosphereParams, Evaluation, Ground, MarchSettings, SkyProjection,
 };
 use natura::core::glam::{DVec3, Vec3};
 
@@ -24,7 +24,7 @@ fn directions(n: usize) -> Vec<Dir3> {
         .map(|i| {
             let el = 0.02 + 1.5 * ((i * 37) % n) as f64 / n as f64;
             let az = std::f64::consts::TAU * (i as f64 * 0.618_034).fract();
-            Dir3::from_angles(el, az)
+            Dir3::from_angles(el, az).unwrap()
         })
         .collect()
 }
@@ -32,7 +32,7 @@ fn directions(n: usize) -> Vec<Dir3> {
 fn sky(c: &mut Criterion) {
     let atm = Atmosphere::new(AtmosphereParams::default()).unwrap();
     let camera = DVec3::new(0.0, 0.0, 300.0);
-    let sun = Dir3::from_angles(0.2, 0.5);
+    let sun = Dir3::from_angles(0.2, 0.5).unwrap();
     let view = atm.sky_view(camera, sun).unwrap();
     let mut g = c.benchmark_group("atmos_sky_radiance");
     g.sample_size(10)
@@ -140,7 +140,7 @@ fn sky(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(4))
         .warm_up_time(Duration::from_secs(1));
     g.throughput(Throughput::Elements(1920 * 1080));
-    let projection = Projection::Pinhole {
+    let projection = SkyProjection::Pinhole {
         fov_y: 0.9,
         yaw: 1.0,
         pitch: 0.05,
@@ -232,7 +232,7 @@ fn media(c: &mut Criterion) {
         b.iter(|| {
             let mut s = 0;
             for k in 0..100 {
-                let d = Dir3::from_angles((-0.6 + 0.006 * k as f64).to_radians(), 0.0);
+                let d = Dir3::from_angles((-0.6 + 0.006 * k as f64).to_radians(), 0.0).unwrap();
                 s += tracer
                     .trace(&air, DVec3::new(0.0, 0.0, 1.2), d)
                     .unwrap()

@@ -62,7 +62,7 @@ fn full_frame(c: &mut Criterion) {
             b.iter(|| {
                 t += 0.04;
                 r.evaluate(t).expect("evaluate");
-                black_box(r.field(natura::ocean::Field::Height).as_slice()[0])
+                black_box(r.field(natura::ocean::FrameField::Height).as_slice()[0])
             })
         });
     }

@@ -64,7 +64,7 @@ fn main() {
     };
     let eye = DVec3::new(0.0, 0.0, 1.2);
     let atm = common::check(Atmosphere::new(AtmosphereParams::default()));
-    let sun = Dir3::from_angles(55f64.to_radians(), 3.5);
+    let sun = common::check(Dir3::from_angles(55f64.to_radians(), 3.5));
     let sky = common::check(atm.sky_view(eye, sun));
     let e_sun = sky.sun_irradiance() * sun.get().z as f32 + sky.sky_irradiance();
 
@@ -169,7 +169,7 @@ fn main() {
                 max_length_m: 1_000.0,
                 ..tracer
             }
-            .trace(&air, eye, Dir3::from_angles(el, 0.0)),
+            .trace(&air, eye, common::check(Dir3::from_angles(el, 0.0))),
         );
         let colour = match p.end {
             PathEnd::Ground { .. } => Vec3::new(0.9, 0.6, 0.2),

@@ -11,7 +11,7 @@ mod common;
 
 use natura::atmos::Dir3;
 use natura::atmos::rainbow::{Rainbow, RainbowParams};
-use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, Projection, auto_exposure};
+use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, SkyProjection, auto_exposure};
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Image, ToneMap};
 
@@ -46,9 +46,9 @@ fn main() {
     let bow = common::check(Rainbow::new(&params));
     let atm = common::check(Atmosphere::new(AtmosphereParams::default()));
     // The sun behind the camera (azimuth 180°), the camera looking at azimuth 0.
-    let sun = Dir3::from_angles(sun_el.to_radians(), std::f64::consts::PI);
+    let sun = common::check(Dir3::from_angles(sun_el.to_radians(), std::f64::consts::PI));
     let view = common::check(atm.sky_view(DVec3::new(0.0, 0.0, 2.0), sun));
-    let projection = Projection::Pinhole {
+    let projection = SkyProjection::Pinhole {
         fov_y: 62f64.to_radians(),
         yaw: 0.0,
         pitch: 18f64.to_radians(),

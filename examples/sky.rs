@@ -10,7 +10,7 @@
 mod common;
 
 use natura::atmos::sky::{
-    Atmosphere, AtmosphereParams, Evaluation, Ground, Projection, auto_exposure,
+    Atmosphere, AtmosphereParams, Evaluation, Ground, SkyProjection, auto_exposure,
 };
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Image, Progress, ToneMap};
@@ -49,11 +49,11 @@ fn main() {
     };
     for (k, &el) in elevations.iter().enumerate() {
         bar.start(&format!("sun {el:+}°"), 2);
-        let sun = Atmosphere::sun_at_elevation_deg(el);
+        let sun = common::check(Atmosphere::sun_at_elevation_deg(el));
         let view = common::check(atm.sky_view(camera, sun));
-        let dome = common::check(view.render(Projection::Fisheye, size, size, None, true));
+        let dome = common::check(view.render(SkyProjection::Fisheye, size, size, None, true));
         let pano = common::check(view.render(
-            Projection::Panorama {
+            SkyProjection::Panorama {
                 min_elevation: (-15f64).to_radians(),
                 max_elevation: 45f64.to_radians(),
             },

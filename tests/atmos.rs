@@ -4,7 +4,7 @@
 use natura::atmos::Dir3;
 use natura::atmos::medium::Medium;
 use natura::atmos::rainbow::{Rainbow, RainbowParams};
-use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, Projection};
+use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, SkyProjection};
 use natura::core::glam::{DVec3, Vec3};
 
 fn small() -> AtmosphereParams {
@@ -22,12 +22,12 @@ fn small() -> AtmosphereParams {
 #[test]
 fn lut_aerial_perspective_agrees_with_the_medium_trait() {
     let atm = Atmosphere::new(small()).unwrap();
-    let sun = Dir3::from_angles(0.4, 1.0);
+    let sun = Dir3::from_angles(0.4, 1.0).unwrap();
     let cam = DVec3::new(0.0, 0.0, 400.0);
     let view = atm.sky_view(cam, sun).unwrap();
     let medium = atm.sunlit(sun);
     for (el, az, d) in [(-0.02, 0.3, 12_000.0), (0.01, 2.5, 40_000.0)] {
-        let dir = Dir3::from_angles(el, az);
+        let dir = Dir3::from_angles(el, az).unwrap();
         let lut = view.aerial_perspective(dir, d).unwrap();
         let m = medium.attenuation(cam, cam + dir.get() * d);
         assert!(
@@ -46,9 +46,12 @@ fn lut_aerial_perspective_agrees_with_the_medium_trait() {
 fn rendered_sky_is_deterministic_across_thread_counts() {
     let atm = Atmosphere::new(small()).unwrap();
     let view = atm
-        .sky_view(DVec3::new(0.0, 0.0, 200.0), Dir3::from_angles(0.05, 0.0))
+        .sky_view(
+            DVec3::new(0.0, 0.0, 200.0),
+            Dir3::from_angles(0.05, 0.0).unwrap(),
+        )
         .unwrap();
-    let proj = Projection::Pinhole {
+    let proj = SkyProjection::Pinhole {
         fov_y: 1.0,
         yaw: 0.3,
         pitch: 0.0,
@@ -78,7 +81,7 @@ fn rendered_sky_is_deterministic_across_thread_counts() {
 #[test]
 fn rainbow_under_the_physical_sun() {
     let atm = Atmosphere::new(small()).unwrap();
-    let sun = Dir3::from_angles(0.2, std::f64::consts::PI);
+    let sun = Dir3::from_angles(0.2, std::f64::consts::PI).unwrap();
     let e = atm.sun_irradiance(DVec3::new(0.0, 0.0, 2.0), sun).unwrap();
     let bow = Rainbow::new(&RainbowParams {
         rays_per_wavelength: 3000,

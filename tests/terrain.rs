@@ -340,7 +340,7 @@ fn eroded_terrain_drains_to_the_edge() {
     let (filled, depth) = analysis::fill_depressions(&hf).unwrap();
     assert!(depth.min() >= 0.0);
     let mut h = filled.heights().as_slice().to_vec();
-    let g = FlowGraph::build(&mut h, n, n, Depressions::Keep);
+    let g = FlowGraph::build(&mut h, n, n, Depressions::Keep).unwrap();
     for i in 0..n * n {
         assert!(g.is_edge(g.terminus(i)));
     }

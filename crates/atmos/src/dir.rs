@@ -25,11 +25,19 @@ impl Dir3 {
     pub const Y: Dir3 = Dir3(DVec3::Y);
 
     /// Returns `v / |v|`, or [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
     pub fn new(v: DVec3) -> Result<Self> {
         Self::named("direction", v)
     }
 
     /// Like [`Dir3::new`], naming the argument `name` in the error.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] naming `name` if `v` is zero, NaN or infinite.
     pub fn named(name: &'static str, v: DVec3) -> Result<Self> {
         // Scale by the largest component first so tiny and huge vectors neither
         // underflow nor overflow when squared.
@@ -48,19 +56,29 @@ impl Dir3 {
     }
 
     /// Returns the normalised `f32` vector `v` as a direction (see [`Dir3::new`]).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::BadDirection`] if `v` is zero, NaN or infinite.
     pub fn from_f32(v: Vec3) -> Result<Self> {
         Self::new(v.as_dvec3())
     }
 
     /// The direction with elevation `elevation` above the x–y plane and azimuth
     /// `azimuth` counter-clockwise from +x (radians).
-    #[must_use]
-    pub fn from_angles(elevation: f64, azimuth: f64) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] naming `elevation` or `azimuth`
+    /// if it is NaN or infinite.
+    pub fn from_angles(elevation: f64, azimuth: f64) -> Result<Self> {
+        crate::error::finite("elevation", elevation)?;
+        crate::error::finite("azimuth", azimuth)?;
         let (se, ce) = elevation.sin_cos();
         let (sa, ca) = azimuth.sin_cos();
         // Exactly unit up to rounding; renormalise so |d| = 1 to the last bit.
         let v = DVec3::new(ce * ca, ce * sa, se);
-        Dir3(v / v.length())
+        Ok(Dir3(v / v.length()))
     }
 
     /// The unit vector.
@@ -127,7 +145,15 @@ mod tests {
         // Tiny but non-zero vectors still normalise.
         let t = Dir3::new(DVec3::new(1e-300, 0.0, 0.0)).unwrap();
         assert_eq!(t.get(), DVec3::X);
-        let a = Dir3::from_angles(0.3, 1.2);
+        let a = Dir3::from_angles(0.3, 1.2).unwrap();
         assert!((a.elevation() - 0.3).abs() < 1e-14);
+        // Non-finite angles are refused by name instead of giving a NaN direction.
+        for (el, az, name) in [
+            (f64::NAN, 0.0, "elevation"),
+            (0.0, f64::INFINITY, "azimuth"),
+        ] {
+            let e = Dir3::from_angles(el, az).unwrap_err().to_string();
+            assert!(e.contains(name), "{e}");
+        }
     }
 }

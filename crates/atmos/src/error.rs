@@ -51,71 +51,13 @@ pub enum AtmosError {
 /// Shorthand for `Result<T, AtmosError>`.
 pub type Result<T, E = AtmosError> = std::result::Result<T, E>;
 
-/// Checks that `v` is finite and `> 0`.
-pub(crate) fn positive(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and > 0"))
-    }
-}
-
-/// Checks that `v` is finite and `>= 0`.
-pub(crate) fn non_negative(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and >= 0"))
-    }
-}
-
-/// Checks that `v` is finite.
-pub(crate) fn finite(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite"))
-    }
-}
-
-/// Checks that `v` lies in the closed interval `[lo, hi]`.
-pub(crate) fn in_range(
-    name: &'static str,
-    v: f64,
-    lo: f64,
-    hi: f64,
-    reason: &'static str,
-) -> Result<f64> {
-    if v.is_finite() && v >= lo && v <= hi {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, reason))
-    }
-}
-
-/// Checks every component of a vector is finite.
-pub(crate) fn finite3(name: &'static str, v: glam::DVec3) -> Result<glam::DVec3> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(AtmosError::InvalidParameter {
-            name,
-            value: format!("{v}"),
-            reason: "must be finite",
-        })
-    }
-}
-
-/// Checks every component of a vector is finite and `>= 0`.
-pub(crate) fn non_negative3(name: &'static str, v: glam::DVec3) -> Result<glam::DVec3> {
-    if v.is_finite() && v.min_element() >= 0.0 {
-        Ok(v)
-    } else {
-        Err(AtmosError::InvalidParameter {
-            name,
-            value: format!("{v}"),
-            reason: "every component must be finite and >= 0",
-        })
+impl From<natura_core::check::ParamError> for AtmosError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        AtmosError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected,
+        }
     }
 }
 
@@ -131,3 +73,8 @@ pub(crate) fn invalid(
         reason,
     }
 }
+
+/// The shared parameter checks (their errors convert into [`AtmosError::InvalidParameter`]).
+pub(crate) use natura_core::check::{
+    finite, finite3, in_range, non_negative, non_negative3, positive,
+};

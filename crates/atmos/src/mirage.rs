@@ -196,6 +196,11 @@ impl StratifiedAir {
     /// standard), Gladstone–Dale constant [`GLADSTONE_DALE_AIR`].
     ///
     /// Refuses non-physical temperatures, thicknesses or pressures.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-physical temperature profile (non-positive or
+    /// NaN temperatures or thicknesses) or pressure.
     pub fn new(profile: TemperatureProfile, pressure_pa: f64) -> Result<Self> {
         profile.validate()?;
         positive("pressure_pa", pressure_pa)?;
@@ -377,6 +382,11 @@ const DP_E: [f64; 7] = [
 
 impl GrinTracer {
     /// Refuses non-positive or NaN settings.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] naming the first setting that is non-positive or NaN, or a
+    /// `top_z` not above `ground_z`.
     pub fn validate(&self) -> Result<()> {
         positive("tolerance_m", self.tolerance_m)?;
         positive("initial_step_m", self.initial_step_m)?;
@@ -395,8 +405,12 @@ impl GrinTracer {
 
     /// Traces the ray from `origin` in direction `dir` through `field`.
     ///
-    /// Fails on bad settings, an origin outside the slab, or an index field
-    /// that returns NaN or non-positive values.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for bad settings, an origin outside the slab or an index
+    /// field that gives NaN or non-positive values, and
+    /// [`AtmosError::NoConvergence`] if the step size
+    /// collapses before the path leaves the slab.
     pub fn trace(&self, field: &impl IndexField, origin: DVec3, dir: Dir3) -> Result<RayPath> {
         self.validate()?;
         crate::error::finite3("origin", origin)?;
@@ -571,6 +585,10 @@ pub struct PlanarMirage {
 
 impl PlanarMirage {
     /// A mirage plane; refuses NaN heights and non-positive indices.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a NaN height or a non-positive or NaN index.
     pub fn new(height_m: f64, n_above: f64, n_below: f64) -> Result<Self> {
         finite("height_m", height_m)?;
         crate::optics::check_ior("n_above", n_above)?;
@@ -583,6 +601,11 @@ impl PlanarMirage {
     }
 
     /// The plane from air temperatures above and below (Gladstone–Dale at `pressure_pa`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] if a temperature or the pressure is not finite and
+    /// positive.
     pub fn from_temperatures(
         height_m: f64,
         above_k: f64,
@@ -693,7 +716,7 @@ mod tests {
             ..GrinTracer::default()
         };
         // From 1.5 m, 0.12° below the horizontal: the ray bends back up before the road.
-        let d = Dir3::from_angles(-0.12f64.to_radians(), 0.0);
+        let d = Dir3::from_angles(-0.12f64.to_radians(), 0.0).unwrap();
         let p = t.trace(&air, DVec3::new(0.0, 0.0, 1.5), d).unwrap();
         assert!(p.min_z() > 0.0, "min z {}", p.min_z());
         assert!(p.final_direction().z > 0.0, "{:?}", p.end);
@@ -707,7 +730,7 @@ mod tests {
             .trace(
                 &air,
                 DVec3::new(0.0, 0.0, 1.5),
-                Dir3::from_angles(-1f64.to_radians(), 0.0),
+                Dir3::from_angles(-1f64.to_radians(), 0.0).unwrap(),
             )
             .unwrap();
         assert!(matches!(steep.end, PathEnd::Ground { .. }));
@@ -721,7 +744,7 @@ mod tests {
             top_z: 200.0,
             ..GrinTracer::default()
         };
-        let d = Dir3::from_angles(0.05f64.to_radians(), 0.0);
+        let d = Dir3::from_angles(0.05f64.to_radians(), 0.0).unwrap();
         let p = t.trace(&air, DVec3::new(0.0, 0.0, 5.0), d).unwrap();
         let zmax = p.points.iter().map(|q| q.z).fold(f64::MIN, f64::max);
         assert!(zmax < 30.0, "trapped below the inversion top: {zmax}");
@@ -739,7 +762,11 @@ mod tests {
         };
         let o = DVec3::new(0.0, 0.0, 1.5);
         let fwd = t
-            .trace(&air, o, Dir3::from_angles(-0.1f64.to_radians(), 0.3))
+            .trace(
+                &air,
+                o,
+                Dir3::from_angles(-0.1f64.to_radians(), 0.3).unwrap(),
+            )
             .unwrap();
         let end = *fwd.points.last().unwrap();
         let back_dir = Dir3::new(-fwd.final_direction()).unwrap();
@@ -765,19 +792,19 @@ mod tests {
         );
         let o = DVec3::new(0.0, 0.0, 2.0);
         let below = m
-            .interact(o, Dir3::from_angles(-(crit * 0.999), 0.0), None)
+            .interact(o, Dir3::from_angles(-(crit * 0.999), 0.0).unwrap(), None)
             .unwrap();
         assert!(below.refracted.is_none() && below.reflectance == 1.0);
         assert!(below.reflected.get().z > 0.0);
         let above = m
-            .interact(o, Dir3::from_angles(-(crit * 1.001), 0.0), None)
+            .interact(o, Dir3::from_angles(-(crit * 1.001), 0.0).unwrap(), None)
             .unwrap();
         assert!(above.refracted.is_some() && above.reflectance < 1.0);
         // Going up from the thin layer never reflects totally.
         let up = m
             .interact(
                 DVec3::new(0.0, 0.0, 0.1),
-                Dir3::from_angles(0.001, 0.0),
+                Dir3::from_angles(0.001, 0.0).unwrap(),
                 None,
             )
             .unwrap();
@@ -785,7 +812,7 @@ mod tests {
         // A bumped normal changes the reflection but never yields NaN.
         let bump = Dir3::new(DVec3::new(0.01, 0.0, 1.0)).unwrap();
         let b = m
-            .interact(o, Dir3::from_angles(-0.002, 0.0), Some(bump))
+            .interact(o, Dir3::from_angles(-0.002, 0.0).unwrap(), Some(bump))
             .unwrap();
         assert!(b.reflected.get().is_finite());
         assert!(m.interact(o, Dir3::UP, None).is_none());

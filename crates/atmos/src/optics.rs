@@ -106,6 +106,10 @@ pub fn refract(d: Dir3, n: Dir3, eta: f64) -> Option<Dir3> {
 
 /// Returns the critical angle (from the normal) for light going from `n_from`
 /// into the less dense `n_to`, or `None` if `n_to ≥ n_from` (no TIR).
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either index is not finite and positive.
 pub fn critical_angle(n_from: f64, n_to: f64) -> Result<Option<f64>> {
     positive("n_from", n_from)?;
     positive("n_to", n_to)?;
@@ -113,6 +117,10 @@ pub fn critical_angle(n_from: f64, n_to: f64) -> Result<Option<f64>> {
 }
 
 /// Returns Brewster's angle `atan(n_to/n_from)` (from the normal), where `r∥ = 0`.
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either index is not finite and positive.
 pub fn brewster_angle(n_from: f64, n_to: f64) -> Result<f64> {
     positive("n_from", n_from)?;
     positive("n_to", n_to)?;
@@ -157,6 +165,10 @@ impl Cauchy {
     };
 
     /// A Cauchy model; refuses non-finite or non-positive `a` and negative `b`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-finite or non-positive `a` or a negative or NaN `b`.
     pub fn new(a: f64, b_nm2: f64) -> Result<Self> {
         positive("a", a)?;
         crate::error::non_negative("b_nm2", b_nm2)?;
@@ -192,6 +204,11 @@ pub struct LinearAbbe {
 
 impl LinearAbbe {
     /// A linear model; refuses non-positive `n_red`/`kappa` or negative power.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-positive `n_red` or `kappa` or a negative
+    /// dispersive power.
     pub fn new(n_red: f64, dispersive_power: f64, kappa: f64) -> Result<Self> {
         positive("n_red", n_red)?;
         crate::error::non_negative("dispersive_power", dispersive_power)?;

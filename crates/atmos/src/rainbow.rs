@@ -146,6 +146,11 @@ impl Default for RainbowParams {
 
 impl RainbowParams {
     /// Refuses empty or oversized tables, bad orders or indices.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) naming the first bad field: empty or oversized tables,
+    /// an order list that is empty or out of range, or non-physical indices and sun size.
     pub fn validate(&self) -> Result<()> {
         if self.rays_per_wavelength == 0 || self.rays_per_wavelength > 100_000_000 {
             return Err(invalid(
@@ -205,6 +210,10 @@ impl RainbowTable {
     /// binned by angle; each wavelength's bins coloured by the CIE-derived
     /// spectral rgb table (columns summing to white) and summed; then convolved
     /// with the sun's disc (Musgrave 1993, §4.2.4.3.2).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `p` fails [`RainbowParams::validate`].
     pub fn simulate(p: &RainbowParams) -> Result<Self> {
         p.validate()?;
         let colours = SpectralRgbTable::from_cie(p.wavelengths, crate::spectrum::Illuminant::E)?;
@@ -363,6 +372,10 @@ pub struct Rainbow {
 
 impl Rainbow {
     /// Simulates the table for `params`.
+    ///
+    /// # Errors
+    ///
+    /// As [`RainbowTable::simulate`].
     pub fn new(params: &RainbowParams) -> Result<Self> {
         Ok(Self {
             table: RainbowTable::simulate(params)?,
@@ -390,6 +403,11 @@ impl Rainbow {
     /// unclear what the bow's colour replaces (Musgrave 1993, §4.2.4.3.2).
     ///
     /// Fails on negative or NaN extinction or distance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a negative or NaN `rain_extinction` or `distance_m`, or a
+    /// negative or non-finite `sun_irradiance`.
     pub fn radiance(
         &self,
         view: Dir3,
@@ -419,6 +437,10 @@ impl Rainbow {
 impl Rainbow {
     /// Returns `background` seen through `distance_m` of rain plus the rainbow:
     /// `background·e^{−βd} + E·P(θ)·(1 − e^{−βd})` (see [`Rainbow::radiance`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`Rainbow::radiance`].
     pub fn apply(
         &self,
         background: DVec3,
@@ -616,7 +638,7 @@ mod tests {
             ..RainbowParams::default()
         })
         .unwrap();
-        let sun = Dir3::from_angles(0.3, 0.0);
+        let sun = Dir3::from_angles(0.3, 0.0).unwrap();
         let anti = sun.reversed().get();
         // A view 41.5° from the antisolar point, in the vertical plane.
         let axis = anti.cross(DVec3::Y).normalize();
@@ -665,7 +687,7 @@ mod tests {
             cos_start: 42f64.to_radians().cos(),
             width_scale: 400.0,
         };
-        let sun = Dir3::from_angles(0.0, 0.0);
+        let sun = Dir3::from_angles(0.0, 0.0).unwrap();
         let anti = sun.reversed().get();
         let mut last = None;
         let mut seen = 0;

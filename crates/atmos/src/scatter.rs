@@ -56,6 +56,10 @@ pub enum Phase {
 
 impl Phase {
     /// Refuses `|g| ≥ 1` or NaN.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `|g| ≥ 1` or `g` is NaN.
     pub fn validate(&self) -> Result<()> {
         match *self {
             Phase::HenyeyGreenstein(g) | Phase::CornetteShanks(g) => {
@@ -94,6 +98,10 @@ impl Phase {
 /// `n − 1 = 0.0003`, `N = 2.545e25` and `F_K = 1` it is 1.28e-5 m⁻¹ at 550 nm.
 /// The coefficient scales with the local density as `β₀ρ/ρ₀`: do not
 /// divide by the local `N` while holding `n` fixed (that would count the density twice).
+///
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if any argument is not finite and positive.
 pub fn rayleigh_coefficient(
     lambda_nm: f64,
     n_minus_1: f64,

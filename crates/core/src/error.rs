@@ -92,29 +92,12 @@ impl CoreError {
 /// Shorthand for `Result<T, CoreError>`.
 pub type Result<T, E = CoreError> = std::result::Result<T, E>;
 
-/// Returns `Ok(value)` if `value` is finite and strictly positive, else an
-/// [`CoreError::InvalidParameter`] naming `name`.
-pub fn positive_finite(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(CoreError::InvalidParameter {
-            name,
-            value: format!("{value}"),
-            reason: "must be finite and > 0",
-        })
-    }
-}
-
-/// Returns `Ok(value)` if `value` is finite, else an [`CoreError::InvalidParameter`].
-pub fn finite(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(CoreError::InvalidParameter {
-            name,
-            value: format!("{value}"),
-            reason: "must be finite",
-        })
+impl From<crate::check::ParamError> for CoreError {
+    fn from(e: crate::check::ParamError) -> Self {
+        CoreError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected,
+        }
     }
 }

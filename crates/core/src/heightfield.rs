@@ -14,10 +14,11 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use crate::error::{CoreError, Result, positive_finite};
+use crate::check::positive;
+use crate::error::{CoreError, Result};
 use crate::grid2::{Grid2, checked_len};
 use crate::io::exr::{read_exr, write_exr};
-use crate::io::{WriteError, read_file, write_atomic};
+use crate::io::{WriteError, read_file_at_most, write_atomic};
 use crate::sample::Boundary;
 
 /// An axis-aligned box in world space.
@@ -70,7 +71,7 @@ pub struct HeightField {
 impl HeightField {
     /// Wraps a grid of heights (metres) with `cell_size` metres between samples.
     pub fn new(heights: Grid2<f32>, cell_size: f32) -> Result<Self> {
-        positive_finite("cell_size", f64::from(cell_size))?;
+        positive("cell_size", f64::from(cell_size))?;
         heights.check_finite()?;
         Ok(Self { heights, cell_size })
     }
@@ -144,6 +145,11 @@ impl HeightField {
     }
 
     /// World position of sample `(i, j)`.
+    ///
+    /// # Panics
+    ///
+    /// Panics if `i ≥ nx` or `j ≥ ny` (an index bug in the caller); use
+    /// [`try_point`](Self::try_point) for indices that come from user data.
     #[inline]
     #[must_use]
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
@@ -152,6 +158,14 @@ impl HeightField {
             j as f32 * self.cell_size,
             self.heights[(i, j)],
         )
+    }
+
+    /// World position of sample `(i, j)`, or `None` outside the grid.
+    #[inline]
+    #[must_use]
+    pub fn try_point(&self, i: usize, j: usize) -> Option<Vec3> {
+        self.get(i, j)
+            .map(|z| Vec3::new(i as f32 * self.cell_size, j as f32 * self.cell_size, z))
     }
 
     /// Bilinearly interpolated height at world `(x, y)`; `None` outside the field or for NaN.
@@ -290,15 +304,41 @@ impl HeightField {
     pub fn load_raw(path: impl AsRef<Path>, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
         let path = path.as_ref();
         let len = checked_len::<f32>(&[nx, ny])?;
-        let bytes = read_file(path)?;
+        // Never read more than one byte past the expected size, so an endless
+        // stream (a pipe, /dev/zero) is refused instead of read without end.
+        let bytes = read_file_at_most(path, len as u64 * 4 + 1)?;
+        Self::from_raw_bytes(&bytes, path, nx, ny, cell_size)
+    }
+
+    /// As [`HeightField::load_raw`], from the file's bytes (`name` labels errors).
+    ///
+    /// # Errors
+    ///
+    /// As [`HeightField::load_raw`].
+    pub fn from_raw_bytes(
+        bytes: &[u8],
+        name: &Path,
+        nx: usize,
+        ny: usize,
+        cell_size: f32,
+    ) -> Result<Self> {
+        let path = name;
+        let len = checked_len::<f32>(&[nx, ny])?;
         if bytes.len() != len * 4 {
             return Err(CoreError::format(
                 path,
-                format!(
-                    "expected {} bytes for {nx} × {ny} f32 heights, found {}",
-                    len * 4,
-                    bytes.len()
-                ),
+                if bytes.len() > len * 4 {
+                    format!(
+                        "expected {} bytes for {nx} × {ny} f32 heights, found more",
+                        len * 4
+                    )
+                } else {
+                    format!(
+                        "expected {} bytes for {nx} × {ny} f32 heights, found {}",
+                        len * 4,
+                        bytes.len()
+                    )
+                },
             ));
         }
         let values: Vec<f32> = bytes
@@ -418,36 +458,59 @@ impl HeightField {
         range: Option<(f32, f32)>,
     ) -> Result<Self> {
         let path = path.as_ref();
-        let bytes = read_file(path)?;
+        let file = std::fs::File::open(path).map_err(|e| CoreError::io(path, e))?;
+        Self::read_png16(std::io::BufReader::new(file), path, cell_size, range)
+    }
+
+    /// As [`HeightField::load_png16`], from any buffered, seekable reader
+    /// (`name` labels errors).
+    ///
+    /// # Errors
+    ///
+    /// As [`HeightField::load_png16`].
+    pub fn read_png16(
+        reader: impl std::io::BufRead + std::io::Seek,
+        name: &Path,
+        cell_size: Option<f32>,
+        range: Option<(f32, f32)>,
+    ) -> Result<Self> {
+        let path = name;
         let bad = |m: String| CoreError::format(path, m);
-        let decoded = std::panic::catch_unwind(|| -> std::result::Result<_, String> {
-            let limits = png::Limits {
-                bytes: crate::MAX_GRID_BYTES.min(usize::MAX as u64) as usize,
-            };
-            let mut dec = png::Decoder::new_with_limits(std::io::Cursor::new(&bytes), limits);
-            dec.set_transformations(png::Transformations::IDENTITY);
-            let mut reader = dec
-                .read_info()
-                .map_err(|e| format!("not a readable PNG: {e}"))?;
-            let info = reader.info();
-            let (w, h, colour, depth) = (info.width, info.height, info.color_type, info.bit_depth);
-            let texts: Vec<(String, String)> = info
-                .uncompressed_latin1_text
-                .iter()
-                .map(|t| (t.keyword.clone(), t.text.clone()))
-                .collect();
-            let size = reader.output_buffer_size().ok_or("PNG too large")?;
-            let mut buf = vec![0u8; size];
-            reader
-                .next_frame(&mut buf)
-                .map_err(|e| format!("corrupt or truncated PNG: {e}"))?;
-            reader
-                .finish()
-                .map_err(|e| format!("corrupt or truncated PNG: {e}"))?;
-            Ok((w as usize, h as usize, colour, depth, texts, buf))
-        })
-        .map_err(|_| bad("corrupt PNG (decoder failed)".into()))?
-        .map_err(bad)?;
+        // The decoder may allocate no more than the image itself needs plus
+        // its chunks; the image's size is checked against the cap from the
+        // header, before any pixel memory exists.
+        let limits = png::Limits {
+            bytes: usize::try_from(crate::MAX_GRID_BYTES).unwrap_or(usize::MAX),
+        };
+        let mut dec = png::Decoder::new_with_limits(reader, limits);
+        dec.set_transformations(png::Transformations::IDENTITY);
+        let mut reader = dec
+            .read_info()
+            .map_err(|e| bad(format!("not a readable PNG: {e}")))?;
+        let info = reader.info();
+        let (w, h, colour, depth) = (
+            info.width as usize,
+            info.height as usize,
+            info.color_type,
+            info.bit_depth,
+        );
+        checked_len::<f32>(&[w, h]).map_err(|e| bad(format!("PNG header: {e}")))?;
+        let texts: Vec<(String, String)> = info
+            .uncompressed_latin1_text
+            .iter()
+            .map(|t| (t.keyword.clone(), t.text.clone()))
+            .collect();
+        let size = reader
+            .output_buffer_size()
+            .ok_or_else(|| bad("PNG too large".into()))?;
+        let mut buf = vec![0u8; size];
+        reader
+            .next_frame(&mut buf)
+            .map_err(|e| bad(format!("corrupt or truncated PNG: {e}")))?;
+        reader
+            .finish()
+            .map_err(|e| bad(format!("corrupt or truncated PNG: {e}")))?;
+        let decoded = (w, h, colour, depth, texts, buf);
         let (w, h, colour, depth, texts, buf) = decoded;
         if colour != png::ColorType::Grayscale {
             return Err(bad(format!(
@@ -538,7 +601,7 @@ fn from_map_rows(
 ) -> Result<HeightField> {
     let file = Grid2::from_vec(nx, ny, values)?;
     let grid = Grid2::from_fn(nx, ny, |i, j| file[(i, ny - 1 - j)])?;
-    positive_finite("cell_size", f64::from(cell))?;
+    positive("cell_size", f64::from(cell))?;
     if let Some((x, y, &v)) = grid.find(|v| !v.is_finite()) {
         return Err(CoreError::format(
             path,

@@ -22,6 +22,7 @@
 //! ```
 #![forbid(unsafe_code)]
 
+pub mod check;
 pub mod colour;
 mod error;
 mod grid2;
@@ -34,7 +35,7 @@ mod sample;
 mod seed;
 
 pub use colour::{Ramp, ToneMap};
-pub use error::{CoreError, Result, finite, positive_finite};
+pub use error::{CoreError, Result};
 pub use grid2::{Grid2, MAX_GRID_BYTES, checked_len};
 pub use grid3::Grid3;
 pub use heightfield::{Aabb, HeightField};

@@ -128,3 +128,94 @@ fn huge_exr_header_is_refused_before_allocating() {
     let p = write_case("exr-huge", &b);
     assert!(HeightField::load_exr(&p, None).is_err());
 }
+
+/// CRC-32 (ISO-HDLC) as PNG chunks use it.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = 0xFFFF_FFFFu32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// A PNG whose header claims `w × h` pixels of `depth` bits and colour type
+/// `colour`, followed by a tiny (bogus) image-data chunk and the end chunk,
+/// every chunk with a correct CRC.
+fn png_with_header(w: u32, h: u32, depth: u8, colour: u8) -> Vec<u8> {
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut chunk = |kind: &[u8], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut body = kind.to_vec();
+        body.extend_from_slice(data);
+        out.extend_from_slice(&body);
+        out.extend_from_slice(&crc32(&body).to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[depth, colour, 0, 0, 0]);
+    chunk(b"IHDR", &ihdr);
+    chunk(
+        b"IDAT",
+        &[0x78, 0x9c, 0x63, 0x00, 0x00, 0x00, 0x01, 0x00, 0x01],
+    );
+    chunk(b"IEND", &[]);
+    out
+}
+
+#[test]
+fn huge_png_header_is_refused_before_allocating() {
+    // 2^31 − 1 squared 16-bit pixels would be 9·10^18 bytes: the header alone
+    // must be refused (before, the process aborted allocating it).
+    let p = write_case(
+        "png-huge",
+        &png_with_header(0x7FFF_FFFF, 0x7FFF_FFFF, 16, 0),
+    );
+    let err = HeightField::load_png16(&p, Some(1.0), Some((0.0, 1.0))).unwrap_err();
+    assert!(err.to_string().contains("cap"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn endless_streams_are_refused_without_reading_them_whole() {
+    let err = HeightField::load_raw("/dev/zero", 64, 64, 1.0).unwrap_err();
+    assert!(err.to_string().contains("found more"), "{err}");
+    assert!(HeightField::load_png16("/dev/zero", Some(1.0), Some((0.0, 1.0))).is_err());
+    assert!(HeightField::load_exr("/dev/zero", Some(1.0)).is_err());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+
+    /// Any header a PNG can carry (sizes up to 2^31 − 1, any depth and colour
+    /// type byte) gives a typed error or a field, never a panic or an abort.
+    #[test]
+    fn random_png_headers_are_refused_or_read(
+        w in prop_oneof![1u32..64, 1u32..0x7FFF_FFFF],
+        h in prop_oneof![1u32..64, 1u32..0x7FFF_FFFF],
+        depth in prop_oneof![Just(1u8), Just(2), Just(4), Just(8), Just(16), any::<u8>()],
+        colour in prop_oneof![Just(0u8), Just(2), Just(3), Just(4), Just(6), any::<u8>()],
+    ) {
+        let p = write_case("png-header", &png_with_header(w, h, depth, colour));
+        if let Ok(hf) = HeightField::load_png16(&p, Some(1.0), Some((0.0, 1.0))) {
+            prop_assert!(hf.check_finite().is_ok());
+        }
+    }
+
+    /// Raw files of any requested size: a wrong length is refused, sizes over
+    /// the cap are refused before reading.
+    #[test]
+    fn random_raw_sizes_are_refused_or_read(nx in 0usize..1 << 40, ny in 0usize..1 << 40) {
+        let f = fixture();
+        let p = write_case("raw-size", &f.raw);
+        let r = HeightField::load_raw(&p, nx, ny, 4.0);
+        prop_assert_eq!(r.is_ok(), (nx, ny) == (19, 13));
+    }
+}

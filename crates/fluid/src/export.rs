@@ -122,8 +122,8 @@ pub fn smoke_image(
 /// Renders a 3-D smoke density with single-scattered light from direction
 /// `light` (unit, pointing toward the light) and self-shadowing, seen along
 /// axis `normal` from its low side — a CPU version of the paper's two-pass
-/// slice renderer (L2156-2166) with the per-voxel transmittance
-/// `exp(−C_ext ρ h)` (erratum E3: the source prints it without ρ).
+/// slice renderer (Fedkiw et al. 2001, §5.1) with the per-voxel transmittance
+/// `exp(−C_ext ρ h)` (an erratum: Fedkiw et al. 2001, §5.1 prints it without ρ).
 pub fn render_smoke_volume(
     density: &Grid3<f32>,
     h: f32,

@@ -1,15 +1,14 @@
-//! The periodic-domain solver of Stable Fluids (seed 004 L1800-1822): in
+//! The periodic-domain solver of Stable Fluids (Stam 1999, §2.3): in
 //! Fourier space diffusion is the filter `1/(1 + ν dt k²)` and projection is
-//! `P̂ ŵ(k) = ŵ(k) − (k·ŵ(k)) k / k²` (L1808-1810).
+//! `P̂ ŵ(k) = ŵ(k) − (k·ŵ(k)) k / k²`.
 //!
-//! Not in the source (spec §1.3): the `k = 0` mode (mean flow) is left
+//! Not in the source: the `k = 0` mode (mean flow) is left
 //! unchanged and the pressure gauge is zero mean; derivative symbols at the
 //! Nyquist wavenumber of an even axis are zero, since `i k` there is not
 //! Hermitian-consistent for real data. [`FftVariant::ModifiedWavenumber`]
 //! uses the symbols of the finite-difference operators instead (compact
 //! Laplacian `4 sin²(kh/2)/h²`, central first derivative `sin(kh)/h`), which
-//! makes the FFT solution equal the iterative solvers' to their tolerance
-//! (spec §6.2 F1).
+//! makes the FFT solution equal the iterative solvers' to their tolerance.
 
 use std::sync::Arc;
 
@@ -24,7 +23,7 @@ use crate::par;
 /// Which wavenumbers the Fourier operators use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum FftVariant {
-    /// The paper's exact spectral symbols `k²`, `i k` (L1808).
+    /// The paper's exact spectral symbols `k²`, `i k` (Stam 1999, §2.3).
     #[default]
     Spectral,
     /// Symbols of the grid's finite-difference operators (compact Laplacian,
@@ -35,7 +34,7 @@ pub enum FftVariant {
 /// The diffusion filter applied per Fourier mode.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum DiffusionFilter {
-    /// `1 / (1 + ν dt k²)`: implicit Euler, the paper's formula (L1817).
+    /// `1 / (1 + ν dt k²)`: implicit Euler, the paper's formula (Stam 1999, §2.3).
     #[default]
     Rational,
     /// `exp(−ν dt k²)`: the exact decay, as in Stam's later FFT code (JGT 2001).
@@ -193,7 +192,7 @@ pub fn solve_poisson_periodic(f: &Grid3<f32>, h: f32, variant: FftVariant) -> Re
 
 /// Diffuses and projects a collocated periodic velocity in place (the
 /// transform/diffuse/project/transform lines of Stable Fluids' FourierStep,
-/// L1813-1819). `nu_dt = ν·dt`. Flat components stay zero.
+/// Stam 1999, §2.3). `nu_dt = ν·dt`. Flat components stay zero.
 pub(crate) fn diffuse_project(
     fft: &Fft3,
     comps: &mut [Grid3<f32>; 3],

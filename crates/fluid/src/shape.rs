@@ -182,7 +182,7 @@ impl Shape {
 
 /// A solid obstacle moving rigidly: translation `velocity` plus rotation
 /// `angular_velocity` (rad/s) about its centre. Its cells are occupied; their
-/// faces carry the obstacle's velocity (Smoke L2132).
+/// faces carry the obstacle's velocity (Fedkiw et al. 2001, §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obstacle {
     /// The occupied region at the current time.
@@ -191,7 +191,7 @@ pub struct Obstacle {
     pub velocity: Vec3,
     /// Angular velocity (rad/s) about the shape's centre.
     pub angular_velocity: Vec3,
-    /// Temperature imposed on occupied cells (smoke), if any (L2132).
+    /// Temperature imposed on occupied cells (smoke), if any (Fedkiw et al. 2001, §4).
     pub temperature: Option<f32>,
 }
 

@@ -1,24 +1,24 @@
 //! Fedkiw, Stam & Jensen, *Visual Simulation of Smoke* (SIGGRAPH 2001;
-//! seed 004 L2006-2306), 2-D and 3-D.
+//! Fedkiw et al. 2001), 2-D and 3-D.
 //!
-//! Inviscid incompressible Euler with unit density (L2060-2066) on the
-//! staggered MAC grid (App. A, L2228-2256). One step (L2134-2142):
+//! Inviscid incompressible Euler with unit density (Fedkiw et al. 2001, §2) on the
+//! staggered MAC grid (Fedkiw et al. 2001, App. A). One step (Fedkiw et al. 2001, §4):
 //!
 //! 1. forces at cell centres — buoyancy `f = −αρ z + β(T − T_amb) z` (eq. 8,
-//!    L2090), vorticity confinement `f = ε h (N × ω)` (eq. 11, L2117) and
-//!    user forces — multiplied by `dt` and averaged to faces (L2254-2256);
+//!    Fedkiw et al. 2001, §2), vorticity confinement `f = ε h (N × ω)` (Fedkiw et al. 2001, §3, eq. 11) and
+//!    user forces — multiplied by `dt` and averaged to faces (Fedkiw et al. 2001, App. A);
 //! 2. semi-Lagrangian advection of the velocity from face midpoints, paths
-//!    clipped at occupied voxels (L2128, L2136), linear or monotone cubic
+//!    clipped at occupied voxels (Fedkiw et al. 2001, §4), linear or monotone cubic
 //!    (App. B with the a3 and overshoot errata fixed, see [`crate::interp`]);
-//! 3. projection with Neumann conditions at occupied voxels (L2138-2140),
+//! 3. projection with Neumann conditions at occupied voxels (Fedkiw et al. 2001, §4),
 //!    solved by multigrid- or MIC(0)-preconditioned CG to a stated relative
 //!    residual (the paper stops after "about 20 iterations");
-//! 4. advection of temperature and density with the new velocity (L2142);
+//! 4. advection of temperature and density with the new velocity (Fedkiw et al. 2001, §4);
 //! 5. sources and object rules: occupied voxels take the object's
 //!    temperature, density 0 inside and, on boundary voxels, the density of
-//!    the unoccupied neighbours (L2132).
+//!    the unoccupied neighbours (Fedkiw et al. 2001, §4).
 //!
-//! The parameters α, β, T_amb and ε have no values in the paper (spec §4.2);
+//! The parameters α, β, T_amb and ε have no values in the paper;
 //! the defaults are library choices documented on [`SmokeParams`].
 
 use glam::Vec3;
@@ -78,7 +78,7 @@ impl SmokeParams {
 }
 
 /// A region where smoke is placed each step ("place densities and heat
-/// sources", L2214): inside `shape` density and temperature are raised to
+/// sources", Fedkiw et al. 2001, §6): inside `shape` density and temperature are raised to
 /// at least the given values, and with `velocity` the free faces inside are
 /// set to it (an inflow jet).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -300,7 +300,7 @@ impl Smoke {
         );
     }
 
-    /// Advances by `dt` seconds (L2134-2142).
+    /// Advances by `dt` seconds (Fedkiw et al. 2001, §4).
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
@@ -431,7 +431,7 @@ impl Smoke {
     }
 
     /// Occupied voxels: object temperature, zero density inside, and on
-    /// boundary voxels the mean density of their unoccupied neighbours (L2132).
+    /// boundary voxels the mean density of their unoccupied neighbours (Fedkiw et al. 2001, §4).
     fn apply_object_rules(&mut self) {
         if self.solid.list.is_empty() {
             return;

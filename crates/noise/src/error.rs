@@ -44,6 +44,21 @@ pub enum NoiseError {
         /// Length of the buffer given.
         got: usize,
     },
+    /// The parameters would let the field's values overflow: its bound on
+    /// `|f|` is infinite or beyond [`MAX_BOUND`](crate::MAX_BOUND), where `f32`
+    /// results stop being safe.
+    #[error(
+        "{field}: the parameters give values up to {bound:e}, beyond the limit {limit:e}; \
+         reduce the offset, gain or the octave amplitudes"
+    )]
+    Unbounded {
+        /// The field type.
+        field: &'static str,
+        /// Its bound on `|f|` with these parameters.
+        bound: f64,
+        /// The largest bound accepted ([`MAX_BOUND`](crate::MAX_BOUND)).
+        limit: f64,
+    },
     /// A lattice has a zero or overflowing point count, or a non-finite origin or step.
     #[error("invalid lattice: {what}")]
     InvalidLattice {
@@ -54,6 +69,37 @@ pub enum NoiseError {
 
 /// Shorthand for `Result<T, NoiseError>`.
 pub type Result<T, E = NoiseError> = core::result::Result<T, E>;
+
+/// Checks that `value` is finite and at most `max` in magnitude.
+pub(crate) fn magnitude(
+    name: &'static str,
+    value: f64,
+    max: f64,
+    expected: &'static str,
+) -> Result<()> {
+    if value.is_finite() && value.abs() <= max {
+        Ok(())
+    } else {
+        Err(NoiseError::InvalidParam {
+            name,
+            value,
+            expected,
+        })
+    }
+}
+
+/// Checks that a field's bound on `|f|` is finite and at most [`MAX_BOUND`](crate::MAX_BOUND).
+pub(crate) fn bounded(field: &'static str, bound: f64) -> Result<()> {
+    if bound.is_finite() && bound <= crate::MAX_BOUND {
+        Ok(())
+    } else {
+        Err(NoiseError::Unbounded {
+            field,
+            bound,
+            limit: crate::MAX_BOUND,
+        })
+    }
+}
 
 /// Checks that `value` is finite, naming it `name` in the error.
 pub(crate) fn finite(name: &'static str, value: f64) -> Result<()> {

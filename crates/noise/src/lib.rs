@@ -22,7 +22,13 @@
 //!   [`RidgedMultifractal`], [`StatsByAltitude`] (and the legacy C `hfBm`),
 //!   [`CrossoverFbm`], [`FilteredFbm`], and [`Driven`] (any parameter given by
 //!   a field), parameterised by [`Spectral`] (H, lacunarity, real-valued
-//!   octaves, frequency, amplitude convention) with precomputed octave weights.
+//!   octaves, frequency, amplitude convention) with precomputed octave weights;
+//!   band-limited sums over a real-valued number of visible octaves
+//!   ([`Fbm::eval3_band`], for level of detail by pixel footprint), and
+//!   Musgrave's vector multifractal [`VectorMultifractal`] (`MVfBm`).
+//! * **Batches at arbitrary points**: [`Perlin::fill_points3`] and
+//!   [`Fbm::fill_points3_band`] evaluate struct-of-arrays point lists (a
+//!   sphere's hit points, a cube face) with the same SIMD dispatch as the rows.
 //! * **Vector noise and distortion** ([`vector`], [`warp`]): [`DNoise`],
 //!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
 //!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
@@ -87,7 +93,8 @@ pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
-pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_OCTAVES, Octaves, Spectral};
+pub use fractal::vector_multifractal::{VectorMultifractal, VectorMultifractalParams};
+pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};
 pub use natura_simd::{Simd, SimdLevel};
 pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
 pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};

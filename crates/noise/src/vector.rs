@@ -141,6 +141,16 @@ impl<V: VectorField> VectorFbm<V> {
             oct: spectral.octaves_table()?,
         })
     }
+
+    /// The vector field summed.
+    pub fn field(&self) -> &V {
+        &self.field
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
+    }
 }
 
 impl<V: VectorField> VectorField for VectorFbm<V> {

@@ -56,6 +56,10 @@ impl Cascade {
     /// strictly decreasing, 2 to 4 of them) with the grid, dispersion,
     /// looping and choppiness of `base` (its `lx`, `ly`, `k_min` and `k_max`
     /// are replaced), splitting the spectrum at [`Cascade::default_boundaries`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Cascade::with_boundaries`].
     pub fn new(
         base: &OceanParams,
         sizes: &[f64],
@@ -69,6 +73,13 @@ impl Cascade {
     /// As [`Cascade::new`] with explicit band `boundaries` (rad/m, strictly
     /// increasing, one fewer than `sizes`): patch i keeps
     /// `boundaries[i − 1] ≤ |k| < boundaries[i]`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`] for fewer than 2 or more than 4 patches, sizes that are not
+    /// positive and strictly decreasing, or boundaries that are not positive and strictly
+    /// increasing; [`OceanError::SizeMismatch`] if `boundaries` does not have one fewer entry than
+    /// `sizes`; and the errors of [`Ocean::new`](crate::Ocean::new) for each patch.
     pub fn with_boundaries(
         base: &OceanParams,
         sizes: &[f64],
@@ -135,6 +146,10 @@ impl Cascade {
     }
 
     /// Allocates frames for every patch.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`] if a frame's grids exceed the memory cap.
     pub fn frame(&self) -> Result<CascadeFrame> {
         Ok(CascadeFrame {
             frames: self.oceans.iter().map(Frame::new).collect::<Result<_>>()?,
@@ -142,6 +157,11 @@ impl Cascade {
     }
 
     /// Evaluates every patch at time `t` into `frame`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::SizeMismatch`] if `frame` was not made by this cascade, and the errors of
+    /// [`Ocean::evaluate_into`](crate::Ocean::evaluate_into).
     pub fn evaluate_into(&self, t: f64, frame: &mut CascadeFrame) -> Result<()> {
         if frame.frames.len() != self.oceans.len() {
             return Err(OceanError::SizeMismatch {
@@ -175,6 +195,11 @@ impl CascadeFrame {
     /// Returns tiling samplers of every patch, to be summed with
     /// [`crate::WaterSurface`] on `[Surface]`. `foam`, if given, holds one
     /// map per patch.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::SizeMismatch`] if `foam` holds a different number of maps than there are patches
+    /// or a map of the wrong size.
     pub fn surfaces(&self, foam: Option<&[Foam]>) -> Result<Vec<Surface>> {
         if let Some(f) = foam {
             if f.len() != self.frames.len() {

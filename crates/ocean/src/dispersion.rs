@@ -69,19 +69,25 @@ impl Default for Dispersion {
 
 impl Dispersion {
     /// Checks that every parameter is finite and positive.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) naming the first parameter that is not finite and positive.
     pub fn validate(&self) -> Result<()> {
         match *self {
-            Dispersion::Deep { g } => positive("g", g).map(|_| ()),
+            Dispersion::Deep { g } => positive("g", g).map(|_| ()).map_err(Into::into),
             Dispersion::FiniteDepth { g, depth } => {
                 positive("g", g)?;
-                positive("depth", depth).map(|_| ())
+                positive("depth", depth).map(|_| ()).map_err(Into::into)
             }
             Dispersion::Capillary {
                 g,
                 capillary_length,
             } => {
                 positive("g", g)?;
-                positive("capillary_length", capillary_length).map(|_| ())
+                positive("capillary_length", capillary_length)
+                    .map(|_| ())
+                    .map_err(Into::into)
             }
         }
     }
@@ -196,6 +202,11 @@ pub struct Quantized {
 
 impl Quantized {
     /// Returns the quantised relation of `base` with repeat time `period` seconds.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `base` fails [`Dispersion::validate`] or `period` is not finite
+    /// and positive.
     pub fn new(base: Dispersion, period: f64) -> Result<Self> {
         base.validate()?;
         positive("period", period)?;

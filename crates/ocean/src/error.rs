@@ -65,30 +65,13 @@ pub enum OceanError {
 /// Shorthand for `Result<T, OceanError>`.
 pub type Result<T, E = OceanError> = std::result::Result<T, E>;
 
-/// Returns `Ok(v)` if `v` is finite and `> 0`.
-pub(crate) fn positive(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and > 0"))
-    }
-}
-
-/// Returns `Ok(v)` if `v` is finite and `≥ 0`.
-pub(crate) fn non_negative(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and ≥ 0"))
-    }
-}
-
-/// Returns `Ok(v)` if `v` is finite.
-pub(crate) fn finite(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite"))
+impl From<natura_core::check::ParamError> for OceanError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        OceanError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected,
+        }
     }
 }
 
@@ -104,3 +87,6 @@ pub(crate) fn invalid(
         reason,
     }
 }
+
+/// The shared parameter checks (their errors convert into [`OceanError::InvalidParameter`]).
+pub(crate) use natura_core::check::{finite, in_range, non_negative, positive};

@@ -19,6 +19,11 @@ use crate::frame::Frame;
 
 /// Writes `frame` (and `foam`, which must match its size) as a
 /// multi-channel EXR at `path`, atomically (temporary file, then rename).
+///
+/// # Errors
+///
+/// Returns [`OceanError::SizeMismatch`] if `foam` is not the frame's size, and
+/// [`OceanError::Core`] if the file cannot be written.
 pub fn write_maps(path: impl AsRef<Path>, frame: &Frame, foam: Option<&Foam>) -> Result<()> {
     let (nx, ny) = frame.dims();
     if let Some(f) = foam {
@@ -75,6 +80,11 @@ pub struct FrameSequence {
 impl FrameSequence {
     /// Starts a sequence in the existing, writable directory `dir`; the
     /// check is done now, before any frame is computed.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`] if `dir` is not an existing directory, and
+    /// [`OceanError::Core`] if it is not writable.
     pub fn new(dir: impl Into<PathBuf>, stem: &str) -> Result<Self> {
         let dir = dir.into();
         if stem.is_empty() || stem.contains(['/', '\\']) {
@@ -100,6 +110,10 @@ impl FrameSequence {
     }
 
     /// Writes the next frame's maps as EXR (see [`write_maps`]); returns its path.
+    ///
+    /// # Errors
+    ///
+    /// As [`write_maps`].
     pub fn write_maps(&mut self, frame: &Frame, foam: Option<&Foam>) -> Result<PathBuf> {
         let p = self.path(self.next, "exr");
         write_maps(&p, frame, foam)?;
@@ -107,6 +121,10 @@ impl FrameSequence {
     }
 
     /// Writes the next frame as an 8-bit sRGB PNG; returns its path.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`] if the file cannot be written.
     pub fn write_png(&mut self, image: &Image) -> Result<PathBuf> {
         let p = self.path(self.next, "png");
         image.save_png(&p)?;

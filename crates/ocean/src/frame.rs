@@ -28,7 +28,7 @@ pub(crate) struct Workspace {
 
 /// The eight real fields of a [`Frame`], in storage order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Field {
+pub enum FrameField {
     /// Height h, metres.
     Height = 0,
     /// Slope ∂h/∂x.
@@ -47,17 +47,17 @@ pub enum Field {
     Jxy = 7,
 }
 
-impl Field {
+impl FrameField {
     /// All fields in storage order.
-    pub const ALL: [Field; 8] = [
-        Field::Height,
-        Field::SlopeX,
-        Field::SlopeY,
-        Field::DispX,
-        Field::DispY,
-        Field::Jxx,
-        Field::Jyy,
-        Field::Jxy,
+    pub const ALL: [FrameField; 8] = [
+        FrameField::Height,
+        FrameField::SlopeX,
+        FrameField::SlopeY,
+        FrameField::DispX,
+        FrameField::DispY,
+        FrameField::Jxx,
+        FrameField::Jyy,
+        FrameField::Jxy,
     ];
 
     /// Returns a short name (`"height"`, `"slope_x"`, …), used as EXR channel names.
@@ -69,14 +69,14 @@ impl Field {
     }
 }
 
-const HEIGHT: usize = Field::Height as usize;
-const SLOPE_X: usize = Field::SlopeX as usize;
-const SLOPE_Y: usize = Field::SlopeY as usize;
-const DISP_X: usize = Field::DispX as usize;
-const DISP_Y: usize = Field::DispY as usize;
-const JXX: usize = Field::Jxx as usize;
-const JYY: usize = Field::Jyy as usize;
-const JXY: usize = Field::Jxy as usize;
+const HEIGHT: usize = FrameField::Height as usize;
+const SLOPE_X: usize = FrameField::SlopeX as usize;
+const SLOPE_Y: usize = FrameField::SlopeY as usize;
+const DISP_X: usize = FrameField::DispX as usize;
+const DISP_Y: usize = FrameField::DispY as usize;
+const JXX: usize = FrameField::Jxx as usize;
+const JYY: usize = FrameField::Jyy as usize;
+const JXY: usize = FrameField::Jxy as usize;
 
 /// Every field of an ocean patch at one time, on the rest (Lagrangian) grid:
 /// sample (i, j) belongs to the water particle whose rest position is
@@ -106,6 +106,10 @@ impl Frame {
     /// With the `parallel` feature the scratch is split for the current
     /// rayon pool's thread count; using the frame in a larger pool uses at
     /// most that many threads. Results never depend on it.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`](crate::OceanError::Core) if the grids exceed natura-core's memory cap.
     pub fn new(ocean: &Ocean) -> Result<Self> {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);
@@ -177,7 +181,7 @@ impl Frame {
 
     /// Returns field `f`.
     #[must_use]
-    pub fn field(&self, f: Field) -> &Grid2<f32> {
+    pub fn field(&self, f: FrameField) -> &Grid2<f32> {
         &self.fields[f as usize]
     }
 

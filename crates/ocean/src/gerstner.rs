@@ -92,8 +92,12 @@ pub struct GerstnerSea {
 }
 
 impl GerstnerSea {
-    /// Returns the sum of `waves`; fails if any wave has kA ≥ 1 or a
-    /// non-finite parameter.
+    /// Returns the sum of `waves`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::TooSteep`] if a wave has kA ≥ 1 and
+    /// [`OceanError::InvalidParameter`] if a wave has a non-finite or non-positive parameter.
     pub fn new(waves: Vec<GerstnerWave>) -> Result<Self> {
         for (i, w) in waves.iter().enumerate() {
             w.validate(i)?;

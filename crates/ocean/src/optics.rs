@@ -179,6 +179,11 @@ impl Default for WaterShader {
 
 impl WaterShader {
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) for negative or non-finite colours, a water index not above 1,
+    /// a negative aerial fade or a non-positive slope variance.
     pub fn validate(&self) -> Result<()> {
         for (name, v) in [
             ("upwelling", self.upwelling),
@@ -277,7 +282,12 @@ pub struct WaterIop {
 }
 
 impl WaterIop {
-    /// Returns validated properties; fails unless 0 < a < K < a + b.
+    /// Returns validated properties.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) unless every property is finite and positive and
+    /// 0 < a < K < a + b.
     pub fn new(absorption: f64, scattering: f64, diffuse_extinction: f64) -> Result<Self> {
         positive("absorption", absorption)?;
         positive("scattering", scattering)?;

@@ -15,7 +15,7 @@ use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 use crate::error::Result;
-use crate::frame::Field;
+use crate::frame::FrameField;
 use crate::patch::{Ocean, signed};
 
 type C32 = Complex<f32>;
@@ -51,6 +51,11 @@ impl std::fmt::Debug for Reference {
 
 impl Reference {
     /// Prepares the straightforward evaluation of `ocean`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::Core`](crate::OceanError::Core) if the fields' grids exceed natura-core's
+    /// memory cap.
     pub fn new(ocean: &Ocean) -> Result<Self> {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);
@@ -97,6 +102,10 @@ impl Reference {
     }
 
     /// Evaluates all eight fields at time `t`, one complex 2-D FFT each.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) if `t` is not finite.
     pub fn evaluate(&mut self, t: f64) -> Result<()> {
         crate::error::finite("t", t)?;
         let (nx, ny) = (self.nx, self.ny);
@@ -108,7 +117,7 @@ impl Reference {
         }
         let lam = self.choppiness;
         let im = C32::new(0.0, 1.0);
-        for f in Field::ALL {
+        for f in FrameField::ALL {
             for m in 0..ny {
                 let ky = self.ky[m];
                 for n in 0..nx {
@@ -117,14 +126,14 @@ impl Reference {
                     let inv = if k > 0.0 { 1.0 / k } else { 0.0 };
                     let h = self.spectrum[m * nx + n];
                     self.buf[m * nx + n] = match f {
-                        Field::Height => h,
-                        Field::SlopeX => im * kx * h,
-                        Field::SlopeY => im * ky * h,
-                        Field::DispX => im * (lam * kx * inv) * h,
-                        Field::DispY => im * (lam * ky * inv) * h,
-                        Field::Jxx => h * (-lam * kx * kx * inv),
-                        Field::Jyy => h * (-lam * ky * ky * inv),
-                        Field::Jxy => h * (-lam * kx * ky * inv),
+                        FrameField::Height => h,
+                        FrameField::SlopeX => im * kx * h,
+                        FrameField::SlopeY => im * ky * h,
+                        FrameField::DispX => im * (lam * kx * inv) * h,
+                        FrameField::DispY => im * (lam * ky * inv) * h,
+                        FrameField::Jxx => h * (-lam * kx * kx * inv),
+                        FrameField::Jyy => h * (-lam * ky * ky * inv),
+                        FrameField::Jxy => h * (-lam * kx * ky * inv),
                     };
                 }
             }
@@ -134,7 +143,7 @@ impl Reference {
             self.fft_y
                 .process_with_scratch(&mut self.tmp, &mut self.scratch);
             transpose(&self.tmp, &mut self.buf, ny, nx);
-            let offset = if matches!(f, Field::Jxx | Field::Jyy) {
+            let offset = if matches!(f, FrameField::Jxx | FrameField::Jyy) {
                 1.0
             } else {
                 0.0
@@ -158,7 +167,7 @@ impl Reference {
 
     /// Returns field `f` from the last [`Reference::evaluate`].
     #[must_use]
-    pub fn field(&self, f: Field) -> &Grid2<f32> {
+    pub fn field(&self, f: FrameField) -> &Grid2<f32> {
         &self.fields[f as usize]
     }
 
@@ -166,7 +175,7 @@ impl Reference {
     /// evaluation: how far the output is from real (0 for an exactly
     /// Hermitian spectrum, round-off in practice).
     #[must_use]
-    pub fn imaginary_residue(&self, f: Field) -> f32 {
+    pub fn imaginary_residue(&self, f: FrameField) -> f32 {
         self.residue[f as usize]
     }
 }

@@ -47,6 +47,10 @@ const MAX_SLOPE: f32 = 50.0;
 
 impl Surface {
     /// Snapshots `frame` (and `foam`, if given, which must have its size).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::SizeMismatch`](crate::OceanError::SizeMismatch) if `foam` is given with a size other than the frame's.
     pub fn new(frame: &Frame, foam: Option<&Foam>) -> Result<Self> {
         let (nx, ny) = frame.dims();
         if let Some(f) = foam {

@@ -5,7 +5,7 @@ use glam::DVec2;
 use natura_core::Grid2;
 use natura_ocean::reference::Reference;
 use natura_ocean::{
-    AmplitudeScheme, Dispersion, Field, Frame, Ocean, OceanError, OceanParams, Phillips, Seed,
+    AmplitudeScheme, Dispersion, Frame, FrameField, Ocean, OceanError, OceanParams, Phillips, Seed,
     Spectrum,
 };
 
@@ -87,7 +87,7 @@ fn fast_path_matches_the_one_fft_per_field_reference() {
         let frame = ocean.evaluate(7.25).unwrap();
         let mut r = Reference::new(&ocean).unwrap();
         r.evaluate(7.25).unwrap();
-        for f in Field::ALL {
+        for f in FrameField::ALL {
             let scale = rms(r.field(f)).max(1e-6);
             let d = max_diff(frame.field(f), r.field(f));
             assert!(
@@ -105,7 +105,7 @@ fn output_is_real_to_round_off() {
     let mut r = Reference::new(&ocean).unwrap();
     for t in [0.0, 3.3, 1000.0] {
         r.evaluate(t).unwrap();
-        for f in Field::ALL {
+        for f in FrameField::ALL {
             let res = r.imaginary_residue(f);
             assert!(res <= 1e-5, "t={t} {f:?}: residue {res}");
         }
@@ -128,19 +128,19 @@ fn fast_path_matches_the_direct_sum_at_grid_points() {
     let t = 4.5;
     let frame = ocean.evaluate(t).unwrap();
     let c = p.cell_size();
-    let scale = |f: Field| rms(frame.field(f)).max(1e-3);
+    let scale = |f: FrameField| rms(frame.field(f)).max(1e-3);
     for (i, j) in [(0, 0), (3, 17), (31, 31), (16, 5)] {
         let d = ocean.sample_direct(i as f64 * c.x, j as f64 * c.y, t);
-        let at = |f: Field| f64::from(frame.field(f)[(i, j)]);
-        let tol = |f: Field| 2e-5 * f64::from(scale(f));
-        assert!((at(Field::Height) - d.height).abs() < tol(Field::Height));
-        assert!((at(Field::SlopeX) - d.slope.x).abs() < tol(Field::SlopeX));
-        assert!((at(Field::SlopeY) - d.slope.y).abs() < tol(Field::SlopeY));
-        assert!((at(Field::DispX) - d.displacement.x).abs() < tol(Field::DispX));
-        assert!((at(Field::DispY) - d.displacement.y).abs() < tol(Field::DispY));
-        assert!((at(Field::Jxx) - d.jxx).abs() < 1e-5);
-        assert!((at(Field::Jyy) - d.jyy).abs() < 1e-5);
-        assert!((at(Field::Jxy) - d.jxy).abs() < 1e-5);
+        let at = |f: FrameField| f64::from(frame.field(f)[(i, j)]);
+        let tol = |f: FrameField| 2e-5 * f64::from(scale(f));
+        assert!((at(FrameField::Height) - d.height).abs() < tol(FrameField::Height));
+        assert!((at(FrameField::SlopeX) - d.slope.x).abs() < tol(FrameField::SlopeX));
+        assert!((at(FrameField::SlopeY) - d.slope.y).abs() < tol(FrameField::SlopeY));
+        assert!((at(FrameField::DispX) - d.displacement.x).abs() < tol(FrameField::DispX));
+        assert!((at(FrameField::DispY) - d.displacement.y).abs() < tol(FrameField::DispY));
+        assert!((at(FrameField::Jxx) - d.jxx).abs() < 1e-5);
+        assert!((at(FrameField::Jyy) - d.jyy).abs() < 1e-5);
+        assert!((at(FrameField::Jxy) - d.jxy).abs() < 1e-5);
     }
 }
 
@@ -176,7 +176,7 @@ fn periodic_in_time_with_quantised_dispersion() {
     for t in [0.0, 3.7, 19.9] {
         ocean.evaluate_into(t, &mut a).unwrap();
         ocean.evaluate_into(t + period, &mut b).unwrap();
-        for f in Field::ALL {
+        for f in FrameField::ALL {
             let d = max_diff(a.field(f), b.field(f));
             assert!(d <= 1e-5 * rms(a.field(f)).max(1.0), "{f:?} {d}");
         }
@@ -196,11 +196,11 @@ fn mean_is_zero_and_parseval_holds() {
     for t in [0.0, 2.0, 55.5] {
         let frame = ocean.evaluate(t).unwrap();
         for f in [
-            Field::Height,
-            Field::SlopeX,
-            Field::SlopeY,
-            Field::DispX,
-            Field::DispY,
+            FrameField::Height,
+            FrameField::SlopeX,
+            FrameField::SlopeY,
+            FrameField::DispX,
+            FrameField::DispY,
         ] {
             let mean = frame.field(f).mean();
             assert!(
@@ -451,7 +451,7 @@ fn deterministic_across_runs_orders_and_thread_counts() {
     let a = run(1, &[3.0]);
     let b = run(2, &[100.0, 3.0]);
     let c = run(2, &[3.0]);
-    for f in Field::ALL {
+    for f in FrameField::ALL {
         assert_eq!(a.field(f), b.field(f), "{f:?}");
         assert_eq!(a.field(f), c.field(f), "{f:?}");
     }

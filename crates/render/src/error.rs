@@ -49,3 +49,13 @@ impl RenderError {
 
 /// Shorthand for `Result<T, RenderError>`.
 pub type Result<T, E = RenderError> = std::result::Result<T, E>;
+
+impl From<natura_core::check::ParamError> for RenderError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        RenderError::Invalid {
+            name: e.name,
+            value: e.value,
+            reason: e.expected.to_owned(),
+        }
+    }
+}

@@ -105,8 +105,10 @@ pub struct ErosionDesc {
     pub stream_power_dt_yr: f64,
     /// The hydraulic model that adds gullies and sediment after stream power.
     pub hydraulic_model: HydraulicModel,
-    /// Droplets for the droplet model (0 = off).
-    pub droplets: u64,
+    /// Droplets per terrain sample for the droplet model (0 = off), so the
+    /// erosion looks alike at every grid size: 0.25 is a million droplets on
+    /// a 2048² terrain.
+    pub droplets_per_sample: f64,
     /// Erosion brush radius of the droplets, cells.
     pub droplet_radius: u32,
     /// Virtual-pipe hydraulic erosion steps for the pipe model (0 = off).
@@ -361,7 +363,7 @@ impl Default for ErosionDesc {
             uplift_m_per_yr: 0.0,
             stream_power_dt_yr: 2000.0,
             hydraulic_model: HydraulicModel::Droplets,
-            droplets: 1_000_000,
+            droplets_per_sample: 0.25,
             droplet_radius: 3,
             hydraulic_steps: 120,
             rain_m_per_s: 0.01,
@@ -525,7 +527,12 @@ impl SceneDesc {
             1e-6,
             1e7,
         )?;
-        in_range("erosion.droplets", e.droplets as f64, 0.0, 1e9)?;
+        in_range(
+            "erosion.droplets_per_sample",
+            e.droplets_per_sample,
+            0.0,
+            1000.0,
+        )?;
         in_range(
             "erosion.droplet_radius",
             f64::from(e.droplet_radius),

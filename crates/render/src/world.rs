@@ -186,6 +186,23 @@ impl World {
         })
     }
 
+    /// The terrain alone, exactly as [`World::build`] makes it (synthesis,
+    /// erosion, the sunken coast), without maps or atmosphere: for sweeps,
+    /// caches and exports.
+    ///
+    /// # Errors
+    ///
+    /// Returns the scene's validation errors and any error of synthesis or
+    /// erosion.
+    pub fn build_terrain(scene: &SceneDesc, progress: &dyn Progress) -> Result<HeightField> {
+        scene.validate()?;
+        let seed = Seed(scene.seed);
+        let mut terrain = synthesize(scene, seed, progress)?;
+        erode(scene, &mut terrain, progress)?;
+        sink_coast(scene, seed, &mut terrain)?;
+        Ok(terrain)
+    }
+
     /// A world over a given height field (a DEM, or terrain made elsewhere):
     /// no synthesis or erosion; deposition is zero and wetness comes from D8
     /// flow accumulation. The scene's terrain and erosion sections are ignored.
@@ -383,7 +400,8 @@ fn erode(
         }
         area = Some(sp.drainage_area()?);
     }
-    if e.hydraulic_model == HydraulicModel::Droplets && e.droplets > 0 {
+    let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
+    if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
         // The droplet model runs in cell units internally (heights / cell
         // size), so Beyer's constants hold at any resolution.
         let p = DropletParams {
@@ -392,10 +410,13 @@ fn erode(
             erode: 0.1,
             deposit: 0.1,
             evaporate: 0.02,
+            // Rounds of droplets in row bands: both cores at work, every
+            // droplet still on the live terrain (see `DropletErosion`).
+            batch: 1 << 16,
             ..DropletParams::default()
         };
         let mut drops = DropletErosion::new(p, hf, Seed(scene.seed).derive("droplets"))?;
-        drops.run(hf, e.droplets, progress)?;
+        drops.run(hf, droplets, progress)?;
         let dep = drops.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
             *d += s.max(0.0);

@@ -11,7 +11,7 @@ fn small_scene() -> SceneDesc {
     s.terrain.size = 128;
     s.terrain.cell_size_m = 480.0;
     s.erosion.stream_power_steps = 3;
-    s.erosion.droplets = 2_000;
+    s.erosion.droplets_per_sample = 2_000.0 / (128.0 * 128.0);
     s.erosion.thermal_steps = 3;
     s.render.width = 64;
     s.render.height = 36;

@@ -65,6 +65,16 @@ pub enum TerrainError {
 /// Shorthand for `Result<T, TerrainError>`.
 pub type Result<T, E = TerrainError> = std::result::Result<T, E>;
 
+impl From<natura_core::check::ParamError> for TerrainError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        TerrainError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected.to_owned(),
+        }
+    }
+}
+
 /// Builds an [`TerrainError::InvalidParameter`].
 pub(crate) fn invalid(
     name: &'static str,

@@ -90,11 +90,54 @@ pub struct Mesh {
     pub indices: Vec<u32>,
 }
 
+impl Mesh {
+    /// Checks that the mesh has triangles, one normal per position and only
+    /// indices of existing vertices (its fields are public, so a caller may
+    /// have edited it).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `mesh` otherwise.
+    pub fn check(&self) -> Result<()> {
+        let n = self.positions.len();
+        if self.indices.is_empty() || self.indices.len() % 3 != 0 {
+            return Err(invalid(
+                "mesh",
+                format!("{} indices", self.indices.len()),
+                "must hold at least one triangle, three indices each",
+            ));
+        }
+        if self.normals.len() != n {
+            return Err(invalid(
+                "mesh",
+                format!("{n} positions, {} normals", self.normals.len()),
+                "needs one normal per position",
+            ));
+        }
+        if let Some(&i) = self.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(invalid(
+                "mesh",
+                format!("index {i} of {n} vertices"),
+                "indices must name existing vertices",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Builds a [`Mesh`] sampling every `step` cells (the last row and column are
 /// always included). Refuses `step = 0` and meshes over 2³² vertices.
 pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
     if step == 0 {
         return Err(invalid("step", step, "must be ≥ 1"));
+    }
+    if hf.nx() < 2 || hf.ny() < 2 {
+        return Err(invalid(
+            "height field",
+            format!("{} × {}", hf.nx(), hf.ny()),
+            "a mesh needs at least 2 × 2 samples",
+        ));
     }
     let pick = |n: usize| {
         let mut v: Vec<usize> = (0..n).step_by(step).collect();
@@ -133,6 +176,7 @@ pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
 
 /// Writes `mesh` as Wavefront OBJ (positions, normals, faces).
 pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    m.check()?;
     Ok(write_atomic(path, |w| {
         writeln!(w, "# natura-terrain height-field mesh (z up, metres)")?;
         for p in &m.positions {
@@ -153,6 +197,7 @@ pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
 /// (f32) and u32 indices. glTF is y-up, so the mesh is stored as
 /// `(x, z, −y)` (a rotation; winding and handedness are preserved).
 pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    m.check()?;
     let conv = |v: Vec3| [v.x, v.z, -v.y];
     let mut bin: Vec<u8> = Vec::with_capacity(m.positions.len() * 24 + m.indices.len() * 4);
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
@@ -263,5 +308,32 @@ mod tests {
         save_height_png16(&hf, &png).unwrap();
         let back = HeightField::load_png16(&png, None, None).unwrap();
         assert!((back.heights()[(8, 5)] - 40.0).abs() < 1e-2);
+    }
+
+    #[test]
+    fn degenerate_fields_and_meshes_are_refused_not_written_empty() {
+        for (nx, ny) in [(1, 1), (1, 5), (5, 1)] {
+            let hf = HeightField::from_fn(nx, ny, 1.0, |_, _| 0.0).unwrap();
+            let e = mesh(&hf, 1).unwrap_err().to_string();
+            assert!(e.contains("2 × 2"), "{e}");
+        }
+        let good = mesh(&HeightField::from_fn(3, 3, 1.0, |_, _| 0.0).unwrap(), 1).unwrap();
+        let empty = Mesh {
+            indices: Vec::new(),
+            ..good.clone()
+        };
+        let wild = Mesh {
+            indices: vec![0, 1, 99],
+            ..good.clone()
+        };
+        let short = Mesh {
+            normals: Vec::new(),
+            ..good
+        };
+        for m in [empty, wild, short] {
+            let (obj, glb) = (scratch("bad.obj"), scratch("bad.glb"));
+            assert!(save_obj(&m, &obj).is_err() && !obj.exists());
+            assert!(save_glb(&m, &glb).is_err() && !glb.exists());
+        }
     }
 }

@@ -52,3 +52,13 @@ impl TraceError {
 
 /// Shorthand for `Result<T, TraceError>`.
 pub type Result<T, E = TraceError> = std::result::Result<T, E>;
+
+impl From<natura_core::check::ParamError> for TraceError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        TraceError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected,
+        }
+    }
+}

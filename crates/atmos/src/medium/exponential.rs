@@ -29,7 +29,10 @@ impl ExponentialMist {
     /// Mist with extinction `extinction` (per metre) at altitude `base_altitude`
     /// (m), falling by `e` every `scale_height` metres.
     ///
-    /// Refuses NaN, negative extinction or colour, and non-positive scale heights.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for NaN, negative extinction or colour, a non-finite base
+    /// altitude, and non-positive scale heights.
     pub fn new(
         extinction: DVec3,
         fog_colour: DVec3,

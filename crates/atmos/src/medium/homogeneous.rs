@@ -19,6 +19,10 @@ pub struct HomogeneousFog {
 
 impl HomogeneousFog {
     /// A fog with per-metre `extinction` and colour `fog_colour`; refuses negative or NaN values.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or NaN extinction or colour.
     pub fn new(extinction: DVec3, fog_colour: DVec3) -> Result<Self> {
         let beer = BeerParams {
             extinction,

@@ -133,6 +133,10 @@ pub struct BeerParams {
 
 impl BeerParams {
     /// Refuses negative or non-finite extinction or colour.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or non-finite extinction or colour.
     pub fn validate(&self) -> Result<()> {
         non_negative3("extinction", self.extinction)?;
         non_negative3("fog_colour", self.fog_colour)?;
@@ -157,7 +161,10 @@ impl RayleighRgb {
 
     /// `k·(λ_r/λ_r, (λ_r/λ_g)⁴, (λ_r/λ_b)⁴)`: true λ⁻⁴ ratios, red normalised to `k`.
     ///
-    /// Fails if a wavelength is not finite and positive.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if a wavelength is not finite and positive or `k` is
+    /// negative.
     pub fn from_wavelengths(lambda_nm: [f64; 3], k: f64) -> Result<DVec3> {
         for l in lambda_nm {
             crate::error::positive("lambda_nm", l)?;

@@ -42,6 +42,12 @@ impl RadialAtmosphere {
     /// An atmosphere around `centre` with surface radius `surface_radius` (m),
     /// scale height `scale_height` (m), surface extinction `extinction` (per m)
     /// and fog colour `fog_colour`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or non-finite extinction or colour, a
+    /// non-finite centre, non-positive radii or scale heights, or a scale height so small
+    /// that the density exponent overflows.
     pub fn new(
         extinction: DVec3,
         fog_colour: DVec3,

@@ -83,7 +83,7 @@ fn mist_upward_ray_to_infinity() {
     let m = mist();
     let a = DVec3::new(10.0, -3.0, 250.0);
     for elev in [0.01f64, 0.2, 1.0, 1.5] {
-        let d = Dir3::from_angles(elev, 0.4);
+        let d = Dir3::from_angles(elev, 0.4).unwrap();
         let far = m.column(a, a + d.get() * 1e30);
         let inf = m.column_to_infinity(a, d);
         let closed = m.density(250.0) * 1000.0 / elev.sin();

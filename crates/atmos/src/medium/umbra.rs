@@ -34,6 +34,11 @@ impl<D: Medium, N: Medium> Umbra<D, N> {
     /// The umbra of a planet at `centre` of radius `planet_radius`, lit from
     /// `to_light` (towards the light source), with cylinder radius
     /// `planet_radius + epsilon`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a non-finite centre or a non-positive radius or
+    /// `epsilon`.
     pub fn new(
         day: D,
         night: N,

@@ -19,7 +19,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec3, Vec4};
 
-use super::render::{Ground, Projection};
+use super::render::{Ground, SkyProjection};
 use super::view::{ApSample, SkyView};
 use crate::error::{Result, invalid};
 use crate::simd::{self, Kernel, Simd};
@@ -268,12 +268,20 @@ impl SkyView {
     /// [`SkyView::radiance_f32`] for every direction of `dirs`, into `out`
     /// (same length), with the widest SIMD level this CPU supports. Results
     /// equal the scalar method's bit for bit; invalid directions give black.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `out` and `dirs` differ in length.
     pub fn radiance_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) -> Result<()> {
         self.radiance_batch_with(Simd::best(), dirs, out)
     }
 
     /// [`SkyView::radiance_batch`] at a chosen SIMD level (every level gives
     /// the same bits).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `out` and `dirs` differ in length.
     pub fn radiance_batch_with(&self, simd: Simd, dirs: &[Vec3], out: &mut [Vec3]) -> Result<()> {
         if dirs.len() != out.len() {
             return Err(invalid(
@@ -298,6 +306,11 @@ impl SkyView {
     /// supports. Results equal the scalar method's bit for bit: distances are
     /// clamped to the volume's range, and a non-unit or NaN direction or a NaN
     /// distance gives no attenuation ([`ApSample::NONE`]).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `dirs`, `distances_m` and `out` differ in
+    /// length.
     pub fn aerial_perspective_batch(
         &self,
         dirs: &[Vec3],
@@ -308,6 +321,11 @@ impl SkyView {
     }
 
     /// [`SkyView::aerial_perspective_batch`] at a chosen SIMD level.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `dirs`, `distances_m` and `out` differ in
+    /// length.
     pub fn aerial_perspective_batch_with(
         &self,
         simd: Simd,
@@ -578,14 +596,14 @@ pub(crate) enum RowRays {
         right: Vec3,
         up: Vec3,
     },
-    /// Any other projection, per pixel through [`Projection::direction`].
-    General { projection: Projection, h: usize },
+    /// Any other projection, per pixel through [`SkyProjection::direction`].
+    General { projection: SkyProjection, h: usize },
 }
 
 impl RowRays {
-    pub(crate) fn new(projection: Projection, w: usize, h: usize) -> Self {
+    pub(crate) fn new(projection: SkyProjection, w: usize, h: usize) -> Self {
         match projection {
-            Projection::Pinhole { fov_y, yaw, pitch } => {
+            SkyProjection::Pinhole { fov_y, yaw, pitch } => {
                 let t = (0.5 * fov_y as f32).tan();
                 let aspect = w as f32 / h as f32;
                 let sx = (0..w.next_multiple_of(L))

@@ -25,11 +25,11 @@
 //! use natura_atmos::{Dir3, sky::{Atmosphere, AtmosphereParams}};
 //! use glam::DVec3;
 //! let atm = Atmosphere::new(AtmosphereParams::default())?;
-//! let sun = Dir3::from_angles(10f64.to_radians(), 0.0);
+//! let sun = Dir3::from_angles(10f64.to_radians(), 0.0)?;
 //! let view = atm.sky_view(DVec3::new(0.0, 0.0, 300.0), sun)?;
 //! let zenith = view.radiance(Dir3::UP);
 //! assert!(zenith.z > zenith.x, "the zenith is blue");
-//! let haze = view.aerial_perspective(Dir3::from_angles(-0.01, 1.0), 20_000.0)?;
+//! let haze = view.aerial_perspective(Dir3::from_angles(-0.01, 1.0)?, 20_000.0)?;
 //! assert!(haze.transmittance.max_element() < 1.0);
 //! # Ok::<(), natura_atmos::AtmosError>(())
 //! ```
@@ -51,7 +51,7 @@ pub use model::{RGB_WAVELENGTHS_NM, SPECTRAL_BANDS};
 pub use params::{
     AtmosphereParams, Evaluation, LutSettings, MieParams, MiePhase, OzoneParams, RayleighParams,
 };
-pub use render::{Ground, Projection, auto_exposure};
+pub use render::{Ground, SkyProjection, auto_exposure};
 pub use view::{ApSample, SkyView};
 
 use crate::Dir3;
@@ -135,11 +135,19 @@ pub(crate) struct Local {
 impl Atmosphere {
     /// Validates `params` and precomputes the transmittance and (if enabled)
     /// multiple-scattering LUTs.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `params` fail [`AtmosphereParams::validate`].
     pub fn new(params: AtmosphereParams) -> Result<Self> {
         Self::with_progress(params, &NoProgress)
     }
 
     /// Like [`Atmosphere::new`], reporting each LUT build to `progress`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Atmosphere::new`].
     pub fn with_progress(params: AtmosphereParams, progress: &dyn Progress) -> Result<Self> {
         let inner = match params.evaluation {
             Evaluation::Rgb => Inner::Rgb(Box::new(Model::new(params, progress)?)),
@@ -196,6 +204,11 @@ impl Atmosphere {
     /// multiple-scattering LUT term if enabled. The sun disc is not included.
     ///
     /// This is the slow reference the LUT model is tested against.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for invalid `settings` or a `camera` that is not
+    /// finite or lies below the ground.
     pub fn sky_radiance_marched(
         &self,
         camera: DVec3,
@@ -230,6 +243,10 @@ impl Atmosphere {
     /// from `sun`: the sunset reddening; 0 in the planet's shadow.
     ///
     /// In spectral mode this is `rgb(E_λ·T_λ)/rgb(E_λ)` per channel.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `point` is not finite or lies below the ground.
     pub fn sun_transmittance(&self, point: DVec3, sun: Dir3) -> Result<DVec3> {
         let q = self.check_point("point", point)?;
         let s = Self::local(q, sun);
@@ -242,6 +259,10 @@ impl Atmosphere {
     /// Solar irradiance (linear RGB, W·m⁻²·nm⁻¹ scale) at `point` on a surface
     /// facing the sun, after atmospheric transmittance. Multiply by `cos θ`
     /// and `albedo/π` for a Lambertian surface's radiance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `point` is not finite or lies below the ground.
     pub fn sun_irradiance(&self, point: DVec3, sun: Dir3) -> Result<DVec3> {
         let q = self.check_point("point", point)?;
         let s = Self::local(q, sun);
@@ -260,6 +281,10 @@ impl Atmosphere {
     /// Limb darkening follows the power law `I(μ)/I(1) = μ^α(λ)` with
     /// `α = −0.023 + 0.292/λ[µm]` (Hestroffer & Magnan, A&A 333, 1998),
     /// normalised so the disc integrates to the solar irradiance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `camera` is not finite or lies below the ground.
     pub fn sun_radiance(&self, camera: DVec3, view: Dir3, sun: Dir3) -> Result<DVec3> {
         let q = self.check_point("camera", camera)?;
         let v = Self::local(q, view);
@@ -280,6 +305,12 @@ impl Atmosphere {
     /// Aerial perspective between `camera` and `point` by ray marching with
     /// `steps` steps (sunlight transmittance from the LUT): what the air does
     /// to light leaving `point` towards `camera`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `steps` is outside `1..=2^20`, `camera` is not
+    /// finite or below the ground, or `point` is not finite, and
+    /// [`AtmosError::BadDirection`](crate::AtmosError::BadDirection) if `point` equals `camera`.
     pub fn aerial_perspective_marched(
         &self,
         camera: DVec3,
@@ -325,6 +356,10 @@ impl Atmosphere {
 
     /// Builds the per-frame sky-view LUT and aerial-perspective volume for a
     /// camera at world position `camera` and the sun towards `sun`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `camera` is not finite or lies below the ground.
     pub fn sky_view(&self, camera: DVec3, sun: Dir3) -> Result<SkyView> {
         let q = self.check_point("camera", camera)?;
         Ok(view::build(self.inner.clone(), self.params, q, sun))
@@ -342,8 +377,12 @@ impl Atmosphere {
     }
 
     /// Convenience for tests and examples: the sun at elevation `deg` degrees and azimuth 0.
-    #[must_use]
-    pub fn sun_at_elevation_deg(deg: f64) -> Dir3 {
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `deg` is NaN
+    /// or infinite.
+    pub fn sun_at_elevation_deg(deg: f64) -> Result<Dir3> {
         Dir3::from_angles(deg.to_radians(), 0.0)
     }
 
@@ -352,7 +391,7 @@ impl Atmosphere {
         if d == 0.0 {
             return Ok(0.0);
         }
-        positive("distance_m", d)
+        Ok(positive("distance_m", d)?)
     }
 }
 

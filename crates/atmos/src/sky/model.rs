@@ -96,6 +96,12 @@ fn channels<const N: usize>(p: &AtmosphereParams) -> Result<([f64; N], [[f64; N]
 
 impl<const N: usize> Model<N> {
     /// Builds the coefficients and the transmittance and multiple-scattering LUTs.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `params` fail
+    /// [`AtmosphereParams::validate`](super::AtmosphereParams::validate) or name wavelengths
+    /// outside the colour-matching table.
     pub fn new(p: AtmosphereParams, progress: &dyn Progress) -> Result<Self> {
         p.validate()?;
         let (wavelengths, to_rgb) = channels::<N>(&p)?;

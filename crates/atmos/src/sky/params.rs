@@ -189,6 +189,11 @@ impl Default for AtmosphereParams {
 
 impl AtmosphereParams {
     /// Refuses NaN, negative or inconsistent values with a typed error naming the field.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) naming the first field that is NaN, negative or
+    /// inconsistent with the others.
     pub fn validate(&self) -> Result<()> {
         positive("bottom_radius_m", self.bottom_radius_m)?;
         positive("top_radius_m", self.top_radius_m)?;

@@ -11,7 +11,7 @@ use crate::error::{Result, in_range, invalid};
 
 /// How image pixels map to view directions (world frame, z up).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Projection {
+pub enum SkyProjection {
     /// The upper hemisphere, equidistant fisheye: zenith at the centre, the
     /// horizon on the inscribed circle, north (+y) up, east (+x) right.
     Fisheye,
@@ -36,11 +36,11 @@ pub enum Projection {
     },
 }
 
-impl Projection {
+impl SkyProjection {
     fn validate(&self) -> Result<()> {
         match *self {
-            Projection::Fisheye => Ok(()),
-            Projection::Panorama {
+            SkyProjection::Fisheye => Ok(()),
+            SkyProjection::Panorama {
                 min_elevation,
                 max_elevation,
             } => {
@@ -67,7 +67,7 @@ impl Projection {
                 }
                 Ok(())
             }
-            Projection::Pinhole { fov_y, yaw, pitch } => {
+            SkyProjection::Pinhole { fov_y, yaw, pitch } => {
                 in_range("fov_y", fov_y, 1e-4, 3.1, "must lie in (0, 3.1] rad")?;
                 crate::error::finite("yaw", yaw)?;
                 in_range("pitch", pitch, -1.5, 1.5, "must lie in [−1.5, 1.5] rad")?;
@@ -83,7 +83,7 @@ impl Projection {
     pub fn direction(&self, x: usize, y: usize, w: usize, h: usize) -> Option<Vec3> {
         let (fx, fy) = (x as f32 + 0.5, y as f32 + 0.5);
         match *self {
-            Projection::Fisheye => {
+            SkyProjection::Fisheye => {
                 let s = w.min(h) as f32;
                 let u = (2.0 * fx - w as f32) / s;
                 let v = (h as f32 - 2.0 * fy) / s;
@@ -100,7 +100,7 @@ impl Projection {
                 };
                 Some(Vec3::new(st * cu, st * cv, ct))
             }
-            Projection::Panorama {
+            SkyProjection::Panorama {
                 min_elevation,
                 max_elevation,
             } => {
@@ -110,7 +110,7 @@ impl Projection {
                 let (se, ce) = el.sin_cos();
                 Some(Vec3::new(ce * az.cos(), ce * az.sin(), se))
             }
-            Projection::Pinhole { fov_y, yaw, pitch } => {
+            SkyProjection::Pinhole { fov_y, yaw, pitch } => {
                 let t = (0.5 * fov_y as f32).tan();
                 let aspect = w as f32 / h as f32;
                 let sx = (2.0 * fx / w as f32 - 1.0) * t * aspect;
@@ -177,9 +177,14 @@ impl SkyView {
     /// the CPU has (see [`crate::simd`]); the result equals per-pixel
     /// [`SkyView::radiance_f32`] / [`SkyView::ground_radiance`] shading to
     /// 1e-4 relative, and is bit-identical for any thread count.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for an invalid projection, a negative or non-finite
+    /// ground albedo, and a zero or oversized image (through natura-core's size checks).
     pub fn render(
         &self,
-        projection: Projection,
+        projection: SkyProjection,
         w: usize,
         h: usize,
         ground: Option<Ground>,

@@ -17,7 +17,7 @@ fn atm(ms: bool, eval: Evaluation) -> Atmosphere {
 const CAM: DVec3 = DVec3::new(0.0, 0.0, 500.0);
 
 fn dir(elev_deg: f64, az_deg: f64) -> Dir3 {
-    Dir3::from_angles(elev_deg.to_radians(), az_deg.to_radians())
+    Dir3::from_angles(elev_deg.to_radians(), az_deg.to_radians()).unwrap()
 }
 
 /// The oracle: with multiple scattering off, the LUT sky equals the
@@ -351,7 +351,7 @@ mod batch {
             .map(|i| {
                 let el = -1.5 + 3.0 * ((i * 37) % n) as f64 / n as f64;
                 let az = std::f64::consts::TAU * (i as f64 * 0.618_034).fract();
-                Dir3::from_angles(el, az).as_vec3()
+                Dir3::from_angles(el, az).unwrap().as_vec3()
             })
             .collect();
         // Invalid inputs scattered through the chunks, and exact poles.
@@ -425,7 +425,7 @@ mod batch {
     /// the row kernels of `render`.
     fn reference_pixel(
         v: &SkyView,
-        p: Projection,
+        p: SkyProjection,
         x: usize,
         y: usize,
         w: usize,
@@ -455,13 +455,13 @@ mod batch {
         };
         let (w, h) = (157, 93);
         for p in [
-            Projection::Pinhole {
+            SkyProjection::Pinhole {
                 fov_y: 0.8,
                 yaw: 1.3,
                 pitch: 0.02,
             },
-            Projection::Fisheye,
-            Projection::Panorama {
+            SkyProjection::Fisheye,
+            SkyProjection::Panorama {
                 min_elevation: -0.3,
                 max_elevation: 1.2,
             },

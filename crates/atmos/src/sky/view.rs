@@ -293,7 +293,11 @@ impl SkyView {
     /// Aerial perspective along `view` over `distance_m` metres from the camera
     /// (trilinear in the volume). Beyond the volume's range
     /// ([`LutSettings::aerial_max_distance_m`](super::LutSettings)) it falls
-    /// back to exact ray marching (slower). Fails on a negative or NaN distance.
+    /// back to exact ray marching (slower).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a negative or NaN `distance_m`.
     pub fn aerial_perspective(&self, view: Dir3, distance_m: f64) -> Result<ApSample> {
         let d = super::Atmosphere::check_distance(distance_m)?;
         if d > self.ap_max as f64 {

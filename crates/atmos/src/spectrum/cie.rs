@@ -10,6 +10,11 @@ use crate::error::{AtmosError, Result, positive};
 /// Returns the tabulated CIE 1931 2° colour-matching functions `(x̄, ȳ, z̄)` at
 /// `lambda_nm`, linearly interpolated in the 1 nm table (CIE 015:2018), or an
 /// error outside 360–830 nm or for NaN.
+///
+/// # Errors
+///
+/// Returns [`AtmosError::WavelengthOutOfRange`]
+/// outside 360–830 nm or for NaN.
 pub fn cmf_1931(lambda_nm: f64) -> Result<DVec3> {
     table_lerp(lambda_nm).map(|(i, f)| {
         let a = DVec3::from(CMF_1931[i]);
@@ -66,6 +71,12 @@ pub enum Illuminant {
 impl Illuminant {
     /// Relative spectral power at `lambda_nm` (D65: 100 at 560 nm, table 360–830 nm;
     /// E: 100 everywhere).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`] for a non-positive or NaN wavelength and
+    /// [`AtmosError::WavelengthOutOfRange`] outside
+    /// the D65 table.
     pub fn spd(self, lambda_nm: f64) -> Result<f64> {
         match self {
             Illuminant::E => {
@@ -99,7 +110,9 @@ impl Illuminant {
 /// CMFs and step `step_nm` (midpoint rule), so that a flat spectrum of value 1
 /// has `Y = 1`.
 ///
-/// Fails on a non-positive step.
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] for a non-positive or NaN `step_nm`.
 pub fn spectrum_to_xyz(s: impl Fn(f64) -> f64, step_nm: f64) -> Result<DVec3> {
     positive("step_nm", step_nm)?;
     let n = ((TABLE_MAX_NM - TABLE_MIN_NM) / step_nm).round().max(1.0) as usize;
@@ -177,7 +190,9 @@ const BRADFORD: DMat3 = DMat3::from_cols_array(&[
 /// Returns the Bradford chromatic-adaptation matrix taking XYZ colours seen
 /// under white `from_white` to the corresponding colours under `to_white`.
 ///
-/// Fails if either white has a non-positive or non-finite component.
+/// # Errors
+///
+/// Returns [`AtmosError::InvalidParameter`] if either white has a non-positive or non-finite component.
 pub fn bradford(from_white: DVec3, to_white: DVec3) -> Result<DMat3> {
     for (name, w) in [("from_white", from_white), ("to_white", to_white)] {
         if !(w.is_finite() && w.min_element() > 0.0) {

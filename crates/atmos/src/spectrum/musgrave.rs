@@ -67,7 +67,10 @@ impl SpectralRgbTable {
     /// channel renormalised to sum to 1 (the source used
     /// illuminant B and an unpublished monitor matrix, Musgrave 1993, §4.2.4.2.2).
     ///
-    /// Fails if the sampler's range leaves the 360–830 nm table.
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::WavelengthOutOfRange`](crate::AtmosError::WavelengthOutOfRange)
+    /// if the sampler's range leaves the 360–830 nm table.
     pub fn from_cie(sampler: WavelengthSampler, illuminant: Illuminant) -> Result<Self> {
         let mut rgb = Vec::with_capacity(sampler.len());
         for i in 0..sampler.len() {

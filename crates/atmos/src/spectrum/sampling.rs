@@ -18,6 +18,11 @@ pub struct WavelengthSampler {
 
 impl WavelengthSampler {
     /// `n ≥ 1` strata over `[min_nm, max_nm]`, `0 < min < max`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if `n` is 0, a bound is not finite and positive, or
+    /// `max_nm ≤ min_nm`.
     pub fn new(n: usize, min_nm: f64, max_nm: f64) -> Result<Self> {
         if n == 0 {
             return Err(invalid("n", n, "need at least one stratum"));
@@ -93,6 +98,10 @@ pub struct HeroWavelengths {
 
 impl HeroWavelengths {
     /// Hero sampling over `[min_nm, max_nm]`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) if a bound is not finite and positive, or `max_nm ≤ min_nm`.
     pub fn new(min_nm: f64, max_nm: f64) -> Result<Self> {
         WavelengthSampler::new(1, min_nm, max_nm)?;
         Ok(Self {

@@ -101,6 +101,12 @@ impl SigmoidSpectrum {
     /// `[0, 1]` or NaN, and [`AtmosError::NoConvergence`] if the colour cannot be
     /// reached (very saturated colours near the spectral locus, which no smooth
     /// reflectance has).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for components outside `[0, 1]` or NaN, and
+    /// [`AtmosError::NoConvergence`](crate::AtmosError::NoConvergence) if the colour cannot be
+    /// reached (very saturated colours near the spectral locus, which no smooth reflectance has).
     pub fn fit_reflectance(rgb: DVec3) -> Result<Self> {
         if !(rgb.is_finite() && rgb.min_element() >= 0.0 && rgb.max_element() <= 1.0) {
             return Err(invalid(
@@ -175,6 +181,12 @@ impl SigmoidSpectrum {
     /// Fits an unbounded (emission-like) RGB by the pbrt-v4 convention:
     /// `rgb = scale·S`, with `scale = 2·max(rgb)` and `S` the reflectance fit of
     /// `rgb/scale`. Returns `(S, scale)`; black gives scale 0.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for negative or non-finite components, and
+    /// [`AtmosError::NoConvergence`](crate::AtmosError::NoConvergence) as
+    /// [`Self::fit_reflectance`].
     pub fn fit_unbounded(rgb: DVec3) -> Result<(Self, f64)> {
         if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
             return Err(invalid("rgb", rgb, "components must be finite and >= 0"));

@@ -6,7 +6,6 @@
 //! corrupted after writing is refused rather than silently misread.
 
 use std::io::{BufReader, Read, Seek};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 use exr::prelude::*;
@@ -141,12 +140,8 @@ pub fn read_exr(path: impl AsRef<Path>) -> Result<ExrChannels> {
 /// As [`read_exr`], from any seekable reader; `name` labels errors.
 pub fn read_exr_from(mut reader: impl Read + Seek, name: &Path) -> Result<ExrChannels> {
     let bad = |m: String| CoreError::format(name, m);
-    // Guard the decoder: a library panic on hostile input becomes an error too.
-    let meta = catch_unwind(AssertUnwindSafe(|| {
-        MetaData::read_from_buffered(&mut reader, false)
-    }))
-    .map_err(|_| bad("corrupt EXR header".into()))?
-    .map_err(|e| bad(format!("not a readable EXR file: {e}")))?;
+    let meta = MetaData::read_from_buffered(&mut reader, false)
+        .map_err(|e| bad(format!("not a readable EXR file: {e}")))?;
     let header = meta
         .headers
         .first()
@@ -159,18 +154,15 @@ pub fn read_exr_from(mut reader: impl Read + Seek, name: &Path) -> Result<ExrCha
         source: e,
     })?;
 
-    let image = catch_unwind(AssertUnwindSafe(|| {
-        read()
-            .no_deep_data()
-            .largest_resolution_level()
-            .all_channels()
-            .first_valid_layer()
-            .all_attributes()
-            .non_parallel()
-            .from_buffered(reader)
-    }))
-    .map_err(|_| bad("corrupt EXR pixel data".into()))?
-    .map_err(|e| bad(format!("corrupt or truncated EXR: {e}")))?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(reader)
+        .map_err(|e| bad(format!("corrupt or truncated EXR: {e}")))?;
 
     let layer = &image.layer_data;
     let (w, h) = (layer.size.width(), layer.size.height());

@@ -13,7 +13,7 @@
 //!   Gauss–Seidel smoothing. Iteration counts stay nearly flat with grid size.
 //! * [`PressureSolver::Mic0`]: CG preconditioned by modified incomplete
 //!   Cholesky MIC(0) (Bridson 2015) — the "incomplete Choleski" of the smoke
-//!   and liquids papers (seed 004 L2140, L2488), with the modification that
+//!   and liquids papers (Fedkiw et al. 2001, §4, Foster & Fedkiw 2001, §8), with the modification that
 //!   keeps row sums. Its triangular solves are sequential.
 //! * [`PressureSolver::GaussSeidel`]: the Stam 2003 relaxation baseline
 //!   (red–black ordered so it parallelises). With `tolerance = 0` it runs
@@ -23,8 +23,8 @@
 //! Periodic domains are solved by FFT in [`crate::fft`].
 //!
 //! Pure-Neumann (closed) components make `A` singular; the solver removes the
-//! mean of `b` on each such connected component (the compatibility condition,
-//! spec §5 item 7) and returns the zero-mean solution.
+//! mean of `b` on each such connected component (the compatibility
+//! condition) and returns the zero-mean solution.
 
 mod level;
 

@@ -11,7 +11,6 @@ pub(crate) mod cellular_rows;
 pub mod checker;
 pub(crate) mod lattice;
 pub mod perlin;
-mod perlin_rows;
 pub mod simplex;
 pub mod sine;
 pub mod sparse;

@@ -35,6 +35,9 @@ use crate::field::{Field, Lattice3};
 use crate::hash::{PX, PY, PZ, corner_spread, dot2, dot3, grad1, grad2, grad3, grad4, seed32};
 use crate::lanes::{Kernel, Simd, run, split, split_fast};
 
+mod points;
+mod rows;
+
 /// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
 pub const PERLIN1_SUP: f64 = 0.5;
 /// sup |raw 2-D gradient noise| (either fade): √2/2, at the cell centre with

@@ -1,6 +1,6 @@
 //! The multiplicative cascade ("multifractal" in Mandelbrot's sense).
 
-use crate::error::{Result, finite};
+use crate::error::{Result, bounded, magnitude};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
@@ -64,7 +64,12 @@ impl MultifractalParams {
     /// Checks the spectral parameters and a finite offset.
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        finite("offset", self.offset)
+        magnitude(
+            "offset",
+            self.offset,
+            1e3,
+            "must be finite with magnitude ≤ 1000",
+        )
     }
 }
 
@@ -86,12 +91,24 @@ impl<B: Field> Multifractal<B> {
     pub fn new(basis: B, params: MultifractalParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
-        Ok(Self { basis, params, oct })
+        let f = Self { basis, params, oct };
+        bounded("Multifractal", f.bound())?;
+        Ok(f)
     }
 
     /// The parameters.
     pub fn params(&self) -> &MultifractalParams {
         &self.params
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
     }
 
     /// Factor of octave `k` for basis value `n`, and its derivative in `n`.

@@ -41,11 +41,13 @@ impl<B: Field> Fbm<B> {
     /// fBm of `basis` with `spectral` parameters (validated).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
-        Ok(Self {
+        let f = Self {
             basis,
             spectral,
             oct,
-        })
+        };
+        crate::error::bounded("Fbm", f.bound())?;
+        Ok(f)
     }
 
     /// The basis.
@@ -176,16 +178,28 @@ impl<B: Field> Turbulence<B> {
     /// Turbulence of `basis` with `spectral` parameters (validated).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
-        Ok(Self {
+        let f = Self {
             basis,
             spectral,
             oct,
-        })
+        };
+        crate::error::bounded("Turbulence", f.bound())?;
+        Ok(f)
     }
 
     /// The spectral parameters.
     pub fn spectral(&self) -> &Spectral {
         &self.spectral
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
     }
 }
 

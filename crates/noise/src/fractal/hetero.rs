@@ -1,6 +1,6 @@
 //! Heterogeneous terrain: Musgrave's `Terrain()` [D 1017-1108].
 
-use crate::error::{NoiseError, Result, finite};
+use crate::error::{NoiseError, Result, bounded, magnitude};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
@@ -39,7 +39,12 @@ impl HeteroTerrainParams {
     /// Checks the spectral parameters, a finite offset and a positive finite threshold.
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        finite("offset", self.offset)?;
+        magnitude(
+            "offset",
+            self.offset,
+            1e3,
+            "must be finite with magnitude ≤ 1000",
+        )?;
         if !(self.threshold.is_finite() && self.threshold > 0.0) {
             return Err(NoiseError::InvalidParam {
                 name: "threshold",
@@ -81,7 +86,9 @@ impl<B: Field> HeteroTerrain<B> {
     pub fn new(basis: B, params: HeteroTerrainParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
-        Ok(Self { basis, params, oct })
+        let f = Self { basis, params, oct };
+        bounded("HeteroTerrain", f.bound())?;
+        Ok(f)
     }
 
     /// The parameters.

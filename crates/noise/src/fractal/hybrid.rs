@@ -1,6 +1,6 @@
 //! Hybrid multifractal (Musgrave, *Texturing & Modeling* ch. 16).
 
-use crate::error::{Result, finite};
+use crate::error::{Result, bounded, magnitude};
 use crate::field::Field;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
 use crate::fractal::{Octaves, Spectral};
@@ -32,7 +32,12 @@ impl HybridParams {
     /// Checks the spectral parameters and a finite offset.
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        finite("offset", self.offset)
+        magnitude(
+            "offset",
+            self.offset,
+            1e3,
+            "must be finite with magnitude ≤ 1000",
+        )
     }
 }
 
@@ -65,7 +70,9 @@ impl<B: Field> HybridMultifractal<B> {
     pub fn new(basis: B, params: HybridParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
-        Ok(Self { basis, params, oct })
+        let f = Self { basis, params, oct };
+        bounded("HybridMultifractal", f.bound_impl())?;
+        Ok(f)
     }
 
     /// The parameters.

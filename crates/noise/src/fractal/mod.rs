@@ -24,6 +24,7 @@
 //! non-integer default avoids that coincidence.
 
 pub mod altitude;
+mod band;
 pub mod cascade;
 pub mod crossover;
 #[cfg(feature = "alloc")]
@@ -34,11 +35,17 @@ pub mod hetero;
 pub mod hybrid;
 pub mod ridged;
 pub(crate) mod rows;
+pub mod vector_multifractal;
 
 use crate::error::{NoiseError, Result, finite, in_range};
 
 /// The largest octave count any fractal accepts.
 pub const MAX_OCTAVES: usize = 64;
+
+/// The largest bound on `|f|` a fractal may have: every value then fits an
+/// `f32` with a wide margin, and no intermediate overflows `f64`. Parameters
+/// that would exceed it are refused ([`NoiseError::Unbounded`]).
+pub const MAX_BOUND: f64 = 1e30;
 
 /// The highest octave's frequency may be at most this multiple of the base
 /// frequency: beyond it, `f64` coordinates of order 1 no longer resolve the
@@ -164,6 +171,14 @@ impl Spectral {
                 name: "frequency",
                 value: self.frequency,
                 expected: "must be finite and > 0",
+            });
+        }
+        let amplitudes = Octaves::new(self).weight_sum();
+        if !(amplitudes.is_finite() && amplitudes <= MAX_BOUND) {
+            return Err(NoiseError::InvalidParam {
+                name: "h",
+                value: self.h,
+                expected: "the octave amplitudes it gives must sum to at most 1e30",
             });
         }
         let top = libm::pow(self.lacunarity, libm::ceil(self.octaves) - 1.0);

@@ -1,6 +1,6 @@
 //! Ridged multifractal (Musgrave, *Texturing & Modeling* ch. 16).
 
-use crate::error::{Result, finite};
+use crate::error::{Result, bounded, magnitude};
 use crate::field::Field;
 use crate::fractal::fbm::sign;
 use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
@@ -35,8 +35,18 @@ impl RidgedParams {
     /// Checks the spectral parameters and finite offset and gain.
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        finite("offset", self.offset)?;
-        finite("gain", self.gain)
+        magnitude(
+            "offset",
+            self.offset,
+            1e3,
+            "must be finite with magnitude ≤ 1000",
+        )?;
+        magnitude(
+            "gain",
+            self.gain,
+            1e3,
+            "must be finite with magnitude ≤ 1000",
+        )
     }
 }
 
@@ -68,7 +78,9 @@ impl<B: Field> RidgedMultifractal<B> {
     pub fn new(basis: B, params: RidgedParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
-        Ok(Self { basis, params, oct })
+        let f = Self { basis, params, oct };
+        bounded("RidgedMultifractal", f.bound_impl())?;
+        Ok(f)
     }
 
     /// The parameters.

@@ -70,6 +70,10 @@ impl Spreading {
     }
 
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter) for a negative or NaN spreading exponent.
     pub fn validate(&self) -> Result<()> {
         if let Spreading::Cos2s { s } = *self {
             non_negative("s", s)?;

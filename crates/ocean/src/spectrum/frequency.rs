@@ -75,7 +75,7 @@ impl FrequencySpectrum for PiersonMoskowitz {
     }
     fn validate(&self) -> Result<()> {
         positive("wind_speed", self.wind_speed)?;
-        positive("g", self.g).map(|_| ())
+        positive("g", self.g).map(|_| ()).map_err(Into::into)
     }
 }
 
@@ -155,7 +155,7 @@ impl FrequencySpectrum for Jonswap {
         positive("gamma", self.gamma)?;
         positive("sigma_low", self.sigma_low)?;
         positive("sigma_high", self.sigma_high)?;
-        positive("g", self.g).map(|_| ())
+        positive("g", self.g).map(|_| ()).map_err(Into::into)
     }
 }
 
@@ -204,7 +204,9 @@ impl FrequencySpectrum for Tma {
     }
     fn validate(&self) -> Result<()> {
         self.jonswap.validate()?;
-        positive("depth", self.depth).map(|_| ())
+        positive("depth", self.depth)
+            .map(|_| ())
+            .map_err(Into::into)
     }
 }
 

@@ -40,7 +40,7 @@ pub fn d8_directions(hf: &HeightField, depressions: Depressions) -> Result<Grid2
 fn graph(hf: &HeightField, depressions: Depressions) -> Result<(FlowGraph, Vec<f32>)> {
     hf.check_finite()?;
     let mut h = hf.heights().as_slice().to_vec();
-    let g = FlowGraph::build(&mut h, hf.nx(), hf.ny(), depressions);
+    let g = FlowGraph::build(&mut h, hf.nx(), hf.ny(), depressions)?;
     Ok((g, h))
 }
 

@@ -1,6 +1,4 @@
-//! Particle ("droplet") hydraulic erosion (Beyer 2015, "Implementation of a
-//! method for hydraulic erosion", BSc thesis, TU München). Not in the seed
-//! documents: spec `terrain.md` §7.2.
+//! Particle ("droplet") hydraulic erosion (Beyer 2015).
 //!
 //! Each droplet carries position, direction, speed, water and sediment. Per
 //! step: `dir ← dir·inertia − ∇h·(1 − inertia)` (normalised), move one cell,
@@ -10,20 +8,32 @@
 //! with a radial brush of `radius` cells; `speed² ← speed² − Δh·g`;
 //! `water ← water·(1 − K_evaporate)`. A droplet lives `lifetime` steps.
 //!
-//! **Determinism and parallelism.** Droplets run in batches of `batch`: every
-//! droplet of a batch is simulated in parallel against the terrain as it was
-//! at the start of the batch, recording its height changes; the changes are
-//! then applied in droplet order. Batches depend only on the droplet index,
-//! never on the thread count, so results are bit-identical on any number of
-//! threads. Heights are divided by the cell size inside the simulation (so
-//! slopes are rise per cell and Beyer's constants are resolution-independent);
-//! changes are converted back to metres. The default `batch = 1` is Beyer's sequential algorithm exactly.
-//! Larger batches are an approximation: droplets of one batch do not see each
-//! other, so several can dig the same rim or fill the same pit, each up to
-//! its own limit; where many droplets meet (dense batches on small maps) this
-//! over-digs and can run away. Keep `batch` far below
-//! `cells / (lifetime · brush area)`. Mass is conserved: sediment still carried when a droplet dies is
-//! deposited where it stops; sediment carried off the edge is counted.
+//! **Stability.** Beyer bounds a step's total erosion by the drop `−Δh` and an
+//! uphill deposit by the rise, so that a droplet neither digs a pit nor builds
+//! a hill. The brush spreads the erosion over many cells, and a deposit over
+//! four, so those totals alone do not bound any one cell: over millions of
+//! droplets a cell can be dug or raised without limit. Here the bound holds per
+//! cell: erosion never lowers a cell below the height the droplet flows down
+//! to, and deposition never raises a cell above the higher end of the step.
+//! Every step therefore keeps every height inside the range the terrain
+//! already spans, whatever the parameters and grid size; sediment a bound
+//! holds back stays in the droplet, and what it carries when it dies is laid
+//! down where it stops (mass is conserved; sediment carried off the edge is
+//! counted in [`DropletErosion::outflow`]).
+//!
+//! **Determinism and parallelism.** Droplet `k` starts at a position indexed
+//! by `(seed, k)`. With `batch = 1` droplets run one after another, each on
+//! the terrain the previous ones left (Beyer's algorithm). A larger `batch`
+//! runs that many droplets per round in row bands: a droplet moves one cell
+//! per step, so it stays within `lifetime + radius + 2` rows of its start, and
+//! bands twice that high with every other band running at once never touch
+//! the same cell. Each band's droplets run in index order on the live
+//! terrain, so every droplet is still Beyer's droplet; only the order between
+//! bands differs from the sequential run. Bands depend on the grid and the
+//! parameters, never on the thread count, so results are bit-identical on any
+//! number of threads. Heights are divided by the cell size inside the
+//! simulation (slopes are rise per cell, so Beyer's constants mean the same at
+//! any resolution); changes are converted back to metres.
 
 use natura_core::{Grid2, HeightField, Progress, Seed};
 
@@ -56,8 +66,9 @@ pub struct DropletParams {
     pub initial_water: f64,
     /// Initial speed. Default 1.
     pub initial_speed: f64,
-    /// Droplets simulated together against a frozen terrain (1..=65536). Default 1
-    /// (sequential, exact); see the module docs before raising it.
+    /// Droplets per round (1..=2²⁴): 1 runs them strictly one after another;
+    /// more lets the droplets of distant row bands run at once (see the module
+    /// docs). Default 1.
     pub batch: u32,
 }
 
@@ -118,11 +129,11 @@ impl DropletParams {
         }
         positive("DropletParams::initial_water", self.initial_water)?;
         non_negative("DropletParams::initial_speed", self.initial_speed)?;
-        if !(1..=65536).contains(&self.batch) {
+        if !(1..=1 << 24).contains(&self.batch) {
             return Err(invalid(
                 "DropletParams::batch",
                 self.batch,
-                "must lie in [1, 65536]",
+                "must lie in [1, 2^24]",
             ));
         }
         Ok(())
@@ -221,84 +232,151 @@ impl DropletErosion {
         Ok(())
     }
 
+    /// Runs droplets `first..first + count`. With more than one band (see the
+    /// module docs) the droplets starting in every other band run at once,
+    /// each band's in index order on the live terrain; then the others.
     fn batch(&mut self, hf: &mut HeightField, first: u64, count: u64) {
-        if count == 1 {
-            // Sequential: no thread hand-off for a single droplet.
-            let mut deltas = Vec::with_capacity(1024);
-            let out = self.simulate(hf.heights().as_slice(), first, &mut deltas);
-            let hm = hf.heights_mut().as_mut_slice();
-            for (i, d) in deltas {
-                hm[i as usize] += d;
-                self.deposition[i as usize] += d;
+        let model = DropletModel {
+            p: &self.p,
+            nx: self.nx,
+            ny: self.ny,
+            seed: self.seed,
+            brush: &self.brush,
+            erodibility: self.erodibility.as_ref().map(|e| e.map().as_slice()),
+            cell: self.cell,
+        };
+        let (nx, ny) = (self.nx, self.ny);
+        let h = hf.heights_mut().as_mut_slice();
+        let dep = self.deposition.as_mut_slice();
+        let band = model.band_rows();
+        let bands = ny.div_ceil(band);
+        if count == 1 || bands < 3 {
+            let mut ground = Ground {
+                h,
+                deposition: dep,
+                offset: 0,
+                cell: self.cell,
+            };
+            for id in first..first + count {
+                self.outflow += model.simulate(&mut ground, id);
             }
-            self.outflow += out;
             return;
         }
-        let h = hf.heights().as_slice();
-        let ids: Vec<u64> = (first..first + count).collect();
-        let chunks: Vec<Vec<u64>> = ids.chunks(16).map(<[u64]>::to_vec).collect();
-        let this = &*self;
-        let results: Vec<(Vec<(u32, f32)>, f64)> = par::run(chunks, |ids| {
-            let mut deltas = Vec::new();
-            let mut out = 0.0;
-            for id in ids {
-                out += this.simulate(h, id, &mut deltas);
+        // Droplets by the band their start lies in, in index order.
+        let mut by_band: Vec<Vec<u64>> = vec![Vec::new(); bands];
+        for id in first..first + count {
+            let (_, y) = model.start(id);
+            by_band[(y as usize / band).min(bands - 1)].push(id);
+        }
+        for parity in 0..2 {
+            // Band k's droplets touch rows within half a band of it, so the
+            // slices [kT − T/2, (k+1)T + T/2) of one parity are disjoint.
+            let half = band / 2;
+            let mut jobs = Vec::new();
+            let (mut h_rest, mut d_rest) = (&mut *h, &mut *dep);
+            let mut row = 0;
+            for (k, ids) in by_band.iter().enumerate().skip(parity).step_by(2) {
+                let lo = (k * band).saturating_sub(half).min(ny);
+                let hi = ((k + 1) * band + half).min(ny);
+                let (_, h_tail) = std::mem::take(&mut h_rest).split_at_mut((lo - row) * nx);
+                let (_, d_tail) = std::mem::take(&mut d_rest).split_at_mut((lo - row) * nx);
+                let (h_band, h_next) = h_tail.split_at_mut((hi - lo) * nx);
+                let (d_band, d_next) = d_tail.split_at_mut((hi - lo) * nx);
+                (h_rest, d_rest, row) = (h_next, d_next, hi);
+                jobs.push((ids, h_band, d_band, lo * nx));
             }
-            (deltas, out)
-        });
-        let hm = hf.heights_mut().as_mut_slice();
-        for (deltas, out) in results {
-            for (i, d) in deltas {
-                hm[i as usize] += d;
-                self.deposition[i as usize] += d;
-            }
-            self.outflow += out;
+            let outs = par::run(jobs, |(ids, h, deposition, offset)| {
+                let mut ground = Ground {
+                    h,
+                    deposition,
+                    offset,
+                    cell: model.cell,
+                };
+                ids.iter()
+                    .map(|&id| model.simulate(&mut ground, id))
+                    .sum::<f64>()
+            });
+            self.outflow += outs.iter().sum::<f64>();
         }
     }
+}
 
-    /// Height and gradient at `(x, y)` (cell units) by bilinear interpolation.
+/// The rows of the field a set of droplets may change, in metres, with the
+/// deposition map beside them; indices are global (`offset` is the first
+/// sample's index). The model works in cell units (heights / cell size).
+struct Ground<'a> {
+    h: &'a mut [f32],
+    deposition: &'a mut [f32],
+    offset: usize,
+    cell: f32,
+}
+
+impl Ground<'_> {
+    /// Height of sample `i`, cell units.
     #[inline]
-    fn height_grad(&self, h: &[f32], x: f32, y: f32) -> (f32, f32, f32) {
-        let nx = self.nx;
-        let (ix, iy) = (x as usize, y as usize);
-        let (u, v) = (x - ix as f32, y - iy as f32);
-        let i = iy * nx + ix;
-        let (h00, h10, h01, h11) = (h[i], h[i + 1], h[i + nx], h[i + nx + 1]);
-        let gx = (h10 - h00) * (1.0 - v) + (h11 - h01) * v;
-        let gy = (h01 - h00) * (1.0 - u) + (h11 - h10) * u;
-        let z =
-            h00 * (1.0 - u) * (1.0 - v) + h10 * u * (1.0 - v) + h01 * (1.0 - u) * v + h11 * u * v;
-        let s = 1.0 / self.cell;
-        (z * s, gx * s, gy * s)
+    fn height(&self, i: usize) -> f32 {
+        self.h[i - self.offset] / self.cell
     }
 
-    /// Runs droplet `id`, appending height changes; returns sediment lost off the edge.
-    fn simulate(&self, h: &[f32], id: u64, deltas: &mut Vec<(u32, f32)>) -> f64 {
-        let p = &self.p;
+    /// Adds `d` (cell units) to sample `i`.
+    #[inline]
+    fn add(&mut self, i: usize, d: f32) {
+        let d = d * self.cell;
+        self.h[i - self.offset] += d;
+        self.deposition[i - self.offset] += d;
+    }
+}
+
+/// What one droplet needs of the model: its parameters and the field's shape.
+struct DropletModel<'a> {
+    p: &'a DropletParams,
+    nx: usize,
+    ny: usize,
+    seed: Seed,
+    brush: &'a [(i32, i32, f32)],
+    erodibility: Option<&'a [f32]>,
+    cell: f32,
+}
+
+impl DropletModel<'_> {
+    /// Start position of droplet `id` (cell units), indexed by `(seed, id)`.
+    fn start(&self, id: u64) -> (f32, f32) {
+        let key = id as i64;
+        let (wmax, hmax) = ((self.nx - 1) as f32, (self.ny - 1) as f32);
+        (
+            self.seed.uniform2(key, 0) as f32 * wmax,
+            self.seed.uniform2(key, 1) as f32 * hmax,
+        )
+    }
+
+    /// Rows per band: twice the farthest a droplet reaches from its start
+    /// (one cell per step, the brush, the interpolation corners and rounding).
+    fn band_rows(&self) -> usize {
+        2 * (self.p.lifetime as usize + self.p.radius as usize + 2)
+    }
+
+    /// Runs droplet `id` on `ground`; returns sediment lost off the edge (metres).
+    ///
+    /// Beyer's step with two bounds that keep every height inside the range
+    /// the terrain already spans: erosion never lowers a cell below the height
+    /// the droplet flows down to, and deposition never raises a cell above the
+    /// higher end of the step. Sediment that a bound holds back stays in the
+    /// droplet, so mass is conserved; what it still carries when it dies is
+    /// laid down where it stops.
+    fn simulate(&self, g: &mut Ground<'_>, id: u64) -> f64 {
+        let p = self.p;
         let (nx, ny) = (self.nx, self.ny);
         let (wmax, hmax) = ((nx - 1) as f32, (ny - 1) as f32);
         let key = id as i64;
-        let mut x = self.seed.uniform2(key, 0) as f32 * wmax;
-        let mut y = self.seed.uniform2(key, 1) as f32 * hmax;
+        let (mut x, mut y) = self.start(id);
         let (mut dx, mut dy) = (0.0f32, 0.0f32);
         let mut speed = p.initial_speed as f32;
         let mut water = p.initial_water as f32;
         let mut sed = 0.0f32;
         let inertia = p.inertia as f32;
-        let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
-        let cell = self.cell;
-        let deposit_at = |x: f32, y: f32, amount: f32, deltas: &mut Vec<(u32, f32)>| {
-            let amount = amount * cell;
-            let (ix, iy) = (x as usize, y as usize);
-            let (u, v) = (x - ix as f32, y - iy as f32);
-            let i = (iy * nx + ix) as u32;
-            deltas.push((i, amount * (1.0 - u) * (1.0 - v)));
-            deltas.push((i + 1, amount * u * (1.0 - v)));
-            deltas.push((i + nx as u32, amount * (1.0 - u) * v));
-            deltas.push((i + nx as u32 + 1, amount * u * v));
-        };
         for step in 0..p.lifetime {
-            let (z, gx, gy) = self.height_grad(h, x, y);
+            let corners = Corners::at(x, y, nx, ny);
+            let (z, gx, gy) = corners.height_grad(|i| g.height(i));
             dx = dx * inertia - gx * (1.0 - inertia);
             dy = dy * inertia - gy * (1.0 - inertia);
             let len = (dx * dx + dy * dy).sqrt();
@@ -313,9 +391,9 @@ impl DropletErosion {
             }
             let (nxp, nyp) = (x + dx, y + dy);
             if !(nxp >= 0.0 && nyp >= 0.0 && nxp < wmax && nyp < hmax) {
-                return f64::from(sed * cell); // carried off the map
+                return f64::from(sed * self.cell); // carried off the map
             }
-            let (nz, _, _) = self.height_grad(h, nxp, nyp);
+            let (nz, _, _) = Corners::at(nxp, nyp, nx, ny).height_grad(|i| g.height(i));
             let dh = nz - z;
             let cap = (-dh).max(p.min_slope as f32) * speed * water * p.capacity as f32;
             if sed > cap || dh > 0.0 {
@@ -325,28 +403,32 @@ impl DropletErosion {
                     (sed - cap) * p.deposit as f32
                 };
                 if amount > 0.0 {
-                    sed -= amount;
-                    deposit_at(x, y, amount, deltas);
+                    // No corner rises above the higher end of the step.
+                    sed -= corners.deposit(amount, z.max(nz), g);
                 }
             } else {
                 let want = ((cap - sed) * p.erode as f32).min(-dh);
                 let (cx, cy) = (x as i32, y as i32);
-                let mut wsum = 0.0f32;
-                for &(bx, by, w) in &self.brush {
+                let inside = |bx: i32, by: i32| {
                     let (px, py) = (cx + bx, cy + by);
-                    if px >= 0 && py >= 0 && (px as usize) < nx && (py as usize) < ny {
-                        wsum += w;
-                    }
-                }
+                    (px >= 0 && py >= 0 && (px as usize) < nx && (py as usize) < ny)
+                        .then(|| py as usize * nx + px as usize)
+                };
+                let wsum: f32 = self
+                    .brush
+                    .iter()
+                    .filter(|&&(bx, by, _)| inside(bx, by).is_some())
+                    .map(|b| b.2)
+                    .sum();
                 if wsum > 0.0 && want > 0.0 {
-                    for &(bx, by, w) in &self.brush {
-                        let (px, py) = (cx + bx, cy + by);
-                        if px >= 0 && py >= 0 && (px as usize) < nx && (py as usize) < ny {
-                            let i = py as usize * nx + px as usize;
-                            let k = erod.map_or(1.0, |e| e[i]);
-                            let amount = want * w / wsum * k;
+                    for &(bx, by, w) in self.brush {
+                        if let Some(i) = inside(bx, by) {
+                            let k = self.erodibility.map_or(1.0, |e| e[i]);
+                            // No cell is dug below the height the droplet flows to.
+                            let room = (g.height(i) - nz).max(0.0);
+                            let amount = (want * w / wsum * k).min(room);
                             if amount > 0.0 {
-                                deltas.push((i as u32, -amount * cell));
+                                g.add(i, -amount);
                                 sed += amount;
                             }
                         }
@@ -359,9 +441,68 @@ impl DropletErosion {
             y = nyp;
         }
         if sed > 0.0 {
-            deposit_at(x, y, sed, deltas);
+            let corners = Corners::at(x, y, nx, ny);
+            for (i, w) in corners.cells.into_iter().zip(corners.weights) {
+                g.add(i, sed * w);
+            }
         }
         0.0
+    }
+}
+
+/// The four samples around a point `(x, y)` (cell units) and their bilinear
+/// weights. The cell index is capped at the last cell, so a point on the
+/// field's far edge (`x = nx − 1` or `y = ny − 1`) is interpolated inside the last cell with
+/// weight 1 on its far side instead of reading past the row.
+struct Corners {
+    cells: [usize; 4],
+    weights: [f32; 4],
+    u: f32,
+    v: f32,
+}
+
+impl Corners {
+    #[inline]
+    fn at(x: f32, y: f32, nx: usize, ny: usize) -> Self {
+        let ix = (x as usize).min(nx - 2);
+        let iy = (y as usize).min(ny - 2);
+        let (u, v) = (x - ix as f32, y - iy as f32);
+        let i = iy * nx + ix;
+        Self {
+            cells: [i, i + 1, i + nx, i + nx + 1],
+            weights: [(1.0 - u) * (1.0 - v), u * (1.0 - v), (1.0 - u) * v, u * v],
+            u,
+            v,
+        }
+    }
+
+    /// Height and gradient (cell units) from the corner heights `h(i)`.
+    #[inline]
+    fn height_grad(&self, h: impl Fn(usize) -> f32) -> (f32, f32, f32) {
+        let [h00, h10, h01, h11] = self.cells.map(h);
+        let (u, v) = (self.u, self.v);
+        let gx = (h10 - h00) * (1.0 - v) + (h11 - h01) * v;
+        let gy = (h01 - h00) * (1.0 - u) + (h11 - h10) * u;
+        let z = h00 * self.weights[0]
+            + h10 * self.weights[1]
+            + h01 * self.weights[2]
+            + h11 * self.weights[3];
+        (z, gx, gy)
+    }
+
+    /// Lays `amount` down on the corners by their weights, none above
+    /// `ceiling`; returns what was laid down.
+    #[inline]
+    fn deposit(&self, amount: f32, ceiling: f32, g: &mut Ground<'_>) -> f32 {
+        let mut laid = 0.0;
+        for (&i, &w) in self.cells.iter().zip(&self.weights) {
+            let add = (amount * w).min((ceiling - g.height(i)).max(0.0));
+            if add > 0.0 {
+                g.add(i, add);
+                laid += add;
+            }
+        }
+        laid
     }
 }
 
@@ -423,6 +564,130 @@ mod tests {
             },
         ] {
             assert!(DropletErosion::new(p, &hf, Seed(1)).is_err());
+        }
+    }
+
+    /// A rough random field (fractal sum of lattice Gaussians) for the stability tests.
+    fn rough(nx: usize, ny: usize, cell: f32, seed: u64) -> HeightField {
+        let s = Seed(seed);
+        HeightField::from_fn(nx, ny, cell, |i, j| {
+            let mut v = 0.0;
+            let (mut a, mut f) = (50.0f32, 4usize);
+            while f <= 2 * nx.max(ny) {
+                let (fi, fj) = ((i * f / nx) as i64, (j * f / ny) as i64);
+                v += a * s.gaussian2(fi, fj + 1000 * f as i64) as f32;
+                a *= 0.5;
+                f *= 2;
+            }
+            v
+        })
+        .unwrap()
+    }
+
+    /// A droplet whose start rounds onto the field's far edge (x = nx − 1 in
+    /// f32) interpolates inside the last cell instead of reading past the row.
+    #[test]
+    fn a_start_on_the_far_edge_stays_inside_the_field() {
+        let corners = Corners::at(255.0, 255.0, 256, 256);
+        assert!(corners.cells.iter().all(|&i| i < 256 * 256));
+        assert_eq!(corners.weights, [0.0, 0.0, 0.0, 1.0]);
+        let corners = Corners::at(255.0, 3.5, 256, 256);
+        assert_eq!(corners.cells[1] % 256, 255, "same row, not the next one");
+        // Find a droplet index whose start rounds to x = 255 exactly, and run it.
+        let hf = rough(256, 256, 30.0, 4);
+        let mut d = DropletErosion::new(DropletParams::default(), &hf, Seed(37)).unwrap();
+        let model = DropletModel {
+            p: &d.p,
+            nx: 256,
+            ny: 256,
+            seed: d.seed,
+            brush: &d.brush,
+            erodibility: None,
+            cell: d.cell,
+        };
+        let id = (0..400_000_000u64)
+            .find(|&id| {
+                let (x, y) = model.start(id);
+                x == 255.0 || y == 255.0
+            })
+            .expect("an edge start within 4e8 droplets");
+        let mut hf2 = hf.clone();
+        d.next_droplet = id;
+        d.run(&mut hf2, 1, &NoProgress).unwrap();
+        assert!(hf2.check_finite().is_ok());
+    }
+
+    /// Millions of droplet steps with Beyer's defaults leave every height
+    /// inside the range the terrain started with (the field grows no pit and
+    /// no spike): the unbounded version reached ±1e21 m here.
+    #[test]
+    fn default_params_stay_in_range_over_many_droplets() {
+        let mut hf = rough(96, 96, 1.0, 11);
+        let (lo, hi) = hf.min_max();
+        let mut d = DropletErosion::new(DropletParams::default(), &hf, Seed(2)).unwrap();
+        d.run(&mut hf, 150_000, &NoProgress).unwrap();
+        let (a, b) = hf.min_max();
+        assert!(
+            a >= lo && b <= hi + 0.05 * (hi - lo),
+            "{lo}..{hi} → {a}..{b}"
+        );
+    }
+
+    /// Bands of droplets running at once give the same field on 1 and 2
+    /// threads, and conserve mass like the sequential run.
+    #[test]
+    fn banded_rounds_are_thread_independent_and_conserve_mass() {
+        let p = DropletParams {
+            batch: 512,
+            ..DropletParams::default()
+        };
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut hf = rough(80, 300, 2.0, 5);
+                let mut d = DropletErosion::new(p.clone(), &hf, Seed(9)).unwrap();
+                d.run(&mut hf, 20_000, &NoProgress).unwrap();
+                (hf, d.outflow())
+            })
+        };
+        let (a, out_a) = run(1);
+        let (b, out_b) = run(2);
+        assert_eq!(a.heights().as_slice(), b.heights().as_slice());
+        assert_eq!(out_a.to_bits(), out_b.to_bits());
+        let m0 = rough(80, 300, 2.0, 5).heights().sum();
+        let m1 = a.heights().sum() + out_a;
+        assert!((m1 - m0).abs() < 1e-3 * m0.abs().max(1.0), "{m0} → {m1}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// Any accepted parameter set on any grid size keeps heights finite
+        /// and inside the starting range, plus at most what the last deposits
+        /// of dying droplets add.
+        #[test]
+        fn any_accepted_params_stay_in_range(
+            nx in 3usize..48, ny in 3usize..48, cell in 0.1f32..500.0,
+            inertia in 0.0f64..0.99, capacity in 0.0f64..50.0, min_slope in 0.0f64..1.0,
+            erode in 0.0f64..=1.0, deposit in 0.0f64..=1.0, evaporate in 0.0f64..0.99,
+            gravity in 0.0f64..100.0, radius in 1u32..=16, lifetime in 1u32..200,
+            water in 0.01f64..10.0, speed in 0.0f64..10.0, batch in 1u32..300,
+            seed in 0u64..1000,
+        ) {
+            let p = DropletParams {
+                inertia, capacity, min_slope, erode, deposit, evaporate, gravity, radius,
+                lifetime, initial_water: water, initial_speed: speed, batch,
+            };
+            let mut hf = rough(nx, ny, cell, seed);
+            let (lo, hi) = hf.min_max();
+            let mut d = DropletErosion::new(p, &hf, Seed(seed)).unwrap();
+            d.run(&mut hf, 3000, &NoProgress).unwrap();
+            proptest::prop_assert!(hf.check_finite().is_ok());
+            let (a, b) = hf.min_max();
+            proptest::prop_assert!(a >= lo, "{} < {}", a, lo);
+            proptest::prop_assert!(b <= hi + (hi - lo), "{} > {} + range", b, hi);
         }
     }
 }

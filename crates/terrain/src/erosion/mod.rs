@@ -197,13 +197,37 @@ pub(crate) fn check_field(
         });
     }
     let _ = method;
-    Ok(hf.check_finite()?)
+    check_heights(hf)
+}
+
+/// Largest height magnitude the erosion models accept, metres (1000 km; f32
+/// still resolves 6 cm there). Beyond it their squared slopes and fluxes leave
+/// f32's range and the result would be NaN.
+pub const MAX_HEIGHT: f32 = 1e6;
+
+/// Checks every height is finite and within ±[`MAX_HEIGHT`], naming the first
+/// one that is not.
+pub(crate) fn check_heights(hf: &HeightField) -> Result<()> {
+    match hf
+        .heights()
+        .find(|v| !v.is_finite() || v.abs() > MAX_HEIGHT)
+    {
+        None => Ok(()),
+        Some((x, y, &value)) if !value.is_finite() => {
+            Err(natura_core::CoreError::NonFinite { x, y, value }.into())
+        }
+        Some((x, y, &value)) => Err(TerrainError::InvalidParameter {
+            name: "height",
+            value: format!("{value} at ({x}, {y})"),
+            reason: "erosion needs heights within ±1e6 m".into(),
+        }),
+    }
 }
 
 /// Checks the size of a new grid model: at least 3 × 3 samples.
 pub(crate) fn check_model_size(method: &'static str, hf: &HeightField) -> Result<()> {
     min_size(method, hf.nx(), hf.ny(), 3, 3)?;
-    Ok(hf.check_finite()?)
+    check_heights(hf)
 }
 
 /// Checks an optional erodibility map against the field size.

@@ -57,10 +57,12 @@ impl Default for StreamPowerParams {
 }
 
 impl StreamPowerParams {
-    /// `K ≥ 0`, `m ∈ [0, 2]`, `n ∈ [0.5, 4]`, `U ≥ 0` (≤ 1 m/yr), `Δt ∈ (0, 10⁷]` years,
+    /// `K ∈ [0, 1]`, `m ∈ [0, 2]`, `n ∈ [0.5, 4]`, `U ≥ 0` (≤ 1 m/yr), `Δt ∈ (0, 10⁷]` years,
     /// and `Keep` refused (rivers must reach the edge).
     pub fn validate(&self) -> Result<()> {
-        non_negative("StreamPowerParams::k", self.k)?;
+        // K beyond 1 is five orders of magnitude past any fitted river and
+        // overflows the implicit update's K·Δt·A^m factor on large basins.
+        in_range("StreamPowerParams::k", self.k, 0.0, 1.0)?;
         in_range("StreamPowerParams::m", self.m, 0.0, 2.0)?;
         in_range("StreamPowerParams::n", self.n, 0.5, 4.0)?;
         non_negative("StreamPowerParams::uplift_m_per_yr", self.uplift_m_per_yr)?;

@@ -67,7 +67,7 @@ pub fn poisson_faults(
 ) -> Result<HeightField> {
     p.validate()?;
     min_size("poisson_faults", nx, ny, 1, 1)?;
-    natura_core::positive_finite("cell_size", f64::from(cell_size))?;
+    natura_core::check::positive("cell_size", f64::from(cell_size))?;
     let mut rng = seed.derive("poisson-faults").rng();
     let (cx, cy) = ((nx - 1) as f64 / 2.0, (ny - 1) as f64 / 2.0);
     let radius = (cx * cx + cy * cy).sqrt().max(0.5);

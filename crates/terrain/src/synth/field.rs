@@ -102,7 +102,7 @@ where
 {
     map.validate()?;
     min_size("fill_field", nx, ny, 1, 1)?;
-    natura_core::positive_finite("cell_size", f64::from(cell_size))?;
+    natura_core::check::positive("cell_size", f64::from(cell_size))?;
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
     par::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {
         for (r, row) in out.chunks_mut(nx).enumerate() {
@@ -130,7 +130,7 @@ where
 {
     map.validate()?;
     min_size("fill_rows", nx, ny, 1, 1)?;
-    natura_core::positive_finite("cell_size", f64::from(cell_size))?;
+    natura_core::check::positive("cell_size", f64::from(cell_size))?;
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
     let dx = f64::from(cell_size) * map.frequency;
     par::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {

@@ -88,7 +88,7 @@ pub(crate) fn spectral_with_residue(
 ) -> Result<(HeightField, f64)> {
     p.validate()?;
     min_size("spectral_synthesis", nx, ny, 2, 2)?;
-    natura_core::positive_finite("cell_size", f64::from(cell_size))?;
+    natura_core::check::positive("cell_size", f64::from(cell_size))?;
     natura_core::checked_len::<f64>(&[nx, ny, 4])?;
     let seed = seed.derive("spectral");
     let mut noise = vec![0.0f64; nx * ny];

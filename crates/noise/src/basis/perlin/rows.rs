@@ -12,7 +12,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::basis::perlin::Perlin;
+use super::Perlin;
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
