@@ -7,6 +7,7 @@
 //! each type), so `|N| ≤ 1` and the bound is attained.
 
 pub mod cellular;
+pub(crate) mod cellular_rows;
 pub mod checker;
 pub(crate) mod lattice;
 pub mod perlin;

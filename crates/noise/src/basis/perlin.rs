@@ -32,7 +32,9 @@ use glam::{DVec2, DVec3, DVec4};
 use crate::basis::lattice::lattice_sum;
 use crate::basis::{Fade, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
-use crate::hash::{corner, grad1, grad2, grad3, grad4, row2, row3, seed32};
+use crate::hash::{
+    PX, PY, PZ, corner, corner_spread, dot2, dot3, grad1, grad2, grad3, grad4, row2, row3, seed32,
+};
 use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
 mod points;
@@ -50,6 +52,9 @@ pub const PERLIN3_SUP_CUBIC: f64 = 1.044_887;
 pub const PERLIN4_SUP_QUINTIC: f64 = 1.5;
 /// sup |raw 4-D gradient noise| with the cubic fade (numerically maximised).
 pub const PERLIN4_SUP_CUBIC: f64 = 1.5;
+
+/// The 2-D normalisation `1 / PERLIN2_SUP`.
+const K2: f64 = 1.0 / PERLIN2_SUP;
 
 /// Lipschitz constants of the *normalised* noise, `[cubic, quintic]`, per dimension 1-4.
 const LIPSCHITZ: [[f64; 2]; 4] = [[2.86, 2.73], [2.54, 2.87], [2.90, 3.64], [4.0, 4.8]];
@@ -140,6 +145,17 @@ impl Perlin {
         move |t| (f.eval(t), f.deriv(t))
     }
 
+    /// The 3-D normalisation `1 / sup` for this fade (the value [`Self::scale`] gives).
+    #[inline(always)]
+    fn k3(&self) -> f64 {
+        const Q: f64 = 1.0 / PERLIN3_SUP_QUINTIC;
+        const C: f64 = 1.0 / PERLIN3_SUP_CUBIC;
+        match self.fade {
+            Fade::Quintic => Q,
+            Fade::Cubic => C,
+        }
+    }
+
     fn scale(&self, dim: usize) -> f64 {
         let q = self.fade == Fade::Quintic;
         1.0 / match dim {
@@ -220,22 +236,20 @@ impl Field for Perlin {
         // Direct bilinear form: cheaper than the generic sum, same lattice.
         let (ix, fx) = split(p.x);
         let (iy, fy) = split(p.y);
-        let r0 = row2(iy, self.s);
-        let r1 = row2(iy.wrapping_add(1), self.s);
-        let dot = |h: u32, x: f64, y: f64| {
-            let (gx, gy) = grad2(h);
-            f64::from(gx) * x + f64::from(gy) * y
-        };
-        let ix1 = ix.wrapping_add(1);
-        let n00 = dot(corner(ix, r0), fx, fy);
-        let n10 = dot(corner(ix1, r0), fx - 1.0, fy);
-        let n01 = dot(corner(ix, r1), fx, fy - 1.0);
-        let n11 = dot(corner(ix1, r1), fx - 1.0, fy - 1.0);
+        let x0 = ix.wrapping_mul(PX);
+        let x1 = x0.wrapping_add(PX);
+        let y0 = iy.wrapping_mul(PY);
+        let (r0, r1) = (y0 ^ self.s, y0.wrapping_add(PY) ^ self.s);
+        let (gx, gy) = (fx - 1.0, fy - 1.0);
+        let n00 = dot2(corner_spread(x0, r0), fx, fy);
+        let n10 = dot2(corner_spread(x1, r0), gx, fy);
+        let n01 = dot2(corner_spread(x0, r1), fx, gy);
+        let n11 = dot2(corner_spread(x1, r1), gx, gy);
         let u = self.fade.eval(fx);
         let v = self.fade.eval(fy);
         let a = n00 + u * (n10 - n00);
         let b = n01 + u * (n11 - n01);
-        (a + v * (b - a)) * self.scale(2)
+        (a + v * (b - a)) * K2
     }
 
     #[inline]
@@ -243,26 +257,29 @@ impl Field for Perlin {
         let (ix, fx) = split(p.x);
         let (iy, fy) = split(p.y);
         let (iz, fz) = split(p.z);
-        let dot = |h: u32, x: f64, y: f64, z: f64| {
-            let (gx, gy, gz) = grad3(h);
-            f64::from(gx) * x + f64::from(gy) * y + f64::from(gz) * z
-        };
-        let ix1 = ix.wrapping_add(1);
+        let x0 = ix.wrapping_mul(PX);
+        let x1 = x0.wrapping_add(PX);
+        let y0 = iy.wrapping_mul(PY);
+        let y1 = y0.wrapping_add(PY);
+        let zp = iz.wrapping_mul(PZ);
+        let (z0, z1) = (zp ^ self.s, zp.wrapping_add(PZ) ^ self.s);
+        let (gx, gy, gz) = (fx - 1.0, fy - 1.0, fz - 1.0);
         let u = self.fade.eval(fx);
-        let mut plane = [0.0; 4];
-        for (c, slot) in plane.iter_mut().enumerate() {
-            let (cy, cz) = ((c & 1) as u32, (c >> 1) as u32);
-            let r = row3(iy.wrapping_add(cy), iz.wrapping_add(cz), self.s);
-            let (dy, dz) = (fy - f64::from(cy), fz - f64::from(cz));
-            let n0 = dot(corner(ix, r), fx, dy, dz);
-            let n1 = dot(corner(ix1, r), fx - 1.0, dy, dz);
-            *slot = n0 + u * (n1 - n0);
-        }
+        // The four x edges of the cell, each blended along x.
+        let edge = |r: u32, dy: f64, dz: f64| {
+            let n0 = dot3(corner_spread(x0, r), fx, dy, dz);
+            let n1 = dot3(corner_spread(x1, r), gx, dy, dz);
+            n0 + u * (n1 - n0)
+        };
+        let e00 = edge(y0 ^ z0, fy, fz);
+        let e10 = edge(y1 ^ z0, gy, fz);
+        let e01 = edge(y0 ^ z1, fy, gz);
+        let e11 = edge(y1 ^ z1, gy, gz);
         let v = self.fade.eval(fy);
         let w = self.fade.eval(fz);
-        let a = plane[0] + v * (plane[1] - plane[0]);
-        let b = plane[2] + v * (plane[3] - plane[2]);
-        (a + w * (b - a)) * self.scale(3)
+        let a = e00 + v * (e10 - e00);
+        let b = e01 + v * (e11 - e01);
+        (a + w * (b - a)) * self.k3()
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -614,7 +631,7 @@ pub(crate) fn row_spans(
             let c = table[slot];
             let t0 = fx as f32;
             let poly = |k: usize| {
-                let t = t0 + k as f32 * s32;
+                let t = t0 + (k as i32) as f32 * s32;
                 (c[0] + c[1] * t) + f(t) * (c[2] + c[3] * t)
             };
             let mut g = 0usize;

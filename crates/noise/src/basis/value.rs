@@ -218,17 +218,20 @@ impl Value {
                         match interp {
                             ValueInterp::Linear => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * (t0 + k as f32 * s32);
+                                    *o = a + b * (t0 + (k as i32) as f32 * s32);
                                 }
                             }
                             ValueInterp::Cubic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::lanes::cubic32(t0 + k as f32 * s32);
+                                    *o =
+                                        a + b * crate::lanes::cubic32(t0 + (k as i32) as f32 * s32);
                                 }
                             }
                             ValueInterp::Quintic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::lanes::quintic32(t0 + k as f32 * s32);
+                                    *o = a + b * crate::lanes::quintic32(
+                                        t0 + (k as i32) as f32 * s32,
+                                    );
                                 }
                             }
                         }

@@ -18,7 +18,7 @@ use crate::basis::Fade;
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::fractal::fbm::Fbm;
-use crate::hash::{PY, PZ, corner, grad3, mix32};
+use crate::hash::{corner, grad3, row3};
 use crate::lanes::{Simd, cubic32, quintic32, run, split_fast};
 
 /// Points per chunk of the batch fBm (stack scratch buffers, no allocation).
@@ -124,16 +124,13 @@ fn points_loop(
         let (iy, fy) = split_fast(py);
         let (iz, fz) = split_fast(pz);
         let (fx, fy, fz) = (fx as f32, fy as f32, fz as f32);
-        // The row hashes of `hash::row3`, with the z half shared by two rows.
-        let z0 = mix32(iz.wrapping_mul(PZ) ^ seed);
-        let z1 = mix32(iz.wrapping_add(1).wrapping_mul(PZ) ^ seed);
-        let y0 = iy.wrapping_mul(PY);
-        let y1 = iy.wrapping_add(1).wrapping_mul(PY);
+        // The row hashes of `hash::row3`: spread indices, xored.
+        let (iy1, iz1) = (iy.wrapping_add(1), iz.wrapping_add(1));
         let rows = [
-            mix32(y0 ^ z0),
-            mix32(y1 ^ z0),
-            mix32(y0 ^ z1),
-            mix32(y1 ^ z1),
+            row3(iy, iz, seed),
+            row3(iy1, iz, seed),
+            row3(iy, iz1, seed),
+            row3(iy1, iz1, seed),
         ];
         let dy = [fy, fy - 1.0, fy, fy - 1.0];
         let dz = [fz, fz, fz - 1.0, fz - 1.0];
