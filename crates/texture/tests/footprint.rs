@@ -76,7 +76,7 @@ fn rms(a: &[f64], b: &[f64]) -> f64 {
 fn variance_falls_as_the_footprint_grows() {
     let widths = [0.0, 0.01, 0.04, 0.15, 0.6, 2.5];
     let mut rng = Rng(17);
-    let points: Vec<DVec3> = (0..600).map(|_| rng.p3(20.0)).collect();
+    let points: Vec<DVec3> = (0..4000).map(|_| rng.p3(20.0)).collect();
     for (name, f) in fields() {
         let mut last = f64::INFINITY;
         for &w in &widths {
@@ -103,7 +103,7 @@ fn band_limited_evaluation_matches_the_supersampled_box_filter() {
     // below 3/4 of the point sample's error.
     let mut rng = Rng(23);
     for (name, f) in fields() {
-        let points: Vec<DVec3> = (0..120).map(|_| rng.p3(20.0)).collect();
+        let points: Vec<DVec3> = (0..400).map(|_| rng.p3(20.0)).collect();
         let spread = variance(
             &points
                 .iter()

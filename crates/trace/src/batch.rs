@@ -1,8 +1,7 @@
 //! Tile-parallel, deterministic batch tracing of images.
 //!
 //! The image is cut into square tiles ("postage stamps", which balance the
-//! load at the horizon, where the work concentrates: seed 000, lines
-//! 2909–2913), traced in parallel with rayon (feature `parallel`), and
+//! load at the horizon, where the work concentrates: Musgrave 1993, §7.2.1.4), traced in parallel with rayon (feature `parallel`), and
 //! reported tile by tile to a [`Progress`]. Every pixel is a pure function of
 //! its coordinates, with sub-pixel jitter drawn from [`Seed`] hashes of the
 //! pixel and sample index (random numbers indexed by position), so the image

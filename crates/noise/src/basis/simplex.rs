@@ -254,28 +254,16 @@ impl Simplex {
 impl Field for Simplex {
     #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        if !p.is_finite() {
-            return f64::NAN;
-        }
         self.value2(p)
     }
     #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        if !p.is_finite() {
-            return f64::NAN;
-        }
         self.value3(p)
     }
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
-        if !p.is_finite() {
-            return (f64::NAN, DVec2::NAN);
-        }
         self.grad2_impl(p)
     }
     fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
-        if !p.is_finite() {
-            return (f64::NAN, DVec3::NAN);
-        }
         self.grad3_impl(p)
     }
     fn bound(&self) -> f64 {

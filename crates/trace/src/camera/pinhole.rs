@@ -10,12 +10,11 @@ use crate::ray::Ray;
 /// A pinhole camera with a flat virtual screen, set up by look-at, vertical
 /// field of view and aspect ratio.
 ///
-/// Rayshade's `RSViewing` / `SampleScreen` (seed 000, lines 3129–3173 and
-/// 3288–3294): the screen is perpendicular to the view direction, spanned by
+/// Rayshade's `RSViewing` / `SampleScreen` (Musgrave 1993, §8.6): the screen is perpendicular to the view direction, spanned by
 /// `right = normalize(dir × up)` and `up' = right × dir`, and a sample's ray
 /// is `normalize(dir + sx·right + sy·up')` with `sx, sy` linear in the pixel
 /// coordinates. The field of view must stay below 180°: at 180° the eye lies
-/// in the screen plane (line 3039); use [`crate::PanoramicCamera`] for wider views.
+/// in the screen plane (Musgrave 1993, §8.1); use [`crate::PanoramicCamera`] for wider views.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PinholeCamera {
     eye: Vec3,

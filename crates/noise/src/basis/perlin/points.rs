@@ -124,7 +124,7 @@ fn points_loop(
         let (iy, fy) = split_fast(py);
         let (iz, fz) = split_fast(pz);
         let (fx, fy, fz) = (fx as f32, fy as f32, fz as f32);
-        // The corner rows of the point path (`hash::row3`).
+        // The row hashes of `hash::row3`: spread indices, xored.
         let (iy1, iz1) = (iy.wrapping_add(1), iz.wrapping_add(1));
         let rows = [
             row3(iy, iz, seed),
