@@ -3,8 +3,8 @@
 //! Every basis draws its per-lattice-point randomness (gradients, values,
 //! feature points, impulses) from a stateless hash of the lattice coordinates
 //! and the seed, in the spirit of Fournier–Fussell–Carpenter's "random numbers
-//! indexed by position". No permutation table: the sources' table-based
-//! implementations repeat every 256 cells (spec `noise.md` §2.1, *Periodicity*);
+//! indexed by position". No permutation table: the common table-based
+//! implementations repeat every 256 cells, which shows at planet scale;
 //! this hash repeats only with the 2³² wrap of the `i32` lattice index.
 //!
 //! The hash is 32-bit integer arithmetic so the f64 point path and the f32
@@ -204,9 +204,8 @@ pub(crate) const fn grad2(h: u32) -> (f32, f32) {
     (gx, gy)
 }
 
-/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions
-/// `(±1, ±1, 0)` and permutations (Perlin 2002), four of them doubled to
-/// fill 16 slots.
+/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions `(±1, ±1,
+/// 0)` and permutations (Perlin 2002), four of them doubled to fill 16 slots.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn grad3(h: u32) -> (f32, f32, f32) {
