@@ -60,7 +60,8 @@ pub trait Field: Send + Sync {
     /// The values at `p` scaled by each frequency: `out[k] = eval2(p·freq[k])`
     /// (what a fractal's octave loop asks of its basis).
     ///
-    /// The results equal the point evaluations bit for bit. The default
+    /// The results equal the point evaluations (bit for bit, except that an
+    /// implementation may give an exact zero the other sign). The default
     /// evaluates point by point; [`Perlin`](crate::Perlin) noise evaluates
     /// the octaves as SIMD lanes.
     ///

@@ -36,7 +36,9 @@ use glam::{DVec2, DVec3, DVec4};
 use crate::basis::Fade;
 use crate::basis::lattice::lattice_sum;
 use crate::field::{Field, Lattice3};
-use crate::hash::{PX, PY, PZ, corner_spread, dot2, dot3, grad1, grad2, grad3, grad4, seed32};
+use crate::hash::{
+    PX, PY, PZ, corner_spread, dot2, dot3, dot3_lanes, grad1, grad2, grad3, grad4, seed32,
+};
 use crate::lanes::{Kernel, Simd, run, split, split_fast};
 
 mod points;
@@ -413,13 +415,6 @@ fn dot2_bits(h: u32, dx: f64, dy: f64) -> f64 {
     f64::from(gx) * dx + f64::from(gy) * dy
 }
 
-/// [`dot3`] with the gradient selected by bit logic ([`grad3`]).
-#[inline(always)]
-fn dot3_bits(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
-    let (gx, gy, gz) = grad3(h);
-    f64::from(gx) * dx + f64::from(gy) * dy + f64::from(gz) * dz
-}
-
 /// Octaves evaluated together, as SIMD lanes.
 const OCTAVE_LANES: usize = 4;
 
@@ -428,8 +423,11 @@ const LANE_LIMIT: f64 = 2_251_799_813_685_248.0;
 
 /// [`Field::eval2_scaled`] as a [`Kernel`]: the octaves in groups of
 /// [`OCTAVE_LANES`] lanes, each lane the point path's [`cell2`] on its own
-/// octave's point (bit-identical to it); a group with a lane out of the
-/// lanes' exact range (or NaN) goes point by point.
+/// octave's point (bit-identical to it; in 3-D the gradient products are
+/// formed as signed sums, [`dot3_lanes`], the same values except that an
+/// exactly zero result may carry the other sign); a group with a lane out of
+/// the lanes' exact range (or NaN) goes point by point. Every SIMD level
+/// gives the same bits.
 struct Octaves2<'a> {
     n: &'a Perlin,
     p: DVec2,
@@ -442,24 +440,33 @@ impl Kernel for Octaves2<'_> {
     #[inline(always)]
     fn call(self) {
         let Self { n, p, freq, out } = self;
-        for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
-            let f: [f64; OCTAVE_LANES] =
-                core::array::from_fn(|l| fs.get(l).copied().unwrap_or(0.0));
-            let (x, y) = (f.map(|f| p.x * f), f.map(|f| p.y * f));
-            let lanes_ok = x.iter().chain(&y).all(|v| v.abs() < LANE_LIMIT);
-            if !lanes_ok {
-                for (o, &f) in os.iter_mut().zip(fs) {
-                    *o = n.eval2(p * f);
+        with_fade!(n.fade, |fade| {
+            for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
+                // Plain loops over the lanes (no closures: they must inline
+                // into this target-feature context to vectorise).
+                let mut x = [0.0f64; OCTAVE_LANES];
+                let mut y = [0.0f64; OCTAVE_LANES];
+                for l in 0..fs.len() {
+                    x[l] = p.x * fs[l];
+                    y[l] = p.y * fs[l];
                 }
-                continue;
+                let mut ok = true;
+                for l in 0..OCTAVE_LANES {
+                    ok &= x[l].abs() < LANE_LIMIT && y[l].abs() < LANE_LIMIT;
+                }
+                if !ok {
+                    for (o, &f) in os.iter_mut().zip(fs) {
+                        *o = n.eval2(p * f);
+                    }
+                    continue;
+                }
+                let mut v = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    v[l] = cell2(n.s, split_fast(x[l]), split_fast(y[l]), fade, dot2_bits) * K2;
+                }
+                os.copy_from_slice(&v[..os.len()]);
             }
-            let v: [f64; OCTAVE_LANES] = with_fade!(n.fade, |fade| core::array::from_fn(|l| {
-                cell2(n.s, split_fast(x[l]), split_fast(y[l]), fade, dot2_bits)
-            }));
-            for (o, v) in os.iter_mut().zip(v) {
-                *o = v * K2;
-            }
-        }
+        });
     }
 }
 
@@ -477,25 +484,36 @@ impl Kernel for Octaves3<'_> {
     fn call(self) {
         let Self { n, p, freq, out } = self;
         let k = n.k3();
-        for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
-            let f: [f64; OCTAVE_LANES] =
-                core::array::from_fn(|l| fs.get(l).copied().unwrap_or(0.0));
-            let (x, y, z) = (f.map(|f| p.x * f), f.map(|f| p.y * f), f.map(|f| p.z * f));
-            let lanes_ok = x.iter().chain(&y).chain(&z).all(|v| v.abs() < LANE_LIMIT);
-            if !lanes_ok {
-                for (o, &f) in os.iter_mut().zip(fs) {
-                    *o = n.eval3(p * f);
+        with_fade!(n.fade, |fade| {
+            for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
+                let mut x = [0.0f64; OCTAVE_LANES];
+                let mut y = [0.0f64; OCTAVE_LANES];
+                let mut z = [0.0f64; OCTAVE_LANES];
+                for l in 0..fs.len() {
+                    x[l] = p.x * fs[l];
+                    y[l] = p.y * fs[l];
+                    z[l] = p.z * fs[l];
                 }
-                continue;
+                let mut ok = true;
+                for l in 0..OCTAVE_LANES {
+                    ok &= x[l].abs() < LANE_LIMIT
+                        && y[l].abs() < LANE_LIMIT
+                        && z[l].abs() < LANE_LIMIT;
+                }
+                if !ok {
+                    for (o, &f) in os.iter_mut().zip(fs) {
+                        *o = n.eval3(p * f);
+                    }
+                    continue;
+                }
+                let mut v = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    let (sx, sy, sz) = (split_fast(x[l]), split_fast(y[l]), split_fast(z[l]));
+                    v[l] = cell3(n.s, sx, sy, sz, fade, dot3_lanes) * k;
+                }
+                os.copy_from_slice(&v[..os.len()]);
             }
-            let v: [f64; OCTAVE_LANES] = with_fade!(n.fade, |fade| core::array::from_fn(|l| {
-                let (sx, sy, sz) = (split_fast(x[l]), split_fast(y[l]), split_fast(z[l]));
-                cell3(n.s, sx, sy, sz, fade, dot3_bits)
-            }));
-            for (o, v) in os.iter_mut().zip(v) {
-                *o = v * k;
-            }
-        }
+        });
     }
 }
 
@@ -503,43 +521,68 @@ impl Kernel for Octaves3<'_> {
 mod tests {
     use super::*;
 
-    /// The octave lanes equal the point path bit for bit, at every SIMD
-    /// level, for both fades, any octave count (whole groups and a partial
-    /// one), and groups that fall back to the point path (huge or NaN
-    /// coordinates).
+    /// The octave lanes equal the point path (bit for bit, but for the sign
+    /// of an exact zero in 3-D), give the same bits at every SIMD level, for
+    /// both fades, any octave count (whole groups and a partial one), on the
+    /// lattice (exact zeros), and in groups that fall back to the point path
+    /// (huge or NaN coordinates).
     #[test]
-    fn octave_lanes_equal_point_evaluation_bit_for_bit() {
+    fn octave_lanes_equal_point_evaluation() {
+        let same = |a: f64, b: f64| {
+            a.to_bits() == b.to_bits() || (a == 0.0 && b == 0.0) || (a.is_nan() && b.is_nan())
+        };
         let freq: [f64; 11] = core::array::from_fn(|k| 0.37 * 2.218_f64.powi(k as i32));
+        let lattice = [
+            1.0, 2.0, 4.0, 8.0, 0.5, 16.0, 32.0, 64.0, 128.0, 256.0, 512.0,
+        ];
         let points = [
             DVec3::new(0.3, -7.25, 2.5),
             DVec3::new(-1234.567, 89.01, -0.001),
             DVec3::new(4.0e5 + 0.77, -3.0e6, 1.0e3),
             DVec3::new(3.0e14, 0.5, -0.5),
             DVec3::new(f64::NAN, 1.0, 2.0),
+            DVec3::new(3.0, -5.0, 7.0),
         ];
         for fade in [Fade::Quintic, Fade::Cubic] {
             let n = Perlin::with_fade(21, fade);
             for p in points {
-                for len in [1, 4, 7, 11] {
-                    for simd in Simd::supported() {
-                        let mut out = [0.0; 11];
-                        n.octaves2(simd, p.truncate(), &freq[..len], &mut out);
-                        for k in 0..len {
-                            let want = n.eval2(p.truncate() * freq[k]);
-                            assert_eq!(
-                                out[k].to_bits(),
-                                want.to_bits(),
-                                "{fade:?} {p} {simd:?} 2-D octave {k}"
-                            );
-                        }
-                        n.octaves3(simd, p, &freq[..len], &mut out);
-                        for k in 0..len {
-                            let want = n.eval3(p * freq[k]);
-                            assert_eq!(
-                                out[k].to_bits(),
-                                want.to_bits(),
-                                "{fade:?} {p} {simd:?} 3-D octave {k}"
-                            );
+                for freq in [&freq, &lattice] {
+                    for len in [1, 4, 7, 11] {
+                        let mut first: Option<([f64; 11], [f64; 11])> = None;
+                        for simd in Simd::supported() {
+                            let mut o2 = [0.0; 11];
+                            let mut o3 = [0.0; 11];
+                            n.octaves2(simd, p.truncate(), &freq[..len], &mut o2);
+                            n.octaves3(simd, p, &freq[..len], &mut o3);
+                            for k in 0..len {
+                                let want = n.eval2(p.truncate() * freq[k]);
+                                assert_eq!(
+                                    o2[k].to_bits(),
+                                    want.to_bits(),
+                                    "{fade:?} {p} {simd:?} 2-D {k}"
+                                );
+                                let want = n.eval3(p * freq[k]);
+                                assert!(
+                                    same(o3[k], want),
+                                    "{fade:?} {p} {simd:?} 3-D {k}: {} vs {want}",
+                                    o3[k]
+                                );
+                            }
+                            match first {
+                                None => first = Some((o2, o3)),
+                                Some((f2, f3)) => {
+                                    assert_eq!(
+                                        f2.map(f64::to_bits),
+                                        o2.map(f64::to_bits),
+                                        "{simd:?}"
+                                    );
+                                    assert_eq!(
+                                        f3.map(f64::to_bits),
+                                        o3.map(f64::to_bits),
+                                        "{simd:?}"
+                                    );
+                                }
+                            }
                         }
                     }
                 }

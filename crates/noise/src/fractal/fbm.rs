@@ -4,8 +4,10 @@ use glam::{DVec2, DVec3};
 
 use crate::error::Result;
 use crate::field::Field;
+#[cfg(doc)]
+use crate::fractal::MAX_OCTAVES;
 use crate::fractal::rows::octave_rows;
-use crate::fractal::{MAX_OCTAVES, Octaves, Spectral};
+use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 
 /// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and `w_k
@@ -69,18 +71,12 @@ impl<B: Field> Fbm<B> {
 impl<B: Field> Field for Fbm<B> {
     #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let mut n = [0.0; MAX_OCTAVES];
-        let n = &mut n[..self.oct.count()];
-        self.basis.eval2_scaled(p, self.oct.frequencies(), n);
-        weighted_sum(self.oct.weights(), n, false)
+        octave_sum(&self.oct, false, |f, n| self.basis.eval2_scaled(p, f, n))
     }
 
     #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let mut n = [0.0; MAX_OCTAVES];
-        let n = &mut n[..self.oct.count()];
-        self.basis.eval3_scaled(p, self.oct.frequencies(), n);
-        weighted_sum(self.oct.weights(), n, false)
+        octave_sum(&self.oct, false, |f, n| self.basis.eval3_scaled(p, f, n))
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -209,18 +205,12 @@ impl<B: Field> Turbulence<B> {
 impl<B: Field> Field for Turbulence<B> {
     #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let mut n = [0.0; MAX_OCTAVES];
-        let n = &mut n[..self.oct.count()];
-        self.basis.eval2_scaled(p, self.oct.frequencies(), n);
-        weighted_sum(self.oct.weights(), n, true)
+        octave_sum(&self.oct, true, |f, n| self.basis.eval2_scaled(p, f, n))
     }
 
     #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let mut n = [0.0; MAX_OCTAVES];
-        let n = &mut n[..self.oct.count()];
-        self.basis.eval3_scaled(p, self.oct.frequencies(), n);
-        weighted_sum(self.oct.weights(), n, true)
+        octave_sum(&self.oct, true, |f, n| self.basis.eval3_scaled(p, f, n))
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -268,13 +258,30 @@ impl<B: Field> Field for Turbulence<B> {
     }
 }
 
-/// `Σ_k w_k·n_k` (of `|n_k|` when `abs`), summed lowest octave first.
+/// Octaves evaluated per call of the basis's scaled evaluation (a small
+/// stack buffer: no allocation, and no zeroing of [`MAX_OCTAVES`] slots per
+/// point).
+const OCTAVE_CHUNK: usize = 8;
+
+/// `Σ_k w_k·n_k` (of `|n_k|` when `abs`) with the octave values `n_k` from
+/// `eval(frequencies, out)`, summed one term at a time from the lowest octave
+/// (the order of the plain loop, so the same bits).
 #[inline(always)]
-fn weighted_sum(w: &[f64], n: &[f64], abs: bool) -> f64 {
-    w.iter()
-        .zip(n)
-        .map(|(w, &n)| w * if abs { n.abs() } else { n })
-        .sum()
+fn octave_sum(oct: &Octaves, abs: bool, eval: impl Fn(&[f64], &mut [f64])) -> f64 {
+    let mut sum = -0.0;
+    let mut n = [0.0; OCTAVE_CHUNK];
+    for (f, w) in oct
+        .frequencies()
+        .chunks(OCTAVE_CHUNK)
+        .zip(oct.weights().chunks(OCTAVE_CHUNK))
+    {
+        let n = &mut n[..f.len()];
+        eval(f, n);
+        for (w, &n) in w.iter().zip(n.iter()) {
+            sum += w * if abs { n.abs() } else { n };
+        }
+    }
+    sum
 }
 
 /// The sign used for one-sided derivatives of `|x|` (0 at 0).
