@@ -441,22 +441,27 @@ impl Kernel for Octaves2<'_> {
     fn call(self) {
         let Self { n, p, freq, out } = self;
         with_fade!(n.fade, |fade| {
-            for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
-                // Plain loops over the lanes (no closures: they must inline
-                // into this target-feature context to vectorise).
+            let mut fs = freq.chunks_exact(OCTAVE_LANES);
+            let mut os = out.chunks_exact_mut(OCTAVE_LANES);
+            for (f, o) in (&mut fs).zip(&mut os) {
+                // Whole groups only, as fixed-size arrays and plain loops (no
+                // closures, no masked loads or stores: everything inlines
+                // into this target-feature context and vectorises).
+                let f: &[f64; OCTAVE_LANES] = f.try_into().unwrap();
+                let o: &mut [f64; OCTAVE_LANES] = o.try_into().unwrap();
                 let mut x = [0.0f64; OCTAVE_LANES];
                 let mut y = [0.0f64; OCTAVE_LANES];
-                for l in 0..fs.len() {
-                    x[l] = p.x * fs[l];
-                    y[l] = p.y * fs[l];
+                for l in 0..OCTAVE_LANES {
+                    x[l] = p.x * f[l];
+                    y[l] = p.y * f[l];
                 }
                 let mut ok = true;
                 for l in 0..OCTAVE_LANES {
                     ok &= x[l].abs() < LANE_LIMIT && y[l].abs() < LANE_LIMIT;
                 }
                 if !ok {
-                    for (o, &f) in os.iter_mut().zip(fs) {
-                        *o = n.eval2(p * f);
+                    for l in 0..OCTAVE_LANES {
+                        o[l] = n.eval2(p * f[l]);
                     }
                     continue;
                 }
@@ -464,7 +469,10 @@ impl Kernel for Octaves2<'_> {
                 for l in 0..OCTAVE_LANES {
                     v[l] = cell2(n.s, split_fast(x[l]), split_fast(y[l]), fade, dot2_bits) * K2;
                 }
-                os.copy_from_slice(&v[..os.len()]);
+                *o = v;
+            }
+            for (o, &f) in os.into_remainder().iter_mut().zip(fs.remainder()) {
+                *o = n.eval2(p * f);
             }
         });
     }
@@ -485,14 +493,18 @@ impl Kernel for Octaves3<'_> {
         let Self { n, p, freq, out } = self;
         let k = n.k3();
         with_fade!(n.fade, |fade| {
-            for (fs, os) in freq.chunks(OCTAVE_LANES).zip(out.chunks_mut(OCTAVE_LANES)) {
+            let mut fs = freq.chunks_exact(OCTAVE_LANES);
+            let mut os = out.chunks_exact_mut(OCTAVE_LANES);
+            for (f, o) in (&mut fs).zip(&mut os) {
+                let f: &[f64; OCTAVE_LANES] = f.try_into().unwrap();
+                let o: &mut [f64; OCTAVE_LANES] = o.try_into().unwrap();
                 let mut x = [0.0f64; OCTAVE_LANES];
                 let mut y = [0.0f64; OCTAVE_LANES];
                 let mut z = [0.0f64; OCTAVE_LANES];
-                for l in 0..fs.len() {
-                    x[l] = p.x * fs[l];
-                    y[l] = p.y * fs[l];
-                    z[l] = p.z * fs[l];
+                for l in 0..OCTAVE_LANES {
+                    x[l] = p.x * f[l];
+                    y[l] = p.y * f[l];
+                    z[l] = p.z * f[l];
                 }
                 let mut ok = true;
                 for l in 0..OCTAVE_LANES {
@@ -501,8 +513,8 @@ impl Kernel for Octaves3<'_> {
                         && z[l].abs() < LANE_LIMIT;
                 }
                 if !ok {
-                    for (o, &f) in os.iter_mut().zip(fs) {
-                        *o = n.eval3(p * f);
+                    for l in 0..OCTAVE_LANES {
+                        o[l] = n.eval3(p * f[l]);
                     }
                     continue;
                 }
@@ -511,7 +523,10 @@ impl Kernel for Octaves3<'_> {
                     let (sx, sy, sz) = (split_fast(x[l]), split_fast(y[l]), split_fast(z[l]));
                     v[l] = cell3(n.s, sx, sy, sz, fade, dot3_lanes) * k;
                 }
-                os.copy_from_slice(&v[..os.len()]);
+                *o = v;
+            }
+            for (o, &f) in os.into_remainder().iter_mut().zip(fs.remainder()) {
+                *o = n.eval3(p * f);
             }
         });
     }
