@@ -613,21 +613,71 @@ impl Worley {
             if D::kept(m + far) > best[0] {
                 return Some(best);
             }
-            best = [f64::INFINITY; K];
+            // Stage 2 for F1 adds only the block's cells outside the 2ⁿ
+            // quadrant (the nearest is a minimum, so the result is the
+            // whole block's): per axis the neighbour away from the corner.
+            let mut away = [(0u32, 0.0f64); N];
+            for a in 0..N {
+                away[a] = if up[a] {
+                    (own[a].wrapping_sub(P[a]), f[a] - (-1.0 + m))
+                } else {
+                    (own[a].wrapping_add(P[a]), f[a] - (1.0 + m))
+                };
+            }
+            self.block_rest::<K, D, N>(&pairs, &away, &mut best);
+        } else {
+            let block: [[(u32, f64); 3]; N] = core::array::from_fn(|a| {
+                let p = P[a];
+                [
+                    (own[a].wrapping_sub(p), f[a] - (-1.0 + m)),
+                    (own[a], f[a] - m),
+                    (own[a].wrapping_add(p), f[a] - (1.0 + m)),
+                ]
+            });
+            self.cells_n::<K, D, N, 3>(&block, &mut best);
         }
-        let block: [[(u32, f64); 3]; N] = core::array::from_fn(|a| {
-            let p = P[a];
-            [
-                (own[a].wrapping_sub(p), f[a] - (-1.0 + m)),
-                (own[a], f[a] - m),
-                (own[a].wrapping_add(p), f[a] - (1.0 + m)),
-            ]
-        });
-        self.cells_n::<K, D, N, 3>(&block, &mut best);
         let edge = f
             .iter()
             .fold(f64::INFINITY, |e, &t| min_fast(e, min_fast(t, 1.0 - t)));
         (D::kept(1.0 + m + edge) > best[K - 1]).then_some(best)
+    }
+
+    /// The cells of the 3ⁿ block around a point that are not in the 2ⁿ
+    /// quadrant `quad` (per axis the own and nearer neighbour), given per
+    /// axis the neighbour `away` from the quadrant: in 2-D the `away` column
+    /// (3 cells) and the quadrant's columns in the `away` row (2); in 3-D
+    /// the `away` x layer (9), then the quadrant's x columns in the `away` y
+    /// rows (6), then in the quadrant's y rows on the `away` z layer (4).
+    #[inline(always)]
+    fn block_rest<const K: usize, D: Dist<f64>, const N: usize>(
+        &self,
+        quad: &[[(u32, f64); 2]; N],
+        away: &[(u32, f64); N],
+        best: &mut [f64; K],
+    ) {
+        let s = self.s;
+        let row3 = |ax: usize| [quad[ax][0], quad[ax][1], away[ax]];
+        if N == 2 {
+            let ys = row3(1).map(|(y, gy)| (y ^ s, gy));
+            self.cells2::<K, D, 1, 3>([away[0]], ys, best);
+            let (y, gy) = away[1];
+            self.cells2::<K, D, 2, 1>(quad[0], [(y ^ s, gy)], best);
+        } else {
+            let ys = row3(1);
+            let zs = row3(2 % N);
+            let mut layer = [(0u32, 0.0f64, 0.0f64); 9];
+            for (k, r) in layer.iter_mut().enumerate() {
+                let ((y, gy), (z, gz)) = (ys[k % 3], zs[k / 3]);
+                *r = (y ^ z ^ s, gy, gz);
+            }
+            self.cells3::<K, D, 1, 9>([away[0]], layer, best);
+            let (y, gy) = away[1];
+            let rows: [(u32, f64, f64); 3] = zs.map(|(z, gz)| (y ^ z ^ s, gy, gz));
+            self.cells3::<K, D, 2, 3>(quad[0], rows, best);
+            let (z, gz) = away[2 % N];
+            let rows: [(u32, f64, f64); 2] = quad[1].map(|(y, gy)| (y ^ z ^ s, gy, gz));
+            self.cells3::<K, D, 2, 2>(quad[0], rows, best);
+        }
     }
 
     /// The cells `axes[0] × axes[1] (× axes[2])` of a search set, `W` per
