@@ -2,7 +2,7 @@
 //! drainage-network extraction, Strahler order and the topographic wetness
 //! index. Depressions are handled first (see [`super::flow`]) so flow reaches
 //! the grid edge, as the "rain-water flow" moisture map of TerEdit needs
-//! (SIM:L4516-4520).
+//! (Deussen et al. 1998, §4.2).
 
 use natura_core::{Grid2, HeightField};
 

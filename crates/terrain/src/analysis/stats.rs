@@ -1,5 +1,5 @@
 //! Hypsometry and fractal statistics: the radially averaged power spectrum
-//! and its log-log slope (`−(2H + 2)` for an fBm surface, MKM:L97-115) and the
+//! and its log-log slope (`−(2H + 2)` for an fBm surface, Musgrave et al. 1989, §3.1) and the
 //! variogram `γ(r) = E[(z(x + r) − z(x))²] ∝ r^(2H)`.
 
 use natura_core::HeightField;

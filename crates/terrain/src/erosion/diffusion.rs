@@ -1,9 +1,9 @@
-//! Diffusive erosion ("dry creep", DIS:L1174-1184): bioturbation and rain splash
+//! Diffusive erosion ("dry creep", Musgrave 1993, §2.4.3): bioturbation and rain splash
 //! move material to neighbours regardless of slope direction — a progressive
 //! low-pass filter, the explicit (FTCS) heat equation
 //! `a_u(t+1) = a_u(t) + c_d · Σ_{v∈N(u)} (a_v(t) − a_u(t))`.
 //!
-//! **Erratum.** DIS:L1178 prints `a^u_{t+1} = c_d(a^v_t − a^u_t)`, omitting the
+//! **Erratum.** Musgrave 1993, §2.4.3 prints `a^u_{t+1} = c_d(a^v_t − a^u_t)`, omitting the
 //! `a^u_t +` term (as printed, every step would replace the terrain by a
 //! difference). Its wording "as a function of local slope … without regard to
 //! local slope" means a symmetric exchange, which is what we implement.

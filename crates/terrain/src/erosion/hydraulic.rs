@@ -1,5 +1,5 @@
 //! Musgrave–Kolb–Mace hydraulic (fluvial) erosion, corrected to conserve mass
-//! (MKM:L204-256, DIS:L1118-1160).
+//! (Musgrave et al. 1989, §4.1, Musgrave 1993, §2.4.1).
 //!
 //! Each cell carries altitude `a`, water `w` and suspended sediment `s`. Water
 //! moves to neighbours whose water *surface* `a + w` is lower; moving water of
@@ -8,19 +8,19 @@
 //!
 //! **Errata corrected (all decided once, here):**
 //! 1. Over capacity, deposition lands at `v`, the cell the water leaves
-//!    (DIS:L1138 and both texts' prose), not at `u` as MKM:L230 prints.
-//! 2. Erosion *lowers* `v`: `a_v ← a_v − K_s(C_s − s_v)`. MKM:L238 lowers `u`,
-//!    DIS:L1142 *raises* `v` (creating material). With our choice every branch
+//!    (Musgrave 1993, §2.4.1 and both texts' prose), not at `u` as Musgrave et al. 1989, §4.1 prints.
+//! 2. Erosion *lowers* `v`: `a_v ← a_v − K_s(C_s − s_v)`. Musgrave et al. 1989, §4.1 lowers `u`,
+//!    Musgrave 1993, §2.4.1 *raises* `v` (creating material). With our choice every branch
 //!    conserves `a + s` exactly: settle `K_d s + (1−K_d)s = s`; over capacity
 //!    `C_s + K_d(s−C_s) + (1−K_d)(s−C_s) = s`; erosion `−e + s + e = s`.
 //! 3. The printed `Δw = min(w_v, (w_v + a_v) − (w_u + a_u))` moves the *whole*
 //!    surface difference, which for two cells **swaps** their levels instead of
 //!    equalising them, so water sloshes back and forth — a likely source of the
-//!    instability the author reports (DIS:L1148). We move
+//!    instability the author reports (Musgrave 1993, §2.4.1). We move
 //!    `ΔW = min(w_v, transfer · max_u d_u)` with `transfer = ½` by default
 //!    (equalising); `transfer = 1` is the printed rule.
 //! 4. The 2-D split, unspecified beyond "proportional to their respective
-//!    differences in overall elevation" (MKM:L244): `ΔW` and the sediment sent
+//!    differences in overall elevation" (Musgrave et al. 1989, §4.1): `ΔW` and the sediment sent
 //!    are split among all lower neighbours in proportion to their surface
 //!    drops `d_u`, computed from the state at time `t` (Jacobi, gather form), so
 //!    the result is independent of visiting order and thread count.
@@ -29,10 +29,10 @@
 //! 6. Optional guard (default on, our stabilisation): erosion at `v` never digs
 //!    below the bed of the lowest receiving neighbour.
 //!
-//! Rain (MKM:L250-256, L364): every `rain_period` = 65 steps, `0.001·a` of water
+//! Rain (Musgrave et al. 1989, §4.1): every `rain_period` = 65 steps, `0.001·a` of water
 //! on every cell (altitude-proportional: the adiabatic effect), clamped at 0
-//! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (MKM:L364,
-//! DIS:L1152).
+//! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (Musgrave et al. 1989, Plate 9;
+//! Musgrave 1993, §2.4.1).
 
 use natura_core::{Grid2, HeightField, Progress};
 
@@ -48,7 +48,7 @@ pub enum RainLaw {
         /// Depth of water added, metres.
         depth_m: f64,
     },
-    /// `base_m + k · max(a, 0)`: linear in altitude (MKM:L252; Plate 9 uses `k = 0.001`, base 0).
+    /// `base_m + k · max(a, 0)`: linear in altitude (Musgrave et al. 1989, §4.1; Plate 9 uses `k = 0.001`, base 0).
     AltitudeLinear {
         /// Water per metre of altitude.
         k: f64,

@@ -1,8 +1,8 @@
 //! Virtual-pipe shallow-water hydraulic erosion (Mei, Decaudin & Hu 2007,
 //! "Fast Hydraulic Erosion Simulation and Visualization on GPU"; the pipe model
-//! is O'Brien & Hodgins 1995). Not in the seed documents: spec `terrain.md`
-//! §7.2 names it as the stable successor of MKM's scheme (§3.1) and it keeps
-//! MKM's `K_c / K_s / K_d` naming.
+//! is O'Brien & Hodgins 1995). Not in Musgrave's texts: it is the stable
+//! successor of the hydraulic scheme of Musgrave et al. 1989, §4.1, and keeps
+//! its `K_c / K_s / K_d` naming.
 //!
 //! Per step (`l` = cell size, `A` = pipe cross-section, `g` = gravity):
 //! 1. rain: `d₁ = d + Δt·r`;

@@ -2,8 +2,8 @@
 //! per step (Braun & Willett 2013, "A very efficient O(n), implicit and parallel
 //! method to solve the stream power equation governing fluvial incision and
 //! landscape evolution", Geomorphology 180-181). Not in the seed documents:
-//! spec `terrain.md` §7.2; it realises the "orogenesis" wish of DIS:L1192 and
-//! the fractal drainage networks MKM:L77-83 and SIM:L325 call for.
+//! it realises the "orogenesis" wish of Musgrave 1993, §2.4.4 and
+//! the fractal drainage networks Musgrave et al. 1989, §2.2 and Musgrave 2001 call for.
 //!
 //! `∂z/∂t = U − K·A^m·S^n`, with `A` the drainage area (m²), `S` the slope to
 //! the steepest-descent receiver. Each step: uplift, D8 receivers, depression
@@ -139,7 +139,7 @@ impl StreamPower {
         })
     }
 
-    /// Scales `K` per cell (rock strata, DIS:L1190).
+    /// Scales `K` per cell (rock strata, Musgrave 1993, §2.4.4).
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         self.erodibility = Some(e);

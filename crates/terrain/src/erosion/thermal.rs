@@ -1,5 +1,5 @@
 //! Thermal weathering: material above the talus angle slides downhill
-//! (MKM:L258-266, DIS:L1162-1172, footnote DIS:L1182).
+//! (Musgrave et al. 1989, §4.2, Musgrave 1993, §2.4.2, footnote Musgrave 1993, §2.4.3).
 //!
 //! For each cell `v` and neighbour `u` at distance `d`, with altitudes of the
 //! previous step: if `a_v − a_u > T·d`, move `c_t·(a_v − a_u − T·d)` from `v`
@@ -9,16 +9,16 @@
 //! is conserved (to f32 rounding) and the result is independent of order and
 //! thread count.
 //!
-//! **Errata and choices.** MKM:L262 typesets the rule with swapped indices and
-//! *adds* to `a_v`; we use the DIS:L1168 form (the neighbour `u` gains) plus
+//! **Errata and choices.** Musgrave et al. 1989, §4.2 typesets the rule with swapped indices and
+//! *adds* to `a_v`; we use the Musgrave 1993, §2.4.2 form (the neighbour `u` gains) plus
 //! the matching loss at `v` that mass conservation requires and no source
 //! writes. `T` is compared with a height difference; we store it as an angle
 //! (radians) and compare `tan(angle)·distance`. The sources give **no value
 //! for T**: we default to 33°, mid-range of the 30–40° angle of repose of loose
-//! rubble. "Equitable distribution" (MKM:L264) is the per-neighbour rule above
+//! rubble. "Equitable distribution" (Musgrave et al. 1989, §4.2) is the per-neighbour rule above
 //! (each over-steep neighbour independently receives `c_t·excess`), which obeys a
 //! discrete maximum principle when `|N|·c_t ≤ 1` — the limit `validate` enforces.
-//! The rate is named `talus_rate`, not `c_t`, which MKM also use for the noise offset.
+//! The rate is named `talus_rate`, not `c_t`, which Musgrave et al. 1989 also use for the noise offset.
 
 use natura_core::{HeightField, Progress};
 
@@ -31,7 +31,7 @@ use crate::par;
 pub struct ThermalParams {
     /// Talus angle (angle of repose), radians in `[0, π/2)`. Default 33° (see module docs).
     pub talus_angle: f64,
-    /// Fraction of the excess moved per step (`c_t`). Default 0.001 (MKM Plate 9, MKM:L364).
+    /// Fraction of the excess moved per step (`c_t`). Default 0.001 (Musgrave et al. 1989, Plate 9).
     /// Must satisfy `neighbours · talus_rate · max erodibility ≤ 1`.
     pub talus_rate: f64,
     /// Neighbours exchanged with. Default 8.

@@ -1,6 +1,6 @@
 //! Poisson faulting (Mandelbrot's fractional Poisson field with step faults):
 //! Gaussian random displacements applied across random straight lines
-//! (FFC:L163, MKM:L57, DIS:L780). The net result is a Brownian surface (H = ½).
+//! (Fournier et al. 1982, §3.2.2, Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.1). The net result is a Brownian surface (H = ½).
 //!
 //! The sources quote O(N³) for N × N (N faults × N² cells). Each fault is a
 //! straight line, so along a row it changes sign exactly once: we add it as a

@@ -2,7 +2,7 @@
 //! (fBm, multifractals, …) in parallel rows, with the height scale in metres.
 //!
 //! Point evaluation is what makes noise synthesis local and level-of-detail
-//! friendly (MKM:L71, DIS:L663-665): each sample needs no neighbours and no
+//! friendly (Musgrave et al. 1989, §2.1, Musgrave 1993, §2): each sample needs no neighbours and no
 //! global state. [`fill_field`] takes any `Fn(f64, f64) -> f64 + Sync` (f64
 //! points, one call per sample); [`fill_rows`] takes a batch row filler (one
 //! call per row, f32 output); [`fill_noise`] fills from any natura-noise

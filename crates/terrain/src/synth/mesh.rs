@@ -1,12 +1,12 @@
 //! Fractal triangle meshes: FFC polygon subdivision of arbitrary triangle
-//! meshes (FFC:L327-339), for terrain that is not a regular grid (a base mesh
+//! meshes (Fournier et al. 1982, §4.1.2), for terrain that is not a regular grid (a base mesh
 //! of measured points, a planet's facets).
 //!
 //! Each triangle splits into four through its edge midpoints; each midpoint is
 //! the edge's centre displaced by a Gaussian of deviation `scale·2^(−hℓ)` along
-//! the **averaged vertex normal** of the edge's endpoints — FFC's fix for the
+//! the **averaged vertex normal** of the edge's endpoints — Fournier et al.'s fix for the
 //! gaps that per-polygon normals open between non-coplanar neighbours
-//! (Fig. 14, FFC:L333). New vertices carry the normalised mean of their
+//! (Fig. 14, Fournier et al. 1982, §4.1.2). New vertices carry the normalised mean of their
 //! endpoints' normals, so normals never depend on which polygons are present.
 //! Random numbers are keyed by invariant vertex identifiers (a midpoint's id
 //! is a hash of its endpoints' ids), so two meshes that share an edge produce
@@ -165,7 +165,7 @@ pub fn subdivide_mesh(
     Ok(m)
 }
 
-/// Subdivides until no edge is longer than `max_edge` metres (FFC:L327-329).
+/// Subdivides until no edge is longer than `max_edge` metres (Fournier et al. 1982, §4.1.2).
 /// Fails if that would take more than [`MAX_MESH_LEVELS`] levels.
 pub fn subdivide_mesh_until(
     mesh: &TriMesh,

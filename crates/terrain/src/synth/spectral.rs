@@ -1,13 +1,13 @@
-//! Fourier (spectral) synthesis (FFC:L167, MKM:L67, DIS:L798-800): Gaussian
+//! Fourier (spectral) synthesis (Fournier et al. 1982, §3.2.2, Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.4): Gaussian
 //! white noise is Fourier-transformed, multiplied by a `1/f^(H+1)` amplitude
 //! filter and transformed back. The 2-D power spectrum is then
 //! `∝ |f|^(−(2H+2))` and every 1-D transect follows `f^(−β)` with
-//! `β = 2H + 1` (MKM:L97-103, DIS:L748-754). Filtering real white noise keeps
+//! `β = 2H + 1` (Musgrave et al. 1989, §3.1, Musgrave 1993, §2.2.1.4). Filtering real white noise keeps
 //! the spectrum Hermitian, so the output is real; DC is zero, so the mean is 0.
 //!
 //! The output is a periodic tile of any size (`rustfft` handles every length):
 //! it wraps seamlessly, which is both the method's strength and its known
-//! drawback (periodicity, MKM:L67).
+//! drawback (periodicity, Musgrave et al. 1989, §2.1).
 
 use natura_core::{Grid2, HeightField, Seed};
 
@@ -23,7 +23,7 @@ pub struct SpectralParams {
     /// normalised analytically, so each seed varies around it).
     pub sigma_m: f64,
     /// Frequencies below this many cycles per tile are removed (≥ 0; 0 keeps all
-    /// but DC). Raising it sets an upper crossover scale (MKM:L117).
+    /// but DC). Raising it sets an upper crossover scale (Musgrave et al. 1989, §3.1).
     pub low_cut: f64,
     /// Frequencies above this many cycles per tile are removed (`None` keeps
     /// all up to Nyquist). Lowering it sets a lower crossover: a smooth surface.

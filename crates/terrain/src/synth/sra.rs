@@ -1,9 +1,9 @@
-//! Successive random additions (Voss; MKM:L63-65, DIS:L794-796): an *unnested*
+//! Successive random additions (Voss; Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.3): an *unnested*
 //! scheme with arbitrary lacunarity λ. Each generation resamples the previous
 //! lattice by a factor λ with bilinear interpolation and adds Gaussian noise to
 //! **all** points, the deviation shrinking by `λ^(−H)` per generation, until
 //! the lattice is the target grid. Re-displacing old points removes most of
-//! the creasing of nested midpoint schemes (DIS:L439).
+//! the creasing of nested midpoint schemes (Musgrave 1993, §1.2.1).
 //!
 //! Random numbers are indexed by `(generation, lattice point)`, so the result
 //! is independent of evaluation order and thread count.
