@@ -4,7 +4,7 @@
 //! feature points, impulses) from a stateless hash of the lattice coordinates
 //! and the seed, in the spirit of Fournier–Fussell–Carpenter's "random numbers
 //! indexed by position". No permutation table: the sources' table-based
-//! implementations repeat every 256 cells (spec `noise.md` §2.1, *Periodicity*);
+//! implementations repeat every 256 cells;
 //! this hash repeats only with the 2³² wrap of the `i32` lattice index.
 //!
 //! The hash is 32-bit integer arithmetic so the f64 point path and the f32

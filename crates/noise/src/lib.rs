@@ -1,8 +1,8 @@
 //! # natura-noise
 //!
 //! Noise bases, fractional Brownian motion, multifractals and domain
-//! distortion, after Musgrave's dissertation and course notes (spec
-//! `noise.md`; seeds 000, 001, 003, 004). `#![no_std]` with `libm`; no images,
+//! distortion, after Musgrave's dissertation and course notes (Musgrave 1993,
+//! Musgrave et al. 1989, Musgrave 1998, Musgrave 2001). `#![no_std]` with `libm`; no images,
 //! FFTs or threads.
 //!
 //! * **One trait**, [`Field`]: `&self` evaluation at `f64` 2-D/3-D points,
@@ -50,9 +50,10 @@
 //! # Ok::<(), natura_noise::NoiseError>(())
 //! ```
 //!
-//! Source keys: `[D]` Musgrave 1993 dissertation (seed 000), `[E89]` Musgrave,
-//! Kolb & Mace 1989 (seed 001), `[T]` *Texturing & Modeling* ch. 15 (seed
-//! 003), `[M]` SIGGRAPH 2001 course notes (seed 004), with line numbers.
+//! Sources are cited by the keys of the bibliography, `docs/sources.md`
+//! (Musgrave 1993 is the dissertation, Musgrave et al. 1989 the SIGGRAPH '89
+//! paper, Musgrave 1998 the *Texturing & Modeling* chapter, Musgrave 2001 the
+//! SIGGRAPH 2001 course notes), with section titles or numbers.
 #![no_std]
 #![forbid(unsafe_code)]
 

@@ -56,8 +56,8 @@ impl<B: Smooth> Smooth for Fbm<B> {
     }
 }
 
-/// Perlin's `DNoise`: the gradient of a scalar field as a vector field [T 106]
-/// (used by the dissertation for distortion, [D 1011, 2063, 2084]).
+/// Perlin's `DNoise`: the gradient of a scalar field as a vector field (Musgrave 1998)
+/// (used by the dissertation for distortion, Musgrave 1993, §2.3.2.4; Musgrave 1993, §5.2).
 ///
 /// Its 2-D form is the 2-D gradient. [`bound`](VectorField::bound) is the
 /// field's Lipschitz constant; [`lipschitz`](VectorField::lipschitz) its Hessian bound.
@@ -81,8 +81,8 @@ impl<B: Smooth> VectorField for DNoise<B> {
 
 /// Musgrave's `VecNoise`: three samples of a scalar field at misregistered
 /// points, `(N(p), N(p + 3.33), N(p + 7.77))` with the offset added to every
-/// coordinate [T 92-104]. Not the same as [`DNoise`] [T 106]; the offsets
-/// keep the components from sharing lattice zeros [T 108].
+/// coordinate (Musgrave 1998). Not the same as [`DNoise`] (Musgrave 1998); the offsets
+/// keep the components from sharing lattice zeros (Musgrave 1998).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VecNoise<B> {
     /// The scalar field sampled.
@@ -122,11 +122,11 @@ impl<B: Field> VectorField for VecNoise<B> {
     }
 }
 
-/// Vector fBm `Σ_k w_k·V(f_k·p)` (`VfBm` [D 2508-2535], RenderMan `vfBm`
-/// [T 231-254]): the spectral sum of a vector field, with the crate's
+/// Vector fBm `Σ_k w_k·V(f_k·p)` (`VfBm` Musgrave 1993, §5.8, RenderMan `vfBm`
+/// (Musgrave 1998)): the spectral sum of a vector field, with the crate's
 /// weights and fractional octaves. The sources pass a raw gain ω; use
 /// [`GainConvention::Raw`](crate::GainConvention::Raw) to reproduce them
-/// (note [T 274] passes H in the gain slot).
+/// (note Musgrave 1998 passes H in the gain slot).
 #[derive(Clone, Debug, PartialEq)]
 pub struct VectorFbm<V> {
     field: V,

@@ -1,5 +1,5 @@
 //! Domain distortion: warps of the evaluation point, and fields evaluated at
-//! warped points (spec §5; [M 590-614, T 155-160, D 2104-2108]).
+//! warped points.
 
 use glam::{DVec2, DVec3};
 
@@ -19,10 +19,10 @@ pub trait Warp: Send + Sync {
 
 /// Displacement by a vector field: `p ↦ a·p + s·V(p + shift)`.
 ///
-/// With `a = 1` this is the general distortion `F(p + s·V(p))` of [M 590-614];
-/// `shift` misregisters the lattices (the `+0.5` of [D 2068-2070, T 71-89]);
+/// With `a = 1` this is the general distortion `F(p + s·V(p))` of (Musgrave 2001, "Domain Distortion");
+/// `shift` misregisters the lattices (the `+0.5` of Musgrave 1993, §5.2; Musgrave 1998);
 /// `a ≠ 1` is the dissertation C code's `scale`, which multiplies the point
-/// (erratum 10 of spec §10).
+/// (an erratum of the listing).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Displace<V> {
     /// The displacing vector field.
@@ -70,14 +70,14 @@ impl<V: VectorField> Warp for Displace<V> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TwistLaw {
-    /// Coriolis twist `θ = 2π·twist·r²` (Venus, [D 2224-2252, T 376-431]).
+    /// Coriolis twist `θ = 2π·twist·r²` (Venus, Musgrave 1993, §5.4; Musgrave 1998).
     Quadratic {
         /// Turns per unit r².
         twist: f64,
     },
     /// Cyclone: inside `r < R`, `θ = π + 2π·twist·(R − (R − r)^power)/R`
-    /// ([D 2169-2218] power 2, [T 308-372] power 3); identity outside. The warp
-    /// is continuous at `r = R` only for `twist = ½` (spec §5.2, derived).
+    /// (Musgrave 1993, §5.3 power 2, Musgrave 1998 power 3); identity outside. The warp
+    /// is continuous at `r = R` only for `twist = ½`.
     Cyclone {
         /// `R`, the storm radius.
         max_radius: f64,
@@ -211,15 +211,15 @@ impl<F: Field, W: Warp> Field for Warped<F, W> {
     }
 }
 
-/// Musgrave's `DistNoise(p, d) = N(p + d·VecNoise(p + ½))` [T 71-89, T 123-128]:
+/// Musgrave's `DistNoise(p, d) = N(p + d·VecNoise(p + ½))` (Musgrave 1998):
 /// "variable lacunarity" noise with stringy, wispy features; about 4× the cost
-/// of `N` [T 110]. The RenderMan listing's scalar offset (erratum 14) is not
+/// of `N` (Musgrave 1998). The RenderMan listing's scalar offset (an erratum) is not
 /// reproduced: the vector `VecNoise` is used.
 pub type DistNoise<B> = Warped<B, Displace<VecNoise<B>>>;
 
 /// The dissertation's C `VLNoise(p, scale) = N(scale·p + DNoise(p))`
-/// [D 2077-2098] (no `+0.5` misregistration; `scale` multiplies the point,
-/// erratum 10).
+/// (Musgrave 1993, §5.2; no `+0.5` misregistration, and `scale` multiplies the
+/// point, correcting the listing).
 pub type VlNoise<B> = Warped<B, Displace<DNoise<B>>>;
 
 impl<B: Field + Clone> DistNoise<B> {

@@ -1,10 +1,10 @@
 //! Worley (Voronoi, cellular) noise: distances to the nearest feature points.
 //!
-//! MojoWorld's Voronoi basis [M 477-486] (Worley 1996): one feature point per
+//! MojoWorld's Voronoi basis (Musgrave 2001, "Voronoi") (Worley 1996): one feature point per
 //! unit lattice cell, at `cell + ½ + jitter·(u − ½)` with `u` uniform from the
 //! cell's hash. The value is the distance to the 1st…4th nearest feature point
 //! (`F1…F4`) or a difference of neighbours (`F2 − F1`, …) under a chosen metric.
-//! "Distance" gives conical pits, "distance squared" parabolic ones [M 484].
+//! "Distance" gives conical pits, "distance squared" parabolic ones (Musgrave 2001, "Voronoi").
 //!
 //! The search is **exact** for every feature and jitter: cells are visited in
 //! rings of growing Chebyshev radius until the ring's nearest possible point
@@ -32,7 +32,7 @@ pub enum Metric {
     /// Straight-line distance: conical pits, straight ridges. The default.
     #[default]
     Euclidean,
-    /// Squared Euclidean distance: smooth parabolic pits [M 484].
+    /// Squared Euclidean distance: smooth parabolic pits (Musgrave 2001, "Voronoi").
     EuclideanSquared,
     /// Sum of axis distances (L1): diamond-shaped cells.
     Manhattan,

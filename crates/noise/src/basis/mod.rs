@@ -1,6 +1,6 @@
 //! Basis ("noise") functions: the band-limited building blocks that fractals sum.
 //!
-//! MojoWorld's basis contract (spec `noise.md` §0.1 item 10, [M 392]): a simple
+//! MojoWorld's basis contract: a simple
 //! shape, values within `[-1, 1]`, mean 0. Gradient, value and simplex noise
 //! are normalised so their documented [`Field::bound`](crate::Field::bound) is
 //! exactly their supremum (found by maximising over every gradient choice, see
@@ -21,9 +21,9 @@ pub mod value;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Fade {
-    /// `3t² − 2t³`, the sources' interpolant [D 830, E89 135]. The assembled
+    /// `3t² − 2t³`, the sources' interpolant (Musgrave 1993, §2.3.1; Musgrave et al. 1989, §3.2). The assembled
     /// noise is C¹ only: its second derivative jumps by 12 across cell faces
-    /// (erratum 9: the sources claim C²). Use it to reproduce the sources' figures.
+    /// (an erratum: the sources claim C²). Use it to reproduce the sources' figures.
     Cubic,
     /// `6t⁵ − 15t⁴ + 10t³` (Perlin 2002, outside the sources): C², the default.
     #[default]

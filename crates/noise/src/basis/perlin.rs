@@ -1,17 +1,17 @@
 //! Perlin gradient noise, 1-D to 4-D.
 //!
-//! Musgrave's `Noise()` [D 826-856, E89 125-142, M 457-466]: random gradients
+//! Musgrave's `Noise()` (Musgrave 1993, §2.3.1–2.3.2; Musgrave et al. 1989, §3.2; Musgrave 2001, "Perlin"): random gradients
 //! at the integer lattice points, blended across each cell by a fade, so the
 //! noise is **zero at every lattice point** with slope equal to the lattice
 //! gradient there, and has its power concentrated near half the integer
-//! frequency ("primary frequency", [D 844]).
+//! frequency ("primary frequency", Musgrave 1993, §2.3.1).
 //!
 //! * Gradients: 1-D uniform in `[-1, 1)`; 2-D one of 8 unit vectors (axes and
 //!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002);
 //!   4-D one of the 32 tesseract edges. Drawn from a hash of the lattice
 //!   position and seed (no 256-periodic table).
 //! * Fade: quintic by default (C²); [`Fade::Cubic`] reproduces the sources
-//!   (C¹ only — erratum 9 of spec §10 corrects their "C²" claim).
+//!   (C¹ only — corrected here: their "C²" claim).
 //! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is exactly
 //!   1 and attained (§2.1 "the crate must normalise each implementation"). The
 //!   sups were found by maximising `Σ_c W_c(p)·max_g g·(p−c)` over the cell

@@ -2,8 +2,7 @@
 //!
 //! Gradient noise on the simplex lattice (triangles in 2-D, tetrahedra in 3-D):
 //! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of
-//! the `n + 1` corners of its simplex. Outside the sources (spec §2.5 lists
-//! "Perlin basis" variants); offered because it is cheaper in 3-D and has no
+//! the `n + 1` corners of its simplex. Outside the sources; offered because it is cheaper in 3-D and has no
 //! axis-aligned artefacts. Kernel radius² ½ in both dimensions, so the noise is
 //! continuous (C³ kernel) — unlike the common 0.6 in 3-D, which leaves small
 //! jumps at simplex faces. Zero at lattice points like Perlin noise.

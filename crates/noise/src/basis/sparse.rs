@@ -11,7 +11,7 @@ use crate::lanes::split;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Kernel {
-    /// `1 − r`: the cone of MojoWorld's Figure 19 [M 488-495]. The default.
+    /// `1 − r`: the cone of MojoWorld's Figure 19 (Musgrave 2001, "Sparse Convolution"). The default.
     #[default]
     Cone,
     /// `(1 − r²)²`: smooth (C¹) bumps.
@@ -64,7 +64,7 @@ impl Kernel {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SparseParams {
     /// Impulses per unit cell, 1 to 16 (MojoWorld's seed tables "1" and "4"
-    /// [M 529-536]); more impulses give a finer, more Gaussian texture.
+    /// (Musgrave 2001, "The Seed Tables")); more impulses give a finer, more Gaussian texture.
     pub density: u32,
     /// The kernel shape.
     pub kernel: Kernel,
@@ -97,9 +97,9 @@ const SALT: u64 = 0x5350_4152; // "SPAR"
 
 /// Sparse convolution noise: `K·Σ_i w_i·k(|p − x_i|)` over impulses `x_i`
 /// uniformly placed, `density` per lattice cell, with weights `w_i` uniform in
-/// `[-1, 1)` [M 488-495, T 66, D 2677-2679]. "The slowest, technically 'best'
-/// and most flexible" basis [M 488]. Plain uniform placement, as [D 2679]
-/// suggests (no efficient Poisson-disk generator is known, [D 2677]).
+/// `[-1, 1)` (Musgrave 2001, "Sparse Convolution"; Musgrave 1998; Musgrave 1993, §6.2.1.1.3). "The slowest, technically 'best'
+/// and most flexible" basis (Musgrave 2001, "Sparse Convolution"). Plain uniform placement, as (Musgrave 1993, §6.2.1.1.3)
+/// suggests (no efficient Poisson-disk generator is known, Musgrave 1993, §6.2.1.1.3).
 ///
 /// `K` makes the standard deviation 0.25 (variance `density·E[w²]·∫k²`), so
 /// values mostly lie within `[-1, 1]`; the exact [`bound`](Field::bound) is

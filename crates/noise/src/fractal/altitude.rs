@@ -1,5 +1,5 @@
 //! Fractal statistics by altitude: Musgrave's heterogeneous fBm `hfBm`
-//! [D 916-1003, E89 160-180].
+//! (Musgrave 1993, §2.3.2.3–2.3.2.3.3; Musgrave et al. 1989, §3.3).
 
 use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
@@ -8,11 +8,11 @@ use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 use glam::{DVec2, DVec3};
 
-/// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of [D 930]).
+/// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of Musgrave 1993, §2.3.2.3.1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StatsByAltitudeParams {
-    /// H, λ, octaves, frequency. [D 930] writes the amplitude as
+    /// H, λ, octaves, frequency. (Musgrave 1993, §2.3.2.3.1) writes the amplitude as
     /// `ϖ = λ^(−β/2)`: use [`GainConvention::HalfBeta`](crate::GainConvention::HalfBeta) to reproduce it.
     pub spectral: Spectral,
     /// `c_t`: shifts the basis so `N + c_t` is (nearly) always positive
@@ -48,14 +48,14 @@ impl StatsByAltitudeParams {
 
 /// Fractal statistics by altitude: the power of each octave is proportional
 /// to the altitude so far, so high ground is rough and low ground smooth
-/// ("crossover scale modulated by altitude", [E89 172]; spec §4.1).
+/// ("crossover scale modulated by altitude", Musgrave et al. 1989, §3.3).
 ///
-/// The canonical equation form [D 930, E89 160-162]:
+/// The canonical equation form (Musgrave 1993, §2.3.2.3.1; Musgrave et al. 1989, §3.3):
 /// ```text
 /// A_0 = (N(p) + c_t)·c_s + c_0
 /// A_k = A_{k−1} + A_{k−1}·(N(λ^k p) + c_t)·c_s·w_k       (× t for a partial octave)
 /// ```
-/// Erratum 4 of spec §10: the pseudo-code (`result + min(1,result) + …`), the
+/// Erratum: the pseudo-code (`result + min(1,result) + …`), the
 /// C code (which multiplies by the previous *increment*) and this equation are
 /// three different algorithms; the equation is implemented here and the C
 /// code as [`StatsByAltitudeLegacy`]. The form is multiplicative: `A_0 = 0`
@@ -162,7 +162,7 @@ impl<B: Field> StatsByAltitude<B> {
 
 impl_fractal_field!(StatsByAltitude);
 
-/// The dissertation's C `hfBm(point, omega, octaves)` [D 954-975], reproduced
+/// The dissertation's C `hfBm(point, omega, octaves)` (Musgrave 1993, §2.3.2.3.1), reproduced
 /// as printed, for its pictures (Plates 2.4-2.5, 4.2):
 /// ```text
 /// a = prev = 0.7 + N(p);  o = ω
@@ -174,7 +174,7 @@ impl_fractal_field!(StatsByAltitude);
 /// *increment* (so octave k carries `ω^(k(k+1)/2)`, a super-geometric decay);
 /// the octave count rounds up; and a negative increment ends the loop.
 /// `SMALL` is undefined in the source: [`small`](Self::small) defaults to
-/// `VERY_SMALL = 1e-4` [T 673].
+/// `VERY_SMALL = 1e-4` (Musgrave 1998).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StatsByAltitudeLegacy<B> {
     basis: B,

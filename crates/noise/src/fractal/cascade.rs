@@ -11,10 +11,10 @@ use crate::lanes::Simd;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CascadeForm {
     /// Factor `(N + offset)·w_k` (Musgrave's `multifractal()`, *Texturing &
-    /// Modeling* ch. 16, outside this corpus). The default.
+    /// Modeling* ch. 16, outside these sources). The default.
     #[default]
     Weighted,
-    /// Factor `offset + w_k·N`: `vMultifractalFunc` [T 1041-1053] with
+    /// Factor `offset + w_k·N`: `vMultifractalFunc` (Musgrave 1998) with
     /// `offset` = `zero_offset` and the raw gain `H` ([`GainConvention::Raw`](crate::GainConvention::Raw)).
     Additive,
 }
@@ -44,8 +44,8 @@ impl Default for MultifractalParams {
 }
 
 impl MultifractalParams {
-    /// The [T 1041-1053] `vMultifractalFunc` call of `multicolor`
-    /// [T 1068]: raw gain 0.7, λ 2, 8 octaves, zero offset 0.2, additive form.
+    /// The (Musgrave 1998) `vMultifractalFunc` call of `multicolor`
+    /// (Musgrave 1998): raw gain 0.7, λ 2, 8 octaves, zero offset 0.2, additive form.
     #[must_use]
     pub fn multicolor() -> Self {
         Self {
@@ -73,7 +73,7 @@ impl MultifractalParams {
     }
 }
 
-/// A multiplicative cascade: `Π_k factor_k(N(λ^k p))` (spec §4.4), the
+/// A multiplicative cascade: `Π_k factor_k(N(λ^k p))`, the
 /// "multifractal" in Mandelbrot's sense; its values span orders of magnitude.
 ///
 /// The partial octave contributes the factor `1 + t·(factor − 1)`, so the

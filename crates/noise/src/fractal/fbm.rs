@@ -9,7 +9,7 @@ use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 
 /// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and
-/// `w_k = λ^(−kH)` (spec §3.1; [D 858-908], [E89 150-160]).
+/// `w_k = λ^(−kH)`.
 ///
 /// Math (C-H convention, fractional octaves `o = n + t`):
 /// `fBm(p) = Σ_{k<n} λ^(−kH)·N(λ^k p) + t·λ^(−nH)·N(λ^n p)`.
@@ -17,7 +17,7 @@ use crate::lanes::Simd;
 /// octave multiplies the point by `λ`); no rotation or offset between octaves,
 /// as in the sources. The weights are precomputed once ([`Octaves`]).
 /// The sources' `VERY_SMALL` early exit is not applied (it drops a tail and
-/// makes the output jump; spec §0.1 item 5).
+/// makes the output jump).
 ///
 /// * [`bound`](Field::bound) = `B_N·Σ w_k`; Lipschitz = `L_N·Σ w_k f_k`.
 /// * Analytic gradient: `Σ w_k f_k ∇N(f_k p)`.
@@ -160,10 +160,10 @@ fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
 
 /// Turbulence: `Σ_k w_k·|N(f_k·p)|`, fBm of the absolute basis.
 ///
-/// Called by the sources ([T 560] `turbulence(PP, fw, octaves, λ, H)`) but
-/// not defined there; this is Perlin's 1985 definition (outside the corpus),
+/// Called by the sources (Musgrave 1998 `turbulence(PP, fw, octaves, λ, H)`) but
+/// not defined there; this is Perlin's 1985 definition (outside these sources),
 /// with the crate's weights and fractional octaves. Its spectrum is steeper
-/// than the naive expectation (erratum 20). Values in `[0, bound]`; the
+/// than the naive expectation (an erratum). Values in `[0, bound]`; the
 /// derivative jumps on the zero set of each octave (creases).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Turbulence<B> {

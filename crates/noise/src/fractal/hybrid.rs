@@ -19,7 +19,7 @@ pub struct HybridParams {
 
 impl Default for HybridParams {
     /// `H = 0.25`, offset 0.7, 8 octaves: the published defaults of the
-    /// hybrid multifractal (outside this corpus; spec §4.2).
+    /// hybrid multifractal (outside these sources).
     fn default() -> Self {
         Self {
             spectral: Spectral::default().with_h(0.25),
@@ -45,9 +45,9 @@ impl HybridParams {
 /// weighted by the running product of earlier signals (capped at 1), so low
 /// areas are smooth and high areas rough. MojoWorld's "multifractal" (formerly
 /// "hybrid multifractal"), its "first choice for terrains on a planetary
-/// scale" [M 563-577].
+/// scale" (Musgrave 2001, "The Heterofractal Function").
 ///
-/// The code is not in this corpus (spec §4.2): it follows Musgrave's
+/// The code is not in these sources: it follows Musgrave's
 /// `HybridMultifractal()` in *Texturing & Modeling*, 2nd ed., ch. 16:
 /// ```text
 /// result = (N(p) + offset)·w_0;  weight = result

@@ -4,23 +4,23 @@
 //! exponent `H`, the lacunarity `λ`, a real-valued octave count and a base
 //! frequency, with the per-octave weights precomputed once ([`Octaves`]).
 //!
-//! **Amplitude convention** (spec §1.3). The canonical convention is the
+//! **Amplitude convention**. The canonical convention is the
 //! sources' C code: octave `k` (counting from 0) has amplitude `λ^(−kH)`
-//! ([D 883-900], [D 1060-1085]), which gives a power spectrum `∝ f^−(2H+1)`,
+//! (Musgrave 1993, §2.3.2.1, Musgrave 1993, §2.3.2.5.1), which gives a power spectrum `∝ f^−(2H+1)`,
 //! i.e. `β = 2H + 1`. The two other conventions in the sources are available
 //! through [`GainConvention`] to reproduce their pictures: `HalfBeta`
-//! (`ϖ = λ^−(H+½)`, the equations [D 864, E89 160-162] and `PLANET`) and `Raw`
+//! (`ϖ = λ^−(H+½)`, the equations Musgrave 1993, §2.3.2.1; Musgrave et al. 1989, §3.3 and `PLANET`) and `Raw`
 //! (a gain `ω` passed directly, `VLfBm`/`VfBm`/`MVfBm`, RenderMan `vfBm`).
 //! The pseudo-code's off-by-one `pow(r, −H·octave)` starting at octave 2
-//! (erratum 1) is not reproduced: the first octave has amplitude 1.
+//! (an erratum) is not reproduced: the first octave has amplitude 1.
 //!
-//! **Fractional octaves** [D 883-900, 1060-1085]: with `octaves = n + t`, the
+//! **Fractional octaves** (Musgrave 1993, §2.3.2.1; Musgrave 1993, §2.3.2.5.1): with `octaves = n + t`, the
 //! partial octave `n` enters with its amplitude scaled by `t`, so every fractal
 //! is continuous (piecewise linear for fBm) in `octaves`.
 //!
-//! **Lacunarity**: the default is MojoWorld's `e − ½ ≈ 2.218` [M 413-419]. With
+//! **Lacunarity**: the default is MojoWorld's `e − ½ ≈ 2.218` (Musgrave 2001, "Lacunarity: The Gap Between Successive Frequencies"). With
 //! an integer lacunarity and gradient noise every octave vanishes on the
-//! integer lattice, so fBm is identically 0 there (spec §0.1 item 3); the
+//! integer lattice, so fBm is identically 0 there; the
 //! non-integer default avoids that coincidence.
 
 pub mod altitude;
@@ -52,7 +52,7 @@ pub const MAX_BOUND: f64 = 1e30;
 /// lattice cell finely (≈ 2⁻²⁰ of a cell at 2³²).
 pub const MAX_FREQUENCY_RATIO: f64 = 4_294_967_296.0;
 
-/// How the per-octave amplitude follows from the `h` parameter (spec §1.3).
+/// How the per-octave amplitude follows from the `h` parameter.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GainConvention {
@@ -70,17 +70,17 @@ pub enum GainConvention {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Spectral {
-    /// Spectral exponent `H` (Hölder exponent; `D_f = D_E + 1 − H`, [D 752]),
+    /// Spectral exponent `H` (Hölder exponent; `D_f = D_E + 1 − H`, Musgrave 1993, §2.2.1.4),
     /// or the raw gain `ω` under [`GainConvention::Raw`]. Larger `H` gives
     /// smoother results (less high-frequency amplitude). Any finite value;
     /// `ω` must be positive.
     pub h: f64,
     /// Frequency ratio between successive octaves, `λ > 1`. Above ≈ 2 the
-    /// individual octaves start to show [M 413-419].
+    /// individual octaves start to show (Musgrave 2001, "Lacunarity: The Gap Between Successive Frequencies").
     pub lacunarity: f64,
     /// Number of octaves, real-valued, in `(0, 64]`; the last partial octave
     /// is weighted by the fractional part. Fewer than 3 is not meaningfully
-    /// fractal [D 736].
+    /// fractal (Musgrave 1993, §2.2.1.2).
     pub octaves: f64,
     /// Frequency of the first octave (cycles of the basis lattice per unit), `> 0`.
     pub frequency: f64,
@@ -89,7 +89,7 @@ pub struct Spectral {
 }
 
 impl Default for Spectral {
-    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 (the RenderMan defaults of [T 47], MojoWorld λ).
+    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 (the RenderMan defaults of Musgrave 1998, MojoWorld λ).
     fn default() -> Self {
         Self {
             h: 0.5,
@@ -101,7 +101,7 @@ impl Default for Spectral {
     }
 }
 
-/// MojoWorld's default lacunarity `e − ½` [M 417-419]: not an integer, so
+/// MojoWorld's default lacunarity `e − ½` (Musgrave 2001, "Lacunarity: The Gap Between Successive Frequencies"): not an integer, so
 /// octave lattices never coincide.
 pub const DEFAULT_LACUNARITY: f64 = core::f64::consts::E - 0.5;
 
