@@ -1,4 +1,4 @@
-//! natura-fluid through the facade: the properties issue 9 asks for.
+//! natura-fluid through the facade: conservation, stability and oracle properties.
 
 use natura::core::Grid3;
 use natura::core::glam::Vec3;

@@ -90,7 +90,7 @@ fn spectral_synthesis_has_the_fbm_spectrum_and_variogram() {
 /// Noise synthesis from natura-noise fBm (Perlin basis, λ = 2, 8 octaves spanning
 /// the grid's band): windowed radial spectrum slope −(2H + 2) ± 0.2 over the middle
 /// decade, variogram H ± 0.1 (lags 2..8). For H = 0.3 the variogram reads ≈ 0.39
-/// (the cubic basis distorts the spectrum, Saupe, DIS:L908), so it is checked on
+/// (the cubic basis distorts the spectrum, Saupe, Musgrave 1993, §2.3.2.1), so it is checked on
 /// the slope only.
 #[test]
 fn noise_fbm_synthesis_has_the_fbm_spectrum() {

@@ -277,7 +277,7 @@ mod tests {
 
     #[test]
     fn spec_overshoot_case() {
-        // Spec §2.6: data (0, 10, 10.1, 10.2), interval [10, 10.1].
+        // Data (0, 10, 10.1, 10.2), interval [10, 10.1].
         let f = [0.0, 10.0, 10.1, 10.2];
         let paper = max_on(f, CubicLimiter::PaperSignOnly);
         assert!((paper - 10.767).abs() < 2e-3, "paper limiter max {paper}");

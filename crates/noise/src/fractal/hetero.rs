@@ -58,7 +58,7 @@ impl HeteroTerrainParams {
 
 /// Musgrave's large-scale heterogeneous terrain `Terrain()`: each octave is
 /// weighted by the (displaced) value of the octave below, so valleys stay
-/// smooth at all scales [D 1017-1108].
+/// smooth at all scales (Musgrave 1993, §2.3.2.5).
 ///
 /// Follows the C code (Musgrave 1993, §2.3.2.5.1), with signed noise:
 /// ```text
