@@ -24,6 +24,7 @@ use crate::par;
 
 /// The advection scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Scheme {
     /// Plain semi-Lagrangian (Stam 1999): one back-trace and interpolation.
     #[default]
@@ -38,6 +39,7 @@ pub enum Scheme {
 
 /// The integrator of the back-traced path.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Tracer {
     /// One explicit Euler step `x − dt·u(x)`.
     Euler,
@@ -48,6 +50,7 @@ pub enum Tracer {
 
 /// How a field is carried by the flow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Advection {
     /// Semi-Lagrangian or an error-correcting variant.
     pub scheme: Scheme,

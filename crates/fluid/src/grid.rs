@@ -137,6 +137,7 @@ impl std::fmt::Display for Dims {
 
 /// What lies beyond one side of the domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Side {
     /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Fedkiw et al. 2001, §2).
     #[default]
@@ -148,6 +149,7 @@ pub enum Side {
 
 /// The six sides of the domain: `[low, high]` along x, y and z.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Boundaries {
     /// `[x = 0, x = nx·h]`.
     pub x: [Side; 2],

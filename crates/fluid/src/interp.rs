@@ -17,6 +17,7 @@
 
 /// How a field is interpolated between samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Interpolation {
     /// Bi/trilinear (Stam 1999, §3.2): cheap, never creates extrema.
     #[default]
@@ -28,6 +29,7 @@ pub enum Interpolation {
 
 /// Slope limiter of the monotone cubic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CubicLimiter {
     /// Sign limiting plus Fritsch–Carlson rescaling: monotone, no overshoot.
     #[default]

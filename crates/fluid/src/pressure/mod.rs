@@ -34,6 +34,7 @@ use level::{G, Level, Transfer, coarsen};
 
 /// Which linear solver performs the projection.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PressureSolver {
     /// Multigrid-preconditioned conjugate gradient (default).
     #[default]
@@ -46,6 +47,7 @@ pub enum PressureSolver {
 
 /// Solver choice and stopping rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SolverParams {
     /// The method.
     pub solver: PressureSolver,

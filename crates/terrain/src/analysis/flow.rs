@@ -34,6 +34,7 @@ pub(crate) const D8: [(i32, i32, f32); 8] = [
 
 /// How closed depressions (pits) are handled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Depressions {
     /// Leave them: pits are sinks that do not reach the edge.
     Keep,

@@ -19,6 +19,7 @@ use crate::par;
 
 /// Parameters of [`Diffusion`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DiffusionParams {
     /// Diffusion coefficient per step `c_d` (= κ·Δt / Δx²), in `(0, 1/neighbours]`.
     pub rate: f64,

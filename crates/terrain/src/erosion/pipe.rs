@@ -41,6 +41,7 @@ use crate::par;
 
 /// How suspended sediment moves with the water.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SedimentTransport {
     /// Through the pipes with the water: conserves mass (default).
     Conservative,
@@ -51,6 +52,7 @@ pub enum SedimentTransport {
 
 /// Parameters of [`PipeModel`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PipeParams {
     /// Time step, seconds (> 0, ≤ 10).
     pub dt: f64,

@@ -15,6 +15,7 @@ use crate::par;
 
 /// Parameters of [`successive_random_additions`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SraParams {
     /// Hurst exponent `H ∈ (0, 1]`.
     pub h: f64,

@@ -30,6 +30,7 @@ pub const MAX_LEVELS: u32 = 24;
 
 /// How the two endpoints (1-D) or the base-lattice corners (2-D) are chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EndpointMode {
     /// Gaussian with standard deviation `scale`, as Fournier et al.'s printed `fractal` (Fournier et al. 1982, §3.2.3).
     Random,
@@ -43,6 +44,7 @@ pub enum EndpointMode {
 /// `scale · Π_{i=1..ℓ} 2^(−h_i)` (= `scale · 2^(−hℓ)` for a constant `h`),
 /// times Saupe's factor `√(1 − 2^(2h−2))` when `variance_correction` is set.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MidpointParams {
     /// Hurst exponent `h ∈ (0, 1]` (Fournier et al.'s `h`; Musgrave et al. 1989, §3.1 gives H ≈ 0.8 for terrain).
     /// Larger values give smoother curves.
@@ -299,6 +301,7 @@ pub fn fractal_polyline_ids(
 
 /// Which FFC grid scheme [`subdivide`] uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Scheme {
     /// Fractal triangles (Fournier et al. 1982, §4.1.2): each square of the current lattice is
     /// two triangles split on its `(+1, +1)` diagonal; every new point is an
@@ -318,6 +321,7 @@ pub enum Scheme {
 
 /// Parameters of grid subdivision ([`subdivide`]).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SubdivisionParams {
     /// The midpoint-displacement law (H, scale in metres, corners).
     pub midpoint: MidpointParams,
