@@ -241,6 +241,12 @@ pub struct Liquid {
 
 impl Liquid {
     /// An empty tank of `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: LiquidParams) -> Result<Self> {
         error::positive("cell size h", f64::from(h))?;
         params.validate()?;
@@ -284,6 +290,11 @@ impl Liquid {
     /// Adds liquid filling `shape` (must lie inside the grid) with velocity
     /// `velocity`: φ becomes the union with the shape's signed distance and
     /// particles are seeded in its cells (jittered, deterministic).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite shape or velocity,
+    /// and [`FluidError::OutsideGrid`] if the shape lies outside the grid.
     pub fn fill(&mut self, shape: Shape, velocity: Vec3) -> Result<()> {
         shape.check_inside(self.dims, self.h, "liquid")?;
         if !velocity.is_finite() {
@@ -386,6 +397,11 @@ impl Liquid {
     }
 
     /// Adds an obstacle (static or moving); it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         o.validate()?;
         o.shape.check_inside(self.dims, self.h, "obstacle")?;

@@ -18,6 +18,10 @@ use crate::par;
 use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 
 /// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grid cannot be allocated.
 pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
     let mut out = vel.dims().zeros()?;
     par::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
@@ -377,6 +381,11 @@ impl Projector {
     /// and walls and `p = 0` at air cells and open sides, then applies
     /// `u = u* − dt ∇p` (eq. 5) on every free face. Fixed faces (walls,
     /// solids) are not touched: set them before calling.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`](crate::FluidError::NonFinite) if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-positive `dt`.
     pub fn project(
         &mut self,
         vel: &mut MacVelocity,
@@ -533,6 +542,10 @@ pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
 /// Vorticity `ω = ∇ × u` at cell centres from face-averaged velocities and
 /// central differences (Fedkiw et al. 2001, App. A). In 2-D (x–z plane) only the
 /// y component is non-zero.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let u = centre_velocity(vel)?;
@@ -561,6 +574,11 @@ pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
 ///
 /// Where `|∇|ω||` vanishes (irrotational flow, uniform vorticity) the force
 /// is zero rather than NaN (the source divides by it).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a negative or non-finite `epsilon`,
+/// and [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let w = vorticity(vel, h)?;

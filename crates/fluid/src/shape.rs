@@ -118,6 +118,11 @@ impl Shape {
     }
 
     /// Checks the parameters are finite and positive where they must be.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let bad = |reason: &'static str| FluidError::InvalidParameter {
             name: "shape",

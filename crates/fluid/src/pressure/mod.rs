@@ -80,6 +80,11 @@ impl SolverParams {
     }
 
     /// Checks the tolerance (finite, `0 <= tol < 1`) and a non-zero iteration cap.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance.is_finite() && (0.0..1.0).contains(&self.tolerance)) {
             return Err(FluidError::InvalidParameter {

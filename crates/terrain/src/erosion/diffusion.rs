@@ -41,6 +41,11 @@ impl Default for DiffusionParams {
 
 impl DiffusionParams {
     /// Refuses a rate outside `(0, 1/neighbours]` and open edges.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let limit = 1.0 / self.neighbourhood.count() as f64;
         if !(self.rate > 0.0 && self.rate <= limit) {
@@ -73,6 +78,13 @@ pub struct Diffusion {
 
 impl Diffusion {
     /// A model for fields the size of `hf` (at least 3 × 3, finite).
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: DiffusionParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("diffusion", hf)?;
@@ -86,6 +98,11 @@ impl Diffusion {
     }
 
     /// Scales the exchange between two cells by the smaller of their erodibilities.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.rate * self.p.neighbourhood.count() as f64 > 1.0 {
@@ -100,6 +117,12 @@ impl Diffusion {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("diffusion", hf, self.nx, self.ny)?;
         progress.start("diffusion", u64::from(steps));
@@ -112,6 +135,10 @@ impl Diffusion {
     }
 
     /// One synchronous step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("diffusion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

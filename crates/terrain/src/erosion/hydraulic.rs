@@ -137,6 +137,11 @@ impl Default for MusgraveParams {
 
 impl MusgraveParams {
     /// `K_c ≥ 0` (≤ 1000), `K_d, K_s ∈ [0, 1]`, `transfer ∈ (0, 1]`, `evaporation ∈ [0, 1]`, a valid rain law.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         non_negative("MusgraveParams::k_c", self.k_c)?;
         in_range("MusgraveParams::k_c", self.k_c, 0.0, 1000.0)?;
@@ -194,6 +199,13 @@ pub struct MusgraveHydraulic {
 
 impl MusgraveHydraulic {
     /// A dry model (no water, no sediment) for fields the size of `hf`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: MusgraveParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("hydraulic erosion", hf)?;
@@ -222,6 +234,11 @@ impl MusgraveHydraulic {
     }
 
     /// Scales the softness `K_s` per cell.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.k_s > 1.0 {
@@ -232,6 +249,12 @@ impl MusgraveHydraulic {
     }
 
     /// Sets the initial water depth (e.g. a flood); refuses negative or non-finite depths.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `water` is not the field's size, and
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) or [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) for a
+    /// negative or non-finite depth.
     pub fn set_water(&mut self, water: Grid2<f32>) -> Result<()> {
         crate::error::same_size("water", &water, self.nx, self.ny)?;
         crate::error::check_grid("water", &water)?;
@@ -272,6 +295,12 @@ impl MusgraveHydraulic {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("hydraulic erosion", hf, self.nx, self.ny)?;
         progress.start("hydraulic", u64::from(steps));
@@ -284,6 +313,10 @@ impl MusgraveHydraulic {
     }
 
     /// One step: rain (on schedule), transport, evaporation.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("hydraulic erosion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

@@ -129,6 +129,11 @@ pub struct Erodibility {
 
 impl Erodibility {
     /// Wraps a grid of multipliers; refuses NaN, infinite or negative values (naming the cell).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::NonFinite`] or [`TerrainError::InvalidParameter`]
+    /// naming the first cell whose multiplier is NaN, infinite or negative.
     pub fn new(map: Grid2<f32>) -> Result<Self> {
         check_grid("erodibility", &map)?;
         if let Some((x, y, &v)) = map.find(|&v| v < 0.0) {

@@ -55,6 +55,11 @@ impl Default for ThermalParams {
 impl ThermalParams {
     /// Refuses a talus angle outside `[0°, 90°)`, a rate outside `(0, 1/neighbours]`
     /// and open edges.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.talus_angle >= 0.0 && self.talus_angle < std::f64::consts::FRAC_PI_2) {
             return Err(invalid(
@@ -95,6 +100,13 @@ pub struct Thermal {
 
 impl Thermal {
     /// A model for fields the size of `hf` (at least 3 × 3, finite).
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: ThermalParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("thermal weathering", hf)?;
@@ -109,6 +121,11 @@ impl Thermal {
     }
 
     /// Scales the rate per cell by `e` (material leaves a cell at its own rate).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         let limit = 1.0 / (self.p.neighbourhood.count() as f64 * self.p.talus_rate);
@@ -131,6 +148,12 @@ impl Thermal {
 
     /// Runs `steps` steps, reporting to `progress`. Refuses a field of another size
     /// or with a non-finite height (naming the cell).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("thermal weathering", hf, self.nx, self.ny)?;
         progress.start("thermal", u64::from(steps));
@@ -143,6 +166,10 @@ impl Thermal {
     }
 
     /// One synchronous step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("thermal weathering", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);
