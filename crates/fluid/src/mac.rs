@@ -68,6 +68,11 @@ fn divergence_row(vel: &MacVelocity, h: f32, r: usize, row: &mut [f32]) {
 /// One pass over the faces, row by row, with no divergence grid: each row's
 /// divergence goes to a row buffer and is folded at once (the same values
 /// as [`divergence`]; the maximum does not depend on the order).
+///
+/// # Errors
+///
+/// Returns [`FluidError::SizeMismatch`](crate::FluidError::SizeMismatch) if the cell kinds are not the grid's
+/// size.
 pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) -> Result<f32> {
     let d = vel.dims();
     let n0 = d.n()[0];
@@ -518,6 +523,10 @@ fn ddx(g: &[f32], d: Dims, c: [usize; 3], a: usize, h: f32) -> f32 {
 }
 
 /// Cell-centred velocity components (face averages, Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if a result grid cannot be allocated.
 pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let mut out = [d.zeros()?, d.zeros()?, d.zeros()?];

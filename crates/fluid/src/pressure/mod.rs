@@ -384,6 +384,10 @@ impl PoissonSystem {
     }
 
     /// Returns `A x` for an unpadded `x` (one value per cell; zero on non-fluid cells).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::SizeMismatch`] if `x` or `out` is not the system's size.
     pub fn apply(&self, x: &[f64]) -> Result<Vec<f64>> {
         self.check_len(x.len(), "x")?;
         let l = &self.levels[0];
@@ -416,6 +420,11 @@ impl PoissonSystem {
     /// alone would cap the attainable relative residual near 1e-4.
     /// On singular (closed) components `b` is first made compatible by
     /// removing its mean there; the returned `x` has zero mean there.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::SizeMismatch`] if `b` or `x` is not the system's size,
+    /// and [`FluidError::NonFinite`] if the iteration produces a NaN or infinite value.
     pub fn solve(&mut self, b: &[f32], x: &mut [f64], params: &SolverParams) -> Result<SolveStats> {
         params.validate()?;
         self.check_len(b.len(), "b")?;

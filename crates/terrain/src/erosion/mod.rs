@@ -151,6 +151,14 @@ impl Erodibility {
     /// alternating between `soft` and `hard` multipliers with a smooth
     /// transition, indexed by the cell's altitude in `hf` plus an optional
     /// perturbation field (metres, e.g. fBm) that warps the beds.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] for a non-positive or non-finite
+    /// bed thickness or a negative or non-finite hardness,
+    /// [`TerrainError::SizeMismatch`] or [`TerrainError::NonFinite`] for a warp grid
+    /// of the wrong size or with a NaN, and [`TerrainError::Core`] if the map
+    /// cannot be allocated.
     pub fn strata(
         hf: &HeightField,
         bed_m: f32,

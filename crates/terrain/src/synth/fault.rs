@@ -38,6 +38,11 @@ impl Default for FaultParams {
 
 impl FaultParams {
     /// `faults ≥ 1` and at most 10⁸; `amplitude_m` finite and ≥ 0.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if self.faults == 0 || self.faults > 100_000_000 {
             return Err(invalid(
@@ -59,6 +64,12 @@ pub(crate) fn stream_gauss(rng: &mut impl Rng) -> f64 {
 
 /// An `nx × ny` field made by `p.faults` random step faults. Deterministic per
 /// seed; rows in parallel.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn poisson_faults(
     nx: usize,
     ny: usize,

@@ -40,6 +40,11 @@ pub struct TriMesh {
 impl TriMesh {
     /// A mesh with vertex `i` identified by `i` and normals averaged over the
     /// incident triangles (area weighted).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex or an
+    /// index past the vertices.
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self> {
         let ids = (0..positions.len() as u64).collect();
         Self::with_ids(positions, ids, triangles)
@@ -142,6 +147,11 @@ fn validate_topology(positions: &[DVec3], ids: &[u64], triangles: &[[u32; 3]]) -
 
 /// Subdivides `mesh` `levels` times (FFC fractal triangles): `4^levels` times as many
 /// triangles; for a single triangle `(2^L + 1)(2^L + 2)/2` vertices.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex, an index
+/// past the vertices or a non-positive edge length.
 pub fn subdivide_mesh(
     mesh: &TriMesh,
     p: &MidpointParams,
@@ -167,6 +177,11 @@ pub fn subdivide_mesh(
 
 /// Subdivides until no edge is longer than `max_edge` metres (Fournier et al. 1982, §4.1.2).
 /// Fails if that would take more than [`MAX_MESH_LEVELS`] levels.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex, an index
+/// past the vertices or a non-positive edge length.
 pub fn subdivide_mesh_until(
     mesh: &TriMesh,
     p: &MidpointParams,

@@ -44,6 +44,11 @@ impl Default for SpectralParams {
 
 impl SpectralParams {
     /// `h ∈ (0, 1]`, `sigma_m ≥ 0`, `low_cut ≥ 0`, `high_cut > low_cut`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
             return Err(invalid(
@@ -68,6 +73,12 @@ impl SpectralParams {
 }
 
 /// A periodic `nx × ny` fBm-like tile by spectral synthesis. Needs at least 2 × 2 samples.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn spectral_synthesis(
     nx: usize,
     ny: usize,

@@ -37,6 +37,11 @@ impl Default for SraParams {
 
 impl SraParams {
     /// `h ∈ (0, 1]`, `lacunarity ∈ (1, 16]`, `sigma_m ≥ 0` and finite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
             return Err(invalid(
@@ -66,6 +71,12 @@ impl SraParams {
 
 /// An `nx × ny` surface by successive random additions. Generation `g` has
 /// lattice spacing `λ^(G−g)` cells and deviation `sigma_m · λ^(−H·g)`.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn successive_random_additions(
     nx: usize,
     ny: usize,

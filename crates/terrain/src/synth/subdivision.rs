@@ -77,6 +77,11 @@ impl Default for MidpointParams {
 impl MidpointParams {
     /// Checks every field: `h` (and each scheduled `h`) in `(0, 1]`, `scale` finite and ≥ 0,
     /// fixed endpoints finite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let check_h = |name, h: f64| {
             if h > 0.0 && h <= 1.0 {
@@ -139,6 +144,12 @@ impl MidpointParams {
 /// The value at dyadic position `k / 2^levels` depends only on `(seed, k / 2^levels)`,
 /// so `midpoint_1d(p, L, s)[k] == midpoint_1d(p, L + m, s)[k << m]` bit for bit.
 /// Uses `2^levels + 1` Gaussian draws with random endpoints, `2^levels − 1` with fixed ones.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn midpoint_1d(p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<f64>> {
     p.validate()?;
     if levels > MAX_LEVELS {
@@ -223,6 +234,12 @@ fn subdivide_edge(
 /// length; the given vertices are kept exactly. With `closed`, the last vertex
 /// joins the first. Vertex `i` is identified by `i` for seeding; use
 /// [`fractal_polyline_ids`] to share edges between polylines.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn fractal_polyline(
     vertices: &[DVec2],
     closed: bool,
@@ -237,6 +254,12 @@ pub fn fractal_polyline(
 /// [`fractal_polyline`] with explicit invariant vertex identifiers: two
 /// polylines that share an edge (same pair of ids, either direction) produce
 /// bit-identical points on it (external consistency, Fournier et al. 1982, §3.2.1).
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn fractal_polyline_ids(
     vertices: &[DVec2],
     ids: &[u64],
@@ -344,6 +367,11 @@ impl Default for SubdivisionParams {
 
 impl SubdivisionParams {
     /// Validates the midpoint law and the depth (`levels ≤ 16`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         self.midpoint.validate()?;
         if let Some(l) = self.levels {
@@ -377,6 +405,12 @@ fn auto_levels(n: usize) -> u32 {
 /// on `(seed, i / 2^L, j / 2^L)`, so a run with depth `L − k` and
 /// `(nx − 1) / 2^k + 1` samples is exactly the fine run subsampled every `2^k`
 /// cells. Parallel over rows within each level; bit-identical on any thread count.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn subdivide(
     nx: usize,
     ny: usize,
