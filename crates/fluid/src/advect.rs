@@ -24,6 +24,7 @@ use crate::par;
 
 /// The advection scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Scheme {
     /// Plain semi-Lagrangian (Stam 1999): one back-trace and interpolation.
     #[default]
@@ -38,6 +39,7 @@ pub enum Scheme {
 
 /// The integrator of the back-traced path.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Tracer {
     /// One explicit Euler step `x − dt·u(x)`.
     Euler,
@@ -48,6 +50,7 @@ pub enum Tracer {
 
 /// How a field is carried by the flow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Advection {
     /// Semi-Lagrangian or an error-correcting variant.
     pub scheme: Scheme,
@@ -430,6 +433,11 @@ pub(crate) fn advect_many(
 ///
 /// `dt` in seconds, `h` the cell size in metres. With `solids`, paths are
 /// clipped at solid cells. Returns the advected grid (same size as `src`).
+///
+/// # Errors
+///
+/// Returns [`FluidError::SizeMismatch`](crate::FluidError::SizeMismatch) if the field and the velocity grid differ
+/// in size, and [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-finite `dt`.
 pub fn advect_scalar(
     src: &Grid3<f32>,
     vel: &MacVelocity,
@@ -461,6 +469,11 @@ pub fn advect_scalar(
 
 /// Advects every component of a MAC velocity field through itself (face
 /// midpoints traced back, Fedkiw et al. 2001, §4). Flat axes are left at zero.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if a result grid cannot be allocated.
+/// Returns [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-finite `dt`.
 pub fn advect_velocity(
     vel: &MacVelocity,
     h: f32,

@@ -22,6 +22,7 @@ use crate::par;
 
 /// Which wavenumbers the Fourier operators use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FftVariant {
     /// The paper's exact spectral symbols `k²`, `i k` (Stam 1999, §2.3).
     #[default]
@@ -33,6 +34,7 @@ pub enum FftVariant {
 
 /// The diffusion filter applied per Fourier mode.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DiffusionFilter {
     /// `1 / (1 + ν dt k²)`: implicit Euler, the paper's formula (Stam 1999, §2.3).
     #[default]
@@ -156,6 +158,12 @@ fn to_complex(g: &Grid3<f32>) -> Vec<Complex64> {
 
 /// Solves `∇² p = f` on a periodic grid by FFT (zero-mean `p`; the mean of
 /// `f` is ignored, as it must be zero for a solution to exist).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`] for a non-positive or non-finite cell
+/// size, [`FluidError::InvalidSize`] for an oversized grid, and
+/// [`FluidError::NonFinite`] naming the first NaN or infinite sample of `f`.
 pub fn solve_poisson_periodic(f: &Grid3<f32>, h: f32, variant: FftVariant) -> Result<Grid3<f64>> {
     crate::error::positive("h", f64::from(h))?;
     let (nx, ny, nz) = f.dims();

@@ -124,6 +124,10 @@ impl Dims {
     }
 
     /// A zero-filled scalar grid of the cell size.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn zeros(&self) -> Result<Grid3<f32>> {
         Ok(Grid3::new(self.nx, self.ny, self.nz, 0.0)?)
     }
@@ -137,6 +141,7 @@ impl std::fmt::Display for Dims {
 
 /// What lies beyond one side of the domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Side {
     /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Fedkiw et al. 2001, §2).
     #[default]
@@ -148,6 +153,7 @@ pub enum Side {
 
 /// The six sides of the domain: `[low, high]` along x, y and z.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Boundaries {
     /// `[x = 0, x = nx·h]`.
     pub x: [Side; 2],
@@ -205,6 +211,10 @@ pub struct MacVelocity {
 
 impl MacVelocity {
     /// A zero field on `dims`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn zeros(dims: Dims) -> Result<Self> {
         let g = |a: usize| {
             let n = dims.face_dims(a);
@@ -218,6 +228,10 @@ impl MacVelocity {
 
     /// Builds a field whose face samples are `f(axis, position_m)`, with
     /// positions in metres for cell size `h`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn from_fn(dims: Dims, h: f32, f: impl Fn(usize, glam::Vec3) -> f32) -> Result<Self> {
         let mut m = Self::zeros(dims)?;
         for a in 0..3 {
@@ -320,6 +334,11 @@ impl MacVelocity {
     }
 
     /// Returns the first non-finite face value as an error naming the component.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`] naming the field and the first NaN or
+    /// infinite sample.
     pub fn check_finite(&self, stage: &'static str) -> Result<()> {
         const NAMES: [&str; 3] = ["u", "v", "w"];
         for (a, g) in self.comps.iter().enumerate() {

@@ -17,6 +17,7 @@
 
 /// How a field is interpolated between samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Interpolation {
     /// Bi/trilinear (Stam 1999, §3.2): cheap, never creates extrema.
     #[default]
@@ -28,6 +29,7 @@ pub enum Interpolation {
 
 /// Slope limiter of the monotone cubic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CubicLimiter {
     /// Sign limiting plus Fritsch–Carlson rescaling: monotone, no overshoot.
     #[default]
@@ -277,7 +279,7 @@ mod tests {
 
     #[test]
     fn spec_overshoot_case() {
-        // Spec §2.6: data (0, 10, 10.1, 10.2), interval [10, 10.1].
+        // Data (0, 10, 10.1, 10.2), interval [10, 10.1].
         let f = [0.0, 10.0, 10.1, 10.2];
         let paper = max_on(f, CubicLimiter::PaperSignOnly);
         assert!((paper - 10.767).abs() < 2e-3, "paper limiter max {paper}");

@@ -45,6 +45,12 @@ fn minmod(a: f32, b: f32) -> f32 {
 
 impl LevelSet {
     /// Wraps `phi` (metres, negative inside) on cells of size `h`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter)
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`](crate::FluidError::Core) if
+    /// the grids cannot be allocated.
     pub fn new(phi: Grid3<f32>, h: f32) -> crate::Result<Self> {
         crate::error::positive("h", f64::from(h))?;
         let (nx, ny, nz) = phi.dims();

@@ -61,6 +61,7 @@ use crate::shape::{Obstacle, Shape, voxelise};
 /// How object velocities constrain the liquid (Foster & Fedkiw 2001, §9 states
 /// both rules, which contradict each other).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ObjectMode {
     /// Clamp only inflow: the relative normal velocity is made `>= 0` (Foster & Fedkiw 2001, §9).
     #[default]
@@ -71,6 +72,7 @@ pub enum ObjectMode {
 
 /// How marker particles correct the level set (Foster & Fedkiw 2001, §5.4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ParticleCorrection {
     /// Foster & Fedkiw 2001 as written: particles within two cells of the
     /// surface that poke out of it modify φ only where the interpolated
@@ -92,6 +94,7 @@ pub enum ParticleCorrection {
 
 /// The role of a cell in the liquid solver (Foster & Fedkiw 2001, §7.1.1–7.1.2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum LiquidCell {
     /// No liquid.
     #[default]
@@ -113,6 +116,7 @@ pub const MAX_GRAVITY: f32 = 1e4;
 /// Parameters of the liquid model. The paper gives none of these values
 /// defaults are library choices.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LiquidParams {
     /// Kinematic viscosity ν (m²/s). Default 1e-6 (water).
     pub viscosity: f32,
@@ -237,6 +241,12 @@ pub struct Liquid {
 
 impl Liquid {
     /// An empty tank of `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: LiquidParams) -> Result<Self> {
         error::positive("cell size h", f64::from(h))?;
         params.validate()?;
@@ -280,6 +290,11 @@ impl Liquid {
     /// Adds liquid filling `shape` (must lie inside the grid) with velocity
     /// `velocity`: φ becomes the union with the shape's signed distance and
     /// particles are seeded in its cells (jittered, deterministic).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite shape or velocity,
+    /// and [`FluidError::OutsideGrid`] if the shape lies outside the grid.
     pub fn fill(&mut self, shape: Shape, velocity: Vec3) -> Result<()> {
         shape.check_inside(self.dims, self.h, "liquid")?;
         if !velocity.is_finite() {
@@ -382,6 +397,11 @@ impl Liquid {
     }
 
     /// Adds an obstacle (static or moving); it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         o.validate()?;
         o.shape.check_inside(self.dims, self.h, "obstacle")?;

@@ -18,6 +18,10 @@ use crate::par;
 use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 
 /// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grid cannot be allocated.
 pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
     let mut out = vel.dims().zeros()?;
     par::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
@@ -64,6 +68,11 @@ fn divergence_row(vel: &MacVelocity, h: f32, r: usize, row: &mut [f32]) {
 /// One pass over the faces, row by row, with no divergence grid: each row's
 /// divergence goes to a row buffer and is folded at once (the same values
 /// as [`divergence`]; the maximum does not depend on the order).
+///
+/// # Errors
+///
+/// Returns [`FluidError::SizeMismatch`](crate::FluidError::SizeMismatch) if the cell kinds are not the grid's
+/// size.
 pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) -> Result<f32> {
     let d = vel.dims();
     let n0 = d.n()[0];
@@ -377,6 +386,11 @@ impl Projector {
     /// and walls and `p = 0` at air cells and open sides, then applies
     /// `u = u* − dt ∇p` (eq. 5) on every free face. Fixed faces (walls,
     /// solids) are not touched: set them before calling.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`](crate::FluidError::NonFinite) if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-positive `dt`.
     pub fn project(
         &mut self,
         vel: &mut MacVelocity,
@@ -509,6 +523,10 @@ fn ddx(g: &[f32], d: Dims, c: [usize; 3], a: usize, h: f32) -> f32 {
 }
 
 /// Cell-centred velocity components (face averages, Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if a result grid cannot be allocated.
 pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let mut out = [d.zeros()?, d.zeros()?, d.zeros()?];
@@ -533,6 +551,10 @@ pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
 /// Vorticity `ω = ∇ × u` at cell centres from face-averaged velocities and
 /// central differences (Fedkiw et al. 2001, App. A). In 2-D (x–z plane) only the
 /// y component is non-zero.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let u = centre_velocity(vel)?;
@@ -561,6 +583,11 @@ pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
 ///
 /// Where `|∇|ω||` vanishes (irrotational flow, uniform vorticity) the force
 /// is zero rather than NaN (the source divides by it).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a negative or non-finite `epsilon`,
+/// and [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let w = vorticity(vel, h)?;

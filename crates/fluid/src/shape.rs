@@ -118,6 +118,11 @@ impl Shape {
     }
 
     /// Checks the parameters are finite and positive where they must be.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let bad = |reason: &'static str| FluidError::InvalidParameter {
             name: "shape",
@@ -151,6 +156,10 @@ impl Shape {
 
     /// Checks that the shape lies within the domain `[0, n·h]` on every
     /// non-flat axis; on a flat axis it must cover the single cell's centre.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::OutsideGrid`] if the shape lies outside the grid.
     pub fn check_inside(&self, dims: Dims, h: f32, what: &'static str) -> Result<()> {
         self.validate()?;
         let (lo, hi) = self.bounds();

@@ -86,6 +86,7 @@ pub struct ForceSource {
 
 /// Parameters of both Stable Fluids solvers.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StableParams {
     /// Kinematic viscosity ν (m²/s), `visc` (Stam 1999, §3.1). The paper gives no value;
     /// default 1e-4.
@@ -117,6 +118,11 @@ impl Default for StableParams {
 
 impl StableParams {
     /// Checks every parameter: viscosity finite and `>= 0`, solver settings valid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         error::non_negative("viscosity", f64::from(self.viscosity))?;
         self.solver.validate()
@@ -240,6 +246,12 @@ pub struct PeriodicFluid {
 
 impl PeriodicFluid {
     /// A fluid at rest on `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
         check_h(h)?;
         params.validate()?;
@@ -268,11 +280,22 @@ impl PeriodicFluid {
     }
 
     /// Adds a substance (initially zero everywhere).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
+    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
+    /// allocated.
     pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
         self.subs.add(self.dims, s)
     }
 
     /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
+    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
     pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
         self.subs.check(id)?;
         check_scalar_source(self.dims, self.h, &src)?;
@@ -281,6 +304,11 @@ impl PeriodicFluid {
     }
 
     /// Adds a persistent force region; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
+    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
         check_force_source(self.dims, self.h, &s)?;
         self.force_sources.push(s);
@@ -305,12 +333,22 @@ impl PeriodicFluid {
     }
 
     /// The field of substance `id`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&self.subs.fields[id.0])
     }
 
     /// The field of substance `id`, mutably.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&mut self.subs.fields[id.0])
@@ -344,6 +382,12 @@ impl PeriodicFluid {
     }
 
     /// Advances by `dt` seconds: Vstep then Sstep (Stam 1999, §3.2).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` unless it is finite and
+    /// positive, and [`FluidError::NonFinite`] naming the field and stage if the step
+    /// produces a NaN or infinite value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
@@ -520,6 +564,12 @@ impl Roles {
 
 impl BoundedFluid {
     /// A fluid at rest on `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
         check_h(h)?;
         params.validate()?;
@@ -553,16 +603,32 @@ impl BoundedFluid {
     }
 
     /// Adds an obstacle; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         self.solid.add(o, self.dims, self.h)
     }
 
     /// Adds a substance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
+    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
+    /// allocated.
     pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
         self.subs.add(self.dims, s)
     }
 
     /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
+    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
     pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
         self.subs.check(id)?;
         check_scalar_source(self.dims, self.h, &src)?;
@@ -571,6 +637,11 @@ impl BoundedFluid {
     }
 
     /// Adds a persistent force region; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
+    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
         check_force_source(self.dims, self.h, &s)?;
         self.force_sources.push(s);
@@ -600,12 +671,22 @@ impl BoundedFluid {
     }
 
     /// The field of substance `id`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&self.subs.fields[id.0])
     }
 
     /// The field of substance `id`, mutably.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&mut self.subs.fields[id.0])
@@ -618,6 +699,11 @@ impl BoundedFluid {
     }
 
     /// Projects the current velocity (e.g. after setting it by hand).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`] if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`] for a non-positive `dt`.
     pub fn project(&mut self, dt: f32) -> Result<crate::pressure::SolveStats> {
         let sv = crate::shape::solid_face_velocity(
             self.dims,
@@ -652,6 +738,12 @@ impl BoundedFluid {
 
     /// Advances by `dt` seconds: force → advect → diffuse → project, then the
     /// substances (Stam 1999, §3.2). Moving obstacles advance at the end.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` unless it is finite and
+    /// positive, and [`FluidError::NonFinite`] naming the field and stage if the step
+    /// produces a NaN or infinite value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);

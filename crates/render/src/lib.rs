@@ -127,6 +127,10 @@ pub fn auto_exposure(image: &Image) -> f32 {
 ///
 /// Stages reported to `progress`: synthesis, stream power, pipe erosion,
 /// thermal erosion, atmosphere tables, acceleration, tracing.
+///
+/// # Errors
+///
+/// The errors of [`World::build`] and [`render_world`].
 pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Rendered> {
     let world = World::build(scene, progress)?;
     render_world(&world, progress)
@@ -134,6 +138,10 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 
 /// Renders an already built [`World`] (see [`render_scene`]); the stage
 /// times include the world's.
+///
+/// # Errors
+///
+/// The errors of [`Renderer::new`] and [`Renderer::render`].
 pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
     let scene = &world.scene;
     let mut times = world.times.clone();

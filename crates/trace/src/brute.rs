@@ -16,6 +16,8 @@ use crate::ray_cell::{CellHit, intersect_cell};
 /// correct by construction and slow (O(N) per ray). Equal `t` keeps the
 /// first triangle in row-major cell order, lower before upper.
 ///
+/// # Errors
+///
 /// Fails like [`crate::MipmapTracer::new`] on a field that cannot be traced.
 pub fn brute_force(hf: &HeightField, ray: &Ray, t_min: f32, t_max: f32) -> Result<Option<Hit>> {
     let f = FieldView::new(hf)?;

@@ -181,6 +181,8 @@ pub struct GridTracer<'a> {
 impl<'a> GridTracer<'a> {
     /// Returns a tracer over `hf`.
     ///
+    /// # Errors
+    ///
     /// Fails with [`crate::TraceError::Field`] if `hf` has fewer than 2 × 2
     /// samples, more than [`crate::MAX_SAMPLES_PER_AXIS`] along an axis, or a
     /// NaN or infinite height.

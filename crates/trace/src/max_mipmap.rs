@@ -75,6 +75,8 @@ pub struct MaxMipmap {
 impl MaxMipmap {
     /// Builds the pyramid of `hf` (in parallel rows with the `parallel` feature).
     ///
+    /// # Errors
+    ///
     /// Fails like [`MipmapTracer::new`].
     pub fn new(hf: &HeightField) -> Result<Self> {
         Ok(Self::build(&FieldView::new(hf)?))
@@ -242,6 +244,8 @@ pub(crate) struct Cursor {
 
 impl<'a> MipmapTracer<'a> {
     /// Builds the pyramid of `hf` and returns a tracer over it.
+    ///
+    /// # Errors
     ///
     /// Fails with [`crate::TraceError::Field`] if `hf` has fewer than 2 × 2
     /// samples, more than [`crate::MAX_SAMPLES_PER_AXIS`] along an axis, or a

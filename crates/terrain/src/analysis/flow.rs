@@ -34,6 +34,7 @@ pub(crate) const D8: [(i32, i32, f32); 8] = [
 
 /// How closed depressions (pits) are handled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Depressions {
     /// Leave them: pits are sinks that do not reach the edge.
     Keep,
@@ -861,6 +862,11 @@ pub(crate) fn next_up(x: f32) -> f32 {
 
 /// Fills depressions of `hf` (every cell then drains to the edge by steepest
 /// descent), returning the filled field and the depth of fill per cell.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the first NaN or infinite height, or if
+/// the result cannot be allocated.
 pub fn fill_depressions(hf: &HeightField) -> crate::Result<(HeightField, Grid2<f32>)> {
     hf.check_finite()?;
     let (nx, ny) = (hf.nx(), hf.ny());

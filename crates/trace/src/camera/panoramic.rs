@@ -85,7 +85,11 @@ impl PanoramicCamera {
     ///
     /// `hfov` may exceed 2π (a periodic "wallpaper", Musgrave 1993, §8.3). For
     /// [`Projection::Spherical`] `vfov` may exceed π; for
-    /// [`Projection::Cylindrical`] it must be below π. Fails on non-finite
+    /// [`Projection::Cylindrical`] it must be below π.
+    ///
+    /// # Errors
+    ///
+    /// Fails on non-finite
     /// vectors, a zero `up`, a `look_dir` parallel to `up`, a non-positive
     /// or non-finite field of view, or a bad resolution.
     #[allow(clippy::too_many_arguments)]
@@ -148,7 +152,11 @@ impl PanoramicCamera {
         })
     }
 
-    /// Returns the camera rendering one eye of a stereo pair. Fails unless
+    /// Returns the camera rendering one eye of a stereo pair.
+    ///
+    /// # Errors
+    ///
+    /// Fails unless
     /// `stereo.separation` is finite and non-negative.
     pub fn with_stereo(mut self, stereo: Stereo) -> Result<Self> {
         if !(stereo.separation.is_finite() && stereo.separation >= 0.0) {

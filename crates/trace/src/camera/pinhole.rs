@@ -32,6 +32,8 @@ impl PinholeCamera {
     /// vertical field of view `vfov` (radians, in `(0, π)`) and a `width ×
     /// height` image with square pixels (aspect = width / height).
     ///
+    /// # Errors
+    ///
     /// Fails if a vector is not finite, `eye == target`, `up` is zero or
     /// parallel to the view direction, `vfov` is out of range, or the
     /// resolution is zero or over [`crate::MAX_RESOLUTION`].
@@ -64,6 +66,9 @@ impl PinholeCamera {
 
     /// Returns the camera with screen aspect ratio `aspect` (width / height of
     /// the visible rectangle) instead of the pixel ratio, for non-square pixels.
+    ///
+    /// # Errors
+    ///
     /// Fails unless `aspect` is finite and positive.
     pub fn with_aspect(mut self, aspect: f32) -> Result<Self> {
         if !(aspect.is_finite() && aspect > 0.0) {
