@@ -18,6 +18,10 @@
 //! per second of *thread CPU time* is printed (`[noise] cpu ...`), which stays
 //! meaningful when the machine is shared (a loaded machine deschedules the
 //! thread, stretching wall-clock time but not CPU time).
+//!
+//! Reproduce one block with a filter: `cargo bench --bench noise
+//! --no-default-features --features noise -- _point` (P1–P8), `-- W5` (the
+//! Worley batch against simdnoise), or `-- W` (every batch group).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fastnoise_lite::{
