@@ -3,8 +3,8 @@
 //! Every basis draws its per-lattice-point randomness (gradients, values,
 //! feature points, impulses) from a stateless hash of the lattice coordinates
 //! and the seed, in the spirit of Fournier–Fussell–Carpenter's "random numbers
-//! indexed by position". No permutation table: the sources' table-based
-//! implementations repeat every 256 cells;
+//! indexed by position". No permutation table: the common table-based
+//! implementations repeat every 256 cells, which shows at planet scale;
 //! this hash repeats only with the 2³² wrap of the `i32` lattice index.
 //!
 //! The hash is 32-bit integer arithmetic so the f64 point path and the f32
@@ -204,9 +204,8 @@ pub(crate) const fn grad2(h: u32) -> (f32, f32) {
     (gx, gy)
 }
 
-/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions
-/// `(±1, ±1, 0)` and permutations (Perlin 2002), four of them doubled to
-/// fill 16 slots.
+/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions `(±1, ±1,
+/// 0)` and permutations (Perlin 2002), four of them doubled to fill 16 slots.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn grad3(h: u32) -> (f32, f32, f32) {
@@ -236,6 +235,14 @@ pub(crate) const GRAD2_64: [[f64; 2]; 16] = {
     t
 };
 
+/// `g·(dx, dy)` for the gradient of hash `h`, in f64.
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot2(h: u32, dx: f64, dy: f64) -> f64 {
+    let g = GRAD2_64[(h >> 28) as usize];
+    g[0] * dx + g[1] * dy
+}
+
 /// [`grad3`] for each value of the top four hash bits, in f64 (see [`GRAD2_64`]).
 pub(crate) const GRAD3_64: [[f64; 3]; 16] = {
     let mut t = [[0.0; 3]; 16];
@@ -248,20 +255,40 @@ pub(crate) const GRAD3_64: [[f64; 3]; 16] = {
     t
 };
 
-/// `g·(dx, dy)` for the gradient of hash `h`, in f64.
+/// `x` with its sign flipped when bit `bit` of `h` is set (a sign-bit xor:
+/// exact, branch-free, vectorisable).
 #[inline(always)]
-#[must_use]
-pub(crate) fn dot2(h: u32, dx: f64, dy: f64) -> f64 {
-    let g = GRAD2_64[(h >> 28) as usize];
-    g[0] * dx + g[1] * dy
+fn flip(x: f64, h: u32, bit: u32) -> f64 {
+    f64::from_bits(x.to_bits() ^ (u64::from((h >> bit) & 1) << 63))
 }
 
-/// `g·(dx, dy, dz)` for the gradient of hash `h`, in f64.
+/// `g·(dx, dy, dz)` for the [`grad3`] gradient of hash `h`, in f64 (a
+/// table lookup: cheap for one point).
 #[inline(always)]
 #[must_use]
 pub(crate) fn dot3(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
     let g = GRAD3_64[(h >> 28) as usize];
     g[0] * dx + g[1] * dy + g[2] * dz
+}
+
+/// [`dot3`] in the form that vectorises across SIMD lanes: the gradient has
+/// two non-zero components `±1`, so `g·d` is the signed sum `±u ± v` of two
+/// of the offsets, picked by comparisons and signed by a sign-bit xor. The
+/// same value as [`dot3`] exactly, up to the sign of a zero result (`g·d`
+/// adds a `±0` term that can turn `−0` into `+0`).
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3_lanes(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
+    let c = h >> 28;
+    let u = if c < 8 { dx } else { dy };
+    let v = if c < 4 {
+        dy
+    } else if c == 12 || c == 14 {
+        dx
+    } else {
+        dz
+    };
+    flip(u, h, 28) + flip(v, h, 29)
 }
 
 /// The 4-D gradient for hash `h`: one of the 32 tesseract-edge directions
@@ -291,6 +318,32 @@ pub(crate) fn grad1(h: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Both forms of the 3-D gradient dot product equal `g·d` with the
+    /// [`grad3`] gradient (the lane form up to the sign of a zero), for
+    /// every gradient and offsets of either sign.
+    #[test]
+    fn dot3_forms_agree_with_the_gradient() {
+        let offsets = [0.0, 0.375, -0.625, 0.999_999, -1.0, 1.0e-9, 0.5];
+        for c in 0..16u32 {
+            let h = (c << 28) | 0x0123_4567;
+            let (gx, gy, gz) = grad3(h);
+            for &dx in &offsets {
+                for &dy in &offsets {
+                    for &dz in &offsets {
+                        let a = dot3(h, dx, dy, dz);
+                        let b = dot3_lanes(h, dx, dy, dz);
+                        let g = f64::from(gx) * dx + f64::from(gy) * dy + f64::from(gz) * dz;
+                        assert_eq!(a.to_bits(), g.to_bits(), "c {c}");
+                        assert_eq!(a, b, "c {c} ({dx}, {dy}, {dz})");
+                        if a != 0.0 {
+                            assert_eq!(a.to_bits(), b.to_bits(), "c {c}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn gradients_are_uniform_over_their_sets() {

@@ -1,9 +1,10 @@
 //! # natura-noise
 //!
 //! Noise bases, fractional Brownian motion, multifractals and domain
-//! distortion, after Musgrave's dissertation and course notes (Musgrave 1993,
-//! Musgrave et al. 1989, Musgrave 1998, Musgrave 2001). `#![no_std]` with `libm`; no images,
-//! FFTs or threads.
+//! distortion, after Musgrave's dissertation (Musgrave 1993, ch. 2 and 5), his
+//! SIGGRAPH '89 paper (Musgrave et al. 1989, §3), his *Texturing & Modeling*
+//! chapter (Musgrave 1998) and his SIGGRAPH 2001 course notes (Musgrave 2001).
+//! `#![no_std]` with `libm`; no images, FFTs or threads.
 //!
 //! * **One trait**, [`Field`]: `&self` evaluation at `f64` 2-D/3-D points,
 //!   analytic gradients, a value [`bound`](Field::bound) and Lipschitz
@@ -33,8 +34,9 @@
 //!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
 //!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
 //!
-//! Every type documents its source (seed file and lines), the errata it
-//! corrects, its bound and its Lipschitz constant.
+//! Every type documents its source (document and section, as keyed in the
+//! repository's `docs/sources.md`), the errors of the source it corrects,
+//! its bound and its Lipschitz constant.
 //!
 //! ```
 //! use natura_noise::{Field, Fbm, Perlin, Spectral, Lattice2};
@@ -49,11 +51,6 @@
 //! # let _ = (height, slope);
 //! # Ok::<(), natura_noise::NoiseError>(())
 //! ```
-//!
-//! Sources are cited by the keys of the bibliography, `docs/sources.md`
-//! (Musgrave 1993 is the dissertation, Musgrave et al. 1989 the SIGGRAPH '89
-//! paper, Musgrave 1998 the *Texturing & Modeling* chapter, Musgrave 2001 the
-//! SIGGRAPH 2001 course notes), with section titles or numbers.
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -78,7 +75,7 @@ pub use basis::checker::Checkerboard;
 pub use basis::perlin::Perlin;
 pub use basis::simplex::Simplex;
 pub use basis::sine::Sine;
-pub use basis::sparse::{Kernel, SparseConvolution, SparseParams};
+pub use basis::sparse::{SparseConvolution, SparseKernel, SparseParams};
 pub use basis::steps::Steps;
 pub use basis::value::{Value, ValueInterp};
 pub use combinators::{Abs, Ridged, Transform};

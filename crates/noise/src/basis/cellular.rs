@@ -1,10 +1,11 @@
 //! Worley (Voronoi, cellular) noise: distances to the nearest feature points.
 //!
-//! MojoWorld's Voronoi basis (Musgrave 2001, "Voronoi") (Worley 1996): one feature point per
-//! unit lattice cell, at `cell + ½ + jitter·(u − ½)` with `u` uniform from the
-//! cell's hash. The value is the distance to the 1st…4th nearest feature point
-//! (`F1…F4`) or a difference of neighbours (`F2 − F1`, …) under a chosen metric.
-//! "Distance" gives conical pits, "distance squared" parabolic ones (Musgrave 2001, "Voronoi").
+//! MojoWorld's Voronoi basis (Musgrave 2001, "Voronoi") (Worley 1996): one
+//! feature point per unit lattice cell, at `cell + ½ + jitter·(u − ½)` with `u`
+//! uniform from the cell's hash. The value is the distance to the 1st…4th
+//! nearest feature point (`F1…F4`) or a difference of neighbours (`F2 − F1`, …)
+//! under a chosen metric. "Distance" gives conical pits, "distance squared"
+//! parabolic ones (Musgrave 2001, "Voronoi").
 //!
 //! The search is **exact** for every feature and jitter: cells are visited in
 //! rings of growing Chebyshev radius until the ring's nearest possible point
@@ -18,8 +19,8 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::basis::SPAN_MAX_STEP;
 use crate::basis::cellular_rows::{chunk2, chunk3};
-use crate::basis::perlin::SPAN_MAX_STEP;
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::hash::{PX, PY, PZ, corner, corner_spread, rehash, row2, row3, seed32};
@@ -32,7 +33,8 @@ pub enum Metric {
     /// Straight-line distance: conical pits, straight ridges. The default.
     #[default]
     Euclidean,
-    /// Squared Euclidean distance: smooth parabolic pits (Musgrave 2001, "Voronoi").
+    /// Squared Euclidean distance: smooth parabolic pits (Musgrave 2001,
+    /// "Voronoi").
     EuclideanSquared,
     /// Sum of axis distances (L1): diamond-shaped cells.
     Manhattan,

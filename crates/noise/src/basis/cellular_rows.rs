@@ -27,7 +27,7 @@ use crate::hash::{PX, PY, PZ, corner_spread};
 use crate::lanes::{Kernel, Simd, min_fast, run, split_fast};
 
 #[cfg(doc)]
-use crate::basis::perlin::SPAN_MAX_STEP;
+use crate::basis::SPAN_MAX_STEP;
 
 /// `√v` for f32 lanes in `core` (no `sqrt` there, and a libm call would stop
 /// vectorisation): the bit-trick reciprocal square root refined by three

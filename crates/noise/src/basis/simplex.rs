@@ -1,11 +1,13 @@
 //! Simplex noise (Perlin 2001), 2-D and 3-D.
 //!
 //! Gradient noise on the simplex lattice (triangles in 2-D, tetrahedra in 3-D):
-//! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of
-//! the `n + 1` corners of its simplex. Outside the sources; offered because it is cheaper in 3-D and has no
-//! axis-aligned artefacts. Kernel radius² ½ in both dimensions, so the noise is
-//! continuous (C³ kernel) — unlike the common 0.6 in 3-D, which leaves small
-//! jumps at simplex faces. Zero at lattice points like Perlin noise.
+//! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of the
+//! `n + 1` corners of its simplex. Outside the sources (Musgrave 2001, "The
+//! Various Basis Functions", lists only lattice "Perlin" variants); offered
+//! because it is cheaper in 3-D and has no axis-aligned artefacts. Kernel
+//! radius² ½ in both dimensions, so the noise is continuous (C³ kernel) —
+//! unlike the common 0.6 in 3-D, which leaves small jumps at simplex faces.
+//! Zero at lattice points like Perlin noise.
 //!
 //! Gradients are the same sets as [`Perlin`](crate::Perlin)'s (8 unit vectors
 //! in 2-D, 12 cube edges in 3-D), hashed from the lattice coordinates. Values

@@ -3,12 +3,12 @@
 //!
 //! A renderer that knows how large a sample's footprint is drops the octaves
 //! finer than it, so a texture seen from far away does not alias. This is the
-//! dissertation's level-of-detail scheme (Musgrave 1993, §5.1.2): the
-//! number of iterations of the fractal loop is a parameter, given the value
-//! the footprint allows at each point, and the fractional remainder octave
-//! (§2.3.2.1, the `if (i < 1) amplitude *= i` of the C code) makes the sum
-//! continuous in that number, so the detail fades in smoothly as the
-//! footprint shrinks instead of popping.
+//! dissertation's level-of-detail scheme (Musgrave 1993, §5.1.2): the number of
+//! iterations of the fractal loop is a parameter, given the value the footprint
+//! allows at each point, and the fractional remainder octave (§2.3.2.1, the `if
+//! (i < 1) amplitude *= i` of the C code) makes the sum continuous in that
+//! number, so the detail fades in smoothly as the footprint shrinks instead of
+//! popping.
 //!
 //! With `visible ≥` the table's octave count every method here equals the
 //! plain evaluation; with `visible = n + t` octave `k` keeps the factor
@@ -91,10 +91,10 @@ impl Octaves {
 }
 
 impl<B: Field> Fbm<B> {
-    /// The fBm at the 3-D point `p` summed over `visible` octaves: octave
-    /// `k` keeps [`Octaves::band_factor`] `= clamp(visible − k, 0, 1)` of its
-    /// weight, so the sum is continuous in `visible` and the detail finer
-    /// than a pixel footprint can be dropped without popping (Musgrave 1993,
+    /// The fBm at the 3-D point `p` summed over `visible` octaves: octave `k`
+    /// keeps [`Octaves::band_factor`] `= clamp(visible − k, 0, 1)` of its
+    /// weight, so the sum is continuous in `visible` and the detail finer than
+    /// a pixel footprint can be dropped without popping (Musgrave 1993,
     /// §5.1.2). Equal to [`Field::eval3`] for `visible ≥` the octave count.
     #[must_use]
     pub fn eval3_band(&self, p: DVec3, visible: f64) -> f64 {

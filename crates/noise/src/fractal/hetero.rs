@@ -1,4 +1,4 @@
-//! Heterogeneous terrain: Musgrave's `Terrain()` (Musgrave 1993, §2.3.2.5–2.4).
+//! Heterogeneous terrain: Musgrave's `Terrain()` (Musgrave 1993, §2.3.2.5).
 
 use crate::error::{NoiseError, Result, bounded, magnitude};
 use crate::field::Field;
@@ -16,16 +16,16 @@ pub struct HeteroTerrainParams {
     /// `0.5·(offset + N)`. Larger offsets make more of the terrain rough
     /// (at `offset ≥ 1 + 2·threshold` it is plain fBm, scaled).
     pub offset: f64,
-    /// `c_c` of (Musgrave 1993, §2.3.2.5.1): the signal level at and above which higher
-    /// frequencies get full weight; below it they fade linearly to 0 at
-    /// signal 0. Smaller thresholds give rougher valleys. Must be > 0.
+    /// `c_c` of Musgrave 1993, §2.3.2.5.1: the signal level at and above
+    /// which higher frequencies get full weight; below it they fade linearly to
+    /// 0 at signal 0. Smaller thresholds give rougher valleys. Must be > 0.
     pub threshold: f64,
 }
 
 impl Default for HeteroTerrainParams {
-    /// `H = 0.8` (terrain-like, Musgrave 1993, §2.2.1.4), offset 1, threshold 0.5 (the
-    /// sources give no values for Plates 2.8-2.9; these give smooth valleys
-    /// and rough peaks).
+    /// `H = 0.8` (terrain-like, Musgrave 1993, §2.2.1.4), offset 1, threshold
+    /// 0.5 (the sources give no values for Plates 2.8-2.9; these give smooth
+    /// valleys and rough peaks).
     fn default() -> Self {
         Self {
             spectral: Spectral::default().with_h(0.8),
@@ -67,13 +67,14 @@ impl HeteroTerrainParams {
 ///                   signal = weight·0.5·(offset + N(λ^k p))
 ///                   result += λ^(−kH)·signal          (× t for a partial octave)
 /// ```
-/// Erratum: the printed equation's `F(v)` cases are inverted
-/// relative to the code and the intent, and it writes `f^β` for the code's
-/// `f^−H`; the code is followed. The weights cascade (signal contains the
-/// previous weight), so once a signal is ≤ 0 every later octave is 0
-/// ("once the terrain has become smooth locally, it will never get any
-/// rougher", Musgrave 1993, §6.2.1.1). The `VERY_SMALL` early exit is not applied.
-/// With the ridged basis ([`Ridged`](crate::Ridged)) it gives "Hell" (Plate 2.9).
+/// The dissertation's printed equation has the two cases of `F(v)` inverted
+/// relative to its code and its stated intent, and it writes `f^β` for the
+/// code's `f^−H`; the code is followed. The weights cascade (signal contains
+/// the previous weight), so once a signal is ≤ 0 every later octave is 0 ("once
+/// the terrain has become smooth locally, it will never get any rougher",
+/// Musgrave 1993, §6.2.1.1). The `VERY_SMALL` early exit is not applied. With
+/// the ridged basis ([`Ridged`](crate::Ridged)) it gives "Hell" (Musgrave 1993,
+/// Plate 2.9).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeteroTerrain<B> {
     basis: B,

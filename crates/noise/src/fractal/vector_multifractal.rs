@@ -25,10 +25,10 @@ pub struct VectorMultifractalParams {
 }
 
 impl Default for VectorMultifractalParams {
-    /// The values of the dissertation's Gaea (Musgrave 1993, §5.8, the
-    /// `PLANET` texture's argument vector): lacunarity 2, 10 octaves, gain
-    /// `ω = λ^(−½ − H)` with `H = −0.48`, i.e. `2^−0.02 ≈ 0.986`,
-    /// `N_OFFSET = 0.7`, first-octave `VLNoise` scale 1.5.
+    /// The values of the dissertation's Gaea (Musgrave 1993, §5.8, the `PLANET`
+    /// texture's argument vector): lacunarity 2, 10 octaves, gain `ω = λ^(−½ −
+    /// H)` with `H = −0.48`, i.e. `2^−0.02 ≈ 0.986`, `N_OFFSET = 0.7`,
+    /// first-octave `VLNoise` scale 1.5.
     fn default() -> Self {
         Self {
             spectral: Spectral {
@@ -61,10 +61,10 @@ impl VectorMultifractalParams {
     }
 }
 
-/// The vector multifractal `MVfBm` of Musgrave 1993, §5.8: a sum of
-/// basis gradients (`DNoise`) whose weights cascade, so that some regions of
-/// the planet get rough, wiggly coastlines and others stay smooth
-/// (heterogeneous fractal dimension; Musgrave 2001, "Building Planets").
+/// The vector multifractal `MVfBm` of Musgrave 1993, §5.8: a sum of basis
+/// gradients (`DNoise`) whose weights cascade, so that some regions of the
+/// planet get rough, wiggly coastlines and others stay smooth (heterogeneous
+/// fractal dimension; Musgrave 2001, "Building Planets").
 ///
 /// ```text
 /// weight = |VLNoise(p, first_scale)|;   result = weight·∇N(p)
