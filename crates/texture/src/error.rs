@@ -63,45 +63,15 @@ pub(crate) fn invalid(
     }
 }
 
-/// Returns `Ok(v)` if `v` is finite.
-pub(crate) fn finite(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite"))
-    }
-}
+pub(crate) use natura_core::check::{finite, in_range, non_negative, positive};
 
-/// Returns `Ok(v)` if `v` is finite and `> 0`.
-pub(crate) fn positive(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and > 0"))
-    }
-}
-
-/// Returns `Ok(v)` if `v` is finite and `≥ 0`.
-pub(crate) fn non_negative(name: &'static str, v: f64) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, "must be finite and ≥ 0"))
-    }
-}
-
-/// Returns `Ok(v)` if `lo ≤ v ≤ hi` (NaN fails).
-pub(crate) fn in_range(
-    name: &'static str,
-    v: f64,
-    lo: f64,
-    hi: f64,
-    reason: &'static str,
-) -> Result<f64> {
-    if v >= lo && v <= hi {
-        Ok(v)
-    } else {
-        Err(invalid(name, v, reason))
+impl From<natura_core::check::ParamError> for TextureError {
+    fn from(e: natura_core::check::ParamError) -> Self {
+        TextureError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            reason: e.expected,
+        }
     }
 }
 

@@ -46,6 +46,10 @@ impl Default for VectorMultifractalParams {
 
 impl VectorMultifractalParams {
     /// Checks the spectral parameters, a finite offset and a finite, non-zero first scale.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first bad parameter (or the
+    /// spectral parameters' own errors).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         finite("offset", self.offset)?;
@@ -90,6 +94,9 @@ pub struct VectorMultifractal<B> {
 
 impl<B: Smooth + Clone> VectorMultifractal<B> {
     /// The vector multifractal over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As [`VectorMultifractalParams::validate`].
     pub fn new(basis: B, params: VectorMultifractalParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
