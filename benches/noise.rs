@@ -6,17 +6,28 @@
 //! * W3 2-D fBm, 8 octaves of gradient noise (λ = 2, gain ½), 1024² grid; also on 2 threads
 //! * W4 3-D Perlin on a 128³ grid (frequency 0.05 per cell)
 //! * W5 2-D Worley F1 (Euclidean), 1024² grid
+//! * P1–P8 per-point evaluation (one call per point, as textures make them)
+//!   of 2-D and 3-D Perlin, simplex, Worley F1 and 8-octave fBm of Perlin
+//!   noise on one fixed quasi-random point set, natura's `eval2`/`eval3`
+//!   against fastnoise-lite's `get_noise_2d`/`get_noise_3d` and noise-rs's
+//!   `get`; after each group the CPU-time rates and natura's ratio to each
+//!   peer are printed (`[noise] ratio ...`)
 //!
 //! Throughput is reported in points per second (`Throughput::Elements`).
 //! Besides criterion's wall-clock figures, each single-thread contender's rate
 //! per second of *thread CPU time* is printed (`[noise] cpu ...`), which stays
 //! meaningful when the machine is shared (a loaded machine deschedules the
 //! thread, stretching wall-clock time but not CPU time).
+//!
+//! Reproduce one block with a filter: `cargo bench --bench noise
+//! --no-default-features --features noise -- _point` (P1–P8), `-- W5` (the
+//! Worley batch against simdnoise), or `-- W` (every batch group).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fastnoise_lite::{
     CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
 };
+use glam::{DVec2, DVec3};
 use natura::noise::{
     Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simplex, Spectral, Worley, WorleyParams,
 };
@@ -63,27 +74,19 @@ fn thread_cpu() -> Option<f64> {
     Some(ns * 1e-9)
 }
 
-/// Prints points per CPU second of `f` over `n` points, repeating until at
-/// least 0.5 s of CPU time.
-fn cpu_rate(name: &str, n: usize, mut f: impl FnMut()) {
-    let Some(c0) = thread_cpu() else { return };
-    f();
-    let c0 = thread_cpu().unwrap_or(c0);
-    let mut reps = 0;
-    let mut used;
-    loop {
-        f();
-        reps += 1;
-        used = thread_cpu().unwrap_or(c0) - c0;
-        if used >= 0.5 {
-            break;
-        }
-    }
-    eprintln!(
-        "[noise] cpu {name}: {:.2} Mpts per CPU-second ({:.3} ns/pt; {n} pts x {reps})",
-        (n * reps) as f64 / used / 1e6,
-        used * 1e9 / (n * reps) as f64,
-    );
+/// Whether the command line's benchmark filter (if any) selects group
+/// `name`: the CPU-time passes below run outside criterion, so they skip the
+/// groups a filtered run leaves out. Bare numbers (option values such as
+/// `--profile-time 5`) are not filters.
+fn selected(name: &str) -> bool {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
+        .collect();
+    filters.is_empty()
+        || filters
+            .iter()
+            .any(|f| name.contains(f.split('/').next().unwrap_or(f)))
 }
 
 fn group<'a>(
@@ -97,6 +100,26 @@ fn group<'a>(
     g.warm_up_time(Duration::from_millis(500));
     g.measurement_time(Duration::from_secs(2));
     g
+}
+
+/// simdnoise's 2-D gradient noise over the W1/W2 grid.
+fn simd_gradient2() {
+    black_box(
+        NoiseBuilder::gradient_2d(N, N)
+            .with_freq(FREQ as f32)
+            .with_seed(1)
+            .generate(),
+    );
+}
+
+/// Interleaved CPU-time rates of a batch group's contenders (the first is
+/// natura) and natura's ratio to each peer.
+fn batch_ratios(name: &str, n: usize, out: &mut [f32], mut contenders: Vec<Contender<'_>>) {
+    if let Some(r) = interleaved_rates(name, n, &mut contenders, out) {
+        for ((who, _), rate) in contenders[1..].iter().zip(&r[1..]) {
+            eprintln!("[noise] ratio {name}: natura / {who} = {:.2}", r[0] / rate);
+        }
+    }
 }
 
 fn w1_perlin2(c: &mut Criterion) {
@@ -126,12 +149,22 @@ fn w1_perlin2(c: &mut Criterion) {
         })
     });
     g.finish();
-    cpu_rate("W1 natura", N * N, || {
-        p.fill_grid2(&l, black_box(&mut out)).unwrap()
-    });
-    cpu_rate("W1 fastnoise-lite", N * N, || {
-        fill_fnl(&f, black_box(&mut out))
-    });
+    batch_ratios(
+        "W1_perlin2d_1024",
+        N * N,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| p.fill_grid2(&l, o).unwrap()),
+            ),
+            ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&f, o))),
+            (
+                "simdnoise gradient_2d",
+                Box::new(|_: &mut [f32]| simd_gradient2()),
+            ),
+        ],
+    );
 }
 
 fn w2_simplex2(c: &mut Criterion) {
@@ -161,17 +194,22 @@ fn w2_simplex2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
-    cpu_rate("W2 natura", N * N, || {
-        s.fill_grid2(&l, black_box(&mut out)).unwrap()
-    });
-    cpu_rate("W2 simdnoise gradient_2d", N * N, || {
-        black_box(
-            NoiseBuilder::gradient_2d(N, N)
-                .with_freq(FREQ as f32)
-                .with_seed(1)
-                .generate(),
-        );
-    });
+    batch_ratios(
+        "W2_simplex2d_1024",
+        N * N,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| s.fill_grid2(&l, o).unwrap()),
+            ),
+            (
+                "simdnoise gradient_2d",
+                Box::new(|_: &mut [f32]| simd_gradient2()),
+            ),
+            ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&f, o))),
+        ],
+    );
 }
 
 fn fbm8() -> Fbm<Perlin> {
@@ -231,20 +269,32 @@ fn w3_fbm2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
-    cpu_rate("W3 natura", N * N, || {
-        f.fill_grid2(&l, black_box(&mut out)).unwrap()
-    });
-    cpu_rate("W3 simdnoise fbm_2d", N * N, || {
-        black_box(
-            NoiseBuilder::fbm_2d(N, N)
-                .with_freq(FREQ as f32)
-                .with_octaves(8)
-                .with_lacunarity(2.0)
-                .with_gain(0.5)
-                .with_seed(1)
-                .generate(),
-        );
-    });
+    batch_ratios(
+        "W3_fbm8_2d_1024",
+        N * N,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| f.fill_grid2(&l, o).unwrap()),
+            ),
+            (
+                "simdnoise fbm_2d",
+                Box::new(|_: &mut [f32]| {
+                    black_box(
+                        NoiseBuilder::fbm_2d(N, N)
+                            .with_freq(FREQ as f32)
+                            .with_octaves(8)
+                            .with_lacunarity(2.0)
+                            .with_gain(0.5)
+                            .with_seed(1)
+                            .generate(),
+                    );
+                }),
+            ),
+            ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&fl, o))),
+        ],
+    );
 }
 
 fn w4_perlin3(c: &mut Criterion) {
@@ -281,17 +331,28 @@ fn w4_perlin3(c: &mut Criterion) {
         })
     });
     g.finish();
-    cpu_rate("W4 natura", M * M * M, || {
-        p.fill_grid3(&l, black_box(&mut out)).unwrap()
-    });
-    cpu_rate("W4 simdnoise gradient_3d", M * M * M, || {
-        black_box(
-            NoiseBuilder::gradient_3d(M, M, M)
-                .with_freq(F3 as f32)
-                .with_seed(1)
-                .generate(),
-        );
-    });
+    batch_ratios(
+        "W4_perlin3d_128",
+        M * M * M,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| p.fill_grid3(&l, o).unwrap()),
+            ),
+            (
+                "simdnoise gradient_3d",
+                Box::new(|_: &mut [f32]| {
+                    black_box(
+                        NoiseBuilder::gradient_3d(M, M, M)
+                            .with_freq(F3 as f32)
+                            .with_seed(1)
+                            .generate(),
+                    );
+                }),
+            ),
+        ],
+    );
 }
 
 fn w5_worley2(c: &mut Criterion) {
@@ -324,12 +385,309 @@ fn w5_worley2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
-    cpu_rate("W5 natura", N * N, || {
-        w.fill_grid2(&l, black_box(&mut out)).unwrap()
-    });
-    cpu_rate("W5 fastnoise-lite cellular", N * N, || {
-        fill_fnl(&f, black_box(&mut out))
-    });
+    batch_ratios(
+        "W5_worley_f1_2d_1024",
+        N * N,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| w.fill_grid2(&l, o).unwrap()),
+            ),
+            (
+                "simdnoise cellular_2d",
+                Box::new(|_: &mut [f32]| {
+                    black_box(
+                        NoiseBuilder::cellular_2d(N, N)
+                            .with_freq(FREQ as f32)
+                            .with_seed(1)
+                            .generate(),
+                    );
+                }),
+            ),
+            (
+                "fastnoise-lite cellular",
+                Box::new(|o: &mut [f32]| fill_fnl(&f, o)),
+            ),
+        ],
+    );
+}
+
+/// Points per iteration of the per-point groups.
+const POINTS: usize = 1 << 14;
+
+/// Half the side of the cube the per-point sets fill (lattice units): wide
+/// enough to cross many cells, small enough that the f32 peers see the same
+/// points to within 2⁻¹⁹.
+const SPREAD: f64 = 16.0;
+
+/// The first `n` points of the `d`-dimensional additive recurrence with the
+/// generalised golden ratio (Roberts' R_d sequence), scaled to
+/// `[-SPREAD, SPREAD)^d`: evenly spread, quasi-random and reproducible
+/// without a generator.
+fn point_set(n: usize, d: usize) -> Vec<[f64; 3]> {
+    // φ_d is the real root of x^(d+1) = x + 1.
+    let mut phi = 2.0f64;
+    for _ in 0..64 {
+        phi = (1.0 + phi).powf(1.0 / (d as f64 + 1.0));
+    }
+    let alpha: Vec<f64> = (1..=d).map(|k| phi.powi(-(k as i32)).fract()).collect();
+    (0..n)
+        .map(|i| {
+            let mut p = [0.0; 3];
+            for (a, v) in p.iter_mut().zip(&alpha) {
+                *a = ((0.5 + v * (i + 1) as f64).fract() * 2.0 - 1.0) * SPREAD;
+            }
+            p
+        })
+        .collect()
+}
+
+/// One per-point contender: a name and a function filling `out` from the
+/// point set, one call per point.
+type Contender<'a> = (&'a str, Box<dyn FnMut(&mut [f32]) + 'a>);
+
+/// Runs a per-point group: criterion's figures for every contender, then
+/// each one's CPU-time rate and natura's ratio to each peer (the first
+/// contender is natura).
+fn point_group(c: &mut Criterion, name: &str, mut contenders: Vec<Contender<'_>>) {
+    let mut out = vec![0.0f32; POINTS];
+    let mut g = group(c, name, POINTS);
+    for (who, f) in contenders.iter_mut() {
+        g.bench_function(*who, |b| b.iter(|| f(black_box(&mut out))));
+    }
+    g.finish();
+    if let Some(rates) = interleaved_rates(name, POINTS, &mut contenders, &mut out) {
+        for ((who, _), r) in contenders[1..].iter().zip(&rates[1..]) {
+            eprintln!("[noise] ratio {name}: natura / {who} = {:.2}", rates[0] / r);
+        }
+    }
+}
+
+/// Points per CPU second of each contender (each call of which fills `out`,
+/// `n` points), measured in interleaved rounds (one call of each contender
+/// that has not yet used 0.5 s of CPU time), so changes in machine load
+/// affect all contenders alike. Prints and returns the rates; `None`
+/// if the group is not selected or thread CPU time is unavailable.
+fn interleaved_rates(
+    name: &str,
+    n: usize,
+    contenders: &mut [Contender<'_>],
+    out: &mut [f32],
+) -> Option<Vec<f64>> {
+    if !selected(name) {
+        return None;
+    }
+    let mut used = vec![0.0f64; contenders.len()];
+    let mut calls = vec![0usize; contenders.len()];
+    for (_, f) in contenders.iter_mut() {
+        f(black_box(&mut *out));
+    }
+    while used.iter().any(|&u| u < 0.5) {
+        for (k, (_, f)) in contenders.iter_mut().enumerate() {
+            if used[k] >= 0.5 {
+                continue;
+            }
+            let c0 = thread_cpu()?;
+            f(black_box(&mut *out));
+            used[k] += thread_cpu()? - c0;
+            calls[k] += 1;
+        }
+    }
+    let rates: Vec<f64> = used
+        .iter()
+        .zip(&calls)
+        .map(|(&u, &c)| (n * c) as f64 / u)
+        .collect();
+    for ((who, _), (r, c)) in contenders.iter().zip(rates.iter().zip(&calls)) {
+        eprintln!(
+            "[noise] cpu {name} {who}: {:.2} Mpts per CPU-second ({:.3} ns/pt; {n} pts x {c}, interleaved)",
+            r / 1e6,
+            1e9 / r,
+        );
+    }
+    Some(rates)
+}
+
+fn points2() -> (Vec<DVec2>, Vec<[f32; 2]>, Vec<[f64; 2]>) {
+    let p = point_set(POINTS, 2);
+    (
+        p.iter().map(|p| DVec2::new(p[0], p[1])).collect(),
+        p.iter().map(|p| [p[0] as f32, p[1] as f32]).collect(),
+        p.iter().map(|p| [p[0], p[1]]).collect(),
+    )
+}
+
+fn points3() -> (Vec<DVec3>, Vec<[f32; 3]>, Vec<[f64; 3]>) {
+    let p = point_set(POINTS, 3);
+    (
+        p.iter().map(|p| DVec3::from_array(*p)).collect(),
+        p.iter().map(|p| p.map(|v| v as f32)).collect(),
+        p.clone(),
+    )
+}
+
+/// natura's per-point 2-D contender: `eval2` at every point.
+fn natura2<'a, F: Field>(f: &'a F, pts: &'a [DVec2]) -> Contender<'a> {
+    (
+        "natura",
+        Box::new(move |out: &mut [f32]| {
+            let f = black_box(f);
+            for (o, &p) in out.iter_mut().zip(pts) {
+                *o = f.eval2(p) as f32;
+            }
+        }),
+    )
+}
+
+fn natura3<'a, F: Field>(f: &'a F, pts: &'a [DVec3]) -> Contender<'a> {
+    (
+        "natura",
+        Box::new(move |out: &mut [f32]| {
+            let f = black_box(f);
+            for (o, &p) in out.iter_mut().zip(pts) {
+                *o = f.eval3(p) as f32;
+            }
+        }),
+    )
+}
+
+fn fnl2<'a>(f: &'a FastNoiseLite, pts: &'a [[f32; 2]]) -> Contender<'a> {
+    (
+        "fastnoise-lite",
+        Box::new(move |out: &mut [f32]| {
+            let f = black_box(f);
+            for (o, p) in out.iter_mut().zip(pts) {
+                *o = f.get_noise_2d(p[0], p[1]);
+            }
+        }),
+    )
+}
+
+fn fnl3<'a>(f: &'a FastNoiseLite, pts: &'a [[f32; 3]]) -> Contender<'a> {
+    (
+        "fastnoise-lite",
+        Box::new(move |out: &mut [f32]| {
+            let f = black_box(f);
+            for (o, p) in out.iter_mut().zip(pts) {
+                *o = f.get_noise_3d(p[0], p[1], p[2]);
+            }
+        }),
+    )
+}
+
+fn noise_rs<'a, const D: usize>(f: &'a impl NoiseFn<f64, D>, pts: &'a [[f64; D]]) -> Contender<'a> {
+    (
+        "noise-rs",
+        Box::new(move |out: &mut [f32]| {
+            let f = black_box(f);
+            for (o, p) in out.iter_mut().zip(pts) {
+                *o = f.get(*p) as f32;
+            }
+        }),
+    )
+}
+
+/// fastnoise-lite at frequency 1 (it scales points by its frequency), so
+/// every library sees the same coordinates.
+fn fnl_unit(kind: NoiseType) -> FastNoiseLite {
+    let mut f = FastNoiseLite::with_seed(1);
+    f.set_noise_type(Some(kind));
+    f.set_frequency(Some(1.0));
+    f
+}
+
+fn fnl_cellular() -> FastNoiseLite {
+    let mut f = fnl_unit(NoiseType::Cellular);
+    f.set_cellular_return_type(Some(CellularReturnType::Distance));
+    f.set_cellular_distance_function(Some(CellularDistanceFunction::Euclidean));
+    f.set_cellular_jitter(Some(1.0));
+    f
+}
+
+fn fnl_fbm() -> FastNoiseLite {
+    let mut f = fnl_unit(NoiseType::Perlin);
+    f.set_fractal_type(Some(FractalType::FBm));
+    f.set_fractal_octaves(Some(8));
+    f.set_fractal_lacunarity(Some(2.0));
+    f.set_fractal_gain(Some(0.5));
+    f
+}
+
+fn p_perlin(c: &mut Criterion) {
+    let (n2, f2, r2) = points2();
+    let (n3, f3, r3) = points3();
+    let p = Perlin::new(1);
+    let fl = fnl_unit(NoiseType::Perlin);
+    let nr = noise::Perlin::new(1);
+    point_group(
+        c,
+        "P1_perlin2d_point",
+        vec![natura2(&p, &n2), fnl2(&fl, &f2), noise_rs(&nr, &r2)],
+    );
+    point_group(
+        c,
+        "P5_perlin3d_point",
+        vec![natura3(&p, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
+    );
+}
+
+fn p_simplex(c: &mut Criterion) {
+    let (n2, f2, r2) = points2();
+    let (n3, f3, r3) = points3();
+    let s = Simplex::new(1);
+    let fl = fnl_unit(NoiseType::OpenSimplex2);
+    let nr = noise::Simplex::new(1);
+    point_group(
+        c,
+        "P2_simplex2d_point",
+        vec![natura2(&s, &n2), fnl2(&fl, &f2), noise_rs(&nr, &r2)],
+    );
+    point_group(
+        c,
+        "P6_simplex3d_point",
+        vec![natura3(&s, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
+    );
+}
+
+fn p_worley(c: &mut Criterion) {
+    let (n2, f2, r2) = points2();
+    let (n3, f3, r3) = points3();
+    let w = Worley::new(1, WorleyParams::default()).unwrap();
+    let fl = fnl_cellular();
+    let nr = noise::Worley::new(1).set_return_type(noise::core::worley::ReturnType::Distance);
+    point_group(
+        c,
+        "P3_worley_f1_2d_point",
+        vec![natura2(&w, &n2), fnl2(&fl, &f2), noise_rs(&nr, &r2)],
+    );
+    point_group(
+        c,
+        "P7_worley_f1_3d_point",
+        vec![natura3(&w, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
+    );
+}
+
+fn p_fbm(c: &mut Criterion) {
+    let (n2, f2, r2) = points2();
+    let (n3, f3, r3) = points3();
+    let f = fbm8();
+    let fl = fnl_fbm();
+    let nr = noise::Fbm::<noise::Perlin>::new(1)
+        .set_octaves(8)
+        .set_frequency(1.0)
+        .set_lacunarity(2.0)
+        .set_persistence(0.5);
+    point_group(
+        c,
+        "P4_fbm8_2d_point",
+        vec![natura2(&f, &n2), fnl2(&fl, &f2), noise_rs(&nr, &r2)],
+    );
+    point_group(
+        c,
+        "P8_fbm8_3d_point",
+        vec![natura3(&f, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
+    );
 }
 
 criterion_group!(
@@ -338,6 +696,10 @@ criterion_group!(
     w2_simplex2,
     w3_fbm2,
     w4_perlin3,
-    w5_worley2
+    w5_worley2,
+    p_perlin,
+    p_simplex,
+    p_worley,
+    p_fbm
 );
 criterion_main!(benches);

@@ -17,6 +17,7 @@
 //! | `atmos` | `natura-atmos` | aerial perspective, sky, spectral colour, rainbow, mirage |
 //! | `ocean` | `natura-ocean` | FFT ocean waves, spectra, water optics |
 //! | `fluid` | `natura-fluid` | stable fluids, smoke, liquids |
+//! | `texture` | `natura-texture` | Musgrave's solid textures, procedural planets |
 //! | `render` | `natura-render` | scenes composing the crates into images |
 #![forbid(unsafe_code)]
 
@@ -43,3 +44,6 @@ pub use natura_fluid as fluid;
 
 #[cfg(feature = "render")]
 pub use natura_render as render;
+
+#[cfg(feature = "texture")]
+pub use natura_texture as texture;

@@ -37,6 +37,18 @@ fn main() {
     if size < 16 {
         common::fail("--size must be at least 16");
     }
+    const METHODS: [&str; 7] = [
+        "stream_power",
+        "musgrave",
+        "pipe",
+        "droplets",
+        "thermal",
+        "diffusion",
+        "combined",
+    ];
+    if let Some(o) = only.as_deref().filter(|o| !METHODS.contains(o)) {
+        common::fail(&format!("--only {o}: not one of {}", METHODS.join(", ")));
+    }
     let want = |name: &str| only.as_deref().is_none_or(|o| o == name);
     let bar = common::Bar::new();
     // Work scales with the grid so --quick stays quick; steps are per 1024².

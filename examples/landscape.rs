@@ -72,21 +72,34 @@ fn main() {
     common::check(scene.validate());
     let png = out.join("landscape.png");
     let exr = out.join("landscape.exr");
-    // Refuse unwritable outputs before minutes of work.
-    common::check(natura::core::io::check_writable(&png));
-    common::check(natura::core::io::check_writable(&exr));
+    let relief = out.join("landscape_relief.png");
+    let height = out.join("landscape_height.png");
+    // The run's outputs as one set: every path is checked before minutes of
+    // work, and all of them appear at the end or none does.
+    let mut targets = vec![&png, &exr];
+    if maps {
+        targets.extend([&relief, &height]);
+    }
+    let set = common::check(natura::core::io::OutputSet::new(targets));
 
     let bar = common::Bar::new();
     let world = common::check(World::build(&scene, &bar));
     if maps {
-        let relief = out.join("landscape_relief.png");
-        let height = out.join("landscape_height.png");
-        common::check(common::check(world.relief_map()).save_png(&relief));
-        common::check(world.terrain.save_png16(&height, world.terrain.min_max()));
-        println!("wrote {} and {}", relief.display(), height.display());
+        common::check(
+            common::check(world.relief_map()).save_png(common::check(set.stage(&relief))),
+        );
+        common::check(
+            world
+                .terrain
+                .save_png16(common::check(set.stage(&height)), world.terrain.min_max()),
+        );
     }
     let rendered = common::check(render_world(&world, &bar));
-    common::check(rendered.save(&png, &exr));
+    common::check(rendered.save_staged(&set, &png, &exr));
+    common::check(set.commit());
+    if maps {
+        println!("wrote {} and {}", relief.display(), height.display());
+    }
     for (stage, d) in &rendered.times.stages {
         println!("{stage:>14}: {:7.2} s", d.as_secs_f64());
     }

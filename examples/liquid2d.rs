@@ -18,17 +18,24 @@ use natura::fluid::shape::{Obstacle, Shape};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let nx: usize = args.value(
+    let nx: usize = args.ranged(
         "--nx",
         if quick { 48 } else { 160 },
+        8..=2048,
         "cells across (height is half)",
     );
-    let seconds: f32 = args.value(
+    let seconds: f32 = args.ranged(
         "--seconds",
         if quick { 0.6 } else { 2.4 },
+        0.01..=600.0,
         "simulated time (s)",
     );
-    let frames: usize = args.value("--frames", if quick { 3 } else { 12 }, "PNG frames");
+    let frames: usize = args.ranged(
+        "--frames",
+        if quick { 3 } else { 12 },
+        1..=1000,
+        "PNG frames",
+    );
     let paper = args.switch(
         "--paper-correction",
         "Foster & Fedkiw's curvature-gated particle correction instead of the particle level set",

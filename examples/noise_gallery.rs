@@ -66,7 +66,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "basis_value_linear",
-            "value noise, linear interpolation (\"Linear\" [M 508-513])",
+            "value noise, linear interpolation (Musgrave 2001, \"Linear\")",
             Box::new(Value::new(seed)),
             8.0,
             v,
@@ -87,7 +87,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "basis_worley_f1",
-            "Worley F1, Euclidean [M 477-486]",
+            "Worley F1, Euclidean (Musgrave 2001, \"Voronoi\")",
             Box::new(worley(WorleyFeature::F1, Metric::Euclidean)?),
             8.0,
             v,
@@ -129,28 +129,28 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "basis_sparse_convolution",
-            "sparse convolution, cone kernel [M 488-495]",
+            "sparse convolution, cone kernel (Musgrave 2001, \"Sparse Convolution\")",
             Box::new(SparseConvolution::new(seed, SparseParams::default())?),
             8.0,
             v,
         ),
         t(
             "basis_sine",
-            "sine product [M 501-506]",
+            "sine product (Musgrave 2001, \"Sine\")",
             Box::new(Sine),
             25.0,
             v,
         ),
         t(
             "basis_steps",
-            "steps [M 515-520]",
+            "steps (Musgrave 2001, \"Steps\")",
             Box::new(Steps::new(seed)),
             8.0,
             v,
         ),
         t(
             "basis_checkerboard",
-            "checkerboard [M 522-527]",
+            "checkerboard (Musgrave 2001, \"Checkerboard\")",
             Box::new(Checkerboard),
             8.0,
             v,
@@ -199,7 +199,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "fractal_hell",
-            "heterogeneous terrain of the ridged basis (\"Hell\", Plate 2.9)",
+            "heterogeneous terrain of the ridged basis (\"Hell\", Musgrave 1993, Plate 2.9)",
             Box::new(HeteroTerrain::new(
                 Ridged(p),
                 HeteroTerrainParams::default(),
@@ -273,7 +273,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         ),
         t(
             "distortion_distnoise",
-            "DistNoise, d = 1 [T 71-89]",
+            "DistNoise, d = 1 (Musgrave 1998, \"A Variety of fBm\")",
             Box::new(DistNoise::dist_noise(p, 1.0)?),
             8.0,
             v,

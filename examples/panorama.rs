@@ -18,10 +18,30 @@ fn main() {
     let quick = args.switch("--quick", "small terrain and image (CI)");
     let spherical = args.switch("--spherical", "equirectangular instead of cylindrical");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
-    let hfov: f64 = args.value("--hfov", 220.0, "horizontal field of view, degrees");
-    let vfov: f64 = args.value("--vfov", 40.0, "vertical field of view, degrees");
-    let width: u32 = args.value("--width", 2400, "image width, pixels");
-    let spp: u32 = args.value("--spp", 4, "samples per pixel");
+    let hfov: f64 = args.ranged(
+        "--hfov",
+        220.0,
+        1.0..=360.0,
+        "horizontal field of view, degrees",
+    );
+    let vfov: f64 = args.ranged(
+        "--vfov",
+        40.0,
+        1.0..=179.0,
+        "vertical field of view, degrees",
+    );
+    let width: u32 = args.ranged(
+        "--width",
+        if quick { 480 } else { 2400 },
+        16..=16384,
+        "image width, pixels",
+    );
+    let spp: u32 = args.ranged(
+        "--spp",
+        if quick { 1 } else { 4 },
+        1..=4096,
+        "samples per pixel",
+    );
     let out = args.out_dir("docs/gallery/render");
     args.finish();
 
@@ -45,9 +65,6 @@ fn main() {
         scene.terrain.cell_size_m *= 8.0;
         scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
         scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
-        scene.render.width = 480;
-        scene.render.height = ((480.0 * vfov / hfov).round() as u32).max(1);
-        scene.render.spp = 1;
     }
     common::check(scene.validate());
     let png = out.join("panorama.png");

@@ -21,22 +21,30 @@ use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let nx: usize = args.value(
+    let nx: usize = args.ranged(
         "--nx",
         if quick { 48 } else { 192 },
+        8..=2048,
         "cells across (height is 2×)",
     );
-    let seconds: f32 = args.value(
+    let seconds: f32 = args.ranged(
         "--seconds",
         if quick { 2.0 } else { 6.0 },
+        0.01..=600.0,
         "simulated time (s)",
     );
-    let epsilon: f32 = args.value(
+    let epsilon: f32 = args.ranged(
         "--epsilon",
         4.0,
+        0.0..=100.0,
         "confinement strength ε (1/s) of the second run",
     );
-    let frames: usize = args.value("--frames", if quick { 2 } else { 6 }, "PNG frames per run");
+    let frames: usize = args.ranged(
+        "--frames",
+        if quick { 2 } else { 6 },
+        1..=1000,
+        "PNG frames per run",
+    );
     let out = args.out_dir("docs/gallery/fluid");
     args.finish();
 

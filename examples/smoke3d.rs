@@ -24,18 +24,30 @@ use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let n: usize = args.value(
+    let n: usize = args.ranged(
         "--n",
         if quick { 20 } else { 48 },
+        4..=256,
         "cells across (height is 2×)",
     );
-    let seconds: f32 = args.value(
+    let seconds: f32 = args.ranged(
         "--seconds",
         if quick { 1.0 } else { 3.0 },
+        0.01..=600.0,
         "simulated time (s)",
     );
-    let frames: usize = args.value("--frames", if quick { 2 } else { 8 }, "frames written");
-    let epsilon: f32 = args.value("--epsilon", 4.0, "confinement strength ε (1/s)");
+    let frames: usize = args.ranged(
+        "--frames",
+        if quick { 2 } else { 8 },
+        1..=1000,
+        "frames written",
+    );
+    let epsilon: f32 = args.ranged(
+        "--epsilon",
+        4.0,
+        0.0..=100.0,
+        "confinement strength ε (1/s)",
+    );
     let out = args.out_dir("docs/gallery/fluid");
     args.finish();
 

@@ -26,13 +26,24 @@ fn main() {
     let quick = args.switch("--quick", "small and fast (CI)");
     let size: usize = args.value("--size", if quick { 257 } else { 1025 }, "samples per side");
     let seed: u64 = args.value("--seed", 11, "random seed");
-    let width: u32 = args.value(
+    let width: u32 = args.ranged(
         "--width",
         if quick { 384 } else { 2048 },
+        16..=16384,
         "image width, pixels",
     );
-    let hfov: f32 = args.value("--hfov", 360.0, "horizontal field of view, degrees");
-    let vfov: f32 = args.value("--vfov", 120.0, "vertical field of view, degrees");
+    let hfov: f32 = args.ranged(
+        "--hfov",
+        360.0,
+        1.0..=360.0,
+        "horizontal field of view, degrees",
+    );
+    let vfov: f32 = args.ranged(
+        "--vfov",
+        120.0,
+        1.0..=180.0,
+        "vertical field of view, degrees",
+    );
     let proj: String = args.value(
         "--projection",
         "spherical".to_string(),

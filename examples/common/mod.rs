@@ -19,7 +19,17 @@ pub struct Args {
 
 impl Args {
     /// Captures the process arguments. `usage` lines are printed for `--help`.
+    ///
+    /// Also installs the interrupt handler: on Ctrl-C or SIGTERM the files
+    /// being written are removed (none is left half-written or as a
+    /// temporary) and the program exits with status 130.
     pub fn from_env() -> Self {
+        #[cfg(feature = "core")]
+        let _ = ctrlc::set_handler(|| {
+            let n = natura::core::io::remove_temp_files();
+            eprintln!("\ninterrupted: removed {n} temporary file(s), outputs left as they were");
+            std::process::exit(130);
+        });
         let mut it = std::env::args();
         let program = it.next().unwrap_or_default();
         Self {
@@ -47,6 +57,30 @@ impl Args {
         T::Err: std::fmt::Display,
     {
         self.optional(name, help).unwrap_or(default)
+    }
+
+    /// Returns the parsed value of `name` (or `default`), exiting with a
+    /// message naming the flag unless it lies in `range` (NaN never does).
+    pub fn ranged<T>(
+        &mut self,
+        name: &'static str,
+        default: T,
+        range: std::ops::RangeInclusive<T>,
+        help: &'static str,
+    ) -> T
+    where
+        T: FromStr + PartialOrd + std::fmt::Display,
+        T::Err: std::fmt::Display,
+    {
+        let v = self.value(name, default, help);
+        if !range.contains(&v) {
+            fail(&format!(
+                "{name} {v}: must be in {}..={}",
+                range.start(),
+                range.end()
+            ));
+        }
+        v
     }
 
     /// Returns the parsed value of `name` if given.

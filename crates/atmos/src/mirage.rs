@@ -784,7 +784,7 @@ mod tests {
     fn total_internal_reflection_exactly_beyond_the_critical_angle() {
         let m = PlanarMirage::from_temperatures(0.5, 293.15, 333.15, 101_325.0).unwrap();
         let crit = m.critical_grazing_angle().unwrap();
-        // Spec §8.3: about 0.46° for 60 °C ground air under 20 °C air.
+        // About 0.46° for 60 °C ground air under 20 °C air.
         assert!(
             (crit.to_degrees() - 0.46).abs() < 0.03,
             "{}",

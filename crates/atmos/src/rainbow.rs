@@ -464,8 +464,8 @@ impl Rainbow {
 /// cones about the antisolar vector, indexed linearly in the cosine
 /// (Musgrave 1993, §4.2.4.3.1, verbatim semantics).
 ///
-/// `rainbow_angle` is a **cosine** (cos 42° ≈ 0.743), not an angle (spec
-/// §7.4 pitfall); index 0 is the outer edge and should be red.
+/// `rainbow_angle` is a **cosine** (cos 42° ≈ 0.743), not an angle (a
+/// pitfall of the listing); index 0 is the outer edge and should be red.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EmpiricalRainbow {
     /// The 13 band colours, outermost first.
@@ -503,7 +503,7 @@ mod tests {
     #[test]
     fn descartes_angles_match_the_spec_table() {
         let deg = |l: f64, k: u32| descartes_angle(n_at(l), k).unwrap().to_degrees();
-        // B2 and the issue: 42.4° ± 0.2° at 656 nm, 40.6° ± 0.2° at 400 nm.
+        // 42.4° ± 0.2° at 656 nm, 40.6° ± 0.2° at 400 nm.
         assert!((deg(656.3, 1) - 42.41).abs() < 0.02, "{}", deg(656.3, 1));
         assert!((deg(656.0, 1) - 42.4).abs() < 0.2);
         assert!((deg(400.0, 1) - 40.6).abs() < 0.2, "{}", deg(400.0, 1));
@@ -555,7 +555,7 @@ mod tests {
         }
     }
 
-    /// B4 / the issue: the table's geometry (before the sun's smear).
+    /// The table's geometry (before the sun's smear).
     #[test]
     fn table_has_bows_and_alexanders_band() {
         let p = RainbowParams {

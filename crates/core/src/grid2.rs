@@ -12,6 +12,11 @@ pub const MAX_GRID_BYTES: u64 = 16 << 30;
 
 /// Checks that `dims` are all non-zero and that their product times
 /// `size_of::<T>()` fits under [`MAX_GRID_BYTES`]; returns the element count.
+///
+/// # Errors
+///
+/// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+/// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
 pub fn checked_len<T>(dims: &[usize]) -> Result<usize> {
     let describe = || {
         dims.iter()
@@ -55,6 +60,11 @@ impl<T: Clone> Grid2<T> {
     /// Returns a `width × height` grid filled with `value`.
     ///
     /// Fails with [`CoreError::ZeroDimension`] or [`CoreError::TooLarge`].
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn new(width: usize, height: usize, value: T) -> Result<Self> {
         let len = checked_len::<T>(&[width, height])?;
         Ok(Self {
@@ -67,6 +77,11 @@ impl<T: Clone> Grid2<T> {
 
 impl<T> Grid2<T> {
     /// Returns a grid whose sample `(x, y)` is `f(x, y)`, filled row by row.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn from_fn(
         width: usize,
         height: usize,
@@ -89,6 +104,11 @@ impl<T> Grid2<T> {
     /// Wraps row-major `data` as a `width × height` grid.
     ///
     /// Fails if the dimensions are invalid or `data.len() != width·height`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::SizeMismatch`](crate::CoreError::SizeMismatch) if `data.len()` is not
+    /// `width × height`, and the errors of [`checked_len`].
     pub fn from_vec(width: usize, height: usize, data: Vec<T>) -> Result<Self> {
         let len = checked_len::<T>(&[width, height])?;
         if data.len() != len {
@@ -225,6 +245,10 @@ impl<T> Grid2<T> {
     /// Returns `f(a, b)` for each pair of samples of `self` and `other`.
     ///
     /// Fails with [`CoreError::SizeMismatch`] if the grids differ in size.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::SizeMismatch`](crate::CoreError::SizeMismatch) if the grids differ in size. Allocation errors as [`Grid2::new`].
     pub fn zip_map<U, V>(
         &self,
         other: &Grid2<U>,
@@ -282,6 +306,11 @@ impl<T: Send + Sync> Grid2<T> {
     }
 
     /// Returns a grid whose sample `(x, y)` is `f(x, y)`, computed in parallel rows.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn par_from_fn(
         width: usize,
         height: usize,
@@ -398,6 +427,10 @@ impl Grid2<f32> {
     }
 
     /// Returns the first NaN or infinite sample as an error naming its cell.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::NonFinite`](crate::CoreError::NonFinite) naming the first NaN or infinite value.
     pub fn check_finite(&self) -> Result<()> {
         match self.find(|v| !v.is_finite()) {
             Some((x, y, &value)) => Err(CoreError::NonFinite { x, y, value }),

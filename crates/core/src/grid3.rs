@@ -17,6 +17,11 @@ pub struct Grid3<T> {
 
 impl<T: Clone> Grid3<T> {
     /// Returns an `nx × ny × nz` grid filled with `value`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn new(nx: usize, ny: usize, nz: usize, value: T) -> Result<Self> {
         let len = checked_len::<T>(&[nx, ny, nz])?;
         Ok(Self {
@@ -30,6 +35,11 @@ impl<T: Clone> Grid3<T> {
 
 impl<T> Grid3<T> {
     /// Returns a grid whose sample `(x, y, z)` is `f(x, y, z)`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn from_fn(
         nx: usize,
         ny: usize,
@@ -49,6 +59,11 @@ impl<T> Grid3<T> {
     }
 
     /// Wraps `data` (x fastest) as an `nx × ny × nz` grid; fails on a length mismatch.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::SizeMismatch`](crate::CoreError::SizeMismatch) if `data.len()` is not
+    /// `nx × ny × nz`, and the size errors of [`Grid3::new`].
     pub fn from_vec(nx: usize, ny: usize, nz: usize, data: Vec<T>) -> Result<Self> {
         let len = checked_len::<T>(&[nx, ny, nz])?;
         if data.len() != len {
@@ -193,6 +208,10 @@ impl<T> Grid3<T> {
     }
 
     /// `f(a, b)` for each pair of samples; fails if the sizes differ.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::SizeMismatch`](crate::CoreError::SizeMismatch) if the grids differ in size.
     pub fn zip_map<U, V>(
         &self,
         other: &Grid3<U>,

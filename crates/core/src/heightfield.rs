@@ -70,6 +70,11 @@ pub struct HeightField {
 
 impl HeightField {
     /// Wraps a grid of heights (metres) with `cell_size` metres between samples.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) if `cell_size` is not
+    /// finite and positive.
     pub fn new(heights: Grid2<f32>, cell_size: f32) -> Result<Self> {
         positive("cell_size", f64::from(cell_size))?;
         heights.check_finite()?;
@@ -77,6 +82,12 @@ impl HeightField {
     }
 
     /// A field of `nx × ny` samples whose height at sample `(i, j)` is `f(i, j)`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) if `cell_size` is not finite and positive.
     pub fn from_fn(
         nx: usize,
         ny: usize,
@@ -87,6 +98,12 @@ impl HeightField {
     }
 
     /// A flat field at height `h`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) if `cell_size` is not finite and positive.
     pub fn flat(nx: usize, ny: usize, cell_size: f32, h: f32) -> Result<Self> {
         Self::new(Grid2::new(nx, ny, h)?, cell_size)
     }
@@ -145,6 +162,11 @@ impl HeightField {
     }
 
     /// World position of sample `(i, j)`.
+    ///
+    /// # Panics
+    ///
+    /// Panics if `i ≥ nx` or `j ≥ ny` (an index bug in the caller); use
+    /// [`try_point`](Self::try_point) for indices that come from user data.
     #[inline]
     #[must_use]
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
@@ -153,6 +175,14 @@ impl HeightField {
             j as f32 * self.cell_size,
             self.heights[(i, j)],
         )
+    }
+
+    /// World position of sample `(i, j)`, or `None` outside the grid.
+    #[inline]
+    #[must_use]
+    pub fn try_point(&self, i: usize, j: usize) -> Option<Vec3> {
+        self.get(i, j)
+            .map(|z| Vec3::new(i as f32 * self.cell_size, j as f32 * self.cell_size, z))
     }
 
     /// Bilinearly interpolated height at world `(x, y)`; `None` outside the field or for NaN.
@@ -255,12 +285,21 @@ impl HeightField {
     }
 
     /// Fails with [`CoreError::NonFinite`] naming the first NaN or infinite height.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::NonFinite`](crate::CoreError::NonFinite) naming the first NaN or infinite value.
     pub fn check_finite(&self) -> Result<()> {
         self.heights.check_finite()
     }
 
     /// Lambertian hill shade `max(0, n·sun)` at every sample, for a unit `sun`
     /// direction (toward the sun, z up). Refuses a non-finite or zero `sun`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) naming `sun` if it is zero or
+    /// not finite.
     pub fn hillshade(&self, sun: Vec3) -> Result<Grid2<f32>> {
         let s = sun.try_normalize().ok_or(CoreError::InvalidParameter {
             name: "sun",
@@ -276,6 +315,12 @@ impl HeightField {
 
     /// Writes heights as raw little-endian `f32`, rows in map order, atomically.
     /// The file has no header: keep the dimensions and cell size elsewhere.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be written (a missing or
+    /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
+    /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_raw(&self, path: impl AsRef<Path>) -> Result<()> {
         let bytes: Vec<u8> = map_rows(&self.heights)
             .flat_map(|r| r.iter().flat_map(|v| v.to_le_bytes()))
@@ -288,6 +333,13 @@ impl HeightField {
     /// A file of the wrong length, or with a NaN or infinite value, is refused
     /// with an error naming the file. Raw files carry no checksum, so a flipped
     /// bit inside a valid float cannot be detected.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be read, and
+    /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
+    /// unsupported layout, or if its size exceeds the memory cap. A file of the wrong length for the stated size, a
+    /// NaN or infinite height, and a bad cell size are errors too.
     pub fn load_raw(path: impl AsRef<Path>, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
         let path = path.as_ref();
         let len = checked_len::<f32>(&[nx, ny])?;
@@ -339,6 +391,12 @@ impl HeightField {
 
     /// Writes heights as a single-channel (`Y`) 32-bit float EXR, rows in map
     /// order, with the cell size as an attribute, atomically. Round trips are bit-exact.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be written (a missing or
+    /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
+    /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
         let values: Vec<f32> = map_rows(&self.heights).flatten().copied().collect();
         let cell = self.cell_size.to_string();
@@ -354,6 +412,12 @@ impl HeightField {
     /// Reads a height EXR. The height channel is `Y`, `Z`, `R`, `H` or
     /// `height`, or the only channel. `cell_size` overrides the file's
     /// attribute; without either, the call fails.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be read, and
+    /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
+    /// unsupported layout, or if its size exceeds the memory cap. A NaN or infinite height and a missing cell size are errors too.
     pub fn load_exr(path: impl AsRef<Path>, cell_size: Option<f32>) -> Result<Self> {
         let path = path.as_ref();
         let exr = read_exr(path)?;
@@ -380,6 +444,13 @@ impl HeightField {
     ///
     /// A height outside `range` is an error naming the cell (never clipped);
     /// use [`HeightField::min_max`] for a range that fits.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be written (a missing or
+    /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
+    /// if the encoder refuses the data. Nothing is left half-written.
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) if the height range is empty or not finite.
     pub fn save_png16(&self, path: impl AsRef<Path>, range: (f32, f32)) -> Result<()> {
         let path = path.as_ref();
         let (lo, hi) = range;
@@ -439,6 +510,13 @@ impl HeightField {
     /// `None`, the range stored by [`HeightField::save_png16`] is used, and a
     /// file without one is an error. `cell_size` likewise overrides the stored
     /// value. Colour PNGs are refused (convert to greyscale first).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be read, and
+    /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
+    /// unsupported layout, or if its size exceeds the memory cap. A PNG that is not 16-bit greyscale, an empty height
+    /// range and a missing cell size are errors too.
     pub fn load_png16(
         path: impl AsRef<Path>,
         cell_size: Option<f32>,
@@ -551,6 +629,12 @@ impl HeightField {
 
     /// Loads a height map by extension: `.png` (see [`HeightField::load_png16`]),
     /// `.exr`; raw files need their dimensions, so use [`HeightField::load_raw`].
+    ///
+    /// # Errors
+    ///
+    /// As the loader chosen by the file's extension ([`HeightField::load_png16`],
+    /// [`HeightField::load_exr`], [`HeightField::load_raw`]); an unknown extension is
+    /// [`CoreError::Format`](crate::CoreError::Format).
     pub fn load(
         path: impl AsRef<Path>,
         cell_size: Option<f32>,

@@ -20,6 +20,11 @@ pub struct Image {
 
 impl Image {
     /// A `width × height` image filled with `colour`; refuses zero or oversize dimensions.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn new(width: usize, height: usize, colour: Vec3) -> Result<Self> {
         Ok(Self {
             pixels: Grid2::new(width, height, colour)?,
@@ -27,6 +32,11 @@ impl Image {
     }
 
     /// An image whose pixel `(x, y)` is `f(x, y)`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::ZeroDimension`](crate::CoreError::ZeroDimension) if a side is zero and
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the grid would exceed [`MAX_GRID_BYTES`](crate::grid2::MAX_GRID_BYTES).
     pub fn from_fn(
         width: usize,
         height: usize,
@@ -128,6 +138,12 @@ impl Image {
     /// and sRGB-encoded. Tone-map HDR images first ([`Image::tone_mapped`]).
     /// An image with a NaN or infinite pixel is refused (naming the pixel)
     /// rather than written with a silently invented colour.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be written (a missing or
+    /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
+    /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_png(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         if let Some((x, y)) = self.first_non_finite() {
@@ -144,6 +160,12 @@ impl Image {
     }
 
     /// Writes a linear `f32` RGB OpenEXR file (channels R, G, B), atomically.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be written (a missing or
+    /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
+    /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
         let px = self.pixels.as_slice();
         let r: Vec<f32> = px.iter().map(|c| c.x).collect();
@@ -160,6 +182,12 @@ impl Image {
 
     /// Reads the R, G, B channels of an EXR file as linear colour (a single
     /// `Y` channel is read as grey).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be read, and
+    /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
+    /// unsupported layout, or if its size exceeds the memory cap. An EXR without R, G, B or Y channels is a format error.
     pub fn load_exr(path: impl AsRef<Path>) -> Result<Image> {
         let path = path.as_ref();
         let exr = read_exr(path)?;
@@ -185,6 +213,12 @@ impl Image {
     }
 
     /// Reads an 8- or 16-bit PNG (grey or RGB, alpha ignored) and decodes sRGB to linear.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::Io`](crate::CoreError::Io) naming the file if it cannot be read, and
+    /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
+    /// unsupported layout, or if its size exceeds the memory cap.
     pub fn load_png(path: impl AsRef<Path>) -> Result<Image> {
         let path = path.as_ref();
         let img = decode_png(path)?;

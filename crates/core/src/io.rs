@@ -3,11 +3,47 @@
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{CoreError, Result};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Temporary files currently being written or staged by this process, so an
+/// interrupted run can remove them ([`remove_temp_files`]).
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Records `tmp` as a live temporary file.
+pub(crate) fn track(tmp: &Path) {
+    live().push(tmp.to_path_buf());
+}
+
+/// Forgets `tmp` (renamed into place or removed).
+pub(crate) fn untrack(tmp: &Path) {
+    let mut l = live();
+    if let Some(i) = l.iter().position(|p| p == tmp) {
+        l.swap_remove(i);
+    }
+}
+
+/// Removes every temporary file this process is writing or has staged in an
+/// uncommitted [`OutputSet`], and returns how many it removed.
+///
+/// Call it from an interrupt handler (for example one installed with the
+/// `ctrlc` crate) before exiting, so a run stopped with Ctrl-C leaves no
+/// `.natura-tmp-…` files behind. Files already renamed into place are kept.
+pub fn remove_temp_files() -> usize {
+    let mut l = live();
+    let n = l.iter().filter(|p| std::fs::remove_file(p).is_ok()).count();
+    l.clear();
+    n
+}
 
 /// The temporary path used while writing `path`: a hidden sibling in the same
 /// directory (so the final rename never crosses file systems).
@@ -30,6 +66,13 @@ fn temp_path(path: &Path) -> PathBuf {
 ///
 /// `write` returns a problem description on failure; it is reported as
 /// [`CoreError::Format`] naming `path` (or [`CoreError::Io`] for OS errors).
+///
+/// # Errors
+///
+/// Returns [`CoreError::Format`] naming `path` if it is not a file path or is
+/// an existing directory, or if `write` reports an encoding problem;
+/// [`CoreError::Io`] naming it if the OS refuses to create, write, sync or
+/// rename the file.
 pub fn write_atomic<F>(path: impl AsRef<Path>, write: F) -> Result<()>
 where
     F: FnOnce(&mut BufWriter<File>) -> std::result::Result<(), WriteError>,
@@ -38,7 +81,9 @@ where
     if path.file_name().is_none() {
         return Err(CoreError::format(path, "not a file path"));
     }
+    refuse_directory(path)?;
     let tmp = temp_path(path);
+    track(&tmp);
     let result = (|| {
         let file = File::create(&tmp).map_err(|e| CoreError::io(path, e))?;
         let mut w = BufWriter::new(file);
@@ -55,18 +100,42 @@ where
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    untrack(&tmp);
     result
 }
 
+/// Refuses a target that exists as a directory (a rename over it would fail
+/// only after all the work).
+fn refuse_directory(path: &Path) -> Result<()> {
+    if path.is_dir() {
+        return Err(CoreError::format(path, "is a directory, not a file"));
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to `path` atomically (see [`write_atomic`]).
+///
+/// # Errors
+///
+/// As [`write_atomic`].
 pub fn write_bytes_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     write_atomic(path, |w| w.write_all(bytes).map_err(WriteError::Io))
 }
 
 /// Checks, before any long computation, that a file can be created at `path`:
-/// the parent directory exists and is writable. Nothing is left behind.
+/// the parent directory exists and is writable, and `path` is not a
+/// directory. Nothing is left behind.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Format`] naming `path` if it is a directory, and
+/// [`CoreError::Io`] naming it if a file cannot be created beside it.
 pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
+    if path.file_name().is_none() {
+        return Err(CoreError::format(path, "not a file path"));
+    }
+    refuse_directory(path)?;
     let tmp = temp_path(path);
     match File::create(&tmp) {
         Ok(_) => {
@@ -171,3 +240,6 @@ mod tests {
 }
 
 pub mod exr;
+mod set;
+
+pub use set::OutputSet;

@@ -69,10 +69,38 @@ pub(crate) fn resolve<T>(i: i64, n: usize, boundary: &Boundary<T>) -> Option<usi
 
 /// Splits a coordinate into its lower lattice index and fractional weight.
 ///
-/// NaN coordinates map to index 0 with weight NaN, so the NaN propagates.
+/// NaN coordinates map to index 0 with weight NaN, so the NaN propagates;
+/// infinite ones get weight NaN too. The index is kept within ±2⁶⁰ so that the
+/// neighbour `index + 1` never overflows.
 #[inline]
 pub(crate) fn split(x: f32) -> (i64, f32) {
+    const LIMIT: f32 = (1u64 << 60) as f32;
     let f = x.floor();
-    // `as` saturates for huge values and maps NaN to 0; the weight keeps the NaN.
-    (f as i64, x - f)
+    // `as` maps NaN to 0; the weight keeps the NaN (and is NaN for ±∞).
+    (f.clamp(-LIMIT, LIMIT) as i64, x - f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::split;
+
+    #[test]
+    fn split_never_gives_an_index_whose_neighbour_overflows() {
+        for x in [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+        ] {
+            let (i, _) = split(x);
+            assert!(
+                i.checked_add(1).is_some() && i.checked_sub(1).is_some(),
+                "{x}"
+            );
+        }
+        assert!(split(f32::INFINITY).1.is_nan());
+        assert_eq!(split(2.25), (2, 0.25));
+        assert_eq!(split(-0.5), (-1, 0.5));
+    }
 }

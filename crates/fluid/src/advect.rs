@@ -1,11 +1,11 @@
 //! Semi-Lagrangian advection and its error-correcting upgrades.
 //!
-//! Stable Fluids' method of characteristics (seed 004 L1772-1778, App. A
-//! L1932-1948): each sample's new value is the old field interpolated at the
+//! Stable Fluids' method of characteristics (Stam 1999, §2.2
+//! and App. A): each sample's new value is the old field interpolated at the
 //! point a particle starting there came from, `w2(x) = w1(p(x, −dt))`. It is
 //! unconditionally stable; with linear interpolation it never creates new
-//! extrema (L1778). The back-trace is explicit Euler or the midpoint
-//! second-order Runge–Kutta the paper uses (L1904).
+//! extrema (Stam 1999, §2.2). The back-trace is explicit Euler or the midpoint
+//! second-order Runge–Kutta the paper uses (Stam 1999, §3.2).
 //!
 //! Beyond the papers, [`Scheme::MacCormack`] (Selle, Fedkiw, Kim, Liu &
 //! Rossignac 2008) and [`Scheme::Bfecc`] (Kim, Liu, Llamas & Rossignac 2005)
@@ -14,7 +14,7 @@
 //! stay unconditionally stable and create no new extrema.
 //!
 //! Paths that end inside a solid are clipped at the solid's surface (Smoke
-//! Fig. 2, L2128, L2136), so values are never fetched from inside an obstacle.
+//! Fig. 2, Fedkiw et al. 2001, §4), so values are never fetched from inside an obstacle.
 
 use natura_core::Grid3;
 
@@ -24,6 +24,7 @@ use crate::par;
 
 /// The advection scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Scheme {
     /// Plain semi-Lagrangian (Stam 1999): one back-trace and interpolation.
     #[default]
@@ -38,16 +39,18 @@ pub enum Scheme {
 
 /// The integrator of the back-traced path.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Tracer {
     /// One explicit Euler step `x − dt·u(x)`.
     Euler,
-    /// Midpoint RK2 (Stable Fluids L1904): `x − dt·u(x − ½dt·u(x))`.
+    /// Midpoint RK2 (Stam 1999, §3.2): `x − dt·u(x − ½dt·u(x))`.
     #[default]
     Rk2,
 }
 
 /// How a field is carried by the flow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Advection {
     /// Semi-Lagrangian or an error-correcting variant.
     pub scheme: Scheme,
@@ -173,7 +176,7 @@ impl Solids<'_> {
     }
 
     /// Clips the segment `from → to` at the first solid cell it enters
-    /// (Smoke Fig. 2): marches in steps of at most ¼ cell, then bisects.
+    /// (Fedkiw et al. 2001, Fig. 2): marches in steps of at most ¼ cell, then bisects.
     #[inline(always)]
     pub(crate) fn clip(&self, from: [f32; 3], to: [f32; 3]) -> [f32; 3] {
         if !self.is_solid(to) || self.is_solid(from) {
@@ -430,6 +433,11 @@ pub(crate) fn advect_many(
 ///
 /// `dt` in seconds, `h` the cell size in metres. With `solids`, paths are
 /// clipped at solid cells. Returns the advected grid (same size as `src`).
+///
+/// # Errors
+///
+/// Returns [`FluidError::SizeMismatch`](crate::FluidError::SizeMismatch) if the field and the velocity grid differ
+/// in size, and [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-finite `dt`.
 pub fn advect_scalar(
     src: &Grid3<f32>,
     vel: &MacVelocity,
@@ -460,7 +468,12 @@ pub fn advect_scalar(
 }
 
 /// Advects every component of a MAC velocity field through itself (face
-/// midpoints traced back, Smoke L2136). Flat axes are left at zero.
+/// midpoints traced back, Fedkiw et al. 2001, §4). Flat axes are left at zero.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if a result grid cannot be allocated.
+/// Returns [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-finite `dt`.
 pub fn advect_velocity(
     vel: &MacVelocity,
     h: f32,

@@ -1,9 +1,9 @@
-//! Implicit diffusion `(I − ν dt ∇²) w3 = w2` (Stable Fluids L1780-1788).
+//! Implicit diffusion `(I − ν dt ∇²) w3 = w2` (Stam 1999, §2.2).
 //!
-//! The system is the FISHPAK discretisation of App. B (L1958-1960): diagonal
+//! The system is the FISHPAK discretisation of App. B (Stam 1999, App. B): diagonal
 //! `1 + ν dt Σ 1/h²` per neighbour, off-diagonals `−ν dt/h²`. It is an
 //! M-matrix, so the solution never exceeds the data's range and its energy
-//! never grows (spec §6.4 S2). Samples marked fixed keep their values and act
+//! never grows. Samples marked fixed keep their values and act
 //! as Dirichlet data; neighbours beyond the grid edge are omitted (zero-flux
 //! Neumann), so the sum is conserved in a closed box. Solved by Chebyshev
 //! iteration on the Gershgorin bounds of the spectrum to a relative residual

@@ -31,6 +31,11 @@ fn plane_axes(normal: usize) -> Result<(usize, usize)> {
 /// Returns the slice of `g` at `index` across axis `normal` as a 2-D grid
 /// (columns along the first remaining axis, rows along the second, row 0 at
 /// its low end).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`] for an axis other than 0, 1 or 2
+/// and [`FluidError::OutsideGrid`] if `index` lies outside the grid.
 pub fn slice(g: &Grid3<f32>, normal: usize, index: usize) -> Result<Grid2<f32>> {
     let (a, b) = plane_axes(normal)?;
     let n = [g.nx(), g.ny(), g.nz()];
@@ -51,6 +56,10 @@ pub fn slice(g: &Grid3<f32>, normal: usize, index: usize) -> Result<Grid2<f32>> 
 
 /// Integrates `g` along axis `normal` (sum × `h`): the optical depth seen
 /// looking along that axis when `g` is an extinction coefficient.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`] if a result grid cannot be allocated.
 pub fn projection(g: &Grid3<f32>, normal: usize, h: f32) -> Result<Grid2<f32>> {
     let (a, b) = plane_axes(normal)?;
     let n = [g.nx(), g.ny(), g.nz()];
@@ -81,6 +90,10 @@ pub fn field_image(f: &Grid2<f32>, ramp: Ramp, lo: f32, hi: f32) -> Image {
 /// Renders smoke seen along axis `normal`: transmittance `exp(−σ ∫ρ)` over
 /// a background, lit smoke colour `colour` weighted by absorbed light, and
 /// solid cells (`kinds`, any cell along the ray) drawn in grey. Rows flipped so +z is up.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`] if a result grid cannot be allocated.
 pub fn smoke_image(
     density: &Grid3<f32>,
     kinds: Option<&Grid3<CellKind>>,
@@ -122,8 +135,13 @@ pub fn smoke_image(
 /// Renders a 3-D smoke density with single-scattered light from direction
 /// `light` (unit, pointing toward the light) and self-shadowing, seen along
 /// axis `normal` from its low side — a CPU version of the paper's two-pass
-/// slice renderer (L2156-2166) with the per-voxel transmittance
-/// `exp(−C_ext ρ h)` (erratum E3: the source prints it without ρ).
+/// slice renderer (Fedkiw et al. 2001, §5.1) with the per-voxel transmittance
+/// `exp(−C_ext ρ h)` (an erratum: Fedkiw et al. 2001, §5.1 prints it without ρ).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`] for an axis other than 0, 1 or 2,
+/// and [`FluidError::Core`] if a result grid cannot be allocated.
 pub fn render_smoke_volume(
     density: &Grid3<f32>,
     h: f32,
@@ -182,6 +200,11 @@ pub fn render_smoke_volume(
 
 /// Writes `g` as raw little-endian `f32` (x fastest, then y, then z),
 /// atomically, plus a sidecar `<path>.txt` giving the size and cell size.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`] naming the file if it cannot be written (written
+/// atomically: nothing is left half-written).
 pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Result<()> {
     let path = path.as_ref();
     write_atomic(path, |w| {
@@ -203,6 +226,11 @@ pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Resul
 /// Writes `g` as a single-channel (`Y`) float EXR of `nx × (ny·nz)` pixels:
 /// the z-slices stacked top to bottom, with attributes `nx`, `ny`, `nz` and
 /// `cell_size_m`.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`] naming the file if it cannot be written (written
+/// atomically: nothing is left half-written).
 pub fn write_exr_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Result<()> {
     let (nx, ny, nz) = g.dims();
     let (sx, sy, sz, hs) = (

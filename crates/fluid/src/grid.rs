@@ -28,6 +28,12 @@ pub const MAX_CELLS: usize = 1 << 30;
 
 impl Dims {
     /// Returns `nx × ny × nz` cells, refusing zero sizes and more than [`MAX_CELLS`].
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidSize`] if a side is zero or the cell count
+    /// (or the face count, one more per axis) exceeds the cap; sizes near
+    /// `usize::MAX` are refused without overflow.
     pub fn new(nx: usize, ny: usize, nz: usize) -> Result<Self> {
         let dims = format!("{nx} × {ny} × {nz}");
         if nx == 0 || ny == 0 || nz == 0 {
@@ -36,10 +42,16 @@ impl Dims {
                 reason: "every dimension must be at least 1",
             });
         }
-        let cells = (nx as u128) * (ny as u128) * (nz as u128);
         // Face grids have one more sample per axis; keep those within the cap too.
-        let faces = ((nx + 1) as u128) * ((ny + 1) as u128) * ((nz + 1) as u128);
-        if cells > MAX_CELLS as u128 || faces > 4 * MAX_CELLS as u128 {
+        // Any side above the cap fails before a product could overflow.
+        let within = |cap: usize, extra: usize| {
+            [nx, ny, nz].iter().try_fold(1usize, |acc, &n| {
+                n.checked_add(extra)
+                    .and_then(|m| acc.checked_mul(m))
+                    .filter(|&p| p <= cap)
+            })
+        };
+        if within(MAX_CELLS, 0).is_none() || within(4 * MAX_CELLS, 1).is_none() {
             return Err(FluidError::InvalidSize {
                 dims,
                 reason: "more than 2^30 cells",
@@ -49,6 +61,10 @@ impl Dims {
     }
 
     /// A 2-D grid of `nx × nz` cells in the vertical x–z plane (`ny = 1`).
+    ///
+    /// # Errors
+    ///
+    /// As [`Dims::new`].
     pub fn plane(nx: usize, nz: usize) -> Result<Self> {
         Self::new(nx, 1, nz)
     }
@@ -108,6 +124,10 @@ impl Dims {
     }
 
     /// A zero-filled scalar grid of the cell size.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn zeros(&self) -> Result<Grid3<f32>> {
         Ok(Grid3::new(self.nx, self.ny, self.nz, 0.0)?)
     }
@@ -121,8 +141,9 @@ impl std::fmt::Display for Dims {
 
 /// What lies beyond one side of the domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Side {
-    /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Smoke L2076).
+    /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Fedkiw et al. 2001, §2).
     #[default]
     Wall,
     /// An open side at atmospheric pressure (`p = 0` just outside): flow may
@@ -132,6 +153,7 @@ pub enum Side {
 
 /// The six sides of the domain: `[low, high]` along x, y and z.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Boundaries {
     /// `[x = 0, x = nx·h]`.
     pub x: [Side; 2],
@@ -179,7 +201,7 @@ pub enum CellKind {
 }
 
 /// A velocity field on the staggered MAC grid (Fedkiw et al. App. A,
-/// seed 004 L2230-2236): `u` on x-faces (`(nx+1) × ny × nz`), `v` on
+/// Fedkiw et al. 2001, App. A): `u` on x-faces (`(nx+1) × ny × nz`), `v` on
 /// y-faces, `w` on z-faces. Face `u[i, j, k]` sits at `(i, j+½, k+½)·h`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MacVelocity {
@@ -189,6 +211,10 @@ pub struct MacVelocity {
 
 impl MacVelocity {
     /// A zero field on `dims`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn zeros(dims: Dims) -> Result<Self> {
         let g = |a: usize| {
             let n = dims.face_dims(a);
@@ -202,6 +228,10 @@ impl MacVelocity {
 
     /// Builds a field whose face samples are `f(axis, position_m)`, with
     /// positions in metres for cell size `h`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn from_fn(dims: Dims, h: f32, f: impl Fn(usize, glam::Vec3) -> f32) -> Result<Self> {
         let mut m = Self::zeros(dims)?;
         for a in 0..3 {
@@ -256,7 +286,7 @@ impl MacVelocity {
     }
 
     /// The velocity at cell centre `(i, j, k)`: the average of the two faces
-    /// along each axis (Fedkiw et al. App. A, L2248).
+    /// along each axis (Fedkiw et al. Fedkiw et al. 2001, App. A).
     #[inline]
     #[must_use]
     pub fn centre(&self, i: usize, j: usize, k: usize) -> glam::Vec3 {
@@ -304,6 +334,11 @@ impl MacVelocity {
     }
 
     /// Returns the first non-finite face value as an error naming the component.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`] naming the field and the first NaN or
+    /// infinite sample.
     pub fn check_finite(&self, stage: &'static str) -> Result<()> {
         const NAMES: [&str; 3] = ["u", "v", "w"];
         for (a, g) in self.comps.iter().enumerate() {

@@ -1,12 +1,12 @@
 //! Interpolation of gridded samples: multilinear and monotone cubic.
 //!
-//! The monotone cubic is Fedkiw, Stam & Jensen's App. B (seed 004
-//! L2262-2280) with its two errata corrected:
+//! The monotone cubic is that of Fedkiw et al. 2001, App. B, with its two
+//! errata corrected:
 //!
-//! * **a3 typo** (L2270 prints `a3 = d_k + d_{k+1} − Δ_k`): that interpolant
+//! * **a3 typo** (App. B prints `a3 = d_k + d_{k+1} − Δ_k`): that interpolant
 //!   misses `f_{k+1}` at `s = 1`. The Hermite coefficient is
 //!   `a3 = d_k + d_{k+1} − 2Δ_k`.
-//! * **Overshoot** (Fig. 9 caption L2260 claims none): zeroing slopes whose
+//! * **Overshoot** (the caption of Fedkiw et al. 2001, Fig. 9 claims none): zeroing slopes whose
 //!   sign differs from `Δ_k` is necessary but not sufficient — on data
 //!   (0, 10, 10.1, 10.2) it reaches 10.767 > 10.2. The default limiter adds
 //!   Fritsch & Carlson's (1980) condition `α² + β² ≤ 9`, which makes each 1-D
@@ -17,22 +17,24 @@
 
 /// How a field is interpolated between samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Interpolation {
-    /// Bi/trilinear (Stable Fluids L1904): cheap, never creates extrema.
+    /// Bi/trilinear (Stam 1999, §3.2): cheap, never creates extrema.
     #[default]
     Linear,
-    /// Tensor-product monotone cubic Hermite (Smoke App. B): less numerical
+    /// Tensor-product monotone cubic Hermite (Fedkiw et al. 2001, App. B): less numerical
     /// dissipation, 4ᵈ samples per evaluation.
     MonotoneCubic(CubicLimiter),
 }
 
 /// Slope limiter of the monotone cubic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CubicLimiter {
     /// Sign limiting plus Fritsch–Carlson rescaling: monotone, no overshoot.
     #[default]
     FritschCarlson,
-    /// The paper's sign-only limiter (L2280), a3 corrected: may overshoot (erratum E2).
+    /// The paper's sign-only limiter (Fedkiw et al. 2001, App. B), a3 corrected: may overshoot (the caption of Fig. 9 claims it cannot).
     PaperSignOnly,
 }
 
@@ -45,10 +47,10 @@ pub fn monotone_cubic(fm: f32, f0: f32, f1: f32, f2: f32, s: f32, limiter: Cubic
     let mut d0 = 0.5 * (f1 - fm);
     let mut d1 = 0.5 * (f2 - f0);
     if delta == 0.0 {
-        // L2278: Δ_k = 0 forces both slopes to zero.
+        // Fedkiw et al. 2001, App. B: Δ_k = 0 forces both slopes to zero.
         return f0;
     }
-    // L2280: zero a slope whose sign differs from Δ_k.
+    // Fedkiw et al. 2001, App. B: zero a slope whose sign differs from Δ_k.
     if d0 * delta < 0.0 {
         d0 = 0.0;
     }
@@ -65,7 +67,7 @@ pub fn monotone_cubic(fm: f32, f0: f32, f1: f32, f2: f32, s: f32, limiter: Cubic
             d1 *= tau;
         }
     }
-    // Corrected a3 (erratum E1): d_k + d_{k+1} − 2Δ_k.
+    // Corrected a3 (App. B prints `− Δ_k`): d_k + d_{k+1} − 2Δ_k.
     let a3 = d0 + d1 - 2.0 * delta;
     let a2 = 3.0 * delta - 2.0 * d0 - d1;
     ((a3 * s + a2) * s + d0) * s + f0
@@ -277,7 +279,7 @@ mod tests {
 
     #[test]
     fn spec_overshoot_case() {
-        // Spec §2.6: data (0, 10, 10.1, 10.2), interval [10, 10.1].
+        // Data (0, 10, 10.1, 10.2), interval [10, 10.1].
         let f = [0.0, 10.0, 10.1, 10.2];
         let paper = max_on(f, CubicLimiter::PaperSignOnly);
         assert!((paper - 10.767).abs() < 2e-3, "paper limiter max {paper}");

@@ -15,7 +15,7 @@
 //! general [`crate::interp::Sampler::linear`] and
 //! [`crate::advect::backtrace`], so the results are bit-identical to the
 //! general path (tested); paths that end in a solid are clipped by the same
-//! scalar code (Smoke Fig. 2, seed 004 L2128).
+//! scalar code (Fedkiw et al. 2001, §4, Fig. 2).
 
 use natura_core::simd::{self, Kernel, Simd};
 

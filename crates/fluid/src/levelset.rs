@@ -1,11 +1,11 @@
 //! Level sets on cell centres: upwind advection, reinitialisation to a
-//! signed distance, curvature (Foster & Fedkiw 2001, seed 004 L2400-2431).
+//! signed distance, curvature (Foster & Fedkiw 2001, Foster & Fedkiw 2001, §5.2–5.3).
 //!
-//! φ is negative inside the liquid (L2409). Advection uses second-order ENO
+//! φ is negative inside the liquid (Foster & Fedkiw 2001, §5.2). Advection uses second-order ENO
 //! upwind differences with Heun's (TVD RK2) time stepping — "higher order
 //! upwind differencing", not semi-Lagrangian, which the paper finds too
-//! inaccurate for the surface (L2431). Reinitialisation integrates
-//! `φ_η = −S(φ₀)(|∇φ| − 1)` (eq. 5.1, L2411-2417) with the smoothed sign
+//! inaccurate for the surface (Foster & Fedkiw 2001, §5.3). Reinitialisation integrates
+//! `φ_η = −S(φ₀)(|∇φ| − 1)` Foster & Fedkiw 2001, §5.2, eq. 5.1) with the smoothed sign
 //! `S(φ) = φ/√(φ² + h²)` and Godunov's upwind gradient (discretisation and
 //! step count are not in the source; pseudo-time step `h/2`).
 
@@ -45,6 +45,12 @@ fn minmod(a: f32, b: f32) -> f32 {
 
 impl LevelSet {
     /// Wraps `phi` (metres, negative inside) on cells of size `h`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter)
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`](crate::FluidError::Core) if
+    /// the grids cannot be allocated.
     pub fn new(phi: Grid3<f32>, h: f32) -> crate::Result<Self> {
         crate::error::positive("h", f64::from(h))?;
         let (nx, ny, nz) = phi.dims();
@@ -242,7 +248,7 @@ impl LevelSet {
     }
 
     /// Mean curvature `κ = ∇·(∇φ/|∇φ|)` (1/m) at every cell centre, by
-    /// central differences (L2441). Zero where `|∇φ|` vanishes.
+    /// central differences (Foster & Fedkiw 2001, §5.4). Zero where `|∇φ|` vanishes.
     #[must_use]
     pub fn curvature(&self) -> Grid3<f32> {
         let d = self.dims;

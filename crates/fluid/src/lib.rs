@@ -1,10 +1,11 @@
 //! # natura-fluid
 //!
 //! Stable fluids, smoke with vorticity confinement, and liquids — the three
-//! fluid papers of the SIGGRAPH 2001 course notes (seed 004): Stam's *Stable
-//! Fluids* (L1689-2004), Fedkiw, Stam & Jensen's *Visual Simulation of Smoke*
-//! (L2006-2306) and Foster & Fedkiw's *Practical Animation of Liquids*
-//! (L2308-2596), with the errata of the spec digest corrected.
+//! fluid papers reprinted in the SIGGRAPH 2001 Course 47 notes: Stam's *Stable
+//! Fluids* (Stam 1999), Fedkiw, Stam & Jensen's *Visual Simulation of Smoke*
+//! (Fedkiw et al. 2001) and Foster & Fedkiw's *Practical Animation of Liquids*
+//! (Foster & Fedkiw 2001), with their errata corrected (each
+//! stated where it is fixed; bibliography in `docs/sources.md`).
 //!
 //! | module | what |
 //! |---|---|

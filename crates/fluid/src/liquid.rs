@@ -1,42 +1,42 @@
-//! Foster & Fedkiw, *Practical Animation of Liquids* (SIGGRAPH 2001; seed
-//! 004 L2308-2596): a level set corrected by marker particles on a MAC grid.
+//! Foster & Fedkiw, *Practical Animation of Liquids* (Foster & Fedkiw 2001):
+//! a level set corrected by marker particles on a MAC grid.
 //!
 //! Per call of [`Liquid::step`] the frame time is split into Navier–Stokes
 //! steps no longer than [`LiquidParams::max_cfl`] times the CFL step
-//! `h / max|u|` (L2456, L2553; one CFL step by default, not the paper's
+//! `h / max|u|` (Foster & Fedkiw 2001, §6, Foster & Fedkiw 2001, App. A; one CFL step by default, not the paper's
 //! five, which loses volume). Each Navier–Stokes step:
 //!
-//! 1. classifies cells from φ (< 0 is liquid, L2409): *full* liquid cells,
+//! 1. classifies cells from φ (< 0 is liquid, Foster & Fedkiw 2001, §5.2): *full* liquid cells,
 //!    *surface* cells (liquid with an empty neighbour) and *empty* cells
-//!    (L2468-2472);
+//!    (Foster & Fedkiw 2001, §7.1.1–7.1.2);
 //! 2. updates velocity: first-order semi-Lagrangian convection "as Stam"
-//!    plus explicit central-difference viscosity and gravity (L2454), with
+//!    plus explicit central-difference viscosity and gravity (Foster & Fedkiw 2001, §6), with
 //!    the viscosity capped where the explicit step would be unstable (the
-//!    paper's local adjustment, L2555);
-//! 3. imposes object velocities (L2511-2515): faces of occupied cells take the
+//!    paper's local adjustment, Foster & Fedkiw 2001, App. A);
+//! 3. imposes object velocities (Foster & Fedkiw 2001, §9): faces of occupied cells take the
 //!    object's velocity, either always ([`ObjectMode::StickyNormal`]) or only
 //!    where the liquid would flow into the object ([`ObjectMode::Separating`])
-//!    — the paper states both (erratum E6);
+//!    — the paper states both (§9), which contradict each other;
 //! 4. solves the pressure for full cells with surface and empty cells at
-//!    atmospheric pressure (Dirichlet) and objects Neumann (L2474-2492). The
-//!    paper's matrix has a negative diagonal (L2486-2488, erratum E5); the
+//!    atmospheric pressure (Dirichlet) and objects Neumann (Foster & Fedkiw 2001, §8). The
+//!    paper's matrix has a negative diagonal (Foster & Fedkiw 2001, §8, an erratum); the
 //!    solver uses its negation, which is positive definite, with CG;
 //! 5. makes every surface cell divergence-free by correcting its faces to empty
-//!    neighbours (L2472; the paper leaves the split open, here the divergence
+//!    neighbours (Foster & Fedkiw 2001, §7.1.2; the paper leaves the split open, here the divergence
 //!    is removed in equal shares, the smallest change, so a free-falling
-//!    droplet keeps its velocity), zeroes empty–empty faces (L2468) and then
+//!    droplet keeps its velocity), zeroes empty–empty faces (Foster & Fedkiw 2001, §7.1.1) and then
 //!    extrapolates velocity a few cells into the air (beyond the paper) so
 //!    back-traces and particles see a sensible field;
-//! 6. moves particles (trilinear velocity, RK2, L2396) and φ (ENO2 upwind,
-//!    L2431) in CFL-limited sub-steps that add up to the step (L2456);
-//! 7. corrects φ with particles (`φ ← min(φ, φ_p)`, L2441-2448): where the
+//! 6. moves particles (trilinear velocity, RK2, Foster & Fedkiw 2001, §5.1) and φ (ENO2 upwind,
+//!    Foster & Fedkiw 2001, §5.3) in CFL-limited sub-steps that add up to the step (Foster & Fedkiw 2001, §6);
+//! 7. corrects φ with particles (`φ ← min(φ, φ_p)`, Foster & Fedkiw 2001, §5.4): where the
 //!    surface curvature is high as in the paper, or — the default — with
 //!    every escaped particle as in the particle level set of Enright et al.
 //!    2002 ([`ParticleCorrection`]); reinitialises φ (eq. 5.1, with the
 //!    Russo–Smereka sub-cell fix that keeps the zero set in place), corrects
 //!    again, deletes particles deep inside and reseeds sparse cells near the
-//!    surface (L2437). Particles beyond the extrapolated velocity band fly
-//!    ballistically (escaped spray, L2450).
+//!    surface (Foster & Fedkiw 2001, §5.4). Particles beyond the extrapolated velocity band fly
+//!    ballistically (escaped spray, Foster & Fedkiw 2001, §5.4).
 //!
 //! Volume: the 2.4 s dam break of the `liquid2d` example (2 m × 1 m tank,
 //! 0.7 m × 0.8 m column) stays within 5 % at 80 × 40 cells at every frame
@@ -58,23 +58,26 @@ use crate::mac::{self, Projector};
 use crate::pressure::SolverParams;
 use crate::shape::{Obstacle, Shape, voxelise};
 
-/// How object velocities constrain the liquid (erratum E6).
+/// How object velocities constrain the liquid (Foster & Fedkiw 2001, §9 states
+/// both rules, which contradict each other).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ObjectMode {
-    /// Clamp only inflow: the relative normal velocity is made `>= 0` (L2507).
+    /// Clamp only inflow: the relative normal velocity is made `>= 0` (Foster & Fedkiw 2001, §9).
     #[default]
     Separating,
-    /// Always set the normal velocity to the object's (L2513).
+    /// Always set the normal velocity to the object's (Foster & Fedkiw 2001, §9).
     StickyNormal,
 }
 
-/// How marker particles correct the level set (L2441-2448).
+/// How marker particles correct the level set (Foster & Fedkiw 2001, §5.4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ParticleCorrection {
     /// Foster & Fedkiw 2001 as written: particles within two cells of the
     /// surface that poke out of it modify φ only where the interpolated
     /// curvature `|κ|·h` exceeds [`LiquidParams::curvature_threshold`]
-    /// (L2441-2448), with the uniform radius [`LiquidParams::particle_radius`].
+    /// (Foster & Fedkiw 2001, §5.4), with the uniform radius [`LiquidParams::particle_radius`].
     Curvature,
     /// The particle level set of Enright, Fedkiw, Ferziger & Mitchell (2002),
     /// the paper's direct successor (beyond the paper; default): every
@@ -89,8 +92,9 @@ pub enum ParticleCorrection {
     Escaped,
 }
 
-/// The role of a cell in the liquid solver (L2468-2472).
+/// The role of a cell in the liquid solver (Foster & Fedkiw 2001, §7.1.1–7.1.2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum LiquidCell {
     /// No liquid.
     #[default]
@@ -103,16 +107,23 @@ pub enum LiquidCell {
     Object,
 }
 
+/// The most Navier–Stokes (CFL) steps one call of [`Liquid::step`] takes.
+pub const MAX_SUBSTEPS: u32 = 10_000;
+
+/// Largest gravity magnitude accepted, m/s² (about 1000 g).
+pub const MAX_GRAVITY: f32 = 1e4;
+
 /// Parameters of the liquid model. The paper gives none of these values
-/// (spec §4.2); defaults are library choices.
+/// defaults are library choices.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LiquidParams {
     /// Kinematic viscosity ν (m²/s). Default 1e-6 (water).
     pub viscosity: f32,
     /// Gravity (m/s²). Default `(0, 0, −9.81)`.
     pub gravity: Vec3,
     /// Navier–Stokes step as a multiple of the CFL step. Default 1. The
-    /// paper takes "around five" (L2456), moving the surface up to five
+    /// paper takes "around five" (Foster & Fedkiw 2001, §6), moving the surface up to five
     /// cells through a velocity field frozen at the start of the step and
     /// divergence-free only where the liquid was: in a dam break that loses
     /// a quarter of the volume in the first step and most of it within
@@ -120,14 +131,14 @@ pub struct LiquidParams {
     pub max_cfl: f32,
     /// Marker particles seeded per liquid cell.
     pub particles_per_cell: usize,
-    /// Particle radius in cells (the `r` of `φ_p = |x − x_p| − r`, L2402);
+    /// Particle radius in cells (the `r` of `φ_p = |x − x_p| − r`, Foster & Fedkiw 2001, §5.2);
     /// with [`ParticleCorrection::Escaped`] the largest radius.
     pub particle_radius: f32,
     /// How particles correct φ.
     pub correction: ParticleCorrection,
-    /// Particles deeper than this many cells inside are deleted (L2437).
+    /// Particles deeper than this many cells inside are deleted (Foster & Fedkiw 2001, §5.4).
     pub delete_band: f32,
-    /// Particles correct φ where `|κ|·h` exceeds this (L2441).
+    /// Particles correct φ where `|κ|·h` exceeds this (Foster & Fedkiw 2001, §5.4).
     pub curvature_threshold: f32,
     /// Reinitialisation iterations per step (eq. 5.1, "a few").
     pub reinit_iterations: u32,
@@ -169,16 +180,29 @@ impl Default for LiquidParams {
 
 impl LiquidParams {
     /// Checks every parameter.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that
+    /// is NaN, infinite or out of its range (gravity above [`MAX_GRAVITY`],
+    /// `max_cfl` above 100, `particles_per_cell` outside 1..=64, …).
     pub fn validate(&self) -> Result<()> {
         error::non_negative("viscosity", f64::from(self.viscosity))?;
-        if !self.gravity.is_finite() {
+        if !(self.gravity.is_finite() && self.gravity.length() <= MAX_GRAVITY) {
             return Err(FluidError::InvalidParameter {
                 name: "gravity",
                 value: format!("{:?}", self.gravity),
-                reason: "must be finite",
+                reason: "must be finite with magnitude ≤ 1e4 m/s² (about 1000 g)",
             });
         }
         error::positive("max_cfl", f64::from(self.max_cfl))?;
+        if self.max_cfl > 100.0 {
+            return Err(FluidError::InvalidParameter {
+                name: "max_cfl",
+                value: self.max_cfl.to_string(),
+                reason: "must be in (0, 100] (the source takes about 5)",
+            });
+        }
         if self.particles_per_cell == 0 || self.particles_per_cell > 64 {
             return Err(FluidError::InvalidParameter {
                 name: "particles_per_cell",
@@ -217,6 +241,12 @@ pub struct Liquid {
 
 impl Liquid {
     /// An empty tank of `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: LiquidParams) -> Result<Self> {
         error::positive("cell size h", f64::from(h))?;
         params.validate()?;
@@ -260,6 +290,11 @@ impl Liquid {
     /// Adds liquid filling `shape` (must lie inside the grid) with velocity
     /// `velocity`: φ becomes the union with the shape's signed distance and
     /// particles are seeded in its cells (jittered, deterministic).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite shape or velocity,
+    /// and [`FluidError::OutsideGrid`] if the shape lies outside the grid.
     pub fn fill(&mut self, shape: Shape, velocity: Vec3) -> Result<()> {
         shape.check_inside(self.dims, self.h, "liquid")?;
         if !velocity.is_finite() {
@@ -317,7 +352,7 @@ impl Liquid {
         Ok(())
     }
 
-    /// Rebuilds φ from the particles alone (L2400-2409): `φ = min_p |x − x_p| − r`,
+    /// Rebuilds φ from the particles alone (Foster & Fedkiw 2001, §5.2): `φ = min_p |x − x_p| − r`,
     /// then reinitialised to a signed distance.
     pub fn rebuild_phi_from_particles(&mut self) {
         let d = self.dims;
@@ -362,6 +397,11 @@ impl Liquid {
     }
 
     /// Adds an obstacle (static or moving); it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         o.validate()?;
         o.shape.check_inside(self.dims, self.h, "obstacle")?;
@@ -469,21 +509,47 @@ impl Liquid {
 
     /// Advances by `dt` seconds in as many Navier–Stokes steps as the CFL
     /// condition requires.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` if it is not
+    /// finite and positive, or if it would need more than [`MAX_SUBSTEPS`]
+    /// CFL steps at the current speeds (estimated before anything changes;
+    /// should the flow speed up so much that the cap is reached part-way, the
+    /// liquid has advanced by the steps taken and the same error is returned).
+    /// Returns [`FluidError::NonFinite`] if a step produces a NaN or infinite
+    /// value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
-        let mut done = 0.0f32;
+        let too_many = || FluidError::InvalidParameter {
+            name: "dt",
+            value: dt.to_string(),
+            reason: "needs more than MAX_SUBSTEPS (10 000) CFL steps in one call: advance in shorter intervals",
+        };
+        let first = f64::from(self.params.max_cfl * self.h / self.cfl_speed().max(1e-6));
+        if f64::from(dt) / first > f64::from(MAX_SUBSTEPS) {
+            return Err(too_many());
+        }
+        let total = f64::from(dt);
+        let mut done = 0.0f64;
+        let mut taken = 0u32;
         let mut report = StepReport::default();
-        while done < dt {
-            let cfl = self.h / self.cfl_speed().max(1e-6);
-            let mut sub = (self.params.max_cfl * cfl).min(dt - done);
-            if dt - done - sub < 1e-4 * dt {
-                sub = dt - done;
+        while done < total {
+            if taken == MAX_SUBSTEPS {
+                return Err(too_many());
             }
-            let r = self.ns_step(sub)?;
+            let cfl = f64::from(self.h / self.cfl_speed().max(1e-6));
+            let left = total - done;
+            let mut sub = (f64::from(self.params.max_cfl) * cfl).min(left);
+            if left - sub < 1e-4 * total {
+                sub = left;
+            }
+            let r = self.ns_step(sub as f32)?;
             report.substeps += r.substeps;
             report.pressure_iterations += r.pressure_iterations;
             report.pressure = r.pressure;
             done += sub;
+            taken += 1;
         }
         report.kinetic_energy = self.vel.kinetic_energy(self.h);
         report.max_divergence =
@@ -575,7 +641,7 @@ impl Liquid {
         let stats =
             self.projector
                 .project(&mut self.vel, &kinds, &bounds, h, dt, &self.params.solver)?;
-        // Faces of object cells are held fixed through the solve (L2515): re-impose.
+        // Faces of object cells are held fixed through the solve (Foster & Fedkiw 2001, §9): re-impose.
         self.apply_objects();
         // 5. Surface cells divergence-free, empty faces zero, extrapolation.
         self.fix_surface_cells();
@@ -616,7 +682,7 @@ impl Liquid {
         })
     }
 
-    /// Object constraints (L2511-2515) on faces touching object cells.
+    /// Object constraints (Foster & Fedkiw 2001, §9) on faces touching object cells.
     fn apply_objects(&mut self) {
         if self.obstacles.is_empty() {
             return;
@@ -664,7 +730,7 @@ impl Liquid {
     }
 
     /// Sets faces between surface cells and empty cells so each surface cell
-    /// is divergence-free (L2472), and zeroes faces between empty cells (L2468).
+    /// is divergence-free (Foster & Fedkiw 2001, §7.1.2), and zeroes faces between empty cells (Foster & Fedkiw 2001, §7.1.1).
     fn fix_surface_cells(&mut self) {
         let d = self.dims;
         let n = d.n();
@@ -853,9 +919,9 @@ impl Liquid {
         }
     }
 
-    /// Moves particles with the grid velocity (trilinear, RK2, L2396);
+    /// Moves particles with the grid velocity (trilinear, RK2, Foster & Fedkiw 2001, §5.1);
     /// particles further into the air than the extrapolated velocity band
-    /// (escaped spray, L2450) fly ballistically under gravity until they
+    /// (escaped spray, Foster & Fedkiw 2001, §5.4) fly ballistically under gravity until they
     /// come back into the band.
     fn move_particles(&mut self, dt: f32) {
         let d = self.dims;
@@ -895,7 +961,7 @@ impl Liquid {
         self.push_particles_out();
     }
 
-    /// Moves particles found inside an object to just outside its surface (L2505).
+    /// Moves particles found inside an object to just outside its surface (Foster & Fedkiw 2001, §9).
     fn push_particles_out(&mut self) {
         if self.obstacles.is_empty() {
             return;
@@ -918,7 +984,7 @@ impl Liquid {
         }
     }
 
-    /// Particle correction (L2441-2448): only ever adds liquid
+    /// Particle correction (Foster & Fedkiw 2001, §5.4): only ever adds liquid
     /// (`φ ← min(φ, |x − x_p| − r_p)` near flagged particles).
     fn correct_with_particles(&mut self) {
         let h = self.h;
@@ -975,7 +1041,7 @@ impl Liquid {
         }
     }
 
-    /// Deletes particles deep inside and reseeds sparse near-surface cells (L2437).
+    /// Deletes particles deep inside and reseeds sparse near-surface cells (Foster & Fedkiw 2001, §5.4).
     fn maintain_particles(&mut self) {
         let d = self.dims;
         let h = self.h;

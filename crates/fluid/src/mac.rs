@@ -1,13 +1,14 @@
-//! Operators on the staggered MAC grid (Fedkiw, Stam & Jensen App. A, seed
-//! 004 L2228-2256): divergence, pressure projection, centre-to-face forces,
+//! Operators on the staggered MAC grid (Fedkiw et al. 2001, App. A): divergence, pressure projection, centre-to-face forces,
 //! vorticity and vorticity confinement.
 //!
-//! The MAC divergence (L2240) and gradient (L2244) compose to exactly the
+//! The MAC divergence and gradient (Fedkiw et al. 2001, App. A) compose to exactly the
 //! compact Laplacian the pressure solver inverts, so after [`Projector::project`]
 //! the discrete divergence of every fluid cell equals `−r/h²` for the solver
 //! residual `r`: the field is divergence-free to the solver tolerance. This is
 //! the consistent discretisation that replaces Stable Fluids' mixed
-//! wide/compact stencils (erratum E8, L1962-1970).
+//! wide/compact stencils (Stam 1999, App. B: the divergence there uses
+//! the wide stencil while the Poisson solve uses the compact one, so its
+//! projected fields are not discretely divergence-free).
 
 use natura_core::Grid3;
 
@@ -16,7 +17,11 @@ use crate::grid::{Boundaries, CellKind, Dims, MacVelocity, Side};
 use crate::par;
 use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 
-/// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (L2240).
+/// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grid cannot be allocated.
 pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
     let mut out = vel.dims().zeros()?;
     par::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
@@ -63,6 +68,11 @@ fn divergence_row(vel: &MacVelocity, h: f32, r: usize, row: &mut [f32]) {
 /// One pass over the faces, row by row, with no divergence grid: each row's
 /// divergence goes to a row buffer and is folded at once (the same values
 /// as [`divergence`]; the maximum does not depend on the order).
+///
+/// # Errors
+///
+/// Returns [`FluidError::SizeMismatch`](crate::FluidError::SizeMismatch) if the cell kinds are not the grid's
+/// size.
 pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) -> Result<f32> {
     let d = vel.dims();
     let n0 = d.n()[0];
@@ -258,7 +268,7 @@ pub(crate) fn enforce_solids(
 }
 
 /// Adds `dt·F` to every free face, with `F` given at cell centres and averaged
-/// to faces (L2254-2256): `u_{i+½} += dt (f_i + f_{i+1})/2`. Open boundary
+/// to faces (Fedkiw et al. 2001, App. A): `u_{i+½} += dt (f_i + f_{i+1})/2`. Open boundary
 /// faces take their single inner cell's force.
 pub(crate) fn add_centre_forces(
     vel: &mut MacVelocity,
@@ -372,10 +382,15 @@ impl Projector {
     }
 
     /// Makes `vel` discretely divergence-free on fluid cells: solves
-    /// `∇²p = ∇·u*/dt` (Smoke eq. 4, L2074) with Neumann conditions at solids
+    /// `∇²p = ∇·u*/dt` (Fedkiw et al. 2001, §2, eq. 4) with Neumann conditions at solids
     /// and walls and `p = 0` at air cells and open sides, then applies
     /// `u = u* − dt ∇p` (eq. 5) on every free face. Fixed faces (walls,
     /// solids) are not touched: set them before calling.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`](crate::FluidError::NonFinite) if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a non-positive `dt`.
     pub fn project(
         &mut self,
         vel: &mut MacVelocity,
@@ -507,7 +522,11 @@ fn ddx(g: &[f32], d: Dims, c: [usize; 3], a: usize, h: f32) -> f32 {
     (g[d.idx(hi[0], hi[1], hi[2])] - g[d.idx(lo[0], lo[1], lo[2])]) / span
 }
 
-/// Cell-centred velocity components (face averages, L2248).
+/// Cell-centred velocity components (face averages, Fedkiw et al. 2001, App. A).
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if a result grid cannot be allocated.
 pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let mut out = [d.zeros()?, d.zeros()?, d.zeros()?];
@@ -530,8 +549,12 @@ pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
 }
 
 /// Vorticity `ω = ∇ × u` at cell centres from face-averaged velocities and
-/// central differences (App. A, L2246-2252). In 2-D (x–z plane) only the
+/// central differences (Fedkiw et al. 2001, App. A). In 2-D (x–z plane) only the
 /// y component is non-zero.
+///
+/// # Errors
+///
+/// Returns [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let u = centre_velocity(vel)?;
@@ -556,10 +579,15 @@ pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
 }
 
 /// The vorticity confinement force `f = ε h (N × ω)` at cell centres
-/// (Smoke eqs. 9-11, L2107-2119), `N = ∇|ω| / |∇|ω||`.
+/// (Fedkiw et al. 2001, §3, eqs. 9-11), `N = ∇|ω| / |∇|ω||`.
 ///
 /// Where `|∇|ω||` vanishes (irrotational flow, uniform vorticity) the force
-/// is zero rather than NaN (spec §5 item 10).
+/// is zero rather than NaN (the source divides by it).
+///
+/// # Errors
+///
+/// Returns [`FluidError::InvalidParameter`](crate::FluidError::InvalidParameter) for a negative or non-finite `epsilon`,
+/// and [`FluidError::Core`](crate::FluidError::Core) if the grids cannot be allocated.
 pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Grid3<f32>; 3]> {
     let d = vel.dims();
     let w = vorticity(vel, h)?;

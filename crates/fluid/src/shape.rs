@@ -118,6 +118,11 @@ impl Shape {
     }
 
     /// Checks the parameters are finite and positive where they must be.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let bad = |reason: &'static str| FluidError::InvalidParameter {
             name: "shape",
@@ -151,6 +156,10 @@ impl Shape {
 
     /// Checks that the shape lies within the domain `[0, n·h]` on every
     /// non-flat axis; on a flat axis it must cover the single cell's centre.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::OutsideGrid`] if the shape lies outside the grid.
     pub fn check_inside(&self, dims: Dims, h: f32, what: &'static str) -> Result<()> {
         self.validate()?;
         let (lo, hi) = self.bounds();
@@ -182,7 +191,7 @@ impl Shape {
 
 /// A solid obstacle moving rigidly: translation `velocity` plus rotation
 /// `angular_velocity` (rad/s) about its centre. Its cells are occupied; their
-/// faces carry the obstacle's velocity (Smoke L2132).
+/// faces carry the obstacle's velocity (Fedkiw et al. 2001, §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obstacle {
     /// The occupied region at the current time.
@@ -191,7 +200,7 @@ pub struct Obstacle {
     pub velocity: Vec3,
     /// Angular velocity (rad/s) about the shape's centre.
     pub angular_velocity: Vec3,
-    /// Temperature imposed on occupied cells (smoke), if any (L2132).
+    /// Temperature imposed on occupied cells (smoke), if any (Fedkiw et al. 2001, §4).
     pub temperature: Option<f32>,
 }
 

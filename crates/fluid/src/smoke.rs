@@ -1,24 +1,24 @@
 //! Fedkiw, Stam & Jensen, *Visual Simulation of Smoke* (SIGGRAPH 2001;
-//! seed 004 L2006-2306), 2-D and 3-D.
+//! Fedkiw et al. 2001), 2-D and 3-D.
 //!
-//! Inviscid incompressible Euler with unit density (L2060-2066) on the
-//! staggered MAC grid (App. A, L2228-2256). One step (L2134-2142):
+//! Inviscid incompressible Euler with unit density (Fedkiw et al. 2001, §2) on the
+//! staggered MAC grid (Fedkiw et al. 2001, App. A). One step (Fedkiw et al. 2001, §4):
 //!
 //! 1. forces at cell centres — buoyancy `f = −αρ z + β(T − T_amb) z` (eq. 8,
-//!    L2090), vorticity confinement `f = ε h (N × ω)` (eq. 11, L2117) and
-//!    user forces — multiplied by `dt` and averaged to faces (L2254-2256);
+//!    Fedkiw et al. 2001, §2), vorticity confinement `f = ε h (N × ω)` (Fedkiw et al. 2001, §3, eq. 11) and
+//!    user forces — multiplied by `dt` and averaged to faces (Fedkiw et al. 2001, App. A);
 //! 2. semi-Lagrangian advection of the velocity from face midpoints, paths
-//!    clipped at occupied voxels (L2128, L2136), linear or monotone cubic
+//!    clipped at occupied voxels (Fedkiw et al. 2001, §4), linear or monotone cubic
 //!    (App. B with the a3 and overshoot errata fixed, see [`crate::interp`]);
-//! 3. projection with Neumann conditions at occupied voxels (L2138-2140),
+//! 3. projection with Neumann conditions at occupied voxels (Fedkiw et al. 2001, §4),
 //!    solved by multigrid- or MIC(0)-preconditioned CG to a stated relative
 //!    residual (the paper stops after "about 20 iterations");
-//! 4. advection of temperature and density with the new velocity (L2142);
+//! 4. advection of temperature and density with the new velocity (Fedkiw et al. 2001, §4);
 //! 5. sources and object rules: occupied voxels take the object's
 //!    temperature, density 0 inside and, on boundary voxels, the density of
-//!    the unoccupied neighbours (L2132).
+//!    the unoccupied neighbours (Fedkiw et al. 2001, §4).
 //!
-//! The parameters α, β, T_amb and ε have no values in the paper (spec §4.2);
+//! The parameters α, β, T_amb and ε have no values in the paper;
 //! the defaults are library choices documented on [`SmokeParams`].
 
 use glam::Vec3;
@@ -33,6 +33,7 @@ use crate::shape::{Obstacle, Obstacles, Shape, solid_face_velocity, voxelise};
 
 /// Parameters of the smoke model.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SmokeParams {
     /// α: downward acceleration per unit smoke density (m/s² per unit), eq. 8.
     /// Default 0.05.
@@ -68,6 +69,11 @@ impl Default for SmokeParams {
 
 impl SmokeParams {
     /// Checks every parameter (finite; ε, α, β ≥ 0; ambient temperature > 0).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         error::non_negative("alpha", f64::from(self.alpha))?;
         error::non_negative("beta", f64::from(self.beta))?;
@@ -78,7 +84,7 @@ impl SmokeParams {
 }
 
 /// A region where smoke is placed each step ("place densities and heat
-/// sources", L2214): inside `shape` density and temperature are raised to
+/// sources", Fedkiw et al. 2001, §6): inside `shape` density and temperature are raised to
 /// at least the given values, and with `velocity` the free faces inside are
 /// set to it (an inflow jet).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,6 +118,12 @@ pub struct Smoke {
 
 impl Smoke {
     /// Still air at ambient temperature on `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: SmokeParams) -> Result<Self> {
         error::positive("cell size h", f64::from(h))?;
         params.validate()?;
@@ -156,6 +168,11 @@ impl Smoke {
     }
 
     /// Adds an obstacle (must lie inside the grid); its cells become occupied.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         self.solid.add(o, self.dims, self.h)
     }
@@ -167,6 +184,11 @@ impl Smoke {
     }
 
     /// Adds a smoke source (must lie inside the grid, finite values).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
+    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
     pub fn add_source(&mut self, s: SmokeSource) -> Result<()> {
         s.shape.check_inside(self.dims, self.h, "smoke source")?;
         error::non_negative("source density", f64::from(s.density))?;
@@ -237,6 +259,10 @@ impl Smoke {
     }
 
     /// Buoyancy (eq. 8) at cell centres: only the z component is non-zero.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn buoyancy(&self) -> Result<[Grid3<f32>; 3]> {
         let d = self.dims;
         let mut f = [d.zeros()?, d.zeros()?, d.zeros()?];
@@ -257,16 +283,29 @@ impl Smoke {
     }
 
     /// The confinement force (eq. 11) of the current velocity.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite `epsilon`,
+    /// and [`FluidError::Core`] if the grids cannot be allocated.
     pub fn confinement_force(&self) -> Result<[Grid3<f32>; 3]> {
         mac::confinement_force(&self.vel, self.h, self.params.epsilon)
     }
 
     /// Vorticity at cell centres (App. A).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grids cannot be allocated.
     pub fn vorticity(&self) -> Result<[Grid3<f32>; 3]> {
         mac::vorticity(&self.vel, self.h)
     }
 
     /// MAC divergence at cell centres.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::Core`] if the grid cannot be allocated.
     pub fn divergence(&self) -> Result<Grid3<f32>> {
         mac::divergence(&self.vel, self.h)
     }
@@ -278,6 +317,11 @@ impl Smoke {
     }
 
     /// Projects the current velocity, e.g. after setting it by hand.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`] if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`] for a non-positive `dt`.
     pub fn project(&mut self, dt: f32) -> Result<SolveStats> {
         self.enforce();
         self.projector.project(
@@ -300,7 +344,13 @@ impl Smoke {
         );
     }
 
-    /// Advances by `dt` seconds (L2134-2142).
+    /// Advances by `dt` seconds (Fedkiw et al. 2001, §4).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` unless it is finite and
+    /// positive, and [`FluidError::NonFinite`] naming the field and stage if the step
+    /// produces a NaN or infinite value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
@@ -431,7 +481,7 @@ impl Smoke {
     }
 
     /// Occupied voxels: object temperature, zero density inside, and on
-    /// boundary voxels the mean density of their unoccupied neighbours (L2132).
+    /// boundary voxels the mean density of their unoccupied neighbours (Fedkiw et al. 2001, §4).
     fn apply_object_rules(&mut self) {
         if self.solid.list.is_empty() {
             return;

@@ -1,21 +1,21 @@
-//! Stam's *Stable Fluids* (SIGGRAPH 1999; seed 004 L1689-2004), 2-D and 3-D.
+//! Stam's *Stable Fluids* (SIGGRAPH 1999; Stam 1999), 2-D and 3-D.
 //!
 //! One step is `w0 → add force → w1 → advect → w2 → diffuse → w3 → project
-//! → w4` (L1762, Fig. 1): forces are added in place (L1768), every velocity
-//! component is traced back through the force-added field `w1` (L1774,
-//! L1877), diffusion is implicit (L1786) and the projection makes the field
-//! divergence-free (L1790-1792). Moving substances follow
-//! `∂a/∂t = −u·∇a + κ_a∇²a − α_a a + S_a` (L1833; the source prints `κ_a∇²`
-//! without its operand — erratum E4) with the new velocity (L1863), and
-//! dissipation divides by `1 + dt·α_a` (L1837).
+//! → w4` (Stam 1999, §2.2, Fig. 1): forces are added in place (Stam 1999, §2.2), every velocity
+//! component is traced back through the force-added field `w1` (Stam 1999, §2.2,
+//! Stam 1999, §3.2), diffusion is implicit (Stam 1999, §2.2) and the projection makes the field
+//! divergence-free (Stam 1999, §2.2). Moving substances follow
+//! `∂a/∂t = −u·∇a + κ_a∇²a − α_a a + S_a` (Stam 1999, §2.4; the source prints `κ_a∇²`
+//! without its operand, an erratum) with the new velocity (Stam 1999, §3.2), and
+//! dissipation divides by `1 + dt·α_a` (Stam 1999, §2.4).
 //!
 //! Two domains:
 //!
-//! * [`PeriodicFluid`]: the n-torus with the FFT solver (L1800-1822), on
+//! * [`PeriodicFluid`]: the n-torus with the FFT solver (Stam 1999, §2.3), on
 //!   Stam's cell-centred (collocated) grid. Output tiles seamlessly.
 //! * [`BoundedFluid`]: a box with walls, open sides and obstacles. Instead of
 //!   the paper's collocated grid with FISHPAK's mixed wide/compact stencils
-//!   (App. B L1962-1970, which only approximately projects — erratum E8),
+//!   (Stam 1999, App. B, which only approximately projects),
 //!   velocity lives on the staggered MAC grid whose divergence and gradient
 //!   compose to the compact Laplacian, so the projected field is discretely
 //!   divergence-free to the solver tolerance.
@@ -37,9 +37,9 @@ use crate::shape::{Obstacle, Obstacles, Shape, voxelise};
 pub struct Substance {
     /// A name for reports and files.
     pub name: String,
-    /// Diffusion constant κ (m²/s), `kS` in the paper (L1849).
+    /// Diffusion constant κ (m²/s), `kS` in the paper (Stam 1999, §3.1).
     pub diffusion: f32,
-    /// Dissipation rate α (1/s), `aS` in the paper (L1849).
+    /// Dissipation rate α (1/s), `aS` in the paper (Stam 1999, §3.1).
     pub dissipation: f32,
 }
 
@@ -65,7 +65,7 @@ impl Substance {
 pub struct SubstanceId(pub usize);
 
 /// A region that adds `rate` units of a substance per second to every cell
-/// whose centre lies inside `shape` (the `S_a` term, L1833).
+/// whose centre lies inside `shape` (the `S_a` term, Stam 1999, §2.4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScalarSource {
     /// The region.
@@ -75,7 +75,7 @@ pub struct ScalarSource {
 }
 
 /// A region that accelerates the fluid by `acceleration` (m/s²) in every
-/// cell whose centre lies inside `shape` (the force `f`, L1768).
+/// cell whose centre lies inside `shape` (the force `f`, Stam 1999, §2.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ForceSource {
     /// The region.
@@ -86,11 +86,12 @@ pub struct ForceSource {
 
 /// Parameters of both Stable Fluids solvers.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StableParams {
-    /// Kinematic viscosity ν (m²/s), `visc` (L1849). The paper gives no value;
+    /// Kinematic viscosity ν (m²/s), `visc` (Stam 1999, §3.1). The paper gives no value;
     /// default 1e-4.
     pub viscosity: f32,
-    /// Advection scheme; default linear semi-Lagrangian with RK2 (L1904).
+    /// Advection scheme; default linear semi-Lagrangian with RK2 (Stam 1999, §3.2).
     pub advection: Advection,
     /// Periodic solver: diffusion filter (default the paper's rational one).
     pub filter: DiffusionFilter,
@@ -117,6 +118,11 @@ impl Default for StableParams {
 
 impl StableParams {
     /// Checks every parameter: viscosity finite and `>= 0`, solver settings valid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         error::non_negative("viscosity", f64::from(self.viscosity))?;
         self.solver.validate()
@@ -225,7 +231,7 @@ fn zero3(dims: Dims) -> Result<[Grid3<f32>; 3]> {
     Ok([dims.zeros()?, dims.zeros()?, dims.zeros()?])
 }
 
-/// Stable Fluids on a periodic domain with the FFT solver (L1800-1822).
+/// Stable Fluids on a periodic domain with the FFT solver (Stam 1999, §2.3).
 #[derive(Clone, Debug)]
 pub struct PeriodicFluid {
     dims: Dims,
@@ -240,6 +246,12 @@ pub struct PeriodicFluid {
 
 impl PeriodicFluid {
     /// A fluid at rest on `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
         check_h(h)?;
         params.validate()?;
@@ -268,11 +280,22 @@ impl PeriodicFluid {
     }
 
     /// Adds a substance (initially zero everywhere).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
+    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
+    /// allocated.
     pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
         self.subs.add(self.dims, s)
     }
 
     /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
+    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
     pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
         self.subs.check(id)?;
         check_scalar_source(self.dims, self.h, &src)?;
@@ -281,6 +304,11 @@ impl PeriodicFluid {
     }
 
     /// Adds a persistent force region; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
+    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
         check_force_source(self.dims, self.h, &s)?;
         self.force_sources.push(s);
@@ -288,7 +316,7 @@ impl PeriodicFluid {
     }
 
     /// Per-step force field at cell centres (m/s²), cleared after each step —
-    /// the interactive forces `F` of the main loop (L1858-1864).
+    /// the interactive forces `F` of the main loop (Stam 1999, §3.2).
     pub fn force_mut(&mut self) -> &mut [Grid3<f32>; 3] {
         &mut self.force
     }
@@ -305,12 +333,22 @@ impl PeriodicFluid {
     }
 
     /// The field of substance `id`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&self.subs.fields[id.0])
     }
 
     /// The field of substance `id`, mutably.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&mut self.subs.fields[id.0])
@@ -343,7 +381,13 @@ impl PeriodicFluid {
         );
     }
 
-    /// Advances by `dt` seconds: Vstep then Sstep (L1874-1890).
+    /// Advances by `dt` seconds: Vstep then Sstep (Stam 1999, §3.2).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` unless it is finite and
+    /// positive, and [`FluidError::NonFinite`] naming the field and stage if the step
+    /// produces a NaN or infinite value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);
@@ -520,6 +564,12 @@ impl Roles {
 
 impl BoundedFluid {
     /// A fluid at rest on `dims` cells of size `h` metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`FluidError::InvalidParameter`]
+    /// for a cell size that is not finite and positive, and [`FluidError::Core`] if
+    /// the grids cannot be allocated.
     pub fn new(dims: Dims, h: f32, params: StableParams) -> Result<Self> {
         check_h(h)?;
         params.validate()?;
@@ -553,16 +603,32 @@ impl BoundedFluid {
     }
 
     /// Adds an obstacle; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a shape with non-finite or
+    /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         self.solid.add(o, self.dims, self.h)
     }
 
     /// Adds a substance.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
+    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
+    /// allocated.
     pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
         self.subs.add(self.dims, s)
     }
 
     /// Adds a persistent source of substance `id`; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
+    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
     pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
         self.subs.check(id)?;
         check_scalar_source(self.dims, self.h, &src)?;
@@ -571,6 +637,11 @@ impl BoundedFluid {
     }
 
     /// Adds a persistent force region; it must lie inside the grid.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
+    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
         check_force_source(self.dims, self.h, &s)?;
         self.force_sources.push(s);
@@ -600,12 +671,22 @@ impl BoundedFluid {
     }
 
     /// The field of substance `id`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&self.subs.fields[id.0])
     }
 
     /// The field of substance `id`, mutably.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
+    /// substance.
     pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
         self.subs.check(id)?;
         Ok(&mut self.subs.fields[id.0])
@@ -618,6 +699,11 @@ impl BoundedFluid {
     }
 
     /// Projects the current velocity (e.g. after setting it by hand).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::NonFinite`] if the velocity or the pressure is not
+    /// finite, and [`FluidError::InvalidParameter`] for a non-positive `dt`.
     pub fn project(&mut self, dt: f32) -> Result<crate::pressure::SolveStats> {
         let sv = crate::shape::solid_face_velocity(
             self.dims,
@@ -651,7 +737,13 @@ impl BoundedFluid {
     }
 
     /// Advances by `dt` seconds: force → advect → diffuse → project, then the
-    /// substances (L1874-1890). Moving obstacles advance at the end.
+    /// substances (Stam 1999, §3.2). Moving obstacles advance at the end.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming `dt` unless it is finite and
+    /// positive, and [`FluidError::NonFinite`] naming the field and stage if the step
+    /// produces a NaN or infinite value.
     pub fn step(&mut self, dt: f32) -> Result<StepReport> {
         error::check_dt(dt)?;
         let (dims, h) = (self.dims, self.h);

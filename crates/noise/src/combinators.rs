@@ -7,13 +7,16 @@ use crate::field::Field;
 use crate::fractal::fbm::sign;
 use crate::lanes::{Simd, run};
 
-/// The ridged basis `1 − |N|` [D 1106, M 464-475] (range `[1 − B, 1]`, so
-/// `[0, 1]` for a unit basis; exactly 1 on gradient noise's lattice).
+/// The ridged basis `1 − |N|` (Musgrave 1993, §2.3.2.5.3; Musgrave 2001,
+/// "Perlin") (range `[1 − B, 1]`, so `[0, 1]` for a unit basis; exactly 1 on
+/// gradient noise's lattice).
 ///
 /// "Taking the absolute value … introduces discontinuities in the derivative,
-/// which create ridges at all scales" [D 1106]. Its mean is positive, which
-/// breaks MojoWorld's basis rule (C) [M 392]; fBm of it is "Slickrock",
-/// [`HeteroTerrain`](crate::HeteroTerrain) over it is "Hell" [M 472, D 3863].
+/// which create ridges at all scales" (Musgrave 1993, §2.3.2.5.3). Its mean is
+/// positive, which breaks MojoWorld's basis rule (C) (Musgrave 2001, "The Basis
+/// Function"); fBm of it is "Slickrock",
+/// [`HeteroTerrain`](crate::HeteroTerrain) over it is "Hell" (Musgrave 2001,
+/// "Perlin"; Musgrave 1993, Plate 2.9).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Ridged<B>(pub B);
 
@@ -106,7 +109,8 @@ impl<B: Field> Field for Abs<B> {
 }
 
 /// `amplitude·N(frequency·p + offset) + bias`: rescales a field's domain and
-/// range. An `offset` misregisters lattices (the sources' `+0.5`, `+3.33`, [T 92-108]).
+/// range. An `offset` misregisters lattices (the sources' `+0.5`, `+3.33`,
+/// Musgrave 1998, "A Variety of fBm").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform<B> {
     /// The field transformed.

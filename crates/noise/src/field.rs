@@ -57,6 +57,33 @@ pub trait Field: Send + Sync {
         )
     }
 
+    /// The values at `p` scaled by each frequency: `out[k] = eval2(p·freq[k])`
+    /// (what a fractal's octave loop asks of its basis).
+    ///
+    /// The results equal the point evaluations (bit for bit, except that an
+    /// implementation may give an exact zero the other sign). The default
+    /// evaluates point by point; [`Perlin`](crate::Perlin) noise evaluates
+    /// the octaves as SIMD lanes.
+    ///
+    /// # Panics
+    /// If `out` is shorter than `freq` (a programming error).
+    fn eval2_scaled(&self, p: DVec2, freq: &[f64], out: &mut [f64]) {
+        for (o, &f) in out[..freq.len()].iter_mut().zip(freq) {
+            *o = self.eval2(p * f);
+        }
+    }
+
+    /// The values at the 3-D point `p` scaled by each frequency (see
+    /// [`eval2_scaled`](Field::eval2_scaled)).
+    ///
+    /// # Panics
+    /// If `out` is shorter than `freq` (a programming error).
+    fn eval3_scaled(&self, p: DVec3, freq: &[f64], out: &mut [f64]) {
+        for (o, &f) in out[..freq.len()].iter_mut().zip(freq) {
+            *o = self.eval3(p * f);
+        }
+    }
+
     /// A bound on `|f|` over all of space.
     fn bound(&self) -> f64;
 
@@ -322,6 +349,14 @@ macro_rules! forward_field {
             fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) { (**self).eval_grad2(p) }
             #[inline]
             fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) { (**self).eval_grad3(p) }
+            #[inline]
+            fn eval2_scaled(&self, p: DVec2, freq: &[f64], out: &mut [f64]) {
+                (**self).eval2_scaled(p, freq, out)
+            }
+            #[inline]
+            fn eval3_scaled(&self, p: DVec3, freq: &[f64], out: &mut [f64]) {
+                (**self).eval3_scaled(p, freq, out)
+            }
             fn bound(&self) -> f64 { (**self).bound() }
             fn lipschitz2(&self) -> f64 { (**self).lipschitz2() }
             fn lipschitz3(&self) -> f64 { (**self).lipschitz3() }

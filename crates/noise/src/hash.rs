@@ -3,14 +3,28 @@
 //! Every basis draws its per-lattice-point randomness (gradients, values,
 //! feature points, impulses) from a stateless hash of the lattice coordinates
 //! and the seed, in the spirit of Fournier–Fussell–Carpenter's "random numbers
-//! indexed by position". No permutation table: the sources' table-based
-//! implementations repeat every 256 cells (spec `noise.md` §2.1, *Periodicity*);
+//! indexed by position". No permutation table: the common table-based
+//! implementations repeat every 256 cells, which shows at planet scale;
 //! this hash repeats only with the 2³² wrap of the `i32` lattice index.
 //!
 //! The hash is 32-bit integer arithmetic so the f64 point path and the f32
-//! SIMD batch path draw bit-identical lattice values. It is structured so a
-//! batch row hoists the y (and z, w) part out of the per-point loop:
-//! `corner(x, row(y, z, …))`.
+//! SIMD batch path draw bit-identical lattice values. A lattice point's hash
+//! is `fin(x·PX ^ y·PY ^ z·PZ ^ w·PW ^ seed)`: each index is spread by an odd
+//! multiplier, the spread indices and the seed are combined by `xor`, and one
+//! multiply–xorshift finaliser ([`fin`]) mixes the result. The `row*` hashes
+//! are the `xor` of everything but x, so a batch row hoists them out of the
+//! per-point loop (`corner(x, row(y, z, …))`), and the point paths spread each
+//! index once and reach a neighbouring corner with one add
+//! (`(x + 1)·PX = x·PX + PX`).
+//!
+//! One multiply per lattice point is what the per-point evaluators can
+//! afford (a 3-D gradient cell hashes 8 corners, a 3-D Worley search 27
+//! cells). Its quality is ample for what the bases draw: the gradient and
+//! value consumers read the top bits, which depend on every input bit
+//! through the multiply's carries, and the final `h ^ (h >> 16)` gives the
+//! low half (Worley's feature coordinates) the same dependence. The
+//! statistical tests (uniform gradient choice, zero mean, uncorrelated
+//! seeds, stationarity, spectral slopes) hold it to that.
 
 /// Multiplier spreading the x lattice index.
 pub(crate) const PX: u32 = 0x8DA6_B343;
@@ -21,7 +35,8 @@ pub(crate) const PZ: u32 = 0xCB1A_B31F;
 /// Multiplier spreading the w lattice index.
 pub(crate) const PW: u32 = 0x1656_67B1;
 
-/// The "lowbias32" integer finaliser (two multiplies; full avalanche).
+/// The "lowbias32" integer finaliser (two multiplies; full avalanche), for
+/// draws that need more than one multiply's mixing (seeds, impulse streams).
 #[inline(always)]
 #[must_use]
 pub(crate) const fn mix32(mut h: u32) -> u32 {
@@ -29,6 +44,19 @@ pub(crate) const fn mix32(mut h: u32) -> u32 {
     h = h.wrapping_mul(0x7FEB_352D);
     h ^= h >> 15;
     h = h.wrapping_mul(0x846C_A68B);
+    h ^ (h >> 16)
+}
+
+/// Multiplier of the lattice finaliser [`fin`].
+pub(crate) const FIN: u32 = 0x27D4_EB2D;
+
+/// The lattice finaliser: one multiply, then the high half folded into the
+/// low half (consumers of the top bits see the plain product, which the
+/// compiler then skips the fold for).
+#[inline(always)]
+#[must_use]
+pub(crate) const fn fin(v: u32) -> u32 {
+    let h = v.wrapping_mul(FIN);
     h ^ (h >> 16)
 }
 
@@ -58,59 +86,64 @@ pub(crate) fn wrap(i: f64) -> u32 {
     (i as i64) as u32
 }
 
-/// Row hash for 2-D lattices: the y index mixed with the seed.
+/// Row hash for 2-D lattices: the spread y index and the seed.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn row2(y: u32, seed: u32) -> u32 {
-    mix32(y.wrapping_mul(PY) ^ seed)
+    y.wrapping_mul(PY) ^ seed
 }
 
-/// Row hash for 3-D lattices: the (y, z) indices mixed with the seed.
+/// Row hash for 3-D lattices: the spread (y, z) indices and the seed.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn row3(y: u32, z: u32, seed: u32) -> u32 {
-    mix32(y.wrapping_mul(PY) ^ mix32(z.wrapping_mul(PZ) ^ seed))
+    y.wrapping_mul(PY) ^ z.wrapping_mul(PZ) ^ seed
 }
 
-/// Row hash for 4-D lattices: the (y, z, w) indices mixed with the seed.
+/// Row hash for 4-D lattices: the spread (y, z, w) indices and the seed.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn row4(y: u32, z: u32, w: u32, seed: u32) -> u32 {
-    mix32(y.wrapping_mul(PY) ^ mix32(z.wrapping_mul(PZ) ^ mix32(w.wrapping_mul(PW) ^ seed)))
+    y.wrapping_mul(PY) ^ z.wrapping_mul(PZ) ^ w.wrapping_mul(PW) ^ seed
 }
 
 /// Row hash for 1-D lattices (only the seed).
 #[inline(always)]
 #[must_use]
 pub(crate) const fn row1(seed: u32) -> u32 {
-    mix32(seed ^ 0x2545_F491)
+    seed ^ 0x2545_F491
 }
 
 /// The hash of lattice point `(x, row)`, where `row` is one of the `row*` hashes.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn corner(x: u32, row: u32) -> u32 {
-    mix32(x.wrapping_mul(PX) ^ row)
+    fin(x.wrapping_mul(PX) ^ row)
+}
+
+/// The hash of the lattice point whose x index is already spread
+/// (`xp = x·PX`): the point paths step to the next corner by adding `PX`.
+#[inline(always)]
+#[must_use]
+pub(crate) const fn corner_spread(xp: u32, row: u32) -> u32 {
+    fin(xp ^ row)
 }
 
 /// Hash of the 2-D lattice point `(x, y)` in one step (simplex lattices,
-/// whose rows are skewed so nothing can be hoisted).
+/// whose rows are skewed so nothing can be hoisted); the same value as
+/// `corner(x, row2(y, seed))`.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn flat2(x: u32, y: u32, seed: u32) -> u32 {
-    mix32(x.wrapping_mul(PX).wrapping_add(y.wrapping_mul(PY)) ^ seed)
+    corner(x, row2(y, seed))
 }
 
-/// Hash of the 3-D lattice point `(x, y, z)` in one step.
+/// Hash of the 3-D lattice point `(x, y, z)` in one step; the same value as
+/// `corner(x, row3(y, z, seed))`.
 #[inline(always)]
 #[must_use]
 pub(crate) const fn flat3(x: u32, y: u32, z: u32, seed: u32) -> u32 {
-    mix32(
-        x.wrapping_mul(PX)
-            .wrapping_add(y.wrapping_mul(PY))
-            .wrapping_add(z.wrapping_mul(PZ))
-            ^ seed,
-    )
+    corner(x, row3(y, z, seed))
 }
 
 /// A value uniform in `[-1, 1)` (24 bits) drawn from hash `h`.
@@ -146,7 +179,7 @@ pub(crate) const fn rehash(h: u32) -> u32 {
 /// chosen by the top four bits with equal probability.
 #[inline(always)]
 #[must_use]
-pub(crate) fn grad2(h: u32) -> (f32, f32) {
+pub(crate) const fn grad2(h: u32) -> (f32, f32) {
     const S: f32 = core::f32::consts::FRAC_1_SQRT_2;
     let diag = h & 0x2000_0000 != 0;
     let xaxis = h & 0x1000_0000 != 0;
@@ -171,12 +204,11 @@ pub(crate) fn grad2(h: u32) -> (f32, f32) {
     (gx, gy)
 }
 
-/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions
-/// `(±1, ±1, 0)` and permutations (Perlin 2002), four of them doubled to
-/// fill 16 slots.
+/// The 3-D gradient for hash `h`: one of the 12 cube-edge directions `(±1, ±1,
+/// 0)` and permutations (Perlin 2002), four of them doubled to fill 16 slots.
 #[inline(always)]
 #[must_use]
-pub(crate) fn grad3(h: u32) -> (f32, f32, f32) {
+pub(crate) const fn grad3(h: u32) -> (f32, f32, f32) {
     let c = h >> 28;
     // u on x for c < 8, else y; v on y for c < 4, x for 12 and 14, else z.
     let ux = if c < 8 { 1.0 } else { 0.0 };
@@ -187,6 +219,76 @@ pub(crate) fn grad3(h: u32) -> (f32, f32, f32) {
     let su = if c & 1 != 0 { -1.0 } else { 1.0 };
     let sv = if c & 2 != 0 { -1.0 } else { 1.0 };
     (su * ux + sv * vx, su * uy + sv * vy, sv * vz)
+}
+
+/// [`grad2`] for each value of the top four hash bits, in f64: the point
+/// paths index it with `h >> 28` (the same gradients as the lane kernels'
+/// bit selection, exactly).
+pub(crate) const GRAD2_64: [[f64; 2]; 16] = {
+    let mut t = [[0.0; 2]; 16];
+    let mut i = 0;
+    while i < 16 {
+        let (x, y) = grad2((i as u32) << 28);
+        t[i] = [x as f64, y as f64];
+        i += 1;
+    }
+    t
+};
+
+/// `g·(dx, dy)` for the gradient of hash `h`, in f64.
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot2(h: u32, dx: f64, dy: f64) -> f64 {
+    let g = GRAD2_64[(h >> 28) as usize];
+    g[0] * dx + g[1] * dy
+}
+
+/// [`grad3`] for each value of the top four hash bits, in f64 (see [`GRAD2_64`]).
+pub(crate) const GRAD3_64: [[f64; 3]; 16] = {
+    let mut t = [[0.0; 3]; 16];
+    let mut i = 0;
+    while i < 16 {
+        let (x, y, z) = grad3((i as u32) << 28);
+        t[i] = [x as f64, y as f64, z as f64];
+        i += 1;
+    }
+    t
+};
+
+/// `x` with its sign flipped when bit `bit` of `h` is set (a sign-bit xor:
+/// exact, branch-free, vectorisable).
+#[inline(always)]
+fn flip(x: f64, h: u32, bit: u32) -> f64 {
+    f64::from_bits(x.to_bits() ^ (u64::from((h >> bit) & 1) << 63))
+}
+
+/// `g·(dx, dy, dz)` for the [`grad3`] gradient of hash `h`, in f64 (a
+/// table lookup: cheap for one point).
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
+    let g = GRAD3_64[(h >> 28) as usize];
+    g[0] * dx + g[1] * dy + g[2] * dz
+}
+
+/// [`dot3`] in the form that vectorises across SIMD lanes: the gradient has
+/// two non-zero components `±1`, so `g·d` is the signed sum `±u ± v` of two
+/// of the offsets, picked by comparisons and signed by a sign-bit xor. The
+/// same value as [`dot3`] exactly, up to the sign of a zero result (`g·d`
+/// adds a `±0` term that can turn `−0` into `+0`).
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3_lanes(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
+    let c = h >> 28;
+    let u = if c < 8 { dx } else { dy };
+    let v = if c < 4 {
+        dy
+    } else if c == 12 || c == 14 {
+        dx
+    } else {
+        dz
+    };
+    flip(u, h, 28) + flip(v, h, 29)
 }
 
 /// The 4-D gradient for hash `h`: one of the 32 tesseract-edge directions
@@ -216,6 +318,32 @@ pub(crate) fn grad1(h: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Both forms of the 3-D gradient dot product equal `g·d` with the
+    /// [`grad3`] gradient (the lane form up to the sign of a zero), for
+    /// every gradient and offsets of either sign.
+    #[test]
+    fn dot3_forms_agree_with_the_gradient() {
+        let offsets = [0.0, 0.375, -0.625, 0.999_999, -1.0, 1.0e-9, 0.5];
+        for c in 0..16u32 {
+            let h = (c << 28) | 0x0123_4567;
+            let (gx, gy, gz) = grad3(h);
+            for &dx in &offsets {
+                for &dy in &offsets {
+                    for &dz in &offsets {
+                        let a = dot3(h, dx, dy, dz);
+                        let b = dot3_lanes(h, dx, dy, dz);
+                        let g = f64::from(gx) * dx + f64::from(gy) * dy + f64::from(gz) * dz;
+                        assert_eq!(a.to_bits(), g.to_bits(), "c {c}");
+                        assert_eq!(a, b, "c {c} ({dx}, {dy}, {dz})");
+                        if a != 0.0 {
+                            assert_eq!(a.to_bits(), b.to_bits(), "c {c}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn gradients_are_uniform_over_their_sets() {

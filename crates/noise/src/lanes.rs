@@ -5,7 +5,7 @@
 //! `#[target_feature]` trampoline per level, chosen at run time); every level
 //! computes bit-identical results, and the tests check that.
 
-pub(crate) use natura_simd::{Simd, run};
+pub(crate) use natura_simd::{Kernel, Simd, run};
 
 /// `floor` for `f64` in `core` (no std): exact for all finite inputs.
 #[inline(always)]
@@ -34,11 +34,21 @@ pub(crate) fn split_fast(x: f64) -> (u32, f64) {
 
 /// Splits `x` into its floor (as the wrapped lattice index) and fraction, for
 /// any `x`: the point path's twin of [`split_fast`], identical where both apply.
+///
+/// The same rounding as [`split_fast`], with the correction done on the
+/// integer: the rounded value's integer comes from the bits of `x + M`, the
+/// comparison `round(x) > x` becomes a 0/1 integer, and the floor is
+/// converted back exactly. No floating-point select, so no branch for a
+/// scalar caller to mispredict on points of random sign.
 #[inline(always)]
 #[must_use]
 pub(crate) fn split(x: f64) -> (u32, f64) {
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
     if x.abs() < 2_251_799_813_685_248.0 {
-        split_fast(x)
+        let t = x + MAGIC;
+        let ri = (t.to_bits() as i64).wrapping_sub(MAGIC.to_bits() as i64);
+        let fi = ri - i64::from((ri as f64) > x);
+        (fi as u32, x - fi as f64)
     } else {
         let fl = floor64(x);
         (crate::hash::wrap(fl), x - fl)
@@ -101,6 +111,58 @@ pub(crate) fn rebase(index: u32, fraction: f32, cell: u32, frac: f32) -> (u32, f
         index.wrapping_add(cell).wrapping_add(u32::from(carry)),
         if carry { s - 1.0 } else { s },
     )
+}
+
+/// The arithmetic a model's formula needs, for `f64` (the point paths) and
+/// `f32` (the batch lanes): a model written once against it serves both.
+pub(crate) trait Real:
+    Copy
+    + PartialOrd
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Mul<Output = Self>
+{
+    /// `v` as this type (exact for `v < 2²⁴`).
+    fn of_u32(v: u32) -> Self;
+    /// `v` rounded to this type.
+    fn of_f64(v: f64) -> Self;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn of_u32(v: u32) -> Self {
+        f64::from(v)
+    }
+    #[inline(always)]
+    fn of_f64(v: f64) -> Self {
+        v
+    }
+}
+
+impl Real for f32 {
+    #[inline(always)]
+    fn of_u32(v: u32) -> Self {
+        v as f32
+    }
+    #[inline(always)]
+    fn of_f64(v: f64) -> Self {
+        v as f32
+    }
+}
+
+/// The smaller of `a` and `b` as one compare and select (`minsd`/`minps`):
+/// `b` when either is NaN, which the callers rule out or handle.
+#[inline(always)]
+#[must_use]
+pub(crate) fn min_fast<T: Real>(a: T, b: T) -> T {
+    if a < b { a } else { b }
+}
+
+/// The larger of `a` and `b` as one compare and select (see [`min_fast`]).
+#[inline(always)]
+#[must_use]
+pub(crate) fn max_fast<T: Real>(a: T, b: T) -> T {
+    if a > b { a } else { b }
 }
 
 /// Quintic fade `6t⁵ − 15t⁴ + 10t³` in f32.

@@ -1,9 +1,10 @@
 //! # natura-noise
 //!
 //! Noise bases, fractional Brownian motion, multifractals and domain
-//! distortion, after Musgrave's dissertation and course notes (spec
-//! `noise.md`; seeds 000, 001, 003, 004). `#![no_std]` with `libm`; no images,
-//! FFTs or threads.
+//! distortion, after Musgrave's dissertation (Musgrave 1993, ch. 2 and 5), his
+//! SIGGRAPH '89 paper (Musgrave et al. 1989, §3), his *Texturing & Modeling*
+//! chapter (Musgrave 1998) and his SIGGRAPH 2001 course notes (Musgrave 2001).
+//! `#![no_std]` with `libm`; no images, FFTs or threads.
 //!
 //! * **One trait**, [`Field`]: `&self` evaluation at `f64` 2-D/3-D points,
 //!   analytic gradients, a value [`bound`](Field::bound) and Lipschitz
@@ -22,13 +23,20 @@
 //!   [`RidgedMultifractal`], [`StatsByAltitude`] (and the legacy C `hfBm`),
 //!   [`CrossoverFbm`], [`FilteredFbm`], and [`Driven`] (any parameter given by
 //!   a field), parameterised by [`Spectral`] (H, lacunarity, real-valued
-//!   octaves, frequency, amplitude convention) with precomputed octave weights.
+//!   octaves, frequency, amplitude convention) with precomputed octave weights;
+//!   band-limited sums over a real-valued number of visible octaves
+//!   ([`Fbm::eval3_band`], for level of detail by pixel footprint), and
+//!   Musgrave's vector multifractal [`VectorMultifractal`] (`MVfBm`).
+//! * **Batches at arbitrary points**: [`Perlin::fill_points3`] and
+//!   [`Fbm::fill_points3_band`] evaluate struct-of-arrays point lists (a
+//!   sphere's hit points, a cube face) with the same SIMD dispatch as the rows.
 //! * **Vector noise and distortion** ([`vector`], [`warp`]): [`DNoise`],
 //!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
 //!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
 //!
-//! Every type documents its source (seed file and lines), the errata it
-//! corrects, its bound and its Lipschitz constant.
+//! Every type documents its source (document and section, as keyed in the
+//! repository's `docs/sources.md`), the errors of the source it corrects,
+//! its bound and its Lipschitz constant.
 //!
 //! ```
 //! use natura_noise::{Field, Fbm, Perlin, Spectral, Lattice2};
@@ -43,10 +51,6 @@
 //! # let _ = (height, slope);
 //! # Ok::<(), natura_noise::NoiseError>(())
 //! ```
-//!
-//! Source keys: `[D]` Musgrave 1993 dissertation (seed 000), `[E89]` Musgrave,
-//! Kolb & Mace 1989 (seed 001), `[T]` *Texturing & Modeling* ch. 15 (seed
-//! 003), `[M]` SIGGRAPH 2001 course notes (seed 004), with line numbers.
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -71,7 +75,7 @@ pub use basis::checker::Checkerboard;
 pub use basis::perlin::Perlin;
 pub use basis::simplex::Simplex;
 pub use basis::sine::Sine;
-pub use basis::sparse::{Kernel, SparseConvolution, SparseParams};
+pub use basis::sparse::{SparseConvolution, SparseKernel, SparseParams};
 pub use basis::steps::Steps;
 pub use basis::value::{Value, ValueInterp};
 pub use combinators::{Abs, Ridged, Transform};
@@ -87,6 +91,7 @@ pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
+pub use fractal::vector_multifractal::{VectorMultifractal, VectorMultifractalParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};
 pub use natura_simd::{Simd, SimdLevel};
 pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};

@@ -56,8 +56,9 @@ impl<B: Smooth> Smooth for Fbm<B> {
     }
 }
 
-/// Perlin's `DNoise`: the gradient of a scalar field as a vector field [T 106]
-/// (used by the dissertation for distortion, [D 1011, 2063, 2084]).
+/// Perlin's `DNoise`: the gradient of a scalar field as a vector field
+/// (Musgrave 1998, "A Variety of fBm"; the dissertation distorts with it,
+/// Musgrave 1993, §2.3.2.4 and §5.2).
 ///
 /// Its 2-D form is the 2-D gradient. [`bound`](VectorField::bound) is the
 /// field's Lipschitz constant; [`lipschitz`](VectorField::lipschitz) its Hessian bound.
@@ -81,8 +82,9 @@ impl<B: Smooth> VectorField for DNoise<B> {
 
 /// Musgrave's `VecNoise`: three samples of a scalar field at misregistered
 /// points, `(N(p), N(p + 3.33), N(p + 7.77))` with the offset added to every
-/// coordinate [T 92-104]. Not the same as [`DNoise`] [T 106]; the offsets
-/// keep the components from sharing lattice zeros [T 108].
+/// coordinate (Musgrave 1998, "A Variety of fBm"). Not the same as [`DNoise`]
+/// (Musgrave 1998, "A Variety of fBm"); the offsets keep the components from
+/// sharing lattice zeros (Musgrave 1998, "A Variety of fBm").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VecNoise<B> {
     /// The scalar field sampled.
@@ -122,11 +124,12 @@ impl<B: Field> VectorField for VecNoise<B> {
     }
 }
 
-/// Vector fBm `Σ_k w_k·V(f_k·p)` (`VfBm` [D 2508-2535], RenderMan `vfBm`
-/// [T 231-254]): the spectral sum of a vector field, with the crate's
+/// Vector fBm `Σ_k w_k·V(f_k·p)` (the C `VfBm` of Musgrave 1993, §5.8, and
+/// the RenderMan `vfBm` of Musgrave 1998, "Distortion for Cirrus Clouds and
+/// Global Circulation"): the spectral sum of a vector field, with the crate's
 /// weights and fractional octaves. The sources pass a raw gain ω; use
 /// [`GainConvention::Raw`](crate::GainConvention::Raw) to reproduce them
-/// (note [T 274] passes H in the gain slot).
+/// (the chapter's cloud shader passes its H in that gain slot).
 #[derive(Clone, Debug, PartialEq)]
 pub struct VectorFbm<V> {
     field: V,
@@ -140,6 +143,16 @@ impl<V: VectorField> VectorFbm<V> {
             field,
             oct: spectral.octaves_table()?,
         })
+    }
+
+    /// The vector field summed.
+    pub fn field(&self) -> &V {
+        &self.field
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
     }
 }
 

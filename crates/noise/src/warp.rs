@@ -1,5 +1,6 @@
 //! Domain distortion: warps of the evaluation point, and fields evaluated at
-//! warped points (spec §5; [M 590-614, T 155-160, D 2104-2108]).
+//! warped points (Musgrave 2001, "Domain Distortion"; Musgrave 1998,
+//! "Distortion for Cirrus Clouds and Global Circulation"; Musgrave 1993, §5.2).
 
 use glam::{DVec2, DVec3};
 
@@ -19,10 +20,12 @@ pub trait Warp: Send + Sync {
 
 /// Displacement by a vector field: `p ↦ a·p + s·V(p + shift)`.
 ///
-/// With `a = 1` this is the general distortion `F(p + s·V(p))` of [M 590-614];
-/// `shift` misregisters the lattices (the `+0.5` of [D 2068-2070, T 71-89]);
-/// `a ≠ 1` is the dissertation C code's `scale`, which multiplies the point
-/// (erratum 10 of spec §10).
+/// With `a = 1` this is the general distortion `F(p + s·V(p))` of Musgrave
+/// 2001, "Domain Distortion"; `shift` misregisters the lattices (the `+0.5` of
+/// Musgrave 1993, §5.2, and Musgrave 1998, "A Variety of fBm"); `a ≠ 1` is the
+/// dissertation C code's `scale`, which multiplies the point. (The
+/// dissertation's pseudo-code for `VLNoise` adds `0.5` and has no scale, its C
+/// code has the scale and no `0.5`; both forms are expressible here.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Displace<V> {
     /// The displacing vector field.
@@ -70,14 +73,18 @@ impl<V: VectorField> Warp for Displace<V> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TwistLaw {
-    /// Coriolis twist `θ = 2π·twist·r²` (Venus, [D 2224-2252, T 376-431]).
+    /// Coriolis twist `θ = 2π·twist·r²` (Venus, Musgrave 1993, §5.4; Musgrave
+    /// 1998, "The Coriolis Effect").
     Quadratic {
         /// Turns per unit r².
         twist: f64,
     },
-    /// Cyclone: inside `r < R`, `θ = π + 2π·twist·(R − (R − r)^power)/R`
-    /// ([D 2169-2218] power 2, [T 308-372] power 3); identity outside. The warp
-    /// is continuous at `r = R` only for `twist = ½` (spec §5.2, derived).
+    /// Cyclone: inside `r < R`, `θ = π + 2π·twist·(R − (R − r)^power)/R` (power
+    /// 2 in Musgrave 1993, §5.3; power 3 in the `cyclone` listing of Musgrave
+    /// 1998, "Distortion for Cirrus Clouds and Global Circulation"); identity
+    /// outside. The warp is continuous at `r = R` only for `twist = ½` modulo 1
+    /// (our derivation: the rim angle `θ(R) = π + 2π·twist` must be a multiple
+    /// of 2π).
     Cyclone {
         /// `R`, the storm radius.
         max_radius: f64,
@@ -211,15 +218,17 @@ impl<F: Field, W: Warp> Field for Warped<F, W> {
     }
 }
 
-/// Musgrave's `DistNoise(p, d) = N(p + d·VecNoise(p + ½))` [T 71-89, T 123-128]:
-/// "variable lacunarity" noise with stringy, wispy features; about 4× the cost
-/// of `N` [T 110]. The RenderMan listing's scalar offset (erratum 14) is not
-/// reproduced: the vector `VecNoise` is used.
+/// Musgrave's `DistNoise(p, d) = N(p + d·VecNoise(p + ½))` (Musgrave 1998, "A
+/// Variety of fBm"): "variable lacunarity" noise with stringy, wispy features;
+/// about 4× the cost of `N`. The chapter's RenderMan version offsets the point
+/// by the scalar `snoise` (the same offset on all three axes, a diagonal shift
+/// rather than a distortion); that slip is not reproduced: the vector
+/// `VecNoise` is used, as in the C version.
 pub type DistNoise<B> = Warped<B, Displace<VecNoise<B>>>;
 
-/// The dissertation's C `VLNoise(p, scale) = N(scale·p + DNoise(p))`
-/// [D 2077-2098] (no `+0.5` misregistration; `scale` multiplies the point,
-/// erratum 10).
+/// The dissertation's C `VLNoise(p, scale) = N(scale·p + DNoise(p))` (Musgrave
+/// 1993, §5.2). This follows the C code, not the section's pseudo-code, which
+/// adds a `+0.5` misregistration and no scale: `scale` multiplies the point.
 pub type VlNoise<B> = Warped<B, Displace<DNoise<B>>>;
 
 impl<B: Field + Clone> DistNoise<B> {

@@ -1,4 +1,4 @@
-//! Fractals: the exact identities of spec §3.1, spectral slope and variance
+//! Fractals: the exact identities of fBm, spectral slope and variance
 //! scaling, the lattice-zero trap, batch vs point, gradients, Lipschitz
 //! bounds and parameter validation.
 
@@ -574,8 +574,7 @@ fn invalid_parameters_are_typed_errors() {
 }
 
 /// Mid-band log–log slope of the averaged 1-D periodogram along x lines of
-/// 2-D fBm: `−(2H + 1) ± 0.1` (spec §3.1 test 8; sampling dx = 1/1024 for
-/// 8 octaves so nothing aliases).
+/// 2-D fBm: `−(2H + 1) ± 0.1`.
 #[test]
 fn spectral_slope_matches_two_h_plus_one() {
     use realfft::RealFftPlanner;
@@ -630,7 +629,7 @@ fn spectral_slope_matches_two_h_plus_one() {
     }
 }
 
-/// Variance ≈ σ_N²·Σ w_k² (octaves nearly independent), within 5% (spec §3.1 test 7).
+/// Variance ≈ σ_N²·Σ w_k² (octaves nearly independent), within 5%.
 #[test]
 fn variance_scales_with_the_weights() {
     let n = Perlin::new(14);

@@ -43,17 +43,18 @@ fn range_is_bounded_and_bound_is_tight_in_2d() {
 }
 
 /// Gradient ascent on |N| from many starts: the documented bound is attained
-/// within 2% (calibration) and never exceeded.
+/// within 10% (25% in 4-D, see below) and never exceeded. The maxima need
+/// every corner of a cell to pick a near-worst gradient, so the starts are
+/// many and spread over three seeds' fields.
 #[test]
 fn bound_is_tight_in_1d_3d_and_4d() {
     for fade in [Fade::Quintic, Fade::Cubic] {
-        let n = Perlin::with_fade(5, fade);
         let mut rng = Rng(3);
         let mut best3 = 0.0f64;
         let mut best4 = 0.0f64;
         let mut best1 = 0.0f64;
-        for _ in 0..3000 {
-            let mut p = rng.p3(500.0);
+        for k in 0..6000 {
+            let n = Perlin::with_fade(5 + k % 3, fade);
             let mut q = DVec4::new(
                 rng.range(-500.0, 500.0),
                 rng.range(-500.0, 500.0),
@@ -62,17 +63,24 @@ fn bound_is_tight_in_1d_3d_and_4d() {
             );
             let mut x = rng.range(-500.0, 500.0);
             for _ in 0..60 {
-                let (v, g) = n.eval_grad3(p);
-                p += g * v.signum() * 0.02;
                 let (v4, g4) = n.eval_grad4(q);
                 q += g4 * v4.signum() * 0.02;
                 let (v1, g1) = n.eval_grad1(x);
                 x += g1 * v1.signum() * 0.02;
             }
-            best3 = best3.max(n.eval3(p).abs());
             best4 = best4.max(n.eval4(q).abs());
             best1 = best1.max(n.eval1(x).abs());
-            assert!(best3 <= 1.0 + 1e-9 && best4 <= 1.0 + 1e-9 && best1 <= 1.0 + 1e-9);
+            assert!(best4 <= 1.0 + 1e-9 && best1 <= 1.0 + 1e-9);
+        }
+        for k in 0..12_000 {
+            let n = Perlin::with_fade(5 + k % 3, fade);
+            let mut p = rng.p3(500.0);
+            for _ in 0..60 {
+                let (v, g) = n.eval_grad3(p);
+                p += g * v.signum() * 0.02;
+            }
+            best3 = best3.max(n.eval3(p).abs());
+            assert!(best3 <= 1.0 + 1e-9);
         }
         assert!(best3 > 0.9, "{fade:?} 3-D max {best3}");
         // The 4-D supremum needs all 16 corners to pick their worst of 32

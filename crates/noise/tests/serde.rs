@@ -7,7 +7,7 @@
 use glam::{DVec2, DVec3};
 use natura_noise::{
     CascadeForm, Constant, Fade, Fbm, Field, GainConvention, HeteroTerrainParams, HybridParams,
-    Kernel, Lattice2, Lattice3, Metric, MultifractalParams, NoiseError, Perlin, RidgedParams,
+    Lattice2, Lattice3, Metric, MultifractalParams, NoiseError, Perlin, RidgedParams, SparseKernel,
     SparseParams, Spectral, StatsByAltitudeParams, TwistLaw, ValueInterp, Worley, WorleyFeature,
     WorleyParams,
 };
@@ -27,7 +27,7 @@ struct Everything {
     hetero: HeteroTerrainParams,
     interp: Vec<ValueInterp>,
     sparse: SparseParams,
-    kernel: Kernel,
+    kernel: SparseKernel,
     worley: WorleyParams,
     metrics: Vec<Metric>,
     features: Vec<WorleyFeature>,
@@ -82,9 +82,9 @@ fn everything() -> Everything {
         ],
         sparse: SparseParams {
             density: 5,
-            kernel: Kernel::Quartic,
+            kernel: SparseKernel::Quartic,
         },
-        kernel: Kernel::Cone,
+        kernel: SparseKernel::Cone,
         worley: WorleyParams {
             feature: WorleyFeature::F2MinusF1,
             metric: Metric::Chebyshev,

@@ -89,4 +89,4 @@ pub(crate) fn invalid(
 }
 
 /// The shared parameter checks (their errors convert into [`OceanError::InvalidParameter`]).
-pub(crate) use natura_core::check::{finite, non_negative, positive};
+pub(crate) use natura_core::check::{finite, in_range, non_negative, positive};

@@ -73,7 +73,10 @@ pub use foam::{Foam, FoamParams};
 pub use frame::{Frame, FrameField, JacobianEigen, normal_from};
 
 pub use gerstner::{GerstnerSea, GerstnerWave};
-pub use patch::{AmplitudeScheme, DirectSample, MAX_SIZE, MIN_SIZE, Ocean, OceanParams};
+pub use patch::{
+    AmplitudeScheme, DirectSample, MAX_CHOPPINESS, MAX_FIELD_BOUND, MAX_LENGTH, MAX_SIZE,
+    MIN_LENGTH, MIN_SIZE, Ocean, OceanParams,
+};
 pub use spectrum::{
     Directional, FrequencySpectrum, Jonswap, Phillips, PiersonMoskowitz, Spectrum, Spreading, Tma,
 };

@@ -359,7 +359,7 @@ mod tests {
             fresnel_reflectance(1.0, 1.0, N_WATER),
             epsilon = 1e-6
         );
-        // Spec §6.4's table (angle from the normal, n = 4/3).
+        // Fresnel reflectance table (angle from the normal, n = 4/3).
         for (deg, r) in [
             (40.0, 0.025),
             (60.0, 0.060),

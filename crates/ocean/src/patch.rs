@@ -9,7 +9,7 @@ use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 use crate::dispersion::{Dispersion, Quantized};
-use crate::error::{OceanError, Result, invalid, non_negative, positive};
+use crate::error::{OceanError, Result, in_range, invalid, non_negative, positive};
 use crate::frame::Frame;
 use crate::spectrum::Spectrum;
 
@@ -92,6 +92,18 @@ impl Default for OceanParams {
     }
 }
 
+/// Shortest patch side accepted, metres (1 mm: capillary ripples).
+pub const MIN_LENGTH: f64 = 1e-3;
+/// Longest patch side accepted, metres (10 000 km: an ocean basin).
+pub const MAX_LENGTH: f64 = 1e7;
+const PATCH_LENGTH: &str = "must be in [1e-3, 1e7] metres";
+/// Largest choppiness accepted; beyond about 1 the surface already folds everywhere.
+pub const MAX_CHOPPINESS: f64 = 100.0;
+/// Largest bound on any output field (heights, displacements, slopes and the
+/// Jacobian's derivatives) that [`Ocean::new`] accepts: far below `f32::MAX`, so
+/// every field of every frame is finite.
+pub const MAX_FIELD_BOUND: f64 = 1e30;
+
 fn check_size(name: &'static str, n: usize) -> Result<()> {
     if n.is_power_of_two() && (MIN_SIZE..=MAX_SIZE).contains(&n) {
         Ok(())
@@ -111,13 +123,19 @@ impl OceanParams {
     pub fn validate(&self) -> Result<()> {
         check_size("nx", self.nx)?;
         check_size("ny", self.ny)?;
-        positive("lx", self.lx)?;
-        positive("ly", self.ly)?;
+        in_range("lx", self.lx, MIN_LENGTH, MAX_LENGTH, PATCH_LENGTH)?;
+        in_range("ly", self.ly, MIN_LENGTH, MAX_LENGTH, PATCH_LENGTH)?;
         self.dispersion.validate()?;
         if let Some(t) = self.loop_period {
             positive("loop_period", t)?;
         }
-        non_negative("choppiness", self.choppiness)?;
+        in_range(
+            "choppiness",
+            self.choppiness,
+            0.0,
+            MAX_CHOPPINESS,
+            "must be in [0, 100] (crests fold over near 1)",
+        )?;
         non_negative("k_min", self.k_min)?;
         if self.k_max.is_nan() || self.k_max <= self.k_min {
             return Err(invalid(
@@ -260,6 +278,19 @@ impl Ocean {
                     }
                 };
             }
+        }
+        // Every output field is a sum over the bins of |h̃₀| times at most
+        // (1 + λ)(1 + |k|)²; refuse a spectrum whose bound would overflow f32
+        // rather than return frames full of infinities.
+        let k_top = DVec2::new(dk.x * (nx / 2) as f64, dk.y * (ny / 2) as f64).length();
+        let sum: f64 = h0.iter().map(|c| c.norm()).sum();
+        let bound = 2.0 * sum * (1.0 + params.choppiness) * (1.0 + k_top).powi(2);
+        if !bound.is_finite() || bound > MAX_FIELD_BOUND {
+            return Err(invalid(
+                "spectrum",
+                bound,
+                "its amplitudes make the surface's fields overflow (bound on height, slope and Jacobian > 1e30): reduce the spectrum's amplitude or enlarge the patch",
+            ));
         }
         let half = nx / 2;
         let len = half * ny;

@@ -100,7 +100,7 @@ fn fast_path_matches_the_one_fft_per_field_reference() {
 
 #[test]
 fn output_is_real_to_round_off() {
-    // Issue: imaginary residue ≤ 1e-5 of the field's RMS, for every field.
+    // Imaginary residue ≤ 1e-5 of the field's RMS, for every field.
     let ocean = Ocean::new(&small(128, 64, 1.2), &phillips(12.0), Seed(11)).unwrap();
     let mut r = Reference::new(&ocean).unwrap();
     for t in [0.0, 3.3, 1000.0] {

@@ -108,6 +108,12 @@ struct TerrainPoint {
 impl<'w> Renderer<'w> {
     /// Builds the acceleration structure, the sky view at the eye, the camera,
     /// materials and (with rain) the rainbow table.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of building the acceleration structure, the sky view,
+    /// the camera ([`RenderError::Trace`](crate::RenderError::Trace), [`RenderError::Atmos`](crate::RenderError::Atmos)),
+    /// the materials and the rainbow table.
     pub fn new(world: &'w World, progress: &dyn Progress) -> Result<Self> {
         let scene = &world.scene;
         let r = &scene.render;
@@ -250,6 +256,11 @@ impl<'w> Renderer<'w> {
     /// their samples) are traced together with [`Tracer::trace_many`], the
     /// mipmap tracer's lock-step lanes; every pixel equals [`Self::pixel`]
     /// bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Core`](crate::RenderError::Core) if the image cannot be allocated, and the
+    /// errors of sky and aerial-perspective lookups.
     pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
         let n = self.spp as usize;
         let grid = natura_trace::render_tiles(

@@ -70,10 +70,35 @@ impl Rendered {
         self.image.tone_mapped(self.exposure_ev, self.tone_map)
     }
 
-    /// Writes the tone-mapped 8-bit sRGB PNG and the linear EXR (each atomically).
+    /// Writes the tone-mapped 8-bit sRGB PNG and the linear EXR as one
+    /// [`OutputSet`](natura_core::io::OutputSet): both appear, or neither.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Core`] if either file cannot be written (a
+    /// directory in the way, an unwritable folder, a failed encode).
     pub fn save(&self, png: impl AsRef<Path>, exr: impl AsRef<Path>) -> Result<()> {
-        self.image.save_exr(exr)?;
-        self.display().save_png(png)?;
+        let (png, exr) = (png.as_ref(), exr.as_ref());
+        let set = natura_core::io::OutputSet::new([png, exr])?;
+        self.save_staged(&set, png, exr)?;
+        Ok(set.commit()?)
+    }
+
+    /// Writes the PNG and EXR into a caller's [`OutputSet`](natura_core::io::OutputSet)
+    /// that names both (the caller commits it with its other outputs).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Core`] if either path is not in `set` or a file
+    /// cannot be written.
+    pub fn save_staged(
+        &self,
+        set: &natura_core::io::OutputSet,
+        png: impl AsRef<Path>,
+        exr: impl AsRef<Path>,
+    ) -> Result<()> {
+        self.image.save_exr(set.stage(exr)?)?;
+        self.display().save_png(set.stage(png)?)?;
         Ok(())
     }
 }
@@ -102,6 +127,10 @@ pub fn auto_exposure(image: &Image) -> f32 {
 ///
 /// Stages reported to `progress`: synthesis, stream power, pipe erosion,
 /// thermal erosion, atmosphere tables, acceleration, tracing.
+///
+/// # Errors
+///
+/// The errors of [`World::build`] and [`render_world`].
 pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Rendered> {
     let world = World::build(scene, progress)?;
     render_world(&world, progress)
@@ -109,6 +138,10 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 
 /// Renders an already built [`World`] (see [`render_scene`]); the stage
 /// times include the world's.
+///
+/// # Errors
+///
+/// The errors of [`Renderer::new`] and [`Renderer::render`].
 pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
     let scene = &world.scene;
     let mut times = world.times.clone();

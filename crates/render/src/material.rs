@@ -67,6 +67,11 @@ pub fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 impl Materials {
     /// Builds the mapping from the scene's material description (validated by
     /// [`crate::SceneDesc::validate`]), the water level, and a seed.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Noise`](crate::RenderError::Noise) if the texture noise cannot be built
+    /// from the description.
     pub fn new(
         desc: &MaterialDesc,
         water_level: Option<f32>,

@@ -473,12 +473,23 @@ impl SceneDesc {
     ///
     /// Errors name the line, column and dotted key, e.g.
     /// `scene.toml:12:1: key 'sun.elevation': unknown field ...`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Scene`] naming `name` with the line and column
+    /// of malformed TOML, an unknown key or a value of the wrong type.
     pub fn from_toml_str(text: &str, name: &str) -> Result<Self> {
         let scene: SceneDesc = toml::from_str(text).map_err(|e| toml_error(text, name, &e))?;
         Ok(scene)
     }
 
     /// Reads and parses a scene file. A missing or unreadable file is an error naming it.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Scene`] naming the file if it cannot be read, the
+    /// errors of [`SceneDesc::from_toml_str`], and those of
+    /// [`SceneDesc::validate`].
     pub fn load(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|e| {
@@ -490,12 +501,22 @@ impl SceneDesc {
     }
 
     /// The scene as TOML text (every key written out).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Scene`] if a value cannot be written as TOML
+    /// (a NaN or infinite number).
     pub fn to_toml_string(&self) -> Result<String> {
         toml::to_string_pretty(self)
             .map_err(|e| RenderError::Scene(format!("cannot write scene as TOML: {e}")))
     }
 
     /// Checks every value before any work starts, naming the first bad key.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] naming the first scene key out of
+    /// its range (the message gives the key, the value and the range).
     pub fn validate(&self) -> Result<()> {
         let t = &self.terrain;
         in_range("terrain.size", t.size as f64, 64.0, 16_384.0)?;

@@ -44,6 +44,11 @@ pub struct TerrainFunction {
 
 impl TerrainFunction {
     /// Builds the function for `scene.terrain` with sub-seeds of `seed`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Noise`](crate::RenderError::Noise) if the scene's terrain parameters make an
+    /// invalid or unbounded fractal.
     pub fn new(scene: &SceneDesc, seed: Seed) -> Result<Self> {
         let t = &scene.terrain;
         let spectral = Spectral::default()
@@ -157,6 +162,12 @@ pub struct World {
 
 impl World {
     /// Validates `scene` and builds its world, reporting each stage to `progress`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) naming the first scene key out of
+    /// its range, and the errors of synthesis, erosion ([`RenderError::Terrain`](crate::RenderError::Terrain))
+    /// and the atmosphere ([`RenderError::Atmos`](crate::RenderError::Atmos)).
     pub fn build(scene: &SceneDesc, progress: &dyn Progress) -> Result<World> {
         scene.validate()?;
         let seed = Seed(scene.seed);
@@ -186,9 +197,32 @@ impl World {
         })
     }
 
+    /// The terrain alone, exactly as [`World::build`] makes it (synthesis,
+    /// erosion, the sunken coast), without maps or atmosphere: for sweeps,
+    /// caches and exports.
+    ///
+    /// # Errors
+    ///
+    /// Returns the scene's validation errors and any error of synthesis or
+    /// erosion.
+    pub fn build_terrain(scene: &SceneDesc, progress: &dyn Progress) -> Result<HeightField> {
+        scene.validate()?;
+        let seed = Seed(scene.seed);
+        let mut terrain = synthesize(scene, seed, progress)?;
+        erode(scene, &mut terrain, progress)?;
+        sink_coast(scene, seed, &mut terrain)?;
+        Ok(terrain)
+    }
+
     /// A world over a given height field (a DEM, or terrain made elsewhere):
     /// no synthesis or erosion; deposition is zero and wetness comes from D8
     /// flow accumulation. The scene's terrain and erosion sections are ignored.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) naming the first scene key out of
+    /// its range; [`RenderError::Core`](crate::RenderError::Core) if the height field holds
+    /// a NaN or infinite height; the errors of the flow analysis and the atmosphere.
     pub fn from_height_field(
         scene: &SceneDesc,
         terrain: HeightField,
@@ -250,6 +284,10 @@ impl World {
     /// A shaded-relief map of the terrain (north up): terrain false colour,
     /// hill-shaded from the scene's sun, water in blue, deposition in light
     /// grey. For checking a scene's terrain before rendering it.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Core`](crate::RenderError::Core) if the image cannot be allocated.
     pub fn relief_map(&self) -> Result<natura_core::Image> {
         let hf = &self.terrain;
         let sun = Vec3::new(self.sun.x, self.sun.y, self.sun.z.max(0.35)).normalize();

@@ -152,8 +152,32 @@ pub struct Simd(SimdLevel);
 
 impl Simd {
     /// Returns the token for the widest level the CPU supports.
+    ///
+    /// The answer is detected once and cached (one relaxed atomic load per
+    /// later call), so a per-point kernel can afford to ask on every call.
     #[must_use]
+    #[inline]
     pub fn best() -> Simd {
+        #[cfg(target_has_atomic = "8")]
+        {
+            use core::sync::atomic::{AtomicU8, Ordering};
+            /// Index into [`SimdLevel::ALL`] of the best level, or `u8::MAX`
+            /// before the first detection.
+            static BEST: AtomicU8 = AtomicU8::new(u8::MAX);
+            if let Some(&level) = SimdLevel::ALL.get(usize::from(BEST.load(Ordering::Relaxed))) {
+                return Simd(level);
+            }
+            let best = Self::detect_best();
+            let index = SimdLevel::ALL.iter().position(|&l| l == best.0);
+            BEST.store(index.map_or(u8::MAX, |i| i as u8), Ordering::Relaxed);
+            best
+        }
+        #[cfg(not(target_has_atomic = "8"))]
+        Self::detect_best()
+    }
+
+    /// The widest supported level, asked of the detector.
+    fn detect_best() -> Simd {
         let mut best = Simd(SimdLevel::Baseline);
         for level in SimdLevel::ALL {
             if level.is_supported() {

@@ -16,6 +16,11 @@ use crate::error::{Result, invalid};
 
 /// Writes a 16-bit greyscale PNG spanning the field's own height range (a flat
 /// field gets a 1 m range), with the range and cell size stored in the file.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
+/// file is written atomically: nothing is left half-written).
 pub fn save_height_png16(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
     let (lo, hi) = hf.min_max();
     let hi = if hi > lo { hi } else { lo + 1.0 };
@@ -23,6 +28,11 @@ pub fn save_height_png16(hf: &HeightField, path: impl AsRef<Path>) -> Result<()>
 }
 
 /// Writes a 32-bit float EXR height map (bit-exact).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
+/// file is written atomically: nothing is left half-written).
 pub fn save_height_exr(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
     Ok(hf.save_exr(path)?)
 }
@@ -34,6 +44,10 @@ fn map_image(nx: usize, ny: usize, f: impl Fn(usize, usize) -> Vec3) -> Result<I
 
 /// A hill-shaded grey image lit from `sun` (unit vector toward the sun, z up),
 /// with a little ambient light so shadowed slopes keep detail.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) for a zero or non-finite `sun`.
 pub fn hillshade_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     let shade = hf.hillshade(sun)?;
     map_image(hf.nx(), hf.ny(), |x, y| {
@@ -43,6 +57,10 @@ pub fn hillshade_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
 
 /// A hill-shaded image tinted by altitude through natura-core's terrain ramp
 /// (the ramp's sea colours are skipped: the lowest cell is lowland green).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) for a zero or non-finite `sun`.
 pub fn relief_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
     let shade = hf.hillshade(sun)?;
     let (lo, hi) = hf.min_max();
@@ -56,6 +74,10 @@ pub fn relief_image(hf: &HeightField, sun: Vec3) -> Result<Image> {
 
 /// A flow-accumulation image: `log(area)` mapped from the smallest to the
 /// largest area, white land fading to deep blue rivers.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the image cannot be allocated.
 pub fn flow_image(area: &Grid2<f32>) -> Result<Image> {
     crate::error::check_grid("area", area)?;
     let (lo, hi) = area.min_max();
@@ -70,6 +92,10 @@ pub fn flow_image(area: &Grid2<f32>) -> Result<Image> {
 }
 
 /// A wetness image: the index mapped through natura-core's viridis ramp, dry (low) to wet (high).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the image cannot be allocated.
 pub fn wetness_image(index: &Grid2<f32>) -> Result<Image> {
     crate::error::check_grid("wetness index", index)?;
     let (lo, hi) = index.min_max();
@@ -90,11 +116,59 @@ pub struct Mesh {
     pub indices: Vec<u32>,
 }
 
+impl Mesh {
+    /// Checks that the mesh has triangles, one normal per position and only
+    /// indices of existing vertices (its fields are public, so a caller may
+    /// have edited it).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `mesh` otherwise.
+    pub fn check(&self) -> Result<()> {
+        let n = self.positions.len();
+        if self.indices.is_empty() || self.indices.len() % 3 != 0 {
+            return Err(invalid(
+                "mesh",
+                format!("{} indices", self.indices.len()),
+                "must hold at least one triangle, three indices each",
+            ));
+        }
+        if self.normals.len() != n {
+            return Err(invalid(
+                "mesh",
+                format!("{n} positions, {} normals", self.normals.len()),
+                "needs one normal per position",
+            ));
+        }
+        if let Some(&i) = self.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(invalid(
+                "mesh",
+                format!("index {i} of {n} vertices"),
+                "indices must name existing vertices",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Builds a [`Mesh`] sampling every `step` cells (the last row and column are
 /// always included). Refuses `step = 0` and meshes over 2³² vertices.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) for `step = 0`, a field of fewer
+/// than 2 × 2 samples or a mesh of more than 2³² vertices.
 pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
     if step == 0 {
         return Err(invalid("step", step, "must be ≥ 1"));
+    }
+    if hf.nx() < 2 || hf.ny() < 2 {
+        return Err(invalid(
+            "height field",
+            format!("{} × {}", hf.nx(), hf.ny()),
+            "a mesh needs at least 2 × 2 samples",
+        ));
     }
     let pick = |n: usize| {
         let mut v: Vec<usize> = (0..n).step_by(step).collect();
@@ -132,7 +206,15 @@ pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
 }
 
 /// Writes `mesh` as Wavefront OBJ (positions, normals, faces).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `mesh` if it has no
+/// triangles, a normal count other than its position count or an index past its
+/// vertices; [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
+/// file is written atomically: nothing is left half-written).
 pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    m.check()?;
     Ok(write_atomic(path, |w| {
         writeln!(w, "# natura-terrain height-field mesh (z up, metres)")?;
         for p in &m.positions {
@@ -152,7 +234,13 @@ pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
 /// Writes `mesh` as binary glTF 2.0 (`.glb`): one mesh, POSITION and NORMAL
 /// (f32) and u32 indices. glTF is y-up, so the mesh is stored as
 /// `(x, z, −y)` (a rotation; winding and handedness are preserved).
+///
+/// # Errors
+///
+/// As [`save_obj`]; also [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) if the file would
+/// exceed glTF's 4 GiB limit.
 pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    m.check()?;
     let conv = |v: Vec3| [v.x, v.z, -v.y];
     let mut bin: Vec<u8> = Vec::with_capacity(m.positions.len() * 24 + m.indices.len() * 4);
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
@@ -263,5 +351,32 @@ mod tests {
         save_height_png16(&hf, &png).unwrap();
         let back = HeightField::load_png16(&png, None, None).unwrap();
         assert!((back.heights()[(8, 5)] - 40.0).abs() < 1e-2);
+    }
+
+    #[test]
+    fn degenerate_fields_and_meshes_are_refused_not_written_empty() {
+        for (nx, ny) in [(1, 1), (1, 5), (5, 1)] {
+            let hf = HeightField::from_fn(nx, ny, 1.0, |_, _| 0.0).unwrap();
+            let e = mesh(&hf, 1).unwrap_err().to_string();
+            assert!(e.contains("2 × 2"), "{e}");
+        }
+        let good = mesh(&HeightField::from_fn(3, 3, 1.0, |_, _| 0.0).unwrap(), 1).unwrap();
+        let empty = Mesh {
+            indices: Vec::new(),
+            ..good.clone()
+        };
+        let wild = Mesh {
+            indices: vec![0, 1, 99],
+            ..good.clone()
+        };
+        let short = Mesh {
+            normals: Vec::new(),
+            ..good
+        };
+        for m in [empty, wild, short] {
+            let (obj, glb) = (scratch("bad.obj"), scratch("bad.glb"));
+            assert!(save_obj(&m, &obj).is_err() && !obj.exists());
+            assert!(save_glb(&m, &glb).is_err() && !glb.exists());
+        }
     }
 }

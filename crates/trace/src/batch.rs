@@ -1,8 +1,7 @@
 //! Tile-parallel, deterministic batch tracing of images.
 //!
 //! The image is cut into square tiles ("postage stamps", which balance the
-//! load at the horizon, where the work concentrates: seed 000, lines
-//! 2909–2913), traced in parallel with rayon (feature `parallel`), and
+//! load at the horizon, where the work concentrates: Musgrave 1993, §7.2.1.4), traced in parallel with rayon (feature `parallel`), and
 //! reported tile by tile to a [`Progress`]. Every pixel is a pure function of
 //! its coordinates, with sub-pixel jitter drawn from [`Seed`] hashes of the
 //! pixel and sample index (random numbers indexed by position), so the image
@@ -42,6 +41,9 @@ impl Default for RenderOptions {
 }
 
 impl RenderOptions {
+    ///
+    /// # Errors
+    ///
     /// Fails if the tile side or the sample count is zero.
     pub fn validate(&self) -> Result<()> {
         if self.tile == 0 {
@@ -79,7 +81,11 @@ impl RenderOptions {
 /// parallel square tiles of `tile` pixels, reporting one unit of `progress`
 /// per pixel as tiles complete.
 ///
-/// The result does not depend on the thread count or the tile size. Fails on a
+/// The result does not depend on the thread count or the tile size.
+///
+/// # Errors
+///
+/// Fails on a
 /// zero or oversize resolution or a zero tile.
 pub fn render<T, F>(
     width: u32,
@@ -121,6 +127,11 @@ where
 ///
 /// # Panics
 /// If `run` pushes a number of values other than `w × h`.
+///
+/// # Errors
+///
+/// Returns [`TraceError::InvalidParameter`] on a zero or oversize resolution
+/// or a zero tile, and [`TraceError::Core`] if the image cannot be allocated.
 pub fn render_tiles<T, F>(
     width: u32,
     height: u32,
@@ -204,7 +215,11 @@ where
 /// a pixel's samples are averaged.
 ///
 /// The image equals [`render_camera`] with a `shade` that traces each ray
-/// itself, bit for bit, for any thread count or tile size. Fails on invalid
+/// itself, bit for bit, for any thread count or tile size.
+///
+/// # Errors
+///
+/// Fails on invalid
 /// options.
 pub fn trace_image<C, Tr, F>(
     tracer: &Tr,
@@ -245,7 +260,11 @@ where
 /// linear colours averaged.
 ///
 /// `shade` typically traces the ray with a [`crate::Tracer`] and lights the
-/// hit. Deterministic for any thread count. Fails on invalid options.
+/// hit. Deterministic for any thread count.
+///
+/// # Errors
+///
+/// Fails on invalid options.
 pub fn render_camera<C, F>(
     camera: &C,
     options: &RenderOptions,

@@ -11,11 +11,12 @@ use crate::ray_cell::{CellHit, intersect_cell};
 /// Returns the closest hit of `ray` with the surface in `[t_min, t_max]`,
 /// found by testing all `2·(nx − 1)·(ny − 1)` triangles.
 ///
-/// This is the reference the fast tracers are tested against (spec
-/// `gridtrace.md` §7 property 1): it uses the same diagonal and the exact,
+/// This is the reference the fast tracers are tested against: it uses the same diagonal and the exact,
 /// inclusive watertight test, with no traversal and no culling, so it is
 /// correct by construction and slow (O(N) per ray). Equal `t` keeps the
 /// first triangle in row-major cell order, lower before upper.
+///
+/// # Errors
 ///
 /// Fails like [`crate::MipmapTracer::new`] on a field that cannot be traced.
 pub fn brute_force(hf: &HeightField, ray: &Ray, t_min: f32, t_max: f32) -> Result<Option<Hit>> {

@@ -1,17 +1,16 @@
 //! Musgrave's grid tracing: a DDA over every cell the ray's projection
 //! crosses, front to back, with a z-span cull per cell.
 //!
-//! Seed 000, chapter 3 (lines 1204–1450; code at 1392–1448) and seed 001 §5
-//! (lines 272–296). The source walks one octant with a floating-point
+//! Musgrave 1993, ch. 3 and Musgrave et al. 1989, §5. The source walks one octant with a floating-point
 //! Bresenham DDA and culls a cell when `min(z_near, z_far) > max(4 corners)`
-//! (eq. 3.1, line 1254), which is valid only for rays from above (the source
-//! says so at line 1302). This implementation:
+//! (eq. 3.1, Musgrave 1993, §3.2), which is valid only for rays from above (the source
+//! says so in Musgrave 1993, §3.3.1). This implementation:
 //!
-//! * walks cells Amanatides–Woo style in every octant (spec §1.5), visiting
+//! * walks cells Amanatides–Woo style in every octant , visiting
 //!   every cell the ray's xy projection crosses, in order of `t`, with exact
 //!   per-cell `t` spans. At an exact corner crossing it steps x, then y,
 //!   visiting the side cell over an empty span (the source steps
-//!   diagonally, line 1437; the extra visit costs nothing and keeps
+//!   diagonally (Musgrave 1993, §3.7); the extra visit costs nothing and keeps
 //!   consecutive cells 4-adjacent);
 //! * culls with the two-sided test `max(z_in, z_out) ≥ min(corners) &&
 //!   min(z_in, z_out) ≤ max(corners)`, correct for rays from above, from
@@ -19,7 +18,7 @@
 //!   eq. 3.1);
 //! * tests both triangles of a surviving cell exactly (see [`crate::Triangle`]
 //!   and the watertight test in the crate docs) and returns the nearer: the
-//!   first hit in traversal order is the closest (line 1262).
+//!   first hit in traversal order is the closest (Musgrave 1993, §3.2).
 //!
 //! Per-cell minima and maxima come from the four corners on the fly, so the
 //! tracer needs no memory beyond the field (the source's optional `A` grid,
@@ -181,6 +180,8 @@ pub struct GridTracer<'a> {
 
 impl<'a> GridTracer<'a> {
     /// Returns a tracer over `hf`.
+    ///
+    /// # Errors
     ///
     /// Fails with [`crate::TraceError::Field`] if `hf` has fewer than 2 × 2
     /// samples, more than [`crate::MAX_SAMPLES_PER_AXIS`] along an axis, or a

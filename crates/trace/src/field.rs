@@ -33,6 +33,11 @@ pub(crate) struct FieldView<'a> {
 impl<'a> FieldView<'a> {
     /// Validates `hf` for tracing: at least 2 × 2 samples, at most
     /// [`MAX_SAMPLES_PER_AXIS`] per axis, every height finite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TraceError::Field`] if `hf` has fewer than 2 × 2 samples, more
+    /// than [`MAX_SAMPLES_PER_AXIS`] along an axis, or a NaN or infinite height.
     pub fn new(hf: &'a HeightField) -> Result<Self> {
         let (nx, ny) = (hf.nx(), hf.ny());
         let bad = |reason: String| TraceError::Field { nx, ny, reason };

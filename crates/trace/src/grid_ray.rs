@@ -3,7 +3,7 @@
 //!
 //! Grid space scales x and y by `1/cell_size` and keeps z, so sample `(i, j)`
 //! sits at `(i, j, h)`, cell bounds are exact integers (as the source notes,
-//! seed 000 line 1322) and the ray parameter `t` is unchanged.
+//! Musgrave 1993, §3.3.2) and the ray parameter `t` is unchanged.
 
 use glam::{Vec2, Vec3};
 

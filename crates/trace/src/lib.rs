@@ -4,13 +4,13 @@
 //! and the cameras (pinhole, orthographic, panoramic) and tile-parallel image
 //! driver that turn them into pictures.
 //!
-//! * [`GridTracer`]: Musgrave's grid tracing (seed 000, ch. 3, lines
-//!   1204–1450; seed 001 §5, lines 272–296): a DDA over every cell the ray's
+//! * [`GridTracer`]: Musgrave's grid tracing (Musgrave 1993,
+//!   ch. 3; Musgrave et al. 1989, §5): a DDA over every cell the ray's
 //!   projection crosses, a two-sided z-span cull per cell, and two exact
 //!   watertight ray–triangle tests per surviving cell. The reference.
 //! * [`MipmapTracer`] over a [`MaxMipmap`]: the min/max quadtree of Tevs,
 //!   Ihrke & Seidel (2008) — the `m = 2` case of the source's "n² tree"
-//!   (seed 000, line 1378) — which skips empty space at the coarsest level the
+//!   (Musgrave 1993, §3.5) — which skips empty space at the coarsest level the
 //!   ray allows. The fast path, with the same hits.
 //! * [`brute_force`]: every triangle, for tests.
 //! * Cameras implementing [`Camera`]: [`PinholeCamera`], [`OrthographicCamera`]
@@ -25,7 +25,7 @@
 //! Sample `(i, j)` of a [`natura_core::HeightField`] sits at world
 //! `(i·cell, j·cell, h[i, j])` (z up, metres). Each square cell is split into
 //! two triangles along its anti-diagonal `u + v = 1`, the diagonal Musgrave
-//! uses ("from top left to bottom right", seed 000, line 1322); see
+//! uses ("from top left to bottom right", Musgrave 1993, §3.3.2); see
 //! [`Triangle`]. Hits are exact intersections with this piecewise-planar
 //! surface; [`surface_height`] evaluates it.
 //!
@@ -67,15 +67,15 @@
 //! 1.6–2.2× on short steep ones, 2.4× for shadow rays; see
 //! `docs/performance.md`).
 //!
-//! ## Errata corrected (spec `gridtrace.md` §9)
+//! ## Errata corrected
 //!
-//! * The printed triangle clip `x + y ≤ cellxmax + cellymax` (seed 000,
-//!   line 1317) accepts the whole cell; the triangle is `u + v ≤ 1`.
-//! * The cull `min(z_near, z_far) ≤ max(corners)` (eq. 3.1, line 1254) holds
+//! * The printed triangle clip `x + y ≤ cellxmax + cellymax`
+//!   (Musgrave 1993, §3.3.2) accepts the whole cell; the triangle is `u + v ≤ 1`.
+//! * The cull `min(z_near, z_far) ≤ max(corners)` (eq. 3.1, Musgrave 1993, §3.2) holds
 //!   only for rays from above; we test the ray's z-span against the cell's
 //!   `[min, max]` in both directions.
 //! * The panorama code interpolates its vertical table with the horizontal
-//!   one (`horizdir` for `vertdir`, lines 3273–3285); see [`PanoramicCamera`].
+//!   one (`horizdir` for `vertdir`, Musgrave 1993, §8.6); see [`PanoramicCamera`].
 //!
 //! ```
 //! use natura_core::HeightField;

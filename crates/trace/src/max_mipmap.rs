@@ -4,7 +4,7 @@
 //! Tevs, Ihrke & Seidel, "Maximum Mipmaps for Fast, Accurate, and Scalable
 //! Dynamic Height Field Rendering", I3D 2008 — the `m = 2` case of the
 //! "n² tree" hierarchy that Musgrave proposes and Kolb implemented at
-//! `m = 16` (seed 000, lines 1374–1378; seed 001, line 286). Each node of
+//! `m = 16` (Musgrave 1993, §3.5; Musgrave et al. 1989, §5). Each node of
 //! level `k ≥ 1` bounds the heights of a `2ᵏ × 2ᵏ` block of cells. A ray
 //! walks the nodes of the coarsest level it may, descends only where its
 //! z-span over a node meets the node's `[min, max]`, and ascends again when
@@ -17,9 +17,9 @@
 //! store `min` and `max` as 16-bit values quantised conservatively (min
 //! rounded down, max rounded up) over the field's height range, 4 bytes per
 //! node, about `N/3` bytes in all for `N` samples: one third of the `f32`
-//! field (the issue's budget is 0.7×). Min and max make the cull valid for
+//! field (the budget is 0.7×). Min and max make the cull valid for
 //! rays from any direction, which the source's max-only `A` grid is not
-//! (seed 000, line 1302).
+//! (Musgrave 1993, §3.3.1).
 
 use natura_core::HeightField;
 
@@ -74,6 +74,8 @@ pub struct MaxMipmap {
 
 impl MaxMipmap {
     /// Builds the pyramid of `hf` (in parallel rows with the `parallel` feature).
+    ///
+    /// # Errors
     ///
     /// Fails like [`MipmapTracer::new`].
     pub fn new(hf: &HeightField) -> Result<Self> {
@@ -242,6 +244,8 @@ pub(crate) struct Cursor {
 
 impl<'a> MipmapTracer<'a> {
     /// Builds the pyramid of `hf` and returns a tracer over it.
+    ///
+    /// # Errors
     ///
     /// Fails with [`crate::TraceError::Field`] if `hf` has fewer than 2 × 2
     /// samples, more than [`crate::MAX_SAMPLES_PER_AXIS`] along an axis, or a

@@ -41,7 +41,7 @@ impl Ray {
 /// Which of the two triangles of a cell.
 ///
 /// Musgrave splits each square cell along the diagonal that "runs from top
-/// left to bottom right" (seed 000, line 1322). In cell-local coordinates
+/// left to bottom right" (Musgrave 1993, §3.3.2). In cell-local coordinates
 /// `(u, v) = (x/cell − i, y/cell − j) ∈ [0, 1]²` this is the anti-diagonal
 /// `u + v = 1`, giving
 ///
@@ -50,7 +50,7 @@ impl Ray {
 ///
 /// The corners are listed in the order of [`Hit::barycentric`].
 /// Erratum: the source's printed clip test `x + y ≤ cellxmax + cellymax`
-/// (line 1317) accepts the whole square; the triangle is `u + v ≤ 1`.
+/// (Musgrave 1993, §3.3.2) accepts the whole square; the triangle is `u + v ≤ 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Triangle {
     /// The triangle holding corner `(i, j)`: `u + v ≤ 1`.
@@ -91,7 +91,7 @@ pub struct Hit {
     /// Unit normal of the hit triangle's plane, always facing up (`z > 0`).
     pub geometric_normal: Vec3,
     /// Unit normal interpolated over the triangle from the corners' central-difference
-    /// normals (Phong-style, as Musgrave's Plate 8.1, seed 000 line 3921), facing up.
+    /// normals (Phong-style, as Musgrave 1993, Plate 8.1), facing up.
     pub smooth_normal: Vec3,
     /// The cell `(i, j)`: the square between samples `(i, j)` and `(i + 1, j + 1)`.
     pub cell: UVec2,
@@ -105,7 +105,7 @@ pub struct Hit {
 }
 
 /// Counters from one traced ray, for benchmarks and the source's
-/// "about two tests per ray" claim (seed 000, line 1360).
+/// "about two tests per ray" claim (Musgrave 1993, §3.4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TraceStats {
     /// Hierarchy nodes (mipmap) examined, including cells.

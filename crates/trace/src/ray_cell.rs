@@ -1,6 +1,6 @@
 //! The exact, watertight intersection of a ray with one cell's two triangles.
 //!
-//! Musgrave's steps 6–7 (seed 000, lines 1304–1322): build the cell's two
+//! Musgrave's steps 6–7 (Musgrave 1993, §3.3.2): build the cell's two
 //! triangles from its four corner heights and intersect the ray with both.
 //! Instead of the source's plane-then-clip test (whose printed clip bound is
 //! wrong, see [`Triangle`]), each triangle is tested with Woop, Benthin &

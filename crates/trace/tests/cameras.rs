@@ -1,4 +1,4 @@
-//! Camera mappings (spec `gridtrace.md` §7 property 17).
+//! Camera mappings.
 
 use approx::assert_relative_eq;
 use glam::{Vec2, Vec3};

@@ -1,6 +1,6 @@
 //! Oracle tests: the grid tracer and the mipmap tracer return the same first
 //! hit as brute force over all triangles, on random fields and rays of every
-//! awkward sort (spec `gridtrace.md` §7 properties 1, 4, 5).
+//! awkward sort.
 
 mod common;
 

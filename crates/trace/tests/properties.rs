@@ -1,4 +1,4 @@
-//! Geometric properties of the tracers (spec `gridtrace.md` §7): hits on the
+//! Geometric properties of the tracers: hits on the
 //! surface and on the ray, rising rays miss, reversibility, analytic cases,
 //! symmetries, normals, the traversal order, and refusals of bad input.
 

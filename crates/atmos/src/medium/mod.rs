@@ -191,7 +191,7 @@ mod tests {
         assert!(RayleighRgb::from_wavelengths([800.0, -1.0, 380.0], 1.0).is_err());
     }
 
-    /// Spec Y1/Y2: blue limb against space, yellowed white against bright objects.
+    /// Blue limb against space, yellowed white against bright objects.
     #[test]
     fn rayleigh_rgb_blue_limb_and_yellow_snow() {
         let fog = DVec3::new(1.0, 0.8, 0.5);

@@ -184,7 +184,7 @@ fn radial_earth_columns() {
     }
 }
 
-/// The grazing test: the radial (Gaussian) model equals numeric
+/// The grazing test: the radial (Gaussian) model equals numeric
 /// integration of the true exponential atmosphere `e^{−(r−R)/H}` for grazing
 /// rays, to < 0.1 % for full tangent columns.
 #[test]

@@ -20,7 +20,7 @@ fn dir(elev_deg: f64, az_deg: f64) -> Dir3 {
     Dir3::from_angles(elev_deg.to_radians(), az_deg.to_radians()).unwrap()
 }
 
-/// The oracle: with multiple scattering off, the LUT sky equals the
+/// An oracle: with multiple scattering off, the LUT sky equals the
 /// ray-marched single-scattering sky (Nishita 1993) within 4% (luminance-weighted).
 #[test]
 fn lut_sky_matches_ray_marched_single_scattering() {

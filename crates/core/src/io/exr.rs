@@ -71,6 +71,13 @@ fn checksum<'a>(channels: impl Iterator<Item = (&'a str, &'a [f32])>) -> String 
 ///
 /// Fails on a zero or oversize resolution, a channel of the wrong length, or
 /// an I/O error, naming the file.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Io`] naming the file if it cannot be written (a missing or
+/// read-only folder, a directory in the way), and [`CoreError::Format`]
+/// if the encoder refuses the data. Nothing is left half-written.
+/// Channels of the wrong length are [`CoreError::SizeMismatch`].
 pub fn write_exr(
     path: impl AsRef<Path>,
     width: usize,
@@ -128,6 +135,12 @@ pub fn write_exr(
 /// naming the file and the problem; a file whose `naturaChecksum` does not
 /// match its pixels is refused. The header's resolution is checked against
 /// [`crate::MAX_GRID_BYTES`] before any pixel memory is allocated.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Io`] naming the file if it cannot be read, and
+/// [`CoreError::Format`] if it is truncated, corrupt or of an
+/// unsupported layout, or if its size exceeds the memory cap.
 pub fn read_exr(path: impl AsRef<Path>) -> Result<ExrChannels> {
     let path = path.as_ref();
     let file = std::fs::File::open(path).map_err(|e| CoreError::Io {
@@ -138,6 +151,12 @@ pub fn read_exr(path: impl AsRef<Path>) -> Result<ExrChannels> {
 }
 
 /// As [`read_exr`], from any seekable reader; `name` labels errors.
+///
+/// # Errors
+///
+/// Returns [`CoreError::Io`] naming the file if it cannot be read, and
+/// [`CoreError::Format`] if it is truncated, corrupt or of an
+/// unsupported layout, or if its size exceeds the memory cap.
 pub fn read_exr_from(mut reader: impl Read + Seek, name: &Path) -> Result<ExrChannels> {
     let bad = |m: String| CoreError::format(name, m);
     let meta = MetaData::read_from_buffered(&mut reader, false)

@@ -5,7 +5,7 @@
 //! `(A x)_c = Σ_{non-solid n} (x_c − x_n)` over the face neighbours `n` of a
 //! fluid cell `c`, with `x_n = 0` for air/open neighbours (Dirichlet). It is
 //! symmetric positive semi-definite — the negation of the matrix Foster &
-//! Fedkiw print (erratum E5: their `a_ii = −#liquid neighbours` makes it
+//! Fedkiw print (an erratum in Foster & Fedkiw 2001, §8: their `a_ii = −#liquid neighbours` makes it
 //! negative definite; CG needs the negated form).
 
 use crate::grid::{Boundaries, CellKind, Side};

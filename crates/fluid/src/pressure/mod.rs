@@ -13,7 +13,7 @@
 //!   Gauss–Seidel smoothing. Iteration counts stay nearly flat with grid size.
 //! * [`PressureSolver::Mic0`]: CG preconditioned by modified incomplete
 //!   Cholesky MIC(0) (Bridson 2015) — the "incomplete Choleski" of the smoke
-//!   and liquids papers (seed 004 L2140, L2488), with the modification that
+//!   and liquids papers (Fedkiw et al. 2001, §4, Foster & Fedkiw 2001, §8), with the modification that
 //!   keeps row sums. Its triangular solves are sequential.
 //! * [`PressureSolver::GaussSeidel`]: the Stam 2003 relaxation baseline
 //!   (red–black ordered so it parallelises). With `tolerance = 0` it runs
@@ -23,8 +23,8 @@
 //! Periodic domains are solved by FFT in [`crate::fft`].
 //!
 //! Pure-Neumann (closed) components make `A` singular; the solver removes the
-//! mean of `b` on each such connected component (the compatibility condition,
-//! spec §5 item 7) and returns the zero-mean solution.
+//! mean of `b` on each such connected component (the compatibility
+//! condition) and returns the zero-mean solution.
 
 mod level;
 
@@ -34,6 +34,7 @@ use level::{G, Level, Transfer, coarsen};
 
 /// Which linear solver performs the projection.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PressureSolver {
     /// Multigrid-preconditioned conjugate gradient (default).
     #[default]
@@ -46,6 +47,7 @@ pub enum PressureSolver {
 
 /// Solver choice and stopping rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SolverParams {
     /// The method.
     pub solver: PressureSolver,
@@ -78,6 +80,11 @@ impl SolverParams {
     }
 
     /// Checks the tolerance (finite, `0 <= tol < 1`) and a non-zero iteration cap.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance.is_finite() && (0.0..1.0).contains(&self.tolerance)) {
             return Err(FluidError::InvalidParameter {
@@ -377,6 +384,10 @@ impl PoissonSystem {
     }
 
     /// Returns `A x` for an unpadded `x` (one value per cell; zero on non-fluid cells).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::SizeMismatch`] if `x` or `out` is not the system's size.
     pub fn apply(&self, x: &[f64]) -> Result<Vec<f64>> {
         self.check_len(x.len(), "x")?;
         let l = &self.levels[0];
@@ -409,6 +420,11 @@ impl PoissonSystem {
     /// alone would cap the attainable relative residual near 1e-4.
     /// On singular (closed) components `b` is first made compatible by
     /// removing its mean there; the returned `x` has zero mean there.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::SizeMismatch`] if `b` or `x` is not the system's size,
+    /// and [`FluidError::NonFinite`] if the iteration produces a NaN or infinite value.
     pub fn solve(&mut self, b: &[f32], x: &mut [f64], params: &SolverParams) -> Result<SolveStats> {
         params.validate()?;
         self.check_len(b.len(), "b")?;

@@ -1,10 +1,11 @@
 //! Worley (Voronoi, cellular) noise: distances to the nearest feature points.
 //!
-//! MojoWorld's Voronoi basis [M 477-486] (Worley 1996): one feature point per
-//! unit lattice cell, at `cell + ½ + jitter·(u − ½)` with `u` uniform from the
-//! cell's hash. The value is the distance to the 1st…4th nearest feature point
-//! (`F1…F4`) or a difference of neighbours (`F2 − F1`, …) under a chosen metric.
-//! "Distance" gives conical pits, "distance squared" parabolic ones [M 484].
+//! MojoWorld's Voronoi basis (Musgrave 2001, "Voronoi") (Worley 1996): one
+//! feature point per unit lattice cell, at `cell + ½ + jitter·(u − ½)` with `u`
+//! uniform from the cell's hash. The value is the distance to the 1st…4th
+//! nearest feature point (`F1…F4`) or a difference of neighbours (`F2 − F1`, …)
+//! under a chosen metric. "Distance" gives conical pits, "distance squared"
+//! parabolic ones (Musgrave 2001, "Voronoi").
 //!
 //! The search is **exact** for every feature and jitter: cells are visited in
 //! rings of growing Chebyshev radius until the ring's nearest possible point
@@ -18,10 +19,12 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::basis::SPAN_MAX_STEP;
+use crate::basis::cellular_rows::{chunk2, chunk3};
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
-use crate::hash::{corner, rehash, row2, row3, seed32, unit_hi, unit_lo};
-use crate::lanes::{Simd, run, split, split_fast};
+use crate::hash::{PX, PY, PZ, corner, corner_spread, row2, row3, seed32};
+use crate::lanes::{Real, Simd, max_fast, min_fast, split};
 
 /// The distance metric between a point and a feature point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -30,7 +33,8 @@ pub enum Metric {
     /// Straight-line distance: conical pits, straight ridges. The default.
     #[default]
     Euclidean,
-    /// Squared Euclidean distance: smooth parabolic pits [M 484].
+    /// Squared Euclidean distance: smooth parabolic pits (Musgrave 2001,
+    /// "Voronoi").
     EuclideanSquared,
     /// Sum of axis distances (L1): diamond-shaped cells.
     Manhattan,
@@ -190,6 +194,37 @@ impl WorleyParams {
 
 const SALT: u64 = 0x574F_524C; // "WORL"
 
+mod place;
+pub(crate) use place::{Cheb, Dist, Euclid, EuclidSq, Placement, Taxicab, insert_k};
+
+/// Monomorphises a search for the metric and the feature (its rank `K` and
+/// how the sorted distances combine), over lane type `$t`: calls
+/// `$kernel::<K, D>(args…, pick)`.
+macro_rules! worley_dispatch {
+    ($w:expr, $t:ty, $kernel:ident, ($($arg:expr),*)) => {{
+        let w = $w;
+        match w.params.metric {
+            Metric::Euclidean => worley_dispatch!(@feature w, $t, Euclid, $kernel, ($($arg),*)),
+            Metric::EuclideanSquared => {
+                worley_dispatch!(@feature w, $t, EuclidSq, $kernel, ($($arg),*))
+            }
+            Metric::Manhattan => worley_dispatch!(@feature w, $t, Taxicab, $kernel, ($($arg),*)),
+            Metric::Chebyshev => worley_dispatch!(@feature w, $t, Cheb, $kernel, ($($arg),*)),
+        }
+    }};
+    (@feature $w:ident, $t:ty, $d:ty, $kernel:ident, ($($arg:expr),*)) => {
+        match $w.params.feature {
+            WorleyFeature::F1 => $kernel::<1, $d>($($arg,)* |d: &[$t; 1]| d[0]),
+            WorleyFeature::F2 => $kernel::<2, $d>($($arg,)* |d: &[$t; 2]| d[1]),
+            WorleyFeature::F3 => $kernel::<3, $d>($($arg,)* |d: &[$t; 3]| d[2]),
+            WorleyFeature::F4 => $kernel::<4, $d>($($arg,)* |d: &[$t; 4]| d[3]),
+            WorleyFeature::F2MinusF1 => $kernel::<2, $d>($($arg,)* |d: &[$t; 2]| d[1] - d[0]),
+            WorleyFeature::F3MinusF2 => $kernel::<3, $d>($($arg,)* |d: &[$t; 3]| d[2] - d[1]),
+            WorleyFeature::F4MinusF3 => $kernel::<4, $d>($($arg,)* |d: &[$t; 4]| d[3] - d[2]),
+        }
+    };
+}
+
 /// Worley cellular noise (F1–F4 and differences; Euclidean, squared,
 /// Manhattan or Chebyshev distance).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -199,7 +234,8 @@ pub struct Worley {
     params: WorleyParams,
 }
 
-/// Sorted insertion of `d` into the `k` smallest so far (with payload index).
+/// Sorted insertion of `d` into the 4 smallest so far, with the offset of
+/// its feature point (the ring search's bookkeeping, for gradients).
 #[inline(always)]
 fn insert(best: &mut [f64; 4], at: &mut [[f64; 3]; 4], d: f64, off: [f64; 3]) {
     if d < best[3] {
@@ -240,23 +276,19 @@ impl Worley {
     /// The feature point of 2-D cell `(i, j)`, relative to the cell's corner.
     #[inline(always)]
     fn point2(&self, i: u32, j: u32) -> (f64, f64) {
-        let h = corner(i, row2(j, self.s));
-        let jt = self.params.jitter;
-        (
-            0.5 + jt * (f64::from(unit_lo(h)) - 0.5),
-            0.5 + jt * (f64::from(unit_hi(h)) - 0.5),
-        )
+        let f = self.place().point(corner(i, row2(j, self.s)));
+        (f[0], f[1])
     }
 
     #[inline(always)]
     fn point3(&self, i: u32, j: u32, k: u32) -> [f64; 3] {
-        let h = corner(i, row3(j, k, self.s));
-        let jt = self.params.jitter;
-        [
-            0.5 + jt * (f64::from(unit_lo(h)) - 0.5),
-            0.5 + jt * (f64::from(unit_hi(h)) - 0.5),
-            0.5 + jt * (f64::from(unit_hi(rehash(h))) - 0.5),
-        ]
+        self.place().point(corner(i, row3(j, k, self.s)))
+    }
+
+    /// The feature placement for this jitter.
+    #[inline(always)]
+    pub(crate) fn place<T: Real>(&self) -> Placement<T> {
+        Placement::new(self.params.jitter)
     }
 
     /// Lower bound on the largest-axis distance from a point with fractions `f`
@@ -344,6 +376,180 @@ impl Worley {
         (best, at)
     }
 
+    /// Inserts into `best` the kept distances from a 2-D point to the
+    /// feature points of the cells `cols × rows`: each column is a spread x
+    /// index with the point's x offset from the column's margin corner
+    /// (`fx − dx − margin`), each row a row hash with the y offset.
+    #[inline(always)]
+    fn cells2<const K: usize, D: Dist<f64>, const C: usize, const R: usize>(
+        &self,
+        cols: [(u32, f64); C],
+        rows: [(u32, f64); R],
+        best: &mut [f64; K],
+    ) {
+        let place = self.place::<f64>();
+        for (row, gy) in rows {
+            for (col, gx) in cols {
+                let d = place.disp(corner_spread(col, row));
+                insert_k(best, D::comb(D::axis(gx - d[0]), D::axis(gy - d[1])));
+            }
+        }
+    }
+
+    /// As [`cells2`](Self::cells2) in 3-D: each row is a (y, z) row hash
+    /// with the point's y and z offsets.
+    #[inline(always)]
+    fn cells3<const K: usize, D: Dist<f64>, const C: usize, const R: usize>(
+        &self,
+        cols: [(u32, f64); C],
+        rows: [(u32, f64, f64); R],
+        best: &mut [f64; K],
+    ) {
+        let place = self.place::<f64>();
+        for (row, gy, gz) in rows {
+            for (col, gx) in cols {
+                let d = place.disp(corner_spread(col, row));
+                let yz = D::comb(D::axis(gy - d[1]), D::axis(gz - d[2]));
+                insert_k(best, D::comb(D::axis(gx - d[0]), yz));
+            }
+        }
+    }
+
+    /// The `K` smallest kept distances from the point with lattice cell `ix`
+    /// and fractions `f` to the cells of a search set, found in stages:
+    ///
+    /// 1. for F1, the 2ⁿ cells toward the point's nearest cell corner: every
+    ///    other feature point is at least `margin + min_a max(f_a, 1 − f_a)`
+    ///    away along some axis, so a nearest distance below that is final;
+    /// 2. the 3ⁿ block around the cell: every feature point two or more
+    ///    cells away is at least `1 + margin + min_a min(f_a, 1 − f_a)` away;
+    /// 3. otherwise `None`, and the caller runs the ring search (as for a
+    ///    NaN point).
+    #[inline(always)]
+    fn search<const K: usize, D: Dist<f64>, const N: usize>(
+        &self,
+        ix: [u32; N],
+        f: [f64; N],
+    ) -> Option<[f64; K]> {
+        const P: [u32; 3] = [PX, PY, PZ];
+        let m = self.place::<f64>().margin;
+        // Per axis: the own and nearer neighbour indices (spread), the
+        // point's offsets from their margin corners, and the far bound.
+        let own: [u32; N] = core::array::from_fn(|a| ix[a].wrapping_mul(P[a]));
+        let up: [bool; N] = f.map(|t| t >= 0.5);
+        let near: [(u32, f64); N] = core::array::from_fn(|a| {
+            let (p, dir) = if up[a] {
+                (P[a], 1.0)
+            } else {
+                (P[a].wrapping_neg(), -1.0)
+            };
+            (own[a].wrapping_add(p), f[a] - (dir + m))
+        });
+        let mut best = [f64::INFINITY; K];
+        if K == 1 {
+            let far = f
+                .iter()
+                .fold(f64::INFINITY, |b, &t| min_fast(b, max_fast(t, 1.0 - t)));
+            let pairs: [[(u32, f64); 2]; N] =
+                core::array::from_fn(|a| [(own[a], f[a] - m), near[a]]);
+            self.cells_n::<K, D, N, 2>(&pairs, &mut best);
+            if D::kept(m + far) > best[0] {
+                return Some(best);
+            }
+            // Stage 2 for F1 adds only the block's cells outside the 2ⁿ
+            // quadrant (the nearest is a minimum, so the result is the
+            // whole block's): per axis the neighbour away from the corner.
+            let mut away = [(0u32, 0.0f64); N];
+            for a in 0..N {
+                away[a] = if up[a] {
+                    (own[a].wrapping_sub(P[a]), f[a] - (-1.0 + m))
+                } else {
+                    (own[a].wrapping_add(P[a]), f[a] - (1.0 + m))
+                };
+            }
+            self.block_rest::<K, D, N>(&pairs, &away, &mut best);
+        } else {
+            let block: [[(u32, f64); 3]; N] = core::array::from_fn(|a| {
+                let p = P[a];
+                [
+                    (own[a].wrapping_sub(p), f[a] - (-1.0 + m)),
+                    (own[a], f[a] - m),
+                    (own[a].wrapping_add(p), f[a] - (1.0 + m)),
+                ]
+            });
+            self.cells_n::<K, D, N, 3>(&block, &mut best);
+        }
+        let edge = f
+            .iter()
+            .fold(f64::INFINITY, |e, &t| min_fast(e, min_fast(t, 1.0 - t)));
+        (D::kept(1.0 + m + edge) > best[K - 1]).then_some(best)
+    }
+
+    /// The cells of the 3ⁿ block around a point that are not in the 2ⁿ
+    /// quadrant `quad` (per axis the own and nearer neighbour), given per
+    /// axis the neighbour `away` from the quadrant: in 2-D the `away` column
+    /// (3 cells) and the quadrant's columns in the `away` row (2); in 3-D
+    /// the `away` x layer (9), then the quadrant's x columns in the `away` y
+    /// rows (6), then in the quadrant's y rows on the `away` z layer (4).
+    #[inline(always)]
+    fn block_rest<const K: usize, D: Dist<f64>, const N: usize>(
+        &self,
+        quad: &[[(u32, f64); 2]; N],
+        away: &[(u32, f64); N],
+        best: &mut [f64; K],
+    ) {
+        let s = self.s;
+        let row3 = |ax: usize| [quad[ax][0], quad[ax][1], away[ax]];
+        if N == 2 {
+            let ys = row3(1).map(|(y, gy)| (y ^ s, gy));
+            self.cells2::<K, D, 1, 3>([away[0]], ys, best);
+            let (y, gy) = away[1];
+            self.cells2::<K, D, 2, 1>(quad[0], [(y ^ s, gy)], best);
+        } else {
+            let ys = row3(1);
+            let zs = row3(2 % N);
+            let mut layer = [(0u32, 0.0f64, 0.0f64); 9];
+            for (k, r) in layer.iter_mut().enumerate() {
+                let ((y, gy), (z, gz)) = (ys[k % 3], zs[k / 3]);
+                *r = (y ^ z ^ s, gy, gz);
+            }
+            self.cells3::<K, D, 1, 9>([away[0]], layer, best);
+            let (y, gy) = away[1];
+            let rows: [(u32, f64, f64); 3] = zs.map(|(z, gz)| (y ^ z ^ s, gy, gz));
+            self.cells3::<K, D, 2, 3>(quad[0], rows, best);
+            let (z, gz) = away[2 % N];
+            let rows: [(u32, f64, f64); 2] = quad[1].map(|(y, gy)| (y ^ z ^ s, gy, gz));
+            self.cells3::<K, D, 2, 2>(quad[0], rows, best);
+        }
+    }
+
+    /// The cells `axes[0] × axes[1] (× axes[2])` of a search set, `W` per
+    /// axis (see [`cells2`](Self::cells2)); the seed joins the rows.
+    #[inline(always)]
+    fn cells_n<const K: usize, D: Dist<f64>, const N: usize, const W: usize>(
+        &self,
+        axes: &[[(u32, f64); W]; N],
+        best: &mut [f64; K],
+    ) {
+        if N == 2 {
+            let rows: [(u32, f64); W] = axes[1].map(|(y, gy)| (y ^ self.s, gy));
+            self.cells2::<K, D, W, W>(axes[0], rows, best);
+        } else {
+            let mut rows = [(0u32, 0.0f64, 0.0f64); 9];
+            for (k, row) in rows.iter_mut().take(W * W).enumerate() {
+                let (y, gy) = axes[1][k % W];
+                let (z, gz) = axes[2 % N][k / W];
+                *row = (y ^ z ^ self.s, gy, gz);
+            }
+            if W == 2 {
+                let rows: [(u32, f64, f64); 4] = core::array::from_fn(|k| rows[k]);
+                self.cells3::<K, D, W, 4>(axes[0], rows, best);
+            } else {
+                self.cells3::<K, D, W, 9>(axes[0], rows, best);
+            }
+        }
+    }
+
     fn value_from(&self, best: [f64; 4], nan: bool) -> f64 {
         if nan {
             f64::NAN
@@ -393,11 +599,15 @@ impl Worley {
 }
 
 impl Field for Worley {
+    #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        self.value_from(self.search2(p).0, !p.is_finite())
+        worley_dispatch!(self, f64, search_block2, (self, p))
+            .unwrap_or_else(|| self.value_from(self.search2(p).0, !p.is_finite()))
     }
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        self.value_from(self.search3(p).0, !p.is_finite())
+        worley_dispatch!(self, f64, search_block3, (self, p))
+            .unwrap_or_else(|| self.value_from(self.search3(p).0, !p.is_finite()))
     }
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
         let (best, at) = self.search2(p);
@@ -434,16 +644,21 @@ impl Field for Worley {
             }
             return;
         }
-        let mut flags = [0u8; 64];
-        for (c, chunk) in out.chunks_mut(64).enumerate() {
-            let x0 = origin.x + (c * 64) as f64 * step;
+        let spans = step > 0.0 && step <= SPAN_MAX_STEP;
+        let mut flags = [0u8; CHUNK];
+        for (c, chunk) in out.chunks_mut(CHUNK).enumerate() {
+            let x0 = origin.x + (c * CHUNK) as f64 * step;
             let fl = &mut flags[..chunk.len()];
-            run(
-                simd,
-                #[inline(always)]
-                || worley_dispatch!(self, worley2_row(self, x0, origin.y, step, chunk, fl)),
+            let args = (
+                self,
+                DVec2::new(x0, origin.y),
+                step,
+                &mut *chunk,
+                &mut *fl,
+                spans,
             );
-            if fl.iter().any(|&f| f != 0) {
+            worley_dispatch!(self, f32, chunk2, (simd, args));
+            if fl.iter().fold(0, |a, &f| a | f) != 0 {
                 for (i, (o, &f)) in chunk.iter_mut().zip(fl.iter()).enumerate() {
                     if f != 0 {
                         *o = self.eval2(DVec2::new(x0 + i as f64 * step, origin.y)) as f32;
@@ -463,17 +678,15 @@ impl Field for Worley {
             }
             return;
         }
-        let mut flags = [0u8; 64];
-        for (c, chunk) in out.chunks_mut(64).enumerate() {
-            let x0 = origin.x + (c * 64) as f64 * step;
+        let spans = step > 0.0 && step <= SPAN_MAX_STEP;
+        let mut flags = [0u8; CHUNK];
+        for (c, chunk) in out.chunks_mut(CHUNK).enumerate() {
+            let x0 = origin.x + (c * CHUNK) as f64 * step;
             let o = DVec3::new(x0, origin.y, origin.z);
             let fl = &mut flags[..chunk.len()];
-            run(
-                simd,
-                #[inline(always)]
-                || worley_dispatch!(self, worley3_row(self, o, step, chunk, fl)),
-            );
-            if fl.iter().any(|&f| f != 0) {
+            let args = (self, o, step, &mut *chunk, &mut *fl, spans);
+            worley_dispatch!(self, f32, chunk3, (simd, args));
+            if fl.iter().fold(0, |a, &f| a | f) != 0 {
                 for (i, (v, &f)) in chunk.iter_mut().zip(fl.iter()).enumerate() {
                     if f != 0 {
                         *v =
@@ -485,180 +698,45 @@ impl Field for Worley {
     }
 }
 
-/// `√v` for f32 lanes in `core` (no `sqrt` there, and a libm call would stop
-/// vectorisation): the bit-trick reciprocal square root refined by three
-/// Newton steps (relative error below f32 rounding), times `v`.
+/// The 2-D value by the staged block search ([`Worley::search`]), or `None`
+/// when the point needs the ring search (a free function, for
+/// [`worley_dispatch!`]).
 #[inline(always)]
-pub(crate) fn sqrt32(v: f32) -> f32 {
-    let mut y = f32::from_bits(0x5F37_59DF_u32.wrapping_sub(v.to_bits() >> 1));
-    for _ in 0..3 {
-        y *= 1.5 - 0.5 * v * y * y;
-    }
-    v * y
-}
-
-/// Sorted insertion into the K smallest (a min/max network; branch-free).
-#[inline(always)]
-fn insert32<const K: usize>(best: &mut [f32; K], d: f32) {
-    let mut d = d;
-    for b in best.iter_mut() {
-        let lo = b.min(d);
-        d = b.max(d);
-        *b = lo;
-    }
-}
-
-/// The metric as a lane function (Euclidean kept squared until the end),
-/// whether the ring bound must be squared, and whether to take a root at the end.
-macro_rules! with_metric {
-    ($m:expr, |$dist:ident, $sqb:ident, $root:ident| $body:expr) => {
-        match $m {
-            Metric::Euclidean => {
-                let $dist = |x: f32, y: f32, z: f32| x * x + y * y + z * z;
-                let ($sqb, $root) = (true, true);
-                $body
-            }
-            Metric::EuclideanSquared => {
-                let $dist = |x: f32, y: f32, z: f32| x * x + y * y + z * z;
-                let ($sqb, $root) = (true, false);
-                $body
-            }
-            Metric::Manhattan => {
-                let $dist = |x: f32, y: f32, z: f32| x.abs() + y.abs() + z.abs();
-                let ($sqb, $root) = (false, false);
-                $body
-            }
-            Metric::Chebyshev => {
-                let $dist = |x: f32, y: f32, z: f32| x.abs().max(y.abs()).max(z.abs());
-                let ($sqb, $root) = (false, false);
-                $body
-            }
-        }
-    };
-}
-
-/// Monomorphises a row kernel for the feature (rank K and pick) and metric.
-macro_rules! worley_dispatch {
-    ($w:expr, $kernel:ident($($arg:expr),*)) => {{
-        let w = $w;
-        with_metric!(w.params.metric, |dist, sqb, root| match w.params.feature {
-            WorleyFeature::F1 => $kernel::<1>($($arg,)* dist, |d: &[f32; 1]| d[0], sqb, root),
-            WorleyFeature::F2 => $kernel::<2>($($arg,)* dist, |d: &[f32; 2]| d[1], sqb, root),
-            WorleyFeature::F3 => $kernel::<3>($($arg,)* dist, |d: &[f32; 3]| d[2], sqb, root),
-            WorleyFeature::F4 => $kernel::<4>($($arg,)* dist, |d: &[f32; 4]| d[3], sqb, root),
-            WorleyFeature::F2MinusF1 => $kernel::<2>($($arg,)* dist, |d: &[f32; 2]| d[1] - d[0], sqb, root),
-            WorleyFeature::F3MinusF2 => $kernel::<3>($($arg,)* dist, |d: &[f32; 3]| d[2] - d[1], sqb, root),
-            WorleyFeature::F4MinusF3 => $kernel::<4>($($arg,)* dist, |d: &[f32; 4]| d[3] - d[2], sqb, root),
-        })
-    }};
-}
-pub(crate) use {with_metric, worley_dispatch};
-
-/// 3×3 SIMD search over a 2-D row chunk. Sets `flags[i] = 1` for lanes whose
-/// ring-2 bound does not clear `F_K` (they are redone by the exact point path).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn worley2_row<const K: usize>(
+fn search_block2<const K: usize, D: Dist<f64>>(
     w: &Worley,
-    x0: f64,
-    y: f64,
-    step: f64,
-    out: &mut [f32],
-    flags: &mut [u8],
-    dist: impl Fn(f32, f32, f32) -> f32,
-    pick: impl Fn(&[f32; K]) -> f32,
-    square_bound: bool,
-    root: bool,
-) {
-    let (iy, fy) = split_fast(y);
-    let fy32 = fy as f32;
-    let rows = [
-        row2(iy.wrapping_sub(1), w.s),
-        row2(iy, w.s),
-        row2(iy.wrapping_add(1), w.s),
-    ];
-    let jt = w.params.jitter as f32;
-    let margin = 0.5 - 0.5 * jt;
-    let edge_y = fy32.min(1.0 - fy32);
-    for (n, (o, flag)) in out.iter_mut().zip(flags.iter_mut()).enumerate() {
-        let x = x0 + (n as i32) as f64 * step;
-        let (ix, fx) = split_fast(x);
-        let fx = fx as f32;
-        let mut best = [f32::INFINITY; K];
-        for (r, &row) in rows.iter().enumerate() {
-            let dy = fy32 - (r as f32 - 0.5);
-            for dxi in 0..3u32 {
-                let h = corner(ix.wrapping_add(dxi).wrapping_sub(1), row);
-                let px = fx - (dxi as f32 - 0.5 + jt * (unit_lo(h) - 0.5));
-                let py = dy - jt * (unit_hi(h) - 0.5);
-                insert32(&mut best, dist(px, py, 0.0));
-            }
-        }
-        let b = 1.0 + margin + fx.min(1.0 - fx).min(edge_y);
-        let b = if square_bound { b * b } else { b };
-        // A small tolerance so f32 rounding never hides a needed ring.
-        *flag = u8::from(best[K - 1] >= b * 0.999_9);
-        if root {
-            for v in best.iter_mut() {
-                *v = sqrt32(*v);
-            }
-        }
-        *o = pick(&best);
+    p: DVec2,
+    pick: impl Fn(&[f64; K]) -> f64,
+) -> Option<f64> {
+    let (ix, fx) = split(p.x);
+    let (iy, fy) = split(p.y);
+    let best = w.search::<K, D, 2>([ix, iy], [fx, fy])?;
+    Some(pick(&best.map(D::value)))
+}
+
+/// The 3-D value by the staged block search, or `None` (see [`search_block2`]).
+#[inline(always)]
+fn search_block3<const K: usize, D: Dist<f64>>(
+    w: &Worley,
+    p: DVec3,
+    pick: impl Fn(&[f64; K]) -> f64,
+) -> Option<f64> {
+    let (ix, fx) = split(p.x);
+    let (iy, fy) = split(p.y);
+    let (iz, fz) = split(p.z);
+    let best = w.search::<K, D, 3>([ix, iy, iz], [fx, fy, fz])?;
+    Some(pick(&best.map(D::value)))
+}
+
+/// Points per batch chunk (stack buffers for the rows' exactness flags).
+const CHUNK: usize = 256;
+
+impl Worley {
+    /// The hash seed (for the batch kernels).
+    #[inline(always)]
+    pub(crate) fn lattice_seed(&self) -> u32 {
+        self.s
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn worley3_row<const K: usize>(
-    w: &Worley,
-    origin: DVec3,
-    step: f64,
-    out: &mut [f32],
-    flags: &mut [u8],
-    dist: impl Fn(f32, f32, f32) -> f32,
-    pick: impl Fn(&[f32; K]) -> f32,
-    square_bound: bool,
-    root: bool,
-) {
-    let (iy, fy) = split_fast(origin.y);
-    let (iz, fz) = split_fast(origin.z);
-    let (fy32, fz32) = (fy as f32, fz as f32);
-    let mut rows = [0u32; 9];
-    for (r, row) in rows.iter_mut().enumerate() {
-        let (dy, dz) = ((r % 3) as u32, (r / 3) as u32);
-        *row = row3(
-            iy.wrapping_add(dy).wrapping_sub(1),
-            iz.wrapping_add(dz).wrapping_sub(1),
-            w.s,
-        );
-    }
-    let jt = w.params.jitter as f32;
-    let margin = 0.5 - 0.5 * jt;
-    let edge_yz = fy32.min(1.0 - fy32).min(fz32.min(1.0 - fz32));
-    for (n, (o, flag)) in out.iter_mut().zip(flags.iter_mut()).enumerate() {
-        let x = origin.x + (n as i32) as f64 * step;
-        let (ix, fx) = split_fast(x);
-        let fx = fx as f32;
-        let mut best = [f32::INFINITY; K];
-        for (r, &row) in rows.iter().enumerate() {
-            let dy = fy32 - ((r % 3) as f32 - 0.5);
-            let dz = fz32 - ((r / 3) as f32 - 0.5);
-            for dxi in 0..3u32 {
-                let h = corner(ix.wrapping_add(dxi).wrapping_sub(1), row);
-                let px = fx - (dxi as f32 - 0.5 + jt * (unit_lo(h) - 0.5));
-                let py = dy - jt * (unit_hi(h) - 0.5);
-                let pz = dz - jt * (unit_hi(rehash(h)) - 0.5);
-                insert32(&mut best, dist(px, py, pz));
-            }
-        }
-        let b = 1.0 + margin + fx.min(1.0 - fx).min(edge_yz);
-        let b = if square_bound { b * b } else { b };
-        *flag = u8::from(best[K - 1] >= b * 0.999_9);
-        if root {
-            for v in best.iter_mut() {
-                *v = sqrt32(*v);
-            }
-        }
-        *o = pick(&best);
-    }
-}
+#[cfg(test)]
+mod tests;

@@ -1,13 +1,13 @@
-//! Musgrave's checkerboard basis [M 522-527].
+//! Musgrave's checkerboard basis (Musgrave 2001, "Checkerboard").
 
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::lanes::split;
 
-/// `+1` / `−1` alternating over unit lattice cells [M 522-527]: `+1` where
-/// `⌊x⌋ + ⌊y⌋ (+ ⌊z⌋)` is even. Discontinuous (infinite Lipschitz constant,
-/// zero gradient inside cells).
+/// `+1` / `−1` alternating over unit lattice cells (Musgrave 2001,
+/// "Checkerboard"): `+1` where `⌊x⌋ + ⌊y⌋ (+ ⌊z⌋)` is even. Discontinuous
+/// (infinite Lipschitz constant, zero gradient inside cells).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Checkerboard;
 

@@ -1,12 +1,13 @@
 //! Basis ("noise") functions: the band-limited building blocks that fractals sum.
 //!
-//! MojoWorld's basis contract (spec `noise.md` §0.1 item 10, [M 392]): a simple
+//! MojoWorld's basis contract (Musgrave 2001, "The Basis Function"): a simple
 //! shape, values within `[-1, 1]`, mean 0. Gradient, value and simplex noise
 //! are normalised so their documented [`Field::bound`](crate::Field::bound) is
 //! exactly their supremum (found by maximising over every gradient choice, see
 //! each type), so `|N| ≤ 1` and the bound is attained.
 
 pub mod cellular;
+pub(crate) mod cellular_rows;
 pub mod checker;
 pub(crate) mod lattice;
 pub mod perlin;
@@ -20,9 +21,12 @@ pub mod value;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Fade {
-    /// `3t² − 2t³`, the sources' interpolant [D 830, E89 135]. The assembled
-    /// noise is C¹ only: its second derivative jumps by 12 across cell faces
-    /// (erratum 9: the sources claim C²). Use it to reproduce the sources' figures.
+    /// `3t² − 2t³`, the sources' interpolant (Musgrave 1993, §2.3.1; Musgrave
+    /// et al. 1989, §3.2). The assembled noise is C¹ only: its second
+    /// derivative jumps by 12 across cell faces, although the sources call it
+    /// C² (corrected here: the cubic is kept for reproducing the sources'
+    /// figures, the quintic is the default). Use it to reproduce the sources'
+    /// figures.
     Cubic,
     /// `6t⁵ − 15t⁴ + 10t³` (Perlin 2002, outside the sources): C², the default.
     #[default]
@@ -68,6 +72,10 @@ macro_rules! with_fade32 {
     };
 }
 pub(crate) use with_fade32;
+
+/// Largest lattice step for which a row is evaluated span by span (≥ 16
+/// points per cell, so the per-cell set-up is amortised).
+pub(crate) const SPAN_MAX_STEP: f64 = 1.0 / 16.0;
 
 /// Whether a batch row of `n` points from `x0` with spacing `step` stays in the
 /// range where the branch-free floor is exact (and everything is finite).

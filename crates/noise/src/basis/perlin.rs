@@ -1,22 +1,26 @@
 //! Perlin gradient noise, 1-D to 4-D.
 //!
-//! Musgrave's `Noise()` [D 826-856, E89 125-142, M 457-466]: random gradients
-//! at the integer lattice points, blended across each cell by a fade, so the
-//! noise is **zero at every lattice point** with slope equal to the lattice
-//! gradient there, and has its power concentrated near half the integer
-//! frequency ("primary frequency", [D 844]).
+//! Musgrave's `Noise()` (Musgrave 1993, §2.3.1; Musgrave et al. 1989, §3.2;
+//! Musgrave 2001, "Perlin"): random gradients at the integer lattice points,
+//! blended across each cell by a fade, so the noise is **zero at every lattice
+//! point** with slope equal to the lattice gradient there, and has its power
+//! concentrated near half the integer frequency ("primary frequency", Musgrave
+//! 1993, §2.3.1).
 //!
 //! * Gradients: 1-D uniform in `[-1, 1)`; 2-D one of 8 unit vectors (axes and
-//!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002);
-//!   4-D one of the 32 tesseract edges. Drawn from a hash of the lattice
-//!   position and seed (no 256-periodic table).
+//!   diagonals); 3-D one of the 12 cube edges `(±1, ±1, 0)…` (Perlin 2002); 4-D
+//!   one of the 32 tesseract edges. Drawn from a hash of the lattice position
+//!   and seed (no 256-periodic table).
 //! * Fade: quintic by default (C²); [`Fade::Cubic`] reproduces the sources
-//!   (C¹ only — erratum 9 of spec §10 corrects their "C²" claim).
-//! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is exactly
-//!   1 and attained (§2.1 "the crate must normalise each implementation"). The
-//!   sups were found by maximising `Σ_c W_c(p)·max_g g·(p−c)` over the cell
-//!   (each corner picks its worst gradient independently): 1-D ½, 2-D √2/2,
-//!   3-D 1.0363 (quintic) / 1.0449 (cubic), 4-D see [`PERLIN4_SUP_QUINTIC`].
+//!   (C¹ only: the sources call the cubic-faded noise C², but its second
+//!   derivative jumps across cell faces).
+//! * Range: values are scaled by `1/sup|raw|` so that [`Field::bound`] is
+//!   exactly 1 and attained (the sources' implementations differ in range;
+//!   MojoWorld's basis contract asks for `[-1, 1]`, Musgrave 2001, "The Basis
+//!   Function"). The sups were found by maximising `Σ_c W_c(p)·max_g g·(p−c)`
+//!   over the cell (each corner picks its worst gradient independently): 1-D ½,
+//!   2-D √2/2, 3-D 1.0363 (quintic) / 1.0449 (cubic), 4-D see
+//!   [`PERLIN4_SUP_QUINTIC`].
 //! * Lipschitz constants are the maximised `|∇N|` of the normalised noise,
 //!   rounded up by 1%.
 //! * Batch rows: for steps up to 1/16 of a cell a row is evaluated span by
@@ -29,11 +33,16 @@
 
 use glam::{DVec2, DVec3, DVec4};
 
+use crate::basis::Fade;
 use crate::basis::lattice::lattice_sum;
-use crate::basis::{Fade, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
-use crate::hash::{corner, grad1, grad2, grad3, grad4, row2, row3, seed32};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
+use crate::hash::{
+    PX, PY, PZ, corner_spread, dot2, dot3, dot3_lanes, grad1, grad2, grad3, grad4, seed32,
+};
+use crate::lanes::{Kernel, Simd, run, split, split_fast};
+
+mod points;
+mod rows;
 
 /// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
 pub const PERLIN1_SUP: f64 = 0.5;
@@ -48,6 +57,9 @@ pub const PERLIN3_SUP_CUBIC: f64 = 1.044_887;
 pub const PERLIN4_SUP_QUINTIC: f64 = 1.5;
 /// sup |raw 4-D gradient noise| with the cubic fade (numerically maximised).
 pub const PERLIN4_SUP_CUBIC: f64 = 1.5;
+
+/// The 2-D normalisation `1 / PERLIN2_SUP`.
+const K2: f64 = 1.0 / PERLIN2_SUP;
 
 /// Lipschitz constants of the *normalised* noise, `[cubic, quintic]`, per dimension 1-4.
 const LIPSCHITZ: [[f64; 2]; 4] = [[2.86, 2.73], [2.54, 2.87], [2.90, 3.64], [4.0, 4.8]];
@@ -133,12 +145,56 @@ impl Perlin {
         self.fade
     }
 
+    /// [`Field::eval2_scaled`] at SIMD level `simd`.
+    fn octaves2(&self, simd: Simd, p: DVec2, freq: &[f64], out: &mut [f64]) {
+        let out = &mut out[..freq.len()];
+        run(
+            simd,
+            Octaves2 {
+                n: self,
+                p,
+                freq,
+                out,
+            },
+        );
+    }
+
+    /// [`Field::eval3_scaled`] at SIMD level `simd`.
+    fn octaves3(&self, simd: Simd, p: DVec3, freq: &[f64], out: &mut [f64]) {
+        let out = &mut out[..freq.len()];
+        run(
+            simd,
+            Octaves3 {
+                n: self,
+                p,
+                freq,
+                out,
+            },
+        );
+    }
+
+    /// The 32-bit lattice seed the hashes use.
+    pub(crate) const fn lattice_seed(&self) -> u32 {
+        self.s
+    }
+
     fn interp(&self) -> impl Fn(f64) -> (f64, f64) {
         let f = self.fade;
         move |t| (f.eval(t), f.deriv(t))
     }
 
-    fn scale(&self, dim: usize) -> f64 {
+    /// The 3-D normalisation `1 / sup` for this fade (the value [`Self::scale`] gives).
+    #[inline(always)]
+    fn k3(&self) -> f64 {
+        const Q: f64 = 1.0 / PERLIN3_SUP_QUINTIC;
+        const C: f64 = 1.0 / PERLIN3_SUP_CUBIC;
+        match self.fade {
+            Fade::Quintic => Q,
+            Fade::Cubic => C,
+        }
+    }
+
+    pub(crate) fn scale(&self, dim: usize) -> f64 {
         let q = self.fade == Fade::Quintic;
         1.0 / match dim {
             1 => PERLIN1_SUP,
@@ -213,54 +269,29 @@ impl Perlin {
 }
 
 impl Field for Perlin {
-    #[inline]
+    #[inline(always)]
     fn eval2(&self, p: DVec2) -> f64 {
-        // Direct bilinear form: cheaper than the generic sum, same lattice.
-        let (ix, fx) = split(p.x);
-        let (iy, fy) = split(p.y);
-        let r0 = row2(iy, self.s);
-        let r1 = row2(iy.wrapping_add(1), self.s);
-        let dot = |h: u32, x: f64, y: f64| {
-            let (gx, gy) = grad2(h);
-            f64::from(gx) * x + f64::from(gy) * y
-        };
-        let ix1 = ix.wrapping_add(1);
-        let n00 = dot(corner(ix, r0), fx, fy);
-        let n10 = dot(corner(ix1, r0), fx - 1.0, fy);
-        let n01 = dot(corner(ix, r1), fx, fy - 1.0);
-        let n11 = dot(corner(ix1, r1), fx - 1.0, fy - 1.0);
-        let u = self.fade.eval(fx);
-        let v = self.fade.eval(fy);
-        let a = n00 + u * (n10 - n00);
-        let b = n01 + u * (n11 - n01);
-        (a + v * (b - a)) * self.scale(2)
+        with_fade!(self.fade, |f| cell2(
+            self.s,
+            split(p.x),
+            split(p.y),
+            f,
+            dot2
+        )) * K2
     }
 
-    #[inline]
+    #[inline(always)]
     fn eval3(&self, p: DVec3) -> f64 {
-        let (ix, fx) = split(p.x);
-        let (iy, fy) = split(p.y);
-        let (iz, fz) = split(p.z);
-        let dot = |h: u32, x: f64, y: f64, z: f64| {
-            let (gx, gy, gz) = grad3(h);
-            f64::from(gx) * x + f64::from(gy) * y + f64::from(gz) * z
-        };
-        let ix1 = ix.wrapping_add(1);
-        let u = self.fade.eval(fx);
-        let mut plane = [0.0; 4];
-        for (c, slot) in plane.iter_mut().enumerate() {
-            let (cy, cz) = ((c & 1) as u32, (c >> 1) as u32);
-            let r = row3(iy.wrapping_add(cy), iz.wrapping_add(cz), self.s);
-            let (dy, dz) = (fy - f64::from(cy), fz - f64::from(cz));
-            let n0 = dot(corner(ix, r), fx, dy, dz);
-            let n1 = dot(corner(ix1, r), fx - 1.0, dy, dz);
-            *slot = n0 + u * (n1 - n0);
-        }
-        let v = self.fade.eval(fy);
-        let w = self.fade.eval(fz);
-        let a = plane[0] + v * (plane[1] - plane[0]);
-        let b = plane[2] + v * (plane[3] - plane[2]);
-        (a + w * (b - a)) * self.scale(3)
+        let (x, y, z) = (split(p.x), split(p.y), split(p.z));
+        with_fade!(self.fade, |f| cell3(self.s, x, y, z, f, dot3)) * self.k3()
+    }
+
+    fn eval2_scaled(&self, p: DVec2, freq: &[f64], out: &mut [f64]) {
+        self.octaves2(Simd::best(), p, freq, out);
+    }
+
+    fn eval3_scaled(&self, p: DVec3, freq: &[f64], out: &mut [f64]) {
+        self.octaves3(Simd::best(), p, freq, out);
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -288,429 +319,289 @@ impl Field for Perlin {
     }
 
     fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        if !row_in_fast_range(origin.x, step, out.len())
-            || !origin.y.is_finite()
-            || origin.y.abs() > 1e15
-        {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
-            }
-            return;
-        }
-        let rows = RowCoeffs::new2(self.s, self.fade, origin.y);
-        let k = self.scale(2);
-        let fade = self.fade;
-        run(
-            simd,
-            #[inline(always)]
-            || {
-                if step > 0.0 && step <= SPAN_MAX_STEP {
-                    row_spans(fade, origin.x, step, k, out, |ix| rows.column2(ix));
-                } else {
-                    with_fade32!(fade, |f| perlin2_row(
-                        f, &rows, origin.x, step, k as f32, out
-                    ));
-                }
-            },
-        );
+        self.rows2(simd, origin, step, out);
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
-        let bad_yz = !origin.y.is_finite()
-            || !origin.z.is_finite()
-            || origin.y.abs() > 1e15
-            || origin.z.abs() > 1e15;
-        if !row_in_fast_range(origin.x, step, out.len()) || bad_yz {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = self.eval3(DVec3::new(origin.x + i as f64 * step, origin.y, origin.z)) as f32;
+        self.rows3(simd, origin, step, out);
+    }
+}
+
+/// Binds `$f` to the fade as a function of an f64 (monomorphised per fade).
+macro_rules! with_fade {
+    ($fade:expr, |$f:ident| $body:expr) => {
+        match $fade {
+            Fade::Quintic => {
+                let $f = |t: f64| Fade::Quintic.eval(t);
+                $body
             }
-            return;
+            Fade::Cubic => {
+                let $f = |t: f64| Fade::Cubic.eval(t);
+                $body
+            }
         }
-        let rows = RowCoeffs::new3(self.s, self.fade, origin.y, origin.z);
-        let k = self.scale(3);
-        let fade = self.fade;
-        run(
-            simd,
-            #[inline(always)]
-            || {
-                if step > 0.0 && step <= SPAN_MAX_STEP {
-                    row_spans(fade, origin.x, step, k, out, |ix| rows.column3(ix));
-                } else {
-                    with_fade32!(fade, |f| perlin3_row(
-                        f, &rows, origin.x, step, k as f32, out
-                    ));
+    };
+}
+use with_fade;
+
+/// The model in 2-D (unnormalised): the four corners' gradient dots blended
+/// by the fade, for lattice cell and fraction `(ix, fx)`, `(iy, fy)`. `dot`
+/// is [`dot2`] (a table lookup, for one point) or [`dot2_bits`] (the same
+/// gradients selected by bit logic, for SIMD lanes).
+#[inline(always)]
+pub(crate) fn cell2(
+    seed: u32,
+    (ix, fx): (u32, f64),
+    (iy, fy): (u32, f64),
+    fade: impl Fn(f64) -> f64,
+    dot: impl Fn(u32, f64, f64) -> f64,
+) -> f64 {
+    let x0 = ix.wrapping_mul(PX);
+    let x1 = x0.wrapping_add(PX);
+    let y0 = iy.wrapping_mul(PY);
+    let (r0, r1) = (y0 ^ seed, y0.wrapping_add(PY) ^ seed);
+    let (gx, gy) = (fx - 1.0, fy - 1.0);
+    let n00 = dot(corner_spread(x0, r0), fx, fy);
+    let n10 = dot(corner_spread(x1, r0), gx, fy);
+    let n01 = dot(corner_spread(x0, r1), fx, gy);
+    let n11 = dot(corner_spread(x1, r1), gx, gy);
+    let u = fade(fx);
+    let v = fade(fy);
+    let a = n00 + u * (n10 - n00);
+    let b = n01 + u * (n11 - n01);
+    a + v * (b - a)
+}
+
+/// The model in 3-D (unnormalised): the eight corners blended along x
+/// within each of the cell's four x edges, then along y, then z.
+#[inline(always)]
+pub(crate) fn cell3(
+    seed: u32,
+    (ix, fx): (u32, f64),
+    (iy, fy): (u32, f64),
+    (iz, fz): (u32, f64),
+    fade: impl Fn(f64) -> f64,
+    dot: impl Fn(u32, f64, f64, f64) -> f64,
+) -> f64 {
+    let x0 = ix.wrapping_mul(PX);
+    let x1 = x0.wrapping_add(PX);
+    let y0 = iy.wrapping_mul(PY);
+    let y1 = y0.wrapping_add(PY);
+    let zp = iz.wrapping_mul(PZ);
+    let (z0, z1) = (zp ^ seed, zp.wrapping_add(PZ) ^ seed);
+    let (gx, gy, gz) = (fx - 1.0, fy - 1.0, fz - 1.0);
+    let u = fade(fx);
+    let edge = |r: u32, dy: f64, dz: f64| {
+        let n0 = dot(corner_spread(x0, r), fx, dy, dz);
+        let n1 = dot(corner_spread(x1, r), gx, dy, dz);
+        n0 + u * (n1 - n0)
+    };
+    let e00 = edge(y0 ^ z0, fy, fz);
+    let e10 = edge(y1 ^ z0, gy, fz);
+    let e01 = edge(y0 ^ z1, fy, gz);
+    let e11 = edge(y1 ^ z1, gy, gz);
+    let v = fade(fy);
+    let w = fade(fz);
+    let a = e00 + v * (e10 - e00);
+    let b = e01 + v * (e11 - e01);
+    a + w * (b - a)
+}
+
+/// [`dot2`] with the gradient selected by bit logic ([`grad2`]): the same
+/// values, in a form that vectorises across lanes.
+#[inline(always)]
+fn dot2_bits(h: u32, dx: f64, dy: f64) -> f64 {
+    let (gx, gy) = grad2(h);
+    f64::from(gx) * dx + f64::from(gy) * dy
+}
+
+/// Octaves evaluated together, as SIMD lanes.
+const OCTAVE_LANES: usize = 4;
+
+/// Coordinates below which [`split_fast`] is exact (the lanes' range check).
+const LANE_LIMIT: f64 = 2_251_799_813_685_248.0;
+
+/// [`Field::eval2_scaled`] as a [`Kernel`]: the octaves in groups of
+/// [`OCTAVE_LANES`] lanes, each lane the point path's [`cell2`] on its own
+/// octave's point (bit-identical to it; in 3-D the gradient products are
+/// formed as signed sums, [`dot3_lanes`], the same values except that an
+/// exactly zero result may carry the other sign); a group with a lane out of
+/// the lanes' exact range (or NaN) goes point by point. Every SIMD level
+/// gives the same bits.
+struct Octaves2<'a> {
+    n: &'a Perlin,
+    p: DVec2,
+    freq: &'a [f64],
+    out: &'a mut [f64],
+}
+
+impl Kernel for Octaves2<'_> {
+    type Out = ();
+    #[inline(always)]
+    fn call(self) {
+        let Self { n, p, freq, out } = self;
+        with_fade!(n.fade, |fade| {
+            let mut fs = freq.chunks_exact(OCTAVE_LANES);
+            let mut os = out.chunks_exact_mut(OCTAVE_LANES);
+            for (f, o) in (&mut fs).zip(&mut os) {
+                // Whole groups only, as fixed-size arrays and plain loops (no
+                // closures, no masked loads or stores: everything inlines
+                // into this target-feature context and vectorises).
+                let f: &[f64; OCTAVE_LANES] = f.try_into().unwrap();
+                let o: &mut [f64; OCTAVE_LANES] = o.try_into().unwrap();
+                let mut x = [0.0f64; OCTAVE_LANES];
+                let mut y = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    x[l] = p.x * f[l];
+                    y[l] = p.y * f[l];
                 }
-            },
-        );
+                let mut ok = true;
+                for l in 0..OCTAVE_LANES {
+                    ok &= x[l].abs() < LANE_LIMIT && y[l].abs() < LANE_LIMIT;
+                }
+                if !ok {
+                    for l in 0..OCTAVE_LANES {
+                        o[l] = n.eval2(p * f[l]);
+                    }
+                    continue;
+                }
+                let mut v = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    v[l] = cell2(n.s, split_fast(x[l]), split_fast(y[l]), fade, dot2_bits) * K2;
+                }
+                *o = v;
+            }
+            for (o, &f) in os.into_remainder().iter_mut().zip(fs.remainder()) {
+                *o = n.eval2(p * f);
+            }
+        });
     }
 }
 
-/// Largest lattice step for which a row is evaluated span by span (≥ 16
-/// points per cell, so the per-cell set-up is amortised).
-pub(crate) const SPAN_MAX_STEP: f64 = 1.0 / 16.0;
-
-/// Per-row constants of a 2-D or 3-D gradient-noise row: the fractional y/z,
-/// their fade weights and the row hashes of the 2 (2-D) or 4 (3-D) lattice rows.
-pub(crate) struct RowCoeffs {
-    /// Fractional y and z.
-    fy: f64,
-    fz: f64,
-    /// Fade weights of the corner rows, ordered (cy, cz) = (0,0), (1,0), (0,1), (1,1).
-    w: [f64; 4],
-    /// Row hashes in the same order.
-    r: [u32; 4],
-    /// f32 copies for the lane kernels.
-    fy32: f32,
-    fz32: f32,
-    w32: [f32; 4],
+/// [`Field::eval3_scaled`] as a [`Kernel`] (see [`Octaves2`]).
+struct Octaves3<'a> {
+    n: &'a Perlin,
+    p: DVec3,
+    freq: &'a [f64],
+    out: &'a mut [f64],
 }
 
-impl RowCoeffs {
-    pub(crate) fn new2(seed: u32, fade: Fade, y: f64) -> Self {
-        let (iy, fy) = split_fast(y);
-        let v = fade.eval(fy);
-        let w = [1.0 - v, v, 0.0, 0.0];
-        let r = [row2(iy, seed), row2(iy.wrapping_add(1), seed), 0, 0];
-        Self {
-            fy,
-            fz: 0.0,
-            w,
-            r,
-            fy32: fy as f32,
-            fz32: 0.0,
-            w32: w.map(|x| x as f32),
-        }
+impl Kernel for Octaves3<'_> {
+    type Out = ();
+    #[inline(always)]
+    fn call(self) {
+        let Self { n, p, freq, out } = self;
+        let k = n.k3();
+        with_fade!(n.fade, |fade| {
+            let mut fs = freq.chunks_exact(OCTAVE_LANES);
+            let mut os = out.chunks_exact_mut(OCTAVE_LANES);
+            for (f, o) in (&mut fs).zip(&mut os) {
+                let f: &[f64; OCTAVE_LANES] = f.try_into().unwrap();
+                let o: &mut [f64; OCTAVE_LANES] = o.try_into().unwrap();
+                let mut x = [0.0f64; OCTAVE_LANES];
+                let mut y = [0.0f64; OCTAVE_LANES];
+                let mut z = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    x[l] = p.x * f[l];
+                    y[l] = p.y * f[l];
+                    z[l] = p.z * f[l];
+                }
+                let mut ok = true;
+                for l in 0..OCTAVE_LANES {
+                    ok &= x[l].abs() < LANE_LIMIT
+                        && y[l].abs() < LANE_LIMIT
+                        && z[l].abs() < LANE_LIMIT;
+                }
+                if !ok {
+                    for l in 0..OCTAVE_LANES {
+                        o[l] = n.eval3(p * f[l]);
+                    }
+                    continue;
+                }
+                let mut v = [0.0f64; OCTAVE_LANES];
+                for l in 0..OCTAVE_LANES {
+                    let (sx, sy, sz) = (split_fast(x[l]), split_fast(y[l]), split_fast(z[l]));
+                    v[l] = cell3(n.s, sx, sy, sz, fade, dot3_lanes) * k;
+                }
+                *o = v;
+            }
+            for (o, &f) in os.into_remainder().iter_mut().zip(fs.remainder()) {
+                *o = n.eval3(p * f);
+            }
+        });
     }
+}
 
-    pub(crate) fn new3(seed: u32, fade: Fade, y: f64, z: f64) -> Self {
-        let (iy, fy) = split_fast(y);
-        let (iz, fz) = split_fast(z);
-        let v = fade.eval(fy);
-        let ww = fade.eval(fz);
-        let w = [
-            (1.0 - v) * (1.0 - ww),
-            v * (1.0 - ww),
-            (1.0 - v) * ww,
-            v * ww,
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The octave lanes equal the point path (bit for bit, but for the sign
+    /// of an exact zero in 3-D), give the same bits at every SIMD level, for
+    /// both fades, any octave count (whole groups and a partial one), on the
+    /// lattice (exact zeros), and in groups that fall back to the point path
+    /// (huge or NaN coordinates).
+    #[test]
+    fn octave_lanes_equal_point_evaluation() {
+        let same = |a: f64, b: f64| {
+            a.to_bits() == b.to_bits() || (a == 0.0 && b == 0.0) || (a.is_nan() && b.is_nan())
+        };
+        let freq: [f64; 11] = core::array::from_fn(|k| 0.37 * 2.218_f64.powi(k as i32));
+        let lattice = [
+            1.0, 2.0, 4.0, 8.0, 0.5, 16.0, 32.0, 64.0, 128.0, 256.0, 512.0,
         ];
-        let mut r = [0u32; 4];
-        for (c, rc) in r.iter_mut().enumerate() {
-            *rc = row3(
-                iy.wrapping_add((c & 1) as u32),
-                iz.wrapping_add((c >> 1) as u32),
-                seed,
-            );
-        }
-        Self {
-            fy,
-            fz,
-            w,
-            r,
-            fy32: fy as f32,
-            fz32: fz as f32,
-            w32: w.map(|x| x as f32),
-        }
-    }
-
-    /// The lattice column `ix` of a 2-D row: `[Σ w·g_y·dy, Σ w·g_x]` over the
-    /// two corner rows (unscaled). A cell's span coefficients follow from its
-    /// two columns ([`span_coeffs`]), so each column is hashed once per row.
-    #[inline(always)]
-    fn column2(&self, ix: u32) -> [f64; 2] {
-        let mut c = [0.0; 2];
-        for cy in 0..2 {
-            let dy = self.fy - cy as f64;
-            let w = self.w[cy];
-            let (gx, gy) = grad2(corner(ix, self.r[cy]));
-            c[1] += w * f64::from(gx);
-            c[0] += w * f64::from(gy) * dy;
-        }
-        c
-    }
-
-    /// As [`column2`](Self::column2) for the 3-D row (four corner rows).
-    #[inline(always)]
-    fn column3(&self, ix: u32) -> [f64; 2] {
-        self.column3_from(|k| grad3(corner(ix, self.r[k])))
-    }
-
-    /// [`column3`](Self::column3) with the four corner gradients (corner row
-    /// `k`) supplied by `grad`, e.g. from a [`ColumnCache3`].
-    #[inline(always)]
-    fn column3_from(&self, grad: impl Fn(usize) -> (f32, f32, f32)) -> [f64; 2] {
-        let mut c = [0.0; 2];
-        for k in 0..4 {
-            let dy = self.fy - (k & 1) as f64;
-            let dz = self.fz - (k >> 1) as f64;
-            let w = self.w[k];
-            let (gx, gy, gz) = grad(k);
-            c[1] += w * f64::from(gx);
-            c[0] += w * (f64::from(gy) * dy + f64::from(gz) * dz);
-        }
-        c
-    }
-}
-
-/// Most lattice columns a row may span for [`Perlin`]'s 3-D grid fill to
-/// cache their gradients (wider rows are filled row by row).
-const CACHE_COLUMNS: usize = 64;
-
-/// The corner gradients of a 3-D grid row's lattice columns, kept while
-/// successive rows share the same four corner rows: at low frequency many
-/// rows (20 × 20 at 0.05 cells per sample) fall between the same lattice
-/// planes, so their columns are hashed once instead of once per row.
-struct ColumnCache3 {
-    /// Row hashes the gradients belong to (`None`: empty).
-    key: Option<[u32; 4]>,
-    /// Lattice index of column 0.
-    first: u32,
-    /// Columns held.
-    len: usize,
-    /// `grads[c][k]`: gradient of column `first + c` on corner row `k`.
-    grads: [[(f32, f32, f32); 4]; CACHE_COLUMNS],
-}
-
-impl ColumnCache3 {
-    /// Makes the cache hold the columns of `rows`, rehashing only when the
-    /// corner rows changed.
-    fn update(&mut self, rows: &RowCoeffs) {
-        if self.key != Some(rows.r) {
-            for (c, g) in self.grads[..self.len].iter_mut().enumerate() {
-                let ix = self.first.wrapping_add(c as u32);
-                *g = core::array::from_fn(|k| grad3(corner(ix, rows.r[k])));
-            }
-            self.key = Some(rows.r);
-        }
-    }
-
-    /// The column `ix` of the row `rows` (as [`RowCoeffs::column3`]), from the
-    /// cache when it holds it.
-    #[inline(always)]
-    fn column(&self, rows: &RowCoeffs, ix: u32) -> [f64; 2] {
-        match self.grads[..self.len].get(ix.wrapping_sub(self.first) as usize) {
-            Some(g) => rows.column3_from(|k| g[k]),
-            None => rows.column3(ix),
-        }
-    }
-}
-
-impl Perlin {
-    /// The 3-D lattice fill behind [`Field::fill_grid3`]: low-frequency rows
-    /// go span by span with their column gradients cached across rows
-    /// ([`ColumnCache3`]); the values are bit-identical to filling each row
-    /// with [`Field::fill_row3_with`].
-    fn grid3(&self, simd: Simd, lattice: &Lattice3, out: &mut [f32]) -> crate::Result<()> {
-        lattice.check(out.len())?;
-        let (x0, step, nx) = (lattice.origin.x, lattice.step.x, lattice.nx);
-        let columns = if step > 0.0 && step <= SPAN_MAX_STEP && row_in_fast_range(x0, step, nx) {
-            let (first, _) = split_fast(x0);
-            let (last, _) = split_fast(x0 + (nx - 1) as f64 * step);
-            Some((first, last.wrapping_sub(first) as usize + 2))
-        } else {
-            None
-        };
-        let Some((first, len)) = columns.filter(|&(_, len)| len <= CACHE_COLUMNS) else {
-            for (r, row) in out.chunks_exact_mut(nx).enumerate() {
-                self.fill_row3_with(
-                    simd,
-                    lattice.row_origin(r % lattice.ny, r / lattice.ny),
-                    step,
-                    row,
-                );
-            }
-            return Ok(());
-        };
-        let mut cache = ColumnCache3 {
-            key: None,
-            first,
-            len,
-            grads: [[(0.0, 0.0, 0.0); 4]; CACHE_COLUMNS],
-        };
-        let k = self.scale(3);
-        let fade = self.fade;
-        for (r, row) in out.chunks_exact_mut(nx).enumerate() {
-            let origin = lattice.row_origin(r % lattice.ny, r / lattice.ny);
-            if !origin.y.is_finite()
-                || !origin.z.is_finite()
-                || origin.y.abs() > 1e15
-                || origin.z.abs() > 1e15
-            {
-                self.fill_row3_with(simd, origin, step, row);
-                continue;
-            }
-            let rows = RowCoeffs::new3(self.s, fade, origin.y, origin.z);
-            cache.update(&rows);
-            let cache = &cache;
-            run(
-                simd,
-                #[inline(always)]
-                || row_spans(fade, x0, step, k, row, |ix| cache.column(&rows, ix)),
-            );
-        }
-        Ok(())
-    }
-}
-
-/// Coefficients `(a0, a1, b0, b1)` with `N(fx) = a0 + a1·fx + fade(fx)·(b0 + b1·fx)`
-/// over the cell between lattice columns `left` and `right` (see
-/// [`RowCoeffs::column2`]): the left corners give `a0 + a1·fx`, the right ones
-/// `c1·(fx − 1) + c0`, and the fade blends them.
-#[inline(always)]
-fn span_coeffs(left: [f64; 2], right: [f64; 2]) -> [f64; 4] {
-    let c0 = right[0] - right[1];
-    [left[0], left[1], c0 - left[0], right[1] - left[1]]
-}
-
-/// Evaluates a low-frequency row cell by cell: within one lattice cell the row
-/// is `a0 + a1·t + fade(t)·(b0 + b1·t)` in the fractional coordinate `t`, with
-/// the four coefficients computed once per cell (hoisting all hashing out of
-/// the per-point loop). The same function as the point path, re-associated.
-///
-/// The lattice columns of up to [`SPAN_CELLS`] consecutive cells are hashed
-/// once each (`column(ix)`, shared by the two cells they bound), and each cell's points are
-/// written in whole groups of [`SPAN_GROUP`] lanes: a group that runs past the
-/// cell's end writes values the next cell then overwrites, so no scalar
-/// remainder loop runs per cell.
-#[inline(always)]
-pub(crate) fn row_spans(
-    fade: Fade,
-    x0: f64,
-    step: f64,
-    scale: f64,
-    out: &mut [f32],
-    column: impl Fn(u32) -> [f64; 2],
-) {
-    let n = out.len();
-    let s32 = step as f32;
-    // The row's last cell (the batch kernels only run on rows inside the
-    // fast-split range, so this index arithmetic is exact).
-    let (last, _) = split_fast(x0 + (n - 1) as f64 * step);
-    let mut table = [[0.0f32; 4]; SPAN_CELLS];
-    let mut base = 0u32;
-    let mut filled = 0usize;
-    with_fade32!(fade, |f| {
-        let mut i = 0usize;
-        while i < n {
-            let x = x0 + i as f64 * step;
-            let (ix, fx) = split_fast(x);
-            let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
-            let mut slot = ix.wrapping_sub(base) as usize;
-            if slot >= filled {
-                base = ix;
-                slot = 0;
-                filled = (last.wrapping_sub(ix) as usize)
-                    .saturating_add(1)
-                    .min(SPAN_CELLS);
-                let mut cols = [[0.0f64; 2]; SPAN_CELLS + 1];
-                for (c, col) in cols[..=filled].iter_mut().enumerate() {
-                    *col = column(ix.wrapping_add(c as u32));
-                }
-                for (c, t) in table[..filled].iter_mut().enumerate() {
-                    *t = span_coeffs(cols[c], cols[c + 1]).map(|v| (v * scale) as f32);
-                }
-            }
-            let c = table[slot];
-            let t0 = fx as f32;
-            let poly = |k: usize| {
-                let t = t0 + k as f32 * s32;
-                (c[0] + c[1] * t) + f(t) * (c[2] + c[3] * t)
-            };
-            let mut g = 0usize;
-            while g < count {
-                let at = i + g;
-                if at + SPAN_GROUP <= n {
-                    let group: &mut [f32; SPAN_GROUP] =
-                        (&mut out[at..at + SPAN_GROUP]).try_into().unwrap();
-                    for (k, o) in group.iter_mut().enumerate() {
-                        *o = poly(g + k);
-                    }
-                } else {
-                    for (k, o) in out[at..].iter_mut().enumerate() {
-                        *o = poly(g + k);
+        let points = [
+            DVec3::new(0.3, -7.25, 2.5),
+            DVec3::new(-1234.567, 89.01, -0.001),
+            DVec3::new(4.0e5 + 0.77, -3.0e6, 1.0e3),
+            DVec3::new(3.0e14, 0.5, -0.5),
+            DVec3::new(f64::NAN, 1.0, 2.0),
+            DVec3::new(3.0, -5.0, 7.0),
+        ];
+        for fade in [Fade::Quintic, Fade::Cubic] {
+            let n = Perlin::with_fade(21, fade);
+            for p in points {
+                for freq in [&freq, &lattice] {
+                    for len in [1, 4, 7, 11] {
+                        let mut first: Option<([f64; 11], [f64; 11])> = None;
+                        for simd in Simd::supported() {
+                            let mut o2 = [0.0; 11];
+                            let mut o3 = [0.0; 11];
+                            n.octaves2(simd, p.truncate(), &freq[..len], &mut o2);
+                            n.octaves3(simd, p, &freq[..len], &mut o3);
+                            for k in 0..len {
+                                let want = n.eval2(p.truncate() * freq[k]);
+                                assert_eq!(
+                                    o2[k].to_bits(),
+                                    want.to_bits(),
+                                    "{fade:?} {p} {simd:?} 2-D {k}"
+                                );
+                                let want = n.eval3(p * freq[k]);
+                                assert!(
+                                    same(o3[k], want),
+                                    "{fade:?} {p} {simd:?} 3-D {k}: {} vs {want}",
+                                    o3[k]
+                                );
+                            }
+                            match first {
+                                None => first = Some((o2, o3)),
+                                Some((f2, f3)) => {
+                                    assert_eq!(
+                                        f2.map(f64::to_bits),
+                                        o2.map(f64::to_bits),
+                                        "{simd:?}"
+                                    );
+                                    assert_eq!(
+                                        f3.map(f64::to_bits),
+                                        o3.map(f64::to_bits),
+                                        "{simd:?}"
+                                    );
+                                }
+                            }
+                        }
                     }
                 }
-                g += SPAN_GROUP;
             }
-            i += count;
-        }
-    });
-}
-
-/// Cells whose span coefficients [`row_spans`] computes in one batch.
-const SPAN_CELLS: usize = 32;
-
-/// Points [`row_spans`] writes per group (one AVX-512 vector, two AVX2 ones).
-const SPAN_GROUP: usize = 16;
-
-/// The general 2-D row kernel: every lane finds its own cell.
-#[inline(always)]
-fn perlin2_row(
-    fade: impl Fn(f32) -> f32,
-    rows: &RowCoeffs,
-    x0: f64,
-    step: f64,
-    k: f32,
-    out: &mut [f32],
-) {
-    let (r0, r1) = (rows.r[0], rows.r[1]);
-    let fy = rows.fy32;
-    let fy1 = fy - 1.0;
-    let v = rows.w32[1];
-    let lanes = LaneOffsets::new(step);
-    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
-        let (bi, bf) = LaneOffsets::base(x0 + (b * BLOCK) as f64 * step);
-        for ((o, &cell), &frac) in block.iter_mut().zip(&lanes.cell).zip(&lanes.frac) {
-            let (ix, fx) = rebase(bi, bf, cell, frac);
-            let fx1 = fx - 1.0;
-            let ix1 = ix.wrapping_add(1);
-            let d = |h: u32, x: f32, y: f32| {
-                let (gx, gy) = grad2(h);
-                gx * x + gy * y
-            };
-            let n00 = d(corner(ix, r0), fx, fy);
-            let n10 = d(corner(ix1, r0), fx1, fy);
-            let n01 = d(corner(ix, r1), fx, fy1);
-            let n11 = d(corner(ix1, r1), fx1, fy1);
-            let u = fade(fx);
-            let a = n00 + u * (n10 - n00);
-            let b = n01 + u * (n11 - n01);
-            *o = (a + v * (b - a)) * k;
-        }
-    }
-}
-
-/// The general 3-D row kernel.
-#[inline(always)]
-fn perlin3_row(
-    fade: impl Fn(f32) -> f32,
-    rows: &RowCoeffs,
-    x0: f64,
-    step: f64,
-    k: f32,
-    out: &mut [f32],
-) {
-    let (fy, fz) = (rows.fy32, rows.fz32);
-    let dy = [fy, fy - 1.0, fy, fy - 1.0];
-    let dz = [fz, fz, fz - 1.0, fz - 1.0];
-    let w = rows.w32;
-    let r = rows.r;
-    let lanes = LaneOffsets::new(step);
-    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
-        let (bi, bf) = LaneOffsets::base(x0 + (b * BLOCK) as f64 * step);
-        for ((o, &cell), &frac) in block.iter_mut().zip(&lanes.cell).zip(&lanes.frac) {
-            let (ix, fx) = rebase(bi, bf, cell, frac);
-            let fx1 = fx - 1.0;
-            let ix1 = ix.wrapping_add(1);
-            let u = fade(fx);
-            let mut acc = 0.0f32;
-            for c in 0..4 {
-                let (ax, ay, az) = grad3(corner(ix, r[c]));
-                let (bx, by, bz) = grad3(corner(ix1, r[c]));
-                let n0 = ax * fx + ay * dy[c] + az * dz[c];
-                let n1 = bx * fx1 + by * dy[c] + bz * dz[c];
-                acc += w[c] * (n0 + u * (n1 - n0));
-            }
-            *o = acc * k;
         }
     }
 }

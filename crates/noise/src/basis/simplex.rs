@@ -1,12 +1,13 @@
 //! Simplex noise (Perlin 2001), 2-D and 3-D.
 //!
 //! Gradient noise on the simplex lattice (triangles in 2-D, tetrahedra in 3-D):
-//! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of
-//! the `n + 1` corners of its simplex. Outside the sources (spec §2.5 lists
-//! "Perlin basis" variants); offered because it is cheaper in 3-D and has no
-//! axis-aligned artefacts. Kernel radius² ½ in both dimensions, so the noise is
-//! continuous (C³ kernel) — unlike the common 0.6 in 3-D, which leaves small
-//! jumps at simplex faces. Zero at lattice points like Perlin noise.
+//! each point sums the radially attenuated contributions `(½ − r²)⁴·g·d` of the
+//! `n + 1` corners of its simplex. Outside the sources (Musgrave 2001, "The
+//! Various Basis Functions", lists only lattice "Perlin" variants); offered
+//! because it is cheaper in 3-D and has no axis-aligned artefacts. Kernel
+//! radius² ½ in both dimensions, so the noise is continuous (C³ kernel) —
+//! unlike the common 0.6 in 3-D, which leaves small jumps at simplex faces.
+//! Zero at lattice points like Perlin noise.
 //!
 //! Gradients are the same sets as [`Perlin`](crate::Perlin)'s (8 unit vectors
 //! in 2-D, 12 cube edges in 3-D), hashed from the lattice coordinates. Values
@@ -23,7 +24,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
-use crate::hash::{PX, PY, flat2, flat3, grad2, grad3, mix32, seed32};
+use crate::hash::{PX, PY, PZ, corner_spread, dot2, dot3, flat2, flat3, grad2, grad3, seed32};
 use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
@@ -177,31 +178,93 @@ impl Simplex {
     }
 }
 
-// A non-finite point gives NaN, as every other basis does: simplex noise
-// would otherwise give 0 (its kernels' `t > 0` tests fail on NaN).
-impl Field for Simplex {
-    fn eval2(&self, p: DVec2) -> f64 {
-        if !p.is_finite() {
-            return f64::NAN;
-        }
-        self.grad2_impl(p).0
+/// `(½ − r²)₊`, keeping a NaN (a NaN point gives a NaN value).
+#[inline(always)]
+fn falloff(t: f64) -> f64 {
+    if t < 0.0 { 0.0 } else { t }
+}
+
+/// `x` if `on`, else 0 (a mask, not a branch).
+#[inline(always)]
+fn masked(x: u32, on: bool) -> u32 {
+    x & 0u32.wrapping_sub(u32::from(on))
+}
+
+impl Simplex {
+    /// The 2-D value at `p`: the three corners of its triangle, without
+    /// branches (the middle corner and the falloff are selected, not
+    /// jumped to), each lattice index spread once.
+    #[inline(always)]
+    fn value2(&self, p: DVec2) -> f64 {
+        let (i, j, x0, y0) = skew2(p.x, p.y, false);
+        let upper = x0 > y0;
+        let (i1, j1) = (f64::from(u8::from(upper)), f64::from(u8::from(!upper)));
+        let xp = i.wrapping_mul(PX);
+        let yp = j.wrapping_mul(PY) ^ self.s;
+        let yq = j.wrapping_mul(PY).wrapping_add(PY) ^ self.s;
+        let xq = xp.wrapping_add(PX);
+        let corner = |h: u32, x: f64, y: f64| {
+            let t = falloff(0.5 - x * x - y * y);
+            let t2 = t * t;
+            t2 * t2 * dot2(h, x, y)
+        };
+        let h1 = corner_spread(if upper { xq } else { xp }, if upper { yp } else { yq });
+        let v = corner(corner_spread(xp, yp), x0, y0)
+            + corner(h1, x0 - i1 + G2, y0 - j1 + G2)
+            + corner(
+                corner_spread(xq, yq),
+                x0 - 1.0 + 2.0 * G2,
+                y0 - 1.0 + 2.0 * G2,
+            );
+        v * (1.0 / SIMPLEX2_SUP)
     }
+
+    /// The 3-D value at `p`: the four corners of its tetrahedron, ranked
+    /// without branches (Gustavson's order, ties broken as the batch kernel
+    /// breaks them).
+    #[inline(always)]
+    fn value3(&self, p: DVec3) -> f64 {
+        let (idx, [x0, y0, z0]) = skew3(p.to_array(), false);
+        let rx = u32::from(x0 >= y0) + u32::from(x0 >= z0);
+        let ry = u32::from(y0 > x0) + u32::from(y0 >= z0);
+        let rz = u32::from(z0 > x0) + u32::from(z0 > y0);
+        let xp = idx[0].wrapping_mul(PX);
+        let yp = idx[1].wrapping_mul(PY);
+        let zp = idx[2].wrapping_mul(PZ);
+        let hash = |o: [bool; 3]| {
+            corner_spread(
+                xp.wrapping_add(masked(PX, o[0])),
+                yp.wrapping_add(masked(PY, o[1])) ^ zp.wrapping_add(masked(PZ, o[2])) ^ self.s,
+            )
+        };
+        let corner = |o: [bool; 3], g: f64| {
+            let off = o.map(|b| f64::from(u8::from(b)));
+            let (x, y, z) = (x0 - off[0] + g, y0 - off[1] + g, z0 - off[2] + g);
+            let t = falloff(0.5 - x * x - y * y - z * z);
+            let t2 = t * t;
+            t2 * t2 * dot3(hash(o), x, y, z)
+        };
+        let v = corner([false; 3], 0.0)
+            + corner([rx == 2, ry == 2, rz == 2], G3)
+            + corner([rx >= 1, ry >= 1, rz >= 1], 2.0 * G3)
+            + corner([true; 3], 3.0 * G3);
+        v * (1.0 / SIMPLEX3_SUP)
+    }
+}
+
+impl Field for Simplex {
+    #[inline]
+    fn eval2(&self, p: DVec2) -> f64 {
+        self.value2(p)
+    }
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        if !p.is_finite() {
-            return f64::NAN;
-        }
-        self.grad3_impl(p).0
+        self.value3(p)
     }
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
-        if !p.is_finite() {
-            return (f64::NAN, DVec2::NAN);
-        }
         self.grad2_impl(p)
     }
     fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
-        if !p.is_finite() {
-            return (f64::NAN, DVec3::NAN);
-        }
         self.grad3_impl(p)
     }
     fn bound(&self) -> f64 {
@@ -392,14 +455,20 @@ fn simplex2_lanes(
         .zip(fxs.iter().zip(fys));
     for ((o, (&i, &j)), (&fx, &fy)) in lanes {
         let (upper, [(x0, y0), (x1, y1), (x2, y2)]) = offsets2(fx, fy);
-        // `flat2` hashes `mix32(x·PX + y·PY ^ seed)`: the corners' coordinate
-        // mixes differ from the base corner's by `PX`, `PY` or `PX + PY`
-        // (wrapping), so they cost adds, not multiplies (the same hashes).
-        let pre = i.wrapping_mul(PX).wrapping_add(j.wrapping_mul(PY));
-        let step1 = if upper { PX } else { PY };
-        let v = contrib2(mix32(pre ^ s), x0, y0)
-            + contrib2(mix32(pre.wrapping_add(step1) ^ s), x1, y1)
-            + contrib2(mix32(pre.wrapping_add(PX.wrapping_add(PY)) ^ s), x2, y2);
+        // Each index is spread once; the other corners add `PX` or `PY`
+        // to the spread index (the same hashes as `flat2`).
+        let xp = i.wrapping_mul(PX);
+        let yp = j.wrapping_mul(PY);
+        let (xq, yq) = (xp.wrapping_add(PX), yp.wrapping_add(PY) ^ s);
+        let yp = yp ^ s;
+        let h1 = if upper {
+            corner_spread(xq, yp)
+        } else {
+            corner_spread(xp, yq)
+        };
+        let v = contrib2(corner_spread(xp, yp), x0, y0)
+            + contrib2(h1, x1, y1)
+            + contrib2(corner_spread(xq, yq), x2, y2);
         *o = v * k;
     }
 }

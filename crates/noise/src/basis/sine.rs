@@ -1,11 +1,12 @@
-//! Musgrave's sine basis: the product of sines along each axis [M 501-506].
+//! Musgrave's sine basis: the product of sines along each axis (Musgrave 2001,
+//! "Sine").
 
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 
-/// `sin x · sin y` (2-D) or `sin x · sin y · sin z` (3-D): periodic with
-/// period 2π along every axis, values in `[-1, 1]`, mean 0 [M 501-506].
+/// `sin x · sin y` (2-D) or `sin x · sin y · sin z` (3-D): periodic with period
+/// 2π along every axis, values in `[-1, 1]`, mean 0 (Musgrave 2001, "Sine").
 ///
 /// Lipschitz constant 1 in 2-D and 3-D: `|∇|² = a + b − 2ab` (2-D, with
 /// `a = sin²x`, `b = sin²y`) and `ab + bc + ca − 3abc` (3-D) are at most 1 on `[0, 1]ⁿ`.

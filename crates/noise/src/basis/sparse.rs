@@ -1,4 +1,5 @@
-//! Sparse convolution noise (Lewis 1989): random impulses convolved with a kernel.
+//! Sparse convolution noise (Lewis 1989): random impulses convolved with a
+//! kernel.
 
 use glam::{DVec2, DVec3};
 
@@ -10,20 +11,21 @@ use crate::lanes::split;
 /// The kernel splatted at each impulse (radius 1 lattice cell).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Kernel {
-    /// `1 − r`: the cone of MojoWorld's Figure 19 [M 488-495]. The default.
+pub enum SparseKernel {
+    /// `1 − r`: the cone of MojoWorld's Figure 19 (Musgrave 2001, "Sparse
+    /// Convolution"). The default.
     #[default]
     Cone,
     /// `(1 − r²)²`: smooth (C¹) bumps.
     Quartic,
 }
 
-impl Kernel {
+impl SparseKernel {
     #[inline]
     fn eval(self, r2: f64) -> (f64, f64) {
         // Returns k and dk/d(r²)·2 (so ∇k = that · d, with d the offset).
         match self {
-            Kernel::Cone => {
+            SparseKernel::Cone => {
                 let r = libm::sqrt(r2);
                 if r > 0.0 {
                     (1.0 - r, -1.0 / r)
@@ -31,7 +33,7 @@ impl Kernel {
                     (1.0, 0.0)
                 }
             }
-            Kernel::Quartic => {
+            SparseKernel::Quartic => {
                 let t = 1.0 - r2;
                 (t * t, -4.0 * t)
             }
@@ -42,19 +44,19 @@ impl Kernel {
     fn energy(self, dims: usize) -> f64 {
         use core::f64::consts::PI;
         match (self, dims) {
-            (Kernel::Cone, 2) => PI / 6.0,
-            (Kernel::Cone, _) => 2.0 * PI / 15.0,
-            (Kernel::Quartic, 2) => PI / 5.0,
+            (SparseKernel::Cone, 2) => PI / 6.0,
+            (SparseKernel::Cone, _) => 2.0 * PI / 15.0,
+            (SparseKernel::Quartic, 2) => PI / 5.0,
             // 4π ∫ r²(1 − r²)⁴ dr = 4π · 128/3465.
-            (Kernel::Quartic, _) => 4.0 * PI * 128.0 / 3465.0,
+            (SparseKernel::Quartic, _) => 4.0 * PI * 128.0 / 3465.0,
         }
     }
 
     fn max_slope(self) -> f64 {
         match self {
-            Kernel::Cone => 1.0,
+            SparseKernel::Cone => 1.0,
             // max 4r(1 − r²) at r = 1/√3.
-            Kernel::Quartic => 8.0 / (3.0 * libm::sqrt(3.0)),
+            SparseKernel::Quartic => 8.0 / (3.0 * libm::sqrt(3.0)),
         }
     }
 }
@@ -64,17 +66,18 @@ impl Kernel {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SparseParams {
     /// Impulses per unit cell, 1 to 16 (MojoWorld's seed tables "1" and "4"
-    /// [M 529-536]); more impulses give a finer, more Gaussian texture.
+    /// Musgrave 2001, "The Seed Tables"); more impulses give a finer, more
+    /// Gaussian texture.
     pub density: u32,
     /// The kernel shape.
-    pub kernel: Kernel,
+    pub kernel: SparseKernel,
 }
 
 impl Default for SparseParams {
     fn default() -> Self {
         Self {
             density: 4,
-            kernel: Kernel::Cone,
+            kernel: SparseKernel::Cone,
         }
     }
 }
@@ -97,9 +100,11 @@ const SALT: u64 = 0x5350_4152; // "SPAR"
 
 /// Sparse convolution noise: `K·Σ_i w_i·k(|p − x_i|)` over impulses `x_i`
 /// uniformly placed, `density` per lattice cell, with weights `w_i` uniform in
-/// `[-1, 1)` [M 488-495, T 66, D 2677-2679]. "The slowest, technically 'best'
-/// and most flexible" basis [M 488]. Plain uniform placement, as [D 2679]
-/// suggests (no efficient Poisson-disk generator is known, [D 2677]).
+/// `[-1, 1)` (Musgrave 2001, "Sparse Convolution"; Musgrave 1998, "A Variety of
+/// fBm"; Musgrave 1993, §6.2.1.1.3). "The slowest, technically 'best' and most
+/// flexible" basis (Musgrave 2001, "Sparse Convolution"). Plain uniform
+/// placement, as Musgrave 1993, §6.2.1.1.3 suggests (no efficient
+/// Poisson-disk generator is known, Musgrave 1993, §6.2.1.1.3).
 ///
 /// `K` makes the standard deviation 0.25 (variance `density·E[w²]·∫k²`), so
 /// values mostly lie within `[-1, 1]`; the exact [`bound`](Field::bound) is

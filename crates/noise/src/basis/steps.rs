@@ -1,4 +1,5 @@
-//! Musgrave's "steps" basis: random levels in a cubic lattice [M 515-520].
+//! Musgrave's "steps" basis: random levels in a cubic lattice (Musgrave 2001,
+//! "Steps").
 
 use glam::{DVec2, DVec3};
 
@@ -9,9 +10,9 @@ use crate::lanes::split;
 const SALT: u64 = 0x5354_4550; // "STEP"
 
 /// Piecewise-constant random levels, one per unit lattice cell, uniform in
-/// `[-1, 1)` [M 515-520]. Discontinuous ("Mathematically Evil" [M 520]): it
-/// aliases, and its Lipschitz constant is infinite; the gradient is 0 inside
-/// cells.
+/// `[-1, 1)` (Musgrave 2001, "Steps"). Discontinuous ("Mathematically Evil"
+/// Musgrave 2001, "Steps"): it aliases, and its Lipschitz constant is infinite;
+/// the gradient is 0 inside cells.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Steps {
     seed: u64,

@@ -1,16 +1,17 @@
 //! Value noise: random values at the lattice points, interpolated.
 //!
-//! MojoWorld's "Linear" basis [M 508-513] is value noise with linear
-//! interpolation ("linear interpolation of random offsets"): continuous but
-//! creased along the lattice lines (not C¹). The smooth variants interpolate
-//! with a fade. Unlike gradient noise it is not zero on the lattice, and it
-//! adds the low-frequency power Lewis' variant is criticised for [D 842].
-//! Lattice values are uniform in `[-1, 1)`, so the values are within `[-1, 1]`.
+//! MojoWorld's "Linear" basis (Musgrave 2001, "Linear") is value noise with
+//! linear interpolation ("linear interpolation of random offsets"): continuous
+//! but creased along the lattice lines (not C¹). The smooth variants
+//! interpolate with a fade. Unlike gradient noise it is not zero on the
+//! lattice, and it adds the low-frequency power Lewis' variant is criticised
+//! for (Musgrave 1993, §2.3.1). Lattice values are uniform in `[-1, 1)`, so the
+//! values are within `[-1, 1]`.
 
 use glam::{DVec2, DVec3, DVec4};
 
+use crate::basis::SPAN_MAX_STEP;
 use crate::basis::lattice::lattice_sum;
-use crate::basis::perlin::SPAN_MAX_STEP;
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
@@ -218,17 +219,20 @@ impl Value {
                         match interp {
                             ValueInterp::Linear => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * (t0 + k as f32 * s32);
+                                    *o = a + b * (t0 + (k as i32) as f32 * s32);
                                 }
                             }
                             ValueInterp::Cubic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::lanes::cubic32(t0 + k as f32 * s32);
+                                    *o =
+                                        a + b * crate::lanes::cubic32(t0 + (k as i32) as f32 * s32);
                                 }
                             }
                             ValueInterp::Quintic => {
                                 for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::lanes::quintic32(t0 + k as f32 * s32);
+                                    *o = a + b * crate::lanes::quintic32(
+                                        t0 + (k as i32) as f32 * s32,
+                                    );
                                 }
                             }
                         }

@@ -1,5 +1,5 @@
 //! Fractal statistics by altitude: Musgrave's heterogeneous fBm `hfBm`
-//! [D 916-1003, E89 160-180].
+//! (Musgrave 1993, §2.3.2.3; Musgrave et al. 1989, §3.3).
 
 use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
@@ -8,12 +8,15 @@ use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 use glam::{DVec2, DVec3};
 
-/// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of [D 930]).
+/// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of Musgrave 1993,
+/// §2.3.2.3.1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StatsByAltitudeParams {
-    /// H, λ, octaves, frequency. [D 930] writes the amplitude as
-    /// `ϖ = λ^(−β/2)`: use [`GainConvention::HalfBeta`](crate::GainConvention::HalfBeta) to reproduce it.
+    /// H, λ, octaves, frequency. Musgrave 1993, §2.3.2.3.1 writes the
+    /// amplitude as `ϖ = λ^(−β/2)`: use
+    /// [`GainConvention::HalfBeta`](crate::GainConvention::HalfBeta) to
+    /// reproduce it.
     pub spectral: Spectral,
     /// `c_t`: shifts the basis so `N + c_t` is (nearly) always positive
     /// (0.7 in the C code).
@@ -48,16 +51,19 @@ impl StatsByAltitudeParams {
 
 /// Fractal statistics by altitude: the power of each octave is proportional
 /// to the altitude so far, so high ground is rough and low ground smooth
-/// ("crossover scale modulated by altitude", [E89 172]; spec §4.1).
+/// ("crossover scale modulated by altitude", Musgrave et al. 1989, §3.3).
 ///
-/// The canonical equation form [D 930, E89 160-162]:
+/// The canonical equation form (Musgrave 1993, §2.3.2.3.1; Musgrave et al.
+/// 1989, §3.3):
 /// ```text
 /// A_0 = (N(p) + c_t)·c_s + c_0
 /// A_k = A_{k−1} + A_{k−1}·(N(λ^k p) + c_t)·c_s·w_k       (× t for a partial octave)
 /// ```
-/// Erratum 4 of spec §10: the pseudo-code (`result + min(1,result) + …`), the
-/// C code (which multiplies by the previous *increment*) and this equation are
-/// three different algorithms; the equation is implemented here and the C
+/// The dissertation's three statements of this model disagree: its
+/// pseudo-code (`result + min(1,result) + …`), its C code (which multiplies
+/// by the previous *increment*) and this equation are three different
+/// algorithms, and the C code's `SMALL` is never defined; the equation is implemented here and
+/// the C
 /// code as [`StatsByAltitudeLegacy`]. The form is multiplicative: `A_0 = 0`
 /// gives 0 everywhere, and with `(N + c_t)·c_s ≥ 0` and `A_0 > 0` the
 /// altitude never decreases with octaves.
@@ -162,8 +168,8 @@ impl<B: Field> StatsByAltitude<B> {
 
 impl_fractal_field!(StatsByAltitude);
 
-/// The dissertation's C `hfBm(point, omega, octaves)` [D 954-975], reproduced
-/// as printed, for its pictures (Plates 2.4-2.5, 4.2):
+/// The dissertation's C `hfBm(point, omega, octaves)` (Musgrave 1993,
+/// §2.3.2.3.1), reproduced as printed, for its pictures (Plates 2.4-2.5, 4.2):
 /// ```text
 /// a = prev = 0.7 + N(p);  o = ω
 /// for i = 1; i < octaves: p *= 2; prev = prev·o·(0.7 + N(p)); a += prev
@@ -172,9 +178,9 @@ impl_fractal_field!(StatsByAltitude);
 /// ```
 /// Quirks kept: λ is hard-wired to 2; each term multiplies the previous
 /// *increment* (so octave k carries `ω^(k(k+1)/2)`, a super-geometric decay);
-/// the octave count rounds up; and a negative increment ends the loop.
-/// `SMALL` is undefined in the source: [`small`](Self::small) defaults to
-/// `VERY_SMALL = 1e-4` [T 673].
+/// the octave count rounds up; and a negative increment ends the loop. `SMALL`
+/// is undefined in the source: [`small`](Self::small) defaults to `VERY_SMALL =
+/// 1e-4` (Musgrave 1998, "Gaea: Building an Entire Planet").
 #[derive(Clone, Debug, PartialEq)]
 pub struct StatsByAltitudeLegacy<B> {
     basis: B,

@@ -10,12 +10,13 @@ use crate::lanes::Simd;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CascadeForm {
-    /// Factor `(N + offset)·w_k` (Musgrave's `multifractal()`, *Texturing &
-    /// Modeling* ch. 16, outside this corpus). The default.
+    /// Factor `(N + offset)·w_k` (Musgrave's `multifractal()` listing, Musgrave
+    /// 1998b). The default.
     #[default]
     Weighted,
-    /// Factor `offset + w_k·N`: `vMultifractalFunc` [T 1041-1053] with
-    /// `offset` = `zero_offset` and the raw gain `H` ([`GainConvention::Raw`](crate::GainConvention::Raw)).
+    /// Factor `offset + w_k·N`: `vMultifractalFunc` (Musgrave 1998, "The
+    /// Multicolor Texture") with `offset` = `zero_offset` and the raw gain `H`
+    /// ([`GainConvention::Raw`](crate::GainConvention::Raw)).
     Additive,
 }
 
@@ -44,8 +45,9 @@ impl Default for MultifractalParams {
 }
 
 impl MultifractalParams {
-    /// The [T 1041-1053] `vMultifractalFunc` call of `multicolor`
-    /// [T 1068]: raw gain 0.7, λ 2, 8 octaves, zero offset 0.2, additive form.
+    /// The `vMultifractalFunc` call of `multicolor` (Musgrave 1998, "The
+    /// Multicolor Texture"): raw gain 0.7,
+    /// λ 2, 8 octaves, zero offset 0.2, additive form.
     #[must_use]
     pub fn multicolor() -> Self {
         Self {
@@ -73,8 +75,9 @@ impl MultifractalParams {
     }
 }
 
-/// A multiplicative cascade: `Π_k factor_k(N(λ^k p))` (spec §4.4), the
-/// "multifractal" in Mandelbrot's sense; its values span orders of magnitude.
+/// A multiplicative cascade: `Π_k factor_k(N(λ^k p))` (Musgrave 1998, "The
+/// Multicolor Texture", `vMultifractalFunc`), the "multifractal" in
+/// Mandelbrot's sense; its values span orders of magnitude.
 ///
 /// The partial octave contributes the factor `1 + t·(factor − 1)`, so the
 /// product is continuous in `octaves` (the printed code adds `t·N·w` instead,
@@ -99,6 +102,16 @@ impl<B: Field> Multifractal<B> {
     /// The parameters.
     pub fn params(&self) -> &MultifractalParams {
         &self.params
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
     }
 
     /// Factor of octave `k` for basis value `n`, and its derivative in `n`.

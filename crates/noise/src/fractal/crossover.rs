@@ -1,5 +1,6 @@
-//! Crossover scales: a different basis at large and small scales (spec §3.4,
-//! MojoWorld [M 616-628], descriptive only there; the blend is ours).
+//! Crossover scales: a different basis at large and small scales (MojoWorld,
+//! Musgrave 2001, "Crossover Scales", described only in words there; the blend
+//! is ours).
 
 use glam::{DVec2, DVec3};
 
@@ -8,12 +9,12 @@ use crate::field::Field;
 use crate::fractal::{Octaves, Spectral};
 
 /// fBm whose basis crosses over from `A` (large features) to `B` (small
-/// features) between two feature sizes: octave `k`, of feature size
-/// `1/f_k` (world units), uses `(1 − t_k)·A + t_k·B` with
-/// `t_k = smoothstep(ln begin, ln end, ln(1/f_k))` for `begin > end`.
-/// This is one crossover between two bases; MojoWorld allows up to three
-/// bases with begin/end scales in metres [M 620-628] (a third would be a
-/// second blend of the same form).
+/// features) between two feature sizes: octave `k`, of feature size `1/f_k`
+/// (world units), uses `(1 − t_k)·A + t_k·B` with `t_k = smoothstep(ln begin,
+/// ln end, ln(1/f_k))` for `begin > end`. This is one crossover between two
+/// bases; MojoWorld allows up to three bases with begin/end scales in metres
+/// (Musgrave 2001, "Crossover Scales") (a third would be a second blend of the
+/// same form).
 #[derive(Clone, Debug, PartialEq)]
 pub struct CrossoverFbm<A, B> {
     large: A,

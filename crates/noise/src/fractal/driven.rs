@@ -1,5 +1,6 @@
-//! "Driving parameters with functions" [M 630-636]: any fractal parameter
-//! given by a field evaluated at the same point (spec §3.3).
+//! "Driving parameters with functions" (Musgrave 2001, "Driving Function
+//! Parameters with Functions"): any fractal parameter given by a field
+//! evaluated at the same point.
 
 use alloc::sync::Arc;
 use glam::{DVec2, DVec3};
@@ -82,10 +83,11 @@ pub enum DrivenKind {
     },
 }
 
-/// A fractal whose `H`, octave count and kind-specific parameters are
-/// fields: at each point the parameters are evaluated, validated and the
-/// fractal evaluated with them. Plates 2.2-2.3 vary H across the picture
-/// [D 910-914]; MojoWorld drives "almost any parameter" this way [M 630-636].
+/// A fractal whose `H`, octave count and kind-specific parameters are fields:
+/// at each point the parameters are evaluated, validated and the fractal
+/// evaluated with them. Plates 2.2-2.3 vary H across the picture (Musgrave
+/// 1993, §2.3.2.2); MojoWorld drives "almost any parameter" this way (Musgrave
+/// 2001, "Driving Function Parameters with Functions").
 ///
 /// Constant parameters reproduce the plain fractal exactly. Where a driven
 /// parameter is invalid at a point (NaN, octaves ≤ 0, …) the value is NaN.

@@ -4,12 +4,14 @@ use glam::{DVec2, DVec3};
 
 use crate::error::Result;
 use crate::field::Field;
+#[cfg(doc)]
+use crate::fractal::MAX_OCTAVES;
 use crate::fractal::rows::octave_rows;
 use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 
-/// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and
-/// `w_k = λ^(−kH)` (spec §3.1; [D 858-908], [E89 150-160]).
+/// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and `w_k
+/// = λ^(−kH)` (Musgrave 1993, §2.3.2.1; Musgrave et al. 1989, §3.3).
 ///
 /// Math (C-H convention, fractional octaves `o = n + t`):
 /// `fBm(p) = Σ_{k<n} λ^(−kH)·N(λ^k p) + t·λ^(−nH)·N(λ^n p)`.
@@ -17,7 +19,7 @@ use crate::lanes::Simd;
 /// octave multiplies the point by `λ`); no rotation or offset between octaves,
 /// as in the sources. The weights are precomputed once ([`Octaves`]).
 /// The sources' `VERY_SMALL` early exit is not applied (it drops a tail and
-/// makes the output jump; spec §0.1 item 5).
+/// makes the output jump by up to the tail's bound).
 ///
 /// * [`bound`](Field::bound) = `B_N·Σ w_k`; Lipschitz = `L_N·Σ w_k f_k`.
 /// * Analytic gradient: `Σ w_k f_k ∇N(f_k p)`.
@@ -67,18 +69,14 @@ impl<B: Field> Fbm<B> {
 }
 
 impl<B: Field> Field for Fbm<B> {
+    #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)))
-            .sum()
+        octave_sum(&self.oct, false, |f, n| self.basis.eval2_scaled(p, f, n))
     }
 
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)))
-            .sum()
+        octave_sum(&self.oct, false, |f, n| self.basis.eval3_scaled(p, f, n))
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -160,11 +158,14 @@ fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
 
 /// Turbulence: `Σ_k w_k·|N(f_k·p)|`, fBm of the absolute basis.
 ///
-/// Called by the sources ([T 560] `turbulence(PP, fw, octaves, λ, H)`) but
-/// not defined there; this is Perlin's 1985 definition (outside the corpus),
-/// with the crate's weights and fractional octaves. Its spectrum is steeper
-/// than the naive expectation (erratum 20). Values in `[0, bound]`; the
-/// derivative jumps on the zero set of each octave (creases).
+/// Called by the sources (`turbulence(PP, fw, octaves, λ, H)` in Musgrave 1998,
+/// "Wind-Blown Waters") but not defined there; this is Perlin's definition
+/// (Perlin 1985), with the crate's weights and fractional octaves. Its spectrum
+/// is `1/f³` for amplitude `1/f`: the dissertation (Musgrave 1993, §2.3.2.1)
+/// calls that steeper than "the expected `1/f²`", but `1/f³` is exactly what
+/// amplitude `1/f` gives (`β = 2H + 1`); only the expectation was wrong. Values
+/// in `[0, bound]`; the derivative jumps on the zero set of each octave
+/// (creases).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Turbulence<B> {
     basis: B,
@@ -189,21 +190,27 @@ impl<B: Field> Turbulence<B> {
     pub fn spectral(&self) -> &Spectral {
         &self.spectral
     }
+
+    /// The basis.
+    pub fn basis(&self) -> &B {
+        &self.basis
+    }
+
+    /// The precomputed octave table.
+    pub fn octaves(&self) -> &Octaves {
+        &self.oct
+    }
 }
 
 impl<B: Field> Field for Turbulence<B> {
+    #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval2(p * o.frequency(k)).abs())
-            .sum()
+        octave_sum(&self.oct, true, |f, n| self.basis.eval2_scaled(p, f, n))
     }
 
+    #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
-        let o = &self.oct;
-        (0..o.count())
-            .map(|k| o.weight(k) * self.basis.eval3(p * o.frequency(k)).abs())
-            .sum()
+        octave_sum(&self.oct, true, |f, n| self.basis.eval3_scaled(p, f, n))
     }
 
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
@@ -249,6 +256,32 @@ impl<B: Field> Field for Turbulence<B> {
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
     }
+}
+
+/// Octaves evaluated per call of the basis's scaled evaluation (a small
+/// stack buffer: no allocation, and no zeroing of [`MAX_OCTAVES`] slots per
+/// point).
+const OCTAVE_CHUNK: usize = 8;
+
+/// `Σ_k w_k·n_k` (of `|n_k|` when `abs`) with the octave values `n_k` from
+/// `eval(frequencies, out)`, summed one term at a time from the lowest octave
+/// (the order of the plain loop, so the same bits).
+#[inline(always)]
+fn octave_sum(oct: &Octaves, abs: bool, eval: impl Fn(&[f64], &mut [f64])) -> f64 {
+    let mut sum = -0.0;
+    let mut n = [0.0; OCTAVE_CHUNK];
+    for (f, w) in oct
+        .frequencies()
+        .chunks(OCTAVE_CHUNK)
+        .zip(oct.weights().chunks(OCTAVE_CHUNK))
+    {
+        let n = &mut n[..f.len()];
+        eval(f, n);
+        for (w, &n) in w.iter().zip(n.iter()) {
+            sum += w * if abs { n.abs() } else { n };
+        }
+    }
+    sum
 }
 
 /// The sign used for one-sided derivatives of `|x|` (0 at 0).

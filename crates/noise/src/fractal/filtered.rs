@@ -1,5 +1,6 @@
 //! Band-limited fBm: octaves fade out as they approach the filter width
-//! (RenderMan `vfBm` loop with `filteredsnoise`, [T 166-170, T 223-254]).
+//! (RenderMan `vfBm` loop with `filteredsnoise`, Musgrave 1998, "Distortion for
+//! Cirrus Clouds and Global Circulation").
 
 use glam::{DVec2, DVec3};
 
@@ -8,10 +9,11 @@ use crate::field::Field;
 use crate::fractal::Spectral;
 use crate::fractal::fbm::Fbm;
 
-/// `1 − smoothstep(0.2, 0.6, w)`: the fade of [T 166-170] that "crudely
-/// antialias\[es\] snoise by fading to its average value at the Nyquist limit",
-/// for a filter width `w` in lattice units. 1 for `w ≤ 0.2`, 0 for `w ≥ 0.6`,
-/// continuous and monotone between.
+/// `1 − smoothstep(0.2, 0.6, w)`: the fade of Musgrave 1998, "Distortion for
+/// Cirrus Clouds and Global Circulation" that "crudely antialias\[es\] snoise
+/// by fading to its average value at the Nyquist limit", for a filter width `w`
+/// in lattice units. 1 for `w ≤ 0.2`, 0 for `w ≥ 0.6`, continuous and monotone
+/// between.
 #[must_use]
 pub fn filter_fade(w: f64) -> f64 {
     let t = ((w - 0.2) / 0.4).clamp(0.0, 1.0);

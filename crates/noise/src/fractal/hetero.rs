@@ -1,4 +1,4 @@
-//! Heterogeneous terrain: Musgrave's `Terrain()` [D 1017-1108].
+//! Heterogeneous terrain: Musgrave's `Terrain()` (Musgrave 1993, §2.3.2.5).
 
 use crate::error::{NoiseError, Result, bounded, magnitude};
 use crate::field::Field;
@@ -16,16 +16,16 @@ pub struct HeteroTerrainParams {
     /// `0.5·(offset + N)`. Larger offsets make more of the terrain rough
     /// (at `offset ≥ 1 + 2·threshold` it is plain fBm, scaled).
     pub offset: f64,
-    /// `c_c` of [D 1031]: the signal level at and above which higher
-    /// frequencies get full weight; below it they fade linearly to 0 at
-    /// signal 0. Smaller thresholds give rougher valleys. Must be > 0.
+    /// `c_c` of Musgrave 1993, §2.3.2.5.1: the signal level at and above
+    /// which higher frequencies get full weight; below it they fade linearly to
+    /// 0 at signal 0. Smaller thresholds give rougher valleys. Must be > 0.
     pub threshold: f64,
 }
 
 impl Default for HeteroTerrainParams {
-    /// `H = 0.8` (terrain-like, [D 762]), offset 1, threshold 0.5 (the
-    /// sources give no values for Plates 2.8-2.9; these give smooth valleys
-    /// and rough peaks).
+    /// `H = 0.8` (terrain-like, Musgrave 1993, §2.2.1.4), offset 1, threshold
+    /// 0.5 (the sources give no values for Plates 2.8-2.9; these give smooth
+    /// valleys and rough peaks).
     fn default() -> Self {
         Self {
             spectral: Spectral::default().with_h(0.8),
@@ -58,22 +58,23 @@ impl HeteroTerrainParams {
 
 /// Musgrave's large-scale heterogeneous terrain `Terrain()`: each octave is
 /// weighted by the (displaced) value of the octave below, so valleys stay
-/// smooth at all scales [D 1017-1108, spec §4.2].
+/// smooth at all scales (Musgrave 1993, §2.3.2.5).
 ///
-/// Follows the C code [D 1060-1085], with signed noise:
+/// Follows the C code (Musgrave 1993, §2.3.2.5.1), with signed noise:
 /// ```text
 /// signal = result = 0.5·(offset + N(p))
 /// for octave k ≥ 1: weight = clamp(signal/threshold, 0, 1)
 ///                   signal = weight·0.5·(offset + N(λ^k p))
 ///                   result += λ^(−kH)·signal          (× t for a partial octave)
 /// ```
-/// Erratum 5 of spec §10: the printed equation's `F(v)` cases are inverted
-/// relative to the code and the intent, and it writes `f^β` for the code's
-/// `f^−H`; the code is followed. The weights cascade (signal contains the
-/// previous weight), so once a signal is ≤ 0 every later octave is 0
-/// ("once the terrain has become smooth locally, it will never get any
-/// rougher", [D 2659]). The `VERY_SMALL` early exit is not applied.
-/// With the ridged basis ([`Ridged`](crate::Ridged)) it gives "Hell" (Plate 2.9).
+/// The dissertation's printed equation has the two cases of `F(v)` inverted
+/// relative to its code and its stated intent, and it writes `f^β` for the
+/// code's `f^−H`; the code is followed. The weights cascade (signal contains
+/// the previous weight), so once a signal is ≤ 0 every later octave is 0 ("once
+/// the terrain has become smooth locally, it will never get any rougher",
+/// Musgrave 1993, §6.2.1.1). The `VERY_SMALL` early exit is not applied. With
+/// the ridged basis ([`Ridged`](crate::Ridged)) it gives "Hell" (Musgrave 1993,
+/// Plate 2.9).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeteroTerrain<B> {
     basis: B,

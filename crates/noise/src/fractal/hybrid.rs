@@ -1,4 +1,4 @@
-//! Hybrid multifractal (Musgrave, *Texturing & Modeling* ch. 16).
+//! Hybrid multifractal (Musgrave 1998b).
 
 use crate::error::{Result, bounded, magnitude};
 use crate::field::Field;
@@ -18,8 +18,8 @@ pub struct HybridParams {
 }
 
 impl Default for HybridParams {
-    /// `H = 0.25`, offset 0.7, 8 octaves: the published defaults of the
-    /// hybrid multifractal (outside this corpus; spec §4.2).
+    /// `H = 0.25`, offset 0.7, 8 octaves: the published defaults of the hybrid
+    /// multifractal (Musgrave 1998b).
     fn default() -> Self {
         Self {
             spectral: Spectral::default().with_h(0.25),
@@ -44,11 +44,11 @@ impl HybridParams {
 /// Hybrid multifractal: "additive/multiplicative" — each octave is added,
 /// weighted by the running product of earlier signals (capped at 1), so low
 /// areas are smooth and high areas rough. MojoWorld's "multifractal" (formerly
-/// "hybrid multifractal"), its "first choice for terrains on a planetary
-/// scale" [M 563-577].
+/// "hybrid multifractal"), its "first choice for terrains on a planetary scale"
+/// (Musgrave 2001, "The Heterofractal Function" and "The Multifractal
+/// Function").
 ///
-/// The code is not in this corpus (spec §4.2): it follows Musgrave's
-/// `HybridMultifractal()` in *Texturing & Modeling*, 2nd ed., ch. 16:
+/// It follows Musgrave's `HybridMultifractal()` listing (Musgrave 1998b):
 /// ```text
 /// result = (N(p) + offset)·w_0;  weight = result
 /// for octave k ≥ 1: weight = min(weight, 1)

@@ -4,26 +4,31 @@
 //! exponent `H`, the lacunarity `λ`, a real-valued octave count and a base
 //! frequency, with the per-octave weights precomputed once ([`Octaves`]).
 //!
-//! **Amplitude convention** (spec §1.3). The canonical convention is the
-//! sources' C code: octave `k` (counting from 0) has amplitude `λ^(−kH)`
-//! ([D 883-900], [D 1060-1085]), which gives a power spectrum `∝ f^−(2H+1)`,
-//! i.e. `β = 2H + 1`. The two other conventions in the sources are available
-//! through [`GainConvention`] to reproduce their pictures: `HalfBeta`
-//! (`ϖ = λ^−(H+½)`, the equations [D 864, E89 160-162] and `PLANET`) and `Raw`
-//! (a gain `ω` passed directly, `VLfBm`/`VfBm`/`MVfBm`, RenderMan `vfBm`).
-//! The pseudo-code's off-by-one `pow(r, −H·octave)` starting at octave 2
-//! (erratum 1) is not reproduced: the first octave has amplitude 1.
+//! **Amplitude convention.** The sources use three. The canonical one here is
+//! the sources' C code: octave `k` (counting from 0) has amplitude `λ^(−kH)`
+//! (Musgrave 1993, §2.3.2.1 and §2.3.2.5.1), which gives a power spectrum `∝
+//! f^−(2H+1)`, i.e. `β = 2H + 1`. The two others are available through
+//! [`GainConvention`] to reproduce their pictures: `HalfBeta` (`ϖ = λ^−(H+½)`,
+//! the equations of Musgrave 1993, §2.3.2.1, and Musgrave et al. 1989, §3.3,
+//! and `PLANET`) and `Raw` (a gain `ω` passed directly, `VLfBm`/`VfBm`/`MVfBm`,
+//! RenderMan `vfBm`). The dissertation's pseudo-code computes the amplitude as
+//! `pow(r, −H·octave)` starting from octave 2, an off-by-one against its own C
+//! code; that is not reproduced: the first octave has amplitude 1.
 //!
-//! **Fractional octaves** [D 883-900, 1060-1085]: with `octaves = n + t`, the
-//! partial octave `n` enters with its amplitude scaled by `t`, so every fractal
-//! is continuous (piecewise linear for fBm) in `octaves`.
+//! **Fractional octaves** (Musgrave 1993, §2.3.2.1 and §2.3.2.5.1): with
+//! `octaves = n + t`, the partial octave `n` enters with its amplitude scaled
+//! by `t`, so every fractal is continuous (piecewise linear for fBm) in
+//! `octaves`.
 //!
-//! **Lacunarity**: the default is MojoWorld's `e − ½ ≈ 2.218` [M 413-419]. With
-//! an integer lacunarity and gradient noise every octave vanishes on the
-//! integer lattice, so fBm is identically 0 there (spec §0.1 item 3); the
-//! non-integer default avoids that coincidence.
+//! **Lacunarity**: the default is MojoWorld's `e − ½ ≈ 2.218` (Musgrave 2001,
+//! "Lacunarity: The Gap Between Successive Frequencies"). With an integer
+//! lacunarity and gradient noise every octave vanishes on the integer lattice,
+//! so fBm is identically 0 there (our observation; the sources' misregistration
+//! offsets have the same cause); the non-integer default avoids that
+//! coincidence.
 
 pub mod altitude;
+mod band;
 pub mod cascade;
 pub mod crossover;
 #[cfg(feature = "alloc")]
@@ -34,6 +39,7 @@ pub mod hetero;
 pub mod hybrid;
 pub mod ridged;
 pub(crate) mod rows;
+pub mod vector_multifractal;
 
 use crate::error::{NoiseError, Result, finite, in_range};
 
@@ -50,7 +56,8 @@ pub const MAX_BOUND: f64 = 1e30;
 /// lattice cell finely (≈ 2⁻²⁰ of a cell at 2³²).
 pub const MAX_FREQUENCY_RATIO: f64 = 4_294_967_296.0;
 
-/// How the per-octave amplitude follows from the `h` parameter (spec §1.3).
+/// How the per-octave amplitude follows from the `h` parameter (see the
+/// module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GainConvention {
@@ -68,17 +75,18 @@ pub enum GainConvention {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Spectral {
-    /// Spectral exponent `H` (Hölder exponent; `D_f = D_E + 1 − H`, [D 752]),
-    /// or the raw gain `ω` under [`GainConvention::Raw`]. Larger `H` gives
-    /// smoother results (less high-frequency amplitude). Any finite value;
-    /// `ω` must be positive.
+    /// Spectral exponent `H` (Hölder exponent; `D_f = D_E + 1 − H`, Musgrave
+    /// 1993, §2.2.1.4), or the raw gain `ω` under [`GainConvention::Raw`].
+    /// Larger `H` gives smoother results (less high-frequency amplitude). Any
+    /// finite value; `ω` must be positive.
     pub h: f64,
     /// Frequency ratio between successive octaves, `λ > 1`. Above ≈ 2 the
-    /// individual octaves start to show [M 413-419].
+    /// individual octaves start to show (Musgrave 2001, "Lacunarity: The Gap
+    /// Between Successive Frequencies").
     pub lacunarity: f64,
-    /// Number of octaves, real-valued, in `(0, 64]`; the last partial octave
-    /// is weighted by the fractional part. Fewer than 3 is not meaningfully
-    /// fractal [D 736].
+    /// Number of octaves, real-valued, in `(0, 64]`; the last partial octave is
+    /// weighted by the fractional part. Fewer than 3 is not meaningfully
+    /// fractal Musgrave 1993, §2.2.1.2.
     pub octaves: f64,
     /// Frequency of the first octave (cycles of the basis lattice per unit), `> 0`.
     pub frequency: f64,
@@ -87,7 +95,8 @@ pub struct Spectral {
 }
 
 impl Default for Spectral {
-    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 (the RenderMan defaults of [T 47], MojoWorld λ).
+    /// `H = 0.5`, `λ = e − ½`, 8 octaves, frequency 1 (the RenderMan defaults
+    /// of Musgrave 1998, "Puffy Clouds", MojoWorld λ).
     fn default() -> Self {
         Self {
             h: 0.5,
@@ -99,8 +108,9 @@ impl Default for Spectral {
     }
 }
 
-/// MojoWorld's default lacunarity `e − ½` [M 417-419]: not an integer, so
-/// octave lattices never coincide.
+/// MojoWorld's default lacunarity `e − ½` (Musgrave 2001, "Lacunarity: The Gap
+/// Between Successive Frequencies"): not an integer, so octave lattices never
+/// coincide.
 pub const DEFAULT_LACUNARITY: f64 = core::f64::consts::E - 0.5;
 
 impl Spectral {
@@ -215,6 +225,8 @@ impl Spectral {
 pub struct Octaves {
     freq: [f64; MAX_OCTAVES],
     amp: [f64; MAX_OCTAVES],
+    /// `amp[k]` times the partial factor of octave `k`.
+    weight: [f64; MAX_OCTAVES],
     count: usize,
     fraction: f64,
 }
@@ -238,12 +250,17 @@ impl Octaves {
             };
             f *= s.lacunarity;
         }
-        Self {
+        let mut o = Self {
             freq,
             amp,
+            weight: [0.0; MAX_OCTAVES],
             count,
             fraction,
+        };
+        for k in 0..count {
+            o.weight[k] = o.amp[k] * o.partial(k);
         }
+        o
     }
 
     /// Number of octaves evaluated (the partial one included).
@@ -277,8 +294,23 @@ impl Octaves {
 
     /// Amplitude × partial factor of octave `k`: the fBm weight.
     #[must_use]
+    #[inline]
     pub fn weight(&self, k: usize) -> f64 {
-        self.amp[k] * self.partial(k)
+        self.weight[k]
+    }
+
+    /// The frequencies of the octaves evaluated, lowest first.
+    #[must_use]
+    #[inline]
+    pub fn frequencies(&self) -> &[f64] {
+        &self.freq[..self.count]
+    }
+
+    /// The weights (amplitude × partial factor) of the octaves evaluated.
+    #[must_use]
+    #[inline]
+    pub fn weights(&self) -> &[f64] {
+        &self.weight[..self.count]
     }
 
     /// `Σ_k weight(k)`.

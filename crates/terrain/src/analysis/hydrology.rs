@@ -2,7 +2,7 @@
 //! drainage-network extraction, Strahler order and the topographic wetness
 //! index. Depressions are handled first (see [`super::flow`]) so flow reaches
 //! the grid edge, as the "rain-water flow" moisture map of TerEdit needs
-//! (SIM:L4516-4520).
+//! (Deussen et al. 1998, §4.2).
 
 use natura_core::{Grid2, HeightField};
 
@@ -27,6 +27,12 @@ fn d8_code(dx: i64, dy: i64) -> u8 {
 
 /// D8 flow direction of every cell as ESRI codes (north = +y; 0 for edge outlets).
 /// Depressions are routed (`Route`) or filled (`Fill`) first, or kept.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated. A NaN or infinite height is
+/// [`TerrainError::Core`](crate::TerrainError::Core) naming the cell.
 pub fn d8_directions(hf: &HeightField, depressions: Depressions) -> Result<Grid2<u8>> {
     let (g, _) = graph(hf, depressions)?;
     let nx = hf.nx();
@@ -40,11 +46,17 @@ pub fn d8_directions(hf: &HeightField, depressions: Depressions) -> Result<Grid2
 fn graph(hf: &HeightField, depressions: Depressions) -> Result<(FlowGraph, Vec<f32>)> {
     hf.check_finite()?;
     let mut h = hf.heights().as_slice().to_vec();
-    let g = FlowGraph::build(&mut h, hf.nx(), hf.ny(), depressions);
+    let g = FlowGraph::build(&mut h, hf.nx(), hf.ny(), depressions)?;
     Ok((g, h))
 }
 
 /// D8 flow accumulation: drainage area of every cell, m² (the cell itself included).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated. A NaN or infinite height is
+/// [`TerrainError::Core`](crate::TerrainError::Core) naming the cell.
 pub fn flow_accumulation_d8(hf: &HeightField, depressions: Depressions) -> Result<Grid2<f32>> {
     let (g, _) = graph(hf, depressions)?;
     let a = f32::powi(hf.cell_size(), 2);
@@ -59,6 +71,13 @@ pub fn flow_accumulation_d8(hf: &HeightField, depressions: Depressions) -> Resul
 /// each cell passes its area to all lower neighbours in proportion to
 /// `slope^exponent` (Freeman recommends 1.1). Depressions are filled first;
 /// edge cells are outlets. Area in m².
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated. A NaN or infinite height is
+/// [`TerrainError::Core`](crate::TerrainError::Core) naming the cell; an exponent outside (0, 100] is
+/// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter).
 pub fn flow_accumulation_mfd(hf: &HeightField, exponent: f64) -> Result<Grid2<f32>> {
     if !(exponent.is_finite() && exponent > 0.0 && exponent <= 100.0) {
         return Err(invalid("exponent", exponent, "must lie in (0, 100]"));
@@ -103,6 +122,11 @@ pub fn flow_accumulation_mfd(hf: &HeightField, exponent: f64) -> Result<Grid2<f3
 }
 
 /// Channel mask: cells whose drainage area is at least `threshold_m2`.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) unless the
+/// threshold is finite and positive, and [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
 pub fn channel_network(area: &Grid2<f32>, threshold_m2: f32) -> Result<Grid2<bool>> {
     if !(threshold_m2.is_finite() && threshold_m2 > 0.0) {
         return Err(invalid(
@@ -116,6 +140,11 @@ pub fn channel_network(area: &Grid2<f32>, threshold_m2: f32) -> Result<Grid2<boo
 
 /// Strahler stream order of the D8 channel network (cells with drainage area
 /// ≥ `threshold_m2`; 0 off the network). Depressions are routed first.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn strahler_order(hf: &HeightField, threshold_m2: f32) -> Result<Grid2<u8>> {
     if !(threshold_m2.is_finite() && threshold_m2 > 0.0) {
         return Err(invalid(
@@ -157,6 +186,11 @@ pub fn strahler_order(hf: &HeightField, threshold_m2: f32) -> Result<Grid2<u8>> 
 /// Topographic wetness index `ln(a / tan β)` (Beven & Kirkby 1979), with `a`
 /// the drainage area per unit contour width (area / cell size) and `β` the
 /// local slope, floored at `tan β = 10⁻³` so flats stay finite.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `area` is not the field's size, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
 pub fn wetness_index(hf: &HeightField, area: &Grid2<f32>) -> Result<Grid2<f32>> {
     crate::error::same_size("area", area, hf.nx(), hf.ny())?;
     let c = hf.cell_size();

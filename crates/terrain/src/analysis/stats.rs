@@ -1,5 +1,5 @@
 //! Hypsometry and fractal statistics: the radially averaged power spectrum
-//! and its log-log slope (`−(2H + 2)` for an fBm surface, MKM:L97-115) and the
+//! and its log-log slope (`−(2H + 2)` for an fBm surface, Musgrave et al. 1989, §3.1) and the
 //! variogram `γ(r) = E[(z(x + r) − z(x))²] ∝ r^(2H)`.
 
 use natura_core::HeightField;
@@ -9,6 +9,11 @@ use crate::fft;
 
 /// The hypsometric curve: `bins + 1` points `(relative height, fraction of area
 /// at or above it)`, relative height 0 at the lowest sample and 1 at the highest.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn hypsometric_curve(hf: &HeightField, bins: usize) -> Result<Vec<(f64, f64)>> {
     if bins == 0 || bins > 1_000_000 {
         return Err(invalid("bins", bins, "must lie in [1, 1e6]"));
@@ -33,6 +38,11 @@ pub fn hypsometric_curve(hf: &HeightField, bins: usize) -> Result<Vec<(f64, f64)
 
 /// The hypsometric integral `(mean − min) / (max − min)` (Strahler 1952): high for
 /// young uplands, low for old eroded terrain. 0 for a flat field.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn hypsometric_integral(hf: &HeightField) -> Result<f64> {
     hf.check_finite()?;
     let (lo, hi) = hf.min_max();
@@ -55,6 +65,11 @@ pub struct RadialSpectrum {
 impl RadialSpectrum {
     /// Least-squares slope of `log P` against `log |k|` over rings with
     /// `lo ≤ |k| ≤ hi`. Needs at least two rings in the band.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+    /// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
     pub fn slope(&self, lo: f64, hi: f64) -> Result<f64> {
         let pts: Vec<(f64, f64)> = self
             .frequency
@@ -92,6 +107,11 @@ pub(crate) fn fit_slope(pts: &[(f64, f64)]) -> Option<f64> {
 /// The radially averaged periodogram of `hf` (mean removed). With `window`, a
 /// separable Hann window is applied first, for non-periodic fields (it
 /// suppresses the edge discontinuity's `f^(−2)` leakage). Needs ≥ 4 × 4 samples.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn radial_power_spectrum(hf: &HeightField, window: bool) -> Result<RadialSpectrum> {
     min_size("radial_power_spectrum", hf.nx(), hf.ny(), 4, 4)?;
     hf.check_finite()?;
@@ -144,6 +164,13 @@ pub fn radial_power_spectrum(hf: &HeightField, window: bool) -> Result<RadialSpe
 
 /// Estimates `H` from the radially averaged spectrum slope over `[lo, hi]`
 /// cycles per tile: slope `= −(2H + 2)`, so `H = −slope/2 − 1`.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
+/// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) if the fitting range is empty or
+/// holds too few points for a slope.
 pub fn spectral_h(hf: &HeightField, window: bool, lo: f64, hi: f64) -> Result<f64> {
     let s = radial_power_spectrum(hf, window)?.slope(lo, hi)?;
     Ok(-s / 2.0 - 1.0)
@@ -151,6 +178,11 @@ pub fn spectral_h(hf: &HeightField, window: bool, lo: f64, hi: f64) -> Result<f6
 
 /// The variogram along the grid axes: `(lag in metres, γ)` for lags `1..=max_lag`
 /// cells, averaging x and y increments.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn variogram(hf: &HeightField, max_lag: usize) -> Result<Vec<(f64, f64)>> {
     hf.check_finite()?;
     let (nx, ny) = (hf.nx(), hf.ny());
@@ -189,6 +221,13 @@ pub fn variogram(hf: &HeightField, max_lag: usize) -> Result<Vec<(f64, f64)>> {
 
 /// Estimates `H` as half the log-log slope of the variogram between lags
 /// `lo..=hi` cells.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
+/// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) if the lag range is empty or
+/// holds too few points for a slope.
 pub fn variogram_h(hf: &HeightField, lo: usize, hi: usize) -> Result<f64> {
     if lo == 0 || hi <= lo {
         return Err(invalid("lags", format!("{lo}..={hi}"), "need 1 ≤ lo < hi"));

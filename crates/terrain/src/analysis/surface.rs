@@ -7,6 +7,11 @@ use crate::error::Result;
 use crate::par;
 
 /// Slope angle at every sample, radians in `[0, π/2)` (central differences).
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn slope(hf: &HeightField) -> Result<Grid2<f32>> {
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
@@ -34,6 +39,11 @@ pub struct Curvature {
 }
 
 /// Profile, plan and Laplacian curvature at every sample. Needs at least 3 × 3 samples.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is too small for the method, and
+/// [`TerrainError::Core`](crate::TerrainError::Core) if a result grid cannot be allocated.
 pub fn curvature(hf: &HeightField) -> Result<Curvature> {
     crate::error::min_size("curvature", hf.nx(), hf.ny(), 3, 3)?;
     let (nx, ny) = (hf.nx(), hf.ny());

@@ -1,9 +1,9 @@
-//! Diffusive erosion ("dry creep", DIS:L1174-1184): bioturbation and rain splash
+//! Diffusive erosion ("dry creep", Musgrave 1993, §2.4.3): bioturbation and rain splash
 //! move material to neighbours regardless of slope direction — a progressive
 //! low-pass filter, the explicit (FTCS) heat equation
 //! `a_u(t+1) = a_u(t) + c_d · Σ_{v∈N(u)} (a_v(t) − a_u(t))`.
 //!
-//! **Erratum.** DIS:L1178 prints `a^u_{t+1} = c_d(a^v_t − a^u_t)`, omitting the
+//! **Erratum.** Musgrave 1993, §2.4.3 prints `a^u_{t+1} = c_d(a^v_t − a^u_t)`, omitting the
 //! `a^u_t +` term (as printed, every step would replace the terrain by a
 //! difference). Its wording "as a function of local slope … without regard to
 //! local slope" means a symmetric exchange, which is what we implement.
@@ -19,6 +19,7 @@ use crate::par;
 
 /// Parameters of [`Diffusion`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DiffusionParams {
     /// Diffusion coefficient per step `c_d` (= κ·Δt / Δx²), in `(0, 1/neighbours]`.
     pub rate: f64,
@@ -40,6 +41,11 @@ impl Default for DiffusionParams {
 
 impl DiffusionParams {
     /// Refuses a rate outside `(0, 1/neighbours]` and open edges.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let limit = 1.0 / self.neighbourhood.count() as f64;
         if !(self.rate > 0.0 && self.rate <= limit) {
@@ -72,6 +78,13 @@ pub struct Diffusion {
 
 impl Diffusion {
     /// A model for fields the size of `hf` (at least 3 × 3, finite).
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: DiffusionParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("diffusion", hf)?;
@@ -85,6 +98,11 @@ impl Diffusion {
     }
 
     /// Scales the exchange between two cells by the smaller of their erodibilities.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.rate * self.p.neighbourhood.count() as f64 > 1.0 {
@@ -99,6 +117,12 @@ impl Diffusion {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("diffusion", hf, self.nx, self.ny)?;
         progress.start("diffusion", u64::from(steps));
@@ -111,6 +135,10 @@ impl Diffusion {
     }
 
     /// One synchronous step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("diffusion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

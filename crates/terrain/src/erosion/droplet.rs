@@ -43,6 +43,7 @@ use crate::par;
 
 /// Parameters of [`DropletErosion`]; defaults are Beyer's (2015).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DropletParams {
     /// Inertia `∈ [0, 1)`: 0 follows the gradient, near 1 keeps going straight. Default 0.05.
     pub inertia: f64,
@@ -93,6 +94,11 @@ impl Default for DropletParams {
 
 impl DropletParams {
     /// Checks every field's range (see the field docs).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.inertia >= 0.0 && self.inertia < 1.0) {
             return Err(invalid(
@@ -160,6 +166,13 @@ pub struct DropletErosion {
 impl DropletErosion {
     /// A model for fields the size of `hf`; droplet `k` starts at a position
     /// indexed by `(seed, k)`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: DropletParams, hf: &HeightField, seed: Seed) -> Result<Self> {
         p.validate()?;
         check_model_size("droplet erosion", hf)?;
@@ -188,6 +201,11 @@ impl DropletErosion {
     }
 
     /// Scales erosion per cell.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         self.erodibility = Some(e);
@@ -195,6 +213,10 @@ impl DropletErosion {
     }
 
     /// Net height change from droplets so far (positive: deposition), metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn deposition(&self) -> Result<Grid2<f32>> {
         Ok(Grid2::from_vec(self.nx, self.ny, self.deposition.clone())?)
     }
@@ -206,6 +228,12 @@ impl DropletErosion {
     }
 
     /// Simulates `droplets` more droplets.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(
         &mut self,
         hf: &mut HeightField,

@@ -1,5 +1,5 @@
 //! Musgrave–Kolb–Mace hydraulic (fluvial) erosion, corrected to conserve mass
-//! (MKM:L204-256, DIS:L1118-1160).
+//! (Musgrave et al. 1989, §4.1, Musgrave 1993, §2.4.1).
 //!
 //! Each cell carries altitude `a`, water `w` and suspended sediment `s`. Water
 //! moves to neighbours whose water *surface* `a + w` is lower; moving water of
@@ -8,19 +8,19 @@
 //!
 //! **Errata corrected (all decided once, here):**
 //! 1. Over capacity, deposition lands at `v`, the cell the water leaves
-//!    (DIS:L1138 and both texts' prose), not at `u` as MKM:L230 prints.
-//! 2. Erosion *lowers* `v`: `a_v ← a_v − K_s(C_s − s_v)`. MKM:L238 lowers `u`,
-//!    DIS:L1142 *raises* `v` (creating material). With our choice every branch
+//!    (Musgrave 1993, §2.4.1 and both texts' prose), not at `u` as Musgrave et al. 1989, §4.1 prints.
+//! 2. Erosion *lowers* `v`: `a_v ← a_v − K_s(C_s − s_v)`. Musgrave et al. 1989, §4.1 lowers `u`,
+//!    Musgrave 1993, §2.4.1 *raises* `v` (creating material). With our choice every branch
 //!    conserves `a + s` exactly: settle `K_d s + (1−K_d)s = s`; over capacity
 //!    `C_s + K_d(s−C_s) + (1−K_d)(s−C_s) = s`; erosion `−e + s + e = s`.
 //! 3. The printed `Δw = min(w_v, (w_v + a_v) − (w_u + a_u))` moves the *whole*
 //!    surface difference, which for two cells **swaps** their levels instead of
 //!    equalising them, so water sloshes back and forth — a likely source of the
-//!    instability the author reports (DIS:L1148). We move
+//!    instability the author reports (Musgrave 1993, §2.4.1). We move
 //!    `ΔW = min(w_v, transfer · max_u d_u)` with `transfer = ½` by default
 //!    (equalising); `transfer = 1` is the printed rule.
 //! 4. The 2-D split, unspecified beyond "proportional to their respective
-//!    differences in overall elevation" (MKM:L244): `ΔW` and the sediment sent
+//!    differences in overall elevation" (Musgrave et al. 1989, §4.1): `ΔW` and the sediment sent
 //!    are split among all lower neighbours in proportion to their surface
 //!    drops `d_u`, computed from the state at time `t` (Jacobi, gather form), so
 //!    the result is independent of visiting order and thread count.
@@ -29,10 +29,10 @@
 //! 6. Optional guard (default on, our stabilisation): erosion at `v` never digs
 //!    below the bed of the lowest receiving neighbour.
 //!
-//! Rain (MKM:L250-256, L364): every `rain_period` = 65 steps, `0.001·a` of water
+//! Rain (Musgrave et al. 1989, §4.1): every `rain_period` = 65 steps, `0.001·a` of water
 //! on every cell (altitude-proportional: the adiabatic effect), clamped at 0
-//! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (MKM:L364,
-//! DIS:L1152).
+//! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (Musgrave et al. 1989, Plate 9;
+//! Musgrave 1993, §2.4.1).
 
 use natura_core::{Grid2, HeightField, Progress};
 
@@ -42,13 +42,14 @@ use crate::par;
 
 /// How much rain falls on a cell when it rains.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum RainLaw {
     /// The same depth everywhere, metres.
     Uniform {
         /// Depth of water added, metres.
         depth_m: f64,
     },
-    /// `base_m + k · max(a, 0)`: linear in altitude (MKM:L252; Plate 9 uses `k = 0.001`, base 0).
+    /// `base_m + k · max(a, 0)`: linear in altitude (Musgrave et al. 1989, §4.1; Plate 9 uses `k = 0.001`, base 0).
     AltitudeLinear {
         /// Water per metre of altitude.
         k: f64,
@@ -89,6 +90,7 @@ impl RainLaw {
 
 /// Parameters of [`MusgraveHydraulic`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MusgraveParams {
     /// Sediment capacity constant `K_c` (sediment per unit of moving water). Default 5.
     pub k_c: f64,
@@ -135,6 +137,11 @@ impl Default for MusgraveParams {
 
 impl MusgraveParams {
     /// `K_c ≥ 0` (≤ 1000), `K_d, K_s ∈ [0, 1]`, `transfer ∈ (0, 1]`, `evaporation ∈ [0, 1]`, a valid rain law.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         non_negative("MusgraveParams::k_c", self.k_c)?;
         in_range("MusgraveParams::k_c", self.k_c, 0.0, 1000.0)?;
@@ -192,6 +199,13 @@ pub struct MusgraveHydraulic {
 
 impl MusgraveHydraulic {
     /// A dry model (no water, no sediment) for fields the size of `hf`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: MusgraveParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("hydraulic erosion", hf)?;
@@ -220,6 +234,11 @@ impl MusgraveHydraulic {
     }
 
     /// Scales the softness `K_s` per cell.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.k_s > 1.0 {
@@ -230,6 +249,12 @@ impl MusgraveHydraulic {
     }
 
     /// Sets the initial water depth (e.g. a flood); refuses negative or non-finite depths.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `water` is not the field's size, and
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) or [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) for a
+    /// negative or non-finite depth.
     pub fn set_water(&mut self, water: Grid2<f32>) -> Result<()> {
         crate::error::same_size("water", &water, self.nx, self.ny)?;
         crate::error::check_grid("water", &water)?;
@@ -270,6 +295,12 @@ impl MusgraveHydraulic {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("hydraulic erosion", hf, self.nx, self.ny)?;
         progress.start("hydraulic", u64::from(steps));
@@ -282,6 +313,10 @@ impl MusgraveHydraulic {
     }
 
     /// One step: rain (on schedule), transport, evaporation.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("hydraulic erosion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

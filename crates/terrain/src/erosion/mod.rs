@@ -1,11 +1,11 @@
 //! Erosion: the second pass over a stored height field that carves drainage
-//! networks, talus slopes and rounded hills (MKM:L75-85, DIS:L1108-1116).
+//! networks, talus slopes and rounded hills (Musgrave et al. 1989, §2.2, Musgrave 1993, §2.4).
 //!
 //! | model | module | source |
 //! |---|---|---|
-//! | hydraulic (fluvial), corrected and mass-conserving | [`hydraulic`] | MKM:L204-256, DIS:L1118-1160 |
-//! | thermal weathering with a talus angle | [`thermal`] | MKM:L258-266, DIS:L1162-1172 |
-//! | diffusive creep | [`diffusion`] | DIS:L1174-1184 |
+//! | hydraulic (fluvial), corrected and mass-conserving | [`hydraulic`] | Musgrave et al. 1989, §4.1, Musgrave 1993, §2.4.1 |
+//! | thermal weathering with a talus angle | [`thermal`] | Musgrave et al. 1989, §4.2, Musgrave 1993, §2.4.2 |
+//! | diffusive creep | [`diffusion`] | Musgrave 1993, §2.4.3 |
 //! | virtual-pipe shallow water | [`pipe`] | Mei, Decaudin & Hu 2007 |
 //! | particle (droplet) | [`droplet`] | Beyer 2015 |
 //! | stream power with uplift | [`stream_power`] | Braun & Willett 2013 |
@@ -15,7 +15,7 @@
 //! `step` and a `run(…, &dyn Progress)`. Grid models update synchronously
 //! (Jacobi, double-buffered, gather form), so results are bit-identical on any
 //! number of threads. An optional [`Erodibility`] map (e.g. rock strata from
-//! [`Erodibility::strata`]) scales how easily each cell erodes (DIS:L1190).
+//! [`Erodibility::strata`]) scales how easily each cell erodes (Musgrave 1993, §2.4.4).
 
 pub mod diffusion;
 pub mod droplet;
@@ -37,6 +37,7 @@ pub use thermal::{Thermal, ThermalParams};
 
 /// Which neighbours a grid cell exchanges material with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Neighbourhood {
     /// The 4 axial neighbours (distance 1 cell).
     Four,
@@ -76,6 +77,7 @@ impl Neighbourhood {
 
 /// What lies beyond the edge of the grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Edges {
     /// Nothing: no exchange across the edge (material is conserved).
     Closed,
@@ -118,7 +120,7 @@ impl Edges {
 /// A per-cell erodibility multiplier (≥ 0, finite): 1 is the model's nominal
 /// rate, 0 unerodible rock, 2 twice as soft. Models multiply their rate
 /// constants (thermal `talus_rate`, hydraulic softness, stream-power `K`,
-/// droplet erosion) by it — the "hardness map" of DIS:L1190.
+/// droplet erosion) by it — the "hardness map" of Musgrave 1993, §2.4.4.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Erodibility {
     map: Grid2<f32>,
@@ -127,6 +129,11 @@ pub struct Erodibility {
 
 impl Erodibility {
     /// Wraps a grid of multipliers; refuses NaN, infinite or negative values (naming the cell).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::NonFinite`] or [`TerrainError::InvalidParameter`]
+    /// naming the first cell whose multiplier is NaN, infinite or negative.
     pub fn new(map: Grid2<f32>) -> Result<Self> {
         check_grid("erodibility", &map)?;
         if let Some((x, y, &v)) = map.find(|&v| v < 0.0) {
@@ -140,10 +147,18 @@ impl Erodibility {
         Ok(Self { map, max })
     }
 
-    /// Rock strata (TEX:L579-636, DIS:L1190): horizontal beds `bed_m` metres thick
+    /// Rock strata (Musgrave 1998, Musgrave 1993, §2.4.4): horizontal beds `bed_m` metres thick
     /// alternating between `soft` and `hard` multipliers with a smooth
     /// transition, indexed by the cell's altitude in `hf` plus an optional
     /// perturbation field (metres, e.g. fBm) that warps the beds.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] for a non-positive or non-finite
+    /// bed thickness or a negative or non-finite hardness,
+    /// [`TerrainError::SizeMismatch`] or [`TerrainError::NonFinite`] for a warp grid
+    /// of the wrong size or with a NaN, and [`TerrainError::Core`] if the map
+    /// cannot be allocated.
     pub fn strata(
         hf: &HeightField,
         bed_m: f32,
@@ -197,13 +212,37 @@ pub(crate) fn check_field(
         });
     }
     let _ = method;
-    Ok(hf.check_finite()?)
+    check_heights(hf)
+}
+
+/// Largest height magnitude the erosion models accept, metres (1000 km; f32
+/// still resolves 6 cm there). Beyond it their squared slopes and fluxes leave
+/// f32's range and the result would be NaN.
+pub const MAX_HEIGHT: f32 = 1e6;
+
+/// Checks every height is finite and within ±[`MAX_HEIGHT`], naming the first
+/// one that is not.
+pub(crate) fn check_heights(hf: &HeightField) -> Result<()> {
+    match hf
+        .heights()
+        .find(|v| !v.is_finite() || v.abs() > MAX_HEIGHT)
+    {
+        None => Ok(()),
+        Some((x, y, &value)) if !value.is_finite() => {
+            Err(natura_core::CoreError::NonFinite { x, y, value }.into())
+        }
+        Some((x, y, &value)) => Err(TerrainError::InvalidParameter {
+            name: "height",
+            value: format!("{value} at ({x}, {y})"),
+            reason: "erosion needs heights within ±1e6 m".into(),
+        }),
+    }
 }
 
 /// Checks the size of a new grid model: at least 3 × 3 samples.
 pub(crate) fn check_model_size(method: &'static str, hf: &HeightField) -> Result<()> {
     min_size(method, hf.nx(), hf.ny(), 3, 3)?;
-    Ok(hf.check_finite()?)
+    check_heights(hf)
 }
 
 /// Checks an optional erodibility map against the field size.

@@ -1,8 +1,8 @@
 //! Virtual-pipe shallow-water hydraulic erosion (Mei, Decaudin & Hu 2007,
 //! "Fast Hydraulic Erosion Simulation and Visualization on GPU"; the pipe model
-//! is O'Brien & Hodgins 1995). Not in the seed documents: spec `terrain.md`
-//! §7.2 names it as the stable successor of MKM's scheme (§3.1) and it keeps
-//! MKM's `K_c / K_s / K_d` naming.
+//! is O'Brien & Hodgins 1995). Not in Musgrave's texts: it is the stable
+//! successor of the hydraulic scheme of Musgrave et al. 1989, §4.1, and keeps
+//! its `K_c / K_s / K_d` naming.
 //!
 //! Per step (`l` = cell size, `A` = pipe cross-section, `g` = gravity):
 //! 1. rain: `d₁ = d + Δt·r`;
@@ -41,6 +41,7 @@ use crate::par;
 
 /// How suspended sediment moves with the water.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SedimentTransport {
     /// Through the pipes with the water: conserves mass (default).
     Conservative,
@@ -51,6 +52,7 @@ pub enum SedimentTransport {
 
 /// Parameters of [`PipeModel`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PipeParams {
     /// Time step, seconds (> 0, ≤ 10).
     pub dt: f64,
@@ -100,6 +102,11 @@ impl Default for PipeParams {
 impl PipeParams {
     /// Refuses non-positive or huge `dt` (> 10 s), negative rates, `K_s, K_d ∉ [0, 1]`,
     /// `K_e·Δt > 1`, `min_tilt ∉ [0, 1]`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         positive("PipeParams::dt", self.dt)?;
         if self.dt > 10.0 {
@@ -183,6 +190,13 @@ const T: usize = 3;
 
 impl PipeModel {
     /// A dry model for fields the size of `hf`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: PipeParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("pipe-model erosion", hf)?;
@@ -216,6 +230,11 @@ impl PipeModel {
     }
 
     /// Scales `K_s` per cell.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         if f64::from(e.max()) * self.p.k_s > 1.0 {
@@ -242,6 +261,12 @@ impl PipeModel {
     }
 
     /// Sets the water depth (metres ≥ 0, finite).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `water` is not the field's size, and
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) or [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) for a
+    /// negative or non-finite depth.
     pub fn set_water(&mut self, water: &Grid2<f32>) -> Result<()> {
         crate::error::same_size("water", water, self.nx, self.ny)?;
         crate::error::check_grid("water", water)?;
@@ -258,11 +283,19 @@ impl PipeModel {
     }
 
     /// Water depth, metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn water(&self) -> Result<Grid2<f32>> {
         Ok(Grid2::from_vec(self.nx, self.ny, self.water.clone())?)
     }
 
     /// Suspended sediment, metres.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn sediment(&self) -> Result<Grid2<f32>> {
         Ok(Grid2::from_vec(self.nx, self.ny, self.sediment.clone())?)
     }
@@ -271,6 +304,10 @@ impl PipeModel {
     /// down), metres: the sum over the model's `run` / `step` calls of the
     /// bed's change during each call (so changes made to the field between
     /// calls, by other models, are not counted).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn deposition(&self) -> Result<Grid2<f32>> {
         Ok(Grid2::from_vec(self.nx, self.ny, self.deposit.clone())?)
     }
@@ -279,6 +316,10 @@ impl PipeModel {
     /// built [`with_velocity(true)`](Self::with_velocity) or with the
     /// semi-Lagrangian transport; otherwise an error says so. Before the
     /// first step it is zero.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grids cannot be allocated.
     pub fn velocity(&self) -> Result<(Grid2<f32>, Grid2<f32>)> {
         if !self.keeps_velocity() {
             return Err(invalid(
@@ -316,6 +357,12 @@ impl PipeModel {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("pipe-model erosion", hf, self.nx, self.ny)?;
         progress.start("pipe model", u64::from(steps));
@@ -336,6 +383,10 @@ impl PipeModel {
     }
 
     /// One step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("pipe-model erosion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

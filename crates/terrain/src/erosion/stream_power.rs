@@ -2,8 +2,8 @@
 //! per step (Braun & Willett 2013, "A very efficient O(n), implicit and parallel
 //! method to solve the stream power equation governing fluvial incision and
 //! landscape evolution", Geomorphology 180-181). Not in the seed documents:
-//! spec `terrain.md` §7.2; it realises the "orogenesis" wish of DIS:L1192 and
-//! the fractal drainage networks MKM:L77-83 and SIM:L325 call for.
+//! it realises the "orogenesis" wish of Musgrave 1993, §2.4.4 and
+//! the fractal drainage networks Musgrave et al. 1989, §2.2 and Musgrave 2001 call for.
 //!
 //! `∂z/∂t = U − K·A^m·S^n`, with `A` the drainage area (m²), `S` the slope to
 //! the steepest-descent receiver. Each step: uplift, D8 receivers, depression
@@ -28,6 +28,7 @@ use crate::par;
 
 /// Parameters of [`StreamPower`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StreamPowerParams {
     /// Erodibility `K`, in m^(1−2m)/yr for `n = 1`. Default 2·10⁻⁵.
     pub k: f64,
@@ -57,10 +58,17 @@ impl Default for StreamPowerParams {
 }
 
 impl StreamPowerParams {
-    /// `K ≥ 0`, `m ∈ [0, 2]`, `n ∈ [0.5, 4]`, `U ≥ 0` (≤ 1 m/yr), `Δt ∈ (0, 10⁷]` years,
+    /// `K ∈ [0, 1]`, `m ∈ [0, 2]`, `n ∈ [0.5, 4]`, `U ≥ 0` (≤ 1 m/yr), `Δt ∈ (0, 10⁷]` years,
     /// and `Keep` refused (rivers must reach the edge).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
-        non_negative("StreamPowerParams::k", self.k)?;
+        // K beyond 1 is five orders of magnitude past any fitted river and
+        // overflows the implicit update's K·Δt·A^m factor on large basins.
+        in_range("StreamPowerParams::k", self.k, 0.0, 1.0)?;
         in_range("StreamPowerParams::m", self.m, 0.0, 2.0)?;
         in_range("StreamPowerParams::n", self.n, 0.5, 4.0)?;
         non_negative("StreamPowerParams::uplift_m_per_yr", self.uplift_m_per_yr)?;
@@ -121,6 +129,13 @@ struct Ordered {
 
 impl StreamPower {
     /// A model for fields the size of `hf`.
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: StreamPowerParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("stream-power erosion", hf)?;
@@ -137,7 +152,12 @@ impl StreamPower {
         })
     }
 
-    /// Scales `K` per cell (rock strata, DIS:L1190).
+    /// Scales `K` per cell (rock strata, Musgrave 1993, §2.4.4).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         self.erodibility = Some(e);
@@ -145,6 +165,10 @@ impl StreamPower {
     }
 
     /// Drainage area of the last step, m² (zero before the first step).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn drainage_area(&self) -> Result<Grid2<f32>> {
         let mut a = vec![0.0f32; self.nx * self.ny];
         if let Some(g) = &self.graph {
@@ -158,6 +182,10 @@ impl StreamPower {
 
     /// Net deposition (positive, metres: depressions filled) minus erosion since the
     /// model was built, uplift excluded.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::Core`](crate::TerrainError::Core) if the grid cannot be allocated.
     pub fn deposition(&self) -> Result<Grid2<f32>> {
         let s = self
             .sediment
@@ -174,6 +202,12 @@ impl StreamPower {
     }
 
     /// Runs `steps` steps.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("stream-power erosion", hf, self.nx, self.ny)?;
         progress.start("stream power", u64::from(steps));
@@ -186,6 +220,10 @@ impl StreamPower {
     }
 
     /// One step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("stream-power erosion", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

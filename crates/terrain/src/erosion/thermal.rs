@@ -1,5 +1,5 @@
 //! Thermal weathering: material above the talus angle slides downhill
-//! (MKM:L258-266, DIS:L1162-1172, footnote DIS:L1182).
+//! (Musgrave et al. 1989, §4.2, Musgrave 1993, §2.4.2, footnote Musgrave 1993, §2.4.3).
 //!
 //! For each cell `v` and neighbour `u` at distance `d`, with altitudes of the
 //! previous step: if `a_v − a_u > T·d`, move `c_t·(a_v − a_u − T·d)` from `v`
@@ -9,16 +9,16 @@
 //! is conserved (to f32 rounding) and the result is independent of order and
 //! thread count.
 //!
-//! **Errata and choices.** MKM:L262 typesets the rule with swapped indices and
-//! *adds* to `a_v`; we use the DIS:L1168 form (the neighbour `u` gains) plus
+//! **Errata and choices.** Musgrave et al. 1989, §4.2 typesets the rule with swapped indices and
+//! *adds* to `a_v`; we use the Musgrave 1993, §2.4.2 form (the neighbour `u` gains) plus
 //! the matching loss at `v` that mass conservation requires and no source
 //! writes. `T` is compared with a height difference; we store it as an angle
 //! (radians) and compare `tan(angle)·distance`. The sources give **no value
 //! for T**: we default to 33°, mid-range of the 30–40° angle of repose of loose
-//! rubble. "Equitable distribution" (MKM:L264) is the per-neighbour rule above
+//! rubble. "Equitable distribution" (Musgrave et al. 1989, §4.2) is the per-neighbour rule above
 //! (each over-steep neighbour independently receives `c_t·excess`), which obeys a
 //! discrete maximum principle when `|N|·c_t ≤ 1` — the limit `validate` enforces.
-//! The rate is named `talus_rate`, not `c_t`, which MKM also use for the noise offset.
+//! The rate is named `talus_rate`, not `c_t`, which Musgrave et al. 1989 also use for the noise offset.
 
 use natura_core::{HeightField, Progress};
 
@@ -28,10 +28,11 @@ use crate::par;
 
 /// Parameters of [`Thermal`] weathering.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ThermalParams {
     /// Talus angle (angle of repose), radians in `[0, π/2)`. Default 33° (see module docs).
     pub talus_angle: f64,
-    /// Fraction of the excess moved per step (`c_t`). Default 0.001 (MKM Plate 9, MKM:L364).
+    /// Fraction of the excess moved per step (`c_t`). Default 0.001 (Musgrave et al. 1989, Plate 9).
     /// Must satisfy `neighbours · talus_rate · max erodibility ≤ 1`.
     pub talus_rate: f64,
     /// Neighbours exchanged with. Default 8.
@@ -54,6 +55,11 @@ impl Default for ThermalParams {
 impl ThermalParams {
     /// Refuses a talus angle outside `[0°, 90°)`, a rate outside `(0, 1/neighbours]`
     /// and open edges.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.talus_angle >= 0.0 && self.talus_angle < std::f64::consts::FRAC_PI_2) {
             return Err(invalid(
@@ -94,6 +100,13 @@ pub struct Thermal {
 
 impl Thermal {
     /// A model for fields the size of `hf` (at least 3 × 3, finite).
+    ///
+    /// # Errors
+    ///
+    /// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize) if
+    /// `hf` is smaller than 3 × 3 samples, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or
+    /// [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming `height` for a NaN, infinite or
+    /// out-of-range height (beyond ±[`MAX_HEIGHT`](crate::erosion::MAX_HEIGHT)).
     pub fn new(p: ThermalParams, hf: &HeightField) -> Result<Self> {
         p.validate()?;
         check_model_size("thermal weathering", hf)?;
@@ -108,6 +121,11 @@ impl Thermal {
     }
 
     /// Scales the rate per cell by `e` (material leaves a cell at its own rate).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
+    /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
         check_erodibility(Some(&e), self.nx, self.ny)?;
         let limit = 1.0 / (self.p.neighbourhood.count() as f64 * self.p.talus_rate);
@@ -130,6 +148,12 @@ impl Thermal {
 
     /// Runs `steps` steps, reporting to `progress`. Refuses a field of another size
     /// or with a non-finite height (naming the cell).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+    /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
         check_field("thermal weathering", hf, self.nx, self.ny)?;
         progress.start("thermal", u64::from(steps));
@@ -142,6 +166,10 @@ impl Thermal {
     }
 
     /// One synchronous step.
+    ///
+    /// # Errors
+    ///
+    /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
         check_field("thermal weathering", hf, self.nx, self.ny)?;
         self.step_unchecked(hf);

@@ -1,6 +1,6 @@
 //! Poisson faulting (Mandelbrot's fractional Poisson field with step faults):
 //! Gaussian random displacements applied across random straight lines
-//! (FFC:L163, MKM:L57, DIS:L780). The net result is a Brownian surface (H = ½).
+//! (Fournier et al. 1982, §3.2.2, Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.1). The net result is a Brownian surface (H = ½).
 //!
 //! The sources quote O(N³) for N × N (N faults × N² cells). Each fault is a
 //! straight line, so along a row it changes sign exactly once: we add it as a
@@ -18,6 +18,7 @@ use crate::par;
 
 /// Parameters of [`poisson_faults`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FaultParams {
     /// Number of faults. The sources give no count; 1000 is enough for a
     /// Brownian look on a few hundred cells per side.
@@ -37,6 +38,11 @@ impl Default for FaultParams {
 
 impl FaultParams {
     /// `faults ≥ 1` and at most 10⁸; `amplitude_m` finite and ≥ 0.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if self.faults == 0 || self.faults > 100_000_000 {
             return Err(invalid(
@@ -58,6 +64,12 @@ pub(crate) fn stream_gauss(rng: &mut impl Rng) -> f64 {
 
 /// An `nx × ny` field made by `p.faults` random step faults. Deterministic per
 /// seed; rows in parallel.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn poisson_faults(
     nx: usize,
     ny: usize,

@@ -2,7 +2,7 @@
 //! (fBm, multifractals, …) in parallel rows, with the height scale in metres.
 //!
 //! Point evaluation is what makes noise synthesis local and level-of-detail
-//! friendly (MKM:L71, DIS:L663-665): each sample needs no neighbours and no
+//! friendly (Musgrave et al. 1989, §2.1, Musgrave 1993, §2): each sample needs no neighbours and no
 //! global state. [`fill_field`] takes any `Fn(f64, f64) -> f64 + Sync` (f64
 //! points, one call per sample); [`fill_rows`] takes a batch row filler (one
 //! call per row, f32 output); [`fill_noise`] fills from any natura-noise
@@ -47,6 +47,11 @@ impl Default for FieldMapping {
 
 impl FieldMapping {
     /// Every value must be finite; `frequency` and `height_m` non-zero.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !self.origin.is_finite() {
             return Err(invalid(
@@ -90,6 +95,13 @@ impl FieldMapping {
 /// Fills an `nx × ny` field from `field(x, y)` at f64 points, rows in parallel.
 ///
 /// A non-finite field value is an error naming the first such cell.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
+/// Returns [`TerrainError::Noise`] if the noise cannot be evaluated.
 pub fn fill_field<F>(
     nx: usize,
     ny: usize,
@@ -118,6 +130,12 @@ where
 /// Fills an `nx × ny` field one row at a time: `row(x0, y, dx, out)` must write
 /// the field at `(x0 + k·dx, y)` into `out[k]` (field units). Values are then
 /// mapped to metres. This is the batch path for SIMD noise implementations.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn fill_rows<F>(
     nx: usize,
     ny: usize,
@@ -148,6 +166,13 @@ where
 /// Fills an `nx × ny` field from a natura-noise [`Field`] (2-D evaluation) with
 /// its batch row fill (SIMD, run-time dispatch), rows in parallel; heights in
 /// metres through `map`. Equals [`fill_field`] with `field.eval2` to f32 rounding.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
+/// Returns [`TerrainError::Noise`] if the noise cannot be evaluated.
 pub fn fill_noise<F: Field + ?Sized>(
     nx: usize,
     ny: usize,

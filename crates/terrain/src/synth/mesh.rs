@@ -1,12 +1,12 @@
 //! Fractal triangle meshes: FFC polygon subdivision of arbitrary triangle
-//! meshes (FFC:L327-339), for terrain that is not a regular grid (a base mesh
+//! meshes (Fournier et al. 1982, §4.1.2), for terrain that is not a regular grid (a base mesh
 //! of measured points, a planet's facets).
 //!
 //! Each triangle splits into four through its edge midpoints; each midpoint is
 //! the edge's centre displaced by a Gaussian of deviation `scale·2^(−hℓ)` along
-//! the **averaged vertex normal** of the edge's endpoints — FFC's fix for the
+//! the **averaged vertex normal** of the edge's endpoints — Fournier et al.'s fix for the
 //! gaps that per-polygon normals open between non-coplanar neighbours
-//! (Fig. 14, FFC:L333). New vertices carry the normalised mean of their
+//! (Fig. 14, Fournier et al. 1982, §4.1.2). New vertices carry the normalised mean of their
 //! endpoints' normals, so normals never depend on which polygons are present.
 //! Random numbers are keyed by invariant vertex identifiers (a midpoint's id
 //! is a hash of its endpoints' ids), so two meshes that share an edge produce
@@ -40,6 +40,11 @@ pub struct TriMesh {
 impl TriMesh {
     /// A mesh with vertex `i` identified by `i` and normals averaged over the
     /// incident triangles (area weighted).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex or an
+    /// index past the vertices.
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self> {
         let ids = (0..positions.len() as u64).collect();
         Self::with_ids(positions, ids, triangles)
@@ -142,6 +147,11 @@ fn validate_topology(positions: &[DVec3], ids: &[u64], triangles: &[[u32; 3]]) -
 
 /// Subdivides `mesh` `levels` times (FFC fractal triangles): `4^levels` times as many
 /// triangles; for a single triangle `(2^L + 1)(2^L + 2)/2` vertices.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex, an index
+/// past the vertices or a non-positive edge length.
 pub fn subdivide_mesh(
     mesh: &TriMesh,
     p: &MidpointParams,
@@ -165,8 +175,13 @@ pub fn subdivide_mesh(
     Ok(m)
 }
 
-/// Subdivides until no edge is longer than `max_edge` metres (FFC:L327-329).
+/// Subdivides until no edge is longer than `max_edge` metres (Fournier et al. 1982, §4.1.2).
 /// Fails if that would take more than [`MAX_MESH_LEVELS`] levels.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::InvalidParameter`] for a non-finite vertex, an index
+/// past the vertices or a non-positive edge length.
 pub fn subdivide_mesh_until(
     mesh: &TriMesh,
     p: &MidpointParams,

@@ -1,13 +1,13 @@
-//! Fourier (spectral) synthesis (FFC:L167, MKM:L67, DIS:L798-800): Gaussian
+//! Fourier (spectral) synthesis (Fournier et al. 1982, §3.2.2, Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.4): Gaussian
 //! white noise is Fourier-transformed, multiplied by a `1/f^(H+1)` amplitude
 //! filter and transformed back. The 2-D power spectrum is then
 //! `∝ |f|^(−(2H+2))` and every 1-D transect follows `f^(−β)` with
-//! `β = 2H + 1` (MKM:L97-103, DIS:L748-754). Filtering real white noise keeps
+//! `β = 2H + 1` (Musgrave et al. 1989, §3.1, Musgrave 1993, §2.2.1.4). Filtering real white noise keeps
 //! the spectrum Hermitian, so the output is real; DC is zero, so the mean is 0.
 //!
 //! The output is a periodic tile of any size (`rustfft` handles every length):
 //! it wraps seamlessly, which is both the method's strength and its known
-//! drawback (periodicity, MKM:L67).
+//! drawback (periodicity, Musgrave et al. 1989, §2.1).
 
 use natura_core::{Grid2, HeightField, Seed};
 
@@ -16,6 +16,7 @@ use crate::fft;
 
 /// Parameters of [`spectral_synthesis`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SpectralParams {
     /// Hurst exponent `H ∈ (0, 1]`; spectral exponent `β = 2H + 1`.
     pub h: f64,
@@ -23,7 +24,7 @@ pub struct SpectralParams {
     /// normalised analytically, so each seed varies around it).
     pub sigma_m: f64,
     /// Frequencies below this many cycles per tile are removed (≥ 0; 0 keeps all
-    /// but DC). Raising it sets an upper crossover scale (MKM:L117).
+    /// but DC). Raising it sets an upper crossover scale (Musgrave et al. 1989, §3.1).
     pub low_cut: f64,
     /// Frequencies above this many cycles per tile are removed (`None` keeps
     /// all up to Nyquist). Lowering it sets a lower crossover: a smooth surface.
@@ -43,6 +44,11 @@ impl Default for SpectralParams {
 
 impl SpectralParams {
     /// `h ∈ (0, 1]`, `sigma_m ≥ 0`, `low_cut ≥ 0`, `high_cut > low_cut`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
             return Err(invalid(
@@ -67,6 +73,12 @@ impl SpectralParams {
 }
 
 /// A periodic `nx × ny` fBm-like tile by spectral synthesis. Needs at least 2 × 2 samples.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn spectral_synthesis(
     nx: usize,
     ny: usize,

@@ -1,9 +1,9 @@
-//! Successive random additions (Voss; MKM:L63-65, DIS:L794-796): an *unnested*
+//! Successive random additions (Voss; Musgrave et al. 1989, §2.1, Musgrave 1993, §2.2.2.3): an *unnested*
 //! scheme with arbitrary lacunarity λ. Each generation resamples the previous
 //! lattice by a factor λ with bilinear interpolation and adds Gaussian noise to
 //! **all** points, the deviation shrinking by `λ^(−H)` per generation, until
 //! the lattice is the target grid. Re-displacing old points removes most of
-//! the creasing of nested midpoint schemes (DIS:L439).
+//! the creasing of nested midpoint schemes (Musgrave 1993, §1.2.1).
 //!
 //! Random numbers are indexed by `(generation, lattice point)`, so the result
 //! is independent of evaluation order and thread count.
@@ -15,6 +15,7 @@ use crate::par;
 
 /// Parameters of [`successive_random_additions`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SraParams {
     /// Hurst exponent `H ∈ (0, 1]`.
     pub h: f64,
@@ -36,6 +37,11 @@ impl Default for SraParams {
 
 impl SraParams {
     /// `h ∈ (0, 1]`, `lacunarity ∈ (1, 16]`, `sigma_m ≥ 0` and finite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         if !(self.h > 0.0 && self.h <= 1.0) {
             return Err(invalid(
@@ -65,6 +71,12 @@ impl SraParams {
 
 /// An `nx × ny` surface by successive random additions. Generation `g` has
 /// lattice spacing `λ^(G−g)` cells and deviation `sigma_m · λ^(−H·g)`.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`](crate::TerrainError::BadSize)
+/// for a size the method cannot make, and [`TerrainError::Core`](crate::TerrainError::Core) if the field
+/// cannot be allocated.
 pub fn successive_random_additions(
     nx: usize,
     ny: usize,

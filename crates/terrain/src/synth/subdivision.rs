@@ -1,21 +1,21 @@
-//! Fournier–Fussell–Carpenter stochastic subdivision (seed 002): 1-D midpoint
-//! displacement (the `fractal` procedure, FFC:L196-253), fractal polylines and
-//! stochastic interpolation (FFC:L273-321), and grid subdivision of triangles,
+//! Fournier–Fussell–Carpenter stochastic subdivision (Fournier et al. 1982): 1-D midpoint
+//! displacement (the `fractal` procedure, Fournier et al. 1982, §3.2.3), fractal polylines and
+//! stochastic interpolation (Fournier et al. 1982, §4.1.1), and grid subdivision of triangles,
 //! quadrilaterals and the non-Markovian grid fill / diamond-square
-//! (FFC:L327-359) into a [`HeightField`] of any size.
+//! (Fournier et al. 1982, §4.1.2) into a [`HeightField`] of any size.
 //!
 //! **Random numbers indexed by position.** Every computed point draws its
 //! Gaussian from [`Seed::gaussian`] keyed by the point's *first appearance*
-//! `(level, index)` in lowest terms, never by its array index (FFC:L185,
-//! L263, L333). So a coarse run is exactly the subsampled fine run —
+//! `(level, index)` in lowest terms, never by its array index (Fournier et al. 1982, §3.2.3
+//! and §4.1.2). So a coarse run is exactly the subsampled fine run —
 //! level-of-detail consistency, bit for bit — and adjacent tiles agree on
 //! shared edges.
 //!
-//! **Errata corrected.** FFC:L218/L249 print `ratio := 21-h`; it is the OCR of
+//! **Errata corrected.** Fournier et al. 1982, §3.2.3 prints `ratio := 21-h`; it is the OCR of
 //! `2↑−h`, so the per-level factor is `2^(−h)` (a `2^(1−h)` reading makes the
-//! displacements *grow*). FFC:L215 `2maxlevel` is `2^maxlevel`. FFC's Pascal
+//! displacements *grow*). Fournier et al. 1982, §3.2.3 `2maxlevel` is `2^maxlevel`. Fournier et al.'s Pascal
 //! keys `GAUSS` by the array position `fmid`, which changes with `maxlevel`,
-//! contradicting Fig. 5's "same sample path at 17 and 257 points" (FFC:L257-261);
+//! contradicting Fig. 5's "same sample path at 17 and 257 points" (Fournier et al. 1982, §3.2.3);
 //! we key by the resolution-independent dyadic position. Fig. 5's text says
 //! h = 0.6, the caption h = 0.8: irrelevant to the algorithm.
 
@@ -30,10 +30,11 @@ pub const MAX_LEVELS: u32 = 24;
 
 /// How the two endpoints (1-D) or the base-lattice corners (2-D) are chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EndpointMode {
-    /// Gaussian with standard deviation `scale`, as FFC's printed `fractal` (FFC:L215-217).
+    /// Gaussian with standard deviation `scale`, as Fournier et al.'s printed `fractal` (Fournier et al. 1982, §3.2.3).
     Random,
-    /// Fixed values, so segments join with C0 continuity (FFC:L281-291).
+    /// Fixed values, so segments join with C0 continuity (Fournier et al. 1982, §4.1.1).
     Fixed(f64, f64),
 }
 
@@ -43,15 +44,16 @@ pub enum EndpointMode {
 /// `scale · Π_{i=1..ℓ} 2^(−h_i)` (= `scale · 2^(−hℓ)` for a constant `h`),
 /// times Saupe's factor `√(1 − 2^(2h−2))` when `variance_correction` is set.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MidpointParams {
-    /// Hurst exponent `h ∈ (0, 1]` (FFC's `h`; MKM:L109 gives H ≈ 0.8 for terrain).
+    /// Hurst exponent `h ∈ (0, 1]` (Fournier et al.'s `h`; Musgrave et al. 1989, §3.1 gives H ≈ 0.8 for terrain).
     /// Larger values give smoother curves.
     pub h: f64,
     /// Optional per-level `h` (index 0 is level 1; the last value repeats), e.g.
     /// rugged at large scale and smooth at small, "as if valleys filled with
-    /// sediment" (FFC:L393). Overrides `h` when non-empty.
+    /// sediment" (Fournier et al. 1982, §4.1.2). Overrides `h` when non-empty.
     pub h_schedule: Vec<f64>,
-    /// The "roughness" factor: standard deviation of level 0, metres (FFC:L227).
+    /// The "roughness" factor: standard deviation of level 0, metres (Fournier et al. 1982, §3.2.3).
     pub scale: f64,
     /// Endpoint (corner) handling.
     pub endpoints: EndpointMode,
@@ -75,6 +77,11 @@ impl Default for MidpointParams {
 impl MidpointParams {
     /// Checks every field: `h` (and each scheduled `h`) in `(0, 1]`, `scale` finite and ≥ 0,
     /// fixed endpoints finite.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         let check_h = |name, h: f64| {
             if h > 0.0 && h <= 1.0 {
@@ -131,12 +138,18 @@ impl MidpointParams {
     }
 }
 
-/// FFC's 1-D `fractal` procedure: `2^levels + 1` samples of a midpoint-displacement
-/// approximation of fBm on `[0, 1]` (FFC:L196-221).
+/// Fournier et al.'s 1-D `fractal` procedure: `2^levels + 1` samples of a midpoint-displacement
+/// approximation of fBm on `[0, 1]` (Fournier et al. 1982, §3.2.3).
 ///
 /// The value at dyadic position `k / 2^levels` depends only on `(seed, k / 2^levels)`,
 /// so `midpoint_1d(p, L, s)[k] == midpoint_1d(p, L + m, s)[k << m]` bit for bit.
 /// Uses `2^levels + 1` Gaussian draws with random endpoints, `2^levels − 1` with fixed ones.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn midpoint_1d(p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<f64>> {
     p.validate()?;
     if levels > MAX_LEVELS {
@@ -170,8 +183,8 @@ pub fn midpoint_1d(p: &MidpointParams, levels: u32, seed: Seed) -> Result<Vec<f6
 
 /// Subdivides the edge from `a` to `b` (identified by `ids`) `levels` times,
 /// displacing each new midpoint along the normal of the segment being split
-/// (FFC:L273-279), with fixed (undisplaced) endpoints — FFC's stochastic
-/// interpolation (FFC:L295-321). Returns the `2^levels − 1` interior points, from `a` to `b`.
+/// (Fournier et al. 1982, §4.1.1), with fixed (undisplaced) endpoints — Fournier et al.'s stochastic
+/// interpolation (Fournier et al. 1982, §4.1.1). Returns the `2^levels − 1` interior points, from `a` to `b`.
 ///
 /// Deviations are `level_std` times the original edge length, so `scale` is
 /// relative roughness. The edge is always computed in canonical order
@@ -215,12 +228,18 @@ fn subdivide_edge(
     inner
 }
 
-/// A fractal polyline through `vertices` (FFC's stochastic interpolation,
-/// FFC:L295-321): each edge is subdivided `levels` times with midpoints
+/// A fractal polyline through `vertices` (Fournier et al.'s stochastic interpolation,
+/// Fournier et al. 1982, §4.1.1): each edge is subdivided `levels` times with midpoints
 /// displaced along the local segment normal by `scale · 2^(−hℓ)` times the edge
 /// length; the given vertices are kept exactly. With `closed`, the last vertex
 /// joins the first. Vertex `i` is identified by `i` for seeding; use
 /// [`fractal_polyline_ids`] to share edges between polylines.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn fractal_polyline(
     vertices: &[DVec2],
     closed: bool,
@@ -234,7 +253,13 @@ pub fn fractal_polyline(
 
 /// [`fractal_polyline`] with explicit invariant vertex identifiers: two
 /// polylines that share an edge (same pair of ids, either direction) produce
-/// bit-identical points on it (external consistency, FFC:L149-153, L263).
+/// bit-identical points on it (external consistency, Fournier et al. 1982, §3.2.1).
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn fractal_polyline_ids(
     vertices: &[DVec2],
     ids: &[u64],
@@ -299,25 +324,27 @@ pub fn fractal_polyline_ids(
 
 /// Which FFC grid scheme [`subdivide`] uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Scheme {
-    /// Fractal triangles (FFC:L327-329): each square of the current lattice is
+    /// Fractal triangles (Fournier et al. 1982, §4.1.2): each square of the current lattice is
     /// two triangles split on its `(+1, +1)` diagonal; every new point is an
     /// edge midpoint displaced from the mean of the edge's two endpoints
-    /// ("wireframe" displacement, MKM:L59). Markovian; creases along edges.
+    /// ("wireframe" displacement, Musgrave et al. 1989, §2.1). Markovian; creases along edges.
     Triangle,
-    /// FFC's quadrilateral scheme (FFC:L331): the four side midpoints by the 1-D
+    /// Fournier et al.'s quadrilateral scheme (Fournier et al. 1982, §4.1.2): the four side midpoints by the 1-D
     /// step; for each pair of opposite midpoints, a displaced midpoint of the
     /// segment joining them; the centre is the mean of those two candidates.
     Quad,
-    /// FFC's non-Markovian grid fill (Fig. 16, FFC:L353-359), i.e. Miller's
+    /// Fournier et al.'s non-Markovian grid fill (Fig. 16, Fournier et al. 1982, §4.1.2), i.e. Miller's
     /// diamond-square: centres from the 4 diagonal neighbours, then sides from
     /// the 4 axial neighbours; the edges of each base tile (a patch) use the
-    /// 1-D rule, so tiles share edges exactly (FFC:L357).
+    /// 1-D rule, so tiles share edges exactly (Fournier et al. 1982, §4.1.2).
     DiamondSquare,
 }
 
 /// Parameters of grid subdivision ([`subdivide`]).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SubdivisionParams {
     /// The midpoint-displacement law (H, scale in metres, corners).
     pub midpoint: MidpointParams,
@@ -340,6 +367,11 @@ impl Default for SubdivisionParams {
 
 impl SubdivisionParams {
     /// Validates the midpoint law and the depth (`levels ≤ 16`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::InvalidParameter`] naming the first parameter that is
+    /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         self.midpoint.validate()?;
         if let Some(l) = self.levels {
@@ -373,6 +405,12 @@ fn auto_levels(n: usize) -> u32 {
 /// on `(seed, i / 2^L, j / 2^L)`, so a run with depth `L − k` and
 /// `(nx − 1) / 2^k + 1` samples is exactly the fine run subsampled every `2^k`
 /// cells. Parallel over rows within each level; bit-identical on any thread count.
+///
+/// # Errors
+///
+/// Returns the errors of the parameters' `validate`, [`TerrainError::BadSize`]
+/// for a size the method cannot make, and [`TerrainError::Core`] if the field
+/// cannot be allocated.
 pub fn subdivide(
     nx: usize,
     ny: usize,
@@ -454,7 +492,7 @@ pub fn subdivide(
                 level_pass(&mut g, s, |g, a, b| {
                     let (i, j) = (a * s, b * s);
                     // Tile edges are patch boundaries computed by the 1-D rule
-                    // (FFC:L357), so tiles share edges exactly and the result does
+                    // (Fournier et al. 1982, §4.1.2), so tiles share edges exactly and the result does
                     // not depend on how many tiles the grid spans.
                     let m = match (a % 2, b % 2) {
                         (1, 0) if j % tile == 0 => (g[(i - s, j)] + g[(i + s, j)]) / 2.0,

@@ -158,7 +158,7 @@ pub(crate) fn frame(dir: Vec3, up: Vec3) -> Result<(Vec3, Vec3, Vec3)> {
     let f = dir
         .try_normalize()
         .ok_or_else(|| TraceError::param("direction", dir, "must be non-zero (eye ≠ target)"))?;
-    // Seed 000, line 3133: "The view and up directions are identical?"
+    // Musgrave 1993, §8.6: "The view and up directions are identical?"
     let r = f.cross(up).try_normalize().ok_or_else(|| {
         TraceError::param(
             "up",

@@ -27,6 +27,8 @@ impl OrthographicCamera {
     /// `width × height` pixel ratio). Rays start on the screen, so place
     /// `eye` above or in front of everything to be seen.
     ///
+    /// # Errors
+    ///
     /// Fails like [`crate::PinholeCamera::look_at`], or if `view_height` is
     /// not finite and positive.
     pub fn look_at(

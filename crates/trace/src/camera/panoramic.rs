@@ -1,5 +1,5 @@
-//! Musgrave's panoramic virtual screen (seed 000, appendix B, lines 3027–3312;
-//! published in *Graphics Gems III*).
+//! Musgrave's panoramic virtual screen (Musgrave 1993, ch. 8
+//! and appendix B; published in *Graphics Gems III*).
 
 use glam::{UVec2, Vec3};
 
@@ -10,13 +10,13 @@ use crate::ray::Ray;
 /// How rows of a [`PanoramicCamera`] map to elevation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Projection {
-    /// A cylindrical screen sampled evenly in height (seed 000 §8.2, lines
-    /// 3055–3073): azimuth linear in x, and the vertical offset on the
+    /// A cylindrical screen sampled evenly in height (Musgrave 1993,
+    /// §8.2): azimuth linear in x, and the vertical offset on the
     /// cylinder linear in y, so `elevation = atan(tan(vfov/2)·(1 − 2y/h))`.
     /// This is the faceted-cylinder panorama of the VPE lab taken to one-pixel
-    /// facets (line 3091); its vertical field must stay below 180°.
+    /// facets (Musgrave 1993, §8.4); its vertical field must stay below 180°.
     Cylindrical,
-    /// The cylindrical equirectangular screen of §8.3 (lines 3075–3081),
+    /// The cylindrical equirectangular screen of Musgrave 1993, §8.3,
     /// which maps the whole celestial sphere: azimuth linear in x and
     /// **elevation linear in y**, `elevation = vfov·(½ − y/h)`. Vertical
     /// fields beyond 180° give the source's periodic, always right-side-up
@@ -35,7 +35,7 @@ pub enum Eye {
 
 /// A stereo panorama's eye: the eye points describe a circle of radius
 /// `separation / 2` as the view direction scans the screen (Hitchner's scheme,
-/// seed 000 line 3097), which keeps stereo over the whole 360°.
+/// Musgrave 1993, §8.4), which keeps stereo over the whole 360°.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stereo {
     /// Which eye this camera renders.
@@ -50,16 +50,15 @@ pub struct Stereo {
 /// direction, counterclockwise about `up` (so the image's left shows what is on
 /// the camera's left); row `y` maps to elevation by the [`Projection`].
 ///
-/// Differences from the source's code (seed 000, lines 3145–3287), all noted
-/// in the spec (`gridtrace.md` §4, §9):
+/// Differences from the source's code (Musgrave 1993, §8.6):
 ///
 /// * Directions are evaluated exactly from the angles instead of by linear
-///   interpolation between per-column and per-row tables (line 3073). The
+///   interpolation between per-column and per-row tables (Musgrave 1993, §8.2). The
 ///   printed interpolation also uses `horizdir` where it means `vertdir`
-///   (lines 3273–3285), an erratum that does not arise here.
+///   (Musgrave 1993, §8.6), an erratum that does not arise here.
 /// * The view direction is levelled (projected perpendicular to `up`): the
 ///   source's "vertical vectors orthogonal to all horizontal directions"
-///   (line 3079) holds only for a level view.
+///   (Musgrave 1993, §8.3) holds only for a level view.
 /// * Stereo eyes sit at `pos ± (separation/2)·(up × h(x))` for each column's
 ///   horizontal direction `h(x)`, so the baseline is always perpendicular to
 ///   the view. The source rotates a fixed offset by `x·hincr` only, which is
@@ -84,9 +83,13 @@ impl PanoramicCamera {
     /// of `look_dir` (levelled), with `up` the zenith, horizontal field `hfov`
     /// and vertical field `vfov` (radians), on a `width × height` image.
     ///
-    /// `hfov` may exceed 2π (a periodic "wallpaper", line 3077). For
+    /// `hfov` may exceed 2π (a periodic "wallpaper", Musgrave 1993, §8.3). For
     /// [`Projection::Spherical`] `vfov` may exceed π; for
-    /// [`Projection::Cylindrical`] it must be below π. Fails on non-finite
+    /// [`Projection::Cylindrical`] it must be below π.
+    ///
+    /// # Errors
+    ///
+    /// Fails on non-finite
     /// vectors, a zero `up`, a `look_dir` parallel to `up`, a non-positive
     /// or non-finite field of view, or a bad resolution.
     #[allow(clippy::too_many_arguments)]
@@ -149,7 +152,11 @@ impl PanoramicCamera {
         })
     }
 
-    /// Returns the camera rendering one eye of a stereo pair. Fails unless
+    /// Returns the camera rendering one eye of a stereo pair.
+    ///
+    /// # Errors
+    ///
+    /// Fails unless
     /// `stereo.separation` is finite and non-negative.
     pub fn with_stereo(mut self, stereo: Stereo) -> Result<Self> {
         if !(stereo.separation.is_finite() && stereo.separation >= 0.0) {

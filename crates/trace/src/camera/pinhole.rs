@@ -10,12 +10,11 @@ use crate::ray::Ray;
 /// A pinhole camera with a flat virtual screen, set up by look-at, vertical
 /// field of view and aspect ratio.
 ///
-/// Rayshade's `RSViewing` / `SampleScreen` (seed 000, lines 3129–3173 and
-/// 3288–3294): the screen is perpendicular to the view direction, spanned by
+/// Rayshade's `RSViewing` / `SampleScreen` (Musgrave 1993, §8.6): the screen is perpendicular to the view direction, spanned by
 /// `right = normalize(dir × up)` and `up' = right × dir`, and a sample's ray
 /// is `normalize(dir + sx·right + sy·up')` with `sx, sy` linear in the pixel
 /// coordinates. The field of view must stay below 180°: at 180° the eye lies
-/// in the screen plane (line 3039); use [`crate::PanoramicCamera`] for wider views.
+/// in the screen plane (Musgrave 1993, §8.1); use [`crate::PanoramicCamera`] for wider views.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PinholeCamera {
     eye: Vec3,
@@ -32,6 +31,8 @@ impl PinholeCamera {
     /// Returns a camera at `eye` looking at `target`, with `up` as the up hint,
     /// vertical field of view `vfov` (radians, in `(0, π)`) and a `width ×
     /// height` image with square pixels (aspect = width / height).
+    ///
+    /// # Errors
     ///
     /// Fails if a vector is not finite, `eye == target`, `up` is zero or
     /// parallel to the view direction, `vfov` is out of range, or the
@@ -65,6 +66,9 @@ impl PinholeCamera {
 
     /// Returns the camera with screen aspect ratio `aspect` (width / height of
     /// the visible rectangle) instead of the pixel ratio, for non-square pixels.
+    ///
+    /// # Errors
+    ///
     /// Fails unless `aspect` is finite and positive.
     pub fn with_aspect(mut self, aspect: f32) -> Result<Self> {
         if !(aspect.is_finite() && aspect > 0.0) {

@@ -1,11 +1,11 @@
-//! natura-atmos through the facade: the pieces natura-render will compose
+//! natura-atmos: the pieces natura-render will compose
 //! (sky, sunlight, aerial perspective, rainbow) agree with each other.
 
-use natura::atmos::Dir3;
-use natura::atmos::medium::Medium;
-use natura::atmos::rainbow::{Rainbow, RainbowParams};
-use natura::atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, SkyProjection};
-use natura::core::glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3};
+use natura_atmos::Dir3;
+use natura_atmos::medium::Medium;
+use natura_atmos::rainbow::{Rainbow, RainbowParams};
+use natura_atmos::sky::{Atmosphere, AtmosphereParams, Ground, LutSettings, SkyProjection};
 
 fn small() -> AtmosphereParams {
     AtmosphereParams {
@@ -67,7 +67,7 @@ fn rendered_sky_is_deterministic_across_thread_counts() {
             .install(|| view.render(proj, 64, 40, ground, true).unwrap())
     };
     let (a, b) = (render(1), render(2));
-    let bits = |i: &natura::core::Image| -> Vec<u32> {
+    let bits = |i: &natura_core::Image| -> Vec<u32> {
         i.pixels()
             .as_slice()
             .iter()

@@ -1,23 +1,22 @@
-//! natura-fluid through the facade: the properties issue 9 asks for.
+//! natura-fluid: conservation, stability and oracle properties.
 
-use natura::core::Grid3;
-use natura::core::glam::Vec3;
-use natura::fluid::FluidError;
-use natura::fluid::advect::{Advection, Scheme, Tracer, advect_scalar, trace_back};
-use natura::fluid::fft::{FftVariant, solve_poisson_periodic};
-use natura::fluid::grid::{Boundaries, CellKind, Dims, MacVelocity};
-use natura::fluid::interp::{CubicLimiter, Interpolation};
-use natura::fluid::levelset::LevelSet;
-use natura::fluid::liquid::{Liquid, LiquidParams};
-use natura::fluid::mac::{Projector, confinement_force, divergence};
-use natura::fluid::pressure::{PoissonSystem, SolverParams};
-use natura::fluid::shape::{Obstacle, Shape};
-use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
-use natura::fluid::stable::{BoundedFluid, PeriodicFluid, ScalarSource, StableParams, Substance};
+use glam::Vec3;
+use natura_core::Grid3;
+use natura_fluid::FluidError;
+use natura_fluid::advect::{Advection, Scheme, Tracer, advect_scalar, trace_back};
+use natura_fluid::fft::{FftVariant, solve_poisson_periodic};
+use natura_fluid::grid::{Boundaries, CellKind, Dims, MacVelocity};
+use natura_fluid::interp::{CubicLimiter, Interpolation};
+use natura_fluid::levelset::LevelSet;
+use natura_fluid::liquid::{Liquid, LiquidParams};
+use natura_fluid::mac::{Projector, confinement_force, divergence};
+use natura_fluid::pressure::{PoissonSystem, SolverParams};
+use natura_fluid::shape::{Obstacle, Shape};
+use natura_fluid::smoke::{Smoke, SmokeParams, SmokeSource};
+use natura_fluid::stable::{BoundedFluid, PeriodicFluid, ScalarSource, StableParams, Substance};
 
 fn noise(seed: u64, i: usize) -> f32 {
-    ((natura::core::mix64(seed ^ (i as u64).wrapping_mul(0x9E37_79B9)) % 2001) as f32 / 1000.0)
-        - 1.0
+    ((natura_core::mix64(seed ^ (i as u64).wrapping_mul(0x9E37_79B9)) % 2001) as f32 / 1000.0) - 1.0
 }
 
 fn random_mac(d: Dims, seed: u64) -> MacVelocity {
@@ -74,9 +73,9 @@ fn projection_is_divergence_free_to_solver_tolerance() {
                         for i in 0..n[0] {
                             let f = [i, j, k];
                             let wall = (f[a] == 0
-                                && bounds.side(a, 0) == natura::fluid::grid::Side::Wall)
+                                && bounds.side(a, 0) == natura_fluid::grid::Side::Wall)
                                 || (f[a] == d.n()[a]
-                                    && bounds.side(a, 1) == natura::fluid::grid::Side::Wall);
+                                    && bounds.side(a, 1) == natura_fluid::grid::Side::Wall);
                             let mut lo = f;
                             let solid_lo = f[a] > 0 && {
                                 lo[a] -= 1;
@@ -420,7 +419,7 @@ fn confinement_adds_energy_where_vorticity_is_concentrated() {
     let h = 1.0 / 48.0;
     let v = vortex(d, h);
     let f = confinement_force(&v, h, 2.0).unwrap();
-    let u = natura::fluid::mac::centre_velocity(&v).unwrap();
+    let u = natura_fluid::mac::centre_velocity(&v).unwrap();
     let mut pos = 0.0f64;
     let mut neg = 0.0f64;
     for c in 0..d.cells() {
@@ -857,7 +856,7 @@ fn the_benchmark_projection_problem_converges() {
         },
     )
     .unwrap();
-    f.add_force_source(natura::fluid::stable::ForceSource {
+    f.add_force_source(natura_fluid::stable::ForceSource {
         shape: jet,
         acceleration: Vec3::new(3.0, 0.0, 30.0),
     })

@@ -1,10 +1,10 @@
-//! Cross-crate pipeline: a height field written by natura-core as a 16-bit
-//! PNG and as EXR, loaded back, traced through the facade, and rendered
+//! The pipeline from files: a height field written by natura-core as a 16-bit
+//! PNG and as EXR, loaded back, traced and rendered
 //! deterministically on 1 and 2 threads.
 
-use natura::core::glam::{Vec2, Vec3};
-use natura::core::{HeightField, NoProgress, Seed};
-use natura::trace::{
+use glam::{Vec2, Vec3};
+use natura_core::{HeightField, NoProgress, Seed};
+use natura_trace::{
     Camera, MipmapTracer, PinholeCamera, RenderOptions, Tracer, render, render_camera,
 };
 
@@ -96,7 +96,7 @@ fn rendering_is_identical_on_one_and_two_threads() {
                     None => Vec3::new(0.4, 0.6, 0.9),
                     Some(h) => {
                         let lit = !tracer.occluded(
-                            &natura::trace::Ray::new(h.point + 0.01 * h.geometric_normal, sun),
+                            &natura_trace::Ray::new(h.point + 0.01 * h.geometric_normal, sun),
                             0.0,
                             f32::INFINITY,
                         );
@@ -113,7 +113,7 @@ fn rendering_is_identical_on_one_and_two_threads() {
     };
     let one = run(1, 32);
     let two = run(2, 7);
-    let bits = |img: &natura::core::Image| -> Vec<u32> {
+    let bits = |img: &natura_core::Image| -> Vec<u32> {
         img.pixels()
             .as_slice()
             .iter()

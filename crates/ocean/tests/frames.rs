@@ -1,11 +1,11 @@
-//! natura-ocean through the facade, together with natura-core: EXR maps read
+//! natura-ocean with natura-core: EXR maps read
 //! back with core's reader, a foam-carrying surface sampled at world
 //! positions, and the optics helpers a renderer uses.
 
-use natura::core::glam::{Vec2, Vec3};
-use natura::core::io::exr::read_exr;
-use natura::ocean::optics::{WaterShader, critical_angle, fresnel_reflectance};
-use natura::ocean::{
+use glam::{Vec2, Vec3};
+use natura_core::io::exr::read_exr;
+use natura_ocean::optics::{WaterShader, critical_angle, fresnel_reflectance};
+use natura_ocean::{
     Cascade, Directional, Foam, FoamParams, Jonswap, Ocean, OceanParams, Seed, Surface,
     WaterSurface, export::FrameSequence,
 };

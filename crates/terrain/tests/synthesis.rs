@@ -2,13 +2,13 @@
 //! methods, 1- vs 2-thread bit-identity for every parallel model, and the
 //! drainage guarantees of the erosion pipeline.
 
-use natura::core::{HeightField, NoProgress, Seed};
-use natura::terrain::analysis::{self, Depressions, FlowGraph};
-use natura::terrain::erosion::{
+use natura_core::{HeightField, NoProgress, Seed};
+use natura_terrain::analysis::{self, Depressions, FlowGraph};
+use natura_terrain::erosion::{
     Diffusion, DiffusionParams, DropletErosion, DropletParams, Erodibility, MusgraveHydraulic,
     MusgraveParams, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
 };
-use natura::terrain::synth::{
+use natura_terrain::synth::{
     self, FaultParams, MidpointParams, Scheme, SpectralParams, SraParams, SubdivisionParams,
     spectral_synthesis, subdivide,
 };
@@ -90,12 +90,12 @@ fn spectral_synthesis_has_the_fbm_spectrum_and_variogram() {
 /// Noise synthesis from natura-noise fBm (Perlin basis, λ = 2, 8 octaves spanning
 /// the grid's band): windowed radial spectrum slope −(2H + 2) ± 0.2 over the middle
 /// decade, variogram H ± 0.1 (lags 2..8). For H = 0.3 the variogram reads ≈ 0.39
-/// (the cubic basis distorts the spectrum, Saupe, DIS:L908), so it is checked on
+/// (the cubic basis distorts the spectrum, Saupe, Musgrave 1993, §2.3.2.1), so it is checked on
 /// the slope only.
 #[test]
 fn noise_fbm_synthesis_has_the_fbm_spectrum() {
-    use natura::noise::{Fbm, Perlin, Spectral};
-    use natura::terrain::synth::{FieldMapping, fill_noise};
+    use natura_noise::{Fbm, Perlin, Spectral};
+    use natura_terrain::synth::{FieldMapping, fill_noise};
     for h in [0.3, 0.5, 0.8] {
         let (mut slope, mut hv) = (0.0, 0.0);
         for s in 0..8u64 {
@@ -340,7 +340,7 @@ fn eroded_terrain_drains_to_the_edge() {
     let (filled, depth) = analysis::fill_depressions(&hf).unwrap();
     assert!(depth.min() >= 0.0);
     let mut h = filled.heights().as_slice().to_vec();
-    let g = FlowGraph::build(&mut h, n, n, Depressions::Keep);
+    let g = FlowGraph::build(&mut h, n, n, Depressions::Keep).unwrap();
     for i in 0..n * n {
         assert!(g.is_edge(g.terminus(i)));
     }

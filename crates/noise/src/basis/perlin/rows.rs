@@ -1,0 +1,451 @@
+//! Batch rows of [`Perlin`] noise (f32 lanes, compiled per SIMD level
+//! through natura-simd's dispatch).
+//!
+//! For steps up to [`SPAN_MAX_STEP`] a row is evaluated span by span (four
+//! coefficients per cell, each lattice column hashed once per row, whole
+//! 16-lane groups); larger steps run a per-lane kernel whose 32-point blocks
+//! are rebased to a local origin (one f64 split per block, then f32/u32
+//! lanes from precomputed lane offsets), so lattice indices stay exact at
+//! planet-scale coordinates while every lane runs at the full f32 width.
+//! Both equal the f64 point path within 1e-5. The corner hashes and
+//! gradients are the point path's ([`corner`], [`grad2`], [`grad3`]).
+
+use glam::{DVec2, DVec3};
+
+use super::Perlin;
+use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
+use crate::field::{Field, Lattice3};
+use crate::hash::{corner, grad2, grad3, row2, row3};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split_fast};
+
+impl Perlin {
+    /// The 2-D row fill behind [`Field::fill_row2_with`].
+    pub(crate) fn rows2(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+        if !row_in_fast_range(origin.x, step, out.len())
+            || !origin.y.is_finite()
+            || origin.y.abs() > 1e15
+        {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
+            }
+            return;
+        }
+        let rows = RowCoeffs::new2(self.lattice_seed(), self.fade(), origin.y);
+        let k = self.scale(2);
+        let fade = self.fade();
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix| rows.column2(ix));
+                } else {
+                    with_fade32!(fade, |f| perlin2_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
+    }
+
+    /// The 3-D row fill behind [`Field::fill_row3_with`].
+    pub(crate) fn rows3(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+        let bad_yz = !origin.y.is_finite()
+            || !origin.z.is_finite()
+            || origin.y.abs() > 1e15
+            || origin.z.abs() > 1e15;
+        if !row_in_fast_range(origin.x, step, out.len()) || bad_yz {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.eval3(DVec3::new(origin.x + i as f64 * step, origin.y, origin.z)) as f32;
+            }
+            return;
+        }
+        let rows = RowCoeffs::new3(self.lattice_seed(), self.fade(), origin.y, origin.z);
+        let k = self.scale(3);
+        let fade = self.fade();
+        run(
+            simd,
+            #[inline(always)]
+            || {
+                if step > 0.0 && step <= SPAN_MAX_STEP {
+                    row_spans(fade, origin.x, step, k, out, |ix| rows.column3(ix));
+                } else {
+                    with_fade32!(fade, |f| perlin3_row(
+                        f, &rows, origin.x, step, k as f32, out
+                    ));
+                }
+            },
+        );
+    }
+}
+
+/// Per-row constants of a 2-D or 3-D gradient-noise row: the fractional y/z,
+/// their fade weights and the row hashes of the 2 (2-D) or 4 (3-D) lattice rows.
+pub(crate) struct RowCoeffs {
+    /// Fractional y and z.
+    fy: f64,
+    fz: f64,
+    /// Fade weights of the corner rows, ordered (cy, cz) = (0,0), (1,0), (0,1), (1,1).
+    w: [f64; 4],
+    /// Row hashes in the same order.
+    r: [u32; 4],
+    /// f32 copies for the lane kernels.
+    fy32: f32,
+    fz32: f32,
+    w32: [f32; 4],
+}
+
+impl RowCoeffs {
+    pub(crate) fn new2(seed: u32, fade: Fade, y: f64) -> Self {
+        let (iy, fy) = split_fast(y);
+        let v = fade.eval(fy);
+        let w = [1.0 - v, v, 0.0, 0.0];
+        let r = [row2(iy, seed), row2(iy.wrapping_add(1), seed), 0, 0];
+        Self {
+            fy,
+            fz: 0.0,
+            w,
+            r,
+            fy32: fy as f32,
+            fz32: 0.0,
+            w32: w.map(|x| x as f32),
+        }
+    }
+
+    pub(crate) fn new3(seed: u32, fade: Fade, y: f64, z: f64) -> Self {
+        let (iy, fy) = split_fast(y);
+        let (iz, fz) = split_fast(z);
+        let v = fade.eval(fy);
+        let ww = fade.eval(fz);
+        let w = [
+            (1.0 - v) * (1.0 - ww),
+            v * (1.0 - ww),
+            (1.0 - v) * ww,
+            v * ww,
+        ];
+        let mut r = [0u32; 4];
+        for (c, rc) in r.iter_mut().enumerate() {
+            *rc = row3(
+                iy.wrapping_add((c & 1) as u32),
+                iz.wrapping_add((c >> 1) as u32),
+                seed,
+            );
+        }
+        Self {
+            fy,
+            fz,
+            w,
+            r,
+            fy32: fy as f32,
+            fz32: fz as f32,
+            w32: w.map(|x| x as f32),
+        }
+    }
+
+    /// The lattice column `ix` of a 2-D row: `[Σ w·g_y·dy, Σ w·g_x]` over the
+    /// two corner rows (unscaled). A cell's span coefficients follow from its
+    /// two columns ([`span_coeffs`]), so each column is hashed once per row.
+    #[inline(always)]
+    fn column2(&self, ix: u32) -> [f64; 2] {
+        let mut c = [0.0; 2];
+        for cy in 0..2 {
+            let dy = self.fy - cy as f64;
+            let w = self.w[cy];
+            let (gx, gy) = grad2(corner(ix, self.r[cy]));
+            c[1] += w * f64::from(gx);
+            c[0] += w * f64::from(gy) * dy;
+        }
+        c
+    }
+
+    /// As [`column2`](Self::column2) for the 3-D row (four corner rows).
+    #[inline(always)]
+    fn column3(&self, ix: u32) -> [f64; 2] {
+        self.column3_from(|k| grad3(corner(ix, self.r[k])))
+    }
+
+    /// [`column3`](Self::column3) with the four corner gradients (corner row
+    /// `k`) supplied by `grad`, e.g. from a [`ColumnCache3`].
+    #[inline(always)]
+    fn column3_from(&self, grad: impl Fn(usize) -> (f32, f32, f32)) -> [f64; 2] {
+        let mut c = [0.0; 2];
+        for k in 0..4 {
+            let dy = self.fy - (k & 1) as f64;
+            let dz = self.fz - (k >> 1) as f64;
+            let w = self.w[k];
+            let (gx, gy, gz) = grad(k);
+            c[1] += w * f64::from(gx);
+            c[0] += w * (f64::from(gy) * dy + f64::from(gz) * dz);
+        }
+        c
+    }
+}
+
+/// Most lattice columns a row may span for [`Perlin`]'s 3-D grid fill to
+/// cache their gradients (wider rows are filled row by row).
+const CACHE_COLUMNS: usize = 64;
+
+/// The corner gradients of a 3-D grid row's lattice columns, kept while
+/// successive rows share the same four corner rows: at low frequency many
+/// rows (20 × 20 at 0.05 cells per sample) fall between the same lattice
+/// planes, so their columns are hashed once instead of once per row.
+struct ColumnCache3 {
+    /// Row hashes the gradients belong to (`None`: empty).
+    key: Option<[u32; 4]>,
+    /// Lattice index of column 0.
+    first: u32,
+    /// Columns held.
+    len: usize,
+    /// `grads[c][k]`: gradient of column `first + c` on corner row `k`.
+    grads: [[(f32, f32, f32); 4]; CACHE_COLUMNS],
+}
+
+impl ColumnCache3 {
+    /// Makes the cache hold the columns of `rows`, rehashing only when the
+    /// corner rows changed.
+    fn update(&mut self, rows: &RowCoeffs) {
+        if self.key != Some(rows.r) {
+            for (c, g) in self.grads[..self.len].iter_mut().enumerate() {
+                let ix = self.first.wrapping_add(c as u32);
+                *g = core::array::from_fn(|k| grad3(corner(ix, rows.r[k])));
+            }
+            self.key = Some(rows.r);
+        }
+    }
+
+    /// The column `ix` of the row `rows` (as [`RowCoeffs::column3`]), from the
+    /// cache when it holds it.
+    #[inline(always)]
+    fn column(&self, rows: &RowCoeffs, ix: u32) -> [f64; 2] {
+        match self.grads[..self.len].get(ix.wrapping_sub(self.first) as usize) {
+            Some(g) => rows.column3_from(|k| g[k]),
+            None => rows.column3(ix),
+        }
+    }
+}
+
+impl Perlin {
+    /// The 3-D lattice fill behind [`Field::fill_grid3`]: low-frequency rows
+    /// go span by span with their column gradients cached across rows
+    /// ([`ColumnCache3`]); the values are bit-identical to filling each row
+    /// with [`Field::fill_row3_with`].
+    pub(crate) fn grid3(
+        &self,
+        simd: Simd,
+        lattice: &Lattice3,
+        out: &mut [f32],
+    ) -> crate::Result<()> {
+        lattice.check(out.len())?;
+        let (x0, step, nx) = (lattice.origin.x, lattice.step.x, lattice.nx);
+        let columns = if step > 0.0 && step <= SPAN_MAX_STEP && row_in_fast_range(x0, step, nx) {
+            let (first, _) = split_fast(x0);
+            let (last, _) = split_fast(x0 + (nx - 1) as f64 * step);
+            Some((first, last.wrapping_sub(first) as usize + 2))
+        } else {
+            None
+        };
+        let Some((first, len)) = columns.filter(|&(_, len)| len <= CACHE_COLUMNS) else {
+            for (r, row) in out.chunks_exact_mut(nx).enumerate() {
+                self.fill_row3_with(
+                    simd,
+                    lattice.row_origin(r % lattice.ny, r / lattice.ny),
+                    step,
+                    row,
+                );
+            }
+            return Ok(());
+        };
+        let mut cache = ColumnCache3 {
+            key: None,
+            first,
+            len,
+            grads: [[(0.0, 0.0, 0.0); 4]; CACHE_COLUMNS],
+        };
+        let k = self.scale(3);
+        let fade = self.fade();
+        for (r, row) in out.chunks_exact_mut(nx).enumerate() {
+            let origin = lattice.row_origin(r % lattice.ny, r / lattice.ny);
+            if !origin.y.is_finite()
+                || !origin.z.is_finite()
+                || origin.y.abs() > 1e15
+                || origin.z.abs() > 1e15
+            {
+                self.fill_row3_with(simd, origin, step, row);
+                continue;
+            }
+            let rows = RowCoeffs::new3(self.lattice_seed(), fade, origin.y, origin.z);
+            cache.update(&rows);
+            let cache = &cache;
+            run(
+                simd,
+                #[inline(always)]
+                || row_spans(fade, x0, step, k, row, |ix| cache.column(&rows, ix)),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Coefficients `(a0, a1, b0, b1)` with `N(fx) = a0 + a1·fx + fade(fx)·(b0 + b1·fx)`
+/// over the cell between lattice columns `left` and `right` (see
+/// [`RowCoeffs::column2`]): the left corners give `a0 + a1·fx`, the right ones
+/// `c1·(fx − 1) + c0`, and the fade blends them.
+#[inline(always)]
+fn span_coeffs(left: [f64; 2], right: [f64; 2]) -> [f64; 4] {
+    let c0 = right[0] - right[1];
+    [left[0], left[1], c0 - left[0], right[1] - left[1]]
+}
+
+/// Evaluates a low-frequency row cell by cell: within one lattice cell the row
+/// is `a0 + a1·t + fade(t)·(b0 + b1·t)` in the fractional coordinate `t`, with
+/// the four coefficients computed once per cell (hoisting all hashing out of
+/// the per-point loop). The same function as the point path, re-associated.
+///
+/// The lattice columns of up to [`SPAN_CELLS`] consecutive cells are hashed
+/// once each (`column(ix)`, shared by the two cells they bound), and each cell's points are
+/// written in whole groups of [`SPAN_GROUP`] lanes: a group that runs past the
+/// cell's end writes values the next cell then overwrites, so no scalar
+/// remainder loop runs per cell.
+#[inline(always)]
+pub(crate) fn row_spans(
+    fade: Fade,
+    x0: f64,
+    step: f64,
+    scale: f64,
+    out: &mut [f32],
+    column: impl Fn(u32) -> [f64; 2],
+) {
+    let n = out.len();
+    let s32 = step as f32;
+    // The row's last cell (the batch kernels only run on rows inside the
+    // fast-split range, so this index arithmetic is exact).
+    let (last, _) = split_fast(x0 + (n - 1) as f64 * step);
+    let mut table = [[0.0f32; 4]; SPAN_CELLS];
+    let mut base = 0u32;
+    let mut filled = 0usize;
+    with_fade32!(fade, |f| {
+        let mut i = 0usize;
+        while i < n {
+            let x = x0 + i as f64 * step;
+            let (ix, fx) = split_fast(x);
+            let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
+            let mut slot = ix.wrapping_sub(base) as usize;
+            if slot >= filled {
+                base = ix;
+                slot = 0;
+                filled = (last.wrapping_sub(ix) as usize)
+                    .saturating_add(1)
+                    .min(SPAN_CELLS);
+                let mut cols = [[0.0f64; 2]; SPAN_CELLS + 1];
+                for (c, col) in cols[..=filled].iter_mut().enumerate() {
+                    *col = column(ix.wrapping_add(c as u32));
+                }
+                for (c, t) in table[..filled].iter_mut().enumerate() {
+                    *t = span_coeffs(cols[c], cols[c + 1]).map(|v| (v * scale) as f32);
+                }
+            }
+            let c = table[slot];
+            let t0 = fx as f32;
+            let poly = |k: usize| {
+                let t = t0 + (k as i32) as f32 * s32;
+                (c[0] + c[1] * t) + f(t) * (c[2] + c[3] * t)
+            };
+            let mut g = 0usize;
+            while g < count {
+                let at = i + g;
+                if at + SPAN_GROUP <= n {
+                    let group: &mut [f32; SPAN_GROUP] =
+                        (&mut out[at..at + SPAN_GROUP]).try_into().unwrap();
+                    for (k, o) in group.iter_mut().enumerate() {
+                        *o = poly(g + k);
+                    }
+                } else {
+                    for (k, o) in out[at..].iter_mut().enumerate() {
+                        *o = poly(g + k);
+                    }
+                }
+                g += SPAN_GROUP;
+            }
+            i += count;
+        }
+    });
+}
+
+/// Cells whose span coefficients [`row_spans`] computes in one batch.
+const SPAN_CELLS: usize = 32;
+
+/// Points [`row_spans`] writes per group (one AVX-512 vector, two AVX2 ones).
+const SPAN_GROUP: usize = 16;
+
+/// The general 2-D row kernel: every lane finds its own cell.
+#[inline(always)]
+fn perlin2_row(
+    fade: impl Fn(f32) -> f32,
+    rows: &RowCoeffs,
+    x0: f64,
+    step: f64,
+    k: f32,
+    out: &mut [f32],
+) {
+    let (r0, r1) = (rows.r[0], rows.r[1]);
+    let fy = rows.fy32;
+    let fy1 = fy - 1.0;
+    let v = rows.w32[1];
+    let lanes = LaneOffsets::new(step);
+    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
+        let (bi, bf) = LaneOffsets::base(x0 + (b * BLOCK) as f64 * step);
+        for ((o, &cell), &frac) in block.iter_mut().zip(&lanes.cell).zip(&lanes.frac) {
+            let (ix, fx) = rebase(bi, bf, cell, frac);
+            let fx1 = fx - 1.0;
+            let ix1 = ix.wrapping_add(1);
+            let d = |h: u32, x: f32, y: f32| {
+                let (gx, gy) = grad2(h);
+                gx * x + gy * y
+            };
+            let n00 = d(corner(ix, r0), fx, fy);
+            let n10 = d(corner(ix1, r0), fx1, fy);
+            let n01 = d(corner(ix, r1), fx, fy1);
+            let n11 = d(corner(ix1, r1), fx1, fy1);
+            let u = fade(fx);
+            let a = n00 + u * (n10 - n00);
+            let b = n01 + u * (n11 - n01);
+            *o = (a + v * (b - a)) * k;
+        }
+    }
+}
+
+/// The general 3-D row kernel.
+#[inline(always)]
+fn perlin3_row(
+    fade: impl Fn(f32) -> f32,
+    rows: &RowCoeffs,
+    x0: f64,
+    step: f64,
+    k: f32,
+    out: &mut [f32],
+) {
+    let (fy, fz) = (rows.fy32, rows.fz32);
+    let dy = [fy, fy - 1.0, fy, fy - 1.0];
+    let dz = [fz, fz, fz - 1.0, fz - 1.0];
+    let w = rows.w32;
+    let r = rows.r;
+    let lanes = LaneOffsets::new(step);
+    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
+        let (bi, bf) = LaneOffsets::base(x0 + (b * BLOCK) as f64 * step);
+        for ((o, &cell), &frac) in block.iter_mut().zip(&lanes.cell).zip(&lanes.frac) {
+            let (ix, fx) = rebase(bi, bf, cell, frac);
+            let fx1 = fx - 1.0;
+            let ix1 = ix.wrapping_add(1);
+            let u = fade(fx);
+            let mut acc = 0.0f32;
+            for c in 0..4 {
+                let (ax, ay, az) = grad3(corner(ix, r[c]));
+                let (bx, by, bz) = grad3(corner(ix1, r[c]));
+                let n0 = ax * fx + ay * dy[c] + az * dz[c];
+                let n1 = bx * fx1 + by * dy[c] + bz * dz[c];
+                acc += w[c] * (n0 + u * (n1 - n0));
+            }
+            *o = acc * k;
+        }
+    }
+}

@@ -1,0 +1,411 @@
+//! The parameters of a planet.
+
+use glam::DVec3;
+
+use crate::air::{PlanetCloudsParams, VenusParams};
+use crate::earth::{LunaParams, TerranParams};
+use crate::error::{Result, colour, direction, in_range, invalid, non_negative, positive};
+use crate::fractals::spectral;
+use crate::giants::{GasGiantParams, RingsParams};
+
+/// Earth's mean radius, metres.
+pub const EARTH_RADIUS_M: f64 = 6.371e6;
+
+/// Detail finer than the continents: the lower crossover, below which the
+/// relief turns smooth (Musgrave 1993, §2.2.1.4: "the smaller scale at which
+/// the surface becomes smooth and non-fractal").
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct DetailParams {
+    /// Spectral exponent of the detail octaves (1.5: smoother than the
+    /// continents; above 1 the slopes shrink at finer scales).
+    pub h: f64,
+    /// Lattice cell of the finest octave, metres (0.01: 1 cm).
+    pub finest_m: f64,
+}
+
+impl Default for DetailParams {
+    fn default() -> Self {
+        Self {
+            h: 1.5,
+            finest_m: 0.01,
+        }
+    }
+}
+
+impl DetailParams {
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        crate::error::finite("h", self.h)?;
+        positive("finest_m", self.finest_m)?;
+        Ok(())
+    }
+}
+
+/// The displaced terrain of a planet: a [`Terran`](crate::earth::Terran)
+/// whose continents' chaos becomes height.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TerrainParams {
+    /// The continents, climate colouring, mottle and ocean (the `terran`
+    /// texture).
+    pub terran: TerranParams,
+    /// Metres of height per unit of chaos above sea level (before the
+    /// texture's `mtn_scale`): the height of the mountains.
+    pub relief_m: f64,
+    /// Units of the texture sphere per planet radius (1: the texture's unit
+    /// sphere is the planet).
+    pub texture_scale: f64,
+    /// Octaves finer than the continents', continuing their fBm with another
+    /// `H` (fBm continents with a whole number of octaves only).
+    pub detail: Option<DetailParams>,
+}
+
+impl TerrainParams {
+    /// The octave count at lacunarity `lacunarity` whose finest octave has a
+    /// lattice cell of `finest_m` metres on a planet of radius `radius_m`
+    /// with `texture_scale` texture units per radius (base frequency 1).
+    #[must_use]
+    pub fn octaves_for(radius_m: f64, texture_scale: f64, lacunarity: f64, finest_m: f64) -> f64 {
+        1.0 + (radius_m / (texture_scale * finest_m)).ln() / lacunarity.ln()
+    }
+
+    /// Earth-scale terrain: the terran texture's colouring with fBm
+    /// continents of `H = 0.6`, `λ = 2` and 16 octaves (down to ~100 m cells
+    /// at Earth's radius: rough enough for mountains at every scale from
+    /// continents to hills) and 8 km of relief per unit of chaos, then
+    /// smooth detail (`H = 1.5`) down to 1 cm. The climate index is squared
+    /// ("driving back the glaciers", `map_exp` 2; natura's choice for an
+    /// Earth-scale relief, whose chaos spans more than the texture's bump)
+    /// so temperate green reaches further from the equator.
+    #[must_use]
+    pub fn earth() -> Self {
+        let terran = TerranParams {
+            spectral: spectral(0.6, 2.0, 16.0),
+            map_exp: 2.0,
+            ..TerranParams::default()
+        };
+        Self {
+            terran,
+            relief_m: 8000.0,
+            texture_scale: 1.0,
+            detail: Some(DetailParams::default()),
+        }
+    }
+
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        self.terran.validate()?;
+        non_negative("relief_m", self.relief_m)?;
+        positive("texture_scale", self.texture_scale)?;
+        if let Some(d) = &self.detail {
+            d.validate()?;
+            let o = self.terran.spectral.octaves;
+            if self.terran.continents != crate::earth::Continents::Fbm || o.fract() != 0.0 {
+                return Err(invalid(
+                    "detail",
+                    o,
+                    "detail continues fBm continents with a whole number of octaves",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What covers the planet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SurfaceParams {
+    /// Displaced terrain with oceans (Gaea).
+    Terrain(TerrainParams),
+    /// A smooth sphere of Coriolis-twisted clouds.
+    Venus(VenusParams),
+    /// A smooth banded gas giant.
+    GasGiant(GasGiantParams),
+    /// A smooth, bump-mapped moon with a rayed crater.
+    Luna(LunaParams),
+}
+
+/// The radial atmosphere (natura-atmos's `RadialAtmosphere`, Musgrave
+/// 1993 §4.1.6, its errata corrected there) and its umbra.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct AtmosphereParams {
+    /// Scale height, metres (8000, Earth's).
+    pub scale_height_m: f64,
+    /// Extinction per metre at sea level, per channel (Earth's Rayleigh
+    /// coefficients at 680, 550 and 440 nm, Bruneton & Neyret 2008).
+    pub extinction: DVec3,
+    /// The day side's fog colour `I_a`: what an infinitely thick atmosphere
+    /// looks like in full sun.
+    pub day_colour: DVec3,
+    /// The night side's fog colour (inside the planet's shadow cylinder).
+    pub night_colour: DVec3,
+    /// How much wider than the planet the shadow cylinder is, metres
+    /// (must exceed any ray offset; Musgrave 1993 §4.1.6).
+    pub umbra_margin_m: f64,
+    /// Whether the day side's haze is also dimmed by the sun's cosine
+    /// (Musgrave 1993 §4.1.6.5's second remedy; true). Without it the haze
+    /// ends in a hard edge where it enters the umbra.
+    pub lambert_haze: bool,
+}
+
+impl Default for AtmosphereParams {
+    fn default() -> Self {
+        Self {
+            scale_height_m: 8000.0,
+            extinction: DVec3::new(5.8e-6, 13.5e-6, 33.1e-6),
+            day_colour: DVec3::new(0.3, 0.45, 0.75),
+            night_colour: DVec3::new(0.002, 0.003, 0.006),
+            umbra_margin_m: 1000.0,
+            lambert_haze: true,
+        }
+    }
+}
+
+impl AtmosphereParams {
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        positive("scale_height_m", self.scale_height_m)?;
+        for c in self.extinction.to_array() {
+            non_negative("extinction", c)?;
+        }
+        colour("day_colour", self.day_colour)?;
+        colour("night_colour", self.night_colour)?;
+        positive("umbra_margin_m", self.umbra_margin_m)?;
+        Ok(())
+    }
+}
+
+/// The cloud shell: a sphere concentric with the planet, transparency
+/// mapped by [`PlanetClouds`](crate::air::PlanetClouds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct CloudLayerParams {
+    /// The cloud texture, evaluated on the unit sphere of directions.
+    pub clouds: PlanetCloudsParams,
+    /// Height of the shell above sea level, metres (10 000).
+    pub altitude_m: f64,
+    /// The clouds' albedo (linear).
+    pub albedo: DVec3,
+    /// Whether the clouds shadow the ground (true).
+    pub shadows: bool,
+}
+
+impl Default for CloudLayerParams {
+    /// The RenderMan `planetclouds` defaults with 13 octaves (fine enough
+    /// to stay detailed from a mountain top) and a little more cover.
+    fn default() -> Self {
+        Self {
+            clouds: PlanetCloudsParams {
+                octaves: 13.0,
+                offset: 0.1,
+                distortion: 1.2,
+                ..PlanetCloudsParams::default()
+            },
+            altitude_m: 10_000.0,
+            albedo: DVec3::splat(0.95),
+            shadows: true,
+        }
+    }
+}
+
+impl CloudLayerParams {
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        self.clouds.validate()?;
+        positive("altitude_m", self.altitude_m)?;
+        colour("albedo", self.albedo)?;
+        Ok(())
+    }
+}
+
+/// The sun and the light that does not come from it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct LightParams {
+    /// Direction towards the sun (normalised when the planet is built).
+    pub sun: DVec3,
+    /// The sun's colour and intensity.
+    pub sun_colour: DVec3,
+    /// Light reaching every surface from elsewhere (fraction of the sun).
+    pub ambient: f64,
+    /// Whether the terrain casts shadows (true).
+    pub terrain_shadows: bool,
+    /// The sun's angular radius, radians (0.00465, as seen from the Earth).
+    pub sun_radius: f64,
+}
+
+impl Default for LightParams {
+    fn default() -> Self {
+        Self {
+            sun: DVec3::new(1.0, -0.45, 0.35),
+            sun_colour: DVec3::ONE,
+            ambient: 0.02,
+            terrain_shadows: true,
+            sun_radius: 0.00465,
+        }
+    }
+}
+
+impl LightParams {
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        direction("sun", self.sun)?;
+        for c in self.sun_colour.to_array() {
+            non_negative("sun_colour", c)?;
+        }
+        in_range("ambient", self.ambient, 0.0, 1.0, "must be in [0, 1]")?;
+        in_range(
+            "sun_radius",
+            self.sun_radius,
+            0.0,
+            0.5,
+            "must be in [0, 0.5] radians",
+        )?;
+        Ok(())
+    }
+}
+
+/// Everything that makes a planet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PlanetParams {
+    /// Radius of the sea-level sphere, metres (Earth's, 6 371 km).
+    pub radius_m: f64,
+    /// What covers it.
+    pub surface: SurfaceParams,
+    /// Its atmosphere, if any.
+    pub atmosphere: Option<AtmosphereParams>,
+    /// Its cloud shell, if any.
+    pub clouds: Option<CloudLayerParams>,
+    /// Its rings (in the equatorial plane, radii in planet radii), if any.
+    pub rings: Option<RingsParams>,
+    /// The sun.
+    pub light: LightParams,
+}
+
+impl Default for PlanetParams {
+    /// Gaea: [`PlanetParams::gaea`].
+    fn default() -> Self {
+        Self::gaea()
+    }
+}
+
+impl PlanetParams {
+    /// An Earth-like planet of Earth's radius: terrain, a radial atmosphere
+    /// with its umbra, and a cloud shell.
+    #[must_use]
+    pub fn gaea() -> Self {
+        Self {
+            radius_m: EARTH_RADIUS_M,
+            surface: SurfaceParams::Terrain(TerrainParams::earth()),
+            atmosphere: Some(AtmosphereParams::default()),
+            clouds: Some(CloudLayerParams::default()),
+            rings: None,
+            light: LightParams::default(),
+        }
+    }
+
+    /// Venus (radius 6 052 km) under a thick, yellowish haze.
+    #[must_use]
+    pub fn venus() -> Self {
+        Self {
+            radius_m: 6.052e6,
+            surface: SurfaceParams::Venus(VenusParams::default()),
+            atmosphere: Some(AtmosphereParams {
+                scale_height_m: 15_000.0,
+                extinction: DVec3::new(6e-6, 8e-6, 12e-6),
+                day_colour: DVec3::new(0.95, 0.9, 0.72),
+                ..AtmosphereParams::default()
+            }),
+            clouds: None,
+            rings: None,
+            light: LightParams::default(),
+        }
+    }
+
+    /// A Jupiter-sized banded giant (radius 69 911 km) with Saturn-like
+    /// rings and a hazy atmosphere.
+    #[must_use]
+    pub fn jupiter() -> Self {
+        Self {
+            radius_m: 6.9911e7,
+            surface: SurfaceParams::GasGiant(GasGiantParams::default()),
+            atmosphere: Some(AtmosphereParams {
+                scale_height_m: 60_000.0,
+                extinction: DVec3::new(1.5e-6, 1.8e-6, 2.4e-6),
+                day_colour: DVec3::new(0.9, 0.86, 0.78),
+                ..AtmosphereParams::default()
+            }),
+            clouds: None,
+            rings: Some(RingsParams::default()),
+            light: LightParams::default(),
+        }
+    }
+
+    /// Selene, a Moon-sized airless moon (radius 1 737.4 km).
+    #[must_use]
+    pub fn selene() -> Self {
+        Self {
+            radius_m: 1.7374e6,
+            surface: SurfaceParams::Luna(LunaParams::default()),
+            atmosphere: None,
+            clouds: None,
+            rings: None,
+            light: LightParams {
+                ambient: 0.01,
+                ..LightParams::default()
+            },
+        }
+    }
+
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`TextureError`](crate::TextureError) naming the first bad parameter.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.radius_m.is_finite() && self.radius_m > 0.0) {
+            return Err(invalid("radius_m", self.radius_m, "must be finite and > 0"));
+        }
+        in_range(
+            "radius_m",
+            self.radius_m,
+            1.0,
+            1e12,
+            "must be between 1 m and 10¹² m",
+        )?;
+        match &self.surface {
+            SurfaceParams::Terrain(t) => t.validate()?,
+            SurfaceParams::Venus(v) => v.validate()?,
+            SurfaceParams::GasGiant(g) => g.validate()?,
+            SurfaceParams::Luna(l) => l.validate()?,
+        }
+        if let Some(a) = &self.atmosphere {
+            a.validate()?;
+        }
+        if let Some(c) = &self.clouds {
+            c.validate()?;
+        }
+        if let Some(r) = &self.rings {
+            r.validate()?;
+        }
+        self.light.validate()
+    }
+}

@@ -1,0 +1,219 @@
+//! Pictures of a texture on its own: on a sphere, on a plane, as water, and
+//! contact sheets of several. These are what the examples write; they are
+//! simple fixed renderers, not a scene description.
+
+use glam::{DVec3, Vec3};
+use natura_core::{Grid2, Image, Progress};
+
+use crate::error::{Result, TextureError, positive};
+use crate::footprint::Footprint;
+use crate::normal::bump;
+use crate::raster::render_rows;
+use crate::texture::{SolidTexture, TextureKind};
+use crate::view::View;
+
+/// The light of the swatches: upper left, slightly in front.
+const LIGHT: DVec3 = DVec3::new(-0.5, -0.55, 0.67);
+/// The dark blue behind densities (clouds, rings) and around spheres.
+const BACKDROP: DVec3 = DVec3::new(0.02, 0.035, 0.08);
+
+fn check_size(size: u32) -> Result<()> {
+    if size == 0 || size > natura_trace::MAX_RESOLUTION {
+        return Err(TextureError::InvalidSize {
+            name: "size",
+            value: size as usize,
+            reason: format!("must be between 1 and {}", natura_trace::MAX_RESOLUTION),
+        });
+    }
+    Ok(())
+}
+
+/// How a sample looks under the swatch light with surface normal `n`.
+fn look(texture: &dyn SolidTexture, p: DVec3, n: DVec3, fp: Footprint, emissive: bool) -> DVec3 {
+    let l = LIGHT.normalize();
+    let s = texture.sample(p, fp);
+    match texture.kind() {
+        TextureKind::Colour if emissive => s.colour,
+        TextureKind::Colour => s.colour * (0.15 + 0.85 * n.dot(l).max(0.0)),
+        TextureKind::Density => {
+            let lit = s.colour * (0.25 + 0.75 * n.dot(l).max(0.0));
+            BACKDROP.lerp(lit, s.opacity)
+        }
+        TextureKind::Height | TextureKind::ColourAndHeight => {
+            let nb = bump(n, texture.height_gradient(p, fp));
+            s.colour * (0.15 + 0.85 * nb.dot(l).max(0.0))
+        }
+    }
+}
+
+/// The texture on the unit sphere, seen orthographically in a `size ×
+/// size` image (one sample per pixel, footprint one pixel), lit from the
+/// upper left; densities are shown over a dark blue backdrop. Emissive
+/// textures (fire) are shown unlit when `emissive` is set.
+///
+/// # Errors
+/// [`TextureError::InvalidSize`] for a zero or oversize `size`.
+pub fn sphere(
+    texture: &dyn SolidTexture,
+    size: u32,
+    emissive: bool,
+    progress: &dyn Progress,
+) -> Result<Image> {
+    check_size(size)?;
+    let px = 2.2 / f64::from(size);
+    let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
+    render_rows(size, size, texture.name(), progress, |y, row| {
+        let v = 1.1 - (f64::from(y) + 0.5) * px;
+        for (x, out) in row.iter_mut().enumerate() {
+            let u = (x as f64 + 0.5) * px - 1.1;
+            let r2 = u * u + v * v;
+            let c = if r2 < 1.0 {
+                // The hemisphere facing the viewer, who looks along +y with z up.
+                let n = DVec3::new(u, -(1.0 - r2).sqrt(), v);
+                look(texture, n, n, fp, emissive)
+            } else {
+                BACKDROP
+            };
+            *out = c.as_vec3();
+        }
+    })
+}
+
+/// Which plane a [`plane`] swatch shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Plane {
+    /// The horizontal plane `z = 0.37`, seen from above.
+    Horizontal,
+    /// The vertical plane `y = 0.37` from `z = 0` up, seen from −y (for fire).
+    Vertical,
+}
+
+/// The texture on a plane square of side `extent` (texture units), seen
+/// straight on in a `size × size` image.
+///
+/// # Errors
+/// [`TextureError::InvalidSize`] for a bad `size`, or an invalid `extent`.
+pub fn plane(
+    texture: &dyn SolidTexture,
+    size: u32,
+    extent: f64,
+    which: Plane,
+    emissive: bool,
+    progress: &dyn Progress,
+) -> Result<Image> {
+    check_size(size)?;
+    positive("extent", extent)?;
+    let px = extent / f64::from(size);
+    let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
+    render_rows(size, size, texture.name(), progress, |y, row| {
+        let b = 0.5 * extent - (f64::from(y) + 0.5) * px;
+        for (x, out) in row.iter_mut().enumerate() {
+            let a = (x as f64 + 0.5) * px - 0.5 * extent;
+            let (p, n) = match which {
+                Plane::Horizontal => (DVec3::new(a, b, 0.37), DVec3::Z),
+                Plane::Vertical => (DVec3::new(a, 0.37, b + 0.5 * extent), DVec3::NEG_Y),
+            };
+            *out = look(texture, p, n, fp, emissive).as_vec3();
+        }
+    })
+}
+
+/// A height texture as water: a mirror-like plane (`z = 0` displaced by
+/// the texture's height, `scale` world units per texture unit) seen in
+/// perspective from `eye_height` above it, reflecting a sky gradient and a
+/// low sun with Fresnel's law (Schlick, water's index 1.33).
+///
+/// # Errors
+/// [`TextureError`] for a bad resolution or scale.
+pub fn water(
+    texture: &dyn SolidTexture,
+    width: u32,
+    height: u32,
+    scale: f64,
+    progress: &dyn Progress,
+) -> Result<Image> {
+    positive("scale", scale)?;
+    let eye = DVec3::new(0.0, 0.0, 1.5);
+    let view = View::look_at(
+        eye,
+        DVec3::new(0.0, 20.0, 0.0),
+        DVec3::Z,
+        0.7,
+        width,
+        height,
+    )?;
+    let sun = DVec3::new(0.25, 1.0, 0.18).normalize();
+    let sky = |d: DVec3| {
+        let h = d.z.max(0.0);
+        let base = DVec3::new(0.75, 0.82, 0.9).lerp(DVec3::new(0.18, 0.32, 0.62), h.powf(0.6));
+        base + DVec3::new(1.0, 0.9, 0.7) * (d.dot(sun).max(0.0).powi(4000) * 12.0)
+    };
+    let alpha = view.pixel_angle();
+    render_rows(width, height, texture.name(), progress, |y, row| {
+        for (x, out) in row.iter_mut().enumerate() {
+            let d = view.pixel(x as u32, y);
+            let c = if d.z >= -1e-4 {
+                sky(d)
+            } else {
+                let t = -eye.z / d.z;
+                let p = eye + d * t;
+                let fp = Footprint::new(t * alpha / scale).unwrap_or(Footprint::POINT);
+                let g = texture.height_gradient(p / scale, fp);
+                let n = bump(DVec3::Z, g);
+                let r = d - n * (2.0 * d.dot(n));
+                let cos = (-d.dot(n)).clamp(0.0, 1.0);
+                let f = 0.02 + 0.98 * (1.0 - cos).powi(5);
+                let deep = DVec3::new(0.01, 0.04, 0.05);
+                deep.lerp(sky(DVec3::new(r.x, r.y, r.z.abs())), f)
+            };
+            *out = c.as_vec3();
+        }
+    })
+}
+
+/// Lays `images` out in a grid of `columns` columns separated by `gap`
+/// pixels of `background`, each cell the size of the largest image.
+///
+/// # Errors
+/// [`TextureError::InvalidSize`] for no images or zero columns.
+pub fn contact_sheet(
+    images: &[Image],
+    columns: usize,
+    gap: usize,
+    background: Vec3,
+) -> Result<Image> {
+    if images.is_empty() {
+        return Err(TextureError::InvalidSize {
+            name: "images",
+            value: 0,
+            reason: "a contact sheet needs at least one image".into(),
+        });
+    }
+    if columns == 0 {
+        return Err(TextureError::InvalidSize {
+            name: "columns",
+            value: 0,
+            reason: "must be at least 1".into(),
+        });
+    }
+    let cw = images.iter().map(Image::width).max().unwrap_or(1);
+    let ch = images.iter().map(Image::height).max().unwrap_or(1);
+    let cols = columns.min(images.len());
+    let rows = images.len().div_ceil(cols);
+    let w = cols * cw + (cols + 1) * gap;
+    let h = rows * ch + (rows + 1) * gap;
+    let mut grid = Grid2::new(w, h, background)?;
+    for (k, img) in images.iter().enumerate() {
+        let (cx, cy) = (k % cols, k / cols);
+        let x0 = gap + cx * (cw + gap) + (cw - img.width()) / 2;
+        let y0 = gap + cy * (ch + gap) + (ch - img.height()) / 2;
+        for y in 0..img.height() {
+            for x in 0..img.width() {
+                if let Some(c) = img.get(x, y) {
+                    grid.set(x0 + x, y0 + y, c);
+                }
+            }
+        }
+    }
+    Ok(Image::from_grid(grid))
+}
