@@ -11,7 +11,7 @@
 
 use glam::Vec3;
 use natura_core::Seed;
-use rand_core::RngCore;
+use rand_core::Rng;
 
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::gas::GasNoise;
@@ -84,9 +84,19 @@ pub fn cloud_is_born() -> Vec<Keyed> {
         to: Primitive::sphere(b, rb),
     };
     vec![
-        k(Vec3::new(-6.0, 0.0, 2.0), 1.2, Vec3::new(-1.8, 0.0, 2.2), 3.0),
+        k(
+            Vec3::new(-6.0, 0.0, 2.0),
+            1.2,
+            Vec3::new(-1.8, 0.0, 2.2),
+            3.0,
+        ),
         k(Vec3::new(6.0, 1.0, 2.5), 1.0, Vec3::new(1.8, 0.3, 2.4), 2.9),
-        k(Vec3::new(0.0, -1.0, 6.0), 0.8, Vec3::new(0.0, 0.0, 4.4), 2.6),
+        k(
+            Vec3::new(0.0, -1.0, 6.0),
+            0.8,
+            Vec3::new(0.0, 0.0, 4.4),
+            2.6,
+        ),
     ]
 }
 
@@ -131,7 +141,7 @@ impl Default for ParticleParams {
             drag: 0.8,
             lifetime: 5.0,
             growth: 0.15,
-            spawn_rate: 0.12,
+            spawn_rate: 0.7,
             max_particles: 300,
             noise_frequency: 0.15,
         }
@@ -150,7 +160,13 @@ impl ParticleParams {
         non_negative("drag", self.drag)?;
         positive("lifetime", self.lifetime)?;
         non_negative("growth", self.growth)?;
-        in_range("spawn_rate", self.spawn_rate, 0.0, 100.0, "must lie in [0, 100]")?;
+        in_range(
+            "spawn_rate",
+            self.spawn_rate,
+            0.0,
+            100.0,
+            "must lie in [0, 100]",
+        )?;
         positive("noise_frequency", self.noise_frequency)?;
         if !(1..=100_000).contains(&self.max_particles) {
             return Err(VolumeError::InvalidParameter {
@@ -304,6 +320,6 @@ impl ImplicitParticles {
 
 /// A uniform number in `[0, 1)` from 24 random bits.
 #[inline]
-pub(crate) fn unit(rng: &mut impl RngCore) -> f32 {
+pub(crate) fn unit(rng: &mut impl Rng) -> f32 {
     (rng.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }

@@ -224,7 +224,13 @@ impl CloudParams {
         positive("noise_frequency", self.noise_frequency)?;
         if let Some(j) = self.jet_stream {
             finite3("jet_stream.vector", j.vector)?;
-            in_range("jet_stream.amount", j.amount, 0.0, 1.0, "must lie in [0, 1]")?;
+            in_range(
+                "jet_stream.amount",
+                j.amount,
+                0.0,
+                1.0,
+                "must lie in [0, 1]",
+            )?;
         }
         if let Some(m) = self.mackerel {
             finite3(
@@ -366,11 +372,16 @@ impl Density for Cloud {
         if m <= 0.0 {
             0.0
         } else {
-            (self.params.density_scale * m).min(1.0).powf(self.params.exponent)
+            (self.params.density_scale * m)
+                .min(1.0)
+                .powf(self.params.exponent)
         }
     }
     fn max_density(&self) -> f32 {
-        self.params.density_scale.min(1.0).powf(self.params.exponent)
+        self.params
+            .density_scale
+            .min(1.0)
+            .powf(self.params.exponent)
     }
 }
 

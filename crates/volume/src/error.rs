@@ -18,7 +18,9 @@ pub enum VolumeError {
         expected: &'static str,
     },
     /// A bounding box is empty, inverted or not finite.
-    #[error("invalid bounds `{name}`: min {min:?}, max {max:?} (each min must be finite and below its max)")]
+    #[error(
+        "invalid bounds `{name}`: min {min:?}, max {max:?} (each min must be finite and below its max)"
+    )]
     InvalidBounds {
         /// Which box.
         name: &'static str,
@@ -38,7 +40,9 @@ pub enum VolumeError {
         actual: String,
     },
     /// A grid holds a NaN, infinite or negative density.
-    #[error("grid `{name}` holds {value} at voxel ({x}, {y}, {z}): densities must be finite and ≥ 0")]
+    #[error(
+        "grid `{name}` holds {value} at voxel ({x}, {y}, {z}): densities must be finite and ≥ 0"
+    )]
     BadVoxel {
         /// Which grid.
         name: &'static str,

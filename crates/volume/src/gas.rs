@@ -10,7 +10,7 @@
 //! (Perlin 1985, §"turbulence") divided by its bound, so it lies in `[0, 1]`
 //! and every density built from it does too.
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use natura_core::Aabb;
 use natura_noise::{Field, GainConvention, Perlin, Spectral, Turbulence};
 
@@ -36,13 +36,7 @@ impl GasNoise {
     /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter)
     /// for octaves outside `[1, 16]`.
     pub fn new(seed: u64, octaves: u32) -> Result<Self> {
-        in_range(
-            "octaves",
-            octaves as f32,
-            1.0,
-            16.0,
-            "must lie in [1, 16]",
-        )?;
+        in_range("octaves", octaves as f32, 1.0, 16.0, "must lie in [1, 16]")?;
         let noise = Perlin::new(seed);
         let spectral = Spectral::default()
             .with_h(1.0)
@@ -71,7 +65,7 @@ impl GasNoise {
     #[inline]
     #[must_use]
     pub fn turbulence(&self, p: Vec3) -> f32 {
-        (self.turb.eval3(DVec3::from(p.as_dvec3())) * self.inv_turb).clamp(0.0, 1.0) as f32
+        (self.turb.eval3(p.as_dvec3()) * self.inv_turb).clamp(0.0, 1.0) as f32
     }
 }
 
@@ -288,7 +282,14 @@ impl Density for Fog {
             return 0.0;
         }
         let falloff = (-(p.z - self.region.min.z) / self.scale_height).exp();
-        falloff * basic_gas(&self.noise, p, self.frequency, self.denseness, self.wispiness)
+        falloff
+            * basic_gas(
+                &self.noise,
+                p,
+                self.frequency,
+                self.denseness,
+                self.wispiness,
+            )
     }
     fn bounds(&self) -> Aabb {
         self.region
@@ -306,7 +307,11 @@ mod tests {
     fn noise_and_turbulence_ranges() {
         let g = GasNoise::new(3, 6).unwrap();
         for i in 0..2000 {
-            let p = Vec3::new(i as f32 * 0.137, (i % 17) as f32 * 0.31, (i % 5) as f32 * 1.7);
+            let p = Vec3::new(
+                i as f32 * 0.137,
+                (i % 17) as f32 * 0.31,
+                (i % 5) as f32 * 1.7,
+            );
             let n = g.noise(p);
             let t = g.turbulence(p);
             assert!((-1.0..=1.0).contains(&n));

@@ -56,7 +56,8 @@ impl GridDensity {
         // Each block's majorant covers its voxels and the one-voxel rim that
         // trilinear interpolation inside the block can reach.
         let blocks = Grid3::from_fn(bx, by, bz, |a, b, c| {
-            let r = |i: usize, n: usize| (i * BLOCK).saturating_sub(1)..((i + 1) * BLOCK + 1).min(n);
+            let r =
+                |i: usize, n: usize| (i * BLOCK).saturating_sub(1)..((i + 1) * BLOCK + 1).min(n);
             let mut m = 0.0f32;
             for z in r(c, nz) {
                 for y in r(b, ny) {
@@ -137,14 +138,18 @@ impl GridDensity {
         let b = density.bounds();
         check_bounds("density bounds", &b)?;
         let n = ((b.max - b.min) / cell).ceil();
-        if !(n.max_element() < 1e6) {
+        if n.is_nan() || n.max_element() >= 1e6 {
             return Err(VolumeError::InvalidParameter {
                 name: "cell",
                 value: cell.to_string(),
                 expected: "must give fewer than 1e6 voxels per axis over the bounds",
             });
         }
-        let (nx, ny, nz) = (n.x.max(1.0) as usize, n.y.max(1.0) as usize, n.z.max(1.0) as usize);
+        let (nx, ny, nz) = (
+            n.x.max(1.0) as usize,
+            n.y.max(1.0) as usize,
+            n.z.max(1.0) as usize,
+        );
         let mut grid = Grid3::new(nx, ny, nz, 0.0f32)?;
         let origin = b.min;
         let fill = |k: usize, slice: &mut [f32]| {
@@ -273,13 +278,18 @@ mod tests {
     fn trilinear_is_exact_at_centres_and_linear_between() {
         let g = Grid3::from_fn(4, 3, 2, |i, j, k| (i + 2 * j + 3 * k) as f32).unwrap();
         let d = GridDensity::new(g, Vec3::new(1.0, 2.0, 3.0), 0.5).unwrap();
-        let c = |i: f32, j: f32, k: f32| Vec3::new(1.0, 2.0, 3.0) + (Vec3::new(i, j, k) + 0.5) * 0.5;
+        let c =
+            |i: f32, j: f32, k: f32| Vec3::new(1.0, 2.0, 3.0) + (Vec3::new(i, j, k) + 0.5) * 0.5;
         assert_eq!(d.sample(c(2.0, 1.0, 1.0)), 7.0);
         assert!((d.sample(c(1.5, 0.5, 0.5)) - 4.0).abs() < 1e-5);
         assert_eq!(d.sample(Vec3::ZERO), 0.0);
         // The block majorant bounds every sample.
         for i in 0..200 {
-            let p = c(i as f32 * 0.02 - 0.5, (i % 7) as f32 * 0.4 - 0.5, (i % 3) as f32 * 0.6 - 0.5);
+            let p = c(
+                i as f32 * 0.02 - 0.5,
+                (i % 7) as f32 * 0.4 - 0.5,
+                (i % 3) as f32 * 0.6 - 0.5,
+            );
             let r = Aabb { min: p, max: p };
             assert!(d.sample(p) <= d.bound_in(&r) + 1e-6);
         }
@@ -291,7 +301,12 @@ mod tests {
         g[(1, 1, 1)] = f32::NAN;
         assert!(matches!(
             GridDensity::new(g, Vec3::ZERO, 1.0),
-            Err(VolumeError::BadVoxel { x: 1, y: 1, z: 1, .. })
+            Err(VolumeError::BadVoxel {
+                x: 1,
+                y: 1,
+                z: 1,
+                ..
+            })
         ));
         let g = Grid3::new(2, 2, 2, 0.5f32).unwrap();
         assert!(GridDensity::new(g.clone(), Vec3::ZERO, 0.0).is_err());

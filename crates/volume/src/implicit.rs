@@ -332,7 +332,8 @@ mod tests {
         for i in 0..=100 {
             let r = i as f32 / 100.0 * 2.0;
             let rr = r / 2.0;
-            let poly = -(4.0 / 9.0) * rr.powi(6) + (17.0 / 9.0) * rr.powi(4) - (22.0 / 9.0) * rr.powi(2)
+            let poly = -(4.0 / 9.0) * rr.powi(6) + (17.0 / 9.0) * rr.powi(4)
+                - (22.0 / 9.0) * rr.powi(2)
                 + 1.0;
             assert!((wyvill(r, 2.0) - poly).abs() < 1e-6, "r = {r}");
         }
@@ -357,6 +358,11 @@ mod tests {
     fn invalid_primitives_are_refused() {
         assert!(Implicit::new(vec![]).is_err());
         assert!(Implicit::new(vec![Primitive::sphere(Vec3::ZERO, f32::NAN)]).is_err());
-        assert!(Implicit::new(vec![Primitive::sphere(Vec3::ZERO, 1.0).with_weight(f32::INFINITY)]).is_err());
+        assert!(
+            Implicit::new(vec![
+                Primitive::sphere(Vec3::ZERO, 1.0).with_weight(f32::INFINITY)
+            ])
+            .is_err()
+        );
     }
 }

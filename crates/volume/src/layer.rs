@@ -78,11 +78,23 @@ impl LayerParams {
     pub fn validate(&self) -> Result<()> {
         check_bounds("layer", &self.bounds())?;
         in_range("coverage", self.coverage, 0.0, 1.0, "must lie in [0, 1]")?;
-        in_range("cloud_type", self.cloud_type, 0.0, 1.0, "must lie in [0, 1]")?;
+        in_range(
+            "cloud_type",
+            self.cloud_type,
+            0.0,
+            1.0,
+            "must lie in [0, 1]",
+        )?;
         positive("weather_scale_m", self.weather_scale_m)?;
         positive("shape_scale_m", self.shape_scale_m)?;
         positive("detail_scale_m", self.detail_scale_m)?;
-        in_range("detail_erosion", self.detail_erosion, 0.0, 1.0, "must lie in [0, 1]")?;
+        in_range(
+            "detail_erosion",
+            self.detail_erosion,
+            0.0,
+            1.0,
+            "must lie in [0, 1]",
+        )?;
         crate::error::non_negative("density_scale", self.density_scale)?;
         crate::error::finite3(
             "wind_offset",
@@ -166,7 +178,10 @@ impl LayerClouds {
     #[must_use]
     pub fn coverage_at(&self, x: f32, y: f32) -> f32 {
         let p = &self.params;
-        let q = DVec2::new(f64::from(x + p.wind_offset[0]), f64::from(y + p.wind_offset[1]));
+        let q = DVec2::new(
+            f64::from(x + p.wind_offset[0]),
+            f64::from(y + p.wind_offset[1]),
+        );
         // fBm ∈ [−1, 1] (normalised, typically ±0.5) → weather ∈ [0, 1].
         let w = (0.5 + 1.6 * self.weather.eval2(q) * self.w_norm) as f32;
         (p.coverage + (w - 0.5) * 0.8).clamp(0.0, 1.0)
@@ -188,7 +203,9 @@ impl LayerClouds {
         let q = p.as_dvec3() / f64::from(self.params.detail_scale_m);
         let mut s = 0.0;
         for (k, w) in [0.625f64, 0.25, 0.125].into_iter().enumerate() {
-            let f = self.detail.eval3(q * f64::from(1u32 << k) + DVec3::splat(k as f64 * 13.1));
+            let f = self
+                .detail
+                .eval3(q * f64::from(1u32 << k) + DVec3::splat(k as f64 * 13.1));
             s += w * (1.0 - f.clamp(0.0, 1.0));
         }
         s as f32
@@ -220,7 +237,11 @@ impl Density for LayerClouds {
         if base <= 0.0 {
             return 0.0;
         }
-        let eroded = remap(base, lp.detail_erosion * self.detail_noise(p) * (1.0 - base), 1.0);
+        let eroded = remap(
+            base,
+            lp.detail_erosion * self.detail_noise(p) * (1.0 - base),
+            1.0,
+        );
         (eroded * lp.density_scale).max(0.0)
     }
     fn bounds(&self) -> Aabb {

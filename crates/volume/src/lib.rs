@@ -15,8 +15,6 @@
 //! | [`layer`] | layer clouds at kilometre scale for landscapes | Schneider 2015 |
 //! | [`grid`] | voxel grids, baking, `natura-fluid` smoke (density, temperature) | |
 //! | [`phase`] | isotropic, Henyey–Greenstein, dual-lobe HG, HG + Draine cloud phase | Henyey & Greenstein 1941; Jendersie & d'Eon 2023 |
-//! | [`render`] | camera, lights and sky from `natura-atmos`, the fast modes and the reference | Ebert 2001; Wrenninge et al. 2013; Schneider 2015; Pharr et al. 2023, ch. 11 and 14 |
-//! | [`vdb`] | OpenVDB float-grid writer and reader; raw and EXR slices | Museth 2013 |
 //!
 //! Conventions: z up, metres; densities are dimensionless and scaled to
 //! extinction by the medium's `extinction` (1/m per unit density), so a voxel
@@ -43,8 +41,6 @@ pub mod grid;
 pub mod implicit;
 pub mod layer;
 pub mod phase;
-pub mod render;
-pub mod vdb;
 
 pub use density::Density;
 pub use error::{Result, VolumeError};
