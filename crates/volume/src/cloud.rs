@@ -415,3 +415,17 @@ pub fn nine_sphere_cumulus() -> Vec<crate::implicit::Primitive> {
         P::sphere(Vec3::new(0.2, 0.3, 6.0), 2.0),
     ]
 }
+
+/// Ebert's Figure 4 layout: a cirrostratus layer from one large elliptical
+/// primitive (a veil 60 m across, 3 m thick, at 12 m) with lower cirrus from
+/// three cylindrical primitives beneath it.
+#[must_use]
+pub fn cirrostratus_primitives() -> Vec<crate::implicit::Primitive> {
+    use crate::implicit::Primitive as P;
+    vec![
+        P::ellipsoid(Vec3::new(0.0, 0.0, 12.0), Vec3::new(30.0, 22.0, 1.5)),
+        P::cylinder(Vec3::new(-22.0, -8.0, 7.0), Vec3::new(4.0, -12.0, 7.5), 2.0).with_weight(0.8),
+        P::cylinder(Vec3::new(-10.0, 4.0, 6.5), Vec3::new(18.0, 0.0, 7.0), 1.8).with_weight(0.8),
+        P::cylinder(Vec3::new(2.0, 12.0, 7.2), Vec3::new(24.0, 9.0, 7.8), 1.6).with_weight(0.7),
+    ]
+}

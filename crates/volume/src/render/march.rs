@@ -39,8 +39,11 @@ pub enum Shadows {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MarchSettings {
-    /// Eye-ray step (m).
+    /// Eye-ray step (m) at the eye.
     pub step: f32,
+    /// Growth of the step with distance from the eye (m per m, `≥ 0`; 0:
+    /// uniform steps). Kilometre-scale skies use it to spend samples near the eye.
+    pub step_growth: f32,
     /// Shadow method.
     pub shadows: Shadows,
     /// The multiple-scattering approximation ([`Octaves::SINGLE`]: Ebert's single scattering).
@@ -52,10 +55,11 @@ pub struct MarchSettings {
 }
 
 impl Default for MarchSettings {
-    /// Steps of 0.1 m, a 64-node table, single scattering, no powder, stop at `T < 10⁻³`.
+    /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder, stop at `T < 10⁻³`.
     fn default() -> Self {
         Self {
             step: 0.1,
+            step_growth: 0.0,
             shadows: Shadows::Table(64),
             octaves: Octaves::SINGLE,
             powder: 0.0,
@@ -116,6 +120,13 @@ impl<'s> FastRenderer<'s> {
     pub fn new(scene: &'s Scene<'s>, settings: MarchSettings) -> Result<Self> {
         scene.validate()?;
         settings.octaves.validate()?;
+        in_range(
+            "step_growth",
+            settings.step_growth,
+            0.0,
+            1.0,
+            "must lie in [0, 1]",
+        )?;
         in_range("powder", settings.powder, 0.0, 1.0, "must lie in [0, 1]")?;
         in_range(
             "min_transmittance",
@@ -215,29 +226,40 @@ impl<'s> FastRenderer<'s> {
         if let Some((t0, t1)) = ray_box(o, d.recip(), &self.bounds) {
             let t1 = t1.min(t_ground);
             let h = self.settings.step;
-            let n = ((t1 - t0) / h).ceil().max(0.0) as usize;
-            let dt = if n > 0 { (t1 - t0) / n as f32 } else { 0.0 };
-            let skip = 8usize;
-            let mut i = 0;
-            while i < n {
+            let growth = self.settings.step_growth;
+            // With no growth, the steps divide [t0, t1] evenly (so a box is
+            // crossed exactly); otherwise each grows with the distance from the eye.
+            let uniform = {
+                let n = ((t1 - t0) / h).ceil().max(1.0);
+                (t1 - t0) / n
+            };
+            let step_at = |t: f32| {
+                if growth > 0.0 {
+                    (h + growth * t).min(t1 - t)
+                } else {
+                    uniform
+                }
+            };
+            let skip = 8.0f32;
+            let mut t = t0;
+            'march: while t1 - t > 1e-6 * t1.abs().max(1.0) {
                 // Empty-space skipping over blocks of steps.
-                let (a, b) = (
-                    o + d * (t0 + i as f32 * dt),
-                    o + d * (t0 + ((i + skip).min(n)) as f32 * dt),
-                );
+                let span = (step_at(t) * skip).min(t1 - t);
+                let (a, b) = (o + d * t, o + d * (t + span));
                 let block = Aabb {
                     min: a.min(b),
                     max: a.max(b),
                 };
-                if sc.density.bound_in(&block) <= 0.0 && sc.emission.is_none() {
-                    i += skip;
+                if sc.emission.is_none() && sc.density.bound_in(&block) <= 0.0 {
+                    t += span;
                     continue;
                 }
-                let end = (i + skip).min(n);
-                while i < end {
-                    let t = t0 + (i as f32 + 0.5) * dt;
-                    i += 1;
-                    let p = o + d * t;
+                let end = t + span;
+                while end - t > 1e-6 * end.abs().max(1.0) {
+                    let dt = step_at(t).min(end - t);
+                    let tm = t + 0.5 * dt;
+                    t += dt;
+                    let p = o + d * tm;
                     let rho = sc.density.density(p);
                     let le = sc.emission.map_or(Vec3::ZERO, |e| {
                         emitted(e.colour, e.field.density(p), e.offset)
@@ -262,15 +284,12 @@ impl<'s> FastRenderer<'s> {
                     l += add;
                     let w = add.element_sum();
                     depth_w += w;
-                    depth_sum += w * t;
+                    depth_sum += w * tm;
                     tr *= step_transmittance(sigma_t, dt);
                     if tr < self.settings.min_transmittance {
                         tr = 0.0;
-                        break;
+                        break 'march;
                     }
-                }
-                if tr == 0.0 {
-                    break;
                 }
             }
         }
@@ -279,7 +298,6 @@ impl<'s> FastRenderer<'s> {
         } else {
             f32::INFINITY
         };
-        let vol = sc.through_air(d, depth, l);
         let back = if t_ground.is_finite() {
             let p = o + d * t_ground;
             let ts = sun.map_or(1.0, |s| (-self.tau_sun(p, s.direction)).exp());
@@ -287,7 +305,12 @@ impl<'s> FastRenderer<'s> {
         } else {
             sc.environment.radiance(d)
         };
-        vol + back * tr
+        // The air between the eye and the volume dims its light and adds its
+        // own in-scatter where the volume hides what lies behind; the sky and
+        // ground behind already carry the air's light along the whole ray:
+        // `T_air·L + (1 − T)·L_air + T·L_back`.
+        let air = sc.air(d, depth);
+        air.transmittance * l + air.in_scatter * (1.0 - tr) + back * tr
     }
 
     /// Renders `camera`'s image.

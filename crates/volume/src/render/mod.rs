@@ -20,7 +20,7 @@ pub mod shadow;
 use std::sync::Arc;
 
 use glam::Vec3;
-use natura_atmos::sky::SkyView;
+use natura_atmos::sky::{ApSample, SkyView};
 use natura_core::{Grid2, Image};
 
 use crate::density::Density;
@@ -350,9 +350,16 @@ impl<'a> Scene<'a> {
     /// (aerial perspective when the scene has one).
     #[inline]
     pub(crate) fn through_air(&self, d: Vec3, depth: f32, l: Vec3) -> Vec3 {
+        self.air(d, depth).apply(l)
+    }
+
+    /// The air's transmittance and in-scatter over `depth` along `d` (none
+    /// without aerial perspective or at infinite depth).
+    #[inline]
+    pub(crate) fn air(&self, d: Vec3, depth: f32) -> ApSample {
         match &self.aerial {
-            Some(s) if depth.is_finite() => s.aerial_perspective_f32(d, depth).apply(l),
-            _ => l,
+            Some(s) if depth.is_finite() => s.aerial_perspective_f32(d, depth),
+            _ => ApSample::NONE,
         }
     }
 }
