@@ -46,13 +46,14 @@ fn main() {
     let scene = cs.scene();
     let t = Instant::now();
     let fast = common::check(FastRenderer::new(&scene, cs.fast_settings()));
+    let tables = t.elapsed().as_secs_f64();
     let img = common::check(fast.render(&cs.camera()));
     let secs = t.elapsed().as_secs_f64();
     let ev = natura::atmos::sky::auto_exposure(&img, 0.18).clamp(-20.0, 25.0);
     let path = out.join("cloudscape.png");
     common::check(img.tone_mapped(ev, ToneMap::AcesFilmic).save_png(&path));
     println!(
-        "{}×{}: scene {build:.1} s, fast render {secs:.2} s; wrote {}",
+        "{}×{}: scene {build:.1} s, fast render {secs:.2} s (of which shadow tables {tables:.2} s); wrote {}",
         p.width,
         p.height,
         path.display()

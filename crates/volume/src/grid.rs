@@ -222,14 +222,17 @@ pub struct SmokeVolume {
 }
 
 impl SmokeVolume {
-    /// The density and temperature of `smoke` (cell-centred samples, origin at 0).
+    /// The density and temperature of `smoke` (cell-centred samples, origin
+    /// at 0). Advection undershoots leave tiny negative densities in a
+    /// solver's grid; those read as empty (0), as a density cannot be
+    /// negative. NaN and infinite voxels are still refused.
     ///
     /// # Errors
     ///
-    /// As [`GridDensity::new`] (a NaN or negative voxel).
+    /// As [`GridDensity::new`] (a NaN or infinite voxel).
     pub fn from_smoke(smoke: &natura_fluid::smoke::Smoke) -> Result<Self> {
         Self::from_grids(
-            smoke.density().clone(),
+            smoke.density().map(|&v| if v < 0.0 { 0.0 } else { v }),
             Some(smoke.temperature().clone()),
             Vec3::ZERO,
             smoke.h(),

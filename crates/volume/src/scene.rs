@@ -143,6 +143,7 @@ impl Cloudscape {
             ground: Some(self.ground),
             emission: None,
             aerial: Some(self.sky.clone()),
+            solids: Vec::new(),
         }
     }
 

@@ -507,3 +507,104 @@ fn bad_render_input_is_a_typed_error() {
     };
     assert!(f.render(&cam).is_err());
 }
+
+#[test]
+fn solids_are_seen_and_cast_shadows_in_both_renderers() {
+    use natura_volume::render::{Ground, Solid};
+    // A thin fog slab over a floor, a sphere above it between the slab and the sun.
+    let region = Aabb {
+        min: Vec3::new(-4.0, -4.0, 0.0),
+        max: Vec3::new(4.0, 4.0, 1.0),
+    };
+    let slab = Homogeneous::new(region, 1.0).unwrap();
+    let sky = Vec3::splat(0.2);
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::Z,
+            irradiance: Vec3::splat(2.0),
+        }),
+        ground: Some(Ground {
+            height: 0.0,
+            albedo: Vec3::splat(0.5),
+            sky_irradiance: sky,
+        }),
+        solids: vec![Solid {
+            centre: Vec3::new(0.0, 0.0, 2.5),
+            radius: 1.0,
+            albedo: Vec3::splat(0.8),
+            sky_irradiance: sky,
+        }],
+        ..Scene::new(
+            &slab,
+            MediumParams {
+                extinction: 0.3,
+                albedo: 0.9,
+                phase: Phase::Isotropic,
+            },
+            Vec3::splat(0.05),
+        )
+    };
+    let table = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.02,
+            shadows: Shadows::Table(96),
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let rays = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.02,
+            shadows: Shadows::Rays(0.02),
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let reference = ReferenceRenderer::new(
+        &scene,
+        ReferenceSettings {
+            samples_per_pixel: 4000,
+            max_depth: 1,
+            ..ReferenceSettings::default()
+        },
+    )
+    .unwrap();
+    let down = -Vec3::Z;
+    // Looking down beside the sphere, into the shadow, and at the sphere's top.
+    let lit = Vec3::new(2.5, 0.0, 6.0);
+    let shade = Vec3::new(0.0, 0.0, 1.2);
+    let top = Vec3::new(0.0, 0.0, 6.0);
+    for f in [&table, &rays] {
+        let (a, b, c) = (
+            f.radiance(lit, down),
+            f.radiance(shade, down),
+            f.radiance(top, down),
+        );
+        assert!(b.x < 0.5 * a.x, "the sphere's shadow: {b} vs lit {a}");
+        // The sphere's top: albedo/π·(E_sun + E_sky), unattenuated.
+        let expect = 0.8 / std::f32::consts::PI * (2.0 + 0.2);
+        assert!((c.x - expect).abs() < 1e-3, "{c} vs {expect}");
+    }
+    for (o, name) in [(lit, "lit"), (shade, "shadow")] {
+        let r = reference.pixel(o, down, 0, 0).x;
+        let s = FastRenderer::new(
+            &scene,
+            MarchSettings {
+                step: 0.01,
+                shadows: Shadows::Rays(0.01),
+                octaves: natura_volume::render::Octaves::SINGLE,
+                ..MarchSettings::default()
+            },
+        )
+        .unwrap()
+        .radiance(o, down)
+        .x;
+        // Single scattering of the sun plus the floor; the fast mode adds the ambient term.
+        assert!(
+            s >= r * 0.95 && s <= r * 1.3 + 0.02,
+            "{name}: fast {s} vs reference {r}"
+        );
+    }
+}

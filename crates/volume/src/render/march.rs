@@ -21,7 +21,7 @@ use natura_core::{Aabb, Image};
 
 use super::model::{Octaves, emitted, powder, step_inscatter, step_transmittance};
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
-use super::{Camera, Scene, check_step};
+use super::{BLOCKED_DEPTH, Camera, Scene, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
 
@@ -150,12 +150,24 @@ impl<'s> FastRenderer<'s> {
                 }
                 let dims = table_dims(&bounds, n);
                 let sun = match scene.sun_unit() {
-                    Some(s) => Some(ShadowTable::build(scene.density, ext, s.direction, dims)?),
+                    Some(s) => Some(ShadowTable::build_with_solids(
+                        scene.density,
+                        ext,
+                        s.direction,
+                        dims,
+                        &scene.solids,
+                    )?),
                     None => None,
                 };
                 (
                     sun,
-                    Some(ShadowTable::build(scene.density, ext, Vec3::Z, dims)?),
+                    Some(ShadowTable::build_with_solids(
+                        scene.density,
+                        ext,
+                        Vec3::Z,
+                        dims,
+                        &scene.solids,
+                    )?),
                 )
             }
             Shadows::Rays(h) => {
@@ -184,30 +196,37 @@ impl<'s> FastRenderer<'s> {
         })
     }
 
-    /// Optical depth toward the sun at `p`.
+    /// Optical depth toward the sun at `p` (solids included).
     #[inline]
     fn tau_sun(&self, p: Vec3, l: Vec3) -> f32 {
-        match (&self.sun_table, self.settings.shadows) {
-            (Some(t), _) => t.optical_depth(p),
-            (None, Shadows::Rays(h)) => {
-                optical_depth_ray(self.scene.density, self.scene.medium.extinction, p, l, h)
-            }
-            (None, Shadows::Table(_)) => 0.0,
-        }
+        self.tau_toward(self.sun_table.as_ref(), p, l)
     }
 
-    /// Optical depth straight up at `p`.
+    /// Optical depth straight up at `p` (solids included).
     #[inline]
     fn tau_up(&self, p: Vec3) -> f32 {
-        match (&self.up_table, self.settings.shadows) {
-            (Some(t), _) => t.optical_depth(p),
-            (None, Shadows::Rays(h)) => optical_depth_ray(
-                self.scene.density,
-                self.scene.medium.extinction,
-                p,
-                Vec3::Z,
-                h,
-            ),
+        self.tau_toward(self.up_table.as_ref(), p, Vec3::Z)
+    }
+
+    #[inline]
+    fn tau_toward(&self, table: Option<&ShadowTable>, p: Vec3, l: Vec3) -> f32 {
+        let sc = self.scene;
+        match (table, self.settings.shadows) {
+            // Inside the table solids are in its nodes; outside, test them here.
+            (Some(t), _) => {
+                if !self.bounds.contains(p) && sc.blocked(p, l) {
+                    BLOCKED_DEPTH
+                } else {
+                    t.optical_depth(p)
+                }
+            }
+            (None, Shadows::Rays(h)) => {
+                if sc.blocked(p, l) {
+                    BLOCKED_DEPTH
+                } else {
+                    optical_depth_ray(sc.density, sc.medium.extinction, p, l, h)
+                }
+            }
             (None, Shadows::Table(_)) => 0.0,
         }
     }
@@ -218,7 +237,8 @@ impl<'s> FastRenderer<'s> {
         let sc = self.scene;
         let m = &sc.medium;
         let sun = sc.sun_unit();
-        let t_ground = sc.ground_hit(o, d).unwrap_or(f32::INFINITY);
+        let surface = sc.surface_hit(o, d);
+        let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
         let mut tr = 1.0f32;
         let mut l = Vec3::ZERO;
         let mut depth_w = 0.0f32;
@@ -298,10 +318,11 @@ impl<'s> FastRenderer<'s> {
         } else {
             f32::INFINITY
         };
-        let back = if t_ground.is_finite() {
-            let p = o + d * t_ground;
-            let ts = sun.map_or(1.0, |s| (-self.tau_sun(p, s.direction)).exp());
-            sc.through_air(d, t_ground, sc.ground_radiance(ts))
+        let back = if let Some((t, kind)) = surface {
+            let p = o + d * t;
+            let q = sc.lift(kind, p);
+            let ts = sun.map_or(1.0, |s| (-self.tau_sun(q, s.direction)).exp());
+            sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
         } else {
             sc.environment.radiance(d)
         };

@@ -200,6 +200,55 @@ pub struct Ground {
     pub sky_irradiance: Vec3,
 }
 
+/// An opaque Lambertian sphere (for example a fluid simulation's obstacle):
+/// seen, lit by the sun through the volume, shadowing the volume, the ground
+/// and other solids from the sun; like the ground it does not reflect light
+/// back into the volume.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solid {
+    /// Centre (m).
+    pub centre: Vec3,
+    /// Radius (m, `> 0`).
+    pub radius: f32,
+    /// Albedo (linear RGB, each in `[0, 1]`).
+    pub albedo: Vec3,
+    /// Ambient irradiance on its surface (linear RGB).
+    pub sky_irradiance: Vec3,
+}
+
+impl Solid {
+    /// Distance along unit `d` from `o` to the sphere's surface (from outside), if hit.
+    #[inline]
+    #[must_use]
+    pub fn hit(&self, o: Vec3, d: Vec3) -> Option<f32> {
+        let oc = o - self.centre;
+        let b = oc.dot(d);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if disc < 0.0 {
+            return None;
+        }
+        let t = -b - disc.sqrt();
+        if t > 0.0 {
+            Some(t)
+        } else if c < 0.0 {
+            Some(0.0)
+        } else {
+            None
+        }
+    }
+}
+
+/// Optical depth standing for "blocked by a solid" (transmittance `e^{−30}`).
+pub const BLOCKED_DEPTH: f32 = 30.0;
+
+/// What a ray hits beyond the volume.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Surface {
+    Ground,
+    Solid(usize),
+}
+
 /// Emission from a second field (for smoke: temperature), radiance
 /// `colour·max(value − offset, 0)` per unit absorption.
 #[derive(Clone, Copy)]
@@ -238,6 +287,8 @@ pub struct Scene<'a> {
     pub emission: Option<Emission<'a>>,
     /// Aerial perspective between the eye and what it sees, if any.
     pub aerial: Option<Arc<SkyView>>,
+    /// Opaque spheres.
+    pub solids: Vec<Solid>,
 }
 
 impl std::fmt::Debug for Scene<'_> {
@@ -263,6 +314,7 @@ impl<'a> Scene<'a> {
             ground: None,
             emission: None,
             aerial: None,
+            solids: Vec::new(),
         }
     }
 
@@ -303,6 +355,27 @@ impl<'a> Scene<'a> {
                 )?;
             }
         }
+        if self.solids.len() > 10_000 {
+            return Err(VolumeError::InvalidParameter {
+                name: "solids",
+                value: self.solids.len().to_string(),
+                expected: "at most 10 000 solids",
+            });
+        }
+        for s in &self.solids {
+            finite3("solid.centre", s.centre)?;
+            positive("solid.radius", s.radius)?;
+            rgb("solid.sky_irradiance", s.sky_irradiance)?;
+            for c in s.albedo.to_array() {
+                in_range(
+                    "solid.albedo",
+                    c,
+                    0.0,
+                    1.0,
+                    "each channel must lie in [0, 1]",
+                )?;
+            }
+        }
         if let Some(e) = self.emission {
             finite3("emission.offset", Vec3::splat(e.offset))?;
             rgb("emission.colour", e.colour)?;
@@ -326,6 +399,61 @@ impl<'a> Scene<'a> {
             return None;
         }
         Some((g.height - o.z) / d.z)
+    }
+
+    /// The nearest surface (ground or solid) along unit `d` from `o`.
+    #[inline]
+    pub(crate) fn surface_hit(&self, o: Vec3, d: Vec3) -> Option<(f32, Surface)> {
+        let mut best = self.ground_hit(o, d).map(|t| (t, Surface::Ground));
+        for (i, s) in self.solids.iter().enumerate() {
+            if let Some(t) = s.hit(o, d)
+                && best.is_none_or(|(b, _)| t < b)
+            {
+                best = Some((t, Surface::Solid(i)));
+            }
+        }
+        best
+    }
+
+    /// Whether a solid lies between `p` and the light along unit `l`.
+    #[inline]
+    pub(crate) fn blocked(&self, p: Vec3, l: Vec3) -> bool {
+        self.solids.iter().any(|s| s.hit(p, l).is_some())
+    }
+
+    /// A point just off surface `s` at `p` (outside a solid), where the sun's
+    /// transmittance is looked up.
+    #[inline]
+    pub(crate) fn lift(&self, s: Surface, p: Vec3) -> Vec3 {
+        match s {
+            Surface::Ground => p + Vec3::Z * 1e-3,
+            Surface::Solid(i) => {
+                let c = &self.solids[i];
+                c.centre + (p - c.centre).normalize_or(Vec3::Z) * (c.radius * 1.001 + 1e-4)
+            }
+        }
+    }
+
+    /// Radiance of surface `s` at `p` given the sun's transmittance through the volume there.
+    #[inline]
+    pub(crate) fn surface_radiance(&self, s: Surface, p: Vec3, t_sun: f32) -> Vec3 {
+        match s {
+            Surface::Ground => self.ground_radiance(t_sun),
+            Surface::Solid(i) => {
+                let c = &self.solids[i];
+                let n = (p - c.centre).normalize_or(Vec3::Z);
+                match self.sun_unit() {
+                    Some(sun) => model::lit_ground(
+                        c.albedo,
+                        sun.irradiance,
+                        n.dot(sun.direction),
+                        t_sun,
+                        c.sky_irradiance,
+                    ),
+                    None => model::lit_ground(c.albedo, Vec3::ZERO, 0.0, 1.0, c.sky_irradiance),
+                }
+            }
+        }
     }
 
     /// Radiance of the ground at `p` given the sun's transmittance there.

@@ -117,7 +117,8 @@ impl<'s> ReferenceRenderer<'s> {
         let mut first_depth = f32::INFINITY;
         let mut depth = 0u32;
         loop {
-            let t_ground = sc.ground_hit(o, d).unwrap_or(f32::INFINITY);
+            let surface = sc.surface_hit(o, d);
+            let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
             // Delta tracking to the next real collision inside the volume.
             let mut hit = None;
             if let Some((t0, t1)) = ray_box(o, d.recip(), &bounds)
@@ -143,10 +144,17 @@ impl<'s> ReferenceRenderer<'s> {
                 if depth == 0 {
                     first_depth = t_ground;
                 }
-                let back = if t_ground.is_finite() {
-                    let g = o + d * t_ground;
-                    let ts = sun.map_or(1.0, |s| self.transmittance(g, s.direction, rng));
-                    sc.ground_radiance(ts)
+                let back = if let Some((t, kind)) = surface {
+                    let g = o + d * t;
+                    let q = sc.lift(kind, g);
+                    let ts = sun.map_or(1.0, |s| {
+                        if sc.blocked(q, s.direction) {
+                            0.0
+                        } else {
+                            self.transmittance(q, s.direction, rng)
+                        }
+                    });
+                    sc.surface_radiance(kind, g, ts)
                 } else {
                     sc.environment.radiance(d)
                 };
@@ -161,7 +169,11 @@ impl<'s> ReferenceRenderer<'s> {
             }
             beta *= m.albedo;
             if let Some(s) = sun {
-                let f = m.phase.eval(d.dot(s.direction)) * self.transmittance(p, s.direction, rng);
+                let f = if sc.blocked(p, s.direction) {
+                    0.0
+                } else {
+                    m.phase.eval(d.dot(s.direction)) * self.transmittance(p, s.direction, rng)
+                };
                 l += beta * s.irradiance * f;
             }
             depth += 1;

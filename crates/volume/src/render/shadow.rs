@@ -86,6 +86,22 @@ impl ShadowTable {
         light: Vec3,
         dims: [usize; 3],
     ) -> Result<Self> {
+        Self::build_with_solids(density, extinction, light, dims, &[])
+    }
+
+    /// [`ShadowTable::build`] with opaque spheres: nodes whose path to the
+    /// light is blocked store [`BLOCKED_DEPTH`](super::BLOCKED_DEPTH).
+    ///
+    /// # Errors
+    ///
+    /// As [`ShadowTable::build`].
+    pub fn build_with_solids(
+        density: &dyn Density,
+        extinction: f32,
+        light: Vec3,
+        dims: [usize; 3],
+        solids: &[super::Solid],
+    ) -> Result<Self> {
         crate::error::non_negative("extinction", extinction)?;
         let light = unit("light", light)?;
         let bounds = density.bounds();
@@ -113,7 +129,7 @@ impl ShadowTable {
             light,
             tau: vec![0.0; total.unwrap_or(0)],
         };
-        t.fill(density, extinction);
+        t.fill(density, extinction, solids);
         Ok(t)
     }
 
@@ -121,7 +137,7 @@ impl ShadowTable {
         self.bounds.min + Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) * self.cell
     }
 
-    fn fill(&mut self, density: &dyn Density, extinction: f32) {
+    fn fill(&mut self, density: &dyn Density, extinction: f32, solids: &[super::Solid]) {
         let (nx, ny) = (self.dims[0], self.dims[1]);
         let step = self.cell.min_element();
         let light = self.light;
@@ -129,7 +145,14 @@ impl ShadowTable {
         let tau = map_rows(self.dims[2] * ny, |row| {
             let (y, z) = (row % ny, row / ny);
             (0..nx)
-                .map(|x| optical_depth_ray(density, extinction, this.node([x, y, z]), light, step))
+                .map(|x| {
+                    let p = this.node([x, y, z]);
+                    if solids.iter().any(|s| s.hit(p, light).is_some()) {
+                        super::BLOCKED_DEPTH
+                    } else {
+                        optical_depth_ray(density, extinction, p, light, step)
+                    }
+                })
                 .collect()
         });
         self.tau = tau;
