@@ -173,7 +173,7 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usiz
         emission: Some(Emission {
             field: &vol.temperature,
             offset: vol.ambient,
-            colour: Vec3::new(0.03, 0.012, 0.003),
+            colour: Vec3::new(0.008, 0.003, 0.0008),
         }),
         ..Scene::new(
             &vol.density,

@@ -321,7 +321,19 @@ impl<'s> FastRenderer<'s> {
         let back = if let Some((t, kind)) = surface {
             let p = o + d * t;
             let q = sc.lift(kind, p);
-            let ts = sun.map_or(1.0, |s| (-self.tau_sun(q, s.direction)).exp());
+            // Surfaces take a direct shadow ray: one per pixel, and exact at the
+            // surface, where a table would interpolate across it.
+            let ts = sun.map_or(1.0, |s| {
+                if sc.blocked(q, s.direction) {
+                    0.0
+                } else {
+                    let h = match self.settings.shadows {
+                        Shadows::Rays(h) => h,
+                        Shadows::Table(_) => self.settings.step,
+                    };
+                    (-optical_depth_ray(sc.density, m.extinction, q, s.direction, h)).exp()
+                }
+            });
             sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
         } else {
             sc.environment.radiance(d)

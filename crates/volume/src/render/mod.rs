@@ -217,6 +217,13 @@ pub struct Solid {
 }
 
 impl Solid {
+    /// Whether `p` lies inside the sphere.
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, p: Vec3) -> bool {
+        (p - self.centre).length_squared() < self.radius * self.radius
+    }
+
     /// Distance along unit `d` from `o` to the sphere's surface (from outside), if hit.
     #[inline]
     #[must_use]

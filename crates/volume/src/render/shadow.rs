@@ -147,7 +147,12 @@ impl ShadowTable {
             (0..nx)
                 .map(|x| {
                     let p = this.node([x, y, z]);
-                    if solids.iter().any(|s| s.hit(p, light).is_some()) {
+                    // A node inside a solid looks past that solid, so lookups near its
+                    // lit surface are not darkened by the nodes within it.
+                    if solids
+                        .iter()
+                        .any(|s| !s.contains(p) && s.hit(p, light).is_some())
+                    {
                         super::BLOCKED_DEPTH
                     } else {
                         optical_depth_ray(density, extinction, p, light, step)
