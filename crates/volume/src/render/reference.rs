@@ -1,13 +1,16 @@
 //! The unbiased reference: a null-scattering path tracer with multiple
-//! scattering (Pharr et al. 2023, §14.1.2–14.1.5 "null scattering", "sampling
-//! the majorant transmittance", and §14.2.1, the simple volumetric
-//! integrator). Free flights are sampled by delta tracking against a
-//! constant majorant `σ̄ = σ·max ρ` (a real collision with probability
-//! `σ_t/σ̄`, otherwise a null collision that changes nothing); the sun is
-//! sampled at every real collision with its transmittance estimated by ratio
-//! tracking (Novák et al. 2014, §3: `T = Π(1 − σ_t/σ̄)`); the environment is
-//! reached by phase-sampled paths that leave the volume; absorption weights
-//! the path by the albedo; Russian roulette ends long paths without bias.
+//! scattering (Pharr et al. 2023, §14.1, the null-scattering equation of
+//! transfer and the sampling of the majorant transmittance, and §14.2.1, the
+//! simple volumetric integrator). Free flights are sampled by delta tracking
+//! against a constant majorant `σ̄ = σ·max ρ` (a real collision with
+//! probability `σ_t/σ̄`, otherwise a null collision that changes nothing);
+//! the sun is sampled at every real collision with its transmittance
+//! estimated by ratio tracking (`T = Π(1 − σ_t/σ̄)` over the majorant's
+//! events; Novák et al. 2014); the environment is reached by phase-sampled
+//! paths that leave the volume; absorption weights the path by the albedo;
+//! Russian roulette ends long paths without bias. Ground and solids are lit
+//! surfaces that end a path (they do not reflect light back into the volume),
+//! exactly as in the fast renderer.
 //!
 //! It is kept short and plainly correct, like pbrt-v4's simple integrator
 //! beside its fast one: its job is to be the truth the fast modes are
