@@ -26,11 +26,15 @@
 //! mean of `b` on each such connected component (the compatibility
 //! condition) and returns the zero-mean solution.
 
+mod kernels;
 mod level;
+mod operator;
+mod transfer;
 
 use crate::error::{FluidError, Result};
 use crate::grid::{Boundaries, CellKind, Dims};
-use level::{G, Level, Transfer, coarsen};
+use level::{G, Level};
+use transfer::{Transfer, coarsen};
 
 /// Which linear solver performs the projection.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -311,7 +315,7 @@ impl PoissonSystem {
     }
 
     /// Removes the mean of `v` on each singular component.
-    fn project_null<T: level::Real>(&self, v: &mut [T]) {
+    fn project_null<T: operator::Real>(&self, v: &mut [T]) {
         if self.comp_cells.is_empty() {
             return;
         }
