@@ -6,8 +6,8 @@
 //! [`super::kernels`]; the general per-cell forms below are their test
 //! oracles.
 //!
-//! McAdams, Sifakis & Teran 2010, §4 (cell-type-aware coarsening, trilinear
-//! interpolation and its transpose as restriction).
+//! The hierarchy follows McAdams et al. 2010: cell-type-aware coarsening,
+//! trilinear interpolation and its scaled transpose as restriction.
 
 use super::kernels::{ProlongRow, RestrictRow};
 use super::level::{G, Level};
