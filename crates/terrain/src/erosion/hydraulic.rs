@@ -36,7 +36,7 @@
 
 use natura_core::{Grid2, HeightField, Progress};
 
-use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size};
+use super::{Edges, Erodibility, Neighbourhood, check_field, check_model_size, check_softness};
 use crate::error::{Result, in_range, invalid, non_negative};
 use crate::par;
 
@@ -240,10 +240,7 @@ impl MusgraveHydraulic {
     /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
     /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
-        check_erodibility(Some(&e), self.nx, self.ny)?;
-        if f64::from(e.max()) * self.p.k_s > 1.0 {
-            return Err(invalid("erodibility", e.max(), "max × k_s must be ≤ 1"));
-        }
+        check_softness(&e, self.nx, self.ny, self.p.k_s)?;
         self.erodibility = Some(e);
         Ok(self)
     }

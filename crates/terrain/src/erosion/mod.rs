@@ -252,3 +252,13 @@ pub(crate) fn check_erodibility(e: Option<&Erodibility>, nx: usize, ny: usize) -
     }
     Ok(())
 }
+
+/// Checks an erodibility map that scales a dissolving constant `k_s`
+/// (a fraction per step): the field's size, and `max × k_s ≤ 1`.
+pub(crate) fn check_softness(e: &Erodibility, nx: usize, ny: usize, k_s: f64) -> Result<()> {
+    check_erodibility(Some(e), nx, ny)?;
+    if f64::from(e.max()) * k_s > 1.0 {
+        return Err(invalid("erodibility", e.max(), "max × k_s must be ≤ 1"));
+    }
+    Ok(())
+}
