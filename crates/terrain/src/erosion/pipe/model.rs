@@ -85,17 +85,23 @@ impl Coefficients {
     /// and the outflow fluxes through its four pipes (L, R, B, T),
     /// `f ← max(0, f + Δt·A·g·Δh/l)` scaled by `K = min(1, d₁·l²/(Σf·Δt))`.
     /// `d` and `b` are the cell's water and bed, `f` its fluxes of the last
-    /// step, `hn` the neighbours' [`head`](Self::head)s (`+∞` behind a closed
-    /// edge, the cell's own bed behind an open one). Returns `d₁` and the
-    /// new fluxes.
+    /// step, `hn(k)` the water surface of neighbour `k` (its
+    /// [`head`](Self::head), `+∞` behind a closed edge, the cell's own bed
+    /// behind an open one). Returns `d₁` and the new fluxes.
     #[inline(always)]
-    pub(super) fn outflow(&self, d: f32, b: f32, hn: [f32; 4], f: [f32; 4]) -> (f32, [f32; 4]) {
+    pub(super) fn outflow(
+        &self,
+        d: f32,
+        b: f32,
+        f: [f32; 4],
+        hn: impl Fn(usize) -> f32,
+    ) -> (f32, [f32; 4]) {
         let d1 = d + self.rain;
         let h = b + d1;
         let mut nf = [0.0f32; 4];
         let mut sum = 0.0;
         for k in 0..4 {
-            let v = fmax(f[k] + self.kflux * (h - hn[k]), 0.0);
+            let v = fmax(f[k] + self.kflux * (h - hn(k)), 0.0);
             nf[k] = v;
             sum += v;
         }

@@ -31,15 +31,15 @@ pub(super) fn flux_cell(
     f: [&mut f32; 4],
 ) -> f32 {
     let open = c.edges == Edges::Open;
-    let hn: [f32; 4] = std::array::from_fn(|k| match (c.nb(bed, x, k), c.nb(water, x, k)) {
+    let hn = |k| match (c.nb(bed, x, k), c.nb(water, x, k)) {
         (Some(b), Some(w)) => c.k.head(b, w),
         // Across an open edge the water surface drops to the cell's bed;
         // across a closed one no water flows.
         _ if open => bed.c[x],
         _ => f32::INFINITY,
-    });
+    };
     let old = [*f[0], *f[1], *f[2], *f[3]];
-    let (d1, new) = c.k.outflow(water.c[x], bed.c[x], hn, old);
+    let (d1, new) = c.k.outflow(water.c[x], bed.c[x], old, hn);
     for (o, v) in f.into_iter().zip(new) {
         *o = v;
     }

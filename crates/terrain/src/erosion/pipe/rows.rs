@@ -9,7 +9,7 @@
 // The kernels index many parallel row slices with one counter (the form that vectorises).
 #![allow(clippy::needless_range_loop)]
 
-use super::grid::{Around, Outflows, Rows, Step, opt_rows};
+use super::grid::{Around, B, L, Outflows, R, Rows, Step, opt_rows};
 use super::model::{CellIn, Coefficients, bilinear};
 use super::reference::{flux_cell, semi_lagrangian_cell, transport_cell, update_cell};
 use crate::erosion::Edges;
@@ -199,13 +199,13 @@ fn flux_kernel<'a>(c: &'a Coefficients, w: Around<'a>, bd: Around<'a>, outs: [&'
     let (wc, wl, wr, wb, wt) = (&w.c[..m], &w.l[..m], &w.r[..m], &w.b[..m], &w.t[..m]);
     let (bc, bl, br, bb, bt) = (&bd.c[..m], &bd.l[..m], &bd.r[..m], &bd.b[..m], &bd.t[..m]);
     for k in 0..m {
-        let hn = [
-            c.head(bl[k], wl[k]),
-            c.head(br[k], wr[k]),
-            c.head(bb[k], wb[k]),
-            c.head(bt[k], wt[k]),
-        ];
-        let (d1, [vl, vr, vb, vt]) = c.outflow(wc[k], bc[k], hn, [fl[k], fr[k], fb[k], ft[k]]);
+        let hn = |j| match j {
+            L => c.head(bl[k], wl[k]),
+            R => c.head(br[k], wr[k]),
+            B => c.head(bb[k], wb[k]),
+            _ => c.head(bt[k], wt[k]),
+        };
+        let (d1, [vl, vr, vb, vt]) = c.outflow(wc[k], bc[k], [fl[k], fr[k], fb[k], ft[k]], hn);
         fl[k] = vl;
         fr[k] = vr;
         fb[k] = vb;
