@@ -159,7 +159,6 @@ fn halo(c: &Step, state: &State<'_>, yb: usize) -> Halo {
             let [a, b, cc, d] = &mut f;
             flux_pass_row(
                 c,
-                true,
                 c.rows(state.water, r),
                 c.rows(state.bed, r),
                 [a, b, cc, d],
@@ -190,7 +189,6 @@ fn halo(c: &Step, state: &State<'_>, yb: usize) -> Halo {
         let [w, b] = &mut scratch;
         update_pass_row(
             c,
-            true,
             &ins,
             [w, b, &mut out, &mut [], &mut []],
             r,
@@ -275,7 +273,6 @@ fn sweep(
             let [a, b, cc, d] = &mut f;
             flux_pass_row(
                 c,
-                true,
                 wr,
                 c.rows(bed, t),
                 [
@@ -314,7 +311,7 @@ fn sweep(
                 opt_rows(u, loc(y)),
                 opt_rows(v, loc(y)),
             ];
-            evaporated += update_pass_row(c, true, &ins, outs, y, &mut out_w);
+            evaporated += update_pass_row(c, &ins, outs, y, &mut out_w);
         }
         if t >= y0 + 2 {
             // Pass C on row y = t − 2 (post-erosion sediment of rows y − 1 … y + 1 is known).
@@ -348,7 +345,7 @@ fn sweep(
                 lower.map(|h| h.s1[0].as_slice()),
                 upper.map(|h| h.s1[1].as_slice()),
             );
-            transport_pass_row(c, true, d1, fr, s1, &mut s[loc(y)], y, &mut out_s);
+            transport_pass_row(c, d1, fr, s1, &mut s[loc(y)], y, &mut out_s);
         }
     }
     (evaporated, out_w, out_s)

@@ -1,6 +1,8 @@
 //! The grid a step runs on: its size and edges, and views of a plane's rows
 //! around a cell or a row (no model arithmetic here).
 
+use natura_core::simd::Simd;
+
 use super::model::Coefficients;
 use crate::erosion::Edges;
 
@@ -25,6 +27,9 @@ pub(super) struct Step {
     pub ny: usize,
     /// What lies beyond the grid.
     pub edges: Edges,
+    /// The instruction set the row kernels run at; `None` sends every cell
+    /// through the per-cell reference functions.
+    pub simd: Option<Simd>,
 }
 
 impl Step {

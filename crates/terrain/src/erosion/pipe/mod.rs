@@ -49,6 +49,7 @@ mod rows;
 #[cfg(test)]
 mod tests;
 
+use natura_core::simd::Simd;
 use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Erodibility, check_field, check_model_size, check_softness};
@@ -89,29 +90,38 @@ pub struct PipeModel {
 /// few enough that the halos recomputed at chunk boundaries stay cheap.
 const CHUNK_ROWS: usize = 64;
 
-/// Which code computes a step. Users always get [`Path::FAST`]; the tests
-/// run the others as its oracles.
+/// Which code computes a step. Users always get [`Path::fast`]; the tests
+/// run the others (and the fast path at every supported instruction set)
+/// as its oracles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Path {
     /// Every cell through the per-cell reference functions, in three passes.
     #[cfg_attr(not(test), allow(dead_code))]
     Reference,
-    /// Three passes, the interior of each row through the row kernels.
+    /// Three passes, the interior of each row through the row kernels
+    /// compiled for the given instruction set.
     #[cfg_attr(not(test), allow(dead_code))]
-    Rows,
-    /// The fused sweep in chunks of about `chunk_rows` rows (conservative
-    /// transport; the semi-Lagrangian one takes [`Path::Rows`]).
+    Rows(Simd),
+    /// The fused sweep in chunks of about `chunk_rows` rows, with the row
+    /// kernels at `simd` (conservative transport; the semi-Lagrangian one
+    /// takes [`Path::Rows`]).
     Fused {
         /// Rows per chunk.
         chunk_rows: usize,
+        /// The row kernels' instruction set.
+        simd: Simd,
     },
 }
 
 impl Path {
-    /// The path [`PipeModel::run`] and [`PipeModel::step`] take.
-    pub(crate) const FAST: Path = Path::Fused {
-        chunk_rows: CHUNK_ROWS,
-    };
+    /// The path [`PipeModel::run`] and [`PipeModel::step`] take: the fused
+    /// sweep at the CPU's widest instruction set.
+    pub(crate) fn fast() -> Path {
+        Path::Fused {
+            chunk_rows: CHUNK_ROWS,
+            simd: Simd::best(),
+        }
+    }
 }
 
 impl PipeModel {
@@ -284,7 +294,7 @@ impl PipeModel {
     /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
     /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        self.run_on(hf, steps, progress, Path::FAST)
+        self.run_on(hf, steps, progress, Path::fast())
     }
 
     /// [`run`](Self::run) through the given path.
@@ -319,7 +329,7 @@ impl PipeModel {
     ///
     /// As [`run`](Self::run).
     pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
-        self.step_on(hf, Path::FAST)
+        self.step_on(hf, Path::fast())
     }
 
     /// [`step`](Self::step) through the given path.
@@ -361,6 +371,10 @@ impl PipeModel {
             nx: self.nx,
             ny: self.ny,
             edges: self.p.edges,
+            simd: match path {
+                Path::Reference => None,
+                Path::Rows(simd) | Path::Fused { simd, .. } => Some(simd),
+            },
         };
         let n = if self.keeps_velocity() {
             self.nx * self.ny
@@ -371,11 +385,12 @@ impl PipeModel {
             p.resize(n, 0.0);
         }
         match path {
-            Path::Fused { chunk_rows } if self.p.transport == SedimentTransport::Conservative => {
+            Path::Fused { chunk_rows, .. }
+                if self.p.transport == SedimentTransport::Conservative =>
+            {
                 self.step_fused(&c, hf, chunk_rows);
             }
-            Path::Reference => self.step_passes(&c, hf, false),
-            Path::Rows | Path::Fused { .. } => self.step_passes(&c, hf, true),
+            _ => self.step_passes(&c, hf),
         }
         self.ledger.rain += f64::from(c.k.rain) * (self.nx * self.ny) as f64;
         // The new bed becomes the field's heights; the old heights become scratch.

@@ -145,9 +145,9 @@ fn sample(g: &[f32], nx: usize, ny: usize, x: f32, y: f32, wrap: bool) -> f32 {
 impl PipeModel {
     /// The step as three passes over the grid (rain and fluxes; depth,
     /// velocity, erosion and evaporation; sediment transport), each a gather
-    /// over row bands. `simd` sends the interior of each row through the
-    /// row kernels; without it every cell takes the per-cell path above.
-    pub(super) fn step_passes(&mut self, c: &Step, hf: &HeightField, simd: bool) {
+    /// over row bands. With `c.simd` the interior of each row goes through
+    /// the row kernels; without it every cell takes the per-cell path above.
+    pub(super) fn step_passes(&mut self, c: &Step, hf: &HeightField) {
         let (nx, ny) = (self.nx, self.ny);
         self.water1.resize(nx * ny, 0.0);
         self.sediment1.resize(nx * ny, 0.0);
@@ -168,7 +168,6 @@ impl PipeModel {
                     let r = (y - y0) * nx..(y - y0 + 1) * nx;
                     flux_pass_row(
                         c,
-                        simd,
                         c.rows(water, y),
                         c.rows(bed, y),
                         [
@@ -220,7 +219,7 @@ impl PipeModel {
                         &mut uo[r.clone()],
                         &mut vo[r],
                     ];
-                    evaporated += update_pass_row(c, simd, &ins, outs, y, &mut out_w);
+                    evaporated += update_pass_row(c, &ins, outs, y, &mut out_w);
                 }
                 (evaporated, out_w)
             })
@@ -245,7 +244,6 @@ impl PipeModel {
                     match transport {
                         SedimentTransport::Conservative => transport_pass_row(
                             c,
-                            simd,
                             c.rows(d1, y),
                             std::array::from_fn(|k| c.rows(&f[k], y)),
                             c.rows(s1, y),
@@ -254,7 +252,7 @@ impl PipeModel {
                             &mut out_s,
                         ),
                         SedimentTransport::SemiLagrangian => {
-                            semi_lagrangian_pass_row(c, simd, u, v, s1, y, row);
+                            semi_lagrangian_pass_row(c, u, v, s1, y, row);
                         }
                     }
                 }

@@ -9,16 +9,18 @@
 // The kernels index many parallel row slices with one counter (the form that vectorises).
 #![allow(clippy::needless_range_loop)]
 
+use natura_core::simd::Simd;
+
 use super::grid::{Around, B, L, Outflows, R, Rows, Step, opt_rows};
 use super::model::{CellIn, Coefficients, bilinear};
 use super::reference::{flux_cell, semi_lagrangian_cell, transport_cell, update_cell};
 use crate::erosion::Edges;
 
 /// Steps 1 and 2 over a row: `d₁` and the in-place update of the row's
-/// fluxes. `simd` sends the interior cells through [`flux_kernel`].
+/// fluxes; the interior cells through [`flux_kernel`] unless `c.simd` is
+/// `None`.
 pub(super) fn flux_pass_row(
     c: &Step,
-    simd: bool,
     w: Rows<'_>,
     bed: Rows<'_>,
     f: [&mut [f32]; 4],
@@ -26,7 +28,7 @@ pub(super) fn flux_pass_row(
 ) {
     let nx = c.nx;
     let [fl, fr, fb, ft] = f;
-    if let (true, Some(wa), Some(ba)) = (simd, w.around(), bed.around()) {
+    if let (Some(simd), Some(wa), Some(ba)) = (c.simd, w.around(), bed.around()) {
         for x in [0, nx - 1] {
             d1o[x] = flux_cell(
                 c,
@@ -38,6 +40,7 @@ pub(super) fn flux_pass_row(
         }
         let m = 1..nx - 1;
         flux_kernel(
+            simd,
             &c.k,
             wa,
             ba,
@@ -82,7 +85,6 @@ pub(super) struct UpdateRows<'a> {
 /// appends each cell's outflow through open edges to `out`.
 pub(super) fn update_pass_row(
     c: &Step,
-    simd: bool,
     ins: &UpdateRows<'_>,
     outs: [&mut [f32]; 5],
     y: usize,
@@ -103,7 +105,8 @@ pub(super) fn update_pass_row(
         }
     };
     let f = ins.f.map(Rows::around);
-    if let (true, [Some(fl), Some(fr), Some(fb), Some(ft)], Some(bed)) = (simd, f, ins.bed.around())
+    if let (Some(simd), [Some(fl), Some(fr), Some(fb), Some(ft)], Some(bed)) =
+        (c.simd, f, ins.bed.around())
     {
         cell(0);
         cell(nx - 1);
@@ -122,8 +125,8 @@ pub(super) fn update_pass_row(
             opt_rows(vo, m.clone()),
         ];
         evaporated += match ins.erod {
-            Some(e) => update_kernel_erodible(&c.k, &ui, &e[m], outs),
-            None => update_kernel_uniform(&c.k, &ui, outs),
+            Some(e) => update_kernel_erodible(simd, &c.k, &ui, &e[m], outs),
+            None => update_kernel_uniform(simd, &c.k, &ui, outs),
         };
     } else {
         (0..nx).for_each(cell);
@@ -136,7 +139,6 @@ pub(super) fn update_pass_row(
 #[allow(clippy::too_many_arguments)]
 pub(super) fn transport_pass_row(
     c: &Step,
-    simd: bool,
     d1: Rows<'_>,
     f: [Rows<'_>; 4],
     s1: Rows<'_>,
@@ -153,12 +155,12 @@ pub(super) fn transport_pass_row(
         }
     };
     let fa = f.map(Rows::around);
-    if let (true, Some(da), [Some(fl), Some(fr), Some(fb), Some(ft)], Some(sa)) =
-        (simd, d1.around(), fa, s1.around())
+    if let (Some(simd), Some(da), [Some(fl), Some(fr), Some(fb), Some(ft)], Some(sa)) =
+        (c.simd, d1.around(), fa, s1.around())
     {
         cell(0);
         cell(nx - 1);
-        transport_kernel(&c.k, da, [fl, fr, fb, ft], sa, &mut so[1..nx - 1]);
+        transport_kernel(simd, &c.k, da, [fl, fr, fb, ft], sa, &mut so[1..nx - 1]);
     } else {
         (0..nx).for_each(cell);
     }
@@ -168,7 +170,6 @@ pub(super) fn transport_pass_row(
 /// through [`semi_lagrangian_kernel`]).
 pub(super) fn semi_lagrangian_pass_row(
     c: &Step,
-    simd: bool,
     u: &[f32],
     v: &[f32],
     s1: &[f32],
@@ -176,13 +177,21 @@ pub(super) fn semi_lagrangian_pass_row(
     so: &mut [f32],
 ) {
     let (nx, ny) = (c.nx, c.ny);
-    if simd && y > 0 && y + 1 < ny {
+    if let (Some(simd), true) = (c.simd, y > 0 && y + 1 < ny) {
         for x in [0, nx - 1] {
             so[x] = semi_lagrangian_cell(c, u, v, s1, x, y);
         }
         let i0 = y * nx + 1;
         let m = nx - 2;
-        semi_lagrangian_kernel(c, &u[i0..i0 + m], &v[i0..i0 + m], s1, y, &mut so[1..nx - 1]);
+        semi_lagrangian_kernel(
+            simd,
+            c,
+            &u[i0..i0 + m],
+            &v[i0..i0 + m],
+            s1,
+            y,
+            &mut so[1..nx - 1],
+        );
     } else {
         for x in 0..nx {
             so[x] = semi_lagrangian_cell(c, u, v, s1, x, y);
@@ -192,7 +201,7 @@ pub(super) fn semi_lagrangian_pass_row(
 
 natura_core::simd::multiversion! {
 /// Steps 1 and 2 over the interior cells of a row (every neighbour exists).
-fn flux_kernel<'a>(c: &'a Coefficients, w: Around<'a>, bd: Around<'a>, outs: [&'a mut [f32]; 5]) {
+fn flux_kernel<'a>(simd: Simd, c: &'a Coefficients, w: Around<'a>, bd: Around<'a>, outs: [&'a mut [f32]; 5]) {
     let [d1o, fl, fr, fb, ft] = outs;
     let m = d1o.len();
     let (fl, fr, fb, ft) = (&mut fl[..m], &mut fr[..m], &mut fb[..m], &mut ft[..m]);
@@ -228,14 +237,14 @@ const BLOCK: usize = 128;
 
 natura_core::simd::multiversion! {
 /// Steps 3, 4 and 6 over the interior cells of a row (uniform `K_s`); returns the water evaporated.
-fn update_kernel_uniform<'a>(c: &'a Coefficients, ins: &'a InteriorUpdate<'a>, outs: [&'a mut [f32]; 5]) -> f64 {
+fn update_kernel_uniform<'a>(simd: Simd, c: &'a Coefficients, ins: &'a InteriorUpdate<'a>, outs: [&'a mut [f32]; 5]) -> f64 {
     update_lanes::<false>(c, ins, &[], outs)
 }
 }
 
 natura_core::simd::multiversion! {
 /// Steps 3, 4 and 6 over the interior cells of a row with an erodibility map; returns the water evaporated.
-fn update_kernel_erodible<'a>(c: &'a Coefficients, ins: &'a InteriorUpdate<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 5]) -> f64 {
+fn update_kernel_erodible<'a>(simd: Simd, c: &'a Coefficients, ins: &'a InteriorUpdate<'a>, erod: &'a [f32], outs: [&'a mut [f32]; 5]) -> f64 {
     update_lanes::<true>(c, ins, erod, outs)
 }
 }
@@ -326,7 +335,7 @@ fn update_lanes<const ERODIBILITY: bool>(
 
 natura_core::simd::multiversion! {
 /// Conservative transport over the interior cells of a row.
-fn transport_kernel<'a>(c: &'a Coefficients, d1: Around<'a>, f: [Around<'a>; 4], s1: Around<'a>, so: &'a mut [f32]) {
+fn transport_kernel<'a>(simd: Simd, c: &'a Coefficients, d1: Around<'a>, f: [Around<'a>; 4], s1: Around<'a>, so: &'a mut [f32]) {
     let m = so.len();
     let d1 = d1.sub(0, m);
     let [fl, fr, fb, ft] = f.map(|p| p.sub(0, m));
@@ -388,7 +397,7 @@ natura_core::simd::multiversion! {
 /// Semi-Lagrangian transport over the interior cells `1..nx − 1` of row `y`:
 /// the back-traced point lies within about one cell (velocities are capped at
 /// one cell per step), so one clamp (or wrap) per index suffices.
-fn semi_lagrangian_kernel<'a>(c: &'a Step, u: &'a [f32], v: &'a [f32], s1: &'a [f32], y: usize, so: &'a mut [f32]) {
+fn semi_lagrangian_kernel<'a>(simd: Simd, c: &'a Step, u: &'a [f32], v: &'a [f32], s1: &'a [f32], y: usize, so: &'a mut [f32]) {
     let (nx, ny) = (c.nx as i64, c.ny as i64);
     let wrap = c.edges == Edges::Periodic;
     let m = so.len();

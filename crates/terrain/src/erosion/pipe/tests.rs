@@ -1,5 +1,6 @@
 use super::*;
 use crate::erosion::Edges;
+use natura_core::simd::Simd;
 use natura_core::{NoProgress, Seed};
 
 fn hills(n: usize) -> HeightField {
@@ -79,7 +80,7 @@ fn fast_interior_path_equals_general_path() {
             k_c: 0.5,
             ..Default::default()
         };
-        let build = |fast: bool| {
+        let build = |path: Path| {
             let mut m = PipeModel::new(p.clone(), &hf).unwrap();
             if erodible {
                 let e = Grid2::from_fn(nx, ny, |i, j| 0.5 + g(3, i, j) as f32).unwrap();
@@ -87,42 +88,47 @@ fn fast_interior_path_equals_general_path() {
             }
             m.set_water(&water).unwrap();
             m.record_velocity = true;
-            let path = if fast { Path::FAST } else { Path::Reference };
             let mut h = hf.clone();
             m.run_on(&mut h, 40, &NoProgress, path).unwrap();
             (m, h)
         };
-        let (fast, hf_fast) = build(true);
-        let (slow, hf_slow) = build(false);
-        let same = |what: &str, a: &[f32], b: &[f32]| {
-            for (k, (x, y)) in a.iter().zip(b).enumerate() {
-                assert!(x == y, "case {case}: {what}[{k}] fast {x} vs general {y}");
+        let (slow, hf_slow) = build(Path::Reference);
+        // The fast path at every instruction set this CPU supports.
+        for simd in Simd::supported() {
+            let (fast, hf_fast) = build(Path::Fused {
+                chunk_rows: CHUNK_ROWS,
+                simd,
+            });
+            let same = |what: &str, a: &[f32], b: &[f32]| {
+                for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                    assert!(x == y, "case {case}: {what}[{k}] fast {x} vs general {y}");
+                }
+            };
+            same(
+                "bed",
+                hf_fast.heights().as_slice(),
+                hf_slow.heights().as_slice(),
+            );
+            same("water", &fast.water, &slow.water);
+            same("sediment", &fast.sediment, &slow.sediment);
+            same("deposit", &fast.deposit, &slow.deposit);
+            same("u", &fast.vel[0], &slow.vel[0]);
+            same("v", &fast.vel[1], &slow.vel[1]);
+            for k in 0..4 {
+                same("flux", &fast.flux[k], &slow.flux[k]);
             }
-        };
-        same(
-            "bed",
-            hf_fast.heights().as_slice(),
-            hf_slow.heights().as_slice(),
-        );
-        same("water", &fast.water, &slow.water);
-        same("sediment", &fast.sediment, &slow.sediment);
-        same("deposit", &fast.deposit, &slow.deposit);
-        same("u", &fast.vel[0], &slow.vel[0]);
-        same("v", &fast.vel[1], &slow.vel[1]);
-        for k in 0..4 {
-            same("flux", &fast.flux[k], &slow.flux[k]);
+            assert!(fast.total_sediment() > 0.0, "case {case}: nothing eroded");
+            let (a, b) = (fast.ledger(), slow.ledger());
+            assert_eq!(a.rain, b.rain);
+            assert_eq!(a.outflow_water, b.outflow_water);
+            assert_eq!(a.outflow_sediment, b.outflow_sediment);
+            assert!(
+                (a.evaporated - b.evaporated).abs() <= 1e-9 * b.evaporated.max(1.0),
+                "case {case}: evaporated {} vs {}",
+                a.evaporated,
+                b.evaporated
+            );
         }
-        assert!(fast.total_sediment() > 0.0, "case {case}: nothing eroded");
-        let (a, b) = (fast.ledger(), slow.ledger());
-        assert_eq!(a.rain, b.rain);
-        assert_eq!(a.outflow_water, b.outflow_water);
-        assert_eq!(a.outflow_sediment, b.outflow_sediment);
-        assert!(
-            (a.evaporated - b.evaporated).abs() <= 1e-9 * b.evaporated.max(1.0),
-            "case {case}: evaporated {} vs {}",
-            a.evaporated,
-            b.evaporated
-        );
     }
 }
 
@@ -161,7 +167,7 @@ fn fused_sweep_equals_three_pass_path() {
             k_c: 0.5,
             ..Default::default()
         };
-        let build = |fast: bool, fused: bool, threads: usize| {
+        let build = |path: Path, threads: usize| {
             let mut m = PipeModel::new(p.clone(), &hf).unwrap();
             if erodible {
                 let e = Grid2::from_fn(nx, ny, |i, j| 0.5 + g(3, i, j) as f32).unwrap();
@@ -169,11 +175,6 @@ fn fused_sweep_equals_three_pass_path() {
             }
             m.set_water(&water).unwrap();
             m.record_velocity = true;
-            let path = match (fast, fused) {
-                (true, true) => Path::Fused { chunk_rows },
-                (true, false) => Path::Rows,
-                (false, _) => Path::Reference,
-            };
             let mut h = hf.clone();
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -183,12 +184,20 @@ fn fused_sweep_equals_three_pass_path() {
                 .unwrap();
             (m, h)
         };
-        let (fused, hf_fused) = build(true, true, 2);
-        for (what, (other, hf_other)) in [
-            ("three passes", build(true, false, 2)),
-            ("general", build(false, false, 1)),
-            ("fused, 1 thread", build(true, true, 1)),
-        ] {
+        let best = Simd::best();
+        let fused_at = |simd| Path::Fused { chunk_rows, simd };
+        let (fused, hf_fused) = build(fused_at(best), 2);
+        let mut others = vec![
+            ("three passes".to_string(), build(Path::Rows(best), 2)),
+            ("general".to_string(), build(Path::Reference, 1)),
+            ("fused, 1 thread".to_string(), build(fused_at(best), 1)),
+        ];
+        // The row kernels at every instruction set this CPU supports.
+        for simd in Simd::supported().filter(|&s| s != best) {
+            let name = format!("fused at {}", simd.level().name());
+            others.push((name, build(fused_at(simd), 2)));
+        }
+        for (what, (other, hf_other)) in others {
             let same = |field: &str, a: &[f32], b: &[f32]| {
                 for (k, (x, y)) in a.iter().zip(b).enumerate() {
                     assert!(
@@ -258,9 +267,12 @@ fn velocity_on_request_and_deposit_from_the_bed() {
                 .with_velocity(record);
             m.set_water(&water).unwrap();
             let path = if fused {
-                Path::Fused { chunk_rows: 8 }
+                Path::Fused {
+                    chunk_rows: 8,
+                    simd: Simd::best(),
+                }
             } else {
-                Path::Rows
+                Path::Rows(Simd::best())
             };
             let mut h = hf0.clone();
             for &n in calls {
