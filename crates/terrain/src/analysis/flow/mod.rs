@@ -27,6 +27,7 @@ mod tests;
 
 pub(crate) use fill::{fill_along, next_up};
 pub use fill::{fill_depressions, priority_flood_levels};
+use natura_core::simd::Simd;
 pub(crate) use receivers::D8;
 use receivers::{d8_receivers_into, donor_masks_into, find_roots};
 
@@ -161,9 +162,10 @@ impl FlowGraph {
     ) {
         self.nx = nx;
         self.ny = ny;
-        d8_receivers_into(h, nx, ny, &mut self.receiver, &mut self.distance);
+        let simd = Simd::best();
+        d8_receivers_into(simd, h, nx, ny, &mut self.receiver, &mut self.distance);
         find_roots(&self.receiver, nx, ny, &mut self.scratch.roots);
-        donor_masks_into(&self.receiver, nx, ny, &mut self.scratch.masks);
+        donor_masks_into(simd, &self.receiver, nx, ny, &mut self.scratch.masks);
         // Pits are routed on the raw receivers (labelling walks the donor
         // masks from each pit), so the stack is built once, on the final receivers.
         if depressions != Depressions::Keep {

@@ -2,6 +2,8 @@
 //! Mark 1984) with their distances, the roots (outlets and pits) and each
 //! cell's donor mask, the neighbour tables they share.
 
+use natura_core::simd::Simd;
+
 use crate::par;
 
 /// Neighbour offsets in the fixed tie-break order, with distances in cells.
@@ -62,13 +64,15 @@ pub(super) fn cell_distance(i: usize, j: usize, nx: usize) -> f32 {
 #[cfg(test)]
 pub(super) fn d8_receivers(h: &[f32], nx: usize, ny: usize) -> (Vec<u32>, Vec<f32>) {
     let (mut rec, mut dist) = (Vec::new(), Vec::new());
-    d8_receivers_into(h, nx, ny, &mut rec, &mut dist);
+    d8_receivers_into(Simd::best(), h, nx, ny, &mut rec, &mut dist);
     (rec, dist)
 }
 
 /// D8 steepest-descent receivers and distances (cells) into reusable buffers
-/// (resized to `nx × ny`); edge cells are outlets.
+/// (resized to `nx × ny`); edge cells are outlets. The interior of each row
+/// goes through [`d8_row`] at the instruction set `simd`.
 pub(crate) fn d8_receivers_into(
+    simd: Simd,
     h: &[f32],
     nx: usize,
     ny: usize,
@@ -100,7 +104,14 @@ pub(crate) fn d8_receivers_into(
                 row[nx - 1] = (i0 + nx - 1) as u32;
                 drow[0] = 0.0;
                 drow[nx - 1] = 0.0;
-                d8_row(h, i0 + 1, nx, &mut row[1..nx - 1], &mut drow[1..nx - 1]);
+                d8_row(
+                    simd,
+                    h,
+                    i0 + 1,
+                    nx,
+                    &mut row[1..nx - 1],
+                    &mut drow[1..nx - 1],
+                );
             }
         }
     });
@@ -112,7 +123,7 @@ natura_core::simd::multiversion! {
 /// (cells; 0 for a pit) into `dist`: the same divisions and comparisons, in
 /// the order of [`D8`], as a per-cell loop (dividing by an axial distance of
 /// 1 is the identity), written over row slices so it vectorises.
-fn d8_row<'a>(h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32], dist: &'a mut [f32]) {
+fn d8_row<'a>(simd: Simd, h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32], dist: &'a mut [f32]) {
     let m = out.len();
     let dist = &mut dist[..m];
     let at = |o: usize| &h[o..o + m];
@@ -164,7 +175,7 @@ pub(super) fn find_roots(rec: &[u32], nx: usize, ny: usize, roots: &mut Vec<u32>
 
 /// Donor masks of every cell: bit `k` set when the neighbour at [`NB`]`[k]`
 /// has this cell as its receiver. Pure per cell, in parallel over bands.
-pub(super) fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
+pub(super) fn donor_masks_into(simd: Simd, rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
     masks.resize(nx * ny, 0);
     par::map_bands(nx, ny, [masks.as_mut_slice()], |y0, y1, [m]| {
         for y in y0..y1 {
@@ -195,7 +206,7 @@ pub(super) fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Ve
                     &rec[y * nx..(y + 1) * nx],
                     &rec[(y + 1) * nx..(y + 2) * nx],
                 ];
-                masks_row(rows, (y * nx) as u32, &mut row[1..nx - 1]);
+                masks_row(simd, rows, (y * nx) as u32, &mut row[1..nx - 1]);
             }
         }
     });
@@ -204,7 +215,7 @@ pub(super) fn donor_masks_into(rec: &[u32], nx: usize, ny: usize, masks: &mut Ve
 natura_core::simd::multiversion! {
 /// Donor masks of the interior cells `1..nx − 1` of a row whose first cell
 /// has index `i0`, from the receivers of the rows below, at and above it.
-fn masks_row<'a>(rows: [&'a [u32]; 3], i0: u32, out: &'a mut [u8]) {
+fn masks_row<'a>(simd: Simd, rows: [&'a [u32]; 3], i0: u32, out: &'a mut [u8]) {
     let m = out.len();
     let [dn, md, up] = rows;
     let (d0, d1, d2) = (&dn[..m], &dn[1..m + 1], &dn[2..m + 2]);

@@ -10,6 +10,8 @@ use super::{
     receivers::{donor_masks_into, find_roots},
 };
 use crate::par;
+#[cfg(test)]
+use natura_core::simd::Simd;
 
 impl FlowGraph {
     /// Braun & Willett's stack (outlets and pits first, each followed
@@ -105,7 +107,7 @@ pub(super) fn build_stack_into(
     g.receiver = rec.to_vec();
     g.scratch = std::mem::take(s);
     find_roots(rec, nx, ny, &mut g.scratch.roots);
-    donor_masks_into(rec, nx, ny, &mut g.scratch.masks);
+    donor_masks_into(Simd::best(), rec, nx, ny, &mut g.scratch.masks);
     g.build_stack();
     *stack = std::mem::take(&mut g.stack);
     *s = g.scratch;

@@ -1,7 +1,8 @@
-use super::receivers::d8_receivers;
+use super::receivers::{d8_receivers, donor_masks_into};
 use super::stack::{build_stack_into, build_stack_reference};
 use super::*;
 use natura_core::Seed;
+use natura_core::simd::Simd;
 
 fn rough(n: usize, seed: u64) -> Vec<f32> {
     let s = Seed(seed);
@@ -52,6 +53,33 @@ fn d8_row_kernel_equals_per_cell_loop() {
                 };
                 assert_eq!(dist[i], want);
             }
+        }
+    }
+}
+
+/// The receiver and donor-mask row kernels give the same bits at every
+/// instruction set this CPU supports as at the widest (which the tests above
+/// hold to the per-cell loops), on rough fields, plateaus and thin grids.
+#[test]
+fn flow_kernels_agree_at_every_level() {
+    for (nx, ny, seed) in [(37usize, 29usize, 11u64), (3, 17, 12), (131, 6, 13)] {
+        let s = Seed(seed);
+        let h: Vec<f32> = (0..nx * ny)
+            .map(|i| (8.0 * s.uniform2((i % nx) as i64, (i / nx) as i64)).floor() as f32)
+            .collect();
+        let at = |simd: Simd| {
+            let (mut rec, mut dist, mut masks) = (Vec::new(), Vec::new(), Vec::new());
+            d8_receivers_into(simd, &h, nx, ny, &mut rec, &mut dist);
+            donor_masks_into(simd, &rec, nx, ny, &mut masks);
+            (
+                rec,
+                dist.iter().map(|d| d.to_bits()).collect::<Vec<_>>(),
+                masks,
+            )
+        };
+        let best = at(Simd::best());
+        for simd in Simd::supported() {
+            assert_eq!(at(simd), best, "{nx}×{ny} at {}", simd.level().name());
         }
     }
 }
@@ -190,7 +218,7 @@ fn routing_equals_reference_routing() {
         let mut r = FlowGraph::empty();
         r.nx = nx;
         r.ny = ny;
-        d8_receivers_into(&h, nx, ny, &mut r.receiver, &mut r.distance);
+        d8_receivers_into(Simd::best(), &h, nx, ny, &mut r.receiver, &mut r.distance);
         let pits = (0..nx * ny)
             .filter(|&i| r.receiver[i] as usize == i && !r.is_edge(i))
             .count();
