@@ -36,7 +36,9 @@
 
 use natura_core::{Grid2, HeightField, Progress};
 
-use super::{Edges, Erodibility, Neighbourhood, check_field, check_model_size, check_softness};
+use super::{
+    Edges, Erodibility, Neighbourhood, check_field, check_model_size, check_softness, run_steps,
+};
 use crate::error::{Result, in_range, invalid, non_negative};
 use crate::par;
 
@@ -299,14 +301,18 @@ impl MusgraveHydraulic {
     /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
     /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        check_field("hydraulic erosion", hf, self.nx, self.ny)?;
-        progress.start("hydraulic", u64::from(steps));
-        for _ in 0..steps {
-            self.step_unchecked(hf);
-            progress.advance(1);
-        }
-        progress.finish();
-        Ok(())
+        let size = (self.nx, self.ny);
+        run_steps(
+            "hydraulic erosion",
+            "hydraulic",
+            hf,
+            size,
+            steps,
+            progress,
+            |hf| {
+                self.step_unchecked(hf);
+            },
+        )
     }
 
     /// One step: rain (on schedule), transport, evaporation.

@@ -24,7 +24,7 @@ pub mod pipe;
 pub mod stream_power;
 pub mod thermal;
 
-use natura_core::{Grid2, HeightField};
+use natura_core::{Grid2, HeightField, Progress};
 
 use crate::error::{Result, TerrainError, check_grid, invalid, min_size, same_size};
 
@@ -243,6 +243,27 @@ pub(crate) fn check_heights(hf: &HeightField) -> Result<()> {
 pub(crate) fn check_model_size(method: &'static str, hf: &HeightField) -> Result<()> {
     min_size(method, hf.nx(), hf.ny(), 3, 3)?;
     check_heights(hf)
+}
+
+/// A model's `run`: checks `hf` against the model's size `(nx, ny)`, then
+/// takes `steps` steps, reporting each to `progress` under `label`.
+pub(crate) fn run_steps(
+    method: &'static str,
+    label: &'static str,
+    hf: &mut HeightField,
+    (nx, ny): (usize, usize),
+    steps: u32,
+    progress: &dyn Progress,
+    mut step: impl FnMut(&mut HeightField),
+) -> Result<()> {
+    check_field(method, hf, nx, ny)?;
+    progress.start(label, u64::from(steps));
+    for _ in 0..steps {
+        step(hf);
+        progress.advance(1);
+    }
+    progress.finish();
+    Ok(())
 }
 
 /// Checks an optional erodibility map against the field size.
