@@ -256,6 +256,29 @@ fn sweep(
             },
         }
     }
+    // The four flux planes' rows around `y`.
+    fn flux_rows<'a>(
+        y: usize,
+        y0: usize,
+        y1: usize,
+        nx: usize,
+        f: &'a [&mut [f32]; 4],
+        lower: Option<&'a Halo>,
+        upper: Option<&'a Halo>,
+    ) -> [Rows<'a>; 4] {
+        let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
+        std::array::from_fn(|k| {
+            around(
+                y,
+                y0,
+                y1,
+                f[k],
+                loc,
+                lower.map(|h| h.f[0][k].as_slice()),
+                upper.map(|h| h.f[1][k].as_slice()),
+            )
+        })
+    }
     let mut evaporated = 0.0f64;
     let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
     for t in y0..y1 + 2 {
@@ -289,17 +312,7 @@ fn sweep(
             let y = t - 1;
             let ins = UpdateRows {
                 d1: &d1r[ring(y)],
-                f: std::array::from_fn(|k| {
-                    around(
-                        y,
-                        y0,
-                        y1,
-                        f[k],
-                        loc,
-                        lower.map(|h| h.f[0][k].as_slice()),
-                        upper.map(|h| h.f[1][k].as_slice()),
-                    )
-                }),
+                f: flux_rows(y, y0, y1, nx, &f, lower, upper),
                 s0: &s[loc(y)],
                 bed: c.rows(bed, y),
                 erod: erod.map(|e| &e[y * nx..(y + 1) * nx]),
@@ -325,17 +338,7 @@ fn sweep(
                 lower.map(|h| h.d1[0].as_slice()),
                 upper.map(|h| h.d1[1].as_slice()),
             );
-            let fr = std::array::from_fn(|k| {
-                around(
-                    y,
-                    y0,
-                    y1,
-                    f[k],
-                    loc,
-                    lower.map(|h| h.f[0][k].as_slice()),
-                    upper.map(|h| h.f[1][k].as_slice()),
-                )
-            });
+            let fr = flux_rows(y, y0, y1, nx, &f, lower, upper);
             let s1 = around(
                 y,
                 y0,
