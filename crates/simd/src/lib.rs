@@ -320,8 +320,8 @@ mod x86 {
 /// ```
 ///
 /// Without a token argument the function runs at [`Simd::best`]. If the first
-/// argument's type is written `Simd` (`simd: Simd`), the caller chooses the
-/// level (and the body can read the token too):
+/// argument's type is written `Simd` (`simd: Simd`, with `Simd` in scope), the
+/// caller chooses the level (and the body can read the token too):
 ///
 /// ```
 /// use natura_simd::{multiversion, Simd};
@@ -351,9 +351,9 @@ macro_rules! multiversion {
         ($sv:ident: Simd $(, $arg:ident: $ty:ty)* $(,)?) $(-> $ret:ty)? $body:block
     ) => {
         $(#[$m])*
-        $vis fn $name<$lt $(, const $c: $ct)*>($sv: $crate::Simd $(, $arg: $ty)*) $(-> $ret)? {
+        $vis fn $name<$lt $(, const $c: $ct)*>($sv: Simd $(, $arg: $ty)*) $(-> $ret)? {
             $crate::multiversion!(@levels [$lt $(, const $c: $ct)*] [$($c),*]
-                ($sv: $crate::Simd $(, $arg: $ty)*) ($($ret)?) $body);
+                ($sv: Simd $(, $arg: $ty)*) ($($ret)?) $body);
             $crate::multiversion!(@dispatch $sv [$($c),*] ($sv $(, $arg)*))
         }
     };
