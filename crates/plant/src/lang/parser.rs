@@ -1,0 +1,747 @@
+//! The parser: statements → directives, axiom and compiled productions.
+
+use super::expr::{self, Compiler, Expr, Globals, Macro, Scope};
+use super::text::{self, Ch, Cursor, Stmt};
+use super::vm::{Code, Env, Rng};
+use super::{LSystem, Pattern, Production, RightElem, RuleSet, SuccModule, UserFns};
+use crate::error::{PlantError, Result, Span};
+use crate::string::ModuleString;
+use crate::symbols::{LBRACKET, RBRACKET, SymbolTable};
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Section {
+    Productions,
+    Decomposition,
+    Homomorphism,
+}
+
+#[derive(Debug)]
+enum Filter {
+    None,
+    Ignore(Vec<u32>),
+    Consider(Vec<u32>),
+}
+
+/// A module as written: name, span and its parameter expressions.
+#[derive(Debug)]
+struct RawModule {
+    name: String,
+    span: Span,
+    params: Vec<Expr>,
+}
+
+/// Directive keywords (lower case) in the order they are tried.
+const KEYWORDS: &[&str] = &[
+    "#define",
+    "#ignore",
+    "#consider",
+    "#include",
+    "derivation length",
+    "maximum depth",
+    "max depth",
+    "axiom",
+    "ω",
+    "lsystem",
+    "endlsystem",
+    "productions",
+    "production",
+    "decomposition",
+    "homomorphism",
+    "interpretation",
+    "endgroup",
+    "group",
+    "ignore",
+    "consider",
+    "define",
+    "array",
+    "angle",
+    "step",
+    "seed",
+];
+
+/// Returns the directive keyword a statement starts with and the character
+/// offset after it (and after an optional `:`).
+fn keyword(st: &Stmt) -> Option<(&'static str, usize)> {
+    let lead = st.chars.iter().take_while(|c| c.c == ' ').count();
+    let rest: String = st.chars[lead..].iter().map(|c| c.c).collect();
+    let lower = rest.to_lowercase();
+    for &k in KEYWORDS {
+        if lower.starts_with(k) {
+            let n = k.chars().count();
+            // A keyword must end the word (`step:` but not `steps`).
+            let next = rest.chars().nth(n);
+            if next.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+                continue;
+            }
+            // Bare `#define`-less words need a colon to count as directives,
+            // except the section headers and end markers.
+            let mut off = lead + n;
+            while st.chars.get(off).is_some_and(|c| c.c == ' ') {
+                off += 1;
+            }
+            let colon = st.chars.get(off).is_some_and(|c| c.c == ':');
+            if colon {
+                off += 1;
+            } else if !k.starts_with('#') && !matches!(k, "endlsystem" | "endgroup" | "array") {
+                continue;
+            }
+            return Some((k, off));
+        }
+    }
+    None
+}
+
+pub(crate) fn parse(src: &str) -> Result<LSystem> {
+    let stmts = text::statements(src)?;
+    let mut globals = Globals::default();
+    let mut arrays: Vec<Vec<f64>> = Vec::new();
+    // Pass 1: macros and arrays, which may be used anywhere.
+    for st in &stmts {
+        if let Some((k, off)) = keyword(st) {
+            match k {
+                "#define" => define(st, off, &mut globals)?,
+                "define" => define_arrays(&st.chars[off..], &mut globals, &mut arrays)?,
+                "array" => define_arrays(&st.chars, &mut globals, &mut arrays)?,
+                _ => {}
+            }
+        }
+    }
+    let mut symbols = SymbolTable::new();
+    let mut section = Section::Productions;
+    let mut rules: [Vec<Production>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    let mut axiom = None;
+    let mut lsys_len = 0u32;
+    let mut max_depth = 16u32;
+    let mut filter = Filter::None;
+    let mut angle = None;
+    let mut step = None;
+    let mut seed = None;
+    let user = UserFns::default();
+    for st in &stmts {
+        let Some((k, off)) = keyword(st) else {
+            let r = production(st, &globals, &mut symbols, section)?;
+            rules[section as usize].push(r);
+            continue;
+        };
+        let rest = &st.chars[off..];
+        match k {
+            "#define" | "define" | "array" | "lsystem" | "endlsystem" | "endgroup" | "group" => {}
+            "#include" => {
+                return Err(PlantError::syntax(
+                    st.span(),
+                    "`#include` is not supported; paste the file in",
+                ));
+            }
+            "derivation length" => {
+                lsys_len = const_count(rest, &globals, &arrays, "derivation length", st.span())?
+            }
+            "maximum depth" | "max depth" => {
+                max_depth = const_count(rest, &globals, &arrays, "maximum depth", st.span())?;
+            }
+            "angle" => angle = Some(const_value(rest, &globals, &arrays, st.span())?),
+            "step" => step = Some(const_value(rest, &globals, &arrays, st.span())?),
+            "seed" => {
+                seed = Some(u64::from(const_count(
+                    rest,
+                    &globals,
+                    &arrays,
+                    "seed",
+                    st.span(),
+                )?))
+            }
+            "axiom" | "ω" => {
+                let mut cur = Cursor::new(rest);
+                let raw = module_list(&mut cur, ModCtx::String)?;
+                axiom = Some(raw);
+            }
+            "#ignore" | "ignore" | "#consider" | "consider" => {
+                let mut cur = Cursor::new(rest);
+                let raw = module_list(&mut cur, ModCtx::Names)?;
+                let ids: Vec<u32> = raw
+                    .iter()
+                    .filter(|m| m.name != "[" && m.name != "]")
+                    .map(|m| symbols.intern(&m.name))
+                    .collect();
+                let consider = k.contains("consider");
+                filter = match (filter, consider) {
+                    (Filter::None, false) => Filter::Ignore(ids),
+                    (Filter::None, true) => Filter::Consider(ids),
+                    (Filter::Ignore(mut v), false) => {
+                        v.extend(ids);
+                        Filter::Ignore(v)
+                    }
+                    (Filter::Consider(mut v), true) => {
+                        v.extend(ids);
+                        Filter::Consider(v)
+                    }
+                    _ => {
+                        return Err(PlantError::syntax(
+                            st.span(),
+                            "both an ignore list and a consider list",
+                        ));
+                    }
+                };
+            }
+            "productions" | "production" => section = Section::Productions,
+            "decomposition" => section = Section::Decomposition,
+            "homomorphism" | "interpretation" => section = Section::Homomorphism,
+            _ => unreachable!("every keyword is handled"),
+        }
+    }
+    let Some(raw_axiom) = axiom else {
+        return Err(PlantError::syntax(
+            Span::new(1, 1),
+            "no axiom (`axiom: …` or `ω: …`)",
+        ));
+    };
+    let axiom = constant_string(&raw_axiom, &globals, &arrays, &mut symbols, &user)?;
+    let nsyms = symbols.len();
+    let mut visible = vec![true; nsyms];
+    match &filter {
+        Filter::None => {}
+        Filter::Ignore(ids) => ids.iter().for_each(|&s| visible[s as usize] = false),
+        Filter::Consider(ids) => {
+            visible.iter_mut().for_each(|v| *v = false);
+            ids.iter().for_each(|&s| visible[s as usize] = true);
+        }
+    }
+    visible[LBRACKET as usize] = true;
+    visible[RBRACKET as usize] = true;
+    let [p, d, h] = rules;
+    let any_context = p.iter().any(Production::has_context);
+    Ok(LSystem {
+        symbols,
+        axiom,
+        productions: RuleSet::build(p, nsyms),
+        decompositions: RuleSet::build(d, nsyms),
+        homomorphisms: RuleSet::build(h, nsyms),
+        derivation_length: lsys_len,
+        max_depth,
+        visible,
+        arrays,
+        user,
+        angle,
+        step,
+        seed,
+        any_context,
+    })
+}
+
+fn define(st: &Stmt, off: usize, g: &mut Globals) -> Result<()> {
+    let mut cur = Cursor::new(&st.chars[off..]);
+    let span = cur.span();
+    let name = cur
+        .ident()
+        .ok_or_else(|| PlantError::syntax(span, "expected a name after `#define`"))?;
+    let mut params = Vec::new();
+    if cur.peek() == Some('(') {
+        cur.bump();
+        if !cur.eat(')') {
+            loop {
+                let s = cur.span();
+                params.push(
+                    cur.ident()
+                        .ok_or_else(|| PlantError::syntax(s, "expected a macro parameter name"))?,
+                );
+                if cur.eat(')') {
+                    break;
+                }
+                cur.expect(',', "between macro parameters")?;
+            }
+        }
+    }
+    if cur.at_end() {
+        return Err(PlantError::syntax(
+            cur.span(),
+            format!("`#define {name}` has no value"),
+        ));
+    }
+    let body = expr::parse_expr(&mut cur)?;
+    if !cur.at_end() {
+        return Err(PlantError::syntax(
+            cur.span(),
+            "unexpected text after the macro's value",
+        ));
+    }
+    g.macros.insert(name, Macro { params, body });
+    Ok(())
+}
+
+/// `array Name[N] = {v, …}, Name2[M] = {…}` (also inside `Define: { … }`).
+fn define_arrays(chars: &[Ch], g: &mut Globals, arrays: &mut Vec<Vec<f64>>) -> Result<()> {
+    let mut cur = Cursor::new(chars);
+    let braced = cur.eat('{');
+    loop {
+        if cur.at_end() || (braced && cur.eat('}')) {
+            break;
+        }
+        if cur.eat(',') || cur.eat(';') {
+            continue;
+        }
+        let span = cur.span();
+        let mut name = cur
+            .ident()
+            .ok_or_else(|| PlantError::syntax(span, "expected `array Name[size] = {…}`"))?;
+        if name == "array" {
+            let s = cur.span();
+            name = cur
+                .ident()
+                .ok_or_else(|| PlantError::syntax(s, "expected an array name"))?;
+        }
+        cur.expect('[', "after the array name")?;
+        let size_span = cur.span();
+        let size_e = expr::parse_expr(&mut cur)?;
+        cur.expect(']', "after the array size")?;
+        cur.expect('=', "before the array's values")?;
+        cur.expect('{', "to open the array's values")?;
+        let mut vals = Vec::new();
+        if !cur.eat('}') {
+            loop {
+                let s = cur.span();
+                let e = expr::parse_expr(&mut cur)?;
+                vals.push(eval_const(&e, g, arrays, s)?);
+                if cur.eat('}') {
+                    break;
+                }
+                cur.expect(',', "between array values")?;
+            }
+        }
+        let size = eval_const(&size_e, g, arrays, size_span)?;
+        if !(size >= 1.0 && size.fract() == 0.0 && size <= 1e7) {
+            return Err(PlantError::syntax(
+                size_span,
+                format!("array size {size} is not a positive integer"),
+            ));
+        }
+        if vals.len() > size as usize {
+            return Err(PlantError::syntax(
+                span,
+                format!("array `{name}` has {} values for size {size}", vals.len()),
+            ));
+        }
+        vals.resize(size as usize, 0.0);
+        if arrays.len() >= u16::MAX as usize {
+            return Err(PlantError::syntax(span, "too many arrays"));
+        }
+        g.arrays.insert(name, arrays.len() as u16);
+        arrays.push(vals);
+    }
+    Ok(())
+}
+
+fn eval_const(e: &Expr, g: &Globals, arrays: &[Vec<f64>], span: Span) -> Result<f64> {
+    let mut c = Compiler::new(g, Scope::default());
+    let code = c.expr(e, span)?;
+    run_const(&code, arrays, &UserFns::default(), "a constant expression")
+}
+
+fn run_const(code: &Code, arrays: &[Vec<f64>], user: &UserFns, what: &str) -> Result<f64> {
+    let mut env = Env {
+        arrays,
+        user,
+        rng: Rng::default(),
+    };
+    let mut slots = [0.0; 0];
+    code.eval(&mut slots, &mut Vec::new(), &mut env)
+        .map_err(|f| PlantError::Eval {
+            span: f.span,
+            production: what.to_string(),
+            message: f.message,
+        })
+}
+
+fn const_value(rest: &[Ch], g: &Globals, arrays: &[Vec<f64>], span: Span) -> Result<f64> {
+    let mut cur = Cursor::new(rest);
+    let s = cur.span();
+    if cur.at_end() {
+        return Err(PlantError::syntax(span, "expected a value"));
+    }
+    let e = expr::parse_expr(&mut cur)?;
+    if !cur.at_end() {
+        return Err(PlantError::syntax(
+            cur.span(),
+            "unexpected text after the value",
+        ));
+    }
+    eval_const(&e, g, arrays, s)
+}
+
+fn const_count(
+    rest: &[Ch],
+    g: &Globals,
+    arrays: &[Vec<f64>],
+    what: &str,
+    span: Span,
+) -> Result<u32> {
+    let v = const_value(rest, g, arrays, span)?;
+    if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
+        Ok(v as u32)
+    } else {
+        Err(PlantError::syntax(
+            span,
+            format!("{what} {v} is not a non-negative integer"),
+        ))
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum ModCtx {
+    /// Axiom or successor: parameters are expressions.
+    String,
+    /// Predecessor or context: parameters are names.
+    Pattern,
+    /// Ignore / consider lists: names only.
+    Names,
+}
+
+/// Parses a list of modules until the end of the cursor (or a top-level
+/// `<`, `>` or `:` in patterns).
+fn module_list(cur: &mut Cursor<'_>, ctx: ModCtx) -> Result<Vec<RawModule>> {
+    let mut out = Vec::new();
+    loop {
+        cur.skip_ws();
+        let Some(c) = cur.peek() else { break };
+        let span = cur.span();
+        if ctx == ModCtx::Pattern && matches!(c, '<' | '>' | ':') {
+            break;
+        }
+        if ctx == ModCtx::String && c == ':' {
+            break;
+        }
+        match c {
+            '(' | ')' | ',' => {
+                return Err(PlantError::syntax(
+                    span,
+                    format!("unexpected `{c}` in a module string"),
+                ));
+            }
+            'ε' => {
+                cur.bump();
+                continue;
+            }
+            _ => {}
+        }
+        cur.bump();
+        let mut name = c.to_string();
+        if matches!(c, '?' | '@' | '~')
+            && cur
+                .peek()
+                .is_some_and(|n| !n.is_whitespace() && !matches!(n, '(' | ')' | ',' | ':'))
+        {
+            name.push(cur.bump().unwrap_or(' '));
+        }
+        let mut params = Vec::new();
+        if cur.peek() == Some('(') {
+            cur.bump();
+            if ctx == ModCtx::Names {
+                return Err(PlantError::syntax(
+                    span,
+                    "an ignore or consider list takes names only",
+                ));
+            }
+            if !cur.eat(')') {
+                loop {
+                    params.push(expr::parse_expr(cur)?);
+                    if cur.eat(')') {
+                        break;
+                    }
+                    cur.expect(',', "between module parameters")?;
+                }
+            }
+        }
+        if params.len() > u16::MAX as usize {
+            return Err(PlantError::syntax(span, "too many parameters"));
+        }
+        out.push(RawModule { name, span, params });
+    }
+    Ok(out)
+}
+
+/// Evaluates the parameters of a module list as constants.
+fn constant_string(
+    raw: &[RawModule],
+    g: &Globals,
+    arrays: &[Vec<f64>],
+    symbols: &mut SymbolTable,
+    user: &UserFns,
+) -> Result<ModuleString> {
+    let mut s = ModuleString::new();
+    let mut vals = Vec::new();
+    for m in raw {
+        vals.clear();
+        for e in &m.params {
+            let mut c = Compiler::new(g, Scope::default());
+            let code = c.expr(e, m.span)?;
+            vals.push(run_const(&code, arrays, user, "the axiom")?);
+        }
+        let id = symbols.intern(&m.name);
+        s.push(id, &vals);
+    }
+    Ok(s)
+}
+
+pub(crate) fn parse_constant_string(l: &LSystem, src: &str) -> Result<ModuleString> {
+    let stmts = text::statements(src)?;
+    let mut s = ModuleString::new();
+    let g = Globals::default();
+    for st in &stmts {
+        let mut cur = Cursor::new(&st.chars);
+        let raw = module_list(&mut cur, ModCtx::String)?;
+        if !cur.at_end() {
+            return Err(PlantError::syntax(
+                cur.span(),
+                "unexpected `:` in a module string",
+            ));
+        }
+        let mut vals = Vec::new();
+        for m in &raw {
+            vals.clear();
+            for e in &m.params {
+                let mut c = Compiler::new(&g, Scope::default());
+                let code = c.expr(e, m.span)?;
+                vals.push(run_const(&code, &l.arrays, &l.user, "a module string")?);
+            }
+            let id = l
+                .symbols
+                .get(&m.name)
+                .ok_or_else(|| PlantError::Undefined {
+                    span: m.span,
+                    what: "module",
+                    name: m.name.clone(),
+                })?;
+            s.push(id, &vals);
+        }
+    }
+    Ok(s)
+}
+
+/// Turns a pattern's raw modules into patterns, binding parameter names to slots.
+fn patterns(
+    raw: &[RawModule],
+    symbols: &mut SymbolTable,
+    scope: &mut Scope,
+) -> Result<Vec<(Pattern, bool)>> {
+    let mut out = Vec::new();
+    for m in raw {
+        let slot = scope.names.len() as u16;
+        for p in &m.params {
+            let Expr::Var(n, s) = p else {
+                return Err(PlantError::syntax(
+                    m.span,
+                    "a predecessor or context takes parameter names, not expressions",
+                ));
+            };
+            if scope.names.len() >= u16::MAX as usize {
+                return Err(PlantError::syntax(*s, "too many parameters"));
+            }
+            scope.names.push(n.clone());
+        }
+        let bracket = m.name == "[" || m.name == "]";
+        let sym = symbols.intern(&m.name);
+        out.push((
+            Pattern {
+                sym,
+                arity: m.params.len() as u16,
+                slot,
+            },
+            bracket,
+        ));
+    }
+    Ok(out)
+}
+
+fn production(
+    st: &Stmt,
+    g: &Globals,
+    symbols: &mut SymbolTable,
+    section: Section,
+) -> Result<Production> {
+    let chars = &st.chars[..];
+    let Some((ai, alen)) = text::find_arrow(chars) else {
+        return Err(PlantError::syntax(
+            st.span(),
+            format!(
+                "expected a production (`pred -> succ`) or a directive, found `{}`",
+                st.text().trim()
+            ),
+        ));
+    };
+    let (lhs, rhs) = (&chars[..ai], &chars[ai + alen..]);
+    let mut cur = Cursor::new(lhs);
+    // Optional label `p12:`.
+    let mut label = None;
+    let save = cur.pos;
+    if let Some(id) = cur.ident() {
+        let is_label =
+            id.starts_with('p') && id.len() > 1 && id[1..].chars().all(|c| c.is_ascii_digit());
+        if is_label && cur.eat(':') {
+            label = Some(id);
+        } else {
+            cur.pos = save;
+        }
+    } else {
+        cur.pos = save;
+    }
+    let span = cur.span();
+    let name = match &label {
+        Some(l) => format!("production {l}"),
+        None => format!("production at line {}", span.line),
+    };
+    let mut scope = Scope::default();
+    let first = module_list(&mut cur, ModCtx::Pattern)?;
+    let (left_raw, pred_raw, right_raw);
+    if cur.eat('<') {
+        left_raw = first;
+        pred_raw = module_list(&mut cur, ModCtx::Pattern)?;
+    } else {
+        left_raw = Vec::new();
+        pred_raw = first;
+    }
+    if cur.eat('>') {
+        right_raw = module_list(&mut cur, ModCtx::Pattern)?;
+    } else {
+        right_raw = Vec::new();
+    }
+    if pred_raw.len() != 1 {
+        return Err(PlantError::syntax(
+            span,
+            format!(
+                "the strict predecessor must be one module, found {}",
+                pred_raw.len()
+            ),
+        ));
+    }
+    if section != Section::Productions && (!left_raw.is_empty() || !right_raw.is_empty()) {
+        return Err(PlantError::syntax(
+            span,
+            "decomposition and interpretation rules are context-free",
+        ));
+    }
+    let left = patterns(&left_raw, symbols, &mut scope)?;
+    if let Some((_, _)) = left.iter().find(|(_, b)| *b) {
+        return Err(PlantError::syntax(
+            span,
+            "brackets are not supported in a left context",
+        ));
+    }
+    let pred = patterns(&pred_raw, symbols, &mut scope)?;
+    if pred[0].1 {
+        return Err(PlantError::syntax(
+            span,
+            "a bracket cannot be a strict predecessor",
+        ));
+    }
+    let right = patterns(&right_raw, symbols, &mut scope)?
+        .into_iter()
+        .map(|(p, b)| match (b, p.sym) {
+            (true, LBRACKET) => RightElem::Open,
+            (true, _) => RightElem::Close,
+            _ => RightElem::Module(p),
+        })
+        .collect();
+    // Condition part: `{block1} cond {block2}`.
+    let nparams = scope.names.len();
+    let mut comp = Compiler::new(g, scope);
+    let (mut pre, mut cond, mut post) = (None, None, None);
+    if cur.eat(':') {
+        if cur.eat('{') {
+            let s = cur.span();
+            let b = expr::parse_block(&mut cur)?;
+            cur.expect('}', "to close the block")?;
+            pre = Some(comp.block(&b, s)?);
+        }
+        cur.skip_ws();
+        if cur.peek() == Some('*') && !cur.peek_at(1).is_some_and(|c| c != ' ' && c != '{') {
+            cur.bump();
+        } else if !cur.at_end() && cur.peek() != Some('{') {
+            let s = cur.span();
+            let e = expr::parse_expr(&mut cur)?;
+            cond = Some(comp.expr(&e, s)?);
+        }
+        if cur.eat('{') {
+            let s = cur.span();
+            let b = expr::parse_block(&mut cur)?;
+            cur.expect('}', "to close the block")?;
+            post = Some(comp.block(&b, s)?);
+        }
+    }
+    if !cur.at_end() {
+        let c = cur.peek().unwrap_or(' ');
+        return Err(PlantError::syntax(
+            cur.span(),
+            format!("unexpected `{c}` before the arrow"),
+        ));
+    }
+    // Successor and probability.
+    let mut depth = 0i32;
+    let mut colon = None;
+    for (k, c) in rhs.iter().enumerate() {
+        match c.c {
+            '(' => depth += 1,
+            ')' => depth -= 1,
+            ':' if depth == 0 => colon = Some(k),
+            _ => {}
+        }
+    }
+    let (succ_chars, prob_chars) = match colon {
+        Some(k) => (&rhs[..k], Some(&rhs[k + 1..])),
+        None => (rhs, None),
+    };
+    let mut scur = Cursor::new(succ_chars);
+    let empty = {
+        let t: String = succ_chars.iter().map(|c| c.c).collect();
+        let t = t.trim();
+        t == "*" || t == "ε" || t.is_empty()
+    };
+    let raw_succ = if empty {
+        Vec::new()
+    } else {
+        module_list(&mut scur, ModCtx::String)?
+    };
+    let mut succ = Vec::with_capacity(raw_succ.len());
+    for m in &raw_succ {
+        let sym = symbols.intern(&m.name);
+        let mut params = Vec::with_capacity(m.params.len());
+        for e in &m.params {
+            params.push(comp.expr(e, m.span)?);
+        }
+        succ.push(SuccModule { sym, params });
+    }
+    let prob = match prob_chars {
+        Some(pc) => {
+            let mut pcur = Cursor::new(pc);
+            let s = pcur.span();
+            if pcur.at_end() {
+                return Err(PlantError::syntax(s, "expected a probability after `:`"));
+            }
+            let e = expr::parse_expr(&mut pcur)?;
+            if !pcur.at_end() {
+                return Err(PlantError::syntax(
+                    pcur.span(),
+                    "unexpected text after the probability",
+                ));
+            }
+            Some(comp.expr(&e, s)?)
+        }
+        None => None,
+    };
+    let uses_random = [&pre, &cond, &post, &prob]
+        .iter()
+        .any(|c| c.as_ref().is_some_and(Code::uses_random))
+        || succ.iter().any(|m| m.params.iter().any(Code::uses_random));
+    Ok(Production {
+        name,
+        span,
+        pred: pred[0].0,
+        left: left.into_iter().map(|(p, _)| p).collect(),
+        right,
+        pre,
+        cond,
+        post,
+        succ,
+        prob,
+        nslots: comp.scope.names.len(),
+        nparams,
+        uses_random,
+    })
+}

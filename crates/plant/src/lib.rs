@@ -1,0 +1,33 @@
+//! # natura-plant
+//!
+//! Plants from L-systems, in the tradition of Prusinkiewicz & Lindenmayer's
+//! *The Algorithmic Beauty of Plants* and the cpfg / L-Py modelling
+//! languages: a text language for parametric, context-sensitive, stochastic
+//! L-systems with decomposition and interpretation rules ([`lang`]); a
+//! derivation engine over a struct-of-arrays module string ([`Derivation`]);
+//! open L-systems that exchange data with an [`Environment`]; 3-D turtle
+//! interpretation ([`turtle`]) into plant meshes written as glTF binary or
+//! OBJ ([`mesh`]); the source papers' models ([`models`]); and ecosystems of
+//! many plants on a natura-terrain height field ([`eco`]).
+//!
+//! ```
+//! use natura_plant::{Derivation, LSystem};
+//! let l = LSystem::parse("axiom: A\nA -> AB\nB -> A")?;
+//! let mut d = Derivation::new(&l, 1)?;
+//! d.derive(5)?;
+//! assert_eq!(d.string().display(l.symbols()), "ABAABABAABAAB");
+//! # Ok::<(), natura_plant::PlantError>(())
+//! ```
+#![forbid(unsafe_code)]
+
+pub mod engine;
+mod error;
+pub mod lang;
+pub mod string;
+pub mod symbols;
+
+pub use engine::{Derivation, Limits};
+pub use error::{PlantError, Result, Span};
+pub use lang::LSystem;
+pub use string::ModuleString;
+pub use symbols::SymbolTable;
