@@ -6,7 +6,7 @@
 //! | hydraulic (fluvial), corrected and mass-conserving | [`hydraulic`] | Musgrave et al. 1989, §4.1, Musgrave 1993, §2.4.1 |
 //! | thermal weathering with a talus angle | [`thermal`] | Musgrave et al. 1989, §4.2, Musgrave 1993, §2.4.2 |
 //! | diffusive creep | [`diffusion`] | Musgrave 1993, §2.4.3 |
-//! | virtual-pipe shallow water | [`pipe`] | Mei, Decaudin & Hu 2007 |
+//! | virtual-pipe shallow water | [`pipe`] | Mei et al. 2007, §3 |
 //! | particle (droplet) | [`droplet`] | Beyer 2015 |
 //! | stream power with uplift | [`stream_power`] | Braun & Willett 2013 |
 //!

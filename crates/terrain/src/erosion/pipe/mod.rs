@@ -1,5 +1,5 @@
-//! Virtual-pipe shallow-water hydraulic erosion (Mei, Decaudin & Hu 2007,
-//! "Fast Hydraulic Erosion Simulation and Visualization on GPU"; the pipe model
+//! Virtual-pipe shallow-water hydraulic erosion (Mei et al. 2007, "Fast
+//! Hydraulic Erosion Simulation and Visualization on GPU", §3; the pipe model
 //! is O'Brien & Hodgins 1995). Not in Musgrave's texts: it is the stable
 //! successor of the hydraulic scheme of Musgrave et al. 1989, §4.1, and keeps
 //! its `K_c / K_s / K_d` naming.
