@@ -119,7 +119,7 @@ impl Kernel for ProlongRow<'_> {
 mod tests {
     use super::*;
     use crate::grid::CellKind;
-    use crate::pressure::level::G;
+    use crate::pressure::level::GUARD;
     use crate::pressure::operator::{neighbour_sum, neighbour_sum_wide};
     use crate::pressure::transfer::{coarsen, interior_range};
     use natura_core::simd::{self, Simd};
@@ -258,7 +258,10 @@ mod tests {
         let restrict = |simd: Simd| -> Vec<f32> {
             let mut out = vec![0.0f32; coarse.len()];
             let m0 = coarse.m[0];
-            for (row_i, row) in out[G..G + coarse.rows() * m0].chunks_mut(m0).enumerate() {
+            for (row_i, row) in out[GUARD..GUARD + coarse.rows() * m0]
+                .chunks_mut(m0)
+                .enumerate()
+            {
                 simd::run(
                     simd,
                     RestrictRow {
@@ -277,7 +280,10 @@ mod tests {
         let prolong = |simd: Simd| -> Vec<f32> {
             let mut out = random(fine, 7);
             let m0 = fine.m[0];
-            for (row_i, row) in out[G..G + fine.rows() * m0].chunks_mut(m0).enumerate() {
+            for (row_i, row) in out[GUARD..GUARD + fine.rows() * m0]
+                .chunks_mut(m0)
+                .enumerate()
+            {
                 simd::run(
                     simd,
                     ProlongRow {

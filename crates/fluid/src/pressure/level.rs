@@ -12,7 +12,7 @@ use crate::par;
 use natura_core::simd::{self, Simd};
 
 /// Leading guard element so that `row_base − 1` is always a valid index.
-pub(crate) const G: usize = 1;
+pub(crate) const GUARD: usize = 1;
 
 /// A level of the operator: geometry, coupling masks and work vectors.
 #[derive(Clone, Debug)]
@@ -24,9 +24,9 @@ pub(crate) struct Level {
     /// Padding per axis (1 on active axes).
     pub pad: [usize; 3],
     /// Strides of the padded array.
-    pub st: [usize; 3],
+    pub stride: [usize; 3],
     /// Active axes in order.
-    pub act: Vec<usize>,
+    pub active: Vec<usize>,
     /// Periodic per axis.
     pub periodic: [bool; 3],
     /// Per padded cell: bit `2q`/`2q+1` = coupling to the −/+ neighbour along
@@ -57,17 +57,17 @@ impl Level {
         open: [[bool; 2]; 3],
         periodic: [bool; 3],
     ) -> Self {
-        let act: Vec<usize> = (0..3).filter(|&a| n[a] > 1).collect();
+        let active: Vec<usize> = (0..3).filter(|&a| n[a] > 1).collect();
         let pad: [usize; 3] = std::array::from_fn(|a| usize::from(n[a] > 1));
         let m: [usize; 3] = std::array::from_fn(|a| n[a] + 2 * pad[a]);
-        let st = [1, m[0], m[0] * m[1]];
-        let len = G + m[0] * m[1] * m[2] + G;
+        let stride = [1, m[0], m[0] * m[1]];
+        let len = GUARD + m[0] * m[1] * m[2] + GUARD;
         let mut lvl = Self {
             n,
             m,
             pad,
-            st,
-            act,
+            stride,
+            active,
             periodic: std::array::from_fn(|a| periodic[a] && n[a] > 1),
             mask: vec![0; len],
             diag: vec![0.0; len],
@@ -106,9 +106,10 @@ impl Level {
     /// Padded index of unpadded cell `(i, j, k)`.
     #[inline]
     pub fn pidx(&self, c: [usize; 3]) -> usize {
-        G + (c[0] + self.pad[0])
-            + (c[1] + self.pad[1]) * self.st[1]
-            + (c[2] + self.pad[2]) * self.st[2]
+        GUARD
+            + (c[0] + self.pad[0])
+            + (c[1] + self.pad[1]) * self.stride[1]
+            + (c[2] + self.pad[2]) * self.stride[2]
     }
 
     /// Unpadded linear index.
@@ -128,7 +129,7 @@ impl Level {
                     }
                     let mut bits = 0u16;
                     let mut diag = 0u16;
-                    for (q, &a) in self.act.iter().enumerate() {
+                    for (q, &a) in self.active.iter().enumerate() {
                         for e in 0..2 {
                             let mut nb = c;
                             let inside = if e == 0 { c[a] > 0 } else { c[a] + 1 < n[a] };
@@ -171,7 +172,7 @@ impl Level {
         let jp = r % self.m[1];
         let kp = r / self.m[1];
         let inside = |p: usize, a: usize| p >= self.pad[a] && p < self.pad[a] + self.n[a];
-        (inside(jp, 1) && inside(kp, 2)).then_some(G + r * self.m[0])
+        (inside(jp, 1) && inside(kp, 2)).then_some(GUARD + r * self.m[0])
     }
 
     /// Copies wrapped values into the ghost layers of periodic axes.
@@ -187,11 +188,11 @@ impl Level {
             };
             for q in 0..self.m[c] {
                 for p in 0..self.m[b] {
-                    let base = G + p * self.st[b] + q * self.st[c];
-                    let first = base + self.st[a];
-                    let last = base + self.n[a] * self.st[a];
+                    let base = GUARD + p * self.stride[b] + q * self.stride[c];
+                    let first = base + self.stride[a];
+                    let last = base + self.n[a] * self.stride[a];
                     v[base] = v[last];
-                    v[base + (self.n[a] + 1) * self.st[a]] = v[first];
+                    v[base + (self.n[a] + 1) * self.stride[a]] = v[first];
                 }
             }
         }
@@ -201,7 +202,7 @@ impl Level {
     /// the out row slice covers the padded row (`m[0]` samples from `row_base`).
     fn rows_par<T: Send>(&self, out: &mut [T], f: impl Fn(usize, usize, &mut [T]) + Sync + Send) {
         let m0 = self.m[0];
-        let body = &mut out[G..G + self.rows() * m0];
+        let body = &mut out[GUARD..GUARD + self.rows() * m0];
         par::for_chunks(body, m0, |r, row| {
             if let Some(base) = self.row_base(r) {
                 f(r, base, row);
@@ -211,7 +212,7 @@ impl Level {
 
     /// `y = A x` on fluid cells (0 elsewhere). `x` ghosts must be filled if periodic.
     pub fn apply<T: Real>(&self, x: &[T], y: &mut [T]) {
-        match self.act.len() {
+        match self.active.len() {
             0 => self.apply_k::<0, T>(x, y),
             1 => self.apply_k::<1, T>(x, y),
             2 => self.apply_k::<2, T>(x, y),
@@ -223,7 +224,7 @@ impl Level {
     /// cells in `f64`: the same per-row sums, added in the same row order,
     /// as [`Level::dot`]`(x, y)` after `apply` (bit-identical), in one pass.
     pub fn apply_dot(&self, x: &[f32], y: &mut [f32]) -> f64 {
-        match self.act.len() {
+        match self.active.len() {
             0 => self.apply_dot_k::<0>(x, y),
             1 => self.apply_dot_k::<1>(x, y),
             2 => self.apply_dot_k::<2>(x, y),
@@ -235,7 +236,7 @@ impl Level {
         let st = self.strides::<K>();
         let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
         let simd = Simd::best();
-        let body = &mut y[G..G + self.rows() * m0];
+        let body = &mut y[GUARD..GUARD + self.rows() * m0];
         par::for_chunks_sum(body, m0, |r, yrow| {
             let Some(base) = self.row_base(r) else {
                 return 0.0;
@@ -257,7 +258,7 @@ impl Level {
     }
 
     pub(crate) fn strides<const K: usize>(&self) -> [usize; K] {
-        std::array::from_fn(|q| self.st[self.act[q]])
+        std::array::from_fn(|q| self.stride[self.active[q]])
     }
 
     // The row kernels rely on the zero-padding invariant stated in
@@ -284,7 +285,7 @@ impl Level {
     /// One red or black half sweep of Gauss–Seidel, out of place:
     /// `out` = `x` with cells of parity `colour` updated from `b`.
     pub fn gs_half(&self, x: &[f32], b: &[f32], out: &mut [f32], colour: usize) {
-        match self.act.len() {
+        match self.active.len() {
             0 => self.gs_half_k::<0>(x, b, out, colour),
             1 => self.gs_half_k::<1>(x, b, out, colour),
             2 => self.gs_half_k::<2>(x, b, out, colour),
@@ -417,7 +418,7 @@ impl Level {
         if self.periodic.iter().any(|&p| p) {
             self.fill_ghosts(x);
         }
-        match self.act.len() {
+        match self.active.len() {
             0 => self.residual_k::<0, T>(b, x, r),
             1 => self.residual_k::<1, T>(b, x, r),
             2 => self.residual_k::<2, T>(b, x, r),

@@ -9,8 +9,8 @@ impl PoissonSystem {
         const TAU: f32 = 0.97;
         const SIGMA: f32 = 0.25;
         let l = &self.levels[0];
-        let k = l.act.len();
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
+        let k = l.active.len();
+        let st: Vec<usize> = l.active.iter().map(|&a| l.stride[a]).collect();
         let mut prec = vec![0.0f32; l.len()];
         let pos_count = |m: u16, skip: usize| -> f32 {
             (0..k)
@@ -48,7 +48,7 @@ impl PoissonSystem {
     pub(super) fn mic_apply(&mut self) {
         let l = &self.levels[0];
         let prec = self.mic.as_ref().expect("built before use");
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
+        let st: Vec<usize> = l.active.iter().map(|&a| l.stride[a]).collect();
         let z = &mut self.z;
         let r = &self.r;
         z.fill(0.0);

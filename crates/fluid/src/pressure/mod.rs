@@ -35,7 +35,7 @@ mod transfer;
 
 use crate::error::{FluidError, Result};
 use crate::grid::{Boundaries, CellKind, Dims};
-use level::{G, Level};
+use level::{GUARD, Level};
 use transfer::{Transfer, coarsen};
 
 /// Which linear solver performs the projection.
@@ -182,8 +182,8 @@ impl PoissonSystem {
         let mut transfers = Vec::new();
         loop {
             let f = levels.last().expect("at least one level");
-            let can = !f.act.is_empty()
-                && f.act
+            let can = !f.active.is_empty()
+                && f.active
                     .iter()
                     .all(|&a| f.n[a] >= 8 && (!f.periodic[a] || f.n[a] % 2 == 0))
                 && levels.len() < 24;
@@ -252,7 +252,7 @@ impl PoissonSystem {
         let mut comp = vec![u32::MAX; len];
         let mut cells = Vec::new();
         let mut stack = Vec::new();
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
+        let st: Vec<usize> = l.active.iter().map(|&a| l.stride[a]).collect();
         let mut seen = vec![false; len];
         for start in 0..len {
             let m = l.mask[start];
@@ -302,7 +302,7 @@ impl PoissonSystem {
     /// Maps a ghost index of a periodic level to its interior image.
     fn wrap_ghost(&self, p: usize) -> usize {
         let l = &self.levels[0];
-        let q = p - G;
+        let q = p - GUARD;
         let mut c = [q % l.m[0], (q / l.m[0]) % l.m[1], q / (l.m[0] * l.m[1])];
         for a in 0..3 {
             if l.pad[a] == 1 {
@@ -313,7 +313,7 @@ impl PoissonSystem {
                 }
             }
         }
-        G + c[0] + c[1] * l.st[1] + c[2] * l.st[2]
+        GUARD + c[0] + c[1] * l.stride[1] + c[2] * l.stride[2]
     }
 
     /// Removes the mean of `v` on each singular component.
@@ -354,10 +354,10 @@ impl PoissonSystem {
         let l = &self.levels[0];
         let (p0, n0, m0) = (l.pad[0], l.n[0], l.m[0]);
         let n1 = l.n[1];
-        dst[..G].fill(T::default());
-        let end = G + l.rows() * m0;
+        dst[..GUARD].fill(T::default());
+        let end = GUARD + l.rows() * m0;
         dst[end..].fill(T::default());
-        crate::par::for_chunks(&mut dst[G..end], m0, |r, row| {
+        crate::par::for_chunks(&mut dst[GUARD..end], m0, |r, row| {
             let Some(base) = l.row_base(r) else {
                 row.fill(T::default());
                 return;
@@ -442,7 +442,7 @@ impl PoissonSystem {
         self.pad_into(b, &mut pb);
         if let Some(i) = pb.iter().position(|v| !v.is_finite()) {
             let l = &self.levels[0];
-            let q = i - G;
+            let q = i - GUARD;
             let c = [
                 q % l.m[0] - l.pad[0],
                 (q / l.m[0]) % l.m[1] - l.pad[1],

@@ -82,7 +82,7 @@ impl PoissonSystem {
         // The iterate starts at zero: the first sweep pair skips reading it
         // (`smooth_from_zero`), which also writes every unknown of `x`.
         if last {
-            let sweeps = l.act.iter().map(|&a| l.n[a]).max().unwrap_or(1) * 2 + 8;
+            let sweeps = l.active.iter().map(|&a| l.n[a]).max().unwrap_or(1) * 2 + 8;
             l.smooth_from_zero(0);
             l.smooth(1);
             for _ in 1..sweeps {

@@ -10,7 +10,7 @@
 //! trilinear interpolation and its scaled transpose as restriction.
 
 use super::kernels::{ProlongRow, RestrictRow};
-use super::level::{G, Level};
+use super::level::{GUARD, Level};
 use crate::grid::CellKind;
 use crate::par;
 use natura_core::simd::{self, Simd};
@@ -80,7 +80,7 @@ impl Transfer {
                 })
                 .collect();
         }
-        let d = fine.act.len() as i32;
+        let d = fine.active.len() as i32;
         Self {
             up,
             down,
@@ -100,7 +100,7 @@ impl Transfer {
         let n0 = coarse.n[0];
         let nf0 = fine.n[0];
         let cl: &Level = coarse;
-        let body = &mut cb[G..G + cl.rows() * m0];
+        let body = &mut cb[GUARD..GUARD + cl.rows() * m0];
         // Coarse x cells whose four fine children 2c−1..=2c+2 are interior
         // with the standard weights.
         let (lo_c, hi_c) = interior_range(n0, nf0, fine.n[0] > 1);
@@ -131,7 +131,7 @@ impl Transfer {
         let mut fx = std::mem::take(&mut fine.x);
         let m0 = fine.m[0];
         let fl: &Level = fine;
-        let body = &mut fx[G..G + fl.rows() * m0];
+        let body = &mut fx[GUARD..GUARD + fl.rows() * m0];
         let simd = Simd::best();
         par::for_chunks(body, m0, |row_i, row| {
             simd::run(
@@ -156,7 +156,7 @@ impl Transfer {
         let m0 = coarse.m[0];
         let (p0, n0) = (coarse.pad[0], coarse.n[0]);
         let cl: &Level = coarse;
-        let body = &mut cb[G..G + cl.rows() * m0];
+        let body = &mut cb[GUARD..GUARD + cl.rows() * m0];
         par::for_chunks(body, m0, |row_i, row| {
             let Some(base) = cl.row_base(row_i) else {
                 return;
@@ -193,7 +193,7 @@ impl Transfer {
         let (p0, n0) = (fine.pad[0], fine.n[0]);
         let fl: &Level = fine;
         let cx = &coarse.x;
-        let body = &mut fx[G..G + fl.rows() * m0];
+        let body = &mut fx[GUARD..GUARD + fl.rows() * m0];
         par::for_chunks(body, m0, |row_i, row| {
             let Some(base) = fl.row_base(row_i) else {
                 return;
