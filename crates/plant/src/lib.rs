@@ -4,11 +4,11 @@
 //! *The Algorithmic Beauty of Plants* and the cpfg / L-Py modelling
 //! languages: a text language for parametric, context-sensitive, stochastic
 //! L-systems with decomposition and interpretation rules ([`lang`]); a
-//! derivation engine over a struct-of-arrays module string ([`Derivation`]);
-//! open L-systems that exchange data with an [`Environment`]; 3-D turtle
-//! interpretation ([`turtle`]) into plant meshes written as glTF binary or
-//! OBJ ([`mesh`]); the source papers' models ([`models`]); and ecosystems of
-//! many plants on a natura-terrain height field ([`eco`]).
+//! derivation engine over a struct-of-arrays module string ([`Derivation`]).
+//!
+//! This release holds the language and the derivation engine. The turtle
+//! interpretation, the meshes, the open L-system environment, the source
+//! papers' models and the ecosystems are not in it yet.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};

@@ -144,7 +144,7 @@ impl RuleSet {
 /// A parsed and compiled L-system.
 ///
 /// Build one with [`LSystem::parse`]; derive it with
-/// [`crate::Derivation`]; interpret the result with [`crate::Turtle`].
+/// [`crate::Derivation`].
 #[derive(Clone, Debug)]
 pub struct LSystem {
     pub(crate) symbols: SymbolTable,
