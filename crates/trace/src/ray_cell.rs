@@ -13,6 +13,7 @@
 //! the diagonal); the nearer hit is kept.
 
 use glam::{UVec2, Vec3};
+use natura_core::HeightField;
 
 use crate::field::FieldView;
 use crate::grid_ray::{GridRay, Shear};
@@ -205,11 +206,11 @@ fn sample_normal(f: &FieldView<'_>, x: usize, y: usize) -> Vec3 {
     }
     let k = y * nx + x;
     let h = f.h;
-    // The same expressions as `gradient_at_sample`: `(w − v) / (2·cell)`.
+    // The same expressions as `gradient_at_sample`, with its span `2·cell`.
     let span = 2.0 * f.cell;
-    let gx = (h[k + 1] - h[k - 1]) / span;
-    let gy = (h[k + nx] - h[k - nx]) / span;
-    Vec3::new(-gx, -gy, 1.0).normalize()
+    let gx = HeightField::central_difference(h[k - 1], h[k + 1], span);
+    let gy = HeightField::central_difference(h[k - nx], h[k + nx], span);
+    HeightField::normal_from_gradient(gx, gy)
 }
 
 /// Fills in the world-space details of a cell hit.
@@ -358,11 +359,9 @@ pub(crate) fn hit_lanes(
         let c = [tap(3), tap(4), tap(7), tap(8)];
         // Corner normals by central differences (`sample_normal`).
         let normal = |west: usize, east: usize, south: usize, north: usize| {
-            let gx = (tap(east) - tap(west)) / span;
-            let gy = (tap(north) - tap(south)) / span;
-            let v = [-gx, -gy, 1.0f32];
-            let r = 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            [v[0] * r, v[1] * r, v[2] * r]
+            let gx = HeightField::central_difference(tap(west), tap(east), span);
+            let gy = HeightField::central_difference(tap(south), tap(north), span);
+            HeightField::normal_from_gradient(gx, gy).to_array()
         };
         let n00 = normal(2, 4, 0, 7);
         let n10 = normal(3, 5, 1, 8);
