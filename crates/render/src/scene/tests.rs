@@ -1,0 +1,115 @@
+//! Scene tests: the embedded default, TOML round trips, errors that name
+//! line and key, and refused values.
+
+use super::*;
+
+#[test]
+fn embedded_default_scene_equals_the_defaults() {
+    let parsed = SceneDesc::from_toml_str(DEFAULT_SCENE_TOML, "default.toml").unwrap();
+    assert_eq!(parsed, SceneDesc::default());
+    parsed.validate().unwrap();
+}
+
+#[test]
+fn round_trips_through_toml() {
+    let mut s = SceneDesc {
+        seed: 99,
+        ..SceneDesc::default()
+    };
+    s.water.level_m = Some(12.5);
+    s.render.exposure_ev = Some(-3.5);
+    s.materials.diffuse = Diffuse::Lambert;
+    s.camera.kind = CameraKind::Cylindrical;
+    let text = s.to_toml_string().unwrap();
+    assert_eq!(SceneDesc::from_toml_str(&text, "x").unwrap(), s);
+}
+
+#[test]
+fn empty_file_is_the_default_scene() {
+    assert_eq!(
+        SceneDesc::from_toml_str("", "empty").unwrap(),
+        SceneDesc::default()
+    );
+}
+
+#[test]
+fn unknown_key_names_line_and_key() {
+    let text = "seed = 3\n\n[sun]\nelevation_deg = 10.0\nelevaton = 5\n";
+    let err = SceneDesc::from_toml_str(text, "scene.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("scene.toml:5:"), "{err}");
+    assert!(err.contains("sun.elevaton"), "{err}");
+}
+
+#[test]
+fn wrong_type_names_line_and_key() {
+    let text = "[camera]\nvfov_deg = 30.0\n\n[render]\nwidth = \"wide\"\n";
+    let err = SceneDesc::from_toml_str(text, "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("s.toml:5:"), "{err}");
+    assert!(err.contains("render.width"), "{err}");
+}
+
+#[test]
+fn syntax_error_names_line() {
+    let text = "seed = 3\n[terrain\nsize = 4\n";
+    let err = SceneDesc::from_toml_str(text, "bad.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("bad.toml:2:"), "{err}");
+}
+
+#[test]
+fn impossible_values_are_refused_by_name() {
+    type Mutation = Box<dyn Fn(&mut SceneDesc)>;
+    let cases: Vec<(&str, Mutation)> = vec![
+        ("render.spp", Box::new(|s| s.render.spp = 0)),
+        ("render.width", Box::new(|s| s.render.width = 0)),
+        ("terrain.size", Box::new(|s| s.terrain.size = 3)),
+        (
+            "terrain.cell_size_m",
+            Box::new(|s| s.terrain.cell_size_m = -1.0),
+        ),
+        ("terrain.h", Box::new(|s| s.terrain.h = f64::NAN)),
+        (
+            "sun.elevation_deg",
+            Box::new(|s| s.sun.elevation_deg = -5.0),
+        ),
+        (
+            "erosion.talus_deg",
+            Box::new(|s| s.erosion.talus_deg = 90.0),
+        ),
+        (
+            "camera.target_uv",
+            Box::new(|s| s.camera.target_uv = s.camera.position_uv),
+        ),
+        (
+            "water.ocean_resolution",
+            Box::new(|s| s.water.ocean_resolution = 300),
+        ),
+        (
+            "water.wind_speed_m_s",
+            Box::new(|s| s.water.wind_speed_m_s = 0.0),
+        ),
+    ];
+    for (key, mutate) in cases {
+        let mut s = SceneDesc::default();
+        mutate(&mut s);
+        let err = s.validate().unwrap_err().to_string();
+        assert!(err.contains(key), "{key}: {err}");
+    }
+    let mut twilight = SceneDesc::default();
+    twilight.sun.elevation_deg = -4.0;
+    twilight.sun.allow_below_horizon = true;
+    twilight.validate().unwrap();
+}
+
+#[test]
+fn missing_file_is_named() {
+    let err = SceneDesc::load("/no/such/scene.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("/no/such/scene.toml"), "{err}");
+}
