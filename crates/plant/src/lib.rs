@@ -31,3 +31,7 @@ pub use error::{PlantError, Result, Span};
 pub use lang::LSystem;
 pub use string::ModuleString;
 pub use symbols::SymbolTable;
+pub mod turtle;
+pub use turtle::{Geometry, Turtle, TurtleParams, TurtleState};
+pub mod open;
+pub use open::{Environment, Message, Reply};
