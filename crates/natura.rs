@@ -18,6 +18,7 @@
 //! | `ocean` | `natura-ocean` | FFT ocean waves, spectra, water optics |
 //! | `fluid` | `natura-fluid` | stable fluids, smoke, liquids |
 //! | `texture` | `natura-texture` | Musgrave's solid textures, procedural planets |
+//! | `plant` | `natura-plant` | L-systems, turtle geometry, open L-systems |
 //! | `render` | `natura-render` | scenes composing the crates into images |
 #![forbid(unsafe_code)]
 
@@ -47,3 +48,6 @@ pub use natura_render as render;
 
 #[cfg(feature = "texture")]
 pub use natura_texture as texture;
+
+#[cfg(feature = "plant")]
+pub use natura_plant as plant;

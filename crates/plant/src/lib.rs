@@ -5,10 +5,10 @@
 //! languages: a text language for parametric, context-sensitive, stochastic
 //! L-systems with decomposition and interpretation rules ([`lang`]); a
 //! derivation engine over a struct-of-arrays module string ([`Derivation`]);
-//! open L-systems that exchange data with an [`Environment`]; 3-D turtle
-//! interpretation ([`turtle`]) into plant meshes written as glTF binary or
-//! OBJ ([`mesh`]); the source papers' models ([`models`]); and ecosystems of
-//! many plants on a natura-terrain height field ([`eco`]).
+//! query modules and open L-systems that exchange data with an
+//! [`Environment`] ([`open`]); and 3-D turtle interpretation into segments
+//! chained as generalized cylinders, polygons and predefined surfaces
+//! ([`turtle`]), with differential turtle geometry for curved limbs.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};
