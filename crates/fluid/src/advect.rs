@@ -214,6 +214,15 @@ impl Solids<'_> {
     }
 }
 
+/// One step of a back-trace along one axis: the foot `p − s·v` of a step of
+/// `s` cells per unit velocity (`dt/h` for a whole step, half of it to the
+/// RK2 midpoint; Stam 1999, §3.2). The scalar and the lane tracers both
+/// step through this.
+#[inline(always)]
+pub(crate) fn trace_step(p: f32, v: f32, s: f32) -> f32 {
+    p - s * v
+}
+
 /// Traces `p` (cell units) back through `vel` for `dt_h = dt / h` seconds per metre.
 #[inline(always)]
 pub(crate) fn backtrace(
@@ -237,11 +246,11 @@ fn backtrace_from(
     solids: Option<&Solids<'_>>,
 ) -> [f32; 3] {
     let q = match tracer {
-        Tracer::Euler => std::array::from_fn(|a| p[a] - dt_h * v1[a]),
+        Tracer::Euler => std::array::from_fn(|a| trace_step(p[a], v1[a], dt_h)),
         Tracer::Rk2 => {
-            let mid: [f32; 3] = std::array::from_fn(|a| p[a] - 0.5 * dt_h * v1[a]);
+            let mid: [f32; 3] = std::array::from_fn(|a| trace_step(p[a], v1[a], 0.5 * dt_h));
             let v2 = vel.at(mid);
-            std::array::from_fn(|a| p[a] - dt_h * v2[a])
+            std::array::from_fn(|a| trace_step(p[a], v2[a], dt_h))
         }
     };
     match solids {

@@ -19,7 +19,7 @@
 
 use natura_core::simd::{self, Kernel, Simd};
 
-use crate::advect::{Solids, Tracer, VelSampler};
+use crate::advect::{Solids, Tracer, VelSampler, trace_step};
 use crate::grid::CellKind;
 use crate::interp::Sampler;
 
@@ -211,7 +211,7 @@ impl<const THREE: bool> Kernel for Band<'_, '_, '_, THREE> {
                     Tracer::Euler => {
                         for a in 0..3 {
                             for l in 0..L {
-                                q[a][l] = p[a][l] - dt_h * v[a][l];
+                                q[a][l] = trace_step(p[a][l], v[a][l], dt_h);
                             }
                         }
                     }
@@ -219,13 +219,13 @@ impl<const THREE: bool> Kernel for Band<'_, '_, '_, THREE> {
                         let mut mid = [[0.0f32; L]; 3];
                         for a in 0..3 {
                             for l in 0..L {
-                                mid[a][l] = p[a][l] - 0.5 * dt_h * v[a][l];
+                                mid[a][l] = trace_step(p[a][l], v[a][l], 0.5 * dt_h);
                             }
                         }
                         self.vel.at::<THREE>(&mid, &mut v);
                         for a in 0..3 {
                             for l in 0..L {
-                                q[a][l] = p[a][l] - dt_h * v[a][l];
+                                q[a][l] = trace_step(p[a][l], v[a][l], dt_h);
                             }
                         }
                     }

@@ -175,6 +175,9 @@ pub struct Lattice2 {
 impl Lattice2 {
     /// A lattice of `nx × ny` samples; refuses zero counts, an overflowing
     /// point count and non-finite origin or step.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidLattice`] for a zero or overflowing point count, or a non-finite origin or step.
     pub fn new(origin: DVec2, step: DVec2, nx: usize, ny: usize) -> Result<Self> {
         let l = Self {
             origin,
@@ -187,6 +190,9 @@ impl Lattice2 {
     }
 
     /// Checks the counts, origin and step.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidLattice`] for a zero or overflowing point count, or a non-finite origin or step.
     pub fn validate(&self) -> Result<()> {
         if self.nx == 0 || self.ny == 0 {
             return Err(NoiseError::InvalidLattice {
@@ -261,6 +267,9 @@ pub struct Lattice3 {
 impl Lattice3 {
     /// A lattice of `nx × ny × nz` samples; refuses zero counts, an
     /// overflowing point count and non-finite origin or step.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidLattice`] for a zero or overflowing point count, or a non-finite origin or step.
     pub fn new(origin: DVec3, step: DVec3, nx: usize, ny: usize, nz: usize) -> Result<Self> {
         let l = Self {
             origin,
@@ -274,6 +283,9 @@ impl Lattice3 {
     }
 
     /// Checks the counts, origin and step.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidLattice`] for a zero or overflowing point count, or a non-finite origin or step.
     pub fn validate(&self) -> Result<()> {
         if self.nx == 0 || self.ny == 0 || self.nz == 0 {
             return Err(NoiseError::InvalidLattice {

@@ -52,7 +52,9 @@
 //! # Ok::<(), natura_noise::NoiseError>(())
 //! ```
 #![no_std]
-#![forbid(unsafe_code)]
+// `unsafe` only where natura-simd's `multiversion!` calls the
+// `#[target_feature]` functions it writes.
+#![deny(unsafe_code)]
 
 #[cfg(feature = "alloc")]
 extern crate alloc;

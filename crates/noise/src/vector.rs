@@ -138,6 +138,9 @@ pub struct VectorFbm<V> {
 
 impl<V: VectorField> VectorFbm<V> {
     /// Vector fBm of `field` (spectral parameters validated).
+    ///
+    /// # Errors
+    /// As [`Spectral::validate`].
     pub fn new(field: V, spectral: Spectral) -> Result<Self> {
         Ok(Self {
             field,

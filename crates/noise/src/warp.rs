@@ -40,6 +40,9 @@ pub struct Displace<V> {
 
 impl<V: VectorField> Displace<V> {
     /// `p ↦ p + distortion·V(p)`.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if `distortion` is NaN or infinite.
     pub fn new(field: V, distortion: f64) -> Result<Self> {
         if !distortion.is_finite() {
             return Err(NoiseError::InvalidParam {
@@ -104,6 +107,9 @@ pub struct Twist {
 
 impl Twist {
     /// A twist; refuses non-finite parameters, `R ≤ 0` and `power < 1`.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if the twist is NaN or infinite, or a maximum radius is not finite and positive.
     pub fn new(law: TwistLaw) -> Result<Self> {
         match law {
             TwistLaw::Quadratic { twist } => crate::error::finite("twist", twist)?,
@@ -233,6 +239,9 @@ pub type VlNoise<B> = Warped<B, Displace<DNoise<B>>>;
 
 impl<B: Field + Clone> DistNoise<B> {
     /// `DistNoise` of `basis` with distortion `d` (`d = 0` is `basis` itself).
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if `d` is NaN or infinite.
     pub fn dist_noise(basis: B, d: f64) -> Result<Self> {
         let mut warp = Displace::new(VecNoise::new(basis.clone()), d)?;
         warp.shift = DVec3::splat(0.5);
@@ -242,6 +251,9 @@ impl<B: Field + Clone> DistNoise<B> {
 
 impl<B: Smooth + Clone> VlNoise<B> {
     /// The C `VLNoise` of `basis` with point scale `scale` (1.0 in `VLfBm`, 1.5 in `MVfBm`).
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if `scale` is NaN or infinite.
     pub fn vl_noise(basis: B, scale: f64) -> Result<Self> {
         crate::error::finite("scale", scale)?;
         let mut warp = Displace::new(DNoise(basis.clone()), 1.0)?;

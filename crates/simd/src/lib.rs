@@ -320,7 +320,8 @@ mod x86 {
 /// ```
 ///
 /// Without a token argument the function runs at [`Simd::best`]. If the first
-/// argument is written `simd: Simd`, the caller chooses the level:
+/// argument's type is written `Simd` (`simd: Simd`, with `Simd` in scope), the
+/// caller chooses the level (and the body can read the token too):
 ///
 /// ```
 /// use natura_simd::{multiversion, Simd};
@@ -337,27 +338,23 @@ mod x86 {
 ///
 /// Every borrowed argument type names the one lifetime parameter (`'a`
 /// above); const generic parameters may follow it (`<'a, const N: usize>`).
-/// The arguments become the fields of a [`Kernel`] struct whose
-/// `#[inline(always)]` `call` holds the body.
+/// The macro writes one `#[target_feature]` function per level with the
+/// same parameters, each inlining the body, and a `match` on the token that
+/// calls one of them. Unlike a [`Kernel`] struct (whose reference fields
+/// LLVM cannot assume unaliased), each level's function keeps the no-alias
+/// guarantee of its reference parameters, which loops that write through
+/// one reference and read through another need to vectorise.
 #[macro_export]
 macro_rules! multiversion {
     (
         $(#[$m:meta])* $vis:vis fn $name:ident<$lt:lifetime $(, const $c:ident: $ct:ty)* $(,)?>
-        (simd: $st:ty $(, $arg:ident: $ty:ty)* $(,)?) $(-> $ret:ty)? $body:block
+        ($sv:ident: Simd $(, $arg:ident: $ty:ty)* $(,)?) $(-> $ret:ty)? $body:block
     ) => {
         $(#[$m])*
-        $vis fn $name<$lt $(, const $c: $ct)*>(simd: $st $(, $arg: $ty)*) $(-> $ret)? {
-            struct Args<$lt $(, const $c: $ct)*>($($ty,)* ::core::marker::PhantomData<&$lt ()>);
-            impl<$lt $(, const $c: $ct)*> $crate::Kernel for Args<$lt $(, $c)*> {
-                type Out = $crate::multiversion!(@out $($ret)?);
-                #[inline(always)]
-                #[allow(unused_variables)]
-                fn call(self) -> Self::Out {
-                    let Args($($arg,)* _) = self;
-                    $body
-                }
-            }
-            $crate::run(simd, Args::<$lt $(, $c)*>($($arg,)* ::core::marker::PhantomData))
+        $vis fn $name<$lt $(, const $c: $ct)*>($sv: Simd $(, $arg: $ty)*) $(-> $ret)? {
+            $crate::multiversion!(@levels [$lt $(, const $c: $ct)*] [$($c),*]
+                ($sv: Simd $(, $arg: $ty)*) ($($ret)?) $body);
+            $crate::multiversion!(@dispatch $sv [$($c),*] ($sv $(, $arg)*))
         }
     };
     (
@@ -366,23 +363,63 @@ macro_rules! multiversion {
     ) => {
         $(#[$m])*
         $vis fn $name<$lt $(, const $c: $ct)*>($($arg: $ty),*) $(-> $ret)? {
-            struct Args<$lt $(, const $c: $ct)*>($($ty,)* ::core::marker::PhantomData<&$lt ()>);
-            impl<$lt $(, const $c: $ct)*> $crate::Kernel for Args<$lt $(, $c)*> {
-                type Out = $crate::multiversion!(@out $($ret)?);
-                #[inline(always)]
-                fn call(self) -> Self::Out {
-                    let Args($($arg,)* _) = self;
-                    $body
-                }
-            }
-            $crate::run(
-                $crate::Simd::best(),
-                Args::<$lt $(, $c)*>($($arg,)* ::core::marker::PhantomData),
-            )
+            $crate::multiversion!(@levels [$lt $(, const $c: $ct)*] [$($c),*]
+                ($($arg: $ty),*) ($($ret)?) $body);
+            let simd = $crate::Simd::best();
+            $crate::multiversion!(@dispatch simd [$($c),*] ($($arg),*))
         }
     };
-    (@out) => { () };
-    (@out $ret:ty) => { $ret };
+    // One function per level with the caller's own parameter list (so
+    // reference parameters keep their no-alias guarantee, which lets LLVM
+    // vectorise loops that store through one and load through another), each
+    // inlining the body.
+    (@levels [$($g:tt)*] [$($c:ident),*] ($($arg:ident: $ty:ty),*) ($($ret:ty)?) $body:block) => {
+        #[inline(always)]
+        #[allow(unused_variables, clippy::too_many_arguments)]
+        fn __body<$($g)*>($($arg: $ty),*) $(-> $ret)? $body
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi1,bmi2,popcnt")]
+        #[allow(clippy::too_many_arguments)]
+        fn __avx512<$($g)*>($($arg: $ty),*) $(-> $ret)? {
+            __body::<$($c),*>($($arg),*)
+        }
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2,fma")]
+        #[allow(clippy::too_many_arguments)]
+        fn __avx2<$($g)*>($($arg: $ty),*) $(-> $ret)? {
+            __body::<$($c),*>($($arg),*)
+        }
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "sse4.1")]
+        #[allow(clippy::too_many_arguments)]
+        fn __sse41<$($g)*>($($arg: $ty),*) $(-> $ret)? {
+            __body::<$($c),*>($($arg),*)
+        }
+    };
+    (@dispatch $simd:ident [$($c:ident),*] ($($arg:ident),*)) => {
+        match $simd.level() {
+            #[cfg(target_arch = "x86_64")]
+            $crate::SimdLevel::Avx512 => {
+                #[allow(unsafe_code)]
+                // SAFETY: a `Simd` token of this level is only made after
+                // detection found every feature the function enables.
+                unsafe { __avx512::<$($c),*>($($arg),*) }
+            }
+            #[cfg(target_arch = "x86_64")]
+            $crate::SimdLevel::Avx2 => {
+                #[allow(unsafe_code)]
+                // SAFETY: as above (AVX2 and FMA were detected).
+                unsafe { __avx2::<$($c),*>($($arg),*) }
+            }
+            #[cfg(target_arch = "x86_64")]
+            $crate::SimdLevel::Sse41 => {
+                #[allow(unsafe_code)]
+                // SAFETY: as above (SSE4.1 was detected).
+                unsafe { __sse41::<$($c),*>($($arg),*) }
+            }
+            _ => __body::<$($c),*>($($arg),*),
+        }
+    };
 }
 
 #[cfg(test)]

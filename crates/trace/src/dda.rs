@@ -31,9 +31,10 @@ use natura_core::HeightField;
 use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
-use crate::leaf::{Exit, leaf, nearer};
+use crate::leaf::{leaf, nearer};
 use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::CellHit;
+use crate::step::{Exit, axis_exit};
 use crate::tracer::Tracer;
 
 /// One cell visited by the DDA: the cell and the ray's parameter span over it.
@@ -107,21 +108,10 @@ impl CellWalk {
     /// Parameter at which the ray leaves the current cell through an x (resp. y) boundary.
     #[inline(always)]
     fn exits(&self) -> (f32, f32) {
-        let tx = if self.dx > 0.0 {
-            ((self.i + 1) as f32 - self.ox) * self.inv_x
-        } else if self.dx < 0.0 {
-            (self.i as f32 - self.ox) * self.inv_x
-        } else {
-            f32::INFINITY
-        };
-        let ty = if self.dy > 0.0 {
-            ((self.j + 1) as f32 - self.oy) * self.inv_y
-        } else if self.dy < 0.0 {
-            (self.j as f32 - self.oy) * self.inv_y
-        } else {
-            f32::INFINITY
-        };
-        (tx, ty)
+        (
+            axis_exit(self.dx > 0.0, self.dx < 0.0, self.i, 1, self.ox, self.inv_x),
+            axis_exit(self.dy > 0.0, self.dy < 0.0, self.j, 1, self.oy, self.inv_y),
+        )
     }
 }
 

@@ -8,7 +8,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::field::FieldView;
-use crate::leaf::{fmax, fmin};
+use crate::num::{cell_of, fmax, fmin};
 use crate::ray::Ray;
 
 /// Per-ray constants of Woop, Benthin & Wald's watertight test (JCGT 2013):
@@ -454,8 +454,7 @@ pub(crate) fn walk_start(
     top: u32,
 ) -> (u32, u32, u32) {
     // `v` is in `[0, 2²⁴)` (NaN goes to 0).
-    let cell_of =
-        |t: f32, k: usize| -> u32 { crate::packet::trunc(fmin(fmax(o[k] + t * d[k], 0.0), hi[k])) };
+    let cell_of = |t: f32, k: usize| -> u32 { cell_of(o[k] + t * d[k], hi[k]) };
     let (ci, cj) = (cell_of(t0, 0), cell_of(t0, 1));
     let (ei, ej) = (cell_of(t1, 0), cell_of(t1, 1));
     let spread = (ci ^ ei) | (cj ^ ej);

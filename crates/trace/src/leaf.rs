@@ -4,48 +4,21 @@
 
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
+use crate::num::coord;
 use crate::ray::TraceStats;
 use crate::ray_cell::{CellHit, intersect_cell};
+use crate::step::{Exit, corner_range, span_meets};
 
-/// How the ray leaves a cell.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Exit {
-    /// Through an x boundary (into the next column).
-    X,
-    /// Through a y boundary (into the next row).
-    Y,
-    /// The ray's clipped range ends inside (or on the border of) the cell.
-    End,
-}
-
-impl Exit {
-    /// How a ray leaves a cell whose x and y boundaries it reaches at `tx`
-    /// and `ty`, when its clipped range ends at `t_end`: the traversal's
-    /// exit t (never before `t`) and the side.
-    #[inline(always)]
-    pub(crate) fn of(tx: f32, ty: f32, t_end: f32, t: f32) -> (f32, Exit) {
-        let t_exit = fmax(fmin(fmin(tx, ty), t_end), t);
-        let exit = if t_exit >= t_end {
-            Exit::End
-        } else if tx <= ty {
-            Exit::X
-        } else {
-            Exit::Y
-        };
-        (t_exit, exit)
-    }
-}
-
-/// `min` without NaN handling (operands are never NaN here): one instruction.
+/// Whether the ray at `(px, py)` is within `e` of the sides of cell
+/// `(x0, y0)`: `[x0 side, x0 + 1 side, y0 side, y0 + 1 side]`.
 #[inline(always)]
-pub(crate) fn fmin(a: f32, b: f32) -> f32 {
-    if a < b { a } else { b }
-}
-
-/// `max` without NaN handling.
-#[inline(always)]
-pub(crate) fn fmax(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
+pub(crate) fn near(px: f32, py: f32, x0: f32, y0: f32, e: f32) -> [bool; 4] {
+    [
+        px < x0 + e,
+        px > x0 + 1.0 - e,
+        py < y0 + e,
+        py > y0 + 1.0 - e,
+    ]
 }
 
 /// Keeps the nearer of two hits (the first on a tie).
@@ -87,11 +60,8 @@ pub(crate) fn leaf<const ANY: bool>(
     stats: &mut TraceStats,
 ) -> Option<CellHit> {
     let c = f.corners(i, j);
-    let (za, zb) = (r.z_at(t_in), r.z_at(t_out));
-    let (zlo, zhi) = if za <= zb { (za, zb) } else { (zb, za) };
-    let cmax = fmax(fmax(c[0], c[1]), fmax(c[2], c[3]));
-    let cmin = fmin(fmin(c[0], c[1]), fmin(c[2], c[3]));
-    if !(zlo <= cmax + r.zm && zhi >= cmin - r.zm) {
+    let (cmin, cmax) = corner_range(c);
+    if !span_meets(r.z_at(t_in), r.z_at(t_out), cmin, cmax, r.zm) {
         return None;
     }
     stats.cells_tested += 1;
@@ -101,15 +71,11 @@ pub(crate) fn leaf<const ANY: bool>(
         return best;
     }
     let e = r.xyeps;
-    let (fi, fj) = (i as f32, j as f32);
+    let (fi, fj) = (coord(i), coord(j));
     let near = |t: f32| {
         let p = r.o + t * r.d;
-        (
-            p.x < fi + e,
-            p.x > fi + 1.0 - e,
-            p.y < fj + e,
-            p.y > fj + 1.0 - e,
-        )
+        let [xm, xp, ym, yp] = near(p.x, p.y, fi, fj, e);
+        (xm, xp, ym, yp)
     };
     let mut extra = |di: i32, dj: i32, best: &mut Option<CellHit>| -> bool {
         let (ni, nj) = (i as i64 + i64::from(di), j as i64 + i64::from(dj));

@@ -90,11 +90,12 @@
 //! assert!(tracer.occluded(&ray, 0.0, hit.t + 1e-3));
 //! # Ok::<(), natura_trace::TraceError>(())
 //! ```
-// `unsafe` is denied crate-wide; the only exceptions are in `packet.rs`: the
-// calls into run-time-dispatched `#[target_feature]` lane kernels (two per
-// kernel: node step, set-up, pre-descent, cell tests, hit records), one
-// float-to-int truncation of a value clamped to cell coordinates, and the
-// two unaligned vector loads of the lane events (16 `u32`) forming their mask.
+// `unsafe` is denied crate-wide; the only exceptions are the calls that
+// natura-simd's `multiversion!` writes into the `#[target_feature]` lane
+// kernels (`lanes/kernels.rs`), one float-to-int truncation of a value
+// clamped to cell coordinates (`num.rs`), and the AVX2 event mask of the
+// lane step (`lanes/node.rs`: two unaligned loads of 16 `u32`, called only
+// under a token that proves AVX2).
 #![deny(unsafe_code)]
 
 mod batch;
@@ -105,11 +106,13 @@ mod error;
 mod field;
 mod frustum;
 mod grid_ray;
+mod lanes;
 mod leaf;
 mod max_mipmap;
-mod packet;
+mod num;
 mod ray;
 mod ray_cell;
+mod step;
 mod surface;
 mod tracer;
 

@@ -26,10 +26,12 @@ use natura_core::HeightField;
 use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::{GridRay, SETUP_LANES, SetupLanes};
-use crate::leaf::{Exit, fmax, fmin, leaf, nearer};
-use crate::packet::{Outcome, Rays, SoaRays};
+use crate::lanes::kernels::{descend_with, hits_with, setup_with};
+use crate::lanes::{Outcome, Rays, SoaRays, walk_lanes};
+use crate::leaf::{leaf, nearer};
 use crate::ray::{Hit, Ray, TraceStats};
 use crate::ray_cell::{CellHit, HIT_LANES, HitLanes};
+use crate::step::{Exit, Signs, leaves_parent, node_exits, span_meets, step_out};
 use crate::tracer::Tracer;
 
 /// Set-up groups of [`SETUP_LANES`] rays per packet of the packet skip
@@ -282,7 +284,7 @@ impl<'a> MipmapTracer<'a> {
     pub fn trace_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<Option<Hit>> {
         let mut out = Vec::with_capacity(rays.len());
         // Hit records in a second pass, `HIT_LANES` hits at a time.
-        let level = crate::packet::Level::detect();
+        let simd = natura_core::simd::Simd::best();
         let mut lanes = HitLanes::new();
         let mut slot = [0usize; HIT_LANES];
         let mut n = 0;
@@ -294,12 +296,12 @@ impl<'a> MipmapTracer<'a> {
                 slot[n] = k;
                 n += 1;
                 if n == HIT_LANES {
-                    crate::packet::hits_with(level, &self.f, &lanes, n, &mut out, &slot);
+                    hits_with(simd, &self.f, &lanes, n, &mut out, &slot);
                     n = 0;
                 }
             }
         });
-        crate::packet::hits_with(level, &self.f, &lanes, n, &mut out, &slot);
+        hits_with(simd, &self.f, &lanes, n, &mut out, &slot);
         out
     }
 
@@ -330,7 +332,7 @@ impl<'a> MipmapTracer<'a> {
         // The set-up of `GridRay::new` needs a valid range; with an invalid
         // one no ray is traced.
         let range_ok = !(t_min.is_nan() || t_max.is_nan() || t_min > t_max);
-        let level = crate::packet::Level::detect();
+        let simd = natura_core::simd::Simd::best();
         let mut dl = [0u32; SETUP_LANES];
         let mut offset = [0u32; 32];
         for (o, &m) in offset.iter_mut().zip(&self.mip.offset) {
@@ -362,15 +364,7 @@ impl<'a> MipmapTracer<'a> {
                     {
                         let mut g = [group[0]; SETUP_LANES];
                         g[..group.len()].copy_from_slice(group);
-                        crate::packet::setup_with(
-                            level,
-                            &self.f,
-                            &g,
-                            t_min,
-                            t_max,
-                            self.mip.top,
-                            lanes,
-                        );
+                        setup_with(simd, &self.f, &g, t_min, t_max, self.mip.top, lanes);
                         *len = group.len();
                     }
                     // Rays from one origin (a camera tile's primary rays)
@@ -382,7 +376,7 @@ impl<'a> MipmapTracer<'a> {
                 }
                 for (group, lanes) in packet_rays.chunks(SETUP_LANES).zip(packet.iter_mut()) {
                     if range_ok {
-                        crate::packet::descend_with(level, self, &offset, lanes, &mut dl);
+                        descend_with(simd, self, &offset, lanes, &mut dl);
                     }
                     #[allow(clippy::needless_range_loop)] // `l` indexes the lane arrays alike
                     for l in 0..group.len() {
@@ -407,14 +401,7 @@ impl<'a> MipmapTracer<'a> {
                 t_min,
                 t_max,
             };
-            crate::packet::walk_lanes::<ANY, _>(
-                level,
-                self,
-                &soa,
-                &cur,
-                Some(&descended),
-                &mut ends,
-            );
+            walk_lanes::<ANY, _>(simd, self, &soa, &cur, Some(&descended), &mut ends);
             let mut stats = TraceStats::default();
             for (k, end) in ends.iter().enumerate() {
                 let h = match *end {
@@ -516,6 +503,7 @@ impl<'a> MipmapTracer<'a> {
         let mq = 1.0 + r.zm / m.scale;
         let (ncx, ncy) = (f.ncx, f.ncy);
         let t_end = r.t1;
+        let signs = Signs::of(d.x, d.y);
         let (mut ci, mut cj, mut t, mut level) = (c.ci, c.cj, c.t, c.level);
         let mut pending: Option<CellHit> = None;
         loop {
@@ -528,20 +516,7 @@ impl<'a> MipmapTracer<'a> {
             let size = 1u32 << level;
             let mask = !(size - 1);
             let (nx0, ny0) = (ci & mask, cj & mask);
-            let tx = if d.x > 0.0 {
-                ((nx0 + size) as f32 - o.x) * inv.x
-            } else if d.x < 0.0 {
-                (nx0 as f32 - o.x) * inv.x
-            } else {
-                f32::INFINITY
-            };
-            let ty = if d.y > 0.0 {
-                ((ny0 + size) as f32 - o.y) * inv.y
-            } else if d.y < 0.0 {
-                (ny0 as f32 - o.y) * inv.y
-            } else {
-                f32::INFINITY
-            };
+            let (tx, ty) = node_exits(signs, nx0, ny0, size, o.x, o.y, inv.x, inv.y);
             let (t_exit, exit) = Exit::of(tx, ty, t_end, t);
             if level == 0 {
                 let first = t == r.t0;
@@ -560,58 +535,35 @@ impl<'a> MipmapTracer<'a> {
                         + (ci >> level) as usize],
                 );
                 let (za, zb) = (oq + t * dq, oq + t_exit * dq);
-                let (zlo, zhi) = (fmin(za, zb), fmax(za, zb));
-                if zlo <= f32::from(q.1) + mq && zhi >= f32::from(q.0) - mq {
+                if span_meets(za, zb, f32::from(q.0), f32::from(q.1), mq) {
                     level -= 1;
                     continue;
                 }
             }
-            if t_exit >= t_end {
+            if exit == Exit::End {
                 return pending;
             }
-            let (oci, ocj) = (ci, cj);
-            if tx <= ty {
-                if d.x > 0.0 {
-                    ci = nx0 + size;
-                    if ci >= ncx {
-                        return pending;
-                    }
-                } else {
-                    if nx0 == 0 {
-                        return pending;
-                    }
-                    ci = nx0 - 1;
-                }
-                if level > 0 && d.y != 0.0 {
-                    // `max` then truncation is `floor` here: `ny0` is a whole number.
-                    let y = o.y + t_exit * d.y;
-                    let hi = (ny0 + size).min(ncy) - 1;
-                    let yc = (y.max(ny0 as f32) as u32).min(hi);
-                    cj = if d.y > 0.0 { cj.max(yc) } else { cj.min(yc) };
-                }
-            } else {
-                if d.y > 0.0 {
-                    cj = ny0 + size;
-                    if cj >= ncy {
-                        return pending;
-                    }
-                } else {
-                    if ny0 == 0 {
-                        return pending;
-                    }
-                    cj = ny0 - 1;
-                }
-                if level > 0 && d.x != 0.0 {
-                    let x = o.x + t_exit * d.x;
-                    let hi = (nx0 + size).min(ncx) - 1;
-                    let xc = (x.max(nx0 as f32) as u32).min(hi);
-                    ci = if d.x > 0.0 { ci.max(xc) } else { ci.min(xc) };
-                }
+            let (px, py) = (o.x + t_exit * d.x, o.y + t_exit * d.y);
+            let (nci, ncj, out) = step_out(
+                tx <= ty,
+                signs,
+                ci,
+                cj,
+                nx0,
+                ny0,
+                size,
+                level == 0,
+                px,
+                py,
+                ncx,
+                ncy,
+            );
+            if out {
+                return pending;
             }
-            t = t_exit;
-            // Ascend one level when the step left the parent node (Tevs et al.;
-            // climbing to the highest changed level measured slower).
-            if level < m.top && ((ci ^ oci) | (cj ^ ocj)) >> (level + 1) != 0 {
+            let up = level < m.top && leaves_parent(ci, cj, nci, ncj, level);
+            (ci, cj, t) = (nci, ncj, t_exit);
+            if up {
                 level += 1;
             }
         }

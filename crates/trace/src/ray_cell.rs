@@ -15,39 +15,133 @@
 use glam::{UVec2, Vec3};
 
 use crate::field::FieldView;
-use crate::grid_ray::GridRay;
+use crate::grid_ray::{GridRay, Shear};
+use crate::num::coord;
 use crate::ray::{Hit, Ray, Triangle};
 
-/// A corner of a cell projected into the ray's sheared frame.
-#[derive(Clone, Copy, Debug)]
-struct P {
-    x: f32,
-    y: f32,
-    z: f32,
+/// A cell's corner `(x, y, h)` in the ray's sheared frame (origin `o`):
+/// `[x, y, z]`, each a dot product of the corner relative to the origin with
+/// one row of the shear.
+#[inline(always)]
+pub(crate) fn project(sh: &Shear, o: Vec3, x: f32, y: f32, h: f32) -> [f32; 3] {
+    let rel = Vec3::new(x - o.x, y - o.y, h - o.z);
+    [sh.px.dot(rel), sh.py.dot(rel), sh.pz.dot(rel)]
 }
 
+/// The corners `[p00, p10, p01, p11]` of cell `(x0, y0)`, heights `c`, in
+/// the ray's sheared frame.
 #[inline(always)]
-fn project(r: &GridRay, x: f32, y: f32, h: f32) -> P {
-    let rel = Vec3::new(x - r.o.x, y - r.o.y, h - r.o.z);
-    P {
-        x: r.shear.px.dot(rel),
-        y: r.shear.py.dot(rel),
-        z: r.shear.pz.dot(rel),
-    }
+pub(crate) fn project_cell(sh: &Shear, o: Vec3, x0: u32, y0: u32, c: [f32; 4]) -> [[f32; 3]; 4] {
+    let (x0, x1) = (coord(x0), coord(x0.wrapping_add(1)));
+    let (y0, y1) = (coord(y0), coord(y0.wrapping_add(1)));
+    [
+        project(sh, o, x0, y0, c[0]),
+        project(sh, o, x1, y0, c[1]),
+        project(sh, o, x0, y1, c[2]),
+        project(sh, o, x1, y1, c[3]),
+    ]
 }
 
 /// The edge function of the directed edge `a → b` (twice the signed area of
 /// the triangle it spans with the ray): `a.x·b.y − a.y·b.x`.
 #[inline(always)]
-fn edge(a: P, b: P) -> f32 {
-    a.x * b.y - a.y * b.x
+fn edge(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[1] - a[1] * b[0]
 }
 
 /// The same edge function evaluated exactly in `f64` (products of two `f32`
 /// are exact in `f64`), rounded back: Woop's fallback for zero results.
 #[inline(never)]
-fn edge64(a: P, b: P) -> f32 {
-    (f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)) as f32
+fn edge64(a: [f32; 3], b: [f32; 3]) -> f32 {
+    (f64::from(a[0]) * f64::from(b[1]) - f64::from(a[1]) * f64::from(b[0])) as f32
+}
+
+/// A cell's five edge functions from its projected corners `[p00, p10,
+/// p01, p11]`: `[diagonal, left, bottom, right, top]`. The diagonal's is
+/// shared (negated) by the two triangles.
+#[inline(always)]
+pub(crate) fn edges(p: &[[f32; 3]; 4], edge: impl Fn([f32; 3], [f32; 3]) -> f32) -> [f32; 5] {
+    let [p00, p10, p01, p11] = *p;
+    [
+        edge(p01, p10),
+        edge(p00, p01),
+        edge(p10, p00),
+        edge(p11, p10),
+        edge(p01, p11),
+    ]
+}
+
+/// [`edges`] in `f32`.
+#[inline(always)]
+pub(crate) fn edges32(p: &[[f32; 3]; 4]) -> [f32; 5] {
+    edges(p, edge)
+}
+
+/// Whether an edge function is exactly zero (the `f32` result cannot say
+/// on which side the ray passes).
+#[inline(always)]
+pub(crate) fn any_zero(e: &[f32; 5]) -> bool {
+    (e[0] == 0.0) | (e[1] == 0.0) | (e[2] == 0.0) | (e[3] == 0.0) | (e[4] == 0.0)
+}
+
+/// One triangle from its edge functions `(u, v, w)` (the weights of
+/// corners `a, b, c`) and the corners' sheared depths: inclusive, no
+/// culling of back faces, `t` in `[t_min, t_max]`. Returns whether it is
+/// hit, the `t` and the barycentric weights (meaningful only when hit).
+#[inline(always)]
+fn triangle(u: f32, v: f32, w: f32, z: [f32; 3], t_min: f32, t_max: f32) -> (bool, f32, [f32; 3]) {
+    let det = u + v + w;
+    let inside = ((det > 0.0) & (u >= 0.0) & (v >= 0.0) & (w >= 0.0))
+        | ((det < 0.0) & (u <= 0.0) & (v <= 0.0) & (w <= 0.0));
+    let inv = 1.0 / det;
+    let t = (u * z[0] + v * z[1] + w * z[2]) * inv;
+    (
+        inside & (t >= t_min) & (t <= t_max),
+        t,
+        [u * inv, v * inv, w * inv],
+    )
+}
+
+/// The outcome of a cell's two triangles.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairHit {
+    /// Either triangle was hit.
+    pub found: bool,
+    /// The upper triangle is the one kept.
+    pub upper: bool,
+    /// The kept hit's `t`.
+    pub t: f32,
+    /// The kept hit's barycentric weights.
+    pub bary: [f32; 3],
+}
+
+/// Both triangles of a cell from its edge functions `e` and projected
+/// corners `p`, both computed and one selected (no branches): the nearer
+/// hit, or with `ANY` the lower triangle's when both are hit.
+#[inline(always)]
+pub(crate) fn pair<const ANY: bool>(
+    e: &[f32; 5],
+    p: &[[f32; 3]; 4],
+    t_min: f32,
+    t_max: f32,
+) -> PairHit {
+    let [diag, left, bottom, right, top] = *e;
+    let [p00, p10, p01, p11] = *p;
+    // Lower: corners (p00, p10, p01); weights (diag, left, bottom).
+    let (lok, lt, lb) = triangle(diag, left, bottom, [p00[2], p10[2], p01[2]], t_min, t_max);
+    // Upper: corners (p11, p01, p10); weights (−diag, right, top).
+    let (uok, ut, ub) = triangle(-diag, right, top, [p11[2], p01[2], p10[2]], t_min, t_max);
+    let upper = uok & (!lok | (!ANY & (ut < lt)));
+    PairHit {
+        found: lok | uok,
+        upper,
+        t: if upper { ut } else { lt },
+        bary: [
+            if upper { ub[0] } else { lb[0] },
+            if upper { ub[1] } else { lb[1] },
+            if upper { ub[2] } else { lb[2] },
+        ],
+    }
 }
 
 /// A triangle hit found in a cell, before the world-space details are filled in.
@@ -59,26 +153,30 @@ pub(crate) struct CellHit {
     pub bary: Vec3,
 }
 
-/// Tests one triangle from its edge functions `(u, v, w)` (the weights of
-/// corners `a, b, c`) and the corners' sheared depths: inclusive, no culling
-/// of back faces, `t` in `[t_min, t_max]`.
-#[inline(always)]
-fn triangle(u: f32, v: f32, w: f32, z: [f32; 3], t_min: f32, t_max: f32) -> Option<(f32, Vec3)> {
-    let det = u + v + w;
-    let inside = (det > 0.0 && u >= 0.0 && v >= 0.0 && w >= 0.0)
-        || (det < 0.0 && u <= 0.0 && v <= 0.0 && w <= 0.0);
-    if !inside {
-        return None;
+impl CellHit {
+    /// The hit a [`PairHit`] of cell `cell` found, if any.
+    #[inline(always)]
+    pub(crate) fn from_pair(h: PairHit, cell: (u32, u32)) -> Option<CellHit> {
+        h.found.then(|| CellHit {
+            t: h.t,
+            cell,
+            triangle: if h.upper {
+                Triangle::Upper
+            } else {
+                Triangle::Lower
+            },
+            bary: Vec3::from_array(h.bary),
+        })
     }
-    let inv = 1.0 / det;
-    let t = (u * z[0] + v * z[1] + w * z[2]) * inv;
-    (t >= t_min && t <= t_max).then(|| (t, Vec3::new(u * inv, v * inv, w * inv)))
 }
 
 /// Intersects the ray with cell `(i, j)` whose corners are `c = [h00, h10, h01, h11]`.
 ///
 /// Returns the nearer of the two triangles' hits in `[r.t_min, r.t_max]`, or
-/// with `ANY` the first one found.
+/// with `ANY` the lower triangle's when both are hit. Where an `f32` edge
+/// function is exactly zero, all five are recomputed exactly (Woop et al.'s
+/// double-precision fallback), so a ray through a shared edge or corner is
+/// decided consistently on both sides.
 #[inline(always)]
 pub(crate) fn intersect_cell<const ANY: bool>(
     r: &GridRay,
@@ -86,57 +184,12 @@ pub(crate) fn intersect_cell<const ANY: bool>(
     j: u32,
     c: [f32; 4],
 ) -> Option<CellHit> {
-    let (x0, y0) = (i as f32, j as f32);
-    let (x1, y1) = ((i + 1) as f32, (j + 1) as f32);
-    let p00 = project(r, x0, y0, c[0]);
-    let p10 = project(r, x1, y0, c[1]);
-    let p01 = project(r, x0, y1, c[2]);
-    let p11 = project(r, x1, y1, c[3]);
-
-    // Edge functions; the diagonal's is shared (negated) by the two triangles.
-    let mut diag = edge(p01, p10);
-    let mut left = edge(p00, p01);
-    let mut bottom = edge(p10, p00);
-    let mut right = edge(p11, p10);
-    let mut top = edge(p01, p11);
-    if diag == 0.0 || left == 0.0 || bottom == 0.0 || right == 0.0 || top == 0.0 {
-        diag = edge64(p01, p10);
-        left = edge64(p00, p01);
-        bottom = edge64(p10, p00);
-        right = edge64(p11, p10);
-        top = edge64(p01, p11);
+    let p = project_cell(&r.shear, r.o, i, j, c);
+    let mut e = edges32(&p);
+    if any_zero(&e) {
+        e = edges(&p, edge64);
     }
-
-    // Lower: corners (p00, p10, p01); weights (diag, left, bottom).
-    let lower = triangle(diag, left, bottom, [p00.z, p10.z, p01.z], r.t_min, r.t_max);
-    if ANY {
-        if let Some((t, bary)) = lower {
-            return Some(CellHit {
-                t,
-                cell: (i, j),
-                triangle: Triangle::Lower,
-                bary,
-            });
-        }
-    }
-    // Upper: corners (p11, p01, p10); weights (−diag, right, top).
-    let upper = triangle(-diag, right, top, [p11.z, p01.z, p10.z], r.t_min, r.t_max);
-    let pick = match (lower, upper) {
-        (Some(l), Some(u)) => Some(if u.0 < l.0 {
-            (u, Triangle::Upper)
-        } else {
-            (l, Triangle::Lower)
-        }),
-        (Some(l), None) => Some((l, Triangle::Lower)),
-        (None, Some(u)) => Some((u, Triangle::Upper)),
-        (None, None) => None,
-    };
-    pick.map(|((t, bary), triangle)| CellHit {
-        t,
-        cell: (i, j),
-        triangle,
-        bary,
-    })
+    CellHit::from_pair(pair::<ANY>(&e, &p, r.t_min, r.t_max), (i, j))
 }
 
 /// [`HeightField::normal_at_sample`](natura_core::HeightField::normal_at_sample)

@@ -7,8 +7,8 @@
 //! recomputed at convergence, not the recursively updated one.
 //!
 //! * [`PressureSolver::Multigrid`] (default): conjugate gradient
-//!   preconditioned by one geometric multigrid V-cycle (McAdams, Sifakis &
-//!   Teran 2010 style): cell-type-aware coarsening, trilinear prolongation
+//!   preconditioned by one geometric multigrid V-cycle (in the manner of
+//!   McAdams et al. 2010): cell-type-aware coarsening, trilinear prolongation
 //!   and its scaled transpose as restriction, symmetric red–black
 //!   Gauss–Seidel smoothing. Iteration counts stay nearly flat with grid size.
 //! * [`PressureSolver::Mic0`]: CG preconditioned by modified incomplete
@@ -26,11 +26,17 @@
 //! mean of `b` on each such connected component (the compatibility
 //! condition) and returns the zero-mean solution.
 
+mod kernels;
 mod level;
+mod mic;
+mod operator;
+mod solvers;
+mod transfer;
 
 use crate::error::{FluidError, Result};
 use crate::grid::{Boundaries, CellKind, Dims};
-use level::{G, Level, Transfer, coarsen};
+use level::{GUARD, Level};
+use transfer::{Transfer, coarsen};
 
 /// Which linear solver performs the projection.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -176,8 +182,8 @@ impl PoissonSystem {
         let mut transfers = Vec::new();
         loop {
             let f = levels.last().expect("at least one level");
-            let can = !f.act.is_empty()
-                && f.act
+            let can = !f.active.is_empty()
+                && f.active
                     .iter()
                     .all(|&a| f.n[a] >= 8 && (!f.periodic[a] || f.n[a] % 2 == 0))
                 && levels.len() < 24;
@@ -246,7 +252,7 @@ impl PoissonSystem {
         let mut comp = vec![u32::MAX; len];
         let mut cells = Vec::new();
         let mut stack = Vec::new();
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
+        let st: Vec<usize> = l.active.iter().map(|&a| l.stride[a]).collect();
         let mut seen = vec![false; len];
         for start in 0..len {
             let m = l.mask[start];
@@ -296,7 +302,7 @@ impl PoissonSystem {
     /// Maps a ghost index of a periodic level to its interior image.
     fn wrap_ghost(&self, p: usize) -> usize {
         let l = &self.levels[0];
-        let q = p - G;
+        let q = p - GUARD;
         let mut c = [q % l.m[0], (q / l.m[0]) % l.m[1], q / (l.m[0] * l.m[1])];
         for a in 0..3 {
             if l.pad[a] == 1 {
@@ -307,11 +313,11 @@ impl PoissonSystem {
                 }
             }
         }
-        G + c[0] + c[1] * l.st[1] + c[2] * l.st[2]
+        GUARD + c[0] + c[1] * l.stride[1] + c[2] * l.stride[2]
     }
 
     /// Removes the mean of `v` on each singular component.
-    fn project_null<T: level::Real>(&self, v: &mut [T]) {
+    fn project_null<T: operator::Real>(&self, v: &mut [T]) {
         if self.comp_cells.is_empty() {
             return;
         }
@@ -348,10 +354,10 @@ impl PoissonSystem {
         let l = &self.levels[0];
         let (p0, n0, m0) = (l.pad[0], l.n[0], l.m[0]);
         let n1 = l.n[1];
-        dst[..G].fill(T::default());
-        let end = G + l.rows() * m0;
+        dst[..GUARD].fill(T::default());
+        let end = GUARD + l.rows() * m0;
         dst[end..].fill(T::default());
-        crate::par::for_chunks(&mut dst[G..end], m0, |r, row| {
+        crate::par::for_chunks(&mut dst[GUARD..end], m0, |r, row| {
             let Some(base) = l.row_base(r) else {
                 row.fill(T::default());
                 return;
@@ -436,7 +442,7 @@ impl PoissonSystem {
         self.pad_into(b, &mut pb);
         if let Some(i) = pb.iter().position(|v| !v.is_finite()) {
             let l = &self.levels[0];
-            let q = i - G;
+            let q = i - GUARD;
             let c = [
                 q % l.m[0] - l.pad[0],
                 (q / l.m[0]) % l.m[1] - l.pad[1],
@@ -465,326 +471,6 @@ impl PoissonSystem {
         self.pb = pb;
         self.px = px;
         Ok(stats)
-    }
-
-    /// Stam-style relaxation, red–black ordered, with the iterate in `f64`:
-    /// every block of sweeps runs in `f32` on the correction equation
-    /// `A e = b − A x` (mathematically identical to sweeping on `x`, since
-    /// Gauss–Seidel is a stationary iteration) so it can reach tolerances
-    /// below f32 round-off of the pressure.
-    fn gauss_seidel(&mut self, b: &[f32], x: &mut [f64], p: &SolverParams) -> SolveStats {
-        let bn = self.levels[0].dot(b, b).sqrt();
-        if bn == 0.0 {
-            x.fill(0.0);
-            return SolveStats {
-                iterations: 0,
-                relative_residual: 0.0,
-                converged: true,
-            };
-        }
-        let b64: Vec<f64> = b.iter().map(|&v| f64::from(v)).collect();
-        let mut r = vec![0.0f64; x.len()];
-        const BLOCK: u32 = 10;
-        let mut it = 0;
-        let rel = loop {
-            self.levels[0].residual(&b64, x, &mut r);
-            let rel = self.levels[0].dot(&r, &r).sqrt() / bn;
-            if it >= p.max_iterations || (p.tolerance > 0.0 && rel <= p.tolerance) {
-                break rel;
-            }
-            let l = &mut self.levels[0];
-            for (o, &v) in l.b.iter_mut().zip(&r) {
-                *o = v as f32;
-            }
-            l.x.fill(0.0);
-            let sweeps = BLOCK.min(p.max_iterations - it);
-            for _ in 0..sweeps {
-                l.smooth(0);
-            }
-            it += sweeps;
-            for (xv, &e) in x.iter_mut().zip(&l.x) {
-                *xv += f64::from(e);
-            }
-        };
-        SolveStats {
-            iterations: it,
-            relative_residual: rel,
-            converged: p.tolerance == 0.0 || rel <= p.tolerance,
-        }
-    }
-
-    /// Applies the preconditioner: `z = M⁻¹ r`.
-    fn precondition(&mut self, solver: PressureSolver) {
-        match solver {
-            PressureSolver::Mic0 => self.mic_apply(),
-            _ => {
-                let l0 = &mut self.levels[0];
-                std::mem::swap(&mut l0.b, &mut self.r);
-                self.vcycle(0);
-                let l0 = &mut self.levels[0];
-                std::mem::swap(&mut l0.b, &mut self.r);
-                std::mem::swap(&mut l0.x, &mut self.z);
-            }
-        }
-        let mut z = std::mem::take(&mut self.z);
-        self.project_null(&mut z);
-        self.z = z;
-    }
-
-    fn vcycle(&mut self, li: usize) {
-        let last = li + 1 == self.levels.len();
-        let l = &mut self.levels[li];
-        // The iterate starts at zero: the first sweep pair skips reading it
-        // (`smooth_from_zero`), which also writes every unknown of `x`.
-        if last {
-            let sweeps = l.act.iter().map(|&a| l.n[a]).max().unwrap_or(1) * 2 + 8;
-            l.smooth_from_zero(0);
-            l.smooth(1);
-            for _ in 1..sweeps {
-                l.smooth(0);
-                l.smooth(1);
-            }
-            return;
-        }
-        const NU: usize = 2;
-        l.smooth_from_zero(0);
-        for _ in 1..NU {
-            l.smooth(0);
-        }
-        // Residual into t (t is scratch for smoothing, free now).
-        let mut t = std::mem::take(&mut l.t);
-        let mut x = std::mem::take(&mut l.x);
-        l.residual(&l.b, &mut x, &mut t);
-        l.x = x;
-        let (fine, coarse) = self.levels.split_at_mut(li + 1);
-        self.transfers[li].restrict(&fine[li], &t, &mut coarse[0]);
-        fine[li].t = t;
-        self.vcycle(li + 1);
-        let (fine, coarse) = self.levels.split_at_mut(li + 1);
-        self.transfers[li].prolong_add(&coarse[0], &mut fine[li]);
-        let l = &mut self.levels[li];
-        for _ in 0..NU {
-            l.smooth(1);
-        }
-    }
-
-    /// Preconditioned CG. The iterate and residual are kept in `f64` so that
-    /// the true residual can reach tolerances near f32 round-off; the search
-    /// direction and preconditioner run in `f32`.
-    fn pcg(&mut self, b: &[f32], x: &mut [f64], p: &SolverParams) -> SolveStats {
-        let l = &self.levels[0];
-        let bn = l.dot(b, b).sqrt();
-        if bn == 0.0 {
-            x.fill(0.0);
-            return SolveStats {
-                iterations: 0,
-                relative_residual: 0.0,
-                converged: true,
-            };
-        }
-        if p.solver == PressureSolver::Mic0 && self.mic.is_none() {
-            self.build_mic();
-        }
-        let len = x.len();
-        let mut b64 = std::mem::take(&mut self.b64);
-        b64.clear();
-        b64.extend(b.iter().map(|&v| f64::from(v)));
-        let mut r = std::mem::take(&mut self.r64);
-        r.clear();
-        r.resize(len, 0.0);
-        let tol = p.tolerance;
-        let mut it = 0u32;
-        let mut restarts = 0;
-        let mut rn;
-        'outer: loop {
-            self.levels[0].residual(&b64, x, &mut r);
-            rn = self.levels[0].dot(&r, &r).sqrt();
-            if rn / bn <= tol || it >= p.max_iterations || restarts > 4 {
-                break;
-            }
-            restarts += 1;
-            self.precondition_from(&r, p.solver);
-            self.d.copy_from_slice(&self.z);
-            let mut rz = self.levels[0].dot(&r, &self.z);
-            while it < p.max_iterations {
-                it += 1;
-                let l = &self.levels[0];
-                let mut d = std::mem::take(&mut self.d);
-                l.fill_ghosts(&mut d);
-                let dq = l.apply_dot(&d, &mut self.q);
-                if dq <= 0.0 || !dq.is_finite() {
-                    self.d = d;
-                    continue 'outer;
-                }
-                let alpha = rz / dq;
-                // One pass: x += αd, r −= αq, the f32 copy of r the
-                // preconditioner reads, and r·r. Every vector is zero off
-                // the unknowns, so the flat sum equals the interior one.
-                let q = &self.q;
-                let rr = crate::par::for_chunks3_sum(
-                    x,
-                    &mut r,
-                    &mut self.r,
-                    crate::par::BLOCK,
-                    |bi, xc, rc, r32| {
-                        let s = bi * crate::par::BLOCK;
-                        let n = xc.len();
-                        let dd = &d[s..s + n];
-                        let qq = &q[s..s + n];
-                        for ((((xv, rv), o), &dv), &qv) in xc
-                            .iter_mut()
-                            .zip(rc.iter_mut())
-                            .zip(r32.iter_mut())
-                            .zip(dd)
-                            .zip(qq)
-                        {
-                            *xv += alpha * f64::from(dv);
-                            let nr = *rv - alpha * f64::from(qv);
-                            *rv = nr;
-                            *o = nr as f32;
-                        }
-                        // r·r of the block while it is in cache: eight
-                        // lane sums (a single running sum would keep the
-                        // loop scalar), added in a fixed order.
-                        let mut lanes = [0.0f64; 8];
-                        let mut it8 = rc.chunks_exact(8);
-                        for c in &mut it8 {
-                            for (a, &v) in lanes.iter_mut().zip(c) {
-                                *a += v * v;
-                            }
-                        }
-                        let tail: f64 = it8.remainder().iter().map(|&v| v * v).sum();
-                        lanes.iter().sum::<f64>() + tail
-                    },
-                );
-                self.d = d;
-                if rr.sqrt() / bn <= tol {
-                    continue 'outer;
-                }
-                self.precondition(p.solver);
-                let rz_new = self.levels[0].dot(&r, &self.z);
-                if !(rz_new > 0.0 && rz_new.is_finite()) {
-                    // The preconditioned residual lost positivity (round-off
-                    // in a nearly converged direction): restart from the
-                    // true residual instead of stepping with a negative β.
-                    continue 'outer;
-                }
-                let beta = (rz_new / rz) as f32;
-                rz = rz_new;
-                let z = &self.z;
-                crate::par::for_chunks(&mut self.d, crate::par::BLOCK, |bi, dc| {
-                    let s = bi * crate::par::BLOCK;
-                    let n = dc.len();
-                    for (dv, &zv) in dc.iter_mut().zip(&z[s..s + n]) {
-                        *dv = zv + beta * *dv;
-                    }
-                });
-            }
-        }
-        self.b64 = b64;
-        self.r64 = r;
-        let rel = rn / bn;
-        SolveStats {
-            iterations: it,
-            relative_residual: rel,
-            converged: rel <= tol,
-        }
-    }
-
-    /// `z = M⁻¹ r` for an `f64` residual.
-    fn precondition_from(&mut self, r: &[f64], solver: PressureSolver) {
-        let r32 = &mut self.r;
-        crate::par::for_chunks(r32, crate::par::BLOCK, |bi, c| {
-            let s = bi * crate::par::BLOCK;
-            for (o, &v) in c.iter_mut().zip(&r[s..]) {
-                *o = v as f32;
-            }
-        });
-        self.precondition(solver);
-    }
-
-    fn build_mic(&mut self) {
-        const TAU: f32 = 0.97;
-        const SIGMA: f32 = 0.25;
-        let l = &self.levels[0];
-        let k = l.act.len();
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
-        let mut prec = vec![0.0f32; l.len()];
-        let pos_count = |m: u16, skip: usize| -> f32 {
-            (0..k)
-                .filter(|&q| q != skip)
-                .map(|q| f32::from((m >> (2 * q + 1)) & 1))
-                .sum()
-        };
-        l.for_each_cell(|_, c| {
-            let m = l.mask[c];
-            if m == 0 {
-                return;
-            }
-            let diag = f32::from(m >> 8);
-            let mut e = diag;
-            for (q, &s) in st.iter().enumerate() {
-                if (m >> (2 * q)) & 1 == 0 {
-                    continue;
-                }
-                let nb = c - s;
-                let pn = prec[nb];
-                if pn == 0.0 {
-                    continue;
-                }
-                e -= pn * pn;
-                e -= TAU * pos_count(l.mask[nb], q) * pn * pn;
-            }
-            if e < SIGMA * diag {
-                e = diag;
-            }
-            prec[c] = 1.0 / e.sqrt();
-        });
-        self.mic = Some(prec);
-    }
-
-    fn mic_apply(&mut self) {
-        let l = &self.levels[0];
-        let prec = self.mic.as_ref().expect("built before use");
-        let st: Vec<usize> = l.act.iter().map(|&a| l.st[a]).collect();
-        let z = &mut self.z;
-        let r = &self.r;
-        z.fill(0.0);
-        // Forward: L q = r (q stored in z).
-        l.for_each_cell(|_, c| {
-            let m = l.mask[c];
-            if m == 0 {
-                return;
-            }
-            let mut t = r[c];
-            for (q, &s) in st.iter().enumerate() {
-                if (m >> (2 * q)) & 1 == 1 {
-                    let nb = c - s;
-                    t += prec[nb] * z[nb];
-                }
-            }
-            z[c] = t * prec[c];
-        });
-        // Backward: Lᵀ z = q, in reverse order.
-        let mut idx = Vec::with_capacity(l.unknowns());
-        l.for_each_cell(|_, c| {
-            if l.mask[c] != 0 {
-                idx.push(c);
-            }
-        });
-        for &c in idx.iter().rev() {
-            let m = l.mask[c];
-            let mut t = z[c];
-            for (q, &s) in st.iter().enumerate() {
-                if (m >> (2 * q + 1)) & 1 == 1 {
-                    let nb = c + s;
-                    if l.mask[nb] != 0 {
-                        t += prec[c] * z[nb];
-                    }
-                }
-            }
-            z[c] = t * prec[c];
-        }
     }
 }
 

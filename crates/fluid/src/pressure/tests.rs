@@ -263,7 +263,7 @@ fn row_kernels_match_general_stencil() {
             let b = padded_random(l, 4);
             let (mut y, mut yr) = (vec![0.0f32; l.len()], vec![0.0f32; l.len()]);
             l.apply(&x, &mut y);
-            match l.act.len() {
+            match l.active.len() {
                 1 => l.apply_ref_k::<1, f32>(&x, &mut yr),
                 2 => l.apply_ref_k::<2, f32>(&x, &mut yr),
                 _ => l.apply_ref_k::<3, f32>(&x, &mut yr),
@@ -280,7 +280,7 @@ fn row_kernels_match_general_stencil() {
             for colour in 0..2 {
                 let (mut o, mut or) = (x.clone(), x.clone());
                 l.gs_half(&x, &b, &mut o, colour);
-                match l.act.len() {
+                match l.active.len() {
                     1 => l.gs_half_ref_k::<1>(&x, &b, &mut or, colour),
                     2 => l.gs_half_ref_k::<2>(&x, &b, &mut or, colour),
                     _ => l.gs_half_ref_k::<3>(&x, &b, &mut or, colour),

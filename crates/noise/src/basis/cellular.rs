@@ -180,6 +180,9 @@ impl Default for WorleyParams {
 
 impl WorleyParams {
     /// Checks that the jitter lies in `[0, 1]`.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain.
     pub fn validate(&self) -> Result<()> {
         if !(0.0..=1.0).contains(&self.jitter) {
             return Err(NoiseError::InvalidParam {
@@ -252,6 +255,9 @@ fn insert(best: &mut [f64; 4], at: &mut [[f64; 3]; 4], d: f64, off: [f64; 3]) {
 
 impl Worley {
     /// Worley noise with `seed` and `params` (validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`.
     pub fn new(seed: u64, params: WorleyParams) -> Result<Self> {
         params.validate()?;
         Ok(Self {

@@ -84,6 +84,9 @@ impl Default for SparseParams {
 
 impl SparseParams {
     /// Checks `1 ≤ density ≤ 16`.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain.
     pub fn validate(&self) -> Result<()> {
         if !(1..=16).contains(&self.density) {
             return Err(NoiseError::InvalidParam {
@@ -118,6 +121,9 @@ pub struct SparseConvolution {
 
 impl SparseConvolution {
     /// Sparse convolution noise with `seed` and `params` (validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`.
     pub fn new(seed: u64, params: SparseParams) -> Result<Self> {
         params.validate()?;
         Ok(Self {

@@ -41,6 +41,9 @@ impl Default for StatsByAltitudeParams {
 
 impl StatsByAltitudeParams {
     /// Checks the spectral parameters and finite shift, scale and sea level.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         finite("shift", self.shift)?;
@@ -76,6 +79,9 @@ pub struct StatsByAltitude<B> {
 
 impl<B: Field> StatsByAltitude<B> {
     /// Statistics-by-altitude fBm over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As [`StatsByAltitudeParams::validate`].
     pub fn new(basis: B, params: StatsByAltitudeParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;
@@ -191,6 +197,9 @@ pub struct StatsByAltitudeLegacy<B> {
 
 impl<B: Field> StatsByAltitudeLegacy<B> {
     /// The C `hfBm` over `basis` with gain `omega` (in `(0, ∞)`) and `octaves` (in `(0, 64]`).
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if `omega` or `octaves` is NaN, infinite or outside its domain.
     pub fn new(basis: B, omega: f64, octaves: f64) -> Result<Self> {
         if !(omega.is_finite() && omega > 0.0) {
             return Err(NoiseError::InvalidParam {

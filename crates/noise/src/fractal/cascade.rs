@@ -64,6 +64,9 @@ impl MultifractalParams {
     }
 
     /// Checks the spectral parameters and a finite offset.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         magnitude(
@@ -91,6 +94,9 @@ pub struct Multifractal<B> {
 
 impl<B: Field> Multifractal<B> {
     /// Multiplicative cascade over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, params: MultifractalParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;

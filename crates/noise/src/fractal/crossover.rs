@@ -26,6 +26,9 @@ pub struct CrossoverFbm<A, B> {
 impl<A: Field, B: Field> CrossoverFbm<A, B> {
     /// Crossover fBm: `large` for features bigger than `begin`, `small` below
     /// `end` (world units, `begin > end > 0`).
+    ///
+    /// # Errors
+    /// As [`Spectral::validate`](crate::Spectral::validate), and [`NoiseError::InvalidParam`] if `begin` or `end` is invalid.
     pub fn new(large: A, small: B, spectral: Spectral, begin: f64, end: f64) -> Result<Self> {
         let oct = spectral.octaves_table()?;
         if !(end.is_finite() && end > 0.0) {

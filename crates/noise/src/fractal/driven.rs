@@ -109,6 +109,9 @@ pub struct Driven<B> {
 impl<B: Field + Clone> Driven<B> {
     /// A driven fractal of `kind` over `basis`; `spectral` supplies the
     /// constant lacunarity/frequency/convention and the default H and octaves.
+    ///
+    /// # Errors
+    /// As [`Spectral::validate`](crate::Spectral::validate).
     pub fn new(basis: B, spectral: Spectral, kind: DrivenKind) -> crate::Result<Self> {
         spectral.validate()?;
         Ok(Self {

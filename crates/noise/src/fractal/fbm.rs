@@ -41,6 +41,9 @@ pub struct Fbm<B> {
 
 impl<B: Field> Fbm<B> {
     /// fBm of `basis` with `spectral` parameters (validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
         let f = Self {
@@ -175,6 +178,9 @@ pub struct Turbulence<B> {
 
 impl<B: Field> Turbulence<B> {
     /// Turbulence of `basis` with `spectral` parameters (validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
         let oct = spectral.octaves_table()?;
         let f = Self {

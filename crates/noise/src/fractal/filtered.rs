@@ -37,6 +37,10 @@ pub struct FilteredFbm<B> {
 
 impl<B: Field> FilteredFbm<B> {
     /// Filtered fBm of `basis` with the default `width` (in world units, ≥ 0).
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] if `width` is NaN, infinite or negative;
+    /// otherwise as [`Spectral::validate`](crate::Spectral::validate).
     pub fn new(basis: B, spectral: Spectral, width: f64) -> Result<Self> {
         if !(width.is_finite() && width >= 0.0) {
             return Err(NoiseError::InvalidParam {

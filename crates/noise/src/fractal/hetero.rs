@@ -37,6 +37,9 @@ impl Default for HeteroTerrainParams {
 
 impl HeteroTerrainParams {
     /// Checks the spectral parameters, a finite offset and a positive finite threshold.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         magnitude(
@@ -84,6 +87,9 @@ pub struct HeteroTerrain<B> {
 
 impl<B: Field> HeteroTerrain<B> {
     /// Heterogeneous terrain over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`] if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, params: HeteroTerrainParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;

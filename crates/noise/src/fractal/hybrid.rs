@@ -30,6 +30,9 @@ impl Default for HybridParams {
 
 impl HybridParams {
     /// Checks the spectral parameters and a finite offset.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         magnitude(
@@ -67,6 +70,9 @@ pub struct HybridMultifractal<B> {
 
 impl<B: Field> HybridMultifractal<B> {
     /// Hybrid multifractal over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, params: HybridParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;

@@ -151,6 +151,9 @@ impl Spectral {
 
     /// Checks every parameter: finite `h` (positive under `Raw`), `λ > 1`,
     /// `0 < octaves ≤ 64` within the precision limit, `frequency > 0`.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity.
     pub fn validate(&self) -> Result<()> {
         finite("h", self.h)?;
         if self.convention == GainConvention::Raw && self.h <= 0.0 {
@@ -214,6 +217,9 @@ impl Spectral {
     }
 
     /// Precomputes the octave table (call after [`validate`](Self::validate)).
+    ///
+    /// # Errors
+    /// As [`Spectral::validate`].
     pub fn octaves_table(&self) -> Result<Octaves> {
         self.validate()?;
         Ok(Octaves::new(self))

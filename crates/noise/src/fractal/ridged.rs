@@ -34,6 +34,9 @@ impl Default for RidgedParams {
 
 impl RidgedParams {
     /// Checks the spectral parameters and finite offset and gain.
+    ///
+    /// # Errors
+    /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
         magnitude(
@@ -76,6 +79,9 @@ pub struct RidgedMultifractal<B> {
 
 impl<B: Field> RidgedMultifractal<B> {
     /// Ridged multifractal over `basis` (params validated).
+    ///
+    /// # Errors
+    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
     pub fn new(basis: B, params: RidgedParams) -> Result<Self> {
         params.validate()?;
         let oct = params.spectral.octaves_table()?;

@@ -36,7 +36,9 @@
 
 use natura_core::{Grid2, HeightField, Progress};
 
-use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size};
+use super::{
+    Edges, Erodibility, Neighbourhood, check_field, check_model_size, check_softness, run_steps,
+};
 use crate::error::{Result, in_range, invalid, non_negative};
 use crate::par;
 
@@ -240,10 +242,7 @@ impl MusgraveHydraulic {
     /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if the erodibility map is not the
     /// field's size.
     pub fn with_erodibility(mut self, e: Erodibility) -> Result<Self> {
-        check_erodibility(Some(&e), self.nx, self.ny)?;
-        if f64::from(e.max()) * self.p.k_s > 1.0 {
-            return Err(invalid("erodibility", e.max(), "max × k_s must be ≤ 1"));
-        }
+        check_softness(&e, self.nx, self.ny, self.p.k_s)?;
         self.erodibility = Some(e);
         Ok(self)
     }
@@ -302,14 +301,18 @@ impl MusgraveHydraulic {
     /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
     /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        check_field("hydraulic erosion", hf, self.nx, self.ny)?;
-        progress.start("hydraulic", u64::from(steps));
-        for _ in 0..steps {
-            self.step_unchecked(hf);
-            progress.advance(1);
-        }
-        progress.finish();
-        Ok(())
+        let size = (self.nx, self.ny);
+        run_steps(
+            "hydraulic erosion",
+            "hydraulic",
+            hf,
+            size,
+            steps,
+            progress,
+            |hf| {
+                self.step_unchecked(hf);
+            },
+        )
     }
 
     /// One step: rain (on schedule), transport, evaporation.

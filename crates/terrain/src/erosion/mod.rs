@@ -6,7 +6,7 @@
 //! | hydraulic (fluvial), corrected and mass-conserving | [`hydraulic`] | Musgrave et al. 1989, §4.1, Musgrave 1993, §2.4.1 |
 //! | thermal weathering with a talus angle | [`thermal`] | Musgrave et al. 1989, §4.2, Musgrave 1993, §2.4.2 |
 //! | diffusive creep | [`diffusion`] | Musgrave 1993, §2.4.3 |
-//! | virtual-pipe shallow water | [`pipe`] | Mei, Decaudin & Hu 2007 |
+//! | virtual-pipe shallow water | [`pipe`] | Mei et al. 2007, §3 |
 //! | particle (droplet) | [`droplet`] | Beyer 2015 |
 //! | stream power with uplift | [`stream_power`] | Braun & Willett 2013 |
 //!
@@ -24,7 +24,7 @@ pub mod pipe;
 pub mod stream_power;
 pub mod thermal;
 
-use natura_core::{Grid2, HeightField};
+use natura_core::{Grid2, HeightField, Progress};
 
 use crate::error::{Result, TerrainError, check_grid, invalid, min_size, same_size};
 
@@ -245,10 +245,41 @@ pub(crate) fn check_model_size(method: &'static str, hf: &HeightField) -> Result
     check_heights(hf)
 }
 
+/// A model's `run`: checks `hf` against the model's size `(nx, ny)`, then
+/// takes `steps` steps, reporting each to `progress` under `label`.
+pub(crate) fn run_steps(
+    method: &'static str,
+    label: &'static str,
+    hf: &mut HeightField,
+    (nx, ny): (usize, usize),
+    steps: u32,
+    progress: &dyn Progress,
+    mut step: impl FnMut(&mut HeightField),
+) -> Result<()> {
+    check_field(method, hf, nx, ny)?;
+    progress.start(label, u64::from(steps));
+    for _ in 0..steps {
+        step(hf);
+        progress.advance(1);
+    }
+    progress.finish();
+    Ok(())
+}
+
 /// Checks an optional erodibility map against the field size.
 pub(crate) fn check_erodibility(e: Option<&Erodibility>, nx: usize, ny: usize) -> Result<()> {
     if let Some(e) = e {
         same_size("erodibility map", &e.map, nx, ny)?;
+    }
+    Ok(())
+}
+
+/// Checks an erodibility map that scales a dissolving constant `k_s`
+/// (a fraction per step): the field's size, and `max × k_s ≤ 1`.
+pub(crate) fn check_softness(e: &Erodibility, nx: usize, ny: usize, k_s: f64) -> Result<()> {
+    check_erodibility(Some(e), nx, ny)?;
+    if f64::from(e.max()) * k_s > 1.0 {
+        return Err(invalid("erodibility", e.max(), "max × k_s must be ≤ 1"));
     }
     Ok(())
 }

@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use natura_core::{Grid2, HeightField, Progress};
 
-use super::{Erodibility, check_erodibility, check_field, check_model_size};
+use super::{Erodibility, check_erodibility, check_field, check_model_size, run_steps};
 pub use crate::analysis::flow::Depressions;
 use crate::analysis::flow::{FlowGraph, next_up};
 use crate::error::{Result, in_range, invalid, non_negative, positive};
@@ -209,14 +209,18 @@ impl StreamPower {
     /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
     /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        check_field("stream-power erosion", hf, self.nx, self.ny)?;
-        progress.start("stream power", u64::from(steps));
-        for _ in 0..steps {
-            self.step_unchecked(hf);
-            progress.advance(1);
-        }
-        progress.finish();
-        Ok(())
+        let size = (self.nx, self.ny);
+        run_steps(
+            "stream-power erosion",
+            "stream power",
+            hf,
+            size,
+            steps,
+            progress,
+            |hf| {
+                self.step_unchecked(hf);
+            },
+        )
     }
 
     /// One step.

@@ -22,7 +22,9 @@
 
 use natura_core::{HeightField, Progress};
 
-use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size};
+use super::{
+    Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size, run_steps,
+};
 use crate::error::{Result, invalid};
 use crate::par;
 
@@ -155,14 +157,18 @@ impl Thermal {
     /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
     /// naming `height` for a NaN, infinite or out-of-range height.
     pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        check_field("thermal weathering", hf, self.nx, self.ny)?;
-        progress.start("thermal", u64::from(steps));
-        for _ in 0..steps {
-            self.step_unchecked(hf);
-            progress.advance(1);
-        }
-        progress.finish();
-        Ok(())
+        let size = (self.nx, self.ny);
+        run_steps(
+            "thermal weathering",
+            "thermal",
+            hf,
+            size,
+            steps,
+            progress,
+            |hf| {
+                self.step_unchecked(hf);
+            },
+        )
     }
 
     /// One synchronous step.

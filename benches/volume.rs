@@ -1,0 +1,130 @@
+//! natura-volume benchmarks.
+//!
+//! ```text
+//! cargo bench --bench volume -- shadows      # shadow tables vs ray-traced shadows, same cumulus
+//! cargo bench --bench volume -- cloudscape   # 1920×1080 fast mode, 2 threads
+//! cargo bench --bench volume -- density      # cumulus with turbulence, samples/s, 1 thread
+//! ```
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use natura::core::glam::Vec3;
+use natura::volume::Density;
+use natura::volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
+use natura::volume::grid::GridDensity;
+use natura::volume::render::{
+    Camera, FastRenderer, MarchSettings, MediumParams, Scene, Shadows, Sun,
+};
+use natura::volume::scene::{Cloudscape, CloudscapeParams};
+
+fn density(c: &mut Criterion) {
+    let cu = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 7).unwrap();
+    let b = cu.bounds();
+    let n = 100_000usize;
+    let pts: Vec<Vec3> = (0..n)
+        .map(|i| {
+            let u = Vec3::new(
+                (i % 47) as f32 / 47.0,
+                (i % 53) as f32 / 53.0,
+                (i % 59) as f32 / 59.0,
+            );
+            b.min + (b.max - b.min) * u
+        })
+        .collect();
+    let mut g = c.benchmark_group("density");
+    g.throughput(Throughput::Elements(n as u64));
+    g.bench_function("cumulus_turbulence_1thread", |bch| {
+        bch.iter(|| pts.iter().map(|&p| cu.density(p)).sum::<f32>())
+    });
+    g.finish();
+}
+
+fn shadows(c: &mut Criterion) {
+    let cu = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 7).unwrap();
+    let grid = GridDensity::bake(&cu, 0.1).unwrap();
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(-0.5, -0.6, 0.62).normalize(),
+            irradiance: Vec3::splat(3.0),
+        }),
+        ..Scene::new(
+            &grid,
+            MediumParams {
+                extinction: 4.0,
+                ..MediumParams::default()
+            },
+            Vec3::new(0.2, 0.3, 0.5),
+        )
+    };
+    let b = grid.bounds();
+    let centre = (b.min + b.max) * 0.5;
+    let camera = Camera {
+        position: centre + Vec3::new(0.0, -24.0, 2.0),
+        target: centre,
+        vfov_deg: 40.0,
+        width: 240,
+        height: 160,
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let mut g = c.benchmark_group("shadows");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements((camera.width * camera.height) as u64));
+    // Same eye step; the table's nodes are 64 along the longest axis (its
+    // march uses one node spacing per step), the shadow rays step 0.1 m.
+    let table = MarchSettings {
+        step: 0.1,
+        shadows: Shadows::Table(64),
+        ..MarchSettings::default()
+    };
+    let rays = MarchSettings {
+        shadows: Shadows::Rays(0.1),
+        ..table
+    };
+    g.bench_function("cumulus_table_build", |bch| {
+        bch.iter(|| pool.install(|| FastRenderer::new(&scene, table).unwrap()))
+    });
+    let built = pool.install(|| FastRenderer::new(&scene, table).unwrap());
+    g.bench_function("cumulus_render_with_table", |bch| {
+        bch.iter(|| pool.install(|| built.render(&camera).unwrap()))
+    });
+    g.bench_function("cumulus_render_with_shadow_rays", |bch| {
+        bch.iter(|| {
+            pool.install(|| {
+                FastRenderer::new(&scene, rays)
+                    .unwrap()
+                    .render(&camera)
+                    .unwrap()
+            })
+        })
+    });
+    g.finish();
+}
+
+fn cloudscape(c: &mut Criterion) {
+    let cs = Cloudscape::new(&CloudscapeParams::default(), 11).unwrap();
+    let scene = cs.scene();
+    let camera = cs.camera();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let mut g = c.benchmark_group("cloudscape");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements((camera.width * camera.height) as u64));
+    g.bench_function("fast_1920x1080_2threads", |bch| {
+        bch.iter(|| {
+            pool.install(|| {
+                FastRenderer::new(&scene, cs.fast_settings())
+                    .unwrap()
+                    .render(&camera)
+                    .unwrap()
+            })
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, density, shadows, cloudscape);
+criterion_main!(benches);

@@ -1,0 +1,260 @@
+//! The [`Density`] trait: a scalar density field in world space with a
+//! support box and conservative bounds for empty-space skipping, plus the
+//! small box helpers every renderer uses.
+
+use glam::Vec3;
+use natura_core::Aabb;
+
+use crate::error::{Result, VolumeError};
+
+/// A density field: `f32` density (dimensionless, usually in `[0, 1]`) at a
+/// world-space point (metres, z up).
+///
+/// Contract, relied on by every renderer in this crate:
+/// * [`density`](Density::density) is finite and `≥ 0` everywhere, and `0`
+///   outside [`bounds`](Density::bounds);
+/// * [`bound_in`](Density::bound_in) is `≥` the density at every point of the
+///   given box (a majorant: delta tracking is unbiased only if it holds);
+/// * evaluation is a pure function of the point (no interior mutability), so
+///   results do not depend on evaluation order or thread count.
+pub trait Density: Send + Sync {
+    /// The density at `p`.
+    fn density(&self, p: Vec3) -> f32;
+
+    /// A box outside which the density is zero.
+    fn bounds(&self) -> Aabb;
+
+    /// An upper bound of the density inside `region` (the default: the
+    /// global bound [`max_density`](Density::max_density)).
+    fn bound_in(&self, region: &Aabb) -> f32 {
+        let _ = region;
+        self.max_density()
+    }
+
+    /// An upper bound of the density over all space.
+    fn max_density(&self) -> f32;
+}
+
+impl<D: Density + ?Sized> Density for &D {
+    fn density(&self, p: Vec3) -> f32 {
+        (**self).density(p)
+    }
+    fn bounds(&self) -> Aabb {
+        (**self).bounds()
+    }
+    fn bound_in(&self, region: &Aabb) -> f32 {
+        (**self).bound_in(region)
+    }
+    fn max_density(&self) -> f32 {
+        (**self).max_density()
+    }
+}
+
+impl<D: Density + ?Sized> Density for Box<D> {
+    fn density(&self, p: Vec3) -> f32 {
+        (**self).density(p)
+    }
+    fn bounds(&self) -> Aabb {
+        (**self).bounds()
+    }
+    fn bound_in(&self, region: &Aabb) -> f32 {
+        (**self).bound_in(region)
+    }
+    fn max_density(&self) -> f32 {
+        (**self).max_density()
+    }
+}
+
+/// A constant density inside a box, zero outside: the homogeneous slab of the
+/// closed-form tests (`T = exp(−σ·ρ·ℓ)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Homogeneous {
+    region: Aabb,
+    value: f32,
+}
+
+impl Homogeneous {
+    /// Density `value` inside `region`.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidBounds`] for an empty, inverted or non-finite box;
+    /// [`VolumeError::InvalidParameter`] for a negative or non-finite `value`.
+    pub fn new(region: Aabb, value: f32) -> Result<Self> {
+        check_bounds("region", &region)?;
+        crate::error::non_negative("value", value)?;
+        Ok(Self { region, value })
+    }
+}
+
+impl Density for Homogeneous {
+    fn density(&self, p: Vec3) -> f32 {
+        if self.region.contains(p) {
+            self.value
+        } else {
+            0.0
+        }
+    }
+    fn bounds(&self) -> Aabb {
+        self.region
+    }
+    fn bound_in(&self, region: &Aabb) -> f32 {
+        if overlaps(region, &self.region) {
+            self.value
+        } else {
+            0.0
+        }
+    }
+    fn max_density(&self) -> f32 {
+        self.value
+    }
+}
+
+/// A constant density inside a ball, zero outside (the sphere of the
+/// closed-form transmittance tests).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ball {
+    centre: Vec3,
+    radius: f32,
+    value: f32,
+}
+
+impl Ball {
+    /// Density `value` inside the ball of `radius` about `centre`.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] for a non-finite centre, a radius
+    /// that is not finite and positive, or a negative or non-finite `value`.
+    pub fn new(centre: Vec3, radius: f32, value: f32) -> Result<Self> {
+        crate::error::finite3("centre", centre)?;
+        crate::error::positive("radius", radius)?;
+        crate::error::non_negative("value", value)?;
+        Ok(Self {
+            centre,
+            radius,
+            value,
+        })
+    }
+}
+
+impl Density for Ball {
+    fn density(&self, p: Vec3) -> f32 {
+        if (p - self.centre).length_squared() <= self.radius * self.radius {
+            self.value
+        } else {
+            0.0
+        }
+    }
+    fn bounds(&self) -> Aabb {
+        Aabb {
+            min: self.centre - Vec3::splat(self.radius),
+            max: self.centre + Vec3::splat(self.radius),
+        }
+    }
+    fn max_density(&self) -> f32 {
+        self.value
+    }
+}
+
+/// Checks that `b` is finite and non-empty on every axis.
+///
+/// # Errors
+///
+/// [`VolumeError::InvalidBounds`] naming `name` otherwise.
+pub fn check_bounds(name: &'static str, b: &Aabb) -> Result<()> {
+    if b.min.is_finite() && b.max.is_finite() && b.min.cmplt(b.max).all() {
+        Ok(())
+    } else {
+        Err(VolumeError::InvalidBounds {
+            name,
+            min: b.min.to_array(),
+            max: b.max.to_array(),
+        })
+    }
+}
+
+/// Whether two boxes overlap (touching counts).
+#[inline]
+#[must_use]
+pub fn overlaps(a: &Aabb, b: &Aabb) -> bool {
+    a.min.cmple(b.max).all() && b.min.cmple(a.max).all()
+}
+
+/// `b` grown by `d` on every side.
+#[inline]
+#[must_use]
+pub fn expand(b: &Aabb, d: Vec3) -> Aabb {
+    Aabb {
+        min: b.min - d,
+        max: b.max + d,
+    }
+}
+
+/// The smallest box holding both.
+#[inline]
+#[must_use]
+pub fn union(a: &Aabb, b: &Aabb) -> Aabb {
+    Aabb {
+        min: a.min.min(b.min),
+        max: a.max.max(b.max),
+    }
+}
+
+/// The parameter interval `[t0, t1]` (clipped to `t ≥ 0`) over which the ray
+/// `o + t·inv_d⁻¹` lies in `b`, given the component-wise inverse direction;
+/// `None` if it misses. Axis-parallel rays (infinite `inv_d`) are handled by
+/// IEEE arithmetic, with the NaN of `0·∞` on a slab face treated as inside.
+#[inline]
+#[must_use]
+pub fn ray_box(o: Vec3, inv_d: Vec3, b: &Aabb) -> Option<(f32, f32)> {
+    let t_a = (b.min - o) * inv_d;
+    let t_b = (b.max - o) * inv_d;
+    let lo = t_a.min(t_b);
+    let hi = t_a.max(t_b);
+    // NaN-ignoring max/min of the components.
+    let t0 = lo.x.max(lo.y).max(lo.z).max(0.0);
+    let t1 = hi.x.min(hi.y).min(hi.z);
+    if t1 >= t0 { Some((t0, t1)) } else { None }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ray_box_axis_parallel_and_miss() {
+        let b = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        let d = Vec3::X;
+        let r = ray_box(Vec3::new(-1.0, 0.5, 0.5), d.recip(), &b).unwrap();
+        assert!((r.0 - 1.0).abs() < 1e-6 && (r.1 - 2.0).abs() < 1e-6);
+        assert!(ray_box(Vec3::new(-1.0, 2.0, 0.5), d.recip(), &b).is_none());
+        // Starting inside clips at 0.
+        let r = ray_box(Vec3::splat(0.5), Vec3::Z.recip(), &b).unwrap();
+        assert_eq!(r.0, 0.0);
+    }
+
+    #[test]
+    fn bad_boxes_are_refused() {
+        let inverted = Aabb {
+            min: Vec3::ONE,
+            max: Vec3::ZERO,
+        };
+        assert!(check_bounds("b", &inverted).is_err());
+        let nan = Aabb {
+            min: Vec3::splat(f32::NAN),
+            max: Vec3::ONE,
+        };
+        assert!(check_bounds("b", &nan).is_err());
+        assert!(Homogeneous::new(inverted, 1.0).is_err());
+        let ok = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        assert!(Homogeneous::new(ok, f32::NAN).is_err());
+        assert!(Ball::new(Vec3::ZERO, 0.0, 1.0).is_err());
+    }
+}

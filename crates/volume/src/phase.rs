@@ -1,0 +1,316 @@
+//! Phase functions for clouds and gases, `1/(4π)`-normalised, with sampling.
+//!
+//! The angle is between the propagation directions before and after
+//! scattering; for a camera ray `d` and a light toward `l`, `cos θ = d·l`.
+
+use std::f32::consts::PI;
+
+use glam::Vec3;
+
+use crate::error::{Result, in_range};
+
+const INV_4PI: f32 = 1.0 / (4.0 * PI);
+
+/// Henyey–Greenstein `(1 − g²)/(4π(1 + g² − 2g cos θ)^{3/2})` (Henyey & Greenstein 1941, eq. 3).
+#[inline]
+#[must_use]
+pub fn henyey_greenstein(g: f32, cos_theta: f32) -> f32 {
+    let d = (1.0 + g * g - 2.0 * g * cos_theta).max(1e-12);
+    INV_4PI * (1.0 - g * g) / (d * d.sqrt())
+}
+
+/// Draine's phase function `HG(g)·(1 + α cos²θ)/(1 + α(1 + 2g²)/3)`
+/// (Jendersie & d'Eon 2023, eq. 4; α = 0 is Henyey–Greenstein, g = 0, α = 1 Rayleigh).
+#[inline]
+#[must_use]
+pub fn draine(g: f32, alpha: f32, cos_theta: f32) -> f32 {
+    henyey_greenstein(g, cos_theta) * (1.0 + alpha * cos_theta * cos_theta)
+        / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0)
+}
+
+/// A phase function.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Phase {
+    /// `1/(4π)`.
+    Isotropic,
+    /// Henyey–Greenstein with asymmetry `g ∈ (−1, 1)`.
+    HenyeyGreenstein(f32),
+    /// `(1 − w)·HG(g_forward) + w·HG(g_back)`: a forward peak and a back lobe.
+    DualHenyeyGreenstein {
+        /// Forward asymmetry (usually > 0).
+        forward: f32,
+        /// Backward asymmetry (usually < 0).
+        back: f32,
+        /// Weight of the back lobe in `[0, 1]`.
+        weight: f32,
+    },
+    /// The HG + Draine blend fitted to Mie scattering by water droplets of
+    /// the given diameter in µm, `[5, 50]` (Jendersie & d'Eon 2023, eqs. 4–8).
+    Cloud {
+        /// Droplet diameter (µm).
+        diameter_um: f32,
+    },
+}
+
+impl Default for Phase {
+    /// The cloud phase for 20 µm droplets (typical cumulus).
+    fn default() -> Self {
+        Phase::Cloud { diameter_um: 20.0 }
+    }
+}
+
+/// The four parameters of the HG + Draine fit for droplet diameter `d` (µm):
+/// `(g_HG, g_D, α, w_D)`.
+#[must_use]
+pub fn cloud_fit(d: f32) -> (f32, f32, f32, f32) {
+    let g_hg = (-0.099_056_7 / (d - 1.671_54)).exp();
+    let g_d = (-2.206_79 / (d + 3.910_29) - 0.428_934).exp();
+    let alpha = (3.624_89 - 8.292_88 / (d + 5.528_25)).exp();
+    let w_d = (-0.599_085 / (d - 0.641_583) - 0.665_888).exp();
+    (g_hg, g_d, alpha, w_d)
+}
+
+impl Phase {
+    /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) for `|g| ≥ 1`, a weight outside
+    /// `[0, 1]`, a diameter outside `[5, 50]` µm, or NaN.
+    pub fn validate(&self) -> Result<()> {
+        const G: &str = "asymmetry must lie in [−0.99, 0.99]";
+        match *self {
+            Phase::Isotropic => {}
+            Phase::HenyeyGreenstein(g) => {
+                in_range("g", g, -0.99, 0.99, G)?;
+            }
+            Phase::DualHenyeyGreenstein {
+                forward,
+                back,
+                weight,
+            } => {
+                in_range("forward", forward, -0.99, 0.99, G)?;
+                in_range("back", back, -0.99, 0.99, G)?;
+                in_range("weight", weight, 0.0, 1.0, "must lie in [0, 1]")?;
+            }
+            Phase::Cloud { diameter_um } => {
+                in_range(
+                    "diameter_um",
+                    diameter_um,
+                    5.0,
+                    50.0,
+                    "must lie in [5, 50] µm",
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The phase function at `cos_theta`, per steradian.
+    #[inline]
+    #[must_use]
+    pub fn eval(&self, cos_theta: f32) -> f32 {
+        match *self {
+            Phase::Isotropic => INV_4PI,
+            Phase::HenyeyGreenstein(g) => henyey_greenstein(g, cos_theta),
+            Phase::DualHenyeyGreenstein {
+                forward,
+                back,
+                weight,
+            } => {
+                (1.0 - weight) * henyey_greenstein(forward, cos_theta)
+                    + weight * henyey_greenstein(back, cos_theta)
+            }
+            Phase::Cloud { diameter_um } => {
+                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
+                    + w_d * draine(g_d, alpha, cos_theta)
+            }
+        }
+    }
+
+    /// The mean cosine (the effective asymmetry `g`).
+    #[must_use]
+    pub fn mean_cosine(&self) -> f32 {
+        match *self {
+            Phase::Isotropic => 0.0,
+            Phase::HenyeyGreenstein(g) => g,
+            Phase::DualHenyeyGreenstein {
+                forward,
+                back,
+                weight,
+            } => (1.0 - weight) * forward + weight * back,
+            Phase::Cloud { diameter_um } => {
+                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                // Draine's mean cosine: g(1 + α(3 + 2g²)/5)/(1 + α(1 + 2g²)/3).
+                let gd = g_d * (1.0 + alpha * (3.0 + 2.0 * g_d * g_d) / 5.0)
+                    / (1.0 + alpha * (1.0 + 2.0 * g_d * g_d) / 3.0);
+                (1.0 - w_d) * g_hg + w_d * gd
+            }
+        }
+    }
+
+    /// The same function with its asymmetry scaled by `c` (the octave
+    /// method's `c^i`; isotropic is unchanged).
+    #[must_use]
+    pub fn scaled(&self, c: f32) -> Phase {
+        match *self {
+            Phase::Isotropic => Phase::Isotropic,
+            Phase::HenyeyGreenstein(g) => Phase::HenyeyGreenstein(g * c),
+            Phase::DualHenyeyGreenstein {
+                forward,
+                back,
+                weight,
+            } => Phase::DualHenyeyGreenstein {
+                forward: forward * c,
+                back: back * c,
+                weight,
+            },
+            Phase::Cloud { .. } => Phase::HenyeyGreenstein(self.mean_cosine() * c),
+        }
+    }
+
+    /// The HG mixture used to sample this phase: `(g₁, g₂, weight of g₂)`.
+    fn proposal(&self) -> (f32, f32, f32) {
+        match *self {
+            Phase::Isotropic => (0.0, 0.0, 0.0),
+            Phase::HenyeyGreenstein(g) => (g, g, 0.0),
+            Phase::DualHenyeyGreenstein {
+                forward,
+                back,
+                weight,
+            } => (forward, back, weight),
+            Phase::Cloud { diameter_um } => {
+                let (g_hg, g_d, _, w_d) = cloud_fit(diameter_um);
+                (g_hg, g_d, w_d)
+            }
+        }
+    }
+
+    /// Samples a new direction about the unit direction `d` from uniforms
+    /// `u ∈ [0, 1)³`; returns the direction and the weight `p/pdf` (exactly 1
+    /// for the HG mixtures, close to 1 for the cloud phase, which is sampled
+    /// from its HG lobes).
+    #[must_use]
+    pub fn sample(&self, d: Vec3, u: [f32; 3]) -> (Vec3, f32) {
+        let (g1, g2, w) = self.proposal();
+        let g = if u[0] < w { g2 } else { g1 };
+        let cos = sample_hg_cos(g, u[1]);
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        let phi = 2.0 * PI * u[2];
+        let (t, b) = d.any_orthonormal_pair();
+        let out = (t * (sin * phi.cos()) + b * (sin * phi.sin()) + d * cos).normalize();
+        let c = out.dot(d);
+        let pdf = (1.0 - w) * henyey_greenstein(g1, c) + w * henyey_greenstein(g2, c);
+        let weight = if pdf > 0.0 { self.eval(c) / pdf } else { 0.0 };
+        (out, weight)
+    }
+}
+
+/// Inverse-CDF sample of the HG cosine (Pharr et al. 2023, §11.3.1).
+#[inline]
+fn sample_hg_cos(g: f32, u: f32) -> f32 {
+    if g.abs() < 1e-3 {
+        return 1.0 - 2.0 * u;
+    }
+    let s = (1.0 - g * g) / (1.0 + g - 2.0 * g * u);
+    ((1.0 + g * g - s * s) / (2.0 * g)).clamp(-1.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn integrate(p: &Phase) -> (f64, f64) {
+        // ∫ p dω = 2π ∫ p(μ) dμ, midpoint rule in t with 1 − μ = 2t³, which
+        // crowds the nodes into the forward peak (dμ = 6t² dt).
+        let n = 400_000;
+        let (mut s, mut m) = (0.0f64, 0.0f64);
+        for i in 0..n {
+            let t = (i as f64 + 0.5) / n as f64;
+            let mu = 1.0 - 2.0 * t * t * t;
+            let w = 6.0 * t * t;
+            let v = f64::from(p.eval(mu as f32)) * w;
+            s += v;
+            m += v * mu;
+        }
+        let k = 2.0 * std::f64::consts::PI / n as f64;
+        (s * k, m * k)
+    }
+
+    #[test]
+    fn every_phase_is_normalised_and_has_its_mean_cosine() {
+        for p in [
+            Phase::Isotropic,
+            Phase::HenyeyGreenstein(0.6),
+            Phase::HenyeyGreenstein(-0.3),
+            Phase::DualHenyeyGreenstein {
+                forward: 0.8,
+                back: -0.3,
+                weight: 0.2,
+            },
+            Phase::Cloud { diameter_um: 5.0 },
+            Phase::Cloud { diameter_um: 20.0 },
+            Phase::Cloud { diameter_um: 50.0 },
+        ] {
+            p.validate().unwrap();
+            let (norm, mean) = integrate(&p);
+            assert!((norm - 1.0).abs() < 2e-3, "{p:?}: ∫p = {norm}");
+            assert!(
+                (mean - f64::from(p.mean_cosine())).abs() < 3e-3,
+                "{p:?}: {mean}"
+            );
+        }
+    }
+
+    #[test]
+    fn cloud_phase_is_strongly_forward_like_mie() {
+        let p = Phase::Cloud { diameter_um: 20.0 };
+        let g = p.mean_cosine();
+        assert!((0.8..0.95).contains(&g), "{g}");
+        assert!(p.eval(1.0) > 100.0 * p.eval(0.0));
+        assert!(Phase::Cloud { diameter_um: 2.0 }.validate().is_err());
+        assert!(Phase::HenyeyGreenstein(f32::NAN).validate().is_err());
+    }
+
+    #[test]
+    fn sampling_reproduces_the_mean_cosine() {
+        let d = Vec3::new(0.3, -0.4, 0.866).normalize();
+        for p in [
+            Phase::HenyeyGreenstein(0.7),
+            Phase::DualHenyeyGreenstein {
+                forward: 0.8,
+                back: -0.4,
+                weight: 0.3,
+            },
+            Phase::Cloud { diameter_um: 15.0 },
+        ] {
+            let n = 200_000;
+            let mut acc = 0.0f64;
+            let mut wsum = 0.0f64;
+            let mut state = 0x1234_5678u32;
+            let mut next = || {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                (state >> 8) as f32 / (1u32 << 24) as f32
+            };
+            for _ in 0..n {
+                let (o, w) = p.sample(d, [next(), next(), next()]);
+                acc += f64::from(w * o.dot(d));
+                wsum += f64::from(w);
+            }
+            let mean = acc / n as f64;
+            assert!(
+                (mean - f64::from(p.mean_cosine())).abs() < 0.01,
+                "{p:?}: {mean}"
+            );
+            assert!(
+                (wsum / n as f64 - 1.0).abs() < 0.02,
+                "{p:?}: weights {}",
+                wsum / n as f64
+            );
+        }
+    }
+}

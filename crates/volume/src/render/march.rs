@@ -1,0 +1,399 @@
+//! Ebert's low-albedo ray march (Ebert 2001, "Volume rendering": single
+//! scattering with atmospheric attenuation along the eye ray, shadows from
+//! 3-D shadow tables), with the octave multiple-scattering approximation and
+//! the powder term as options.
+//!
+//! Along the eye ray, in steps of `Δt` (midpoint samples, empty space skipped
+//! with the density's bound): the source at a sample is
+//! `σ_s·(E_sun·P(τ_sun) + A·Q(τ_up)) + σ_a·L_e`, where `τ` are optical depths toward the sun and
+//! up (from tables or direct shadow rays), `P`, `Q` the octave sums of
+//! [`Octaves`] (plain `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
+//! the environment's mean radiance; each step adds the exact integral of
+//! that source over the step and multiplies the transmittance by
+//! `exp(−σ_t·Δt)`. The march stops when the transmittance falls below a
+//! threshold.
+//!
+//! The ambient term treats the environment as isotropic and occluded along
+//! the vertical only: an approximation, measured against the reference.
+
+use glam::Vec3;
+use natura_core::{Aabb, Image};
+
+use super::model::{Octaves, emitted, powder, step_inscatter, step_transmittance};
+use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
+use super::{BLOCKED_DEPTH, Camera, Scene, check_step};
+use crate::density::ray_box;
+use crate::error::{Result, VolumeError, in_range, positive};
+
+/// How the march finds the optical depth toward the lights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Shadows {
+    /// Ebert's 3-D shadow tables with this many nodes along the volume's longest axis.
+    Table(usize),
+    /// A direct shadow ray per sample with steps of this length (m).
+    Rays(f32),
+}
+
+/// Settings of the fast renderer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MarchSettings {
+    /// Eye-ray step (m) at the eye.
+    pub step: f32,
+    /// Growth of the step with distance from the eye (m per m, `≥ 0`; 0:
+    /// uniform steps). Kilometre-scale skies use it to spend samples near the eye.
+    pub step_growth: f32,
+    /// Shadow method.
+    pub shadows: Shadows,
+    /// The multiple-scattering approximation ([`Octaves::SINGLE`]: Ebert's single scattering).
+    pub octaves: Octaves,
+    /// Strength of the powder term in `[0, 1]` (0: off).
+    pub powder: f32,
+    /// The march stops below this transmittance, in `[0, 1)`.
+    pub min_transmittance: f32,
+}
+
+impl Default for MarchSettings {
+    /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder, stop at `T < 10⁻³`.
+    fn default() -> Self {
+        Self {
+            step: 0.1,
+            step_growth: 0.0,
+            shadows: Shadows::Table(64),
+            octaves: Octaves::SINGLE,
+            powder: 0.0,
+            min_transmittance: 1e-3,
+        }
+    }
+}
+
+impl MarchSettings {
+    /// These settings with the multiple-scattering approximation (default octaves).
+    #[must_use]
+    pub fn multiple_scattering(self) -> Self {
+        Self {
+            octaves: Octaves::default(),
+            ..self
+        }
+    }
+}
+
+/// The fast renderer: shadow tables built once for a scene, then any number
+/// of rays or images.
+pub struct FastRenderer<'s> {
+    scene: &'s Scene<'s>,
+    settings: MarchSettings,
+    sun_table: Option<ShadowTable>,
+    up_table: Option<ShadowTable>,
+    ambient: Vec3,
+    bounds: Aabb,
+}
+
+impl std::fmt::Debug for FastRenderer<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FastRenderer")
+            .field("settings", &self.settings)
+            .field("ambient", &self.ambient)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Fibonacci-sphere directions for the environment's mean radiance.
+fn sphere_dirs(n: usize) -> impl Iterator<Item = Vec3> {
+    let ga = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    (0..n).map(move |i| {
+        let z = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = ga * i as f32;
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    })
+}
+
+impl<'s> FastRenderer<'s> {
+    /// Prepares `scene` (validating it and building the shadow tables).
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::validate`]; [`VolumeError::InvalidParameter`] for a bad
+    /// step, table size, powder or threshold.
+    pub fn new(scene: &'s Scene<'s>, settings: MarchSettings) -> Result<Self> {
+        scene.validate()?;
+        settings.octaves.validate()?;
+        in_range(
+            "step_growth",
+            settings.step_growth,
+            0.0,
+            1.0,
+            "must lie in [0, 1]",
+        )?;
+        in_range("powder", settings.powder, 0.0, 1.0, "must lie in [0, 1]")?;
+        in_range(
+            "min_transmittance",
+            settings.min_transmittance,
+            0.0,
+            0.999,
+            "must lie in [0, 1)",
+        )?;
+        let bounds = scene.density.bounds();
+        let extent = (bounds.max - bounds.min).length();
+        check_step("step", settings.step, extent, 1e7)?;
+        let ext = scene.medium.extinction;
+        let (sun_table, up_table) = match settings.shadows {
+            Shadows::Table(n) => {
+                if !(2..=1024).contains(&n) {
+                    return Err(VolumeError::InvalidParameter {
+                        name: "shadows",
+                        value: n.to_string(),
+                        expected: "a table of 2..=1024 nodes along the longest axis",
+                    });
+                }
+                let dims = table_dims(&bounds, n);
+                let sun = match scene.sun_unit() {
+                    Some(s) => Some(ShadowTable::build_with_solids(
+                        scene.density,
+                        ext,
+                        s.direction,
+                        dims,
+                        &scene.solids,
+                    )?),
+                    None => None,
+                };
+                (
+                    sun,
+                    Some(ShadowTable::build_with_solids(
+                        scene.density,
+                        ext,
+                        Vec3::Z,
+                        dims,
+                        &scene.solids,
+                    )?),
+                )
+            }
+            Shadows::Rays(h) => {
+                check_step("shadows", h, extent, 1e7)?;
+                (None, None)
+            }
+        };
+        // The environment's mean radiance over the sphere, the ground's unshadowed
+        // radiance below the horizon.
+        let n = 512;
+        let mut ambient = Vec3::ZERO;
+        for d in sphere_dirs(n) {
+            ambient += if scene.ground.is_some() && d.z < 0.0 {
+                scene.ground_radiance(1.0)
+            } else {
+                scene.environment.radiance(d)
+            };
+        }
+        Ok(Self {
+            scene,
+            settings,
+            sun_table,
+            up_table,
+            ambient: ambient / n as f32,
+            bounds,
+        })
+    }
+
+    /// Optical depth toward the sun at `p` (solids included).
+    #[inline]
+    fn tau_sun(&self, p: Vec3, l: Vec3) -> f32 {
+        self.tau_toward(self.sun_table.as_ref(), p, l)
+    }
+
+    /// Optical depth straight up at `p` (solids included).
+    #[inline]
+    fn tau_up(&self, p: Vec3) -> f32 {
+        self.tau_toward(self.up_table.as_ref(), p, Vec3::Z)
+    }
+
+    #[inline]
+    fn tau_toward(&self, table: Option<&ShadowTable>, p: Vec3, l: Vec3) -> f32 {
+        let sc = self.scene;
+        match (table, self.settings.shadows) {
+            // Inside the table solids are in its nodes; outside, test them here.
+            (Some(t), _) => {
+                if !self.bounds.contains(p) && sc.blocked(p, l) {
+                    BLOCKED_DEPTH
+                } else {
+                    t.optical_depth(p)
+                }
+            }
+            (None, Shadows::Rays(h)) => {
+                if sc.blocked(p, l) {
+                    BLOCKED_DEPTH
+                } else {
+                    optical_depth_ray(sc.density, sc.medium.extinction, p, l, h)
+                }
+            }
+            (None, Shadows::Table(_)) => 0.0,
+        }
+    }
+
+    /// Radiance arriving at `o` along `-d` (`d` unit), as seen by the eye.
+    #[must_use]
+    pub fn radiance(&self, o: Vec3, d: Vec3) -> Vec3 {
+        let sc = self.scene;
+        let m = &sc.medium;
+        let sun = sc.sun_unit();
+        let surface = sc.surface_hit(o, d);
+        let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
+        let mut tr = 1.0f32;
+        let mut l = Vec3::ZERO;
+        let mut depth_w = 0.0f32;
+        let mut depth_sum = 0.0f32;
+        if let Some((t0, t1)) = ray_box(o, d.recip(), &self.bounds) {
+            let t1 = t1.min(t_ground);
+            let h = self.settings.step;
+            let growth = self.settings.step_growth;
+            // With no growth, the steps divide [t0, t1] evenly (so a box is
+            // crossed exactly); otherwise each grows with the distance from the eye.
+            let uniform = {
+                let n = ((t1 - t0) / h).ceil().max(1.0);
+                (t1 - t0) / n
+            };
+            let step_at = |t: f32| {
+                if growth > 0.0 {
+                    (h + growth * t).min(t1 - t)
+                } else {
+                    uniform
+                }
+            };
+            let skip = 8.0f32;
+            let mut t = t0;
+            'march: while t1 - t > 1e-6 * t1.abs().max(1.0) {
+                // Empty-space skipping over blocks of steps.
+                let span = (step_at(t) * skip).min(t1 - t);
+                let (a, b) = (o + d * t, o + d * (t + span));
+                let block = Aabb {
+                    min: a.min(b),
+                    max: a.max(b),
+                };
+                if sc.emission.is_none() && sc.density.bound_in(&block) <= 0.0 {
+                    t += span;
+                    continue;
+                }
+                let end = t + span;
+                while end - t > 1e-6 * end.abs().max(1.0) {
+                    let dt = step_at(t).min(end - t);
+                    let tm = t + 0.5 * dt;
+                    t += dt;
+                    let p = o + d * tm;
+                    let rho = sc.density.density(p);
+                    let le = sc.emission.map_or(Vec3::ZERO, |e| {
+                        emitted(e.colour, e.field.density(p), e.offset)
+                    });
+                    if rho <= 0.0 && le == Vec3::ZERO {
+                        continue;
+                    }
+                    let sigma_t = m.extinction * rho;
+                    let mut src = le * (sigma_t * (1.0 - m.albedo));
+                    let sigma_s = sigma_t * m.albedo;
+                    if sigma_s > 0.0 {
+                        let oc = &self.settings.octaves;
+                        if let Some(s) = sun {
+                            let tau = self.tau_sun(p, s.direction);
+                            let f = oc.sun(&m.phase, d.dot(s.direction), tau)
+                                * powder(tau, self.settings.powder);
+                            src += s.irradiance * (sigma_s * f);
+                        }
+                        src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
+                    }
+                    let add = step_inscatter(src, sigma_t, dt) * tr;
+                    l += add;
+                    let w = add.element_sum();
+                    depth_w += w;
+                    depth_sum += w * tm;
+                    tr *= step_transmittance(sigma_t, dt);
+                    if tr < self.settings.min_transmittance {
+                        tr = 0.0;
+                        break 'march;
+                    }
+                }
+            }
+        }
+        let depth = if depth_w > 0.0 {
+            depth_sum / depth_w
+        } else {
+            f32::INFINITY
+        };
+        let back = if let Some((t, kind)) = surface {
+            let p = o + d * t;
+            let q = sc.lift(kind, p);
+            // Surfaces take a direct shadow ray: one per pixel, and exact at the
+            // surface, where a table would interpolate across it.
+            let ts = sun.map_or(1.0, |s| {
+                if sc.blocked(q, s.direction) {
+                    0.0
+                } else {
+                    let h = match self.settings.shadows {
+                        Shadows::Rays(h) => h,
+                        Shadows::Table(_) => self.settings.step,
+                    };
+                    (-optical_depth_ray(sc.density, m.extinction, q, s.direction, h)).exp()
+                }
+            });
+            sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
+        } else {
+            sc.environment.radiance(d)
+        };
+        // The air between the eye and the volume dims its light and adds its
+        // own in-scatter where the volume hides what lies behind; the sky and
+        // ground behind already carry the air's light along the whole ray:
+        // `T_air·L + (1 − T)·L_air + T·L_back`.
+        let air = sc.air(d, depth);
+        air.transmittance * l + air.in_scatter * (1.0 - tr) + back * tr
+    }
+
+    /// Renders `camera`'s image.
+    ///
+    /// # Errors
+    ///
+    /// As [`Camera::validate`]; a too-large image.
+    pub fn render(&self, camera: &Camera) -> Result<Image> {
+        super::render_image(camera, |o, d, _, _| self.radiance(o, d))
+    }
+
+    /// The transmittance the march accumulates along the ray from `o` in unit
+    /// direction `d` over `[0, t_max]`: `exp(−σ·Σρ·Δt)` with midpoint samples.
+    #[must_use]
+    pub fn transmittance(&self, o: Vec3, d: Vec3, t_max: f32) -> f32 {
+        let Some((t0, t1)) = ray_box(o, d.recip(), &self.bounds) else {
+            return 1.0;
+        };
+        // The march's own steps over the whole box; each counts for its overlap
+        // with [0, t_max], so the result never grows with t_max.
+        let n = ((t1 - t0) / self.settings.step).ceil().max(1.0) as usize;
+        let dt = (t1 - t0) / n as f32;
+        let mut tau = 0.0;
+        for i in 0..n {
+            let a = t0 + i as f32 * dt;
+            let len = (t_max.min(a + dt) - a).clamp(0.0, dt);
+            if len <= 0.0 {
+                break;
+            }
+            tau += self.scene.density.density(o + d * (a + 0.5 * dt)) * len;
+        }
+        (-tau * self.scene.medium.extinction).exp()
+    }
+
+    /// The sun table, when the settings use tables and the scene has a sun.
+    #[must_use]
+    pub fn sun_table(&self) -> Option<&ShadowTable> {
+        self.sun_table.as_ref()
+    }
+}
+
+/// Checks a positive number of samples is at most `max`.
+pub(crate) fn check_count(name: &'static str, n: u32, max: u32) -> Result<()> {
+    positive(name, n as f32)?;
+    if n > max {
+        return Err(VolumeError::InvalidParameter {
+            name,
+            value: n.to_string(),
+            expected: "absurdly large",
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,536 @@
+//! Volume rendering: a camera, the medium's optical properties, sun and sky
+//! light (from `natura-atmos` or constant), an optional lit ground, and three
+//! ways to render: Ebert's low-albedo ray march with 3-D shadow tables
+//! ([`march`]), the same march with the octave multiple-scattering
+//! approximation, and the unbiased reference ([`reference`](mod@reference)), a
+//! null-scattering (delta and ratio tracking) path tracer with multiple
+//! scattering after Pharr et al. 2023, §14.2 ("Volume scattering
+//! integrators"), from which the fast modes' error is measured.
+//!
+//! Both renderers take the same [`Scene`] and call the same equations
+//! ([`model`]); they differ only in how they estimate the transport.
+//! Radiance is linear RGB; the sun is a directional light given by its
+//! irradiance normal to the beam.
+
+pub mod march;
+pub mod model;
+pub mod reference;
+pub mod shadow;
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use natura_atmos::sky::{ApSample, SkyView};
+use natura_core::{Grid2, Image};
+
+use crate::density::Density;
+use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
+use crate::phase::Phase;
+pub use march::{FastRenderer, MarchSettings, Shadows};
+pub use model::Octaves;
+pub use reference::{ReferenceRenderer, ReferenceSettings};
+pub use shadow::ShadowTable;
+
+/// A pinhole camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Camera {
+    /// Eye position (m).
+    pub position: Vec3,
+    /// The point looked at (m).
+    pub target: Vec3,
+    /// Vertical field of view (degrees, in `(0, 180)`).
+    pub vfov_deg: f32,
+    /// Image width (pixels).
+    pub width: usize,
+    /// Image height (pixels).
+    pub height: usize,
+}
+
+/// Largest image side accepted.
+pub const MAX_IMAGE_SIDE: usize = 16_384;
+
+impl Camera {
+    /// Checks the camera.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] for non-finite positions, a target
+    /// equal to the position or straight above or below it, a field of view
+    /// outside `(0, 180)`, or a side of 0 or above [`MAX_IMAGE_SIDE`].
+    pub fn validate(&self) -> Result<()> {
+        finite3("position", self.position)?;
+        finite3("target", self.target)?;
+        in_range(
+            "vfov_deg",
+            self.vfov_deg,
+            1e-3,
+            179.0,
+            "must lie in (0, 180) degrees",
+        )?;
+        for (name, n) in [("width", self.width), ("height", self.height)] {
+            if n == 0 || n > MAX_IMAGE_SIDE {
+                return Err(VolumeError::InvalidParameter {
+                    name,
+                    value: n.to_string(),
+                    expected: "must lie in 1..=16384",
+                });
+            }
+        }
+        let f = self.target - self.position;
+        if f.length() <= 0.0 || f.normalize().cross(Vec3::Z).length() < 1e-6 {
+            return Err(VolumeError::InvalidParameter {
+                name: "target",
+                value: format!("{:?}", self.target),
+                expected: "a point away from the eye and not straight above or below it",
+            });
+        }
+        Ok(())
+    }
+
+    /// The unit direction through the centre of pixel `(x, y)` (row 0 at the top).
+    #[must_use]
+    pub fn ray(&self, x: usize, y: usize) -> Vec3 {
+        let f = (self.target - self.position).normalize();
+        let r = f.cross(Vec3::Z).normalize();
+        let u = r.cross(f);
+        let th = (self.vfov_deg.to_radians() * 0.5).tan();
+        let aspect = self.width as f32 / self.height as f32;
+        let sx = (2.0 * (x as f32 + 0.5) / self.width as f32 - 1.0) * th * aspect;
+        let sy = (1.0 - 2.0 * (y as f32 + 0.5) / self.height as f32) * th;
+        (f + r * sx + u * sy).normalize()
+    }
+}
+
+/// The medium's optical properties: density `ρ` becomes extinction
+/// `σ_t = extinction·ρ` (1/m), of which the fraction `albedo` scatters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MediumParams {
+    /// Extinction per unit density (1/m).
+    pub extinction: f32,
+    /// Single-scattering albedo in `[0, 1]` (clouds: ≈ 1).
+    pub albedo: f32,
+    /// The phase function.
+    pub phase: Phase,
+}
+
+impl Default for MediumParams {
+    /// A cloud: 1/m extinction at density 1, albedo 0.99, the cloud phase function.
+    fn default() -> Self {
+        Self {
+            extinction: 1.0,
+            albedo: 0.99,
+            phase: Phase::default(),
+        }
+    }
+}
+
+impl MediumParams {
+    /// Checks the fields.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] naming the bad field.
+    pub fn validate(&self) -> Result<()> {
+        non_negative("extinction", self.extinction)?;
+        in_range(
+            "extinction",
+            self.extinction,
+            0.0,
+            1e9,
+            "must be below 1e9 1/m",
+        )?;
+        in_range("albedo", self.albedo, 0.0, 1.0, "must lie in [0, 1]")?;
+        self.phase.validate()
+    }
+}
+
+/// The light arriving from far away in every direction (the sun excluded).
+#[derive(Clone, Debug)]
+pub enum Environment {
+    /// The same radiance from every direction.
+    Uniform(Vec3),
+    /// The sky of `natura-atmos` (its sky-view table, without the sun disc).
+    Sky(Arc<SkyView>),
+}
+
+impl Environment {
+    /// Radiance arriving along `-d` (seen looking along the unit direction `d`).
+    #[inline]
+    #[must_use]
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        match self {
+            Environment::Uniform(c) => *c,
+            Environment::Sky(s) => s.radiance_f32(d),
+        }
+    }
+}
+
+/// A directional sun.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun {
+    /// Unit direction toward the sun.
+    pub direction: Vec3,
+    /// Irradiance normal to the beam (linear RGB).
+    pub irradiance: Vec3,
+}
+
+impl Sun {
+    /// The sun of a `natura-atmos` sky view: its direction and its irradiance after the air.
+    #[must_use]
+    pub fn from_sky(sky: &SkyView) -> Self {
+        Self {
+            direction: sky.sun().as_vec3(),
+            irradiance: sky.sun_irradiance(),
+        }
+    }
+}
+
+/// A flat Lambertian ground at height `height`, lit by the sun through the
+/// volume and by the sky; it does not reflect light back into the volume
+/// (in either renderer).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ground {
+    /// Height of the plane (m).
+    pub height: f32,
+    /// Albedo (linear RGB, each in `[0, 1]`).
+    pub albedo: Vec3,
+    /// Sky irradiance on the horizontal (linear RGB).
+    pub sky_irradiance: Vec3,
+}
+
+/// An opaque Lambertian sphere (for example a fluid simulation's obstacle):
+/// seen, lit by the sun through the volume, shadowing the volume, the ground
+/// and other solids from the sun; like the ground it does not reflect light
+/// back into the volume.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solid {
+    /// Centre (m).
+    pub centre: Vec3,
+    /// Radius (m, `> 0`).
+    pub radius: f32,
+    /// Albedo (linear RGB, each in `[0, 1]`).
+    pub albedo: Vec3,
+    /// Ambient irradiance on its surface (linear RGB).
+    pub sky_irradiance: Vec3,
+}
+
+impl Solid {
+    /// Whether `p` lies inside the sphere.
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, p: Vec3) -> bool {
+        (p - self.centre).length_squared() < self.radius * self.radius
+    }
+
+    /// Distance along unit `d` from `o` to the sphere's surface (from outside), if hit.
+    #[inline]
+    #[must_use]
+    pub fn hit(&self, o: Vec3, d: Vec3) -> Option<f32> {
+        let oc = o - self.centre;
+        let b = oc.dot(d);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if disc < 0.0 {
+            return None;
+        }
+        let t = -b - disc.sqrt();
+        if t > 0.0 {
+            Some(t)
+        } else if c < 0.0 {
+            Some(0.0)
+        } else {
+            None
+        }
+    }
+}
+
+/// Optical depth standing for "blocked by a solid" (transmittance `e^{−30}`).
+pub const BLOCKED_DEPTH: f32 = 30.0;
+
+/// What a ray hits beyond the volume.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Surface {
+    Ground,
+    Solid(usize),
+}
+
+/// Emission from a second field (for smoke: temperature), radiance
+/// `colour·max(value − offset, 0)` per unit absorption.
+#[derive(Clone, Copy)]
+pub struct Emission<'a> {
+    /// The field (for smoke: temperature, K).
+    pub field: &'a dyn Density,
+    /// Subtracted from the field (for smoke: ambient temperature).
+    pub offset: f32,
+    /// Radiance per unit of `value − offset`.
+    pub colour: Vec3,
+}
+
+impl std::fmt::Debug for Emission<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Emission")
+            .field("offset", &self.offset)
+            .field("colour", &self.colour)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Everything a renderer needs: the density, its optical properties and the lights.
+#[derive(Clone)]
+pub struct Scene<'a> {
+    /// The density field.
+    pub density: &'a dyn Density,
+    /// Its optical properties.
+    pub medium: MediumParams,
+    /// The sun, if any.
+    pub sun: Option<Sun>,
+    /// Light from every direction.
+    pub environment: Environment,
+    /// A lit ground plane, if any.
+    pub ground: Option<Ground>,
+    /// Emission, if any.
+    pub emission: Option<Emission<'a>>,
+    /// Aerial perspective between the eye and what it sees, if any.
+    pub aerial: Option<Arc<SkyView>>,
+    /// Opaque spheres.
+    pub solids: Vec<Solid>,
+}
+
+impl std::fmt::Debug for Scene<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Scene")
+            .field("medium", &self.medium)
+            .field("sun", &self.sun)
+            .field("ground", &self.ground)
+            .field("emission", &self.emission)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> Scene<'a> {
+    /// A scene of `density` with `medium`, lit only by a uniform `environment` radiance.
+    #[must_use]
+    pub fn new(density: &'a dyn Density, medium: MediumParams, environment: Vec3) -> Self {
+        Self {
+            density,
+            medium,
+            sun: None,
+            environment: Environment::Uniform(environment),
+            ground: None,
+            emission: None,
+            aerial: None,
+            solids: Vec::new(),
+        }
+    }
+
+    /// Checks the medium, lights and ground.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] naming the bad field;
+    /// [`VolumeError::InvalidBounds`] for bad density bounds.
+    pub fn validate(&self) -> Result<()> {
+        self.medium.validate()?;
+        crate::density::check_bounds("density bounds", &self.density.bounds())?;
+        let m = self.density.max_density();
+        if !(m.is_finite() && m >= 0.0) {
+            return Err(VolumeError::InvalidParameter {
+                name: "max_density",
+                value: m.to_string(),
+                expected: "a finite bound ≥ 0",
+            });
+        }
+        if let Some(s) = self.sun {
+            shadow::unit("sun.direction", s.direction)?;
+            rgb("sun.irradiance", s.irradiance)?;
+        }
+        if let Environment::Uniform(c) = self.environment {
+            rgb("environment", c)?;
+        }
+        if let Some(g) = self.ground {
+            finite3("ground.height", Vec3::splat(g.height))?;
+            rgb("ground.sky_irradiance", g.sky_irradiance)?;
+            for c in g.albedo.to_array() {
+                in_range(
+                    "ground.albedo",
+                    c,
+                    0.0,
+                    1.0,
+                    "each channel must lie in [0, 1]",
+                )?;
+            }
+        }
+        if self.solids.len() > 10_000 {
+            return Err(VolumeError::InvalidParameter {
+                name: "solids",
+                value: self.solids.len().to_string(),
+                expected: "at most 10 000 solids",
+            });
+        }
+        for s in &self.solids {
+            finite3("solid.centre", s.centre)?;
+            positive("solid.radius", s.radius)?;
+            rgb("solid.sky_irradiance", s.sky_irradiance)?;
+            for c in s.albedo.to_array() {
+                in_range(
+                    "solid.albedo",
+                    c,
+                    0.0,
+                    1.0,
+                    "each channel must lie in [0, 1]",
+                )?;
+            }
+        }
+        if let Some(e) = self.emission {
+            finite3("emission.offset", Vec3::splat(e.offset))?;
+            rgb("emission.colour", e.colour)?;
+        }
+        Ok(())
+    }
+
+    /// The sun, normalised.
+    pub(crate) fn sun_unit(&self) -> Option<Sun> {
+        self.sun.map(|s| Sun {
+            direction: s.direction.normalize(),
+            irradiance: s.irradiance,
+        })
+    }
+
+    /// Distance along `d` from `o` to the ground, if the ray hits it.
+    #[inline]
+    pub(crate) fn ground_hit(&self, o: Vec3, d: Vec3) -> Option<f32> {
+        let g = self.ground?;
+        if d.z >= 0.0 || o.z < g.height {
+            return None;
+        }
+        Some((g.height - o.z) / d.z)
+    }
+
+    /// The nearest surface (ground or solid) along unit `d` from `o`.
+    #[inline]
+    pub(crate) fn surface_hit(&self, o: Vec3, d: Vec3) -> Option<(f32, Surface)> {
+        let mut best = self.ground_hit(o, d).map(|t| (t, Surface::Ground));
+        for (i, s) in self.solids.iter().enumerate() {
+            if let Some(t) = s.hit(o, d)
+                && best.is_none_or(|(b, _)| t < b)
+            {
+                best = Some((t, Surface::Solid(i)));
+            }
+        }
+        best
+    }
+
+    /// Whether a solid lies between `p` and the light along unit `l`.
+    #[inline]
+    pub(crate) fn blocked(&self, p: Vec3, l: Vec3) -> bool {
+        self.solids.iter().any(|s| s.hit(p, l).is_some())
+    }
+
+    /// A point just off surface `s` at `p` (outside a solid), where the sun's
+    /// transmittance is looked up.
+    #[inline]
+    pub(crate) fn lift(&self, s: Surface, p: Vec3) -> Vec3 {
+        match s {
+            Surface::Ground => p + Vec3::Z * 1e-3,
+            Surface::Solid(i) => {
+                let c = &self.solids[i];
+                c.centre + (p - c.centre).normalize_or(Vec3::Z) * (c.radius * 1.001 + 1e-4)
+            }
+        }
+    }
+
+    /// Radiance of surface `s` at `p` given the sun's transmittance through the volume there.
+    #[inline]
+    pub(crate) fn surface_radiance(&self, s: Surface, p: Vec3, t_sun: f32) -> Vec3 {
+        match s {
+            Surface::Ground => self.ground_radiance(t_sun),
+            Surface::Solid(i) => {
+                let c = &self.solids[i];
+                let n = (p - c.centre).normalize_or(Vec3::Z);
+                match self.sun_unit() {
+                    Some(sun) => model::lit_ground(
+                        c.albedo,
+                        sun.irradiance,
+                        n.dot(sun.direction),
+                        t_sun,
+                        c.sky_irradiance,
+                    ),
+                    None => model::lit_ground(c.albedo, Vec3::ZERO, 0.0, 1.0, c.sky_irradiance),
+                }
+            }
+        }
+    }
+
+    /// Radiance of the ground at `p` given the sun's transmittance there.
+    #[inline]
+    pub(crate) fn ground_radiance(&self, t_sun: f32) -> Vec3 {
+        let Some(g) = self.ground else {
+            return Vec3::ZERO;
+        };
+        match self.sun_unit() {
+            Some(s) => model::lit_ground(
+                g.albedo,
+                s.irradiance,
+                s.direction.z,
+                t_sun,
+                g.sky_irradiance,
+            ),
+            None => model::lit_ground(g.albedo, Vec3::ZERO, 0.0, 1.0, g.sky_irradiance),
+        }
+    }
+
+    /// The eye's view of what lies at distance `depth` with radiance `l`
+    /// (aerial perspective when the scene has one).
+    #[inline]
+    pub(crate) fn through_air(&self, d: Vec3, depth: f32, l: Vec3) -> Vec3 {
+        self.air(d, depth).apply(l)
+    }
+
+    /// The air's transmittance and in-scatter over `depth` along `d` (none
+    /// without aerial perspective or at infinite depth).
+    #[inline]
+    pub(crate) fn air(&self, d: Vec3, depth: f32) -> ApSample {
+        match &self.aerial {
+            Some(s) if depth.is_finite() => s.aerial_perspective_f32(d, depth),
+            _ => ApSample::NONE,
+        }
+    }
+}
+
+fn rgb(name: &'static str, c: Vec3) -> Result<()> {
+    finite3(name, c)?;
+    for v in c.to_array() {
+        non_negative(name, v)?;
+    }
+    Ok(())
+}
+
+/// Renders `camera`'s image with `radiance(origin, direction, x, y)` per
+/// pixel, rows in parallel (bit-identical on any thread count).
+pub(crate) fn render_image(
+    camera: &Camera,
+    radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
+) -> Result<Image> {
+    camera.validate()?;
+    let f = |x: usize, y: usize| radiance(camera.position, camera.ray(x, y), x, y);
+    #[cfg(feature = "parallel")]
+    let g = Grid2::par_from_fn(camera.width, camera.height, f)?;
+    #[cfg(not(feature = "parallel"))]
+    let g = Grid2::from_fn(camera.width, camera.height, f)?;
+    Ok(Image::from_grid(g))
+}
+
+/// Checks a step length in metres: finite, `> 0`, and no more than `max_steps` across `extent`.
+pub(crate) fn check_step(name: &'static str, step: f32, extent: f32, max_steps: f32) -> Result<()> {
+    positive(name, step)?;
+    if extent / step > max_steps {
+        return Err(VolumeError::InvalidParameter {
+            name,
+            value: step.to_string(),
+            expected: "too small: more than 10^7 steps across the volume",
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,225 @@
+//! The unbiased reference: a null-scattering path tracer with multiple
+//! scattering (Pharr et al. 2023, §14.1, the null-scattering equation of
+//! transfer and the sampling of the majorant transmittance, and §14.2.1, the
+//! simple volumetric integrator). Free flights are sampled by delta tracking
+//! against a constant majorant `σ̄ = σ·max ρ` (a real collision with
+//! probability `σ_t/σ̄`, otherwise a null collision that changes nothing);
+//! the sun is sampled at every real collision with its transmittance
+//! estimated by ratio tracking (`T = Π(1 − σ_t/σ̄)` over the majorant's
+//! events; Novák et al. 2014); the environment is reached by phase-sampled
+//! paths that leave the volume; absorption weights the path by the albedo;
+//! Russian roulette ends long paths without bias. Ground and solids are lit
+//! surfaces that end a path (they do not reflect light back into the volume),
+//! exactly as in the fast renderer.
+//!
+//! It is kept short and plainly correct, like pbrt-v4's simple integrator
+//! beside its fast one: its job is to be the truth the fast modes are
+//! measured against.
+
+use glam::Vec3;
+use natura_core::{Image, Seed};
+use rand_core::Rng;
+
+use super::model::emitted;
+use super::{Camera, Scene};
+use crate::animate::unit;
+use crate::density::ray_box;
+use crate::error::Result;
+
+/// Settings of the reference renderer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ReferenceSettings {
+    /// Paths per pixel (1 to 10⁶).
+    pub samples_per_pixel: u32,
+    /// Longest path in scattering events (1 to 10⁵); Russian roulette ends most paths long before.
+    pub max_depth: u32,
+    /// Random seed.
+    pub seed: u64,
+}
+
+impl Default for ReferenceSettings {
+    /// 256 paths per pixel, up to 1000 bounces.
+    fn default() -> Self {
+        Self {
+            samples_per_pixel: 256,
+            max_depth: 1000,
+            seed: 1,
+        }
+    }
+}
+
+/// The reference path tracer for one scene.
+#[derive(Clone, Debug)]
+pub struct ReferenceRenderer<'s> {
+    scene: &'s Scene<'s>,
+    settings: ReferenceSettings,
+    majorant: f32,
+}
+
+impl<'s> ReferenceRenderer<'s> {
+    /// Prepares `scene`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::validate`]; [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter)
+    /// for a sample count or depth of 0 or absurdly large.
+    pub fn new(scene: &'s Scene<'s>, settings: ReferenceSettings) -> Result<Self> {
+        scene.validate()?;
+        super::march::check_count("samples_per_pixel", settings.samples_per_pixel, 1_000_000)?;
+        super::march::check_count("max_depth", settings.max_depth, 100_000)?;
+        let majorant = scene.medium.extinction * scene.density.bound_in(&scene.density.bounds());
+        crate::error::in_range(
+            "majorant",
+            majorant,
+            0.0,
+            1e9,
+            "extinction × maximum density must be below 1e9 1/m",
+        )?;
+        Ok(Self {
+            scene,
+            settings,
+            majorant,
+        })
+    }
+
+    /// Ratio-tracking transmittance from `p` along unit `l` out of the volume.
+    fn transmittance(&self, p: Vec3, l: Vec3, rng: &mut impl Rng) -> f32 {
+        let sc = self.scene;
+        let Some((t0, t1)) = ray_box(p, l.recip(), &sc.density.bounds()) else {
+            return 1.0;
+        };
+        if self.majorant <= 0.0 {
+            return 1.0;
+        }
+        let mut t = t0;
+        let mut tr = 1.0f32;
+        loop {
+            t -= (1.0 - unit(rng)).ln() / self.majorant;
+            if t >= t1 {
+                return tr;
+            }
+            let sigma_t = sc.medium.extinction * sc.density.density(p + l * t);
+            tr *= 1.0 - (sigma_t / self.majorant).min(1.0);
+            if tr <= 0.0 {
+                return 0.0;
+            }
+        }
+    }
+
+    /// One path's estimate of the radiance arriving at `o` along `-d`.
+    pub fn radiance(&self, o: Vec3, d: Vec3, rng: &mut impl Rng) -> Vec3 {
+        let sc = self.scene;
+        let m = &sc.medium;
+        let sun = sc.sun_unit();
+        let bounds = sc.density.bounds();
+        let (mut o, mut d) = (o, d);
+        let d_eye = d;
+        let mut beta = Vec3::ONE;
+        let mut l = Vec3::ZERO;
+        let mut first_depth = f32::INFINITY;
+        let mut depth = 0u32;
+        loop {
+            let surface = sc.surface_hit(o, d);
+            let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
+            // Delta tracking to the next real collision inside the volume.
+            let mut hit = None;
+            if let Some((t0, t1)) = ray_box(o, d.recip(), &bounds)
+                && self.majorant > 0.0
+            {
+                let t1 = t1.min(t_ground);
+                let mut t = t0;
+                loop {
+                    t -= (1.0 - unit(rng)).ln() / self.majorant;
+                    if t >= t1 {
+                        break;
+                    }
+                    let p = o + d * t;
+                    let sigma_t = m.extinction * sc.density.density(p);
+                    if unit(rng) * self.majorant < sigma_t {
+                        hit = Some((t, p));
+                        break;
+                    }
+                }
+            }
+            let Some((t, p)) = hit else {
+                // Left the volume: the ground or the environment.
+                if depth == 0 {
+                    first_depth = t_ground;
+                }
+                let back = if let Some((t, kind)) = surface {
+                    let g = o + d * t;
+                    let q = sc.lift(kind, g);
+                    let ts = sun.map_or(1.0, |s| {
+                        if sc.blocked(q, s.direction) {
+                            0.0
+                        } else {
+                            self.transmittance(q, s.direction, rng)
+                        }
+                    });
+                    sc.surface_radiance(kind, g, ts)
+                } else {
+                    sc.environment.radiance(d)
+                };
+                l += beta * back;
+                break;
+            };
+            if depth == 0 {
+                first_depth = t;
+            }
+            if let Some(e) = sc.emission {
+                l += beta * emitted(e.colour, e.field.density(p), e.offset) * (1.0 - m.albedo);
+            }
+            beta *= m.albedo;
+            if let Some(s) = sun {
+                let f = if sc.blocked(p, s.direction) {
+                    0.0
+                } else {
+                    m.phase.eval(d.dot(s.direction)) * self.transmittance(p, s.direction, rng)
+                };
+                l += beta * s.irradiance * f;
+            }
+            depth += 1;
+            if depth >= self.settings.max_depth {
+                break;
+            }
+            if depth >= 8 {
+                let q = beta.max_element().min(0.95);
+                if unit(rng) >= q {
+                    break;
+                }
+                beta /= q;
+            }
+            let (nd, w) = m.phase.sample(d, [unit(rng), unit(rng), unit(rng)]);
+            beta *= w;
+            o = p;
+            d = nd;
+        }
+        sc.through_air(d_eye, first_depth, l)
+    }
+
+    /// The mean of `samples_per_pixel` paths for the ray from `o` along unit `d`,
+    /// with the random stream of pixel `(x, y)`.
+    #[must_use]
+    pub fn pixel(&self, o: Vec3, d: Vec3, x: usize, y: usize) -> Vec3 {
+        let mut rng = Seed(self.settings.seed)
+            .derive_index(Seed(0).hash2(x as i64, y as i64))
+            .rng();
+        let n = self.settings.samples_per_pixel;
+        let mut s = Vec3::ZERO;
+        for _ in 0..n {
+            s += self.radiance(o, d, &mut rng);
+        }
+        s / n as f32
+    }
+
+    /// Renders `camera`'s image (bit-identical on any number of threads: each
+    /// pixel has its own random stream).
+    ///
+    /// # Errors
+    ///
+    /// As [`Camera::validate`]; a too-large image.
+    pub fn render(&self, camera: &Camera) -> Result<Image> {
+        super::render_image(camera, |o, d, x, y| self.pixel(o, d, x, y))
+    }
+}

@@ -1,0 +1,610 @@
+//! Renderer tests: closed-form transmittance through slabs and spheres, the
+//! white furnace, shadow tables against shadow rays, the fast modes against
+//! the reference on three scenes, thread-count independence and bad input.
+
+use glam::Vec3;
+use natura_core::{Aabb, Grid3, Image};
+use natura_volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
+use natura_volume::density::{Ball, Homogeneous};
+use natura_volume::grid::GridDensity;
+use natura_volume::implicit::Primitive;
+use natura_volume::phase::Phase;
+use natura_volume::render::shadow::optical_depth_ray;
+use natura_volume::render::{
+    Camera, FastRenderer, MarchSettings, MediumParams, ReferenceRenderer, ReferenceSettings, Scene,
+    ShadowTable, Shadows, Sun,
+};
+use natura_volume::{Density, VolumeError};
+
+fn absorber(extinction: f32) -> MediumParams {
+    MediumParams {
+        extinction,
+        albedo: 0.0,
+        phase: Phase::Isotropic,
+    }
+}
+
+fn unit_box() -> Aabb {
+    Aabb {
+        min: Vec3::new(-1.0, -1.0, 0.0),
+        max: Vec3::new(1.0, 1.0, 2.0),
+    }
+}
+
+#[test]
+fn slab_transmittance_is_beer_lambert() {
+    let slab = Homogeneous::new(unit_box(), 0.7).unwrap();
+    let scene = Scene::new(&slab, absorber(1.3), Vec3::ONE);
+    let fast = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.05,
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let reference = ReferenceRenderer::new(
+        &scene,
+        ReferenceSettings {
+            samples_per_pixel: 20_000,
+            ..ReferenceSettings::default()
+        },
+    )
+    .unwrap();
+    for (o, d) in [
+        (Vec3::new(-3.0, 0.2, 1.0), Vec3::X),
+        (Vec3::new(0.3, -0.4, 5.0), -Vec3::Z),
+        (
+            Vec3::new(-3.0, -3.0, -1.0),
+            Vec3::new(1.0, 1.0, 0.9).normalize(),
+        ),
+    ] {
+        let (t0, t1) = natura_volume::density::ray_box(o, d.recip(), &unit_box()).unwrap();
+        let exact = (-1.3f32 * 0.7 * (t1 - t0)).exp();
+        assert!((fast.transmittance(o, d, f32::INFINITY) - exact).abs() < 1e-5);
+        // An absorber in a unit environment shows exactly its transmittance.
+        assert!(
+            (fast.radiance(o, d).x - exact).abs() < 1e-4,
+            "{} vs {exact}",
+            fast.radiance(o, d).x
+        );
+        let r = reference.pixel(o, d, 0, 0).x;
+        assert!((r - exact).abs() < 0.015, "reference {r} vs {exact}");
+    }
+}
+
+#[test]
+fn sphere_transmittance_is_beer_lambert_within_the_step_error() {
+    let ball = Ball::new(Vec3::new(0.0, 0.0, 3.0), 1.5, 1.0).unwrap();
+    let scene = Scene::new(&ball, absorber(0.8), Vec3::ONE);
+    let step = 0.01;
+    let fast = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step,
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    for b in [0.0f32, 0.5, 1.0, 1.4] {
+        let o = Vec3::new(-5.0, b, 3.0);
+        let chord = 2.0 * (1.5f32 * 1.5 - b * b).sqrt();
+        let exact = (-0.8 * chord).exp();
+        let t = fast.transmittance(o, Vec3::X, f32::INFINITY);
+        // Each end of the chord is resolved to within one step.
+        assert!(
+            (t - exact).abs() <= 0.8 * 2.0 * step * exact * 1.01 + 1e-6,
+            "b = {b}: {t} vs {exact}"
+        );
+    }
+}
+
+#[test]
+fn transmittance_is_in_unit_interval_and_non_increasing() {
+    let c = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 3).unwrap();
+    let scene = Scene::new(
+        &c,
+        MediumParams {
+            extinction: 2.0,
+            ..MediumParams::default()
+        },
+        Vec3::ZERO,
+    );
+    let fast = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.1,
+            shadows: Shadows::Rays(0.2),
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let o = Vec3::new(-12.0, 0.3, 2.5);
+    let mut prev = 1.0;
+    for i in 0..=60 {
+        let t = fast.transmittance(o, Vec3::X, i as f32 * 0.4);
+        assert!(t > 0.0 && t <= 1.0);
+        assert!(t <= prev);
+        prev = t;
+    }
+    assert!(prev < 0.9, "the cloud attenuates: {prev}");
+    // A zero-density volume: T = 1 and no light added.
+    let empty = Homogeneous::new(unit_box(), 0.0).unwrap();
+    let dark = Scene {
+        sun: Some(Sun {
+            direction: Vec3::Z,
+            irradiance: Vec3::ONE,
+        }),
+        ..Scene::new(&empty, MediumParams::default(), Vec3::ZERO)
+    };
+    let f = FastRenderer::new(&dark, MarchSettings::default()).unwrap();
+    assert_eq!(
+        f.transmittance(Vec3::new(-3.0, 0.0, 1.0), Vec3::X, f32::INFINITY),
+        1.0
+    );
+    assert_eq!(f.radiance(Vec3::new(-3.0, 0.0, 1.0), Vec3::X), Vec3::ZERO);
+}
+
+#[test]
+fn white_furnace_conserves_energy() {
+    // Albedo 1 in a uniform environment: every path escapes with weight 1, so
+    // the radiance equals the environment's whatever the phase function.
+    let ball = Ball::new(Vec3::ZERO, 1.0, 1.0).unwrap();
+    for phase in [
+        Phase::Isotropic,
+        Phase::HenyeyGreenstein(0.7),
+        Phase::Cloud { diameter_um: 20.0 },
+    ] {
+        let medium = MediumParams {
+            extinction: 4.0,
+            albedo: 1.0,
+            phase,
+        };
+        let scene = Scene::new(&ball, medium, Vec3::splat(0.5));
+        let r = ReferenceRenderer::new(
+            &scene,
+            ReferenceSettings {
+                samples_per_pixel: 4000,
+                ..ReferenceSettings::default()
+            },
+        )
+        .unwrap();
+        for (x, y) in [(0usize, 0usize), (1, 0)] {
+            let l = r.pixel(Vec3::new(-4.0, 0.1 * x as f32, 0.2), Vec3::X, x, y);
+            assert!(
+                (l - Vec3::splat(0.5)).abs().max_element() < 0.02,
+                "{phase:?}: {l}"
+            );
+        }
+    }
+}
+
+fn cumulus_grid() -> GridDensity {
+    let c = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 7).unwrap();
+    GridDensity::bake(&c, 0.25).unwrap()
+}
+
+#[test]
+fn shadow_table_agrees_with_shadow_rays() {
+    let g = cumulus_grid();
+    let sun = Vec3::new(0.5, 0.3, 0.8).normalize();
+    let ext = 2.0;
+    let b = g.bounds();
+    // Stated tolerance, in transmittance: at 64 nodes along the longest axis
+    // (node spacing ≈ 1.4 voxels) mean |ΔT| < 0.005 and max < 0.04; at 128
+    // nodes mean < 0.002 and max < 0.015.
+    for (nodes, mean_tol, max_tol) in [(64usize, 0.005f32, 0.04f32), (128, 0.002, 0.015)] {
+        let dims = natura_volume::render::shadow::table_dims(&b, nodes);
+        let table = ShadowTable::build(&g, ext, sun, dims).unwrap();
+        let (mut worst, mut sum, mut n) = (0.0f32, 0.0f32, 0);
+        let mut s = 12345u32;
+        let mut u = || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s >> 8) as f32 / (1 << 24) as f32
+        };
+        for _ in 0..3000 {
+            let p = b.min + (b.max - b.min) * Vec3::new(u(), u(), u());
+            if g.density(p) <= 0.0 {
+                continue;
+            }
+            let ray = (-optical_depth_ray(&g, ext, p, sun, 0.02)).exp();
+            let tab = table.transmittance(p);
+            worst = worst.max((ray - tab).abs());
+            sum += (ray - tab).abs();
+            n += 1;
+        }
+        let mean = sum / n as f32;
+        eprintln!(
+            "shadow table ({nodes} nodes) vs rays: {n} points, mean |ΔT| = {mean:.4}, max |ΔT| = {worst:.4}"
+        );
+        assert!(
+            mean < mean_tol && worst < max_tol,
+            "{nodes}: mean {mean}, max {worst}"
+        );
+    }
+}
+
+/// Relative luminance error of `a` against the reference `r`: over the whole
+/// image, and over the pixels that see the volume (`mask`).
+fn rel_error(a: &Image, r: &Image, mask: &[bool]) -> (f32, f32) {
+    let lum = |c: Vec3| f64::from(natura_core::colour::luminance(c));
+    let (mut d, mut s, mut dm, mut sm) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for ((x, y), &m) in a
+        .pixels()
+        .as_slice()
+        .iter()
+        .zip(r.pixels().as_slice())
+        .zip(mask)
+    {
+        d += (lum(*x) - lum(*y)).abs();
+        s += lum(*y);
+        if m {
+            dm += (lum(*x) - lum(*y)).abs();
+            sm += lum(*y);
+        }
+    }
+    ((d / s) as f32, (dm / sm.max(1e-12)) as f32)
+}
+
+fn compare(
+    name: &str,
+    density: &dyn Density,
+    extinction: f32,
+    camera: Camera,
+    spp: u32,
+) -> (f32, f32) {
+    let medium = MediumParams {
+        extinction,
+        ..MediumParams::default()
+    };
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(-0.4, -0.5, 0.77).normalize(),
+            irradiance: Vec3::splat(3.0),
+        }),
+        ..Scene::new(density, medium, Vec3::new(0.15, 0.2, 0.3))
+    };
+    let reference = ReferenceRenderer::new(
+        &scene,
+        ReferenceSettings {
+            samples_per_pixel: spp,
+            ..ReferenceSettings::default()
+        },
+    )
+    .unwrap()
+    .render(&camera)
+    .unwrap();
+    let base = MarchSettings {
+        step: 0.05,
+        ..MarchSettings::default()
+    };
+    let single = FastRenderer::new(&scene, base)
+        .unwrap()
+        .render(&camera)
+        .unwrap();
+    let multi = FastRenderer::new(&scene, base.multiple_scattering())
+        .unwrap()
+        .render(&camera)
+        .unwrap();
+    // The pixels whose rays lose more than 2 % to the volume.
+    let f = FastRenderer::new(&scene, base).unwrap();
+    let mask: Vec<bool> = (0..camera.height)
+        .flat_map(|y| (0..camera.width).map(move |x| (x, y)))
+        .map(|(x, y)| f.transmittance(camera.position, camera.ray(x, y), f32::INFINITY) < 0.98)
+        .collect();
+    let (es, em) = (
+        rel_error(&single, &reference, &mask),
+        rel_error(&multi, &reference, &mask),
+    );
+    eprintln!(
+        "{name}: relative luminance error (whole image / pixels that see the volume): single scattering {:.3} / {:.3}, octave multiple scattering {:.3} / {:.3}",
+        es.0, es.1, em.0, em.1
+    );
+    (es.1, em.1)
+}
+
+fn camera_for(b: &Aabb, w: usize, h: usize) -> Camera {
+    let c = (b.min + b.max) * 0.5;
+    let r = (b.max - b.min).length() * 0.5;
+    Camera {
+        position: c + Vec3::new(0.0, -2.6 * r, 0.3 * r),
+        target: c,
+        vfov_deg: 45.0,
+        width: w,
+        height: h,
+    }
+}
+
+#[test]
+fn fast_modes_against_the_reference() {
+    // Dense cumulus: multiple scattering must be closer to the reference.
+    let g = cumulus_grid();
+    let (es, em) = compare(
+        "dense cumulus",
+        &g,
+        6.0,
+        camera_for(&g.bounds(), 20, 14),
+        48,
+    );
+    assert!(em < es, "multiple scattering {em} vs single {es}");
+    // Thin cirrus: a thin sheared sheet, single scattering is already close.
+    let ci = cloud(
+        vec![Primitive::ellipsoid(
+            Vec3::new(0.0, 0.0, 3.0),
+            Vec3::new(8.0, 5.0, 1.2),
+        )],
+        CloudParams::cirrus(Vec3::new(2.0, 0.0, 0.0)),
+        5,
+    )
+    .unwrap();
+    let cg = GridDensity::bake(&ci, 0.25).unwrap();
+    let (es, em) = compare(
+        "thin cirrus",
+        &cg,
+        20.0,
+        camera_for(&cg.bounds(), 20, 14),
+        48,
+    );
+    assert!(es.is_finite() && em.is_finite());
+    // Smoke: a soft column of density.
+    let smoke = Grid3::from_fn(16, 16, 24, |i, j, k| {
+        let (x, y) = (i as f32 - 7.5, j as f32 - 7.5);
+        (1.0 - (x * x + y * y) / 40.0).max(0.0) * (k as f32 / 24.0)
+    })
+    .unwrap();
+    let sg = GridDensity::new(smoke, Vec3::new(-0.8, -0.8, 0.0), 0.1).unwrap();
+    let (es, em) = compare("smoke", &sg, 3.0, camera_for(&sg.bounds(), 20, 14), 48);
+    assert!(es.is_finite() && em.is_finite());
+}
+
+#[test]
+fn images_are_identical_on_one_and_two_threads() {
+    let g = cumulus_grid();
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(0.3, -0.2, 0.9).normalize(),
+            irradiance: Vec3::ONE,
+        }),
+        ..Scene::new(&g, MediumParams::default(), Vec3::splat(0.1))
+    };
+    let cam = camera_for(&g.bounds(), 24, 16);
+    let render = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let fast = FastRenderer::new(&scene, MarchSettings::default().multiple_scattering())
+                .unwrap()
+                .render(&cam)
+                .unwrap();
+            let reference = ReferenceRenderer::new(
+                &scene,
+                ReferenceSettings {
+                    samples_per_pixel: 4,
+                    ..ReferenceSettings::default()
+                },
+            )
+            .unwrap()
+            .render(&cam)
+            .unwrap();
+            (fast, reference)
+        })
+    };
+    let (a, b) = (render(1), render(2));
+    let bits = |i: &Image| {
+        i.pixels()
+            .as_slice()
+            .iter()
+            .flat_map(|c| c.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&a.0), bits(&b.0));
+    assert_eq!(bits(&a.1), bits(&b.1));
+}
+
+#[test]
+fn bad_render_input_is_a_typed_error() {
+    let slab = Homogeneous::new(unit_box(), 0.5).unwrap();
+    let scene = Scene::new(&slab, MediumParams::default(), Vec3::ONE);
+    for s in [
+        MarchSettings {
+            step: 0.0,
+            ..MarchSettings::default()
+        },
+        MarchSettings {
+            step: f32::NAN,
+            ..MarchSettings::default()
+        },
+        MarchSettings {
+            step: 1e-12,
+            ..MarchSettings::default()
+        },
+        MarchSettings {
+            shadows: Shadows::Table(1),
+            ..MarchSettings::default()
+        },
+        MarchSettings {
+            shadows: Shadows::Rays(0.0),
+            ..MarchSettings::default()
+        },
+        MarchSettings {
+            powder: 2.0,
+            ..MarchSettings::default()
+        },
+    ] {
+        assert!(
+            matches!(
+                FastRenderer::new(&scene, s),
+                Err(VolumeError::InvalidParameter { .. })
+            ),
+            "{s:?}"
+        );
+    }
+    for s in [
+        ReferenceSettings {
+            samples_per_pixel: 0,
+            ..ReferenceSettings::default()
+        },
+        ReferenceSettings {
+            samples_per_pixel: u32::MAX,
+            ..ReferenceSettings::default()
+        },
+        ReferenceSettings {
+            max_depth: 0,
+            ..ReferenceSettings::default()
+        },
+    ] {
+        assert!(ReferenceRenderer::new(&scene, s).is_err());
+    }
+    let bad = Scene::new(
+        &slab,
+        MediumParams {
+            extinction: f32::NAN,
+            ..MediumParams::default()
+        },
+        Vec3::ONE,
+    );
+    assert!(FastRenderer::new(&bad, MarchSettings::default()).is_err());
+    let bad = Scene::new(
+        &slab,
+        MediumParams {
+            albedo: 1.5,
+            ..MediumParams::default()
+        },
+        Vec3::ONE,
+    );
+    assert!(ReferenceRenderer::new(&bad, ReferenceSettings::default()).is_err());
+    let sun0 = Scene {
+        sun: Some(Sun {
+            direction: Vec3::ZERO,
+            irradiance: Vec3::ONE,
+        }),
+        ..scene.clone()
+    };
+    assert!(FastRenderer::new(&sun0, MarchSettings::default()).is_err());
+    let f = FastRenderer::new(&scene, MarchSettings::default()).unwrap();
+    let cam = Camera {
+        position: Vec3::ZERO,
+        target: Vec3::X,
+        vfov_deg: 40.0,
+        width: 0,
+        height: 10,
+    };
+    assert!(f.render(&cam).is_err());
+    let cam = Camera {
+        width: 10,
+        target: Vec3::new(0.0, 0.0, 5.0),
+        ..cam
+    };
+    assert!(f.render(&cam).is_err());
+    let cam = Camera {
+        target: Vec3::X,
+        vfov_deg: 0.0,
+        ..cam
+    };
+    assert!(f.render(&cam).is_err());
+}
+
+#[test]
+fn solids_are_seen_and_cast_shadows_in_both_renderers() {
+    use natura_volume::render::{Ground, Solid};
+    // A thin fog slab over a floor, a sphere above it between the slab and the sun.
+    let region = Aabb {
+        min: Vec3::new(-4.0, -4.0, 0.0),
+        max: Vec3::new(4.0, 4.0, 1.0),
+    };
+    let slab = Homogeneous::new(region, 1.0).unwrap();
+    let sky = Vec3::splat(0.2);
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::Z,
+            irradiance: Vec3::splat(2.0),
+        }),
+        ground: Some(Ground {
+            height: 0.0,
+            albedo: Vec3::splat(0.5),
+            sky_irradiance: sky,
+        }),
+        solids: vec![Solid {
+            centre: Vec3::new(0.0, 0.0, 2.5),
+            radius: 1.0,
+            albedo: Vec3::splat(0.8),
+            sky_irradiance: sky,
+        }],
+        ..Scene::new(
+            &slab,
+            MediumParams {
+                extinction: 0.3,
+                albedo: 0.9,
+                phase: Phase::Isotropic,
+            },
+            Vec3::splat(0.05),
+        )
+    };
+    let table = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.02,
+            shadows: Shadows::Table(96),
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let rays = FastRenderer::new(
+        &scene,
+        MarchSettings {
+            step: 0.02,
+            shadows: Shadows::Rays(0.02),
+            ..MarchSettings::default()
+        },
+    )
+    .unwrap();
+    let reference = ReferenceRenderer::new(
+        &scene,
+        ReferenceSettings {
+            samples_per_pixel: 4000,
+            max_depth: 1,
+            ..ReferenceSettings::default()
+        },
+    )
+    .unwrap();
+    let down = -Vec3::Z;
+    // Looking down beside the sphere, into the shadow, and at the sphere's top.
+    let lit = Vec3::new(2.5, 0.0, 6.0);
+    let shade = Vec3::new(0.0, 0.0, 1.2);
+    let top = Vec3::new(0.0, 0.0, 6.0);
+    for f in [&table, &rays] {
+        let (a, b, c) = (
+            f.radiance(lit, down),
+            f.radiance(shade, down),
+            f.radiance(top, down),
+        );
+        assert!(b.x < 0.5 * a.x, "the sphere's shadow: {b} vs lit {a}");
+        // The sphere's top: albedo/π·(E_sun + E_sky), unattenuated.
+        let expect = 0.8 / std::f32::consts::PI * (2.0 + 0.2);
+        assert!((c.x - expect).abs() < 1e-3, "{c} vs {expect}");
+    }
+    for (o, name) in [(lit, "lit"), (shade, "shadow")] {
+        let r = reference.pixel(o, down, 0, 0).x;
+        let s = FastRenderer::new(
+            &scene,
+            MarchSettings {
+                step: 0.01,
+                shadows: Shadows::Rays(0.01),
+                octaves: natura_volume::render::Octaves::SINGLE,
+                ..MarchSettings::default()
+            },
+        )
+        .unwrap()
+        .radiance(o, down)
+        .x;
+        // Single scattering of the sun plus the floor; the fast mode adds the ambient term.
+        assert!(
+            s >= r * 0.95 && s <= r * 1.3 + 0.02,
+            "{name}: fast {s} vs reference {r}"
+        );
+    }
+}
