@@ -50,7 +50,7 @@ pub use natura_render as render;
 #[cfg(feature = "texture")]
 pub use natura_texture as texture;
 
-#[cfg(feature = "volume")]
-pub use natura_volume as volume;
 #[cfg(feature = "plant")]
 pub use natura_plant as plant;
+#[cfg(feature = "volume")]
+pub use natura_volume as volume;
