@@ -19,6 +19,7 @@
 //! | `fluid` | `natura-fluid` | stable fluids, smoke, liquids |
 //! | `texture` | `natura-texture` | Musgrave's solid textures, procedural planets |
 //! | `volume` | `natura-volume` | Ebert's clouds and gases, volume rendering, VDB export |
+//! | `plant` | `natura-plant` | L-systems, turtle geometry, open L-systems |
 //! | `render` | `natura-render` | scenes composing the crates into images |
 #![forbid(unsafe_code)]
 
@@ -49,5 +50,7 @@ pub use natura_render as render;
 #[cfg(feature = "texture")]
 pub use natura_texture as texture;
 
+#[cfg(feature = "plant")]
+pub use natura_plant as plant;
 #[cfg(feature = "volume")]
 pub use natura_volume as volume;

@@ -4,11 +4,14 @@
 //! *The Algorithmic Beauty of Plants* and the cpfg / L-Py modelling
 //! languages: a text language for parametric, context-sensitive, stochastic
 //! L-systems with decomposition and interpretation rules ([`lang`]); a
-//! derivation engine over a struct-of-arrays module string ([`Derivation`]).
+//! derivation engine over a struct-of-arrays module string ([`Derivation`]);
+//! query modules and open L-systems that exchange data with an
+//! [`Environment`] ([`open`]); and 3-D turtle interpretation into segments
+//! chained as generalized cylinders, polygons and predefined surfaces
+//! ([`turtle`]), with differential turtle geometry for curved limbs.
 //!
-//! This release holds the language and the derivation engine. The turtle
-//! interpretation, the meshes, the open L-system environment, the source
-//! papers' models and the ecosystems are not in it yet.
+//! Not in this release yet: plant meshes (glTF binary, OBJ), the source
+//! papers' models and ecosystems.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};
@@ -31,3 +34,7 @@ pub use error::{PlantError, Result, Span};
 pub use lang::LSystem;
 pub use string::ModuleString;
 pub use symbols::SymbolTable;
+pub mod turtle;
+pub use turtle::{Geometry, Turtle, TurtleParams, TurtleState};
+pub mod open;
+pub use open::{Environment, Message, Reply};

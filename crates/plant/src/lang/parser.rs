@@ -100,8 +100,8 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
         if let Some((k, off)) = keyword(st) {
             match k {
                 "#define" => define(st, off, &mut globals)?,
-                "define" => define_arrays(&st.chars[off..], &mut globals, &mut arrays)?,
-                "array" => define_arrays(&st.chars, &mut globals, &mut arrays)?,
+                "define" => define_arrays(&st.chars[off..], st.end(), &mut globals, &mut arrays)?,
+                "array" => define_arrays(&st.chars, st.end(), &mut globals, &mut arrays)?,
                 _ => {}
             }
         }
@@ -150,12 +150,12 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
                 )?))
             }
             "axiom" | "ω" => {
-                let mut cur = Cursor::new(rest);
+                let mut cur = Cursor::new(rest).end_at(st.end());
                 let raw = module_list(&mut cur, ModCtx::String)?;
                 axiom = Some(raw);
             }
             "#ignore" | "ignore" | "#consider" | "consider" => {
-                let mut cur = Cursor::new(rest);
+                let mut cur = Cursor::new(rest).end_at(st.end());
                 let raw = module_list(&mut cur, ModCtx::Names)?;
                 let ids: Vec<u32> = raw
                     .iter()
@@ -228,7 +228,7 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
 }
 
 fn define(st: &Stmt, off: usize, g: &mut Globals) -> Result<()> {
-    let mut cur = Cursor::new(&st.chars[off..]);
+    let mut cur = Cursor::new(&st.chars[off..]).end_at(st.end());
     let span = cur.span();
     let name = cur
         .ident()
@@ -268,8 +268,13 @@ fn define(st: &Stmt, off: usize, g: &mut Globals) -> Result<()> {
 }
 
 /// `array Name[N] = {v, …}, Name2[M] = {…}` (also inside `Define: { … }`).
-fn define_arrays(chars: &[Ch], g: &mut Globals, arrays: &mut Vec<Vec<f64>>) -> Result<()> {
-    let mut cur = Cursor::new(chars);
+fn define_arrays(
+    chars: &[Ch],
+    end: Span,
+    g: &mut Globals,
+    arrays: &mut Vec<Vec<f64>>,
+) -> Result<()> {
+    let mut cur = Cursor::new(chars).end_at(end);
     let braced = cur.eat('{');
     loop {
         if cur.at_end() || (braced && cur.eat('}')) {
@@ -351,7 +356,7 @@ fn run_const(code: &Code, arrays: &[Vec<f64>], user: &UserFns, what: &str) -> Re
 }
 
 fn const_value(rest: &[Ch], g: &Globals, arrays: &[Vec<f64>], span: Span) -> Result<f64> {
-    let mut cur = Cursor::new(rest);
+    let mut cur = Cursor::new(rest).end_at(span);
     let s = cur.span();
     if cur.at_end() {
         return Err(PlantError::syntax(span, "expected a value"));
@@ -567,7 +572,7 @@ fn production(
         ));
     };
     let (lhs, rhs) = (&chars[..ai], &chars[ai + alen..]);
-    let mut cur = Cursor::new(lhs);
+    let mut cur = Cursor::new(lhs).end_at(st.span());
     // Optional label `p12:`.
     let mut label = None;
     let save = cur.pos;
@@ -687,7 +692,7 @@ fn production(
         Some(k) => (&rhs[..k], Some(&rhs[k + 1..])),
         None => (rhs, None),
     };
-    let mut scur = Cursor::new(succ_chars);
+    let mut scur = Cursor::new(succ_chars).end_at(st.end());
     let empty = {
         let t: String = succ_chars.iter().map(|c| c.c).collect();
         let t = t.trim();
@@ -709,7 +714,7 @@ fn production(
     }
     let prob = match prob_chars {
         Some(pc) => {
-            let mut pcur = Cursor::new(pc);
+            let mut pcur = Cursor::new(pc).end_at(st.end());
             let s = pcur.span();
             if pcur.at_end() {
                 return Err(PlantError::syntax(s, "expected a probability after `:`"));

@@ -21,6 +21,13 @@ pub(crate) struct Stmt {
 }
 
 impl Stmt {
+    pub fn end(&self) -> Span {
+        self.chars
+            .last()
+            .map(|c| Span::new(c.span.line, c.span.col + 1))
+            .unwrap_or_default()
+    }
+
     pub fn span(&self) -> Span {
         self.chars.first().map(|c| c.span).unwrap_or_default()
     }
@@ -188,6 +195,15 @@ impl<'a> Cursor<'a> {
             .map(|c| Span::new(c.span.line, c.span.col + 1))
             .unwrap_or_default();
         Self { chars, pos: 0, end }
+    }
+
+    /// Sets the span reported at the end of input when it holds no character
+    /// (an empty remainder of a statement reports the statement's end).
+    pub fn end_at(mut self, end: Span) -> Self {
+        if self.chars.is_empty() {
+            self.end = end;
+        }
+        self
     }
 
     pub fn peek(&self) -> Option<char> {
