@@ -90,6 +90,7 @@ pub fn trace_drop(b: f64, n: f64, k: u32) -> DropPath {
 /// How impact parameters are weighted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ImpactWeight {
     /// Each impact parameter weighs `2b`: the annulus a 3-D drop presents to
     /// parallel light (physically correct).

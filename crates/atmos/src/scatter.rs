@@ -43,6 +43,7 @@ pub fn cornette_shanks(g: f64, cos_theta: f64) -> f64 {
 /// (the angle between the propagation directions before and after).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Phase {
     /// `1/(4π)`.
     Isotropic,

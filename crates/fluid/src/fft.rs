@@ -23,6 +23,7 @@ use crate::par;
 /// Which wavenumbers the Fourier operators use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum FftVariant {
     /// The paper's exact spectral symbols `k²`, `i k` (Stam 1999, §2.3).
     #[default]
@@ -35,6 +36,7 @@ pub enum FftVariant {
 /// The diffusion filter applied per Fourier mode.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum DiffusionFilter {
     /// `1 / (1 + ν dt k²)`: implicit Euler, the paper's formula (Stam 1999, §2.3).
     #[default]

@@ -142,6 +142,7 @@ impl std::fmt::Display for Dims {
 /// What lies beyond one side of the domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Side {
     /// A free-slip solid wall: zero normal velocity, `∂p/∂n = 0` (Fedkiw et al. 2001, §2).
     #[default]
@@ -154,6 +155,7 @@ pub enum Side {
 /// The six sides of the domain: `[low, high]` along x, y and z.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Boundaries {
     /// `[x = 0, x = nx·h]`.
     pub x: [Side; 2],

@@ -18,6 +18,7 @@
 /// How a field is interpolated between samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Interpolation {
     /// Bi/trilinear (Stam 1999, §3.2): cheap, never creates extrema.
     #[default]
@@ -30,6 +31,7 @@ pub enum Interpolation {
 /// Slope limiter of the monotone cubic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum CubicLimiter {
     /// Sign limiting plus Fritsch–Carlson rescaling: monotone, no overshoot.
     #[default]

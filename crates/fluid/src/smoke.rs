@@ -34,6 +34,7 @@ use crate::shape::{Obstacle, Obstacles, Shape, solid_face_velocity, voxelise};
 /// Parameters of the smoke model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SmokeParams {
     /// α: downward acceleration per unit smoke density (m/s² per unit), eq. 8.
     /// Default 0.05.

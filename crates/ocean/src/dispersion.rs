@@ -37,6 +37,7 @@ pub trait DispersionRelation: Send + Sync + std::fmt::Debug {
 /// The physical dispersion relations of the notes (eqs. 14-16).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Dispersion {
     /// Deep water, ω² = g k (eq. 14).
     Deep {

@@ -19,6 +19,7 @@ use crate::frame::Frame;
 /// Parameters of [`Foam`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct FoamParams {
     /// Foam appears where the Jacobian J is below this value (0 marks only
     /// true folds; higher values foam the steepening crests before they fold).

@@ -138,6 +138,7 @@ pub fn brewster_angle(n_i: f64, n_t: f64) -> f64 {
 /// sources, which promise a glitter model but never give it, §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct WaterShader {
     /// Colour of light scattered up out of the water volume (shader: (0, 0.2, 0.3)).
     pub upwelling: Vec3,

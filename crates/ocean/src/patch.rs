@@ -22,6 +22,7 @@ pub const MAX_SIZE: usize = 2048;
 /// How the random amplitudes h̃₀(k) are drawn. Both give E|h̃₀|² = ½ P Δk².
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum AmplitudeScheme {
     /// The notes' eq. 25 (§3.4): (ξ_r + i ξ_i)/√2 · √(½ P Δk²) with
     /// ξ_r, ξ_i ~ N(0, 1): a circular complex Gaussian, matching the
@@ -43,6 +44,7 @@ pub enum AmplitudeScheme {
 /// swaps N and M; eq. 19 is right).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct OceanParams {
     /// Samples along x (N): a power of two from 16 to 2048.
     pub nx: usize,

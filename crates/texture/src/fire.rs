@@ -36,6 +36,7 @@ pub const FLAME_KNOTS: [[u8; 3]; 18] = [
 /// Where the flame's "ridges" come from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum FlameBasis {
     /// `|fBm|`: the absolute value of the whole sum, as the listing computes
     /// it (dark sinews where the sum crosses zero). The default.
@@ -49,6 +50,7 @@ pub enum FlameBasis {
 /// Parameters of [`Flame`]; `Default` is the `flame` shader's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct FlameParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -38,6 +38,7 @@ pub const FULL_DETAIL: f64 = 0.5;
 /// (texture units, not pixels). Zero is a point sample: every octave is summed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Footprint {
     width: f64,
 }

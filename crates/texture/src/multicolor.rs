@@ -14,6 +14,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 /// the seed and a texture frequency are exposed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MulticolorParams {
     /// Seed of the noises.
     pub seed: u64,

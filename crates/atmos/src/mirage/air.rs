@@ -39,6 +39,7 @@ impl IndexField for UniformIndex {
 /// Air temperature as a function of height above the ground.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum TemperatureProfile {
     /// `T(z) = T_air − Γz + ΔT·e^{−z/h}`: a hot surface (road, desert) under
     /// cooler air; `ΔT > 0` gives an inferior mirage.

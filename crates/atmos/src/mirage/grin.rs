@@ -69,6 +69,7 @@ impl RayPath {
 /// gradient-index medium: state `(x, v = n·t̂)`, `dx/ds = v/n`, `dv/ds = ∇n`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct GrinTracer {
     /// Local error tolerance per step, m (1e-9).
     pub tolerance_m: f64,

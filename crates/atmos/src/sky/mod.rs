@@ -86,6 +86,7 @@ pub(crate) use with_model;
 /// Settings of the ray-marched (Nishita 1993) reference evaluation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MarchSettings {
     /// Steps along the view ray (64).
     pub view_steps: usize,

@@ -5,6 +5,7 @@ use crate::error::{Result, in_range, invalid, non_negative, positive};
 /// Rayleigh (molecular) scattering.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct RayleighParams {
     /// Scale height of the exponential density profile, m (8000).
     pub scale_height_m: f64,
@@ -31,6 +32,7 @@ impl Default for RayleighParams {
 /// Which phase function the aerosols (Mie) use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum MiePhase {
     /// Henyey–Greenstein.
     HenyeyGreenstein,
@@ -41,6 +43,7 @@ pub enum MiePhase {
 /// Mie (aerosol) scattering and absorption.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MieParams {
     /// Scale height of the exponential density profile, m (1200).
     pub scale_height_m: f64,
@@ -72,6 +75,7 @@ impl Default for MieParams {
 /// The ozone layer: a tent-shaped density profile that only absorbs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct OzoneParams {
     /// Whether ozone absorbs at all (true).
     pub enabled: bool,
@@ -97,6 +101,7 @@ impl Default for OzoneParams {
 /// How radiance is carried through the model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Evaluation {
     /// Three channels holding spectral radiance at 680, 550 and 440 nm, used
     /// directly as linear RGB (the common real-time approximation).
@@ -110,6 +115,7 @@ pub enum Evaluation {
 /// Resolutions and step counts of the Hillaire 2020 look-up tables.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct LutSettings {
     /// Transmittance LUT `(μ, r)` size (256 × 64).
     pub transmittance: (usize, usize),
@@ -143,6 +149,7 @@ impl Default for LutSettings {
 /// atmosphere 100 km thick).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct AtmosphereParams {
     /// Planet (ground, sea level) radius, m (6 360 000).
     pub bottom_radius_m: f64,

@@ -61,6 +61,7 @@ pub fn cmf_wyman_2013(lambda_nm: f64) -> DVec3 {
 /// A standard illuminant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Illuminant {
     /// CIE standard illuminant D65 (average daylight; the sRGB white).
     D65,

@@ -67,6 +67,7 @@ use particles::jitter;
 /// both rules, which contradict each other).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ObjectMode {
     /// Clamp only inflow: the relative normal velocity is made `>= 0` (Foster & Fedkiw 2001, §9).
     #[default]
@@ -78,6 +79,7 @@ pub enum ObjectMode {
 /// How marker particles correct the level set (Foster & Fedkiw 2001, §5.4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ParticleCorrection {
     /// Foster & Fedkiw 2001 as written: particles within two cells of the
     /// surface that poke out of it modify φ only where the interpolated
@@ -100,6 +102,7 @@ pub enum ParticleCorrection {
 /// The role of a cell in the liquid solver (Foster & Fedkiw 2001, §7.1.1–7.1.2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum LiquidCell {
     /// No liquid.
     #[default]
@@ -122,6 +125,7 @@ pub const MAX_GRAVITY: f32 = 1e4;
 /// defaults are library choices.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct LiquidParams {
     /// Kinematic viscosity ν (m²/s). Default 1e-6 (water).
     pub viscosity: f32,

@@ -41,6 +41,7 @@ use transfer::{Transfer, coarsen};
 /// Which linear solver performs the projection.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum PressureSolver {
     /// Multigrid-preconditioned conjugate gradient (default).
     #[default]
@@ -54,6 +55,7 @@ pub enum PressureSolver {
 /// Solver choice and stopping rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SolverParams {
     /// The method.
     pub solver: PressureSolver,

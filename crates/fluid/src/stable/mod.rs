@@ -93,6 +93,7 @@ pub struct ForceSource {
 /// Parameters of both Stable Fluids solvers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct StableParams {
     /// Kinematic viscosity ν (m²/s), `visc` (Stam 1999, §3.1). The paper gives no value;
     /// default 1e-4.

@@ -16,6 +16,7 @@ use crate::error::{Result, finite, non_negative};
 /// is 0 for waves travelling straight against the wind and largest along it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Spreading {
     /// A fixed spreading exponent s (≥ 0; larger is narrower).
     Cos2s {

@@ -28,6 +28,7 @@ pub trait FrequencySpectrum: Send + Sync + std::fmt::Debug {
 /// 4σ ≈ 0.21 U²/g.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PiersonMoskowitz {
     /// Wind speed U₁₉.₅ at 19.5 m above the sea, m/s (> 0).
     pub wind_speed: f64,
@@ -87,6 +88,7 @@ impl FrequencySpectrum for PiersonMoskowitz {
 /// the peak. σ = 0.07 below the peak and 0.09 above.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Jonswap {
     /// Wind speed U₁₀ at 10 m, m/s (> 0).
     pub wind_speed: f64,

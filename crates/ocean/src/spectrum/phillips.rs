@@ -27,6 +27,7 @@ use crate::error::{Result, finite, invalid, non_negative, positive};
 /// not in these sources).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Phillips {
     /// Dimensionless constant A; height variance scales linearly with it.
     pub amplitude: f64,

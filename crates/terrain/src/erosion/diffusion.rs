@@ -22,6 +22,7 @@ use crate::par;
 /// Parameters of [`Diffusion`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct DiffusionParams {
     /// Diffusion coefficient per step `c_d` (= κ·Δt / Δx²), in `(0, 1/neighbours]`.
     pub rate: f64,

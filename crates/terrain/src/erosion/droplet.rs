@@ -44,6 +44,7 @@ use crate::par;
 /// Parameters of [`DropletErosion`]; defaults are Beyer's (2015).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct DropletParams {
     /// Inertia `∈ [0, 1)`: 0 follows the gradient, near 1 keeps going straight. Default 0.05.
     pub inertia: f64,

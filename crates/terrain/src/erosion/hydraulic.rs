@@ -45,6 +45,7 @@ use crate::par;
 /// How much rain falls on a cell when it rains.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum RainLaw {
     /// The same depth everywhere, metres.
     Uniform {
@@ -93,6 +94,7 @@ impl RainLaw {
 /// Parameters of [`MusgraveHydraulic`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MusgraveParams {
     /// Sediment capacity constant `K_c` (sediment per unit of moving water). Default 5.
     pub k_c: f64,

@@ -38,6 +38,7 @@ pub use thermal::{Thermal, ThermalParams};
 /// Which neighbours a grid cell exchanges material with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Neighbourhood {
     /// The 4 axial neighbours (distance 1 cell).
     Four,
@@ -78,6 +79,7 @@ impl Neighbourhood {
 /// What lies beyond the edge of the grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Edges {
     /// Nothing: no exchange across the edge (material is conserved).
     Closed,

@@ -29,6 +29,7 @@ use crate::par;
 /// Parameters of [`StreamPower`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct StreamPowerParams {
     /// Erodibility `K`, in m^(1−2m)/yr for `n = 1`. Default 2·10⁻⁵.
     pub k: f64,

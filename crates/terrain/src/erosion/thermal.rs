@@ -31,6 +31,7 @@ use crate::par;
 /// Parameters of [`Thermal`] weathering.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct ThermalParams {
     /// Talus angle (angle of repose), radians in `[0, π/2)`. Default 33° (see module docs).
     pub talus_angle: f64,

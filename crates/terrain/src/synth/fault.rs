@@ -19,6 +19,7 @@ use crate::par;
 /// Parameters of [`poisson_faults`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct FaultParams {
     /// Number of faults. The sources give no count; 1000 is enough for a
     /// Brownian look on a few hundred cells per side.

@@ -17,6 +17,7 @@ use crate::fft;
 /// Parameters of [`spectral_synthesis`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SpectralParams {
     /// Hurst exponent `H ∈ (0, 1]`; spectral exponent `β = 2H + 1`.
     pub h: f64,

@@ -16,6 +16,7 @@ use crate::par;
 /// Parameters of [`successive_random_additions`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SraParams {
     /// Hurst exponent `H ∈ (0, 1]`.
     pub h: f64,

@@ -31,6 +31,7 @@ pub const MAX_LEVELS: u32 = 24;
 /// How the two endpoints (1-D) or the base-lattice corners (2-D) are chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum EndpointMode {
     /// Gaussian with standard deviation `scale`, as Fournier et al.'s printed `fractal` (Fournier et al. 1982, §3.2.3).
     Random,
@@ -45,6 +46,7 @@ pub enum EndpointMode {
 /// times Saupe's factor `√(1 − 2^(2h−2))` when `variance_correction` is set.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MidpointParams {
     /// Hurst exponent `h ∈ (0, 1]` (Fournier et al.'s `h`; Musgrave et al. 1989, §3.1 gives H ≈ 0.8 for terrain).
     /// Larger values give smoother curves.
@@ -325,6 +327,7 @@ pub fn fractal_polyline_ids(
 /// Which FFC grid scheme [`subdivide`] uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Scheme {
     /// Fractal triangles (Fournier et al. 1982, §4.1.2): each square of the current lattice is
     /// two triangles split on its `(+1, +1)` diagonal; every new point is an
@@ -345,6 +348,7 @@ pub enum Scheme {
 /// Parameters of grid subdivision ([`subdivide`]).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SubdivisionParams {
     /// The midpoint-displacement law (H, scale in metres, corners).
     pub midpoint: MidpointParams,

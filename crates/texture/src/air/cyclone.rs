@@ -14,6 +14,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind};
 /// which agree with the dissertation's Plate 5.4 arguments.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct CycloneParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -12,6 +12,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind};
 /// The basis of the cloud fBm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum CloudBasis {
     /// Perlin noise (the RenderMan `planetclouds` shader). The default.
     #[default]
@@ -25,6 +26,7 @@ pub enum CloudBasis {
 /// The vector field that distorts the cloud domain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum CloudDistortion {
     /// One octave of vector noise: smooth, large-scale streaming (the default).
     #[default]
@@ -38,6 +40,7 @@ pub enum CloudDistortion {
 /// shader's (Musgrave 1998, "Distortion for Cirrus Clouds and Global Circulation").
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PlanetCloudsParams {
     /// Seed of the noises.
     pub seed: u64,

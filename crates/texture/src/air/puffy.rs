@@ -11,6 +11,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 /// Parameters of [`PuffyClouds`]; `Default` is the `puffyclouds` shader's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PuffyCloudsParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -12,6 +12,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 /// (Musgrave 1998, "The Coriolis Effect").
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct VenusParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -12,6 +12,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 /// "Selene"), with a mid-grey base colour for the "featureless gray sphere".
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct LunaParams {
     /// Seed of the noises.
     pub seed: u64,

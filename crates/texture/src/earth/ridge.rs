@@ -23,6 +23,7 @@ pub fn tent(x: f64) -> f64 {
 /// make one ridge per unit along `axis`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct RidgeParams {
     /// Seed of the noises.
     pub seed: u64,

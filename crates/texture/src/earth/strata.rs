@@ -52,6 +52,7 @@ pub const STRATA_KNOTS: [[u8; 3]; 34] = [
 /// Parameters of [`Strata`]; `Default` is the `strata` shader's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct StrataParams {
     /// Seed of the noise.
     pub seed: u64,

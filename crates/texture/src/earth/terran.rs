@@ -33,6 +33,7 @@ pub const MOTTLE_TINT: DVec3 = DVec3::new(0.5, 0.175, 0.5);
 /// Which fractal raises the continents.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Continents {
     /// Scalar fBm (`spectral`), the shader's `multifractal = 0`: coastlines
     /// equally wiggly everywhere. The default.
@@ -48,6 +49,7 @@ pub enum Continents {
 /// (Musgrave 1998, "Gaea: Building an Entire Planet").
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct TerranParams {
     /// Seed of the noises.
     pub seed: u64,

@@ -44,6 +44,7 @@ pub const SATURN_KNOTS: [[u8; 3]; 10] = [
 /// The band colours of a [`GasGiant`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Bands {
     /// Creams, tans and browns ([`JUPITER_KNOTS`]). The default.
     #[default]
@@ -56,6 +57,7 @@ pub enum Bands {
 /// (Musgrave 1993, §5.5); these are natura's, tuned to resemble Plate 5.6.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct GasGiantParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -13,6 +13,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 /// 15.18); the defaults are natura's, a broad Saturn-like system.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct RingsParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -16,6 +16,7 @@ pub const EARTH_RADIUS_M: f64 = 6.371e6;
 /// the surface becomes smooth and non-fractal").
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct DetailParams {
     /// Spectral exponent of the detail octaves (1.5: smoother than the
     /// continents; above 1 the slopes shrink at finer scales).
@@ -122,6 +123,7 @@ impl TerrainParams {
 /// What covers the planet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum SurfaceParams {
     /// Displaced terrain with oceans (Gaea).
     Terrain(TerrainParams),
@@ -137,6 +139,7 @@ pub enum SurfaceParams {
 /// 1993 §4.1.6, its errata corrected there) and its umbra.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct AtmosphereParams {
     /// Scale height, metres (8000, Earth's).
     pub scale_height_m: f64,
@@ -191,6 +194,7 @@ impl AtmosphereParams {
 /// mapped by [`PlanetClouds`](crate::air::PlanetClouds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct CloudLayerParams {
     /// The cloud texture, evaluated on the unit sphere of directions.
     pub clouds: PlanetCloudsParams,
@@ -236,6 +240,7 @@ impl CloudLayerParams {
 /// The sun and the light that does not come from it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct LightParams {
     /// Direction towards the sun (normalised when the planet is built).
     pub sun: DVec3,
@@ -286,6 +291,7 @@ impl LightParams {
 /// Everything that makes a planet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PlanetParams {
     /// Radius of the sea-level sphere, metres (Earth's, 6 371 km).
     pub radius_m: f64,

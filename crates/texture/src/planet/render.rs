@@ -12,6 +12,7 @@ use crate::view::View;
 /// Where to stand for a view from the ground.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct GroundViewParams {
     /// Latitude of the search's centre, radians.
     pub latitude: f64,

@@ -12,6 +12,7 @@ use crate::view::sphere_hits;
 /// How closely [`Planet::trace`] approaches the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct TraceSettings {
     /// A ray stops when its gap to the surface is below this fraction of its
     /// footprint (0.25: a quarter pixel).

@@ -11,6 +11,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind};
 /// Parameters of [`Ripples`]; `Default` is the `ripples` shader's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct RipplesParams {
     /// Seed of the noise.
     pub seed: u64,

@@ -12,6 +12,7 @@ use crate::texture::{Sample, SolidTexture, TextureKind};
 /// the ripple-to-wind frequency ratio its listing hard-codes (8).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct WindyWaveParams {
     /// Seed of the noises.
     pub seed: u64,

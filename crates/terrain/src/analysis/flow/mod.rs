@@ -34,6 +34,7 @@ use receivers::{d8_receivers_into, donor_masks_into, find_roots};
 /// How closed depressions (pits) are handled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Depressions {
     /// Leave them: pits are sinks that do not reach the edge.
     Keep,

@@ -6,6 +6,7 @@ use crate::error::{Result, in_range, invalid, non_negative, positive};
 /// How suspended sediment moves with the water.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum SedimentTransport {
     /// Through the pipes with the water: conserves mass (default).
     Conservative,
@@ -17,6 +18,7 @@ pub enum SedimentTransport {
 /// Parameters of [`PipeModel`](super::PipeModel).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PipeParams {
     /// Time step, seconds (> 0, ≤ 10).
     pub dt: f64,
