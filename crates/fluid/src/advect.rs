@@ -25,6 +25,7 @@ use crate::par;
 /// The advection scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Scheme {
     /// Plain semi-Lagrangian (Stam 1999): one back-trace and interpolation.
     #[default]
@@ -40,7 +41,8 @@ pub enum Scheme {
 /// The integrator of the back-traced path.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Tracer {
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum TraceIntegrator {
     /// One explicit Euler step `x − dt·u(x)`.
     Euler,
     /// Midpoint RK2 (Stam 1999, §3.2): `x − dt·u(x − ½dt·u(x))`.
@@ -51,11 +53,12 @@ pub enum Tracer {
 /// How a field is carried by the flow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Advection {
     /// Semi-Lagrangian or an error-correcting variant.
     pub scheme: Scheme,
     /// Back-trace integrator.
-    pub tracer: Tracer,
+    pub tracer: TraceIntegrator,
     /// Interpolation of the advected field.
     pub interpolation: Interpolation,
 }
@@ -229,7 +232,7 @@ pub(crate) fn backtrace(
     p: [f32; 3],
     vel: &VelSampler<'_>,
     dt_h: f32,
-    tracer: Tracer,
+    tracer: TraceIntegrator,
     solids: Option<&Solids<'_>>,
 ) -> [f32; 3] {
     backtrace_from(p, vel.at(p), vel, dt_h, tracer, solids)
@@ -242,12 +245,12 @@ fn backtrace_from(
     v1: [f32; 3],
     vel: &VelSampler<'_>,
     dt_h: f32,
-    tracer: Tracer,
+    tracer: TraceIntegrator,
     solids: Option<&Solids<'_>>,
 ) -> [f32; 3] {
     let q = match tracer {
-        Tracer::Euler => std::array::from_fn(|a| trace_step(p[a], v1[a], dt_h)),
-        Tracer::Rk2 => {
+        TraceIntegrator::Euler => std::array::from_fn(|a| trace_step(p[a], v1[a], dt_h)),
+        TraceIntegrator::Rk2 => {
             let mid: [f32; 3] = std::array::from_fn(|a| trace_step(p[a], v1[a], 0.5 * dt_h));
             let v2 = vel.at(mid);
             std::array::from_fn(|a| trace_step(p[a], v2[a], dt_h))
@@ -522,7 +525,7 @@ pub fn trace_back(
     vel: &MacVelocity,
     h: f32,
     dt: f32,
-    tracer: Tracer,
+    tracer: TraceIntegrator,
     solids: Option<&Grid3<CellKind>>,
 ) -> glam::Vec3 {
     let vs = VelSampler::mac(vel);

@@ -3,7 +3,7 @@
 //! The fast path of [`crate::advect`] for its commonest case: plain
 //! semi-Lagrangian steps, linear interpolation, non-periodic samplers (every
 //! bounded solver). A row of samples is processed 16 at a time: the start
-//! points, the back-trace (Euler or RK2, [`crate::advect::Tracer`]), the
+//! points, the back-trace (Euler or RK2, [`crate::advect::TraceIntegrator`]), the
 //! per-axis clamp, integer cell and fraction, and the bi/trilinear fetches
 //! are one branch-free loop over lanes, compiled for AVX-512, AVX2 + FMA or
 //! the baseline after run-time detection ([`natura_core::simd`]). Bounds
@@ -19,7 +19,7 @@
 
 use natura_core::simd::{self, Kernel, Simd};
 
-use crate::advect::{Solids, Tracer, VelSampler, trace_step};
+use crate::advect::{Solids, TraceIntegrator, VelSampler, trace_step};
 use crate::grid::CellKind;
 use crate::interp::Sampler;
 
@@ -175,7 +175,7 @@ struct Geo {
     r0: usize,
     off: [f32; 3],
     dt_h: f32,
-    tracer: Tracer,
+    tracer: TraceIntegrator,
 }
 
 impl<const THREE: bool> Kernel for Band<'_, '_, '_, THREE> {
@@ -208,14 +208,14 @@ impl<const THREE: bool> Kernel for Band<'_, '_, '_, THREE> {
                 self.vel.at::<THREE>(&p, &mut v);
                 let mut q = [[0.0f32; L]; 3];
                 match tracer {
-                    Tracer::Euler => {
+                    TraceIntegrator::Euler => {
                         for a in 0..3 {
                             for l in 0..L {
                                 q[a][l] = trace_step(p[a][l], v[a][l], dt_h);
                             }
                         }
                     }
-                    Tracer::Rk2 => {
+                    TraceIntegrator::Rk2 => {
                         let mut mid = [[0.0f32; L]; 3];
                         for a in 0..3 {
                             for l in 0..L {
@@ -276,7 +276,7 @@ pub(crate) fn sl_linear(
     srcs: &[Sampler<'_>],
     vel: &VelSampler<'_>,
     dt_h: f32,
-    tracer: Tracer,
+    tracer: TraceIntegrator,
     solids: Option<&Solids<'_>>,
 ) -> bool {
     let Some(first) = srcs.first() else {

@@ -221,7 +221,8 @@ fn face_cell_rows_match_face_coordinates() {
 #[test]
 fn lane_advection_matches_general_code_bit_for_bit() {
     use crate::advect::{
-        Advection, Solids, Tracer, VelSampler, centre_sampler, face_sampler, sl_pass_general,
+        Advection, Solids, TraceIntegrator, VelSampler, centre_sampler, face_sampler,
+        sl_pass_general,
     };
     use crate::grid::{CellKind, Dims, MacVelocity};
     use crate::lanes::sl_linear;
@@ -263,7 +264,7 @@ fn lane_advection_matches_general_code_bit_for_bit() {
         for a in (0..3).filter(|&a| d.active(a)) {
             samplers.push(face_sampler(vel.comp(a), a));
         }
-        for tracer in [Tracer::Euler, Tracer::Rk2] {
+        for tracer in [TraceIntegrator::Euler, TraceIntegrator::Rk2] {
             let adv = Advection {
                 tracer,
                 ..Default::default()
@@ -293,7 +294,7 @@ fn lane_advection_matches_general_code_bit_for_bit() {
 
 #[test]
 fn lane_advection_declines_periodic_grids() {
-    use crate::advect::{Tracer, VelSampler, centre_sampler};
+    use crate::advect::{TraceIntegrator, VelSampler, centre_sampler};
     use crate::grid::Dims;
     use crate::lanes::sl_linear;
     let d = Dims::plane(8, 8).unwrap();
@@ -306,7 +307,7 @@ fn lane_advection_declines_periodic_grids() {
         &[centre_sampler(&f, true)],
         &vs,
         0.5,
-        Tracer::Rk2,
+        TraceIntegrator::Rk2,
         None
     ));
 }

@@ -34,7 +34,7 @@ fn advection_keeps_constants_and_creates_no_extrema() {
             for dt in [0.01f32, 0.5, 5.0] {
                 let adv = Advection {
                     scheme,
-                    tracer: Tracer::Rk2,
+                    tracer: TraceIntegrator::Rk2,
                     interpolation,
                 };
                 let c = advect_scalar(&constant, &v, h, dt, &adv, None).unwrap();
@@ -87,7 +87,7 @@ fn traced_paths_never_end_inside_obstacles() {
             }
             let p = Vec3::new((i as f32 + 0.5) * h, 0.5 * h, (k as f32 + 0.5) * h);
             for dt in [0.05f32, 0.3] {
-                let q = trace_back(p, &v, h, dt, Tracer::Rk2, Some(&kinds));
+                let q = trace_back(p, &v, h, dt, TraceIntegrator::Rk2, Some(&kinds));
                 let c = (q / h).floor();
                 let (ci, ck) = (
                     (c.x.max(0.0) as usize).min(31),
