@@ -11,7 +11,7 @@ pub enum RenderError {
     #[error("invalid scene value `{name}` = {value}: {reason}")]
     Invalid {
         /// Dotted key of the value.
-        name: &'static str,
+        name: String,
         /// The value, formatted.
         value: String,
         /// What is allowed.
@@ -38,11 +38,32 @@ pub enum RenderError {
 }
 
 impl RenderError {
-    pub(crate) fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &str) -> Self {
+    pub(crate) fn invalid(name: &str, value: impl std::fmt::Display, reason: &str) -> Self {
         RenderError::Invalid {
-            name,
+            name: name.to_owned(),
             value: value.to_string(),
             reason: reason.to_owned(),
+        }
+    }
+
+    /// A terrain model's parameter error, re-named by the scene key of its
+    /// sub-table: `StreamPowerParams::k` in `erosion.stream_power` becomes
+    /// `erosion.stream_power.k`; any other error passes through.
+    pub(crate) fn in_section(section: &str, e: natura_terrain::TerrainError) -> Self {
+        match e {
+            natura_terrain::TerrainError::InvalidParameter {
+                name,
+                value,
+                reason,
+            } => {
+                let field = name.rsplit("::").next().unwrap_or(name);
+                RenderError::Invalid {
+                    name: format!("{section}.{field}"),
+                    value,
+                    reason,
+                }
+            }
+            other => RenderError::Terrain(other),
         }
     }
 }
@@ -53,7 +74,7 @@ pub type Result<T, E = RenderError> = std::result::Result<T, E>;
 impl From<natura_core::check::ParamError> for RenderError {
     fn from(e: natura_core::check::ParamError) -> Self {
         RenderError::Invalid {
-            name: e.name,
+            name: e.name.to_owned(),
             value: e.value,
             reason: e.expected.to_owned(),
         }

@@ -19,10 +19,7 @@ use natura_noise::{
     Displace, Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
-use natura_terrain::erosion::{
-    Depressions, DropletErosion, DropletParams, PipeModel, PipeParams, StreamPower,
-    StreamPowerParams, Thermal, ThermalParams,
-};
+use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};
 use natura_terrain::synth::{FieldMapping, fill_field};
 
 use crate::error::Result;
@@ -403,17 +400,7 @@ fn erode(
     let mut area: Option<Grid2<f32>> = None;
 
     if e.stream_power_steps > 0 {
-        let p = StreamPowerParams {
-            k: e.stream_power_k,
-            m: e.stream_power_m,
-            n: 1.0,
-            uplift_m_per_yr: e.uplift_m_per_yr,
-            dt_yr: e.stream_power_dt_yr,
-            // Route flow through depressions without filling them: they
-            // become lakes (see `water_surface`), not sediment flats.
-            depressions: Depressions::Route,
-        };
-        let mut sp = StreamPower::new(p, hf)?;
+        let mut sp = StreamPower::new(e.stream_power.clone(), hf)?;
         sp.run(hf, e.stream_power_steps, progress)?;
         let dep = sp.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
@@ -423,20 +410,8 @@ fn erode(
     }
     let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
     if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
-        // The droplet model runs in cell units internally (heights / cell
-        // size), so Beyer's constants hold at any resolution.
-        let p = DropletParams {
-            radius: e.droplet_radius,
-            capacity: 1.0,
-            erode: 0.1,
-            deposit: 0.1,
-            evaporate: 0.02,
-            // Rounds of droplets in row bands: both cores at work, every
-            // droplet still on the live terrain (see `DropletErosion`).
-            batch: 1 << 16,
-            ..DropletParams::default()
-        };
-        let mut drops = DropletErosion::new(p, hf, Seed(scene.seed).derive("droplets"))?;
+        let mut drops =
+            DropletErosion::new(e.droplets.clone(), hf, Seed(scene.seed).derive("droplets"))?;
         drops.run(hf, droplets, progress)?;
         let dep = drops.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
@@ -444,12 +419,7 @@ fn erode(
         }
     }
     if e.hydraulic_model == HydraulicModel::Pipe && e.hydraulic_steps > 0 {
-        let p = PipeParams {
-            rain_m_per_s: e.rain_m_per_s,
-            k_c: e.sediment_capacity,
-            ..PipeParams::default()
-        };
-        let mut pipe = PipeModel::new(p, hf)?;
+        let mut pipe = PipeModel::new(e.pipe.clone(), hf)?;
         pipe.run(hf, e.hydraulic_steps, progress)?;
         let dep = pipe.deposition()?;
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
@@ -457,12 +427,7 @@ fn erode(
         }
     }
     if e.thermal_steps > 0 {
-        let p = ThermalParams {
-            talus_angle: e.talus_deg.to_radians(),
-            talus_rate: 0.1,
-            ..ThermalParams::default()
-        };
-        let mut th = Thermal::new(p, hf)?;
+        let mut th = Thermal::new(e.thermal.clone(), hf)?;
         th.run(hf, e.thermal_steps, progress)?;
     }
     hf.check_finite()?;

@@ -20,6 +20,9 @@ mod validate;
 mod tests;
 
 use natura_core::ToneMap;
+use natura_terrain::erosion::{
+    Depressions, DropletParams, PipeParams, StreamPowerParams, ThermalParams,
+};
 use serde::{Deserialize, Serialize};
 
 /// The built-in scene as TOML: the defaults of every key, with comments.
@@ -96,37 +99,36 @@ pub struct TerrainDesc {
 }
 
 /// Erosion of the synthesised terrain.
+///
+/// Each model's parameters are natura-terrain's own parameter struct, as a
+/// sub-table (`[erosion.stream_power]`, `[erosion.droplets]`, `[erosion.pipe]`,
+/// `[erosion.thermal]`) in that struct's units (the talus angle in radians);
+/// the models check their own ranges. Keys left out of a sub-table keep the
+/// scene's defaults, not the model's.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ErosionDesc {
     /// Braun–Willett stream-power steps (0 = off): carves the drainage network.
     pub stream_power_steps: u32,
-    /// Stream-power erodibility K (m^(1−2m)/yr).
-    pub stream_power_k: f64,
-    /// Stream-power area exponent m.
-    pub stream_power_m: f64,
-    /// Uplift rate, metres per year.
-    pub uplift_m_per_yr: f64,
-    /// Stream-power time step, years.
-    pub stream_power_dt_yr: f64,
+    /// The stream-power model's parameters.
+    pub stream_power: StreamPowerParams,
     /// The hydraulic model that adds gullies and sediment after stream power.
     pub hydraulic_model: HydraulicModel,
     /// Droplets per terrain sample for the droplet model (0 = off), so the
     /// erosion looks alike at every grid size: 0.25 is a million droplets on
     /// a 2048² terrain.
     pub droplets_per_sample: f64,
-    /// Erosion brush radius of the droplets, cells.
-    pub droplet_radius: u32,
+    /// The droplet model's parameters (it runs in cell units, so Beyer's
+    /// constants hold at any resolution).
+    pub droplets: DropletParams,
     /// Virtual-pipe hydraulic erosion steps for the pipe model (0 = off).
     pub hydraulic_steps: u32,
-    /// Rain for the pipe model, metres of water per second.
-    pub rain_m_per_s: f64,
-    /// Sediment capacity constant of the pipe model.
-    pub sediment_capacity: f64,
+    /// The pipe model's parameters.
+    pub pipe: PipeParams,
     /// Thermal weathering steps (0 = off): scree slopes at the talus angle.
     pub thermal_steps: u32,
-    /// Talus angle, degrees.
-    pub talus_deg: f64,
+    /// The thermal weathering model's parameters.
+    pub thermal: ThermalParams,
 }
 
 /// Which hydraulic erosion model adds the fine detail.
@@ -364,18 +366,37 @@ impl Default for ErosionDesc {
     fn default() -> Self {
         Self {
             stream_power_steps: 15,
-            stream_power_k: 2e-6,
-            stream_power_m: 0.5,
-            uplift_m_per_yr: 0.0,
-            stream_power_dt_yr: 2000.0,
+            stream_power: StreamPowerParams {
+                k: 2e-6,
+                m: 0.5,
+                n: 1.0,
+                uplift_m_per_yr: 0.0,
+                dt_yr: 2000.0,
+                // Route flow through depressions without filling them: they
+                // become lakes, not sediment flats.
+                depressions: Depressions::Route,
+            },
             hydraulic_model: HydraulicModel::Droplets,
             droplets_per_sample: 0.25,
-            droplet_radius: 3,
+            droplets: DropletParams {
+                radius: 3,
+                capacity: 1.0,
+                erode: 0.1,
+                deposit: 0.1,
+                evaporate: 0.02,
+                // Rounds of droplets in row bands: both cores at work, every
+                // droplet still on the live terrain.
+                batch: 1 << 16,
+                ..DropletParams::default()
+            },
             hydraulic_steps: 120,
-            rain_m_per_s: 0.01,
-            sediment_capacity: 0.05,
+            pipe: PipeParams::default(),
             thermal_steps: 20,
-            talus_deg: 38.0,
+            thermal: ThermalParams {
+                talus_angle: 38f64.to_radians(),
+                talus_rate: 0.1,
+                ..ThermalParams::default()
+            },
         }
     }
 }

@@ -43,6 +43,31 @@ fn unknown_key_names_line_and_key() {
 }
 
 #[test]
+fn a_partial_model_table_keeps_the_scene_defaults() {
+    // The scene's stream power differs from the model's own defaults in
+    // every key but `m` and `n`; giving only `k` must keep the scene's.
+    let text = "[erosion.stream_power]\nk = 3e-6\n";
+    let s = SceneDesc::from_toml_str(text, "s.toml").unwrap();
+    let mut want = SceneDesc::default();
+    want.erosion.stream_power.k = 3e-6;
+    assert_eq!(s, want);
+    assert_ne!(
+        s.erosion.stream_power.dt_yr,
+        natura_terrain::erosion::StreamPowerParams::default().dt_yr
+    );
+}
+
+#[test]
+fn unknown_key_in_a_model_table_names_line_and_key() {
+    let text = "[erosion.thermal]\ntalus_rate = 0.1\ntalus_deg = 30\n";
+    let err = SceneDesc::from_toml_str(text, "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("s.toml:3:"), "{err}");
+    assert!(err.contains("erosion.thermal.talus_deg"), "{err}");
+}
+
+#[test]
 fn wrong_type_names_line_and_key() {
     let text = "[camera]\nvfov_deg = 30.0\n\n[render]\nwidth = \"wide\"\n";
     let err = SceneDesc::from_toml_str(text, "s.toml")
@@ -78,9 +103,18 @@ fn impossible_values_are_refused_by_name() {
             Box::new(|s| s.sun.elevation_deg = -5.0),
         ),
         (
-            "erosion.talus_deg",
-            Box::new(|s| s.erosion.talus_deg = 90.0),
+            "erosion.thermal.talus_angle",
+            Box::new(|s| s.erosion.thermal.talus_angle = 2.0),
         ),
+        (
+            "erosion.stream_power.k",
+            Box::new(|s| s.erosion.stream_power.k = f64::NAN),
+        ),
+        (
+            "erosion.droplets.radius",
+            Box::new(|s| s.erosion.droplets.radius = 0),
+        ),
+        ("erosion.pipe.dt", Box::new(|s| s.erosion.pipe.dt = -1.0)),
         (
             "camera.target_uv",
             Box::new(|s| s.camera.target_uv = s.camera.position_uv),

@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use serde::Deserialize;
+
 use super::SceneDesc;
 use crate::error::{RenderError, Result};
 
@@ -17,8 +19,20 @@ impl SceneDesc {
     /// Returns [`RenderError::Scene`] naming `name` with the line and column
     /// of malformed TOML, an unknown key or a value of the wrong type.
     pub fn from_toml_str(text: &str, name: &str) -> Result<Self> {
-        let scene: SceneDesc = toml::from_str(text).map_err(|e| toml_error(text, name, &e))?;
-        Ok(scene)
+        // First pass, on the text as written: malformed TOML, unknown keys
+        // and wrong types are reported with their line and column. The
+        // terrain models' sub-tables fill what they leave out from the
+        // models' defaults here, so this pass only checks.
+        toml::from_str::<SceneDesc>(text).map_err(|e| toml_error(text, name, &e))?;
+        // Second pass: the file's keys laid over the built-in scene, so a
+        // key left out of a sub-table keeps the scene's default, not the
+        // model's.
+        let mut table = toml::Table::try_from(SceneDesc::default())
+            .map_err(|e| RenderError::Scene(format!("the built-in scene: {e}")))?;
+        let ours: toml::Table = toml::from_str(text).map_err(|e| toml_error(text, name, &e))?;
+        overlay(&mut table, ours);
+        SceneDesc::deserialize(toml::Value::Table(table))
+            .map_err(|e| RenderError::Scene(format!("{name}: {}", e.message().trim())))
     }
 
     /// Reads and parses a scene file. A missing or unreadable file is an error naming it.
@@ -47,6 +61,18 @@ impl SceneDesc {
     pub fn to_toml_string(&self) -> Result<String> {
         toml::to_string_pretty(self)
             .map_err(|e| RenderError::Scene(format!("cannot write scene as TOML: {e}")))
+    }
+}
+
+/// Lays `top` over `base`: tables merge key by key, any other value replaces.
+fn overlay(base: &mut toml::Table, top: toml::Table) {
+    for (key, value) in top {
+        match (base.get_mut(&key), value) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(t)) => overlay(b, t),
+            (_, v) => {
+                base.insert(key, v);
+            }
+        }
     }
 }
 

@@ -35,42 +35,36 @@ impl SceneDesc {
             0.0,
             10_000.0,
         )?;
-        in_range("erosion.stream_power_k", e.stream_power_k, 0.0, 1.0)?;
-        in_range("erosion.stream_power_m", e.stream_power_m, 0.0, 2.0)?;
-        in_range("erosion.uplift_m_per_yr", e.uplift_m_per_yr, 0.0, 1.0)?;
-        in_range(
-            "erosion.stream_power_dt_yr",
-            e.stream_power_dt_yr,
-            1e-6,
-            1e7,
-        )?;
+        e.stream_power
+            .validate()
+            .map_err(|x| RenderError::in_section("erosion.stream_power", x))?;
         in_range(
             "erosion.droplets_per_sample",
             e.droplets_per_sample,
             0.0,
             1000.0,
         )?;
-        in_range(
-            "erosion.droplet_radius",
-            f64::from(e.droplet_radius),
-            1.0,
-            16.0,
-        )?;
+        e.droplets
+            .validate()
+            .map_err(|x| RenderError::in_section("erosion.droplets", x))?;
         in_range(
             "erosion.hydraulic_steps",
             f64::from(e.hydraulic_steps),
             0.0,
             100_000.0,
         )?;
-        in_range("erosion.rain_m_per_s", e.rain_m_per_s, 0.0, 1.0)?;
-        in_range("erosion.sediment_capacity", e.sediment_capacity, 0.0, 100.0)?;
+        e.pipe
+            .validate()
+            .map_err(|x| RenderError::in_section("erosion.pipe", x))?;
         in_range(
             "erosion.thermal_steps",
             f64::from(e.thermal_steps),
             0.0,
             100_000.0,
         )?;
-        in_range("erosion.talus_deg", e.talus_deg, 1.0, 89.0)?;
+        e.thermal
+            .validate()
+            .map_err(|x| RenderError::in_section("erosion.thermal", x))?;
 
         let w = &self.water;
         if let Some(l) = w.level_m {
@@ -86,7 +80,7 @@ impl SceneDesc {
         let n = w.ocean_resolution;
         if !n.is_power_of_two() || !(natura_ocean::MIN_SIZE..=natura_ocean::MAX_SIZE).contains(&n) {
             return Err(RenderError::Invalid {
-                name: "water.ocean_resolution",
+                name: "water.ocean_resolution".into(),
                 value: n.to_string(),
                 reason: format!(
                     "must be a power of two in {}..={}",
@@ -258,7 +252,7 @@ fn in_range(name: &'static str, v: f64, lo: f64, hi: f64) -> Result<()> {
         Ok(())
     } else {
         Err(RenderError::Invalid {
-            name,
+            name: name.to_owned(),
             value: format!("{v}"),
             reason: format!("must lie in [{lo}, {hi}]"),
         })
