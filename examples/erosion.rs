@@ -12,7 +12,7 @@ mod common;
 use std::path::Path;
 
 use natura::core::glam::Vec3;
-use natura::core::{Grid2, HeightField, Image, Seed};
+use natura::core::{HeightField, Image, Seed};
 use natura::noise::{Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura::terrain::analysis::{self, Depressions};
 use natura::terrain::erosion::{
@@ -243,28 +243,9 @@ fn main() {
 }
 
 /// Gallery pictures are at most 512 px across (PNG size); heights stay f32.
-fn factor(n: usize) -> usize {
-    n.div_ceil(512).max(1)
-}
-
-/// Box-filters a height field down to at most 512 samples across.
 fn downsample_hf(hf: &HeightField) -> HeightField {
-    let f = factor(hf.nx().max(hf.ny()));
-    if f == 1 {
-        return hf.clone();
-    }
-    let (nx, ny) = (hf.nx() / f, hf.ny() / f);
-    let h = hf.heights();
-    let g = common::check(Grid2::from_fn(nx, ny, |i, j| {
-        let mut s = 0.0;
-        for dj in 0..f {
-            for di in 0..f {
-                s += h[(i * f + di, j * f + dj)];
-            }
-        }
-        s / (f * f) as f32
-    }));
-    common::check(HeightField::new(g, hf.cell_size() * f as f32))
+    let factor = hf.nx().max(hf.ny()).div_ceil(512).max(1);
+    common::check(hf.box_downsample(factor))
 }
 
 fn save_relief(hf: &HeightField, path: &Path) {
@@ -277,20 +258,5 @@ fn save_relief(hf: &HeightField, path: &Path) {
 
 /// Writes `img`, box-filtered to at most 512 px across.
 fn save(img: Image, path: &Path) {
-    let f = factor(img.width().max(img.height()));
-    let img = if f == 1 {
-        img
-    } else {
-        let (w, h) = (img.width() / f, img.height() / f);
-        common::check(Image::from_fn(w, h, |x, y| {
-            let mut s = Vec3::ZERO;
-            for dy in 0..f {
-                for dx in 0..f {
-                    s += img.get(x * f + dx, y * f + dy).unwrap_or(Vec3::ZERO);
-                }
-            }
-            s / (f * f) as f32
-        }))
-    };
-    common::check(img.save_png(path));
+    common::check(common::check(img.fit_within(512)).save_png(path));
 }

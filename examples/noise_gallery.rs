@@ -389,27 +389,16 @@ fn main() {
     natura::core::Progress::finish(&bar);
 
     // Contact sheet: 6 columns of thumbnails (at most 128 px), 2-pixel dark gutters.
-    let cols = 6;
-    let rows = thumbs.len().div_ceil(cols);
-    let gut = 2;
-    let th = size.min(128);
-    let (w, h) = (cols * (th + gut) + gut, rows * (th + gut) + gut);
-    let sheet = common::check(Image::from_fn(w, h, |x, y| {
-        let (cx, cy) = (
-            x.saturating_sub(gut) / (th + gut),
-            y.saturating_sub(gut) / (th + gut),
-        );
-        let (ox, oy) = (
-            x.saturating_sub(gut) % (th + gut),
-            y.saturating_sub(gut) % (th + gut),
-        );
-        match thumbs.get(cy * cols + cx) {
-            Some(img) if x >= gut && y >= gut && ox < th && oy < th => {
-                img.get(ox * size / th, oy * size / th).unwrap_or_default()
-            }
-            _ => natura::core::glam::Vec3::splat(0.02),
-        }
-    }));
+    let thumbs: Vec<Image> = thumbs
+        .iter()
+        .map(|t| common::check(t.fit_within(128)))
+        .collect();
+    let sheet = common::check(Image::contact_sheet(
+        &thumbs,
+        6,
+        2,
+        natura::core::glam::Vec3::splat(0.02),
+    ));
     common::check(sheet.save_png(out.join("contact_sheet.png")));
     common::check(io::write_bytes_atomic(
         out.join("index.md"),

@@ -15,12 +15,10 @@
 
 mod common;
 
-use natura::core::glam::{Vec2, Vec3};
-use natura::core::{Grid2, Image, Ramp};
-use natura::ocean::optics::WaterShader;
+use natura::core::Image;
 use natura::ocean::{
-    Foam, FoamParams, Frame, Ocean, OceanParams, Phillips, Seed, Surface, WaterSurface,
-    export::FrameSequence,
+    Foam, FoamParams, Frame, Ocean, OceanParams, Phillips, Seed, Surface, export::FrameSequence,
+    preview,
 };
 
 fn main() {
@@ -36,22 +34,31 @@ fn main() {
         common::fail("--frames must be at least 1");
     }
 
+    let view = preview::TopView::default();
     let winds: &[f64] = if quick { &[12.0] } else { &[6.0, 12.0, 20.0] };
     for &wind in winds {
         let (ocean, frame, foam) = common::check(warmed_up(size, 400.0, wind, None, seed, 40));
         let tag = format!("{wind:.0}ms");
-        save(&out, &format!("height_{tag}.png"), &height_picture(&frame));
-        save(&out, &format!("slope_{tag}.png"), &slope_picture(&frame));
+        save(
+            &out,
+            &format!("height_{tag}.png"),
+            &common::check(preview::height_image(&frame)),
+        );
+        save(
+            &out,
+            &format!("slope_{tag}.png"),
+            &common::check(preview::slope_image(&frame)),
+        );
         save(
             &out,
             &format!("foam_{tag}.png"),
-            &Image::false_colour(&flip(foam.coverage()), Ramp::Magma, 0.0, 1.0),
+            &common::check(preview::foam_image(&foam)),
         );
         let surface = common::check(Surface::new(&frame, Some(&foam)));
         save(
             &out,
             &format!("shaded_{tag}.png"),
-            &shaded(&surface, size, ocean.extent()),
+            &common::check(view.render(&surface, size, ocean.extent())),
         );
         if exr {
             let p = out.join(format!("maps_{tag}.exr"));
@@ -88,7 +95,7 @@ fn main() {
         common::check(ocean.evaluate_into(t, &mut frame));
         common::check(foam.update(&frame));
         let surface = common::check(Surface::new(&frame, Some(&foam)));
-        common::check(seq.write_png(&shaded(&surface, n, ocean.extent())));
+        common::check(seq.write_png(&common::check(view.render(&surface, n, ocean.extent()))));
         bar.advance(1);
     }
     bar.finish();
@@ -138,48 +145,6 @@ fn warmed_up(
         foam.update(&frame)?;
     }
     Ok((ocean, frame, foam))
-}
-
-/// Grid row j (y north) to image row: north up.
-fn flip(g: &Grid2<f32>) -> Grid2<f32> {
-    let (w, h) = g.dims();
-    Grid2::from_fn(w, h, |i, r| g[(i, h - 1 - r)]).expect("same size")
-}
-
-fn height_picture(f: &Frame) -> Image {
-    let (lo, hi) = f.height().min_max();
-    let m = lo.abs().max(hi.abs());
-    Image::false_colour(&flip(f.height()), Ramp::Coolwarm, -m, m)
-}
-
-/// Greyscale x-slope, ±3σ (Tessendorf 2001, fig. 7).
-fn slope_picture(f: &Frame) -> Image {
-    let s = f.slope_x();
-    let sd = (s.as_slice().iter().map(|v| v * v).sum::<f32>() / s.len() as f32).sqrt();
-    Image::false_colour(&flip(s), Ramp::Grey, -3.0 * sd, 3.0 * sd)
-}
-
-/// Orthographic view of the tiling surface, one pixel per grid cell.
-fn shaded(surface: &Surface, n: usize, extent: Vec2) -> Image {
-    let view = Vec3::new(0.0, 0.82, -0.57).normalize();
-    let shader = WaterShader {
-        sun_direction: Vec3::new(-0.55, 0.45, 0.7).normalize(),
-        sun_irradiance: Vec3::new(0.5, 0.47, 0.42),
-        slope_variance: 0.004,
-        ..WaterShader::default()
-    };
-    let zenith = Vec3::new(0.18, 0.36, 0.75);
-    let horizon = Vec3::new(0.75, 0.85, 0.95);
-    let sky = move |d: Vec3| horizon.lerp(zenith, d.z.clamp(0.0, 1.0).sqrt());
-    let foam_colour = Vec3::new(0.85, 0.88, 0.9);
-    let cell = extent / n as f32;
-    let img = Image::from_fn(n, n, |i, r| {
-        let p = Vec2::new(i as f32 + 0.5, (n - 1 - r) as f32 + 0.5) * cell;
-        let normal = surface.normal_at(p);
-        let c = shader.shade(view, normal, 0.0, Some(&sky));
-        c.lerp(foam_colour, surface.foam_at(p).clamp(0.0, 1.0) * 0.9)
-    });
-    common::check(img).tone_mapped(0.0, natura::core::ToneMap::AcesFilmic)
 }
 
 fn save(out: &std::path::Path, name: &str, img: &Image) {

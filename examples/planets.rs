@@ -93,7 +93,7 @@ fn main() {
         save(p, &out.join(format!("planets_{name}.png")));
     }
     let images: Vec<Image> = pictures.into_iter().map(|(_, p)| p).collect();
-    let sheet = common::check(preview::contact_sheet(&images, 5, 6, Vec3::splat(0.0)));
+    let sheet = common::check(Image::contact_sheet(&images, 5, 6, Vec3::splat(0.0)));
     save(&sheet, &sheet_path);
 }
 

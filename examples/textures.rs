@@ -213,7 +213,7 @@ fn main() {
         sheet.push(sphere);
         sheet.push(plane);
     }
-    let sheet = common::check(preview::contact_sheet(&sheet, 6, 4, Vec3::splat(0.01)));
+    let sheet = common::check(Image::contact_sheet(&sheet, 6, 4, Vec3::splat(0.01)));
     save(&sheet, &paths[0]);
 }
 

@@ -283,6 +283,39 @@ impl<T> Grid2<T> {
 }
 
 #[cfg(feature = "parallel")]
+impl<T> Grid2<T>
+where
+    T: Copy + Default + std::ops::Add<Output = T> + std::ops::Mul<f32, Output = T>,
+{
+    /// The grid shrunk by an integer `factor`: each output cell is the mean
+    /// of a `factor × factor` block (a box filter). Cells past the last whole
+    /// block (when a side is not a multiple of `factor`) are dropped.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter)
+    /// if `factor` is zero or larger than either side.
+    pub fn box_downsample(&self, factor: usize) -> Result<Grid2<T>> {
+        if factor == 0 || factor > self.width || factor > self.height {
+            return Err(CoreError::InvalidParameter {
+                name: "factor",
+                value: factor.to_string(),
+                reason: "must lie in [1, the smaller side of the grid]",
+            });
+        }
+        let weight = 1.0 / (factor * factor) as f32;
+        Grid2::from_fn(self.width / factor, self.height / factor, |i, j| {
+            let mut sum = T::default();
+            for dj in 0..factor {
+                for di in 0..factor {
+                    sum = sum + self[(i * factor + di, j * factor + dj)];
+                }
+            }
+            sum * weight
+        })
+    }
+}
+
 impl<T: Send + Sync> Grid2<T> {
     /// Calls `f(y, row)` for every row in parallel (rayon).
     ///
@@ -441,6 +474,18 @@ impl Grid2<f32> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn box_downsample_averages_blocks_and_drops_the_remainder() {
+        let g = Grid2::from_fn(7, 5, |i, j| (i + 10 * j) as f32).unwrap();
+        let d = g.box_downsample(2).unwrap();
+        assert_eq!(d.dims(), (3, 2));
+        // Block (1, 1) holds cells (2..4, 2..4): 22, 23, 32, 33.
+        assert_eq!(d[(1, 1)], (22.0 + 23.0 + 32.0 + 33.0) / 4.0);
+        assert_eq!(g.box_downsample(1).unwrap(), g);
+        assert!(g.box_downsample(0).is_err());
+        assert!(g.box_downsample(6).is_err());
+    }
+
     use super::*;
     use approx::assert_relative_eq;
     use proptest::prelude::*;

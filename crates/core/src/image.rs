@@ -108,6 +108,86 @@ impl Image {
         self.pixels.set(x, y, c).is_some()
     }
 
+    /// The image shrunk by an integer `factor` with a box filter (see
+    /// [`Grid2::box_downsample`]).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`] if `factor` is zero or larger
+    /// than either side.
+    pub fn box_downsample(&self, factor: usize) -> Result<Image> {
+        Ok(Image {
+            pixels: self.pixels.box_downsample(factor)?,
+        })
+    }
+
+    /// The image box-filtered by the smallest integer factor that brings
+    /// both sides to at most `max_side` pixels (itself when they already are).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`] if `max_side` is zero or the
+    /// factor needed exceeds the shorter side.
+    pub fn fit_within(&self, max_side: usize) -> Result<Image> {
+        if max_side == 0 {
+            return Err(CoreError::InvalidParameter {
+                name: "max_side",
+                value: "0".into(),
+                reason: "must be at least 1",
+            });
+        }
+        let factor = self.width().max(self.height()).div_ceil(max_side).max(1);
+        self.box_downsample(factor)
+    }
+
+    /// Lays `images` out in a grid of `columns` columns separated by `gap`
+    /// pixels of `background`, each cell the size of the largest image and
+    /// each image centred in its cell (a contact sheet).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`] for no images or zero
+    /// columns, and the errors of [`Image::new`] for a sheet too large.
+    pub fn contact_sheet(
+        images: &[Image],
+        columns: usize,
+        gap: usize,
+        background: Vec3,
+    ) -> Result<Image> {
+        if images.is_empty() {
+            return Err(CoreError::InvalidParameter {
+                name: "images",
+                value: "0 images".into(),
+                reason: "a contact sheet needs at least one image",
+            });
+        }
+        if columns == 0 {
+            return Err(CoreError::InvalidParameter {
+                name: "columns",
+                value: "0".into(),
+                reason: "must be at least 1",
+            });
+        }
+        let cw = images.iter().map(Image::width).max().unwrap_or(1);
+        let ch = images.iter().map(Image::height).max().unwrap_or(1);
+        let cols = columns.min(images.len());
+        let rows = images.len().div_ceil(cols);
+        let w = cols * cw + (cols + 1) * gap;
+        let h = rows * ch + (rows + 1) * gap;
+        let mut sheet = Image::new(w, h, background)?;
+        for (k, img) in images.iter().enumerate() {
+            let (cx, cy) = (k % cols, k / cols);
+            let x0 = gap + cx * (cw + gap) + (cw - img.width()) / 2;
+            let y0 = gap + cy * (ch + gap) + (ch - img.height()) / 2;
+            for y in 0..img.height() {
+                for x in 0..img.width() {
+                    sheet.set(x0 + x, y0 + y, img.pixels[(x, y)]);
+                }
+            }
+        }
+        Ok(sheet)
+    }
+
     /// Returns `exposure(c, ev)` tone-mapped by `op`: display-referred linear values in `[0, 1]`.
     #[must_use]
     pub fn tone_mapped(&self, ev: f32, op: ToneMap) -> Image {
@@ -322,6 +402,32 @@ mod tests {
         img.set(3, 4, Vec3::new(f32::NAN, 0.0, 0.0));
         let err = img.save_png(scratch("nan.png")).unwrap_err();
         assert!(err.to_string().contains("(3, 4)"), "{err}");
+    }
+
+    #[test]
+    fn contact_sheet_places_each_image_in_its_cell() {
+        let red = Image::new(3, 2, Vec3::X).unwrap();
+        let green = Image::new(1, 1, Vec3::Y).unwrap();
+        let sheet = Image::contact_sheet(&[red.clone(), green, red], 2, 1, Vec3::ZERO).unwrap();
+        // Two columns of 3 × 2 cells with 1-pixel gaps: 9 × 7.
+        assert_eq!((sheet.width(), sheet.height()), (9, 7));
+        assert_eq!(sheet.get(1, 1), Some(Vec3::X));
+        assert_eq!(sheet.get(0, 0), Some(Vec3::ZERO));
+        // The 1 × 1 image sits at the centre of the second cell.
+        assert_eq!(sheet.get(5 + 1, 1), Some(Vec3::Y));
+        assert_eq!(sheet.get(5, 1), Some(Vec3::ZERO));
+        assert_eq!(sheet.get(1, 4), Some(Vec3::X));
+        assert!(Image::contact_sheet(&[], 2, 1, Vec3::ZERO).is_err());
+        assert!(Image::contact_sheet(&[sheet], 0, 1, Vec3::ZERO).is_err());
+    }
+
+    #[test]
+    fn fit_within_shrinks_by_the_smallest_factor() {
+        let img = Image::new(1000, 300, Vec3::ONE).unwrap();
+        let small = img.fit_within(512).unwrap();
+        assert_eq!((small.width(), small.height()), (500, 150));
+        assert_eq!(img.fit_within(1000).unwrap(), img);
+        assert!(img.fit_within(0).is_err());
     }
 
     #[test]

@@ -31,6 +31,7 @@
 //! | [`gerstner`] | sums of Gerstner waves with steepness checks | eqs. 9-13 |
 //! | [`optics`] | Fresnel, reflect/refract, critical angle, water shading | eqs. 37-45, §4.3 |
 //! | [`export`] | EXR maps and frame sequences | |
+//! | [`preview`] | false-colour maps and a shaded top view (the example's pictures) | fig. 7 |
 //! | [`reference`](mod@reference) | the straightforward one-FFT-per-field evaluation (oracle, baseline) | |
 //!
 //! ## Conventions and errata
@@ -61,6 +62,7 @@ mod frame;
 pub mod gerstner;
 pub mod optics;
 mod patch;
+pub mod preview;
 pub mod reference;
 pub mod spectrum;
 pub mod surface;

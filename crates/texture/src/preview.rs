@@ -1,9 +1,9 @@
-//! Pictures of a texture on its own: on a sphere, on a plane, as water, and
-//! contact sheets of several. These are what the examples write; they are
+//! Pictures of a texture on its own: on a sphere, on a plane, and as water
+//! (natura-core's `Image::contact_sheet` lays several out). These are what the examples write; they are
 //! simple fixed renderers, not a scene description.
 
-use glam::{DVec3, Vec3};
-use natura_core::{Grid2, Image, Progress};
+use glam::DVec3;
+use natura_core::{Image, Progress};
 
 use crate::error::{Result, TextureError, positive};
 use crate::footprint::Footprint;
@@ -169,51 +169,4 @@ pub fn water(
             *out = c.as_vec3();
         }
     })
-}
-
-/// Lays `images` out in a grid of `columns` columns separated by `gap`
-/// pixels of `background`, each cell the size of the largest image.
-///
-/// # Errors
-/// [`TextureError::InvalidSize`] for no images or zero columns.
-pub fn contact_sheet(
-    images: &[Image],
-    columns: usize,
-    gap: usize,
-    background: Vec3,
-) -> Result<Image> {
-    if images.is_empty() {
-        return Err(TextureError::InvalidSize {
-            name: "images",
-            value: 0,
-            reason: "a contact sheet needs at least one image".into(),
-        });
-    }
-    if columns == 0 {
-        return Err(TextureError::InvalidSize {
-            name: "columns",
-            value: 0,
-            reason: "must be at least 1".into(),
-        });
-    }
-    let cw = images.iter().map(Image::width).max().unwrap_or(1);
-    let ch = images.iter().map(Image::height).max().unwrap_or(1);
-    let cols = columns.min(images.len());
-    let rows = images.len().div_ceil(cols);
-    let w = cols * cw + (cols + 1) * gap;
-    let h = rows * ch + (rows + 1) * gap;
-    let mut grid = Grid2::new(w, h, background)?;
-    for (k, img) in images.iter().enumerate() {
-        let (cx, cy) = (k % cols, k / cols);
-        let x0 = gap + cx * (cw + gap) + (cw - img.width()) / 2;
-        let y0 = gap + cy * (ch + gap) + (ch - img.height()) / 2;
-        for y in 0..img.height() {
-            for x in 0..img.width() {
-                if let Some(c) = img.get(x, y) {
-                    grid.set(x0 + x, y0 + y, c);
-                }
-            }
-        }
-    }
-    Ok(Image::from_grid(grid))
 }

@@ -288,6 +288,20 @@ impl HeightField {
         self.gradient_at_sample(i, j).length().atan()
     }
 
+    /// The field shrunk by an integer `factor`: heights box-filtered over
+    /// `factor × factor` blocks (see [`Grid2::box_downsample`]) and the
+    /// cell size multiplied by `factor`.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter)
+    /// if `factor` is zero or larger than either side, and the errors of
+    /// [`HeightField::new`] if the coarser cell size overflows.
+    pub fn box_downsample(&self, factor: usize) -> Result<HeightField> {
+        let heights = self.heights.box_downsample(factor)?;
+        HeightField::new(heights, self.cell_size * factor as f32)
+    }
+
     /// `(lowest, highest)` height.
     #[must_use]
     pub fn min_max(&self) -> (f32, f32) {

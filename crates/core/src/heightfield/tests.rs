@@ -147,3 +147,16 @@ fn missing_file_is_named() {
     let err = HeightField::load("x.tiff", Some(1.0), None).unwrap_err();
     assert!(err.to_string().contains("extension"));
 }
+
+#[test]
+fn box_downsample_keeps_the_extent_and_the_mean() {
+    let hf = bumpy(64, 32);
+    let d = hf.box_downsample(4).unwrap();
+    assert_eq!((d.nx(), d.ny()), (16, 8));
+    assert_eq!(d.cell_size(), hf.cell_size() * 4.0);
+    let mean = |h: &HeightField| {
+        let s = h.heights().as_slice();
+        s.iter().map(|&v| f64::from(v)).sum::<f64>() / s.len() as f64
+    };
+    approx::assert_relative_eq!(mean(&d), mean(&hf), max_relative = 1e-5);
+}
