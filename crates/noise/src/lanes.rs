@@ -35,24 +35,66 @@ pub(crate) fn split_fast(x: f64) -> (u32, f64) {
 /// Splits `x` into its floor (as the wrapped lattice index) and fraction, for
 /// any `x`: the point path's twin of [`split_fast`], identical where both apply.
 ///
-/// The same rounding as [`split_fast`], with the correction done on the
-/// integer: the rounded value's integer comes from the bits of `x + M`, the
-/// comparison `round(x) > x` becomes a 0/1 integer, and the floor is
-/// converted back exactly. No floating-point select, so no branch for a
-/// scalar caller to mispredict on points of random sign.
+/// The same rounding as [`split_fast`], with the correction as a
+/// floating-point select (`cmpsd` and a mask, no branch): the floor is
+/// `round(x) − (round(x) > x ? 1 : 0)` (exact), and the index is read from
+/// the bits of `floor + M`, so the comparison feeds nothing on the integer
+/// side (which would make the compiler branch on it). No integer–float
+/// conversion: a short dependency chain, and nothing for a scalar caller
+/// to mispredict on points of random sign (the per-point paths are
+/// latency-bound).
 #[inline(always)]
 #[must_use]
 pub(crate) fn split(x: f64) -> (u32, f64) {
     const MAGIC: f64 = 6_755_399_441_055_744.0;
     if x.abs() < 2_251_799_813_685_248.0 {
         let t = x + MAGIC;
-        let ri = (t.to_bits() as i64).wrapping_sub(MAGIC.to_bits() as i64);
-        let fi = ri - i64::from((ri as f64) > x);
-        (fi as u32, x - fi as f64)
+        let r = t - MAGIC;
+        let fl = r - if r > x { 1.0 } else { 0.0 };
+        // `x − r` is exact (|x − r| ≤ ½ and Sterbenz), so its sign bit
+        // (with `+ 0` turning a `−0` into `+0`) is the same test, read on the
+        // integer side: the compiler cannot share one comparison between the
+        // float select and the index (which it would turn into a branch).
+        let below = (((x - r) + 0.0).to_bits() >> 63) as u32;
+        ((t.to_bits() as u32).wrapping_sub(below), x - fl)
     } else {
         let fl = floor64(x);
         (crate::hash::wrap(fl), x - fl)
     }
+}
+
+/// [`split`] of every coordinate of a point, with one range check for all
+/// of them and the arithmetic written lane-wise (so two or four coordinates
+/// share packed instructions): the same results as [`split`] per coordinate.
+#[inline(always)]
+#[must_use]
+pub(crate) fn split_n<const N: usize>(x: [f64; N]) -> ([u32; N], [f64; N]) {
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
+    let mut fast = true;
+    for v in x {
+        // False for NaN too.
+        fast &= v.abs() < 2_251_799_813_685_248.0;
+    }
+    if !fast {
+        let mut idx = [0u32; N];
+        let mut frac = [0.0f64; N];
+        for a in 0..N {
+            (idx[a], frac[a]) = split(x[a]);
+        }
+        return (idx, frac);
+    }
+    let mut fl = [0.0f64; N];
+    for a in 0..N {
+        let r = (x[a] + MAGIC) - MAGIC;
+        fl[a] = r - if r > x[a] { 1.0 } else { 0.0 };
+    }
+    let mut idx = [0u32; N];
+    let mut frac = [0.0f64; N];
+    for a in 0..N {
+        idx[a] = (fl[a] + MAGIC).to_bits() as u32;
+        frac[a] = x[a] - fl[a];
+    }
+    (idx, frac)
 }
 
 /// Points per block of a rebased row kernel (see [`LaneOffsets`]).
@@ -205,6 +247,62 @@ mod tests {
             let fl = libm::floor(x);
             assert_eq!(i, crate::hash::wrap(fl), "{x}");
             assert_eq!(f, x - fl, "{x}");
+        }
+    }
+
+    /// `split` and `split_n` give the floor's index and the fraction
+    /// `x − floor(x)` bit for bit (the sign of a zero fraction included; −0
+    /// keeps its sign) for
+    /// ties, values an ulp either side of integers, tiny negatives (whose
+    /// fraction rounds), the edges of the fast range, NaN and infinities.
+    #[test]
+    fn split_forms_equal_the_floor_bit_for_bit() {
+        let check = |x: f64| {
+            // `+ 0`: the floor of −0 counts as +0, so −0's fraction is −0.
+            let fl = libm::floor(x) + 0.0;
+            let want = (crate::hash::wrap(fl), x - fl);
+            let got = split(x);
+            assert_eq!(got.0, want.0, "{x}");
+            assert_eq!(got.1.to_bits(), want.1.to_bits(), "{x}");
+            for y in [0.25, -7.5, f64::NAN] {
+                let (i, f) = split_n([x, y]);
+                let (iy, fy) = split(y);
+                assert_eq!((i[0], f[0].to_bits()), (got.0, got.1.to_bits()), "{x}");
+                assert_eq!((i[1], f[1].to_bits()), (iy, fy.to_bits()), "{x} {y}");
+            }
+        };
+        for x in [
+            -0.0,
+            0.0,
+            -1e-300,
+            1e-300,
+            -0.3,
+            -2.5,
+            2.5,
+            -3.5,
+            0.499_999_999_999_999_94,
+            -0.499_999_999_999_999_94,
+            2_251_799_813_685_247.5,
+            -2_251_799_813_685_247.5,
+            2_251_799_813_685_248.0,
+            -4_503_599_627_370_495.5,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            check(x);
+        }
+        for k in -70i32..70 {
+            let v = f64::from(k) * 0.5;
+            for x in [v, v.next_up(), v.next_down()] {
+                check(x);
+            }
+        }
+        let mut h = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..2_000 {
+            h = crate::hash::mix64(h);
+            let scale = [1e-9, 0.7, 3.0, 1e3, 1e9, 1e15][(h % 6) as usize];
+            check(((h >> 11) as f64 / 9_007_199_254_740_992.0 - 0.5) * scale);
         }
     }
 }

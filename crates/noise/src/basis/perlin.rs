@@ -39,7 +39,7 @@ use crate::field::{Field, Lattice3};
 use crate::hash::{
     PX, PY, PZ, corner_spread, dot2, dot3, dot3_lanes, grad1, grad2, grad3, grad4, seed32,
 };
-use crate::lanes::{Kernel, Simd, run, split, split_fast};
+use crate::lanes::{Kernel, Simd, run, split, split_fast, split_n};
 
 mod points;
 mod rows;
@@ -271,13 +271,8 @@ impl Perlin {
 impl Field for Perlin {
     #[inline(always)]
     fn eval2(&self, p: DVec2) -> f64 {
-        with_fade!(self.fade, |f| cell2(
-            self.s,
-            split(p.x),
-            split(p.y),
-            f,
-            dot2
-        )) * K2
+        let ([ix, iy], [fx, fy]) = split_n(p.to_array());
+        with_fade!(self.fade, |f| cell2(self.s, (ix, fx), (iy, fy), f, dot2)) * K2
     }
 
     #[inline(always)]

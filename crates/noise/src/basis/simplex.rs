@@ -24,8 +24,8 @@
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
-use crate::hash::{PX, PY, PZ, corner_spread, dot2, dot3, flat2, flat3, grad2, grad3, seed32};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast};
+use crate::hash::{GRAD2_64, PX, PY, PZ, corner_spread, dot3, flat2, flat3, grad2, grad3, seed32};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast, split_n};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;
@@ -63,7 +63,8 @@ fn skew2(x: f64, y: f64, fast: bool) -> (u32, u32, f64, f64) {
     let ((i, fx), (j, fy)) = if fast {
         (split_fast(xs), split_fast(ys))
     } else {
-        (split(xs), split(ys))
+        let ([i, j], [fx, fy]) = split_n([xs, ys]);
+        ((i, fx), (j, fy))
     };
     let (fi, fj) = (xs - fx, ys - fy);
     let t = (fi + fj) * G2;
@@ -192,27 +193,37 @@ fn masked(x: u32, on: bool) -> u32 {
 
 impl Simplex {
     /// The 2-D value at `p`: the three corners of its triangle, without
-    /// branches (the middle corner and the falloff are selected, not
-    /// jumped to), each lattice index spread once.
+    /// branches, each lattice index spread once. Both candidates for the
+    /// middle corner are hashed and the gradient is selected as
+    /// floating-point values by the triangle test (a compare and a mask);
+    /// selecting the hash instead would share the test with integer code,
+    /// which the compiler turns into a branch that mispredicts on half the
+    /// points.
     #[inline(always)]
     fn value2(&self, p: DVec2) -> f64 {
         let (i, j, x0, y0) = skew2(p.x, p.y, false);
         let upper = x0 > y0;
-        let (i1, j1) = (f64::from(u8::from(upper)), f64::from(u8::from(!upper)));
+        let i1 = if upper { 1.0 } else { 0.0 };
+        let j1 = 1.0 - i1;
         let xp = i.wrapping_mul(PX);
         let yp = j.wrapping_mul(PY) ^ self.s;
         let yq = j.wrapping_mul(PY).wrapping_add(PY) ^ self.s;
         let xq = xp.wrapping_add(PX);
-        let corner = |h: u32, x: f64, y: f64| {
+        let corner = |g: [f64; 2], x: f64, y: f64| {
             let t = falloff(0.5 - x * x - y * y);
             let t2 = t * t;
-            t2 * t2 * dot2(h, x, y)
+            t2 * t2 * (g[0] * x + g[1] * y)
         };
-        let h1 = corner_spread(if upper { xq } else { xp }, if upper { yp } else { yq });
-        let v = corner(corner_spread(xp, yp), x0, y0)
-            + corner(h1, x0 - i1 + G2, y0 - j1 + G2)
+        let grad = |h: u32| GRAD2_64[(h >> 28) as usize];
+        let (g10, g01) = (grad(corner_spread(xq, yp)), grad(corner_spread(xp, yq)));
+        let g1 = [
+            if upper { g10[0] } else { g01[0] },
+            if upper { g10[1] } else { g01[1] },
+        ];
+        let v = corner(grad(corner_spread(xp, yp)), x0, y0)
+            + corner(g1, x0 - i1 + G2, y0 - j1 + G2)
             + corner(
-                corner_spread(xq, yq),
+                grad(corner_spread(xq, yq)),
                 x0 - 1.0 + 2.0 * G2,
                 y0 - 1.0 + 2.0 * G2,
             );
@@ -253,11 +264,11 @@ impl Simplex {
 }
 
 impl Field for Simplex {
-    #[inline]
+    #[inline(always)]
     fn eval2(&self, p: DVec2) -> f64 {
         self.value2(p)
     }
-    #[inline]
+    #[inline(always)]
     fn eval3(&self, p: DVec3) -> f64 {
         self.value3(p)
     }
