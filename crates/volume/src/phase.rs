@@ -28,6 +28,13 @@ pub fn draine(g: f32, alpha: f32, cos_theta: f32) -> f32 {
         / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0)
 }
 
+/// The mean cosine of Draine's function: `g(1 + α(3 + 2g²)/5)/(1 + α(1 + 2g²)/3)`.
+#[inline]
+#[must_use]
+pub fn draine_mean_cosine(g: f32, alpha: f32) -> f32 {
+    g * (1.0 + alpha * (3.0 + 2.0 * g * g) / 5.0) / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0)
+}
+
 /// A phase function.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -44,6 +51,14 @@ pub enum Phase {
         back: f32,
         /// Weight of the back lobe in `[0, 1]`.
         weight: f32,
+    },
+    /// Draine's phase function with asymmetry `g ∈ (−1, 1)` and `alpha ≥ 0`
+    /// (Jendersie & d'Eon 2023, eq. 4).
+    Draine {
+        /// Asymmetry parameter (not the mean cosine unless `alpha = 0`).
+        g: f32,
+        /// Shape parameter `α ≥ 0` (0: Henyey–Greenstein).
+        alpha: f32,
     },
     /// The HG + Draine blend fitted to Mie scattering by water droplets of
     /// the given diameter in µm, `[5, 50]` (Jendersie & d'Eon 2023, eqs. 4–8).
@@ -94,6 +109,10 @@ impl Phase {
                 in_range("back", back, -0.99, 0.99, G)?;
                 in_range("weight", weight, 0.0, 1.0, "must lie in [0, 1]")?;
             }
+            Phase::Draine { g, alpha } => {
+                in_range("g", g, -0.99, 0.99, G)?;
+                in_range("alpha", alpha, 0.0, 1e3, "must lie in [0, 1000]")?;
+            }
             Phase::Cloud { diameter_um } => {
                 in_range(
                     "diameter_um",
@@ -122,6 +141,7 @@ impl Phase {
                 (1.0 - weight) * henyey_greenstein(forward, cos_theta)
                     + weight * henyey_greenstein(back, cos_theta)
             }
+            Phase::Draine { g, alpha } => draine(g, alpha, cos_theta),
             Phase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
                 (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
@@ -141,12 +161,10 @@ impl Phase {
                 back,
                 weight,
             } => (1.0 - weight) * forward + weight * back,
+            Phase::Draine { g, alpha } => draine_mean_cosine(g, alpha),
             Phase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                // Draine's mean cosine: g(1 + α(3 + 2g²)/5)/(1 + α(1 + 2g²)/3).
-                let gd = g_d * (1.0 + alpha * (3.0 + 2.0 * g_d * g_d) / 5.0)
-                    / (1.0 + alpha * (1.0 + 2.0 * g_d * g_d) / 3.0);
-                (1.0 - w_d) * g_hg + w_d * gd
+                (1.0 - w_d) * g_hg + w_d * draine_mean_cosine(g_d, alpha)
             }
         }
     }
@@ -167,7 +185,26 @@ impl Phase {
                 back: back * c,
                 weight,
             },
-            Phase::Cloud { .. } => Phase::HenyeyGreenstein(self.mean_cosine() * c),
+            Phase::Draine { .. } | Phase::Cloud { .. } => {
+                Phase::HenyeyGreenstein(self.mean_cosine() * c)
+            }
+        }
+    }
+
+    /// The forward diffraction peak split off: `(f, rest)` with `f` the
+    /// fraction of scattering into a lobe a fraction of a degree wide and
+    /// `rest` the normalised phase function of the other `1 − f`
+    /// (`(0, self)` for a phase function without such a lobe). For
+    /// [`Phase::Cloud`] the peak is the fit's Henyey–Greenstein lobe
+    /// (`g ≥ 0.97` over the fit's range of diameters) and the rest its Draine lobe.
+    #[must_use]
+    pub fn forward_peak(&self) -> (f32, Phase) {
+        match *self {
+            Phase::Cloud { diameter_um } => {
+                let (_, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                (1.0 - w_d, Phase::Draine { g: g_d, alpha })
+            }
+            p => (0.0, p),
         }
     }
 
@@ -175,7 +212,7 @@ impl Phase {
     fn proposal(&self) -> (f32, f32, f32) {
         match *self {
             Phase::Isotropic => (0.0, 0.0, 0.0),
-            Phase::HenyeyGreenstein(g) => (g, g, 0.0),
+            Phase::HenyeyGreenstein(g) | Phase::Draine { g, .. } => (g, g, 0.0),
             Phase::DualHenyeyGreenstein {
                 forward,
                 back,
@@ -250,6 +287,10 @@ mod tests {
                 back: -0.3,
                 weight: 0.2,
             },
+            Phase::Draine {
+                g: 0.594,
+                alpha: 27.0,
+            },
             Phase::Cloud { diameter_um: 5.0 },
             Phase::Cloud { diameter_um: 20.0 },
             Phase::Cloud { diameter_um: 50.0 },
@@ -275,6 +316,32 @@ mod tests {
     }
 
     #[test]
+    fn the_forward_peak_and_the_rest_make_up_the_cloud_phase() {
+        for d in [5.0f32, 20.0, 50.0] {
+            let p = Phase::Cloud { diameter_um: d };
+            let (f, rest) = p.forward_peak();
+            let (g_hg, ..) = cloud_fit(d);
+            assert!((0.3..0.7).contains(&f) && g_hg >= 0.97, "{d}: {f} {g_hg}");
+            // p = f·HG(g_hg) + (1 − f)·rest, at every angle.
+            for mu in [-1.0f32, -0.3, 0.0, 0.5, 0.9, 0.99, 1.0] {
+                let sum = f * henyey_greenstein(g_hg, mu) + (1.0 - f) * rest.eval(mu);
+                assert!((sum - p.eval(mu)).abs() <= 1e-4 * p.eval(mu), "{d} {mu}");
+            }
+            let g = f * g_hg + (1.0 - f) * rest.mean_cosine();
+            assert!((g - p.mean_cosine()).abs() < 1e-5);
+        }
+        assert_eq!(Phase::HenyeyGreenstein(0.5).forward_peak().0, 0.0);
+        assert!(
+            Phase::Draine {
+                g: 0.5,
+                alpha: -1.0
+            }
+            .validate()
+            .is_err()
+        );
+    }
+
+    #[test]
     fn sampling_reproduces_the_mean_cosine() {
         let d = Vec3::new(0.3, -0.4, 0.866).normalize();
         for p in [
@@ -285,6 +352,10 @@ mod tests {
                 weight: 0.3,
             },
             Phase::Cloud { diameter_um: 15.0 },
+            Phase::Draine {
+                g: 0.6,
+                alpha: 20.0,
+            },
         ] {
             let n = 200_000;
             let mut acc = 0.0f64;

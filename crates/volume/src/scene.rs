@@ -161,7 +161,7 @@ impl Cloudscape {
 
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
     /// of the distance, shadow tables of 256 nodes across, the octave
-    /// multiple-scattering approximation.
+    /// multiple-scattering approximation with the forward peak truncated.
     #[must_use]
     pub fn fast_settings(&self) -> MarchSettings {
         MarchSettings {
@@ -171,6 +171,7 @@ impl Cloudscape {
             octaves: Octaves::default(),
             powder: 0.0,
             min_transmittance: 0.01,
+            truncate_forward_peak: true,
         }
     }
 }

@@ -1,10 +1,16 @@
 //! The kilometre-scale cloudscape's fast mode against the reference (slow:
 //! run with `cargo test --release -p natura-volume --test cloudscape -- --ignored --nocapture`).
+//!
+//! The metric is the relative luminance error `Σ|L_fast − L_ref| / Σ L_ref`
+//! over pixels (also over blocks of pixels, to average the reference's
+//! noise), and the relative error of the mean luminance
+//! `|mean L_fast − mean L_ref| / mean L_ref`.
 
 use glam::Vec3;
 use natura_core::Image;
 use natura_volume::render::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 use natura_volume::scene::{Cloudscape, CloudscapeParams};
+use rayon::prelude::*;
 
 fn lum(c: Vec3) -> f64 {
     f64::from(natura_core::colour::luminance(c))
@@ -12,7 +18,7 @@ fn lum(c: Vec3) -> f64 {
 
 /// Relative luminance error per pixel, over `b × b` blocks (to average the
 /// reference's noise), and of the mean.
-fn errors(a: &Image, r: &Image, b: usize) -> (f64, f64) {
+fn errors_image(a: &Image, r: &Image, b: usize) -> (f64, f64) {
     let (w, h) = (a.width(), a.height());
     let (mut d, mut s, mut ma, mut mr) = (0.0, 0.0, 0.0, 0.0);
     for by in 0..h / b {
@@ -87,12 +93,124 @@ fn cloudscape_fast_mode_against_the_reference() {
         );
     }
     for b in [1, 2, 3, 6] {
-        let (e, m) = errors(&fast, &reference, b);
+        let (e, m) = errors_image(&fast, &reference, b);
         eprintln!("blocks of {b}×{b}: relative luminance error {e:.3}; of the mean {m:.3}");
     }
     eprintln!("reference: 96×54 at 256 paths per pixel in {secs:.1} s");
-    // Measured: 0.235 over 3×3 blocks, 0.11 of the mean (the octave
-    // approximation and the vertically-occluded ambient term); the goal is 0.10.
-    let (e, m) = errors(&fast, &reference, 3);
+    // Measured: 0.224 over 3×3 blocks, 0.114 of the mean (0.236 and 0.116
+    // before the forward peak's truncation); the goal is 0.10, but two
+    // references with different seeds differ by about as much (see the
+    // full-frame test below).
+    let (e, m) = errors_image(&fast, &reference, 3);
     assert!(e <= 0.3 && m <= 0.15, "{e} {m}");
+}
+
+/// Relative luminance error of `a` against `r` (row-major `w × h`), over
+/// `b × b` blocks, and of the mean.
+fn errors(a: &[f64], r: &[f64], w: usize, b: usize) -> (f64, f64) {
+    let h = a.len() / w;
+    let (mut d, mut s) = (0.0, 0.0);
+    for by in 0..h / b {
+        for bx in 0..w / b {
+            let (mut la, mut lr) = (0.0, 0.0);
+            for y in by * b..(by + 1) * b {
+                for x in bx * b..(bx + 1) * b {
+                    la += a[y * w + x];
+                    lr += r[y * w + x];
+                }
+            }
+            d += (la - lr).abs();
+            s += lr;
+        }
+    }
+    let (ma, mr) = (a.iter().sum::<f64>(), r.iter().sum::<f64>());
+    (d / s, (ma - mr).abs() / mr)
+}
+
+/// The comparison at the example's full 1920 × 1080 frame: the fast mode's
+/// value at a pixel depends only on that pixel's ray, so both renderers
+/// evaluate the same rays, the centres of every 20th pixel across and down
+/// (96 × 54 rays), and the fast mode's values there are exactly those of its
+/// full-frame image. The reference is itself noisy (a cloud's phase function
+/// has a diffraction peak a fraction of a degree wide, and paths that wander
+/// into it toward a low sun are rare and bright), so the same metrics between
+/// two references with different seeds are printed beside: the noise floor
+/// under the fast mode's figure.
+#[test]
+#[ignore = "slow: minutes"]
+fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
+    let p = CloudscapeParams::default();
+    assert_eq!((p.width, p.height), (1920, 1080));
+    let cs = Cloudscape::new(&p, 11).unwrap();
+    let scene = cs.scene();
+    let cam = cs.camera();
+    let stride = 20;
+    let (w, h) = (cam.width / stride, cam.height / stride);
+    let rays: Vec<(usize, usize)> = (0..h)
+        .flat_map(|j| (0..w).map(move |i| (i * stride + stride / 2, j * stride + stride / 2)))
+        .collect();
+    let spp = 512;
+    let fast = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
+    let reference = |seed: u64| {
+        let r = ReferenceRenderer::new(
+            &scene,
+            ReferenceSettings {
+                samples_per_pixel: spp,
+                seed,
+                ..ReferenceSettings::default()
+            },
+        )
+        .unwrap();
+        rays.par_iter()
+            .map(|&(x, y)| lum(r.pixel(cam.position, cam.ray(x, y), x, y)))
+            .collect::<Vec<f64>>()
+    };
+    let a: Vec<f64> = rays
+        .par_iter()
+        .map(|&(x, y)| lum(fast.radiance(cam.position, cam.ray(x, y))))
+        .collect();
+    let t = std::time::Instant::now();
+    let r1 = reference(1);
+    let secs = t.elapsed().as_secs_f64();
+    let r2 = reference(2);
+    // Where the difference lies: ground, clear sky, cloud.
+    let mut sums = [[0.0f64; 3]; 3];
+    for (k, &(x, y)) in rays.iter().enumerate() {
+        let d = cam.ray(x, y);
+        let c = if d.z < 0.0 {
+            0
+        } else if fast.transmittance(cam.position, d, f32::INFINITY) > 0.99 {
+            1
+        } else {
+            2
+        };
+        sums[c][0] += a[k];
+        sums[c][1] += r1[k];
+        sums[c][2] += 1.0;
+    }
+    for (k, name) in ["ground", "clear sky", "cloud"].iter().enumerate() {
+        let [fa, fr, n] = sums[k];
+        eprintln!(
+            "{name}: {n} pixels, mean luminance fast {:.4}, reference {:.4}",
+            fa / n,
+            fr / n
+        );
+    }
+    for b in [1, 3] {
+        let (e, m) = errors(&a, &r1, w, b);
+        let (en, mn) = errors(&r2, &r1, w, b);
+        eprintln!(
+            "blocks of {b}×{b}: relative luminance error {e:.3}, of the mean {m:.3}; \
+             between two references (noise floor) {en:.3}, of the mean {mn:.3}"
+        );
+    }
+    eprintln!(
+        "reference: {} rays of the 1920×1080 frame at {spp} paths per pixel in {secs:.1} s",
+        rays.len()
+    );
+    // Measured: 0.254 over 3×3 blocks (noise floor 0.199), 0.167 of the
+    // mean (noise floor 0.045): the fast mode's clouds are too dark by about
+    // a fifth, mostly in the sun's octaves beyond single scattering.
+    let (e, m) = errors(&a, &r1, w, 3);
+    assert!(e <= 0.3 && m <= 0.2, "{e} {m}");
 }

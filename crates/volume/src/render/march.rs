@@ -15,13 +15,33 @@
 //!
 //! The ambient term treats the environment as isotropic and occluded along
 //! the vertical only: an approximation, measured against the reference.
+//!
+//! A cloud's phase function sends about half of its scattering into a
+//! diffraction peak a fraction of a degree wide ([`Phase::forward_peak`](crate::phase::Phase::forward_peak)).
+//! Light scattered into it keeps its direction, so for the transport inside
+//! the volume it is as good as unscattered, yet the octave sums with the full
+//! extinction count it as lost. With [`MarchSettings::truncate_forward_peak`]
+//! the march uses the truncated multiple-scattering approximation of
+//! Nakajima & Tanaka 1988 ("TMS", §2): every optical depth (eye ray, shadow
+//! tables, what is seen through the volume) and the octaves beyond single
+//! scattering, sun and ambient, use the δ-M medium of Wiscombe 1977 (the peak
+//! removed, lower extinction and albedo:
+//! [`MediumParams::without_forward_peak`](super::MediumParams::without_forward_peak)),
+//! while the sun's single scattering toward the eye is computed in the exact
+//! medium (full phase function, extinction and transmittance), so the eye
+//! still sees the peak (the aureole round a low sun through thin cloud).
+//! Nakajima & Tanaka's own correction attenuates that single scattering by
+//! the δ-M optical depths; measured against the reference on the
+//! cloudscape, that over-brightens the aureole (the peak is several pixels
+//! wide in a 1920-pixel frame, not below resolution), so here it keeps the
+//! exact ones.
 
 use glam::Vec3;
 use natura_core::{Aabb, Image};
 
 use super::model::{Octaves, emitted, powder, step_inscatter, step_transmittance};
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
-use super::{BLOCKED_DEPTH, Camera, Scene, check_step};
+use super::{BLOCKED_DEPTH, Camera, MediumParams, Scene, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
 
@@ -52,10 +72,15 @@ pub struct MarchSettings {
     pub powder: f32,
     /// The march stops below this transmittance, in `[0, 1)`.
     pub min_transmittance: f32,
+    /// Treat the phase function's forward diffraction peak as transmitted
+    /// light, with exact single scattering of the sun (see the module docs);
+    /// no effect on phase functions without such a peak.
+    pub truncate_forward_peak: bool,
 }
 
 impl Default for MarchSettings {
-    /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder, stop at `T < 10⁻³`.
+    /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder,
+    /// stop at `T < 10⁻³`, the forward peak truncated.
     fn default() -> Self {
         Self {
             step: 0.1,
@@ -64,6 +89,7 @@ impl Default for MarchSettings {
             octaves: Octaves::SINGLE,
             powder: 0.0,
             min_transmittance: 1e-3,
+            truncate_forward_peak: true,
         }
     }
 }
@@ -88,6 +114,10 @@ pub struct FastRenderer<'s> {
     up_table: Option<ShadowTable>,
     ambient: Vec3,
     bounds: Aabb,
+    /// The medium the multiple scattering travels through (δ-M when truncating).
+    medium: MediumParams,
+    /// Its extinction over the scene's (`1 − ω f`; 1 without truncation).
+    ratio: f32,
 }
 
 impl std::fmt::Debug for FastRenderer<'_> {
@@ -138,7 +168,17 @@ impl<'s> FastRenderer<'s> {
         let bounds = scene.density.bounds();
         let extent = (bounds.max - bounds.min).length();
         check_step("step", settings.step, extent, 1e7)?;
-        let ext = scene.medium.extinction;
+        let medium = if settings.truncate_forward_peak {
+            scene.medium.without_forward_peak()
+        } else {
+            scene.medium
+        };
+        let ratio = if scene.medium.extinction > 0.0 {
+            medium.extinction / scene.medium.extinction
+        } else {
+            1.0
+        };
+        let ext = medium.extinction;
         let (sun_table, up_table) = match settings.shadows {
             Shadows::Table(n) => {
                 if !(2..=1024).contains(&n) {
@@ -193,6 +233,8 @@ impl<'s> FastRenderer<'s> {
             up_table,
             ambient: ambient / n as f32,
             bounds,
+            medium,
+            ratio,
         })
     }
 
@@ -224,7 +266,7 @@ impl<'s> FastRenderer<'s> {
                 if sc.blocked(p, l) {
                     BLOCKED_DEPTH
                 } else {
-                    optical_depth_ray(sc.density, sc.medium.extinction, p, l, h)
+                    optical_depth_ray(sc.density, self.medium.extinction, p, l, h)
                 }
             }
             (None, Shadows::Table(_)) => 0.0,
@@ -235,11 +277,15 @@ impl<'s> FastRenderer<'s> {
     #[must_use]
     pub fn radiance(&self, o: Vec3, d: Vec3) -> Vec3 {
         let sc = self.scene;
-        let m = &sc.medium;
+        // The exact medium (the sun's single scattering) and the one the rest travels through.
+        let (m0, m) = (&sc.medium, &self.medium);
+        let truncated = self.ratio != 1.0;
         let sun = sc.sun_unit();
         let surface = sc.surface_hit(o, d);
         let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
+        // Transmittance of the transport medium and of the exact one.
         let mut tr = 1.0f32;
+        let mut tr0 = 1.0f32;
         let mut l = Vec3::ZERO;
         let mut depth_w = 0.0f32;
         let mut depth_sum = 0.0f32;
@@ -288,24 +334,48 @@ impl<'s> FastRenderer<'s> {
                         continue;
                     }
                     let sigma_t = m.extinction * rho;
+                    let sigma_t0 = m0.extinction * rho;
                     let mut src = le * (sigma_t * (1.0 - m.albedo));
+                    let mut src0 = Vec3::ZERO;
                     let sigma_s = sigma_t * m.albedo;
                     if sigma_s > 0.0 {
                         let oc = &self.settings.octaves;
                         if let Some(s) = sun {
                             let tau = self.tau_sun(p, s.direction);
-                            let f = oc.sun(&m.phase, d.dot(s.direction), tau)
-                                * powder(tau, self.settings.powder);
+                            let mu = d.dot(s.direction);
+                            let pw = powder(tau, self.settings.powder);
+                            // Single scattering in the exact medium (optical depths
+                            // scale with the extinction), the other octaves in the
+                            // transport medium.
+                            let tau0 = if self.ratio > 0.0 {
+                                tau / self.ratio
+                            } else {
+                                tau
+                            };
+                            src0 = s.irradiance
+                                * (sigma_t0 * m0.albedo * m0.phase.eval(mu) * (-tau0).exp() * pw);
+                            let f = oc.sun_scattered(&m.phase, mu, tau) * pw;
                             src += s.irradiance * (sigma_s * f);
                         }
                         src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
                     }
-                    let add = step_inscatter(src, sigma_t, dt) * tr;
+                    let add = if truncated {
+                        step_inscatter(src, sigma_t, dt) * tr
+                            + step_inscatter(src0, sigma_t0, dt) * tr0
+                    } else {
+                        step_inscatter(src + src0, sigma_t, dt) * tr
+                    };
                     l += add;
                     let w = add.element_sum();
                     depth_w += w;
                     depth_sum += w * tm;
                     tr *= step_transmittance(sigma_t, dt);
+                    tr0 = if truncated {
+                        tr0 * step_transmittance(sigma_t0, dt)
+                    } else {
+                        tr
+                    };
+
                     if tr < self.settings.min_transmittance {
                         tr = 0.0;
                         break 'march;
@@ -355,8 +425,9 @@ impl<'s> FastRenderer<'s> {
         super::render_image(camera, |o, d, _, _| self.radiance(o, d))
     }
 
-    /// The transmittance the march accumulates along the ray from `o` in unit
-    /// direction `d` over `[0, t_max]`: `exp(−σ·Σρ·Δt)` with midpoint samples.
+    /// The transmittance of the scene's medium (its phase function's peak
+    /// included) the march finds along the ray from `o` in unit direction `d`
+    /// over `[0, t_max]`: `exp(−σ·Σρ·Δt)` with midpoint samples.
     #[must_use]
     pub fn transmittance(&self, o: Vec3, d: Vec3, t_max: f32) -> f32 {
         let Some((t0, t1)) = ray_box(o, d.recip(), &self.bounds) else {

@@ -127,6 +127,25 @@ impl Default for MediumParams {
 }
 
 impl MediumParams {
+    /// The same medium with the phase function's forward diffraction peak
+    /// treated as unscattered light (the δ-M similarity relations of
+    /// [`model::delta_scaled`] with the peak of [`Phase::forward_peak`]):
+    /// lower extinction, lower albedo, the phase function without its peak.
+    /// Unchanged for phase functions without a peak.
+    #[must_use]
+    pub fn without_forward_peak(&self) -> Self {
+        let (f, phase) = self.phase.forward_peak();
+        if f <= 0.0 {
+            return *self;
+        }
+        let (extinction, albedo) = model::delta_scaled(self.extinction, self.albedo, f);
+        Self {
+            extinction,
+            albedo,
+            phase,
+        }
+    }
+
     /// Checks the fields.
     ///
     /// # Errors

@@ -99,19 +99,23 @@ impl Octaves {
     }
 
     /// `Σ_i a^i·p_{c^i}(cos θ)·e^{−b^i τ}`: the sun's in-scatter factor at a
-    /// point whose optical depth toward the sun is `tau`.
+    /// point whose optical depth toward the sun is `tau`; the single
+    /// scattering term `p(cos θ)·e^{−τ}` plus [`Octaves::sun_scattered`].
     #[inline]
     #[must_use]
     pub fn sun(&self, phase: &Phase, cos_theta: f32, tau: f32) -> f32 {
-        let (mut sa, mut sb, mut sc) = (1.0f32, 1.0f32, 1.0f32);
+        phase.eval(cos_theta) * (-tau).exp() + self.sun_scattered(phase, cos_theta, tau)
+    }
+
+    /// `Σ_{i≥1} a^i·p_{c^i}(cos θ)·e^{−b^i τ}`: the octaves beyond single
+    /// scattering (0 for one octave).
+    #[inline]
+    #[must_use]
+    pub fn sun_scattered(&self, phase: &Phase, cos_theta: f32, tau: f32) -> f32 {
+        let (mut sa, mut sb, mut sc) = (self.a, self.b, self.c);
         let mut s = 0.0;
-        for i in 0..self.count {
-            let p = if i == 0 {
-                phase.eval(cos_theta)
-            } else {
-                phase.scaled(sc).eval(cos_theta)
-            };
-            s += sa * p * (-sb * tau).exp();
+        for _ in 1..self.count {
+            s += sa * phase.scaled(sc).eval(cos_theta) * (-sb * tau).exp();
             sa *= self.a;
             sb *= self.b;
             sc *= self.c;
@@ -132,6 +136,25 @@ impl Octaves {
         }
         s
     }
+}
+
+/// The similarity relations of the δ-M method (Wiscombe 1977, the scaled
+/// optical depth and single-scattering albedo; Joseph, Wiscombe & Weinman
+/// 1976 for the δ-Eddington case): a fraction `f`
+/// of scattering into a forward peak much narrower than any feature of the
+/// light is treated as no scattering at all, so `σ_t' = σ_t·(1 − ω f)`,
+/// `ω' = ω(1 − f)/(1 − ω f)`, and the phase function loses the peak (see
+/// [`Phase::forward_peak`]). Absorption `σ_t'(1 − ω') = σ_t(1 − ω)` is
+/// unchanged. Returns `(σ_t', ω')` from `(σ_t, ω, f)`.
+#[inline]
+#[must_use]
+pub fn delta_scaled(extinction: f32, albedo: f32, f: f32) -> (f32, f32) {
+    let k = 1.0 - albedo * f;
+    if k <= 0.0 {
+        // ω = f = 1: everything scatters into the peak, the medium is clear.
+        return (0.0, 0.0);
+    }
+    (extinction * k, albedo * (1.0 - f) / k)
 }
 
 /// Schneider's "powder" factor (Schneider 2015, "Lighting"): inside a cloud
@@ -223,5 +246,23 @@ mod tests {
         // More octaves add light deep inside (large τ).
         assert!(Octaves::default().ambient(5.0) > Octaves::SINGLE.ambient(5.0) * 10.0);
         assert_eq!(powder(1.0, 0.0), 1.0);
+    }
+
+    #[test]
+    fn delta_scaling_keeps_absorption_and_removes_the_peak() {
+        for (ext, w, f) in [
+            (2.0f32, 0.99f32, 0.5f32),
+            (1.0, 0.5, 0.3),
+            (3.0, 0.0, 0.5),
+            (1.0, 1.0, 0.0),
+        ] {
+            let (e2, w2) = delta_scaled(ext, w, f);
+            assert!((e2 * (1.0 - w2) - ext * (1.0 - w)).abs() < 1e-6);
+            // Scattering outside the peak is kept: σ_s' = σ_s·(1 − f).
+            assert!((e2 * w2 - ext * w * (1.0 - f)).abs() < 1e-6);
+            assert!((0.0..=1.0).contains(&w2) && e2 <= ext);
+        }
+        assert_eq!(delta_scaled(1.0, 0.7, 0.0), (1.0, 0.7));
+        assert_eq!(delta_scaled(1.0, 1.0, 1.0), (0.0, 0.0));
     }
 }
