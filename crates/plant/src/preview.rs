@@ -423,6 +423,29 @@ pub fn render_instances(
     })?)
 }
 
+/// Renders `mesh` into a `width × height` picture framed by
+/// [`Camera::framing`] along `view_dir` (orthographic for `fov_y_deg = None`),
+/// with the default light and colours of [`PreviewParams::new`].
+///
+/// # Errors
+///
+/// As [`Camera::framing`] and [`render`]; [`PlantError::InvalidParameter`]
+/// for an empty mesh.
+pub fn snapshot(
+    mesh: &PlantMesh,
+    width: u32,
+    height: u32,
+    view_dir: Vec3,
+    fov_y_deg: Option<f32>,
+) -> Result<Image> {
+    let (lo, hi) = mesh
+        .bounds()
+        .ok_or_else(|| invalid("mesh", "no vertices", "a picture needs something to draw"))?;
+    let aspect = width.max(1) as f32 / height.max(1) as f32;
+    let camera = Camera::framing(lo, hi, view_dir, fov_y_deg, aspect)?;
+    render(mesh, &PreviewParams::new(width, height, camera))
+}
+
 /// Fills one triangle: z-test per sample, then shades with the interpolated normal.
 fn fill(
     fr: &mut Frame,

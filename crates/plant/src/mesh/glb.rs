@@ -107,8 +107,8 @@ fn colour_json(c: Vec3) -> String {
 ///
 /// Vertex attributes: `POSITION` (with `min`/`max`), `NORMAL`, `TEXCOORD_0`
 /// and the application-specific `_WIND` (the wind weight, a float scalar).
-/// One primitive per material, with u32 indices. Materials are PBR
-/// metallic-roughness: `bark` (rough, single-sided) and `leaf` (double-sided,
+/// One primitive per material, with u32 indices. Materials (only those
+/// used) are PBR metallic-roughness: `bark` (rough, single-sided) and `leaf` (double-sided,
 /// `alphaMode` `OPAQUE`: the leaves are modelled as geometry, with no cut-out
 /// texture that `MASK` would need).
 ///
@@ -121,6 +121,15 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
     if items.is_empty() {
         return Err(invalid("meshes", 0, "a glTF scene needs at least one mesh"));
     }
+    // Only the materials some primitive uses are written (bark first).
+    let uses = |mat: Material| {
+        items.iter().any(|(m, _)| {
+            m.primitives
+                .iter()
+                .any(|p| p.material == mat && p.count > 0)
+        })
+    };
+    let (bark_used, leaf_used) = (uses(Material::Bark), uses(Material::Leaf));
     let mut b = Builder::default();
     let mut meshes = Vec::new();
     let mut nodes = Vec::new();
@@ -165,7 +174,7 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
                 );
                 let mat = match p.material {
                     Material::Bark => 0,
-                    Material::Leaf => 1,
+                    Material::Leaf => usize::from(bark_used),
                 };
                 format!(
                     r#"{{"attributes":{{"POSITION":{a_pos},"NORMAL":{a_nrm},"TEXCOORD_0":{a_uv},"_WIND":{a_wind}}},"indices":{a},"material":{mat},"mode":4}}"#
@@ -203,6 +212,19 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
             ));
         }
     }
+    let mut materials = Vec::new();
+    if bark_used {
+        materials.push(format!(
+            r#"{{"name":"bark","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.9}}}}"#,
+            colour_json(Material::Bark.base_colour())
+        ));
+    }
+    if leaf_used {
+        materials.push(format!(
+            r#"{{"name":"leaf","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.6}},"doubleSided":true,"alphaMode":"OPAQUE"}}"#,
+            colour_json(Material::Leaf.base_colour())
+        ));
+    }
     let node_list = (0..nodes.len())
         .map(|k| k.to_string())
         .collect::<Vec<_>>()
@@ -216,16 +238,14 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
         concat!(
             r#"{{"asset":{{"version":"2.0","generator":"natura-plant"}},{ext}"scene":0,"scenes":[{{"nodes":[{nl}]}}],"#,
             r#""nodes":[{nodes}],"meshes":[{meshes}],"#,
-            r#""materials":[{{"name":"bark","pbrMetallicRoughness":{{"baseColorFactor":{bark},"metallicFactor":0,"roughnessFactor":0.9}}}},"#,
-            r#"{{"name":"leaf","pbrMetallicRoughness":{{"baseColorFactor":{leaf},"metallicFactor":0,"roughnessFactor":0.6}},"doubleSided":true,"alphaMode":"OPAQUE"}}],"#,
+            r#""materials":[{materials}],"#,
             r#""buffers":[{{"byteLength":{blen}}}],"bufferViews":[{views}],"accessors":[{accs}]}}"#
         ),
         ext = ext,
         nl = node_list,
         nodes = nodes.join(","),
         meshes = meshes.join(","),
-        bark = colour_json(Material::Bark.base_colour()),
-        leaf = colour_json(Material::Leaf.base_colour()),
+        materials = materials.join(","),
         blen = b.bin.len(),
         views = b.views.join(","),
         accs = b.accessors.join(","),
