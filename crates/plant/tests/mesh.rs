@@ -193,6 +193,20 @@ fn corrupt_glb_is_an_error_not_a_panic() {
             let _ = Glb::parse(&b);
         }
     }
+    // A later chunk of another type is skipped; one running past the end is an error.
+    let mut b = good.clone();
+    b.extend_from_slice(&4u32.to_le_bytes());
+    b.extend_from_slice(b"XTRA");
+    b.extend_from_slice(&[1, 2, 3, 4]);
+    let n = b.len() as u32;
+    b[8..12].copy_from_slice(&n.to_le_bytes());
+    assert_eq!(
+        Glb::parse(&b).unwrap().json,
+        Glb::parse(&good).unwrap().json
+    );
+    let k = b.len() - 12;
+    b[k] = 8;
+    assert!(Glb::parse(&b).is_err());
     // A bad length field, magic, version.
     let mut b = good.clone();
     b[8] ^= 4;

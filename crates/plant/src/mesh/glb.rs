@@ -315,7 +315,8 @@ pub struct Glb<'a> {
 impl<'a> Glb<'a> {
     /// Splits `bytes` into the JSON and binary chunks (glTF 2.0 §4.4), checking
     /// the magic, the version, the declared length against the real one and
-    /// each chunk's length, type and 4-byte alignment.
+    /// each chunk's length, type and 4-byte alignment (chunks after `BIN`
+    /// are skipped, as the specification asks of readers).
     ///
     /// # Errors
     ///
@@ -375,11 +376,11 @@ impl<'a> Glb<'a> {
             if ty != CHUNK_BIN {
                 return Err(bad(format!("second chunk has type {ty:#x}, expected BIN")));
             }
-            if end != bytes.len() {
-                return Err(bad(format!(
-                    "{} bytes after the BIN chunk",
-                    bytes.len() - end
-                )));
+            // Later chunks of other types are allowed and skipped (§4.4.3.1),
+            // but each must still fit the file.
+            let mut at = end;
+            while at < bytes.len() {
+                at = chunk(at)?.2;
             }
             Some(bin)
         } else {
