@@ -101,6 +101,13 @@ impl Args {
         }
     }
 
+    /// Returns the first argument that is not a flag (call after reading
+    /// every flag, so flag values are already taken).
+    pub fn positional(&mut self) -> Option<String> {
+        let i = self.rest.iter().position(|a| !a.starts_with('-'))?;
+        Some(self.rest.remove(i))
+    }
+
     /// The output directory (`--out`, default `default`), created if needed.
     pub fn out_dir(&mut self, default: &str) -> PathBuf {
         let dir: PathBuf = self.value("--out", PathBuf::from(default), "output directory");

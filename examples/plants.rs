@@ -1,0 +1,90 @@
+//! A gallery of classic L-systems from *The Algorithmic Beauty of Plants*
+//! (Prusinkiewicz & Lindenmayer 1990): the Koch curve and quadratic Koch
+//! island (§1.2–1.3), the bracketed plants of fig. 1.24a–f, the 3-D bush of
+//! fig. 1.25, the monopodial tree of fig. 2.6, the ternary tree of fig. 2.8
+//! and a sunflower head by Vogel's formula (§4.1). Writes a contact sheet
+//! (`plants.png`), the monopodial tree as `tree.glb`, and a grove of that
+//! tree instanced nine times (`grove.glb`, `EXT_mesh_gpu_instancing`).
+//!
+//! ```text
+//! cargo run --release --example plants                 # docs/gallery/plant/plants.png
+//! cargo run --release --example plants -- --quick      # small, for CI
+//! ```
+
+mod common;
+
+use natura::core::glam::Vec3;
+use natura::plant::mesh::{Instance, save_glb, save_glb_instanced};
+use natura::plant::{Derivation, LSystem, MeshParams, PlantMesh, Turtle, TurtleParams, preview};
+
+const GALLERY: [&str; 12] = [
+    include_str!("lsystems/koch_curve.l"),
+    include_str!("lsystems/koch_island.l"),
+    include_str!("lsystems/fig1_24a.l"),
+    include_str!("lsystems/fig1_24b.l"),
+    include_str!("lsystems/fig1_24c.l"),
+    include_str!("lsystems/fig1_24d.l"),
+    include_str!("lsystems/fig1_24e.l"),
+    include_str!("lsystems/fig1_24f.l"),
+    include_str!("lsystems/fig1_25.l"),
+    include_str!("lsystems/fig2_6.l"),
+    include_str!("lsystems/fig2_8.l"),
+    include_str!("lsystems/sunflower.l"),
+];
+
+/// Derives `text` for its derivation length and meshes it; stems get 1/150
+/// of the plant's size as width where the L-system sets none.
+fn grow(text: &str) -> PlantMesh {
+    let lsys = common::check(LSystem::parse(text));
+    let mut d = common::check(Derivation::new(&lsys, 1));
+    common::check(d.derive(lsys.derivation_length()));
+    let s = d.string();
+    let mut tp = TurtleParams::for_lsystem(&lsys);
+    let mut geo = common::check(Turtle::new(&lsys, tp.clone()).and_then(|t| t.interpret(s)));
+    let sets_width = lsys.symbol("!").is_some_and(|id| s.symbols().contains(&id));
+    if let (false, Some((lo, hi))) = (sets_width, geo.bounds()) {
+        tp.width = f64::from((hi - lo).max_element()) / 150.0;
+        geo = common::check(Turtle::new(&lsys, tp).and_then(|t| t.interpret(s)));
+    }
+    common::check(PlantMesh::from_geometry(&geo, &MeshParams::default()))
+}
+
+fn main() {
+    let mut args = common::Args::from_env();
+    let quick = args.switch("--quick", "small pictures (CI)");
+    let out = args.out_dir("docs/gallery/plant");
+    args.finish();
+    let cell = if quick { 96 } else { 200 };
+    let meshes: Vec<PlantMesh> = GALLERY.iter().map(|t| grow(t)).collect();
+    let pictures: Vec<_> = meshes
+        .iter()
+        .map(|m| {
+            let (lo, hi) = m.bounds().unwrap_or_default();
+            let flat = (hi.y - lo.y) < 0.05 * (hi - lo).max_element();
+            let view = if flat {
+                Vec3::Y
+            } else {
+                Vec3::new(0.25, 1.0, -0.3)
+            };
+            common::check(preview::snapshot(m, cell, cell, view, None))
+        })
+        .collect();
+    let sheet = common::check(preview::contact_sheet(&pictures, 4, 4, Vec3::ONE));
+    let png = out.join("plants.png");
+    common::check(sheet.save_png(&png));
+
+    let tree = &meshes[9];
+    let glb = out.join("tree.glb");
+    common::check(save_glb(tree, &glb));
+    let grove: Vec<Instance> = (0..9)
+        .map(|k| {
+            let (x, y) = ((k % 3) as f32 * 4.0, (k / 3) as f32 * 4.0);
+            Instance::new(Vec3::new(x, y, 0.0), 0.7 * k as f32, 0.8 + 0.05 * k as f32)
+        })
+        .collect();
+    let grove_glb = out.join("grove.glb");
+    common::check(save_glb_instanced(&[(tree, &grove)], &grove_glb));
+    for p in [png, glb, grove_glb] {
+        println!("wrote {}", p.display());
+    }
+}
