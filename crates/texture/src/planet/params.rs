@@ -291,7 +291,10 @@ impl LightParams {
 /// Everything that makes a planet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+// Every key is required in files: the optional layers default to present,
+// and a format that omits `None` (TOML) could not say "no clouds" if a
+// missing key meant the default.
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct PlanetParams {
     /// Radius of the sea-level sphere, metres (Earth's, 6 371 km).
     pub radius_m: f64,
