@@ -75,6 +75,7 @@ impl<V: VectorField> Warp for Displace<V> {
 /// How a [`Twist`] turns the point about the z axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum TwistLaw {
     /// Coriolis twist `θ = 2π·twist·r²` (Venus, Musgrave 1993, §5.4; Musgrave
     /// 1998, "The Coriolis Effect").

@@ -112,6 +112,7 @@ pub fn keyed_implicit(keys: &[Keyed], t: f32) -> Result<Implicit> {
 /// Parameters of an [`ImplicitParticles`] system.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct ParticleParams {
     /// Upward (buoyant) acceleration, m/s².
     pub lift: f32,

@@ -73,6 +73,7 @@ impl FrameConstants {
 /// How turbulence and the implicit density are blended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum BlendForm {
     /// `blend·m + (1 − blend)·turb·m` (the source's code and slides): zero
     /// wherever the implicit density is zero.
@@ -107,6 +108,7 @@ pub struct Mackerel {
 /// Parameters of an Ebert cloud; `Default` is the source's cumulus.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct CloudParams {
     /// `parms[1]`, density scale (cumulus 0.2–0.4; default 0.3).
     pub density_scale: f32,

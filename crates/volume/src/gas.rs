@@ -73,6 +73,7 @@ impl GasNoise {
 /// mapping `[0, 1]` to `[0, 1]` monotonically.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Shape {
     /// `d^e` (`e > 1` sharpens into wisps, `e < 1` thickens).
     Pow(f32),
@@ -120,6 +121,7 @@ pub fn basic_gas(noise: &GasNoise, p: Vec3, frequency: f32, denseness: f32, wisp
 /// Parameters of [`Steam`] rising from a teacup.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SteamParams {
     /// Centre of the cup's mouth (m).
     pub mouth: Vec3,

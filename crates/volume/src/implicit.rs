@@ -43,6 +43,7 @@ pub fn wyvill_sq(r2: f32, radius2: f32) -> f32 {
 /// The skeleton of one implicit primitive.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Skeleton {
     /// A point: a sphere of influence.
     Point(Vec3),

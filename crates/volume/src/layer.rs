@@ -20,6 +20,7 @@ use crate::error::{Result, in_range, positive};
 /// Parameters of [`LayerClouds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct LayerParams {
     /// Horizontal region `[min, max]` (m) holding clouds.
     pub region_min: [f32; 2],

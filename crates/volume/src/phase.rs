@@ -38,6 +38,7 @@ pub fn draine_mean_cosine(g: f32, alpha: f32) -> f32 {
 /// A phase function.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Phase {
     /// `1/(4π)`.
     Isotropic,

@@ -29,6 +29,7 @@ use crate::lanes::{Real, Simd, max_fast, min_fast, split};
 /// The distance metric between a point and a feature point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Metric {
     /// Straight-line distance: conical pits, straight ridges. The default.
     #[default]
@@ -111,6 +112,7 @@ impl Metric {
 /// Which distance (or difference of distances) the field returns.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum WorleyFeature {
     /// Distance to the nearest feature point (cells with conical pits). The default.
     #[default]
@@ -158,6 +160,7 @@ impl WorleyFeature {
 /// Parameters of [`Worley`] noise.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct WorleyParams {
     /// Which distance is returned.
     pub feature: WorleyFeature,

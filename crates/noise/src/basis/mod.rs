@@ -20,6 +20,7 @@ pub mod value;
 /// The interpolant ("fade") used across a lattice cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Fade {
     /// `3t² − 2t³`, the sources' interpolant (Musgrave 1993, §2.3.1; Musgrave
     /// et al. 1989, §3.2). The assembled noise is C¹ only: its second

@@ -11,6 +11,7 @@ use crate::lanes::split;
 /// The kernel splatted at each impulse (radius 1 lattice cell).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum SparseKernel {
     /// `1 − r`: the cone of MojoWorld's Figure 19 (Musgrave 2001, "Sparse
     /// Convolution"). The default.
@@ -64,6 +65,7 @@ impl SparseKernel {
 /// Parameters of [`SparseConvolution`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SparseParams {
     /// Impulses per unit cell, 1 to 16 (MojoWorld's seed tables "1" and "4"
     /// Musgrave 2001, "The Seed Tables"); more impulses give a finer, more

@@ -20,6 +20,7 @@ use crate::lanes::{Simd, run, split_fast};
 /// How value noise interpolates across a cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ValueInterp {
     /// Multilinear: MojoWorld's "Linear" basis, creased at cell faces. The default.
     #[default]

@@ -12,6 +12,7 @@ use glam::{DVec2, DVec3};
 /// §2.3.2.3.1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct StatsByAltitudeParams {
     /// H, λ, octaves, frequency. Musgrave 1993, §2.3.2.3.1 writes the
     /// amplitude as `ϖ = λ^(−β/2)`: use

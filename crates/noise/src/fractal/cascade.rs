@@ -9,6 +9,7 @@ use crate::lanes::Simd;
 /// Where the octave amplitude enters each factor of the cascade.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum CascadeForm {
     /// Factor `(N + offset)·w_k` (Musgrave's `multifractal()` listing, Musgrave
     /// 1998b). The default.
@@ -23,6 +24,7 @@ pub enum CascadeForm {
 /// Parameters of [`Multifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MultifractalParams {
     /// H, λ, octaves, frequency.
     pub spectral: Spectral,

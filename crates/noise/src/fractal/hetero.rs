@@ -9,6 +9,7 @@ use crate::lanes::Simd;
 /// Parameters of [`HeteroTerrain`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct HeteroTerrainParams {
     /// H, λ, octaves, frequency.
     pub spectral: Spectral,

@@ -9,6 +9,7 @@ use crate::lanes::Simd;
 /// Parameters of [`HybridMultifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct HybridParams {
     /// H, λ, octaves, frequency.
     pub spectral: Spectral,

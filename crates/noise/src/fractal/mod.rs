@@ -60,6 +60,7 @@ pub const MAX_FREQUENCY_RATIO: f64 = 4_294_967_296.0;
 /// module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Variants keep their names in files: `H` is the sources' symbol.
 pub enum GainConvention {
     /// Octave `k` has amplitude `λ^(−k·H)`: the sources' C code, `β = 2H + 1`. The default.
     #[default]
@@ -74,6 +75,7 @@ pub enum GainConvention {
 /// The spectral parameters every fractal shares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Spectral {
     /// Spectral exponent `H` (Hölder exponent; `D_f = D_E + 1 − H`, Musgrave
     /// 1993, §2.2.1.4), or the raw gain `ω` under [`GainConvention::Raw`].

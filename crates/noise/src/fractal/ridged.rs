@@ -10,6 +10,7 @@ use crate::lanes::Simd;
 /// Parameters of [`RidgedMultifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct RidgedParams {
     /// H, λ, octaves, frequency.
     pub spectral: Spectral,

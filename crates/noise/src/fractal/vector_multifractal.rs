@@ -11,6 +11,7 @@ use crate::warp::VlNoise;
 /// Parameters of [`VectorMultifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct VectorMultifractalParams {
     /// Gain ω (under [`GainConvention::Raw`], the source's form), λ, octaves
     /// and base frequency. The gain both sets the cascade factor `ω^k` of

@@ -48,6 +48,7 @@ use crate::error::{Result, VolumeError, in_range, positive};
 /// How the march finds the optical depth toward the lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Shadows {
     /// Ebert's 3-D shadow tables with this many nodes along the volume's longest axis.
     Table(usize),
@@ -58,6 +59,7 @@ pub enum Shadows {
 /// Settings of the fast renderer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MarchSettings {
     /// Eye-ray step (m) at the eye.
     pub step: f32,

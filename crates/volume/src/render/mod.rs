@@ -106,6 +106,7 @@ impl Camera {
 /// `σ_t = extinction·ρ` (1/m), of which the fraction `albedo` scatters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MediumParams {
     /// Extinction per unit density (1/m).
     pub extinction: f32,

@@ -42,6 +42,7 @@ pub fn step_inscatter(source: Vec3, sigma_t: f32, dt: f32) -> Vec3 {
 /// could be scattered. One octave is plain single scattering.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Octaves {
     /// Number of octaves `N ≥ 1` (1 is single scattering).
     pub count: u32,

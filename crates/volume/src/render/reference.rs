@@ -29,6 +29,7 @@ use crate::error::Result;
 /// Settings of the reference renderer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct ReferenceSettings {
     /// Paths per pixel (1 to 10⁶).
     pub samples_per_pixel: u32,
