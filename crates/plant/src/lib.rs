@@ -38,3 +38,5 @@ pub mod turtle;
 pub use turtle::{Geometry, Turtle, TurtleParams, TurtleState};
 pub mod open;
 pub use open::{Environment, Message, Reply};
+pub mod eco;
+pub mod models;

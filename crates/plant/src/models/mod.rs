@@ -1,0 +1,1 @@
+//! The source papers' plant models.
