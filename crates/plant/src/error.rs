@@ -118,6 +118,14 @@ pub enum PlantError {
         /// The valid range, in words.
         reason: String,
     },
+    /// A file's bytes are malformed (a truncated or corrupt glTF binary, …).
+    #[error("malformed {what}: {message}")]
+    Format {
+        /// What kind of data (`"glTF binary"`).
+        what: &'static str,
+        /// What is wrong with it.
+        message: String,
+    },
     /// An error from `natura-core` (file I/O, images).
     #[error(transparent)]
     Core(#[from] CoreError),

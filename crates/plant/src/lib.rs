@@ -8,10 +8,13 @@
 //! query modules and open L-systems that exchange data with an
 //! [`Environment`] ([`open`]); and 3-D turtle interpretation into segments
 //! chained as generalized cylinders, polygons and predefined surfaces
-//! ([`turtle`]), with differential turtle geometry for curved limbs.
+//! ([`turtle`]), with differential turtle geometry for curved limbs;
+//! triangle meshes of that geometry with bark and leaf materials, exported
+//! as glTF 2.0 binary (with GPU instancing of many plants) or OBJ
+//! ([`mesh`]); and pictures of meshes from a small software rasterizer
+//! ([`preview`]).
 //!
-//! Not in this release yet: plant meshes (glTF binary, OBJ), the source
-//! papers' models and ecosystems.
+//! Not in this release yet: the source papers' models and ecosystems.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};
@@ -40,3 +43,6 @@ pub mod open;
 pub use open::{Environment, Message, Reply};
 pub mod eco;
 pub mod models;
+pub mod mesh;
+pub use mesh::{Material, MeshParams, PlantMesh};
+pub mod preview;
