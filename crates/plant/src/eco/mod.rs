@@ -28,12 +28,14 @@
 
 mod instance;
 mod par;
+mod picture;
 mod quantize;
 mod sim;
 mod site;
 mod species;
 
 pub use instance::{Instance, Instancing, Prototype};
+pub use picture::{species_colour, top_view};
 pub use quantize::{Quantization, quantize};
 pub use sim::{EcoParams, Ecosystem, Plant, StepStats};
 pub use site::Site;

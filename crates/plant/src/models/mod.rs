@@ -6,10 +6,14 @@
 //! |---|---|---|
 //! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §6.1, Fig. 5 | [`tiers`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §6.4, Fig. 11–16 | [`crowns`] |
+//! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
+//! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
 //! [`Environment`]: crate::Environment
 
 pub mod crowns;
+pub mod phyllotaxis;
+pub mod positional;
 pub mod tiers;
 
 use crate::error::Result;
