@@ -6,6 +6,7 @@
 //!
 //! ```text
 //! cargo run --release --example forest                  # 1024² × 2 m (4.2 km²), ~1 M plants
+//! cargo run --release --example forest -- --size 256    # the gallery picture (0.26 km²)
 //! cargo run --release --example forest -- --quick --out /tmp/forest
 //! ```
 
@@ -96,7 +97,7 @@ fn main() {
         inst.reduction()
     );
     common::check(inst.write_csv(out.join("forest_instances.csv")));
-    let img = common::check(top_view(&eco, if quick { 256 } else { 400 }));
+    let img = common::check(top_view(&eco, if quick { 256 } else { 320 }));
     common::check(img.save_png(out.join("forest_top.png")));
     // The GLB holds every prototype mesh with (at most glb_max) instances of it.
     let mp = MeshParams::default();
