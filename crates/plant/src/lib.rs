@@ -14,7 +14,17 @@
 //! ([`mesh`]); and pictures of meshes from a small software rasterizer
 //! ([`preview`]).
 //!
-//! Not in this release yet: the source papers' models and ecosystems.
+//! The source papers' models ([`models`]): the open L-system models of Měch &
+//! Prusinkiewicz 1996 with their environments (Honda's branch tiers, tree
+//! crowns competing for light), collision-based phyllotaxis (Fowler et al.
+//! 1992) and positional-information algorithms (Prusinkiewicz et al. 2001);
+//! and plant ecosystems over a natura-terrain height field after Deussen et
+//! al. 1998 ([`eco`]): species with site preferences, self-thinning between
+//! circles of influence over many generations (parallel and deterministic),
+//! and approximate instancing into a few prototypes per species.
+//!
+//! Not in this release yet: the clonal-plant and root models of Měch &
+//! Prusinkiewicz 1996.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};
@@ -41,6 +51,8 @@ pub mod turtle;
 pub use turtle::{Geometry, Turtle, TurtleParams, TurtleState};
 pub mod open;
 pub use open::{Environment, Message, Reply};
+pub mod eco;
 pub mod mesh;
+pub mod models;
 pub use mesh::{Material, MeshParams, PlantMesh};
 pub mod preview;

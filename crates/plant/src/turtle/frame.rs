@@ -13,6 +13,7 @@ use glam::DVec3;
 
 /// Position and orientation of the turtle.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Frame {
     /// Position.
     pub p: DVec3,

@@ -1,0 +1,225 @@
+//! Branch tiers of *Terminalia catappa* (Honda's model) competing for space.
+//!
+//! Měch & Prusinkiewicz 1996, §6.1, Fig. 5: a tier is a horizontal whorl of
+//! five branches that bifurcate every step; competition for light is reduced
+//! to collisions between apices and circular leaf clusters. Each apex sends
+//! `?E(x)` with its vigor `x`; the environment answers 1 (may branch) if the
+//! apex lies in no existing cluster, or only in clusters of smaller vigor, and
+//! 0 (stops) otherwise; then a cluster of radius ρ is added at the apex.
+//!
+//! Errata: the printed listing shows one symbol for both contraction ratios
+//! (here `r1` = 0.94, `r2` = 0.87, as the text's values say); the text says
+//! two of the axiom's branches hold a `/` that rolls the apex 180° so
+//! branching alternates sides, but the listing lost it — here it is placed
+//! before the apex in the second and fourth branch. The cluster radius ρ is
+//! not printed; the default is our own. The source does not say in which
+//! order the apices of one step are checked: here every apex of a step is
+//! checked against the clusters of earlier steps, then the step's clusters
+//! are added, so the result does not depend on order.
+
+use glam::DVec3;
+use natura_core::check;
+
+use super::{Run, run_open};
+use crate::error::Result;
+use crate::lang::LSystem;
+use crate::open::{Environment, Message, Reply};
+use crate::turtle::{Frame, TurtleParams};
+
+/// Parameters of the tier model.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TiersParams {
+    /// Contraction ratio and vigor of the straight daughter (`r1`).
+    pub r1: f64,
+    /// Contraction ratio and vigor of the lateral daughter (`r2`).
+    pub r2: f64,
+    /// Branching angle of the straight daughter, degrees (`α1`).
+    pub alpha1_deg: f64,
+    /// Branching angle of the lateral daughter, degrees (`α2`).
+    pub alpha2_deg: f64,
+    /// Divergence angle of the whorl, degrees (`φ`; 138.5, not 137.5, in the source).
+    pub divergence_deg: f64,
+    /// Radius ρ of every leaf cluster (not printed in the source).
+    pub cluster_radius: f64,
+    /// Derivation steps (5 in the source's Table 1).
+    pub steps: u32,
+    /// Number of tiers side by side (Fig. 5 shows two).
+    pub tiers: u32,
+    /// Distance between the centres of neighbouring tiers.
+    pub spacing: f64,
+}
+
+impl Default for TiersParams {
+    fn default() -> Self {
+        Self {
+            r1: 0.94,
+            r2: 0.87,
+            alpha1_deg: 24.4,
+            alpha2_deg: 36.9,
+            divergence_deg: 138.5,
+            cluster_radius: 0.45,
+            steps: 5,
+            tiers: 2,
+            spacing: 5.0,
+        }
+    }
+}
+
+impl TiersParams {
+    /// Checks the ratios lie in (0, 1], angles are finite, radius and spacing positive.
+    ///
+    /// # Errors
+    ///
+    /// [`crate::PlantError::InvalidParameter`] naming the field.
+    pub fn validate(&self) -> Result<()> {
+        check::in_range("TiersParams::r1", self.r1, 1e-6, 1.0, "a ratio in (0, 1]")?;
+        check::in_range("TiersParams::r2", self.r2, 1e-6, 1.0, "a ratio in (0, 1]")?;
+        check::finite("TiersParams::alpha1_deg", self.alpha1_deg)?;
+        check::finite("TiersParams::alpha2_deg", self.alpha2_deg)?;
+        check::finite("TiersParams::divergence_deg", self.divergence_deg)?;
+        check::positive("TiersParams::cluster_radius", self.cluster_radius)?;
+        check::non_negative("TiersParams::spacing", self.spacing)?;
+        check::count(
+            "TiersParams::steps",
+            self.steps as usize,
+            0,
+            20,
+            "at most 20 steps",
+        )?;
+        check::count(
+            "TiersParams::tiers",
+            self.tiers as usize,
+            1,
+            16,
+            "1 to 16 tiers",
+        )?;
+        Ok(())
+    }
+
+    /// The model's L-system text (the source's listing with the errata above applied).
+    #[must_use]
+    pub fn lsystem_text(&self) -> String {
+        let whorl = "-(90)[F(1)?E(1)A(1)]+(φ)[F(1)/?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]+(φ)[F(1)/?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]";
+        let mut axiom = String::new();
+        // Tiers side by side along x: turn to +x, move, turn back.
+        for k in 0..self.tiers {
+            let x = (f64::from(k) - f64::from(self.tiers - 1) / 2.0) * self.spacing;
+            axiom.push_str(&format!("[-(90)f({x})+(90){whorl}]"));
+        }
+        format!(
+            "#define r1 {}\n#define r2 {}\n#define α1 {}\n#define α2 {}\n#define φ {}\n\
+             ω: {axiom}\n\
+             p1: ?E(x) < A(v) : x == 1 -> [+(α2)F(v*r2)?E(r2)A(v*r2)]-(α1)F(v*r1)?E(r1)A(v*r1)\n\
+             p2: ?E(x) -> ε\n",
+            self.r1, self.r2, self.alpha1_deg, self.alpha2_deg, self.divergence_deg
+        )
+    }
+}
+
+/// The environment: leaf clusters of radius ρ around every apex that reported.
+#[derive(Clone, Debug, Default)]
+pub struct ClusterField {
+    /// Cluster radius ρ.
+    pub radius: f64,
+    /// Centres and vigors of the clusters so far.
+    pub clusters: Vec<(DVec3, f64)>,
+}
+
+impl Environment for ClusterField {
+    fn respond(&mut self, _step: u32, m: &[Message], r: &mut Vec<Reply>) -> Result<()> {
+        let rr = self.radius * self.radius;
+        let mut new = Vec::with_capacity(m.len());
+        for msg in m {
+            let p = msg.state.frame.p;
+            let v = msg.values.first().copied().unwrap_or(0.0);
+            let free = self
+                .clusters
+                .iter()
+                .all(|&(c, cv)| c.distance_squared(p) > rr || cv < v);
+            r.push(Reply {
+                address: msg.address,
+                values: vec![if free { 1.0 } else { 0.0 }],
+            });
+            new.push((p, v));
+        }
+        self.clusters.extend(new);
+        Ok(())
+    }
+}
+
+/// Grows the tiers; returns the run and the leaf clusters.
+///
+/// # Errors
+///
+/// [`TiersParams::validate`]'s errors; derivation and turtle errors.
+pub fn tiers(p: &TiersParams) -> Result<(Run, ClusterField)> {
+    p.validate()?;
+    let l = LSystem::parse(&p.lsystem_text())?;
+    // The tier is horizontal: the turtle heads along +x with up +z, so it draws in the ground plane.
+    let t = TurtleParams {
+        start: Frame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+        ..TurtleParams::for_lsystem(&l)
+    };
+    let mut env = ClusterField {
+        radius: p.cluster_radius,
+        clusters: Vec::new(),
+    };
+    let run = run_open(l, t, &mut env, p.steps, 0)?;
+    Ok((run, env))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::testenv::Recorder;
+    use crate::{Derivation, Turtle};
+
+    #[test]
+    fn environment_sees_every_apex_and_competition_prunes() {
+        let p = TiersParams::default();
+        let l = LSystem::parse(&p.lsystem_text()).unwrap();
+        let t = Turtle::new(&l, TurtleParams::for_lsystem(&l)).unwrap();
+        let mut inner = ClusterField {
+            radius: p.cluster_radius,
+            ..ClusterField::default()
+        };
+        let mut env = Recorder {
+            inner: &mut inner,
+            seen: Vec::new(),
+        };
+        let mut d = Derivation::new(&l, 0).unwrap();
+        d.communicate(&t, &mut env).unwrap();
+        let a = l.symbol("A").unwrap();
+        for _ in 0..p.steps {
+            d.step_open(&t, &mut env).unwrap();
+        }
+        // Every message comes from a ?E directly before an apex, one per apex of that step.
+        for msgs in &env.seen {
+            assert!(msgs.iter().all(|m| m.next_symbol == Some(a)));
+        }
+        assert_eq!(env.seen[0].len(), 10, "two whorls of five");
+        let (run, clusters) = tiers(&p).unwrap();
+        let segs = run.count("F");
+        // Without competition each tier has 5·(2^(n+1) − 1) segments.
+        let free = 2 * 5 * ((1 << (p.steps + 1)) - 1);
+        assert!(
+            segs < free && segs > 10 * (p.steps as usize),
+            "{segs} of {free}"
+        );
+        assert_eq!(
+            clusters.clusters.len(),
+            env.seen.iter().map(Vec::len).sum::<usize>()
+        );
+        assert_eq!(run.geometry().unwrap().segment_count(), segs);
+    }
+
+    #[test]
+    fn bad_params() {
+        let p = TiersParams {
+            r1: 0.0,
+            ..TiersParams::default()
+        };
+        assert!(tiers(&p).is_err());
+    }
+}

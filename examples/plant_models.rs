@@ -1,0 +1,110 @@
+//! The source papers' plant models as pictures: Honda's branch tiers and
+//! tree crowns competing for light (open L-systems, Měch & Prusinkiewicz
+//! 1996), collision-based phyllotaxis on a cone (Fowler et al. 1992) and
+//! Ridley's packing on a disc (Prusinkiewicz et al. 2001, Alg. 5).
+//!
+//! ```text
+//! cargo run --release --example plant_models                 # all, docs/gallery/plant
+//! cargo run --release --example plant_models -- --model crowns --quick --out /tmp/m
+//! ```
+
+mod common;
+
+use natura::core::glam::{DVec3, Vec3};
+use natura::plant::models::{crowns, phyllotaxis, positional, tiers};
+use natura::plant::preview::{Camera, PreviewParams, render};
+use natura::plant::turtle::{Frame, SurfaceInstance};
+use natura::plant::{Geometry, MeshParams, PlantMesh};
+
+/// Renders `g` seen along `view` into `name` under `out`.
+fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &str) {
+    let mesh = common::check(PlantMesh::from_geometry(g, &MeshParams::default()));
+    let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+    let cam = common::check(Camera::framing(lo, hi, view, None, 1.0));
+    let img = common::check(render(&mesh, &PreviewParams::new(size, size, cam)));
+    common::check(img.save_png(out.join(name)));
+    println!("{name}: {} triangles", mesh.triangle_count());
+}
+
+/// Spheres at the given centres and radii, as turtle geometry.
+fn spheres(items: impl Iterator<Item = (DVec3, f64)>) -> Geometry {
+    let mut g = Geometry::default();
+    for (c, r) in items {
+        g.surfaces.push(SurfaceInstance {
+            name: 'O',
+            frame: Frame {
+                p: c,
+                ..Frame::default()
+            },
+            length: r,
+            width: r,
+            colour: 0,
+            distance: 0.0,
+        });
+    }
+    g
+}
+
+fn main() {
+    let mut args = common::Args::from_env();
+    let quick = args.switch("--quick", "small and fast (CI)");
+    let model: Option<String> = args.optional(
+        "--model",
+        "one of tiers, crowns, phyllotaxis, ridley (default all)",
+    );
+    let out = args.out_dir("docs/gallery/plant");
+    args.finish();
+    const MODELS: [&str; 4] = ["tiers", "crowns", "phyllotaxis", "ridley"];
+    if let Some(m) = model.as_deref().filter(|m| !MODELS.contains(m)) {
+        common::fail(&format!("--model {m}: not one of {}", MODELS.join(", ")));
+    }
+    let want = |n: &str| model.as_deref().is_none_or(|m| m == n);
+    let size = if quick { 192 } else { 400 };
+    if want("tiers") {
+        // Fig. 5: two tiers competing for space, seen from above.
+        let (run, _) = common::check(tiers::tiers(&tiers::TiersParams::default()));
+        picture(
+            &common::check(run.geometry()),
+            Vec3::NEG_Z,
+            size,
+            &out,
+            "tiers.png",
+        );
+    }
+    if want("crowns") {
+        // Fig. 14: two trees grown side by side, seen from the side.
+        let p = crowns::CrownParams {
+            years: if quick { 4 } else { 8 },
+            trees_x: vec![-1.0, 1.0],
+            ..crowns::CrownParams::default()
+        };
+        let run = common::check(crowns::crowns(&p));
+        picture(
+            &common::check(run.geometry()),
+            Vec3::Y,
+            size,
+            &out,
+            "crowns.png",
+        );
+    }
+    if want("phyllotaxis") {
+        // Fig. 4: primordia on a cone, shrinking towards the tip.
+        let v = common::check(phyllotaxis::phyllotaxis(
+            &phyllotaxis::PhyllotaxisParams::default(),
+        ));
+        let g = spheres(v.iter().map(|p| (p.centre, p.radius)));
+        picture(&g, Vec3::new(0.3, 0.5, -1.0), size, &out, "phyllotaxis.png");
+    }
+    if want("ridley") {
+        // Fig. 13 (flat case): Vogel's pattern from Algorithm 5.
+        let v = common::check(positional::ridley(1.0, 1e-5, |s| (s, 0.0), |_| 0.04));
+        let g = spheres(v.iter().map(|o| {
+            let a = o.angle_deg.to_radians();
+            (
+                DVec3::new(o.x * a.cos(), o.x * a.sin(), o.y),
+                o.radius * 0.9,
+            )
+        }));
+        picture(&g, Vec3::NEG_Z, size, &out, "ridley.png");
+    }
+}
