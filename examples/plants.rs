@@ -69,7 +69,12 @@ fn main() {
             common::check(preview::snapshot(m, cell, cell, view, None))
         })
         .collect();
-    let sheet = common::check(preview::contact_sheet(&pictures, 4, 4, Vec3::ONE));
+    let sheet = common::check(natura::core::Image::contact_sheet(
+        &pictures,
+        4,
+        4,
+        Vec3::ONE,
+    ));
     let png = out.join("plants.png");
     common::check(sheet.save_png(&png));
 

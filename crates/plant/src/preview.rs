@@ -13,7 +13,7 @@
 //! Triangles with a vertex closer to a perspective camera than its near
 //! plane are skipped rather than clipped (a preview frames the whole plant).
 
-use crate::error::{PlantError, Result};
+use crate::error::Result;
 use crate::mesh::{Instance, Material, PlantMesh, invalid};
 use glam::Vec3;
 use natura_core::Image;
@@ -21,7 +21,8 @@ use natura_core::Image;
 /// How the camera projects.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Projection {
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum PreviewProjection {
     /// Parallel projection; `height` is the visible height in metres.
     Orthographic {
         /// Visible height in metres.
@@ -45,7 +46,7 @@ pub struct Camera {
     /// Direction that appears upward (need not be ⟂ to the view).
     pub up: Vec3,
     /// The projection.
-    pub projection: Projection,
+    pub projection: PreviewProjection,
 }
 
 impl Camera {
@@ -57,7 +58,7 @@ impl Camera {
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] for a non-finite box, a zero or
+    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) for a non-finite box, a zero or
     /// non-finite `view_dir`, a non-positive aspect or a field of view outside (0, 180).
     pub fn framing(
         lo: Vec3,
@@ -104,7 +105,7 @@ impl Camera {
                     eye: target - f * (4.0 * radius),
                     target,
                     up,
-                    projection: Projection::Orthographic { height: h },
+                    projection: PreviewProjection::Orthographic { height: h },
                 }
             }
             Some(fov) => {
@@ -114,7 +115,7 @@ impl Camera {
                     eye: target - f * (1.08 * radius / half.sin()),
                     target,
                     up,
-                    projection: Projection::Perspective { fov_y_deg: fov },
+                    projection: PreviewProjection::Perspective { fov_y_deg: fov },
                 }
             }
         };
@@ -126,7 +127,7 @@ impl Camera {
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] naming the field.
+    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) naming the field.
     pub fn validate(&self) -> Result<()> {
         let f = self.target - self.eye;
         if !self.eye.is_finite() || !self.target.is_finite() || f.length() < 1e-9 {
@@ -144,14 +145,16 @@ impl Camera {
             ));
         }
         match self.projection {
-            Projection::Orthographic { height } if !(height.is_finite() && height > 0.0) => {
+            PreviewProjection::Orthographic { height } if !(height.is_finite() && height > 0.0) => {
                 Err(invalid(
                     "Camera::projection.height",
                     height,
                     "must be finite and > 0",
                 ))
             }
-            Projection::Perspective { fov_y_deg } if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) => {
+            PreviewProjection::Perspective { fov_y_deg }
+                if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) =>
+            {
                 Err(invalid(
                     "Camera::projection.fov_y_deg",
                     fov_y_deg,
@@ -208,7 +211,7 @@ impl PreviewParams {
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] naming the field.
+    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) naming the field.
     pub fn validate(&self) -> Result<()> {
         use natura_core::check;
         check::count(
@@ -278,8 +281,10 @@ impl View {
         let r = f.cross(c.up).normalize();
         let u = r.cross(f);
         let (half, perspective) = match c.projection {
-            Projection::Orthographic { height } => (0.5 * height, false),
-            Projection::Perspective { fov_y_deg } => ((0.5 * fov_y_deg.to_radians()).tan(), true),
+            PreviewProjection::Orthographic { height } => (0.5 * height, false),
+            PreviewProjection::Perspective { fov_y_deg } => {
+                ((0.5 * fov_y_deg.to_radians()).tan(), true)
+            }
         };
         Self {
             eye: c.eye,
@@ -340,7 +345,7 @@ struct Frame {
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if `params` or the mesh ([`PlantMesh::check`]) is invalid.
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `params` or the mesh ([`PlantMesh::check`]) is invalid.
 pub fn render(mesh: &PlantMesh, params: &PreviewParams) -> Result<Image> {
     render_instances(&[(mesh, &[Instance::default()])], params)
 }
@@ -349,7 +354,7 @@ pub fn render(mesh: &PlantMesh, params: &PreviewParams) -> Result<Image> {
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if `params`, a mesh ([`PlantMesh::check`])
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `params`, a mesh ([`PlantMesh::check`])
 /// or an instance ([`Instance::validate`]) is invalid.
 pub fn render_instances(
     items: &[(&PlantMesh, &[Instance])],
@@ -429,7 +434,7 @@ pub fn render_instances(
 ///
 /// # Errors
 ///
-/// As [`Camera::framing`] and [`render`]; [`PlantError::InvalidParameter`]
+/// As [`Camera::framing`] and [`render`]; [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter)
 /// for an empty mesh.
 pub fn snapshot(
     mesh: &PlantMesh,
@@ -509,48 +514,6 @@ fn fill(
     }
 }
 
-/// Lays `images` out in rows of `columns` cells of the largest image's size,
-/// each image centred in its cell, `gap` pixels apart and around.
-///
-/// # Errors
-///
-/// [`PlantError::InvalidParameter`] for no images or zero columns;
-/// [`PlantError::Core`] if the sheet is too large to allocate.
-pub fn contact_sheet(
-    images: &[Image],
-    columns: usize,
-    gap: usize,
-    background: Vec3,
-) -> Result<Image> {
-    if images.is_empty() || columns == 0 {
-        return Err(invalid(
-            "contact_sheet",
-            format!("{} images, {columns} columns", images.len()),
-            "needs at least one image and one column",
-        ));
-    }
-    let cw = images.iter().map(Image::width).max().unwrap_or(1);
-    let ch = images.iter().map(Image::height).max().unwrap_or(1);
-    let cols = columns.min(images.len());
-    let rows = images.len().div_ceil(cols);
-    let w = cols * cw + (cols + 1) * gap;
-    let h = rows * ch + (rows + 1) * gap;
-    let mut sheet = Image::new(w, h, background).map_err(PlantError::from)?;
-    for (k, img) in images.iter().enumerate() {
-        let (c, r) = (k % cols, k / cols);
-        let ox = gap + c * (cw + gap) + (cw - img.width()) / 2;
-        let oy = gap + r * (ch + gap) + (ch - img.height()) / 2;
-        for y in 0..img.height() {
-            for x in 0..img.width() {
-                if let Some(v) = img.get(x, y) {
-                    sheet.set(ox + x, oy + y, v);
-                }
-            }
-        }
-    }
-    Ok(sheet)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -620,7 +583,7 @@ mod tests {
             eye: Vec3::new(0.0, 0.0, 5.0),
             target: Vec3::ZERO,
             up: Vec3::Y,
-            projection: Projection::Orthographic { height: 4.0 },
+            projection: PreviewProjection::Orthographic { height: 4.0 },
         };
         let mut p = PreviewParams::new(8, 8, cam);
         p.light = Vec3::Z;
@@ -646,6 +609,5 @@ mod tests {
         assert!(render(&m, &p).is_err());
         assert!(Camera::framing(lo, hi, Vec3::NAN, None, 1.0).is_err());
         assert!(Camera::framing(lo, hi, Vec3::Y, Some(180.0), 1.0).is_err());
-        assert!(contact_sheet(&[], 2, 1, Vec3::ZERO).is_err());
     }
 }

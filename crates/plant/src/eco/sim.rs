@@ -28,6 +28,7 @@ use crate::error::{PlantError, Result};
 /// Parameters of an ecosystem simulation.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct EcoParams {
     /// The species (at most 65 535).
     pub species: Vec<Species>,

@@ -16,6 +16,7 @@ use crate::error::{PlantError, Result};
 /// altitude and slope are hard limits on where a seed may establish.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Species {
     /// Name (for files and pictures).
     pub name: String,

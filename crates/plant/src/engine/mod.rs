@@ -27,6 +27,7 @@ pub(crate) use context::{bind_pred, match_left, match_right};
 /// Limits that stop runaway growth with an error instead of exhausting memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Limits {
     /// The most modules a string may hold.
     pub max_modules: usize,

@@ -91,6 +91,7 @@ pub struct Primitive {
 /// Settings of [`PlantMesh::from_geometry`].
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MeshParams {
     /// Vertices around a stem (3 to 64); also the slices of spheres and discs.
     pub radial_segments: u32,

@@ -40,6 +40,7 @@ use crate::turtle::TurtleParams;
 /// Parameters of the tree model (defaults: the source's listing).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct CrownParams {
     /// Divergence angle φ, degrees.
     pub divergence_deg: f64,

@@ -22,6 +22,7 @@ use crate::error::{PlantError, Result};
 /// The receptacle's generating curve, `t ∈ [0, 1]` from base to tip.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Receptacle {
     /// A flat disc of the given radius (daisies, Fig. 5): `ρ = R(1 − t)`, `h = 0`.
     Disc {
@@ -60,6 +61,7 @@ impl Receptacle {
 /// Parameters of the collision model.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PhyllotaxisParams {
     /// The receptacle.
     pub receptacle: Receptacle,

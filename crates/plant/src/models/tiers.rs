@@ -29,6 +29,7 @@ use crate::turtle::{Frame, TurtleParams};
 /// Parameters of the tier model.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct TiersParams {
     /// Contraction ratio and vigor of the straight daughter (`r1`).
     pub r1: f64,

@@ -14,6 +14,7 @@ use glam::DVec3;
 /// Position and orientation of the turtle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Frame {
     /// Position.
     pub p: DVec3,

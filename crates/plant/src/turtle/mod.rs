@@ -38,6 +38,7 @@ use glam::DVec3;
 /// Settings of the turtle.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct TurtleParams {
     /// Default turning angle in degrees (used when a rotation has no parameter).
     pub angle_deg: f64,
