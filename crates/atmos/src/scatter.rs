@@ -20,14 +20,33 @@ pub fn rayleigh_phase(cos_theta: f64) -> f64 {
     3.0 / (16.0 * PI) * (1.0 + cos_theta * cos_theta)
 }
 
-/// Henyey–Greenstein phase `(1 − g²)/(4π(1 + g² − 2g cosθ)^{3/2})` (Fedkiw et al. 2001, §5,
-/// eq. 12, normalised).
-#[inline]
-#[must_use]
-pub fn henyey_greenstein(g: f64, cos_theta: f64) -> f64 {
-    let d = 1.0 + g * g - 2.0 * g * cos_theta;
-    (1.0 - g * g) / (4.0 * PI * d * d.sqrt())
+/// The Henyey–Greenstein phase, written once for `f64` and `f32`.
+macro_rules! henyey_greenstein_fn {
+    ($(#[$doc:meta])* $name:ident, $f:ident) => {
+        $(#[$doc])*
+        #[inline]
+        #[must_use]
+        pub fn $name(g: $f, cos_theta: $f) -> $f {
+            // `1 + g² − 2g cosθ ≥ (1 − |g|)² > 0` exactly; rounding can reach
+            // zero as `|g| → 1`, so the denominator is kept off it.
+            let d = (1.0 + g * g - 2.0 * g * cos_theta).max(1e-12);
+            (1.0 - g * g) / (4.0 * core::$f::consts::PI * d * d.sqrt())
+        }
+    };
 }
+
+henyey_greenstein_fn!(
+    /// Henyey–Greenstein phase `(1 − g²)/(4π(1 + g² − 2g cosθ)^{3/2})` (Henyey &
+    /// Greenstein 1941, eq. 3; Fedkiw et al. 2001, §5, eq. 12, which omits the `1/(4π)`).
+    henyey_greenstein,
+    f64
+);
+henyey_greenstein_fn!(
+    /// [`henyey_greenstein`] in `f32`, for renderers' inner loops (natura-volume's
+    /// phase functions build on it).
+    henyey_greenstein_f32,
+    f32
+);
 
 /// Cornette–Shanks phase `3(1 − g²)(1 + cos²θ)/(8π(2 + g²)(1 + g² − 2g cosθ)^{3/2})`
 /// (Cornette & Shanks, Appl. Opt. 31(16), 1992): a better Mie fit than HG that

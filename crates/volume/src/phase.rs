@@ -11,13 +11,9 @@ use crate::error::{Result, in_range};
 
 const INV_4PI: f32 = 1.0 / (4.0 * PI);
 
-/// Henyey–Greenstein `(1 − g²)/(4π(1 + g² − 2g cos θ)^{3/2})` (Henyey & Greenstein 1941, eq. 3).
-#[inline]
-#[must_use]
-pub fn henyey_greenstein(g: f32, cos_theta: f32) -> f32 {
-    let d = (1.0 + g * g - 2.0 * g * cos_theta).max(1e-12);
-    INV_4PI * (1.0 - g * g) / (d * d.sqrt())
-}
+/// Henyey–Greenstein `(1 − g²)/(4π(1 + g² − 2g cos θ)^{3/2})` (Henyey & Greenstein 1941,
+/// eq. 3): natura-atmos' phase function, in `f32`.
+pub use natura_atmos::scatter::henyey_greenstein_f32 as henyey_greenstein;
 
 /// Draine's phase function `HG(g)·(1 + α cos²θ)/(1 + α(1 + 2g²)/3)`
 /// (Jendersie & d'Eon 2023, eq. 4; α = 0 is Henyey–Greenstein, g = 0, α = 1 Rayleigh).
