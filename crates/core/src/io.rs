@@ -240,6 +240,7 @@ mod tests {
 }
 
 pub mod exr;
+pub mod glb;
 mod set;
 
 pub use set::OutputSet;

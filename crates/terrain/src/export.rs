@@ -237,7 +237,7 @@ pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
 ///
 /// # Errors
 ///
-/// As [`save_obj`]; also [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) if the file would
+/// As [`save_obj`]; also [`TerrainError::Core`](crate::TerrainError::Core) if the file would
 /// exceed glTF's 4 GiB limit.
 pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
     m.check()?;
@@ -286,33 +286,11 @@ pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
         hy = hi.y,
         hz = hi.z,
     );
-    let mut json = json.into_bytes();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    if total > u32::MAX as usize {
-        return Err(invalid(
-            "mesh",
-            total,
-            "a .glb file must be smaller than 4 GiB",
-        ));
-    }
-    Ok(write_atomic(path, |w| {
-        w.write_all(b"glTF")?;
-        w.write_all(&2u32.to_le_bytes())?;
-        w.write_all(&(total as u32).to_le_bytes())?;
-        w.write_all(&(json.len() as u32).to_le_bytes())?;
-        w.write_all(b"JSON")?;
-        w.write_all(&json)?;
-        w.write_all(&(bin.len() as u32).to_le_bytes())?;
-        w.write_all(b"BIN\0")?;
-        w.write_all(&bin)?;
-        Ok::<(), WriteError>(())
-    })?)
+    let glb = natura_core::io::glb::Glb {
+        json: &json,
+        bin: Some(&bin),
+    };
+    Ok(glb.write(path)?)
 }
 
 #[cfg(test)]

@@ -7,8 +7,9 @@
 //! quaternions likewise rotate their vector part, and scales swap y and z.
 
 use super::{Instance, Material, PlantMesh, invalid};
-use crate::error::{PlantError, Result};
+use crate::error::Result;
 use glam::{Quat, Vec3};
+pub use natura_core::io::glb::Glb;
 use natura_core::io::{WriteError, write_atomic};
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -18,9 +19,6 @@ const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
-const GLB_MAGIC: &[u8; 4] = b"glTF";
-const CHUNK_JSON: u32 = 0x4E4F_534A;
-const CHUNK_BIN: u32 = 0x004E_4942;
 
 #[inline]
 fn yup(v: Vec3) -> [f32; 3] {
@@ -114,9 +112,10 @@ fn colour_json(c: Vec3) -> String {
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if there is no mesh, a mesh fails
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if there is no mesh, a mesh fails
 /// [`PlantMesh::check`] or has no triangles, an instance fails
-/// [`Instance::validate`], or the file would exceed glTF's 4 GiB limit.
+/// [`Instance::validate`]; [`PlantError::Core`](crate::PlantError::Core) if the file would exceed
+/// glTF's 4 GiB limit.
 pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
     if items.is_empty() {
         return Err(invalid("meshes", 0, "a glTF scene needs at least one mesh"));
@@ -250,40 +249,18 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
         views = b.views.join(","),
         accs = b.accessors.join(","),
     );
-    let mut json = json.into_bytes();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    let mut bin = b.bin;
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    if total > u32::MAX as usize {
-        return Err(invalid(
-            "meshes",
-            total,
-            "a .glb file must be smaller than 4 GiB",
-        ));
-    }
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(GLB_MAGIC);
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-    out.extend_from_slice(&bin);
-    Ok(out)
+    let glb = Glb {
+        json: &json,
+        bin: Some(&b.bin),
+    };
+    Ok(glb.to_bytes()?)
 }
 
 /// Writes one mesh as a `.glb` at the origin (see [`glb_bytes`]), atomically.
 ///
 /// # Errors
 ///
-/// As [`glb_bytes`]; [`PlantError::Core`] naming the file if it cannot be written.
+/// As [`glb_bytes`]; [`PlantError::Core`](crate::PlantError::Core) naming the file if it cannot be written.
 pub fn save_glb(mesh: &PlantMesh, path: impl AsRef<Path>) -> Result<()> {
     save_glb_instanced(&[(mesh, &[])], path)
 }
@@ -292,7 +269,7 @@ pub fn save_glb(mesh: &PlantMesh, path: impl AsRef<Path>) -> Result<()> {
 ///
 /// # Errors
 ///
-/// As [`glb_bytes`]; [`PlantError::Core`] naming the file if it cannot be written.
+/// As [`glb_bytes`]; [`PlantError::Core`](crate::PlantError::Core) naming the file if it cannot be written.
 pub fn save_glb_instanced(
     items: &[(&PlantMesh, &[Instance])],
     path: impl AsRef<Path>,
@@ -301,91 +278,4 @@ pub fn save_glb_instanced(
     Ok(write_atomic(path, |w| {
         w.write_all(&bytes).map_err(WriteError::Io)
     })?)
-}
-
-/// The two chunks of a `.glb` file, checked for consistency but not interpreted.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Glb<'a> {
-    /// The JSON chunk (UTF-8, trailing padding spaces removed).
-    pub json: &'a str,
-    /// The binary chunk, if present.
-    pub bin: Option<&'a [u8]>,
-}
-
-impl<'a> Glb<'a> {
-    /// Splits `bytes` into the JSON and binary chunks (glTF 2.0 §4.4), checking
-    /// the magic, the version, the declared length against the real one and
-    /// each chunk's length, type and 4-byte alignment (chunks after `BIN`
-    /// are skipped, as the specification asks of readers).
-    ///
-    /// # Errors
-    ///
-    /// [`PlantError::Format`] saying what is wrong; never panics on any input.
-    pub fn parse(bytes: &'a [u8]) -> Result<Self> {
-        let bad = |m: String| PlantError::Format {
-            what: "glTF binary",
-            message: m,
-        };
-        let u32_at = |o: usize| -> Option<u32> {
-            bytes
-                .get(o..o.checked_add(4)?)
-                .map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
-        };
-        if bytes.len() < 20 {
-            return Err(bad(format!("{} bytes, shorter than a header", bytes.len())));
-        }
-        if &bytes[0..4] != GLB_MAGIC {
-            return Err(bad("the magic is not `glTF`".into()));
-        }
-        let version = u32_at(4).unwrap_or(0);
-        if version != 2 {
-            return Err(bad(format!("version {version}, expected 2")));
-        }
-        let total = u32_at(8).unwrap_or(0) as usize;
-        if total != bytes.len() {
-            return Err(bad(format!(
-                "header says {total} bytes, the data holds {}",
-                bytes.len()
-            )));
-        }
-        let chunk = |at: usize| -> Result<(u32, &'a [u8], usize)> {
-            let len = u32_at(at).ok_or_else(|| bad(format!("chunk header at {at} is cut off")))?;
-            let ty =
-                u32_at(at + 4).ok_or_else(|| bad(format!("chunk header at {at} is cut off")))?;
-            let start = at + 8;
-            let end = start
-                .checked_add(len as usize)
-                .filter(|&e| e <= bytes.len())
-                .ok_or_else(|| bad(format!("chunk at {at} of {len} bytes runs past the end")))?;
-            if len % 4 != 0 {
-                return Err(bad(format!(
-                    "chunk at {at}: length {len} is not a multiple of 4"
-                )));
-            }
-            Ok((ty, &bytes[start..end], end))
-        };
-        let (ty, json, next) = chunk(12)?;
-        if ty != CHUNK_JSON {
-            return Err(bad(format!("first chunk has type {ty:#x}, expected JSON")));
-        }
-        let json = std::str::from_utf8(json)
-            .map_err(|e| bad(format!("JSON chunk is not UTF-8: {e}")))?
-            .trim_end_matches([' ', '\0']);
-        let bin = if next < bytes.len() {
-            let (ty, bin, end) = chunk(next)?;
-            if ty != CHUNK_BIN {
-                return Err(bad(format!("second chunk has type {ty:#x}, expected BIN")));
-            }
-            // Later chunks of other types are allowed and skipped (§4.4.3.1),
-            // but each must still fit the file.
-            let mut at = end;
-            while at < bytes.len() {
-                at = chunk(at)?.2;
-            }
-            Some(bin)
-        } else {
-            None
-        };
-        Ok(Self { json, bin })
-    }
 }
