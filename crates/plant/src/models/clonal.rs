@@ -25,7 +25,9 @@
 //! and patch III unfavourable; the default layout (I = 1.0, III = 0.15, side
 //! by side) is ours. The source does not say how announcements and samples
 //! of one communication phase are ordered: here births and deaths are
-//! applied first, then every sample is answered. Fig. 7's normal variation
+//! applied first, then every sample is answered. The turtle's disc lies
+//! across its heading, so p5 pitches up by 90° before `@o` (inside the
+//! ramet's brackets; nothing moves) to lay the leaf flat over the ground. Fig. 7's normal variation
 //! of spacer length and angle and its trifoliate leaves are not modelled.
 
 use glam::DVec3;
@@ -210,7 +212,7 @@ impl ClonalParams {
              p2: A(dir) > ?E(t,x) : (t == 0) && (x < MinLight) -> ε\n\
              p3: B(x,dir) -> [+(α*dir)F(Len,0)A(-dir)?E(0,0)] : ProbB(x)\n\
              p4: B(x,dir) -> ε : 1-ProbB(x)\n\
-             p5: R(x) -> [@o(Radius(x),0)?E(1,Radius(x))] : ProbR(x)\n\
+             p5: R(x) -> [^(90)@o(Radius(x),0)?E(1,Radius(x))] : ProbR(x)\n\
              p6: R(x) -> ε : 1-ProbR(x)\n\
              p7: @o(radius,age) : age < MaxAge -> @o(radius,age+1)\n\
              p8: @o(radius,age) : age == MaxAge -> ?E(2,radius)\n\

@@ -28,7 +28,8 @@
 //! Sens·∇C` is our reading. The arrays `Del`, `BrAngle` and `BrSpace` have a
 //! third, unused entry here so that conditions evaluated for the highest
 //! order stay within bounds. The initial water is painted in the source
-//! (values not printed); the default layout and the diffusion rate are ours.
+//! (values not printed); the default layout (a drier top layer, wet soil
+//! below on the left, dry on the right) and the diffusion rate are ours.
 //! An apex outside the field finds no water.
 
 use glam::DVec3;
@@ -100,16 +101,21 @@ impl Default for RootParams {
             origin: [-40.0, -100.0],
             size: [80.0, 100.0],
             cell: 1.0,
-            background: 2.0,
+            background: 0.5,
             patches: vec![
                 Patch {
                     min: [-40.0, -100.0],
-                    max: [-8.0, -35.0],
+                    max: [40.0, -4.0],
+                    value: 2.0,
+                },
+                Patch {
+                    min: [-40.0, -100.0],
+                    max: [-5.0, -12.0],
                     value: 6.0,
                 },
                 Patch {
-                    min: [8.0, -100.0],
-                    max: [40.0, -20.0],
+                    min: [5.0, -100.0],
+                    max: [40.0, -12.0],
                     value: 0.05,
                 },
             ],
