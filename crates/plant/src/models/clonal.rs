@@ -1,6 +1,6 @@
 //! Foraging of a clonal plant over patches of light.
 //!
-//! Měch & Prusinkiewicz 1996, §6.2, Fig. 6–7: a clone spreads over the
+//! Měch & Prusinkiewicz 1996, §6, L-system 3, Fig. 6–7: a clone spreads over the
 //! ground as a network of spacers `F(len, age)` joining ramets
 //! `@o(radius, age)` (a leaf on an upright stem). Each apex `A(dir)` asks the
 //! environment for the light at its position with `?E(0, x)`; a ramet

@@ -5,8 +5,8 @@
 //! | model | source | module |
 //! |---|---|---|
 //! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §6.1, Fig. 5 | [`tiers`] |
-//! | foraging of a clonal plant over patches of light | Měch & Prusinkiewicz 1996, §6.2, Fig. 6–7 | [`clonal`] |
-//! | roots growing in soil water | Měch & Prusinkiewicz 1996, §6.3, Fig. 8–9 | [`roots`] |
+//! | foraging of a clonal plant over patches of light | Měch & Prusinkiewicz 1996, §6, Fig. 6–7 | [`clonal`] |
+//! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §6.4, Fig. 11–16 | [`crowns`] |
 //! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |

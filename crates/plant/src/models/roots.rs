@@ -1,6 +1,6 @@
 //! Roots growing in soil water, in a vertical section of the soil.
 //!
-//! Měch & Prusinkiewicz 1996, §6.3, Fig. 8–9 (after Clausnitzer & Hopmans
+//! Měch & Prusinkiewicz 1996, §7, Fig. 8–9 (after Clausnitzer & Hopmans
 //! 1994 for the root parameters and Diggle 1988 for the architecture): each
 //! root apex `A(n, s, b)` (branch order `n`, axis length `s`, distance `b`
 //! from the last branch initial) sends `?E(c, θ)` with its requested uptake

@@ -154,3 +154,17 @@ fn unknown_message_kind_is_an_error() {
     };
     assert!(g.respond(0, &[msg], &mut Vec::new()).is_err());
 }
+
+#[cfg(feature = "serde")]
+#[test]
+fn params_fill_left_out_keys_and_refuse_unknown_ones() {
+    let p: ClonalParams = serde_json::from_str(r#"{"steps": 5}"#).unwrap();
+    assert_eq!(
+        p,
+        ClonalParams {
+            steps: 5,
+            ..ClonalParams::default()
+        }
+    );
+    assert!(serde_json::from_str::<ClonalParams>(r#"{"stepz": 5}"#).is_err());
+}

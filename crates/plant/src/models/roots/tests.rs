@@ -171,3 +171,17 @@ fn bad_params() {
         ));
     }
 }
+
+#[cfg(feature = "serde")]
+#[test]
+fn params_fill_left_out_keys_and_refuse_unknown_ones() {
+    let p: RootParams = serde_json::from_str(r#"{"steps": 5}"#).unwrap();
+    assert_eq!(
+        p,
+        RootParams {
+            steps: 5,
+            ..RootParams::default()
+        }
+    );
+    assert!(serde_json::from_str::<RootParams>(r#"{"stepz": 5}"#).is_err());
+}
