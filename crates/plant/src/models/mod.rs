@@ -4,10 +4,10 @@
 //!
 //! | model | source | module |
 //! |---|---|---|
-//! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §6.1, Fig. 5 | [`tiers`] |
+//! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §5, Fig. 5 | [`tiers`] |
 //! | foraging of a clonal plant over patches of light | Měch & Prusinkiewicz 1996, §6, Fig. 6–7 | [`clonal`] |
 //! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
-//! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §6.4, Fig. 11–16 | [`crowns`] |
+//! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–16 | [`crowns`] |
 //! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
@@ -133,7 +133,7 @@ impl Run {
 }
 
 /// Runs an open L-system: a communication phase on the axiom, then `steps`
-/// derivation steps each followed by one (Měch & Prusinkiewicz 1996, §5, Fig. 4).
+/// derivation steps each followed by one (Měch & Prusinkiewicz 1996, §4, Fig. 4).
 /// Communication on the axiom lets models whose axiom holds `?E` read the
 /// environment before their first step.
 pub(crate) fn run_open(
