@@ -1,4 +1,5 @@
-//! The source papers' plant models as pictures: Honda's branch tiers and
+//! The source papers' plant models as pictures: Honda's branch tiers, a
+//! clonal plant foraging over patches of light, roots in soil water and
 //! tree crowns competing for light (open L-systems, Měch & Prusinkiewicz
 //! 1996), collision-based phyllotaxis on a cone (Fowler et al. 1992) and
 //! Ridley's packing on a disc (Prusinkiewicz et al. 2001, Alg. 5).
@@ -11,7 +12,7 @@
 mod common;
 
 use natura::core::glam::{DVec3, Vec3};
-use natura::plant::models::{crowns, phyllotaxis, positional, tiers};
+use natura::plant::models::{clonal, crowns, phyllotaxis, positional, roots, tiers};
 use natura::plant::preview::{Camera, PreviewParams, render};
 use natura::plant::turtle::{Frame, SurfaceInstance};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
@@ -50,11 +51,18 @@ fn main() {
     let quick = args.switch("--quick", "small and fast (CI)");
     let model: Option<String> = args.optional(
         "--model",
-        "one of tiers, crowns, phyllotaxis, ridley (default all)",
+        "one of tiers, clonal, roots, crowns, phyllotaxis, ridley (default all)",
     );
     let out = args.out_dir("docs/gallery/plant");
     args.finish();
-    const MODELS: [&str; 4] = ["tiers", "crowns", "phyllotaxis", "ridley"];
+    const MODELS: [&str; 6] = [
+        "tiers",
+        "clonal",
+        "roots",
+        "crowns",
+        "phyllotaxis",
+        "ridley",
+    ];
     if let Some(m) = model.as_deref().filter(|m| !MODELS.contains(m)) {
         common::fail(&format!("--model {m}: not one of {}", MODELS.join(", ")));
     }
@@ -69,6 +77,36 @@ fn main() {
             size,
             &out,
             "tiers.png",
+        );
+    }
+    if want("clonal") {
+        // Fig. 7: the clone spreading over patches II, III and I, seen from above.
+        let p = clonal::ClonalParams {
+            steps: if quick { 60 } else { 182 },
+            ..clonal::ClonalParams::default()
+        };
+        let (run, _) = common::check(clonal::clonal(&p));
+        picture(
+            &common::check(run.geometry()),
+            Vec3::NEG_Z,
+            size,
+            &out,
+            "clonal.png",
+        );
+    }
+    if want("roots") {
+        // Fig. 9: roots in a vertical section of soil, wet on the left, dry on the right.
+        let p = roots::RootParams {
+            steps: if quick { 60 } else { 186 },
+            ..roots::RootParams::default()
+        };
+        let (run, _) = common::check(roots::roots(&p));
+        picture(
+            &common::check(run.geometry()),
+            Vec3::Y,
+            size,
+            &out,
+            "roots.png",
         );
     }
     if want("crowns") {

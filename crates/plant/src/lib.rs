@@ -15,16 +15,14 @@
 //! ([`preview`]).
 //!
 //! The source papers' models ([`models`]): the open L-system models of Měch &
-//! Prusinkiewicz 1996 with their environments (Honda's branch tiers, tree
+//! Prusinkiewicz 1996 with their environments (Honda's branch tiers, a clonal
+//! plant foraging over patches of light, roots growing in soil water, tree
 //! crowns competing for light), collision-based phyllotaxis (Fowler et al.
 //! 1992) and positional-information algorithms (Prusinkiewicz et al. 2001);
 //! and plant ecosystems over a natura-terrain height field after Deussen et
 //! al. 1998 ([`eco`]): species with site preferences, self-thinning between
 //! circles of influence over many generations (parallel and deterministic),
 //! and approximate instancing into a few prototypes per species.
-//!
-//! Not in this release yet: the clonal-plant and root models of Měch &
-//! Prusinkiewicz 1996.
 //!
 //! ```
 //! use natura_plant::{Derivation, LSystem};

@@ -2,9 +2,9 @@
 //!
 //! Query modules `?P`, `?H`, `?L`, `?U` receive the turtle's position or
 //! axis after each derivation step (Prusinkiewicz, James & Měch 1994, as
-//! summarised by Měch & Prusinkiewicz 1996, §3). The communication module
+//! summarised by Měch & Prusinkiewicz 1996, §4). The communication module
 //! `?E(x1, …, xm)` exchanges data with an [`Environment`] (Měch &
-//! Prusinkiewicz 1996, §5, Fig. 4): after a step the string is interpreted,
+//! Prusinkiewicz 1996, §4, Fig. 4): after a step the string is interpreted,
 //! every `?E` sends its address (index in the string), its parameters and the
 //! turtle state; the environment answers selected addresses with new values,
 //! which are written into those modules' parameters before the next step.

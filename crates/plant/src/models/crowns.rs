@@ -1,6 +1,6 @@
 //! Tree crowns competing for light (after Takenaka 1994).
 //!
-//! Měch & Prusinkiewicz 1996, §6.4, Fig. 11–16: leaf clusters `L` report
+//! Měch & Prusinkiewicz 1996, §8, Fig. 11–16: leaf clusters `L` report
 //! their radius through `?E(r)` once a year (every `Del + 1` = 31 steps); the
 //! environment answers with the light flux from the sky reaching the
 //! cluster, which decides whether the leaf survives and whether the apex

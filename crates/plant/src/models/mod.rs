@@ -4,16 +4,20 @@
 //!
 //! | model | source | module |
 //! |---|---|---|
-//! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §6.1, Fig. 5 | [`tiers`] |
-//! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §6.4, Fig. 11–16 | [`crowns`] |
+//! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §5, Fig. 5 | [`tiers`] |
+//! | foraging of a clonal plant over patches of light | Měch & Prusinkiewicz 1996, §6, Fig. 6–7 | [`clonal`] |
+//! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
+//! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–16 | [`crowns`] |
 //! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
 //! [`Environment`]: crate::Environment
 
+pub mod clonal;
 pub mod crowns;
 pub mod phyllotaxis;
 pub mod positional;
+pub mod roots;
 pub mod tiers;
 
 use crate::error::Result;
@@ -21,6 +25,82 @@ use crate::lang::LSystem;
 use crate::open::Environment;
 use crate::turtle::{Turtle, TurtleParams};
 use crate::{Derivation, ModuleString};
+
+/// An axis-aligned rectangle of the plane carrying one value (a patch of
+/// light, a region of wet soil), as the source paints its fields.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct Patch {
+    /// Lower corner `[x, y]`.
+    pub min: [f64; 2],
+    /// Upper corner `[x, y]`.
+    pub max: [f64; 2],
+    /// The value inside.
+    pub value: f64,
+}
+
+impl Patch {
+    /// Whether `[x, y]` lies inside (lower edges included, upper excluded).
+    #[must_use]
+    pub fn contains(&self, x: f64, y: f64) -> bool {
+        x >= self.min[0] && x < self.max[0] && y >= self.min[1] && y < self.max[1]
+    }
+
+    /// Area of the rectangle.
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        (self.max[0] - self.min[0]) * (self.max[1] - self.min[1])
+    }
+}
+
+/// Checks every patch has finite corners in order and a value in `lo..=hi`.
+pub(crate) fn check_patches(
+    name: &'static str,
+    patches: &[Patch],
+    lo: f64,
+    hi: f64,
+    expected: &'static str,
+) -> Result<()> {
+    for p in patches {
+        let ok = p.min.iter().chain(&p.max).all(|v| v.is_finite())
+            && p.min[0] < p.max[0]
+            && p.min[1] < p.max[1];
+        if !ok {
+            return Err(crate::PlantError::InvalidParameter {
+                name,
+                value: format!("{p:?}"),
+                reason: "finite corners with min < max".into(),
+            });
+        }
+        natura_core::check::in_range(name, p.value, lo, hi, expected)?;
+    }
+    Ok(())
+}
+
+/// Paints `patches` over `background` into `nx × ny` cells of side `cell`
+/// whose lower corner is `origin` (later patches over earlier ones; a cell
+/// takes the value at its centre).
+pub(crate) fn rasterize(
+    patches: &[Patch],
+    background: f64,
+    origin: [f64; 2],
+    cell: f64,
+    nx: usize,
+    ny: usize,
+) -> Vec<f64> {
+    let mut v = vec![background; nx * ny];
+    for j in 0..ny {
+        for i in 0..nx {
+            let x = origin[0] + (i as f64 + 0.5) * cell;
+            let y = origin[1] + (j as f64 + 0.5) * cell;
+            if let Some(p) = patches.iter().rev().find(|p| p.contains(x, y)) {
+                v[j * nx + i] = p.value;
+            }
+        }
+    }
+    v
+}
 
 /// The outcome of running an open L-system model.
 #[derive(Clone, Debug)]
@@ -53,7 +133,7 @@ impl Run {
 }
 
 /// Runs an open L-system: a communication phase on the axiom, then `steps`
-/// derivation steps each followed by one (Měch & Prusinkiewicz 1996, §5, Fig. 4).
+/// derivation steps each followed by one (Měch & Prusinkiewicz 1996, §4, Fig. 4).
 /// Communication on the axiom lets models whose axiom holds `?E` read the
 /// environment before their first step.
 pub(crate) fn run_open(

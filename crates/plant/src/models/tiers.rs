@@ -1,6 +1,6 @@
 //! Branch tiers of *Terminalia catappa* (Honda's model) competing for space.
 //!
-//! Měch & Prusinkiewicz 1996, §6.1, Fig. 5: a tier is a horizontal whorl of
+//! Měch & Prusinkiewicz 1996, §5, Fig. 5: a tier is a horizontal whorl of
 //! five branches that bifurcate every step; competition for light is reduced
 //! to collisions between apices and circular leaf clusters. Each apex sends
 //! `?E(x)` with its vigor `x`; the environment answers 1 (may branch) if the
