@@ -33,7 +33,7 @@
 use glam::DVec3;
 use natura_core::check;
 
-use super::{Patch, Run, check_patches, rasterize, run_open};
+use super::{Patch, Run, check_layout, check_patches, rasterize, run_open};
 use crate::error::{PlantError, Result};
 use crate::lang::LSystem;
 use crate::open::{Environment, Message, Reply};
@@ -167,19 +167,16 @@ impl ClonalParams {
             10_000,
             "at most 10000",
         )?;
-        check::finite("ClonalParams::origin", self.origin[0])?;
-        check::finite("ClonalParams::origin", self.origin[1])?;
-        check::positive("ClonalParams::cell", self.cell)?;
-        for v in self.size {
-            check::positive("ClonalParams::size", v)?;
-            check::in_range(
+        check_layout(
+            [
+                "ClonalParams::origin",
                 "ClonalParams::size",
-                v / self.cell,
-                1.0,
-                4096.0,
-                "1 to 4096 cells a side",
-            )?;
-        }
+                "ClonalParams::cell",
+            ],
+            self.origin,
+            self.size,
+            self.cell,
+        )?;
         check::in_range(
             "ClonalParams::background",
             self.background,
@@ -240,21 +237,19 @@ impl ClonalParams {
     /// [`ClonalParams::validate`]'s errors.
     pub fn ground(&self) -> Result<LightPatches> {
         self.validate()?;
-        let nx = (self.size[0] / self.cell).round() as usize;
-        let ny = (self.size[1] / self.cell).round() as usize;
+        let (nx, ny, values) = rasterize(
+            &self.patches,
+            self.background,
+            self.origin,
+            self.cell,
+            self.size,
+        );
         Ok(LightPatches {
             origin: self.origin,
             cell: self.cell,
             nx,
             ny,
-            light: rasterize(
-                &self.patches,
-                self.background,
-                self.origin,
-                self.cell,
-                nx,
-                ny,
-            ),
+            light: values,
             live: Vec::new(),
             born: Vec::new(),
         })

@@ -78,17 +78,39 @@ pub(crate) fn check_patches(
     Ok(())
 }
 
-/// Paints `patches` over `background` into `nx × ny` cells of side `cell`
-/// whose lower corner is `origin` (later patches over earlier ones; a cell
-/// takes the value at its centre).
+/// Checks a raster's layout: a finite `origin`, a positive `cell`, and each
+/// side of `size` positive and 1 to 4096 cells long. `names` are the
+/// parameters' names for errors: origin, size, cell.
+pub(crate) fn check_layout(
+    names: [&'static str; 3],
+    origin: [f64; 2],
+    size: [f64; 2],
+    cell: f64,
+) -> Result<()> {
+    let [origin_name, size_name, cell_name] = names;
+    natura_core::check::finite(origin_name, origin[0])?;
+    natura_core::check::finite(origin_name, origin[1])?;
+    natura_core::check::positive(cell_name, cell)?;
+    for v in size {
+        natura_core::check::positive(size_name, v)?;
+        natura_core::check::in_range(size_name, v / cell, 1.0, 4096.0, "1 to 4096 cells a side")?;
+    }
+    Ok(())
+}
+
+/// Paints `patches` over `background` into the cells of side `cell` that
+/// cover `size` from the lower corner `origin` (later patches over earlier
+/// ones; a cell takes the value at its centre). Returns the cell counts
+/// along each side and the values, row by row.
 pub(crate) fn rasterize(
     patches: &[Patch],
     background: f64,
     origin: [f64; 2],
     cell: f64,
-    nx: usize,
-    ny: usize,
-) -> Vec<f64> {
+    size: [f64; 2],
+) -> (usize, usize, Vec<f64>) {
+    let nx = (size[0] / cell).round() as usize;
+    let ny = (size[1] / cell).round() as usize;
     let mut v = vec![background; nx * ny];
     for j in 0..ny {
         for i in 0..nx {
@@ -99,7 +121,7 @@ pub(crate) fn rasterize(
             }
         }
     }
-    v
+    (nx, ny, v)
 }
 
 /// The outcome of running an open L-system model.

@@ -35,7 +35,7 @@
 use glam::DVec3;
 use natura_core::check;
 
-use super::{Patch, Run, check_patches, rasterize, run_open};
+use super::{Patch, Run, check_layout, check_patches, rasterize, run_open};
 use crate::error::{PlantError, Result};
 use crate::lang::LSystem;
 use crate::open::{Environment, Message, Reply};
@@ -160,19 +160,12 @@ impl RootParams {
             10_000,
             "at most 10000",
         )?;
-        check::finite("RootParams::origin", self.origin[0])?;
-        check::finite("RootParams::origin", self.origin[1])?;
-        check::positive("RootParams::cell", self.cell)?;
-        for v in self.size {
-            check::positive("RootParams::size", v)?;
-            check::in_range(
-                "RootParams::size",
-                v / self.cell,
-                1.0,
-                4096.0,
-                "1 to 4096 cells a side",
-            )?;
-        }
+        check_layout(
+            ["RootParams::origin", "RootParams::size", "RootParams::cell"],
+            self.origin,
+            self.size,
+            self.cell,
+        )?;
         check::non_negative("RootParams::background", self.background)?;
         check_patches(
             "RootParams::patches",
@@ -230,21 +223,19 @@ impl RootParams {
     /// [`RootParams::validate`]'s errors.
     pub fn soil(&self) -> Result<SoilWater> {
         self.validate()?;
-        let nx = (self.size[0] / self.cell).round() as usize;
-        let nz = (self.size[1] / self.cell).round() as usize;
+        let (nx, nz, values) = rasterize(
+            &self.patches,
+            self.background,
+            self.origin,
+            self.cell,
+            self.size,
+        );
         Ok(SoilWater {
             origin: self.origin,
             cell: self.cell,
             nx,
             nz,
-            water: rasterize(
-                &self.patches,
-                self.background,
-                self.origin,
-                self.cell,
-                nx,
-                nz,
-            ),
+            water: values,
             diffusion: self.diffusion,
             taken: 0.0,
         })
