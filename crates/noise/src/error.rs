@@ -70,6 +70,12 @@ pub enum NoiseError {
 /// Shorthand for `Result<T, NoiseError>`.
 pub type Result<T, E = NoiseError> = core::result::Result<T, E>;
 
+/// Checks a shape parameter of moderate size (an offset, a gain): finite with
+/// magnitude at most 1000.
+pub(crate) fn moderate(name: &'static str, value: f64) -> Result<()> {
+    magnitude(name, value, 1e3, "must be finite with magnitude ≤ 1000")
+}
+
 /// Checks that `value` is finite and at most `max` in magnitude.
 pub(crate) fn magnitude(
     name: &'static str,

@@ -3,8 +3,8 @@
 
 use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
-use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::Spectral;
+use crate::fractal::rows::{Pt, multifractal, octave_rows};
 use crate::lanes::Simd;
 use glam::{DVec2, DVec3};
 
@@ -53,6 +53,7 @@ impl StatsByAltitudeParams {
     }
 }
 
+multifractal! {
 /// Fractal statistics by altitude: the power of each octave is proportional
 /// to the altitude so far, so high ground is rough and low ground smooth
 /// ("crossover scale modulated by altitude", Musgrave et al. 1989, §3.3).
@@ -71,29 +72,11 @@ impl StatsByAltitudeParams {
 /// code as [`StatsByAltitudeLegacy`]. The form is multiplicative: `A_0 = 0`
 /// gives 0 everywhere, and with `(N + c_t)·c_s ≥ 0` and `A_0 > 0` the
 /// altitude never decreases with octaves.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StatsByAltitude<B> {
-    basis: B,
-    params: StatsByAltitudeParams,
-    oct: Octaves,
+StatsByAltitude(StatsByAltitudeParams),
+"Statistics-by-altitude fBm over `basis` (params validated)."
 }
 
 impl<B: Field> StatsByAltitude<B> {
-    /// Statistics-by-altitude fBm over `basis` (params validated).
-    ///
-    /// # Errors
-    /// As [`StatsByAltitudeParams::validate`].
-    pub fn new(basis: B, params: StatsByAltitudeParams) -> Result<Self> {
-        params.validate()?;
-        let oct = params.spectral.octaves_table()?;
-        Ok(Self { basis, params, oct })
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> &StatsByAltitudeParams {
-        &self.params
-    }
-
     fn value<P: Pt>(&self, p: P) -> f64 {
         let q = &self.params;
         let o = &self.oct;
@@ -172,8 +155,6 @@ impl<B: Field> StatsByAltitude<B> {
         );
     }
 }
-
-impl_fractal_field!(StatsByAltitude);
 
 /// The dissertation's C `hfBm(point, omega, octaves)` (Musgrave 1993,
 /// §2.3.2.3.1), reproduced as printed, for its pictures (Plates 2.4-2.5, 4.2):

@@ -1,9 +1,9 @@
 //! The multiplicative cascade ("multifractal" in Mandelbrot's sense).
 
-use crate::error::{Result, bounded, magnitude};
+use crate::error::{Result, moderate};
 use crate::field::Field;
-use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::Spectral;
+use crate::fractal::rows::{Pt, multifractal, octave_rows};
 use crate::lanes::Simd;
 
 /// Where the octave amplitude enters each factor of the cascade.
@@ -71,15 +71,11 @@ impl MultifractalParams {
     /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        magnitude(
-            "offset",
-            self.offset,
-            1e3,
-            "must be finite with magnitude ≤ 1000",
-        )
+        moderate("offset", self.offset)
     }
 }
 
+multifractal! {
 /// A multiplicative cascade: `Π_k factor_k(N(λ^k p))` (Musgrave 1998, "The
 /// Multicolor Texture", `vMultifractalFunc`), the "multifractal" in
 /// Mandelbrot's sense; its values span orders of magnitude.
@@ -87,41 +83,11 @@ impl MultifractalParams {
 /// The partial octave contributes the factor `1 + t·(factor − 1)`, so the
 /// product is continuous in `octaves` (the printed code adds `t·N·w` instead,
 /// which jumps at integer octave counts).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Multifractal<B> {
-    basis: B,
-    params: MultifractalParams,
-    oct: Octaves,
+Multifractal(MultifractalParams),
+"Multiplicative cascade over `basis` (params validated)."
 }
 
 impl<B: Field> Multifractal<B> {
-    /// Multiplicative cascade over `basis` (params validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, params: MultifractalParams) -> Result<Self> {
-        params.validate()?;
-        let oct = params.spectral.octaves_table()?;
-        let f = Self { basis, params, oct };
-        bounded("Multifractal", f.bound())?;
-        Ok(f)
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> &MultifractalParams {
-        &self.params
-    }
-
-    /// The basis.
-    pub fn basis(&self) -> &B {
-        &self.basis
-    }
-
-    /// The precomputed octave table.
-    pub fn octaves(&self) -> &Octaves {
-        &self.oct
-    }
-
     /// Factor of octave `k` for basis value `n`, and its derivative in `n`.
     #[inline]
     fn factor(&self, k: usize, n: f64) -> (f64, f64) {
@@ -211,5 +177,3 @@ impl<B: Field> Multifractal<B> {
         );
     }
 }
-
-impl_fractal_field!(Multifractal);

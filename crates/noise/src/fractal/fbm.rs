@@ -6,10 +6,120 @@ use crate::error::Result;
 use crate::field::Field;
 #[cfg(doc)]
 use crate::fractal::MAX_OCTAVES;
-use crate::fractal::rows::octave_rows;
+use crate::fractal::rows::{Pt, octave_rows};
 use crate::fractal::{Octaves, Spectral};
 use crate::lanes::Simd;
 
+/// Declares a monofractal: the struct (basis, spectral parameters, octave
+/// table), its validating constructor and accessors, and its [`Field`]
+/// implementation as the octave sum `Σ_k w_k·n_k` (of `|n_k|` when `$abs`)
+/// with the analytic gradient `Σ_k w_k f_k ∇n_k` (times `sign(n_k)` when `$abs`).
+macro_rules! monofractal {
+    ($(#[$attr:meta])* $ty:ident, $name:literal, $abs:literal, $new_doc:literal) => {
+        $(#[$attr])*
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct $ty<B> {
+            basis: B,
+            spectral: Spectral,
+            oct: Octaves,
+        }
+
+        impl<B: Field> $ty<B> {
+            #[doc = $new_doc]
+            ///
+            /// # Errors
+            /// As the parameters' `validate`, and
+            /// [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let
+            /// the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
+            pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
+                let oct = spectral.octaves_table()?;
+                let f = Self {
+                    basis,
+                    spectral,
+                    oct,
+                };
+                crate::error::bounded($name, f.bound())?;
+                Ok(f)
+            }
+
+            /// The basis.
+            pub fn basis(&self) -> &B {
+                &self.basis
+            }
+
+            /// The spectral parameters.
+            pub fn spectral(&self) -> &Spectral {
+                &self.spectral
+            }
+
+            /// The precomputed octave table.
+            pub fn octaves(&self) -> &Octaves {
+                &self.oct
+            }
+        }
+
+        impl<B: Field> Field for $ty<B> {
+            #[inline]
+            fn eval2(&self, p: DVec2) -> f64 {
+                octave_sum(&self.oct, $abs, |f, n| self.basis.eval2_scaled(p, f, n))
+            }
+
+            #[inline]
+            fn eval3(&self, p: DVec3) -> f64 {
+                octave_sum(&self.oct, $abs, |f, n| self.basis.eval3_scaled(p, f, n))
+            }
+
+            fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
+                octave_grad(&self.basis, &self.oct, $abs, p)
+            }
+
+            fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
+                octave_grad(&self.basis, &self.oct, $abs, p)
+            }
+
+            fn bound(&self) -> f64 {
+                self.basis.bound() * self.oct.weight_sum()
+            }
+
+            fn lipschitz2(&self) -> f64 {
+                self.basis.lipschitz2() * self.oct.weighted_frequency_sum()
+            }
+
+            fn lipschitz3(&self) -> f64 {
+                self.basis.lipschitz3() * self.oct.weighted_frequency_sum()
+            }
+
+            fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
+                fbm_rows(&self.basis, simd, &self.oct, origin, step, out, $abs);
+            }
+
+            fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
+                fbm_rows(&self.basis, simd, &self.oct, origin, step, out, $abs);
+            }
+        }
+    };
+}
+
+/// `(Σ_k w_k·n_k, Σ_k w_k f_k ∇n_k)` with `n_k = N(f_k p)`, or of `|n_k|`
+/// (one-sided derivative `sign(n_k)·∇n_k`) when `abs`.
+#[inline]
+fn octave_grad<P: Pt, B: Field>(basis: &B, o: &Octaves, abs: bool, p: P) -> (f64, P) {
+    let mut v = 0.0;
+    let mut g = P::ZERO;
+    for k in 0..o.count() {
+        let (n, dn) = P::eval_grad(basis, p * o.frequency(k));
+        if abs {
+            v += o.weight(k) * n.abs();
+            g += dn * (o.weight(k) * o.frequency(k) * sign(n));
+        } else {
+            v += o.weight(k) * n;
+            g += dn * (o.weight(k) * o.frequency(k));
+        }
+    }
+    (v, g)
+}
+
+monofractal! {
 /// Fractional Brownian motion: `Σ_k w_k·N(f_k·p)` with `f_k = f₀·λ^k` and `w_k
 /// = λ^(−kH)` (Musgrave 1993, §2.3.2.1; Musgrave et al. 1989, §3.3).
 ///
@@ -32,99 +142,8 @@ use crate::lanes::Simd;
 /// assert!(v.abs() <= fbm.bound());
 /// # Ok::<(), natura_noise::NoiseError>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct Fbm<B> {
-    basis: B,
-    spectral: Spectral,
-    oct: Octaves,
-}
-
-impl<B: Field> Fbm<B> {
-    /// fBm of `basis` with `spectral` parameters (validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
-        let oct = spectral.octaves_table()?;
-        let f = Self {
-            basis,
-            spectral,
-            oct,
-        };
-        crate::error::bounded("Fbm", f.bound())?;
-        Ok(f)
-    }
-
-    /// The basis.
-    pub fn basis(&self) -> &B {
-        &self.basis
-    }
-
-    /// The spectral parameters.
-    pub fn spectral(&self) -> &Spectral {
-        &self.spectral
-    }
-
-    /// The precomputed octave table.
-    pub fn octaves(&self) -> &Octaves {
-        &self.oct
-    }
-}
-
-impl<B: Field> Field for Fbm<B> {
-    #[inline]
-    fn eval2(&self, p: DVec2) -> f64 {
-        octave_sum(&self.oct, false, |f, n| self.basis.eval2_scaled(p, f, n))
-    }
-
-    #[inline]
-    fn eval3(&self, p: DVec3) -> f64 {
-        octave_sum(&self.oct, false, |f, n| self.basis.eval3_scaled(p, f, n))
-    }
-
-    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
-        let o = &self.oct;
-        let mut v = 0.0;
-        let mut g = DVec2::ZERO;
-        for k in 0..o.count() {
-            let (n, dn) = self.basis.eval_grad2(p * o.frequency(k));
-            v += o.weight(k) * n;
-            g += dn * (o.weight(k) * o.frequency(k));
-        }
-        (v, g)
-    }
-
-    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
-        let o = &self.oct;
-        let mut v = 0.0;
-        let mut g = DVec3::ZERO;
-        for k in 0..o.count() {
-            let (n, dn) = self.basis.eval_grad3(p * o.frequency(k));
-            v += o.weight(k) * n;
-            g += dn * (o.weight(k) * o.frequency(k));
-        }
-        (v, g)
-    }
-
-    fn bound(&self) -> f64 {
-        self.basis.bound() * self.oct.weight_sum()
-    }
-
-    fn lipschitz2(&self) -> f64 {
-        self.basis.lipschitz2() * self.oct.weighted_frequency_sum()
-    }
-
-    fn lipschitz3(&self) -> f64 {
-        self.basis.lipschitz3() * self.oct.weighted_frequency_sum()
-    }
-
-    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, false);
-    }
-
-    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
-        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, false);
-    }
+Fbm, "Fbm", false,
+"fBm of `basis` with `spectral` parameters (validated)."
 }
 
 fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
@@ -159,6 +178,7 @@ fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
     );
 }
 
+monofractal! {
 /// Turbulence: `Σ_k w_k·|N(f_k·p)|`, fBm of the absolute basis.
 ///
 /// Called by the sources (`turbulence(PP, fw, octaves, λ, H)` in Musgrave 1998,
@@ -169,99 +189,8 @@ fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
 /// amplitude `1/f` gives (`β = 2H + 1`); only the expectation was wrong. Values
 /// in `[0, bound]`; the derivative jumps on the zero set of each octave
 /// (creases).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Turbulence<B> {
-    basis: B,
-    spectral: Spectral,
-    oct: Octaves,
-}
-
-impl<B: Field> Turbulence<B> {
-    /// Turbulence of `basis` with `spectral` parameters (validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, spectral: Spectral) -> Result<Self> {
-        let oct = spectral.octaves_table()?;
-        let f = Self {
-            basis,
-            spectral,
-            oct,
-        };
-        crate::error::bounded("Turbulence", f.bound())?;
-        Ok(f)
-    }
-
-    /// The spectral parameters.
-    pub fn spectral(&self) -> &Spectral {
-        &self.spectral
-    }
-
-    /// The basis.
-    pub fn basis(&self) -> &B {
-        &self.basis
-    }
-
-    /// The precomputed octave table.
-    pub fn octaves(&self) -> &Octaves {
-        &self.oct
-    }
-}
-
-impl<B: Field> Field for Turbulence<B> {
-    #[inline]
-    fn eval2(&self, p: DVec2) -> f64 {
-        octave_sum(&self.oct, true, |f, n| self.basis.eval2_scaled(p, f, n))
-    }
-
-    #[inline]
-    fn eval3(&self, p: DVec3) -> f64 {
-        octave_sum(&self.oct, true, |f, n| self.basis.eval3_scaled(p, f, n))
-    }
-
-    fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
-        let o = &self.oct;
-        let mut v = 0.0;
-        let mut g = DVec2::ZERO;
-        for k in 0..o.count() {
-            let (n, dn) = self.basis.eval_grad2(p * o.frequency(k));
-            v += o.weight(k) * n.abs();
-            g += dn * (o.weight(k) * o.frequency(k) * sign(n));
-        }
-        (v, g)
-    }
-
-    fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
-        let o = &self.oct;
-        let mut v = 0.0;
-        let mut g = DVec3::ZERO;
-        for k in 0..o.count() {
-            let (n, dn) = self.basis.eval_grad3(p * o.frequency(k));
-            v += o.weight(k) * n.abs();
-            g += dn * (o.weight(k) * o.frequency(k) * sign(n));
-        }
-        (v, g)
-    }
-
-    fn bound(&self) -> f64 {
-        self.basis.bound() * self.oct.weight_sum()
-    }
-
-    fn lipschitz2(&self) -> f64 {
-        self.basis.lipschitz2() * self.oct.weighted_frequency_sum()
-    }
-
-    fn lipschitz3(&self) -> f64 {
-        self.basis.lipschitz3() * self.oct.weighted_frequency_sum()
-    }
-
-    fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
-    }
-
-    fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
-        fbm_rows(&self.basis, simd, &self.oct, origin, step, out, true);
-    }
+Turbulence, "Turbulence", true,
+"Turbulence of `basis` with `spectral` parameters (validated)."
 }
 
 /// Octaves evaluated per call of the basis's scaled evaluation (a small

@@ -1,9 +1,9 @@
 //! Heterogeneous terrain: Musgrave's `Terrain()` (Musgrave 1993, §2.3.2.5).
 
-use crate::error::{NoiseError, Result, bounded, magnitude};
+use crate::error::{NoiseError, Result, moderate};
 use crate::field::Field;
-use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::Spectral;
+use crate::fractal::rows::{Pt, multifractal, octave_rows};
 use crate::lanes::Simd;
 
 /// Parameters of [`HeteroTerrain`].
@@ -43,12 +43,7 @@ impl HeteroTerrainParams {
     /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        magnitude(
-            "offset",
-            self.offset,
-            1e3,
-            "must be finite with magnitude ≤ 1000",
-        )?;
+        moderate("offset", self.offset)?;
         if !(self.threshold.is_finite() && self.threshold > 0.0) {
             return Err(NoiseError::InvalidParam {
                 name: "threshold",
@@ -60,6 +55,7 @@ impl HeteroTerrainParams {
     }
 }
 
+multifractal! {
 /// Musgrave's large-scale heterogeneous terrain `Terrain()`: each octave is
 /// weighted by the (displaced) value of the octave below, so valleys stay
 /// smooth at all scales (Musgrave 1993, §2.3.2.5).
@@ -79,31 +75,11 @@ impl HeteroTerrainParams {
 /// Musgrave 1993, §6.2.1.1). The `VERY_SMALL` early exit is not applied. With
 /// the ridged basis ([`Ridged`](crate::Ridged)) it gives "Hell" (Musgrave 1993,
 /// Plate 2.9).
-#[derive(Clone, Debug, PartialEq)]
-pub struct HeteroTerrain<B> {
-    basis: B,
-    params: HeteroTerrainParams,
-    oct: Octaves,
+HeteroTerrain(HeteroTerrainParams),
+"Heterogeneous terrain over `basis` (params validated)."
 }
 
 impl<B: Field> HeteroTerrain<B> {
-    /// Heterogeneous terrain over `basis` (params validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`] if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, params: HeteroTerrainParams) -> Result<Self> {
-        params.validate()?;
-        let oct = params.spectral.octaves_table()?;
-        let f = Self { basis, params, oct };
-        bounded("HeteroTerrain", f.bound())?;
-        Ok(f)
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> &HeteroTerrainParams {
-        &self.params
-    }
-
     fn value<P: Pt>(&self, p: P) -> f64 {
         let (off, thr) = (self.params.offset, self.params.threshold);
         let o = &self.oct;
@@ -193,5 +169,3 @@ impl<B: Field> HeteroTerrain<B> {
         );
     }
 }
-
-impl_fractal_field!(HeteroTerrain);

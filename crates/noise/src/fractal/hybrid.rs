@@ -1,9 +1,9 @@
 //! Hybrid multifractal (Musgrave 1998b).
 
-use crate::error::{Result, bounded, magnitude};
+use crate::error::{Result, moderate};
 use crate::field::Field;
-use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::Spectral;
+use crate::fractal::rows::{Pt, multifractal, octave_rows};
 use crate::lanes::Simd;
 
 /// Parameters of [`HybridMultifractal`].
@@ -36,15 +36,11 @@ impl HybridParams {
     /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        magnitude(
-            "offset",
-            self.offset,
-            1e3,
-            "must be finite with magnitude ≤ 1000",
-        )
+        moderate("offset", self.offset)
     }
 }
 
+multifractal! {
 /// Hybrid multifractal: "additive/multiplicative" — each octave is added,
 /// weighted by the running product of earlier signals (capped at 1), so low
 /// areas are smooth and high areas rough. MojoWorld's "multifractal" (formerly
@@ -62,31 +58,11 @@ impl HybridParams {
 /// Correction: the printed remainder `result += t·N·w_k` drops the weight and
 /// offset, so the output jumps as `octaves` crosses an integer; here the
 /// partial octave adds `t·weight·signal`, continuous in `octaves`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct HybridMultifractal<B> {
-    basis: B,
-    params: HybridParams,
-    oct: Octaves,
+HybridMultifractal(HybridParams),
+"Hybrid multifractal over `basis` (params validated)."
 }
 
 impl<B: Field> HybridMultifractal<B> {
-    /// Hybrid multifractal over `basis` (params validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, params: HybridParams) -> Result<Self> {
-        params.validate()?;
-        let oct = params.spectral.octaves_table()?;
-        let f = Self { basis, params, oct };
-        bounded("HybridMultifractal", f.bound_impl())?;
-        Ok(f)
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> &HybridParams {
-        &self.params
-    }
-
     fn value<P: Pt>(&self, p: P) -> f64 {
         let off = self.params.offset;
         let o = &self.oct;
@@ -191,5 +167,3 @@ impl<B: Field> HybridMultifractal<B> {
         );
     }
 }
-
-impl_fractal_field!(HybridMultifractal);

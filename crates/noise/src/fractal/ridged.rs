@@ -1,10 +1,10 @@
 //! Ridged multifractal (Musgrave 1998b).
 
-use crate::error::{Result, bounded, magnitude};
+use crate::error::{Result, moderate};
 use crate::field::Field;
+use crate::fractal::Spectral;
 use crate::fractal::fbm::sign;
-use crate::fractal::rows::{Pt, impl_fractal_field, octave_rows};
-use crate::fractal::{Octaves, Spectral};
+use crate::fractal::rows::{Pt, multifractal, octave_rows};
 use crate::lanes::Simd;
 
 /// Parameters of [`RidgedMultifractal`].
@@ -40,21 +40,12 @@ impl RidgedParams {
     /// [`NoiseError::InvalidParam`](crate::NoiseError::InvalidParam) naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`](crate::NoiseError::OctavesBeyondPrecision) if the octave count passes the precision limit for the lacunarity (the spectral parameters' own checks included).
     pub fn validate(&self) -> Result<()> {
         self.spectral.validate()?;
-        magnitude(
-            "offset",
-            self.offset,
-            1e3,
-            "must be finite with magnitude ≤ 1000",
-        )?;
-        magnitude(
-            "gain",
-            self.gain,
-            1e3,
-            "must be finite with magnitude ≤ 1000",
-        )
+        moderate("offset", self.offset)?;
+        moderate("gain", self.gain)
     }
 }
 
+multifractal! {
 /// Ridged multifractal: octaves of the ridged basis `(offset − |N|)²`, each
 /// weighted by the previous octave's signal, so ridges get sharp detail and
 /// valleys stay smooth ("Emil", Musgrave 2001, Figure 16; the ridged basis of
@@ -71,31 +62,11 @@ impl RidgedParams {
 /// weighted by `t` (continuous in `octaves`). The derivative is discontinuous
 /// on each octave's zero set (the ridges), so the field aliases unless band
 /// limited (Musgrave 1993, §6.3.2.1).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RidgedMultifractal<B> {
-    basis: B,
-    params: RidgedParams,
-    oct: Octaves,
+RidgedMultifractal(RidgedParams),
+"Ridged multifractal over `basis` (params validated)."
 }
 
 impl<B: Field> RidgedMultifractal<B> {
-    /// Ridged multifractal over `basis` (params validated).
-    ///
-    /// # Errors
-    /// As the parameters' `validate`, and [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
-    pub fn new(basis: B, params: RidgedParams) -> Result<Self> {
-        params.validate()?;
-        let oct = params.spectral.octaves_table()?;
-        let f = Self { basis, params, oct };
-        bounded("RidgedMultifractal", f.bound_impl())?;
-        Ok(f)
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> &RidgedParams {
-        &self.params
-    }
-
     fn value<P: Pt>(&self, p: P) -> f64 {
         let (off, gain) = (self.params.offset, self.params.gain);
         let o = &self.oct;
@@ -196,5 +167,3 @@ impl<B: Field> RidgedMultifractal<B> {
         );
     }
 }
-
-impl_fractal_field!(RidgedMultifractal);

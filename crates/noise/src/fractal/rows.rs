@@ -110,10 +110,55 @@ impl Pt for DVec3 {
     }
 }
 
-/// Implements [`Field`] for a fractal with generic `value<P>`, `value_grad<P>`
-/// and `rows<P>` methods plus `bound`/`lipschitz_factor`.
-macro_rules! impl_fractal_field {
-    ($ty:ident) => {
+/// Declares a multifractal of the weighted-octave family: the struct (basis,
+/// parameters, octave table), its validating constructor and accessors, and
+/// its [`Field`] implementation from the type's own generic methods `value<P>`,
+/// `value_grad<P>`, `rows<P>`, `bound_impl` and `lipschitz_impl` (which hold
+/// the model's arithmetic, in the model's file).
+///
+/// The constructor validates the parameters, builds the octave table and
+/// refuses a field whose bound exceeds [`MAX_BOUND`](crate::MAX_BOUND).
+macro_rules! multifractal {
+    ($(#[$attr:meta])* $ty:ident($params:ty), $new_doc:literal) => {
+        $(#[$attr])*
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct $ty<B> {
+            basis: B,
+            params: $params,
+            oct: $crate::fractal::Octaves,
+        }
+
+        impl<B: $crate::field::Field> $ty<B> {
+            #[doc = $new_doc]
+            ///
+            /// # Errors
+            /// As the parameters' `validate`, and
+            /// [`NoiseError::Unbounded`](crate::NoiseError::Unbounded) if they let
+            /// the field's values exceed [`MAX_BOUND`](crate::MAX_BOUND).
+            pub fn new(basis: B, params: $params) -> $crate::error::Result<Self> {
+                params.validate()?;
+                let oct = params.spectral.octaves_table()?;
+                let f = Self { basis, params, oct };
+                $crate::error::bounded(stringify!($ty), f.bound_impl())?;
+                Ok(f)
+            }
+
+            /// The parameters.
+            pub fn params(&self) -> &$params {
+                &self.params
+            }
+
+            /// The basis.
+            pub fn basis(&self) -> &B {
+                &self.basis
+            }
+
+            /// The precomputed octave table.
+            pub fn octaves(&self) -> &$crate::fractal::Octaves {
+                &self.oct
+            }
+        }
+
         impl<B: $crate::field::Field> $crate::field::Field for $ty<B> {
             fn eval2(&self, p: glam::DVec2) -> f64 {
                 self.value(p)
@@ -157,4 +202,4 @@ macro_rules! impl_fractal_field {
         }
     };
 }
-pub(crate) use impl_fractal_field;
+pub(crate) use multifractal;
