@@ -195,29 +195,9 @@ impl Transfer {
         let cx = &coarse.x;
         let body = &mut fx[GUARD..GUARD + fl.rows() * m0];
         par::for_chunks(body, m0, |row_i, row| {
-            let Some(base) = fl.row_base(row_i) else {
+            let Some((base, rows)) = self.coarse_rows(coarse, fl, row_i) else {
                 return;
             };
-            let jf = row_i % fl.m[1] - fl.pad[1];
-            let kf = row_i / fl.m[1] - fl.pad[2];
-            let (jp, jn) = self.up[1][jf];
-            let (kp, kn) = self.up[2][kf];
-            let (wjp, wjn) = if fl.n[1] > 1 {
-                (0.75, 0.25)
-            } else {
-                (1.0, 0.0)
-            };
-            let (wkp, wkn) = if fl.n[2] > 1 {
-                (0.75, 0.25)
-            } else {
-                (1.0, 0.0)
-            };
-            let rows = [
-                (coarse.pidx([0, jp, kp]), wjp * wkp),
-                (coarse.pidx([0, jn, kp]), wjn * wkp),
-                (coarse.pidx([0, jp, kn]), wjp * wkn),
-                (coarse.pidx([0, jn, kn]), wjn * wkn),
-            ];
             let (wip, win) = if fl.n[0] > 1 {
                 (0.75f32, 0.25f32)
             } else {
@@ -304,6 +284,36 @@ impl Transfer {
         }
     }
 
+    /// The coarse rows that fine row `row_i` interpolates from: the fine row's
+    /// base index and the (up to four) coarse row starts with their y/z
+    /// weights (¾ ¼ on an active axis, 1 0 on a flat one); `None` off the
+    /// fine unknowns.
+    #[inline(always)]
+    fn coarse_rows(
+        &self,
+        coarse: &Level,
+        fl: &Level,
+        row_i: usize,
+    ) -> Option<(usize, [(usize, f32); 4])> {
+        let base = fl.row_base(row_i)?;
+        let jf = row_i % fl.m[1] - fl.pad[1];
+        let kf = row_i / fl.m[1] - fl.pad[2];
+        let (jp, jn) = self.up[1][jf];
+        let (kp, kn) = self.up[2][kf];
+        let weights = |active: bool| if active { (0.75, 0.25) } else { (1.0, 0.0) };
+        let (wjp, wjn) = weights(fl.n[1] > 1);
+        let (wkp, wkn) = weights(fl.n[2] > 1);
+        Some((
+            base,
+            [
+                (coarse.pidx([0, jp, kp]), wjp * wkp),
+                (coarse.pidx([0, jn, kp]), wjn * wkp),
+                (coarse.pidx([0, jp, kn]), wjp * wkn),
+                (coarse.pidx([0, jn, kn]), wjn * wkn),
+            ],
+        ))
+    }
+
     /// One fine row `row_i` of [`Transfer::prolong_add`]: the (up to four)
     /// contributing coarse rows of `coarse.x` combined with their y/z
     /// weights, interpolated along x (¾ ¼ weights; the ends from the general
@@ -314,30 +324,10 @@ impl Transfer {
         let (p0, n0) = (fl.pad[0], fl.n[0]);
         let nc0 = coarse.n[0];
         let cx = &coarse.x;
-        let (wjp, wjn) = if fl.n[1] > 1 {
-            (0.75, 0.25)
-        } else {
-            (1.0, 0.0)
-        };
-        let (wkp, wkn) = if fl.n[2] > 1 {
-            (0.75, 0.25)
-        } else {
-            (1.0, 0.0)
-        };
         let active_x = fl.n[0] > 1;
-        let Some(base) = fl.row_base(row_i) else {
+        let Some((base, rows)) = tr.coarse_rows(coarse, fl, row_i) else {
             return;
         };
-        let jf = row_i % fl.m[1] - fl.pad[1];
-        let kf = row_i / fl.m[1] - fl.pad[2];
-        let (jp, jn) = tr.up[1][jf];
-        let (kp, kn) = tr.up[2][kf];
-        let rows = [
-            (coarse.pidx([0, jp, kp]), wjp * wkp),
-            (coarse.pidx([0, jn, kp]), wjn * wkp),
-            (coarse.pidx([0, jp, kn]), wjp * wkn),
-            (coarse.pidx([0, jn, kn]), wjn * wkn),
-        ];
         // Combined coarse row c[0..nc0].
         let mut c = vec![0.0f32; nc0];
         for &(rb, w) in &rows {

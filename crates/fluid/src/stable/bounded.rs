@@ -68,6 +68,8 @@ impl Roles {
 }
 
 impl BoundedFluid {
+    shared_inputs!();
+
     /// A fluid at rest on `dims` cells of size `h` metres.
     ///
     /// # Errors
@@ -95,18 +97,6 @@ impl BoundedFluid {
         })
     }
 
-    /// Grid size.
-    #[must_use]
-    pub fn dims(&self) -> Dims {
-        self.dims
-    }
-
-    /// Cell size (m).
-    #[must_use]
-    pub fn h(&self) -> f32 {
-        self.h
-    }
-
     /// Adds an obstacle; it must lie inside the grid.
     ///
     /// # Errors
@@ -115,47 +105,6 @@ impl BoundedFluid {
     /// degenerate extents, and [`FluidError::OutsideGrid`] if it lies outside the grid.
     pub fn add_obstacle(&mut self, o: Obstacle) -> Result<()> {
         self.solid.add(o, self.dims, self.h)
-    }
-
-    /// Adds a substance.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
-    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
-    /// allocated.
-    pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
-        self.subs.add(self.dims, s)
-    }
-
-    /// Adds a persistent source of substance `id`; it must lie inside the grid.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
-    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
-    pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
-        self.subs.check(id)?;
-        check_scalar_source(self.dims, self.h, &src)?;
-        self.subs.sources.push((id.0, src));
-        Ok(())
-    }
-
-    /// Adds a persistent force region; it must lie inside the grid.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
-    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
-    pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
-        check_force_source(self.dims, self.h, &s)?;
-        self.force_sources.push(s);
-        Ok(())
-    }
-
-    /// Per-step force field at cell centres (m/s²), cleared after each step.
-    pub fn force_mut(&mut self) -> &mut [Grid3<f32>; 3] {
-        &mut self.force
     }
 
     /// The MAC velocity.
@@ -173,28 +122,6 @@ impl BoundedFluid {
     #[must_use]
     pub fn cell_kinds(&self) -> &Grid3<CellKind> {
         &self.solid.kinds
-    }
-
-    /// The field of substance `id`.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
-    /// substance.
-    pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
-        self.subs.check(id)?;
-        Ok(&self.subs.fields[id.0])
-    }
-
-    /// The field of substance `id`, mutably.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
-    /// substance.
-    pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
-        self.subs.check(id)?;
-        Ok(&mut self.subs.fields[id.0])
     }
 
     /// Pressure of the last projection (m²/s², unit density).

@@ -17,6 +17,8 @@ pub struct PeriodicFluid {
 }
 
 impl PeriodicFluid {
+    shared_inputs!();
+
     /// A fluid at rest on `dims` cells of size `h` metres.
     ///
     /// # Errors
@@ -39,60 +41,6 @@ impl PeriodicFluid {
         })
     }
 
-    /// Grid size.
-    #[must_use]
-    pub fn dims(&self) -> Dims {
-        self.dims
-    }
-
-    /// Cell size (m).
-    #[must_use]
-    pub fn h(&self) -> f32 {
-        self.h
-    }
-
-    /// Adds a substance (initially zero everywhere).
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for a negative or non-finite
-    /// diffusion or dissipation rate, and [`FluidError::Core`] if its grid cannot be
-    /// allocated.
-    pub fn add_substance(&mut self, s: Substance) -> Result<SubstanceId> {
-        self.subs.add(self.dims, s)
-    }
-
-    /// Adds a persistent source of substance `id`; it must lie inside the grid.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for non-finite amounts or shapes, and
-    /// [`FluidError::OutsideGrid`] if the source lies outside the grid.
-    pub fn add_source(&mut self, id: SubstanceId, src: ScalarSource) -> Result<()> {
-        self.subs.check(id)?;
-        check_scalar_source(self.dims, self.h, &src)?;
-        self.subs.sources.push((id.0, src));
-        Ok(())
-    }
-
-    /// Adds a persistent force region; it must lie inside the grid.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] for a non-finite force or shape, and
-    /// [`FluidError::OutsideGrid`] if it lies outside the grid.
-    pub fn add_force_source(&mut self, s: ForceSource) -> Result<()> {
-        check_force_source(self.dims, self.h, &s)?;
-        self.force_sources.push(s);
-        Ok(())
-    }
-
-    /// Per-step force field at cell centres (m/s²), cleared after each step —
-    /// the interactive forces `F` of the main loop (Stam 1999, §3.2).
-    pub fn force_mut(&mut self) -> &mut [Grid3<f32>; 3] {
-        &mut self.force
-    }
-
     /// Cell-centred velocity components (m/s).
     #[must_use]
     pub fn velocity(&self) -> &[Grid3<f32>; 3] {
@@ -102,28 +50,6 @@ impl PeriodicFluid {
     /// Cell-centred velocity, mutably (e.g. to set initial conditions).
     pub fn velocity_mut(&mut self) -> &mut [Grid3<f32>; 3] {
         &mut self.vel
-    }
-
-    /// The field of substance `id`.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
-    /// substance.
-    pub fn substance(&self, id: SubstanceId) -> Result<&Grid3<f32>> {
-        self.subs.check(id)?;
-        Ok(&self.subs.fields[id.0])
-    }
-
-    /// The field of substance `id`, mutably.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`FluidError::InvalidParameter`] naming `substance id` if there is no such
-    /// substance.
-    pub fn substance_mut(&mut self, id: SubstanceId) -> Result<&mut Grid3<f32>> {
-        self.subs.check(id)?;
-        Ok(&mut self.subs.fields[id.0])
     }
 
     /// Kinetic energy `½ Σ |u|² h³` (unit density).
