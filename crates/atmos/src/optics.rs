@@ -135,7 +135,7 @@ pub const FRAUNHOFER_D_NM: f64 = 589.3;
 pub const FRAUNHOFER_F_NM: f64 = 486.1;
 
 /// A refractive index as a function of vacuum wavelength in nanometres.
-pub trait Dispersion: Send + Sync {
+pub trait RefractiveIndex: Send + Sync {
     /// The refractive index at `lambda_nm`.
     fn ior(&self, lambda_nm: f64) -> f64;
 
@@ -176,7 +176,7 @@ impl Cauchy {
     }
 }
 
-impl Dispersion for Cauchy {
+impl RefractiveIndex for Cauchy {
     #[inline]
     fn ior(&self, lambda_nm: f64) -> f64 {
         self.a + self.b_nm2 / (lambda_nm * lambda_nm)

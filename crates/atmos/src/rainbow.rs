@@ -17,7 +17,7 @@ use natura_core::Seed;
 
 use crate::Dir3;
 use crate::error::{Result, invalid, non_negative, positive};
-use crate::optics::{AIR_MUSGRAVE_RAINBOW, Cauchy, Dispersion, fresnel};
+use crate::optics::{AIR_MUSGRAVE_RAINBOW, Cauchy, RefractiveIndex, fresnel};
 use crate::spectrum::{SpectralRgbTable, WavelengthSampler};
 
 /// Returns the angle from the antisolar point (radians) of a ray leaving a

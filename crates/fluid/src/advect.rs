@@ -7,8 +7,8 @@
 //! extrema (Stam 1999, §2.2). The back-trace is explicit Euler or the midpoint
 //! second-order Runge–Kutta the paper uses (Stam 1999, §3.2).
 //!
-//! Beyond the papers, [`Scheme::MacCormack`] (Selle, Fedkiw, Kim, Liu &
-//! Rossignac 2008) and [`Scheme::Bfecc`] (Kim, Liu, Llamas & Rossignac 2005)
+//! Beyond the papers, [`AdvectionScheme::MacCormack`] (Selle, Fedkiw, Kim, Liu &
+//! Rossignac 2008) and [`AdvectionScheme::Bfecc`] (Kim, Liu, Llamas & Rossignac 2005)
 //! estimate the semi-Lagrangian error by advecting backwards and compensate
 //! half of it; both clamp to the range of the semi-Lagrangian stencil so they
 //! stay unconditionally stable and create no new extrema.
@@ -26,7 +26,7 @@ use crate::par;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Scheme {
+pub enum AdvectionScheme {
     /// Plain semi-Lagrangian (Stam 1999): one back-trace and interpolation.
     #[default]
     SemiLagrangian,
@@ -56,7 +56,7 @@ pub enum TraceIntegrator {
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct Advection {
     /// Semi-Lagrangian or an error-correcting variant.
-    pub scheme: Scheme,
+    pub scheme: AdvectionScheme,
     /// Back-trace integrator.
     pub tracer: TraceIntegrator,
     /// Interpolation of the advected field.
@@ -344,8 +344,8 @@ pub(crate) fn advect(
     solids: Option<&Solids<'_>>,
 ) {
     match adv.scheme {
-        Scheme::SemiLagrangian => sl_pass(dst, None, src, vel, dt_h, adv, solids),
-        Scheme::MacCormack => {
+        AdvectionScheme::SemiLagrangian => sl_pass(dst, None, src, vel, dt_h, adv, solids),
+        AdvectionScheme::MacCormack => {
             let len = dst.len();
             let mut lo = vec![0.0f32; len];
             let mut hi = vec![0.0f32; len];
@@ -359,7 +359,7 @@ pub(crate) fn advect(
                 dst[c] = if v < lo[c] || v > hi[c] { fwd[c] } else { v };
             }
         }
-        Scheme::Bfecc => {
+        AdvectionScheme::Bfecc => {
             let len = dst.len();
             let mut fwd = vec![0.0f32; len];
             sl_pass(&mut fwd, None, src, vel, dt_h, adv, solids);
@@ -407,7 +407,7 @@ pub(crate) fn advect_many(
     let shared = srcs
         .windows(2)
         .all(|w| w[0].n == w[1].n && w[0].off == w[1].off);
-    if adv.scheme != Scheme::SemiLagrangian || srcs.len() < 2 || !shared {
+    if adv.scheme != AdvectionScheme::SemiLagrangian || srcs.len() < 2 || !shared {
         for (d, s) in dsts.iter_mut().zip(srcs) {
             advect(d, s, vel, dt_h, adv, solids);
         }

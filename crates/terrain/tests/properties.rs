@@ -6,7 +6,7 @@ use natura_terrain::erosion::{
     Diffusion, DiffusionParams, Edges, MusgraveHydraulic, MusgraveParams, Neighbourhood, PipeModel,
     PipeParams, Thermal, ThermalParams,
 };
-use natura_terrain::synth::{MidpointParams, Scheme, SubdivisionParams, subdivide};
+use natura_terrain::synth::{MidpointParams, SubdivisionParams, SubdivisionScheme, subdivide};
 use proptest::prelude::*;
 
 fn field(nx: usize, ny: usize, seed: u64, relief: f32) -> HeightField {
@@ -67,7 +67,7 @@ proptest! {
 
     #[test]
     fn subdivision_lod_consistency(seed in any::<u64>(), h in 0.05f64..=1.0, k in 1u32..3, nx in 2usize..40, ny in 2usize..40,
-                                   scheme in prop_oneof![Just(Scheme::Triangle), Just(Scheme::Quad), Just(Scheme::DiamondSquare)]) {
+                                   scheme in prop_oneof![Just(SubdivisionScheme::Triangle), Just(SubdivisionScheme::Quad), Just(SubdivisionScheme::DiamondSquare)]) {
         let levels = 6;
         let mut p = SubdivisionParams { midpoint: MidpointParams { h, ..Default::default() }, scheme, levels: Some(levels) };
         let fine = subdivide(nx, ny, 1.0, &p, Seed(seed)).unwrap();

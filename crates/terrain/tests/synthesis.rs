@@ -9,8 +9,8 @@ use natura_terrain::erosion::{
     MusgraveParams, PipeModel, PipeParams, StreamPower, StreamPowerParams, Thermal, ThermalParams,
 };
 use natura_terrain::synth::{
-    self, FaultParams, MidpointParams, Scheme, SpectralParams, SraParams, SubdivisionParams,
-    spectral_synthesis, subdivide,
+    self, FaultParams, MidpointParams, SpectralParams, SraParams, SubdivisionParams,
+    SubdivisionScheme, spectral_synthesis, subdivide,
 };
 
 fn pool(n: usize) -> rayon::ThreadPool {
@@ -140,7 +140,7 @@ fn subdivision_level_variance_scales_as_two_to_minus_two_h_level() {
                 scale: 1.0,
                 ..Default::default()
             },
-            scheme: Scheme::Triangle,
+            scheme: SubdivisionScheme::Triangle,
             levels: Some(levels),
         };
         let n = (1usize << levels) + 1;

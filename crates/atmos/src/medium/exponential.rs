@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::{Attenuation, BeerParams, Medium, scale_column};
+use super::BeerParams;
 use crate::Dir3;
 use crate::error::{Result, finite, positive};
 use crate::special::exprel_neg;
@@ -90,23 +90,4 @@ impl ExponentialMist {
     }
 }
 
-impl Medium for ExponentialMist {
-    fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
-        scale_column(self.beer.extinction, self.column(a, b))
-    }
-
-    fn optical_depth_to_infinity(&self, origin: DVec3, dir: Dir3) -> DVec3 {
-        scale_column(self.beer.extinction, self.column_to_infinity(origin, dir))
-    }
-
-    fn attenuation(&self, a: DVec3, b: DVec3) -> Attenuation {
-        Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
-    }
-
-    fn attenuation_to_infinity(&self, origin: DVec3, dir: Dir3) -> Attenuation {
-        Attenuation::beer(
-            self.optical_depth_to_infinity(origin, dir),
-            self.beer.fog_colour,
-        )
-    }
-}
+beer_medium!(ExponentialMist);

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::{Attenuation, BeerParams, Medium, scale_column};
+use super::BeerParams;
 use crate::Dir3;
 use crate::error::Result;
 
@@ -37,25 +37,19 @@ impl HomogeneousFog {
     pub fn params(&self) -> BeerParams {
         self.beer
     }
-}
 
-impl Medium for HomogeneousFog {
-    fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
-        scale_column(self.beer.extinction, a.distance(b))
+    /// `∫ρ ds` along `a → b`: the path length (metres at the reference
+    /// density, which fills all space).
+    #[must_use]
+    pub fn column(&self, a: DVec3, b: DVec3) -> f64 {
+        a.distance(b)
     }
 
-    fn optical_depth_to_infinity(&self, _origin: DVec3, _dir: Dir3) -> DVec3 {
-        scale_column(self.beer.extinction, f64::INFINITY)
-    }
-
-    fn attenuation(&self, a: DVec3, b: DVec3) -> Attenuation {
-        Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
-    }
-
-    fn attenuation_to_infinity(&self, origin: DVec3, dir: Dir3) -> Attenuation {
-        Attenuation::beer(
-            self.optical_depth_to_infinity(origin, dir),
-            self.beer.fog_colour,
-        )
+    /// `∫ρ ds` from `origin` to infinity: `+∞` in every direction.
+    #[must_use]
+    pub fn column_to_infinity(&self, _origin: DVec3, _dir: Dir3) -> f64 {
+        f64::INFINITY
     }
 }
+
+beer_medium!(HomogeneousFog);

@@ -16,6 +16,42 @@
 //! own extinction, which is all of Musgrave's Rayleigh approximation
 //! ([`RayleighRgb`], Musgrave 1993, §4.1.7).
 
+/// Implements [`Medium`] for a Beer-law model from its column `∫ρ ds` (the
+/// inherent methods `column` and `column_to_infinity`) and its `beer`
+/// parameters: `τ = ε̄·column` per channel, blended towards the fog colour
+/// (eqs. 4.1.1–4.1.2, Musgrave 1993, §4.1.4). Written once for every such model.
+macro_rules! beer_medium {
+    ($ty:ty) => {
+        impl $crate::medium::Medium for $ty {
+            fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
+                $crate::medium::scale_column(self.beer.extinction, self.column(a, b))
+            }
+
+            fn optical_depth_to_infinity(&self, origin: DVec3, dir: $crate::Dir3) -> DVec3 {
+                $crate::medium::scale_column(
+                    self.beer.extinction,
+                    self.column_to_infinity(origin, dir),
+                )
+            }
+
+            fn attenuation(&self, a: DVec3, b: DVec3) -> $crate::medium::Attenuation {
+                $crate::medium::Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
+            }
+
+            fn attenuation_to_infinity(
+                &self,
+                origin: DVec3,
+                dir: $crate::Dir3,
+            ) -> $crate::medium::Attenuation {
+                $crate::medium::Attenuation::beer(
+                    self.optical_depth_to_infinity(origin, dir),
+                    self.beer.fog_colour,
+                )
+            }
+        }
+    };
+}
+
 mod exponential;
 mod homogeneous;
 mod radial;

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::{Attenuation, BeerParams, Medium, scale_column};
+use super::BeerParams;
 use crate::Dir3;
 use crate::error::{Result, finite3, positive};
 use crate::special::{erfcx, gauss_legendre8};
@@ -230,23 +230,4 @@ impl RadialAtmosphere {
     }
 }
 
-impl Medium for RadialAtmosphere {
-    fn optical_depth(&self, a: DVec3, b: DVec3) -> DVec3 {
-        scale_column(self.beer.extinction, self.column(a, b))
-    }
-
-    fn optical_depth_to_infinity(&self, origin: DVec3, dir: Dir3) -> DVec3 {
-        scale_column(self.beer.extinction, self.column_to_infinity(origin, dir))
-    }
-
-    fn attenuation(&self, a: DVec3, b: DVec3) -> Attenuation {
-        Attenuation::beer(self.optical_depth(a, b), self.beer.fog_colour)
-    }
-
-    fn attenuation_to_infinity(&self, origin: DVec3, dir: Dir3) -> Attenuation {
-        Attenuation::beer(
-            self.optical_depth_to_infinity(origin, dir),
-            self.beer.fog_colour,
-        )
-    }
-}
+beer_medium!(RadialAtmosphere);

@@ -3,7 +3,9 @@
 use glam::Vec3;
 use natura_core::Grid3;
 use natura_fluid::FluidError;
-use natura_fluid::advect::{Advection, Scheme, TraceIntegrator, advect_scalar, trace_back};
+use natura_fluid::advect::{
+    Advection, AdvectionScheme, TraceIntegrator, advect_scalar, trace_back,
+};
 use natura_fluid::fft::{FftVariant, solve_poisson_periodic};
 use natura_fluid::grid::{Boundaries, CellKind, Dims, MacVelocity};
 use natura_fluid::interp::{CubicLimiter, Interpolation};

@@ -21,7 +21,11 @@ fn advection_keeps_constants_and_creates_no_extrema() {
     let d = Dims::plane(32, 32).unwrap();
     let h = 1.0 / 32.0;
     let v = swirl(d, h);
-    let schemes = [Scheme::SemiLagrangian, Scheme::MacCormack, Scheme::Bfecc];
+    let schemes = [
+        AdvectionScheme::SemiLagrangian,
+        AdvectionScheme::MacCormack,
+        AdvectionScheme::Bfecc,
+    ];
     let interps = [
         Interpolation::Linear,
         Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),

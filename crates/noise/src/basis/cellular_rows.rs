@@ -323,21 +323,13 @@ fn worley2_spans<const K: usize, D: Dist<f32>>(
                     cy[3 * r + c] = D::axis(gy - d[1]);
                 }
             }
-            write_span(
-                &mut out[i..],
-                &mut flags[i..],
-                count,
-                #[inline(always)]
-                |k: usize| {
-                    let t = t0 + (k as i32) as f32 * s32;
-                    let mut best = [f32::INFINITY; K];
-                    for (&x, &yt) in cx.iter().zip(&cy) {
-                        insert_k(&mut best, D::comb(D::axis(t - x), yt));
-                    }
-                    let bound = 1.0 + place.margin + min_fast(min_fast(t, 1.0 - t), edge_y);
-                    lane_result::<K, D>(best, bound, &pick)
-                },
-            );
+            let span = Span {
+                t0,
+                step: s32,
+                reach: 1.0 + place.margin,
+                edge: edge_y,
+            };
+            span.nearest::<K, D, 9>(&cx, &cy, &mut out[i..], &mut flags[i..], count, &pick);
         },
     );
 }
@@ -372,23 +364,59 @@ fn worley3_spans<const K: usize, D: Dist<f32>>(
                     cyz[3 * k + c] = D::comb(D::axis(gy - d[1]), D::axis(gz - d[2]));
                 }
             }
-            write_span(
-                &mut out[i..],
-                &mut flags[i..],
-                count,
-                #[inline(always)]
-                |k: usize| {
-                    let t = t0 + (k as i32) as f32 * s32;
-                    let mut best = [f32::INFINITY; K];
-                    for (&x, &yz) in cx.iter().zip(&cyz) {
-                        insert_k(&mut best, D::comb(D::axis(t - x), yz));
-                    }
-                    let bound = 1.0 + place.margin + min_fast(min_fast(t, 1.0 - t), edge_yz);
-                    lane_result::<K, D>(best, bound, &pick)
-                },
-            );
+            let span = Span {
+                t0,
+                step: s32,
+                reach: 1.0 + place.margin,
+                edge: edge_yz,
+            };
+            span.nearest::<K, D, 27>(&cx, &cyz, &mut out[i..], &mut flags[i..], count, &pick);
         },
     );
+}
+
+/// One cell's span of a row: points at fractions `t0 + k·step` of the cell,
+/// candidates reaching `reach` cells, the nearest cell edge across the row
+/// at `edge`.
+#[derive(Clone, Copy)]
+struct Span {
+    t0: f32,
+    step: f32,
+    reach: f32,
+    edge: f32,
+}
+
+impl Span {
+    /// The `K` nearest of the `N` candidates (x positions `cx`, combined
+    /// terms of the other axes `rest`) for points `0..count` of the span,
+    /// written with their flags by [`write_span`]: one x term, one combine
+    /// and one insertion per candidate and point.
+    #[inline(always)]
+    fn nearest<const K: usize, D: Dist<f32>, const N: usize>(
+        self,
+        cx: &[f32; N],
+        rest: &[f32; N],
+        out: &mut [f32],
+        flags: &mut [u8],
+        count: usize,
+        pick: &impl Fn(&[f32; K]) -> f32,
+    ) {
+        write_span(
+            out,
+            flags,
+            count,
+            #[inline(always)]
+            |k: usize| {
+                let t = self.t0 + (k as i32) as f32 * self.step;
+                let mut best = [f32::INFINITY; K];
+                for (&x, &r) in cx.iter().zip(rest) {
+                    insert_k(&mut best, D::comb(D::axis(t - x), r));
+                }
+                let bound = self.reach + min_fast(min_fast(t, 1.0 - t), self.edge);
+                lane_result::<K, D>(best, bound, pick)
+            },
+        );
+    }
 }
 
 /// Writes lanes `0..count` of a span (values and flags) in whole groups of

@@ -11,11 +11,9 @@
 //! `c_d ≤ ¼` on four neighbours); `validate` enforces it. The sources give no
 //! value; the default `c_d = 0.1` is well inside the limit.
 
-use natura_core::{Grid2, HeightField, Progress};
+use natura_core::{Grid2, HeightField};
 
-use super::{
-    Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size, run_steps,
-};
+use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_model_size};
 use crate::error::{Result, invalid};
 use crate::par;
 
@@ -119,30 +117,7 @@ impl Diffusion {
         Ok(self)
     }
 
-    /// Runs `steps` steps.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
-    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
-    /// naming `height` for a NaN, infinite or out-of-range height.
-    pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        let size = (self.nx, self.ny);
-        run_steps("diffusion", "diffusion", hf, size, steps, progress, |hf| {
-            self.step_unchecked(hf);
-        })
-    }
-
-    /// One synchronous step.
-    ///
-    /// # Errors
-    ///
-    /// As [`run`](Self::run).
-    pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
-        check_field("diffusion", hf, self.nx, self.ny)?;
-        self.step_unchecked(hf);
-        Ok(())
-    }
+    stepped_model!("diffusion", "diffusion", "One synchronous step.");
 
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);

@@ -34,11 +34,9 @@
 //! for negative altitudes. Defaults `K_c = 5, K_d = 0.1, K_s = 0.3` (Musgrave et al. 1989, Plate 9;
 //! Musgrave 1993, §2.4.1).
 
-use natura_core::{Grid2, HeightField, Progress};
+use natura_core::{Grid2, HeightField};
 
-use super::{
-    Edges, Erodibility, Neighbourhood, check_field, check_model_size, check_softness, run_steps,
-};
+use super::{Edges, Erodibility, Neighbourhood, check_model_size, check_softness};
 use crate::error::{Result, in_range, invalid, non_negative};
 use crate::par;
 
@@ -295,38 +293,11 @@ impl MusgraveHydraulic {
         self.step
     }
 
-    /// Runs `steps` steps.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
-    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
-    /// naming `height` for a NaN, infinite or out-of-range height.
-    pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        let size = (self.nx, self.ny);
-        run_steps(
-            "hydraulic erosion",
-            "hydraulic",
-            hf,
-            size,
-            steps,
-            progress,
-            |hf| {
-                self.step_unchecked(hf);
-            },
-        )
-    }
-
-    /// One step: rain (on schedule), transport, evaporation.
-    ///
-    /// # Errors
-    ///
-    /// As [`run`](Self::run).
-    pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
-        check_field("hydraulic erosion", hf, self.nx, self.ny)?;
-        self.step_unchecked(hf);
-        Ok(())
-    }
+    stepped_model!(
+        "hydraulic erosion",
+        "hydraulic",
+        "One step: rain (on schedule), transport, evaporation."
+    );
 
     #[allow(clippy::needless_range_loop)]
     fn step_unchecked(&mut self, hf: &mut HeightField) {

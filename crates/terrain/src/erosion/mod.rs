@@ -17,6 +17,45 @@
 //! number of threads. An optional [`Erodibility`] map (e.g. rock strata from
 //! [`Erodibility::strata`]) scales how easily each cell erodes (Musgrave 1993, §2.4.4).
 
+/// A grid model's `run` and `step`, written once: both check the height
+/// field against the model's size (`nx`, `ny` fields) and then call the
+/// model's `step_unchecked`; `run` reports each step to `progress`.
+/// Arguments: the method's name in errors, its progress label, and the
+/// rustdoc summary of one step.
+macro_rules! stepped_model {
+    ($method:literal, $label:literal, $step_doc:literal) => {
+        /// Runs `steps` steps, reporting each to `progress`.
+        ///
+        /// # Errors
+        ///
+        /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
+        /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
+        /// naming `height` for a NaN, infinite or out-of-range height.
+        pub fn run(
+            &mut self,
+            hf: &mut HeightField,
+            steps: u32,
+            progress: &dyn natura_core::Progress,
+        ) -> Result<()> {
+            let size = (self.nx, self.ny);
+            $crate::erosion::run_steps($method, $label, hf, size, steps, progress, |hf| {
+                self.step_unchecked(hf);
+            })
+        }
+
+        #[doc = $step_doc]
+        ///
+        /// # Errors
+        ///
+        /// As [`run`](Self::run).
+        pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
+            $crate::erosion::check_field($method, hf, self.nx, self.ny)?;
+            self.step_unchecked(hf);
+            Ok(())
+        }
+    };
+}
+
 pub mod diffusion;
 pub mod droplet;
 pub mod hydraulic;

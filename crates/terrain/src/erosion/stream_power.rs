@@ -18,9 +18,9 @@
 
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
-use natura_core::{Grid2, HeightField, Progress};
+use natura_core::{Grid2, HeightField};
 
-use super::{Erodibility, check_erodibility, check_field, check_model_size, run_steps};
+use super::{Erodibility, check_erodibility, check_model_size};
 pub use crate::analysis::flow::Depressions;
 use crate::analysis::flow::{FlowGraph, next_up};
 use crate::error::{Result, in_range, invalid, non_negative, positive};
@@ -202,38 +202,7 @@ impl StreamPower {
         self.graph.as_ref()
     }
 
-    /// Runs `steps` steps.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
-    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
-    /// naming `height` for a NaN, infinite or out-of-range height.
-    pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        let size = (self.nx, self.ny);
-        run_steps(
-            "stream-power erosion",
-            "stream power",
-            hf,
-            size,
-            steps,
-            progress,
-            |hf| {
-                self.step_unchecked(hf);
-            },
-        )
-    }
-
-    /// One step.
-    ///
-    /// # Errors
-    ///
-    /// As [`run`](Self::run).
-    pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
-        check_field("stream-power erosion", hf, self.nx, self.ny)?;
-        self.step_unchecked(hf);
-        Ok(())
-    }
+    stepped_model!("stream-power erosion", "stream power", "One step.");
 
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);

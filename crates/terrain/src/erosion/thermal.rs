@@ -20,11 +20,9 @@
 //! discrete maximum principle when `|N|·c_t ≤ 1` — the limit `validate` enforces.
 //! The rate is named `talus_rate`, not `c_t`, which Musgrave et al. 1989 also use for the noise offset.
 
-use natura_core::{HeightField, Progress};
+use natura_core::HeightField;
 
-use super::{
-    Edges, Erodibility, Neighbourhood, check_erodibility, check_field, check_model_size, run_steps,
-};
+use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_model_size};
 use crate::error::{Result, invalid};
 use crate::par;
 
@@ -149,39 +147,7 @@ impl Thermal {
         &self.p
     }
 
-    /// Runs `steps` steps, reporting to `progress`. Refuses a field of another size
-    /// or with a non-finite height (naming the cell).
-    ///
-    /// # Errors
-    ///
-    /// Returns [`TerrainError::SizeMismatch`](crate::TerrainError::SizeMismatch) if `hf` is not the size the model was
-    /// built for, and [`TerrainError::NonFinite`](crate::TerrainError::NonFinite) or [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter)
-    /// naming `height` for a NaN, infinite or out-of-range height.
-    pub fn run(&mut self, hf: &mut HeightField, steps: u32, progress: &dyn Progress) -> Result<()> {
-        let size = (self.nx, self.ny);
-        run_steps(
-            "thermal weathering",
-            "thermal",
-            hf,
-            size,
-            steps,
-            progress,
-            |hf| {
-                self.step_unchecked(hf);
-            },
-        )
-    }
-
-    /// One synchronous step.
-    ///
-    /// # Errors
-    ///
-    /// As [`run`](Self::run).
-    pub fn step(&mut self, hf: &mut HeightField) -> Result<()> {
-        check_field("thermal weathering", hf, self.nx, self.ny)?;
-        self.step_unchecked(hf);
-        Ok(())
-    }
+    stepped_model!("thermal weathering", "thermal", "One synchronous step.");
 
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);

@@ -15,6 +15,6 @@ pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};
 pub use spectral::{SpectralParams, spectral_synthesis};
 pub use sra::{SraParams, successive_random_additions};
 pub use subdivision::{
-    EndpointMode, MidpointParams, Scheme, SubdivisionParams, fractal_polyline,
+    EndpointMode, MidpointParams, SubdivisionParams, SubdivisionScheme, fractal_polyline,
     fractal_polyline_ids, midpoint_1d, subdivide,
 };

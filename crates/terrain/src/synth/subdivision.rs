@@ -328,7 +328,7 @@ pub fn fractal_polyline_ids(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Scheme {
+pub enum SubdivisionScheme {
     /// Fractal triangles (Fournier et al. 1982, §4.1.2): each square of the current lattice is
     /// two triangles split on its `(+1, +1)` diagonal; every new point is an
     /// edge midpoint displaced from the mean of the edge's two endpoints
@@ -353,7 +353,7 @@ pub struct SubdivisionParams {
     /// The midpoint-displacement law (H, scale in metres, corners).
     pub midpoint: MidpointParams,
     /// The scheme.
-    pub scheme: Scheme,
+    pub scheme: SubdivisionScheme,
     /// Subdivision depth: base-lattice corners are `2^levels` cells apart.
     /// `None` picks the smallest depth whose single tile covers the grid.
     pub levels: Option<u32>,
@@ -363,7 +363,7 @@ impl Default for SubdivisionParams {
     fn default() -> Self {
         Self {
             midpoint: MidpointParams::default(),
-            scheme: Scheme::DiamondSquare,
+            scheme: SubdivisionScheme::DiamondSquare,
             levels: None,
         }
     }
@@ -449,7 +449,7 @@ pub fn subdivide(
             seed.gaussian(&[i64::from(l), a as i64, b as i64, tag]) * sd
         };
         match p.scheme {
-            Scheme::Triangle => level_pass(&mut g, s, |g, a, b| {
+            SubdivisionScheme::Triangle => level_pass(&mut g, s, |g, a, b| {
                 let (i, j) = (a * s, b * s);
                 let (m, key) = match (a % 2, b % 2) {
                     (1, 0) => ((g[(i - s, j)] + g[(i + s, j)]) / 2.0, 0),
@@ -459,7 +459,7 @@ pub fn subdivide(
                 };
                 Some(m + gauss(a, b, key))
             }),
-            Scheme::Quad => {
+            SubdivisionScheme::Quad => {
                 level_pass(&mut g, s, |g, a, b| {
                     let (i, j) = (a * s, b * s);
                     match (a % 2, b % 2) {
@@ -479,7 +479,7 @@ pub fn subdivide(
                     }
                 });
             }
-            Scheme::DiamondSquare => {
+            SubdivisionScheme::DiamondSquare => {
                 level_pass(&mut g, s, |g, a, b| {
                     if a % 2 == 1 && b % 2 == 1 {
                         let (i, j) = (a * s, b * s);
@@ -619,7 +619,11 @@ mod tests {
 
     #[test]
     fn grid_lod_consistency_every_scheme() {
-        for scheme in [Scheme::Triangle, Scheme::Quad, Scheme::DiamondSquare] {
+        for scheme in [
+            SubdivisionScheme::Triangle,
+            SubdivisionScheme::Quad,
+            SubdivisionScheme::DiamondSquare,
+        ] {
             let mut p = SubdivisionParams {
                 scheme,
                 levels: Some(7),

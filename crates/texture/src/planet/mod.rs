@@ -31,8 +31,8 @@ mod trace;
 pub use cube::{CubeFace, CubeMap, Face, SurfaceMap};
 pub use height::Relief;
 pub use params::{
-    AtmosphereParams, CloudLayerParams, DetailParams, EARTH_RADIUS_M, LightParams, PlanetParams,
-    SurfaceParams, TerrainParams,
+    CloudLayerParams, DetailParams, EARTH_RADIUS_M, LightParams, PlanetAtmosphereParams,
+    PlanetParams, SurfaceParams, TerrainParams,
 };
 pub use render::{GroundViewParams, direction};
 pub use trace::{SurfaceHit, TraceSettings};

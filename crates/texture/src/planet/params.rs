@@ -140,7 +140,7 @@ pub enum SurfaceParams {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct AtmosphereParams {
+pub struct PlanetAtmosphereParams {
     /// Scale height, metres (8000, Earth's).
     pub scale_height_m: f64,
     /// Extinction per metre at sea level, per channel (Earth's Rayleigh
@@ -160,7 +160,7 @@ pub struct AtmosphereParams {
     pub lambert_haze: bool,
 }
 
-impl Default for AtmosphereParams {
+impl Default for PlanetAtmosphereParams {
     fn default() -> Self {
         Self {
             scale_height_m: 8000.0,
@@ -173,7 +173,7 @@ impl Default for AtmosphereParams {
     }
 }
 
-impl AtmosphereParams {
+impl PlanetAtmosphereParams {
     /// Checks every parameter.
     ///
     /// # Errors
@@ -301,7 +301,7 @@ pub struct PlanetParams {
     /// What covers it.
     pub surface: SurfaceParams,
     /// Its atmosphere, if any.
-    pub atmosphere: Option<AtmosphereParams>,
+    pub atmosphere: Option<PlanetAtmosphereParams>,
     /// Its cloud shell, if any.
     pub clouds: Option<CloudLayerParams>,
     /// Its rings (in the equatorial plane, radii in planet radii), if any.
@@ -325,7 +325,7 @@ impl PlanetParams {
         Self {
             radius_m: EARTH_RADIUS_M,
             surface: SurfaceParams::Terrain(TerrainParams::earth()),
-            atmosphere: Some(AtmosphereParams::default()),
+            atmosphere: Some(PlanetAtmosphereParams::default()),
             clouds: Some(CloudLayerParams::default()),
             rings: None,
             light: LightParams::default(),
@@ -338,11 +338,11 @@ impl PlanetParams {
         Self {
             radius_m: 6.052e6,
             surface: SurfaceParams::Venus(VenusParams::default()),
-            atmosphere: Some(AtmosphereParams {
+            atmosphere: Some(PlanetAtmosphereParams {
                 scale_height_m: 15_000.0,
                 extinction: DVec3::new(6e-6, 8e-6, 12e-6),
                 day_colour: DVec3::new(0.95, 0.9, 0.72),
-                ..AtmosphereParams::default()
+                ..PlanetAtmosphereParams::default()
             }),
             clouds: None,
             rings: None,
@@ -357,11 +357,11 @@ impl PlanetParams {
         Self {
             radius_m: 6.9911e7,
             surface: SurfaceParams::GasGiant(GasGiantParams::default()),
-            atmosphere: Some(AtmosphereParams {
+            atmosphere: Some(PlanetAtmosphereParams {
                 scale_height_m: 60_000.0,
                 extinction: DVec3::new(1.5e-6, 1.8e-6, 2.4e-6),
                 day_colour: DVec3::new(0.9, 0.86, 0.78),
-                ..AtmosphereParams::default()
+                ..PlanetAtmosphereParams::default()
             }),
             clouds: None,
             rings: Some(RingsParams::default()),
