@@ -13,7 +13,10 @@
 
 use natura_core::{Grid2, HeightField};
 
-use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_model_size};
+use super::{
+    Edges, Erodibility, Neighbourhood, check_conserving_edges, check_erodibility, check_model_size,
+    check_neighbour_rate,
+};
 use crate::error::{Result, invalid};
 use crate::par;
 
@@ -48,22 +51,13 @@ impl DiffusionParams {
     /// Returns [`TerrainError::InvalidParameter`](crate::TerrainError::InvalidParameter) naming the first parameter that is
     /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
-        let limit = 1.0 / self.neighbourhood.count() as f64;
-        if !(self.rate > 0.0 && self.rate <= limit) {
-            return Err(invalid(
-                "DiffusionParams::rate",
-                self.rate,
-                format!("must lie in (0, {limit}] (1 / neighbours, FTCS stability)"),
-            ));
-        }
-        if self.edges == Edges::Open {
-            return Err(invalid(
-                "DiffusionParams::edges",
-                "Open",
-                "diffusion conserves material: use Closed or Periodic",
-            ));
-        }
-        Ok(())
+        check_neighbour_rate(
+            "DiffusionParams::rate",
+            self.rate,
+            self.neighbourhood,
+            "FTCS stability",
+        )?;
+        check_conserving_edges("DiffusionParams::edges", self.edges, "diffusion")
     }
 }
 

@@ -238,6 +238,39 @@ impl Erodibility {
     }
 }
 
+/// Checks an explicit model's per-neighbour rate: in `(0, 1 / neighbours]`,
+/// the stability limit of moving material to every neighbour at once.
+pub(crate) fn check_neighbour_rate(
+    name: &'static str,
+    rate: f64,
+    neighbourhood: Neighbourhood,
+    why: &str,
+) -> Result<()> {
+    let limit = 1.0 / neighbourhood.count() as f64;
+    if rate > 0.0 && rate <= limit {
+        Ok(())
+    } else {
+        Err(invalid(
+            name,
+            rate,
+            format!("must lie in (0, {limit}] (1 / neighbours, {why})"),
+        ))
+    }
+}
+
+/// Refuses open edges for a model that conserves material (`what` names it).
+pub(crate) fn check_conserving_edges(name: &'static str, edges: Edges, what: &str) -> Result<()> {
+    if edges == Edges::Open {
+        Err(invalid(
+            name,
+            "Open",
+            format!("{what} conserves material: use Closed or Periodic"),
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 /// Checks a height field for use by a grid model of size `(nx, ny)`.
 pub(crate) fn check_field(
     method: &'static str,

@@ -22,7 +22,10 @@
 
 use natura_core::HeightField;
 
-use super::{Edges, Erodibility, Neighbourhood, check_erodibility, check_model_size};
+use super::{
+    Edges, Erodibility, Neighbourhood, check_conserving_edges, check_erodibility, check_model_size,
+    check_neighbour_rate,
+};
 use crate::error::{Result, invalid};
 use crate::par;
 
@@ -69,22 +72,13 @@ impl ThermalParams {
                 "must lie in [0, π/2) radians (below 90°)",
             ));
         }
-        let limit = 1.0 / self.neighbourhood.count() as f64;
-        if !(self.talus_rate > 0.0 && self.talus_rate <= limit) {
-            return Err(invalid(
-                "ThermalParams::talus_rate",
-                self.talus_rate,
-                format!("must lie in (0, {limit}] (1 / neighbours, for stability)"),
-            ));
-        }
-        if self.edges == Edges::Open {
-            return Err(invalid(
-                "ThermalParams::edges",
-                "Open",
-                "thermal weathering conserves material: use Closed or Periodic",
-            ));
-        }
-        Ok(())
+        check_neighbour_rate(
+            "ThermalParams::talus_rate",
+            self.talus_rate,
+            self.neighbourhood,
+            "for stability",
+        )?;
+        check_conserving_edges("ThermalParams::edges", self.edges, "thermal weathering")
     }
 }
 
