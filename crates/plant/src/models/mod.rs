@@ -9,11 +9,13 @@
 //! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–16 | [`crowns`] |
 //! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
+//! | compound leaves (organs at a density along a curved stem) | Prusinkiewicz et al. 2001, §5, Alg. 4 | [`compound`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
 //! [`Environment`]: crate::Environment
 
 pub mod clonal;
+pub mod compound;
 pub mod crowns;
 pub mod phyllotaxis;
 pub mod positional;
