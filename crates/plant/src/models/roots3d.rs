@@ -21,6 +21,12 @@
 //! Roots that take water from a region lower the water there, so
 //! neighbouring roots, which follow the gradient, grow apart (the source's
 //! observation for Fig. 10).
+//!
+//! Table 1 of the source gives Fig. 10 37 228 segments and 448 active apices
+//! after 301 steps. The defaults here make 4 793 segments and 22 apices: the
+//! source prints neither its 3-D soil and water nor its extension's rules,
+//! and its much larger count suggests a wetter soil or different parameters
+//! than the 2-D listing's.
 
 use glam::DVec3;
 use natura_core::check;
