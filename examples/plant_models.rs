@@ -2,7 +2,8 @@
 //! clonal plant foraging over patches of light, roots in soil water and
 //! tree crowns competing for light (open L-systems, Měch & Prusinkiewicz
 //! 1996), collision-based phyllotaxis on a cone (Fowler et al. 1992) and
-//! Ridley's packing on a disc (Prusinkiewicz et al. 2001, Alg. 5).
+//! Ridley's packing on a disc and a pinnate leaf on a curved stem
+//! (Prusinkiewicz et al. 2001, Alg. 5 and 4).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, docs/gallery/plant
@@ -12,7 +13,10 @@
 mod common;
 
 use natura::core::glam::{DVec3, Vec3};
-use natura::plant::models::{clonal, crowns, phyllotaxis, positional, roots, tiers};
+use natura::plant::models::Run;
+use natura::plant::models::{
+    clonal, compound, crowns, phyllotaxis, positional, roots, roots3d, tiers,
+};
 use natura::plant::preview::{Camera, PreviewParams, render};
 use natura::plant::turtle::{Frame, SurfaceInstance};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
@@ -25,6 +29,11 @@ fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &st
     let img = common::check(render(&mesh, &PreviewParams::new(size, size, cam)));
     common::check(img.save_png(out.join(name)));
     println!("{name}: {} triangles", mesh.triangle_count());
+}
+
+/// Renders the final string of a model's run.
+fn show(run: &Run, view: Vec3, size: u32, out: &std::path::Path, name: &str) {
+    picture(&common::check(run.geometry()), view, size, out, name);
 }
 
 /// Spheres at the given centres and radii, as turtle geometry.
@@ -51,17 +60,19 @@ fn main() {
     let quick = args.switch("--quick", "small and fast (CI)");
     let model: Option<String> = args.optional(
         "--model",
-        "one of tiers, clonal, roots, crowns, phyllotaxis, ridley (default all)",
+        "one of tiers, clonal, roots, roots3d, crowns, phyllotaxis, ridley, compound (default all)",
     );
     let out = args.out_dir("docs/gallery/plant");
     args.finish();
-    const MODELS: [&str; 6] = [
+    const MODELS: [&str; 8] = [
         "tiers",
         "clonal",
         "roots",
+        "roots3d",
         "crowns",
         "phyllotaxis",
         "ridley",
+        "compound",
     ];
     if let Some(m) = model.as_deref().filter(|m| !MODELS.contains(m)) {
         common::fail(&format!("--model {m}: not one of {}", MODELS.join(", ")));
@@ -71,28 +82,17 @@ fn main() {
     if want("tiers") {
         // Fig. 5: two tiers competing for space, seen from above.
         let (run, _) = common::check(tiers::tiers(&tiers::TiersParams::default()));
-        picture(
-            &common::check(run.geometry()),
-            Vec3::NEG_Z,
-            size,
-            &out,
-            "tiers.png",
-        );
+        show(&run, Vec3::NEG_Z, size, &out, "tiers.png");
     }
     if want("clonal") {
-        // Fig. 7: the clone spreading over patches II, III and I, seen from above.
+        // Fig. 7: the clone spreading over patches II, III and I, seen from
+        // above, with random spacers and trifoliate leaves.
         let p = clonal::ClonalParams {
             steps: if quick { 60 } else { 182 },
-            ..clonal::ClonalParams::default()
+            ..clonal::ClonalParams::fig7()
         };
         let (run, _) = common::check(clonal::clonal(&p));
-        picture(
-            &common::check(run.geometry()),
-            Vec3::NEG_Z,
-            size,
-            &out,
-            "clonal.png",
-        );
+        show(&run, Vec3::NEG_Z, size, &out, "clonal.png");
     }
     if want("roots") {
         // Fig. 9: roots in a vertical section of soil, wet on the left, dry on the right.
@@ -101,13 +101,14 @@ fn main() {
             ..roots::RootParams::default()
         };
         let (run, _) = common::check(roots::roots(&p));
-        picture(
-            &common::check(run.geometry()),
-            Vec3::Y,
-            size,
-            &out,
-            "roots.png",
-        );
+        show(&run, Vec3::Y, size, &out, "roots.png");
+    }
+    if want("roots3d") {
+        // Fig. 10: the same roots in a block of soil, seen obliquely.
+        let mut p = roots3d::Roots3dParams::default();
+        p.roots.steps = if quick { 60 } else { 301 };
+        let (run, _) = common::check(roots3d::roots_3d(&p));
+        show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png");
     }
     if want("crowns") {
         // Fig. 14: two trees grown side by side, seen from the side.
@@ -117,13 +118,7 @@ fn main() {
             ..crowns::CrownParams::default()
         };
         let run = common::check(crowns::crowns(&p));
-        picture(
-            &common::check(run.geometry()),
-            Vec3::Y,
-            size,
-            &out,
-            "crowns.png",
-        );
+        show(&run, Vec3::Y, size, &out, "crowns.png");
     }
     if want("phyllotaxis") {
         // Fig. 4: primordia on a cone, shrinking towards the tip.
@@ -144,5 +139,10 @@ fn main() {
             )
         }));
         picture(&g, Vec3::NEG_Z, size, &out, "ridley.png");
+    }
+    if want("compound") {
+        // Fig. 7 (f): a pinnate leaf on an arching stem, seen from the side.
+        let run = common::check(compound::compound(&compound::CompoundParams::fern()));
+        show(&run, Vec3::NEG_X, size, &out, "compound.png");
     }
 }

@@ -2,7 +2,7 @@
 //! (Prusinkiewicz & Lindenmayer 1990): the Koch curve and quadratic Koch
 //! island (§1.2–1.3), the bracketed plants of fig. 1.24a–f, the 3-D bush of
 //! fig. 1.25, the monopodial tree of fig. 2.6, the ternary tree of fig. 2.8
-//! and a sunflower head by Vogel's formula (§4.1). Writes a contact sheet
+//! (bent down by its `tropism:` directive) and a sunflower head by Vogel's formula (§4.1). Writes a contact sheet
 //! (`plants.png`), the monopodial tree as `tree.glb`, and a grove of that
 //! tree instanced nine times (`grove.glb`, `EXT_mesh_gpu_instancing`).
 //!

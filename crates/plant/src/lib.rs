@@ -16,9 +16,11 @@
 //!
 //! The source papers' models ([`models`]): the open L-system models of Měch &
 //! Prusinkiewicz 1996 with their environments (Honda's branch tiers, a clonal
-//! plant foraging over patches of light, roots growing in soil water, tree
-//! crowns competing for light), collision-based phyllotaxis (Fowler et al.
-//! 1992) and positional-information algorithms (Prusinkiewicz et al. 2001);
+//! plant foraging over patches of light, roots growing in soil water in a
+//! vertical section or in 3-D soil, tree crowns competing for light),
+//! collision-based phyllotaxis (Fowler et al. 1992) and positional-information
+//! algorithms (organ spacing, compound leaves, Ridley's packing and branch
+//! mapping; Prusinkiewicz et al. 2001);
 //! and plant ecosystems over a natura-terrain height field after Deussen et
 //! al. 1998 ([`eco`]): species with site preferences, self-thinning between
 //! circles of influence over many generations (parallel and deterministic),

@@ -152,3 +152,36 @@ fn sample_parses() {
     let mut d = Derivation::new(&l, 3).unwrap();
     d.derive(4).unwrap();
 }
+
+#[test]
+fn malformed_tropism_directive_names_line_and_column() {
+    let cases: [(&str, u32, u32); 5] = [
+        // Too few values: points after the last one.
+        ("axiom: F\ntropism: 0, 0", 2, 14),
+        // A missing comma: points at the stray value.
+        ("axiom: F\ntropism: 0, 0 1 0.2", 2, 15),
+        // Extra text after four values.
+        ("axiom: F\ntropism: 0, 0, -1, 0.2, 7", 2, 23),
+        // A zero vector: points at its first value.
+        ("axiom: F\n\ntropism: 0, 0, 0, 0.2", 3, 10),
+        // Empty.
+        ("axiom: F\ntropism:", 2, 9),
+    ];
+    for (src, line, col) in cases {
+        let e = LSystem::parse(src).unwrap_err();
+        assert!(matches!(e, PlantError::Syntax { .. }), "{src:?}: {e}");
+        assert_eq!(
+            e.span(),
+            Some(natura_plant::Span::new(line, col)),
+            "{src:?}: {e}"
+        );
+    }
+    // Undefined names, failing arithmetic and a second directive are typed too.
+    let e = LSystem::parse("axiom: F\ntropism: 0, 0, -1, k").unwrap_err();
+    assert!(matches!(e, PlantError::Undefined { .. }), "{e}");
+    assert_eq!(e.span().unwrap().line, 2);
+    let e = LSystem::parse("axiom: F\ntropism: 0, 0, -1, 1/0").unwrap_err();
+    assert!(e.span().is_some_and(|s| s.line == 2), "{e}");
+    let e = LSystem::parse("tropism: 0,0,-1,0.2\naxiom: F\ntropism: 0,0,-1,0.2").unwrap_err();
+    assert_eq!(e.span().unwrap().line, 3, "{e}");
+}

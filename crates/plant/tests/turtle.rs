@@ -237,3 +237,81 @@ fn parallel_transport_tracks_a_helix() {
         assert_abs_diff_eq!((f.l - DVec3::NEG_X).length(), 0.0, epsilon = 1e-12);
     }
 }
+
+/// Mean `z` of the unit directions of the segments that end at a tip (no
+/// segment starts where they end).
+fn mean_tip_direction_z(g: &natura_plant::Geometry) -> f64 {
+    let starts: std::collections::HashSet<[u32; 3]> = g
+        .start
+        .iter()
+        .map(|p| p.to_array().map(f32::to_bits))
+        .collect();
+    let dirs: Vec<f64> = g
+        .start
+        .iter()
+        .zip(&g.end)
+        .filter(|(_, b)| !starts.contains(&b.to_array().map(f32::to_bits)))
+        .map(|(a, b)| f64::from((*b - *a).normalize().z))
+        .collect();
+    assert!(!dirs.is_empty());
+    dirs.iter().sum::<f64>() / dirs.len() as f64
+}
+
+#[test]
+fn tropism_directive_bends_the_ternary_tree_down() {
+    // ABOP fig. 2.8a: T = (0, -1, 0) in the book's y-up frame, e = 0.22.
+    let bent = include_str!("../../../examples/lsystems/fig2_8.l");
+    let straight: String = bent
+        .lines()
+        .filter(|l| !l.starts_with("tropism:"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let tips = |src: &str| {
+        let l = LSystem::parse(src).unwrap();
+        let mut d = Derivation::new(&l, 0).unwrap();
+        d.derive(l.derivation_length()).unwrap();
+        let p = TurtleParams::for_lsystem(&l);
+        let g = Turtle::new(&l, p).unwrap().interpret(d.string()).unwrap();
+        (l, g)
+    };
+    let (lb, gb) = tips(bent);
+    let (ls, gs) = tips(&straight);
+    assert_eq!(lb.tropism(), Some(([0.0, 0.0, -1.0], 0.22)));
+    assert_eq!(ls.tropism(), None);
+    assert_eq!(gb.start.len(), gs.start.len());
+    let (zb, zs) = (mean_tip_direction_z(&gb), mean_tip_direction_z(&gs));
+    // Without tropism the tips point up on average; with it they droop.
+    assert!(zs > 0.3, "{zs}");
+    assert!(zb < zs - 0.3, "bent {zb} vs straight {zs}");
+    // The directive sets exactly the turtle's own tropism fields.
+    let p = TurtleParams {
+        tropism: DVec3::new(0.0, 0.0, -1.0),
+        elasticity: 0.22,
+        ..TurtleParams::for_lsystem(&ls)
+    };
+    let mut d = Derivation::new(&ls, 0).unwrap();
+    d.derive(ls.derivation_length()).unwrap();
+    let g = Turtle::new(&ls, p).unwrap().interpret(d.string()).unwrap();
+    assert_eq!(g.end, gb.end);
+}
+
+#[test]
+fn tropism_directive_with_macros_and_heading() {
+    // Expressions and macros are allowed; the heading bends towards T.
+    let l = LSystem::parse("#define e 0.1\ntropism: 1, 0, 0, e*2\naxiom: FFFFFFFFFF").unwrap();
+    assert_eq!(l.tropism(), Some(([1.0, 0.0, 0.0], 0.2)));
+    let g = Turtle::new(&l, TurtleParams::for_lsystem(&l))
+        .unwrap()
+        .interpret(l.axiom())
+        .unwrap();
+    let xs: Vec<f32> = g
+        .start
+        .iter()
+        .zip(&g.end)
+        .map(|(a, b)| (*b - *a).normalize().x)
+        .collect();
+    for w in xs.windows(2) {
+        assert!(w[1] > w[0], "{xs:?}");
+    }
+    assert!(*xs.last().unwrap() > 0.9, "{xs:?}");
+}

@@ -364,15 +364,17 @@ impl Ecosystem {
         let mut stats = StepStats::default();
         // Growth; plants dominated last step and still alive do not grow.
         let species = &self.params.species;
-        for p in &mut self.plants {
+        par::for_each_mut(&mut self.plants, |_, p| {
             if !p.dominated {
                 p.radius += (species[p.species as usize].growth as f32) * p.vigor;
             }
             p.dominated = false;
-        }
+        });
         let before = self.plants.len();
         let max_r = &self.max_r;
-        self.plants.retain(|p| p.radius < max_r[p.species as usize]);
+        par::retain(&mut self.plants, |_, p| {
+            p.radius < max_r[p.species as usize]
+        });
         stats.old = before - self.plants.len();
         let born = self.sow(self.step, |s| s.seeds_per_ha);
         stats.seeded = born.len();
@@ -395,15 +397,12 @@ impl Ecosystem {
                 2
             }
         });
-        let mut k = 0;
-        self.plants.retain_mut(|p| {
-            let f = fate[k];
-            k += 1;
-            p.dominated = f == 1;
+        for &f in &fate {
             stats.survived += usize::from(f == 1);
             stats.thinned += usize::from(f == 2);
-            f != 2
-        });
+        }
+        par::for_each_mut(&mut self.plants, |i, p| p.dominated = fate[i] == 1);
+        par::retain(&mut self.plants, |i, _| fate[i] != 2);
         stats.alive = self.plants.len();
         Ok(stats)
     }

@@ -7,6 +7,7 @@
 //! #ignore: + - F                       /* or  Consider: ?E [ ] L           */
 //! derivation length: 5
 //! angle: 22.5                          /* default turn, degrees            */
+//! tropism: 0, 0, -1, 0.22              /* vector T and susceptibility e    */
 //! axiom: A(1)B(3)A(5)                  /* also  ω:  or  Axiom:             */
 //! p1: A(x) -> A(x+1) : 0.4             /* label, successor, probability    */
 //! p3: A(x) < B(y) > A(z) : y < 4 -> B(x+z)[A(y)]
@@ -161,6 +162,8 @@ pub struct LSystem {
     pub(crate) angle: Option<f64>,
     pub(crate) step: Option<f64>,
     pub(crate) seed: Option<u64>,
+    /// `tropism: x, y, z, e`: the vector `T` and the susceptibility `e`.
+    pub(crate) tropism: Option<([f64; 3], f64)>,
     pub(crate) any_context: bool,
 }
 
@@ -218,6 +221,13 @@ impl LSystem {
     #[must_use]
     pub fn seed(&self) -> Option<u64> {
         self.seed
+    }
+
+    /// The tropism vector `T` and susceptibility `e` given by
+    /// `tropism: x, y, z, e`, if any.
+    #[must_use]
+    pub fn tropism(&self) -> Option<([f64; 3], f64)> {
+        self.tropism
     }
 
     /// Number of productions (not counting decomposition and interpretation rules).

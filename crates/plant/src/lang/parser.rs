@@ -57,6 +57,7 @@ const KEYWORDS: &[&str] = &[
     "angle",
     "step",
     "seed",
+    "tropism",
 ];
 
 /// Returns the directive keyword a statement starts with and the character
@@ -116,6 +117,7 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
     let mut angle = None;
     let mut step = None;
     let mut seed = None;
+    let mut tropism = None;
     let user = UserFns::default();
     for st in &stmts {
         let Some((k, off)) = keyword(st) else {
@@ -148,6 +150,15 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
                     "seed",
                     st.span(),
                 )?))
+            }
+            "tropism" => {
+                if tropism.is_some() {
+                    return Err(PlantError::syntax(
+                        st.span(),
+                        "a second `tropism:` directive",
+                    ));
+                }
+                tropism = Some(tropism_values(rest, &globals, &arrays, st.end())?);
             }
             "axiom" | "ω" => {
                 let mut cur = Cursor::new(rest).end_at(st.end());
@@ -223,6 +234,7 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
         angle,
         step,
         seed,
+        tropism,
         any_context,
     })
 }
@@ -369,6 +381,46 @@ fn const_value(rest: &[Ch], g: &Globals, arrays: &[Vec<f64>], span: Span) -> Res
         ));
     }
     eval_const(&e, g, arrays, s)
+}
+
+/// `tropism: x, y, z, e`: four constant expressions, the tropism vector and the
+/// susceptibility. The vector must be non-zero and every value finite.
+fn tropism_values(
+    rest: &[Ch],
+    g: &Globals,
+    arrays: &[Vec<f64>],
+    end: Span,
+) -> Result<([f64; 3], f64)> {
+    const USAGE: &str = "`tropism:` takes four comma-separated values `x, y, z, e`";
+    let mut cur = Cursor::new(rest).end_at(end);
+    cur.skip_ws();
+    let first = cur.span();
+    let mut v = [0.0; 4];
+    for (k, slot) in v.iter_mut().enumerate() {
+        if (k > 0 && !cur.eat(',')) || cur.at_end() {
+            return Err(PlantError::syntax(cur.span(), USAGE));
+        }
+        let at = cur.span();
+        let e = expr::parse_expr(&mut cur)?;
+        let x = eval_const(&e, g, arrays, at)?;
+        if !x.is_finite() {
+            return Err(PlantError::syntax(
+                at,
+                format!("tropism value {x} is not finite"),
+            ));
+        }
+        *slot = x;
+    }
+    if !cur.at_end() {
+        return Err(PlantError::syntax(
+            cur.span(),
+            "unexpected text after the tropism's four values",
+        ));
+    }
+    if v[..3].iter().all(|&c| c == 0.0) {
+        return Err(PlantError::syntax(first, "the tropism vector is zero"));
+    }
+    Ok(([v[0], v[1], v[2]], v[3]))
 }
 
 fn const_count(

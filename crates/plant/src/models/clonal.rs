@@ -27,8 +27,17 @@
 //! of one communication phase are ordered: here births and deaths are
 //! applied first, then every sample is answered. The turtle's disc lies
 //! across its heading, so p5 pitches up by 90° before `@o` (inside the
-//! ramet's brackets; nothing moves) to lay the leaf flat over the ground. Fig. 7's normal variation
-//! of spacer length and angle and its trifoliate leaves are not modelled.
+//! ramet's brackets; nothing moves) to lay the leaf flat over the ground.
+//!
+//! Fig. 7's extensions: spacer lengths and branching angles drawn from
+//! normal distributions (`spacer_sd`, `alpha_sd_deg`; the source gives no
+//! deviations, [`ClonalParams::fig7`]'s are ours) and ramets drawn as
+//! trifoliate leaves (`trifoliate`). A drawn spacer shorter than a tenth of
+//! `Len` is raised to that tenth, so no spacer runs backwards. The leaves
+//! are an interpretation rule only: three leaflets `~L` as long as the
+//! ramet's radius, 120° apart, replace the disc in the picture while the
+//! environment still sees the disc. With both deviations 0 the L-system
+//! derives exactly as the source's listing.
 
 use glam::DVec3;
 use natura_core::check;
@@ -76,6 +85,12 @@ pub struct ClonalParams {
     pub start: [f64; 2],
     /// Initial heading, degrees from +x.
     pub heading_deg: f64,
+    /// Standard deviation of the spacer length (0: every spacer is `Len`).
+    pub spacer_sd: f64,
+    /// Standard deviation of the branching angle, degrees (0: every branch at α).
+    pub alpha_sd_deg: f64,
+    /// Draw each ramet as a trifoliate leaf instead of a disc.
+    pub trifoliate: bool,
 }
 
 impl Default for ClonalParams {
@@ -109,11 +124,28 @@ impl Default for ClonalParams {
             ],
             start: [20.0, 40.0],
             heading_deg: 0.0,
+            spacer_sd: 0.0,
+            alpha_sd_deg: 0.0,
+            trifoliate: false,
         }
     }
 }
 
 impl ClonalParams {
+    /// The listing with Fig. 7's extensions: spacer lengths with a standard
+    /// deviation of 15 % of `Len`, branching angles with one of 10°, and
+    /// trifoliate leaves (the deviations are ours; the source prints none).
+    #[must_use]
+    pub fn fig7() -> Self {
+        let d = Self::default();
+        Self {
+            spacer_sd: 0.15 * d.spacer,
+            alpha_sd_deg: 10.0,
+            trifoliate: true,
+            ..d
+        }
+    }
+
     /// Checks probabilities stay in [0, 1] and leaf areas positive for light
     /// in [0, 1], lengths and sizes are positive and finite, light values lie
     /// in [0, 1] and the raster has at most 4096 × 4096 cells.
@@ -194,20 +226,51 @@ impl ClonalParams {
         check::finite("ClonalParams::start", self.start[0])?;
         check::finite("ClonalParams::start", self.start[1])?;
         check::finite("ClonalParams::heading_deg", self.heading_deg)?;
+        check::in_range(
+            "ClonalParams::spacer_sd",
+            self.spacer_sd,
+            0.0,
+            self.spacer,
+            "in [0, spacer]",
+        )?;
+        check::in_range(
+            "ClonalParams::alpha_sd_deg",
+            self.alpha_sd_deg,
+            0.0,
+            90.0,
+            "in [0, 90] degrees",
+        )?;
         Ok(())
     }
 
     /// The model's L-system text (the source's listing with the readings above).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
+        let spacer = if self.spacer_sd > 0.0 {
+            format!("max(0.1*Len, nran(Len, {}))", self.spacer_sd)
+        } else {
+            "Len".into()
+        };
+        let angle = if self.alpha_sd_deg > 0.0 {
+            format!("nran(α, {})", self.alpha_sd_deg)
+        } else {
+            "α".into()
+        };
+        let leaves = if self.trifoliate {
+            "homomorphism:\n\
+             @o(r,age) -> [[&(90)~L(r,0.7*r)]/(120)[&(90)~L(r,0.7*r)]/(120)[&(90)~L(r,0.7*r)]]\n"
+        } else {
+            ""
+        };
         format!(
             "#define α {}\n#define MinLight {}\n#define MaxAge {}\n#define Len {}\n\
+             #define Sp ({spacer})\n#define Alpha ({angle})\n\
              #define ProbB(x) ({}+x*{})\n#define ProbR(x) ({}+x*{})\n\
              #define Radius(x) (sqrt(({}-x*{})/{}))\n\
              ω: A(1)?E(0,0)\n\
-             p1: A(dir) > ?E(t,x) : (t == 0) && (x >= MinLight) -> R(x)B(x,dir)F(Len,0)A(-dir)?E(0,0)\n\
+             p1: A(dir) > ?E(t,x) : (t == 0) && (x >= MinLight) -> R(x)B(x,dir)F(Sp,0)A(-dir)?E(0,0)\n\
              p2: A(dir) > ?E(t,x) : (t == 0) && (x < MinLight) -> ε\n\
-             p3: B(x,dir) -> [+(α*dir)F(Len,0)A(-dir)?E(0,0)] : ProbB(x)\n\
+             p3: B(x,dir) -> [+(Alpha*dir)F(Sp,0)A(-dir)?E(0,0)] : ProbB(x)\n\
              p4: B(x,dir) -> ε : 1-ProbB(x)\n\
              p5: R(x) -> [^(90)@o(Radius(x),0)?E(1,Radius(x))] : ProbR(x)\n\
              p6: R(x) -> ε : 1-ProbR(x)\n\
@@ -215,7 +278,7 @@ impl ClonalParams {
              p8: @o(radius,age) : age == MaxAge -> ?E(2,radius)\n\
              p9: F(len,age) : age < MaxAge -> F(len,age+1)\n\
              p10: F(len,age) : age == MaxAge -> f(len)\n\
-             p11: ?E(t,x) -> ε\n",
+             p11: ?E(t,x) -> ε\n{leaves}",
             self.alpha_deg,
             self.min_light,
             self.max_age,

@@ -27,6 +27,17 @@
 //! `Φ_S = B·A_i·Π_j (1 − (1 − τ)·A_ij/A_i)`, and the flux is normalised so an
 //! unshaded cluster receives 1, which the thresholds `LP·r` against `LM`,
 //! `PB`, `PG` need (the source does not state it).
+//!
+//! Table 1 of the source counts the trees of Fig. 12 (22 462 branch
+//! segments, 19 195 leaf clusters, 744 steps = 24 years) and Fig. 15
+//! (13 502 segments, 3 448 clusters, 194 steps, 15 years). Neither is the
+//! listing's model: Fig. 12 is its extension (a branch whose sister was
+//! shed straightens to become the leader) and Fig. 15 a conifer variant,
+//! and the source prints neither's rules; with the sky's radiances and the
+//! flux's normalisation also missing, the table cannot be reproduced. The
+//! listing's model here, one tree, gives 127 segments (`F`) and 127 leaf
+//! modules `L` (126 alive) after 6 years, and 463 segments and 465 `L` (409
+//! alive) after 8 years.
 
 use glam::DVec3;
 use natura_core::check;

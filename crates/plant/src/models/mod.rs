@@ -7,17 +7,21 @@
 //! | branch tiers of *Terminalia* (Honda) | Měch & Prusinkiewicz 1996, §5, Fig. 5 | [`tiers`] |
 //! | foraging of a clonal plant over patches of light | Měch & Prusinkiewicz 1996, §6, Fig. 6–7 | [`clonal`] |
 //! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
+//! | the same in 3-D soil | Měch & Prusinkiewicz 1996, §7, Fig. 10 | [`roots3d`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–16 | [`crowns`] |
 //! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
+//! | compound leaves (organs at a density along a curved stem) | Prusinkiewicz et al. 2001, §5, Alg. 4 | [`compound`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
 //! [`Environment`]: crate::Environment
 
 pub mod clonal;
+pub mod compound;
 pub mod crowns;
 pub mod phyllotaxis;
 pub mod positional;
 pub mod roots;
+pub mod roots3d;
 pub mod tiers;
 
 use crate::error::Result;

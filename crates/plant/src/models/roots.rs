@@ -189,21 +189,34 @@ impl RootParams {
     /// The model's L-system text (the source's listing with the readings above).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
+        self.text(false)
+    }
+
+    /// The listing for a 2-D section, or for 3-D soil: there `?E(c, θ, φ)`
+    /// carries a third value, the roll `φ` about the heading that brings the
+    /// turn's direction into the turning plane, and the heading also pitches
+    /// by `nran(0, Dev[n])`.
+    pub(crate) fn text(&self, three_d: bool) -> String {
         let a3 = |v: [f64; 3]| format!("{{{}, {}, {}}}", v[0], v[1], v[2]);
         let a2 = |v: [f64; 2]| format!("{{{}, {}, 0}}", v[0], v[1]);
+        let (e, roll, pitch, z) = if three_d {
+            ("?E(c,th,ph)", "/(ph)", "&(nran(0,Dev[n]))", ",0")
+        } else {
+            ("?E(c,th)", "", "", "")
+        };
         format!(
             "#define N 3\n\
              Define: {{ array Req[3] = {}, MinReq[3] = {}, ElRate[3] = {}, MaxLen[3] = {},\n\
              Sens[3] = {}, Dev[3] = {}, Del[3] = {}, BrAngle[3] = {}, BrSpace[3] = {} }}\n\
-             ω: A(0,0,0)?E(Req[0],Sens[0])\n\
-             p1: A(n,s,b) > ?E(c,th) : (s > MaxLen[n]) || (c < MinReq[n]) -> ε\n\
-             p2: A(n,s,b) > ?E(c,th) : (n >= N-1) || (b < BrSpace[n]) {{ h = c/Req[n]*ElRate[n]; }} \
-             -> +(nran(th,Dev[n]))F(h)A(n,s+h,b+h)?E(Req[n],Sens[n])\n\
-             p3: A(n,s,b) > ?E(c,th) : (n < N-1) && (b >= BrSpace[n]) {{ h = c/Req[n]*ElRate[n]; }} \
-             -> +(nran(th,Dev[n]))B(n,0)F(h)/(180)A(n,s+h,h)?E(Req[n],Sens[n])\n\
+             ω: A(0,0,0)?E(Req[0],Sens[0]{z})\n\
+             p1: A(n,s,b) > {e} : (s > MaxLen[n]) || (c < MinReq[n]) -> ε\n\
+             p2: A(n,s,b) > {e} : (n >= N-1) || (b < BrSpace[n]) {{ h = c/Req[n]*ElRate[n]; }} \
+             -> {roll}+(nran(th,Dev[n])){pitch}F(h)A(n,s+h,b+h)?E(Req[n],Sens[n]{z})\n\
+             p3: A(n,s,b) > {e} : (n < N-1) && (b >= BrSpace[n]) {{ h = c/Req[n]*ElRate[n]; }} \
+             -> {roll}+(nran(th,Dev[n])){pitch}B(n,0)F(h)/(180)A(n,s+h,h)?E(Req[n],Sens[n]{z})\n\
              p4: B(n,t) : t < Del[n] -> B(n,t+1)\n\
-             p5: B(n,t) : t >= Del[n] -> [+(BrAngle[n])A(n+1,0,0)?E(Req[n+1],Sens[n+1])]\n\
-             p6: ?E(c,th) -> ε\n",
+             p5: B(n,t) : t >= Del[n] -> [+(BrAngle[n])A(n+1,0,0)?E(Req[n+1],Sens[n+1]{z})]\n\
+             p6: {e} -> ε\n",
             a3(self.request),
             a3(self.min_request),
             a3(self.elongation),
@@ -359,7 +372,7 @@ impl Environment for SoilWater {
 }
 
 /// The turtle of the roots: heading down (−z), turning in the x–z plane.
-fn turtle(p: &RootParams, l: &LSystem) -> TurtleParams {
+pub(crate) fn turtle(p: &RootParams, l: &LSystem) -> TurtleParams {
     TurtleParams {
         start: Frame::new(
             DVec3::new(p.start[0], 0.0, p.start[1]),

@@ -72,7 +72,8 @@ impl Default for TurtleParams {
 }
 
 impl TurtleParams {
-    /// Returns the defaults with the L-system's `angle:` and `step:` directives applied.
+    /// Returns the defaults with the L-system's `angle:`, `step:` and
+    /// `tropism:` directives applied.
     #[must_use]
     pub fn for_lsystem(l: &LSystem) -> Self {
         let mut p = Self::default();
@@ -81,6 +82,10 @@ impl TurtleParams {
         }
         if let Some(s) = l.step() {
             p.step = s;
+        }
+        if let Some((t, e)) = l.tropism() {
+            p.tropism = DVec3::from_array(t);
+            p.elasticity = e;
         }
         p
     }

@@ -168,3 +168,104 @@ fn params_fill_left_out_keys_and_refuse_unknown_ones() {
     );
     assert!(serde_json::from_str::<ClonalParams>(r#"{"stepz": 5}"#).is_err());
 }
+
+/// First parameters of the modules named `name` in the run's final string.
+fn first_params(run: &Run, name: &str) -> Vec<f64> {
+    let id = run.lsystem.symbol(name).unwrap();
+    let s = &run.string;
+    (0..s.len())
+        .filter(|&i| s.symbol(i) == id)
+        .map(|i| s.params(i)[0])
+        .collect()
+}
+
+fn mean_sd(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    let m = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
+    (m, var.sqrt())
+}
+
+#[test]
+fn fig7_spacers_and_angles_follow_their_normal_distributions() {
+    let p = ClonalParams {
+        steps: 120,
+        ..ClonalParams::fig7()
+    };
+    let (run, _) = clonal(&p).unwrap();
+    // Live spacers `F(len, age)` and dead ones `f(len)` keep their drawn length.
+    let mut len = first_params(&run, "F");
+    len.extend(first_params(&run, "f"));
+    assert!(len.len() > 100, "{}", len.len());
+    let (m, sd) = mean_sd(&len);
+    let se = p.spacer_sd / (len.len() as f64).sqrt();
+    assert!((m - p.spacer).abs() < 4.0 * se, "mean {m}");
+    assert!((sd / p.spacer_sd - 1.0).abs() < 0.2, "sd {sd}");
+    assert!(len.iter().all(|&l| l >= 0.1 * p.spacer));
+    // Branches turn by ±α with α drawn per branch.
+    let turns: Vec<f64> = first_params(&run, "+").iter().map(|a| a.abs()).collect();
+    assert!(turns.len() > 20, "{}", turns.len());
+    let (m, sd) = mean_sd(&turns);
+    let se = p.alpha_sd_deg / (turns.len() as f64).sqrt();
+    assert!((m - p.alpha_deg).abs() < 4.0 * se, "mean {m}");
+    assert!((sd / p.alpha_sd_deg - 1.0).abs() < 0.3, "sd {sd}");
+    // Without deviations every spacer is `Len` and every turn α.
+    let (run, _) = clonal(&ClonalParams {
+        steps: 120,
+        ..ClonalParams::default()
+    })
+    .unwrap();
+    assert!(first_params(&run, "F").iter().all(|&l| l == 2.0));
+    assert!(first_params(&run, "+").iter().all(|&a| a.abs() == 45.0));
+    // Deviations out of range are typed errors.
+    for bad in [
+        ClonalParams {
+            spacer_sd: -0.1,
+            ..ClonalParams::default()
+        },
+        ClonalParams {
+            alpha_sd_deg: f64::NAN,
+            ..ClonalParams::default()
+        },
+    ] {
+        assert!(matches!(
+            clonal(&bad),
+            Err(PlantError::InvalidParameter { .. })
+        ));
+    }
+}
+
+#[test]
+fn trifoliate_leaves_change_the_picture_not_the_clone() {
+    let disc = ClonalParams {
+        steps: 60,
+        ..strip(5)
+    };
+    let tri = ClonalParams {
+        trifoliate: true,
+        ..disc.clone()
+    };
+    let (run_d, env_d) = clonal(&disc).unwrap();
+    let (run_t, env_t) = clonal(&tri).unwrap();
+    assert_eq!(env_d.born, env_t.born);
+    assert_eq!(env_d.live, env_t.live);
+    assert_eq!(run_d.string.symbols().len(), run_t.string.symbols().len());
+    let ramets = run_d.count("@o");
+    assert!(ramets > 3, "{ramets}");
+    let (gd, gt) = (run_d.geometry().unwrap(), run_t.geometry().unwrap());
+    let count = |g: &crate::Geometry, c: char| g.surfaces.iter().filter(|s| s.name == c).count();
+    assert_eq!(count(&gd, 'o'), ramets);
+    assert_eq!(count(&gt, 'o'), 0);
+    assert_eq!(count(&gt, 'L'), 3 * ramets);
+    // Each leaflet lies flat (heading horizontal), as long as its ramet's radius.
+    for s in gt.surfaces.iter().filter(|s| s.name == 'L') {
+        assert!(s.frame.h.z.abs() < 1e-9, "{:?}", s.frame.h);
+        assert!(
+            env_t
+                .live
+                .iter()
+                .any(|&(_, r)| (r - s.length).abs() < 1e-12)
+        );
+    }
+    assert_eq!(gd.start, gt.start, "the spacers are the same");
+}

@@ -142,3 +142,26 @@ fn neighbours_shape_the_crowns() {
     // And each tree of the pair has fewer leaves than the lone tree.
     assert!(left.0 + left.1 < l.0 + l.1 && right.0 + right.1 < l.0 + l.1);
 }
+
+#[test]
+fn counts_for_table_1() {
+    // Our counts for one tree of the listing's model (see the module docs):
+    // segments, leaf modules and live leaves (radius > 0) after 6 and 8 years.
+    for (years, f, l, live) in [(6, 127, 127, 126), (8, 463, 465, 409)] {
+        let run = crowns(&CrownParams {
+            years,
+            ..CrownParams::default()
+        })
+        .unwrap();
+        let id = run.lsystem.symbol("L").unwrap();
+        let s = &run.string;
+        let alive = (0..s.len())
+            .filter(|&i| s.symbol(i) == id && s.params(i).first().is_some_and(|&v| v > 0.0))
+            .count();
+        assert_eq!(
+            (run.count("F"), run.count("L"), alive),
+            (f, l, live),
+            "{years} years"
+        );
+    }
+}
