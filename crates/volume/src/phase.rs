@@ -205,6 +205,29 @@ impl Phase {
         }
     }
 
+    /// The forward diffraction peak as a Henyey–Greenstein lobe: `(f, g)`,
+    /// the fraction of scattering into it and its asymmetry, when this phase
+    /// function has one (see [`Phase::forward_peak`]).
+    #[must_use]
+    pub fn peak_lobe(&self) -> Option<(f32, f32)> {
+        match *self {
+            Phase::Cloud { diameter_um } => {
+                let (g_hg, _, _, w_d) = cloud_fit(diameter_um);
+                Some((1.0 - w_d, g_hg))
+            }
+            _ => None,
+        }
+    }
+
+    /// The solid-angle density with which [`Phase::sample`] draws a
+    /// direction at `cos_theta` from the incoming one.
+    #[inline]
+    #[must_use]
+    pub fn sample_pdf(&self, cos_theta: f32) -> f32 {
+        let (g1, g2, w) = self.proposal();
+        (1.0 - w) * henyey_greenstein(g1, cos_theta) + w * henyey_greenstein(g2, cos_theta)
+    }
+
     /// The HG mixture used to sample this phase: `(g₁, g₂, weight of g₂)`.
     fn proposal(&self) -> (f32, f32, f32) {
         match *self {
@@ -230,16 +253,24 @@ impl Phase {
     pub fn sample(&self, d: Vec3, u: [f32; 3]) -> (Vec3, f32) {
         let (g1, g2, w) = self.proposal();
         let g = if u[0] < w { g2 } else { g1 };
-        let cos = sample_hg_cos(g, u[1]);
-        let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        let phi = 2.0 * PI * u[2];
-        let (t, b) = d.any_orthonormal_pair();
-        let out = (t * (sin * phi.cos()) + b * (sin * phi.sin()) + d * cos).normalize();
+        let out = sample_hg(g, d, [u[1], u[2]]);
         let c = out.dot(d);
-        let pdf = (1.0 - w) * henyey_greenstein(g1, c) + w * henyey_greenstein(g2, c);
+        let pdf = self.sample_pdf(c);
         let weight = if pdf > 0.0 { self.eval(c) / pdf } else { 0.0 };
         (out, weight)
     }
+}
+
+/// A direction drawn about the unit `axis` from the Henyey–Greenstein lobe
+/// of asymmetry `g` (solid-angle density `HG(g, cos θ)`), from uniforms
+/// `u ∈ [0, 1)²` (Pharr et al. 2023, §11.3.1).
+#[must_use]
+pub fn sample_hg(g: f32, axis: Vec3, u: [f32; 2]) -> Vec3 {
+    let cos = sample_hg_cos(g, u[0]);
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let phi = 2.0 * PI * u[1];
+    let (t, b) = axis.any_orthonormal_pair();
+    (t * (sin * phi.cos()) + b * (sin * phi.sin()) + axis * cos).normalize()
 }
 
 /// Inverse-CDF sample of the HG cosine (Pharr et al. 2023, §11.3.1).

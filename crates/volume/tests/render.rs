@@ -646,3 +646,76 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
         );
     }
 }
+
+/// Per-path mean and variance of the luminance over `n` paths on each of `rays`.
+fn path_statistics(r: &ReferenceRenderer<'_>, rays: &[(Vec3, Vec3)], n: usize) -> (f64, f64) {
+    let lum = |c: Vec3| f64::from(natura_core::colour::luminance(c));
+    let (mut s, mut s2) = (0.0f64, 0.0f64);
+    for (i, &(o, d)) in rays.iter().enumerate() {
+        let mut rng = natura_core::Seed(7).derive_index(i as u64).rng();
+        for _ in 0..n {
+            let x = lum(r.radiance(o, d, &mut rng));
+            s += x;
+            s2 += x * x;
+        }
+    }
+    let m = (rays.len() * n) as f64;
+    (s / m, s2 / m - (s / m) * (s / m))
+}
+
+#[test]
+fn sampling_toward_the_suns_peak_keeps_the_mean_and_lowers_the_variance() {
+    // A dense cumulus against a low sun, seen toward the sun at 10–25° from
+    // it: light reaching the eye through the cloud phase's diffraction peak
+    // toward the sun is where the plain estimate is noisy.
+    let g = cumulus_grid();
+    let b = g.bounds();
+    let sun = Sun {
+        direction: Vec3::new(0.26, 0.96, 0.1).normalize(),
+        irradiance: Vec3::splat(3.0),
+    };
+    let scene = Scene {
+        sun: Some(sun),
+        ..Scene::new(
+            &g,
+            MediumParams {
+                extinction: 6.0,
+                ..MediumParams::default()
+            },
+            Vec3::new(0.15, 0.2, 0.3),
+        )
+    };
+    let cam = Camera {
+        width: 8,
+        height: 6,
+        ..camera_for(&b, 8, 6)
+    };
+    let rays: Vec<(Vec3, Vec3)> = (0..cam.height)
+        .flat_map(|y| (0..cam.width).map(move |x| (x, y)))
+        .map(|(x, y)| (cam.position, cam.ray(x, y)))
+        .collect();
+    let stats = |peak: bool, n: usize| {
+        let r = ReferenceRenderer::new(
+            &scene,
+            ReferenceSettings {
+                sun_peak_sampling: peak,
+                ..ReferenceSettings::default()
+            },
+        )
+        .unwrap();
+        path_statistics(&r, &rays, n)
+    };
+    let n = 3000;
+    let (m_old, v_old) = stats(false, n);
+    let (m_new, v_new) = stats(true, n);
+    let paths = (rays.len() * n) as f64;
+    let se = (v_old / paths + v_new / paths).sqrt();
+    eprintln!(
+        "plain: mean {m_old:.5}, variance {v_old:.5}; toward the peak: mean {m_new:.5}, variance {v_new:.5}; standard error of the difference {se:.5}"
+    );
+    assert!(
+        (m_new - m_old).abs() < 4.0 * se,
+        "{m_new} vs {m_old} ± {se}"
+    );
+    assert!(v_new < 0.7 * v_old, "{v_new} vs {v_old}");
+}

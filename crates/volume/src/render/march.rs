@@ -35,6 +35,17 @@
 //! cloudscape, that over-brightens the aureole (the peak is several pixels
 //! wide in a 1920-pixel frame, not below resolution), so here it keeps the
 //! exact ones.
+//!
+//! What that choice leaves out: sunlight carried into the cloud by the peak
+//! and then scattered out of it toward the eye (the first order of the δ-M
+//! medium) is in neither term, since the single scattering sees only the
+//! unscattered sun and the octaves start at the second order. On the
+//! cloudscape that leaves the clouds about a fifth too dark against the
+//! reference. Nakajima & Tanaka's attenuation includes that light, but with
+//! the default octaves (chosen before the truncation) the clouds come out
+//! about a sixth too bright instead: the octaves beyond single scattering
+//! over-count in the δ-M medium. Neither is within 10 %, and no constant is
+//! fitted here to close the gap.
 
 use glam::Vec3;
 use natura_core::{Aabb, Image};
