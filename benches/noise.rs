@@ -29,7 +29,8 @@ use fastnoise_lite::{
 };
 use glam::{DVec2, DVec3};
 use natura::noise::{
-    Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simplex, Spectral, Worley, WorleyParams,
+    Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simd, SimdLevel, Simplex, Spectral,
+    Worley, WorleyParams,
 };
 use noise::{MultiFractal, NoiseFn};
 use rayon::prelude::*;
@@ -110,6 +111,25 @@ fn simd_gradient2() {
             .with_seed(1)
             .generate(),
     );
+}
+
+/// `f`'s grid at SIMD level `level` (row by row, as `fill_grid2` does at
+/// the best level), or `None` if this CPU lacks the level.
+fn grid2_at<'a, F: Field>(
+    f: &'a F,
+    l: &'a Lattice2,
+    level: SimdLevel,
+    who: &'a str,
+) -> Option<Contender<'a>> {
+    let simd = Simd::new(level)?;
+    Some((
+        who,
+        Box::new(move |o: &mut [f32]| {
+            for (j, row) in o.chunks_exact_mut(l.nx).enumerate() {
+                f.fill_row2_with(simd, l.row_origin(j), l.step.x, row);
+            }
+        }),
+    ))
 }
 
 /// Interleaved CPU-time rates of a batch group's contenders (the first is
@@ -194,22 +214,24 @@ fn w2_simplex2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
-    batch_ratios(
-        "W2_simplex2d_1024",
-        N * N,
-        &mut out,
-        vec![
-            (
-                "natura",
-                Box::new(|o: &mut [f32]| s.fill_grid2(&l, o).unwrap()),
-            ),
-            (
-                "simdnoise gradient_2d",
-                Box::new(|_: &mut [f32]| simd_gradient2()),
-            ),
-            ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&f, o))),
-        ],
-    );
+    let mut contenders: Vec<Contender<'_>> = vec![
+        (
+            "natura",
+            Box::new(|o: &mut [f32]| s.fill_grid2(&l, o).unwrap()),
+        ),
+        (
+            "simdnoise gradient_2d",
+            Box::new(|_: &mut [f32]| simd_gradient2()),
+        ),
+        ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&f, o))),
+    ];
+    contenders.extend(grid2_at(
+        &s,
+        &l,
+        SimdLevel::Avx2,
+        "natura at AVX2 (8 lanes)",
+    ));
+    batch_ratios("W2_simplex2d_1024", N * N, &mut out, contenders);
 }
 
 fn fbm8() -> Fbm<Perlin> {
@@ -269,32 +291,34 @@ fn w3_fbm2(c: &mut Criterion) {
         b.iter(|| fill_noise_rs(&n, black_box(&mut out)))
     });
     g.finish();
-    batch_ratios(
-        "W3_fbm8_2d_1024",
-        N * N,
-        &mut out,
-        vec![
-            (
-                "natura",
-                Box::new(|o: &mut [f32]| f.fill_grid2(&l, o).unwrap()),
-            ),
-            (
-                "simdnoise fbm_2d",
-                Box::new(|_: &mut [f32]| {
-                    black_box(
-                        NoiseBuilder::fbm_2d(N, N)
-                            .with_freq(FREQ as f32)
-                            .with_octaves(8)
-                            .with_lacunarity(2.0)
-                            .with_gain(0.5)
-                            .with_seed(1)
-                            .generate(),
-                    );
-                }),
-            ),
-            ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&fl, o))),
-        ],
-    );
+    let mut contenders: Vec<Contender<'_>> = vec![
+        (
+            "natura",
+            Box::new(|o: &mut [f32]| f.fill_grid2(&l, o).unwrap()),
+        ),
+        (
+            "simdnoise fbm_2d",
+            Box::new(|_: &mut [f32]| {
+                black_box(
+                    NoiseBuilder::fbm_2d(N, N)
+                        .with_freq(FREQ as f32)
+                        .with_octaves(8)
+                        .with_lacunarity(2.0)
+                        .with_gain(0.5)
+                        .with_seed(1)
+                        .generate(),
+                );
+            }),
+        ),
+        ("fastnoise-lite", Box::new(|o: &mut [f32]| fill_fnl(&fl, o))),
+    ];
+    contenders.extend(grid2_at(
+        &f,
+        &l,
+        SimdLevel::Avx2,
+        "natura at AVX2 (8 lanes)",
+    ));
+    batch_ratios("W3_fbm8_2d_1024", N * N, &mut out, contenders);
 }
 
 fn w4_perlin3(c: &mut Criterion) {

@@ -267,9 +267,29 @@ fn flip(x: f64, h: u32, bit: u32) -> f64 {
 #[inline(always)]
 #[must_use]
 pub(crate) fn dot3(h: u32, dx: f64, dy: f64, dz: f64) -> f64 {
-    let g = GRAD3_64[(h >> 28) as usize];
-    g[0] * dx + g[1] * dy + g[2] * dz
+    let i = (h >> 28) as usize;
+    GRAD3_X[i] * dx + GRAD3_Y[i] * dy + GRAD3_Z[i] * dz
 }
+
+/// One component of every [`GRAD3_64`] entry: one table per axis, so a
+/// lookup is the top hash bits scaled by the element size (no multiply
+/// by the entry size) and two corners' components load side by side.
+const fn grad3_axis(a: usize) -> [f64; 16] {
+    let mut t = [0.0; 16];
+    let mut i = 0;
+    while i < 16 {
+        t[i] = GRAD3_64[i][a];
+        i += 1;
+    }
+    t
+}
+
+/// The x components of [`GRAD3_64`].
+static GRAD3_X: [f64; 16] = grad3_axis(0);
+/// The y components of [`GRAD3_64`].
+static GRAD3_Y: [f64; 16] = grad3_axis(1);
+/// The z components of [`GRAD3_64`].
+static GRAD3_Z: [f64; 16] = grad3_axis(2);
 
 /// [`dot3`] in the form that vectorises across SIMD lanes: the gradient has
 /// two non-zero components `±1`, so `g·d` is the signed sum `±u ± v` of two

@@ -69,32 +69,46 @@ pub(crate) fn split(x: f64) -> (u32, f64) {
 #[inline(always)]
 #[must_use]
 pub(crate) fn split_n<const N: usize>(x: [f64; N]) -> ([u32; N], [f64; N]) {
+    let (idx, frac, _) = split_floor_n(x);
+    (idx, frac)
+}
+
+/// [`split_n`] that also returns each coordinate's floor as `x − fraction`
+/// (the value a caller would get by subtracting; in range the floor itself,
+/// as that subtraction is exact, so the caller's chain saves a step).
+#[inline(always)]
+#[must_use]
+pub(crate) fn split_floor_n<const N: usize>(x: [f64; N]) -> ([u32; N], [f64; N], [f64; N]) {
     const MAGIC: f64 = 6_755_399_441_055_744.0;
     let mut fast = true;
     for v in x {
         // False for NaN too.
         fast &= v.abs() < 2_251_799_813_685_248.0;
     }
-    if !fast {
-        let mut idx = [0u32; N];
-        let mut frac = [0.0f64; N];
-        for a in 0..N {
-            (idx[a], frac[a]) = split(x[a]);
-        }
-        return (idx, frac);
-    }
-    let mut fl = [0.0f64; N];
-    for a in 0..N {
-        let r = (x[a] + MAGIC) - MAGIC;
-        fl[a] = r - if r > x[a] { 1.0 } else { 0.0 };
-    }
     let mut idx = [0u32; N];
     let mut frac = [0.0f64; N];
-    for a in 0..N {
-        idx[a] = (fl[a] + MAGIC).to_bits() as u32;
-        frac[a] = x[a] - fl[a];
+    let mut floor = [0.0f64; N];
+    if !fast {
+        for a in 0..N {
+            (idx[a], frac[a]) = split(x[a]);
+            floor[a] = x[a] - frac[a];
+        }
+        return (idx, frac, floor);
     }
-    (idx, frac)
+    // `t = x + M` holds round(x) in its low mantissa bits (one unit per
+    // ulp at this magnitude), so the floor's index is those bits less the
+    // correction, added as the comparison's all-ones mask (−1): the index
+    // leaves the float domain after one rounding and one compare, with no
+    // second rounding of the floor.
+    for a in 0..N {
+        let t = x[a] + MAGIC;
+        let r = t - MAGIC;
+        let mask = if r > x[a] { u64::MAX } else { 0 };
+        floor[a] = r - f64::from_bits(1.0f64.to_bits() & mask);
+        idx[a] = t.to_bits().wrapping_add(mask) as u32;
+        frac[a] = x[a] - floor[a];
+    }
+    (idx, frac, floor)
 }
 
 /// Points per block of a rebased row kernel (see [`LaneOffsets`]).
@@ -250,7 +264,7 @@ mod tests {
         }
     }
 
-    /// `split` and `split_n` give the floor's index and the fraction
+    /// `split`, `split_n` and `split_floor_n` give the floor's index and the fraction
     /// `x − floor(x)` bit for bit (the sign of a zero fraction included; −0
     /// keeps its sign) for
     /// ties, values an ulp either side of integers, tiny negatives (whose
@@ -269,6 +283,15 @@ mod tests {
                 let (iy, fy) = split(y);
                 assert_eq!((i[0], f[0].to_bits()), (got.0, got.1.to_bits()), "{x}");
                 assert_eq!((i[1], f[1].to_bits()), (iy, fy.to_bits()), "{x} {y}");
+                // The floor form: the same index and fraction, and the
+                // floor as `x − fraction` (the floor itself in range).
+                let (j, g, fl2) = split_floor_n([x, y]);
+                assert_eq!((j, g.map(f64::to_bits)), (i, f.map(f64::to_bits)), "{x}");
+                assert_eq!(fl2[0].to_bits(), (x - f[0]).to_bits(), "{x}");
+                assert_eq!(fl2[1].to_bits(), (y - f[1]).to_bits(), "{y}");
+                if x.abs() < 2_251_799_813_685_248.0 {
+                    assert_eq!(fl2[0], fl, "{x}");
+                }
             }
         };
         for x in [

@@ -39,7 +39,7 @@ use crate::field::{Field, Lattice3};
 use crate::hash::{
     PX, PY, PZ, corner_spread, dot2, dot3, dot3_lanes, grad1, grad2, grad3, grad4, seed32,
 };
-use crate::lanes::{Kernel, Simd, run, split, split_fast, split_n};
+use crate::lanes::{Kernel, Simd, run, split_fast, split_n};
 
 mod points;
 mod rows;
@@ -277,8 +277,15 @@ impl Field for Perlin {
 
     #[inline(always)]
     fn eval3(&self, p: DVec3) -> f64 {
-        let (x, y, z) = (split(p.x), split(p.y), split(p.z));
-        with_fade!(self.fade, |f| cell3(self.s, x, y, z, f, dot3)) * self.k3()
+        let ([ix, iy, iz], [fx, fy, fz]) = split_n(p.to_array());
+        with_fade!(self.fade, |f| cell3(
+            self.s,
+            (ix, fx),
+            (iy, fy),
+            (iz, fz),
+            f,
+            dot3
+        )) * self.k3()
     }
 
     fn eval2_scaled(&self, p: DVec2, freq: &[f64], out: &mut [f64]) {
@@ -368,7 +375,9 @@ pub(crate) fn cell2(
 }
 
 /// The model in 3-D (unnormalised): the eight corners blended along x
-/// within each of the cell's four x edges, then along y, then z.
+/// within each of the cell's four x edges, then along y, then z. The two z
+/// layers are computed side by side (`[z0, z1]` pairs), so a scalar caller's
+/// corners pair up in two-lane registers.
 #[inline(always)]
 pub(crate) fn cell3(
     seed: u32,
@@ -383,23 +392,36 @@ pub(crate) fn cell3(
     let y0 = iy.wrapping_mul(PY);
     let y1 = y0.wrapping_add(PY);
     let zp = iz.wrapping_mul(PZ);
-    let (z0, z1) = (zp ^ seed, zp.wrapping_add(PZ) ^ seed);
+    let z = [zp ^ seed, zp.wrapping_add(PZ) ^ seed];
     let (gx, gy, gz) = (fx - 1.0, fy - 1.0, fz - 1.0);
+    let dz = [fz, gz];
+    // n[x][y][z]: the corners' gradient dots, z innermost (the pairs a
+    // scalar caller holds in one register).
+    let (xs, dx) = ([x0, x1], [fx, gx]);
+    let (ys, dy) = ([y0, y1], [fy, gy]);
+    let mut n = [[[0.0; 2]; 2]; 2];
+    for a in 0..2 {
+        for b in 0..2 {
+            for k in 0..2 {
+                n[a][b][k] = dot(corner_spread(xs[a], ys[b] ^ z[k]), dx[a], dy[b], dz[k]);
+            }
+        }
+    }
     let u = fade(fx);
-    let edge = |r: u32, dy: f64, dz: f64| {
-        let n0 = dot(corner_spread(x0, r), fx, dy, dz);
-        let n1 = dot(corner_spread(x1, r), gx, dy, dz);
-        n0 + u * (n1 - n0)
-    };
-    let e00 = edge(y0 ^ z0, fy, fz);
-    let e10 = edge(y1 ^ z0, gy, fz);
-    let e01 = edge(y0 ^ z1, fy, gz);
-    let e11 = edge(y1 ^ z1, gy, gz);
     let v = fade(fy);
     let w = fade(fz);
-    let a = e00 + v * (e10 - e00);
-    let b = e01 + v * (e11 - e01);
-    a + w * (b - a)
+    // Along x (the four edges, as two z pairs), then y, then z.
+    let mut e = [[0.0; 2]; 2];
+    for y in 0..2 {
+        for k in 0..2 {
+            e[y][k] = n[0][y][k] + u * (n[1][y][k] - n[0][y][k]);
+        }
+    }
+    let mut ab = [0.0; 2];
+    for k in 0..2 {
+        ab[k] = e[0][k] + v * (e[1][k] - e[0][k]);
+    }
+    ab[0] + w * (ab[1] - ab[0])
 }
 
 /// [`dot2`] with the gradient selected by bit logic ([`grad2`]): the same

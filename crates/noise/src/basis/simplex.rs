@@ -25,7 +25,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::hash::{GRAD2_64, PX, PY, PZ, corner_spread, dot3, flat2, flat3, grad2, grad3, seed32};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast, split_n};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast, split_floor_n};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;
@@ -60,13 +60,13 @@ impl Default for Simplex {
 fn skew2(x: f64, y: f64, fast: bool) -> (u32, u32, f64, f64) {
     let s = (x + y) * F2;
     let (xs, ys) = (x + s, y + s);
-    let ((i, fx), (j, fy)) = if fast {
-        (split_fast(xs), split_fast(ys))
+    let (i, j, fi, fj) = if fast {
+        let ((i, fx), (j, fy)) = (split_fast(xs), split_fast(ys));
+        (i, j, xs - fx, ys - fy)
     } else {
-        let ([i, j], [fx, fy]) = split_n([xs, ys]);
-        ((i, fx), (j, fy))
+        let ([i, j], _, [fi, fj]) = split_floor_n([xs, ys]);
+        (i, j, fi, fj)
     };
-    let (fi, fj) = (xs - fx, ys - fy);
     let t = (fi + fj) * G2;
     (i, j, x - fi + t, y - fj + t)
 }
