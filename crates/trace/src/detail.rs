@@ -15,7 +15,7 @@
 //! `n(w) = log_r(λ₀ / 2w)`, so it fades in between footprints `λₖ/2r` and
 //! `λₖ/2` (the Nyquist limit), and no octave is left once `w ≥ λ₀/2`.
 //!
-//! The tracer's bounds come from here too (Hart 1996, §2 for the Lipschitz
+//! The tracer's bounds come from here too (Hart 1996, for the Lipschitz
 //! step): `|D| ≤ Σ aₖ` over the octaves present, `|∇D| ≤ L_noise·Σ wₖ aₖ/λₖ`,
 //! and `|∂D/∂w|` from the one octave being blended. Each bound is
 //! non-increasing in `w`, so one taken where a ray's footprint is smallest

@@ -14,7 +14,7 @@
 //! `g(t) = z(t) − S` is marched with steps `g / (L·|d_xy| + F − d_z)`:
 //! `L` bounds the slope of `S` in the cell (the two triangles' and the
 //! detail's Lipschitz bounds), `F` the change of `S` with the footprint, so
-//! a step never crosses the surface (Hart 1996, §2, for a height field).
+//! a step never crosses the surface (the Lipschitz step of Hart 1996 applied to a height field).
 //! Steps are at least a quarter of the footprint; where one lands below the
 //! surface a bisection finds the crossing. A feature thinner than a quarter
 //! of a pixel's footprint along the ray can therefore be stepped over; none
