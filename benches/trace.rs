@@ -27,8 +27,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use natura::core::glam::Vec3;
 use natura::core::{Boundary, Grid2, HeightField, NoProgress, Seed};
 use natura::trace::{
-    Camera, GridTracer, MipmapTracer, PinholeCamera, Ray, RenderOptions, Tracer, render,
-    trace_image,
+    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Footprint, GridTracer, MipmapTracer,
+    PinholeCamera, Ray, RenderOptions, Tracer, render, trace_image,
 };
 
 const CELL: f32 = 10.0;
@@ -459,5 +459,48 @@ fn scaling(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, primary, scaling);
+/// Detail tracing against plain tracing over the same field and rays: a
+/// 1024² field, the grazing view at 640 × 360, every 2nd pixel; detail of
+/// 2 m first-octave amplitude, H = 0.8, 9 octaves from the cell's wavelength
+/// down to the pixel footprint.
+fn detail(c: &mut Criterion) {
+    if !wanted("detail") {
+        return;
+    }
+    let hf = field(1024, 3);
+    let cam = grazing(&hf, 640, 360);
+    let sub = rays(&cam, 2);
+    let angle = 40f32.to_radians() / 360.0;
+    let plain = MipmapTracer::new(&hf).unwrap();
+    let params = DetailParams {
+        amplitude_m: 2.0,
+        h: 0.8,
+        lacunarity: 2.0,
+        octaves: 9,
+        wavelength_m: CELL,
+        seed: 5,
+    };
+    let surface = DetailSurface::new(&hf, Detail::new(&params).unwrap(), None).unwrap();
+    let detailed = DetailTracer::new(surface, Footprint::cone(angle)).unwrap();
+    cpu_rate("detail: plain mipmap", sub.len(), || {
+        black_box(trace_all(&plain, &sub));
+    });
+    cpu_rate("detail: with detail", sub.len(), || {
+        black_box(trace_all(&detailed, &sub));
+    });
+    let mut g = c.benchmark_group("detail_grazing_1thread");
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(300));
+    g.measurement_time(Duration::from_secs(3));
+    g.throughput(Throughput::Elements(sub.len() as u64));
+    g.bench_with_input(BenchmarkId::new("plain", 1024), &sub, |b, s| {
+        b.iter(|| black_box(trace_all(&plain, s)))
+    });
+    g.bench_with_input(BenchmarkId::new("detail", 1024), &sub, |b, s| {
+        b.iter(|| black_box(trace_all(&detailed, s)))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, primary, scaling, detail);
 criterion_main!(benches);

@@ -5,6 +5,7 @@
 //! cargo run --release --example landscape -- --quick         # small and fast
 //! cargo run --release --example landscape -- --scene my.toml --spp 16 --out renders
 //! cargo run --release --example landscape -- --print-scene > my.toml
+//! cargo run --release --example landscape -- --closeup --no-detail  # the foreground without detail
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
@@ -25,6 +26,11 @@ fn main() {
         "--maps",
         "also write the terrain's relief map and 16-bit height map",
     );
+    let closeup = args.switch(
+        "--closeup",
+        "a low camera looking down into the nearby slopes (for the detail)",
+    );
+    let no_detail = args.switch("--no-detail", "trace the stored terrain without detail");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
     let size: Option<usize> = args.optional("--size", "terrain samples per side");
@@ -48,6 +54,14 @@ fn main() {
         scene.render.height = 180;
         scene.render.spp = 1;
     }
+    if closeup {
+        scene.camera.height_above_ground_m = 12.0;
+        scene.camera.pitch_deg = -14.0;
+        scene.camera.vfov_deg = 30.0;
+    }
+    if no_detail {
+        scene.detail.enabled = false;
+    }
     if let Some(s) = seed {
         scene.seed = s;
     }
@@ -66,7 +80,12 @@ fn main() {
         scene.render.spp = s;
     }
     if print {
-        print!("{}", common::check(scene.to_toml_string()));
+        // The built-in scene with its comments, which document every key.
+        if scene == SceneDesc::default() {
+            print!("{}", natura::render::DEFAULT_SCENE_TOML);
+        } else {
+            print!("{}", common::check(scene.to_toml_string()));
+        }
         return;
     }
     common::check(scene.validate());

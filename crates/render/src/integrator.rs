@@ -17,7 +17,8 @@ use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
 use natura_noise::{FilteredFbm, Perlin, Spectral};
 use natura_ocean::{Ocean, OceanParams, Phillips, Surface, WaterSurface};
 use natura_trace::{
-    Camera, Hit, MipmapTracer, PanoramicCamera, PinholeCamera, Projection, Ray, Tracer,
+    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Footprint, Hit, MipmapTracer,
+    PanoramicCamera, PinholeCamera, Projection, Ray, Tracer,
 };
 
 use crate::error::Result;
@@ -51,8 +52,9 @@ impl SceneCamera {
 /// Everything needed per sample, built once per render from a [`World`].
 pub struct Renderer<'w> {
     world: &'w World,
-    /// The terrain with lakes and sea on top: primary, shadow and reflection rays.
-    tracer: MipmapTracer<'w>,
+    /// The terrain with lakes and sea on top, with the scene's procedural
+    /// detail on dry land: primary, shadow and reflection rays.
+    tracer: DetailTracer<'w>,
     /// The bare terrain: rays refracted into the water.
     ground: MipmapTracer<'w>,
     view: SkyView,
@@ -118,7 +120,8 @@ impl<'w> Renderer<'w> {
         let scene = &world.scene;
         let r = &scene.render;
         progress.start("acceleration", 2);
-        let tracer = MipmapTracer::new(&world.surface)?;
+        let pixel_angle = (scene.camera.vfov_deg as f32).to_radians() / r.height as f32;
+        let tracer = DetailTracer::new(detail_surface(world)?, Footprint::cone(pixel_angle))?;
         progress.advance(1);
         let ground = MipmapTracer::new(&world.terrain)?;
         progress.advance(1);
@@ -153,7 +156,6 @@ impl<'w> Renderer<'w> {
                 )?)
             }
         };
-        let pixel_angle = (c.vfov_deg as f32).to_radians() / r.height as f32;
 
         let sun_dir = world.sun_dir();
         let view = world.atmosphere.sky_view(eye.as_dvec3(), sun_dir)?;
@@ -480,7 +482,14 @@ impl<'w> Renderer<'w> {
         if cos_i > 0.0 && tp.geo.dot(self.sun) > -0.05 {
             let eps = 1e-2 * cell + 1e-5 * tp.point.abs().max_element();
             let shadow = Ray::new(tp.point + tp.geo * eps, self.sun);
-            if !self.tracer.occluded(&shadow, eps, f32::INFINITY) {
+            let fp = Footprint {
+                at_origin_m: footprint,
+                per_metre: self.pixel_angle,
+            };
+            if !self
+                .tracer
+                .occluded_footprint(&shadow, eps, f32::INFINITY, fp)
+            {
                 let f = self.materials.diffuse_factor(n, self.sun, v);
                 l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
             }
@@ -555,7 +564,11 @@ impl<'w> Renderer<'w> {
                     .trace(&rray, 0.0, f32::INFINITY)
                     .map(SurfaceHit::Terrain)
             } else {
-                let first = self.tracer.trace(&rray, 0.0, f32::INFINITY);
+                let fp = Footprint {
+                    at_origin_m: t * self.pixel_angle,
+                    per_metre: self.pixel_angle,
+                };
+                let first = self.tracer.trace_footprint(&rray, 0.0, f32::INFINITY, fp);
                 self.intersect(&rray, first.as_ref())
             };
             let (lt, tr) = match hit {
@@ -625,6 +638,40 @@ impl<'w> Renderer<'w> {
         let ap = self.view.aerial_perspective_f32(d, start);
         behind * (-(beta * len) as f32).exp() + bow * ap.transmittance
     }
+}
+
+/// The traced surface of a world: its water surface plus the scene's
+/// procedural detail (the first octave at the cell's wavelength), kept off
+/// the lakes and the sea by a mask that is 0 on every wet sample and its
+/// neighbours and 1 elsewhere. Without detail (disabled, or amplitude or
+/// octaves 0) the surface is the height field alone and is traced exactly as
+/// before.
+fn detail_surface(world: &World) -> Result<DetailSurface<'_>> {
+    let d = &world.scene.detail;
+    let on = d.enabled && d.amplitude_m > 0.0 && d.octaves > 0;
+    let detail = Detail::new(&DetailParams {
+        amplitude_m: if on { d.amplitude_m as f32 } else { 0.0 },
+        h: d.h as f32,
+        lacunarity: d.lacunarity as f32,
+        octaves: if on { d.octaves } else { 0 },
+        wavelength_m: world.terrain.cell_size(),
+        seed: Seed(world.scene.seed.wrapping_add(d.seed_offset))
+            .derive("detail")
+            .0,
+    })?;
+    let mask = if on && world.water_level.is_some() {
+        let (s, g) = (world.surface.heights(), world.terrain.heights());
+        let (nx, ny) = (s.width(), s.height());
+        let wet = |i: usize, j: usize| s[(i, j)] > g[(i, j)];
+        Some(natura_core::Grid2::from_fn(nx, ny, |i, j| {
+            let near_water = (i.saturating_sub(1)..=(i + 1).min(nx - 1))
+                .any(|a| (j.saturating_sub(1)..=(j + 1).min(ny - 1)).any(|b| wet(a, b)));
+            if near_water { 0.0f32 } else { 1.0 }
+        })?)
+    } else {
+        None
+    };
+    Ok(DetailSurface::new(&world.surface, detail, mask)?)
 }
 
 #[inline]

@@ -42,7 +42,7 @@ use natura_core::{Image, Progress};
 pub use error::{RenderError, Result};
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
-    AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, Diffuse, ErosionDesc,
+    AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc,
     HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
     WaterDesc, WaterWaves,
 };

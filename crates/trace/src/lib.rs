@@ -12,7 +12,15 @@
 //!   Ihrke & Seidel (2008) — the `m = 2` case of the source's "n² tree"
 //!   (Musgrave 1993, §3.5) — which skips empty space at the coarsest level the
 //!   ray allows. The fast path, with the same hits.
-//! * [`brute_force`]: every triangle, for tests.
+//! * [`DetailTracer`] over a [`DetailSurface`]: the field plus procedural
+//!   detail octaves ([`Detail`], natura-noise's Perlin noise) down to each
+//!   ray's pixel [`Footprint`] — Musgrave's procedural level of detail
+//!   (Musgrave 1993, §6.3). The pyramid widened by the detail's amplitude
+//!   bound skips empty space, a Lipschitz-bounded march with a closing
+//!   bisection finds the hit in a cell (Hart 1996's sphere-tracing step), and where the
+//!   footprint outgrows the cell the plain [`MipmapTracer`] takes over.
+//! * [`brute_force`]: every triangle, for tests; [`detail_brute_force`]: a
+//!   fine fixed-step march of the detailed surface, for tests.
 //! * Cameras implementing [`Camera`]: [`PinholeCamera`], [`OrthographicCamera`]
 //!   and the panoramic virtual screens of the dissertation's appendix B
 //!   ([`PanoramicCamera`], cylindrical or spherical, optionally stereo).
@@ -102,6 +110,8 @@ mod batch;
 mod brute;
 mod camera;
 mod dda;
+mod detail;
+mod detail_tracer;
 mod error;
 mod field;
 mod frustum;
@@ -117,12 +127,14 @@ mod surface;
 mod tracer;
 
 pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, render_tiles, trace_image};
-pub use brute::brute_force;
+pub use brute::{brute_force, detail_brute_force};
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
     RAY_LANES, Stereo,
 };
 pub use dda::{CellVisit, CellWalk, GridTracer};
+pub use detail::{Detail, DetailParams, DetailSurface, Footprint, MAX_DETAIL_OCTAVES};
+pub use detail_tracer::DetailTracer;
 pub use error::{Result, TraceError};
 pub use field::MAX_SAMPLES_PER_AXIS;
 pub use max_mipmap::{MaxMipmap, MipmapTracer};

@@ -46,6 +46,8 @@ pub struct SceneDesc {
     pub atmosphere: AtmosphereDesc,
     /// How the surface is coloured.
     pub materials: MaterialDesc,
+    /// Procedural relief below the terrain's cell size, down to the pixel.
+    pub detail: DetailDesc,
     /// Where the camera is and what it sees.
     pub camera: CameraDesc,
     /// Image size, sampling and output.
@@ -289,6 +291,30 @@ pub enum CameraKind {
     Spherical,
 }
 
+/// Procedural detail added to the terrain below its cell size, octave by
+/// octave down to each pixel's footprint (Musgrave's procedural level of
+/// detail): an fBm of Perlin noise in metres whose first octave has the
+/// cell's wavelength. Lakes and the sea stay flat; where a pixel covers more
+/// than half a cell the stored terrain is traced as it is.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DetailDesc {
+    /// Whether to add the detail at all.
+    pub enabled: bool,
+    /// Amplitude of the first (largest) octave, metres; the detail stays
+    /// within `amplitude_m / (1 − lacunarity^(−h))` of the terrain.
+    pub amplitude_m: f64,
+    /// Musgrave's H of the detail's fBm (0 to 2); larger is smoother.
+    pub h: f64,
+    /// Wavelength ratio between octaves (1.5 to 4).
+    pub lacunarity: f64,
+    /// Most octaves, however close the surface (0 to 24).
+    pub octaves: u32,
+    /// Added to the scene's seed for the detail's noise (a different
+    /// detail over the same terrain).
+    pub seed_offset: u64,
+}
+
 /// Where the camera is and what it sees. Positions are given in field
 /// coordinates (`[0, 1]²` across the terrain) so a scene works at any size.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -336,6 +362,7 @@ impl Default for SceneDesc {
             sun: SunDesc::default(),
             atmosphere: AtmosphereDesc::default(),
             materials: MaterialDesc::default(),
+            detail: DetailDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
         }
@@ -465,6 +492,19 @@ impl Default for MaterialDesc {
             sand: [0.50, 0.45, 0.35],
             bump_size_m: 6.0,
             bump_strength: 0.12,
+        }
+    }
+}
+
+impl Default for DetailDesc {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            amplitude_m: 2.5,
+            h: 0.8,
+            lacunarity: 2.0,
+            octaves: 9,
+            seed_offset: 0,
         }
     }
 }

@@ -147,3 +147,50 @@ fn missing_file_is_named() {
         .to_string();
     assert!(err.contains("/no/such/scene.toml"), "{err}");
 }
+
+#[test]
+fn bad_detail_keys_are_named() {
+    type Mutation = Box<dyn Fn(&mut SceneDesc)>;
+    let cases: Vec<(&str, Mutation)> = vec![
+        (
+            "detail.amplitude_m",
+            Box::new(|s| s.detail.amplitude_m = -1.0),
+        ),
+        (
+            "detail.amplitude_m",
+            Box::new(|s| s.detail.amplitude_m = f64::NAN),
+        ),
+        ("detail.h", Box::new(|s| s.detail.h = 3.0)),
+        ("detail.lacunarity", Box::new(|s| s.detail.lacunarity = 1.0)),
+        ("detail.octaves", Box::new(|s| s.detail.octaves = 25)),
+    ];
+    for (key, mutate) in cases {
+        let mut s = SceneDesc::default();
+        mutate(&mut s);
+        let err = s.validate().unwrap_err().to_string();
+        assert!(err.contains(key), "{key}: {err}");
+    }
+    // Unknown and mistyped keys in the section name line and key.
+    let err = SceneDesc::from_toml_str("[detail]\nenabled = true\namplitud_m = 2\n", "d.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("d.toml:3:") && err.contains("detail.amplitud_m"),
+        "{err}"
+    );
+    let err = SceneDesc::from_toml_str("[detail]\noctaves = \"many\"\n", "d.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("d.toml:2:") && err.contains("detail.octaves"),
+        "{err}"
+    );
+    // A partial section keeps the other defaults; the section round-trips.
+    let s = SceneDesc::from_toml_str("[detail]\namplitude_m = 0.0\n", "d.toml").unwrap();
+    assert_eq!(s.detail.amplitude_m, 0.0);
+    assert_eq!(s.detail.octaves, DetailDesc::default().octaves);
+    assert_eq!(
+        SceneDesc::from_toml_str(&s.to_toml_string().unwrap(), "x").unwrap(),
+        s
+    );
+}

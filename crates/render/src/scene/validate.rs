@@ -142,6 +142,12 @@ impl SceneDesc {
         )?;
         in_range("atmosphere.rain_distance_m", a.rain_distance_m, 0.0, 1e6)?;
 
+        let d = &self.detail;
+        in_range("detail.amplitude_m", d.amplitude_m, 0.0, 1000.0)?;
+        in_range("detail.h", d.h, 0.0, 2.0)?;
+        in_range("detail.lacunarity", d.lacunarity, 1.5, 4.0)?;
+        in_range("detail.octaves", f64::from(d.octaves), 0.0, 24.0)?;
+
         let m = &self.materials;
         finite("materials.snow_line_m", f64::from(m.snow_line_m))?;
         in_range(

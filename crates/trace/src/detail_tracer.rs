@@ -1,0 +1,420 @@
+//! Tracing the height field with procedural detail down to the pixel
+//! footprint: the maximum mipmap with every node's `[min, max]` widened by
+//! the detail's amplitude bound, then Lipschitz-bounded marching inside the
+//! cells it cannot rule out, ending in a bisection.
+//!
+//! The surface is [`DetailSurface`]'s `S = B + m·D(·; w)` with the footprint
+//! `w` growing along the ray ([`Footprint`]). Where `w` reaches the first
+//! octave's Nyquist limit no detail is left, so from there on the ray is
+//! handed to the plain [`MipmapTracer`]: the far field is traced exactly as
+//! without detail. Before that, a node of the pyramid (or a cell) is skipped
+//! when the ray's altitude span over it misses `[min − A, max + A]`, `A` the
+//! detail's amplitude bound at the node's nearest footprint (Tevs et al.
+//! 2008 for the pyramid walk). In a surviving cell the signed gap
+//! `g(t) = z(t) − S` is marched with steps `g / (L·|d_xy| + F − d_z)`:
+//! `L` bounds the slope of `S` in the cell (the two triangles' and the
+//! detail's Lipschitz bounds), `F` the change of `S` with the footprint, so
+//! a step never crosses the surface (the Lipschitz step of Hart 1996 applied to a height field).
+//! While the ray is outside the shell `B ± A` the gap to the shell, with the
+//! triangles' slope alone, gives a longer step without evaluating any noise.
+//! Steps are at least a quarter of the footprint; where one lands below the
+//! surface a bisection finds the crossing. A feature thinner than a quarter
+//! of a pixel's footprint along the ray can therefore be stepped over; none
+//! thicker is.
+
+use glam::{DVec2, DVec3, UVec2, Vec3};
+use natura_core::HeightField;
+
+use crate::detail::{DetailSurface, Footprint, add_gradient};
+use crate::error::{Result, TraceError};
+use crate::max_mipmap::MipmapTracer;
+use crate::ray::{Hit, Ray, TraceStats, Triangle};
+use crate::ray_cell::{CellHit, make_hit};
+use crate::surface::surface_height;
+use crate::tracer::Tracer;
+
+/// Smallest march step, as a fraction of the footprint.
+const MIN_STEP_FOOTPRINTS: f64 = 0.25;
+
+/// Bisection stops when the bracket is this fraction of the footprint.
+const BISECT_FOOTPRINTS: f64 = 1e-3;
+
+/// A tracer of a height field with procedural detail (see the module docs).
+#[derive(Clone, Debug)]
+pub struct DetailTracer<'a> {
+    base: MipmapTracer<'a>,
+    surface: DetailSurface<'a>,
+    footprint: Footprint,
+}
+
+/// A ray in `f64` with what the walk needs.
+struct WalkRay {
+    o: DVec3,
+    d: DVec3,
+    /// `|d|`: footprints grow with distance, not with `t`.
+    len: f64,
+    /// `|d_xy|`.
+    dxy: f64,
+    fp: Footprint,
+    /// `+1` if the ray starts above the surface, `−1` below.
+    side: f64,
+}
+
+impl WalkRay {
+    #[inline]
+    fn w(&self, t: f64) -> f64 {
+        self.fp.at(t * self.len)
+    }
+}
+
+impl<'a> DetailTracer<'a> {
+    /// A tracer of `surface`; `footprint` is the footprint [`Tracer::trace`]
+    /// uses (the camera's pixel cone for primary rays).
+    ///
+    /// # Errors
+    ///
+    /// Fails like [`MipmapTracer::new`] on a field that cannot be traced, and
+    /// with [`TraceError::InvalidParameter`] if a footprint term is NaN,
+    /// infinite or negative.
+    pub fn new(surface: DetailSurface<'a>, footprint: Footprint) -> Result<Self> {
+        check_footprint(footprint)?;
+        Ok(Self {
+            base: MipmapTracer::new(surface.height_field())?,
+            surface,
+            footprint,
+        })
+    }
+
+    /// The surface traced.
+    #[must_use]
+    pub fn surface(&self) -> &DetailSurface<'a> {
+        &self.surface
+    }
+
+    /// The plain tracer of the height field (the far field's).
+    #[must_use]
+    pub fn base(&self) -> &MipmapTracer<'a> {
+        &self.base
+    }
+
+    /// The footprint [`Tracer::trace`] uses.
+    #[must_use]
+    pub fn footprint(&self) -> Footprint {
+        self.footprint
+    }
+
+    /// Bytes of acceleration data (the base tracer's pyramid).
+    #[must_use]
+    pub fn memory_bytes(&self) -> usize {
+        self.base.memory_bytes()
+    }
+
+    /// The ray parameter from which the footprint leaves no detail (∞ if never).
+    fn t_far(&self, ray: &Ray, fp: Footprint) -> f64 {
+        let far = self.surface.detail().far_footprint();
+        let len = f64::from(ray.dir.length());
+        let (w0, k) = (f64::from(fp.at_origin_m), f64::from(fp.per_metre));
+        if w0 >= far {
+            0.0
+        } else if k > 0.0 {
+            (far - w0) / (k * len)
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The closest hit of `ray` with `t` in `[t_min, t_max]` on the surface
+    /// with footprint `fp` along the ray.
+    ///
+    /// The hit's `point` is on the detailed surface and its normals are the
+    /// height field's tilted by the detail's gradient at the hit's footprint;
+    /// `cell`, `triangle` and `barycentric` locate it over the height field.
+    /// Invalid rays, empty ranges and invalid footprints hit nothing.
+    #[must_use]
+    pub fn trace_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: Footprint) -> Option<Hit> {
+        if !self.surface.detail().is_active() {
+            return self.base.trace(ray, t_min, t_max);
+        }
+        if !ray.is_valid() || t_min.is_nan() || t_max.is_nan() || t_min > t_max {
+            return None;
+        }
+        check_footprint(fp).ok()?;
+        let t_far = self.t_far(ray, fp);
+        if t_far <= f64::from(t_min) {
+            return self.base.trace(ray, t_min, t_max);
+        }
+        let end = t_far.min(f64::from(t_max));
+        if let Some((t, w)) = self.walk(ray, f64::from(t_min), end, fp) {
+            return Some(self.make_hit(ray, t, w));
+        }
+        if t_far < f64::from(t_max) {
+            return self.base.trace(ray, t_far as f32, t_max);
+        }
+        None
+    }
+
+    /// Whether anything lies on `ray` with `t` in `[t_min, t_max]` with
+    /// footprint `fp` (a shadow ray).
+    #[must_use]
+    pub fn occluded_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: Footprint) -> bool {
+        if !self.surface.detail().is_active() {
+            return self.base.occluded(ray, t_min, t_max);
+        }
+        self.trace_footprint(ray, t_min, t_max, fp).is_some()
+    }
+
+    /// `g(t)`: the ray's height above the surface at `t` (the point clamped
+    /// into the field).
+    #[inline]
+    fn gap(&self, r: &WalkRay, t: f64) -> f64 {
+        let p = r.o + t * r.d;
+        let e = self.surface.height_field().extent();
+        let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+        let s = self.surface.height(x, y, r.w(t)).unwrap_or(f64::NAN);
+        p.z - s
+    }
+
+    /// The first crossing of the surface over `[t0, t1]` in the detail
+    /// region: `(t, footprint there)`.
+    fn walk(&self, ray: &Ray, t0: f64, t1: f64, fp: Footprint) -> Option<(f64, f64)> {
+        let hf = self.surface.height_field();
+        let d = ray.dir.as_dvec3();
+        let mut r = WalkRay {
+            o: ray.origin.as_dvec3(),
+            d,
+            len: d.length(),
+            dxy: d.truncate().length(),
+            fp,
+            side: 1.0,
+        };
+        let e = hf.extent().as_dvec2();
+        let (ta, tb) = slab(&r, DVec2::ZERO, e, t0, t1)?;
+        let g = self.gap(&r, ta);
+        if !g.is_finite() {
+            return None;
+        }
+        r.side = if g >= 0.0 { 1.0 } else { -1.0 };
+        let mip = self.base.mipmap();
+        self.node(&r, mip.top_level(), 0, 0, ta, tb)
+            .map(|t| (t, r.w(t)))
+    }
+
+    /// Node `(a, b)` of level `k` (level 0: cells) over `[t0, t1]`.
+    fn node(&self, r: &WalkRay, k: u32, a: u32, b: u32, t0: f64, t1: f64) -> Option<f64> {
+        let f = &self.base.f;
+        let (lo, hi) = if k == 0 {
+            let c = f.corners(a, b);
+            (
+                c[0].min(c[1]).min(c[2].min(c[3])),
+                c[0].max(c[1]).max(c[2].max(c[3])),
+            )
+        } else {
+            self.base.mipmap().node_range(k, a, b)?
+        };
+        // The footprint is smallest (the detail largest) where the ray enters.
+        let amp = self.surface.amplitude_bound(r.w(t0));
+        let (za, zb) = (r.o.z + t0 * r.d.z, r.o.z + t1 * r.d.z);
+        let m = 1e-4 * (1.0 + za.abs().max(zb.abs()));
+        if za.max(zb) < f64::from(lo) - amp - m || za.min(zb) > f64::from(hi) + amp + m {
+            return None;
+        }
+        if k == 0 {
+            return self.march(r, a, b, t0, t1);
+        }
+        let (cw, ch) = if k == 1 {
+            (f.ncx, f.ncy)
+        } else {
+            self.base.mipmap().level_dims(k - 1)?
+        };
+        let size = f64::from(f.cell) * f64::from(1u32 << (k - 1));
+        let mut kids = [(0u32, 0u32, 0.0f64, 0.0f64); 4];
+        let mut n = 0;
+        for cb in 2 * b..(2 * b + 2).min(ch) {
+            for ca in 2 * a..(2 * a + 2).min(cw) {
+                let lo = DVec2::new(f64::from(ca), f64::from(cb)) * size;
+                if let Some((s0, s1)) = slab(r, lo, lo + DVec2::splat(size), t0, t1) {
+                    kids[n] = (ca, cb, s0, s1);
+                    n += 1;
+                }
+            }
+        }
+        let kids = &mut kids[..n];
+        kids.sort_by(|x, y| x.2.total_cmp(&y.2));
+        kids.iter()
+            .find_map(|&(ca, cb, s0, s1)| self.node(r, k - 1, ca, cb, s0, s1))
+    }
+
+    /// The Lipschitz march over cell `(i, j)` for `t` in `[t0, t1]`.
+    fn march(&self, r: &WalkRay, i: u32, j: u32, t0: f64, t1: f64) -> Option<f64> {
+        let f = &self.base.f;
+        let c = f.corners(i, j);
+        let cell = f64::from(f.cell);
+        let slope = |a: f32, b: f32| f64::from(a).hypot(f64::from(b)) / cell;
+        let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
+        let finest = self.surface.detail().finest_footprint();
+        let s = r.side;
+        let hf = self.surface.height_field();
+        let e = hf.extent();
+        let (mut t, mut t_prev) = (t0, t0);
+        loop {
+            let w = r.w(t);
+            let p = r.o + t * r.d;
+            let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+            let base = f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN));
+            // Outside the shell `B ± A(w)` the gap to the shell bounds the gap
+            // to the surface, and the shell's slope is the triangles' alone
+            // (`A` only shrinks along the ray): a longer step without noise.
+            let shell = s * (p.z - base) - self.surface.amplitude_bound(w);
+            let (g, denom) = if shell > 0.0 {
+                (shell, lb * r.dxy - s * r.d.z)
+            } else {
+                let g = s * (p.z - self.surface.height(x, y, w).unwrap_or(f64::NAN));
+                if !g.is_finite() {
+                    return None;
+                }
+                if g <= 0.0 {
+                    return Some(if t == t0 {
+                        t0
+                    } else {
+                        self.bisect(r, t_prev, t)
+                    });
+                }
+                let l = lb + self.surface.lipschitz_bound(w);
+                let fw = self.surface.footprint_bound(w) * f64::from(r.fp.per_metre) * r.len;
+                (g, l * r.dxy + fw - s * r.d.z)
+            };
+            if t >= t1 || denom <= 0.0 {
+                // At the cell's end, or `g` cannot shrink over the rest of it.
+                return None;
+            }
+            let step = (g / denom).max(MIN_STEP_FOOTPRINTS * w.max(finest) / r.len);
+            t_prev = t;
+            t = (t + step).min(t1);
+        }
+    }
+
+    /// The crossing in `(lo, hi]` where `s·g(lo) > 0 ≥ s·g(hi)`, to a
+    /// thousandth of the footprint.
+    fn bisect(&self, r: &WalkRay, mut lo: f64, mut hi: f64) -> f64 {
+        let finest = self.surface.detail().finest_footprint();
+        for _ in 0..48 {
+            if (hi - lo) * r.len <= BISECT_FOOTPRINTS * r.w(hi).max(finest) {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            if r.side * self.gap(r, mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    /// The hit record at `t` (footprint `w`).
+    fn make_hit(&self, ray: &Ray, t: f64, w: f64) -> Hit {
+        let f = &self.base.f;
+        let tf = t as f32;
+        let p = ray.at(tf);
+        let (gx, gy) = (p.x / f.cell, p.y / f.cell);
+        let i = (gx.floor().max(0.0) as u32).min(f.ncx - 1);
+        let j = (gy.floor().max(0.0) as u32).min(f.ncy - 1);
+        let (u, v) = (
+            (gx - i as f32).clamp(0.0, 1.0),
+            (gy - j as f32).clamp(0.0, 1.0),
+        );
+        let (triangle, bary) = if u + v <= 1.0 {
+            (Triangle::Lower, Vec3::new(1.0 - u - v, u, v))
+        } else {
+            (Triangle::Upper, Vec3::new(u + v - 1.0, 1.0 - u, 1.0 - v))
+        };
+        let base = make_hit(
+            f,
+            ray,
+            CellHit {
+                t: tf,
+                cell: (i, j),
+                triangle,
+                bary,
+            },
+        );
+        let g = self.surface.detail_gradient(p.x, p.y, w);
+        let geometric_normal = add_gradient(base.geometric_normal, g);
+        Hit {
+            t: tf,
+            point: p,
+            geometric_normal,
+            smooth_normal: add_gradient(base.smooth_normal, g),
+            cell: UVec2::new(i, j),
+            triangle,
+            barycentric: bary,
+            from_above: ray.dir.dot(geometric_normal) < 0.0,
+        }
+    }
+}
+
+/// The ray's `t` interval over the box `[lo, hi]` in x and y, within `[t0, t1]`.
+fn slab(r: &WalkRay, lo: DVec2, hi: DVec2, t0: f64, t1: f64) -> Option<(f64, f64)> {
+    let pad = 1e-7 * (1.0 + hi.x.abs().max(hi.y.abs()));
+    let (mut a, mut b) = (t0, t1);
+    for (o, d, l, h) in [(r.o.x, r.d.x, lo.x, hi.x), (r.o.y, r.d.y, lo.y, hi.y)] {
+        let (l, h) = (l - pad, h + pad);
+        if d == 0.0 {
+            if o < l || o > h {
+                return None;
+            }
+        } else {
+            let (p, q) = ((l - o) / d, (h - o) / d);
+            a = a.max(p.min(q));
+            b = b.min(p.max(q));
+        }
+    }
+    (a <= b).then_some((a, b))
+}
+
+fn check_footprint(fp: Footprint) -> Result<()> {
+    for (name, v) in [
+        ("footprint.at_origin_m", fp.at_origin_m),
+        ("footprint.per_metre", fp.per_metre),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(TraceError::param(name, v, "finite and ≥ 0"));
+        }
+    }
+    Ok(())
+}
+
+impl Tracer for DetailTracer<'_> {
+    fn trace(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        self.trace_footprint(ray, t_min, t_max, self.footprint)
+    }
+
+    fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        self.occluded_footprint(ray, t_min, t_max, self.footprint)
+    }
+
+    /// The hit with empty counters (the march does not count its steps).
+    fn trace_with_stats(&self, ray: &Ray, t_min: f32, t_max: f32) -> (Option<Hit>, TraceStats) {
+        (self.trace(ray, t_min, t_max), TraceStats::default())
+    }
+
+    fn height_field(&self) -> &HeightField {
+        self.surface.height_field()
+    }
+
+    fn trace_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<Option<Hit>> {
+        if !self.surface.detail().is_active() {
+            return self.base.trace_many(rays, t_min, t_max);
+        }
+        rays.iter().map(|r| self.trace(r, t_min, t_max)).collect()
+    }
+
+    fn occluded_many(&self, rays: &[Ray], t_min: f32, t_max: f32) -> Vec<bool> {
+        if !self.surface.detail().is_active() {
+            return self.base.occluded_many(rays, t_min, t_max);
+        }
+        rays.iter()
+            .map(|r| self.occluded(r, t_min, t_max))
+            .collect()
+    }
+}
