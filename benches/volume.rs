@@ -12,7 +12,7 @@ use natura::volume::Density;
 use natura::volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura::volume::grid::GridDensity;
 use natura::volume::render::{
-    Camera, FastRenderer, MarchSettings, MediumParams, Scene, Shadows, Sun,
+    FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 use natura::volume::scene::{Cloudscape, CloudscapeParams};
 
@@ -57,7 +57,7 @@ fn shadows(c: &mut Criterion) {
     };
     let b = grid.bounds();
     let centre = (b.min + b.max) * 0.5;
-    let camera = Camera {
+    let camera = LookAtCamera {
         position: centre + Vec3::new(0.0, -24.0, 2.0),
         target: centre,
         vfov_deg: 40.0,
@@ -73,12 +73,12 @@ fn shadows(c: &mut Criterion) {
     g.throughput(Throughput::Elements((camera.width * camera.height) as u64));
     // Same eye step; the table's nodes are 64 along the longest axis (its
     // march uses one node spacing per step), the shadow rays step 0.1 m.
-    let table = MarchSettings {
+    let table = FastSettings {
         step: 0.1,
         shadows: Shadows::Table(64),
-        ..MarchSettings::default()
+        ..FastSettings::default()
     };
-    let rays = MarchSettings {
+    let rays = FastSettings {
         shadows: Shadows::Rays(0.1),
         ..table
     };

@@ -20,7 +20,7 @@ use natura::volume::cloud::{
 };
 use natura::volume::grid::GridDensity;
 use natura::volume::render::{
-    Camera, FastRenderer, MarchSettings, MediumParams, Scene, Shadows, Sun,
+    FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 use natura::volume::{Density, vdb};
 
@@ -49,13 +49,13 @@ fn render(d: &dyn Density, look: &Look, extinction: f32, view: Vec3) -> Image {
             Vec3::new(0.18, 0.3, 0.55),
         )
     };
-    let settings = MarchSettings {
+    let settings = FastSettings {
         step: look.cell * 0.5,
         shadows: Shadows::Table(96),
-        ..MarchSettings::default()
+        ..FastSettings::default()
     }
     .multiple_scattering();
-    let camera = Camera {
+    let camera = LookAtCamera {
         position: c + view * r,
         target: c,
         vfov_deg: 40.0,

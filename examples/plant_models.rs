@@ -17,15 +17,15 @@ use natura::plant::models::Run;
 use natura::plant::models::{
     clonal, compound, crowns, phyllotaxis, positional, roots, roots3d, tiers,
 };
-use natura::plant::preview::{Camera, PreviewParams, render};
-use natura::plant::turtle::{Frame, SurfaceInstance};
+use natura::plant::preview::{PreviewCamera, PreviewParams, render};
+use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// Renders `g` seen along `view` into `name` under `out`.
 fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &str) {
     let mesh = common::check(PlantMesh::from_geometry(g, &MeshParams::default()));
     let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
-    let cam = common::check(Camera::framing(lo, hi, view, None, 1.0));
+    let cam = common::check(PreviewCamera::framing(lo, hi, view, None, 1.0));
     let img = common::check(render(&mesh, &PreviewParams::new(size, size, cam)));
     common::check(img.save_png(out.join(name)));
     println!("{name}: {} triangles", mesh.triangle_count());
@@ -42,9 +42,9 @@ fn spheres(items: impl Iterator<Item = (DVec3, f64)>) -> Geometry {
     for (c, r) in items {
         g.surfaces.push(SurfaceInstance {
             name: 'O',
-            frame: Frame {
+            frame: TurtleFrame {
                 p: c,
-                ..Frame::default()
+                ..TurtleFrame::default()
             },
             length: r,
             width: r,

@@ -17,13 +17,14 @@ use natura::fluid::advect::Advection;
 use natura::fluid::export::{field_image, slice, write_exr_volume, write_raw_volume};
 use natura::fluid::grid::Dims;
 use natura::fluid::interp::{CubicLimiter, Interpolation};
-use natura::fluid::shape::{Obstacle, Shape};
+use natura::fluid::shape::{Shape, Obstacle};
 use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 use natura::volume::Density;
 use natura::volume::grid::SmokeVolume;
-use natura::volume::phase::Phase;
+use natura::volume::phase::CloudPhase;
 use natura::volume::render::{
-    Camera, Emission, FastRenderer, Ground, MarchSettings, MediumParams, Scene, Shadows, Solid, Sun,
+    Emission, FastRenderer, FastSettings, GroundPlane, LookAtCamera, MediumParams, Scene, Shadows,
+    Solid, Sun,
 };
 
 fn main() {
@@ -159,7 +160,7 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usiz
             direction: light,
             irradiance: Vec3::new(2.6, 2.5, 2.3),
         }),
-        ground: Some(Ground {
+        ground: Some(GroundPlane {
             height: 0.0,
             albedo: Vec3::splat(0.35),
             sky_irradiance: sky,
@@ -180,20 +181,20 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usiz
             MediumParams {
                 extinction: 40.0,
                 albedo: 0.9,
-                phase: Phase::HenyeyGreenstein(0.3),
+                phase: CloudPhase::HenyeyGreenstein(0.3),
             },
             bg,
         )
     };
     let b = vol.density.bounds();
-    let settings = MarchSettings {
+    let settings = FastSettings {
         step: 0.5 * vol.density.cell(),
         shadows: Shadows::Table(96),
-        ..MarchSettings::default()
+        ..FastSettings::default()
     }
     .multiple_scattering();
     let centre = (b.min + b.max) * 0.5;
-    let camera = Camera {
+    let camera = LookAtCamera {
         position: centre + Vec3::new(0.6, -3.4, 0.1),
         target: centre,
         vfov_deg: 40.0,

@@ -13,9 +13,9 @@ mod common;
 use natura::core::glam::Vec3;
 use natura::core::{Image, ToneMap};
 use natura::volume::gas::{Steam, SteamParams};
-use natura::volume::phase::Phase;
+use natura::volume::phase::CloudPhase;
 use natura::volume::render::{
-    Camera, FastRenderer, MarchSettings, MediumParams, Scene, Shadows, Sun,
+    FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 
 fn main() {
@@ -38,7 +38,7 @@ fn main() {
             let medium = MediumParams {
                 extinction: 60.0,
                 albedo: 0.95,
-                phase: Phase::HenyeyGreenstein(0.5),
+                phase: CloudPhase::HenyeyGreenstein(0.5),
             };
             let scene = Scene {
                 sun: Some(Sun {
@@ -47,13 +47,13 @@ fn main() {
                 }),
                 ..Scene::new(&steam, medium, Vec3::new(0.03, 0.03, 0.04))
             };
-            let settings = MarchSettings {
+            let settings = FastSettings {
                 step: 0.0008,
                 shadows: Shadows::Table(if quick { 32 } else { 96 }),
-                ..MarchSettings::default()
+                ..FastSettings::default()
             }
             .multiple_scattering();
-            let camera = Camera {
+            let camera = LookAtCamera {
                 position: Vec3::new(0.0, -0.35, 0.07),
                 target: Vec3::new(0.0, 0.0, 0.065),
                 vfov_deg: 22.0,

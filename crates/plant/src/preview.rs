@@ -1,6 +1,6 @@
 //! Pictures of plant meshes: a small deterministic software rasterizer.
 //!
-//! Triangles are projected by an orthographic or perspective [`Camera`],
+//! Triangles are projected by an orthographic or perspective [`PreviewCamera`],
 //! filled with edge functions at pixel centres, resolved with a z-buffer and
 //! shaded per pixel with Lambert's law plus an ambient term, using the
 //! interpolated vertex normal turned towards the viewer (every surface is
@@ -38,7 +38,7 @@ pub enum PreviewProjection {
 /// A camera looking from `eye` at `target`, `up` pointing up in the picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Camera {
+pub struct PreviewCamera {
     /// Position of the eye.
     pub eye: Vec3,
     /// Point looked at (the centre of the picture).
@@ -49,7 +49,7 @@ pub struct Camera {
     pub projection: PreviewProjection,
 }
 
-impl Camera {
+impl PreviewCamera {
     /// Returns a camera looking along `view_dir` that frames the box
     /// `lo..hi` with a small margin in a picture of the given aspect ratio
     /// (width / height), with z up in the picture (y up if looking along z).
@@ -132,14 +132,14 @@ impl Camera {
         let f = self.target - self.eye;
         if !self.eye.is_finite() || !self.target.is_finite() || f.length() < 1e-9 {
             return Err(invalid(
-                "Camera::target",
+                "PreviewCamera::target",
                 format!("eye {} target {}", self.eye, self.target),
                 "eye and target must be finite and distinct",
             ));
         }
         if !self.up.is_finite() || f.normalize().cross(self.up).length() < 1e-6 {
             return Err(invalid(
-                "Camera::up",
+                "PreviewCamera::up",
                 self.up,
                 "must be finite and not parallel to the view",
             ));
@@ -147,7 +147,7 @@ impl Camera {
         match self.projection {
             PreviewProjection::Orthographic { height } if !(height.is_finite() && height > 0.0) => {
                 Err(invalid(
-                    "Camera::projection.height",
+                    "PreviewCamera::projection.height",
                     height,
                     "must be finite and > 0",
                 ))
@@ -156,7 +156,7 @@ impl Camera {
                 if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) =>
             {
                 Err(invalid(
-                    "Camera::projection.fov_y_deg",
+                    "PreviewCamera::projection.fov_y_deg",
                     fov_y_deg,
                     "must lie in (0, 180)",
                 ))
@@ -176,7 +176,7 @@ pub struct PreviewParams {
     /// Samples per pixel along each axis (1 to 4).
     pub supersample: u32,
     /// The camera.
-    pub camera: Camera,
+    pub camera: PreviewCamera,
     /// Direction towards the light (need not be unit).
     pub light: Vec3,
     /// Ambient fraction of the light, in [0, 1].
@@ -193,7 +193,7 @@ impl PreviewParams {
     /// A `width × height` picture through `camera`, lit from the upper left
     /// front, with the materials' default colours on a pale background.
     #[must_use]
-    pub fn new(width: u32, height: u32, camera: Camera) -> Self {
+    pub fn new(width: u32, height: u32, camera: PreviewCamera) -> Self {
         Self {
             width,
             height,
@@ -276,7 +276,7 @@ struct View {
 }
 
 impl View {
-    fn new(c: &Camera, w: u32, h: u32) -> Self {
+    fn new(c: &PreviewCamera, w: u32, h: u32) -> Self {
         let f = (c.target - c.eye).normalize();
         let r = f.cross(c.up).normalize();
         let u = r.cross(f);
@@ -429,12 +429,12 @@ pub fn render_instances(
 }
 
 /// Renders `mesh` into a `width × height` picture framed by
-/// [`Camera::framing`] along `view_dir` (orthographic for `fov_y_deg = None`),
+/// [`PreviewCamera::framing`] along `view_dir` (orthographic for `fov_y_deg = None`),
 /// with the default light and colours of [`PreviewParams::new`].
 ///
 /// # Errors
 ///
-/// As [`Camera::framing`] and [`render`]; [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter)
+/// As [`PreviewCamera::framing`] and [`render`]; [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter)
 /// for an empty mesh.
 pub fn snapshot(
     mesh: &PlantMesh,
@@ -447,7 +447,7 @@ pub fn snapshot(
         .bounds()
         .ok_or_else(|| invalid("mesh", "no vertices", "a picture needs something to draw"))?;
     let aspect = width.max(1) as f32 / height.max(1) as f32;
-    let camera = Camera::framing(lo, hi, view_dir, fov_y_deg, aspect)?;
+    let camera = PreviewCamera::framing(lo, hi, view_dir, fov_y_deg, aspect)?;
     render(mesh, &PreviewParams::new(width, height, camera))
 }
 
@@ -541,7 +541,7 @@ mod tests {
         let m = tree();
         let (lo, hi) = m.bounds().unwrap();
         for fov in [None, Some(40.0)] {
-            let cam = Camera::framing(lo, hi, Vec3::Y, fov, 1.0).unwrap();
+            let cam = PreviewCamera::framing(lo, hi, Vec3::Y, fov, 1.0).unwrap();
             let p = PreviewParams::new(64, 64, cam);
             let a = render(&m, &p).unwrap();
             let b = render(&m, &p).unwrap();
@@ -579,7 +579,7 @@ mod tests {
             first: 0,
             count: 6,
         }];
-        let cam = Camera {
+        let cam = PreviewCamera {
             eye: Vec3::new(0.0, 0.0, 5.0),
             target: Vec3::ZERO,
             up: Vec3::Y,
@@ -598,7 +598,7 @@ mod tests {
     fn bad_parameters_are_errors() {
         let m = tree();
         let (lo, hi) = m.bounds().unwrap();
-        let cam = Camera::framing(lo, hi, Vec3::Y, None, 1.0).unwrap();
+        let cam = PreviewCamera::framing(lo, hi, Vec3::Y, None, 1.0).unwrap();
         let mut p = PreviewParams::new(0, 8, cam);
         assert!(render(&m, &p).is_err());
         p.width = 8;
@@ -607,7 +607,7 @@ mod tests {
         p.light = Vec3::Z;
         p.camera.up = p.camera.target - p.camera.eye;
         assert!(render(&m, &p).is_err());
-        assert!(Camera::framing(lo, hi, Vec3::NAN, None, 1.0).is_err());
-        assert!(Camera::framing(lo, hi, Vec3::Y, Some(180.0), 1.0).is_err());
+        assert!(PreviewCamera::framing(lo, hi, Vec3::NAN, None, 1.0).is_err());
+        assert!(PreviewCamera::framing(lo, hi, Vec3::Y, Some(180.0), 1.0).is_err());
     }
 }

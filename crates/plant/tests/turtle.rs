@@ -3,13 +3,13 @@
 
 use approx::assert_abs_diff_eq;
 use glam::DVec3;
-use natura_plant::turtle::{Frame, track_curve};
+use natura_plant::turtle::{TurtleFrame, track_curve};
 use natura_plant::{Derivation, LSystem, Turtle, TurtleParams};
 
 fn params_x(angle: f64) -> TurtleParams {
     TurtleParams {
         angle_deg: angle,
-        start: Frame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+        start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
         ..TurtleParams::default()
     }
 }
@@ -72,14 +72,14 @@ fn square_positions_closed_form() {
         assert_abs_diff_eq!(e.y, y, epsilon = 1e-6);
     }
     // Pitch and roll: &(90) points the heading along −U, /(90) moves L to U.
-    let mut f = Frame::default();
+    let mut f = TurtleFrame::default();
     f.pitch(std::f64::consts::FRAC_PI_2);
     assert_abs_diff_eq!((f.h - DVec3::Y).length(), 0.0, epsilon = 1e-12);
-    let mut f = Frame::default();
+    let mut f = TurtleFrame::default();
     let u0 = f.u;
     f.roll(std::f64::consts::FRAC_PI_2);
     assert_abs_diff_eq!((f.l - u0).length(), 0.0, epsilon = 1e-12);
-    let mut f = Frame::default();
+    let mut f = TurtleFrame::default();
     let l0 = f.l;
     f.turn(std::f64::consts::FRAC_PI_2);
     assert_abs_diff_eq!((f.h - l0).length(), 0.0, epsilon = 1e-12);
@@ -87,7 +87,7 @@ fn square_positions_closed_form() {
 
 #[test]
 fn frame_stays_orthonormal_after_a_million_turns() {
-    let mut f = Frame::default();
+    let mut f = TurtleFrame::default();
     for k in 0..1_000_000u32 {
         let a = 0.1 + (k % 97) as f64 * 0.013;
         match k % 3 {
@@ -137,7 +137,7 @@ fn vogel_positions_from_query_modules() {
     let src = "ω: A(0)\nA(n) -> +(137.5)[f(n^0.5)?P(0,0,0)]A(n+1)";
     let l = LSystem::parse(src).unwrap();
     let p = TurtleParams {
-        start: Frame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+        start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
         ..TurtleParams::default()
     };
     let t = Turtle::new(&l, p).unwrap();
@@ -218,7 +218,7 @@ fn parallel_transport_tracks_a_helix() {
     let point = |s: f64| DVec3::new(r * (s / k).cos(), r * (s / k).sin(), c * s / k);
     let tangent = |s: f64| DVec3::new(-r * (s / k).sin(), r * (s / k).cos(), c).normalize();
     let h0 = tangent(0.0);
-    let start = Frame::new(point(0.0), h0, DVec3::Z.cross(h0));
+    let start = TurtleFrame::new(point(0.0), h0, DVec3::Z.cross(h0));
     let err = |ds: f64| {
         let fr = track_curve(start, 6.0, ds, tangent);
         fr.iter()
@@ -231,7 +231,7 @@ fn parallel_transport_tracks_a_helix() {
     let ratio = e1 / e2;
     assert!((1.6..2.5).contains(&ratio), "{e1} {e2} {ratio}");
     // A straight line keeps the frame (no twist about H).
-    let fr = track_curve(Frame::default(), 1.0, 0.1, |_| DVec3::Z);
+    let fr = track_curve(TurtleFrame::default(), 1.0, 0.1, |_| DVec3::Z);
     assert_eq!(fr.len(), 11);
     for f in &fr {
         assert_abs_diff_eq!((f.l - DVec3::NEG_X).length(), 0.0, epsilon = 1e-12);

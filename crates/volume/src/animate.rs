@@ -15,7 +15,7 @@ use rand_core::Rng;
 
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::gas::GasNoise;
-use crate::implicit::{Implicit, Primitive, Skeleton};
+use crate::implicit::{Implicit, ImplicitPrimitive, Skeleton};
 
 /// Ease-in/ease-out `3t² − 2t³` of `t` clamped to `[0, 1]`: `ease(0) = 0`,
 /// `ease(1) = 1`, monotone, zero slope at both ends. The source names the
@@ -41,16 +41,16 @@ pub fn eased_amount(frame: u32, start: u32, end: u32) -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Keyed {
     /// The state at `t = 0`.
-    pub from: Primitive,
+    pub from: ImplicitPrimitive,
     /// The state at `t = 1`.
-    pub to: Primitive,
+    pub to: ImplicitPrimitive,
 }
 
 impl Keyed {
     /// The primitive at `t ∈ [0, 1]` (eased); skeletons of different kinds
     /// switch at `t = ½`.
     #[must_use]
-    pub fn at(&self, t: f32) -> Primitive {
+    pub fn at(&self, t: f32) -> ImplicitPrimitive {
         let s = ease(t);
         let lerp = |a: f32, b: f32| a + (b - a) * s;
         let skeleton = match (self.from.skeleton, self.to.skeleton) {
@@ -67,7 +67,7 @@ impl Keyed {
                 }
             }
         };
-        Primitive {
+        ImplicitPrimitive {
             skeleton,
             radius: lerp(self.from.radius, self.to.radius),
             weight: lerp(self.from.weight, self.to.weight),
@@ -80,8 +80,8 @@ impl Keyed {
 #[must_use]
 pub fn cloud_is_born() -> Vec<Keyed> {
     let k = |a: Vec3, ra: f32, b: Vec3, rb: f32| Keyed {
-        from: Primitive::sphere(a, ra).with_weight(0.7),
-        to: Primitive::sphere(b, rb),
+        from: ImplicitPrimitive::sphere(a, ra).with_weight(0.7),
+        to: ImplicitPrimitive::sphere(b, rb),
     };
     vec![
         k(
@@ -184,7 +184,7 @@ impl ParticleParams {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Particle {
     /// Its primitive (a sphere).
-    pub primitive: Primitive,
+    pub primitive: ImplicitPrimitive,
     /// Velocity, m/s.
     pub velocity: Vec3,
     /// Age, s.
@@ -218,7 +218,7 @@ impl ImplicitParticles {
     ///
     /// [`VolumeError::InvalidParameter`] for invalid params, an empty or
     /// oversized seed list or an invalid seed primitive.
-    pub fn new(seeds: &[Primitive], params: ParticleParams, seed: u64) -> Result<Self> {
+    pub fn new(seeds: &[ImplicitPrimitive], params: ParticleParams, seed: u64) -> Result<Self> {
         params.validate()?;
         if seeds.is_empty() || seeds.len() > params.max_particles {
             return Err(VolumeError::InvalidParameter {
@@ -294,7 +294,7 @@ impl ImplicitParticles {
                 ) * part.primitive.radius
                     * 1.5;
                 children.push(Particle {
-                    primitive: Primitive::sphere(c + off, part.primitive.radius * 0.7)
+                    primitive: ImplicitPrimitive::sphere(c + off, part.primitive.radius * 0.7)
                         .with_weight(part.primitive.weight),
                     velocity: part.velocity,
                     age: 0.0,

@@ -101,7 +101,7 @@ pub struct JetStream {
 pub struct Mackerel {
     /// Wave numbers along x and y (rad/m).
     pub wave_number: [f32; 2],
-    /// Phase perturbation by turbulence (rad per unit turbulence).
+    /// CloudPhase perturbation by turbulence (rad per unit turbulence).
     pub turbulence: f32,
 }
 
@@ -393,7 +393,7 @@ impl Density for Cloud {
 ///
 /// As [`Implicit::new`] and [`Cloud::new`].
 pub fn cloud(
-    primitives: Vec<crate::implicit::Primitive>,
+    primitives: Vec<crate::implicit::ImplicitPrimitive>,
     params: CloudParams,
     seed: u64,
 ) -> Result<Cloud> {
@@ -403,8 +403,8 @@ pub fn cloud(
 /// The nine-sphere cumulus of Ebert's Figure 1 (a layout in that spirit: a
 /// broad base of five spheres, three above, one crown), about 10 m across.
 #[must_use]
-pub fn nine_sphere_cumulus() -> Vec<crate::implicit::Primitive> {
-    use crate::implicit::Primitive as P;
+pub fn nine_sphere_cumulus() -> Vec<crate::implicit::ImplicitPrimitive> {
+    use crate::implicit::ImplicitPrimitive as P;
     vec![
         P::sphere(Vec3::new(0.0, 0.0, 2.0), 3.0),
         P::sphere(Vec3::new(-3.0, 0.5, 1.6), 2.5),
@@ -422,8 +422,8 @@ pub fn nine_sphere_cumulus() -> Vec<crate::implicit::Primitive> {
 /// primitive (a veil 60 m across, 3 m thick, at 12 m) with lower cirrus from
 /// three cylindrical primitives beneath it.
 #[must_use]
-pub fn cirrostratus_primitives() -> Vec<crate::implicit::Primitive> {
-    use crate::implicit::Primitive as P;
+pub fn cirrostratus_primitives() -> Vec<crate::implicit::ImplicitPrimitive> {
+    use crate::implicit::ImplicitPrimitive as P;
     vec![
         P::ellipsoid(Vec3::new(0.0, 0.0, 12.0), Vec3::new(30.0, 22.0, 1.5)),
         P::cylinder(Vec3::new(-22.0, -8.0, 7.0), Vec3::new(4.0, -12.0, 7.5), 2.0).with_weight(0.8),

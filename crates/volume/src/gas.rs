@@ -74,7 +74,7 @@ impl GasNoise {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Shape {
+pub enum DensityShaping {
     /// `d^e` (`e > 1` sharpens into wisps, `e < 1` thickens).
     Pow(f32),
     /// `(1 − e^{−k·d}) / (1 − e^{−k})`: soft saturation, normalised to reach 1.
@@ -83,16 +83,16 @@ pub enum Shape {
     Sine,
 }
 
-impl Shape {
+impl DensityShaping {
     /// Applies the shaping function to `d` (clamped to `[0, 1]` first).
     #[inline]
     #[must_use]
     pub fn apply(self, d: f32) -> f32 {
         let d = d.clamp(0.0, 1.0);
         match self {
-            Shape::Pow(e) => d.powf(e),
-            Shape::Exp(k) => (1.0 - (-k * d).exp()) / (1.0 - (-k).exp()),
-            Shape::Sine => (d * std::f32::consts::FRAC_PI_2).sin(),
+            DensityShaping::Pow(e) => d.powf(e),
+            DensityShaping::Exp(k) => (1.0 - (-k * d).exp()) / (1.0 - (-k).exp()),
+            DensityShaping::Sine => (d * std::f32::consts::FRAC_PI_2).sin(),
         }
         .clamp(0.0, 1.0)
     }
@@ -104,9 +104,9 @@ impl Shape {
     /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) otherwise.
     pub fn validate(&self) -> Result<()> {
         match *self {
-            Shape::Pow(e) => positive("exponent", e).map(|_| ()),
-            Shape::Exp(k) => positive("rate", k).map(|_| ()),
-            Shape::Sine => Ok(()),
+            DensityShaping::Pow(e) => positive("exponent", e).map(|_| ()),
+            DensityShaping::Exp(k) => positive("rate", k).map(|_| ()),
+            DensityShaping::Sine => Ok(()),
         }
     }
 }
@@ -115,7 +115,7 @@ impl Shape {
 #[inline]
 #[must_use]
 pub fn basic_gas(noise: &GasNoise, p: Vec3, frequency: f32, denseness: f32, wispiness: f32) -> f32 {
-    Shape::Pow(wispiness).apply(noise.turbulence(p * frequency) * denseness)
+    DensityShaping::Pow(wispiness).apply(noise.turbulence(p * frequency) * denseness)
 }
 
 /// Parameters of [`Steam`] rising from a teacup.
@@ -233,7 +233,7 @@ impl Density for Steam {
     }
 }
 
-/// Ground fog: the basic gas inside a box, thinning exponentially with height
+/// GroundPlane fog: the basic gas inside a box, thinning exponentially with height
 /// above its floor (Ebert's "Example: Fog").
 #[derive(Clone, Debug)]
 pub struct Fog {

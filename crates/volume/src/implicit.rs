@@ -70,7 +70,7 @@ pub enum Skeleton {
 /// its weight `w`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Primitive {
+pub struct ImplicitPrimitive {
     /// The skeleton.
     pub skeleton: Skeleton,
     /// Radius of influence `R` (m, `> 0`).
@@ -79,7 +79,7 @@ pub struct Primitive {
     pub weight: f32,
 }
 
-impl Primitive {
+impl ImplicitPrimitive {
     /// A sphere of influence `radius` about `centre` with weight 1.
     #[must_use]
     pub fn sphere(centre: Vec3, radius: f32) -> Self {
@@ -237,7 +237,7 @@ impl Primitive {
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Implicit {
-    primitives: Vec<Primitive>,
+    primitives: Vec<ImplicitPrimitive>,
     supports: Vec<Aabb>,
     bounds: Aabb,
 }
@@ -248,7 +248,7 @@ impl Implicit {
     /// # Errors
     ///
     /// [`VolumeError::InvalidParameter`] for an empty list or an invalid primitive.
-    pub fn new(primitives: Vec<Primitive>) -> Result<Self> {
+    pub fn new(primitives: Vec<ImplicitPrimitive>) -> Result<Self> {
         if primitives.is_empty() {
             return Err(VolumeError::InvalidParameter {
                 name: "primitives",
@@ -266,7 +266,7 @@ impl Implicit {
         for p in &primitives {
             p.validate()?;
         }
-        let supports: Vec<Aabb> = primitives.iter().map(Primitive::support).collect();
+        let supports: Vec<Aabb> = primitives.iter().map(ImplicitPrimitive::support).collect();
         let bounds = supports
             .iter()
             .skip(1)
@@ -281,7 +281,7 @@ impl Implicit {
 
     /// The primitives.
     #[must_use]
-    pub fn primitives(&self) -> &[Primitive] {
+    pub fn primitives(&self) -> &[ImplicitPrimitive] {
         &self.primitives
     }
 
@@ -344,10 +344,10 @@ mod tests {
 
     #[test]
     fn segment_and_ellipsoid_distances() {
-        let c = Primitive::cylinder(Vec3::ZERO, Vec3::X * 4.0, 1.0);
+        let c = ImplicitPrimitive::cylinder(Vec3::ZERO, Vec3::X * 4.0, 1.0);
         assert!((c.distance_sq(Vec3::new(2.0, 0.5, 0.0)) - 0.25).abs() < 1e-6);
         assert!((c.distance_sq(Vec3::new(5.0, 0.0, 0.0)) - 1.0).abs() < 1e-6);
-        let e = Primitive::ellipsoid(Vec3::ZERO, Vec3::new(4.0, 2.0, 1.0));
+        let e = ImplicitPrimitive::ellipsoid(Vec3::ZERO, Vec3::new(4.0, 2.0, 1.0));
         // On the surface of the ellipsoid the metric distance equals R = 4.
         assert!((e.distance_sq(Vec3::new(0.0, 2.0, 0.0)) - 16.0).abs() < 1e-4);
         assert_eq!(e.field(Vec3::new(0.0, 0.0, 1.01)), 0.0);
@@ -358,10 +358,10 @@ mod tests {
     #[test]
     fn invalid_primitives_are_refused() {
         assert!(Implicit::new(vec![]).is_err());
-        assert!(Implicit::new(vec![Primitive::sphere(Vec3::ZERO, f32::NAN)]).is_err());
+        assert!(Implicit::new(vec![ImplicitPrimitive::sphere(Vec3::ZERO, f32::NAN)]).is_err());
         assert!(
             Implicit::new(vec![
-                Primitive::sphere(Vec3::ZERO, 1.0).with_weight(f32::INFINITY)
+                ImplicitPrimitive::sphere(Vec3::ZERO, 1.0).with_weight(f32::INFINITY)
             ])
             .is_err()
         );

@@ -1,4 +1,4 @@
-//! Phase functions for clouds and gases, `1/(4π)`-normalised, with sampling.
+//! CloudPhase functions for clouds and gases, `1/(4π)`-normalised, with sampling.
 //!
 //! The angle is between the propagation directions before and after
 //! scattering; for a camera ray `d` and a light toward `l`, `cos θ = d·l`.
@@ -35,7 +35,7 @@ pub fn draine_mean_cosine(g: f32, alpha: f32) -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Phase {
+pub enum CloudPhase {
     /// `1/(4π)`.
     Isotropic,
     /// Henyey–Greenstein with asymmetry `g ∈ (−1, 1)`.
@@ -54,7 +54,7 @@ pub enum Phase {
     Draine {
         /// Asymmetry parameter (not the mean cosine unless `alpha = 0`).
         g: f32,
-        /// Shape parameter `α ≥ 0` (0: Henyey–Greenstein).
+        /// DensityShaping parameter `α ≥ 0` (0: Henyey–Greenstein).
         alpha: f32,
     },
     /// The HG + Draine blend fitted to Mie scattering by water droplets of
@@ -65,10 +65,10 @@ pub enum Phase {
     },
 }
 
-impl Default for Phase {
+impl Default for CloudPhase {
     /// The cloud phase for 20 µm droplets (typical cumulus).
     fn default() -> Self {
-        Phase::Cloud { diameter_um: 20.0 }
+        CloudPhase::Cloud { diameter_um: 20.0 }
     }
 }
 
@@ -83,7 +83,7 @@ pub fn cloud_fit(d: f32) -> (f32, f32, f32, f32) {
     (g_hg, g_d, alpha, w_d)
 }
 
-impl Phase {
+impl CloudPhase {
     /// Checks the parameters.
     ///
     /// # Errors
@@ -93,11 +93,11 @@ impl Phase {
     pub fn validate(&self) -> Result<()> {
         const G: &str = "asymmetry must lie in [−0.99, 0.99]";
         match *self {
-            Phase::Isotropic => {}
-            Phase::HenyeyGreenstein(g) => {
+            CloudPhase::Isotropic => {}
+            CloudPhase::HenyeyGreenstein(g) => {
                 in_range("g", g, -0.99, 0.99, G)?;
             }
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
@@ -106,11 +106,11 @@ impl Phase {
                 in_range("back", back, -0.99, 0.99, G)?;
                 in_range("weight", weight, 0.0, 1.0, "must lie in [0, 1]")?;
             }
-            Phase::Draine { g, alpha } => {
+            CloudPhase::Draine { g, alpha } => {
                 in_range("g", g, -0.99, 0.99, G)?;
                 in_range("alpha", alpha, 0.0, 1e3, "must lie in [0, 1000]")?;
             }
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Cloud { diameter_um } => {
                 in_range(
                     "diameter_um",
                     diameter_um,
@@ -128,9 +128,9 @@ impl Phase {
     #[must_use]
     pub fn eval(&self, cos_theta: f32) -> f32 {
         match *self {
-            Phase::Isotropic => INV_4PI,
-            Phase::HenyeyGreenstein(g) => henyey_greenstein(g, cos_theta),
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::Isotropic => INV_4PI,
+            CloudPhase::HenyeyGreenstein(g) => henyey_greenstein(g, cos_theta),
+            CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
@@ -138,8 +138,8 @@ impl Phase {
                 (1.0 - weight) * henyey_greenstein(forward, cos_theta)
                     + weight * henyey_greenstein(back, cos_theta)
             }
-            Phase::Draine { g, alpha } => draine(g, alpha, cos_theta),
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Draine { g, alpha } => draine(g, alpha, cos_theta),
+            CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
                 (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
                     + w_d * draine(g_d, alpha, cos_theta)
@@ -151,15 +151,15 @@ impl Phase {
     #[must_use]
     pub fn mean_cosine(&self) -> f32 {
         match *self {
-            Phase::Isotropic => 0.0,
-            Phase::HenyeyGreenstein(g) => g,
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::Isotropic => 0.0,
+            CloudPhase::HenyeyGreenstein(g) => g,
+            CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
             } => (1.0 - weight) * forward + weight * back,
-            Phase::Draine { g, alpha } => draine_mean_cosine(g, alpha),
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Draine { g, alpha } => draine_mean_cosine(g, alpha),
+            CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
                 (1.0 - w_d) * g_hg + w_d * draine_mean_cosine(g_d, alpha)
             }
@@ -169,21 +169,21 @@ impl Phase {
     /// The same function with its asymmetry scaled by `c` (the octave
     /// method's `c^i`; isotropic is unchanged).
     #[must_use]
-    pub fn scaled(&self, c: f32) -> Phase {
+    pub fn scaled(&self, c: f32) -> CloudPhase {
         match *self {
-            Phase::Isotropic => Phase::Isotropic,
-            Phase::HenyeyGreenstein(g) => Phase::HenyeyGreenstein(g * c),
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::Isotropic => CloudPhase::Isotropic,
+            CloudPhase::HenyeyGreenstein(g) => CloudPhase::HenyeyGreenstein(g * c),
+            CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
-            } => Phase::DualHenyeyGreenstein {
+            } => CloudPhase::DualHenyeyGreenstein {
                 forward: forward * c,
                 back: back * c,
                 weight,
             },
-            Phase::Draine { .. } | Phase::Cloud { .. } => {
-                Phase::HenyeyGreenstein(self.mean_cosine() * c)
+            CloudPhase::Draine { .. } | CloudPhase::Cloud { .. } => {
+                CloudPhase::HenyeyGreenstein(self.mean_cosine() * c)
             }
         }
     }
@@ -192,14 +192,14 @@ impl Phase {
     /// fraction of scattering into a lobe a fraction of a degree wide and
     /// `rest` the normalised phase function of the other `1 − f`
     /// (`(0, self)` for a phase function without such a lobe). For
-    /// [`Phase::Cloud`] the peak is the fit's Henyey–Greenstein lobe
+    /// [`CloudPhase::Cloud`] the peak is the fit's Henyey–Greenstein lobe
     /// (`g ≥ 0.97` over the fit's range of diameters) and the rest its Draine lobe.
     #[must_use]
-    pub fn forward_peak(&self) -> (f32, Phase) {
+    pub fn forward_peak(&self) -> (f32, CloudPhase) {
         match *self {
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Cloud { diameter_um } => {
                 let (_, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                (1.0 - w_d, Phase::Draine { g: g_d, alpha })
+                (1.0 - w_d, CloudPhase::Draine { g: g_d, alpha })
             }
             p => (0.0, p),
         }
@@ -207,11 +207,11 @@ impl Phase {
 
     /// The forward diffraction peak as a Henyey–Greenstein lobe: `(f, g)`,
     /// the fraction of scattering into it and its asymmetry, when this phase
-    /// function has one (see [`Phase::forward_peak`]).
+    /// function has one (see [`CloudPhase::forward_peak`]).
     #[must_use]
     pub fn peak_lobe(&self) -> Option<(f32, f32)> {
         match *self {
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, _, _, w_d) = cloud_fit(diameter_um);
                 Some((1.0 - w_d, g_hg))
             }
@@ -219,7 +219,7 @@ impl Phase {
         }
     }
 
-    /// The solid-angle density with which [`Phase::sample`] draws a
+    /// The solid-angle density with which [`CloudPhase::sample`] draws a
     /// direction at `cos_theta` from the incoming one.
     #[inline]
     #[must_use]
@@ -231,14 +231,14 @@ impl Phase {
     /// The HG mixture used to sample this phase: `(g₁, g₂, weight of g₂)`.
     fn proposal(&self) -> (f32, f32, f32) {
         match *self {
-            Phase::Isotropic => (0.0, 0.0, 0.0),
-            Phase::HenyeyGreenstein(g) | Phase::Draine { g, .. } => (g, g, 0.0),
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::Isotropic => (0.0, 0.0, 0.0),
+            CloudPhase::HenyeyGreenstein(g) | CloudPhase::Draine { g, .. } => (g, g, 0.0),
+            CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
             } => (forward, back, weight),
-            Phase::Cloud { diameter_um } => {
+            CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, g_d, _, w_d) = cloud_fit(diameter_um);
                 (g_hg, g_d, w_d)
             }
@@ -287,7 +287,7 @@ fn sample_hg_cos(g: f32, u: f32) -> f32 {
 mod tests {
     use super::*;
 
-    fn integrate(p: &Phase) -> (f64, f64) {
+    fn integrate(p: &CloudPhase) -> (f64, f64) {
         // ∫ p dω = 2π ∫ p(μ) dμ, midpoint rule in t with 1 − μ = 2t³, which
         // crowds the nodes into the forward peak (dμ = 6t² dt).
         let n = 400_000;
@@ -307,21 +307,21 @@ mod tests {
     #[test]
     fn every_phase_is_normalised_and_has_its_mean_cosine() {
         for p in [
-            Phase::Isotropic,
-            Phase::HenyeyGreenstein(0.6),
-            Phase::HenyeyGreenstein(-0.3),
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::Isotropic,
+            CloudPhase::HenyeyGreenstein(0.6),
+            CloudPhase::HenyeyGreenstein(-0.3),
+            CloudPhase::DualHenyeyGreenstein {
                 forward: 0.8,
                 back: -0.3,
                 weight: 0.2,
             },
-            Phase::Draine {
+            CloudPhase::Draine {
                 g: 0.594,
                 alpha: 27.0,
             },
-            Phase::Cloud { diameter_um: 5.0 },
-            Phase::Cloud { diameter_um: 20.0 },
-            Phase::Cloud { diameter_um: 50.0 },
+            CloudPhase::Cloud { diameter_um: 5.0 },
+            CloudPhase::Cloud { diameter_um: 20.0 },
+            CloudPhase::Cloud { diameter_um: 50.0 },
         ] {
             p.validate().unwrap();
             let (norm, mean) = integrate(&p);
@@ -335,18 +335,18 @@ mod tests {
 
     #[test]
     fn cloud_phase_is_strongly_forward_like_mie() {
-        let p = Phase::Cloud { diameter_um: 20.0 };
+        let p = CloudPhase::Cloud { diameter_um: 20.0 };
         let g = p.mean_cosine();
         assert!((0.8..0.95).contains(&g), "{g}");
         assert!(p.eval(1.0) > 100.0 * p.eval(0.0));
-        assert!(Phase::Cloud { diameter_um: 2.0 }.validate().is_err());
-        assert!(Phase::HenyeyGreenstein(f32::NAN).validate().is_err());
+        assert!(CloudPhase::Cloud { diameter_um: 2.0 }.validate().is_err());
+        assert!(CloudPhase::HenyeyGreenstein(f32::NAN).validate().is_err());
     }
 
     #[test]
     fn the_forward_peak_and_the_rest_make_up_the_cloud_phase() {
         for d in [5.0f32, 20.0, 50.0] {
-            let p = Phase::Cloud { diameter_um: d };
+            let p = CloudPhase::Cloud { diameter_um: d };
             let (f, rest) = p.forward_peak();
             let (g_hg, ..) = cloud_fit(d);
             assert!((0.3..0.7).contains(&f) && g_hg >= 0.97, "{d}: {f} {g_hg}");
@@ -358,9 +358,9 @@ mod tests {
             let g = f * g_hg + (1.0 - f) * rest.mean_cosine();
             assert!((g - p.mean_cosine()).abs() < 1e-5);
         }
-        assert_eq!(Phase::HenyeyGreenstein(0.5).forward_peak().0, 0.0);
+        assert_eq!(CloudPhase::HenyeyGreenstein(0.5).forward_peak().0, 0.0);
         assert!(
-            Phase::Draine {
+            CloudPhase::Draine {
                 g: 0.5,
                 alpha: -1.0
             }
@@ -373,14 +373,14 @@ mod tests {
     fn sampling_reproduces_the_mean_cosine() {
         let d = Vec3::new(0.3, -0.4, 0.866).normalize();
         for p in [
-            Phase::HenyeyGreenstein(0.7),
-            Phase::DualHenyeyGreenstein {
+            CloudPhase::HenyeyGreenstein(0.7),
+            CloudPhase::DualHenyeyGreenstein {
                 forward: 0.8,
                 back: -0.4,
                 weight: 0.3,
             },
-            Phase::Cloud { diameter_um: 15.0 },
-            Phase::Draine {
+            CloudPhase::Cloud { diameter_um: 15.0 },
+            CloudPhase::Draine {
                 g: 0.6,
                 alpha: 20.0,
             },

@@ -10,9 +10,10 @@ use natura_atmos::sky::{Atmosphere, AtmosphereParams, SkyView};
 use crate::error::{Result, in_range, positive};
 use crate::grid::GridDensity;
 use crate::layer::{LayerClouds, LayerParams};
-use crate::phase::Phase;
+use crate::phase::CloudPhase;
 use crate::render::{
-    Camera, Environment, Ground, MarchSettings, MediumParams, Octaves, Scene, Shadows, Sun,
+    FastSettings, GroundPlane, LookAtCamera, MediumParams, ScatterOctaves, Scene, Shadows,
+    SkyLight, Sun,
 };
 
 /// Parameters of [`Cloudscape`].
@@ -28,7 +29,7 @@ pub struct CloudscapeParams {
     pub extinction: f32,
     /// Eye height above the plain (m).
     pub eye_height_m: f32,
-    /// Camera pitch above the horizon (degrees).
+    /// LookAtCamera pitch above the horizon (degrees).
     pub pitch_deg: f32,
     /// Image size.
     pub width: usize,
@@ -67,9 +68,9 @@ pub struct Cloudscape {
     clouds: GridDensity,
     sky: Arc<SkyView>,
     sun: Sun,
-    ground: Ground,
+    ground: GroundPlane,
     medium: MediumParams,
-    camera: Camera,
+    camera: LookAtCamera,
 }
 
 impl Cloudscape {
@@ -104,13 +105,13 @@ impl Cloudscape {
         let eye = Vec3::new(0.0, 0.0, p.eye_height_m);
         let sky = Arc::new(atm.sky_view(eye.as_dvec3(), sun_dir)?);
         let sun = Sun::from_sky(&sky);
-        let ground = Ground {
+        let ground = GroundPlane {
             height: 0.0,
             albedo: Vec3::new(0.10, 0.12, 0.06),
             sky_irradiance: sky.sky_irradiance(),
         };
         let pitch = p.pitch_deg.to_radians();
-        let camera = Camera {
+        let camera = LookAtCamera {
             position: eye,
             target: eye + Vec3::new(pitch.cos(), 0.0, pitch.sin()) * 1000.0,
             vfov_deg: 50.0,
@@ -126,7 +127,7 @@ impl Cloudscape {
             medium: MediumParams {
                 extinction: p.extinction,
                 albedo: 0.99,
-                phase: Phase::default(),
+                phase: CloudPhase::default(),
             },
             camera,
         })
@@ -139,7 +140,7 @@ impl Cloudscape {
             density: &self.clouds,
             medium: self.medium,
             sun: Some(self.sun),
-            environment: Environment::Sky(self.sky.clone()),
+            environment: SkyLight::Sky(self.sky.clone()),
             ground: Some(self.ground),
             emission: None,
             aerial: Some(self.sky.clone()),
@@ -149,7 +150,7 @@ impl Cloudscape {
 
     /// The camera.
     #[must_use]
-    pub fn camera(&self) -> Camera {
+    pub fn camera(&self) -> LookAtCamera {
         self.camera
     }
 
@@ -163,12 +164,12 @@ impl Cloudscape {
     /// of the distance, shadow tables of 256 nodes across, the octave
     /// multiple-scattering approximation with the forward peak truncated.
     #[must_use]
-    pub fn fast_settings(&self) -> MarchSettings {
-        MarchSettings {
+    pub fn fast_settings(&self) -> FastSettings {
+        FastSettings {
             step: 40.0,
             step_growth: 0.01,
             shadows: Shadows::Table(256),
-            octaves: Octaves::default(),
+            octaves: ScatterOctaves::default(),
             powder: 0.0,
             min_transmittance: 0.01,
             truncate_forward_peak: true,

@@ -11,9 +11,9 @@ use natura_volume::animate::{
 use natura_volume::cloud::{
     BlendForm, Cloud, CloudParams, FrameConstants, SWIRL_PERIOD, cloud, nine_sphere_cumulus, warp,
 };
-use natura_volume::gas::{Fog, Shape, Steam, SteamParams};
+use natura_volume::gas::{DensityShaping, Fog, Steam, SteamParams};
 use natura_volume::grid::{GridDensity, SmokeVolume};
-use natura_volume::implicit::{Implicit, Primitive, wyvill};
+use natura_volume::implicit::{Implicit, ImplicitPrimitive, wyvill};
 use natura_volume::layer::{LayerClouds, LayerParams};
 use natura_volume::{Density, VolumeError};
 use proptest::prelude::*;
@@ -134,17 +134,17 @@ proptest! {
 
     #[test]
     fn shaping_functions_map_unit_interval_monotonically(d in 0.0f32..=1.0, e in 0.05f32..20.0) {
-        for s in [Shape::Pow(e), Shape::Exp(e), Shape::Sine] {
+        for s in [DensityShaping::Pow(e), DensityShaping::Exp(e), DensityShaping::Sine] {
             let v = s.apply(d);
             prop_assert!((0.0..=1.0).contains(&v));
             prop_assert!(s.apply((d + 0.01).min(1.0)) >= v);
         }
-        prop_assert!(Shape::Pow(e).apply(0.0) == 0.0 && (Shape::Pow(e).apply(1.0) - 1.0).abs() < 1e-6);
+        prop_assert!(DensityShaping::Pow(e).apply(0.0) == 0.0 && (DensityShaping::Pow(e).apply(1.0) - 1.0).abs() < 1e-6);
     }
 
     #[test]
     fn larger_exponent_is_wispier(d in 0.001f32..0.999, e in 0.1f32..8.0, de in 0.01f32..4.0) {
-        prop_assert!(Shape::Pow(e + de).apply(d) <= Shape::Pow(e).apply(d));
+        prop_assert!(DensityShaping::Pow(e + de).apply(d) <= DensityShaping::Pow(e).apply(d));
     }
 }
 
@@ -262,9 +262,9 @@ fn cloud_is_born_merges_and_grows() {
 
 #[test]
 fn implicit_particles_rise_multiply_and_stay() {
-    let seeds: Vec<Primitive> = (0..12)
+    let seeds: Vec<ImplicitPrimitive> = (0..12)
         .map(|i| {
-            Primitive::sphere(
+            ImplicitPrimitive::sphere(
                 Vec3::new((i % 4) as f32 * 2.0, (i / 4) as f32 * 2.0, 0.0),
                 1.0,
             )
@@ -342,7 +342,7 @@ fn steam_and_fog_stay_in_range_and_bounds() {
 #[test]
 fn cloud_types_differ_as_the_source_says() {
     // Cirrus is thinner than cumulus; stratus denser; the mackerel sky modulated.
-    let prims = vec![Primitive::ellipsoid(
+    let prims = vec![ImplicitPrimitive::ellipsoid(
         Vec3::new(0.0, 0.0, 5.0),
         Vec3::new(20.0, 20.0, 3.0),
     )];

@@ -7,12 +7,12 @@ use natura_core::{Aabb, Grid3, Image};
 use natura_volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura_volume::density::{Ball, Homogeneous};
 use natura_volume::grid::GridDensity;
-use natura_volume::implicit::Primitive;
-use natura_volume::phase::Phase;
+use natura_volume::implicit::ImplicitPrimitive;
+use natura_volume::phase::CloudPhase;
 use natura_volume::render::shadow::optical_depth_ray;
 use natura_volume::render::{
-    Camera, FastRenderer, MarchSettings, MediumParams, ReferenceRenderer, ReferenceSettings, Scene,
-    ShadowTable, Shadows, Sun,
+    FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
+    Scene, ShadowTable, Shadows, Sun,
 };
 use natura_volume::{Density, VolumeError};
 
@@ -20,7 +20,7 @@ fn absorber(extinction: f32) -> MediumParams {
     MediumParams {
         extinction,
         albedo: 0.0,
-        phase: Phase::Isotropic,
+        phase: CloudPhase::Isotropic,
     }
 }
 
@@ -37,9 +37,9 @@ fn slab_transmittance_is_beer_lambert() {
     let scene = Scene::new(&slab, absorber(1.3), Vec3::ONE);
     let fast = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             step: 0.05,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     )
     .unwrap();
@@ -80,9 +80,9 @@ fn sphere_transmittance_is_beer_lambert_within_the_step_error() {
     let step = 0.01;
     let fast = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             step,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     )
     .unwrap();
@@ -112,10 +112,10 @@ fn transmittance_is_in_unit_interval_and_non_increasing() {
     );
     let fast = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             step: 0.1,
             shadows: Shadows::Rays(0.2),
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     )
     .unwrap();
@@ -137,7 +137,7 @@ fn transmittance_is_in_unit_interval_and_non_increasing() {
         }),
         ..Scene::new(&empty, MediumParams::default(), Vec3::ZERO)
     };
-    let f = FastRenderer::new(&dark, MarchSettings::default()).unwrap();
+    let f = FastRenderer::new(&dark, FastSettings::default()).unwrap();
     assert_eq!(
         f.transmittance(Vec3::new(-3.0, 0.0, 1.0), Vec3::X, f32::INFINITY),
         1.0
@@ -151,9 +151,9 @@ fn white_furnace_conserves_energy() {
     // the radiance equals the environment's whatever the phase function.
     let ball = Ball::new(Vec3::ZERO, 1.0, 1.0).unwrap();
     for phase in [
-        Phase::Isotropic,
-        Phase::HenyeyGreenstein(0.7),
-        Phase::Cloud { diameter_um: 20.0 },
+        CloudPhase::Isotropic,
+        CloudPhase::HenyeyGreenstein(0.7),
+        CloudPhase::Cloud { diameter_um: 20.0 },
     ] {
         let medium = MediumParams {
             extinction: 4.0,
@@ -255,7 +255,7 @@ fn compare(
     name: &str,
     density: &dyn Density,
     extinction: f32,
-    camera: Camera,
+    camera: LookAtCamera,
     spp: u32,
 ) -> (f32, f32, f32) {
     let sun = Sun {
@@ -270,7 +270,7 @@ fn compare_lit(
     density: &dyn Density,
     extinction: f32,
     sun: Option<Sun>,
-    camera: Camera,
+    camera: LookAtCamera,
     spp: u32,
 ) -> (f32, f32, f32) {
     let medium = MediumParams {
@@ -291,9 +291,9 @@ fn compare_lit(
     .unwrap()
     .render(&camera)
     .unwrap();
-    let base = MarchSettings {
+    let base = FastSettings {
         step: 0.05,
-        ..MarchSettings::default()
+        ..FastSettings::default()
     };
     let single = FastRenderer::new(&scene, base)
         .unwrap()
@@ -305,7 +305,7 @@ fn compare_lit(
         .unwrap();
     let whole = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             truncate_forward_peak: false,
             ..base.multiple_scattering()
         },
@@ -331,10 +331,10 @@ fn compare_lit(
     (es.1, em.1, ew.1)
 }
 
-fn camera_for(b: &Aabb, w: usize, h: usize) -> Camera {
+fn camera_for(b: &Aabb, w: usize, h: usize) -> LookAtCamera {
     let c = (b.min + b.max) * 0.5;
     let r = (b.max - b.min).length() * 0.5;
-    Camera {
+    LookAtCamera {
         position: c + Vec3::new(0.0, -2.6 * r, 0.3 * r),
         target: c,
         vfov_deg: 45.0,
@@ -357,7 +357,7 @@ fn fast_modes_against_the_reference() {
     assert!(em < es, "multiple scattering {em} vs single {es}");
     // Thin cirrus: a thin sheared sheet, single scattering is already close.
     let ci = cloud(
-        vec![Primitive::ellipsoid(
+        vec![ImplicitPrimitive::ellipsoid(
             Vec3::new(0.0, 0.0, 3.0),
             Vec3::new(8.0, 5.0, 1.2),
         )],
@@ -414,7 +414,7 @@ fn images_are_identical_on_one_and_two_threads() {
             .build()
             .unwrap();
         pool.install(|| {
-            let fast = FastRenderer::new(&scene, MarchSettings::default().multiple_scattering())
+            let fast = FastRenderer::new(&scene, FastSettings::default().multiple_scattering())
                 .unwrap()
                 .render(&cam)
                 .unwrap();
@@ -448,29 +448,29 @@ fn bad_render_input_is_a_typed_error() {
     let slab = Homogeneous::new(unit_box(), 0.5).unwrap();
     let scene = Scene::new(&slab, MediumParams::default(), Vec3::ONE);
     for s in [
-        MarchSettings {
+        FastSettings {
             step: 0.0,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
-        MarchSettings {
+        FastSettings {
             step: f32::NAN,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
-        MarchSettings {
+        FastSettings {
             step: 1e-12,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
-        MarchSettings {
+        FastSettings {
             shadows: Shadows::Table(1),
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
-        MarchSettings {
+        FastSettings {
             shadows: Shadows::Rays(0.0),
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
-        MarchSettings {
+        FastSettings {
             powder: 2.0,
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     ] {
         assert!(
@@ -505,7 +505,7 @@ fn bad_render_input_is_a_typed_error() {
         },
         Vec3::ONE,
     );
-    assert!(FastRenderer::new(&bad, MarchSettings::default()).is_err());
+    assert!(FastRenderer::new(&bad, FastSettings::default()).is_err());
     let bad = Scene::new(
         &slab,
         MediumParams {
@@ -522,9 +522,9 @@ fn bad_render_input_is_a_typed_error() {
         }),
         ..scene.clone()
     };
-    assert!(FastRenderer::new(&sun0, MarchSettings::default()).is_err());
-    let f = FastRenderer::new(&scene, MarchSettings::default()).unwrap();
-    let cam = Camera {
+    assert!(FastRenderer::new(&sun0, FastSettings::default()).is_err());
+    let f = FastRenderer::new(&scene, FastSettings::default()).unwrap();
+    let cam = LookAtCamera {
         position: Vec3::ZERO,
         target: Vec3::X,
         vfov_deg: 40.0,
@@ -532,13 +532,13 @@ fn bad_render_input_is_a_typed_error() {
         height: 10,
     };
     assert!(f.render(&cam).is_err());
-    let cam = Camera {
+    let cam = LookAtCamera {
         width: 10,
         target: Vec3::new(0.0, 0.0, 5.0),
         ..cam
     };
     assert!(f.render(&cam).is_err());
-    let cam = Camera {
+    let cam = LookAtCamera {
         target: Vec3::X,
         vfov_deg: 0.0,
         ..cam
@@ -548,7 +548,7 @@ fn bad_render_input_is_a_typed_error() {
 
 #[test]
 fn solids_are_seen_and_cast_shadows_in_both_renderers() {
-    use natura_volume::render::{Ground, Solid};
+    use natura_volume::render::{GroundPlane, Solid};
     // A thin fog slab over a floor, a sphere above it between the slab and the sun.
     let region = Aabb {
         min: Vec3::new(-4.0, -4.0, 0.0),
@@ -561,7 +561,7 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
             direction: Vec3::Z,
             irradiance: Vec3::splat(2.0),
         }),
-        ground: Some(Ground {
+        ground: Some(GroundPlane {
             height: 0.0,
             albedo: Vec3::splat(0.5),
             sky_irradiance: sky,
@@ -577,26 +577,26 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
             MediumParams {
                 extinction: 0.3,
                 albedo: 0.9,
-                phase: Phase::Isotropic,
+                phase: CloudPhase::Isotropic,
             },
             Vec3::splat(0.05),
         )
     };
     let table = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             step: 0.02,
             shadows: Shadows::Table(96),
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     )
     .unwrap();
     let rays = FastRenderer::new(
         &scene,
-        MarchSettings {
+        FastSettings {
             step: 0.02,
             shadows: Shadows::Rays(0.02),
-            ..MarchSettings::default()
+            ..FastSettings::default()
         },
     )
     .unwrap();
@@ -629,11 +629,11 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
         let r = reference.pixel(o, down, 0, 0).x;
         let s = FastRenderer::new(
             &scene,
-            MarchSettings {
+            FastSettings {
                 step: 0.01,
                 shadows: Shadows::Rays(0.01),
-                octaves: natura_volume::render::Octaves::SINGLE,
-                ..MarchSettings::default()
+                octaves: natura_volume::render::ScatterOctaves::SINGLE,
+                ..FastSettings::default()
             },
         )
         .unwrap()
@@ -685,7 +685,7 @@ fn sampling_toward_the_suns_peak_keeps_the_mean_and_lowers_the_variance() {
             Vec3::new(0.15, 0.2, 0.3),
         )
     };
-    let cam = Camera {
+    let cam = LookAtCamera {
         width: 8,
         height: 6,
         ..camera_for(&b, 8, 6)

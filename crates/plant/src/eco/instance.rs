@@ -36,7 +36,7 @@ pub struct Prototype {
 
 /// One placed plant.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Instance {
+pub struct PlantInstance {
     /// Species index.
     pub species: u16,
     /// Index into [`Instancing::prototypes`].
@@ -55,7 +55,7 @@ pub struct Instancing {
     /// Representative plants.
     pub prototypes: Vec<Prototype>,
     /// Every living plant as an instance of a prototype.
-    pub instances: Vec<Instance>,
+    pub instances: Vec<PlantInstance>,
 }
 
 /// Horizontal radius of what `g` draws (at least a tiny positive number).
@@ -126,7 +126,7 @@ impl Instancing {
         let instances = plants
             .iter()
             .zip(&proto_of)
-            .map(|(p, &k)| Instance {
+            .map(|(p, &k)| PlantInstance {
                 species: p.species,
                 prototype: k,
                 position: Vec3::new(p.x, p.y, eco.ground(p)),

@@ -34,7 +34,7 @@ mod sim;
 mod site;
 mod species;
 
-pub use instance::{Instance, Instancing, Prototype};
+pub use instance::{Instancing, PlantInstance, Prototype};
 pub use picture::{species_colour, top_view};
 pub use quantize::{Quantization, quantize};
 pub use sim::{EcoParams, Ecosystem, Plant, StepStats};

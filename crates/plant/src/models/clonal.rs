@@ -46,7 +46,7 @@ use super::{Patch, Run, check_layout, check_patches, rasterize, run_open};
 use crate::error::{PlantError, Result};
 use crate::lang::LSystem;
 use crate::open::{Environment, Message, Reply};
-use crate::turtle::{Frame, TurtleParams};
+use crate::turtle::{TurtleFrame, TurtleParams};
 
 /// Parameters of the clonal plant and its ground (defaults: the source's listing).
 #[derive(Clone, Debug, PartialEq)]
@@ -417,7 +417,7 @@ fn turtle(p: &ClonalParams, l: &LSystem) -> TurtleParams {
     let h = DVec3::new(a.cos(), a.sin(), 0.0);
     let left = DVec3::new(-a.sin(), a.cos(), 0.0);
     TurtleParams {
-        start: Frame::new(DVec3::new(p.start[0], p.start[1], 0.0), h, left),
+        start: TurtleFrame::new(DVec3::new(p.start[0], p.start[1], 0.0), h, left),
         ..TurtleParams::for_lsystem(l)
     }
 }

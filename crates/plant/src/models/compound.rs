@@ -26,7 +26,7 @@
 use super::Run;
 use crate::error::{PlantError, Result};
 use crate::lang::{Curve, Function, LSystem};
-use crate::turtle::{Frame, Turtle, TurtleParams};
+use crate::turtle::{Turtle, TurtleFrame, TurtleParams};
 use crate::{Derivation, ModuleString};
 use glam::DVec3;
 
@@ -195,7 +195,7 @@ pub fn compound(p: &CompoundParams) -> Result<Run> {
     }
     let turtle = TurtleParams {
         width: p.stem_width.eval(0.0),
-        start: Frame::new(DVec3::ZERO, DVec3::Z, DVec3::Y),
+        start: TurtleFrame::new(DVec3::ZERO, DVec3::Z, DVec3::Y),
         ..TurtleParams::default()
     };
     let string: ModuleString = {

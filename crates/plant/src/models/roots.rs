@@ -39,7 +39,7 @@ use super::{Patch, Run, check_layout, check_patches, rasterize, run_open};
 use crate::error::{PlantError, Result};
 use crate::lang::LSystem;
 use crate::open::{Environment, Message, Reply};
-use crate::turtle::{Frame, TurtleParams};
+use crate::turtle::{TurtleFrame, TurtleParams};
 
 /// Parameters of the root system and its soil (defaults: the source's listing).
 #[derive(Clone, Debug, PartialEq)]
@@ -374,7 +374,7 @@ impl Environment for SoilWater {
 /// The turtle of the roots: heading down (−z), turning in the x–z plane.
 pub(crate) fn turtle(p: &RootParams, l: &LSystem) -> TurtleParams {
     TurtleParams {
-        start: Frame::new(
+        start: TurtleFrame::new(
             DVec3::new(p.start[0], 0.0, p.start[1]),
             DVec3::NEG_Z,
             DVec3::X,

@@ -211,7 +211,7 @@ impl SoilWater3 {
 /// rolling by `φ` about `H` and then turning by `θ` about the new `U`
 /// (`/(φ)+(θ)`) makes `H` parallel to `t`.
 #[must_use]
-pub fn turn_towards(f: &crate::turtle::Frame, t: DVec3) -> (f64, f64) {
+pub fn turn_towards(f: &crate::turtle::TurtleFrame, t: DVec3) -> (f64, f64) {
     let (th, tl, tu) = (t.dot(f.h), t.dot(f.l), t.dot(f.u));
     let side = tl.hypot(tu);
     if side == 0.0 {
@@ -266,11 +266,11 @@ pub fn roots_3d(p: &Roots3dParams) -> Result<(Run, SoilWater3)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::turtle::Frame;
+    use crate::turtle::TurtleFrame;
 
     #[test]
     fn roll_and_turn_bring_the_heading_onto_the_target() {
-        let f0 = Frame::new(DVec3::ZERO, DVec3::NEG_Z, DVec3::X);
+        let f0 = TurtleFrame::new(DVec3::ZERO, DVec3::NEG_Z, DVec3::X);
         for t in [
             DVec3::new(1.0, 2.0, -0.5),
             DVec3::new(-0.3, -1.0, 2.0),

@@ -37,7 +37,7 @@ use super::{Run, run_open};
 use crate::error::Result;
 use crate::lang::LSystem;
 use crate::open::{Environment, Message, Reply};
-use crate::turtle::{Frame, TurtleParams};
+use crate::turtle::{TurtleFrame, TurtleParams};
 
 /// Parameters of the tier model.
 #[derive(Clone, Debug, PartialEq)]
@@ -172,7 +172,7 @@ pub fn tiers(p: &TiersParams) -> Result<(Run, ClusterField)> {
     let l = LSystem::parse(&p.lsystem_text())?;
     // The tier is horizontal: the turtle heads along +x with up +z, so it draws in the ground plane.
     let t = TurtleParams {
-        start: Frame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+        start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
         ..TurtleParams::for_lsystem(&l)
     };
     let mut env = ClusterField {

@@ -15,7 +15,7 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct Frame {
+pub struct TurtleFrame {
     /// Position.
     pub p: DVec3,
     /// Heading (the direction of `F`).
@@ -26,7 +26,7 @@ pub struct Frame {
     pub u: DVec3,
 }
 
-impl Default for Frame {
+impl Default for TurtleFrame {
     /// At the origin heading up (+z), left −x, up −y: a plant grows along +z
     /// and its 2-D figures lie in the x-z plane, seen from −y.
     fn default() -> Self {
@@ -47,7 +47,7 @@ pub fn rotate(v: DVec3, axis: DVec3, angle: f64) -> DVec3 {
     v * c + axis.cross(v) * s + axis * axis.dot(v) * (1.0 - c)
 }
 
-impl Frame {
+impl TurtleFrame {
     /// Returns a frame at `p` heading along `h` with left `l` (made orthonormal).
     #[must_use]
     pub fn new(p: DVec3, h: DVec3, l: DVec3) -> Self {
@@ -154,11 +154,11 @@ impl Frame {
 ///
 /// Returns the frames at `s = 0, ds, 2ds, …, ≤ length`.
 pub fn track_curve(
-    start: Frame,
+    start: TurtleFrame,
     length: f64,
     ds: f64,
     tangent: impl Fn(f64) -> DVec3,
-) -> Vec<Frame> {
+) -> Vec<TurtleFrame> {
     let n = if ds > 0.0 && length.is_finite() && length > 0.0 {
         (length / ds).floor() as usize
     } else {

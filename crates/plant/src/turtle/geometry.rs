@@ -1,7 +1,7 @@
 //! What the turtle draws: segments (struct-of-arrays, chained into
 //! generalized cylinders), polygons and surface instances.
 
-use super::{Frame, TurtleState};
+use super::{TurtleFrame, TurtleState};
 use glam::{DVec3, Vec3};
 
 /// A polygon recorded between `{` and `}`.
@@ -30,7 +30,7 @@ pub struct SurfaceInstance {
     /// The surface's name (`L` leaf, `P` petal, `O` sphere, `o` disc, `K` flower, or a registered one).
     pub name: char,
     /// The turtle's frame where it is placed.
-    pub frame: Frame,
+    pub frame: TurtleFrame,
     /// Scale along `H` (radius for spheres and discs).
     pub length: f64,
     /// Scale along `L`.

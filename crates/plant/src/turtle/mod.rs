@@ -25,7 +25,7 @@
 mod frame;
 mod geometry;
 
-pub use frame::{Frame, rotate, track_curve};
+pub use frame::{TurtleFrame, rotate, track_curve};
 pub use geometry::{Geometry, Polygon, SurfaceInstance};
 
 use crate::engine::expand;
@@ -53,7 +53,7 @@ pub struct TurtleParams {
     /// Susceptibility `e` to the tropism (0 disables it).
     pub elasticity: f64,
     /// The turtle's initial frame.
-    pub start: Frame,
+    pub start: TurtleFrame,
 }
 
 impl Default for TurtleParams {
@@ -66,7 +66,7 @@ impl Default for TurtleParams {
             width_factor: 0.7,
             tropism: DVec3::ZERO,
             elasticity: 0.0,
-            start: Frame::default(),
+            start: TurtleFrame::default(),
         }
     }
 }
@@ -186,7 +186,7 @@ fn op_for(name: &str) -> Op {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TurtleState {
     /// Position and orientation.
-    pub frame: Frame,
+    pub frame: TurtleFrame,
     /// Current width (diameter).
     pub width: f64,
     /// Current colour index.

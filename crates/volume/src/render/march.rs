@@ -7,7 +7,7 @@
 //! with the density's bound): the source at a sample is
 //! `σ_s·(E_sun·P(τ_sun) + A·Q(τ_up)) + σ_a·L_e`, where `τ` are optical depths toward the sun and
 //! up (from tables or direct shadow rays), `P`, `Q` the octave sums of
-//! [`Octaves`] (plain `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
+//! [`ScatterOctaves`] (plain `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
 //! the environment's mean radiance; each step adds the exact integral of
 //! that source over the step and multiplies the transmittance by
 //! `exp(−σ_t·Δt)`. The march stops when the transmittance falls below a
@@ -17,10 +17,10 @@
 //! the vertical only: an approximation, measured against the reference.
 //!
 //! A cloud's phase function sends about half of its scattering into a
-//! diffraction peak a fraction of a degree wide ([`Phase::forward_peak`](crate::phase::Phase::forward_peak)).
+//! diffraction peak a fraction of a degree wide ([`CloudPhase::forward_peak`](crate::phase::CloudPhase::forward_peak)).
 //! Light scattered into it keeps its direction, so for the transport inside
 //! the volume it is as good as unscattered, yet the octave sums with the full
-//! extinction count it as lost. With [`MarchSettings::truncate_forward_peak`]
+//! extinction count it as lost. With [`FastSettings::truncate_forward_peak`]
 //! the march uses the truncated multiple-scattering approximation of
 //! Nakajima & Tanaka 1988 ("TMS", §2): every optical depth (eye ray, shadow
 //! tables, what is seen through the volume) and the octaves beyond single
@@ -50,9 +50,9 @@
 use glam::Vec3;
 use natura_core::{Aabb, Image};
 
-use super::model::{Octaves, emitted, powder, step_inscatter, step_transmittance};
+use super::model::{ScatterOctaves, emitted, powder, step_inscatter, step_transmittance};
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
-use super::{BLOCKED_DEPTH, Camera, MediumParams, Scene, check_step};
+use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
 
@@ -71,7 +71,7 @@ pub enum Shadows {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct MarchSettings {
+pub struct FastSettings {
     /// Eye-ray step (m) at the eye.
     pub step: f32,
     /// Growth of the step with distance from the eye (m per m, `≥ 0`; 0:
@@ -79,8 +79,8 @@ pub struct MarchSettings {
     pub step_growth: f32,
     /// Shadow method.
     pub shadows: Shadows,
-    /// The multiple-scattering approximation ([`Octaves::SINGLE`]: Ebert's single scattering).
-    pub octaves: Octaves,
+    /// The multiple-scattering approximation ([`ScatterOctaves::SINGLE`]: Ebert's single scattering).
+    pub octaves: ScatterOctaves,
     /// Strength of the powder term in `[0, 1]` (0: off).
     pub powder: f32,
     /// The march stops below this transmittance, in `[0, 1)`.
@@ -91,7 +91,7 @@ pub struct MarchSettings {
     pub truncate_forward_peak: bool,
 }
 
-impl Default for MarchSettings {
+impl Default for FastSettings {
     /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder,
     /// stop at `T < 10⁻³`, the forward peak truncated.
     fn default() -> Self {
@@ -99,7 +99,7 @@ impl Default for MarchSettings {
             step: 0.1,
             step_growth: 0.0,
             shadows: Shadows::Table(64),
-            octaves: Octaves::SINGLE,
+            octaves: ScatterOctaves::SINGLE,
             powder: 0.0,
             min_transmittance: 1e-3,
             truncate_forward_peak: true,
@@ -107,12 +107,12 @@ impl Default for MarchSettings {
     }
 }
 
-impl MarchSettings {
+impl FastSettings {
     /// These settings with the multiple-scattering approximation (default octaves).
     #[must_use]
     pub fn multiple_scattering(self) -> Self {
         Self {
-            octaves: Octaves::default(),
+            octaves: ScatterOctaves::default(),
             ..self
         }
     }
@@ -122,7 +122,7 @@ impl MarchSettings {
 /// of rays or images.
 pub struct FastRenderer<'s> {
     scene: &'s Scene<'s>,
-    settings: MarchSettings,
+    settings: FastSettings,
     sun_table: Option<ShadowTable>,
     up_table: Option<ShadowTable>,
     ambient: Vec3,
@@ -160,7 +160,7 @@ impl<'s> FastRenderer<'s> {
     ///
     /// As [`Scene::validate`]; [`VolumeError::InvalidParameter`] for a bad
     /// step, table size, powder or threshold.
-    pub fn new(scene: &'s Scene<'s>, settings: MarchSettings) -> Result<Self> {
+    pub fn new(scene: &'s Scene<'s>, settings: FastSettings) -> Result<Self> {
         scene.validate()?;
         settings.octaves.validate()?;
         in_range(
@@ -433,8 +433,8 @@ impl<'s> FastRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`Camera::validate`]; a too-large image.
-    pub fn render(&self, camera: &Camera) -> Result<Image> {
+    /// As [`LookAtCamera::validate`]; a too-large image.
+    pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
         super::render_image(camera, |o, d, _, _| self.radiance(o, d))
     }
 

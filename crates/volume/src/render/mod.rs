@@ -25,16 +25,16 @@ use natura_core::{Grid2, Image};
 
 use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
-use crate::phase::Phase;
-pub use march::{FastRenderer, MarchSettings, Shadows};
-pub use model::Octaves;
+use crate::phase::CloudPhase;
+pub use march::{FastRenderer, FastSettings, Shadows};
+pub use model::ScatterOctaves;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 
 /// A pinhole camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Camera {
+pub struct LookAtCamera {
     /// Eye position (m).
     pub position: Vec3,
     /// The point looked at (m).
@@ -50,7 +50,7 @@ pub struct Camera {
 /// Largest image side accepted.
 pub const MAX_IMAGE_SIDE: usize = 16_384;
 
-impl Camera {
+impl LookAtCamera {
     /// Checks the camera.
     ///
     /// # Errors
@@ -113,7 +113,7 @@ pub struct MediumParams {
     /// Single-scattering albedo in `[0, 1]` (clouds: ≈ 1).
     pub albedo: f32,
     /// The phase function.
-    pub phase: Phase,
+    pub phase: CloudPhase,
 }
 
 impl Default for MediumParams {
@@ -122,7 +122,7 @@ impl Default for MediumParams {
         Self {
             extinction: 1.0,
             albedo: 0.99,
-            phase: Phase::default(),
+            phase: CloudPhase::default(),
         }
     }
 }
@@ -130,7 +130,7 @@ impl Default for MediumParams {
 impl MediumParams {
     /// The same medium with the phase function's forward diffraction peak
     /// treated as unscattered light (the δ-M similarity relations of
-    /// [`model::delta_scaled`] with the peak of [`Phase::forward_peak`]):
+    /// [`model::delta_scaled`] with the peak of [`CloudPhase::forward_peak`]):
     /// lower extinction, lower albedo, the phase function without its peak.
     /// Unchanged for phase functions without a peak.
     #[must_use]
@@ -168,21 +168,21 @@ impl MediumParams {
 
 /// The light arriving from far away in every direction (the sun excluded).
 #[derive(Clone, Debug)]
-pub enum Environment {
+pub enum SkyLight {
     /// The same radiance from every direction.
     Uniform(Vec3),
     /// The sky of `natura-atmos` (its sky-view table, without the sun disc).
     Sky(Arc<SkyView>),
 }
 
-impl Environment {
+impl SkyLight {
     /// Radiance arriving along `-d` (seen looking along the unit direction `d`).
     #[inline]
     #[must_use]
     pub fn radiance(&self, d: Vec3) -> Vec3 {
         match self {
-            Environment::Uniform(c) => *c,
-            Environment::Sky(s) => s.radiance_f32(d),
+            SkyLight::Uniform(c) => *c,
+            SkyLight::Sky(s) => s.radiance_f32(d),
         }
     }
 }
@@ -211,7 +211,7 @@ impl Sun {
 /// volume and by the sky; it does not reflect light back into the volume
 /// (in either renderer).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ground {
+pub struct GroundPlane {
     /// Height of the plane (m).
     pub height: f32,
     /// Albedo (linear RGB, each in `[0, 1]`).
@@ -272,7 +272,7 @@ pub const BLOCKED_DEPTH: f32 = 30.0;
 /// What a ray hits beyond the volume.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Surface {
-    Ground,
+    GroundPlane,
     Solid(usize),
 }
 
@@ -307,9 +307,9 @@ pub struct Scene<'a> {
     /// The sun, if any.
     pub sun: Option<Sun>,
     /// Light from every direction.
-    pub environment: Environment,
+    pub environment: SkyLight,
     /// A lit ground plane, if any.
-    pub ground: Option<Ground>,
+    pub ground: Option<GroundPlane>,
     /// Emission, if any.
     pub emission: Option<Emission<'a>>,
     /// Aerial perspective between the eye and what it sees, if any.
@@ -337,7 +337,7 @@ impl<'a> Scene<'a> {
             density,
             medium,
             sun: None,
-            environment: Environment::Uniform(environment),
+            environment: SkyLight::Uniform(environment),
             ground: None,
             emission: None,
             aerial: None,
@@ -366,7 +366,7 @@ impl<'a> Scene<'a> {
             shadow::unit("sun.direction", s.direction)?;
             rgb("sun.irradiance", s.irradiance)?;
         }
-        if let Environment::Uniform(c) = self.environment {
+        if let SkyLight::Uniform(c) = self.environment {
             rgb("environment", c)?;
         }
         if let Some(g) = self.ground {
@@ -431,7 +431,7 @@ impl<'a> Scene<'a> {
     /// The nearest surface (ground or solid) along unit `d` from `o`.
     #[inline]
     pub(crate) fn surface_hit(&self, o: Vec3, d: Vec3) -> Option<(f32, Surface)> {
-        let mut best = self.ground_hit(o, d).map(|t| (t, Surface::Ground));
+        let mut best = self.ground_hit(o, d).map(|t| (t, Surface::GroundPlane));
         for (i, s) in self.solids.iter().enumerate() {
             if let Some(t) = s.hit(o, d)
                 && best.is_none_or(|(b, _)| t < b)
@@ -453,7 +453,7 @@ impl<'a> Scene<'a> {
     #[inline]
     pub(crate) fn lift(&self, s: Surface, p: Vec3) -> Vec3 {
         match s {
-            Surface::Ground => p + Vec3::Z * 1e-3,
+            Surface::GroundPlane => p + Vec3::Z * 1e-3,
             Surface::Solid(i) => {
                 let c = &self.solids[i];
                 c.centre + (p - c.centre).normalize_or(Vec3::Z) * (c.radius * 1.001 + 1e-4)
@@ -465,7 +465,7 @@ impl<'a> Scene<'a> {
     #[inline]
     pub(crate) fn surface_radiance(&self, s: Surface, p: Vec3, t_sun: f32) -> Vec3 {
         match s {
-            Surface::Ground => self.ground_radiance(t_sun),
+            Surface::GroundPlane => self.ground_radiance(t_sun),
             Surface::Solid(i) => {
                 let c = &self.solids[i];
                 let n = (p - c.centre).normalize_or(Vec3::Z);
@@ -530,7 +530,7 @@ fn rgb(name: &'static str, c: Vec3) -> Result<()> {
 /// Renders `camera`'s image with `radiance(origin, direction, x, y)` per
 /// pixel, rows in parallel (bit-identical on any thread count).
 pub(crate) fn render_image(
-    camera: &Camera,
+    camera: &LookAtCamera,
     radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
 ) -> Result<Image> {
     camera.validate()?;

@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::phase::Phase;
+use crate::phase::CloudPhase;
 
 /// Transmittance of a step of length `dt` (m) through extinction `sigma_t`
 /// (1/m): `exp(−σ_t·Δt)` (Beer–Lambert). Density enters through `σ_t = σ·ρ`:
@@ -43,7 +43,7 @@ pub fn step_inscatter(source: Vec3, sigma_t: f32, dt: f32) -> Vec3 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct Octaves {
+pub struct ScatterOctaves {
     /// Number of octaves `N ≥ 1` (1 is single scattering).
     pub count: u32,
     /// Scattering attenuation `a ∈ (0, 1]`.
@@ -54,7 +54,7 @@ pub struct Octaves {
     pub c: f32,
 }
 
-impl Default for Octaves {
+impl Default for ScatterOctaves {
     /// Eight octaves with `a = b = ½`, `c = 0.85`: of the settings tried on a
     /// dense cumulus (τ ≈ 20) against the reference path tracer, the closest
     /// in mean brightness and per-pixel error.
@@ -68,9 +68,9 @@ impl Default for Octaves {
     }
 }
 
-impl Octaves {
+impl ScatterOctaves {
     /// Single scattering (one octave).
-    pub const SINGLE: Octaves = Octaves {
+    pub const SINGLE: ScatterOctaves = ScatterOctaves {
         count: 1,
         a: 1.0,
         b: 1.0,
@@ -101,10 +101,10 @@ impl Octaves {
 
     /// `Σ_i a^i·p_{c^i}(cos θ)·e^{−b^i τ}`: the sun's in-scatter factor at a
     /// point whose optical depth toward the sun is `tau`; the single
-    /// scattering term `p(cos θ)·e^{−τ}` plus [`Octaves::sun_scattered`].
+    /// scattering term `p(cos θ)·e^{−τ}` plus [`ScatterOctaves::sun_scattered`].
     #[inline]
     #[must_use]
-    pub fn sun(&self, phase: &Phase, cos_theta: f32, tau: f32) -> f32 {
+    pub fn sun(&self, phase: &CloudPhase, cos_theta: f32, tau: f32) -> f32 {
         phase.eval(cos_theta) * (-tau).exp() + self.sun_scattered(phase, cos_theta, tau)
     }
 
@@ -112,7 +112,7 @@ impl Octaves {
     /// scattering (0 for one octave).
     #[inline]
     #[must_use]
-    pub fn sun_scattered(&self, phase: &Phase, cos_theta: f32, tau: f32) -> f32 {
+    pub fn sun_scattered(&self, phase: &CloudPhase, cos_theta: f32, tau: f32) -> f32 {
         let (mut sa, mut sb, mut sc) = (self.a, self.b, self.c);
         let mut s = 0.0;
         for _ in 1..self.count {
@@ -145,7 +145,7 @@ impl Octaves {
 /// of scattering into a forward peak much narrower than any feature of the
 /// light is treated as no scattering at all, so `σ_t' = σ_t·(1 − ω f)`,
 /// `ω' = ω(1 − f)/(1 − ω f)`, and the phase function loses the peak (see
-/// [`Phase::forward_peak`]). Absorption `σ_t'(1 − ω') = σ_t(1 − ω)` is
+/// [`CloudPhase::forward_peak`]). Absorption `σ_t'(1 − ω') = σ_t(1 − ω)` is
 /// unchanged. Returns `(σ_t', ω')` from `(σ_t, ω, f)`.
 #[inline]
 #[must_use]
@@ -221,31 +221,33 @@ mod tests {
 
     #[test]
     fn one_octave_is_single_scattering() {
-        let p = Phase::HenyeyGreenstein(0.6);
+        let p = CloudPhase::HenyeyGreenstein(0.6);
         for tau in [0.0f32, 0.3, 2.0] {
-            let o = Octaves::SINGLE.sun(&p, 0.4, tau);
+            let o = ScatterOctaves::SINGLE.sun(&p, 0.4, tau);
             assert!((o - p.eval(0.4) * (-tau).exp()).abs() < 1e-7);
         }
-        assert!(Octaves::default().validate().is_ok());
+        assert!(ScatterOctaves::default().validate().is_ok());
         assert!(
-            Octaves {
+            ScatterOctaves {
                 a: 0.8,
                 b: 0.5,
-                ..Octaves::default()
+                ..ScatterOctaves::default()
             }
             .validate()
             .is_err()
         );
         assert!(
-            Octaves {
+            ScatterOctaves {
                 count: 0,
-                ..Octaves::default()
+                ..ScatterOctaves::default()
             }
             .validate()
             .is_err()
         );
         // More octaves add light deep inside (large τ).
-        assert!(Octaves::default().ambient(5.0) > Octaves::SINGLE.ambient(5.0) * 10.0);
+        assert!(
+            ScatterOctaves::default().ambient(5.0) > ScatterOctaves::SINGLE.ambient(5.0) * 10.0
+        );
         assert_eq!(powder(1.0, 0.0), 1.0);
     }
 

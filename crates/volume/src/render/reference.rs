@@ -8,7 +8,7 @@
 //! estimated by ratio tracking (`T = Π(1 − σ_t/σ̄)` over the majorant's
 //! events; Novák et al. 2014); the environment is reached by phase-sampled
 //! paths that leave the volume; absorption weights the path by the albedo;
-//! Russian roulette ends long paths without bias. Ground and solids are lit
+//! Russian roulette ends long paths without bias. GroundPlane and solids are lit
 //! surfaces that end a path (they do not reflect light back into the volume),
 //! exactly as in the fast renderer.
 //!
@@ -40,7 +40,7 @@ use natura_core::{Image, Seed};
 use rand_core::Rng;
 
 use super::model::emitted;
-use super::{Camera, Scene};
+use super::{LookAtCamera, Scene};
 use crate::animate::unit;
 use crate::density::ray_box;
 use crate::error::Result;
@@ -286,8 +286,8 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`Camera::validate`]; a too-large image.
-    pub fn render(&self, camera: &Camera) -> Result<Image> {
+    /// As [`LookAtCamera::validate`]; a too-large image.
+    pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
         super::render_image(camera, |o, d, x, y| self.pixel(o, d, x, y))
     }
 }

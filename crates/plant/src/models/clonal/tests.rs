@@ -143,7 +143,7 @@ fn unknown_message_kind_is_an_error() {
         address: 0,
         values: vec![5.0, 0.0],
         state: crate::TurtleState {
-            frame: Frame::default(),
+            frame: TurtleFrame::default(),
             width: 1.0,
             colour: 0,
             distance: 0.0,
