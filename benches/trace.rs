@@ -27,8 +27,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use natura::core::glam::Vec3;
 use natura::core::{Boundary, Grid2, HeightField, NoProgress, Seed};
 use natura::trace::{
-    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Footprint, GridTracer, MipmapTracer,
-    PinholeCamera, Ray, RenderOptions, Tracer, render, trace_image,
+    Camera, Detail, DetailParams, DetailSurface, DetailTracer, GridTracer, MipmapTracer,
+    PinholeCamera, Ray, RayCone, RenderOptions, Tracer, render, trace_image,
 };
 
 const CELL: f32 = 10.0;
@@ -481,7 +481,7 @@ fn detail(c: &mut Criterion) {
         seed: 5,
     };
     let surface = DetailSurface::new(&hf, Detail::new(&params).unwrap(), None).unwrap();
-    let detailed = DetailTracer::new(surface, Footprint::cone(angle)).unwrap();
+    let detailed = DetailTracer::new(surface, RayCone::cone(angle)).unwrap();
     cpu_rate("detail: plain mipmap", sub.len(), || {
         black_box(trace_all(&plain, &sub));
     });

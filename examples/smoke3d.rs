@@ -17,7 +17,7 @@ use natura::fluid::advect::Advection;
 use natura::fluid::export::{field_image, slice, write_exr_volume, write_raw_volume};
 use natura::fluid::grid::Dims;
 use natura::fluid::interp::{CubicLimiter, Interpolation};
-use natura::fluid::shape::{Shape, Obstacle};
+use natura::fluid::shape::{Obstacle, Shape};
 use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 use natura::volume::Density;
 use natura::volume::grid::SmokeVolume;

@@ -17,8 +17,8 @@ use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
 use natura_noise::{FilteredFbm, Perlin, Spectral};
 use natura_ocean::{Ocean, OceanParams, Phillips, Surface, WaterSurface};
 use natura_trace::{
-    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Footprint, Hit, MipmapTracer,
-    PanoramicCamera, PinholeCamera, Projection, Ray, Tracer,
+    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Hit, MipmapTracer, PanoramicCamera,
+    PinholeCamera, Projection, Ray, RayCone, Tracer,
 };
 
 use crate::error::Result;
@@ -121,7 +121,7 @@ impl<'w> Renderer<'w> {
         let r = &scene.render;
         progress.start("acceleration", 2);
         let pixel_angle = (scene.camera.vfov_deg as f32).to_radians() / r.height as f32;
-        let tracer = DetailTracer::new(detail_surface(world)?, Footprint::cone(pixel_angle))?;
+        let tracer = DetailTracer::new(detail_surface(world)?, RayCone::cone(pixel_angle))?;
         progress.advance(1);
         let ground = MipmapTracer::new(&world.terrain)?;
         progress.advance(1);
@@ -482,7 +482,7 @@ impl<'w> Renderer<'w> {
         if cos_i > 0.0 && tp.geo.dot(self.sun) > -0.05 {
             let eps = 1e-2 * cell + 1e-5 * tp.point.abs().max_element();
             let shadow = Ray::new(tp.point + tp.geo * eps, self.sun);
-            let fp = Footprint {
+            let fp = RayCone {
                 at_origin_m: footprint,
                 per_metre: self.pixel_angle,
             };
@@ -564,7 +564,7 @@ impl<'w> Renderer<'w> {
                     .trace(&rray, 0.0, f32::INFINITY)
                     .map(SurfaceHit::Terrain)
             } else {
-                let fp = Footprint {
+                let fp = RayCone {
                     at_origin_m: t * self.pixel_angle,
                     per_metre: self.pixel_angle,
                 };

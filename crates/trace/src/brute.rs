@@ -2,7 +2,7 @@
 
 use natura_core::HeightField;
 
-use crate::detail::{DetailSurface, Footprint};
+use crate::detail::{DetailSurface, RayCone};
 use crate::error::Result;
 use crate::field::FieldView;
 use crate::grid_ray::GridRay;
@@ -55,7 +55,7 @@ pub fn detail_brute_force(
     ray: &Ray,
     t_min: f32,
     t_max: f32,
-    fp: Footprint,
+    fp: RayCone,
     step_m: f32,
 ) -> Option<f64> {
     let range_ok = t_min <= t_max && step_m.is_finite() && step_m > 0.0;

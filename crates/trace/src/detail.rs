@@ -53,14 +53,14 @@ pub struct DetailParams {
 /// metres (a cone: for a primary ray `per_metre` is the pixel's angle; for a
 /// shadow ray `at_origin_m` is the footprint where it leaves the surface).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Footprint {
-    /// Footprint at the ray's origin, metres (≥ 0).
+pub struct RayCone {
+    /// RayCone at the ray's origin, metres (≥ 0).
     pub at_origin_m: f32,
     /// Growth per metre travelled (radians of the pixel cone, ≥ 0).
     pub per_metre: f32,
 }
 
-impl Footprint {
+impl RayCone {
     /// A cone from a point: `w(t) = angle·t`.
     #[must_use]
     pub const fn cone(angle: f32) -> Self {

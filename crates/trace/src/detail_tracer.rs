@@ -4,7 +4,7 @@
 //! cells it cannot rule out, ending in a bisection.
 //!
 //! The surface is [`DetailSurface`]'s `S = B + m·D(·; w)` with the footprint
-//! `w` growing along the ray ([`Footprint`]). Where `w` reaches the first
+//! `w` growing along the ray ([`RayCone`]). Where `w` reaches the first
 //! octave's Nyquist limit no detail is left, so from there on the ray is
 //! handed to the plain [`MipmapTracer`]: the far field is traced exactly as
 //! without detail. Before that, a node of the pyramid (or a cell) is skipped
@@ -25,7 +25,7 @@
 use glam::{DVec2, DVec3, UVec2, Vec3};
 use natura_core::HeightField;
 
-use crate::detail::{DetailSurface, Footprint, add_gradient};
+use crate::detail::{DetailSurface, RayCone, add_gradient};
 use crate::error::{Result, TraceError};
 use crate::max_mipmap::MipmapTracer;
 use crate::ray::{Hit, Ray, TraceStats, Triangle};
@@ -44,7 +44,7 @@ const BISECT_FOOTPRINTS: f64 = 1e-3;
 pub struct DetailTracer<'a> {
     base: MipmapTracer<'a>,
     surface: DetailSurface<'a>,
-    footprint: Footprint,
+    footprint: RayCone,
 }
 
 /// A ray in `f64` with what the walk needs.
@@ -55,7 +55,7 @@ struct WalkRay {
     len: f64,
     /// `|d_xy|`.
     dxy: f64,
-    fp: Footprint,
+    fp: RayCone,
     /// `+1` if the ray starts above the surface, `−1` below.
     side: f64,
 }
@@ -76,7 +76,7 @@ impl<'a> DetailTracer<'a> {
     /// Fails like [`MipmapTracer::new`] on a field that cannot be traced, and
     /// with [`TraceError::InvalidParameter`] if a footprint term is NaN,
     /// infinite or negative.
-    pub fn new(surface: DetailSurface<'a>, footprint: Footprint) -> Result<Self> {
+    pub fn new(surface: DetailSurface<'a>, footprint: RayCone) -> Result<Self> {
         check_footprint(footprint)?;
         Ok(Self {
             base: MipmapTracer::new(surface.height_field())?,
@@ -99,7 +99,7 @@ impl<'a> DetailTracer<'a> {
 
     /// The footprint [`Tracer::trace`] uses.
     #[must_use]
-    pub fn footprint(&self) -> Footprint {
+    pub fn footprint(&self) -> RayCone {
         self.footprint
     }
 
@@ -110,7 +110,7 @@ impl<'a> DetailTracer<'a> {
     }
 
     /// The ray parameter from which the footprint leaves no detail (∞ if never).
-    fn t_far(&self, ray: &Ray, fp: Footprint) -> f64 {
+    fn t_far(&self, ray: &Ray, fp: RayCone) -> f64 {
         let far = self.surface.detail().far_footprint();
         let len = f64::from(ray.dir.length());
         let (w0, k) = (f64::from(fp.at_origin_m), f64::from(fp.per_metre));
@@ -131,7 +131,7 @@ impl<'a> DetailTracer<'a> {
     /// `cell`, `triangle` and `barycentric` locate it over the height field.
     /// Invalid rays, empty ranges and invalid footprints hit nothing.
     #[must_use]
-    pub fn trace_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: Footprint) -> Option<Hit> {
+    pub fn trace_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: RayCone) -> Option<Hit> {
         if !self.surface.detail().is_active() {
             return self.base.trace(ray, t_min, t_max);
         }
@@ -156,7 +156,7 @@ impl<'a> DetailTracer<'a> {
     /// Whether anything lies on `ray` with `t` in `[t_min, t_max]` with
     /// footprint `fp` (a shadow ray).
     #[must_use]
-    pub fn occluded_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: Footprint) -> bool {
+    pub fn occluded_footprint(&self, ray: &Ray, t_min: f32, t_max: f32, fp: RayCone) -> bool {
         if !self.surface.detail().is_active() {
             return self.base.occluded(ray, t_min, t_max);
         }
@@ -176,7 +176,7 @@ impl<'a> DetailTracer<'a> {
 
     /// The first crossing of the surface over `[t0, t1]` in the detail
     /// region: `(t, footprint there)`.
-    fn walk(&self, ray: &Ray, t0: f64, t1: f64, fp: Footprint) -> Option<(f64, f64)> {
+    fn walk(&self, ray: &Ray, t0: f64, t1: f64, fp: RayCone) -> Option<(f64, f64)> {
         let hf = self.surface.height_field();
         let d = ray.dir.as_dvec3();
         let mut r = WalkRay {
@@ -372,7 +372,7 @@ fn slab(r: &WalkRay, lo: DVec2, hi: DVec2, t0: f64, t1: f64) -> Option<(f64, f64
     (a <= b).then_some((a, b))
 }
 
-fn check_footprint(fp: Footprint) -> Result<()> {
+fn check_footprint(fp: RayCone) -> Result<()> {
     for (name, v) in [
         ("footprint.at_origin_m", fp.at_origin_m),
         ("footprint.per_metre", fp.per_metre),

@@ -14,7 +14,7 @@
 //!   ray allows. The fast path, with the same hits.
 //! * [`DetailTracer`] over a [`DetailSurface`]: the field plus procedural
 //!   detail octaves ([`Detail`], natura-noise's Perlin noise) down to each
-//!   ray's pixel [`Footprint`] — Musgrave's procedural level of detail
+//!   ray's pixel [`RayCone`] — Musgrave's procedural level of detail
 //!   (Musgrave 1993, §6.3). The pyramid widened by the detail's amplitude
 //!   bound skips empty space, a Lipschitz-bounded march with a closing
 //!   bisection finds the hit in a cell (Hart 1996's sphere-tracing step), and where the
@@ -133,7 +133,7 @@ pub use camera::{
     RAY_LANES, Stereo,
 };
 pub use dda::{CellVisit, CellWalk, GridTracer};
-pub use detail::{Detail, DetailParams, DetailSurface, Footprint, MAX_DETAIL_OCTAVES};
+pub use detail::{Detail, DetailParams, DetailSurface, MAX_DETAIL_OCTAVES, RayCone};
 pub use detail_tracer::DetailTracer;
 pub use error::{Result, TraceError};
 pub use field::MAX_SAMPLES_PER_AXIS;

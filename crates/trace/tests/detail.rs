@@ -6,7 +6,7 @@ use common::{Kind, field};
 use glam::Vec3;
 use natura_core::{Grid2, Seed};
 use natura_trace::{
-    Detail, DetailParams, DetailSurface, DetailTracer, Footprint, MipmapTracer, Ray, Tracer,
+    Detail, DetailParams, DetailSurface, DetailTracer, MipmapTracer, Ray, RayCone, Tracer,
     detail_brute_force,
 };
 
@@ -44,7 +44,7 @@ fn rays(seed: u64, n: usize) -> Vec<Ray> {
 
 /// Length of the stretch of `ray` below the surface from `t` on (metres), by
 /// fine steps (`f64::INFINITY` past 2 m).
-fn submerged(s: &DetailSurface<'_>, ray: &Ray, t: f64, fp: Footprint) -> f64 {
+fn submerged(s: &DetailSurface<'_>, ray: &Ray, t: f64, fp: RayCone) -> f64 {
     let d = ray.dir.as_dvec3();
     for k in 1..=4000 {
         let tt = t + k as f64 * 5e-4;
@@ -61,11 +61,11 @@ fn submerged(s: &DetailSurface<'_>, ray: &Ray, t: f64, fp: Footprint) -> f64 {
 #[test]
 fn hits_agree_with_a_fine_brute_force_march() {
     for (kind, fp) in [
-        (Kind::Smooth, Footprint::cone(2e-3)),
-        (Kind::Uniform, Footprint::cone(5e-3)),
+        (Kind::Smooth, RayCone::cone(2e-3)),
+        (Kind::Uniform, RayCone::cone(5e-3)),
         (
             Kind::Spiky,
-            Footprint {
+            RayCone {
                 at_origin_m: 0.05,
                 per_metre: 0.0,
             },
@@ -116,7 +116,7 @@ fn hits_agree_with_a_fine_brute_force_march() {
 fn hit_points_lie_on_the_surface_with_finite_normals() {
     let hf = field(Kind::Smooth, 34, 34, 10.0, 9);
     let surface = DetailSurface::new(&hf, Detail::new(&params(2.0)).unwrap(), None).unwrap();
-    let fp = Footprint::cone(3e-3);
+    let fp = RayCone::cone(3e-3);
     let tracer = DetailTracer::new(surface.clone(), fp).unwrap();
     let mut hits = 0;
     for ray in rays(21, 400) {
@@ -166,9 +166,9 @@ fn without_detail_or_beyond_the_far_footprint_the_plain_tracer_answers() {
     let hf = field(Kind::Uniform, 34, 34, 10.0, 4);
     let plain = MipmapTracer::new(&hf).unwrap();
     let zero = DetailSurface::new(&hf, Detail::new(&params(0.0)).unwrap(), None).unwrap();
-    let none = DetailTracer::new(zero, Footprint::cone(1e-3)).unwrap();
-    // Footprint already past the first octave's Nyquist limit: no detail anywhere.
-    let coarse = Footprint {
+    let none = DetailTracer::new(zero, RayCone::cone(1e-3)).unwrap();
+    // RayCone already past the first octave's Nyquist limit: no detail anywhere.
+    let coarse = RayCone {
         at_origin_m: 6.0,
         per_metre: 0.0,
     };

@@ -13,7 +13,7 @@ use crate::layer::{LayerClouds, LayerParams};
 use crate::phase::CloudPhase;
 use crate::render::{
     FastSettings, GroundPlane, LookAtCamera, MediumParams, ScatterOctaves, Scene, Shadows,
-    SkyLight, Sun,
+    SkyRadiance, Sun,
 };
 
 /// Parameters of [`Cloudscape`].
@@ -140,7 +140,7 @@ impl Cloudscape {
             density: &self.clouds,
             medium: self.medium,
             sun: Some(self.sun),
-            environment: SkyLight::Sky(self.sky.clone()),
+            environment: SkyRadiance::Sky(self.sky.clone()),
             ground: Some(self.ground),
             emission: None,
             aerial: Some(self.sky.clone()),

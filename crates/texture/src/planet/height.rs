@@ -9,7 +9,7 @@ use crate::earth::Terran;
 use crate::error::{Result, non_negative, positive};
 use crate::footprint::Footprint;
 use crate::fractals::{fbm, spectral};
-use crate::planet::params::DetailParams;
+use crate::planet::params::PlanetDetailParams;
 
 /// The octaves below the continents: an fBm continuing theirs (octave
 /// `K + j` at frequency `f₀λ^(K+j)`), scaled by the continents' amplitude
@@ -41,7 +41,7 @@ struct Detail {
 /// lattice, so at `R = 6 371 km` a 1 cm octave (lattice coordinates near
 /// 6·10⁸) still resolves a millimetre to about 10⁻⁷ of a cell.
 ///
-/// With [`DetailParams`] the continents' fBm is continued below its last
+/// With [`PlanetDetailParams`] the continents' fBm is continued below its last
 /// octave `K` by a second fBm of exponent `H_d`, octave `K + j` having
 /// amplitude `λ^(−K·H)·λ^(−j·H_d)`: the two read as one fractal whose
 /// spectrum steepens at the lower crossover.
@@ -80,7 +80,7 @@ impl Relief {
         radius: f64,
         relief_m: f64,
         texture_scale: f64,
-        detail: Option<DetailParams>,
+        detail: Option<PlanetDetailParams>,
     ) -> Result<Self> {
         positive("radius_m", radius)?;
         non_negative("relief_m", relief_m)?;

@@ -31,7 +31,7 @@ mod trace;
 pub use cube::{CubeFace, CubeMap, Face, SurfaceMap};
 pub use height::Relief;
 pub use params::{
-    CloudLayerParams, DetailParams, EARTH_RADIUS_M, LightParams, PlanetAtmosphereParams,
+    CloudLayerParams, EARTH_RADIUS_M, LightParams, PlanetAtmosphereParams, PlanetDetailParams,
     PlanetParams, SurfaceParams, TerrainParams,
 };
 pub use render::{GroundViewParams, direction};

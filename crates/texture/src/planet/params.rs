@@ -17,7 +17,7 @@ pub const EARTH_RADIUS_M: f64 = 6.371e6;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct DetailParams {
+pub struct PlanetDetailParams {
     /// Spectral exponent of the detail octaves (1.5: smoother than the
     /// continents; above 1 the slopes shrink at finer scales).
     pub h: f64,
@@ -25,7 +25,7 @@ pub struct DetailParams {
     pub finest_m: f64,
 }
 
-impl Default for DetailParams {
+impl Default for PlanetDetailParams {
     fn default() -> Self {
         Self {
             h: 1.5,
@@ -34,7 +34,7 @@ impl Default for DetailParams {
     }
 }
 
-impl DetailParams {
+impl PlanetDetailParams {
     /// Checks every parameter.
     ///
     /// # Errors
@@ -62,7 +62,7 @@ pub struct TerrainParams {
     pub texture_scale: f64,
     /// Octaves finer than the continents', continuing their fBm with another
     /// `H` (fBm continents with a whole number of octaves only).
-    pub detail: Option<DetailParams>,
+    pub detail: Option<PlanetDetailParams>,
 }
 
 impl TerrainParams {
@@ -93,7 +93,7 @@ impl TerrainParams {
             terran,
             relief_m: 8000.0,
             texture_scale: 1.0,
-            detail: Some(DetailParams::default()),
+            detail: Some(PlanetDetailParams::default()),
         }
     }
 

@@ -111,7 +111,8 @@ pub(super) fn event_mask(events: &[u32; LANES]) -> u32 {
     mask
 }
 
-/// `v as u32` for `v` in `[0, 2²⁴)` (a clamped cell coordinate).
+/// [`event_mask`] with AVX2 compares, for the kernels compiled for AVX2 and
+/// above (the same bits).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]

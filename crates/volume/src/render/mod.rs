@@ -168,21 +168,21 @@ impl MediumParams {
 
 /// The light arriving from far away in every direction (the sun excluded).
 #[derive(Clone, Debug)]
-pub enum SkyLight {
+pub enum SkyRadiance {
     /// The same radiance from every direction.
     Uniform(Vec3),
     /// The sky of `natura-atmos` (its sky-view table, without the sun disc).
     Sky(Arc<SkyView>),
 }
 
-impl SkyLight {
+impl SkyRadiance {
     /// Radiance arriving along `-d` (seen looking along the unit direction `d`).
     #[inline]
     #[must_use]
     pub fn radiance(&self, d: Vec3) -> Vec3 {
         match self {
-            SkyLight::Uniform(c) => *c,
-            SkyLight::Sky(s) => s.radiance_f32(d),
+            SkyRadiance::Uniform(c) => *c,
+            SkyRadiance::Sky(s) => s.radiance_f32(d),
         }
     }
 }
@@ -307,7 +307,7 @@ pub struct Scene<'a> {
     /// The sun, if any.
     pub sun: Option<Sun>,
     /// Light from every direction.
-    pub environment: SkyLight,
+    pub environment: SkyRadiance,
     /// A lit ground plane, if any.
     pub ground: Option<GroundPlane>,
     /// Emission, if any.
@@ -337,7 +337,7 @@ impl<'a> Scene<'a> {
             density,
             medium,
             sun: None,
-            environment: SkyLight::Uniform(environment),
+            environment: SkyRadiance::Uniform(environment),
             ground: None,
             emission: None,
             aerial: None,
@@ -366,7 +366,7 @@ impl<'a> Scene<'a> {
             shadow::unit("sun.direction", s.direction)?;
             rgb("sun.irradiance", s.irradiance)?;
         }
-        if let SkyLight::Uniform(c) = self.environment {
+        if let SkyRadiance::Uniform(c) = self.environment {
             rgb("environment", c)?;
         }
         if let Some(g) = self.ground {
