@@ -174,24 +174,7 @@ impl World {
         let (deposition, wetness) =
             times.time("erosion", || erode(scene, &mut terrain, progress))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
-        let water_level = scene.water.enabled.then(|| water_level(scene, &terrain));
-        let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
-
-        let sun = sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg);
-        let atmosphere = times.time("atmosphere", || {
-            Atmosphere::with_progress(atmosphere_params(scene, &terrain), progress)
-        })?;
-        Ok(World {
-            scene: scene.clone(),
-            terrain,
-            deposition,
-            wetness,
-            water_level,
-            surface,
-            sun,
-            atmosphere,
-            times,
-        })
+        Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
 
     /// The terrain alone, exactly as [`World::build`] makes it (synthesis,
@@ -234,6 +217,20 @@ impl World {
             let area = natura_terrain::analysis::flow_accumulation_d8(&terrain, Depressions::Fill)?;
             Ok(wetness_from_area(&area, terrain.cell_size()))
         })?;
+        Self::finish(scene, terrain, deposition, wetness, times, progress)
+    }
+
+    /// The stages after the terrain and its maps, shared by [`World::build`]
+    /// and [`World::from_height_field`]: the water level and surface, the
+    /// sun, and the atmosphere's tables.
+    fn finish(
+        scene: &SceneDesc,
+        terrain: HeightField,
+        deposition: Grid2<f32>,
+        wetness: Grid2<f32>,
+        mut times: StageTimes,
+        progress: &dyn Progress,
+    ) -> Result<World> {
         let water_level = scene.water.enabled.then(|| water_level(scene, &terrain));
         let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
         let sun = sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg);

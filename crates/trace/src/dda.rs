@@ -226,25 +226,5 @@ impl<'a> GridTracer<'a> {
 }
 
 impl Tracer for GridTracer<'_> {
-    fn trace(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
-        self.run::<false>(ray, t_min, t_max, &mut TraceStats::default())
-            .map(|h| crate::ray_cell::make_hit(&self.f, ray, h))
-    }
-
-    fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.run::<true>(ray, t_min, t_max, &mut TraceStats::default())
-            .is_some()
-    }
-
-    fn trace_with_stats(&self, ray: &Ray, t_min: f32, t_max: f32) -> (Option<Hit>, TraceStats) {
-        let mut s = TraceStats::default();
-        let h = self
-            .run::<false>(ray, t_min, t_max, &mut s)
-            .map(|h| crate::ray_cell::make_hit(&self.f, ray, h));
-        (h, s)
-    }
-
-    fn height_field(&self) -> &HeightField {
-        self.f.hf
-    }
+    crate::tracer::walk_queries!();
 }

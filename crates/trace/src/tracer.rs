@@ -5,6 +5,38 @@ use natura_core::HeightField;
 
 use crate::ray::{Hit, Ray, TraceStats};
 
+/// The [`Tracer`] queries of a cell walk, written once for the walks that
+/// share their shape (the grid DDA and the mipmap walk): each has a field `f`
+/// (the surface) and a method `run::<OCCLUSION>(ray, t_min, t_max, stats)`
+/// returning the first cell hit, which [`crate::ray_cell::make_hit`] turns
+/// into a [`Hit`]. Expanded inside the walk's `impl Tracer`.
+macro_rules! walk_queries {
+    () => {
+        fn trace(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+            self.run::<false>(ray, t_min, t_max, &mut TraceStats::default())
+                .map(|h| crate::ray_cell::make_hit(&self.f, ray, h))
+        }
+
+        fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+            self.run::<true>(ray, t_min, t_max, &mut TraceStats::default())
+                .is_some()
+        }
+
+        fn trace_with_stats(&self, ray: &Ray, t_min: f32, t_max: f32) -> (Option<Hit>, TraceStats) {
+            let mut s = TraceStats::default();
+            let h = self
+                .run::<false>(ray, t_min, t_max, &mut s)
+                .map(|h| crate::ray_cell::make_hit(&self.f, ray, h));
+            (h, s)
+        }
+
+        fn height_field(&self) -> &HeightField {
+            self.f.hf
+        }
+    };
+}
+pub(crate) use walk_queries;
+
 /// A ray tracer over one height field.
 ///
 /// Both queries take a parameter range `[t_min, t_max]` (inclusive; use
