@@ -131,6 +131,11 @@ pub trait Field: Send + Sync {
 
     /// Fills a row-major 2-D lattice (`out[j·nx + i]` = value at
     /// `origin + (i·step.x, j·step.y)`), checking the buffer length.
+    ///
+    /// # Errors
+    ///
+    /// [`NoiseError::InvalidLattice`](crate::NoiseError::InvalidLattice) if `out` does not
+    /// hold exactly the lattice's points.
     fn fill_grid2(&self, lattice: &Lattice2, out: &mut [f32]) -> Result<()> {
         lattice.check(out.len())?;
         let simd = Simd::best();
@@ -142,6 +147,11 @@ pub trait Field: Send + Sync {
 
     /// Fills a 3-D lattice, x fastest then y then z
     /// (`out[(k·ny + j)·nx + i]`), checking the buffer length.
+    ///
+    /// # Errors
+    ///
+    /// [`NoiseError::InvalidLattice`](crate::NoiseError::InvalidLattice) if `out` does not
+    /// hold exactly the lattice's points.
     fn fill_grid3(&self, lattice: &Lattice3, out: &mut [f32]) -> Result<()> {
         lattice.check(out.len())?;
         let simd = Simd::best();

@@ -165,6 +165,10 @@ pub struct PoissonSystem {
 impl PoissonSystem {
     /// Builds the operator for `kinds` (one per cell, x fastest), domain
     /// `bounds` and `periodic` axes (periodic overrides the sides).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`FluidError::SizeMismatch`] unless there is one kind per cell.
     pub fn new(
         dims: Dims,
         kinds: &[CellKind],

@@ -18,6 +18,12 @@ pub trait FrequencySpectrum: Send + Sync + std::fmt::Debug {
     /// Returns gravity, m/s².
     fn g(&self) -> f64;
     /// Checks the parameters.
+    ///
+    /// # Errors
+    ///
+    /// The implementation's error (for the built-in spectra,
+    /// [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter)) naming the
+    /// first parameter out of its range.
     fn validate(&self) -> Result<()>;
 }
 

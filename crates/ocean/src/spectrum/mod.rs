@@ -49,6 +49,12 @@ pub trait Spectrum: Send + Sync + std::fmt::Debug {
     fn density(&self, k: DVec2) -> f64;
 
     /// Checks the parameters; [`crate::Ocean::new`] calls this first.
+    ///
+    /// # Errors
+    ///
+    /// The implementation's error (for the built-in spectra,
+    /// [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter)) naming the
+    /// first parameter out of its range.
     fn validate(&self) -> Result<()>;
 }
 

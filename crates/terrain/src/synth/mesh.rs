@@ -52,6 +52,12 @@ impl TriMesh {
 
     /// A mesh with caller-chosen vertex identifiers (shared vertices of separate
     /// meshes must carry the same id) and face-averaged normals.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`] if there is not one id per
+    /// vertex, and [`TerrainError::InvalidParameter`] for a non-finite vertex
+    /// or an index past the vertices.
     pub fn with_ids(
         positions: Vec<DVec3>,
         ids: Vec<u64>,
@@ -80,6 +86,12 @@ impl TriMesh {
 
     /// A mesh with explicit normals (e.g. shared between tiles so that
     /// independently subdivided tiles agree on shared edges).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`TerrainError::SizeMismatch`] if there is not one id and one
+    /// normal per vertex, and [`TerrainError::InvalidParameter`] for a
+    /// non-finite vertex or an index past the vertices.
     pub fn with_normals(
         positions: Vec<DVec3>,
         normals: Vec<DVec3>,
