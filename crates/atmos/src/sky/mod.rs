@@ -35,11 +35,11 @@
 //! ```
 
 mod batch;
+mod channels;
 mod data;
 mod model;
 mod params;
 mod render;
-mod spec;
 mod view;
 
 use std::sync::Arc;
@@ -57,8 +57,8 @@ pub use view::{ApSample, SkyView};
 use crate::Dir3;
 use crate::error::{Result, finite3, invalid, positive};
 use crate::medium::{Attenuation, Medium};
+use channels::Channels;
 use model::Model;
-use spec::S;
 
 /// The model in RGB or spectral channels.
 #[derive(Debug)]
@@ -407,7 +407,7 @@ pub struct SunlitAtmosphere<'a> {
 impl SunlitAtmosphere<'_> {
     const STEPS: usize = 64;
 
-    fn tau_rgb<const N: usize>(m: &Model<N>, tau: S<N>) -> DVec3 {
+    fn tau_rgb<const N: usize>(m: &Model<N>, tau: Channels<N>) -> DVec3 {
         let t = m.rgb(tau.exp_neg() * m.sun) / m.rgb(m.sun).max(DVec3::splat(1e-30));
         DVec3::new(
             -t.x.max(1e-300).ln(),

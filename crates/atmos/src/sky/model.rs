@@ -6,9 +6,9 @@ use std::f64::consts::PI;
 
 use natura_core::Progress;
 
+use super::channels::{Channels, Lut2};
 use super::data::{DOBSON_UNIT, OZONE_CROSS_SECTION, SOLAR_IRRADIANCE, lerp_table};
 use super::params::{AtmosphereParams, Evaluation, MiePhase};
-use super::spec::{Lut2, S};
 use crate::error::Result;
 use crate::scatter::{
     ISOTROPIC, cornette_shanks, henyey_greenstein, rayleigh_coefficient, rayleigh_phase,
@@ -46,12 +46,12 @@ pub(crate) fn hits_ground(r: f64, mu: f64, bottom: f64) -> bool {
 pub(crate) struct Model<const N: usize> {
     pub p: AtmosphereParams,
     pub wavelengths: [f64; N],
-    pub rayleigh: S<N>,
-    pub mie_sca: S<N>,
-    pub mie_ext: S<N>,
-    pub ozone: S<N>,
-    pub sun: S<N>,
-    pub limb: S<N>,
+    pub rayleigh: Channels<N>,
+    pub mie_sca: Channels<N>,
+    pub mie_ext: Channels<N>,
+    pub ozone: Channels<N>,
+    pub sun: Channels<N>,
+    pub limb: Channels<N>,
     /// Rows of the channel → linear sRGB matrix.
     pub to_rgb: [[f64; N]; 3],
     pub trans: Lut2<N>,
@@ -106,12 +106,12 @@ impl<const N: usize> Model<N> {
         p.validate()?;
         let (wavelengths, to_rgb) = channels::<N>(&p)?;
         let r = &p.rayleigh;
-        let mut rayleigh = S::ZERO;
-        let mut mie_sca = S::ZERO;
-        let mut mie_ext = S::ZERO;
-        let mut ozone = S::ZERO;
-        let mut sun = S::ZERO;
-        let mut limb = S::ZERO;
+        let mut rayleigh = Channels::ZERO;
+        let mut mie_sca = Channels::ZERO;
+        let mut mie_ext = Channels::ZERO;
+        let mut ozone = Channels::ZERO;
+        let mut sun = Channels::ZERO;
+        let mut limb = Channels::ZERO;
         let ozone_peak = p.ozone.column_dobson * DOBSON_UNIT / p.ozone.half_width_m;
         for (c, &l) in wavelengths.iter().enumerate() {
             rayleigh.0[c] = rayleigh_coefficient(l, r.n_minus_1, r.number_density, r.king_factor)?;
@@ -194,7 +194,7 @@ impl<const N: usize> Model<N> {
 
     /// Optical depth from `(r, mu)` over distance `d`, by composite 8-point
     /// Gauss–Legendre over `segments` equal pieces (all three densities per node).
-    pub fn optical_depth(&self, r: f64, mu: f64, d: f64, segments: usize) -> S<N> {
+    pub fn optical_depth(&self, r: f64, mu: f64, d: f64, segments: usize) -> Channels<N> {
         const X: [f64; 4] = [
             0.183_434_642_495_649_8,
             0.525_532_409_916_329,
@@ -242,7 +242,7 @@ impl<const N: usize> Model<N> {
         (r, mu)
     }
 
-    fn transmittance_texel(&self, x_mu: f64, x_r: f64) -> S<N> {
+    fn transmittance_texel(&self, x_mu: f64, x_r: f64) -> Channels<N> {
         let (r, mu) = self.trans_r_mu(x_mu, x_r);
         let d = dist_top(r, mu, self.top());
         self.optical_depth(r, mu, d, 16).exp_neg()
@@ -251,7 +251,7 @@ impl<const N: usize> Model<N> {
     /// Transmittance from `(r, mu)` to the top of the atmosphere (LUT; the ray
     /// must not meet the ground).
     #[inline]
-    pub fn trans_top(&self, r: f64, mu: f64) -> S<N> {
+    pub fn trans_top(&self, r: f64, mu: f64) -> Channels<N> {
         let (b, t) = (self.bottom(), self.top());
         let r = r.clamp(b, t);
         let hh = (t * t - b * b).sqrt();
@@ -269,21 +269,21 @@ impl<const N: usize> Model<N> {
 
     /// Sunlight transmittance at `(r, mu_s)`: 0 in the planet's shadow.
     #[inline]
-    pub fn sun_trans_lut(&self, r: f64, mu_s: f64) -> S<N> {
+    pub fn sun_trans_lut(&self, r: f64, mu_s: f64) -> Channels<N> {
         if hits_ground(r, mu_s, self.bottom()) {
-            S::ZERO
+            Channels::ZERO
         } else {
             self.trans_top(r, mu_s)
         }
     }
 
     /// Sunlight transmittance at `(r, mu_s)` by direct quadrature (reference).
-    pub fn sun_trans_exact(&self, r: f64, mu_s: f64, segments: usize) -> S<N> {
+    pub fn sun_trans_exact(&self, r: f64, mu_s: f64, segments: usize) -> Channels<N> {
         if hits_ground(r, mu_s, self.bottom()) {
-            return S::ZERO;
+            return Channels::ZERO;
         }
         if r >= self.top() && mu_s >= 0.0 {
-            return S::ONE;
+            return Channels::ONE;
         }
         let d = dist_top(r, mu_s, self.top());
         self.optical_depth(r, mu_s, d, segments).exp_neg()
@@ -291,29 +291,29 @@ impl<const N: usize> Model<N> {
 
     /// Multiple-scattering transfer `Ψ_ms` at `(r, mu_s)` (zero when disabled).
     #[inline]
-    pub fn psi_ms(&self, r: f64, mu_s: f64) -> S<N> {
+    pub fn psi_ms(&self, r: f64, mu_s: f64) -> Channels<N> {
         match &self.ms {
             Some(lut) => {
                 let x = 0.5 * (mu_s + 1.0);
                 let y = (r - self.bottom()) / (self.top() - self.bottom());
                 lut.sample(x, y)
             }
-            None => S::ZERO,
+            None => Channels::ZERO,
         }
     }
 
     /// One multiple-scattering LUT texel (Hillaire 2020 §5.5, eqs. 5-10): the
     /// second-order isotropic luminance over 64 directions, amplified by the
     /// geometric series `1/(1 − f_ms)`, for unit sun illuminance.
-    fn ms_texel(&self, x_mu_s: f64, x_r: f64) -> S<N> {
+    fn ms_texel(&self, x_mu_s: f64, x_r: f64) -> Channels<N> {
         const DIRS: usize = 64;
         const STEPS: usize = 20;
         let (b, t) = (self.bottom(), self.top());
         let r = b + (t - b) * x_r.clamp(1e-4, 1.0 - 1e-4);
         let mu_s = 2.0 * x_mu_s - 1.0;
         let sun = glam::DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
-        let mut l2 = S::ZERO;
-        let mut fms = S::ZERO;
+        let mut l2 = Channels::ZERO;
+        let mut fms = Channels::ZERO;
         let golden = PI * (3.0 - 5f64.sqrt());
         for i in 0..DIRS {
             // Spherical Fibonacci directions: equal-area, deterministic.
@@ -329,9 +329,9 @@ impl<const N: usize> Model<N> {
                 dist_top(r, mu, t)
             };
             let dt = t_max / STEPS as f64;
-            let mut thr = S::ONE;
-            let mut l = S::ZERO;
-            let mut f = S::ZERO;
+            let mut thr = Channels::ONE;
+            let mut l = Channels::ZERO;
+            let mut f = Channels::ZERO;
             for k in 0..STEPS {
                 let tt = (k as f64 + 0.5) * dt;
                 let rt = (tt * tt + 2.0 * r * mu * tt + r * r).sqrt();
@@ -340,7 +340,7 @@ impl<const N: usize> Model<N> {
                 let sca = self.rayleigh * rr + self.mie_sca * rm;
                 let ext = self.rayleigh * rr + self.mie_ext * rm + self.ozone * ro;
                 let seg_t = (ext * dt).exp_neg();
-                let integ = |s: S<N>| {
+                let integ = |s: Channels<N>| {
                     s.zip(ext, |si, e| if e > 0.0 { si / e } else { si * dt })
                         - (s * seg_t).zip(ext, |si, e| if e > 0.0 { si / e } else { 0.0 })
                 };
@@ -380,14 +380,14 @@ impl<const N: usize> Model<N> {
         nu: f64,
         k_max: usize,
         bound: impl Fn(usize) -> f64,
-        sun_t: impl Fn(f64, f64) -> S<N>,
-        mut each: impl FnMut(usize, S<N>, S<N>),
-    ) -> (S<N>, S<N>) {
+        sun_t: impl Fn(f64, f64) -> Channels<N>,
+        mut each: impl FnMut(usize, Channels<N>, Channels<N>),
+    ) -> (Channels<N>, Channels<N>) {
         let b = self.bottom();
         let pr = rayleigh_phase(nu);
         let pm = self.mie_phase(nu);
-        let mut l = S::ZERO;
-        let mut thr = S::ONE;
+        let mut l = Channels::ZERO;
+        let mut thr = Channels::ONE;
         let mut t0 = bound(0);
         for k in 1..=k_max {
             let t1 = bound(k);
@@ -420,7 +420,7 @@ impl<const N: usize> Model<N> {
 
     /// Converts channels to linear sRGB.
     #[inline]
-    pub fn rgb(&self, s: S<N>) -> glam::DVec3 {
+    pub fn rgb(&self, s: Channels<N>) -> glam::DVec3 {
         let dot = |row: &[f64; N]| row.iter().zip(s.0).map(|(a, b)| a * b).sum::<f64>();
         glam::DVec3::new(
             dot(&self.to_rgb[0]),

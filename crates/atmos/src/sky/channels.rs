@@ -1,18 +1,18 @@
-//! A fixed-size spectrum of `N` channels (RGB or spectral bands) in `f64`.
+//! A fixed-size vector of `N` channels (RGB or spectral bands) in `f64`.
 
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub};
 
 /// `N` channel values.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct S<const N: usize>(pub [f64; N]);
+pub(crate) struct Channels<const N: usize>(pub [f64; N]);
 
-impl<const N: usize> S<N> {
-    pub const ZERO: Self = S([0.0; N]);
-    pub const ONE: Self = S([1.0; N]);
+impl<const N: usize> Channels<N> {
+    pub const ZERO: Self = Channels([0.0; N]);
+    pub const ONE: Self = Channels([1.0; N]);
 
     #[inline]
     pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        S(self.0.map(f))
+        Channels(self.0.map(f))
     }
 
     #[inline]
@@ -26,7 +26,7 @@ impl<const N: usize> S<N> {
         for (a, b) in r.iter_mut().zip(o.0) {
             *a = f(*a, b);
         }
-        S(r)
+        Channels(r)
     }
 
     #[inline]
@@ -36,52 +36,52 @@ impl<const N: usize> S<N> {
 
     #[inline]
     pub fn from_f32(v: &[f32; N]) -> Self {
-        S(v.map(f64::from))
+        Channels(v.map(f64::from))
     }
 }
 
-impl<const N: usize> Add for S<N> {
+impl<const N: usize> Add for Channels<N> {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
         self.zip(o, |a, b| a + b)
     }
 }
-impl<const N: usize> Sub for S<N> {
+impl<const N: usize> Sub for Channels<N> {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
         self.zip(o, |a, b| a - b)
     }
 }
-impl<const N: usize> Mul for S<N> {
+impl<const N: usize> Mul for Channels<N> {
     type Output = Self;
     #[inline]
     fn mul(self, o: Self) -> Self {
         self.zip(o, |a, b| a * b)
     }
 }
-impl<const N: usize> Mul<f64> for S<N> {
+impl<const N: usize> Mul<f64> for Channels<N> {
     type Output = Self;
     #[inline]
     fn mul(self, k: f64) -> Self {
         self.map(|a| a * k)
     }
 }
-impl<const N: usize> Div<f64> for S<N> {
+impl<const N: usize> Div<f64> for Channels<N> {
     type Output = Self;
     #[inline]
     fn div(self, k: f64) -> Self {
         self.map(|a| a / k)
     }
 }
-impl<const N: usize> AddAssign for S<N> {
+impl<const N: usize> AddAssign for Channels<N> {
     #[inline]
     fn add_assign(&mut self, o: Self) {
         *self = *self + o;
     }
 }
-impl<const N: usize> MulAssign for S<N> {
+impl<const N: usize> MulAssign for Channels<N> {
     #[inline]
     fn mul_assign(&mut self, o: Self) {
         *self = *self * o;
@@ -102,7 +102,7 @@ impl<const N: usize> Lut2<N> {
     pub fn build(
         w: usize,
         h: usize,
-        f: impl Fn(f64, f64) -> S<N> + Sync + Send,
+        f: impl Fn(f64, f64) -> Channels<N> + Sync + Send,
         progress: &dyn natura_core::Progress,
     ) -> Self {
         let mut data = vec![[0.0f32; N]; w * h];
@@ -129,12 +129,12 @@ impl<const N: usize> Lut2<N> {
 
     /// Bilinear sample at `x, y ∈ [0, 1]` (clamped).
     #[inline]
-    pub fn sample(&self, x: f64, y: f64) -> S<N> {
+    pub fn sample(&self, x: f64, y: f64) -> Channels<N> {
         let fx = (x.clamp(0.0, 1.0) * (self.w - 1) as f64).min((self.w - 1) as f64);
         let fy = (y.clamp(0.0, 1.0) * (self.h - 1) as f64).min((self.h - 1) as f64);
         let (i, j) = ((fx as usize).min(self.w - 2), (fy as usize).min(self.h - 2));
         let (tx, ty) = (fx - i as f64, fy - j as f64);
-        let at = |i: usize, j: usize| S::from_f32(&self.data[j * self.w + i]);
+        let at = |i: usize, j: usize| Channels::from_f32(&self.data[j * self.w + i]);
         let a = at(i, j) * (1.0 - tx) + at(i + 1, j) * tx;
         let b = at(i, j + 1) * (1.0 - tx) + at(i + 1, j + 1) * tx;
         a * (1.0 - ty) + b * ty
