@@ -28,6 +28,7 @@
 //! A production continues on the next line while a `(` or `{` is open or
 //! while the next line holds no arrow and no directive.
 
+mod consts;
 pub(crate) mod expr;
 pub mod funcs;
 mod parser;
