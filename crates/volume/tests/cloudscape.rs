@@ -68,23 +68,29 @@ fn cloudscape_fast_mode_against_the_reference() {
     // Where the difference lies: ground, clear sky, cloud.
     let f = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
     let cam = cs.camera();
-    let mut sums = [[0.0f64; 3]; 3];
+    let mut sums = [[0.0f64; 3]; 4];
     for y in 0..cam.height {
         for x in 0..cam.width {
             let d = cam.ray(x, y);
+            let tr = f.transmittance(cam.position, d, f32::INFINITY);
             let k = if d.z < 0.0 {
                 0
-            } else if f.transmittance(cam.position, d, f32::INFINITY) > 0.99 {
+            } else if tr > 0.99 {
                 1
-            } else {
+            } else if tr > 0.3 {
                 2
+            } else {
+                3
             };
             sums[k][0] += lum(fast.get(x, y).unwrap());
             sums[k][1] += lum(reference.get(x, y).unwrap());
             sums[k][2] += 1.0;
         }
     }
-    for (k, name) in ["ground", "clear sky", "cloud"].iter().enumerate() {
+    for (k, name) in ["ground", "clear sky", "thin cloud", "thick cloud"]
+        .iter()
+        .enumerate()
+    {
         let [a, r, n] = sums[k];
         eprintln!(
             "{name}: {n} pixels, mean luminance fast {:.4}, reference {:.4}",
