@@ -68,23 +68,29 @@ fn cloudscape_fast_mode_against_the_reference() {
     // Where the difference lies: ground, clear sky, cloud.
     let f = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
     let cam = cs.camera();
-    let mut sums = [[0.0f64; 3]; 3];
+    let mut sums = [[0.0f64; 3]; 4];
     for y in 0..cam.height {
         for x in 0..cam.width {
             let d = cam.ray(x, y);
+            let tr = f.transmittance(cam.position, d, f32::INFINITY);
             let k = if d.z < 0.0 {
                 0
-            } else if f.transmittance(cam.position, d, f32::INFINITY) > 0.99 {
+            } else if tr > 0.99 {
                 1
-            } else {
+            } else if tr > 0.3 {
                 2
+            } else {
+                3
             };
             sums[k][0] += lum(fast.get(x, y).unwrap());
             sums[k][1] += lum(reference.get(x, y).unwrap());
             sums[k][2] += 1.0;
         }
     }
-    for (k, name) in ["ground", "clear sky", "cloud"].iter().enumerate() {
+    for (k, name) in ["ground", "clear sky", "thin cloud", "thick cloud"]
+        .iter()
+        .enumerate()
+    {
         let [a, r, n] = sums[k];
         eprintln!(
             "{name}: {n} pixels, mean luminance fast {:.4}, reference {:.4}",
@@ -97,12 +103,14 @@ fn cloudscape_fast_mode_against_the_reference() {
         eprintln!("blocks of {b}×{b}: relative luminance error {e:.3}; of the mean {m:.3}");
     }
     eprintln!("reference: 96×54 at 256 paths per pixel in {secs:.1} s");
-    // Measured: 0.224 over 3×3 blocks, 0.114 of the mean (0.236 and 0.116
-    // before the forward peak's truncation); the goal is 0.10, but two
-    // references with different seeds differ by about as much (see the
-    // full-frame test below).
+    // Measured (256 paths per pixel): 0.231 over 3×3 blocks, 0.043 of the
+    // mean; thin cloud a tenth too dark, thick cloud a seventh too bright
+    // (0.161 and 0.091 before the sun's light carried by the forward peak
+    // counted in the first order). The mean is held within 10 %; the error
+    // per block is not, and the goal there is 0.10, with a noise floor of
+    // about 0.12 (see the full-frame test below).
     let (e, m) = errors_image(&fast, &reference, 3);
-    assert!(e <= 0.3 && m <= 0.15, "{e} {m}");
+    assert!(e <= 0.3 && m <= 0.1, "{e} {m}");
 }
 
 /// Relative luminance error of `a` against `r` (row-major `w × h`), over
@@ -209,11 +217,11 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
         "reference: {} rays of the 1920×1080 frame at {spp} paths per pixel in {secs:.1} s",
         rays.len()
     );
-    // Measured against a reference at 384 paths per pixel: 0.191 over 3×3
-    // blocks, 0.144 of the mean; the fast mode's clouds are too dark by about
-    // a fifth. The noise floor at 128 paths per pixel is 0.123 over 3×3
-    // blocks and 0.037 of the mean (0.255 and 0.065 when the sun's peak is
-    // not sampled).
+    // Measured against a reference at 512 paths per pixel: 0.255 over 3×3
+    // blocks, 0.022 of the mean (0.198 and 0.146 before the sun's light
+    // carried by the forward peak counted in the first order, when the
+    // clouds were a fifth too dark). The noise floor at 512 paths per pixel
+    // is 0.123 over 3×3 blocks and 0.019 of the mean.
     let (e, m) = errors(&a, &r1, w, 3);
-    assert!(e <= 0.3 && m <= 0.2, "{e} {m}");
+    assert!(e <= 0.3 && m <= 0.1, "{e} {m}");
 }

@@ -248,6 +248,26 @@ fn rel_error(a: &Image, r: &Image, mask: &[bool]) -> (f32, f32) {
     ((d / s) as f32, (dm / sm.max(1e-12)) as f32)
 }
 
+/// The mean luminance of `a` over that of the reference `r` on the pixels
+/// that see the volume (above 1: too bright).
+fn mean_ratio(a: &Image, r: &Image, mask: &[bool]) -> f64 {
+    let lum = |c: Vec3| f64::from(natura_core::colour::luminance(c));
+    let (mut sa, mut sr) = (0.0f64, 0.0f64);
+    for ((x, y), &m) in a
+        .pixels()
+        .as_slice()
+        .iter()
+        .zip(r.pixels().as_slice())
+        .zip(mask)
+    {
+        if m {
+            sa += lum(*x);
+            sr += lum(*y);
+        }
+    }
+    sa / sr.max(1e-12)
+}
+
 /// The errors against the reference over the pixels that see the volume:
 /// single scattering, the octave approximation, and the octave
 /// approximation without the forward peak's truncation.
@@ -327,6 +347,12 @@ fn compare_lit(
     eprintln!(
         "{name}: relative luminance error (whole image / pixels that see the volume): single scattering {:.3} / {:.3}, octave multiple scattering {:.3} / {:.3}, the same without truncating the forward peak {:.3} / {:.3}",
         es.0, es.1, em.0, em.1, ew.0, ew.1
+    );
+    eprintln!(
+        "{name}: mean luminance over the reference's on those pixels: single {:.3}, octaves {:.3}, untruncated {:.3}",
+        mean_ratio(&single, &reference, &mask),
+        mean_ratio(&multi, &reference, &mask),
+        mean_ratio(&whole, &reference, &mask),
     );
     (es.1, em.1, ew.1)
 }

@@ -17,35 +17,43 @@
 //! the vertical only: an approximation, measured against the reference.
 //!
 //! A cloud's phase function sends about half of its scattering into a
-//! diffraction peak a fraction of a degree wide ([`CloudPhase::forward_peak`](crate::phase::CloudPhase::forward_peak)).
+//! diffraction peak a fraction of a degree wide ([`CloudPhase::forward_peak`]).
 //! Light scattered into it keeps its direction, so for the transport inside
 //! the volume it is as good as unscattered, yet the octave sums with the full
 //! extinction count it as lost. With [`FastSettings::truncate_forward_peak`]
-//! the march uses the truncated multiple-scattering approximation of
-//! Nakajima & Tanaka 1988 ("TMS", §2): every optical depth (eye ray, shadow
-//! tables, what is seen through the volume) and the octaves beyond single
-//! scattering, sun and ambient, use the δ-M medium of Wiscombe 1977 (the peak
-//! removed, lower extinction and albedo:
-//! [`MediumParams::without_forward_peak`](super::MediumParams::without_forward_peak)),
-//! while the sun's single scattering toward the eye is computed in the exact
-//! medium (full phase function, extinction and transmittance), so the eye
-//! still sees the peak (the aureole round a low sun through thin cloud).
-//! Nakajima & Tanaka's own correction attenuates that single scattering by
-//! the δ-M optical depths; measured against the reference on the
-//! cloudscape, that over-brightens the aureole (the peak is several pixels
-//! wide in a 1920-pixel frame, not below resolution), so here it keeps the
-//! exact ones.
+//! the phase function is split as `p = f·p_peak + (1 − f)·p'` and the
+//! sun's light is counted once in each part:
 //!
-//! What that choice leaves out: sunlight carried into the cloud by the peak
-//! and then scattered out of it toward the eye (the first order of the δ-M
-//! medium) is in neither term, since the single scattering sees only the
-//! unscattered sun and the octaves start at the second order. On the
-//! cloudscape that leaves the clouds about a fifth too dark against the
-//! reference. Nakajima & Tanaka's attenuation includes that light, but with
-//! the default octaves (chosen before the truncation) the clouds come out
-//! about a sixth too bright instead: the octaves beyond single scattering
-//! over-count in the δ-M medium. Neither is within 10 %, and no constant is
-//! fitted here to close the gap.
+//! - the part outside the peak travels through the δ-M medium of Wiscombe
+//!   1977 (its scaled optical depth and single-scattering albedo,
+//!   `σ_t' = σ_t(1 − ω f)`, `ω' = ω(1 − f)/(1 − ω f)`, and the phase `p'`
+//!   of asymmetry `g' = (g − f)/(1 − f)`:
+//!   [`MediumParams::without_forward_peak`](super::MediumParams::without_forward_peak)):
+//!   every optical depth (eye ray, shadow tables, what is seen through the
+//!   volume) and the whole octave sum, its first order included. The first
+//!   order `σ_s'·p'·e^{−τ'}` is the light the medium scatters out of the peak
+//!   once: `e^{−τ'}` is the sun's light that arrives unscattered or carried
+//!   along by the peak, the first term of the δ-M medium's own order series,
+//!   so nothing is counted in both it and the octaves beyond;
+//! - the peak's own single scattering of the unscattered sun toward the eye,
+//!   `σ_s·f·p_peak·e^{−τ}`, is computed in the exact medium (exact
+//!   extinction toward the sun and along the eye ray), so the eye still sees
+//!   the peak (the aureole round a low sun through thin cloud), which is
+//!   several pixels wide in a 1920-pixel frame, not below resolution.
+//!
+//! This is Nakajima & Tanaka's truncated multiple-scattering approximation
+//! (1988, §2, "TMS": the truncated medium for the multiple scattering, the
+//! exact phase function for single scattering), except that their
+//! correction attenuates the whole single scattering, peak included, by the
+//! δ-M optical depths; here the peak's part keeps the exact ones, since the
+//! δ-M depths brighten the resolved aureole.
+//!
+//! What it leaves: the octave constants `a`, `b`, `c` of [`ScatterOctaves`]
+//! are Wrenninge's artistic ones, not derived from the δ-M medium. Measured
+//! against the reference on the cloudscape, the mean brightness of the clouds
+//! is within a few per cent, but optically thick cloud comes out about a
+//! seventh too bright and thin cloud a tenth too dark, so the error per
+//! pixel is well above 10 %. No constant is fitted here to close that gap.
 
 use glam::Vec3;
 use natura_core::{Aabb, Image};
@@ -55,6 +63,7 @@ use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
 use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
+use crate::phase::CloudPhase;
 
 /// How the march finds the optical depth toward the lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,8 +95,9 @@ pub struct FastSettings {
     /// The march stops below this transmittance, in `[0, 1)`.
     pub min_transmittance: f32,
     /// Treat the phase function's forward diffraction peak as transmitted
-    /// light, with exact single scattering of the sun (see the module docs);
-    /// no effect on phase functions without such a peak.
+    /// light (the δ-M medium for everything but the peak's own single
+    /// scattering of the sun, which stays exact: see the module docs); no
+    /// effect on phase functions without such a peak.
     pub truncate_forward_peak: bool,
 }
 
@@ -131,6 +141,22 @@ pub struct FastRenderer<'s> {
     medium: MediumParams,
     /// Its extinction over the scene's (`1 − ω f`; 1 without truncation).
     ratio: f32,
+    /// The truncated peak, `f` times its lobe (`None` without truncation).
+    peak: Option<ScaledPhase>,
+}
+
+/// A phase function times a weight.
+#[derive(Clone, Copy, Debug)]
+struct ScaledPhase {
+    weight: f32,
+    phase: CloudPhase,
+}
+
+impl ScaledPhase {
+    #[inline]
+    fn eval(&self, mu: f32) -> f32 {
+        self.weight * self.phase.eval(mu)
+    }
 }
 
 impl std::fmt::Debug for FastRenderer<'_> {
@@ -191,6 +217,15 @@ impl<'s> FastRenderer<'s> {
         } else {
             1.0
         };
+        let peak = match scene.medium.phase.peak_lobe() {
+            Some((f, g)) if settings.truncate_forward_peak && ratio > 0.0 && f > 0.0 => {
+                Some(ScaledPhase {
+                    weight: f,
+                    phase: CloudPhase::HenyeyGreenstein(g),
+                })
+            }
+            _ => None,
+        };
         let ext = medium.extinction;
         let (sun_table, up_table) = match settings.shadows {
             Shadows::Table(n) => {
@@ -248,6 +283,7 @@ impl<'s> FastRenderer<'s> {
             bounds,
             medium,
             ratio,
+            peak,
         })
     }
 
@@ -292,7 +328,7 @@ impl<'s> FastRenderer<'s> {
         let sc = self.scene;
         // The exact medium (the sun's single scattering) and the one the rest travels through.
         let (m0, m) = (&sc.medium, &self.medium);
-        let truncated = self.ratio != 1.0;
+        let truncated = self.peak.is_some();
         let sun = sc.sun_unit();
         let surface = sc.surface_hit(o, d);
         let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
@@ -357,18 +393,17 @@ impl<'s> FastRenderer<'s> {
                             let tau = self.tau_sun(p, s.direction);
                             let mu = d.dot(s.direction);
                             let pw = powder(tau, self.settings.powder);
-                            // Single scattering in the exact medium (optical depths
-                            // scale with the extinction), the other octaves in the
-                            // transport medium.
-                            let tau0 = if self.ratio > 0.0 {
-                                tau / self.ratio
-                            } else {
-                                tau
-                            };
-                            src0 = s.irradiance
-                                * (sigma_t0 * m0.albedo * m0.phase.eval(mu) * (-tau0).exp() * pw);
-                            let f = oc.sun_scattered(&m.phase, mu, tau) * pw;
-                            src += s.irradiance * (sigma_s * f);
+                            // Every order, the first included, in the transport
+                            // medium: sunlight carried in by the peak counts.
+                            src += s.irradiance * (sigma_s * oc.sun(&m.phase, mu, tau) * pw);
+                            // The peak's own single scattering toward the eye, in
+                            // the exact medium (optical depths scale with the
+                            // extinction).
+                            if let Some(hg) = self.peak {
+                                let tau0 = tau / self.ratio;
+                                src0 = s.irradiance
+                                    * (sigma_t0 * m0.albedo * hg.eval(mu) * (-tau0).exp() * pw);
+                            }
                         }
                         src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
                     }
