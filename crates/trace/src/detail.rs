@@ -94,6 +94,9 @@ pub struct Detail {
     amp_pre: Vec<f64>,
     lip_pre: Vec<f64>,
     fp_max: Vec<f64>,
+    /// Octave `k` is present (`n(w) > k`) below the footprint `λ₀/(2rᵏ)`,
+    /// widened by a relative 1e-9 so that rounding never drops one.
+    nyquist: Vec<f64>,
 }
 
 impl Detail {
@@ -135,6 +138,9 @@ impl Detail {
         let freq: Vec<f64> = (0..n).map(|k| lac.powi(k as i32) / lambda0).collect();
         let noise = Perlin::new(p.seed);
         let (mut amp_pre, mut lip_pre, mut fp_max) = (vec![0.0f64], vec![0.0f64], vec![0.0f64]);
+        let nyquist = (0..n)
+            .map(|k| 0.5 * lambda0 / lac.powi(k as i32) * (1.0 + 1e-9))
+            .collect();
         for k in 0..n as usize {
             amp_pre.push(amp_pre[k] + amp[k]);
             lip_pre.push(lip_pre[k] + amp[k] * freq[k]);
@@ -142,6 +148,7 @@ impl Detail {
             fp_max.push(fp_max[k].max(amp[k] / wmin));
         }
         Ok(Self {
+            nyquist,
             amp_pre,
             lip_pre,
             fp_max,
@@ -241,8 +248,8 @@ impl Detail {
     /// of the octaves present at `w`.
     #[must_use]
     pub fn amplitude_bound(&self, w: f64) -> f64 {
-        let n = self.octaves_at(w);
-        self.amp_pre[n.ceil() as usize] * self.noise.bound()
+        let present = self.nyquist.iter().take_while(|&&f| w < f).count();
+        self.amp_pre[present] * self.noise.bound()
     }
 
     /// A bound on `|∇D(·; w')|` for every `w' ≥ w`: `L_noise · Σ wₖ aₖ fₖ`.

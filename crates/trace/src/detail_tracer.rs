@@ -164,7 +164,22 @@ impl<'a> DetailTracer<'a> {
         if !self.surface.detail().is_active() {
             return self.base.occluded(ray, t_min, t_max);
         }
-        self.trace_footprint(ray, t_min, t_max, fp).is_some()
+        if !ray.is_valid() || t_min.is_nan() || t_max.is_nan() || t_min > t_max {
+            return false;
+        }
+        if check_footprint(fp).is_err() {
+            return false;
+        }
+        // As `trace_footprint`, without the hit record: the first crossing is enough.
+        let t_far = self.t_far(ray, fp);
+        if t_far <= f64::from(t_min) {
+            return self.base.occluded(ray, t_min, t_max);
+        }
+        let end = t_far.min(f64::from(t_max));
+        if self.walk(ray, f64::from(t_min), end, fp).is_some() {
+            return true;
+        }
+        t_far < f64::from(t_max) && self.base.occluded(ray, t_far as f32, t_max)
     }
 
     /// `g(t)`: the ray's height above the surface at `t` (the point clamped
