@@ -40,6 +40,10 @@ use crate::tracer::Tracer;
 /// Smallest march step, as a fraction of the footprint.
 const MIN_STEP_FOOTPRINTS: f64 = 0.25;
 
+/// The march stops evaluating octaves once the gap left exceeds this multiple
+/// of the finer octaves' amplitude bound.
+const STOP_REST: f64 = 2.0;
+
 /// Bisection stops when the bracket is this fraction of the footprint.
 const BISECT_FOOTPRINTS: f64 = 1e-3;
 
@@ -59,6 +63,8 @@ struct WalkRay {
     len: f64,
     /// `|d_xy|`.
     dxy: f64,
+    /// `1/d_x`, `1/d_y` (for the slabs).
+    inv: DVec2,
     fp: RayCone,
     /// `+1` if the ray starts above the surface, `−1` below.
     side: f64,
@@ -203,6 +209,7 @@ impl<'a> DetailTracer<'a> {
             d,
             len: d.length(),
             dxy: d.truncate().length(),
+            inv: DVec2::ONE / d.truncate(),
             fp,
             side: 1.0,
         };
@@ -298,7 +305,7 @@ impl<'a> DetailTracer<'a> {
             let g = loop {
                 let rest = detail.amplitude_between(k, top);
                 let g = part - rest;
-                if k == top || g >= rest {
+                if k == top || g >= STOP_REST * rest {
                     break g;
                 }
                 if m != 0.0 {
@@ -400,14 +407,17 @@ impl<'a> DetailTracer<'a> {
 fn slab(r: &WalkRay, lo: DVec2, hi: DVec2, t0: f64, t1: f64) -> Option<(f64, f64)> {
     let pad = 1e-7 * (1.0 + hi.x.abs().max(hi.y.abs()));
     let (mut a, mut b) = (t0, t1);
-    for (o, d, l, h) in [(r.o.x, r.d.x, lo.x, hi.x), (r.o.y, r.d.y, lo.y, hi.y)] {
+    for (o, d, inv, l, h) in [
+        (r.o.x, r.d.x, r.inv.x, lo.x, hi.x),
+        (r.o.y, r.d.y, r.inv.y, lo.y, hi.y),
+    ] {
         let (l, h) = (l - pad, h + pad);
         if d == 0.0 {
             if o < l || o > h {
                 return None;
             }
         } else {
-            let (p, q) = ((l - o) / d, (h - o) / d);
+            let (p, q) = ((l - o) * inv, (h - o) * inv);
             a = a.max(p.min(q));
             b = b.min(p.max(q));
         }
