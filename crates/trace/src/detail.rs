@@ -89,6 +89,14 @@ pub struct Detail {
     ln_lac: f64,
     lac: f64,
     lip_noise: f64,
+    /// `Σ_{j<k} aⱼ` and `Σ_{j<k} aⱼ fⱼ` (index `k` from 0 to the octave
+    /// count), and `max_{j<k} aⱼ / w_min,j` for the footprint bound.
+    amp_pre: Vec<f64>,
+    lip_pre: Vec<f64>,
+    fp_max: Vec<f64>,
+    /// Octave `k` is present (`n(w) > k`) below the footprint `λ₀/(2rᵏ)`,
+    /// widened by a relative 1e-9 so that rounding never drops one.
+    nyquist: Vec<f64>,
 }
 
 impl Detail {
@@ -124,12 +132,26 @@ impl Detail {
         let lac = f64::from(p.lacunarity);
         let n = if p.amplitude_m > 0.0 { p.octaves } else { 0 };
         let lambda0 = f64::from(p.wavelength_m);
-        let amp = (0..n)
+        let amp: Vec<f64> = (0..n)
             .map(|k| f64::from(p.amplitude_m) * lac.powf(-f64::from(k) * f64::from(p.h)))
             .collect();
-        let freq = (0..n).map(|k| lac.powi(k as i32) / lambda0).collect();
+        let freq: Vec<f64> = (0..n).map(|k| lac.powi(k as i32) / lambda0).collect();
         let noise = Perlin::new(p.seed);
+        let (mut amp_pre, mut lip_pre, mut fp_max) = (vec![0.0f64], vec![0.0f64], vec![0.0f64]);
+        let nyquist = (0..n)
+            .map(|k| 0.5 * lambda0 / lac.powi(k as i32) * (1.0 + 1e-9))
+            .collect();
+        for k in 0..n as usize {
+            amp_pre.push(amp_pre[k] + amp[k]);
+            lip_pre.push(lip_pre[k] + amp[k] * freq[k]);
+            let wmin = 0.5 * lambda0 / lac.powi(k as i32 + 1);
+            fp_max.push(fp_max[k].max(amp[k] / wmin));
+        }
         Ok(Self {
+            nyquist,
+            amp_pre,
+            lip_pre,
+            fp_max,
             lip_noise: noise.lipschitz2(),
             noise,
             amp,
@@ -161,7 +183,7 @@ impl Detail {
 
     /// The fractional octave count `n(w)`, clamped to `[0, octaves]`.
     #[inline]
-    fn octaves_at(&self, w: f64) -> f64 {
+    pub(crate) fn octaves_at(&self, w: f64) -> f64 {
         let n = self.amp.len() as f64;
         if w <= 0.0 {
             return n;
@@ -175,6 +197,25 @@ impl Detail {
     fn point(&self, k: usize, p: DVec2) -> DVec2 {
         let s = (k + 1) as f64;
         p * self.freq[k] + DVec2::new(0.618_034 * s, 0.414_214 * s)
+    }
+
+    /// Octave `k`'s weighted term of `D(p; w)` where `n = n(w)`.
+    #[inline]
+    pub(crate) fn octave(&self, k: usize, n: f64, p: DVec2) -> f64 {
+        (n - k as f64).min(1.0) * self.amp[k] * self.noise.eval2(self.point(k, p))
+    }
+
+    /// A bound on `|Σ_{k0 ≤ k < k1} wₖ aₖ Nₖ|` (the octaves `k0..k1`).
+    #[inline]
+    pub(crate) fn amplitude_between(&self, k0: usize, k1: usize) -> f64 {
+        (self.amp_pre[k1] - self.amp_pre[k0]) * self.noise.bound()
+    }
+
+    /// A bound on the gradient of the first `k` octaves at any footprint
+    /// (every weight taken as 1).
+    #[inline]
+    pub(crate) fn lipschitz_first(&self, k: usize) -> f64 {
+        self.lip_pre[k] * self.lip_noise
     }
 
     /// `D(p; w)`, metres.
@@ -207,8 +248,8 @@ impl Detail {
     /// of the octaves present at `w`.
     #[must_use]
     pub fn amplitude_bound(&self, w: f64) -> f64 {
-        let n = self.octaves_at(w);
-        self.amp[..n.ceil() as usize].iter().sum::<f64>() * self.noise.bound()
+        let present = self.nyquist.iter().take_while(|&&f| w < f).count();
+        self.amp_pre[present] * self.noise.bound()
     }
 
     /// A bound on `|∇D(·; w')|` for every `w' ≥ w`: `L_noise · Σ wₖ aₖ fₖ`.
@@ -227,7 +268,12 @@ impl Detail {
     /// `n(w') ∈ [k, k + 1)`, where `w' ≥ λ₀/(2 r^(k+1))`.
     #[must_use]
     pub fn footprint_bound(&self, w: f64) -> f64 {
-        let n = self.octaves_at(w);
+        self.footprint_bound_n(w, self.octaves_at(w))
+    }
+
+    /// [`Self::footprint_bound`] with `n = n(w)` already known.
+    #[inline]
+    pub(crate) fn footprint_bound_n(&self, w: f64, n: f64) -> f64 {
         if n <= 0.0 {
             return 0.0;
         }
@@ -237,10 +283,7 @@ impl Detail {
         if kstar < top && w > 0.0 {
             b = self.amp[kstar] / w;
         }
-        for k in 0..kstar {
-            let wmin = 0.5 * self.lambda0 / self.lac.powi(k as i32 + 1);
-            b = b.max(self.amp[k] / wmin);
-        }
+        b = b.max(self.fp_max[kstar]);
         b * self.noise.bound() / self.ln_lac
     }
 }
@@ -363,6 +406,12 @@ impl<'a> DetailSurface<'a> {
             }
         };
         m * gd + d * gm
+    }
+
+    /// The bound on the mask's gradient `|∇m|`, per metre (0 without a mask).
+    #[inline]
+    pub(crate) fn mask_lipschitz(&self) -> f64 {
+        self.mask_lip
     }
 
     /// A bound on `|m·D|` for every footprint `w' ≥ w`.

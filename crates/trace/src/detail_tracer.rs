@@ -15,8 +15,12 @@
 //! `L` bounds the slope of `S` in the cell (the two triangles' and the
 //! detail's Lipschitz bounds), `F` the change of `S` with the footprint, so
 //! a step never crosses the surface (the Lipschitz step of Hart 1996 applied to a height field).
-//! While the ray is outside the shell `B ± A` the gap to the shell, with the
-//! triangles' slope alone, gives a longer step without evaluating any noise.
+//! The octaves are evaluated from the coarsest on only until the amplitude
+//! left in the finer ones cannot close the gap that remains: the step then
+//! uses the gap to that narrower shell and the slope of the octaves
+//! evaluated, so far above the surface no noise is evaluated at all (the
+//! shell `B ± A`, the triangles' slope alone) and near it the fine octaves'
+//! large slopes shorten only the last steps.
 //! Steps are at least a quarter of the footprint; where one lands below the
 //! surface a bisection finds the crossing. A feature thinner than a quarter
 //! of a pixel's footprint along the ray can therefore be stepped over; none
@@ -35,6 +39,10 @@ use crate::tracer::Tracer;
 
 /// Smallest march step, as a fraction of the footprint.
 const MIN_STEP_FOOTPRINTS: f64 = 0.25;
+
+/// The march stops evaluating octaves once the gap left exceeds this multiple
+/// of the finer octaves' amplitude bound.
+const STOP_REST: f64 = 2.0;
 
 /// Bisection stops when the bracket is this fraction of the footprint.
 const BISECT_FOOTPRINTS: f64 = 1e-3;
@@ -55,6 +63,8 @@ struct WalkRay {
     len: f64,
     /// `|d_xy|`.
     dxy: f64,
+    /// `1/d_x`, `1/d_y` (for the slabs).
+    inv: DVec2,
     fp: RayCone,
     /// `+1` if the ray starts above the surface, `−1` below.
     side: f64,
@@ -160,7 +170,22 @@ impl<'a> DetailTracer<'a> {
         if !self.surface.detail().is_active() {
             return self.base.occluded(ray, t_min, t_max);
         }
-        self.trace_footprint(ray, t_min, t_max, fp).is_some()
+        if !ray.is_valid() || t_min.is_nan() || t_max.is_nan() || t_min > t_max {
+            return false;
+        }
+        if check_footprint(fp).is_err() {
+            return false;
+        }
+        // As `trace_footprint`, without the hit record: the first crossing is enough.
+        let t_far = self.t_far(ray, fp);
+        if t_far <= f64::from(t_min) {
+            return self.base.occluded(ray, t_min, t_max);
+        }
+        let end = t_far.min(f64::from(t_max));
+        if self.walk(ray, f64::from(t_min), end, fp).is_some() {
+            return true;
+        }
+        t_far < f64::from(t_max) && self.base.occluded(ray, t_far as f32, t_max)
     }
 
     /// `g(t)`: the ray's height above the surface at `t` (the point clamped
@@ -184,6 +209,7 @@ impl<'a> DetailTracer<'a> {
             d,
             len: d.length(),
             dxy: d.truncate().length(),
+            inv: DVec2::ONE / d.truncate(),
             fp,
             side: 1.0,
         };
@@ -251,7 +277,10 @@ impl<'a> DetailTracer<'a> {
         let cell = f64::from(f.cell);
         let slope = |a: f32, b: f32| f64::from(a).hypot(f64::from(b)) / cell;
         let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
-        let finest = self.surface.detail().finest_footprint();
+        let detail = self.surface.detail();
+        let finest = detail.finest_footprint();
+        let mask_lip = self.surface.mask_lipschitz();
+        let fw_per_w = f64::from(r.fp.per_metre) * r.len;
         let s = r.side;
         let hf = self.surface.height_field();
         let e = hf.extent();
@@ -261,33 +290,54 @@ impl<'a> DetailTracer<'a> {
             let p = r.o + t * r.d;
             let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
             let base = f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN));
-            // Outside the shell `B ± A(w)` the gap to the shell bounds the gap
-            // to the surface, and the shell's slope is the triangles' alone
-            // (`A` only shrinks along the ray): a longer step without noise.
-            let shell = s * (p.z - base) - self.surface.amplitude_bound(w);
-            let (g, denom) = if shell > 0.0 {
-                (shell, lb * r.dxy - s * r.d.z)
+            // The gap above the base surface, then the octaves from the
+            // coarsest on until the ones left (bounded by their amplitudes)
+            // cannot close what remains: `g` bounds `s·(z − S)` from below.
+            // With none evaluated this is the gap to the shell `B ± A(w)`,
+            // whose slope is the triangles' alone (`A` only shrinks along
+            // the ray); with all of them it is the exact gap.
+            let n = detail.octaves_at(w);
+            let top = n.ceil() as usize;
+            let h = s * (p.z - base);
+            let m = f64::from(self.surface.mask_at(x, y));
+            let q = DVec2::new(f64::from(x), f64::from(y));
+            let (mut k, mut part) = (0, h);
+            let g = loop {
+                let rest = detail.amplitude_between(k, top);
+                let g = part - rest;
+                if k == top || g >= STOP_REST * rest {
+                    break g;
+                }
+                if m != 0.0 {
+                    part -= s * m * detail.octave(k, n, q);
+                }
+                k += 1;
+            };
+            if !g.is_finite() {
+                return None;
+            }
+            if k == top && g <= 0.0 {
+                return Some(if t == t0 {
+                    t0
+                } else {
+                    self.bisect(r, t_prev, t)
+                });
+            }
+            let denom = if k == 0 {
+                lb * r.dxy - s * r.d.z
             } else {
-                let g = s * (p.z - self.surface.height(x, y, w).unwrap_or(f64::NAN));
-                if !g.is_finite() {
-                    return None;
-                }
-                if g <= 0.0 {
-                    return Some(if t == t0 {
-                        t0
-                    } else {
-                        self.bisect(r, t_prev, t)
-                    });
-                }
-                let l = lb + self.surface.lipschitz_bound(w);
-                let fw = self.surface.footprint_bound(w) * f64::from(r.fp.per_metre) * r.len;
-                (g, l * r.dxy + fw - s * r.d.z)
+                // The evaluated octaves' slope (and the mask's over all
+                // octaves), and the blended octave's change with the footprint.
+                let l =
+                    lb + detail.lipschitz_first(k) + detail.amplitude_between(0, top) * mask_lip;
+                let fw = detail.footprint_bound_n(w, n) * fw_per_w;
+                l * r.dxy + fw - s * r.d.z
             };
             if t >= t1 || denom <= 0.0 {
                 // At the cell's end, or `g` cannot shrink over the rest of it.
                 return None;
             }
-            let step = (g / denom).max(MIN_STEP_FOOTPRINTS * w.max(finest) / r.len);
+            let step = (g.max(0.0) / denom).max(MIN_STEP_FOOTPRINTS * w.max(finest) / r.len);
             t_prev = t;
             t = (t + step).min(t1);
         }
@@ -357,14 +407,17 @@ impl<'a> DetailTracer<'a> {
 fn slab(r: &WalkRay, lo: DVec2, hi: DVec2, t0: f64, t1: f64) -> Option<(f64, f64)> {
     let pad = 1e-7 * (1.0 + hi.x.abs().max(hi.y.abs()));
     let (mut a, mut b) = (t0, t1);
-    for (o, d, l, h) in [(r.o.x, r.d.x, lo.x, hi.x), (r.o.y, r.d.y, lo.y, hi.y)] {
+    for (o, d, inv, l, h) in [
+        (r.o.x, r.d.x, r.inv.x, lo.x, hi.x),
+        (r.o.y, r.d.y, r.inv.y, lo.y, hi.y),
+    ] {
         let (l, h) = (l - pad, h + pad);
         if d == 0.0 {
             if o < l || o > h {
                 return None;
             }
         } else {
-            let (p, q) = ((l - o) / d, (h - o) / d);
+            let (p, q) = ((l - o) * inv, (h - o) * inv);
             a = a.max(p.min(q));
             b = b.min(p.max(q));
         }

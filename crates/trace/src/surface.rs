@@ -15,8 +15,9 @@ pub fn surface_height(hf: &HeightField, x: f32, y: f32) -> Option<f32> {
         return None;
     }
     let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
-    let i = (gx.floor() as usize).min(hf.nx() - 2);
-    let j = (gy.floor() as usize).min(hf.ny() - 2);
+    // `x, y ≥ 0`: truncation is the floor.
+    let i = (gx as usize).min(hf.nx() - 2);
+    let j = (gy as usize).min(hf.ny() - 2);
     let (u, v) = (gx - i as f32, gy - j as f32);
     let h = hf.heights();
     let (h00, h10, h01, h11) = (h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]);

@@ -201,3 +201,23 @@ fn a_zero_mask_keeps_the_field_bare() {
     let nan = Grid2::new(34, 34, f32::NAN).unwrap();
     assert!(DetailSurface::new(&hf, Detail::new(&params(2.0)).unwrap(), Some(nan)).is_err());
 }
+
+#[test]
+fn shadow_rays_agree_with_the_closest_hit() {
+    let hf = field(Kind::Uniform, 34, 34, 10.0, 3);
+    let surface = DetailSurface::new(&hf, Detail::new(&params(1.5)).unwrap(), None).unwrap();
+    let fp = RayCone {
+        at_origin_m: 0.02,
+        per_metre: 3e-3,
+    };
+    let tracer = DetailTracer::new(surface, fp).unwrap();
+    let (mut hits, mut misses) = (0, 0);
+    for ray in rays(9, 300) {
+        for t_max in [5.0, 40.0, f32::INFINITY] {
+            let hit = tracer.trace_footprint(&ray, 0.0, t_max, fp).is_some();
+            assert_eq!(tracer.occluded_footprint(&ray, 0.0, t_max, fp), hit);
+            if hit { hits += 1 } else { misses += 1 }
+        }
+    }
+    assert!(hits > 50 && misses > 50, "{hits} hits, {misses} misses");
+}
