@@ -8,11 +8,12 @@
 
 use std::time::Duration;
 
+#[path = "../examples/common/tiles.rs"]
+mod tiles;
+
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use natura::core::{HeightField, NoProgress, Seed};
+use natura::core::{HeightField, NoProgress};
 use natura::plant::eco::{EcoParams, Ecosystem, Instancing};
-use natura::terrain::erosion::{StreamPower, StreamPowerParams};
-use natura::terrain::synth::{SpectralParams, spectral_synthesis};
 
 fn pool(n: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
@@ -22,24 +23,7 @@ fn pool(n: usize) -> rayon::ThreadPool {
 }
 
 fn terrain(n: usize) -> HeightField {
-    let sp = SpectralParams {
-        sigma_m: 25.0,
-        ..Default::default()
-    };
-    let mut hf = spectral_synthesis(n, n, 2.0, &sp, Seed(1998)).expect("terrain");
-    let (lo, hi) = hf.min_max();
-    for v in hf.heights_mut().as_mut_slice() {
-        *v = (*v - lo) / (hi - lo).max(1e-6) * 150.0;
-    }
-    let p = StreamPowerParams {
-        k: 4e-5,
-        dt_yr: 10_000.0,
-        uplift_m_per_yr: 0.0,
-        ..Default::default()
-    };
-    let mut m = StreamPower::new(p, &hf).expect("stream power");
-    m.run(&mut hf, 40, &NoProgress).expect("erosion");
-    hf
+    tiles::eroded_tile(n, 2.0, 1998).expect("terrain")
 }
 
 fn ecosystem(c: &mut Criterion) {

@@ -14,34 +14,9 @@ mod common;
 
 use std::time::Instant;
 
-use natura::core::{HeightField, Seed};
+use natura::core::Seed;
 use natura::plant::eco::{EcoParams, Ecosystem, Instancing, top_view};
 use natura::plant::mesh::{Instance, MeshParams, PlantMesh, save_glb_instanced};
-use natura::terrain::erosion::{StreamPower, StreamPowerParams};
-use natura::terrain::synth::{SpectralParams, spectral_synthesis};
-
-/// A spectral terrain eroded by stream power, `n`² samples `cell` metres apart.
-fn eroded_terrain(n: usize, cell: f32, seed: u64) -> HeightField {
-    let sp = SpectralParams {
-        sigma_m: 25.0,
-        ..Default::default()
-    };
-    let mut hf = common::check(spectral_synthesis(n, n, cell, &sp, Seed(seed)));
-    // Rescale to 150 m of relief over the tile, then erode.
-    let (lo, hi) = hf.min_max();
-    for v in hf.heights_mut().as_mut_slice() {
-        *v = (*v - lo) / (hi - lo).max(1e-6) * 150.0;
-    }
-    let p = StreamPowerParams {
-        k: 4e-5,
-        dt_yr: 10_000.0,
-        uplift_m_per_yr: 0.0,
-        ..Default::default()
-    };
-    let mut m = common::check(StreamPower::new(p, &hf));
-    common::check(m.run(&mut hf, 40, &natura::core::NoProgress));
-    hf
-}
 
 fn main() {
     let mut args = common::Args::from_env();
@@ -60,7 +35,7 @@ fn main() {
         common::fail("--size must be at least 16");
     }
     let t0 = Instant::now();
-    let hf = eroded_terrain(n, 2.0, seed);
+    let hf = common::check(common::tiles::eroded_tile(n, 2.0, seed));
     let t_terrain = t0.elapsed();
     let mut params = EcoParams {
         seed: Seed(seed),

@@ -5,6 +5,8 @@
 
 #[cfg(feature = "core")]
 pub mod scene;
+#[cfg(all(feature = "core", feature = "terrain"))]
+pub mod tiles;
 
 use std::path::PathBuf;
 use std::str::FromStr;
