@@ -353,7 +353,13 @@ impl Transfer {
             let (ip, inb) = tr.up[0][i];
             0.75 * c[ip] + 0.25 * c[inb]
         };
-        let mut add = vec![0.0f32; n0];
+        // Each fine cell's value is added where the cell is an unknown
+        // (every fine cell has a value: 2·nc0 ≥ n0 on an active axis).
+        let mut put = |i: usize, a: f32| {
+            if ds[i] != 0.0 {
+                out[i] += a;
+            }
+        };
         for q in 0..nc0 {
             let i = 2 * q;
             if i >= n0 {
@@ -364,18 +370,16 @@ impl Transfer {
             } else {
                 general(i)
             };
-            add[i] = even;
+            put(i, even);
             if i + 1 < n0 {
-                add[i + 1] = if q + 1 < nc0 {
-                    0.75 * c[q] + 0.25 * c[q + 1]
-                } else {
-                    general(i + 1)
-                };
-            }
-        }
-        for ((o, &a), &d) in out.iter_mut().zip(&add).zip(ds) {
-            if d != 0.0 {
-                *o += a;
+                put(
+                    i + 1,
+                    if q + 1 < nc0 {
+                        0.75 * c[q] + 0.25 * c[q + 1]
+                    } else {
+                        general(i + 1)
+                    },
+                );
             }
         }
     }
