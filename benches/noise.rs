@@ -77,7 +77,9 @@ fn thread_cpu() -> Option<f64> {
 
 /// Whether the command line's benchmark filter (if any) selects group
 /// `name`: the CPU-time passes below run outside criterion, so they skip the
-/// groups a filtered run leaves out. Bare numbers (option values such as
+/// groups a filtered run leaves out. A filter's `|`-separated alternatives
+/// (`'P2_|P5_'`, as criterion's regular expressions allow) each select the
+/// groups whose name contains them. Bare numbers (option values such as
 /// `--profile-time 5`) are not filters.
 fn selected(name: &str) -> bool {
     let filters: Vec<String> = std::env::args()
@@ -85,9 +87,10 @@ fn selected(name: &str) -> bool {
         .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
         .collect();
     filters.is_empty()
-        || filters
-            .iter()
-            .any(|f| name.contains(f.split('/').next().unwrap_or(f)))
+        || filters.iter().flat_map(|f| f.split('|')).any(|alt| {
+            let alt = alt.split('/').next().unwrap_or(alt);
+            !alt.is_empty() && name.contains(alt)
+        })
 }
 
 fn group<'a>(

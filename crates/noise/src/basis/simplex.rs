@@ -22,10 +22,11 @@
 //! and never touch f64.
 
 use glam::{DVec2, DVec3};
+use natura_simd::multiversion;
 
 use crate::field::Field;
 use crate::hash::{GRAD2_64, PX, PY, PZ, corner_spread, dot3, flat2, flat3, grad2, grad3, seed32};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split, split_fast, split_floor_n};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, split, split_fast, split_floor_n};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;
@@ -299,13 +300,7 @@ impl Field for Simplex {
             }
             return;
         }
-        let s = self.s;
-        let k = (1.0 / SIMPLEX2_SUP) as f32;
-        run(
-            simd,
-            #[inline(always)]
-            || simplex2_row::<true>(s, origin, step, k, out),
-        );
+        simplex2_row_at::<true>(simd, self.s, origin, step, (1.0 / SIMPLEX2_SUP) as f32, out);
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
@@ -318,13 +313,37 @@ impl Field for Simplex {
             }
             return;
         }
-        let s = self.s;
-        let k = (1.0 / SIMPLEX3_SUP) as f32;
-        run(
-            simd,
-            #[inline(always)]
-            || simplex3_row(s, origin, step, k, out),
-        );
+        simplex3_row_at(simd, self.s, origin, step, (1.0 / SIMPLEX3_SUP) as f32, out);
+    }
+}
+
+multiversion! {
+    /// [`simplex2_row`] compiled for `simd`'s instruction set (a named
+    /// function, not a closure, so the kernel is inlined into each level's
+    /// `#[target_feature]` function whatever the build's inlining budget).
+    fn simplex2_row_at<'a, const CELL: bool>(
+        simd: Simd,
+        s: u32,
+        origin: DVec2,
+        step: f64,
+        k: f32,
+        out: &'a mut [f32],
+    ) {
+        simplex2_row::<CELL>(s, origin, step, k, out);
+    }
+}
+
+multiversion! {
+    /// [`simplex3_row`] compiled for `simd`'s instruction set.
+    fn simplex3_row_at<'a>(
+        simd: Simd,
+        s: u32,
+        origin: DVec3,
+        step: f64,
+        k: f32,
+        out: &'a mut [f32],
+    ) {
+        simplex3_row(s, origin, step, k, out);
     }
 }
 
@@ -571,10 +590,8 @@ mod tests {
                 for simd in Simd::supported() {
                     let mut fast = [0.0f32; 301];
                     let mut slow = [0.0f32; 301];
-                    run(simd, || simplex2_row::<true>(s, origin, step, k, &mut fast));
-                    run(simd, || {
-                        simplex2_row::<false>(s, origin, step, k, &mut slow)
-                    });
+                    simplex2_row_at::<true>(simd, s, origin, step, k, &mut fast);
+                    simplex2_row_at::<false>(simd, s, origin, step, k, &mut slow);
                     for (m, (f, l)) in fast.iter().zip(&slow).enumerate() {
                         assert_eq!(
                             f.to_bits(),

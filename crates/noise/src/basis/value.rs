@@ -9,13 +9,14 @@
 //! values are within `[-1, 1]`.
 
 use glam::{DVec2, DVec3, DVec4};
+use natura_simd::multiversion;
 
 use crate::basis::SPAN_MAX_STEP;
 use crate::basis::lattice::lattice_sum;
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
-use crate::lanes::{Simd, run, split_fast};
+use crate::lanes::{Simd, split_fast};
 
 /// How value noise interpolates across a cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -194,6 +195,23 @@ impl Value {
     /// Row kernel: `N(fx) = A + interp(fx)·B` with per-cell `A`, `B` (the
     /// row-weighted lattice values of the cell's two x columns).
     fn fill_row(&self, simd: Simd, x0: f64, step: f64, out: &mut [f32], rows: &[u32], w: &[f64]) {
+        value_row_at(simd, rows, w, self.interp, x0, step, out);
+    }
+}
+
+multiversion! {
+    /// [`Value::fill_row`]'s kernel compiled for `simd`'s instruction set (a
+    /// named function: a closure handed to `run` is not always inlined into
+    /// the level's `#[target_feature]` function).
+    fn value_row_at<'a>(
+        simd: Simd,
+        rows: &'a [u32],
+        w: &'a [f64],
+        interp: ValueInterp,
+        x0: f64,
+        step: f64,
+        out: &'a mut [f32],
+    ) {
         let cell = |ix: u32| {
             let (mut a, mut b) = (0.0, 0.0);
             for (r, wt) in rows.iter().zip(w) {
@@ -202,65 +220,54 @@ impl Value {
             }
             (a, b - a)
         };
-        let interp = self.interp;
-        run(
-            simd,
-            #[inline(always)]
-            || {
-                if step > 0.0 && step <= SPAN_MAX_STEP {
-                    let n = out.len();
-                    let s32 = step as f32;
-                    let mut i = 0;
-                    while i < n {
-                        let (ix, fx) = split_fast(x0 + i as f64 * step);
-                        let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
-                        let (a, b) = cell(ix);
-                        let (a, b, t0) = (a as f32, b as f32, fx as f32);
-                        let span = &mut out[i..i + count];
-                        match interp {
-                            ValueInterp::Linear => {
-                                for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * (t0 + (k as i32) as f32 * s32);
-                                }
-                            }
-                            ValueInterp::Cubic => {
-                                for (k, o) in span.iter_mut().enumerate() {
-                                    *o =
-                                        a + b * crate::lanes::cubic32(t0 + (k as i32) as f32 * s32);
-                                }
-                            }
-                            ValueInterp::Quintic => {
-                                for (k, o) in span.iter_mut().enumerate() {
-                                    *o = a + b * crate::lanes::quintic32(
-                                        t0 + (k as i32) as f32 * s32,
-                                    );
-                                }
-                            }
+        if step > 0.0 && step <= SPAN_MAX_STEP {
+            let n = out.len();
+            let s32 = step as f32;
+            let mut i = 0;
+            while i < n {
+                let (ix, fx) = split_fast(x0 + i as f64 * step);
+                let count = (libm::ceil((1.0 - fx) / step) as usize).clamp(1, n - i);
+                let (a, b) = cell(ix);
+                let (a, b, t0) = (a as f32, b as f32, fx as f32);
+                let span = &mut out[i..i + count];
+                match interp {
+                    ValueInterp::Linear => {
+                        for (k, o) in span.iter_mut().enumerate() {
+                            *o = a + b * (t0 + (k as i32) as f32 * s32);
                         }
-                        i += count;
                     }
-                } else {
-                    let w32: [f32; 4] =
-                        core::array::from_fn(|k| w.get(k).copied().unwrap_or(0.0) as f32);
-                    let nr = rows.len();
-                    for (i, o) in out.iter_mut().enumerate() {
-                        let (ix, fx) = split_fast(x0 + (i as i32) as f64 * step);
-                        let fx = fx as f32;
-                        let u = match interp {
-                            ValueInterp::Linear => fx,
-                            ValueInterp::Cubic => crate::lanes::cubic32(fx),
-                            ValueInterp::Quintic => crate::lanes::quintic32(fx),
-                        };
-                        let mut acc = 0.0f32;
-                        for r in 0..nr {
-                            let a = signed_unit(corner(ix, rows[r]));
-                            let b = signed_unit(corner(ix.wrapping_add(1), rows[r]));
-                            acc += w32[r] * (a + u * (b - a));
+                    ValueInterp::Cubic => {
+                        for (k, o) in span.iter_mut().enumerate() {
+                            *o = a + b * crate::lanes::cubic32(t0 + (k as i32) as f32 * s32);
                         }
-                        *o = acc;
+                    }
+                    ValueInterp::Quintic => {
+                        for (k, o) in span.iter_mut().enumerate() {
+                            *o = a + b * crate::lanes::quintic32(t0 + (k as i32) as f32 * s32);
+                        }
                     }
                 }
-            },
-        );
+                i += count;
+            }
+        } else {
+            let w32: [f32; 4] = core::array::from_fn(|k| w.get(k).copied().unwrap_or(0.0) as f32);
+            let nr = rows.len();
+            for (i, o) in out.iter_mut().enumerate() {
+                let (ix, fx) = split_fast(x0 + (i as i32) as f64 * step);
+                let fx = fx as f32;
+                let u = match interp {
+                    ValueInterp::Linear => fx,
+                    ValueInterp::Cubic => crate::lanes::cubic32(fx),
+                    ValueInterp::Quintic => crate::lanes::quintic32(fx),
+                };
+                let mut acc = 0.0f32;
+                for r in 0..nr {
+                    let a = signed_unit(corner(ix, rows[r]));
+                    let b = signed_unit(corner(ix.wrapping_add(1), rows[r]));
+                    acc += w32[r] * (a + u * (b - a));
+                }
+                *o = acc;
+            }
+        }
     }
 }

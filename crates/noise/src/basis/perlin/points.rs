@@ -19,7 +19,7 @@ use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::fractal::fbm::Fbm;
 use crate::hash::{corner, grad3, row3};
-use crate::lanes::{Simd, cubic32, quintic32, run, split_fast};
+use crate::lanes::{Simd, cubic32, quintic32, split_fast};
 
 /// Points per chunk of the batch fBm (stack scratch buffers, no allocation).
 const CHUNK: usize = 256;
@@ -153,6 +153,27 @@ fn points_loop(
     }
 }
 
+multiversion! {
+    /// Adds octave `kf`'s values `n` (amplitude `amp`) to `acc`, each point
+    /// weighted by how much of the octave it sees (`visible` octaves, at most
+    /// `total`).
+    fn band_accumulate<'a>(
+        simd: Simd,
+        acc: &'a mut [f32],
+        n: &'a [f32],
+        visible: &'a [f32],
+        amp: f32,
+        kf: f32,
+        total: f32,
+    ) {
+        for ((a, &n), &v) in acc.iter_mut().zip(n).zip(visible) {
+            let lim = if v < total { v } else { total };
+            let t = (lim - kf).clamp(0.0, 1.0);
+            *a += amp * t * n;
+        }
+    }
+}
+
 impl Fbm<Perlin> {
     /// Fills `out[i]` with [`Fbm::eval3_band`] at `(x[i], y[i], z[i])` over
     /// `visible[i]` octaves, at the level `simd`: each octave is one batch
@@ -201,17 +222,7 @@ impl Fbm<Perlin> {
                     .points_chunk(simd, &sx[..m], &sy[..m], &sz[..m], &mut tmp[..m]);
                 let amp = o.amplitude(k) as f32;
                 let kf = k as f32;
-                run(
-                    simd,
-                    #[inline(always)]
-                    || {
-                        for ((a, &n), &v) in acc.iter_mut().zip(&tmp[..m]).zip(vis) {
-                            let lim = if v < total { v } else { total };
-                            let t = (lim - kf).clamp(0.0, 1.0);
-                            *a += amp * t * n;
-                        }
-                    },
-                );
+                band_accumulate(simd, acc, &tmp[..m], vis, amp, kf, total);
             }
         }
         Ok(())

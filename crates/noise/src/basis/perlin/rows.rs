@@ -11,12 +11,13 @@
 //! gradients are the point path's ([`corner`], [`grad2`], [`grad3`]).
 
 use glam::{DVec2, DVec3};
+use natura_simd::multiversion;
 
 use super::Perlin;
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, run, split_fast};
+use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, split_fast};
 
 impl Perlin {
     /// The 2-D row fill behind [`Field::fill_row2_with`].
@@ -33,19 +34,7 @@ impl Perlin {
         let rows = RowCoeffs::new2(self.lattice_seed(), self.fade(), origin.y);
         let k = self.scale(2);
         let fade = self.fade();
-        run(
-            simd,
-            #[inline(always)]
-            || {
-                if step > 0.0 && step <= SPAN_MAX_STEP {
-                    row_spans(fade, origin.x, step, k, out, |ix| rows.column2(ix));
-                } else {
-                    with_fade32!(fade, |f| perlin2_row(
-                        f, &rows, origin.x, step, k as f32, out
-                    ));
-                }
-            },
-        );
+        row2_at(simd, &rows, fade, origin.x, step, k, out);
     }
 
     /// The 3-D row fill behind [`Field::fill_row3_with`].
@@ -63,19 +52,68 @@ impl Perlin {
         let rows = RowCoeffs::new3(self.lattice_seed(), self.fade(), origin.y, origin.z);
         let k = self.scale(3);
         let fade = self.fade();
-        run(
-            simd,
-            #[inline(always)]
-            || {
-                if step > 0.0 && step <= SPAN_MAX_STEP {
-                    row_spans(fade, origin.x, step, k, out, |ix| rows.column3(ix));
-                } else {
-                    with_fade32!(fade, |f| perlin3_row(
-                        f, &rows, origin.x, step, k as f32, out
-                    ));
-                }
-            },
-        );
+        row3_at(simd, &rows, fade, origin.x, step, k, out);
+    }
+}
+
+// The row kernels compiled per SIMD level. Named functions rather than
+// closures: a closure handed to `run` is not always inlined into the
+// level's `#[target_feature]` function (it depends on the build's inlining
+// budget), and then it runs at the baseline level.
+
+multiversion! {
+    /// A 2-D row from its row constants: span by span for small steps,
+    /// else lane by lane.
+    fn row2_at<'a>(
+        simd: Simd,
+        rows: &'a RowCoeffs,
+        fade: Fade,
+        x0: f64,
+        step: f64,
+        k: f64,
+        out: &'a mut [f32],
+    ) {
+        if step > 0.0 && step <= SPAN_MAX_STEP {
+            row_spans(fade, x0, step, k, out, |ix| rows.column2(ix));
+        } else {
+            with_fade32!(fade, |f| perlin2_row(f, rows, x0, step, k as f32, out));
+        }
+    }
+}
+
+multiversion! {
+    /// A 3-D row from its row constants (see [`row2_at`]).
+    fn row3_at<'a>(
+        simd: Simd,
+        rows: &'a RowCoeffs,
+        fade: Fade,
+        x0: f64,
+        step: f64,
+        k: f64,
+        out: &'a mut [f32],
+    ) {
+        if step > 0.0 && step <= SPAN_MAX_STEP {
+            row_spans(fade, x0, step, k, out, |ix| rows.column3(ix));
+        } else {
+            with_fade32!(fade, |f| perlin3_row(f, rows, x0, step, k as f32, out));
+        }
+    }
+}
+
+multiversion! {
+    /// A 3-D grid row span by span, its columns from `cache`.
+    #[allow(clippy::too_many_arguments)]
+    fn grid3_row_at<'a>(
+        simd: Simd,
+        cache: &'a ColumnCache3,
+        rows: &'a RowCoeffs,
+        fade: Fade,
+        x0: f64,
+        step: f64,
+        k: f64,
+        out: &'a mut [f32],
+    ) {
+        row_spans(fade, x0, step, k, out, |ix| cache.column(rows, ix));
     }
 }
 
@@ -275,12 +313,7 @@ impl Perlin {
             }
             let rows = RowCoeffs::new3(self.lattice_seed(), fade, origin.y, origin.z);
             cache.update(&rows);
-            let cache = &cache;
-            run(
-                simd,
-                #[inline(always)]
-                || row_spans(fade, x0, step, k, row, |ix| cache.column(&rows, ix)),
-            );
+            grid3_row_at(simd, &cache, &rows, fade, x0, step, k, row);
         }
         Ok(())
     }
