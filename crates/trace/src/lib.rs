@@ -16,8 +16,8 @@
 //!   detail octaves ([`Detail`], natura-noise's Perlin noise) down to each
 //!   ray's pixel [`RayCone`] — Musgrave's procedural level of detail
 //!   (Musgrave 1993, §6.3). The pyramid widened by the detail's amplitude
-//!   bound skips empty space, a Lipschitz-bounded march with a closing
-//!   bisection finds the hit in a cell (Hart 1996's sphere-tracing step), and where the
+//!   bound skips empty space, a Lipschitz-bounded march closed by
+//!   regula falsi finds the hit in a cell (Hart 1996's sphere-tracing step), and where the
 //!   footprint outgrows the cell the plain [`MipmapTracer`] takes over.
 //! * [`brute_force`]: every triangle, for tests; [`detail_brute_force`]: a
 //!   fine fixed-step march of the detailed surface, for tests.
