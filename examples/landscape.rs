@@ -6,6 +6,7 @@
 //! cargo run --release --example landscape -- --scene my.toml --spp 16 --out renders
 //! cargo run --release --example landscape -- --print-scene > my.toml
 //! cargo run --release --example landscape -- --closeup --no-detail  # the foreground without detail
+//! cargo run --release --example landscape -- --no-clouds --no-textures  # clear sky, plain materials
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
@@ -31,6 +32,11 @@ fn main() {
         "a low camera looking down into the nearby slopes (for the detail)",
     );
     let no_detail = args.switch("--no-detail", "trace the stored terrain without detail");
+    let no_clouds = args.switch(
+        "--no-clouds",
+        "a clear sky (no layer clouds or their shadows)",
+    );
+    let no_textures = args.switch("--no-textures", "no strata or grain on the surface");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
     let size: Option<usize> = args.optional("--size", "terrain samples per side");
@@ -53,6 +59,8 @@ fn main() {
         scene.render.width = 320;
         scene.render.height = 180;
         scene.render.spp = 1;
+        scene.clouds.voxel_m *= 4.0;
+        scene.clouds.shadow_cell_m *= 4.0;
     }
     if closeup {
         scene.camera.height_above_ground_m = 12.0;
@@ -61,6 +69,12 @@ fn main() {
     }
     if no_detail {
         scene.detail.enabled = false;
+    }
+    if no_clouds {
+        scene.clouds.enabled = false;
+    }
+    if no_textures {
+        scene.textures.enabled = false;
     }
     if let Some(s) = seed {
         scene.seed = s;

@@ -65,6 +65,8 @@ fn main() {
         scene.terrain.cell_size_m *= 8.0;
         scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
         scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
+        scene.clouds.voxel_m *= 4.0;
+        scene.clouds.shadow_cell_m *= 4.0;
     }
     common::check(scene.validate());
     let png = out.join("panorama.png");

@@ -35,6 +35,9 @@ pub enum RenderError {
     /// From natura-ocean.
     #[error(transparent)]
     Ocean(#[from] natura_ocean::OceanError),
+    /// From natura-volume.
+    #[error(transparent)]
+    Volume(#[from] natura_volume::VolumeError),
 }
 
 impl RenderError {

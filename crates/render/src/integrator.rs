@@ -21,9 +21,11 @@ use natura_trace::{
     PinholeCamera, Projection, Ray, RayCone, Tracer,
 };
 
+use crate::clouds::CloudSky;
 use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
 use crate::scene::{CameraKind, WaterWaves};
+use crate::strata::SurfaceTextures;
 use crate::world::World;
 
 /// Refractive index of water used for the lake surface.
@@ -64,6 +66,8 @@ pub struct Renderer<'w> {
     /// The ocean patch whose normals shade the water (`waves = "ocean"`).
     ocean: Option<Surface>,
     rainbow: Option<Rainbow>,
+    /// The scene's layer clouds and their shadows, if any.
+    clouds: Option<CloudSky>,
     sun: Vec3,
     sun_irradiance: Vec3,
     sky_irradiance: Vec3,
@@ -166,7 +170,11 @@ impl<'w> Renderer<'w> {
             &scene.materials,
             world.water_level,
             seed.derive("materials"),
-        )?;
+        )?
+        .with_textures(SurfaceTextures::new(
+            &scene.textures,
+            seed.derive("textures"),
+        )?);
         let w = &scene.water;
         let ripples = FilteredFbm::new(
             Perlin::new(seed.derive("ripples").0),
@@ -216,6 +224,7 @@ impl<'w> Renderer<'w> {
         } else {
             None
         };
+        let clouds = CloudSky::new(world, camera.camera(), pixel_angle, &view, progress)?;
         Ok(Self {
             world,
             tracer,
@@ -226,6 +235,7 @@ impl<'w> Renderer<'w> {
             ripples,
             ocean,
             rainbow,
+            clouds,
             sun: world.sun,
             sun_irradiance,
             sky_irradiance,
@@ -343,7 +353,7 @@ impl<'w> Renderer<'w> {
             Some(SurfaceHit::Terrain(h)) => {
                 (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t)
             }
-            None => (self.sky(d), f32::INFINITY),
+            None => (self.sky(ray.origin, d), f32::INFINITY),
         };
         if dist.is_finite() {
             let ap = self.view.aerial_perspective_f32(d, dist);
@@ -444,12 +454,20 @@ impl<'w> Renderer<'w> {
             .filter(|t| t.is_finite() && *t > 0.0)
     }
 
-    fn sky(&self, d: Vec3) -> Vec3 {
+    /// The sky seen from `o` along unit `d` (a ray that left the terrain),
+    /// with the sun's disc and the clouds in front of both.
+    fn sky(&self, o: Vec3, d: Vec3) -> Vec3 {
         let sky = self.view.radiance_f32(d);
-        match Dir3::from_f32(d) {
-            Ok(dir) => sky + self.view.sun_disc(dir),
-            Err(_) => sky,
+        let disc = Dir3::from_f32(d).map_or(Vec3::ZERO, |dir| self.view.sun_disc(dir));
+        match self.clouds.as_ref().and_then(|c| c.view(o, d)) {
+            Some(c) => c.radiance + sky * c.transmittance + disc * c.sun_transmittance,
+            None => sky + disc,
         }
+    }
+
+    /// The fraction of the sun's light the clouds let through to `p`.
+    fn cloud_shadow(&self, p: Vec3) -> f32 {
+        self.clouds.as_ref().map_or(1.0, |c| c.sun_transmittance(p))
     }
 
     fn terrain_point(&self, h: &Hit) -> TerrainPoint {
@@ -471,8 +489,8 @@ impl<'w> Renderer<'w> {
             deposition_m: w.deposition.sample_bilinear(gx, gy, Boundary::Clamp),
             wetness: w.wetness.sample_bilinear(gx, gy, Boundary::Clamp),
         };
-        let albedo = self.materials.albedo(&sample);
         let footprint = t * self.pixel_angle;
+        let albedo = self.materials.albedo_at(&sample, footprint);
         let n = self.materials.bumped_normal(tp.point, tp.smooth, footprint);
         let v = -d;
         let mut l = Vec3::ZERO;
@@ -490,7 +508,7 @@ impl<'w> Renderer<'w> {
                 .tracer
                 .occluded_footprint(&shadow, eps, f32::INFINITY, fp)
             {
-                let f = self.materials.diffuse_factor(n, self.sun, v);
+                let f = self.materials.diffuse_factor(n, self.sun, v) * self.cloud_shadow(tp.point);
                 l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
             }
         }
@@ -578,7 +596,7 @@ impl<'w> Renderer<'w> {
                 Some(SurfaceHit::Terrain(h)) => {
                     (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t)
                 }
-                None => (self.sky(r), f32::INFINITY),
+                None => (self.sky(p, r), f32::INFINITY),
             };
             if tr.is_finite() {
                 let ap = self.view.aerial_perspective_f32(r, tr);
@@ -587,13 +605,14 @@ impl<'w> Renderer<'w> {
                 lt
             }
         } else {
-            self.sky(r)
+            self.sky(p, r)
         };
 
         // Transmission: the bed seen through absorbing, scattering water.
         let sigma = Vec3::from(wdesc.extinction_per_m);
         let albedo = Vec3::from(wdesc.scatter_albedo);
-        let ambient = self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance;
+        let ambient = self.sun_irradiance * (self.sun.z.max(0.0) * self.cloud_shadow(p))
+            + self.sky_irradiance;
         let body = albedo * ambient / std::f32::consts::PI;
         let eta = (1.0 / WATER_IOR) as f32;
         let cos_t2 = 1.0 - eta * eta * (1.0 - cos_i * cos_i);

@@ -12,6 +12,12 @@
 //!   tracing, sun shadows by any-hit rays, water reflection and refraction,
 //!   aerial perspective per segment, sky for escaped rays, stratified
 //!   samples, rainbow in rain), tile-parallel and deterministic.
+//! * [`clouds`]: a layer-cloud sky from natura-volume over the whole scene,
+//!   lit by the sun and sky, marched once per direction of a grid, with a
+//!   2-D map of its shadows on the terrain and water (`[clouds]`).
+//! * [`strata`]: natura-texture's rock strata on cliffs and a fine grain on
+//!   snow, grass and scree, band-limited at the pixel's footprint
+//!   (`[textures]`).
 //! * [`render_scene`]: all of it, with stage timings, returning a linear
 //!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
 //!
@@ -28,10 +34,12 @@
 //! ```
 #![forbid(unsafe_code)]
 
+pub mod clouds;
 mod error;
 mod integrator;
 pub mod material;
 pub mod scene;
+pub mod strata;
 mod world;
 
 use std::path::Path;
@@ -42,9 +50,9 @@ use natura_core::{Image, Progress};
 pub use error::{RenderError, Result};
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
-    AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc,
-    HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
-    WaterDesc, WaterWaves,
+    AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc, DEFAULT_SCENE_TOML, DetailDesc, Diffuse,
+    ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc,
+    TerrainGenerator, TexturesDesc, WaterDesc, WaterWaves,
 };
 pub use world::{
     MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,

@@ -14,6 +14,7 @@ use natura_noise::{Fbm, Field, Perlin, Spectral};
 
 use crate::error::Result;
 use crate::scene::{Diffuse, MaterialDesc};
+use crate::strata::SurfaceTextures;
 
 /// Everything the material mapping reads at a surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +44,8 @@ pub struct Materials {
     cos_rock: (f32, f32),
     cos_snow: (f32, f32),
     sigma: Option<(f32, f32)>,
+    /// Solid textures at the footprint (strata, grain), if the scene has them.
+    textures: Option<SurfaceTextures>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -134,12 +137,27 @@ impl Materials {
             cos_rock: ((rock - band).max(0.0).cos(), (rock + band).min(1.5).cos()),
             cos_snow: ((snow - band).max(0.0).cos(), (snow + band).min(1.5).cos()),
             sigma,
+            textures: None,
         })
     }
 
-    /// The linear albedo at a surface sample.
+    /// The same mapping with the scene's solid textures (or none).
+    #[must_use]
+    pub fn with_textures(self, textures: Option<SurfaceTextures>) -> Self {
+        Self { textures, ..self }
+    }
+
+    /// The linear albedo at a surface sample (point-sampled textures).
     #[must_use]
     pub fn albedo(&self, s: &SurfaceSample) -> Vec3 {
+        self.albedo_at(s, 0.0)
+    }
+
+    /// The linear albedo at a surface sample seen by a pixel whose
+    /// footprint there is `footprint_m` metres wide: the solid textures, if
+    /// any, show the detail that footprint resolves.
+    #[must_use]
+    pub fn albedo_at(&self, s: &SurfaceSample, footprint_m: f32) -> Vec3 {
         let d = &self.desc;
         let a = &self.lin;
         let p = s.point.as_dvec3();
@@ -160,7 +178,12 @@ impl Materials {
             let sed = smoothstep(d.sediment_min_m, 3.0 * d.sediment_min_m, s.deposition_m);
             c = c.lerp(a.sediment, sed * (1.0 - 0.5 * rock));
         }
-        c = c.lerp(a.rock * (1.0 + 0.25 * large), rock);
+        let rock_colour = a.rock * (1.0 + 0.25 * large);
+        let rock_colour = match &self.textures {
+            Some(t) if rock > 0.0 => t.rock(s.point, footprint_m, rock_colour),
+            _ => rock_colour,
+        };
+        c = c.lerp(rock_colour, rock);
         if let Some(level) = self.water_level {
             // Sand only on gentle shores, in patches.
             let beach = smoothstep(level + d.beach_height_m, level + 0.3 * d.beach_height_m, h)
@@ -173,7 +196,12 @@ impl Materials {
             * smoothstep(self.cos_snow.1, self.cos_snow.0, nz);
         c = c.lerp(a.snow, snow);
         // Mottling: ±15 % brightness variation, less on snow.
-        (c * (1.0 + (0.15 - 0.1 * snow) * mottle)).clamp(Vec3::ZERO, Vec3::ONE)
+        let c = c * (1.0 + (0.15 - 0.1 * snow) * mottle);
+        let c = match &self.textures {
+            Some(t) => c * t.grain(s.point, footprint_m),
+            None => c,
+        };
+        c.clamp(Vec3::ZERO, Vec3::ONE)
     }
 
     /// The shading normal with procedural bump detail, faded out where the

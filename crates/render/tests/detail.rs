@@ -18,6 +18,9 @@ fn close_scene() -> SceneDesc {
     s.render.width = 64;
     s.render.height = 36;
     s.render.spp = 2;
+    // The plain sky and materials these tests were written for.
+    s.clouds.enabled = false;
+    s.textures.enabled = false;
     s
 }
 

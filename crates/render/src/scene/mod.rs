@@ -13,7 +13,9 @@
 //! writes it as TOML (errors name file, line, column and key) and
 //! `validate.rs` checks every value before any work starts.
 
+mod clouds;
 mod text;
+mod textures;
 mod validate;
 
 #[cfg(test)]
@@ -24,6 +26,10 @@ use natura_terrain::erosion::{
     Depressions, DropletParams, PipeParams, StreamPowerParams, ThermalParams,
 };
 use serde::{Deserialize, Serialize};
+
+pub(crate) use clouds::in_section as clouds_in_section;
+pub use clouds::{CloudsDesc, MAX_CLOUD_VOXELS};
+pub use textures::TexturesDesc;
 
 /// The built-in scene as TOML: the defaults of every key, with comments.
 pub const DEFAULT_SCENE_TOML: &str = include_str!("../../scenes/default.toml");
@@ -48,6 +54,10 @@ pub struct SceneDesc {
     pub materials: MaterialDesc,
     /// Procedural relief below the terrain's cell size, down to the pixel.
     pub detail: DetailDesc,
+    /// Layer clouds over the scene, with their shadows.
+    pub clouds: CloudsDesc,
+    /// Solid textures on the surface (rock strata, grain) at the footprint.
+    pub textures: TexturesDesc,
     /// Where the camera is and what it sees.
     pub camera: CameraDesc,
     /// Image size, sampling and output.
@@ -363,6 +373,8 @@ impl Default for SceneDesc {
             atmosphere: AtmosphereDesc::default(),
             materials: MaterialDesc::default(),
             detail: DetailDesc::default(),
+            clouds: CloudsDesc::default(),
+            textures: TexturesDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
         }

@@ -241,6 +241,9 @@ impl SceneDesc {
             }
         }
 
+        self.clouds.validate()?;
+        self.textures.validate()?;
+
         let r = &self.render;
         in_range("render.width", f64::from(r.width), 1.0, 16_384.0)?;
         in_range("render.height", f64::from(r.height), 1.0, 16_384.0)?;
@@ -253,7 +256,7 @@ impl SceneDesc {
 }
 
 /// Checks that `v` lies in `[lo, hi]`, saying so with the bounds in the message.
-fn in_range(name: &'static str, v: f64, lo: f64, hi: f64) -> Result<()> {
+pub(super) fn in_range(name: &'static str, v: f64, lo: f64, hi: f64) -> Result<()> {
     if v.is_finite() && v >= lo && v <= hi {
         Ok(())
     } else {

@@ -145,6 +145,23 @@ pub struct FastRenderer<'s> {
     peak: Option<ScaledPhase>,
 }
 
+/// What [`FastRenderer::seen`] finds along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Seen {
+    /// The volume's light (and the air's in front of it where the volume
+    /// hides what lies behind), without anything behind the volume.
+    pub radiance: Vec3,
+    /// Transmittance of the transport medium (the δ-M medium when the
+    /// forward peak is truncated): the weight of what lies behind.
+    pub transmittance: f32,
+    /// Transmittance of the exact medium (the forward peak counted as
+    /// scattered): the weight of a light source seen through the volume
+    /// whose peak-scattered light is already in `radiance` (a sun disc).
+    pub direct_transmittance: f32,
+    /// Radiance of what lies behind the volume (a surface, or the environment).
+    pub behind: Vec3,
+}
+
 /// A phase function times a weight.
 #[derive(Clone, Copy, Debug)]
 struct ScaledPhase {
@@ -325,6 +342,19 @@ impl<'s> FastRenderer<'s> {
     /// Radiance arriving at `o` along `-d` (`d` unit), as seen by the eye.
     #[must_use]
     pub fn radiance(&self, o: Vec3, d: Vec3) -> Vec3 {
+        let s = self.seen(o, d);
+        s.radiance + s.behind * s.transmittance
+    }
+
+    /// What the eye at `o` sees along `d` (unit), in parts: the volume's
+    /// light in front of what lies behind it (with the air's), the
+    /// transmittances, and the radiance behind (a surface or the
+    /// environment), so that [`FastRenderer::radiance`] is
+    /// `radiance + transmittance · behind`. A caller that puts its own
+    /// background behind the volume (a sky with a sun disc) composes it the
+    /// same way.
+    #[must_use]
+    pub fn seen(&self, o: Vec3, d: Vec3) -> Seen {
         let sc = self.scene;
         // The exact medium (the sun's single scattering) and the one the rest travels through.
         let (m0, m) = (&sc.medium, &self.medium);
@@ -461,7 +491,12 @@ impl<'s> FastRenderer<'s> {
         // ground behind already carry the air's light along the whole ray:
         // `T_air·L + (1 − T)·L_air + T·L_back`.
         let air = sc.air(d, depth);
-        air.transmittance * l + air.in_scatter * (1.0 - tr) + back * tr
+        Seen {
+            radiance: air.transmittance * l + air.in_scatter * (1.0 - tr),
+            transmittance: tr,
+            direct_transmittance: if tr > 0.0 { tr0 } else { 0.0 },
+            behind: back,
+        }
     }
 
     /// Renders `camera`'s image.
