@@ -6,6 +6,7 @@
 //! cargo run --release --example landscape -- --scene my.toml --spp 16 --out renders
 //! cargo run --release --example landscape -- --print-scene > my.toml
 //! cargo run --release --example landscape -- --closeup --no-detail  # the foreground without detail
+//! cargo run --release --example landscape -- --closeup --no-forest  # the slopes without trees
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
@@ -31,6 +32,7 @@ fn main() {
         "a low camera looking down into the nearby slopes (for the detail)",
     );
     let no_detail = args.switch("--no-detail", "trace the stored terrain without detail");
+    let no_forest = args.switch("--no-forest", "grow no trees");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
     let size: Option<usize> = args.optional("--size", "terrain samples per side");
@@ -61,6 +63,9 @@ fn main() {
     }
     if no_detail {
         scene.detail.enabled = false;
+    }
+    if no_forest {
+        scene.vegetation.enabled = false;
     }
     if let Some(s) = seed {
         scene.seed = s;
@@ -127,6 +132,20 @@ fn main() {
         "total",
         rendered.times.total().as_secs_f64()
     );
+    if let Some(f) = &rendered.forest {
+        println!(
+            "forest: {} plants, {} trees ({} in full detail), {} meshes of {} triangles; \
+             ecosystem {:.2} s, prototypes {:.2} s, instance BVH {:.3} s",
+            f.plants,
+            f.instances,
+            f.near,
+            f.meshes,
+            f.triangles,
+            f.ecosystem.as_secs_f64(),
+            f.prototypes.as_secs_f64(),
+            f.tlas.as_secs_f64()
+        );
+    }
     println!("exposure {:+.2} EV", rendered.exposure_ev);
     println!("wrote {}", png.display());
     println!("wrote {}", exr.display());

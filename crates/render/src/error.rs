@@ -35,6 +35,9 @@ pub enum RenderError {
     /// From natura-ocean.
     #[error(transparent)]
     Ocean(#[from] natura_ocean::OceanError),
+    /// From natura-plant (the forest's ecosystem and meshes).
+    #[error(transparent)]
+    Plant(#[from] natura_plant::PlantError),
 }
 
 impl RenderError {

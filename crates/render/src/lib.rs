@@ -32,6 +32,7 @@ mod error;
 mod integrator;
 pub mod material;
 pub mod scene;
+pub mod vegetation;
 mod world;
 
 use std::path::Path;
@@ -44,7 +45,7 @@ pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
     AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc,
     HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
-    WaterDesc, WaterWaves,
+    VegetationDesc, WaterDesc, WaterWaves,
 };
 pub use world::{
     MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,
@@ -61,6 +62,8 @@ pub struct Rendered {
     pub tone_map: natura_core::ToneMap,
     /// Time per stage.
     pub times: StageTimes,
+    /// Figures of the forest, if the scene grew one.
+    pub forest: Option<vegetation::ForestStats>,
 }
 
 impl Rendered {
@@ -126,7 +129,8 @@ pub fn auto_exposure(image: &Image) -> f32 {
 /// Validates `scene`, builds its world, renders it, and picks the exposure.
 ///
 /// Stages reported to `progress`: synthesis, stream power, pipe erosion,
-/// thermal erosion, atmosphere tables, acceleration, tracing.
+/// thermal erosion, atmosphere tables, the forest's ecosystem,
+/// acceleration, tracing.
 ///
 /// # Errors
 ///
@@ -141,11 +145,16 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 ///
 /// # Errors
 ///
-/// The errors of [`Renderer::new`] and [`Renderer::render`].
+/// The errors of [`vegetation::Forest::build`], [`Renderer::new`] and
+/// [`Renderer::render`].
 pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
     let scene = &world.scene;
     let mut times = world.times.clone();
-    let renderer = times.time("acceleration", || Renderer::new(world, progress))?;
+    let forest = times.time("forest", || vegetation::Forest::build(world, progress))?;
+    let forest_stats = forest.as_ref().map(|f| f.stats().clone());
+    let renderer = times
+        .time("acceleration", || Renderer::new(world, progress))?
+        .with_forest(forest);
     let image = times.time("render", || renderer.render(progress))?;
     let exposure_ev = scene
         .render
@@ -156,5 +165,6 @@ pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> 
         exposure_ev,
         tone_map: scene.render.tone_map,
         times,
+        forest: forest_stats,
     })
 }

@@ -15,6 +15,9 @@
 
 mod text;
 mod validate;
+mod vegetation;
+
+pub use vegetation::{SPECIES_NAMES, VegetationDesc};
 
 #[cfg(test)]
 mod tests;
@@ -48,6 +51,8 @@ pub struct SceneDesc {
     pub materials: MaterialDesc,
     /// Procedural relief below the terrain's cell size, down to the pixel.
     pub detail: DetailDesc,
+    /// The forest on the terrain near the camera.
+    pub vegetation: VegetationDesc,
     /// Where the camera is and what it sees.
     pub camera: CameraDesc,
     /// Image size, sampling and output.
@@ -363,6 +368,7 @@ impl Default for SceneDesc {
             atmosphere: AtmosphereDesc::default(),
             materials: MaterialDesc::default(),
             detail: DetailDesc::default(),
+            vegetation: VegetationDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
         }

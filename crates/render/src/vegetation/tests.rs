@@ -1,0 +1,1 @@
+//! Forest tests: the BVH against brute force.
