@@ -12,6 +12,9 @@
 //!   tracing, sun shadows by any-hit rays, water reflection and refraction,
 //!   aerial perspective per segment, sky for escaped rays, stratified
 //!   samples, rainbow in rain), tile-parallel and deterministic.
+//! * [`vegetation::Forest`]: an ecosystem of natura-plant species grown on
+//!   the terrain near the camera, instanced tree meshes traced through a
+//!   two-level BVH, with shadows both ways and translucent leaves.
 //! * [`render_scene`]: all of it, with stage timings, returning a linear
 //!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
 //!
