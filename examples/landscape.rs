@@ -7,6 +7,7 @@
 //! cargo run --release --example landscape -- --print-scene > my.toml
 //! cargo run --release --example landscape -- --closeup --no-detail  # the foreground without detail
 //! cargo run --release --example landscape -- --no-clouds --no-textures  # clear sky, plain materials
+//! cargo run --release --example landscape -- --closeup --no-forest  # the slopes without trees
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
@@ -37,6 +38,7 @@ fn main() {
         "a clear sky (no layer clouds or their shadows)",
     );
     let no_textures = args.switch("--no-textures", "no strata or grain on the surface");
+    let no_forest = args.switch("--no-forest", "grow no trees");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
     let size: Option<usize> = args.optional("--size", "terrain samples per side");
@@ -75,6 +77,9 @@ fn main() {
     }
     if no_textures {
         scene.textures.enabled = false;
+    }
+    if no_forest {
+        scene.vegetation.enabled = false;
     }
     if let Some(s) = seed {
         scene.seed = s;
@@ -141,6 +146,20 @@ fn main() {
         "total",
         rendered.times.total().as_secs_f64()
     );
+    if let Some(f) = &rendered.forest {
+        println!(
+            "forest: {} plants, {} trees ({} in full detail), {} meshes of {} triangles; \
+             ecosystem {:.2} s, prototypes {:.2} s, instance BVH {:.3} s",
+            f.plants,
+            f.instances,
+            f.near,
+            f.meshes,
+            f.triangles,
+            f.ecosystem.as_secs_f64(),
+            f.prototypes.as_secs_f64(),
+            f.tlas.as_secs_f64()
+        );
+    }
     println!("exposure {:+.2} EV", rendered.exposure_ev);
     println!("wrote {}", png.display());
     println!("wrote {}", exr.display());

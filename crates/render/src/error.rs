@@ -38,6 +38,9 @@ pub enum RenderError {
     /// From natura-volume.
     #[error(transparent)]
     Volume(#[from] natura_volume::VolumeError),
+    /// From natura-plant (the forest's ecosystem and meshes).
+    #[error(transparent)]
+    Plant(#[from] natura_plant::PlantError),
 }
 
 impl RenderError {

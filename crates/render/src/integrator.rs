@@ -26,6 +26,7 @@ use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
 use crate::scene::{CameraKind, WaterWaves};
 use crate::strata::SurfaceTextures;
+use crate::vegetation::{Forest, Light, TreeHit};
 use crate::world::World;
 
 /// Refractive index of water used for the lake surface.
@@ -68,6 +69,8 @@ pub struct Renderer<'w> {
     rainbow: Option<Rainbow>,
     /// The scene's layer clouds and their shadows, if any.
     clouds: Option<CloudSky>,
+    /// The trees, if the scene has any ([`Renderer::with_forest`]).
+    forest: Option<Forest>,
     sun: Vec3,
     sun_irradiance: Vec3,
     sky_irradiance: Vec3,
@@ -236,6 +239,7 @@ impl<'w> Renderer<'w> {
             ocean,
             rainbow,
             clouds,
+            forest: None,
             sun: world.sun,
             sun_irradiance,
             sky_irradiance,
@@ -246,6 +250,29 @@ impl<'w> Renderer<'w> {
             spp: r.spp,
             seed: seed.derive("pixels"),
         })
+    }
+
+    /// Adds trees: primary rays meet them before the terrain and water,
+    /// they shadow the terrain and each other, and the terrain shadows them.
+    /// Each tree stands on the traced surface (with its detail, as seen at
+    /// the tree's distance).
+    #[must_use]
+    pub fn with_forest(mut self, mut forest: Option<Forest>) -> Self {
+        if let Some(f) = &mut forest {
+            let s = self.tracer.surface();
+            f.set_ground(|p| {
+                let w = f64::from((p - self.eye).length() * self.pixel_angle);
+                s.height(p.x, p.y, w).map(|h| h as f32)
+            });
+        }
+        self.forest = forest;
+        self
+    }
+
+    /// The trees, if any.
+    #[must_use]
+    pub fn forest(&self) -> Option<&Forest> {
+        self.forest.as_ref()
     }
 
     /// The camera.
@@ -348,12 +375,25 @@ impl<'w> Renderer<'w> {
     /// traced surface over `[0, ∞)` is `hit`.
     fn radiance_traced(&self, ray: &Ray, hit: Option<&Hit>) -> Vec3 {
         let d = ray.dir;
-        let (mut l, dist) = match self.intersect(ray, hit) {
-            Some(SurfaceHit::Water { t, point }) => (self.shade_water(point, d, t, true), t),
-            Some(SurfaceHit::Terrain(h)) => {
+        let surface = self.intersect(ray, hit);
+        let t_surface = match &surface {
+            Some(SurfaceHit::Water { t, .. }) => *t,
+            Some(SurfaceHit::Terrain(h)) => h.t,
+            None => f32::INFINITY,
+        };
+        let tree = self
+            .forest
+            .as_ref()
+            .and_then(|f| Some((f, f.intersect(ray.origin, d, t_surface)?)));
+        let (mut l, dist) = match (tree, surface) {
+            (Some((f, h)), _) => (self.shade_tree(f, &h, d), h.t),
+            (None, Some(SurfaceHit::Water { t, point })) => {
+                (self.shade_water(point, d, t, true), t)
+            }
+            (None, Some(SurfaceHit::Terrain(h))) => {
                 (self.shade_terrain(&self.terrain_point(&h), d, h.t), h.t)
             }
-            None => (self.sky(ray.origin, d), f32::INFINITY),
+            (None, None) => (self.sky(ray.origin, d), f32::INFINITY),
         };
         if dist.is_finite() {
             let ap = self.view.aerial_perspective_f32(d, dist);
@@ -410,6 +450,40 @@ impl<'w> Renderer<'w> {
                 point: ray.at(t_plane),
             }),
         }
+    }
+
+    /// Whether a tree stands between `p` and the sun (beyond `t_min` metres).
+    fn trees_occlude(&self, p: Vec3, t_min: f32) -> bool {
+        self.forest
+            .as_ref()
+            .is_some_and(|f| f.occluded(p, self.sun, t_min, f32::INFINITY))
+    }
+
+    /// Radiance leaving a tree toward `-d`: the sun unless the terrain or a
+    /// tree (its own crown included) is in the way, and skylight.
+    fn shade_tree(&self, f: &Forest, h: &TreeHit, d: Vec3) -> Vec3 {
+        // Past the surface hit by a few centimetres, so the shadow ray of a
+        // leaf lit from behind passes through it (its transmitted light).
+        let eps = 0.03 + 1e-6 * h.point.abs().max_element();
+        let fp = RayCone {
+            at_origin_m: h.t * self.pixel_angle,
+            per_metre: self.pixel_angle,
+        };
+        let visible = self.sun.z > 0.0
+            && !self.trees_occlude(h.point, eps)
+            && !self.tracer.occluded_footprint(
+                &Ray::new(h.point, self.sun),
+                eps,
+                f32::INFINITY,
+                fp,
+            );
+        let light = Light {
+            sun: self.sun,
+            // The clouds' shadow dims the sun on trees as on the ground.
+            sun_irradiance: self.sun_irradiance * self.cloud_shadow(h.point),
+            sky_irradiance: self.sky_irradiance,
+        };
+        f.shade(h, d, &light, visible)
     }
 
     /// The water level of the cell `(i, j)` of the surface: its lowest corner.
@@ -507,6 +581,7 @@ impl<'w> Renderer<'w> {
             if !self
                 .tracer
                 .occluded_footprint(&shadow, eps, f32::INFINITY, fp)
+                && !self.trees_occlude(shadow.origin, eps)
             {
                 let f = self.materials.diffuse_factor(n, self.sun, v) * self.cloud_shadow(tp.point);
                 l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;

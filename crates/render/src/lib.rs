@@ -18,6 +18,9 @@
 //! * [`strata`]: natura-texture's rock strata on cliffs and a fine grain on
 //!   snow, grass and scree, band-limited at the pixel's footprint
 //!   (`[textures]`).
+//! * [`vegetation::Forest`]: an ecosystem of natura-plant species grown on
+//!   the terrain near the camera, instanced tree meshes traced through a
+//!   two-level BVH, with shadows both ways and translucent leaves.
 //! * [`render_scene`]: all of it, with stage timings, returning a linear
 //!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
 //!
@@ -40,6 +43,7 @@ mod integrator;
 pub mod material;
 pub mod scene;
 pub mod strata;
+pub mod vegetation;
 mod world;
 
 use std::path::Path;
@@ -52,7 +56,7 @@ pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
     AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc, DEFAULT_SCENE_TOML, DetailDesc, Diffuse,
     ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc,
-    TerrainGenerator, TexturesDesc, WaterDesc, WaterWaves,
+    TerrainGenerator, TexturesDesc, VegetationDesc, WaterDesc, WaterWaves,
 };
 pub use world::{
     MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,
@@ -69,6 +73,8 @@ pub struct Rendered {
     pub tone_map: natura_core::ToneMap,
     /// Time per stage.
     pub times: StageTimes,
+    /// Figures of the forest, if the scene grew one.
+    pub forest: Option<vegetation::ForestStats>,
 }
 
 impl Rendered {
@@ -134,7 +140,8 @@ pub fn auto_exposure(image: &Image) -> f32 {
 /// Validates `scene`, builds its world, renders it, and picks the exposure.
 ///
 /// Stages reported to `progress`: synthesis, stream power, pipe erosion,
-/// thermal erosion, atmosphere tables, acceleration, tracing.
+/// thermal erosion, atmosphere tables, the forest's ecosystem,
+/// acceleration, tracing.
 ///
 /// # Errors
 ///
@@ -149,11 +156,16 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 ///
 /// # Errors
 ///
-/// The errors of [`Renderer::new`] and [`Renderer::render`].
+/// The errors of [`vegetation::Forest::build`], [`Renderer::new`] and
+/// [`Renderer::render`].
 pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
     let scene = &world.scene;
     let mut times = world.times.clone();
-    let renderer = times.time("acceleration", || Renderer::new(world, progress))?;
+    let forest = times.time("forest", || vegetation::Forest::build(world, progress))?;
+    let forest_stats = forest.as_ref().map(|f| f.stats().clone());
+    let renderer = times
+        .time("acceleration", || Renderer::new(world, progress))?
+        .with_forest(forest);
     let image = times.time("render", || renderer.render(progress))?;
     let exposure_ev = scene
         .render
@@ -164,5 +176,6 @@ pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> 
         exposure_ev,
         tone_map: scene.render.tone_map,
         times,
+        forest: forest_stats,
     })
 }

@@ -17,6 +17,9 @@ mod clouds;
 mod text;
 mod textures;
 mod validate;
+mod vegetation;
+
+pub use vegetation::{SPECIES_NAMES, VegetationDesc};
 
 #[cfg(test)]
 mod tests;
@@ -58,6 +61,8 @@ pub struct SceneDesc {
     pub clouds: CloudsDesc,
     /// Solid textures on the surface (rock strata, grain) at the footprint.
     pub textures: TexturesDesc,
+    /// The forest on the terrain near the camera.
+    pub vegetation: VegetationDesc,
     /// Where the camera is and what it sees.
     pub camera: CameraDesc,
     /// Image size, sampling and output.
@@ -375,6 +380,7 @@ impl Default for SceneDesc {
             detail: DetailDesc::default(),
             clouds: CloudsDesc::default(),
             textures: TexturesDesc::default(),
+            vegetation: VegetationDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
         }

@@ -148,6 +148,8 @@ impl SceneDesc {
         in_range("detail.lacunarity", d.lacunarity, 1.5, 4.0)?;
         in_range("detail.octaves", f64::from(d.octaves), 0.0, 24.0)?;
 
+        self.vegetation.validate()?;
+
         let m = &self.materials;
         finite("materials.snow_line_m", f64::from(m.snow_line_m))?;
         in_range(

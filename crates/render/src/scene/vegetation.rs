@@ -1,0 +1,135 @@
+//! The scene's `[vegetation]` section: a forest grown by natura-plant's
+//! ecosystem over the eroded terrain near the camera, drawn as instanced
+//! plant meshes.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{RenderError, Result};
+
+/// The tree species the forest can grow, by scene name.
+pub const SPECIES_NAMES: [&str; 3] = ["spruce", "pine", "beech"];
+
+/// A forest of instanced trees on the terrain around the camera.
+///
+/// Deussen et al.'s ecosystem (natura-plant's `eco`) grows the species over
+/// the terrain within `radius_m` of the eye (seeding by altitude, slope,
+/// wetness and light; growth; self-thinning), and every surviving plant is
+/// drawn as an instance of one of a few prototype meshes per species. Trees
+/// farther than `lod_distance_m` use a low-polygon crown; beyond `radius_m`
+/// the terrain's forest colour stands for the trees.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct VegetationDesc {
+    /// Whether to grow and draw the forest at all.
+    pub enabled: bool,
+    /// Species to grow, by name: `"spruce"` (cool upper slopes), `"pine"`
+    /// (dry, sunny ground) and `"beech"` (moist, low ground).
+    pub species: Vec<String>,
+    /// Seedlings per hectare per simulation step for each species where it
+    /// may grow (0.1 to 500); the forest's density follows from seeding and
+    /// self-thinning.
+    pub density_per_ha: f64,
+    /// Height of a mature tree, metres (1 to 120); younger trees are smaller.
+    pub tree_height_m: f64,
+    /// Altitude above which no tree establishes, metres; each species keeps
+    /// to its own band between the water and this line.
+    pub tree_line_m: f64,
+    /// Trees grow within this horizontal distance of the camera, metres
+    /// (10 to 20 000).
+    pub radius_m: f64,
+    /// Ecosystem simulation steps (1 to 200).
+    pub steps: u32,
+    /// Prototype meshes per species, by quantized size (1 to 16).
+    pub prototypes_per_species: usize,
+    /// Trees farther from the camera than this use the low-polygon crown,
+    /// metres (0 = always; ≥ 0).
+    pub lod_distance_m: f64,
+    /// Fraction of the sunlight a leaf transmits to its shaded side (0 to 0.9).
+    pub leaf_transmission: f64,
+    /// Added to the scene's seed for the ecosystem (another forest over the
+    /// same terrain).
+    pub seed_offset: u64,
+}
+
+impl Default for VegetationDesc {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            species: vec!["spruce".into(), "pine".into(), "beech".into()],
+            density_per_ha: 8.0,
+            tree_height_m: 22.0,
+            tree_line_m: 1400.0,
+            radius_m: 2500.0,
+            steps: 14,
+            prototypes_per_species: 3,
+            lod_distance_m: 1000.0,
+            leaf_transmission: 0.3,
+            seed_offset: 0,
+        }
+    }
+}
+
+impl VegetationDesc {
+    /// Checks every value, naming the first bad key (`vegetation.…`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] naming the key out of its range or
+    /// the unknown species name.
+    pub fn validate(&self) -> Result<()> {
+        for (i, s) in self.species.iter().enumerate() {
+            if !SPECIES_NAMES.contains(&s.as_str()) {
+                return Err(RenderError::Invalid {
+                    name: format!("vegetation.species[{i}]"),
+                    value: format!("{s:?}"),
+                    reason: format!("unknown species; known: {}", SPECIES_NAMES.join(", ")),
+                });
+            }
+            if self.species[..i].contains(s) {
+                return Err(RenderError::Invalid {
+                    name: format!("vegetation.species[{i}]"),
+                    value: format!("{s:?}"),
+                    reason: "named twice".into(),
+                });
+            }
+        }
+        if self.enabled && self.species.is_empty() {
+            return Err(RenderError::invalid(
+                "vegetation.species",
+                "[]",
+                "name at least one species (or set vegetation.enabled = false)",
+            ));
+        }
+        range("vegetation.density_per_ha", self.density_per_ha, 0.1, 500.0)?;
+        range("vegetation.tree_height_m", self.tree_height_m, 1.0, 120.0)?;
+        range("vegetation.tree_line_m", self.tree_line_m, -1e4, 1e5)?;
+        range("vegetation.radius_m", self.radius_m, 10.0, 20_000.0)?;
+        range("vegetation.steps", f64::from(self.steps), 1.0, 200.0)?;
+        range(
+            "vegetation.prototypes_per_species",
+            self.prototypes_per_species as f64,
+            1.0,
+            16.0,
+        )?;
+        range("vegetation.lod_distance_m", self.lod_distance_m, 0.0, 1e6)?;
+        range(
+            "vegetation.leaf_transmission",
+            self.leaf_transmission,
+            0.0,
+            0.9,
+        )?;
+        Ok(())
+    }
+}
+
+fn range(name: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
+    if v.is_finite() && v >= lo && v <= hi {
+        Ok(())
+    } else {
+        Err(RenderError::invalid(
+            name,
+            v,
+            &format!("must lie in [{lo}, {hi}]"),
+        ))
+    }
+}

@@ -1,0 +1,342 @@
+//! The forest: an ecosystem grown over the eroded terrain near the camera,
+//! drawn as instanced plant meshes traced through a two-level BVH.
+//!
+//! 1. natura-plant's ecosystem (Deussen et al. 1998, §4) runs on the terrain
+//!    within `radius_m` of the eye: species establish by altitude, slope,
+//!    wetness and light ([`species`]), grow, and thin themselves out.
+//! 2. Its approximate instancing (§5) quantizes each species' plant sizes
+//!    into a few prototypes grown from the species' L-system; each is meshed
+//!    ([`proto`]) in full and as a low-polygon crown.
+//! 3. Every plant on dry land becomes an instance (position, yaw, scale to
+//!    its height); trees farther than `lod_distance_m` from the eye use the
+//!    crown, so distant forest costs a few dozen triangles a tree.
+//! 4. Rays meet the trees through obvhs' wide BVHs ([`bvh`]): one over the
+//!    instances, one per mesh; shading ([`shade`]) adds leaf translucency.
+
+pub mod bvh;
+pub mod proto;
+pub mod shade;
+pub mod species;
+pub mod tri;
+
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use natura_core::{HeightField, Progress, Seed};
+use natura_plant::eco::{EcoParams, Ecosystem, Instancing};
+
+use crate::error::{RenderError, Result};
+use crate::world::World;
+use bvh::{Instanced, Mesh, Placement};
+pub use shade::Light;
+use species::Look;
+
+/// Brightness of a low-polygon crown relative to a lit leaf: the mean
+/// self-shadowing of a full crown seen from afar (own value, matched by eye
+/// across the LOD distance in the default view).
+pub const CROWN_HULL_SHADE: f32 = 0.6;
+
+/// The closest tree surface along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TreeHit {
+    /// Distance along the (unit) ray, metres.
+    pub t: f32,
+    /// The point hit, metres.
+    pub point: Vec3,
+    /// Unit geometric normal of the triangle hit (either side).
+    pub normal: Vec3,
+    /// Whether the surface is leaf (else bark).
+    pub leaf: bool,
+    /// Index of the instance hit.
+    pub instance: u32,
+}
+
+/// Figures of a built forest.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ForestStats {
+    /// Plants alive at the end of the ecosystem simulation.
+    pub plants: usize,
+    /// Trees drawn (plants on dry land within the radius).
+    pub instances: usize,
+    /// Of them, drawn with the full mesh (nearer than the LOD distance).
+    pub near: usize,
+    /// Prototype meshes (full and crown, all species).
+    pub meshes: usize,
+    /// Triangles over all prototype meshes.
+    pub triangles: usize,
+    /// Time of the ecosystem simulation.
+    pub ecosystem: Duration,
+    /// Time of the prototypes' derivation, meshing and bottom-level BVHs.
+    pub prototypes: Duration,
+    /// Time of the top-level BVH over the instances.
+    pub tlas: Duration,
+}
+
+/// Instanced trees ready to trace and shade.
+#[derive(Debug)]
+pub struct Forest {
+    scene: Instanced,
+    /// Look per species index.
+    looks: Vec<Look>,
+    /// Species index per placement.
+    species_of: Vec<u16>,
+    transmission: f32,
+    brute: bool,
+    stats: ForestStats,
+}
+
+/// The part of `world`'s terrain within `radius` of `(x, y)`, clipped to the
+/// field: the cropped field and its origin in metres, or `None` if fewer
+/// than 3×3 samples remain.
+fn crop(terrain: &HeightField, x: f32, y: f32, radius: f32) -> Result<Option<(HeightField, Vec3)>> {
+    let c = terrain.cell_size();
+    let (nx, ny) = (terrain.nx() as i64, terrain.ny() as i64);
+    let lo = |v: f32| (((v - radius) / c).floor() as i64).clamp(0, nx.max(ny) - 1);
+    let hi = |v: f32, n: i64| (((v + radius) / c).ceil() as i64).clamp(0, n - 1);
+    let (i0, i1) = (lo(x).min(nx - 1), hi(x, nx));
+    let (j0, j1) = (lo(y).min(ny - 1), hi(y, ny));
+    if i1 - i0 < 2 || j1 - j0 < 2 {
+        return Ok(None);
+    }
+    let h = terrain.heights();
+    let (i0, j0) = (i0 as usize, j0 as usize);
+    let hf = HeightField::from_fn(
+        (i1 - i0 as i64 + 1) as usize,
+        (j1 - j0 as i64 + 1) as usize,
+        c,
+        |i, j| h[(i0 + i, j0 + j)],
+    )?;
+    Ok(Some((hf, Vec3::new(i0 as f32 * c, j0 as f32 * c, 0.0))))
+}
+
+impl Forest {
+    /// Grows and instances the forest of `world`'s `[vegetation]` section;
+    /// `None` when it is disabled or no tree grows.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] for an unknown species (the scene is
+    /// validated before any work, so only for a hand-made world), and
+    /// [`RenderError::Plant`] for errors of the ecosystem or the meshes.
+    pub fn build(world: &World, progress: &dyn Progress) -> Result<Option<Self>> {
+        let scene = &world.scene;
+        let v = &scene.vegetation;
+        if !v.enabled {
+            return Ok(None);
+        }
+        let eye = world.eye();
+        let radius = v.radius_m as f32;
+        let Some((hf, origin)) = crop(&world.terrain, eye.x, eye.y, radius)? else {
+            return Ok(None);
+        };
+        let (lo, hi) = hf.min_max();
+        let water = world.water_level.unwrap_or(lo);
+        let mut species = Vec::new();
+        let mut looks = Vec::new();
+        for (i, name) in v.species.iter().enumerate() {
+            let (s, l) = species::species(
+                name,
+                v.density_per_ha,
+                (lo, hi),
+                water,
+                v.tree_line_m as f32,
+            )
+            .ok_or_else(|| {
+                RenderError::invalid(
+                    &format!("vegetation.species[{i}]"),
+                    format!("{name:?}"),
+                    "unknown species",
+                )
+            })?;
+            species.push(s);
+            looks.push(l);
+        }
+        let mut stats = ForestStats::default();
+
+        let t0 = Instant::now();
+        let params = EcoParams {
+            species,
+            steps: v.steps,
+            seed: Seed(scene.seed.wrapping_add(v.seed_offset)).derive("vegetation"),
+            sun: world.sun,
+            max_plants: 20_000_000,
+        };
+        let max_radius: Vec<f32> = params.species.iter().map(|s| s.max_radius as f32).collect();
+        let mut eco = Ecosystem::new(&hf, params)?;
+        eco.run(progress)?;
+        stats.plants = eco.plants().len();
+        stats.ecosystem = t0.elapsed();
+
+        let t1 = Instant::now();
+        let inst = Instancing::new(&eco, v.prototypes_per_species)?;
+        drop(eco);
+        // Mesh 2k is prototype k in full, 2k + 1 its crown.
+        let mut meshes = Vec::with_capacity(2 * inst.prototypes.len());
+        for p in &inst.prototypes {
+            let (tris, leaf) = proto::triangles(&p.geometry)?;
+            let full = Mesh::new(tris, leaf);
+            let crown = proto::crown_hull(&full, 0.8);
+            meshes.push(full);
+            meshes.push(crown);
+        }
+        stats.meshes = meshes.len();
+        stats.triangles = meshes.iter().map(Mesh::len).sum();
+        stats.prototypes = t1.elapsed();
+
+        let t2 = Instant::now();
+        let mut placements = Vec::new();
+        let mut species_of = Vec::new();
+        let (s, g) = (world.surface.heights(), world.terrain.heights());
+        let cell = world.terrain.cell_size();
+        let edge = Seed(scene.seed.wrapping_add(v.seed_offset)).derive("vegetation.edge");
+        for pi in &inst.instances {
+            let k = pi.prototype as usize;
+            let full = &meshes[2 * k];
+            let height = full.bounds.1.z;
+            if full.is_empty() || height <= 0.0 {
+                continue;
+            }
+            let p = pi.position + origin;
+            let dist = (p.truncate() - eye.truncate()).length();
+            let (gi, gj) = (
+                ((p.x / cell).round() as usize).min(g.width() - 1),
+                ((p.y / cell).round() as usize).min(g.height() - 1),
+            );
+            // The forest thins out over the outer quarter of the radius
+            // instead of ending in a line.
+            let keep = 4.0 * (1.0 - dist / radius);
+            if keep < 1.0
+                && edge.uniform(&[i64::from(p.x.to_bits()), i64::from(p.y.to_bits())]) as f32
+                    >= keep
+            {
+                continue;
+            }
+            if s[(gi, gj)] > g[(gi, gj)] || p.z <= water {
+                continue;
+            }
+            let si = pi.species as usize;
+            let r = pi.scale * inst.prototypes[k].geometry_radius;
+            let h =
+                v.tree_height_m as f32 * looks[si].height_factor * (r / max_radius[si]).min(1.0);
+            let scale = h / height;
+            let near = f64::from(dist) <= v.lod_distance_m;
+            stats.near += usize::from(near);
+            placements.push(Placement {
+                mesh: (2 * k + usize::from(!near)) as u32,
+                // The trunk's foot a little into the ground.
+                position: p - Vec3::Z * (0.02 * h),
+                scale,
+                cos_sin: (pi.rotation.cos(), pi.rotation.sin()),
+            });
+            species_of.push(pi.species);
+        }
+        if placements.is_empty() {
+            return Ok(None);
+        }
+        stats.instances = placements.len();
+        let scene_bvh = Instanced::new(meshes, placements);
+        stats.tlas = t2.elapsed();
+        Ok(Some(Self {
+            scene: scene_bvh,
+            looks,
+            species_of,
+            transmission: v.leaf_transmission as f32,
+            brute: false,
+            stats,
+        }))
+    }
+
+    /// Figures of the forest.
+    #[must_use]
+    pub fn stats(&self) -> &ForestStats {
+        &self.stats
+    }
+
+    /// The meshes and placements (for tests and exports).
+    #[must_use]
+    pub fn instanced(&self) -> &Instanced {
+        &self.scene
+    }
+
+    /// Stands every tree on the ground `ground(base)` gives (metres, `None`
+    /// to leave a tree where it is), its foot 2 % of its height below it,
+    /// and rebuilds the instance BVH: the renderer's traced surface carries
+    /// procedural detail the ecosystem's terrain does not.
+    pub fn set_ground(&mut self, ground: impl Fn(Vec3) -> Option<f32>) {
+        let Instanced {
+            meshes, placements, ..
+        } = &self.scene;
+        let moved: Vec<Placement> = placements
+            .iter()
+            .map(|p| {
+                let h = p.scale * meshes[p.mesh as usize].bounds.1.z;
+                let mut q = *p;
+                if let Some(z) = ground(p.position) {
+                    q.position.z = z - 0.02 * h;
+                }
+                q
+            })
+            .collect();
+        let t = Instant::now();
+        self.scene = Instanced::new(std::mem::take(&mut self.scene.meshes), moved);
+        self.stats.tlas += t.elapsed();
+    }
+
+    /// Traces by testing every triangle of every tree instead of the BVH
+    /// (identical results, for checking; slow).
+    pub fn set_brute_force(&mut self, brute: bool) {
+        self.brute = brute;
+    }
+
+    /// The closest tree along the unit-direction ray `o + t·d`, `t < t_max`.
+    #[must_use]
+    pub fn intersect(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<TreeHit> {
+        let h = if self.brute {
+            self.scene.closest_brute(o, d, 0.0, t_max)
+        } else {
+            self.scene.closest(o, d, 0.0, t_max)
+        }?;
+        let p = &self.scene.placements[h.instance as usize];
+        let m = &self.scene.meshes[p.mesh as usize];
+        Some(TreeHit {
+            t: h.t,
+            point: o + d * h.t,
+            normal: p.normal_to_world(m.normals[h.triangle as usize]),
+            leaf: m.leaf[h.triangle as usize],
+            instance: h.instance,
+        })
+    }
+
+    /// Whether a tree lies along `o + t·d` for `t` in `(t_min, t_max)`.
+    #[must_use]
+    pub fn occluded(&self, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
+        if self.brute {
+            self.scene.occluded_brute(o, d, t_min, t_max)
+        } else {
+            self.scene.occluded(o, d, t_min, t_max)
+        }
+    }
+
+    /// Radiance toward `-d` from a tree hit, lit by `light` (the sun counted
+    /// only if `sun_visible`).
+    #[must_use]
+    pub fn shade(&self, hit: &TreeHit, d: Vec3, light: &Light, sun_visible: bool) -> Vec3 {
+        let look = &self.looks[self.species_of[hit.instance as usize] as usize];
+        let l = shade::radiance(
+            look,
+            hit.leaf,
+            hit.normal,
+            d,
+            light,
+            sun_visible,
+            self.transmission,
+        );
+        // Odd meshes are the low-polygon crowns: an opaque hull stands for a
+        // porous crown whose inner leaves are shaded by the outer ones.
+        if self.scene.placements[hit.instance as usize].mesh % 2 == 1 {
+            l * CROWN_HULL_SHADE
+        } else {
+            l
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! The forest: its two-level BVH against brute force (per instance and as
+//! whole images), thread independence, finiteness, and its scene keys.
+
+use glam::Vec3;
+use natura_core::{HeightField, NoProgress, Seed};
+use natura_render::vegetation::Forest;
+use natura_render::{RenderError, Renderer, SceneDesc, World, render_world};
+
+/// A gentle bumpy slope of 96² samples 5 m apart, no water, seen from a
+/// few metres up with the forest within `radius` metres.
+fn forest_world(radius: f64) -> World {
+    let mut s = SceneDesc::default();
+    s.water.enabled = false;
+    s.vegetation.tree_line_m = 80.0;
+    s.camera.position_uv = [0.5, 0.25];
+    s.camera.target_uv = [0.5, 0.9];
+    s.camera.height_above_ground_m = 6.0;
+    s.camera.pitch_deg = -4.0;
+    s.camera.vfov_deg = 40.0;
+    s.vegetation.radius_m = radius;
+    s.vegetation.density_per_ha = 20.0;
+    s.vegetation.steps = 10;
+    s.vegetation.lod_distance_m = 0.4 * radius;
+    s.render.width = 48;
+    s.render.height = 27;
+    s.render.spp = 1;
+    let hf = HeightField::from_fn(96, 96, 5.0, |i, j| {
+        let (x, y) = (i as f32 * 0.11, j as f32 * 0.13);
+        0.15 * j as f32 + 2.0 * x.sin() * y.cos()
+    })
+    .unwrap();
+    World::from_height_field(&s, hf, &NoProgress).unwrap()
+}
+
+#[test]
+fn every_instance_agrees_with_brute_force() {
+    let world = forest_world(120.0);
+    let forest = Forest::build(&world, &NoProgress).unwrap().unwrap();
+    let st = forest.stats();
+    assert!(st.instances > 20, "{st:?}");
+    assert!(st.near > 0 && st.near < st.instances, "{st:?}");
+    let sc = forest.instanced();
+    let seed = Seed(7);
+    let mut hits = 0;
+    for (i, p) in sc.placements.iter().enumerate() {
+        let m = &sc.meshes[p.mesh as usize];
+        // Rays aimed at triangles of this instance from random points around it.
+        for k in 0..6u64 {
+            let u = |c: u64| seed.uniform(&[i as i64, k as i64, c as i64]) as f32;
+            let tri = &m.tris[((u(0) * m.len() as f32) as usize).min(m.len() - 1)];
+            let local = (tri[0] + tri[1] + tri[2]) / 3.0;
+            let (c, s) = p.cos_sin;
+            let target = p.position
+                + p.scale
+                    * Vec3::new(
+                        c * local.x - s * local.y,
+                        s * local.x + c * local.y,
+                        local.z,
+                    );
+            let from = target
+                + Vec3::new(u(1) - 0.5, u(2) - 0.5, u(3) - 0.3).normalize() * (5.0 + 40.0 * u(4));
+            let d = (target - from).normalize();
+            let a = sc.closest(from, d, 0.0, f32::INFINITY);
+            let b = sc.closest_brute(from, d, 0.0, f32::INFINITY);
+            assert_eq!(a, b, "instance {i}, ray {k}");
+            hits += usize::from(a.is_some());
+            assert_eq!(
+                sc.occluded(from, d, 0.0, 60.0),
+                sc.occluded_brute(from, d, 0.0, 60.0),
+                "instance {i}, ray {k}"
+            );
+        }
+    }
+    // Most rays aimed at a triangle's centre hit something.
+    assert!(hits * 10 > 9 * 6 * sc.placements.len(), "{hits}");
+}
+
+fn bits(img: &natura_core::Image) -> Vec<u32> {
+    img.pixels()
+        .as_slice()
+        .iter()
+        .flat_map(|c| c.to_array().map(f32::to_bits))
+        .collect()
+}
+
+#[test]
+fn bvh_and_brute_force_give_identical_images() {
+    let world = forest_world(45.0);
+    let render = |brute: bool| {
+        let mut forest = Forest::build(&world, &NoProgress).unwrap().unwrap();
+        forest.set_brute_force(brute);
+        let r = Renderer::new(&world, &NoProgress)
+            .unwrap()
+            .with_forest(Some(forest));
+        r.render(&NoProgress).unwrap()
+    };
+    let a = render(false);
+    let b = render(true);
+    assert_eq!(bits(&a), bits(&b));
+    // The trees are in the picture: it differs from the bare terrain's.
+    let bare = Renderer::new(&world, &NoProgress)
+        .unwrap()
+        .render(&NoProgress)
+        .unwrap();
+    assert_ne!(bits(&a), bits(&bare));
+}
+
+#[test]
+fn one_and_two_threads_are_bit_identical_and_finite() {
+    let world = forest_world(150.0);
+    let render = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let f = Forest::build(&world, &NoProgress).unwrap().unwrap();
+                let p = f.instanced().placements.clone();
+                (render_world(&world, &NoProgress).unwrap(), p)
+            })
+    };
+    let (a, pa) = render(1);
+    let (b, pb) = render(2);
+    assert_eq!(pa, pb);
+    assert_eq!(bits(&a.image), bits(&b.image));
+    assert!(
+        a.image
+            .pixels()
+            .as_slice()
+            .iter()
+            .all(|c| c.is_finite() && c.min_element() >= 0.0)
+    );
+}
+
+#[test]
+fn disabled_vegetation_grows_nothing() {
+    let mut world = forest_world(120.0);
+    world.scene.vegetation.enabled = false;
+    assert!(Forest::build(&world, &NoProgress).unwrap().is_none());
+}
+
+fn invalid_key(scene: &SceneDesc) -> String {
+    match World::build(scene, &NoProgress) {
+        Err(RenderError::Invalid { name, .. }) => name,
+        other => panic!("expected an invalid key, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_vegetation_keys_are_named_before_any_work() {
+    let mut s = SceneDesc::default();
+    s.vegetation.density_per_ha = 1e9;
+    assert_eq!(invalid_key(&s), "vegetation.density_per_ha");
+    s.vegetation.density_per_ha = 0.0;
+    assert_eq!(invalid_key(&s), "vegetation.density_per_ha");
+    s.vegetation.density_per_ha = f64::NAN;
+    assert_eq!(invalid_key(&s), "vegetation.density_per_ha");
+
+    let mut s = SceneDesc::default();
+    s.vegetation.tree_height_m = -5.0;
+    assert_eq!(invalid_key(&s), "vegetation.tree_height_m");
+
+    let mut s = SceneDesc::default();
+    s.vegetation.species = vec!["spruce".into(), "baobab".into()];
+    assert_eq!(invalid_key(&s), "vegetation.species[1]");
+    s.vegetation.species = vec!["pine".into(), "pine".into()];
+    assert_eq!(invalid_key(&s), "vegetation.species[1]");
+    s.vegetation.species.clear();
+    assert_eq!(invalid_key(&s), "vegetation.species");
+
+    for (key, set) in [
+        (
+            "vegetation.radius_m",
+            (|s: &mut SceneDesc| s.vegetation.radius_m = -1.0) as fn(&mut SceneDesc),
+        ),
+        ("vegetation.steps", |s| s.vegetation.steps = 0),
+        ("vegetation.prototypes_per_species", |s| {
+            s.vegetation.prototypes_per_species = 0
+        }),
+        ("vegetation.lod_distance_m", |s| {
+            s.vegetation.lod_distance_m = f64::INFINITY
+        }),
+        ("vegetation.leaf_transmission", |s| {
+            s.vegetation.leaf_transmission = 1.5
+        }),
+    ] {
+        let mut s = SceneDesc::default();
+        set(&mut s);
+        assert_eq!(invalid_key(&s), key);
+    }
+}
+
+#[test]
+fn vegetation_round_trips_through_toml_and_unknown_keys_are_named() {
+    let mut s = SceneDesc::default();
+    s.vegetation.species = vec!["beech".into()];
+    s.vegetation.density_per_ha = 3.5;
+    s.vegetation.enabled = false;
+    s.vegetation.seed_offset = 9;
+    let text = s.to_toml_string().unwrap();
+    assert!(text.contains("[vegetation]"), "{text}");
+    assert_eq!(SceneDesc::from_toml_str(&text, "x").unwrap(), s);
+
+    let err = SceneDesc::from_toml_str("[vegetation]\ndensity = 3\n", "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("s.toml:2:"), "{err}");
+    assert!(err.contains("vegetation.density"), "{err}");
+    let partial = SceneDesc::from_toml_str("[vegetation]\nsteps = 3\n", "s.toml").unwrap();
+    assert_eq!(partial.vegetation.steps, 3);
+    assert_eq!(
+        partial.vegetation.species,
+        SceneDesc::default().vegetation.species
+    );
+}
