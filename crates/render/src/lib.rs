@@ -42,12 +42,13 @@ use natura_core::{Image, Progress};
 pub use error::{RenderError, Result};
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
-    AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc,
-    HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
-    WaterDesc, WaterWaves,
+    AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, DEFAULT_SCENE_TOML,
+    DetailDesc, Diffuse, ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc,
+    TerrainDesc, TerrainGenerator, WaterDesc, WaterWaves,
 };
 pub use world::{
-    MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,
+    ErodedTerrain, MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World,
+    sun_direction,
 };
 
 /// The result of rendering a scene.

@@ -13,8 +13,11 @@
 //! writes it as TOML (errors name file, line, column and key) and
 //! `validate.rs` checks every value before any work starts.
 
+mod animation;
 mod text;
 mod validate;
+
+pub use animation::{AnimationDesc, AnimationKey};
 
 #[cfg(test)]
 mod tests;
@@ -52,6 +55,8 @@ pub struct SceneDesc {
     pub camera: CameraDesc,
     /// Image size, sampling and output.
     pub render: RenderDesc,
+    /// Frames, frame rate and camera path of an animated scene.
+    pub animation: AnimationDesc,
 }
 
 /// Which multifractal shapes the terrain.
@@ -365,6 +370,7 @@ impl Default for SceneDesc {
             detail: DetailDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
+            animation: AnimationDesc::default(),
         }
     }
 }
