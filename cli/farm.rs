@@ -96,11 +96,44 @@ pub fn slurm(job: &Job) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The Open Job Description template (2023-09) of `job`: parameters for the
-/// scene, output directory and executable (defaulting to `job`'s), a
+/// `to` relative to the directory `from` (both absolute), with `..` where
+/// needed: Open Job Description joins default paths to the template's
+/// directory.
+fn relative(from: &Path, to: &Path) -> String {
+    let (a, b): (Vec<_>, Vec<_>) = (from.components().collect(), to.components().collect());
+    let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    let mut parts: Vec<String> = vec!["..".into(); a.len() - common];
+    parts.extend(
+        b[common..]
+            .iter()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned()),
+    );
+    if parts.is_empty() {
+        ".".into()
+    } else {
+        parts.join("/")
+    }
+}
+
+/// The `default:` line of a path parameter: the path relative to the
+/// template's directory `dir`, or none (the parameter must then be given)
+/// where the path lies outside it, which the format does not allow.
+fn default(dir: &Path, path: &Path) -> String {
+    let r = relative(dir, path);
+    if r.starts_with("..") {
+        String::new()
+    } else {
+        format!("  default: {}\n", yaml(&r))
+    }
+}
+
+/// The Open Job Description template (2023-09) of `job`, to be stored in
+/// the directory `dir`: parameters for the scene, output directory (their
+/// defaults relative to `dir` when inside it, as the format wants) and executable
+/// (defaulting to `job`'s), a
 /// `Prepare` step, a `Render` step over frame × tile that depends on it,
 /// and an `Assemble` step over frames that depends on `Render`.
-pub fn openjd(job: &Job) -> String {
+pub fn openjd(job: &Job, dir: &Path) -> String {
     let frames = format!("{}-{}", job.first, job.last);
     let name = job
         .scene
@@ -112,8 +145,8 @@ pub fn openjd(job: &Job) -> String {
         "specificationVersion: 'jobtemplate-2023-09'\n\
          name: {name}\n\
          parameterDefinitions:\n\
-         - name: Scene\n  type: PATH\n  objectType: FILE\n  dataFlow: IN\n  default: {scene}\n\
-         - name: OutDir\n  type: PATH\n  objectType: DIRECTORY\n  dataFlow: OUT\n  default: {out}\n\
+         - name: Scene\n  type: PATH\n  objectType: FILE\n  dataFlow: IN\n{scene}\
+         - name: OutDir\n  type: PATH\n  objectType: DIRECTORY\n  dataFlow: OUT\n{out}\
          - name: Natura\n  type: STRING\n  default: {natura}\n\
          steps:\n\
          - name: Prepare\n  script:\n    actions:\n      onRun:\n        command: '{{{{Param.Natura}}}}'\n\
@@ -131,8 +164,8 @@ pub fn openjd(job: &Job) -> String {
          \x20 script:\n    actions:\n      onRun:\n        command: '{{{{Param.Natura}}}}'\n\
          \x20       args: ['assemble', '{{{{Param.OutDir}}}}', '--frame', '{{{{Task.Param.Frame}}}}']\n",
         name = yaml(&format!("natura {name}")),
-        scene = yaml(&job.scene.display().to_string()),
-        out = yaml(&job.out.display().to_string()),
+        scene = default(dir, &job.scene),
+        out = default(dir, &job.out),
         natura = yaml(&job.natura.display().to_string()),
         last_tile = job.tiles - 1,
         n = job.tiles,

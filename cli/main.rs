@@ -248,11 +248,15 @@ fn run(argv: &[String]) -> Result<()> {
                     }
                 }
                 "openjd" => {
-                    let file = target.map_or_else(|| out.join("natura.openjd.yaml"), PathBuf::from);
-                    if let Some(d) = file.parent().filter(|d| !d.as_os_str().is_empty()) {
-                        mkdir(d)?;
-                    }
-                    natura::core::io::write_bytes_atomic(&file, farm::openjd(&job).as_bytes())?;
+                    let file = absolute(
+                        &target.map_or_else(|| out.join("natura.openjd.yaml"), PathBuf::from),
+                    )?;
+                    let dir = file.parent().unwrap_or(Path::new("/"));
+                    mkdir(dir)?;
+                    natura::core::io::write_bytes_atomic(
+                        &file,
+                        farm::openjd(&job, dir).as_bytes(),
+                    )?;
                     println!("wrote {}", file.display());
                 }
                 other => {
