@@ -163,3 +163,38 @@ fn read(file: &Path, key: &str) -> Result<ErodedTerrain> {
         wetness: grid(2)?,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> ErodedTerrain {
+        let g = |k: f32| Grid2::from_fn(5, 3, |i, j| k * (i as f32) - j as f32).unwrap();
+        ErodedTerrain {
+            terrain: HeightField::new(g(1.5), 30.0).unwrap(),
+            deposition: g(0.25),
+            wetness: g(-0.5),
+        }
+    }
+
+    #[test]
+    fn round_trip_is_exact_and_damage_is_refused() {
+        let dir = std::env::temp_dir().join(format!("natura-cli-cache-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("w.bin");
+        write(&file, "abc", &sample()).unwrap();
+        assert_eq!(read(&file, "abc").unwrap(), sample());
+        let e = read(&file, "abd").unwrap_err().to_string();
+        assert!(e.contains("not this scene's terrain"), "{e}");
+        let bytes = std::fs::read(&file).unwrap();
+        std::fs::write(&file, &bytes[..bytes.len() - 4]).unwrap();
+        let e = read(&file, "abc").unwrap_err().to_string();
+        assert!(
+            e.contains("corrupt or truncated") && e.contains("delete it"),
+            "{e}"
+        );
+        std::fs::write(&file, b"hello").unwrap();
+        assert!(read(&file, "abc").is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

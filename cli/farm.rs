@@ -172,3 +172,44 @@ pub fn openjd(job: &Job, dir: &Path) -> String {
     );
     t
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths_walk_up_only_where_needed() {
+        let p = |s: &str| PathBuf::from(s);
+        assert_eq!(relative(&p("/a/b"), &p("/a/b")), ".");
+        assert_eq!(relative(&p("/a/b"), &p("/a/b/c/s.toml")), "c/s.toml");
+        assert_eq!(relative(&p("/a/b"), &p("/a/s.toml")), "../s.toml");
+        assert_eq!(default(&p("/a/b"), &p("/a/s.toml")), "");
+        assert_eq!(default(&p("/a/b"), &p("/a/b")), "  default: '.'\n");
+    }
+
+    #[test]
+    fn every_array_index_maps_to_one_frame_and_tile() {
+        let job = Job {
+            natura: "/bin/natura".into(),
+            scene: "/s it's.toml".into(),
+            out: "/o".into(),
+            first: 4,
+            last: 6,
+            tiles: 5,
+            throttle: 3,
+            cpus: 2,
+        };
+        let files = slurm(&job);
+        let render = &files[1].1;
+        assert!(render.contains("#SBATCH --array=0-14%3"), "{render}");
+        assert!(render.contains("'/s it'\\''s.toml'"), "{render}");
+        // The script's arithmetic, index by index.
+        let mut seen = std::collections::BTreeSet::new();
+        for i in 0..15u32 {
+            seen.insert((4 + i / 5, i % 5));
+        }
+        assert_eq!(seen.len(), 15);
+        assert!(seen.iter().all(|&(f, t)| (4..=6).contains(&f) && t < 5));
+        assert!(files[2].1.contains("#SBATCH --array=4-6"));
+    }
+}
