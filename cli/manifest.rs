@@ -19,6 +19,9 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 pub struct TileLine {
     /// natura version that rendered the tile.
     pub natura: String,
+    /// Architecture and operating system of the shard's binary (the
+    /// platforms' math libraries may round differently).
+    pub platform: String,
     /// SHA-256 of the scene (its canonical TOML, all frames).
     pub scene_sha256: String,
     /// The scene's seed.
@@ -49,6 +52,11 @@ pub struct TileLine {
     pub file: String,
     /// SHA-256 of the EXR file.
     pub sha256: String,
+}
+
+/// The platform this binary was built for, `arch-os`.
+pub fn platform() -> String {
+    format!("{}-{}", std::env::consts::ARCH, std::env::consts::OS)
 }
 
 /// Lower-case hex SHA-256 of `bytes`.

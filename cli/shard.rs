@@ -13,7 +13,7 @@ use natura::render::{
 
 use crate::cache;
 use crate::error::{CliError, Result};
-use crate::manifest::{TileLine, VERSION, frame_dir, sha256_hex, tile_stem};
+use crate::manifest::{TileLine, VERSION, frame_dir, platform, sha256_hex, tile_stem};
 use crate::tiles;
 
 /// The scene as shards identify it: parsed, validated, and hashed in its
@@ -86,6 +86,7 @@ pub fn render_tile(
     let sha256 = sha256_hex(&natura::core::io::read_file(&exr)?);
     let line = TileLine {
         natura: VERSION.to_owned(),
+        platform: platform(),
         scene_sha256: scene.sha256.clone(),
         seed: still.seed,
         frame,
@@ -137,7 +138,30 @@ pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
         }
     }
     let f = format!("frame {frame}");
-    let Some(first) = lines.first().cloned() else {
+    lines.sort_by_key(|l| l.tile);
+    // The reference the others are held to: the most common scene and
+    // platform among the tiles (ties: the lowest tile's).
+    let common = |key: fn(&TileLine) -> &str| -> Option<String> {
+        let mut count: BTreeMap<&str, usize> = BTreeMap::new();
+        for l in &lines {
+            *count.entry(key(l)).or_default() += 1;
+        }
+        let most = *count.values().max()?;
+        lines
+            .iter()
+            .map(key)
+            .find(|k| count[k] == most)
+            .map(str::to_owned)
+    };
+    let (scene, platform) = (
+        common(|l| &l.scene_sha256).unwrap_or_default(),
+        common(|l| &l.platform).unwrap_or_default(),
+    );
+    let Some(first) = lines
+        .iter()
+        .find(|l| l.scene_sha256 == scene && l.platform == platform)
+        .cloned()
+    else {
         return Err(CliError::Assemble(vec![format!(
             "{f}: no tiles in {}",
             dir.display()
@@ -159,6 +183,12 @@ pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
             problems.push(format!(
                 "{t}: rendered by natura {}, this is natura {VERSION}",
                 l.natura
+            ));
+        }
+        if l.platform != first.platform {
+            problems.push(format!(
+                "{t}: rendered on {}, tile {} on {}: shards of a frame must run one build",
+                l.platform, first.tile, first.platform
             ));
         }
         if l.scene_sha256 != first.scene_sha256 || l.seed != first.seed {

@@ -171,6 +171,9 @@ fn tampered_missing_and_mismatched_tiles_are_reported_by_index() {
     let m = manifest(&out, 0, 2, 4);
     let line = std::fs::read_to_string(&m).unwrap();
     std::fs::write(&m, line.replace(env!("CARGO_PKG_VERSION"), "0.0.1")).unwrap();
+    let m1 = manifest(&out, 0, 1, 4);
+    let line = std::fs::read_to_string(&m1).unwrap();
+    std::fs::write(&m1, line.replace(std::env::consts::ARCH, "elsewhere")).unwrap();
     let other = out.join("other.toml");
     let text = std::fs::read_to_string(SCENE)
         .unwrap()
@@ -182,7 +185,11 @@ fn tampered_missing_and_mismatched_tiles_are_reported_by_index() {
         err.contains("tile 2 of 4: rendered by natura 0.0.1"),
         "{err}"
     );
-    assert!(err.contains("another scene"), "{err}");
+    assert!(
+        err.contains("tile 0 of 4: rendered from another scene"),
+        "{err}"
+    );
+    assert!(err.contains("tile 1 of 4: rendered on elsewhere-"), "{err}");
     assert!(!out.join("frame_0000.png").exists());
 }
 
