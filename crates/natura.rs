@@ -21,6 +21,11 @@
 //! | `volume` | `natura-volume` | Ebert's clouds and gases, volume rendering, VDB export |
 //! | `plant` | `natura-plant` | L-systems, turtle geometry, open L-systems |
 //! | `render` | `natura-render` | scenes composing the crates into images |
+//!
+//! The package also installs the `natura` command-line tool (feature `cli`,
+//! default-on): scenes rendered as deterministic tiles of frames that any
+//! farm can run, their checked assembly, and Slurm and Open Job Description
+//! job files (see `docs/farm.md` in the repository).
 #![forbid(unsafe_code)]
 
 #[cfg(feature = "core")]

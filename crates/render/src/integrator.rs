@@ -301,13 +301,49 @@ impl<'w> Renderer<'w> {
     /// Returns [`RenderError::Core`](crate::RenderError::Core) if the image cannot be allocated, and the
     /// errors of sky and aerial-perspective lookups.
     pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
+        self.render_region(0, 0, self.width, self.height, progress)
+    }
+
+    /// Renders the `width × height` pixel rectangle of the image whose
+    /// top-left pixel is `(x0, y0)`, in parallel tiles: a shard of a frame.
+    ///
+    /// Every pixel is a function of its position, sample index and seed only
+    /// (see [`Self::render`]), so the region equals the same rectangle of the
+    /// full image bit for bit, whatever the region and thread count.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) if the
+    /// rectangle is empty or reaches outside the image, and the errors of
+    /// [`Self::render`].
+    pub fn render_region(
+        &self,
+        x0: u32,
+        y0: u32,
+        width: u32,
+        height: u32,
+        progress: &dyn Progress,
+    ) -> Result<Image> {
+        let inside =
+            |o: u32, n: u32, side: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= side);
+        if !inside(x0, width, self.width) || !inside(y0, height, self.height) {
+            return Err(crate::RenderError::invalid(
+                "region",
+                format_args!("{width} × {height} at ({x0}, {y0})"),
+                &format!(
+                    "a non-empty rectangle inside the {} × {} image",
+                    self.width, self.height
+                ),
+            ));
+        }
         let n = self.spp as usize;
         let grid = natura_trace::render_tiles(
-            self.width,
-            self.height,
+            width,
+            height,
             natura_trace::DEFAULT_TILE,
             progress,
             |bx, by, w, h, out| {
+                let (bx, by) = (x0 + bx, y0 + by);
                 let mut rays = Vec::with_capacity((w * h) as usize * n);
                 for y in by..by + h {
                     for x in bx..bx + w {

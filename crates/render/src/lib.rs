@@ -54,12 +54,14 @@ use natura_core::{Image, Progress};
 pub use error::{RenderError, Result};
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
-    AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc, DEFAULT_SCENE_TOML, DetailDesc, Diffuse,
-    ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc, SceneDesc, SunDesc, TerrainDesc,
-    TerrainGenerator, TexturesDesc, VegetationDesc, WaterDesc, WaterWaves,
+    AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc,
+    DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc,
+    SceneDesc, SunDesc, TerrainDesc, TerrainGenerator, TexturesDesc, VegetationDesc, WaterDesc,
+    WaterWaves,
 };
 pub use world::{
-    MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World, sun_direction,
+    ErodedTerrain, MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World,
+    sun_direction,
 };
 
 /// The result of rendering a scene.
@@ -151,6 +153,27 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
     render_world(&world, progress)
 }
 
+/// The renderer of `world` with everything its scene asks for — the
+/// forest grown ([`vegetation::Forest::build`]) and added to
+/// [`Renderer::new`]'s — timing the stages `forest` and `acceleration` into
+/// `times`. [`render_world`] renders with it; a caller rendering parts of a
+/// frame ([`Renderer::render_region`]) builds the same one, so its pixels
+/// equal the whole frame's.
+///
+/// # Errors
+///
+/// The errors of [`vegetation::Forest::build`] and [`Renderer::new`].
+pub fn scene_renderer<'w>(
+    world: &'w World,
+    times: &mut StageTimes,
+    progress: &dyn Progress,
+) -> Result<Renderer<'w>> {
+    let forest = times.time("forest", || vegetation::Forest::build(world, progress))?;
+    Ok(times
+        .time("acceleration", || Renderer::new(world, progress))?
+        .with_forest(forest))
+}
+
 /// Renders an already built [`World`] (see [`render_scene`]); the stage
 /// times include the world's.
 ///
@@ -161,11 +184,8 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 pub fn render_world(world: &World, progress: &dyn Progress) -> Result<Rendered> {
     let scene = &world.scene;
     let mut times = world.times.clone();
-    let forest = times.time("forest", || vegetation::Forest::build(world, progress))?;
-    let forest_stats = forest.as_ref().map(|f| f.stats().clone());
-    let renderer = times
-        .time("acceleration", || Renderer::new(world, progress))?
-        .with_forest(forest);
+    let renderer = scene_renderer(world, &mut times, progress)?;
+    let forest_stats = renderer.forest().map(|f| f.stats().clone());
     let image = times.time("render", || renderer.render(progress))?;
     let exposure_ev = scene
         .render

@@ -131,6 +131,18 @@ impl StageTimes {
     }
 }
 
+/// The terrain after synthesis, erosion and the sunken coast, with the maps
+/// erosion leaves: what [`World::build_eroded`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErodedTerrain {
+    /// The eroded terrain, heights in metres above the datum.
+    pub terrain: HeightField,
+    /// Sediment deposited by erosion, metres (≥ 0).
+    pub deposition: Grid2<f32>,
+    /// Wetness from the drainage area, 0 (ridges) to 1 (main rivers).
+    pub wetness: Grid2<f32>,
+}
+
 /// Everything built from a scene before rendering.
 #[derive(Debug)]
 pub struct World {
@@ -192,6 +204,70 @@ impl World {
         erode(scene, &mut terrain, progress)?;
         sink_coast(scene, seed, &mut terrain)?;
         Ok(terrain)
+    }
+
+    /// The terrain and the maps erosion leaves, exactly as [`World::build`]
+    /// makes them: the part of a world shared by every frame and tile of an
+    /// animation (see [`World::from_eroded`]), worth caching.
+    ///
+    /// # Errors
+    ///
+    /// Returns the scene's validation errors and any error of synthesis or
+    /// erosion.
+    pub fn build_eroded(scene: &SceneDesc, progress: &dyn Progress) -> Result<ErodedTerrain> {
+        scene.validate()?;
+        let seed = Seed(scene.seed);
+        let mut terrain = synthesize(scene, seed, progress)?;
+        let (deposition, wetness) = erode(scene, &mut terrain, progress)?;
+        sink_coast(scene, seed, &mut terrain)?;
+        Ok(ErodedTerrain {
+            terrain,
+            deposition,
+            wetness,
+        })
+    }
+
+    /// The world of `scene` over terrain built by [`World::build_eroded`]
+    /// from a scene with the same seed, terrain and erosion sections: equal
+    /// to [`World::build`]`(scene)` bit for bit (the water, sun and
+    /// atmosphere come from `scene`).
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) naming the first scene key out of
+    /// its range or a map whose size differs from the terrain's;
+    /// [`RenderError::Core`](crate::RenderError::Core) if a height is not finite;
+    /// the errors of the atmosphere.
+    pub fn from_eroded(
+        scene: &SceneDesc,
+        eroded: ErodedTerrain,
+        progress: &dyn Progress,
+    ) -> Result<World> {
+        scene.validate()?;
+        let ErodedTerrain {
+            terrain,
+            deposition,
+            wetness,
+        } = eroded;
+        terrain.check_finite()?;
+        let (nx, ny) = (terrain.nx(), terrain.ny());
+        for (name, map) in [("deposition", &deposition), ("wetness", &wetness)] {
+            if (map.width(), map.height()) != (nx, ny) {
+                return Err(crate::RenderError::invalid(
+                    name,
+                    format_args!("{} × {}", map.width(), map.height()),
+                    &format!("the terrain's size, {nx} × {ny}"),
+                ));
+            }
+        }
+        Self::finish(
+            scene,
+            terrain,
+            deposition,
+            wetness,
+            StageTimes::default(),
+            progress,
+        )
     }
 
     /// A world over a given height field (a DEM, or terrain made elsewhere):

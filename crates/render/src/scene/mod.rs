@@ -13,6 +13,7 @@
 //! writes it as TOML (errors name file, line, column and key) and
 //! `validate.rs` checks every value before any work starts.
 
+mod animation;
 mod clouds;
 mod text;
 mod textures;
@@ -20,6 +21,8 @@ mod validate;
 mod vegetation;
 
 pub use vegetation::{SPECIES_NAMES, VegetationDesc};
+
+pub use animation::{AnimationDesc, AnimationKey};
 
 #[cfg(test)]
 mod tests;
@@ -67,6 +70,8 @@ pub struct SceneDesc {
     pub camera: CameraDesc,
     /// Image size, sampling and output.
     pub render: RenderDesc,
+    /// Frames, frame rate and camera path of an animated scene.
+    pub animation: AnimationDesc,
 }
 
 /// Which multifractal shapes the terrain.
@@ -383,6 +388,7 @@ impl Default for SceneDesc {
             vegetation: VegetationDesc::default(),
             camera: CameraDesc::default(),
             render: RenderDesc::default(),
+            animation: AnimationDesc::default(),
         }
     }
 }

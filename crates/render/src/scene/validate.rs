@@ -14,6 +14,7 @@ impl SceneDesc {
     /// Returns [`RenderError::Invalid`] naming the first scene key out of
     /// its range (the message gives the key, the value and the range).
     pub fn validate(&self) -> Result<()> {
+        self.animation.validate()?;
         let t = &self.terrain;
         in_range("terrain.size", t.size as f64, 64.0, 16_384.0)?;
         in_range("terrain.cell_size_m", f64::from(t.cell_size_m), 1e-3, 1e5)?;

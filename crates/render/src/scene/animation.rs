@@ -1,0 +1,248 @@
+//! Animated scenes: a number of frames at a frame rate, a camera path given
+//! by keys, and the time that moves the water.
+//!
+//! A scene with `[animation]` describes a sequence; [`SceneDesc::at_frame`]
+//! gives the still scene of one frame, which renders like any other scene.
+//! The terrain and erosion sections never change along a sequence, so every
+//! frame shares one eroded terrain.
+
+use serde::{Deserialize, Serialize};
+
+use super::SceneDesc;
+use crate::error::{RenderError, Result};
+
+/// The animation of a scene: frames, frame rate and the camera path.
+///
+/// Frame `f` is at time `f / fps` seconds; the ocean's snapshot time
+/// (`water.ocean_time_s`) advances by that time. Between two keys every keyed
+/// value is interpolated linearly in the frame number; before the first key
+/// and after the last the nearest key holds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AnimationDesc {
+    /// Frames in the sequence (1 = a still).
+    pub frames: u32,
+    /// Frames per second.
+    pub fps: f64,
+    /// Keys of the camera and sun, by strictly increasing frame (none = the
+    /// `[camera]` and `[sun]` sections in every frame).
+    pub keys: Vec<AnimationKey>,
+}
+
+/// The camera (and optionally the sun) at one frame of an animation. A
+/// value left out takes the `[camera]` or `[sun]` section's value.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AnimationKey {
+    /// The frame this key holds at.
+    pub frame: u32,
+    /// Camera position across the terrain, `[u, v]` in `[0, 1]`.
+    pub position_uv: Option<[f64; 2]>,
+    /// Point the camera looks toward, `[u, v]` in `[0, 1]`.
+    pub target_uv: Option<[f64; 2]>,
+    /// Height of the eye above the ground or water below it, metres.
+    pub height_above_ground_m: Option<f64>,
+    /// Pitch of the view, degrees.
+    pub pitch_deg: Option<f64>,
+    /// Sun elevation, degrees.
+    pub sun_elevation_deg: Option<f64>,
+    /// Sun compass azimuth, degrees.
+    pub sun_azimuth_deg: Option<f64>,
+}
+
+impl Default for AnimationDesc {
+    fn default() -> Self {
+        Self {
+            frames: 1,
+            fps: 24.0,
+            keys: Vec::new(),
+        }
+    }
+}
+
+impl AnimationDesc {
+    /// Checks the frame count, frame rate and keys, naming the first bad key.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] for zero or more than a million
+    /// frames, a frame rate outside `(0, 1000]`, keys out of frame order or
+    /// past the last frame, and non-finite keyed values.
+    pub fn validate(&self) -> Result<()> {
+        if !(1..=1_000_000).contains(&self.frames) {
+            return Err(RenderError::invalid(
+                "animation.frames",
+                self.frames,
+                "1 to 1 000 000",
+            ));
+        }
+        if !(self.fps > 0.0 && self.fps <= 1000.0) {
+            return Err(RenderError::invalid(
+                "animation.fps",
+                self.fps,
+                "in (0, 1000] frames per second",
+            ));
+        }
+        let mut previous: Option<u32> = None;
+        for (i, k) in self.keys.iter().enumerate() {
+            let name = |field: &str| format!("animation.keys[{i}].{field}");
+            if k.frame >= self.frames {
+                return Err(RenderError::invalid(
+                    &name("frame"),
+                    k.frame,
+                    &format!("below animation.frames = {}", self.frames),
+                ));
+            }
+            if previous.is_some_and(|p| k.frame <= p) {
+                return Err(RenderError::invalid(
+                    &name("frame"),
+                    k.frame,
+                    "keys in strictly increasing frame order",
+                ));
+            }
+            previous = Some(k.frame);
+            let values = [
+                ("position_uv[0]", k.position_uv.map(|p| p[0])),
+                ("position_uv[1]", k.position_uv.map(|p| p[1])),
+                ("target_uv[0]", k.target_uv.map(|p| p[0])),
+                ("target_uv[1]", k.target_uv.map(|p| p[1])),
+                ("height_above_ground_m", k.height_above_ground_m),
+                ("pitch_deg", k.pitch_deg),
+                ("sun_elevation_deg", k.sun_elevation_deg),
+                ("sun_azimuth_deg", k.sun_azimuth_deg),
+            ];
+            for (field, v) in values {
+                if let Some(v) = v.filter(|v| !v.is_finite()) {
+                    return Err(RenderError::invalid(&name(field), v, "a finite number"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Time of frame `frame` from the start of the sequence, seconds.
+    #[must_use]
+    pub fn time_s(&self, frame: u32) -> f64 {
+        f64::from(frame) / self.fps
+    }
+
+    /// The value keyed by `get` at `frame` (`base` where a key leaves it
+    /// out), linear between the keys around `frame`.
+    fn keyed(&self, frame: u32, base: f64, get: impl Fn(&AnimationKey) -> Option<f64>) -> f64 {
+        let at = |k: &AnimationKey| get(k).unwrap_or(base);
+        let (Some(first), Some(last)) = (self.keys.first(), self.keys.last()) else {
+            return base;
+        };
+        if frame <= first.frame {
+            return at(first);
+        }
+        if frame >= last.frame {
+            return at(last);
+        }
+        let i = self.keys.partition_point(|k| k.frame <= frame);
+        let (a, b) = (&self.keys[i - 1], &self.keys[i]);
+        let s = f64::from(frame - a.frame) / f64::from(b.frame - a.frame);
+        let (va, vb) = (at(a), at(b));
+        va + (vb - va) * s
+    }
+}
+
+impl SceneDesc {
+    /// The still scene of frame `frame` of this scene's animation: the
+    /// camera and sun at that frame, the ocean at its time. Every other key
+    /// is this scene's; frame 0 of a scene without keys is the scene itself.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] if the scene is invalid or `frame` is
+    /// not below `animation.frames`.
+    pub fn at_frame(&self, frame: u32) -> Result<SceneDesc> {
+        self.validate()?;
+        let a = &self.animation;
+        if frame >= a.frames {
+            return Err(RenderError::invalid(
+                "frame",
+                frame,
+                &format!("0 to {} (animation.frames = {})", a.frames - 1, a.frames),
+            ));
+        }
+        let mut s = self.clone();
+        let c = &self.camera;
+        for i in 0..2 {
+            s.camera.position_uv[i] =
+                a.keyed(frame, c.position_uv[i], |k| k.position_uv.map(|p| p[i]));
+            s.camera.target_uv[i] = a.keyed(frame, c.target_uv[i], |k| k.target_uv.map(|p| p[i]));
+        }
+        s.camera.height_above_ground_m =
+            a.keyed(frame, c.height_above_ground_m, |k| k.height_above_ground_m);
+        s.camera.pitch_deg = a.keyed(frame, c.pitch_deg, |k| k.pitch_deg);
+        s.sun.elevation_deg = a.keyed(frame, self.sun.elevation_deg, |k| k.sun_elevation_deg);
+        s.sun.azimuth_deg = a.keyed(frame, self.sun.azimuth_deg, |k| k.sun_azimuth_deg);
+        if frame > 0 {
+            s.water.ocean_time_s += a.time_s(frame);
+        }
+        s.validate()?;
+        Ok(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn animated() -> SceneDesc {
+        let text = "[animation]\nframes = 5\nfps = 10.0\n\
+            [[animation.keys]]\nframe = 1\nposition_uv = [0.2, 0.4]\npitch_deg = -2.0\n\
+            [[animation.keys]]\nframe = 3\nposition_uv = [0.6, 0.8]\n";
+        SceneDesc::from_toml_str(text, "a.toml").unwrap()
+    }
+
+    #[test]
+    fn keys_interpolate_linearly_and_hold_outside() {
+        let s = animated();
+        let at = |f| s.at_frame(f).unwrap();
+        assert_eq!(at(0).camera.position_uv, [0.2, 0.4]);
+        assert_eq!(at(1).camera.position_uv, [0.2, 0.4]);
+        let mid = at(2).camera.position_uv;
+        approx::assert_abs_diff_eq!(mid[0], 0.4, epsilon = 1e-12);
+        approx::assert_abs_diff_eq!(mid[1], 0.6, epsilon = 1e-12);
+        assert_eq!(at(4).camera.position_uv, [0.6, 0.8]);
+        // The second key leaves the pitch out: it takes the camera's.
+        let base = s.camera.pitch_deg;
+        approx::assert_abs_diff_eq!(at(2).camera.pitch_deg, (-2.0 + base) / 2.0, epsilon = 1e-12);
+        // Time moves the ocean; the terrain never changes.
+        approx::assert_abs_diff_eq!(at(3).water.ocean_time_s, s.water.ocean_time_s + 0.3);
+        assert_eq!(at(4).terrain, s.terrain);
+        assert_eq!(at(4).erosion, s.erosion);
+    }
+
+    #[test]
+    fn a_still_scene_is_its_own_frame_zero() {
+        let s = SceneDesc::default();
+        assert_eq!(s.at_frame(0).unwrap(), s);
+        assert!(s.at_frame(1).unwrap_err().to_string().contains("frame"));
+    }
+
+    #[test]
+    fn bad_animations_are_refused_by_name() {
+        let bad = |text: &str, key: &str| {
+            let s = SceneDesc::from_toml_str(text, "b.toml").unwrap();
+            let e = s.validate().unwrap_err().to_string();
+            assert!(e.contains(key), "{e}");
+        };
+        bad("[animation]\nframes = 0\n", "animation.frames");
+        bad("[animation]\nfps = 0.0\n", "animation.fps");
+        bad(
+            "[animation]\nframes = 4\n[[animation.keys]]\nframe = 4\n",
+            "animation.keys[0].frame",
+        );
+        bad(
+            "[animation]\nframes = 4\n[[animation.keys]]\nframe = 2\n[[animation.keys]]\nframe = 2\n",
+            "animation.keys[1].frame",
+        );
+        bad(
+            "[animation]\nframes = 4\n[[animation.keys]]\nframe = 2\npitch_deg = nan\n",
+            "animation.keys[0].pitch_deg",
+        );
+    }
+}
