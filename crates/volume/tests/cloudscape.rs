@@ -103,14 +103,13 @@ fn cloudscape_fast_mode_against_the_reference() {
         eprintln!("blocks of {b}×{b}: relative luminance error {e:.3}; of the mean {m:.3}");
     }
     eprintln!("reference: 96×54 at 256 paths per pixel in {secs:.1} s");
-    // Measured (256 paths per pixel): 0.231 over 3×3 blocks, 0.043 of the
-    // mean; thin cloud a tenth too dark, thick cloud a seventh too bright
-    // (0.161 and 0.091 before the sun's light carried by the forward peak
-    // counted in the first order). The mean is held within 10 %; the error
-    // per block is not, and the goal there is 0.10, with a noise floor of
-    // about 0.12 (see the full-frame test below).
+    // Measured (256 paths per pixel): 0.145 over 3×3 blocks, 0.126 over
+    // 6×6, 0.029 of the mean; thin cloud (the aureole round the sun
+    // included) a tenth too dark, thick cloud a tenth too bright (0.231 over
+    // 3×3 blocks before the peak's orders and the fitted octave constants).
+    // The goal of 0.10 over blocks is not met; the bound held is 0.18.
     let (e, m) = errors_image(&fast, &reference, 3);
-    assert!(e <= 0.3 && m <= 0.1, "{e} {m}");
+    assert!(e <= 0.18 && m <= 0.05, "{e} {m}");
 }
 
 /// Relative luminance error of `a` against `r` (row-major `w × h`), over

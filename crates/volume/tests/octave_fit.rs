@@ -215,4 +215,7 @@ fn fit_octave_constants() {
         loss(ScatterOctaves::SINGLE, true)
     );
     eprintln!("best {:?}: loss {:.4}", best.1, loss(best.1, true));
+    // The default constants are the grid's minimum, and beat single scattering.
+    assert_eq!(best.1, ScatterOctaves::default());
+    assert!(best.0 < loss(ScatterOctaves::SINGLE, false));
 }
