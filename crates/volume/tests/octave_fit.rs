@@ -206,9 +206,15 @@ fn fit_octave_constants() {
             }
         }
     }
+    let wrenninge = ScatterOctaves {
+        count: 8,
+        a: 0.5,
+        b: 0.5,
+        c: 0.85,
+    };
     eprintln!(
-        "current (a, b, c) = (0.5, 0.5, 0.85): loss {:.4}",
-        loss(ScatterOctaves::default(), true)
+        "Wrenninge's (a, b, c) = (0.5, 0.5, 0.85): loss {:.4}",
+        loss(wrenninge, true)
     );
     eprintln!(
         "single scattering: loss {:.4}",
