@@ -35,6 +35,26 @@ fn density(c: &mut Criterion) {
     g.bench_function("cumulus_turbulence_1thread", |bch| {
         bch.iter(|| pts.iter().map(|&p| cu.density(p)).sum::<f32>())
     });
+    // The same points as struct of arrays, in batches of 16 (the fast
+    // march's batch) and of 256.
+    let (x, y, z): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+        pts.iter().map(|p| p.x).collect(),
+        pts.iter().map(|p| p.y).collect(),
+        pts.iter().map(|p| p.z).collect(),
+    );
+    let mut out = vec![0.0f32; n];
+    for batch in [16usize, 256] {
+        g.bench_function(format!("cumulus_turbulence_batch{batch}_1thread"), |bch| {
+            bch.iter(|| {
+                for (k, o) in out.chunks_mut(batch).enumerate() {
+                    let r = k * batch..k * batch + o.len();
+                    cu.density_batch(&x[r.clone()], &y[r.clone()], &z[r], o)
+                        .unwrap();
+                }
+                out.iter().sum::<f32>()
+            })
+        });
+    }
     g.finish();
 }
 

@@ -33,6 +33,42 @@ pub trait Density: Send + Sync {
 
     /// An upper bound of the density over all space.
     fn max_density(&self) -> f32;
+
+    /// The densities at many points at once, struct of arrays:
+    /// `out[i]` is the density at `(x[i], y[i], z[i])`.
+    ///
+    /// The default evaluates point by point (exactly
+    /// [`density`](Density::density)); fields with a vectorised path
+    /// override it and state how closely it agrees with the point path.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::SizeMismatch`] if the four slices differ in length.
+    fn density_batch(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) -> Result<()> {
+        check_batch(x, y, z, out)?;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.density(Vec3::new(x[i], y[i], z[i]));
+        }
+        Ok(())
+    }
+}
+
+/// Checks that the coordinate slices of a batch evaluation are as long as its output.
+///
+/// # Errors
+///
+/// [`VolumeError::SizeMismatch`] otherwise.
+pub fn check_batch(x: &[f32], y: &[f32], z: &[f32], out: &[f32]) -> Result<()> {
+    for len in [x.len(), y.len(), z.len()] {
+        if len != out.len() {
+            return Err(VolumeError::SizeMismatch {
+                name: "batch points",
+                expected: out.len().to_string(),
+                actual: len.to_string(),
+            });
+        }
+    }
+    Ok(())
 }
 
 impl<D: Density + ?Sized> Density for &D {
@@ -48,6 +84,9 @@ impl<D: Density + ?Sized> Density for &D {
     fn max_density(&self) -> f32 {
         (**self).max_density()
     }
+    fn density_batch(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) -> Result<()> {
+        (**self).density_batch(x, y, z, out)
+    }
 }
 
 impl<D: Density + ?Sized> Density for Box<D> {
@@ -62,6 +101,9 @@ impl<D: Density + ?Sized> Density for Box<D> {
     }
     fn max_density(&self) -> f32 {
         (**self).max_density()
+    }
+    fn density_batch(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) -> Result<()> {
+        (**self).density_batch(x, y, z, out)
     }
 }
 

@@ -103,14 +103,13 @@ fn cloudscape_fast_mode_against_the_reference() {
         eprintln!("blocks of {b}×{b}: relative luminance error {e:.3}; of the mean {m:.3}");
     }
     eprintln!("reference: 96×54 at 256 paths per pixel in {secs:.1} s");
-    // Measured (256 paths per pixel): 0.231 over 3×3 blocks, 0.043 of the
-    // mean; thin cloud a tenth too dark, thick cloud a seventh too bright
-    // (0.161 and 0.091 before the sun's light carried by the forward peak
-    // counted in the first order). The mean is held within 10 %; the error
-    // per block is not, and the goal there is 0.10, with a noise floor of
-    // about 0.12 (see the full-frame test below).
+    // Measured (256 paths per pixel): 0.145 over 3×3 blocks, 0.126 over
+    // 6×6, 0.029 of the mean; thin cloud (the aureole round the sun
+    // included) a tenth too dark, thick cloud a tenth too bright (0.231 over
+    // 3×3 blocks before the peak's orders and the fitted octave constants).
+    // The goal of 0.10 over blocks is not met; the bound held is 0.18.
     let (e, m) = errors_image(&fast, &reference, 3);
-    assert!(e <= 0.3 && m <= 0.1, "{e} {m}");
+    assert!(e <= 0.18 && m <= 0.05, "{e} {m}");
 }
 
 /// Relative luminance error of `a` against `r` (row-major `w × h`), over
@@ -158,7 +157,7 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     let rays: Vec<(usize, usize)> = (0..h)
         .flat_map(|j| (0..w).map(move |i| (i * stride + stride / 2, j * stride + stride / 2)))
         .collect();
-    let spp = 512;
+    let spp = 1024;
     let fast = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
     let reference = |seed: u64| {
         let r = ReferenceRenderer::new(
@@ -205,7 +204,7 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
             fr / n
         );
     }
-    for b in [1, 3] {
+    for b in [1, 3, 6] {
         let (e, m) = errors(&a, &r1, w, b);
         let (en, mn) = errors(&r2, &r1, w, b);
         eprintln!(
@@ -217,11 +216,12 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
         "reference: {} rays of the 1920×1080 frame at {spp} paths per pixel in {secs:.1} s",
         rays.len()
     );
-    // Measured against a reference at 512 paths per pixel: 0.255 over 3×3
-    // blocks, 0.022 of the mean (0.198 and 0.146 before the sun's light
-    // carried by the forward peak counted in the first order, when the
-    // clouds were a fifth too dark). The noise floor at 512 paths per pixel
-    // is 0.123 over 3×3 blocks and 0.019 of the mean.
+    // Measured against a reference at 1024 paths per pixel: 0.161 over 3×3
+    // blocks, 0.127 over 6×6, 0.200 per ray, 0.035 of the mean (0.237 over
+    // 3×3 blocks before the peak's orders and the fitted octave constants).
+    // The noise floor between two references at 1024 paths per pixel is
+    // 0.100 over 3×3 blocks, 0.070 over 6×6 and 0.014 of the mean. The goal
+    // of 0.10 over 3×3 blocks is not met; the bound held is 0.18.
     let (e, m) = errors(&a, &r1, w, 3);
-    assert!(e <= 0.3 && m <= 0.1, "{e} {m}");
+    assert!(e <= 0.18 && m <= 0.05, "{e} {m}");
 }
