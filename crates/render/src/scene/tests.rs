@@ -10,6 +10,23 @@ fn embedded_default_scene_equals_the_defaults() {
     parsed.validate().unwrap();
 }
 
+/// The scene files shipped beside the examples load and validate, and each
+/// changes the built-in scene.
+#[test]
+fn example_scene_files_load_and_validate() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = SceneDesc::load(&path).unwrap();
+            assert_ne!(scene, SceneDesc::default(), "{}", path.display());
+            n += 1;
+        }
+    }
+    assert!(n >= 1, "no scene files in {}", dir.display());
+}
+
 #[test]
 fn round_trips_through_toml() {
     let mut s = SceneDesc {
