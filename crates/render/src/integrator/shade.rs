@@ -1,0 +1,251 @@
+//! Shading: the light leaving the terrain, the water, the trees and the
+//! sky toward the viewer, with their shadows (Musgrave 1993, ch. 3–4).
+//! Tracing and pixel loops live in the parent module and call these.
+
+use super::*;
+
+impl Renderer<'_> {
+    /// Whether a tree stands between `p` and the sun (beyond `t_min` metres).
+    pub(super) fn trees_occlude(&self, p: Vec3, t_min: f32) -> bool {
+        self.forest
+            .as_ref()
+            .is_some_and(|f| f.occluded(p, self.sun, t_min, f32::INFINITY))
+    }
+
+    /// Radiance leaving a tree toward `-d`: the sun unless the terrain or a
+    /// tree (its own crown included) is in the way, and skylight.
+    pub(super) fn shade_tree(&self, f: &Forest, h: &TreeHit, d: Vec3) -> Vec3 {
+        // Past the surface hit by a few centimetres, so the shadow ray of a
+        // leaf lit from behind passes through it (its transmitted light).
+        let eps = 0.03 + 1e-6 * h.point.abs().max_element();
+        let fp = RayCone {
+            at_origin_m: h.t * self.pixel_angle,
+            per_metre: self.pixel_angle,
+        };
+        let visible = self.sun.z > 0.0
+            && !self.trees_occlude(h.point, eps)
+            && !self.tracer.occluded_footprint(
+                &Ray::new(h.point, self.sun),
+                eps,
+                f32::INFINITY,
+                fp,
+            );
+        let light = Light {
+            sun: self.sun,
+            // The clouds' shadow dims the sun on trees as on the ground.
+            sun_irradiance: self.sun_irradiance * self.cloud_shadow(h.point),
+            sky_irradiance: self.sky_irradiance,
+        };
+        f.shade(h, d, &light, visible)
+    }
+
+    /// The sky seen from `o` along unit `d` (a ray that left the terrain),
+    /// with the sun's disc and the clouds in front of both.
+    pub(super) fn sky(&self, o: Vec3, d: Vec3) -> Vec3 {
+        let sky = self.view.radiance_f32(d);
+        let disc = Dir3::from_f32(d).map_or(Vec3::ZERO, |dir| self.view.sun_disc(dir));
+        match self.clouds.as_ref().and_then(|c| c.view(o, d)) {
+            Some(c) => c.radiance + sky * c.transmittance + disc * c.sun_transmittance,
+            None => sky + disc,
+        }
+    }
+
+    /// The fraction of the sun's light the clouds let through to `p`.
+    pub(super) fn cloud_shadow(&self, p: Vec3) -> f32 {
+        self.clouds.as_ref().map_or(1.0, |c| c.sun_transmittance(p))
+    }
+
+    pub(super) fn terrain_point(&self, h: &Hit) -> TerrainPoint {
+        TerrainPoint {
+            point: h.point,
+            geo: h.geometric_normal,
+            smooth: h.smooth_normal,
+        }
+    }
+
+    /// Radiance leaving a terrain point toward `-d`, at distance `t` from the viewer.
+    pub(super) fn shade_terrain(&self, tp: &TerrainPoint, d: Vec3, t: f32) -> Vec3 {
+        let w = self.world;
+        let cell = w.terrain.cell_size();
+        let (gx, gy) = (tp.point.x / cell, tp.point.y / cell);
+        let sample = SurfaceSample {
+            point: tp.point,
+            normal: tp.smooth,
+            deposition_m: w.deposition.sample_bilinear(gx, gy, Boundary::Clamp),
+            wetness: w.wetness.sample_bilinear(gx, gy, Boundary::Clamp),
+        };
+        let footprint = t * self.pixel_angle;
+        let albedo = self.materials.albedo_at(&sample, footprint);
+        let n = self.materials.bumped_normal(tp.point, tp.smooth, footprint);
+        let v = -d;
+        let mut l = Vec3::ZERO;
+
+        // Direct sun, with a shadow ray from just above the surface.
+        let cos_i = n.dot(self.sun);
+        if cos_i > 0.0 && tp.geo.dot(self.sun) > -0.05 {
+            let eps = 1e-2 * cell + 1e-5 * tp.point.abs().max_element();
+            let shadow = Ray::new(tp.point + tp.geo * eps, self.sun);
+            let fp = RayCone {
+                at_origin_m: footprint,
+                per_metre: self.pixel_angle,
+            };
+            if !self
+                .tracer
+                .occluded_footprint(&shadow, eps, f32::INFINITY, fp)
+                && !self.trees_occlude(shadow.origin, eps)
+            {
+                let f = self.materials.diffuse_factor(n, self.sun, v) * self.cloud_shadow(tp.point);
+                l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
+            }
+        }
+        // Sky light over the visible hemisphere, plus light bounced off the
+        // surroundings for normals that face down-slope.
+        let up = 0.5 * (1.0 + n.z);
+        let bounce = 0.5
+            * (1.0 - n.z)
+            * 0.25
+            * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
+        l += albedo / std::f32::consts::PI * (self.sky_irradiance * up + bounce);
+        l
+    }
+
+    /// The normal of the fBm ripples at `p`, band-limited to a pixel of the
+    /// given footprint (metres): octaves finer than the footprint fade out
+    /// (the RenderMan `vfBm` filter of natura-noise's [`FilteredFbm`]), so
+    /// distant water tends to its mean plane instead of aliasing into glitter.
+    pub(super) fn ripple_normal(&self, p: Vec3, footprint: f32) -> Vec3 {
+        let wdesc = &self.world.scene.water;
+        if wdesc.ripple_height_m <= 0.0 {
+            return Vec3::Z;
+        }
+        let width = f64::from(footprint);
+        let q = DVec2::new(f64::from(p.x), f64::from(p.y));
+        // Central differences at a tenth of the finest wavelength kept.
+        let h = (0.1 * width).max(0.01 * wdesc.ripple_size_m / 128.0);
+        let fx = self.ripples.eval2_width(q + DVec2::X * h, width)
+            - self.ripples.eval2_width(q - DVec2::X * h, width);
+        let fy = self.ripples.eval2_width(q + DVec2::Y * h, width)
+            - self.ripples.eval2_width(q - DVec2::Y * h, width);
+        let g = DVec2::new(fx, fy) * (wdesc.ripple_height_m / (2.0 * h));
+        Vec3::new(-g.x as f32, -g.y as f32, 1.0).normalize()
+    }
+
+    /// Radiance leaving the water surface at `p` toward `-d` (`reflect_terrain`:
+    /// whether reflection rays may hit the terrain, off for secondary bounces).
+    pub(super) fn shade_water(&self, p: Vec3, d: Vec3, t: f32, reflect_terrain: bool) -> Vec3 {
+        let wdesc = &self.world.scene.water;
+        // A pixel's footprint on the water: t·α across the view, stretched by
+        // 1/|d_z| along it at grazing angles; their geometric mean is the
+        // isotropic filter width.
+        let footprint = t * self.pixel_angle / d.z.abs().max(1e-3).sqrt();
+        let n = if let Some(ocean) = &self.ocean {
+            // Normals of the wind sea, flattened where a pixel covers many
+            // wavelengths (the mean normal of a rough patch is its plane).
+            let patch = wdesc.ocean_patch_m as f32;
+            let fade = 1.0 - crate::material::smoothstep(0.01 * patch, 0.2 * patch, footprint);
+            let n = ocean.normal_at(Vec2::new(p.x, p.y));
+            (Vec3::Z + (n - Vec3::Z) * fade).normalize()
+        } else {
+            self.ripple_normal(p, footprint)
+        };
+        let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+        let fr = fresnel(1.0, WATER_IOR, f64::from(cos_i)).unpolarized() as f32;
+
+        // Reflection: the terrain (mountains mirrored in the lake) or the sky and sun.
+        let mut r = d - 2.0 * d.dot(n) * n;
+        if r.z < 1e-4 {
+            r.z = r.z.abs().max(1e-4);
+            r = r.normalize();
+        }
+        let reflected = if reflect_terrain {
+            let rray = Ray::new(p + Vec3::Z * 1e-2, r);
+            // At a shoreline the exact water plane lies below the interpolated
+            // surface of its cell; a ray leaving it starts under the traced
+            // surface, so it sees only the bare terrain (the rising shore).
+            let under = self.surface_height(rray.origin) > rray.origin.z;
+            let hit = if under {
+                self.ground
+                    .trace(&rray, 0.0, f32::INFINITY)
+                    .map(SurfaceHit::Terrain)
+            } else {
+                let fp = RayCone {
+                    at_origin_m: t * self.pixel_angle,
+                    per_metre: self.pixel_angle,
+                };
+                let first = self.tracer.trace_footprint(&rray, 0.0, f32::INFINITY, fp);
+                self.intersect(&rray, first.as_ref())
+            };
+            let (lt, tr) = match hit {
+                Some(SurfaceHit::Water { t: tr, point }) => {
+                    (self.shade_water(point, r, t + tr, false), tr)
+                }
+                Some(SurfaceHit::Terrain(h)) => {
+                    (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t)
+                }
+                None => (self.sky(p, r), f32::INFINITY),
+            };
+            if tr.is_finite() {
+                let ap = self.view.aerial_perspective_f32(r, tr);
+                lt * ap.transmittance + ap.in_scatter
+            } else {
+                lt
+            }
+        } else {
+            self.sky(p, r)
+        };
+
+        // Transmission: the bed seen through absorbing, scattering water.
+        let sigma = Vec3::from(wdesc.extinction_per_m);
+        let albedo = Vec3::from(wdesc.scatter_albedo);
+        let ambient = self.sun_irradiance * (self.sun.z.max(0.0) * self.cloud_shadow(p))
+            + self.sky_irradiance;
+        let body = albedo * ambient / std::f32::consts::PI;
+        let eta = (1.0 / WATER_IOR) as f32;
+        let cos_t2 = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+        let transmitted = if cos_t2 > 0.0 {
+            let tdir = (eta * d + (eta * cos_i - cos_t2.sqrt()) * n).normalize();
+            let tray = Ray::new(p - Vec3::Z * 1e-2, tdir);
+            match self.ground.trace(&tray, 0.0, 2_000.0) {
+                Some(h) => {
+                    let tp = self.terrain_point(&h);
+                    let water_depth = (p.z - h.point.z).max(0.0);
+                    let sun_path = water_depth / self.sun.z.max(0.05);
+                    let bed = self.shade_terrain(&tp, tdir, t + h.t) * exp3(-sigma * sun_path);
+                    let att = exp3(-sigma * h.t);
+                    bed * att + body * (Vec3::ONE - att)
+                }
+                None => body,
+            }
+        } else {
+            Vec3::ZERO
+        };
+        fr * reflected + (1.0 - fr) * transmitted
+    }
+
+    /// Rain between `rain_distance_m` and the hit: extinction of what is behind
+    /// and the rainbow's single scattering (Musgrave 1993, §4.2.4.3.2).
+    pub(super) fn rain(&self, rb: &Rainbow, d: Vec3, dist: f32, behind: Vec3) -> Vec3 {
+        let a = &self.world.scene.atmosphere;
+        let start = a.rain_distance_m as f32;
+        let end = dist.min(start + 6_000.0);
+        if end <= start {
+            return behind;
+        }
+        let len = f64::from(end - start);
+        let beta = a.rain_extinction_per_m;
+        let (Ok(view), sun) = (Dir3::from_f32(d), self.world.sun_dir()) else {
+            return behind;
+        };
+        let bow = rb
+            .radiance(view, sun, self.sun_irradiance.as_dvec3(), beta, len)
+            .map(|v| v.as_vec3())
+            .unwrap_or(Vec3::ZERO);
+        let ap = self.view.aerial_perspective_f32(d, start);
+        behind * (-(beta * len) as f32).exp() + bow * ap.transmittance
+    }
+}
+
+#[inline]
+pub(super) fn exp3(v: Vec3) -> Vec3 {
+    Vec3::new(v.x.exp(), v.y.exp(), v.z.exp())
+}
