@@ -1,45 +1,22 @@
 //! Procedural detail in the landscape: off is off, on is deterministic and finite.
 
-use natura_core::NoProgress;
-use natura_render::{Rendered, SceneDesc, World, render_world};
+mod common;
+
+use common::{bits, render_on as render};
+use natura_render::SceneDesc;
 
 /// A 128² terrain seen from low down (so detail fills the foreground) in a
 /// 64 × 36 image.
 fn close_scene() -> SceneDesc {
-    let mut s = SceneDesc::default();
-    s.terrain.size = 128;
+    let mut s = common::small_scene();
     s.terrain.cell_size_m = 120.0;
-    s.erosion.stream_power_steps = 3;
-    s.erosion.droplets_per_sample = 2_000.0 / (128.0 * 128.0);
-    s.erosion.thermal_steps = 3;
     s.camera.height_above_ground_m = 15.0;
     s.camera.pitch_deg = -8.0;
     s.detail.amplitude_m = 8.0;
-    s.render.width = 64;
-    s.render.height = 36;
-    s.render.spp = 2;
     // The plain sky and materials these tests were written for.
     s.clouds.enabled = false;
     s.textures.enabled = false;
     s
-}
-
-fn bits(r: &Rendered) -> Vec<u32> {
-    r.image
-        .pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array().map(f32::to_bits))
-        .collect()
-}
-
-fn render(scene: &SceneDesc, threads: usize) -> Rendered {
-    let world = World::build(scene, &NoProgress).unwrap();
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(|| render_world(&world, &NoProgress).unwrap())
 }
 
 #[test]

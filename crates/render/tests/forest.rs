@@ -1,6 +1,9 @@
 //! The forest: its two-level BVH against brute force (per instance and as
 //! whole images), thread independence, finiteness, and its scene keys.
 
+mod common;
+
+use common::image_bits as bits;
 use glam::Vec3;
 use natura_core::{HeightField, NoProgress, Seed};
 use natura_render::vegetation::Forest;
@@ -73,14 +76,6 @@ fn every_instance_agrees_with_brute_force() {
     }
     // Most rays aimed at a triangle's centre hit something.
     assert!(hits * 10 > 9 * 6 * sc.placements.len(), "{hits}");
-}
-
-fn bits(img: &natura_core::Image) -> Vec<u32> {
-    img.pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array().map(f32::to_bits))
-        .collect()
 }
 
 #[test]

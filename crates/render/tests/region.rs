@@ -3,6 +3,9 @@
 //! its eroded terrain equals the world built in one go, and regions outside
 //! the image are refused.
 
+mod common;
+
+use common::image_bits as bits;
 use natura_core::{Image, NoProgress};
 use natura_render::{Renderer, SceneDesc, World};
 
@@ -18,14 +21,6 @@ fn small_scene() -> SceneDesc {
     s.render.height = 37;
     s.render.spp = 2;
     s
-}
-
-fn bits(img: &Image) -> Vec<u32> {
-    img.pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array().map(f32::to_bits))
-        .collect()
 }
 
 fn crop(img: &Image, x0: usize, y0: usize, w: usize, h: usize) -> Vec<u32> {

@@ -5,17 +5,13 @@ use natura_core::{Grid2, HeightField, NoProgress};
 use natura_render::{Renderer, SceneDesc, World, render_world, sun_direction};
 use natura_trace::Ray;
 
+mod common;
+
+use common::bits;
+
 /// The default scene shrunk to a 128² terrain and a 64 × 36 image.
 fn small_scene() -> SceneDesc {
-    let mut s = SceneDesc::default();
-    s.terrain.size = 128;
-    s.terrain.cell_size_m = 480.0;
-    s.erosion.stream_power_steps = 3;
-    s.erosion.droplets_per_sample = 2_000.0 / (128.0 * 128.0);
-    s.erosion.thermal_steps = 3;
-    s.render.width = 64;
-    s.render.height = 36;
-    s.render.spp = 2;
+    let mut s = common::small_scene();
     // The plain sky and materials these tests were written for.
     s.clouds.enabled = false;
     s.textures.enabled = false;
@@ -49,14 +45,6 @@ fn same_image_on_one_and_two_threads() {
     };
     let a = render(1);
     let b = render(2);
-    let bits = |r: &natura_render::Rendered| -> Vec<u32> {
-        r.image
-            .pixels()
-            .as_slice()
-            .iter()
-            .flat_map(|c| c.to_array().map(f32::to_bits))
-            .collect()
-    };
     assert_eq!(bits(&a), bits(&b));
     assert_eq!(a.exposure_ev.to_bits(), b.exposure_ev.to_bits());
 }

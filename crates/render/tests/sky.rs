@@ -7,20 +7,16 @@ use natura_core::{HeightField, NoProgress, Seed};
 use natura_render::clouds::CloudSky;
 use natura_render::material::{Materials, SurfaceSample};
 use natura_render::strata::SurfaceTextures;
-use natura_render::{Rendered, Renderer, SceneDesc, World, render_world};
+use natura_render::{Renderer, SceneDesc, World};
 use natura_trace::Ray;
+
+mod common;
+
+use common::{bits, render_on as render};
 
 /// The default scene at 128² and 64 × 36, with coarse cloud voxels.
 fn small_scene() -> SceneDesc {
-    let mut s = SceneDesc::default();
-    s.terrain.size = 128;
-    s.terrain.cell_size_m = 480.0;
-    s.erosion.stream_power_steps = 3;
-    s.erosion.droplets_per_sample = 2_000.0 / (128.0 * 128.0);
-    s.erosion.thermal_steps = 3;
-    s.render.width = 64;
-    s.render.height = 36;
-    s.render.spp = 2;
+    let mut s = common::small_scene();
     s.clouds.voxel_m = 400.0;
     s.clouds.shadow_table_nodes = 128;
     s.clouds.shadow_cell_m = 300.0;
@@ -37,24 +33,6 @@ fn flat_world(mut scene: SceneDesc) -> World {
     scene.camera.pitch_deg = -2.0;
     let hf = HeightField::flat(128, 128, 480.0, 0.0).unwrap();
     World::from_height_field(&scene, hf, &NoProgress).unwrap()
-}
-
-fn bits(r: &Rendered) -> Vec<u32> {
-    r.image
-        .pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array().map(f32::to_bits))
-        .collect()
-}
-
-fn render(scene: &SceneDesc, threads: usize) -> Rendered {
-    let world = World::build(scene, &NoProgress).unwrap();
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(|| render_world(&world, &NoProgress).unwrap())
 }
 
 fn clouds_of(world: &World) -> CloudSky {

@@ -1,0 +1,45 @@
+//! Set-up shared by natura-render's integration tests: a small world and
+//! bit-exact image comparison.
+#![allow(dead_code)] // each test binary uses its own part
+
+use natura_core::{Image, NoProgress};
+use natura_render::{Rendered, SceneDesc, World, render_world};
+
+/// The default scene shrunk to a 128² terrain 480 m a cell, lightly eroded,
+/// and a 64 × 36 image at 2 samples per pixel.
+pub fn small_scene() -> SceneDesc {
+    let mut s = SceneDesc::default();
+    s.terrain.size = 128;
+    s.terrain.cell_size_m = 480.0;
+    s.erosion.stream_power_steps = 3;
+    s.erosion.droplets_per_sample = 2_000.0 / (128.0 * 128.0);
+    s.erosion.thermal_steps = 3;
+    s.render.width = 64;
+    s.render.height = 36;
+    s.render.spp = 2;
+    s
+}
+
+/// Every channel of every pixel as its bits.
+pub fn image_bits(img: &Image) -> Vec<u32> {
+    img.pixels()
+        .as_slice()
+        .iter()
+        .flat_map(|c| c.to_array().map(f32::to_bits))
+        .collect()
+}
+
+/// [`image_bits`] of a rendered image.
+pub fn bits(r: &Rendered) -> Vec<u32> {
+    image_bits(&r.image)
+}
+
+/// Builds and renders `scene` on a pool of `threads` threads.
+pub fn render_on(scene: &SceneDesc, threads: usize) -> Rendered {
+    let world = World::build(scene, &NoProgress).unwrap();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(|| render_world(&world, &NoProgress).unwrap())
+}
