@@ -105,11 +105,24 @@ impl<const N: usize> Lut2<N> {
         f: impl Fn(f64, f64) -> Channels<N> + Sync + Send,
         progress: &dyn natura_core::Progress,
     ) -> Self {
+        Self::build_rows(w, h, |_| (), |(), x, y| f(x, y), progress)
+    }
+
+    /// As [`Self::build`], with what the texels of row `y` share computed
+    /// once by `row(y)` and passed to each texel's `f(&row, x, y)`.
+    pub fn build_rows<R>(
+        w: usize,
+        h: usize,
+        row: impl Fn(f64) -> R + Sync + Send,
+        f: impl Fn(&R, f64, f64) -> Channels<N> + Sync + Send,
+        progress: &dyn natura_core::Progress,
+    ) -> Self {
         let mut data = vec![[0.0f32; N]; w * h];
-        let fill = |j: usize, row: &mut [[f32; N]]| {
+        let fill = |j: usize, out: &mut [[f32; N]]| {
             let y = j as f64 / (h - 1) as f64;
-            for (i, t) in row.iter_mut().enumerate() {
-                *t = f(i as f64 / (w - 1) as f64, y).to_f32();
+            let shared = row(y);
+            for (i, t) in out.iter_mut().enumerate() {
+                *t = f(&shared, i as f64 / (w - 1) as f64, y).to_f32();
             }
             progress.advance(1);
         };
@@ -118,12 +131,12 @@ impl<const N: usize> Lut2<N> {
             use rayon::prelude::*;
             data.par_chunks_mut(w)
                 .enumerate()
-                .for_each(|(j, row)| fill(j, row));
+                .for_each(|(j, out)| fill(j, out));
         }
         #[cfg(not(feature = "parallel"))]
         data.chunks_mut(w)
             .enumerate()
-            .for_each(|(j, row)| fill(j, row));
+            .for_each(|(j, out)| fill(j, out));
         Self { w, h, data }
     }
 

@@ -41,6 +41,54 @@ pub(crate) fn hits_ground(r: f64, mu: f64, bottom: f64) -> bool {
     mu < 0.0 && r * r * (mu * mu - 1.0) + bottom * bottom >= 0.0
 }
 
+/// Directions and steps per direction of a multiple-scattering texel.
+const MS_DIRS: usize = 64;
+const MS_STEPS: usize = 20;
+
+/// A step of the march along one direction of an [`MsRow`].
+struct MsStep<const N: usize> {
+    tt: f64,
+    rt: f64,
+    sca: Channels<N>,
+    ext: Channels<N>,
+    seg_t: Channels<N>,
+    /// Transmittance from the texel to the start of the step.
+    thr: Channels<N>,
+}
+
+/// A direction of an [`MsRow`].
+struct MsDir<const N: usize> {
+    dir: glam::DVec3,
+    dt: f64,
+    /// Transmittance along the whole direction.
+    thr: Channels<N>,
+    /// The ground's normal where the direction meets it.
+    ground_normal: Option<glam::DVec3>,
+}
+
+/// What the multiple-scattering texels of one radius share.
+struct MsRow<const N: usize> {
+    r: f64,
+    dirs: Vec<MsDir<N>>,
+    /// `MS_STEPS` per direction.
+    steps: Vec<MsStep<N>>,
+    /// The transfer factor `f_ms` (Hillaire 2020 §5.5), independent of the sun.
+    fms: Channels<N>,
+}
+
+/// Constant `s` over a segment of extinction `ext`, transmittance
+/// `seg_t` and length `dt`, integrated analytically (Hillaire 2015).
+#[inline]
+fn ms_segment<const N: usize>(
+    s: Channels<N>,
+    ext: Channels<N>,
+    seg_t: Channels<N>,
+    dt: f64,
+) -> Channels<N> {
+    s.zip(ext, |si, e| if e > 0.0 { si / e } else { si * dt })
+        - (s * seg_t).zip(ext, |si, e| if e > 0.0 { si / e } else { 0.0 })
+}
+
 /// The physical atmosphere with `N` channels and its precomputed LUTs.
 #[derive(Debug)]
 pub(crate) struct Model<const N: usize> {
@@ -156,7 +204,13 @@ impl<const N: usize> Model<N> {
         if p.multiple_scattering {
             let (mw, mh) = p.lut.multiple_scattering;
             progress.start("multiple-scattering LUT", mh as u64);
-            let ms = Lut2::build(mw, mh, |x, y| m.ms_texel(x, y), progress);
+            let ms = Lut2::build_rows(
+                mw,
+                mh,
+                |y| m.ms_row(y),
+                |row, x, _| m.ms_texel(row, x),
+                progress,
+            );
             progress.finish();
             m.ms = Some(ms);
         }
@@ -302,69 +356,96 @@ impl<const N: usize> Model<N> {
         }
     }
 
-    /// One multiple-scattering LUT texel (Hillaire 2020 §5.5, eqs. 5-10): the
-    /// second-order isotropic luminance over 64 directions, amplified by the
-    /// geometric series `1/(1 − f_ms)`, for unit sun illuminance.
-    fn ms_texel(&self, x_mu_s: f64, x_r: f64) -> Channels<N> {
-        const DIRS: usize = 64;
-        const STEPS: usize = 20;
+    /// What the texels of one multiple-scattering LUT row (one radius)
+    /// share: the march along each of the 64 directions does not depend on
+    /// the sun, only the sunlight at each step does.
+    fn ms_row(&self, x_r: f64) -> MsRow<N> {
         let (b, t) = (self.bottom(), self.top());
         let r = b + (t - b) * x_r.clamp(1e-4, 1.0 - 1e-4);
-        let mu_s = 2.0 * x_mu_s - 1.0;
-        let sun = glam::DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
-        let mut l2 = Channels::ZERO;
-        let mut fms = Channels::ZERO;
         let golden = PI * (3.0 - 5f64.sqrt());
-        for i in 0..DIRS {
+        let mut dirs = Vec::with_capacity(MS_DIRS);
+        let mut steps = Vec::with_capacity(MS_DIRS * MS_STEPS);
+        let mut fms = Channels::ZERO;
+        for i in 0..MS_DIRS {
             // Spherical Fibonacci directions: equal-area, deterministic.
-            let mu = 1.0 - (2.0 * i as f64 + 1.0) / DIRS as f64;
+            let mu = 1.0 - (2.0 * i as f64 + 1.0) / MS_DIRS as f64;
             let sin = (1.0 - mu * mu).sqrt();
             let phi = golden * i as f64;
             let dir = glam::DVec3::new(sin * phi.cos(), sin * phi.sin(), mu);
-            let nu = dir.dot(sun);
             let ground = hits_ground(r, mu, b);
             let t_max = if ground {
                 dist_bottom(r, mu, b)
             } else {
                 dist_top(r, mu, t)
             };
-            let dt = t_max / STEPS as f64;
+            let dt = t_max / MS_STEPS as f64;
             let mut thr = Channels::ONE;
-            let mut l = Channels::ZERO;
             let mut f = Channels::ZERO;
-            for k in 0..STEPS {
+            for k in 0..MS_STEPS {
                 let tt = (k as f64 + 0.5) * dt;
                 let rt = (tt * tt + 2.0 * r * mu * tt + r * r).sqrt();
-                let mu_st = ((r * mu_s + tt * nu) / rt).clamp(-1.0, 1.0);
                 let (rr, rm, ro) = self.densities(rt - b);
                 let sca = self.rayleigh * rr + self.mie_sca * rm;
                 let ext = self.rayleigh * rr + self.mie_ext * rm + self.ozone * ro;
                 let seg_t = (ext * dt).exp_neg();
-                let integ = |s: Channels<N>| {
-                    s.zip(ext, |si, e| if e > 0.0 { si / e } else { si * dt })
-                        - (s * seg_t).zip(ext, |si, e| if e > 0.0 { si / e } else { 0.0 })
-                };
-                let sun_t = self.sun_trans_lut(rt, mu_st);
-                l += thr * integ(sca * sun_t * ISOTROPIC);
-                f += thr * integ(sca);
+                f += thr * ms_segment(sca, ext, seg_t, dt);
+                steps.push(MsStep {
+                    tt,
+                    rt,
+                    sca,
+                    ext,
+                    seg_t,
+                    thr,
+                });
                 thr *= seg_t;
             }
-            if ground {
-                let pg = glam::DVec3::new(0.0, 0.0, r) + dir * t_max;
-                let n = pg.normalize();
+            let ground_normal =
+                ground.then(|| (glam::DVec3::new(0.0, 0.0, r) + dir * t_max).normalize());
+            dirs.push(MsDir {
+                dir,
+                dt,
+                thr,
+                ground_normal,
+            });
+            fms += f;
+        }
+        MsRow {
+            r,
+            dirs,
+            steps,
+            fms: fms / MS_DIRS as f64,
+        }
+    }
+
+    /// One multiple-scattering LUT texel (Hillaire 2020 §5.5, eqs. 5-10): the
+    /// second-order isotropic luminance over 64 directions, amplified by the
+    /// geometric series `1/(1 − f_ms)`, for unit sun illuminance; `row` is
+    /// [`Self::ms_row`] of the texel's radius.
+    fn ms_texel(&self, row: &MsRow<N>, x_mu_s: f64) -> Channels<N> {
+        let (b, r) = (self.bottom(), row.r);
+        let mu_s = 2.0 * x_mu_s - 1.0;
+        let sun = glam::DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
+        let mut l2 = Channels::ZERO;
+        for (d, steps) in row.dirs.iter().zip(row.steps.chunks_exact(MS_STEPS)) {
+            let nu = d.dir.dot(sun);
+            let mut l = Channels::ZERO;
+            for s in steps {
+                let mu_st = ((r * mu_s + s.tt * nu) / s.rt).clamp(-1.0, 1.0);
+                let sun_t = self.sun_trans_lut(s.rt, mu_st);
+                l += s.thr * ms_segment(s.sca * sun_t * ISOTROPIC, s.ext, s.seg_t, d.dt);
+            }
+            if let Some(n) = d.ground_normal {
                 let mu_g = n.dot(sun);
                 if mu_g > 0.0 {
                     let tg = self.sun_trans_lut(b, mu_g);
-                    l += thr * tg * (mu_g * self.p.ground_albedo / PI);
+                    l += d.thr * tg * (mu_g * self.p.ground_albedo / PI);
                 }
             }
             l2 += l;
-            fms += f;
         }
         // Uniform sphere sampling with the isotropic phase: ∫(·)p_u dω = mean.
-        let l2 = l2 / DIRS as f64;
-        let fms = fms / DIRS as f64;
-        l2.zip(fms, |l, f| l / (1.0 - f.min(0.999)))
+        let l2 = l2 / MS_DIRS as f64;
+        l2.zip(row.fms, |l, f| l / (1.0 - f.min(0.999)))
     }
 
     /// Single (plus, if enabled, LUT multiple) scattering along the view ray
