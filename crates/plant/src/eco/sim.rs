@@ -197,6 +197,76 @@ impl Ecosystem {
         Ok(eco)
     }
 
+    /// An ecosystem resumed from a saved population: `plants` as
+    /// [`Self::plants`] gave them after `step` steps of a simulation with
+    /// the same terrain and parameters. Stepping on from here, or
+    /// instancing, gives what the original ecosystem gives, bit for bit
+    /// (every draw is indexed by seed, step and plant id, not by history).
+    ///
+    /// # Errors
+    ///
+    /// [`EcoParams::validate`]'s and [`Site::new`]'s errors;
+    /// [`PlantError::InvalidParameter`] naming `Ecosystem::resume` if `step`
+    /// exceeds [`EcoParams::steps`], the population exceeds
+    /// [`EcoParams::max_plants`], or a plant lies outside the terrain, has
+    /// a non-finite or non-positive radius, a vigor outside `[0, 1.5]`, or
+    /// a species index out of range.
+    pub fn resume(
+        hf: &natura_core::HeightField,
+        params: EcoParams,
+        plants: Vec<Plant>,
+        step: u32,
+    ) -> Result<Self> {
+        params.validate()?;
+        let refuse = |value: String, reason: &str| PlantError::InvalidParameter {
+            name: "Ecosystem::resume",
+            value,
+            reason: reason.to_owned(),
+        };
+        if step > params.steps {
+            return Err(refuse(
+                format!("step {step}"),
+                &format!("at most EcoParams::steps = {}", params.steps),
+            ));
+        }
+        if plants.len() > params.max_plants {
+            return Err(refuse(
+                format!("{} plants", plants.len()),
+                &format!("at most EcoParams::max_plants = {}", params.max_plants),
+            ));
+        }
+        let site = Site::new(hf, params.sun)?;
+        let (ex, ey) = site.extent();
+        let n = params.species.len();
+        if let Some((i, p)) = plants.iter().enumerate().find(|(_, p)| {
+            !((0.0..=ex).contains(&p.x)
+                && (0.0..=ey).contains(&p.y)
+                && p.radius.is_finite()
+                && p.radius > 0.0
+                && (0.0..=1.5).contains(&p.vigor)
+                && usize::from(p.species) < n)
+        }) {
+            return Err(refuse(
+                format!("plant {i}: {p:?}"),
+                "plants inside the terrain, with finite positive radii, vigor in [0, 1.5] \
+                 and a species of the parameters",
+            ));
+        }
+        let max_r: Vec<f32> = params.species.iter().map(|s| s.max_radius as f32).collect();
+        let r_max = max_r.iter().copied().fold(0.0, f32::max);
+        let mut eco = Self {
+            params,
+            site,
+            plants,
+            step,
+            r_max,
+            max_r,
+        };
+        // Stable: a population saved in grid order keeps its order.
+        eco.sort_by_cell();
+        Ok(eco)
+    }
+
     /// The parameters.
     #[must_use]
     pub fn params(&self) -> &EcoParams {

@@ -226,3 +226,55 @@ fn bad_input_gives_typed_errors() {
         Err(PlantError::Core(_))
     ));
 }
+
+#[test]
+fn a_resumed_ecosystem_steps_on_as_the_original() {
+    let hf = valley();
+    let params = EcoParams {
+        steps: 8,
+        ..EcoParams::default()
+    };
+    let mut whole = Ecosystem::new(&hf, params.clone()).unwrap();
+    for _ in 0..3 {
+        whole.step().unwrap();
+    }
+    let saved = whole.plants().to_vec();
+    whole.run(&NoProgress).unwrap();
+    let mut resumed = Ecosystem::resume(&hf, params.clone(), saved.clone(), 3).unwrap();
+    assert_eq!(
+        resumed.plants(),
+        &saved[..],
+        "resuming keeps the saved order"
+    );
+    resumed.run(&NoProgress).unwrap();
+    assert_eq!(resumed.steps(), 8);
+    assert!(whole.plants().len() > 1000);
+    assert_eq!(resumed.plants(), whole.plants());
+    assert_eq!(
+        Instancing::new(&resumed, 4).unwrap(),
+        Instancing::new(&whole, 4).unwrap()
+    );
+
+    let refused = |plants: Vec<Plant>, step: u32| {
+        matches!(
+            Ecosystem::resume(&hf, params.clone(), plants, step),
+            Err(PlantError::InvalidParameter {
+                name: "Ecosystem::resume",
+                ..
+            })
+        )
+    };
+    assert!(refused(saved.clone(), 9), "a step past the simulation");
+    let (ex, _) = Site::new(&hf, params.sun).unwrap().extent();
+    for damage in [
+        |p: &mut Plant, _: f32| p.radius = f32::NAN,
+        |p: &mut Plant, _: f32| p.radius = 0.0,
+        |p: &mut Plant, ex: f32| p.x = ex + 1.0,
+        |p: &mut Plant, _: f32| p.vigor = 2.0,
+        |p: &mut Plant, _: f32| p.species = u16::MAX,
+    ] {
+        let mut bad = saved.clone();
+        damage(&mut bad[7], ex);
+        assert!(refused(bad, 3));
+    }
+}
