@@ -155,7 +155,8 @@ pub fn render_scene(scene: &SceneDesc, progress: &dyn Progress) -> Result<Render
 
 /// The renderer of `world` with everything its scene asks for — the
 /// forest grown ([`vegetation::Forest::build`]) and added to
-/// [`Renderer::new`]'s — timing the stages `forest` and `acceleration` into
+/// [`Renderer::new`]'s as [`Renderer::with_forest`] adds it, with one build
+/// of its instance BVH — timing the stages `acceleration` and `forest` into
 /// `times`. [`render_world`] renders with it; a caller rendering parts of a
 /// frame ([`Renderer::render_region`]) builds the same one, so its pixels
 /// equal the whole frame's.
@@ -168,10 +169,70 @@ pub fn scene_renderer<'w>(
     times: &mut StageTimes,
     progress: &dyn Progress,
 ) -> Result<Renderer<'w>> {
-    let forest = times.time("forest", || vegetation::Forest::build(world, progress))?;
-    Ok(times
-        .time("acceleration", || Renderer::new(world, progress))?
-        .with_forest(forest))
+    let renderer = times.time("acceleration", || Renderer::new(world, progress))?;
+    let forest = times.time("forest", || {
+        vegetation::Forest::build_from(world, None, Some(&|p| renderer.tree_ground(p)), progress)
+    })?;
+    Ok(renderer.with_grounded_forest(forest))
+}
+
+/// What the tiles of one frame share, prepared once for all of them: the
+/// clouds as the frame's renderer sees them and the population the forest's
+/// ecosystem grows. A farm prepares it per frame and gives it to each
+/// tile's [`scene_renderer_prepared`].
+#[derive(Debug)]
+pub struct FramePrep {
+    /// [`clouds::CloudSky::for_world`] (`None` when the clouds are off).
+    pub clouds: Option<clouds::CloudSky>,
+    /// [`vegetation::Forest::grow`] (`None` when the forest is off).
+    pub plants: Option<Vec<natura_plant::eco::Plant>>,
+}
+
+impl FramePrep {
+    /// Prepares the frame of `world`.
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`clouds::CloudSky::for_world`] and
+    /// [`vegetation::Forest::grow`].
+    pub fn new(world: &World, progress: &dyn Progress) -> Result<Self> {
+        Ok(Self {
+            clouds: clouds::CloudSky::for_world(world, progress)?,
+            plants: vegetation::Forest::grow(world, progress)?,
+        })
+    }
+}
+
+/// As [`scene_renderer`], from the frame's [`FramePrep`] instead of growing
+/// the forest and marching the clouds here (a prep without plants grows
+/// them as [`scene_renderer`] does): the pixels equal
+/// [`scene_renderer`]'s bit for bit when `prep` is [`FramePrep::new`]'s for
+/// this world.
+///
+/// # Errors
+///
+/// The errors of [`vegetation::Forest::build_with_plants`] and
+/// [`Renderer::with_clouds`].
+pub fn scene_renderer_prepared<'w>(
+    world: &'w World,
+    prep: FramePrep,
+    times: &mut StageTimes,
+    progress: &dyn Progress,
+) -> Result<Renderer<'w>> {
+    let renderer = times.time("acceleration", || {
+        Renderer::with_clouds(world, prep.clouds, progress)
+    })?;
+    // A prep without plants (nothing grows here, or nothing was prepared)
+    // grows them as `scene_renderer` does.
+    let forest = times.time("forest", || {
+        vegetation::Forest::build_from(
+            world,
+            prep.plants,
+            Some(&|p| renderer.tree_ground(p)),
+            progress,
+        )
+    })?;
+    Ok(renderer.with_grounded_forest(forest))
 }
 
 /// Renders an already built [`World`] (see [`render_scene`]); the stage

@@ -105,3 +105,69 @@ fn regions_outside_the_image_are_refused() {
     let e = World::from_eroded(&scene, wrong, &NoProgress).unwrap_err();
     assert!(e.to_string().contains("wetness"), "{e}");
 }
+
+#[test]
+fn a_frame_prepared_once_renders_as_the_frame_and_its_clouds_round_trip() {
+    use natura_render::clouds::CloudSky;
+    use natura_render::{FramePrep, StageTimes, scene_renderer, scene_renderer_prepared};
+    use std::path::Path;
+
+    let mut scene = small_scene();
+    scene.clouds.voxel_m = 400.0;
+    scene.clouds.shadow_table_nodes = 128;
+    scene.clouds.shadow_cell_m = 300.0;
+    let world = World::build(&scene, &NoProgress).unwrap();
+    let whole = scene_renderer(&world, &mut StageTimes::default(), &NoProgress)
+        .unwrap()
+        .render(&NoProgress)
+        .unwrap();
+    let prep = FramePrep::new(&world, &NoProgress).unwrap();
+    let plants = prep.plants.clone().unwrap();
+    assert!(!plants.is_empty());
+    let bytes = prep.clouds.as_ref().unwrap().to_bytes();
+    let back = CloudSky::from_bytes(&bytes, Path::new("frame")).unwrap();
+    assert_eq!(back.to_bytes(), bytes, "the round trip is exact");
+    let prepared = FramePrep {
+        clouds: Some(back),
+        plants: Some(plants),
+    };
+    let tiles = scene_renderer_prepared(&world, prepared, &mut StageTimes::default(), &NoProgress)
+        .unwrap()
+        .render(&NoProgress)
+        .unwrap();
+    assert!(bits(&tiles) == bits(&whole), "prepared frame differs");
+
+    // Damaged bytes are refused, never a panic.
+    let mut nan = bytes.clone();
+    // The first dome cell follows the magic, format, 7 floats, wrap flag and two sizes.
+    nan[68..72].copy_from_slice(&f32::NAN.to_bits().to_le_bytes());
+    let mut trailing = bytes.clone();
+    trailing.push(0);
+    let mut huge = bytes.clone();
+    huge[52..60].copy_from_slice(&u64::MAX.to_le_bytes());
+    for (what, bad) in [
+        ("truncated", &bytes[..bytes.len() - 1]),
+        ("header only", &bytes[..20]),
+        ("not a cloud sky", &b"natura cloud skx\x01\0\0\0"[..]),
+        ("trailing byte", &trailing[..]),
+        ("NaN cell", &nan[..]),
+        ("absurd size", &huge[..]),
+    ] {
+        let e = CloudSky::from_bytes(bad, Path::new("frame")).unwrap_err();
+        assert!(e.to_string().contains("cloud sky"), "{what}: {e}");
+    }
+
+    // Clouds missing for a cloudy scene, or prepared for another eye.
+    assert!(Renderer::with_clouds(&world, None, &NoProgress).is_err());
+    let mut moved = scene.clone();
+    moved.camera.position_uv = [0.7, 0.5];
+    let other = World::build(&moved, &NoProgress).unwrap();
+    let theirs = CloudSky::for_world(&other, &NoProgress).unwrap();
+    let e = Renderer::with_clouds(&world, theirs, &NoProgress).unwrap_err();
+    assert!(e.to_string().contains("another eye"), "{e}");
+    let mut clear = scene.clone();
+    clear.clouds.enabled = false;
+    let clear = World::build(&clear, &NoProgress).unwrap();
+    let ours = CloudSky::for_world(&world, &NoProgress).unwrap();
+    assert!(Renderer::with_clouds(&clear, ours, &NoProgress).is_err());
+}

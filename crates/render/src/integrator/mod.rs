@@ -41,6 +41,13 @@ use surface::detail_surface;
 /// Refractive index of water used for the lake surface.
 pub const WATER_IOR: f64 = 1.333;
 
+/// The angle a pixel subtends at the image's centre (radians): the
+/// vertical field of view over the image's height.
+pub(crate) fn pixel_angle(world: &World) -> f32 {
+    let scene = &world.scene;
+    (scene.camera.vfov_deg as f32).to_radians() / scene.render.height as f32
+}
+
 /// The camera of a scene.
 #[derive(Clone, Copy, Debug)]
 pub enum SceneCamera {
@@ -51,6 +58,48 @@ pub enum SceneCamera {
 }
 
 impl SceneCamera {
+    /// The camera of `world`'s scene: at the eye, looking along the view
+    /// direction, with the scene's kind, fields of view and image size.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::Trace`](crate::RenderError::Trace) for a degenerate
+    /// view or field of view.
+    pub fn of_world(world: &World) -> Result<Self> {
+        let scene = &world.scene;
+        let r = &scene.render;
+        let eye = world.eye();
+        let dir = world.view_direction();
+        let c = &scene.camera;
+        let camera = match c.kind {
+            CameraKind::Pinhole => SceneCamera::Pinhole(PinholeCamera::look_at(
+                eye,
+                eye + dir,
+                Vec3::Z,
+                (c.vfov_deg as f32).to_radians(),
+                r.width,
+                r.height,
+            )?),
+            CameraKind::Cylindrical | CameraKind::Spherical => {
+                SceneCamera::Panoramic(PanoramicCamera::new(
+                    eye,
+                    dir,
+                    Vec3::Z,
+                    (c.hfov_deg as f32).to_radians(),
+                    (c.vfov_deg as f32).to_radians(),
+                    if c.kind == CameraKind::Cylindrical {
+                        Projection::Cylindrical
+                    } else {
+                        Projection::Spherical
+                    },
+                    r.width,
+                    r.height,
+                )?)
+            }
+        };
+        Ok(camera)
+    }
+
     /// The camera as a natura-trace [`Camera`] (primary rays per pixel).
     #[must_use]
     pub fn camera(&self) -> &dyn Camera {
@@ -133,10 +182,57 @@ impl<'w> Renderer<'w> {
     /// the camera ([`RenderError::Trace`](crate::RenderError::Trace), [`RenderError::Atmos`](crate::RenderError::Atmos)),
     /// the materials and the rainbow table.
     pub fn new(world: &'w World, progress: &dyn Progress) -> Result<Self> {
+        Self::build(world, None, progress)
+    }
+
+    /// As [`Self::new`], with the scene's clouds prepared beforehand
+    /// ([`CloudSky::for_world`], perhaps read back with
+    /// [`CloudSky::from_bytes`]) instead of built here: a renderer of part
+    /// of a frame then skips the clouds' cost, and its pixels equal those
+    /// of [`Self::new`]'s bit for bit when `clouds` is what
+    /// [`CloudSky::for_world`] gives for this world.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::Invalid`](crate::RenderError::Invalid) naming `clouds`
+    /// if `clouds` is given for a scene whose clouds are off, is missing for
+    /// one whose clouds are on, or was prepared for another eye; and the
+    /// errors of [`Self::new`].
+    pub fn with_clouds(
+        world: &'w World,
+        clouds: Option<CloudSky>,
+        progress: &dyn Progress,
+    ) -> Result<Self> {
+        let on = world.scene.clouds.visible();
+        match &clouds {
+            Some(_) if !on => Err(crate::RenderError::invalid(
+                "clouds",
+                "prepared",
+                "the scene's clouds are off",
+            )),
+            None if on => Err(crate::RenderError::invalid(
+                "clouds",
+                "none",
+                "the scene's clouds are on: prepare them with CloudSky::for_world",
+            )),
+            Some(c) if c.eye() != world.eye() => Err(crate::RenderError::invalid(
+                "clouds",
+                format!("prepared at {}", c.eye()),
+                &format!("prepared for another eye (this scene's is {})", world.eye()),
+            )),
+            _ => Self::build(world, Some(clouds), progress),
+        }
+    }
+
+    fn build(
+        world: &'w World,
+        prepared: Option<Option<CloudSky>>,
+        progress: &dyn Progress,
+    ) -> Result<Self> {
         let scene = &world.scene;
         let r = &scene.render;
         progress.start("acceleration", 2);
-        let pixel_angle = (scene.camera.vfov_deg as f32).to_radians() / r.height as f32;
+        let pixel_angle = pixel_angle(world);
         let tracer = DetailTracer::new(detail_surface(world)?, RayCone::cone(pixel_angle))?;
         progress.advance(1);
         let ground = MipmapTracer::new(&world.terrain)?;
@@ -144,34 +240,7 @@ impl<'w> Renderer<'w> {
         progress.finish();
 
         let eye = world.eye();
-        let dir = world.view_direction();
-        let c = &scene.camera;
-        let camera = match c.kind {
-            CameraKind::Pinhole => SceneCamera::Pinhole(PinholeCamera::look_at(
-                eye,
-                eye + dir,
-                Vec3::Z,
-                (c.vfov_deg as f32).to_radians(),
-                r.width,
-                r.height,
-            )?),
-            CameraKind::Cylindrical | CameraKind::Spherical => {
-                SceneCamera::Panoramic(PanoramicCamera::new(
-                    eye,
-                    dir,
-                    Vec3::Z,
-                    (c.hfov_deg as f32).to_radians(),
-                    (c.vfov_deg as f32).to_radians(),
-                    if c.kind == CameraKind::Cylindrical {
-                        Projection::Cylindrical
-                    } else {
-                        Projection::Spherical
-                    },
-                    r.width,
-                    r.height,
-                )?)
-            }
-        };
+        let camera = SceneCamera::of_world(world)?;
 
         let sun_dir = world.sun_dir();
         let view = world.atmosphere.sky_view(eye.as_dvec3(), sun_dir)?;
@@ -236,7 +305,10 @@ impl<'w> Renderer<'w> {
         } else {
             None
         };
-        let clouds = CloudSky::new(world, camera.camera(), pixel_angle, &view, progress)?;
+        let clouds = match prepared {
+            Some(c) => c,
+            None => CloudSky::new(world, camera.camera(), pixel_angle, &view, progress)?,
+        };
         Ok(Self {
             world,
             tracer,
@@ -268,12 +340,22 @@ impl<'w> Renderer<'w> {
     #[must_use]
     pub fn with_forest(mut self, mut forest: Option<Forest>) -> Self {
         if let Some(f) = &mut forest {
-            let s = self.tracer.surface();
-            f.set_ground(|p| {
-                let w = f64::from((p - self.eye).length() * self.pixel_angle);
-                s.height(p.x, p.y, w).map(|h| h as f32)
-            });
+            f.set_ground(|p| self.tree_ground(p));
         }
+        self.forest = forest;
+        self
+    }
+
+    /// The traced surface's height under a tree's base `p` (with its
+    /// detail, as seen at the tree's distance): where [`Self::with_forest`]
+    /// stands each tree.
+    pub(crate) fn tree_ground(&self, p: Vec3) -> Option<f32> {
+        let w = f64::from((p - self.eye).length() * self.pixel_angle);
+        self.tracer.surface().height(p.x, p.y, w).map(|h| h as f32)
+    }
+
+    /// Adds a forest already stood on [`Self::tree_ground`].
+    pub(crate) fn with_grounded_forest(mut self, forest: Option<Forest>) -> Self {
         self.forest = forest;
         self
     }

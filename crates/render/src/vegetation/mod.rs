@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use natura_core::{HeightField, Progress, Seed};
-use natura_plant::eco::{EcoParams, Ecosystem, Instancing};
+use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Plant};
 
 use crate::error::{RenderError, Result};
 use crate::world::World;
@@ -109,24 +109,47 @@ fn crop(terrain: &HeightField, x: f32, y: f32, radius: f32) -> Result<Option<(He
     Ok(Some((hf, Vec3::new(i0 as f32 * c, j0 as f32 * c, 0.0))))
 }
 
-impl Forest {
-    /// Grows and instances the forest of `world`'s `[vegetation]` section;
-    /// `None` when it is disabled or no tree grows.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`RenderError::Invalid`] for an unknown species (the scene is
-    /// validated before any work, so only for a hand-made world), and
-    /// [`RenderError::Plant`] for errors of the ecosystem or the meshes.
-    pub fn build(world: &World, progress: &dyn Progress) -> Result<Option<Self>> {
+/// `placements` with each tree's foot moved to `ground(base)` (metres;
+/// `None` leaves it) less 2 % of its height.
+fn grounded(
+    meshes: &[Mesh],
+    placements: &[Placement],
+    ground: &dyn Fn(Vec3) -> Option<f32>,
+) -> Vec<Placement> {
+    placements
+        .iter()
+        .map(|p| {
+            let h = p.scale * meshes[p.mesh as usize].bounds.1.z;
+            let mut q = *p;
+            if let Some(z) = ground(p.position) {
+                q.position.z = z - 0.02 * h;
+            }
+            q
+        })
+        .collect()
+}
+
+/// What the ecosystem of a world grows from: the terrain around the eye
+/// (and its origin in the world), the species, their looks and the
+/// simulation's parameters.
+struct Stand {
+    hf: HeightField,
+    origin: Vec3,
+    looks: Vec<Look>,
+    params: EcoParams,
+    max_radius: Vec<f32>,
+    water: f32,
+}
+
+impl Stand {
+    fn of(world: &World) -> Result<Option<Self>> {
         let scene = &world.scene;
         let v = &scene.vegetation;
         if !v.enabled {
             return Ok(None);
         }
         let eye = world.eye();
-        let radius = v.radius_m as f32;
-        let Some((hf, origin)) = crop(&world.terrain, eye.x, eye.y, radius)? else {
+        let Some((hf, origin)) = crop(&world.terrain, eye.x, eye.y, v.radius_m as f32)? else {
             return Ok(None);
         };
         let (lo, hi) = hf.min_max();
@@ -151,9 +174,6 @@ impl Forest {
             species.push(s);
             looks.push(l);
         }
-        let mut stats = ForestStats::default();
-
-        let t0 = Instant::now();
         let params = EcoParams {
             species,
             steps: v.steps,
@@ -161,9 +181,99 @@ impl Forest {
             sun: world.sun,
             max_plants: 20_000_000,
         };
-        let max_radius: Vec<f32> = params.species.iter().map(|s| s.max_radius as f32).collect();
-        let mut eco = Ecosystem::new(&hf, params)?;
+        let max_radius = params.species.iter().map(|s| s.max_radius as f32).collect();
+        Ok(Some(Self {
+            hf,
+            origin,
+            looks,
+            params,
+            max_radius,
+            water,
+        }))
+    }
+}
+
+impl Forest {
+    /// Grows and instances the forest of `world`'s `[vegetation]` section;
+    /// `None` when it is disabled or no tree grows.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`RenderError::Invalid`] for an unknown species (the scene is
+    /// validated before any work, so only for a hand-made world), and
+    /// [`RenderError::Plant`] for errors of the ecosystem or the meshes.
+    pub fn build(world: &World, progress: &dyn Progress) -> Result<Option<Self>> {
+        Self::build_from(world, None, None, progress)
+    }
+
+    /// The population the ecosystem of `world`'s `[vegetation]` section
+    /// grows ([`Ecosystem::plants`] after its last step), `None` when it is
+    /// disabled: what [`Self::build_with_plants`] takes, so that renderers
+    /// of the same frame in separate processes grow it once.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::build`].
+    pub fn grow(world: &World, progress: &dyn Progress) -> Result<Option<Vec<Plant>>> {
+        let Some(stand) = Stand::of(world)? else {
+            return Ok(None);
+        };
+        let mut eco = Ecosystem::new(&stand.hf, stand.params)?;
         eco.run(progress)?;
+        Ok(Some(eco.plants().to_vec()))
+    }
+
+    /// As [`Self::build`], with the population [`Self::grow`] gave for this
+    /// world instead of simulating it: the same forest, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::build`]; [`RenderError::Plant`] if `plants` cannot be the
+    /// population of this world's ecosystem
+    /// ([`Ecosystem::resume`]'s errors).
+    pub fn build_with_plants(
+        world: &World,
+        plants: Vec<Plant>,
+        progress: &dyn Progress,
+    ) -> Result<Option<Self>> {
+        Self::build_from(world, Some(plants), None, progress)
+    }
+
+    /// Grows (or, given `plants`, resumes) and instances the forest, each
+    /// tree stood on `ground` as [`Self::set_ground`] does, with one build
+    /// of the instance BVH.
+    pub(crate) fn build_from(
+        world: &World,
+        plants: Option<Vec<Plant>>,
+        ground: Option<&dyn Fn(Vec3) -> Option<f32>>,
+        progress: &dyn Progress,
+    ) -> Result<Option<Self>> {
+        let scene = &world.scene;
+        let v = &scene.vegetation;
+        let Some(Stand {
+            hf,
+            origin,
+            looks,
+            params,
+            max_radius,
+            water,
+        }) = Stand::of(world)?
+        else {
+            return Ok(None);
+        };
+        let eye = world.eye();
+        let radius = v.radius_m as f32;
+        let mut stats = ForestStats::default();
+
+        let t0 = Instant::now();
+        let eco = match plants {
+            Some(p) => Ecosystem::resume(&hf, params, p, v.steps)?,
+            None => {
+                let mut eco = Ecosystem::new(&hf, params)?;
+                eco.run(progress)?;
+                eco
+            }
+        };
         stats.plants = eco.plants().len();
         stats.ecosystem = t0.elapsed();
 
@@ -234,6 +344,9 @@ impl Forest {
             return Ok(None);
         }
         stats.instances = placements.len();
+        if let Some(ground) = ground {
+            placements = grounded(&meshes, &placements, ground);
+        }
         let scene_bvh = Instanced::new(meshes, placements);
         stats.tlas = t2.elapsed();
         Ok(Some(Self {
@@ -263,20 +376,7 @@ impl Forest {
     /// and rebuilds the instance BVH: the renderer's traced surface carries
     /// procedural detail the ecosystem's terrain does not.
     pub fn set_ground(&mut self, ground: impl Fn(Vec3) -> Option<f32>) {
-        let Instanced {
-            meshes, placements, ..
-        } = &self.scene;
-        let moved: Vec<Placement> = placements
-            .iter()
-            .map(|p| {
-                let h = p.scale * meshes[p.mesh as usize].bounds.1.z;
-                let mut q = *p;
-                if let Some(z) = ground(p.position) {
-                    q.position.z = z - 0.02 * h;
-                }
-                q
-            })
-            .collect();
+        let moved = grounded(&self.scene.meshes, &self.scene.placements, &ground);
         let t = Instant::now();
         self.scene = Instanced::new(std::mem::take(&mut self.scene.meshes), moved);
         self.stats.tlas += t.elapsed();

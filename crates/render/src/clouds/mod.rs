@@ -60,6 +60,8 @@ pub struct CloudSky {
     shadow: ShadowMap,
 }
 
+mod bytes;
+
 /// What the clouds do to a ray that leaves the terrain.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CloudView {
@@ -150,6 +152,40 @@ impl CloudSky {
             dome,
             shadow,
         }))
+    }
+
+    /// The clouds of `world` as its renderer sees them — through the
+    /// scene's camera, under the sky at the eye — or `None` when the
+    /// scene's clouds are off: what [`crate::Renderer::new`] builds, for
+    /// [`crate::Renderer::with_clouds`]. A farm prepares them once per frame
+    /// and shares them between the frame's tiles
+    /// ([`Self::to_bytes`], [`Self::from_bytes`]).
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`Self::new`], of the scene's camera and of the sky
+    /// view at the eye.
+    pub fn for_world(world: &World, progress: &dyn Progress) -> Result<Option<Self>> {
+        if !world.scene.clouds.visible() {
+            return Ok(None);
+        }
+        let camera = crate::SceneCamera::of_world(world)?;
+        let view = world
+            .atmosphere
+            .sky_view(world.eye().as_dvec3(), world.sun_dir())?;
+        Self::new(
+            world,
+            camera.camera(),
+            crate::integrator::pixel_angle(world),
+            &view,
+            progress,
+        )
+    }
+
+    /// The eye the clouds were marched from.
+    #[must_use]
+    pub fn eye(&self) -> Vec3 {
+        self.eye
     }
 
     /// What the clouds do to the ray from `o` along unit `d` that leaves
