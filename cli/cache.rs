@@ -1,17 +1,26 @@
-//! The world cache: the eroded terrain of a scene, shared by every tile and
-//! frame of a job, stored under the content hash of what determines it
-//! (natura's version, the seed, the terrain and erosion sections).
+//! The job's caches, each stored under the content hash of what determines
+//! it, so every tile re-uses them and a stale one is never picked up:
+//!
+//! * the world cache: the eroded terrain of a scene, shared by every tile and
+//!   frame (its key: natura's version, the seed, the terrain and erosion
+//!   sections);
+//! * the frame cache: what the tiles of one frame share — its clouds as its
+//!   renderer sees them and the population its forest's ecosystem grows
+//!   (its key: natura's version and the frame's whole scene).
 //!
 //! File layout: a text header (magic, version, key, sizes, the payload's
-//! SHA-256) then the terrain, deposition and wetness grids as little-endian
-//! `f32`. A cache of another version, key or size, or whose payload does not
-//! match its hash, is refused with an error naming the file; it is never
-//! used and never silently replaced.
+//! SHA-256) then the payload: the terrain, deposition and wetness grids as
+//! little-endian `f32`, or the frame's cloud-sky bytes and plants. A cache of
+//! another kind, version, key or size, or whose payload does not match its
+//! hash, is refused with an error naming the file; it is never used and
+//! never silently replaced.
 
 use std::path::{Path, PathBuf};
 
 use natura::core::{Grid2, HeightField, NoProgress};
-use natura::render::{ErodedTerrain, ErosionDesc, SceneDesc, TerrainDesc, World};
+use natura::plant::eco::Plant;
+use natura::render::clouds::CloudSky;
+use natura::render::{ErodedTerrain, ErosionDesc, FramePrep, SceneDesc, TerrainDesc, World};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
 
@@ -81,16 +90,13 @@ fn payload(e: &ErodedTerrain) -> Vec<u8> {
 }
 
 fn write(file: &Path, key: &str, e: &ErodedTerrain) -> Result<()> {
-    let body = payload(e);
-    let (nx, ny) = (e.terrain.nx(), e.terrain.ny());
-    let header = format!(
-        "{MAGIC}\nnatura {VERSION}\nkey {key}\nsize {nx} {ny} {:08x}\npayload {}\n\n",
-        e.terrain.cell_size().to_bits(),
-        hex(&Sha256::digest(&body))
+    let size = format!(
+        "{} {} {:08x}",
+        e.terrain.nx(),
+        e.terrain.ny(),
+        e.terrain.cell_size().to_bits()
     );
-    let mut bytes = header.into_bytes();
-    bytes.extend_from_slice(&body);
-    Ok(natura::core::io::write_bytes_atomic(file, &bytes)?)
+    store(file, TERRAIN, key, &size, &payload(e))
 }
 
 fn read(file: &Path, key: &str) -> Result<ErodedTerrain> {
@@ -99,38 +105,8 @@ fn read(file: &Path, key: &str) -> Result<ErodedTerrain> {
         reason,
     };
     let limit = 3 * natura::core::MAX_GRID_BYTES + 4096;
-    let bytes = natura::core::io::read_file_at_most(file, limit)?;
-    let end = bytes
-        .windows(2)
-        .take(4096)
-        .position(|w| w == b"\n\n")
-        .ok_or_else(|| refuse("no header (not a world cache, or truncated)".into()))?;
-    let header =
-        std::str::from_utf8(&bytes[..end]).map_err(|_| refuse("header is not text".into()))?;
-    let body = &bytes[end + 2..];
-    let lines: Vec<&str> = header.lines().collect();
-    let field = |i: usize, name: &str| -> Result<&str> {
-        lines
-            .get(i)
-            .and_then(|l| l.strip_prefix(name))
-            .and_then(|l| l.strip_prefix(' '))
-            .ok_or_else(|| refuse(format!("header line {} should start with `{name}`", i + 1)))
-    };
-    if lines.first() != Some(&MAGIC) {
-        return Err(refuse("not a natura world cache".into()));
-    }
-    let version = field(1, "natura")?;
-    if version != VERSION {
-        return Err(refuse(format!(
-            "written by natura {version}, this is natura {VERSION}"
-        )));
-    }
-    if field(2, "key")? != key {
-        return Err(refuse(
-            "its content hash is not this scene's terrain".into(),
-        ));
-    }
-    let size: Vec<&str> = field(3, "size")?.split(' ').collect();
+    let (size, body) = load(file, TERRAIN, key, limit)?;
+    let size: Vec<&str> = size.split(' ').collect();
     let bad_size = || refuse("unreadable size line".into());
     let [nx, ny, cell] = size[..] else {
         return Err(bad_size());
@@ -138,11 +114,6 @@ fn read(file: &Path, key: &str) -> Result<ErodedTerrain> {
     let nx: usize = nx.parse().map_err(|_| bad_size())?;
     let ny: usize = ny.parse().map_err(|_| bad_size())?;
     let cell = f32::from_bits(u32::from_str_radix(cell, 16).map_err(|_| bad_size())?);
-    if hex(&Sha256::digest(body)) != field(4, "payload")? {
-        return Err(refuse(
-            "the data does not match its SHA-256 (corrupt or truncated)".into(),
-        ));
-    }
     let n = natura::core::checked_len::<f32>(&[nx, ny])?;
     if body.len() != 3 * 4 * n {
         return Err(refuse(format!(
@@ -162,6 +133,233 @@ fn read(file: &Path, key: &str) -> Result<ErodedTerrain> {
         deposition: grid(1)?,
         wetness: grid(2)?,
     })
+}
+
+/// What a cache file holds: its magic line and what its key hashes.
+struct Kind {
+    magic: &'static str,
+    what: &'static str,
+}
+
+const TERRAIN: Kind = Kind {
+    magic: MAGIC,
+    what: "this scene's terrain",
+};
+
+const FRAME: Kind = Kind {
+    magic: "natura frame cache",
+    what: "this frame's scene",
+};
+
+/// Writes a cache file atomically: a text header (magic, version, key,
+/// `size`, the payload's SHA-256) and the payload.
+fn store(file: &Path, kind: Kind, key: &str, size: &str, body: &[u8]) -> Result<()> {
+    let header = format!(
+        "{}\nnatura {VERSION}\nkey {key}\nsize {size}\npayload {}\n\n",
+        kind.magic,
+        hex(&Sha256::digest(body))
+    );
+    let mut bytes = header.into_bytes();
+    bytes.extend_from_slice(body);
+    Ok(natura::core::io::write_bytes_atomic(file, &bytes)?)
+}
+
+/// Reads a cache file written by [`store`], refusing another kind,
+/// version or key and a payload that does not match its hash. Returns the
+/// size line and the payload.
+fn load(file: &Path, kind: Kind, key: &str, limit: u64) -> Result<(String, Vec<u8>)> {
+    let refuse = |reason: String| CliError::Cache {
+        path: file.display().to_string(),
+        reason,
+    };
+    let mut bytes = natura::core::io::read_file_at_most(file, limit)?;
+    let end = bytes
+        .windows(2)
+        .take(4096)
+        .position(|w| w == b"\n\n")
+        .ok_or_else(|| refuse("no header (not a natura cache, or truncated)".into()))?;
+    let body = bytes.split_off(end + 2);
+    let header =
+        std::str::from_utf8(&bytes[..end]).map_err(|_| refuse("header is not text".into()))?;
+    let lines: Vec<&str> = header.lines().collect();
+    let field = |i: usize, name: &str| -> Result<&str> {
+        lines
+            .get(i)
+            .and_then(|l| l.strip_prefix(name))
+            .and_then(|l| l.strip_prefix(' '))
+            .ok_or_else(|| refuse(format!("header line {} should start with `{name}`", i + 1)))
+    };
+    if lines.first() != Some(&kind.magic) {
+        return Err(refuse(format!("not a {}", kind.magic)));
+    }
+    let version = field(1, "natura")?;
+    if version != VERSION {
+        return Err(refuse(format!(
+            "written by natura {version}, this is natura {VERSION}"
+        )));
+    }
+    if field(2, "key")? != key {
+        return Err(refuse(format!(
+            "its content hash is not that of {}",
+            kind.what
+        )));
+    }
+    let size = field(3, "size")?.to_owned();
+    if hex(&Sha256::digest(&body)) != field(4, "payload")? {
+        return Err(refuse(
+            "the data does not match its SHA-256 (corrupt or truncated)".into(),
+        ));
+    }
+    Ok((size, body))
+}
+
+/// The content hash of the preparation of frame scene `still` (hex
+/// SHA-256): what the eye sees of the clouds and where the trees grow
+/// depend on the whole still scene (camera, sun, atmosphere, terrain,
+/// clouds, vegetation).
+fn frame_key(still: &SceneDesc) -> Result<String> {
+    let toml = still.to_toml_string()?;
+    let mut h = Sha256::new();
+    h.update(b"natura ");
+    h.update(VERSION.as_bytes());
+    h.update(b"\n");
+    h.update(toml.as_bytes());
+    Ok(hex(&h.finalize()))
+}
+
+/// The frame cache file of frame scene `still` in `dir`.
+pub fn frame_path(dir: &Path, still: &SceneDesc) -> Result<PathBuf> {
+    Ok(dir.join(format!("frame_{}.bin", &frame_key(still)?[..32])))
+}
+
+/// The preparation of `world` (built from frame scene `still`) that its
+/// tiles share: from its cache file in `dir` when present, else prepared
+/// and stored there (atomically).
+pub fn frame(dir: &Path, still: &SceneDesc, world: &World) -> Result<(FramePrep, Source)> {
+    let file = frame_path(dir, still)?;
+    let key = frame_key(still)?;
+    if file.exists() {
+        let limit = 6 * natura::core::MAX_GRID_BYTES + 4096;
+        let (_, body) = load(&file, FRAME, &key, limit)?;
+        let prep = frame_from_bytes(&body, &file)?;
+        return Ok((prep, Source::Cached));
+    }
+    let prep = FramePrep::new(world, &NoProgress)?;
+    let body = frame_bytes(&prep);
+    std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))?;
+    store(&file, FRAME, &key, &body.len().to_string(), &body)?;
+    Ok((prep, Source::Computed))
+}
+
+/// Bytes of a plant: position, radius and vigor (`f32`), id (`u64`),
+/// species (`u16`), dominated (`u8`).
+const PLANT_BYTES: usize = 4 * 4 + 8 + 2 + 1;
+
+/// The payload of a frame cache: the clouds' byte count (`u64`, `u64::MAX`
+/// for none) and bytes, then the plant count (`u64`, `u64::MAX` for none)
+/// and the plants.
+fn frame_bytes(prep: &FramePrep) -> Vec<u8> {
+    let mut out = Vec::new();
+    match &prep.clouds {
+        Some(c) => {
+            let b = c.to_bytes();
+            out.extend_from_slice(&(b.len() as u64).to_le_bytes());
+            out.extend_from_slice(&b);
+        }
+        None => out.extend_from_slice(&u64::MAX.to_le_bytes()),
+    }
+    match &prep.plants {
+        Some(plants) => {
+            out.extend_from_slice(&(plants.len() as u64).to_le_bytes());
+            for p in plants {
+                for x in [p.x, p.y, p.radius, p.vigor] {
+                    out.extend_from_slice(&x.to_bits().to_le_bytes());
+                }
+                out.extend_from_slice(&p.id.to_le_bytes());
+                out.extend_from_slice(&p.species.to_le_bytes());
+                out.push(u8::from(p.dominated));
+            }
+        }
+        None => out.extend_from_slice(&u64::MAX.to_le_bytes()),
+    }
+    out
+}
+
+fn frame_from_bytes(body: &[u8], file: &Path) -> Result<FramePrep> {
+    let refuse = |reason: String| CliError::Cache {
+        path: file.display().to_string(),
+        reason,
+    };
+    let truncated = || refuse("truncated frame cache".into());
+    let mut at = 0usize;
+    let count = |at: &mut usize| -> Result<u64> {
+        let b = body.get(*at..*at + 8).ok_or_else(truncated)?;
+        *at += 8;
+        Ok(u64::from_le_bytes(b.try_into().unwrap_or_default()))
+    };
+    let clouds = match count(&mut at)? {
+        u64::MAX => None,
+        n => {
+            let end = usize::try_from(n)
+                .ok()
+                .and_then(|n| at.checked_add(n))
+                .filter(|&e| e <= body.len())
+                .ok_or_else(truncated)?;
+            let sky =
+                CloudSky::from_bytes(&body[at..end], file).map_err(|e| refuse(e.to_string()))?;
+            at = end;
+            Some(sky)
+        }
+    };
+    let plants = match count(&mut at)? {
+        u64::MAX => None,
+        n => {
+            let rest = &body[at..];
+            if usize::try_from(n)
+                .ok()
+                .and_then(|n| n.checked_mul(PLANT_BYTES))
+                != Some(rest.len())
+            {
+                return Err(refuse(format!(
+                    "{} bytes for {n} plants of {PLANT_BYTES} bytes",
+                    rest.len()
+                )));
+            }
+            let f = |b: &[u8], k: usize| {
+                f32::from_bits(u32::from_le_bytes([b[k], b[k + 1], b[k + 2], b[k + 3]]))
+            };
+            let plants = rest
+                .chunks_exact(PLANT_BYTES)
+                .map(|b| -> Result<Plant> {
+                    let mut id = [0u8; 8];
+                    id.copy_from_slice(&b[16..24]);
+                    let dominated = match b[26] {
+                        0 => false,
+                        1 => true,
+                        d => return Err(refuse(format!("plant flag {d} is neither 0 nor 1"))),
+                    };
+                    Ok(Plant {
+                        x: f(b, 0),
+                        y: f(b, 4),
+                        radius: f(b, 8),
+                        vigor: f(b, 12),
+                        id: u64::from_le_bytes(id),
+                        species: u16::from_le_bytes([b[24], b[25]]),
+                        dominated,
+                    })
+                })
+                .collect::<Result<Vec<_>>>()?;
+            at = body.len();
+            Some(plants)
+        }
+    };
+    if at != body.len() {
+        return Err(refuse(format!(
+            "{} bytes after the clouds",
+            body.len() - at
+        )));
+    }
+    Ok(FramePrep { clouds, plants })
 }
 
 #[cfg(test)]
@@ -185,7 +383,7 @@ mod tests {
         write(&file, "abc", &sample()).unwrap();
         assert_eq!(read(&file, "abc").unwrap(), sample());
         let e = read(&file, "abd").unwrap_err().to_string();
-        assert!(e.contains("not this scene's terrain"), "{e}");
+        assert!(e.contains("that of this scene's terrain"), "{e}");
         let bytes = std::fs::read(&file).unwrap();
         std::fs::write(&file, &bytes[..bytes.len() - 4]).unwrap();
         let e = read(&file, "abc").unwrap_err().to_string();
@@ -195,6 +393,57 @@ mod tests {
         );
         std::fs::write(&file, b"hello").unwrap();
         assert!(read(&file, "abc").is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn frame_payloads_round_trip_and_damage_is_refused() {
+        let plant = |k: u16| Plant {
+            x: 1.5 * f32::from(k),
+            y: 2.0,
+            radius: 0.25,
+            vigor: 0.75,
+            id: (3 << 40) | u64::from(k),
+            species: k % 3,
+            dominated: k % 2 == 0,
+        };
+        let prep = FramePrep {
+            clouds: None,
+            plants: Some((0..5).map(plant).collect()),
+        };
+        let file = Path::new("frame.bin");
+        let bytes = frame_bytes(&prep);
+        let back = frame_from_bytes(&bytes, file).unwrap();
+        assert!(back.clouds.is_none());
+        assert_eq!(back.plants, prep.plants);
+        let none = frame_bytes(&FramePrep {
+            clouds: None,
+            plants: None,
+        });
+        assert!(frame_from_bytes(&none, file).unwrap().plants.is_none());
+        let mut flag = bytes.clone();
+        let last = flag.len() - 1;
+        flag[last] = 7;
+        let e = frame_from_bytes(&flag, file).unwrap_err().to_string();
+        assert!(e.contains("neither 0 nor 1"), "{e}");
+        let e = frame_from_bytes(&bytes[..bytes.len() - 3], file)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("plants of 27 bytes"), "{e}");
+        let e = frame_from_bytes(&bytes[..5], file).unwrap_err().to_string();
+        assert!(e.contains("truncated"), "{e}");
+        // Clouds claimed but absent.
+        let mut claimed = bytes.clone();
+        claimed[..8].copy_from_slice(&1000u64.to_le_bytes());
+        assert!(frame_from_bytes(&claimed, file).is_err());
+
+        // A terrain cache is not a frame cache.
+        let dir = std::env::temp_dir().join(format!("natura-cli-frame-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let w = dir.join("w.bin");
+        write(&w, "abc", &sample()).unwrap();
+        let e = load(&w, FRAME, "abc", 1 << 20).unwrap_err().to_string();
+        assert!(e.contains("not a natura frame cache"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -16,8 +16,8 @@ pub enum CliError {
     /// A file error from natura-core.
     #[error(transparent)]
     Core(#[from] CoreError),
-    /// A world cache that cannot be used as it is.
-    #[error("world cache {path}: {reason}; delete it to recompute it")]
+    /// A cache file that cannot be used as it is.
+    #[error("cache {path}: {reason}; delete it to recompute it")]
     Cache {
         /// The cache file.
         path: String,

@@ -56,9 +56,12 @@ pub fn slurm(job: &Job) -> Vec<(&'static str, String)> {
         )
     };
     let prepare = format!(
-        "{}# The world cache, computed once for every frame and tile.\n\
-         exec {natura} prepare {scene} --out {out}\n",
-        head("prepare", "")
+        "{}# The world cache, computed once for every frame and tile, and each\n\
+         # frame's cache (clouds, forest), computed once for the frame's tiles.\n\
+         exec {natura} prepare {scene} --frames {first}-{last} --out {out}\n",
+        head("prepare", ""),
+        first = job.first,
+        last = job.last,
     );
     let render = format!(
         "{}# Array index -> frame and tile: index = (frame - {first}) * {n} + tile.\n\
@@ -150,7 +153,7 @@ pub fn openjd(job: &Job, dir: &Path) -> String {
          - name: Natura\n  type: STRING\n  default: {natura}\n\
          steps:\n\
          - name: Prepare\n  script:\n    actions:\n      onRun:\n        command: '{{{{Param.Natura}}}}'\n\
-         \x20       args: ['prepare', '{{{{Param.Scene}}}}', '--out', '{{{{Param.OutDir}}}}']\n\
+         \x20       args: ['prepare', '{{{{Param.Scene}}}}', '--frames', '{frames}', '--out', '{{{{Param.OutDir}}}}']\n\
          - name: Render\n  dependencies:\n  - dependsOn: Prepare\n  parameterSpace:\n\
          \x20   taskParameterDefinitions:\n\
          \x20   - name: Frame\n      type: INT\n      range: '{frames}'\n\

@@ -3,7 +3,7 @@
 //! ```text
 //! natura render SCENE.toml [--frame F] [--tile I/N] --out DIR [--cache DIR]
 //! natura assemble DIR [--frame F]
-//! natura prepare SCENE.toml --out DIR [--cache DIR]
+//! natura prepare SCENE.toml --out DIR [--frames A-B] [--cache DIR]
 //! natura farm slurm SCENE.toml --out DIR --tiles N [--frames A-B] [--throttle K] [--cpus C] [--dir D]
 //! natura farm openjd SCENE.toml --out DIR --tiles N [--frames A-B] [--file T]
 //! natura print-scene
@@ -34,8 +34,9 @@ usage:
       with --tile: tile I of N (DIR/tiles/frame_FFFF/tile_IIII_of_NNNN.{exr,json})
   natura assemble DIR [--frame F]
       check every tile's SHA-256 and write DIR/frame_FFFF.{exr,png} (all frames by default)
-  natura prepare SCENE.toml --out DIR [--cache DIR]
-      compute (or check) the world cache shared by every tile and frame
+  natura prepare SCENE.toml --out DIR [--frames A-B] [--cache DIR]
+      compute (or check) the world cache shared by every tile and frame, and
+      the frame cache (clouds, forest) each frame's tiles share (all frames by default)
   natura farm slurm SCENE.toml --out DIR --tiles N [--frames A-B] [--throttle K] [--cpus C] [--dir D]
       write D (default DIR/slurm): prepare/render/assemble .sbatch and submit.sh
   natura farm openjd SCENE.toml --out DIR --tiles N [--frames A-B] [--file T]
@@ -182,12 +183,20 @@ fn run(argv: &[String]) -> Result<()> {
         "prepare" => {
             let out = a.path("out")?;
             let cache = cache_dir(&mut a, &out)?;
+            let frames = a.take("frames")?;
             let scene = shard::Scene::load(&a.finish("scene file")?)?;
-            let source = shard::prepare(&scene, &cache)?;
-            println!(
-                "world cache {} ({source:?})",
-                cache::path(&cache, &scene.desc)?.display()
-            );
+            let total = scene.desc.animation.frames;
+            let (first, last) = match frames {
+                None => (0, total - 1),
+                Some(f) => parse_frames(&f)?,
+            };
+            check_frames(first, last, total)?;
+            let prepared = shard::prepare(&scene, &cache, first, last)?;
+            let (world, source) = &prepared.world;
+            println!("world cache {} ({source:?})", world.display());
+            for (frame, path, source) in &prepared.frames {
+                println!("frame {frame}: frame cache {} ({source:?})", path.display());
+            }
         }
         "farm" => {
             let Some(engine) = a.positional.first().cloned() else {
@@ -209,12 +218,7 @@ fn run(argv: &[String]) -> Result<()> {
                 None => (0, total - 1),
                 Some(f) => parse_frames(&f)?,
             };
-            if last >= total {
-                return Err(CliError::usage(format!(
-                    "--frames {first}-{last}: the scene has frames 0 to {}",
-                    total - 1
-                )));
-            }
+            check_frames(first, last, total)?;
             let r = &scene.desc.render;
             tiles::grid(r.width, r.height, n)?;
             if throttle == 0 || cpus == 0 {
@@ -274,6 +278,16 @@ fn run(argv: &[String]) -> Result<()> {
 }
 
 /// Parses `A-B` (or `A`) into an inclusive frame range.
+fn check_frames(first: u32, last: u32, total: u32) -> Result<()> {
+    if last >= total {
+        return Err(CliError::usage(format!(
+            "--frames {first}-{last}: the scene has frames 0 to {}",
+            total - 1
+        )));
+    }
+    Ok(())
+}
+
 fn parse_frames(text: &str) -> Result<(u32, u32)> {
     let bad = || CliError::usage(format!("--frames {text:?}: expected A-B or A"));
     let (a, b) = text.split_once('-').unwrap_or((text, text));

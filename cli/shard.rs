@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use natura::core::{Image, NoProgress};
 use natura::render::{
-    Rendered, SceneDesc, StageTimes, World, auto_exposure, render_world, scene_renderer,
+    Rendered, SceneDesc, StageTimes, World, auto_exposure, render_world, scene_renderer_prepared,
 };
 
 use crate::cache;
@@ -54,10 +54,31 @@ pub fn render_frame(scene: &Scene, frame: u32, out: &Path) -> Result<PathBuf> {
     Ok(png)
 }
 
+/// What [`prepare`] found or made.
+pub struct Prepared {
+    /// The world cache's file and whether it was computed.
+    pub world: (PathBuf, cache::Source),
+    /// Each frame's cache.
+    pub frames: Vec<(u32, PathBuf, cache::Source)>,
+}
+
 /// Builds the eroded terrain of `scene` into `cache_dir` (or checks the
-/// cache there), returning whether it was computed.
-pub fn prepare(scene: &Scene, cache_dir: &Path) -> Result<cache::Source> {
-    Ok(cache::eroded(cache_dir, &scene.desc)?.1)
+/// cache there), then the frame cache (clouds and forest) of frames
+/// `first..=last`, so that no tile computes either.
+pub fn prepare(scene: &Scene, cache_dir: &Path, first: u32, last: u32) -> Result<Prepared> {
+    let (eroded, source) = cache::eroded(cache_dir, &scene.desc)?;
+    let mut out = Prepared {
+        world: (cache::path(cache_dir, &scene.desc)?, source),
+        frames: Vec::new(),
+    };
+    for frame in first..=last {
+        let still = scene.desc.at_frame(frame)?;
+        let world = World::from_eroded(&still, eroded.clone(), &NoProgress)?;
+        let (_, source) = cache::frame(cache_dir, &still, &world)?;
+        out.frames
+            .push((frame, cache::frame_path(cache_dir, &still)?, source));
+    }
+    Ok(out)
 }
 
 /// Renders tile `tile` of `tiles` of frame `frame` into `out`: the tile's
@@ -75,7 +96,8 @@ pub fn render_tile(
     let rect = tiles::rect(r.width, r.height, tile, tiles)?;
     let (eroded, _) = cache::eroded(cache_dir, &scene.desc)?;
     let world = World::from_eroded(&still, eroded, &NoProgress)?;
-    let renderer = scene_renderer(&world, &mut StageTimes::default(), &NoProgress)?;
+    let (prep, _) = cache::frame(cache_dir, &still, &world)?;
+    let renderer = scene_renderer_prepared(&world, prep, &mut StageTimes::default(), &NoProgress)?;
     let image = renderer.render_region(rect.x, rect.y, rect.width, rect.height, &NoProgress)?;
 
     let dir = frame_dir(out, frame);
