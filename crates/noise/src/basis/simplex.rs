@@ -42,6 +42,7 @@ const G3: f64 = 1.0 / 6.0;
 
 const SALT: u64 = 0x5349_4D50; // "SIMP"
 
+
 /// Simplex gradient noise; unit lattice, values in `[-1, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Simplex {
@@ -194,12 +195,10 @@ fn masked(x: u32, on: bool) -> u32 {
 
 impl Simplex {
     /// The 2-D value at `p`: the three corners of its triangle, without
-    /// branches, each lattice index spread once. Both candidates for the
-    /// middle corner are hashed and the gradient is selected as
-    /// floating-point values by the triangle test (a compare and a mask);
-    /// selecting the hash instead would share the test with integer code,
-    /// which the compiler turns into a branch that mispredicts on half the
-    /// points.
+    /// branches, each lattice index spread once. The middle corner, (1, 0)
+    /// or (0, 1) by the triangle test, is hashed once, its lattice offsets
+    /// selected by integer masks (a branch here would mispredict on half
+    /// the points).
     #[inline(always)]
     fn value2(&self, p: DVec2) -> f64 {
         let (i, j, x0, y0) = skew2(p.x, p.y, false);
@@ -216,11 +215,10 @@ impl Simplex {
             t2 * t2 * (g[0] * x + g[1] * y)
         };
         let grad = |h: u32| GRAD2_64[(h >> 28) as usize];
-        let (g10, g01) = (grad(corner_spread(xq, yp)), grad(corner_spread(xp, yq)));
-        let g1 = [
-            if upper { g10[0] } else { g01[0] },
-            if upper { g10[1] } else { g01[1] },
-        ];
+        // The middle corner, (1, 0) or (0, 1), selected by masks.
+        let xm = xp.wrapping_add(masked(PX, upper));
+        let ym = j.wrapping_mul(PY).wrapping_add(masked(PY, !upper)) ^ self.s;
+        let g1 = grad(corner_spread(xm, ym));
         let v = corner(grad(corner_spread(xp, yp)), x0, y0)
             + corner(g1, x0 - i1 + G2, y0 - j1 + G2)
             + corner(
