@@ -42,7 +42,6 @@ const G3: f64 = 1.0 / 6.0;
 
 const SALT: u64 = 0x5349_4D50; // "SIMP"
 
-
 /// Simplex gradient noise; unit lattice, values in `[-1, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Simplex {
