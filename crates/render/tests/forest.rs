@@ -208,3 +208,84 @@ fn vegetation_round_trips_through_toml_and_unknown_keys_are_named() {
         SceneDesc::default().vegetation.species
     );
 }
+
+#[test]
+fn trees_on_the_shore_stand_in_the_water_s_mirror_image() {
+    // A slope rising through the sea level (0 m) at row 30: water below,
+    // trees above.
+    let mut s = SceneDesc::default();
+    s.water.enabled = true;
+    s.water.level_m = Some(0.0);
+    // A still mirror, so each reflected ray goes where it is aimed.
+    s.water.ripple_height_m = 0.0;
+    s.vegetation.tree_line_m = 80.0;
+    s.camera.position_uv = [0.5, 0.12];
+    s.camera.target_uv = [0.5, 0.9];
+    s.camera.height_above_ground_m = 6.0;
+    s.vegetation.radius_m = 200.0;
+    s.vegetation.density_per_ha = 20.0;
+    s.vegetation.steps = 10;
+    s.render.width = 48;
+    s.render.height = 27;
+    s.render.spp = 1;
+    let hf = HeightField::from_fn(96, 96, 5.0, |i, j| {
+        let (x, y) = (i as f32 * 0.11, j as f32 * 0.13);
+        0.25 * (j as f32 - 30.0) + 1.5 * x.sin() * y.cos()
+    })
+    .unwrap();
+    let world = World::from_height_field(&s, hf, &NoProgress).unwrap();
+    let level = world.water_level.unwrap();
+    let eye = world.eye();
+    assert!(
+        (eye.z - level - 6.0).abs() < 1e-3,
+        "the eye is over the water: {eye}"
+    );
+    let bare = Renderer::new(&world, &NoProgress).unwrap();
+    let with = |brute: bool| {
+        let mut f = Forest::build(&world, &NoProgress).unwrap().unwrap();
+        f.set_brute_force(brute);
+        Renderer::new(&world, &NoProgress)
+            .unwrap()
+            .with_forest(Some(f))
+    };
+    let (bvh, brute) = (with(false), with(true));
+    let forest = bvh.forest().unwrap().instanced();
+    // Rays toward the mirror images (in the water plane) of crowns 20–150 m
+    // away: each meets the water first, then the tree.
+    let (mut mirrored, mut tried) = (0, 0);
+    for p in &forest.placements {
+        let m = &forest.meshes[p.mesh as usize];
+        let crown = p.position + Vec3::Z * (0.6 * p.scale * m.bounds.1.z);
+        let dist = (crown - eye).truncate().length();
+        if !(20.0..150.0).contains(&dist) || crown.z <= level + 1.0 {
+            continue;
+        }
+        let image = Vec3::new(crown.x, crown.y, 2.0 * level - crown.z);
+        let d = (image - eye).normalize();
+        // Only rays that reach open water (a metre deep at least) before
+        // any tree.
+        let to_water = (level - eye.z) / d.z;
+        let w = eye + d * to_water;
+        let ground = world.terrain.sample(w.x, w.y, natura_core::Boundary::Clamp);
+        if ground > level - 1.0 || forest.closest(eye, d, 0.0, to_water).is_some() {
+            continue;
+        }
+        let ray = natura_trace::Ray::new(eye, d);
+        let (a, b, c) = (
+            bvh.radiance(&ray),
+            brute.radiance(&ray),
+            bare.radiance(&ray),
+        );
+        assert!(a.is_finite());
+        assert_eq!(
+            a.to_array().map(f32::to_bits),
+            b.to_array().map(f32::to_bits)
+        );
+        mirrored += usize::from(a != c);
+        tried += 1;
+    }
+    assert!(
+        tried >= 10 && mirrored * 10 >= 8 * tried,
+        "{mirrored} of {tried} rays saw a tree in the water"
+    );
+}

@@ -334,7 +334,8 @@ impl<'w> Renderer<'w> {
     }
 
     /// Adds trees: primary rays meet them before the terrain and water,
-    /// they shadow the terrain and each other, and the terrain shadows them.
+    /// the water mirrors them, they shadow the terrain and each other, and
+    /// the terrain shadows them.
     /// Each tree stands on the traced surface (with its detail, as seen at
     /// the tree's distance).
     #[must_use]

@@ -151,7 +151,8 @@ impl Renderer<'_> {
         let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
         let fr = fresnel(1.0, WATER_IOR, f64::from(cos_i)).unpolarized() as f32;
 
-        // Reflection: the terrain (mountains mirrored in the lake) or the sky and sun.
+        // Reflection: the trees and terrain (mountains mirrored in the lake) or
+        // the sky and sun.
         let mut r = d - 2.0 * d.dot(n) * n;
         if r.z < 1e-4 {
             r.z = r.z.abs().max(1e-4);
@@ -175,14 +176,25 @@ impl Renderer<'_> {
                 let first = self.tracer.trace_footprint(&rray, 0.0, f32::INFINITY, fp);
                 self.intersect(&rray, first.as_ref())
             };
-            let (lt, tr) = match hit {
-                Some(SurfaceHit::Water { t: tr, point }) => {
+            let t_hit = match &hit {
+                Some(SurfaceHit::Water { t, .. }) => *t,
+                Some(SurfaceHit::Terrain(h)) => h.t,
+                None => f32::INFINITY,
+            };
+            // Trees on the shore stand in the mirror image too.
+            let tree = self
+                .forest
+                .as_ref()
+                .and_then(|f| Some((f, f.intersect(rray.origin, r, t_hit)?)));
+            let (lt, tr) = match (tree, hit) {
+                (Some((f, h)), _) => (self.shade_tree(f, &h, r), h.t),
+                (None, Some(SurfaceHit::Water { t: tr, point })) => {
                     (self.shade_water(point, r, t + tr, false), tr)
                 }
-                Some(SurfaceHit::Terrain(h)) => {
+                (None, Some(SurfaceHit::Terrain(h))) => {
                     (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t)
                 }
-                None => (self.sky(p, r), f32::INFINITY),
+                (None, None) => (self.sky(p, r), f32::INFINITY),
             };
             if tr.is_finite() {
                 let ap = self.view.aerial_perspective_f32(r, tr);
