@@ -165,6 +165,16 @@ enum SurfaceHit {
     },
 }
 
+impl SurfaceHit {
+    /// The ray parameter of the hit.
+    fn t(&self) -> f32 {
+        match self {
+            SurfaceHit::Terrain(h) => h.t,
+            SurfaceHit::Water { t, .. } => *t,
+        }
+    }
+}
+
 /// Surface point of a terrain hit, in the form shading needs.
 struct TerrainPoint {
     point: Vec3,
@@ -504,15 +514,7 @@ impl<'w> Renderer<'w> {
     fn radiance_traced(&self, ray: &Ray, hit: Option<&Hit>) -> Vec3 {
         let d = ray.dir;
         let surface = self.intersect(ray, hit);
-        let t_surface = match &surface {
-            Some(SurfaceHit::Water { t, .. }) => *t,
-            Some(SurfaceHit::Terrain(h)) => h.t,
-            None => f32::INFINITY,
-        };
-        let tree = self
-            .forest
-            .as_ref()
-            .and_then(|f| Some((f, f.intersect(ray.origin, d, t_surface)?)));
+        let tree = self.tree_before(ray, surface.as_ref());
         let (mut l, dist) = match (tree, surface) {
             (Some((f, h)), _) => (self.shade_tree(f, &h, d), h.t),
             (None, Some(SurfaceHit::Water { t, point })) => {
@@ -531,6 +533,14 @@ impl<'w> Renderer<'w> {
             l = self.rain(rb, d, dist, l);
         }
         l
+    }
+
+    /// The tree `ray` (unit direction) meets before `surface` (the ray's
+    /// first terrain or water hit, or none), if the scene has a forest.
+    fn tree_before(&self, ray: &Ray, surface: Option<&SurfaceHit>) -> Option<(&Forest, TreeHit)> {
+        let f = self.forest.as_ref()?;
+        let t_max = surface.map_or(f32::INFINITY, SurfaceHit::t);
+        Some((f, f.intersect(ray.origin, ray.dir, t_max)?))
     }
 
     /// The first thing `ray` (unit direction) meets: dry terrain or a water

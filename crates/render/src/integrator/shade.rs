@@ -176,16 +176,8 @@ impl Renderer<'_> {
                 let first = self.tracer.trace_footprint(&rray, 0.0, f32::INFINITY, fp);
                 self.intersect(&rray, first.as_ref())
             };
-            let t_hit = match &hit {
-                Some(SurfaceHit::Water { t, .. }) => *t,
-                Some(SurfaceHit::Terrain(h)) => h.t,
-                None => f32::INFINITY,
-            };
             // Trees on the shore stand in the mirror image too.
-            let tree = self
-                .forest
-                .as_ref()
-                .and_then(|f| Some((f, f.intersect(rray.origin, r, t_hit)?)));
+            let tree = self.tree_before(&rray, hit.as_ref());
             let (lt, tr) = match (tree, hit) {
                 (Some((f, h)), _) => (self.shade_tree(f, &h, r), h.t),
                 (None, Some(SurfaceHit::Water { t: tr, point })) => {
