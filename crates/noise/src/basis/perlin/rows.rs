@@ -34,7 +34,7 @@ impl Perlin {
         let rows = RowCoeffs::new2(self.lattice_seed(), self.fade(), origin.y);
         let k = self.scale(2);
         let fade = self.fade();
-        row2_at(simd, &rows, fade, origin.x, step, k, out);
+        row_at::<false>(simd, &rows, fade, origin.x, step, k, out);
     }
 
     /// The 3-D row fill behind [`Field::fill_row3_with`].
@@ -52,7 +52,7 @@ impl Perlin {
         let rows = RowCoeffs::new3(self.lattice_seed(), self.fade(), origin.y, origin.z);
         let k = self.scale(3);
         let fade = self.fade();
-        row3_at(simd, &rows, fade, origin.x, step, k, out);
+        row_at::<true>(simd, &rows, fade, origin.x, step, k, out);
     }
 }
 
@@ -62,9 +62,9 @@ impl Perlin {
 // budget), and then it runs at the baseline level.
 
 multiversion! {
-    /// A 2-D row from its row constants: span by span for small steps,
-    /// else lane by lane.
-    fn row2_at<'a>(
+    /// A 2-D (`D3` false) or 3-D row from its row constants: span by span
+    /// for small steps, else lane by lane.
+    fn row_at<'a, const D3: bool>(
         simd: Simd,
         rows: &'a RowCoeffs,
         fade: Fade,
@@ -73,29 +73,16 @@ multiversion! {
         k: f64,
         out: &'a mut [f32],
     ) {
-        if step > 0.0 && step <= SPAN_MAX_STEP {
-            row_spans(fade, x0, step, k, out, |ix| rows.column2(ix));
-        } else {
-            with_fade32!(fade, |f| perlin2_row(f, rows, x0, step, k as f32, out));
-        }
-    }
-}
-
-multiversion! {
-    /// A 3-D row from its row constants (see [`row2_at`]).
-    fn row3_at<'a>(
-        simd: Simd,
-        rows: &'a RowCoeffs,
-        fade: Fade,
-        x0: f64,
-        step: f64,
-        k: f64,
-        out: &'a mut [f32],
-    ) {
-        if step > 0.0 && step <= SPAN_MAX_STEP {
-            row_spans(fade, x0, step, k, out, |ix| rows.column3(ix));
-        } else {
-            with_fade32!(fade, |f| perlin3_row(f, rows, x0, step, k as f32, out));
+        let spans = step > 0.0 && step <= SPAN_MAX_STEP;
+        match (spans, D3) {
+            (true, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
+            (true, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
+            (false, false) => {
+                with_fade32!(fade, |f| perlin2_row(f, rows, x0, step, k as f32, out));
+            }
+            (false, true) => {
+                with_fade32!(fade, |f| perlin3_row(f, rows, x0, step, k as f32, out));
+            }
         }
     }
 }
