@@ -99,23 +99,28 @@ fn training() -> Vec<Training> {
     ]
 }
 
+/// The training scene `t` under its sun, with a constant sky.
+fn scene_of(t: &Training) -> Scene<'_> {
+    Scene {
+        sun: Some(t.sun),
+        ..Scene::new(
+            &t.grid,
+            MediumParams {
+                extinction: t.extinction,
+                ..MediumParams::default()
+            },
+            Vec3::new(0.15, 0.2, 0.3),
+        )
+    }
+}
+
 #[test]
 #[ignore = "slow: minutes"]
 fn fit_octave_constants() {
     let (w, h, spp) = (40, 28, 512);
     let mut data = Vec::new();
     for t in training() {
-        let scene = Scene {
-            sun: Some(t.sun),
-            ..Scene::new(
-                &t.grid,
-                MediumParams {
-                    extinction: t.extinction,
-                    ..MediumParams::default()
-                },
-                Vec3::new(0.15, 0.2, 0.3),
-            )
-        };
+        let scene = scene_of(&t);
         let cam = camera_for(&t.grid.bounds(), t.azimuth_deg, w, h);
         let r = ReferenceRenderer::new(
             &scene,
@@ -151,17 +156,7 @@ fn fit_octave_constants() {
     let loss = |oc: ScatterOctaves, print: bool| -> f64 {
         let mut total = 0.0;
         for (t, cam, rays) in &data {
-            let scene = Scene {
-                sun: Some(t.sun),
-                ..Scene::new(
-                    &t.grid,
-                    MediumParams {
-                        extinction: t.extinction,
-                        ..MediumParams::default()
-                    },
-                    Vec3::new(0.15, 0.2, 0.3),
-                )
-            };
+            let scene = scene_of(t);
             let f = FastRenderer::new(
                 &scene,
                 FastSettings {
