@@ -209,36 +209,46 @@ fn bad_arguments_and_caches_get_clear_errors() {
     let err = fails(&["render", SCENE, "--tile", "0/3000", "--out", o]);
     assert!(err.contains("3000 tiles cannot cut"), "{err}");
 
-    // A cache written by another version is refused, never used.
-    ok(1, &["prepare", SCENE, "--out", o]);
-    let cache = std::fs::read_dir(out.join("cache"))
+    // A cache written by another version is refused, never used; a corrupt
+    // one too. Both of frame 0's caches in turn: the world's and the frame's.
+    ok(1, &["prepare", SCENE, "--frames", "0", "--out", o]);
+    let mut caches: Vec<_> = std::fs::read_dir(out.join("cache"))
         .unwrap()
-        .next()
-        .unwrap()
-        .unwrap()
-        .path();
-    let bytes = std::fs::read(&cache).unwrap();
-    let version = format!("natura {}\n", env!("CARGO_PKG_VERSION"));
-    let at = bytes
-        .windows(version.len())
-        .position(|w| w == version.as_bytes())
-        .unwrap();
-    let mut old = bytes[..at].to_vec();
-    old.extend_from_slice(b"natura 0.0.1\n");
-    old.extend_from_slice(&bytes[at + version.len()..]);
-    std::fs::write(&cache, &old).unwrap();
-    let err = fails(&["render", SCENE, "--tile", "0/4", "--out", o]);
+        .map(|e| e.unwrap().path())
+        .collect();
+    caches.sort();
+    let names: Vec<String> = caches
+        .iter()
+        .map(|c| c.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
     assert!(
-        err.contains("written by natura 0.0.1") && err.contains("delete it"),
-        "{err}"
+        names.len() == 2 && names[0].starts_with("frame_") && names[1].starts_with("world_"),
+        "{names:?}"
     );
-    // A corrupt one too.
-    let mut corrupt = bytes.clone();
-    let k = corrupt.len() - 5;
-    corrupt[k] ^= 1;
-    std::fs::write(&cache, &corrupt).unwrap();
-    let err = fails(&["render", SCENE, "--tile", "0/4", "--out", o]);
-    assert!(err.contains("does not match its SHA-256"), "{err}");
+    for cache in &caches {
+        let bytes = std::fs::read(cache).unwrap();
+        let version = format!("natura {}\n", env!("CARGO_PKG_VERSION"));
+        let at = bytes
+            .windows(version.len())
+            .position(|w| w == version.as_bytes())
+            .unwrap();
+        let mut old = bytes[..at].to_vec();
+        old.extend_from_slice(b"natura 0.0.1\n");
+        old.extend_from_slice(&bytes[at + version.len()..]);
+        std::fs::write(cache, &old).unwrap();
+        let err = fails(&["render", SCENE, "--tile", "0/4", "--out", o]);
+        assert!(
+            err.contains("written by natura 0.0.1") && err.contains("delete it"),
+            "{err}"
+        );
+        let mut corrupt = bytes.clone();
+        let k = corrupt.len() - 5;
+        corrupt[k] ^= 1;
+        std::fs::write(cache, &corrupt).unwrap();
+        let err = fails(&["render", SCENE, "--tile", "0/4", "--out", o]);
+        assert!(err.contains("does not match its SHA-256"), "{err}");
+        std::fs::write(cache, &bytes).unwrap();
+    }
 }
 
 #[test]
