@@ -14,7 +14,8 @@ use crate::error::{RenderError, Result};
 /// The animation of a scene: frames, frame rate and the camera path.
 ///
 /// Frame `f` is at time `f / fps` seconds; the ocean's snapshot time
-/// (`water.ocean_time_s`) advances by that time. Between two keys every keyed
+/// (`water.ocean_time_s`) advances by that time, and the clouds drift with
+/// `clouds.wind_m_s` for it. Between two keys every keyed
 /// value is interpolated linearly in the frame number; before the first key
 /// and after the last the nearest key holds.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -149,7 +150,8 @@ impl AnimationDesc {
 
 impl SceneDesc {
     /// The still scene of frame `frame` of this scene's animation: the
-    /// camera and sun at that frame, the ocean at its time. Every other key
+    /// camera and sun at that frame, the ocean at its time, the clouds
+    /// carried by the wind for that time (`clouds.wind_m_s`). Every other key
     /// is this scene's; frame 0 of a scene without keys is the scene itself.
     ///
     /// # Errors
@@ -179,7 +181,11 @@ impl SceneDesc {
         s.sun.elevation_deg = a.keyed(frame, self.sun.elevation_deg, |k| k.sun_elevation_deg);
         s.sun.azimuth_deg = a.keyed(frame, self.sun.azimuth_deg, |k| k.sun_azimuth_deg);
         if frame > 0 {
-            s.water.ocean_time_s += a.time_s(frame);
+            let t = a.time_s(frame);
+            s.water.ocean_time_s += t;
+            for i in 0..2 {
+                s.clouds.layer.wind_offset[i] += (self.clouds.wind_m_s[i] * t) as f32;
+            }
         }
         s.validate()?;
         Ok(s)
@@ -212,6 +218,12 @@ mod tests {
         approx::assert_abs_diff_eq!(at(2).camera.pitch_deg, (-2.0 + base) / 2.0, epsilon = 1e-12);
         // Time moves the ocean; the terrain never changes.
         approx::assert_abs_diff_eq!(at(3).water.ocean_time_s, s.water.ocean_time_s + 0.3);
+        // The clouds drift with the wind: 0.3 s at the default wind.
+        let drift = at(3).clouds.layer.wind_offset;
+        let w = s.clouds.wind_m_s;
+        approx::assert_abs_diff_eq!(f64::from(drift[0]), 0.3 * w[0], epsilon = 1e-5);
+        approx::assert_abs_diff_eq!(f64::from(drift[1]), 0.3 * w[1], epsilon = 1e-5);
+        assert_eq!(at(0).clouds.layer.wind_offset, s.clouds.layer.wind_offset);
         assert_eq!(at(4).terrain, s.terrain);
         assert_eq!(at(4).erosion, s.erosion);
     }
@@ -232,6 +244,8 @@ mod tests {
         };
         bad("[animation]\nframes = 0\n", "animation.frames");
         bad("[animation]\nfps = 0.0\n", "animation.fps");
+        bad("[clouds]\nwind_m_s = [500.0, 0.0]\n", "clouds.wind_m_s[0]");
+        bad("[clouds]\nwind_m_s = [0.0, nan]\n", "clouds.wind_m_s[1]");
         bad(
             "[animation]\nframes = 4\n[[animation.keys]]\nframe = 4\n",
             "animation.keys[0].frame",

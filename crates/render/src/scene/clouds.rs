@@ -48,6 +48,10 @@ pub struct CloudsDesc {
     pub shadow_cell_m: f32,
     /// Added to the scene's seed for the clouds' noise.
     pub seed_offset: u64,
+    /// The wind that carries the clouds over an animation, metres per
+    /// second toward +x (east) and +y (north): frame `f` adds
+    /// `wind_m_s · f / fps` to `layer.wind_offset`.
+    pub wind_m_s: [f64; 2],
 }
 
 impl Default for CloudsDesc {
@@ -80,6 +84,7 @@ impl Default for CloudsDesc {
             cache_pixels: 2.0,
             shadow_cell_m: 100.0,
             seed_offset: 0,
+            wind_m_s: [6.0, 2.0],
         }
     }
 }
@@ -96,6 +101,8 @@ impl CloudsDesc {
 
     /// Checks every key of the section (whether or not it is enabled).
     pub(crate) fn validate(&self) -> Result<()> {
+        in_range("clouds.wind_m_s[0]", self.wind_m_s[0], -100.0, 100.0)?;
+        in_range("clouds.wind_m_s[1]", self.wind_m_s[1], -100.0, 100.0)?;
         let l = &self.layer;
         for (name, v) in [
             ("clouds.layer.region_min[0]", l.region_min[0]),
