@@ -1,6 +1,7 @@
 //! Height-field synthesis: stochastic subdivision (lines, triangles, quads,
 //! diamond-square), Poisson faulting, successive random additions, Fourier
-//! synthesis and noise synthesis from any scalar field.
+//! synthesis and noise synthesis from any scalar field; terraces of
+//! quantised altitude.
 
 pub mod fault;
 pub mod field;
@@ -8,6 +9,7 @@ pub mod mesh;
 pub mod spectral;
 pub mod sra;
 pub mod subdivision;
+pub mod terrace;
 
 pub use fault::{FaultParams, poisson_faults};
 pub use field::{FieldMapping, fill_field, fill_noise, fill_rows};
@@ -18,3 +20,4 @@ pub use subdivision::{
     EndpointMode, MidpointParams, SubdivisionParams, SubdivisionScheme, fractal_polyline,
     fractal_polyline_ids, midpoint_1d, subdivide,
 };
+pub use terrace::{TerraceParams, terrace};
