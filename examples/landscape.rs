@@ -8,6 +8,7 @@
 //! cargo run --release --example landscape -- --closeup --no-detail  # the foreground without detail
 //! cargo run --release --example landscape -- --no-clouds --no-textures  # clear sky, plain materials
 //! cargo run --release --example landscape -- --closeup --no-forest  # the slopes without trees
+//! cargo run --release --example landscape -- --no-terraces  # the eroded terrain without cliffs
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
@@ -38,6 +39,10 @@ fn main() {
         "a clear sky (no layer clouds or their shadows)",
     );
     let no_textures = args.switch("--no-textures", "no strata or grain on the surface");
+    let no_terraces = args.switch(
+        "--no-terraces",
+        "no cliffs and benches where the strata show (the eroded terrain as it is)",
+    );
     let no_forest = args.switch("--no-forest", "grow no trees");
     let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
     let seed: Option<u64> = args.optional("--seed", "random seed");
@@ -74,6 +79,9 @@ fn main() {
     }
     if no_clouds {
         scene.clouds.enabled = false;
+    }
+    if no_terraces {
+        scene.terraces.enabled = false;
     }
     if no_textures {
         scene.textures.enabled = false;

@@ -7,7 +7,9 @@
 //!
 //! * [`SceneDesc`]: the whole scene as a `serde` struct, loadable from TOML,
 //!   with a built-in default ([`DEFAULT_SCENE_TOML`]).
-//! * [`World::build`]: synthesis, erosion, maps and atmosphere.
+//! * [`World::build`]: synthesis, erosion, terraces along the rock strata
+//!   (`[terraces]`: cliffs where hard beds stand, benches where soft ones
+//!   wear back), maps and atmosphere.
 //! * [`Renderer`]: the integrator (primary rays by maximum-mipmap grid
 //!   tracing, sun shadows by any-hit rays, water reflection and refraction,
 //!   aerial perspective per segment, sky for escaped rays, stratified

@@ -7,7 +7,9 @@
 //! periodic in altitude, fade to the colour map's mean where a pixel spans
 //! more than half a band, so distant cliffs do not alias into stripes. Their
 //! colours are scaled to the scene's rock albedo (the listing's tans and
-//! buffs keep their contrast, the cliffs their brightness). The grain is an
+//! buffs keep their contrast, the cliffs their brightness), and their hue
+//! goes from the rock's own (`strata_tint` 0: the bands only as brightness,
+//! for grey alpine rock) to the listing's (`strata_tint` 1: desert sandstone). The grain is an
 //! fBm of Perlin noise summed over the octaves the footprint shows
 //! (natura-noise's band-limited `eval3_band`, octave count from
 //! [`Footprint::visible`]).
@@ -30,6 +32,7 @@ pub struct SurfaceTextures {
     /// Mean linear colour of the strata's colour map.
     strata_mean: Vec3,
     strength: f32,
+    tint: f32,
     /// Colour-map cycles per metre of altitude.
     cycles_per_m: f32,
     grain: Fbm<Perlin>,
@@ -44,6 +47,20 @@ fn texture_error(e: natura_texture::TextureError) -> RenderError {
     }
 }
 
+/// The rock strata of `desc` with sub-seeds of `seed` (the textures' seed):
+/// the one texture both the surface's colours and the terraces' beds follow.
+///
+/// # Errors
+///
+/// [`RenderError::Invalid`] if natura-texture refuses the strata's parameters.
+pub(crate) fn strata_of(desc: &TexturesDesc, seed: Seed) -> Result<Strata> {
+    Strata::new(StrataParams {
+        seed: seed.derive("strata").0.wrapping_add(desc.strata.seed),
+        ..desc.strata
+    })
+    .map_err(texture_error)
+}
+
 impl SurfaceTextures {
     /// The textures of `desc` with sub-seeds of `seed`, or `None` when they are off.
     ///
@@ -55,11 +72,7 @@ impl SurfaceTextures {
         if !desc.enabled {
             return Ok(None);
         }
-        let strata = Strata::new(StrataParams {
-            seed: seed.derive("strata").0.wrapping_add(desc.strata.seed),
-            ..desc.strata
-        })
-        .map_err(texture_error)?;
+        let strata = strata_of(desc, seed)?;
         let n = STRATA_KNOTS.len() - 1;
         let strata_mean = (0..4 * n)
             .map(|k| {
@@ -82,6 +95,7 @@ impl SurfaceTextures {
             strata,
             strata_mean,
             strength: desc.strata_strength,
+            tint: desc.strata_tint,
             cycles_per_m: (s.zscale * s.txtscale) as f32,
             grain,
             grain_strength: if desc.grain_octaves > 0.0 {
@@ -109,7 +123,11 @@ impl SurfaceTextures {
             crate::material::smoothstep(0.5, 2.0, bands),
         );
         let scale = luminance(rock) / luminance(self.strata_mean).max(1e-6);
-        rock.lerp(c * scale, self.strength)
+        // The bands' brightness on the rock's own colour, tinted toward the
+        // listing's tans and buffs by `tint`.
+        let banded = rock * (luminance(c) * scale / luminance(rock).max(1e-6));
+        let c = banded.lerp(c * scale, self.tint);
+        rock.lerp(c, self.strength)
     }
 
     /// The grain's brightness factor at `p` for a footprint of `footprint_m`

@@ -7,7 +7,10 @@
 //! Braun–Willett stream power carves the valley network (the "fractal
 //! drainage networks" the sources wished for), the virtual-pipe hydraulic
 //! model adds gullies and sediment fans, and thermal weathering relaxes
-//! slopes to the talus angle.
+//! slopes to the talus angle. Terraces then raise cliffs along the rock
+//! strata on the hillsides (the layered hardness of Musgrave 1993, §2.4.4):
+//! thermal weathering alone would leave no slope steeper than the talus
+//! angle, so no cliff would show its strata.
 
 use std::time::{Duration, Instant};
 
@@ -20,7 +23,7 @@ use natura_noise::{
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
 use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};
-use natura_terrain::synth::{FieldMapping, fill_field};
+use natura_terrain::synth::{FieldMapping, TerraceParams, fill_field};
 
 use crate::error::Result;
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
@@ -185,6 +188,7 @@ impl World {
         let mut terrain = times.time("synthesis", || synthesize(scene, seed, progress))?;
         let (deposition, wetness) =
             times.time("erosion", || erode(scene, &mut terrain, progress))?;
+        times.time("terraces", || terrace(scene, seed, &mut terrain))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
         Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
@@ -202,6 +206,7 @@ impl World {
         let seed = Seed(scene.seed);
         let mut terrain = synthesize(scene, seed, progress)?;
         erode(scene, &mut terrain, progress)?;
+        terrace(scene, seed, &mut terrain)?;
         sink_coast(scene, seed, &mut terrain)?;
         Ok(terrain)
     }
@@ -219,6 +224,7 @@ impl World {
         let seed = Seed(scene.seed);
         let mut terrain = synthesize(scene, seed, progress)?;
         let (deposition, wetness) = erode(scene, &mut terrain, progress)?;
+        terrace(scene, seed, &mut terrain)?;
         sink_coast(scene, seed, &mut terrain)?;
         Ok(ErodedTerrain {
             terrain,
@@ -423,6 +429,45 @@ fn synthesize(scene: &SceneDesc, seed: Seed, progress: &dyn Progress) -> Result<
     progress.finish();
     hf.check_finite()?;
     Ok(hf)
+}
+
+/// Cliffs and benches where layered rock shows (natura-terrain's
+/// [`terrace`](natura_terrain::synth::terrace)): the beds are the strata of
+/// the scene's `[textures]`, `beds_per_cycle` to a cycle of their colour
+/// map, bent by the strata's own fBm, so the cliffs follow the colour bands.
+/// The bending is read from the strata's colour-map index modulo one cycle:
+/// the terraces repeat every bed, and a bed divides the cycle.
+fn terrace(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()> {
+    let t = &scene.terraces;
+    if !t.enabled {
+        return Ok(());
+    }
+    let s = &scene.textures.strata;
+    let cycle_m = (1.0 / (s.zscale * s.txtscale)) as f32;
+    let params = TerraceParams {
+        bed_m: cycle_m / t.beds_per_cycle as f32,
+        cliff_fraction: t.cliff_fraction,
+        flatness: t.flatness,
+        min_slope_deg: t.min_slope_deg,
+        min_altitude_m: t.min_altitude_m,
+    };
+    let strata = crate::strata::strata_of(&scene.textures, seed.derive("textures"))?;
+    let cell = f64::from(hf.cell_size());
+    let h = hf.heights();
+    let fill = |i: usize, j: usize| {
+        let z = h[(i, j)];
+        let p = DVec3::new(i as f64 * cell, j as f64 * cell, f64::from(z));
+        let index = strata.index(p, natura_texture::Footprint::POINT) as f32;
+        // z + warp ≡ index · cycle (mod cycle).
+        (index * cycle_m - z).rem_euclid(cycle_m)
+    };
+    #[cfg(feature = "parallel")]
+    let warp = Grid2::par_from_fn(hf.nx(), hf.ny(), fill)?;
+    #[cfg(not(feature = "parallel"))]
+    let warp = Grid2::from_fn(hf.nx(), hf.ny(), fill)?;
+    natura_terrain::synth::terrace(hf, &params, Some(&warp))?;
+    hf.check_finite()?;
+    Ok(())
 }
 
 /// Sinks the border of the field below the water over `coast_fraction` of

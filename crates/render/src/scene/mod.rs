@@ -15,6 +15,7 @@
 
 mod animation;
 mod clouds;
+mod terraces;
 mod text;
 mod textures;
 mod validate;
@@ -35,6 +36,7 @@ use serde::{Deserialize, Serialize};
 
 pub(crate) use clouds::in_section as clouds_in_section;
 pub use clouds::{CloudsDesc, MAX_CLOUD_VOXELS};
+pub use terraces::TerracesDesc;
 pub use textures::TexturesDesc;
 
 /// The built-in scene as TOML: the defaults of every key, with comments.
@@ -50,6 +52,8 @@ pub struct SceneDesc {
     pub terrain: TerrainDesc,
     /// Erosion applied to the terrain, in order: stream power, hydraulic, thermal.
     pub erosion: ErosionDesc,
+    /// Cliffs and benches where layered rock shows, after erosion.
+    pub terraces: TerracesDesc,
     /// The lake or sea.
     pub water: WaterDesc,
     /// The sun.
@@ -378,6 +382,7 @@ impl Default for SceneDesc {
             seed: 2,
             terrain: TerrainDesc::default(),
             erosion: ErosionDesc::default(),
+            terraces: TerracesDesc::default(),
             water: WaterDesc::default(),
             sun: SunDesc::default(),
             atmosphere: AtmosphereDesc::default(),

@@ -22,6 +22,9 @@ pub struct TexturesDesc {
     /// How much the strata replace the rock's colour, 0 to 1 (their
     /// brightness follows the rock's albedo).
     pub strata_strength: f32,
+    /// Hue of the strata, 0 (the rock's colour, the bands as brightness
+    /// only) to 1 (the listing's tans and buffs).
+    pub strata_tint: f32,
     /// Wavelength of the grain's largest octave, metres.
     pub grain_size_m: f32,
     /// Octaves of the grain (each half the wavelength of the last), at most;
@@ -44,6 +47,7 @@ impl Default for TexturesDesc {
                 octaves: 8.0,
             },
             strata_strength: 0.85,
+            strata_tint: 0.3,
             grain_size_m: 6.0,
             grain_octaves: 10.0,
             grain_strength: 0.25,
@@ -68,6 +72,12 @@ impl TexturesDesc {
         in_range(
             "textures.strata_strength",
             f64::from(self.strata_strength),
+            0.0,
+            1.0,
+        )?;
+        in_range(
+            "textures.strata_tint",
+            f64::from(self.strata_tint),
             0.0,
             1.0,
         )?;

@@ -246,6 +246,7 @@ impl SceneDesc {
 
         self.clouds.validate()?;
         self.textures.validate()?;
+        self.terraces.validate(self.textures.strata.zscale)?;
 
         let r = &self.render;
         in_range("render.width", f64::from(r.width), 1.0, 16_384.0)?;
