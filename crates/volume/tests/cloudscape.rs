@@ -103,11 +103,9 @@ fn cloudscape_fast_mode_against_the_reference() {
         eprintln!("blocks of {b}×{b}: relative luminance error {e:.3}; of the mean {m:.3}");
     }
     eprintln!("reference: 96×54 at 256 paths per pixel in {secs:.1} s");
-    // Measured (256 paths per pixel): 0.145 over 3×3 blocks, 0.126 over
-    // 6×6, 0.029 of the mean; thin cloud (the aureole round the sun
-    // included) a tenth too dark, thick cloud a tenth too bright (0.231 over
-    // 3×3 blocks before the peak's orders and the fitted octave constants).
-    // The goal of 0.10 over blocks is not met; the bound held is 0.18.
+    // The reference here has 256 paths per pixel, whose own noise over 3×3
+    // blocks is of the order of the goal; the full-frame comparison below
+    // holds the goal against 4096 paths. The bound here is looser.
     let (e, m) = errors_image(&fast, &reference, 3);
     assert!(e <= 0.18 && m <= 0.05, "{e} {m}");
 }
@@ -141,9 +139,9 @@ fn errors(a: &[f64], r: &[f64], w: usize, b: usize) -> (f64, f64) {
 /// full-frame image. The reference is itself noisy (a cloud's phase function
 /// has a diffraction peak a fraction of a degree wide toward a low sun; the
 /// reference draws some directions toward it, which lowers but does not
-/// remove that noise), so the same metrics between two references with
-/// different seeds are printed beside: the noise floor under the fast mode's
-/// figure.
+/// remove that noise), so it is four seeds of 1024 paths averaged (4096
+/// paths per pixel), and its own noise is printed beside, from the
+/// difference of its two 2048-path halves.
 #[test]
 #[ignore = "slow: minutes"]
 fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
@@ -178,9 +176,18 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
         .map(|&(x, y)| lum(fast.radiance(cam.position, cam.ray(x, y))))
         .collect();
     let t = std::time::Instant::now();
-    let r1 = reference(1);
-    let secs = t.elapsed().as_secs_f64();
-    let r2 = reference(2);
+    let r: Vec<Vec<f64>> = (1..=4).map(reference).collect();
+    let secs = t.elapsed().as_secs_f64() / 4.0;
+    let mean = |k: &[usize]| -> Vec<f64> {
+        (0..a.len())
+            .map(|i| k.iter().map(|&j| r[j][i]).sum::<f64>() / k.len() as f64)
+            .collect()
+    };
+    // The reference: four seeds averaged, 4096 paths per pixel. Its own
+    // noise: half the difference of two 2048-path halves (the mean of two
+    // independent halves has 1/√2 of a half's noise, and their difference √2).
+    let r1 = mean(&[0, 1, 2, 3]);
+    let (h1, h2) = (mean(&[0, 1]), mean(&[2, 3]));
     // Where the difference lies: ground, clear sky, cloud.
     let mut sums = [[0.0f64; 3]; 3];
     for (k, &(x, y)) in rays.iter().enumerate() {
@@ -206,22 +213,26 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     }
     for b in [1, 3, 6] {
         let (e, m) = errors(&a, &r1, w, b);
-        let (en, mn) = errors(&r2, &r1, w, b);
+        let (e1, m1) = errors(&a, &r[0], w, b);
+        let (en, mn) = errors(&h2, &h1, w, b);
         eprintln!(
-            "blocks of {b}×{b}: relative luminance error {e:.3}, of the mean {m:.3}; \
-             between two references (noise floor) {en:.3}, of the mean {mn:.3}"
+            "blocks of {b}×{b}: relative luminance error {e:.3}, of the mean {m:.3} \
+             (against one 1024-path reference {e1:.3}, {m1:.3}); the reference's own noise \
+             about {:.3}, of the mean {:.3} (two 2048-path halves differ by {en:.3}, {mn:.3})",
+            en / 2.0,
+            mn / 2.0
         );
     }
     eprintln!(
-        "reference: {} rays of the 1920×1080 frame at {spp} paths per pixel in {secs:.1} s",
+        "reference: {} rays of the 1920×1080 frame at 1024 paths per pixel in {secs:.1} s, four times",
         rays.len()
     );
-    // Measured against a reference at 1024 paths per pixel: 0.161 over 3×3
-    // blocks, 0.127 over 6×6, 0.200 per ray, 0.035 of the mean (0.237 over
-    // 3×3 blocks before the peak's orders and the fitted octave constants).
-    // The noise floor between two references at 1024 paths per pixel is
-    // 0.100 over 3×3 blocks, 0.070 over 6×6 and 0.014 of the mean. The goal
-    // of 0.10 over 3×3 blocks is not met; the bound held is 0.18.
+    // Measured against the 4096-path reference: 0.081 over 3×3 blocks, 0.057
+    // over 6×6, 0.132 per ray, 0.014 of the mean (the reference's own noise
+    // about 0.043, 0.029 and 0.069); against one 1024-path reference 0.119,
+    // 0.084, 0.156 and 0.007. Before the near-sun shadow rays: 0.161 over
+    // 3×3 blocks against one 1024-path reference, with the aureole through
+    // cloud about half the reference's.
     let (e, m) = errors(&a, &r1, w, 3);
-    assert!(e <= 0.18 && m <= 0.05, "{e} {m}");
+    assert!(e <= 0.10 && m <= 0.03, "{e} {m}");
 }

@@ -40,7 +40,7 @@ use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
 use natura_volume::render::shadow::optical_depth_ray;
 use natura_volume::render::{
-    FastRenderer, FastSettings, ScatterOctaves, Scene, Shadows, SkyRadiance, Sun,
+    FastRenderer, FastSettings, NearSunRays, ScatterOctaves, Scene, Shadows, SkyRadiance, Sun,
 };
 
 use crate::error::{RenderError, Result};
@@ -138,6 +138,12 @@ impl CloudSky {
                 powder: 0.0,
                 min_transmittance: 0.01,
                 truncate_forward_peak: true,
+                // Near the sun its forward peak needs each point's own
+                // sunlight, not the table's interpolation.
+                near_sun: Some(NearSunRays {
+                    within_deg: 3.0,
+                    step: 20.0,
+                }),
             },
         )
         .map_err(|e| crate::scene::clouds_in_section("clouds", e))?;
