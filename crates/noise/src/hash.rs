@@ -291,6 +291,43 @@ static GRAD3_Y: [f64; 16] = grad3_axis(1);
 /// The z components of [`GRAD3_64`].
 static GRAD3_Z: [f64; 16] = grad3_axis(2);
 
+/// The [`GRAD3_64`] components of two gradients side by side, for every
+/// pair of top-four-bit values: entry `16·c0 + c1` holds `[x, y, z]`, each
+/// `[g(c0), g(c1)]`, so a pair of corners loads each component pair with
+/// one 16-byte load (12 KiB; the per-axis tables need two loads and a merge).
+#[repr(align(16))]
+struct Grad3Pairs([[[f64; 2]; 3]; 256]);
+
+/// See [`Grad3Pairs`].
+static GRAD3_PAIRS: Grad3Pairs = {
+    let mut t = [[[0.0; 2]; 3]; 256];
+    let mut i = 0;
+    while i < 256 {
+        let mut a = 0;
+        while a < 3 {
+            t[i][a] = [GRAD3_64[i >> 4][a], GRAD3_64[i & 15][a]];
+            a += 1;
+        }
+        i += 1;
+    }
+    Grad3Pairs(t)
+};
+
+/// [`dot3`] for two corners that share their x and y offsets (a cell's
+/// two z layers): `[g0·(dx, dy, dz[0]), g1·(dx, dy, dz[1])]` for the
+/// gradients of hashes `h0` and `h1`, the same values as two [`dot3`] calls,
+/// each component pair one table load.
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3_pair(h0: u32, h1: u32, dx: f64, dy: f64, dz: [f64; 2]) -> [f64; 2] {
+    let g = &GRAD3_PAIRS.0[(((h0 >> 24) & 0xF0) | (h1 >> 28)) as usize];
+    let mut r = [0.0; 2];
+    for k in 0..2 {
+        r[k] = g[0][k] * dx + g[1][k] * dy + g[2][k] * dz[k];
+    }
+    r
+}
+
 /// [`dot3`] in the form that vectorises across SIMD lanes: the gradient has
 /// two non-zero components `±1`, so `g·d` is the signed sum `±u ± v` of two
 /// of the offsets, picked by comparisons and signed by a sign-bit xor. The
@@ -358,6 +395,27 @@ mod tests {
                         assert_eq!(a, b, "c {c} ({dx}, {dy}, {dz})");
                         if a != 0.0 {
                             assert_eq!(a.to_bits(), b.to_bits(), "c {c}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The pair form equals [`dot3`] on each corner, bit for bit, for every
+    /// pair of gradients.
+    #[test]
+    fn dot3_pair_equals_dot3_per_corner() {
+        let offsets = [0.0, -0.0, 0.375, -0.625, 0.999_999, -1.0, 1.0e-9];
+        for c0 in 0..16u32 {
+            for c1 in 0..16u32 {
+                let (h0, h1) = ((c0 << 28) | 0x0765_4321, (c1 << 28) | 0x0ABC_DEF1);
+                for &dx in &offsets {
+                    for &dy in &offsets {
+                        for (&z0, &z1) in offsets.iter().zip(offsets.iter().rev()) {
+                            let [a, b] = dot3_pair(h0, h1, dx, dy, [z0, z1]);
+                            assert_eq!(a.to_bits(), dot3(h0, dx, dy, z0).to_bits(), "{c0} {c1}");
+                            assert_eq!(b.to_bits(), dot3(h1, dx, dy, z1).to_bits(), "{c0} {c1}");
                         }
                     }
                 }

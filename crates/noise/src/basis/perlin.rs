@@ -37,9 +37,9 @@ use crate::basis::Fade;
 use crate::basis::lattice::lattice_sum;
 use crate::field::{Field, Lattice3};
 use crate::hash::{
-    PX, PY, PZ, corner_spread, dot2, dot3, dot3_lanes, grad1, grad2, grad3, grad4, seed32,
+    PX, PY, PZ, corner_spread, dot2, dot3_lanes, dot3_pair, grad1, grad2, grad3, grad4, seed32,
 };
-use crate::lanes::{Kernel, Simd, run, split_fast, split_n};
+use crate::lanes::{Kernel, Simd, run, split, split_fast, split_n};
 
 mod points;
 mod rows;
@@ -277,14 +277,17 @@ impl Field for Perlin {
 
     #[inline(always)]
     fn eval3(&self, p: DVec3) -> f64 {
-        let ([ix, iy, iz], [fx, fy, fz]) = split_n(p.to_array());
+        // x and y as one packed pair, z on its own: split as a third,
+        // scalar lane of `split_n`, z's floor correction becomes a branch.
+        let ([ix, iy], [fx, fy]) = split_n([p.x, p.y]);
+        let (iz, fz) = split(p.z);
         with_fade!(self.fade, |f| cell3(
             self.s,
             (ix, fx),
             (iy, fy),
             (iz, fz),
             f,
-            dot3
+            dot3_pair
         )) * self.k3()
     }
 
@@ -377,7 +380,10 @@ pub(crate) fn cell2(
 /// The model in 3-D (unnormalised): the eight corners blended along x
 /// within each of the cell's four x edges, then along y, then z. The two z
 /// layers are computed side by side (`[z0, z1]` pairs), so a scalar caller's
-/// corners pair up in two-lane registers.
+/// corners pair up in two-lane registers: `dot` gives the gradient dots of
+/// one (x, y) corner's two z layers, [`dot3_pair`] (one table load per
+/// component pair, for one point) or [`dot3_lanes`] per layer (for SIMD
+/// lanes).
 #[inline(always)]
 pub(crate) fn cell3(
     seed: u32,
@@ -385,7 +391,7 @@ pub(crate) fn cell3(
     (iy, fy): (u32, f64),
     (iz, fz): (u32, f64),
     fade: impl Fn(f64) -> f64,
-    dot: impl Fn(u32, f64, f64, f64) -> f64,
+    dot: impl Fn(u32, u32, f64, f64, [f64; 2]) -> [f64; 2],
 ) -> f64 {
     let x0 = ix.wrapping_mul(PX);
     let x1 = x0.wrapping_add(PX);
@@ -402,9 +408,8 @@ pub(crate) fn cell3(
     let mut n = [[[0.0; 2]; 2]; 2];
     for a in 0..2 {
         for b in 0..2 {
-            for k in 0..2 {
-                n[a][b][k] = dot(corner_spread(xs[a], ys[b] ^ z[k]), dx[a], dy[b], dz[k]);
-            }
+            let h = |k: usize| corner_spread(xs[a], ys[b] ^ z[k]);
+            n[a][b] = dot(h(0), h(1), dx[a], dy[b], dz);
         }
     }
     let u = fade(fx);
@@ -430,6 +435,12 @@ pub(crate) fn cell3(
 fn dot2_bits(h: u32, dx: f64, dy: f64) -> f64 {
     let (gx, gy) = grad2(h);
     f64::from(gx) * dx + f64::from(gy) * dy
+}
+
+/// [`dot3_lanes`] for a cell's two z layers (the lanes' form of [`dot3_pair`]).
+#[inline(always)]
+fn dot3_lanes_pair(h0: u32, h1: u32, dx: f64, dy: f64, dz: [f64; 2]) -> [f64; 2] {
+    [dot3_lanes(h0, dx, dy, dz[0]), dot3_lanes(h1, dx, dy, dz[1])]
 }
 
 /// Octaves evaluated together, as SIMD lanes.
@@ -538,7 +549,7 @@ impl Kernel for Octaves3<'_> {
                 let mut v = [0.0f64; OCTAVE_LANES];
                 for l in 0..OCTAVE_LANES {
                     let (sx, sy, sz) = (split_fast(x[l]), split_fast(y[l]), split_fast(z[l]));
-                    v[l] = cell3(n.s, sx, sy, sz, fade, dot3_lanes) * k;
+                    v[l] = cell3(n.s, sx, sy, sz, fade, dot3_lanes_pair) * k;
                 }
                 *o = v;
             }
