@@ -18,6 +18,15 @@ pub enum Boundary<T> {
     Constant(T),
 }
 
+/// Hermite smoothstep of `x` between edges `a` and `b` (either order): 0 at
+/// `a`, 1 at `b`, `3t² − 2t³` between, with `t` clamped to `[0, 1]`.
+#[inline]
+#[must_use]
+pub fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
 /// Values that can be linearly interpolated with an `f32` weight.
 ///
 /// Implemented for `f32`, `f64` and the `glam` float vectors; implement it for

@@ -59,13 +59,7 @@ struct Albedos {
     sand: Vec3,
 }
 
-/// Hermite smoothstep of `x` between edges `a` and `b` (either order).
-#[inline]
-#[must_use]
-pub fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
-    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
+pub use natura_core::smoothstep;
 
 impl Materials {
     /// Builds the mapping from the scene's material description (validated by

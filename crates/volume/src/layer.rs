@@ -11,7 +11,7 @@
 //! two-level idea again: a smooth macrostructure and a noise microstructure.
 
 use glam::{DVec2, DVec3, Vec3};
-use natura_core::Aabb;
+use natura_core::{Aabb, smoothstep};
 use natura_noise::{Fbm, Field, Perlin, Spectral, Worley, WorleyParams};
 
 use crate::density::{Density, check_bounds};
@@ -128,12 +128,6 @@ pub struct LayerClouds {
 #[inline]
 fn remap(v: f32, lo: f32, hi: f32) -> f32 {
     ((v - lo) / (hi - lo).max(1e-6)).clamp(0.0, 1.0)
-}
-
-#[inline]
-fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
-    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 impl LayerClouds {

@@ -30,7 +30,7 @@
 //! smoothstep riser, the fading by slope and altitude, and the warp are this
 //! module's choices.
 
-use natura_core::{Grid2, HeightField};
+use natura_core::{Grid2, HeightField, smoothstep};
 
 use crate::error::{Result, check_grid, in_range, positive, same_size};
 
@@ -99,11 +99,6 @@ impl TerraceParams {
             + self.flatness * smoothstep(1.0 - self.cliff_fraction, 1.0, f);
         b * (k + t) - warp
     }
-}
-
-fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
-    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 /// Terraces `hf` in place (see the module docs): each sample moves toward

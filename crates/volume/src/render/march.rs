@@ -360,8 +360,7 @@ impl<'s> FastRenderer<'s> {
                 let mu = d.dot(s.direction);
                 let inner = n.within_deg.to_radians().cos();
                 let outer = (1.5 * n.within_deg).to_radians().cos();
-                let t = ((mu - outer) / (inner - outer)).clamp(0.0, 1.0);
-                t * t * (3.0 - 2.0 * t)
+                natura_core::smoothstep(outer, inner, mu)
             }
             _ => 0.0,
         }
@@ -374,16 +373,23 @@ impl<'s> FastRenderer<'s> {
         let Some(n) = self.settings.near_sun.filter(|_| near > 0.0) else {
             return self.tau_sun(p, l);
         };
-        let sc = self.scene;
-        let ray = if sc.blocked(p, l) {
-            BLOCKED_DEPTH
-        } else {
-            optical_depth_ray(sc.density, self.medium.extinction, p, l, n.step)
-        };
+        let ray = self.tau_ray(p, l, n.step);
         if near >= 1.0 {
             ray
         } else {
             (1.0 - near) * self.tau_sun(p, l) + near * ray
+        }
+    }
+
+    /// Optical depth from `p` toward `l` by a direct shadow ray in steps of
+    /// `h` (solids included).
+    #[inline]
+    fn tau_ray(&self, p: Vec3, l: Vec3, h: f32) -> f32 {
+        let sc = self.scene;
+        if sc.blocked(p, l) {
+            BLOCKED_DEPTH
+        } else {
+            optical_depth_ray(sc.density, self.medium.extinction, p, l, h)
         }
     }
 
@@ -405,13 +411,7 @@ impl<'s> FastRenderer<'s> {
                     t.optical_depth(p)
                 }
             }
-            (None, Shadows::Rays(h)) => {
-                if sc.blocked(p, l) {
-                    BLOCKED_DEPTH
-                } else {
-                    optical_depth_ray(sc.density, self.medium.extinction, p, l, h)
-                }
-            }
+            (None, Shadows::Rays(h)) => self.tau_ray(p, l, h),
             (None, Shadows::Table(_)) => 0.0,
         }
     }
