@@ -5,14 +5,14 @@
 use glam::Vec3;
 use natura_core::{HeightField, NoProgress, Seed};
 use natura_render::clouds::CloudSky;
-use natura_render::material::{Materials, SurfaceSample};
+use natura_render::material::Materials;
 use natura_render::strata::SurfaceTextures;
 use natura_render::{Renderer, SceneDesc, World};
 use natura_trace::Ray;
 
 mod common;
 
-use common::{bits, render_on as render};
+use common::{bits, cliff as rock, render_on as render};
 
 /// The default scene at 128² and 64 × 36, with coarse cloud voxels.
 fn small_scene() -> SceneDesc {
@@ -145,15 +145,6 @@ fn clouds_off_coverage_zero_and_density_zero_are_the_same_image() {
     let mut thin = small_scene();
     thin.clouds.layer.density_scale = 0.0;
     assert_eq!(bits(&render(&thin, 2)), reference);
-}
-
-fn rock(z: f32) -> SurfaceSample {
-    SurfaceSample {
-        point: Vec3::new(1234.0, 567.0, z),
-        normal: Vec3::new(1.0, 0.0, 0.3).normalize(),
-        deposition_m: 0.0,
-        wetness: 0.1,
-    }
 }
 
 #[test]

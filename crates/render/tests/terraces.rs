@@ -4,9 +4,13 @@
 
 use glam::Vec3;
 use natura_core::{HeightField, NoProgress, Seed};
-use natura_render::material::{Materials, SurfaceSample};
+use natura_render::material::Materials;
 use natura_render::strata::SurfaceTextures;
 use natura_render::{SceneDesc, World};
+
+mod common;
+
+use common::cliff;
 
 /// A 192² patch of the default range at 30 m, lightly eroded, no coast.
 fn patch(terraces: bool) -> HeightField {
@@ -89,15 +93,6 @@ fn terraced_worlds_are_the_same_on_one_and_two_threads() {
             .install(|| patch(true))
     };
     assert_eq!(build(1), build(2));
-}
-
-fn cliff(z: f32) -> SurfaceSample {
-    SurfaceSample {
-        point: Vec3::new(1234.0, 567.0, z),
-        normal: Vec3::new(1.0, 0.0, 0.3).normalize(),
-        deposition_m: 0.0,
-        wetness: 0.1,
-    }
 }
 
 #[test]

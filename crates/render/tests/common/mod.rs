@@ -2,7 +2,9 @@
 //! bit-exact image comparison.
 #![allow(dead_code)] // each test binary uses its own part
 
+use glam::Vec3;
 use natura_core::{Image, NoProgress};
+use natura_render::material::SurfaceSample;
 use natura_render::{Rendered, SceneDesc, World, render_world};
 
 /// The default scene shrunk to a 128² terrain 480 m a cell, lightly eroded,
@@ -42,4 +44,14 @@ pub fn render_on(scene: &SceneDesc, threads: usize) -> Rendered {
         .build()
         .unwrap()
         .install(|| render_world(&world, &NoProgress).unwrap())
+}
+
+/// A dry, steep (rock) surface sample at altitude `z` (normal 73° from up).
+pub fn cliff(z: f32) -> SurfaceSample {
+    SurfaceSample {
+        point: Vec3::new(1234.0, 567.0, z),
+        normal: Vec3::new(1.0, 0.0, 0.3).normalize(),
+        deposition_m: 0.0,
+        wetness: 0.1,
+    }
 }
