@@ -12,9 +12,9 @@ use natura_volume::render::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 use natura_volume::scene::{Cloudscape, CloudscapeParams};
 use rayon::prelude::*;
 
-fn lum(c: Vec3) -> f64 {
-    f64::from(natura_core::colour::luminance(c))
-}
+mod common;
+
+use common::{frame_rays, lum, reference_lum};
 
 /// Relative luminance error per pixel, over `b × b` blocks (to average the
 /// reference's noise), and of the mean.
@@ -150,27 +150,10 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     let cs = Cloudscape::new(&p, 11).unwrap();
     let scene = cs.scene();
     let cam = cs.camera();
-    let stride = 20;
-    let (w, h) = (cam.width / stride, cam.height / stride);
-    let rays: Vec<(usize, usize)> = (0..h)
-        .flat_map(|j| (0..w).map(move |i| (i * stride + stride / 2, j * stride + stride / 2)))
-        .collect();
+    let (rays, w) = frame_rays(&cam, 20);
     let spp = 1024;
     let fast = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
-    let reference = |seed: u64| {
-        let r = ReferenceRenderer::new(
-            &scene,
-            ReferenceSettings {
-                samples_per_pixel: spp,
-                seed,
-                ..ReferenceSettings::default()
-            },
-        )
-        .unwrap();
-        rays.par_iter()
-            .map(|&(x, y)| lum(r.pixel(cam.position, cam.ray(x, y), x, y)))
-            .collect::<Vec<f64>>()
-    };
+    let reference = |seed: u64| reference_lum(&scene, &cam, &rays, spp, seed);
     let a: Vec<f64> = rays
         .par_iter()
         .map(|&(x, y)| lum(fast.radiance(cam.position, cam.ray(x, y))))

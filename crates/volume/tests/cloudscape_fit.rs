@@ -25,15 +25,13 @@
 //! 10–50 % too bright, and a few blocks are the 256-path references' own
 //! fireflies (one reference four times the other).
 
-use natura_volume::render::{
-    FastRenderer, LookAtCamera, ReferenceRenderer, ReferenceSettings, ScatterOctaves,
-};
+use natura_volume::render::{FastRenderer, LookAtCamera, ScatterOctaves};
 use natura_volume::scene::{Cloudscape, CloudscapeParams};
 use rayon::prelude::*;
 
-fn lum(c: glam::Vec3) -> f64 {
-    f64::from(natura_core::colour::luminance(c))
-}
+mod common;
+
+use common::{frame_rays, lum, reference_lum};
 
 /// Sums of `v` (row-major, `w` wide) over `b × b` blocks.
 fn blocks(v: &[f64], w: usize, b: usize) -> Vec<f64> {
@@ -68,26 +66,8 @@ fn training(seed: u64, spp: u32) -> Training {
 fn training_with(seed: u64, spp: u32, ref_seed: u64) -> Training {
     let cs = Cloudscape::new(&CloudscapeParams::default(), seed).unwrap();
     let cam = cs.camera();
-    let stride = 20;
-    let (w, h) = (cam.width / stride, cam.height / stride);
-    let rays: Vec<(usize, usize)> = (0..h)
-        .flat_map(|j| (0..w).map(move |i| (i * stride + stride / 2, j * stride + stride / 2)))
-        .collect();
-    let reference = {
-        let scene = cs.scene();
-        let r = ReferenceRenderer::new(
-            &scene,
-            ReferenceSettings {
-                samples_per_pixel: spp,
-                seed: ref_seed,
-                ..ReferenceSettings::default()
-            },
-        )
-        .unwrap();
-        rays.par_iter()
-            .map(|&(x, y)| lum(r.pixel(cam.position, cam.ray(x, y), x, y)))
-            .collect()
-    };
+    let (rays, w) = frame_rays(&cam, 20);
+    let reference = reference_lum(&cs.scene(), &cam, &rays, spp, ref_seed);
     Training {
         cs,
         cam,
