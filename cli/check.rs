@@ -35,8 +35,7 @@ impl Problems {
     /// The problems, with a last line counting those left out.
     pub fn into_lines(mut self) -> Vec<String> {
         if self.more > 0 {
-            self.list
-                .push(format!("… and {} more problems", self.more));
+            self.list.push(format!("… and {} more problems", self.more));
         }
         self.list
     }
@@ -55,7 +54,13 @@ pub fn ranges(indices: &[u32]) -> String {
     let shown = runs.len().min(20);
     let mut parts: Vec<String> = runs[..shown]
         .iter()
-        .map(|&(a, b)| if a == b { a.to_string() } else { format!("{a} to {b}") })
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a} to {b}")
+            }
+        })
         .collect();
     let rest: u64 = runs[shown..]
         .iter()
@@ -148,7 +153,8 @@ pub fn check_lines(mut lines: Vec<TileLine>, frame: u32, problems: &mut Problems
                 first.tile
             ));
         }
-        let rect = grid.map(|(c, r)| tiles::cell(first.frame_width, first.frame_height, c, r, l.tile));
+        let rect =
+            grid.map(|(c, r)| tiles::cell(first.frame_width, first.frame_height, c, r, l.tile));
         if rect.is_none_or(|r| (r.x, r.y, r.width, r.height) != (l.x, l.y, l.width, l.height)) {
             problems.push(format!("{t}: its rectangle is not tile {} of {n}", l.tile));
         }

@@ -207,7 +207,13 @@ pub fn openjd(job: &Job) -> Result<String> {
         .file_stem()
         .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect();
     let mut t = String::new();
     let _ = write!(

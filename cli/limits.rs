@@ -53,7 +53,9 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let f = dir.join("big.json");
         std::fs::write(&f, vec![b' '; 101]).unwrap();
-        let e = read_capped(&f, 100, "tile manifest").unwrap_err().to_string();
+        let e = read_capped(&f, 100, "tile manifest")
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("big.json") && e.contains("101 bytes") && e.contains("100 bytes"),
             "{e}"

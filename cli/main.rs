@@ -148,7 +148,12 @@ struct SlurmArgs {
 
 /// Parses `A-B` (or `A`) into an inclusive frame range.
 fn parse_frames(text: &str) -> std::result::Result<(u32, u32), String> {
-    let bad = || format!("expected A-B or A with 0 ≤ A ≤ B < {}", manifest::MAX_FRAMES);
+    let bad = || {
+        format!(
+            "expected A-B or A with 0 ≤ A ≤ B < {}",
+            manifest::MAX_FRAMES
+        )
+    };
     let (a, b) = text.split_once('-').unwrap_or((text, text));
     let (a, b): (u32, u32) = (
         a.trim().parse().map_err(|_| bad())?,

@@ -107,10 +107,7 @@ pub fn tile_sha256(scene_sha256: &str, frame: u32, tile: u32, tiles: u32, exr: &
 /// The EXR file of tile `tile` of `tiles` of frame `frame`, relative to the
 /// output directory.
 pub fn tile_file(frame: u32, tile: u32, tiles: u32) -> String {
-    format!(
-        "tiles/frame_{frame:04}/{}.exr",
-        tile_stem(tile, tiles)
-    )
+    format!("tiles/frame_{frame:04}/{}.exr", tile_stem(tile, tiles))
 }
 
 /// `text` as a quoted string for a message, cut to 80 characters.
@@ -123,7 +120,9 @@ pub fn shown(text: &str) -> String {
 }
 
 fn is_sha256(s: &str) -> bool {
-    s.len() == 64 && s.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+    s.len() == 64
+        && s.bytes()
+            .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
 }
 
 fn is_label(s: &str) -> bool {
@@ -180,7 +179,10 @@ impl TileLine {
                 return bad(field, shown(v), "1 to 64 printable ASCII characters");
             }
         }
-        for (field, v) in [("scene_sha256", &self.scene_sha256), ("sha256", &self.sha256)] {
+        for (field, v) in [
+            ("scene_sha256", &self.scene_sha256),
+            ("sha256", &self.sha256),
+        ] {
             if !is_sha256(v) {
                 return bad(field, shown(v), "a SHA-256 of 64 lower-case hex digits");
             }
@@ -216,7 +218,13 @@ impl TileLine {
         }
         for (field, at, len, side, side_name) in [
             ("width", self.x, self.width, self.frame_width, "frame_width"),
-            ("height", self.y, self.height, self.frame_height, "frame_height"),
+            (
+                "height",
+                self.y,
+                self.height,
+                self.frame_height,
+                "frame_height",
+            ),
         ] {
             if len == 0 || u64::from(at) + u64::from(len) > u64::from(side) {
                 return bad(
@@ -236,7 +244,11 @@ impl TileLine {
         }
         let file = tile_file(self.frame, self.tile, self.tiles);
         if self.file != file {
-            return bad("file", shown(&self.file), &format!("{file:?}, this tile's own file"));
+            return bad(
+                "file",
+                shown(&self.file),
+                &format!("{file:?}, this tile's own file"),
+            );
         }
         Ok(())
     }

@@ -317,5 +317,7 @@ fn farm_job_files_are_written_and_valid() {
     }
 }
 
+#[path = "farm/cli.rs"]
 mod cli;
+#[path = "farm/robust.rs"]
 mod robust;

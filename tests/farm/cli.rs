@@ -10,7 +10,10 @@ use super::{SCENE, natura, ok, s, scratch};
 /// Status code and standard error of a run.
 fn status(args: &[&str]) -> (Option<i32>, String) {
     let o = natura(1, args);
-    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
 }
 
 #[test]
@@ -20,7 +23,10 @@ fn every_command_explains_itself() {
         assert!(help.contains(cmd), "{help}");
     }
     let version = ok(1, &["--version"]);
-    assert_eq!(version.trim(), format!("natura {}", env!("CARGO_PKG_VERSION")));
+    assert_eq!(
+        version.trim(),
+        format!("natura {}", env!("CARGO_PKG_VERSION"))
+    );
     for (args, want) in [
         (&["render", "--help"][..], "[default: 0]"),
         (&["assemble", "--help"], "--frame"),
@@ -31,7 +37,10 @@ fn every_command_explains_itself() {
         (&["print-scene", "--help"], "animation"),
     ] {
         let text = ok(1, args);
-        assert!(text.contains(want) && text.contains("Usage"), "{args:?}: {text}");
+        assert!(
+            text.contains(want) && text.contains("Usage"),
+            "{args:?}: {text}"
+        );
     }
     // A bare call prints the usage and fails with status 2.
     let (code, err) = status(&[]);
@@ -44,17 +53,55 @@ fn usage_errors_name_the_flag_and_exit_2() {
     let out = scratch("usage");
     let o = s(&out);
     for (args, names) in [
-        (&["render", SCENE, "--out", o, "--frobnicate", "1"][..], "--frobnicate"),
+        (
+            &["render", SCENE, "--out", o, "--frobnicate", "1"][..],
+            "--frobnicate",
+        ),
         (&["render", SCENE, "--out"], "--out"),
         (&["render", SCENE], "--out"),
         (&["render", SCENE, "--out", o, "--frame", "x"], "--frame"),
-        (&["render", SCENE, "--out", o, "--frame", "1", "--frame", "2"], "--frame"),
-        (&["render", SCENE, "--out", o, "--tile", "0/70000"], "--tile"),
-        (&["farm", "slurm", SCENE, "--out", o, "--tiles", "0"], "--tiles"),
-        (&["farm", "slurm", SCENE, "--out", o, "--tiles", "4", "--throttle", "0"], "--throttle"),
-        (&["farm", "slurm", SCENE, "--out", o, "--tiles", "4", "--dir", o], "--dir"),
-        (&["farm", "openjd", SCENE, "--out", o, "--tiles", "4", "--file", o], "--file"),
-        (&["prepare", SCENE, "--out", o, "--frames", "2-1"], "--frames"),
+        (
+            &["render", SCENE, "--out", o, "--frame", "1", "--frame", "2"],
+            "--frame",
+        ),
+        (
+            &["render", SCENE, "--out", o, "--tile", "0/70000"],
+            "--tile",
+        ),
+        (
+            &["farm", "slurm", SCENE, "--out", o, "--tiles", "0"],
+            "--tiles",
+        ),
+        (
+            &[
+                "farm",
+                "slurm",
+                SCENE,
+                "--out",
+                o,
+                "--tiles",
+                "4",
+                "--throttle",
+                "0",
+            ],
+            "--throttle",
+        ),
+        (
+            &[
+                "farm", "slurm", SCENE, "--out", o, "--tiles", "4", "--dir", o,
+            ],
+            "--dir",
+        ),
+        (
+            &[
+                "farm", "openjd", SCENE, "--out", o, "--tiles", "4", "--file", o,
+            ],
+            "--file",
+        ),
+        (
+            &["prepare", SCENE, "--out", o, "--frames", "2-1"],
+            "--frames",
+        ),
         (&["farm", "nomad", SCENE], "nomad"),
     ] {
         let (code, err) = status(args);
@@ -62,7 +109,10 @@ fn usage_errors_name_the_flag_and_exit_2() {
         assert!(err.contains(names), "{args:?}: {err}");
     }
     let (code, err) = status(&["render", SCENE, "--out", o, "--tile", "0/70000"]);
-    assert!(code == Some(2) && err.contains("0/70000") && err.contains("65536"), "{err}");
+    assert!(
+        code == Some(2) && err.contains("0/70000") && err.contains("65536"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -76,14 +126,30 @@ fn an_unwritable_out_is_refused_by_name_before_any_work() {
         &["prepare", SCENE, "--out", s(&bad)],
         &["farm", "slurm", SCENE, "--out", s(&bad), "--tiles", "4"],
         &["farm", "openjd", SCENE, "--out", s(&bad), "--tiles", "4"],
-        &["farm", "openjd", SCENE, "--out", s(&dir.join("ok")), "--tiles", "4", "--job-dir", s(&bad)],
+        &[
+            "farm",
+            "openjd",
+            SCENE,
+            "--out",
+            s(&dir.join("ok")),
+            "--tiles",
+            "4",
+            "--job-dir",
+            s(&bad),
+        ],
     ] {
         let (code, err) = status(args);
         assert_eq!(code, Some(2), "{args:?}: {err}");
-        assert!(err.contains(s(&bad)) && err.contains("cannot write"), "{args:?}: {err}");
+        assert!(
+            err.contains(s(&bad)) && err.contains("cannot write"),
+            "{args:?}: {err}"
+        );
     }
     // Nothing written.
-    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(left, ["a-file"]);
 }
 
@@ -92,16 +158,49 @@ fn job_files_go_into_the_job_directory_for_both_engines() {
     let out = scratch("jobdir");
     let jobs = out.join("jobs");
     let o = s(&out);
-    ok(1, &["farm", "slurm", SCENE, "--out", o, "--tiles", "4", "--job-dir", s(&jobs)]);
-    ok(1, &["farm", "openjd", SCENE, "--out", o, "--tiles", "4", "--job-dir", s(&jobs)]);
-    for f in ["prepare.sbatch", "render.sbatch", "assemble.sbatch", "submit.sh", "natura.openjd.yaml"] {
+    ok(
+        1,
+        &[
+            "farm",
+            "slurm",
+            SCENE,
+            "--out",
+            o,
+            "--tiles",
+            "4",
+            "--job-dir",
+            s(&jobs),
+        ],
+    );
+    ok(
+        1,
+        &[
+            "farm",
+            "openjd",
+            SCENE,
+            "--out",
+            o,
+            "--tiles",
+            "4",
+            "--job-dir",
+            s(&jobs),
+        ],
+    );
+    for f in [
+        "prepare.sbatch",
+        "render.sbatch",
+        "assemble.sbatch",
+        "submit.sh",
+        "natura.openjd.yaml",
+    ] {
         assert!(jobs.join(f).is_file(), "{f}");
     }
 }
 
 /// The fenced blocks of `lang` in docs/farm.md.
 fn doc_blocks(lang: &str) -> Vec<String> {
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/farm.md")).unwrap();
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/farm.md")).unwrap();
     let mut blocks = Vec::new();
     let mut current: Option<String> = None;
     for line in doc.lines() {
@@ -122,7 +221,9 @@ fn doc_blocks(lang: &str) -> Vec<String> {
 /// `[animation]`, replaced by the doc's animation block, as the doc says.
 fn doc_scene(dir: &Path) -> std::path::PathBuf {
     let printed = ok(1, &["print-scene"]);
-    let at = printed.find("\n[animation]").expect("print-scene ends with [animation]");
+    let at = printed
+        .find("\n[animation]")
+        .expect("print-scene ends with [animation]");
     let block = doc_blocks("toml")
         .into_iter()
         .find(|b| b.starts_with("[animation]"))
@@ -137,7 +238,18 @@ fn the_docs_animation_block_pastes_into_print_scene() {
     let dir = scratch("doc-scene");
     let scene = doc_scene(&dir);
     // The pasted scene loads: a job over its 48 frames is written.
-    let out = ok(1, &["farm", "openjd", s(&scene), "--out", s(&dir.join("run")), "--tiles", "4"]);
+    let out = ok(
+        1,
+        &[
+            "farm",
+            "openjd",
+            s(&scene),
+            "--out",
+            s(&dir.join("run")),
+            "--tiles",
+            "4",
+        ],
+    );
     assert!(out.contains("natura.openjd.yaml"), "{out}");
     let text = std::fs::read_to_string(dir.join("run/natura.openjd.yaml")).unwrap();
     assert!(text.contains("range: '0-47'"), "{text}");
@@ -150,20 +262,33 @@ fn the_farm_commands_of_the_docs_run_as_written() {
     let mut ran = 0;
     for block in doc_blocks("sh") {
         for line in block.lines() {
-            let Some(rest) = line.strip_prefix("natura farm ") else { continue };
-            let args: Vec<&str> = rest.split_whitespace().take_while(|w| !w.starts_with('#')).collect();
+            let Some(rest) = line.strip_prefix("natura farm ") else {
+                continue;
+            };
+            let args: Vec<&str> = rest
+                .split_whitespace()
+                .take_while(|w| !w.starts_with('#'))
+                .collect();
             let o = Command::new(env!("CARGO_BIN_EXE_natura"))
                 .arg("farm")
                 .args(&args)
                 .current_dir(&dir)
                 .output()
                 .unwrap();
-            assert!(o.status.success(), "{line}: {}", String::from_utf8_lossy(&o.stderr));
+            assert!(
+                o.status.success(),
+                "{line}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
             ran += 1;
         }
     }
     assert!(ran >= 2, "docs/farm.md shows both engines");
-    for f in ["run/slurm/submit.sh", "run/slurm/render.sbatch", "run/natura.openjd.yaml"] {
+    for f in [
+        "run/slurm/submit.sh",
+        "run/slurm/render.sbatch",
+        "run/natura.openjd.yaml",
+    ] {
         assert!(dir.join(f).is_file(), "{f}");
     }
 }
@@ -235,7 +360,11 @@ fn a_closed_pipe_ends_print_scene_quietly() {
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success() && err.is_empty(), "{:?}: {err}", o.status);
+    assert!(
+        o.status.success() && err.is_empty(),
+        "{:?}: {err}",
+        o.status
+    );
     // And through a shell, as people type it.
     let sh = Command::new("bash")
         .arg("-c")
@@ -245,6 +374,10 @@ fn a_closed_pipe_ends_print_scene_quietly() {
         ))
         .output()
         .unwrap();
-    assert!(sh.status.success(), "{}", String::from_utf8_lossy(&sh.stderr));
+    assert!(
+        sh.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sh.stderr)
+    );
     assert_eq!(String::from_utf8_lossy(&sh.stdout).lines().count(), 1);
 }
