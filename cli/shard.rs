@@ -169,7 +169,7 @@ pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
     let mut lines = Vec::new();
     for e in entries.filter_map(|e| e.ok()) {
         let p = e.path();
-        if !p.extension().is_some_and(|x| x == "json") {
+        if p.extension().is_none_or(|x| x != "json") {
             continue;
         }
         if lines.len() == MAX_TILES as usize {
