@@ -4,7 +4,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 export CARGO_TERM_COLOR=never
 scene="${NATURA_FARM_SCENE:-tests/data/farm_tiny.toml}"
 cargo build --release --quiet --bin natura
-natura="$PWD/target/release/natura"
+natura="${CARGO_TARGET_DIR:-$PWD/target}/release/natura"
 
 # same_as_single_process OUT FRAME...: every assembled frame's EXR and PNG
 # equal, byte for byte, the frame rendered whole by one process.

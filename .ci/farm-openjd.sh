@@ -5,7 +5,7 @@
 # locally, and the frames must equal single-process renders.
 set -euo pipefail
 if ! command -v openjd >/dev/null; then
-  echo "openjd not found: skipping (pip install openjd-cli)"; exit 0
+  echo "FAIL: openjd not found (pip install openjd-cli; .ci/run installs it)" >&2; exit 1
 fi
 source "$(dirname "$0")/farm-common.sh"
 out="$PWD/target/ci-farm/openjd"

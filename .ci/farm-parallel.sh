@@ -4,7 +4,7 @@
 # checks and joins them, and the frames must equal single-process renders.
 set -euo pipefail
 if ! command -v parallel >/dev/null; then
-  echo "GNU parallel not found: skipping (apt-get install parallel)"; exit 0
+  echo "FAIL: GNU parallel not found (apt-get install parallel; .ci/run installs it)" >&2; exit 1
 fi
 source "$(dirname "$0")/farm-common.sh"
 out="target/ci-farm/parallel"

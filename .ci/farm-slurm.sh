@@ -6,25 +6,20 @@
 # submit.sh, waits, checks every frame against a single-process render, and
 # prints the wall time of the Slurm job against one process rendering the
 # same frames. Needs root and Debian's slurm-wlm and munge packages
-# (apt-get install slurm-wlm munge; with NATURA_FARM_INSTALL=1 the script
-# installs them itself). CI runs it when it runs as root (about 35 s on the
-# tiny scene) and skips it, with a message, when the tools are missing.
+# (apt-get install slurm-wlm munge; .ci/run installs them) and fails without
+# them (about 35 s on the tiny scene).
 set -euo pipefail
 missing=""
 for tool in slurmctld slurmd sbatch munged; do
   command -v "$tool" >/dev/null || missing="$missing $tool"
 done
-if [ -n "$missing" ] && [ "${NATURA_FARM_INSTALL:-0}" = 1 ] && command -v apt-get >/dev/null; then
-  echo "installing Debian's slurm-wlm and munge (missing:$missing)"
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -q slurm-wlm munge
-  missing=""
-  for tool in slurmctld slurmd sbatch munged; do
-    command -v "$tool" >/dev/null || missing="$missing $tool"
-  done
-fi
 if [ -n "$missing" ]; then
-  echo "not found:$missing: skipping (apt-get install slurm-wlm munge, or NATURA_FARM_INSTALL=1)"
-  exit 0
+  echo "FAIL: not found:$missing (apt-get install slurm-wlm munge; .ci/run installs them)" >&2
+  exit 1
+fi
+if [ "$(id -u)" != 0 ]; then
+  echo "FAIL: the Slurm cluster starts munge and slurmd, which needs root" >&2
+  exit 1
 fi
 source "$(dirname "$0")/farm-common.sh"
 root="$PWD/target/ci-farm/slurm"

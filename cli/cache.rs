@@ -164,15 +164,30 @@ fn store(file: &Path, kind: Kind, key: &str, size: &str, body: &[u8]) -> Result<
     Ok(natura::core::io::write_bytes_atomic(file, &bytes)?)
 }
 
-/// Reads a cache file written by [`store`], refusing another kind,
+/// Reads a cache file written by [`store`] of at most `limit` bytes (a
+/// larger one is refused before it is read), refusing another kind,
 /// version or key and a payload that does not match its hash. Returns the
 /// size line and the payload.
 fn load(file: &Path, kind: Kind, key: &str, limit: u64) -> Result<(String, Vec<u8>)> {
+    let bytes = crate::limits::read_capped(file, limit, kind.magic)?;
+    parse(bytes, &kind, key, &file.display().to_string())
+}
+
+/// The frame cache held in `bytes` (a whole file, named `name` in errors)
+/// whose key must be `key`: its header checked, then its payload decoded.
+/// (Used by the tests and the `frame_cache` fuzz target.)
+#[allow(dead_code)]
+pub fn parse_frame_cache(bytes: Vec<u8>, key: &str, name: &str) -> Result<FramePrep> {
+    let (_, body) = parse(bytes, &FRAME, key, name)?;
+    frame_from_bytes(&body, Path::new(name))
+}
+
+/// The size line and payload of cache file bytes `bytes` (see [`load`]).
+fn parse(mut bytes: Vec<u8>, kind: &Kind, key: &str, name: &str) -> Result<(String, Vec<u8>)> {
     let refuse = |reason: String| CliError::Cache {
-        path: file.display().to_string(),
+        path: name.to_owned(),
         reason,
     };
-    let mut bytes = natura::core::io::read_file_at_most(file, limit)?;
     let end = bytes
         .windows(2)
         .take(4096)
@@ -195,7 +210,12 @@ fn load(file: &Path, kind: Kind, key: &str, limit: u64) -> Result<(String, Vec<u
     let version = field(1, "natura")?;
     if version != VERSION {
         return Err(refuse(format!(
-            "written by natura {version}, this is natura {VERSION}"
+            "written by natura {}, this is natura {VERSION}",
+            version
+                .chars()
+                .filter(|c| !c.is_control())
+                .take(64)
+                .collect::<String>()
         )));
     }
     if field(2, "key")? != key {
@@ -445,5 +465,34 @@ mod tests {
         let e = load(&w, FRAME, "abc", 1 << 20).unwrap_err().to_string();
         assert!(e.contains("not a natura frame cache"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    proptest::proptest! {
+        /// The fuzz target `frame_cache` in small: a frame cache with any
+        /// byte changed or cut anywhere is refused with an error naming the
+        /// file, or read; never a panic.
+        #[test]
+        fn damaged_frame_caches_never_panic(
+            at in 0usize..400,
+            byte in proptest::num::u8::ANY,
+            cut in 0usize..400,
+        ) {
+            let plant = Plant { x: 1.0, y: 2.0, radius: 0.5, vigor: 1.0, id: 9, species: 1, dominated: true };
+            let body = frame_bytes(&FramePrep { clouds: None, plants: Some(vec![plant; 3]) });
+            let mut file = format!(
+                "natura frame cache\nnatura {VERSION}\nkey k\nsize {}\npayload {}\n\n",
+                body.len(),
+                hex(&Sha256::digest(&body))
+            )
+            .into_bytes();
+            file.extend_from_slice(&body);
+            if at < file.len() {
+                file[at] = byte;
+            }
+            file.truncate(cut.min(file.len()));
+            if let Err(e) = parse_frame_cache(file, "k", "f.bin") {
+                proptest::prop_assert!(e.to_string().contains("f.bin"));
+            }
+        }
     }
 }

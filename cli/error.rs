@@ -8,8 +8,12 @@ use natura::render::RenderError;
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// Bad command-line arguments (exit status 2).
-    #[error("{0}\n(run `natura help` for usage)")]
+    #[error("{0}\n(run `natura --help` for usage)")]
     Usage(String),
+    /// Standard output was closed by its reader (a broken pipe): the
+    /// command ends quietly.
+    #[error("standard output closed")]
+    Closed,
     /// A scene, world or image error from the libraries.
     #[error(transparent)]
     Render(#[from] RenderError),

@@ -4,8 +4,8 @@
 //! natura render SCENE.toml [--frame F] [--tile I/N] --out DIR [--cache DIR]
 //! natura assemble DIR [--frame F]
 //! natura prepare SCENE.toml --out DIR [--frames A-B] [--cache DIR]
-//! natura farm slurm SCENE.toml --out DIR --tiles N [--frames A-B] [--throttle K] [--cpus C] [--dir D]
-//! natura farm openjd SCENE.toml --out DIR --tiles N [--frames A-B] [--file T]
+//! natura farm slurm SCENE.toml --out DIR --tiles N [--frames A-B] [--throttle K] [--cpus C] [--job-dir D]
+//! natura farm openjd SCENE.toml --out DIR --tiles N [--frames A-B] [--job-dir D]
 //! natura print-scene
 //! ```
 //!
@@ -14,8 +14,11 @@
 //! as a single-process `render` without `--tile` writes it. See docs/farm.md.
 
 mod cache;
+mod check;
 mod error;
 mod farm;
+mod interrupt;
+mod limits;
 mod manifest;
 mod shard;
 mod tiles;
@@ -23,155 +26,209 @@ mod tiles;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use clap::{Args, Parser, Subcommand};
+
 use error::{CliError, Result};
+use interrupt::say;
+use limits::{MAX_TASKS, MAX_TILES};
 
-const USAGE: &str = "\
-natura — render scenes as deterministic shards that any farm can run
-
-usage:
-  natura render SCENE.toml [--frame F] [--tile I/N] --out DIR [--cache DIR]
-      without --tile: the whole frame in this process (DIR/frame_FFFF.{exr,png});
-      with --tile: tile I of N (DIR/tiles/frame_FFFF/tile_IIII_of_NNNN.{exr,json})
-  natura assemble DIR [--frame F]
-      check every tile's SHA-256 and write DIR/frame_FFFF.{exr,png} (all frames by default)
-  natura prepare SCENE.toml --out DIR [--frames A-B] [--cache DIR]
-      compute (or check) the world cache shared by every tile and frame, and
-      the frame cache (clouds, forest) each frame's tiles share (all frames by default)
-  natura farm slurm SCENE.toml --out DIR --tiles N [--frames A-B] [--throttle K] [--cpus C] [--dir D]
-      write D (default DIR/slurm): prepare/render/assemble .sbatch and submit.sh
-  natura farm openjd SCENE.toml --out DIR --tiles N [--frames A-B] [--file T]
-      write an Open Job Description template T (default DIR/natura.openjd.yaml)
-  natura print-scene
-      print the built-in scene with every key documented (including [animation])
-
-The cache directory defaults to DIR/cache. Threads: RAYON_NUM_THREADS.
-";
-
-/// The arguments after the command: positionals and `--flag value` pairs.
-struct Args {
-    positional: Vec<String>,
-    flags: Vec<(String, String)>,
+/// natura: render scenes as deterministic shards that any farm can run.
+///
+/// A tile is a pure function of scene, frame, tile, seed and version;
+/// `assemble` checks every tile's SHA-256 and writes the frame byte for
+/// byte as a single-process render writes it. Threads per process:
+/// RAYON_NUM_THREADS (the result does not depend on it). See docs/farm.md.
+#[derive(Debug, Parser)]
+#[command(name = "natura", version, arg_required_else_help = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
 }
 
-impl Args {
-    fn parse(args: &[String]) -> Result<Self> {
-        let (mut positional, mut flags) = (Vec::new(), Vec::new());
-        let mut it = args.iter();
-        while let Some(a) = it.next() {
-            if let Some(name) = a.strip_prefix("--") {
-                let v = it
-                    .next()
-                    .ok_or_else(|| CliError::usage(format!("--{name} needs a value")))?;
-                flags.push((name.to_owned(), v.clone()));
-            } else {
-                positional.push(a.clone());
-            }
-        }
-        Ok(Self { positional, flags })
-    }
-
-    /// Takes flag `name`, refusing it twice.
-    fn take(&mut self, name: &str) -> Result<Option<String>> {
-        let mut found = None;
-        while let Some(i) = self.flags.iter().position(|(n, _)| n == name) {
-            if found.is_some() {
-                return Err(CliError::usage(format!("--{name} given twice")));
-            }
-            found = Some(self.flags.remove(i).1);
-        }
-        Ok(found)
-    }
-
-    fn number(&mut self, name: &str) -> Result<Option<u32>> {
-        self.take(name)?
-            .map(|v| {
-                v.parse().map_err(|_| {
-                    CliError::usage(format!("--{name} {v:?}: expected a whole number"))
-                })
-            })
-            .transpose()
-    }
-
-    fn path(&mut self, name: &str) -> Result<PathBuf> {
-        self.take(name)?
-            .map(PathBuf::from)
-            .ok_or_else(|| CliError::usage(format!("--{name} is required")))
-    }
-
-    /// The only positional argument, named `what`; refuses leftovers.
-    fn finish(self, what: &str) -> Result<PathBuf> {
-        if let Some((n, _)) = self.flags.first() {
-            return Err(CliError::usage(format!("unknown option --{n}")));
-        }
-        match &self.positional[..] {
-            [one] => Ok(PathBuf::from(one)),
-            [] => Err(CliError::usage(format!("missing {what}"))),
-            more => Err(CliError::usage(format!(
-                "unexpected arguments {:?}",
-                &more[1..]
-            ))),
-        }
-    }
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Render a whole frame (DIR/frame_FFFF.{exr,png}), or with --tile one
+    /// tile of it (DIR/tiles/frame_FFFF/tile_IIII_of_NNNN.{exr,json})
+    Render(RenderArgs),
+    /// Check every tile's SHA-256 and write DIR/frame_FFFF.{exr,png}
+    Assemble(AssembleArgs),
+    /// Compute (or check) the world cache shared by every tile and frame,
+    /// and the frame cache (clouds, forest) each frame's tiles share
+    Prepare(PrepareArgs),
+    /// Write the job files of a farm engine
+    #[command(subcommand, arg_required_else_help = true)]
+    Farm(Farm),
+    /// Print the built-in scene with every key documented (its last
+    /// section is [animation])
+    PrintScene,
 }
 
-fn cache_dir(args: &mut Args, out: &Path) -> Result<PathBuf> {
-    Ok(args
-        .take("cache")?
-        .map_or_else(|| out.join("cache"), PathBuf::from))
+#[derive(Debug, Args)]
+struct RenderArgs {
+    /// The scene file (TOML; `natura print-scene` shows every key)
+    scene: PathBuf,
+    /// The frame to render
+    #[arg(long, value_name = "F", default_value_t = 0)]
+    frame: u32,
+    /// Render only tile I of N (0 ≤ I < N ≤ 65536)
+    #[arg(long, value_name = "I/N", value_parser = tiles::parse_tile)]
+    tile: Option<(u32, u32)>,
+    /// The output directory
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// The cache directory [default: DIR/cache]
+    #[arg(long, value_name = "DIR")]
+    cache: Option<PathBuf>,
 }
 
-fn mkdir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))
+#[derive(Debug, Args)]
+struct AssembleArgs {
+    /// The output directory the tiles were rendered into
+    dir: PathBuf,
+    /// The frame to assemble [default: every frame under DIR/tiles]
+    #[arg(long, value_name = "F")]
+    frame: Option<u32>,
+}
+
+#[derive(Debug, Args)]
+struct PrepareArgs {
+    /// The scene file
+    scene: PathBuf,
+    /// The output directory
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// The frames to prepare, A-B or A [default: every frame of the scene]
+    #[arg(long, value_name = "A-B", value_parser = parse_frames)]
+    frames: Option<(u32, u32)>,
+    /// The cache directory [default: DIR/cache]
+    #[arg(long, value_name = "DIR")]
+    cache: Option<PathBuf>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Farm {
+    /// Write prepare/render/assemble .sbatch scripts and submit.sh into
+    /// --job-dir [default: DIR/slurm]
+    Slurm(SlurmArgs),
+    /// Write an Open Job Description template natura.openjd.yaml into
+    /// --job-dir [default: DIR]
+    Openjd(FarmArgs),
+}
+
+#[derive(Debug, Args)]
+struct FarmArgs {
+    /// The scene file
+    scene: PathBuf,
+    /// The output directory the farm renders into (a folder every node sees)
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Tiles per frame
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TILES)))]
+    tiles: u32,
+    /// The frames to render, A-B or A [default: every frame of the scene]
+    #[arg(long, value_name = "A-B", value_parser = parse_frames)]
+    frames: Option<(u32, u32)>,
+    /// The directory the job files are written into [default: DIR/slurm
+    /// for Slurm, DIR for Open Job Description]
+    #[arg(long, value_name = "D")]
+    job_dir: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+struct SlurmArgs {
+    #[command(flatten)]
+    job: FarmArgs,
+    /// Most render tasks running at once (the array's %K)
+    #[arg(long, value_name = "K", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..))]
+    throttle: u32,
+    /// CPUs (and threads) per task
+    #[arg(long, value_name = "C", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    cpus: u32,
+}
+
+/// Parses `A-B` (or `A`) into an inclusive frame range.
+fn parse_frames(text: &str) -> std::result::Result<(u32, u32), String> {
+    let bad = || {
+        format!(
+            "expected A-B or A with 0 ≤ A ≤ B < {}",
+            manifest::MAX_FRAMES
+        )
+    };
+    let (a, b) = text.split_once('-').unwrap_or((text, text));
+    let (a, b): (u32, u32) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
+    if a > b || b >= manifest::MAX_FRAMES {
+        return Err(bad());
+    }
+    Ok((a, b))
+}
+
+/// The frames `range` (all frames of a scene of `total` when `None`),
+/// checked against the scene.
+fn frames(range: Option<(u32, u32)>, total: u32) -> Result<(u32, u32)> {
+    let (first, last) = range.unwrap_or((0, total.saturating_sub(1)));
+    if last >= total {
+        return Err(CliError::usage(format!(
+            "--frames {first}-{last}: the scene has frames 0 to {}",
+            total.saturating_sub(1)
+        )));
+    }
+    Ok((first, last))
+}
+
+/// Makes the directory `dir` (given as `flag`) and checks a file can be
+/// written in it, before any work: an error names the flag and the path.
+fn writable_dir(dir: &Path, flag: &str) -> Result<()> {
+    let refuse = |e: &dyn std::fmt::Display| {
+        CliError::usage(format!("{flag} {}: cannot write there: {e}", dir.display()))
+    };
+    std::fs::create_dir_all(dir).map_err(|e| refuse(&e))?;
+    natura::core::io::check_writable(dir.join("natura-probe")).map_err(|e| refuse(&e))
 }
 
 fn absolute(p: &Path) -> Result<PathBuf> {
     std::path::absolute(p).map_err(|e| crate::error::io(p, e))
 }
 
-fn run(argv: &[String]) -> Result<()> {
-    let Some((cmd, rest)) = argv.split_first() else {
-        return Err(CliError::usage("no command"));
-    };
-    let mut a = Args::parse(rest)?;
-    match cmd.as_str() {
-        "render" => {
-            let frame = a.number("frame")?.unwrap_or(0);
-            let tile = a.take("tile")?.map(|t| tiles::parse_tile(&t)).transpose()?;
-            let out = a.path("out")?;
-            let cache = cache_dir(&mut a, &out)?;
-            let scene = shard::Scene::load(&a.finish("scene file")?)?;
-            mkdir(&out)?;
-            match tile {
-                None => println!(
-                    "wrote {}",
-                    shard::render_frame(&scene, frame, &out)?.display()
-                ),
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render(a) => {
+            let scene = shard::Scene::load(&a.scene)?;
+            writable_dir(&a.out, "--out")?;
+            match a.tile {
+                None => say(&format!(
+                    "wrote {}\n",
+                    shard::render_frame(&scene, a.frame, &a.out)?.display()
+                ))?,
                 Some((i, n)) => {
-                    let line = shard::render_tile(&scene, frame, i, n, &out, &cache)?;
-                    println!(
-                        "frame {frame} tile {i}/{n}: {} sha256 {}",
-                        line.file, line.sha256
-                    );
+                    let cache = a.cache.unwrap_or_else(|| a.out.join("cache"));
+                    writable_dir(&cache, "--cache")?;
+                    let line = shard::render_tile(&scene, a.frame, i, n, &a.out, &cache)?;
+                    say(&format!(
+                        "frame {} tile {i}/{n}: {} sha256 {}\n",
+                        a.frame, line.file, line.sha256
+                    ))?;
                 }
             }
         }
-        "assemble" => {
-            let frame = a.number("frame")?;
-            let out = a.finish("output directory")?;
-            let frames = match frame {
+        Command::Assemble(a) => {
+            let frames = match a.frame {
                 Some(f) => vec![f],
-                None => shard::frames_present(&out)?,
+                None => shard::frames_present(&a.dir)?,
             };
             if frames.is_empty() {
                 return Err(CliError::Other(format!(
                     "no frames under {}",
-                    out.join("tiles").display()
+                    a.dir.join("tiles").display()
                 )));
             }
+            writable_dir(&a.dir, "DIR")?;
             let mut problems = Vec::new();
             for f in frames {
-                match shard::assemble(&out, f) {
-                    Ok(png) => println!("wrote {}", png.display()),
+                match shard::assemble(&a.dir, f) {
+                    Ok(png) => say(&format!("wrote {}\n", png.display()))?,
                     Err(CliError::Assemble(p)) => problems.extend(p),
                     Err(e) => return Err(e),
                 }
@@ -180,130 +237,110 @@ fn run(argv: &[String]) -> Result<()> {
                 return Err(CliError::Assemble(problems));
             }
         }
-        "prepare" => {
-            let out = a.path("out")?;
-            let cache = cache_dir(&mut a, &out)?;
-            let frames = a.take("frames")?;
-            let scene = shard::Scene::load(&a.finish("scene file")?)?;
-            let total = scene.desc.animation.frames;
-            let (first, last) = match frames {
-                None => (0, total - 1),
-                Some(f) => parse_frames(&f)?,
-            };
-            check_frames(first, last, total)?;
+        Command::Prepare(a) => {
+            let scene = shard::Scene::load(&a.scene)?;
+            let (first, last) = frames(a.frames, scene.desc.animation.frames)?;
+            let cache = a.cache.unwrap_or_else(|| a.out.join("cache"));
+            writable_dir(&a.out, "--out")?;
+            writable_dir(&cache, "--cache")?;
             let prepared = shard::prepare(&scene, &cache, first, last)?;
             let (world, source) = &prepared.world;
-            println!("world cache {} ({source:?})", world.display());
+            say(&format!("world cache {} ({source:?})\n", world.display()))?;
             for (frame, path, source) in &prepared.frames {
-                println!("frame {frame}: frame cache {} ({source:?})", path.display());
+                say(&format!(
+                    "frame {frame}: frame cache {} ({source:?})\n",
+                    path.display()
+                ))?;
             }
         }
-        "farm" => {
-            let Some(engine) = a.positional.first().cloned() else {
-                return Err(CliError::usage("farm: which engine? slurm or openjd"));
-            };
-            a.positional.remove(0);
-            let out = absolute(&a.path("out")?)?;
-            let n = a
-                .number("tiles")?
-                .ok_or_else(|| CliError::usage("--tiles is required"))?;
-            let frames = a.take("frames")?;
-            let throttle = a.number("throttle")?.unwrap_or(2);
-            let cpus = a.number("cpus")?.unwrap_or(1);
-            let target = a.take("dir")?.or(a.take("file")?);
-            let scene_path = absolute(&a.finish("scene file")?)?;
-            let scene = shard::Scene::load(&scene_path)?;
-            let total = scene.desc.animation.frames;
-            let (first, last) = match frames {
-                None => (0, total - 1),
-                Some(f) => parse_frames(&f)?,
-            };
-            check_frames(first, last, total)?;
-            let r = &scene.desc.render;
-            tiles::grid(r.width, r.height, n)?;
-            if throttle == 0 || cpus == 0 {
-                return Err(CliError::usage("--throttle and --cpus must be at least 1"));
-            }
-            let natura = std::env::current_exe().map_err(|e| CliError::Other(e.to_string()))?;
-            let job = farm::Job {
-                natura,
-                scene: scene_path,
-                out: out.clone(),
-                first,
-                last,
-                tiles: n,
-                throttle,
-                cpus,
-            };
-            match engine.as_str() {
-                "slurm" => {
-                    let dir = target.map_or_else(|| out.join("slurm"), PathBuf::from);
-                    mkdir(&dir)?;
-                    for (name, text) in farm::slurm(&job) {
-                        let p = dir.join(name);
-                        natura::core::io::write_bytes_atomic(&p, text.as_bytes())?;
-                        #[cfg(unix)]
-                        {
-                            use std::os::unix::fs::PermissionsExt;
-                            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755))
-                                .map_err(|e| error::io(&p, e))?;
-                        }
-                        println!("wrote {}", p.display());
-                    }
-                }
-                "openjd" => {
-                    let file = absolute(
-                        &target.map_or_else(|| out.join("natura.openjd.yaml"), PathBuf::from),
-                    )?;
-                    let dir = file.parent().unwrap_or(Path::new("/"));
-                    mkdir(dir)?;
-                    natura::core::io::write_bytes_atomic(
-                        &file,
-                        farm::openjd(&job, dir).as_bytes(),
-                    )?;
-                    println!("wrote {}", file.display());
-                }
-                other => {
-                    return Err(CliError::usage(format!(
-                        "farm {other:?}: expected slurm or openjd"
-                    )));
-                }
-            }
-        }
-        "print-scene" => print!("{}", natura::render::DEFAULT_SCENE_TOML),
-        "help" | "--help" | "-h" => print!("{USAGE}"),
-        other => return Err(CliError::usage(format!("unknown command {other:?}"))),
+        Command::Farm(engine) => farm_files(engine)?,
+        Command::PrintScene => say(natura::render::DEFAULT_SCENE_TOML)?,
     }
     Ok(())
 }
 
-/// Parses `A-B` (or `A`) into an inclusive frame range.
-fn check_frames(first: u32, last: u32, total: u32) -> Result<()> {
-    if last >= total {
+/// `natura farm slurm|openjd`: checks the job against the scene and the
+/// stated limits, then writes its job files into the job directory.
+fn farm_files(engine: Farm) -> Result<()> {
+    let (name, a, throttle, cpus) = match engine {
+        Farm::Slurm(s) => ("slurm", s.job, s.throttle, s.cpus),
+        Farm::Openjd(j) => ("openjd", j, 1, 1),
+    };
+    let scene_path = absolute(&a.scene)?;
+    let scene = shard::Scene::load(&scene_path)?;
+    let (first, last) = frames(a.frames, scene.desc.animation.frames)?;
+    let r = &scene.desc.render;
+    tiles::grid(r.width, r.height, a.tiles)?;
+    let tasks = (u64::from(last - first) + 1) * u64::from(a.tiles);
+    if tasks > MAX_TASKS {
         return Err(CliError::usage(format!(
-            "--frames {first}-{last}: the scene has frames 0 to {}",
-            total - 1
+            "--frames {first}-{last} × --tiles {}: {tasks} render tasks; a job holds at most \
+             {MAX_TASKS} (Slurm's largest array): split it into ranges of frames",
+            a.tiles
         )));
     }
-    Ok(())
-}
-
-fn parse_frames(text: &str) -> Result<(u32, u32)> {
-    let bad = || CliError::usage(format!("--frames {text:?}: expected A-B or A"));
-    let (a, b) = text.split_once('-').unwrap_or((text, text));
-    let (a, b): (u32, u32) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
-    if a > b {
-        return Err(bad());
+    let out = absolute(&a.out)?;
+    let given_job_dir = a.job_dir.is_some();
+    let job_dir = absolute(&a.job_dir.unwrap_or_else(|| match name {
+        "slurm" => out.join("slurm"),
+        _ => out.clone(),
+    }))?;
+    let natura = std::env::current_exe().map_err(|e| CliError::Other(e.to_string()))?;
+    let job = farm::Job {
+        natura,
+        scene: scene_path,
+        out,
+        job_dir,
+        first,
+        last,
+        tiles: a.tiles,
+        throttle,
+        cpus,
+    };
+    farm::check(&job, name)?;
+    let files = match name {
+        "slurm" => farm::slurm(&job)?,
+        _ => vec![("natura.openjd.yaml", farm::openjd(&job)?)],
+    };
+    // A job directory given apart from --out is checked first, so a bad
+    // one leaves no new output folder behind.
+    if given_job_dir {
+        writable_dir(&job.job_dir, "--job-dir")?;
+        writable_dir(&job.out, "--out")?;
+    } else {
+        writable_dir(&job.out, "--out")?;
+        writable_dir(&job.job_dir, "--job-dir")?;
     }
-    Ok((a, b))
+    for (file, text) in files {
+        let p = job.job_dir.join(file);
+        natura::core::io::write_bytes_atomic(&p, text.as_bytes())?;
+        #[cfg(unix)]
+        if name == "slurm" {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755))
+                .map_err(|e| error::io(&p, e))?;
+        }
+        say(&format!("wrote {}\n", p.display()))?;
+    }
+    Ok(())
 }
 
 fn main() -> ExitCode {
-    let argv: Vec<String> = std::env::args().skip(1).collect();
-    match run(&argv) {
-        Ok(()) => ExitCode::SUCCESS,
+    interrupt::install();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
         Err(e) => {
-            eprintln!("natura: error: {e}");
+            // Help and version go to standard output (status 0), usage
+            // errors to standard error (status 2); a closed pipe is ignored.
+            let _ = e.print();
+            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2));
+        }
+    };
+    match run(cli) {
+        Ok(()) | Err(CliError::Closed) => ExitCode::SUCCESS,
+        Err(e) => {
+            use std::io::Write as _;
+            let _ = writeln!(std::io::stderr(), "natura: error: {e}");
             ExitCode::from(if matches!(e, CliError::Usage(_)) {
                 2
             } else {

@@ -3,7 +3,6 @@
 //! tiles after every hash is checked, with the exposure and tone map of a
 //! single-process render.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use natura::core::{Image, NoProgress};
@@ -12,8 +11,12 @@ use natura::render::{
 };
 
 use crate::cache;
+use crate::check::{Problems, check_lines};
 use crate::error::{CliError, Result};
-use crate::manifest::{TileLine, VERSION, frame_dir, platform, sha256_hex, tile_stem};
+use crate::limits::{MAX_SCENE_BYTES, MAX_TILES, read_capped};
+use crate::manifest::{
+    TileLine, VERSION, frame_dir, platform, sha256_hex, tile_file, tile_sha256, tile_stem,
+};
 use crate::tiles;
 
 /// The scene as shards identify it: parsed, validated, and hashed in its
@@ -26,9 +29,13 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Loads and validates a scene file.
+    /// Loads and validates a scene file of at most [`MAX_SCENE_BYTES`].
     pub fn load(path: &Path) -> Result<Self> {
-        let desc = SceneDesc::load(path)?;
+        let bytes = read_capped(path, MAX_SCENE_BYTES, "scene file")?;
+        let name = path.display().to_string();
+        let text = String::from_utf8(bytes)
+            .map_err(|_| CliError::Other(format!("{name}: scene file is not UTF-8 text")))?;
+        let desc = SceneDesc::from_toml_str(&text, &name)?;
         desc.validate()?;
         let sha256 = sha256_hex(desc.to_toml_string()?.as_bytes());
         Ok(Self { desc, sha256 })
@@ -105,7 +112,8 @@ pub fn render_tile(
     let stem = tile_stem(tile, tiles);
     let exr = dir.join(format!("{stem}.exr"));
     image.save_exr(&exr)?;
-    let sha256 = sha256_hex(&natura::core::io::read_file(&exr)?);
+    let bytes = read_capped(&exr, exr_limit(rect.width, rect.height), "tile EXR")?;
+    let sha256 = tile_sha256(&scene.sha256, frame, tile, tiles, &bytes);
     let line = TileLine {
         natura: VERSION.to_owned(),
         platform: platform(),
@@ -122,11 +130,7 @@ pub fn render_tile(
         frame_height: r.height,
         exposure_ev: r.exposure_ev,
         tone_map: r.tone_map,
-        file: exr
-            .strip_prefix(out)
-            .unwrap_or(&exr)
-            .to_string_lossy()
-            .replace('\\', "/"),
+        file: tile_file(frame, tile, tiles),
         sha256,
     };
     line.write(&dir.join(format!("{stem}.json")))?;
@@ -145,127 +149,81 @@ pub fn frames_present(out: &Path) -> Result<Vec<u32>> {
     Ok(frames)
 }
 
+/// Largest EXR file of a `width × height` tile: its three `f32` channels
+/// uncompressed, twice over, and a megabyte for its header and tables.
+fn exr_limit(width: u32, height: u32) -> u64 {
+    u64::from(width) * u64::from(height) * 12 * 2 + (1 << 20)
+}
+
 /// Checks every tile of frame `frame` under `out` (all present, one scene,
-/// one version, one tiling, every EXR matching its SHA-256) and writes the
-/// frame's EXR and PNG. Every problem found is reported, each naming its
+/// one version, one tiling, each where its index says, every EXR matching
+/// its SHA-256, which binds it to its scene, frame and index) and writes the
+/// frame's EXR and PNG. Every problem found is reported (at most
+/// [`MAX_PROBLEMS`](crate::limits::MAX_PROBLEMS) lines), each naming its
 /// tile index.
 pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
     let dir = frame_dir(out, frame);
     let entries = std::fs::read_dir(&dir).map_err(|e| crate::error::io(&dir, e))?;
+    let f = format!("frame {frame}");
+    let mut problems = Problems::default();
     let mut lines = Vec::new();
     for e in entries.filter_map(|e| e.ok()) {
         let p = e.path();
-        if p.extension().is_some_and(|x| x == "json") {
-            lines.push(TileLine::read(&p)?);
+        if p.extension().is_none_or(|x| x != "json") {
+            continue;
         }
+        if lines.len() == MAX_TILES as usize {
+            return Err(CliError::Assemble(vec![format!(
+                "{f}: more than {MAX_TILES} manifest files in {}, the most tiles a frame has",
+                dir.display()
+            )]));
+        }
+        let l = TileLine::read(&p)?;
+        let stem = tile_stem(l.tile, l.tiles);
+        if p.file_stem().is_none_or(|s| *s != *stem) {
+            problems.push(format!(
+                "{f}, tile {} of {}: its manifest line is in {}, not in {stem}.json",
+                l.tile,
+                l.tiles,
+                p.display()
+            ));
+        }
+        lines.push(l);
     }
-    let f = format!("frame {frame}");
-    lines.sort_by_key(|l| l.tile);
-    // The reference the others are held to: the most common scene and
-    // platform among the tiles (ties: the lowest tile's).
-    let common = |key: fn(&TileLine) -> &str| -> Option<String> {
-        let mut count: BTreeMap<&str, usize> = BTreeMap::new();
-        for l in &lines {
-            *count.entry(key(l)).or_default() += 1;
+    let Some(plan) = check_lines(lines, frame, &mut problems) else {
+        if problems.is_empty() {
+            problems.push(format!("{f}: no tiles in {}", dir.display()));
         }
-        let most = *count.values().max()?;
-        lines
-            .iter()
-            .map(key)
-            .find(|k| count[k] == most)
-            .map(str::to_owned)
+        return Err(CliError::Assemble(problems.into_lines()));
     };
-    let (scene, platform) = (
-        common(|l| &l.scene_sha256).unwrap_or_default(),
-        common(|l| &l.platform).unwrap_or_default(),
-    );
-    let Some(first) = lines
-        .iter()
-        .find(|l| l.scene_sha256 == scene && l.platform == platform)
-        .cloned()
-    else {
-        return Err(CliError::Assemble(vec![format!(
-            "{f}: no tiles in {}",
-            dir.display()
-        )]));
-    };
-    let mut problems = Vec::new();
-    let counts: std::collections::BTreeSet<u32> = lines.iter().map(|l| l.tiles).collect();
-    if counts.len() > 1 {
-        return Err(CliError::Assemble(vec![format!(
-            "{f}: tiles of different tilings ({counts:?} tiles) in {}; remove the stale ones",
-            dir.display()
-        )]));
-    }
-    let n = first.tiles;
-    let mut by_index: BTreeMap<u32, TileLine> = BTreeMap::new();
-    for l in lines {
-        let t = format!("{f}, tile {} of {n}", l.tile);
-        if l.natura != VERSION {
-            problems.push(format!(
-                "{t}: rendered by natura {}, this is natura {VERSION}",
-                l.natura
-            ));
-        }
-        if l.platform != first.platform {
-            problems.push(format!(
-                "{t}: rendered on {}, tile {} on {}: shards of a frame must run one build",
-                l.platform, first.tile, first.platform
-            ));
-        }
-        if l.scene_sha256 != first.scene_sha256 || l.seed != first.seed {
-            problems.push(format!(
-                "{t}: rendered from another scene (scene SHA-256 {}…, tile {} has {}…)",
-                &l.scene_sha256[..l.scene_sha256.len().min(12)],
-                first.tile,
-                &first.scene_sha256[..first.scene_sha256.len().min(12)]
-            ));
-        }
-        if l.frame != frame
-            || (l.frame_width, l.frame_height, l.exposure_ev, l.tone_map)
-                != (
-                    first.frame_width,
-                    first.frame_height,
-                    first.exposure_ev,
-                    first.tone_map,
-                )
-        {
-            problems.push(format!(
-                "{t}: frame, size or exposure differ from tile {}'s",
-                first.tile
-            ));
-        }
-        match tiles::rect(l.frame_width, l.frame_height, l.tile, n) {
-            Ok(r) if (r.x, r.y, r.width, r.height) == (l.x, l.y, l.width, l.height) => {}
-            _ => problems.push(format!("{t}: its rectangle is not tile {} of {n}", l.tile)),
-        }
-        by_index.insert(l.tile, l);
-    }
-    for i in (0..n).filter(|i| !by_index.contains_key(i)) {
-        problems.push(format!("{f}, tile {i} of {n}: missing (no manifest line)"));
-    }
+    let (first, n) = (&plan.first, plan.first.tiles);
     let mut image = Image::new(
         first.frame_width as usize,
         first.frame_height as usize,
         Default::default(),
     )?;
-    for (i, l) in &by_index {
+    for (i, l) in &plan.by_index {
         let t = format!("{f}, tile {i} of {n}");
         let path = out.join(&l.file);
-        let Ok(bytes) = natura::core::io::read_file(&path) else {
-            problems.push(format!("{t}: missing EXR file {}", path.display()));
-            continue;
+        let bytes = match read_capped(&path, exr_limit(l.width, l.height), "tile EXR") {
+            Ok(b) => b,
+            Err(e) => {
+                problems.push(format!("{t}: missing or unreadable EXR file: {e}"));
+                continue;
+            }
         };
-        if sha256_hex(&bytes) != l.sha256 {
+        if tile_sha256(&l.scene_sha256, l.frame, l.tile, l.tiles, &bytes) != l.sha256 {
             problems.push(format!(
-                "{t}: {} does not match its SHA-256 (tampered or corrupt)",
+                "{t}: {} does not match its SHA-256 (tampered, corrupt, or another tile's)",
                 path.display()
             ));
             continue;
         }
-        match Image::load_exr(&path) {
+        match decode_exr(&bytes, &path) {
             Ok(tile) if (tile.width(), tile.height()) == (l.width as usize, l.height as usize) => {
-                if problems.is_empty() {
+                if let Some((x, y)) = tile.first_non_finite() {
+                    problems.push(format!("{t}: pixel ({x}, {y}) is not a finite number"));
+                } else if problems.is_empty() {
                     paste(&mut image, &tile, l.x as usize, l.y as usize);
                 }
             }
@@ -274,7 +232,7 @@ pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
         }
     }
     if !problems.is_empty() {
-        return Err(CliError::Assemble(problems));
+        return Err(CliError::Assemble(problems.into_lines()));
     }
     let exposure_ev = first.exposure_ev.unwrap_or_else(|| auto_exposure(&image));
     let rendered = Rendered {
@@ -287,6 +245,28 @@ pub fn assemble(out: &Path, frame: u32) -> Result<PathBuf> {
     let (png, exr) = frame_files(out, frame);
     rendered.save(&png, &exr)?;
     Ok(png)
+}
+
+/// The linear colour of an EXR file's bytes (already read and checked).
+fn decode_exr(bytes: &[u8], path: &Path) -> Result<Image> {
+    let exr = natura::core::io::exr::read_exr_from(std::io::Cursor::new(bytes), path)?;
+    let (w, h) = (exr.width, exr.height);
+    let (Some(r), Some(g), Some(b)) = (exr.channel("R"), exr.channel("G"), exr.channel("B")) else {
+        return Err(CliError::Other(format!(
+            "{}: a tile EXR needs channels R, G and B",
+            path.display()
+        )));
+    };
+    if [r.len(), g.len(), b.len()] != [w * h; 3] {
+        return Err(CliError::Other(format!(
+            "{}: channel sizes differ from {w} × {h}",
+            path.display()
+        )));
+    }
+    Ok(Image::from_fn(w, h, |x, y| {
+        let k = y * w + x;
+        natura::core::glam::Vec3::new(r[k], g[k], b[k])
+    })?)
 }
 
 fn paste(frame: &mut Image, tile: &Image, x0: usize, y0: usize) {

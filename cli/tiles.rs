@@ -2,6 +2,7 @@
 //! square rectangles, numbered row-major from the top-left.
 
 use crate::error::{CliError, Result};
+use crate::limits::MAX_TILES;
 
 /// A pixel rectangle of a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,24 +17,26 @@ pub struct Rect {
     pub height: u32,
 }
 
-/// Parses `I/N` (tile `I` of `N`, `0 ≤ I < N`).
-pub fn parse_tile(text: &str) -> Result<(u32, u32)> {
-    let bad = || CliError::usage(format!("--tile {text:?}: expected I/N, e.g. 3/16"));
+/// Parses `I/N` (tile `I` of `N`, `0 ≤ I < N ≤` [`MAX_TILES`]); the
+/// error says what was expected (the caller names the flag and value).
+pub fn parse_tile(text: &str) -> std::result::Result<(u32, u32), String> {
+    let bad = || format!("expected I/N with 0 ≤ I < N ≤ {MAX_TILES}, e.g. 3/16");
     let (i, n) = text.split_once('/').ok_or_else(bad)?;
     let (i, n): (u32, u32) = (
         i.trim().parse().map_err(|_| bad())?,
         n.trim().parse().map_err(|_| bad())?,
     );
     if n == 0 {
-        return Err(CliError::usage(format!(
-            "--tile {text}: N = 0 tiles; N must be at least 1"
-        )));
+        return Err("N = 0 tiles; N must be at least 1".into());
+    }
+    if n > MAX_TILES {
+        return Err(format!("N = {n} tiles; N must be at most {MAX_TILES}"));
     }
     if i >= n {
-        return Err(CliError::usage(format!(
-            "--tile {text}: tile index {i} is out of range 0 to {} for N = {n}",
+        return Err(format!(
+            "tile index {i} is out of range 0 to {} for N = {n}",
             n - 1
-        )));
+        ));
     }
     Ok((i, n))
 }
@@ -70,17 +73,23 @@ pub fn rect(width: u32, height: u32, index: u32, n: u32) -> Result<Rect> {
         )));
     }
     let (cols, rows) = grid(width, height, n)?;
+    Ok(cell(width, height, cols, rows, index))
+}
+
+/// The rectangle of cell `index` (row-major) of a `cols × rows` grid over a
+/// `width × height` frame; `index < cols · rows`.
+pub fn cell(width: u32, height: u32, cols: u32, rows: u32, index: u32) -> Rect {
     let (c, r) = (index % cols, index / cols);
     let cut =
         |k: u32, parts: u32, side: u32| (u64::from(k) * u64::from(side) / u64::from(parts)) as u32;
     let (x0, x1) = (cut(c, cols, width), cut(c + 1, cols, width));
     let (y0, y1) = (cut(r, rows, height), cut(r + 1, rows, height));
-    Ok(Rect {
+    Rect {
         x: x0,
         y: y0,
         width: x1 - x0,
         height: y1 - y0,
-    })
+    }
 }
 
 #[cfg(test)]
@@ -109,13 +118,9 @@ mod tests {
 
     #[test]
     fn bad_tiles_are_refused() {
-        assert!(parse_tile("3/0").unwrap_err().to_string().contains("N = 0"));
-        assert!(
-            parse_tile("16/16")
-                .unwrap_err()
-                .to_string()
-                .contains("out of range")
-        );
+        assert!(parse_tile("3/0").unwrap_err().contains("N = 0"));
+        assert!(parse_tile("0/65537").unwrap_err().contains("at most 65536"));
+        assert!(parse_tile("16/16").unwrap_err().contains("out of range"));
         assert!(parse_tile("x").is_err());
         assert_eq!(parse_tile("3/16").unwrap(), (3, 16));
         assert!(grid(2, 2, 5).is_err());
