@@ -34,8 +34,8 @@ pub use params::{
     CloudLayerParams, EARTH_RADIUS_M, LightParams, PlanetAtmosphereParams, PlanetDetailParams,
     PlanetParams, SurfaceParams, TerrainParams,
 };
-pub use render::{GroundViewParams, direction};
-pub use trace::{SurfaceHit, TraceSettings};
+pub use render::{GroundViewParams, MAX_ALTITUDE_M, direction};
+pub use trace::{EPSILON_RESOLUTION, MAX_TRACE_STEPS, SurfaceHit, TraceSettings};
 
 use glam::DVec3;
 use natura_atmos::Dir3;
