@@ -343,7 +343,8 @@ fn sowing_is_checked_against_max_plants_before_anything_is_allocated() {
 #[test]
 fn species_parameters_are_held_to_physical_ranges() {
     let hf = valley();
-    let cases: [(&str, fn(&mut Species)); 5] = [
+    type Edit = fn(&mut Species);
+    let cases: [(&str, Edit); 5] = [
         ("Species::max_radius", |s| s.max_radius = 1e300),
         ("Species::r0_min", |s| s.r0_min = 1e-300),
         ("Species::r0_max", |s| s.r0_max = 5e3),

@@ -203,7 +203,7 @@ impl Planet {
         settings.validate_for(self, eye)?;
         let alpha = view.pixel_angle();
         let clearance = self.gap(eye, DVec3::Z, 0.0, alpha);
-        if !(clearance > 0.0) {
+        if clearance.is_nan() || clearance <= 0.0 {
             return Err(TextureError::InvalidParameter {
                 name: "eye",
                 value: format!("{eye} ({clearance} m above the surface)"),

@@ -72,7 +72,7 @@ impl TraceSettings {
         self.validate()?;
         if planet.relief().is_some() {
             let floor = (eye.length() + planet.max_radius()) * EPSILON_RESOLUTION;
-            if !(self.min_epsilon_m >= floor) {
+            if floor.is_nan() || self.min_epsilon_m < floor {
                 return Err(TextureError::InvalidParameter {
                     name: "min_epsilon_m",
                     value: format!(
