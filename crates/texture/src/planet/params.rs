@@ -296,8 +296,8 @@ impl CloudLayerParams {
 pub struct LightParams {
     /// Direction towards the sun (normalised when the planet is built).
     pub sun: DVec3,
-    /// The sun's colour and intensity (linear, each channel in
-    /// `[0, `[`MAX_SUN_COLOUR`]`]`).
+    /// The sun's colour and intensity (linear, each channel in `[0, 10⁶]`:
+    /// [`MAX_SUN_COLOUR`]).
     pub sun_colour: DVec3,
     /// Light reaching every surface from elsewhere (fraction of the sun).
     pub ambient: f64,

@@ -50,7 +50,7 @@ impl GroundViewParams {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) naming the bad field.
+    /// [`TextureError`] naming the bad field.
     pub fn validate(&self) -> Result<()> {
         finite("latitude", self.latitude)?;
         finite("longitude", self.longitude)?;
@@ -95,7 +95,7 @@ impl Planet {
     /// and longitude `longitude` (radians), looking at the planet's centre.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) naming `altitude_m` outside
+    /// [`TextureError`] naming `altitude_m` outside
     /// `(0, 10¹²]` metres, a non-finite `latitude` or `longitude`, or a bad
     /// field of view or resolution.
     pub fn orbit_view(
@@ -162,7 +162,7 @@ impl Planet {
     /// and `pitch`.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) for bad view parameters or
+    /// [`TextureError`] for bad view parameters or
     /// resolution, naming `search_radius_m` if it exceeds half the
     /// planet's circumference (`π R`).
     pub fn ground_view(&self, g: &GroundViewParams, width: u32, height: u32) -> Result<View> {
@@ -188,7 +188,7 @@ impl Planet {
     /// light = 1.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) for bad trace settings
+    /// [`TextureError`] for bad trace settings
     /// ([`TraceSettings::validate_for`]: a tolerance finer than the scene
     /// resolves), an image too large for memory, or naming `eye` for a view
     /// whose eye is not above the surface (at the centre, below sea level

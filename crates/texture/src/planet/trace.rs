@@ -40,7 +40,7 @@ impl TraceSettings {
     /// `min_epsilon_m` against the scene ([`TraceSettings::validate_for`]).
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) naming the bad field.
+    /// [`TextureError`] naming the bad field.
     pub fn validate(&self) -> Result<()> {
         in_range("epsilon", self.epsilon, 0.0, 1e6, "must be in [0, 10⁶]")?;
         positive("min_epsilon_m", self.min_epsilon_m)?;
@@ -65,7 +65,7 @@ impl TraceSettings {
     /// its shadow ray.
     ///
     /// # Errors
-    /// As [`validate`](Self::validate); [`TextureError`](crate::TextureError)
+    /// As [`validate`](Self::validate); [`TextureError`]
     /// naming `min_epsilon_m` if it is below the resolution (a smooth planet,
     /// which is not sphere traced, has no such bound).
     pub fn validate_for(&self, planet: &Planet, eye: DVec3) -> Result<()> {
