@@ -15,7 +15,9 @@ mod common;
 use std::time::Instant;
 
 use natura::core::Seed;
-use natura::plant::eco::{EcoParams, Ecosystem, Instancing, top_view};
+use natura::plant::eco::{
+    EcoParams, Ecosystem, Instancing, MAX_PER_HA, MAX_SEEDS_PER_SPECIES, top_view,
+};
 use natura::plant::mesh::{Instance, MeshParams, PlantMesh, save_glb_instanced};
 
 fn main() {
@@ -27,12 +29,29 @@ fn main() {
         "terrain samples per side",
     );
     let seed: u64 = args.value("--seed", 1998, "random seed");
-    let grass: f64 = args.value("--grass-per-ha", 400.0, "grass seeds per hectare per step");
+    let grass: f64 = args.ranged(
+        "--grass-per-ha",
+        400.0,
+        0.0..=MAX_PER_HA / 5.0,
+        "grass seeds per hectare per step (5× as many sown at the start)",
+    );
     let glb_max: usize = args.value("--glb-max", 20_000, "most instances in the GLB");
     let out = args.out_dir("docs/gallery/plant");
     args.finish();
-    if n < 16 {
-        common::fail("--size must be at least 16");
+    if !(16..=65_536).contains(&n) {
+        common::fail(&format!("--size {n}: must be in 16..=65536"));
+    }
+    // The initial grass (5× the seeds per step) over the terrain's area must
+    // stay within what one species may sow: checked here, so the refusal
+    // names the flag rather than the species' field it sets.
+    let ha = ((n - 1) as f64 * 2.0).powi(2) / 1e4;
+    let cap = (EcoParams::default().max_plants as f64).min(MAX_SEEDS_PER_SPECIES as f64);
+    if 5.0 * grass * ha > cap {
+        common::fail(&format!(
+            "--grass-per-ha {grass}: must be in 0..={:.0} on this {ha:.1} ha terrain \
+             (5 × it per hectare is sown at the start, at most {cap:.0} grass plants)",
+            (cap / (5.0 * ha)).floor()
+        ));
     }
     let t0 = Instant::now();
     let hf = common::check(common::tiles::eroded_tile(n, 2.0, seed));

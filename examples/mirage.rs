@@ -40,7 +40,13 @@ fn main() {
         if quick { 200 } else { 800 },
         "image width, pixels",
     );
-    let excess: f64 = args.value("--excess", 40.0, "road surface excess temperature, K");
+    // The road under 20 °C air: from −250 K (a surface at 43 K) to +1000 K.
+    let excess: f64 = args.ranged(
+        "--excess",
+        40.0,
+        -250.0..=1000.0,
+        "road surface excess temperature, K",
+    );
     let out = args.out_dir("docs/gallery/atmos");
     args.finish();
     if !(16..=4096).contains(&width) {

@@ -14,6 +14,8 @@
 
 mod common;
 
+use std::f64::consts::{FRAC_PI_2, TAU};
+
 use natura::core::io::check_writable;
 use natura::core::{Image, ToneMap};
 use natura::texture::earth::Continents;
@@ -35,19 +37,49 @@ fn main() {
         "also export cube faces of N² samples (0: none)",
     );
     let multifractal = args.switch("--multifractal", "Gaea's multifractal continents (slower)");
-    let altitude: f64 = args.value("--altitude", 1.55e7, "orbit view: altitude, m");
-    let vfov: f64 = args.value(
+    // Gaea's camera from just above its highest peaks to a million
+    // kilometres out (where it is a few pixels wide).
+    let altitude: f64 = args.ranged("--altitude", 1.55e7, 1e5..=1e9, "orbit view: altitude, m");
+    let vfov: f64 = args.ranged(
         "--vfov",
         0.62,
+        1e-3..=3.0,
         "orbit view: vertical field of view, radians",
     );
     let lat: Option<f64> = args.optional("--lat", "latitude below the camera, radians");
     let lon: Option<f64> = args.optional("--lon", "longitude below the camera, radians");
-    let search: f64 = args.value("--search", 150_000.0, "ground view: peak search radius, m");
-    let heading: f64 = args.value("--heading", 0.2, "ground view: compass heading, radians");
+    let search: Option<f64> = args.optional(
+        "--search",
+        "ground view: peak search radius, m (150 km; 100 km with --quick)",
+    );
+    let heading: f64 = args.ranged(
+        "--heading",
+        0.2,
+        -TAU..=TAU,
+        "ground view: compass heading, radians",
+    );
     let ev: Option<f32> = args.optional("--ev", "exposure in stops (default 0 orbit, +1.5 ground)");
     let out = args.out_dir("docs/gallery/texture");
     args.finish();
+    let in_range = |flag: &str, v: f64, lo: f64, hi: f64, unit: &str| {
+        if !(lo..=hi).contains(&v) {
+            common::fail(&format!("{flag} {v}: must be in {lo}..={hi} {unit}"));
+        }
+    };
+    if let Some(v) = lat {
+        in_range("--lat", v, -FRAC_PI_2, FRAC_PI_2, "radians");
+    }
+    if let Some(v) = lon {
+        in_range("--lon", v, -TAU, TAU, "radians");
+    }
+    // Half of Gaea's circumference: the farthest a peak can be.
+    if let Some(v) = search {
+        in_range("--search", v, 0.0, 2e7, "m");
+    }
+    // Beyond ±20 stops the picture is white or black whatever it shows.
+    if let Some(v) = ev {
+        in_range("--ev", f64::from(v), -20.0, 20.0, "stops");
+    }
 
     let name = match view.as_str() {
         "orbit" => "planet_orbit",
@@ -92,7 +124,7 @@ fn main() {
         let g = GroundViewParams {
             latitude: lat,
             longitude: lon,
-            search_radius_m: if quick { 100_000.0 } else { search },
+            search_radius_m: search.unwrap_or(if quick { 100_000.0 } else { 150_000.0 }),
             heading,
             ..GroundViewParams::default()
         };

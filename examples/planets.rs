@@ -20,9 +20,10 @@ use natura::texture::water::{WindyWave, WindyWaveParams};
 fn main() {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small and fast (CI)");
-    let size: u32 = args.value(
+    let size: u32 = args.ranged(
         "--size",
         if quick { 128 } else { 512 },
+        8..=16_384,
         "picture side, pixels",
     );
     let seed: u64 = args.value("--seed", 2, "random seed");

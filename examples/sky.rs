@@ -24,7 +24,12 @@ fn main() {
         if quick { 96 } else { 256 },
         "fisheye diameter, pixels",
     );
-    let altitude: f64 = args.value("--altitude", 300.0, "camera altitude, m");
+    let altitude: f64 = args.ranged(
+        "--altitude",
+        300.0,
+        0.0..=1e7,
+        "camera altitude above the ground, m",
+    );
     let out = args.out_dir("docs/gallery/atmos");
     args.finish();
     if !(8..=4096).contains(&size) {

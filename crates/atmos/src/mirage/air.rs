@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::error::{Result, finite, invalid, positive};
+use crate::error::{Result, finite, in_range, invalid, positive};
 
 /// The Gladstone–Dale constant of air in the visible, m³/kg (≈ 2.26e-4).
 pub const GLADSTONE_DALE_AIR: f64 = 2.26e-4;
@@ -12,6 +12,8 @@ pub const GLADSTONE_DALE_AIR: f64 = 2.26e-4;
 pub const MOLAR_MASS_AIR: f64 = 0.028_964_4;
 /// Molar gas constant, J/(mol·K).
 pub const GAS_CONSTANT: f64 = 8.314_462_618;
+/// Hottest air or surface a [`TemperatureProfile`] accepts, K.
+pub const MAX_TEMPERATURE_K: f64 = 1e4;
 /// Standard gravity, m/s².
 pub const GRAVITY: f64 = 9.806_65;
 
@@ -125,7 +127,23 @@ impl TemperatureProfile {
         }
     }
 
+    /// Checks every field against its physical range: temperatures (the
+    /// air's and the surface's, or the ground's and above the inversion) in
+    /// `(0, 10⁴]` K, the excess or jump between them finite, lengths in
+    /// `[10⁻⁶, 10⁵]` m, the inversion's height within `±10⁵` m and lapse
+    /// rates within `±1` K/m.
     fn validate(&self) -> Result<()> {
+        let temperature = |n, v| {
+            in_range(
+                n,
+                v,
+                f64::MIN_POSITIVE,
+                MAX_TEMPERATURE_K,
+                "must be in (0, 10⁴] K",
+            )
+        };
+        let length = |n, v| in_range(n, v, 1e-6, 1e5, "must be in [10⁻⁶, 10⁵] m");
+        let lapse = |v| in_range("lapse_k_per_m", v, -1.0, 1.0, "must be in [−1, 1] K/m");
         match *self {
             TemperatureProfile::HotSurface {
                 air_k,
@@ -133,15 +151,16 @@ impl TemperatureProfile {
                 decay_m,
                 lapse_k_per_m,
             } => {
-                positive("air_k", air_k)?;
+                temperature("air_k", air_k)?;
                 finite("excess_k", excess_k)?;
-                positive("decay_m", decay_m)?;
-                finite("lapse_k_per_m", lapse_k_per_m)?;
-                if air_k + excess_k.min(0.0) <= 0.0 {
+                length("decay_m", decay_m)?;
+                lapse(lapse_k_per_m)?;
+                let surface = air_k + excess_k;
+                if !(surface > 0.0 && surface <= MAX_TEMPERATURE_K) {
                     return Err(invalid(
                         "excess_k",
                         excess_k,
-                        "surface temperature must stay above 0 K",
+                        "surface temperature air_k + excess_k must be in (0, 10⁴] K",
                     ));
                 }
             }
@@ -152,13 +171,18 @@ impl TemperatureProfile {
                 thickness_m,
                 lapse_k_per_m,
             } => {
-                positive("ground_k", ground_k)?;
+                temperature("ground_k", ground_k)?;
                 finite("jump_k", jump_k)?;
-                finite("height_m", height_m)?;
-                positive("thickness_m", thickness_m)?;
-                finite("lapse_k_per_m", lapse_k_per_m)?;
-                if ground_k + jump_k.min(0.0) <= 0.0 {
-                    return Err(invalid("jump_k", jump_k, "temperature must stay above 0 K"));
+                in_range("height_m", height_m, -1e5, 1e5, "must be in [−10⁵, 10⁵] m")?;
+                length("thickness_m", thickness_m)?;
+                lapse(lapse_k_per_m)?;
+                let above = ground_k + jump_k;
+                if !(above > 0.0 && above <= MAX_TEMPERATURE_K) {
+                    return Err(invalid(
+                        "jump_k",
+                        jump_k,
+                        "temperature ground_k + jump_k must be in (0, 10⁴] K",
+                    ));
                 }
             }
         }
@@ -185,11 +209,20 @@ impl StratifiedAir {
     ///
     /// # Errors
     ///
-    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a non-physical temperature profile (non-positive or
-    /// NaN temperatures or thicknesses) or pressure.
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter)
+    /// naming the field of a non-physical temperature profile (temperatures
+    /// outside `(0, 10⁴]` K, lengths outside `[10⁻⁶, 10⁵]` m, lapse rates
+    /// beyond `±1` K/m, NaN anywhere) or a pressure outside `(0, 10⁷]` Pa.
     pub fn new(profile: TemperatureProfile, pressure_pa: f64) -> Result<Self> {
         profile.validate()?;
         positive("pressure_pa", pressure_pa)?;
+        in_range(
+            "pressure_pa",
+            pressure_pa,
+            0.0,
+            1e7,
+            "must be in (0, 10⁷] Pa",
+        )?;
         let t_ref = profile.eval(0.0).0;
         Ok(Self {
             profile,

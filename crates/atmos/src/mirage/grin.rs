@@ -65,6 +65,10 @@ impl RayPath {
     }
 }
 
+/// Most accepted steps a [`GrinTracer`] may take ([`GrinTracer::max_steps`]):
+/// each keeps a point and a direction of the path, 48 bytes.
+pub const MAX_GRIN_STEPS: usize = 10_000_000;
+
 /// Adaptive Dormand–Prince 5(4) integrator of the ray equation in a
 /// gradient-index medium: state `(x, v = n·t̂)`, `dx/ds = v/n`, `dv/ds = ∇n`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,7 +87,7 @@ pub struct GrinTracer {
     pub ground_z: f64,
     /// The top of the traced slab (rays stop there), m.
     pub top_z: f64,
-    /// Accepted-step cap.
+    /// Accepted-step cap (at most [`MAX_GRIN_STEPS`]).
     pub max_steps: usize,
 }
 
@@ -147,8 +151,8 @@ impl GrinTracer {
     ///
     /// # Errors
     ///
-    /// Returns [`AtmosError::InvalidParameter`] naming the first setting that is non-positive or NaN, or a
-    /// `top_z` not above `ground_z`.
+    /// Returns [`AtmosError::InvalidParameter`] naming the first setting that is non-positive or NaN, a
+    /// `top_z` not above `ground_z`, or `max_steps` outside `1..=`[`MAX_GRIN_STEPS`].
     pub fn validate(&self) -> Result<()> {
         positive("tolerance_m", self.tolerance_m)?;
         positive("initial_step_m", self.initial_step_m)?;
@@ -159,8 +163,12 @@ impl GrinTracer {
         if self.top_z <= self.ground_z {
             return Err(invalid("top_z", self.top_z, "must exceed ground_z"));
         }
-        if self.max_steps == 0 {
-            return Err(invalid("max_steps", 0, "must be > 0"));
+        if !(1..=MAX_GRIN_STEPS).contains(&self.max_steps) {
+            return Err(invalid(
+                "max_steps",
+                self.max_steps,
+                "must be in 1..=10⁷ (each accepted step keeps a point of the path)",
+            ));
         }
         Ok(())
     }

@@ -28,8 +28,8 @@ pub mod planar;
 mod tests;
 
 pub use air::{
-    GAS_CONSTANT, GLADSTONE_DALE_AIR, GRAVITY, IndexField, MOLAR_MASS_AIR, StratifiedAir,
-    TemperatureProfile, UniformIndex,
+    GAS_CONSTANT, GLADSTONE_DALE_AIR, GRAVITY, IndexField, MAX_TEMPERATURE_K, MOLAR_MASS_AIR,
+    StratifiedAir, TemperatureProfile, UniformIndex,
 };
-pub use grin::{GrinTracer, PathEnd, RayPath, invariant_drift};
+pub use grin::{GrinTracer, MAX_GRIN_STEPS, PathEnd, RayPath, invariant_drift};
 pub use planar::{Interaction, PlanarMirage};

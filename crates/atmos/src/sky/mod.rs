@@ -178,6 +178,10 @@ impl Atmosphere {
         p + DVec3::new(0.0, 0.0, self.params.bottom_radius_m)
     }
 
+    /// Checks a point of the local frame: finite, above the ground, and
+    /// on the frame's side of the planet (`z ≥ −bottom_radius_m`: a point
+    /// below the plane through the planet's centre lies under the ground
+    /// the frame stands on, whatever its distance from the centre).
     fn check_point(&self, name: &'static str, p: DVec3) -> Result<DVec3> {
         finite3(name, p)?;
         let q = self.planet_point(p);
@@ -186,6 +190,14 @@ impl Atmosphere {
                 name,
                 p,
                 "point is below the ground (z < 0 at the planet's surface)",
+            ));
+        }
+        if q.z < 0.0 {
+            return Err(invalid(
+                name,
+                p,
+                "point is below the ground: z must be at least −bottom_radius_m (the \
+                 plane through the planet's centre)",
             ));
         }
         Ok(q)

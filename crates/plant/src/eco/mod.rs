@@ -37,9 +37,9 @@ mod species;
 pub use instance::{Instancing, PlantInstance, Prototype};
 pub use picture::{species_colour, top_view};
 pub use quantize::{Quantization, quantize};
-pub use sim::{EcoParams, Ecosystem, Plant, StepStats};
+pub use sim::{EcoParams, Ecosystem, MAX_GRID_CELLS, MAX_SEEDS_PER_SPECIES, Plant, StepStats};
 pub use site::Site;
-pub use species::Species;
+pub use species::{MAX_PER_HA, MAX_RADIUS_M, MIN_RADIUS_M, Species};
 
 #[cfg(test)]
 mod tests;

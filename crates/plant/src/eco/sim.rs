@@ -165,6 +165,14 @@ pub struct Ecosystem {
     max_r: Vec<f32>,
 }
 
+/// Most seeds one species draws in one step: a plant's id holds the draw's
+/// index in 24 bits.
+pub const MAX_SEEDS_PER_SPECIES: u64 = 1 << 24;
+
+/// Most cells of the spatial grid that finds intersecting circles (its cell
+/// is twice the largest `max_radius` of the species): 2²⁶, a 256 MiB index.
+pub const MAX_GRID_CELLS: u64 = 1 << 26;
+
 /// Uniform number in `[0, 1)` from the ecosystem seed and four indices.
 #[inline]
 fn uniform(seed: Seed, a: u64, b: u64, c: u64, d: u64) -> f32 {
@@ -177,7 +185,12 @@ impl Ecosystem {
     /// # Errors
     ///
     /// [`EcoParams::validate`]'s errors; [`Site::new`]'s errors for a bad field;
-    /// [`PlantError::InvalidParameter`] naming `EcoParams::max_plants` if the initial population exceeds it.
+    /// [`PlantError::InvalidParameter`] naming `Species::max_radius` if the
+    /// neighbour grid would exceed [`MAX_GRID_CELLS`], naming
+    /// `Species::initial_per_ha` if a species would draw more seeds than
+    /// [`MAX_SEEDS_PER_SPECIES`] or all together more than
+    /// `EcoParams::max_plants` (checked before anything is allocated), and
+    /// naming `EcoParams::max_plants` if the initial population exceeds it.
     pub fn new(hf: &natura_core::HeightField, params: EcoParams) -> Result<Self> {
         params.validate()?;
         let site = Site::new(hf, params.sun)?;
@@ -191,7 +204,8 @@ impl Ecosystem {
             r_max,
             max_r,
         };
-        eco.plants = eco.sow(0, |s| s.initial_per_ha);
+        eco.check_grid()?;
+        eco.plants = eco.sow(0, "Species::initial_per_ha", |s| s.initial_per_ha)?;
         eco.check_size()?;
         eco.sort_by_cell();
         Ok(eco)
@@ -210,7 +224,8 @@ impl Ecosystem {
     /// exceeds [`EcoParams::steps`], the population exceeds
     /// [`EcoParams::max_plants`], or a plant lies outside the terrain, has
     /// a non-finite or non-positive radius, a vigor outside `[0, 1.5]`, or
-    /// a species index out of range.
+    /// a species index out of range; naming `Species::max_radius` if the
+    /// neighbour grid would exceed [`MAX_GRID_CELLS`].
     pub fn resume(
         hf: &natura_core::HeightField,
         params: EcoParams,
@@ -262,6 +277,7 @@ impl Ecosystem {
             r_max,
             max_r,
         };
+        eco.check_grid()?;
         // Stable: a population saved in grid order keeps its order.
         eco.sort_by_cell();
         Ok(eco)
@@ -312,17 +328,90 @@ impl Ecosystem {
         Ok(())
     }
 
-    /// Seeds of every species for step `step`, `rate(species)` per hectare.
-    fn sow(&self, step: u32, rate: impl Fn(&Species) -> f64) -> Vec<Plant> {
+    /// Refuses a spatial grid (cells of twice the largest `max_radius` over
+    /// the terrain's extent) of more than [`MAX_GRID_CELLS`] cells, before
+    /// anything is allocated for it.
+    fn check_grid(&self) -> Result<()> {
+        let (ex, ey) = self.site.extent();
+        let c = f64::from(self.cell());
+        let cells = (f64::from(ex) / c + 1.0) * (f64::from(ey) / c + 1.0);
+        if cells > MAX_GRID_CELLS as f64 {
+            return Err(PlantError::InvalidParameter {
+                name: "Species::max_radius",
+                value: self.r_max.to_string(),
+                reason: format!(
+                    "the largest max_radius sets the neighbour grid's cell (2 × max_radius); \
+                     over this {ex} m × {ey} m terrain it would need {cells:.3e} cells, at most \
+                     {MAX_GRID_CELLS}: the largest max_radius must be at least {:.3e} m here",
+                    (f64::from(ex) * f64::from(ey) / MAX_GRID_CELLS as f64).sqrt() / 2.0
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Seeds each species draws in step `step` at `rate(species)` per
+    /// hectare (`name` is that rate's parameter), checked before anything is
+    /// allocated for them: a species draws at most [`MAX_SEEDS_PER_SPECIES`]
+    /// seeds per step, and all species together at most
+    /// [`EcoParams::max_plants`] and no more than the memory cap
+    /// ([`natura_core::MAX_GRID_BYTES`]) holds.
+    fn sow_counts(
+        &self,
+        step: u32,
+        name: &'static str,
+        rate: &impl Fn(&Species) -> f64,
+    ) -> Result<Vec<u64>> {
         let (ex, ey) = self.site.extent();
         let ha = f64::from(ex) * f64::from(ey) / 1e4;
         let seed = self.params.seed.derive("eco.sow");
-        let mut out = Vec::new();
+        let per_draw = std::mem::size_of::<Option<Plant>>() as f64;
+        let all =
+            (self.params.max_plants as f64).min(natura_core::MAX_GRID_BYTES as f64 / per_draw);
+        let one = all.min(MAX_SEEDS_PER_SPECIES as f64);
+        let mut total = 0.0;
+        let mut counts = Vec::with_capacity(self.params.species.len());
         for (si, sp) in self.params.species.iter().enumerate() {
             let expected = rate(sp) * ha;
+            total += expected;
+            if !(expected <= one && total <= all) {
+                return Err(PlantError::InvalidParameter {
+                    name,
+                    value: format!("{} (species \"{}\")", rate(sp), sp.name),
+                    reason: format!(
+                        "over this terrain's {ha:.4} ha the species would draw {expected:.3e} \
+                         seeds in one step ({total:.3e} with the species before it); at most \
+                         {one:.0} per species and {all:.0} in all (EcoParams::max_plants = {} \
+                         and the memory cap), so at most {:.3e} per hectare here",
+                        self.params.max_plants,
+                        one / ha
+                    ),
+                });
+            }
             let whole = expected.floor();
             let extra = f64::from(uniform(seed, u64::from(step), si as u64, u64::MAX, 0));
-            let n = whole as u64 + u64::from(extra < expected - whole);
+            counts.push(whole as u64 + u64::from(extra < expected - whole));
+        }
+        Ok(counts)
+    }
+
+    /// Seeds of every species for step `step`, `rate(species)` per hectare
+    /// (`name` is that rate's parameter, for errors).
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::sow_counts`].
+    fn sow(
+        &self,
+        step: u32,
+        name: &'static str,
+        rate: impl Fn(&Species) -> f64,
+    ) -> Result<Vec<Plant>> {
+        let counts = self.sow_counts(step, name, &rate)?;
+        let (ex, ey) = self.site.extent();
+        let seed = self.params.seed.derive("eco.sow");
+        let mut out = Vec::new();
+        for ((si, sp), &n) in self.params.species.iter().enumerate().zip(&counts) {
             let site = &self.site;
             let born = par::map(n as usize, |k| {
                 let k = k as u64;
@@ -353,7 +442,7 @@ impl Ecosystem {
             });
             out.extend(born.into_iter().flatten());
         }
-        out
+        Ok(out)
     }
 
     /// Cell size of the spatial grid: twice the largest radius, so intersecting circles
@@ -428,7 +517,10 @@ impl Ecosystem {
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] naming `EcoParams::max_plants` if the population exceeds it.
+    /// [`PlantError::InvalidParameter`] naming `Species::seeds_per_ha` if
+    /// the step's seeds would exceed the bounds [`Ecosystem::new`] states
+    /// for the initial ones, and naming `EcoParams::max_plants` if the
+    /// population exceeds it.
     pub fn step(&mut self) -> Result<StepStats> {
         self.step += 1;
         let mut stats = StepStats::default();
@@ -446,7 +538,7 @@ impl Ecosystem {
             p.radius < max_r[p.species as usize]
         });
         stats.old = before - self.plants.len();
-        let born = self.sow(self.step, |s| s.seeds_per_ha);
+        let born = self.sow(self.step, "Species::seeds_per_ha", |s| s.seeds_per_ha)?;
         stats.seeded = born.len();
         self.plants.extend(born);
         self.check_size()?;

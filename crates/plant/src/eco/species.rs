@@ -56,6 +56,16 @@ pub struct Species {
     pub max_steps: u32,
 }
 
+/// Most plants per hectare a species may sow ([`Species::seeds_per_ha`],
+/// [`Species::initial_per_ha`]): one per square centimetre.
+pub const MAX_PER_HA: f64 = 1e8;
+
+/// Smallest radius of a circle of influence, metres (a millimetre seedling).
+pub const MIN_RADIUS_M: f64 = 1e-3;
+
+/// Largest radius of a circle of influence, metres, and largest growth per step.
+pub const MAX_RADIUS_M: f64 = 1e3;
+
 /// A small ABOP-style bush (Prusinkiewicz & Lindenmayer 1990, Fig. 1.25) used by the default species.
 const BUSH: &str = "angle: 22.5
 ω: !(0.1)A
@@ -166,17 +176,33 @@ impl Species {
         }
     }
 
-    /// Checks every field: finite, the right sign, intervals ordered, probabilities in `[0, 1]`.
+    /// Checks every field against its physical range: densities in
+    /// `[0, 10⁸]` per hectare (one plant per square centimetre), radii in
+    /// `[10⁻³, 10³]` metres (a millimetre seedling to a kilometre-wide
+    /// circle of influence) with `r0_min ≤ r0_max < max_radius`, growth in
+    /// `(0, 10³]` metres per step, probabilities and normalised site values
+    /// in `[0, 1]`.
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] naming the field.
+    /// [`PlantError::InvalidParameter`] naming the field, its value and its range.
     pub fn validate(&self) -> Result<()> {
-        check::non_negative("Species::seeds_per_ha", self.seeds_per_ha)?;
-        check::non_negative("Species::initial_per_ha", self.initial_per_ha)?;
-        check::positive("Species::r0_min", self.r0_min)?;
-        check::positive("Species::r0_max", self.r0_max)?;
-        check::positive("Species::max_radius", self.max_radius)?;
+        let density =
+            |n, v| check::in_range(n, v, 0.0, MAX_PER_HA, "plants per hectare in [0, 1e8]");
+        density("Species::seeds_per_ha", self.seeds_per_ha)?;
+        density("Species::initial_per_ha", self.initial_per_ha)?;
+        let radius = |n, v| {
+            check::in_range(
+                n,
+                v,
+                MIN_RADIUS_M,
+                MAX_RADIUS_M,
+                "a radius in [1e-3, 1e3] metres",
+            )
+        };
+        radius("Species::r0_min", self.r0_min)?;
+        radius("Species::r0_max", self.r0_max)?;
+        radius("Species::max_radius", self.max_radius)?;
         if self.r0_max < self.r0_min || self.r0_max >= self.max_radius {
             return Err(PlantError::InvalidParameter {
                 name: "Species::r0_max",
@@ -185,6 +211,13 @@ impl Species {
             });
         }
         check::positive("Species::growth", self.growth)?;
+        check::in_range(
+            "Species::growth",
+            self.growth,
+            0.0,
+            MAX_RADIUS_M,
+            "metres per step in (0, 1e3]",
+        )?;
         let unit = |n, v| check::in_range(n, v, 0.0, 1.0, "a number in [0, 1]");
         unit("Species::survive_domination", self.survive_domination)?;
         unit("Species::wet_optimum", self.wet_optimum)?;

@@ -278,3 +278,110 @@ fn a_resumed_ecosystem_steps_on_as_the_original() {
         assert!(refused(bad, 3));
     }
 }
+
+/// The name and message of an `InvalidParameter`, or a panic naming what came instead.
+fn refusal(r: Result<Ecosystem, PlantError>) -> (&'static str, String) {
+    match r {
+        Err(e @ PlantError::InvalidParameter { name, .. }) => (name, e.to_string()),
+        Err(e) => panic!("expected InvalidParameter, got {e}"),
+        Ok(eco) => panic!("expected an error, got {} plants", eco.plants().len()),
+    }
+}
+
+/// A 32 km × 32 km terrain of 33² samples: about 10⁵ hectares.
+fn wide() -> HeightField {
+    HeightField::from_fn(33, 33, 1000.0, |i, j| ((i * 7 + j * 3) % 5) as f32).unwrap()
+}
+
+#[test]
+fn sowing_is_checked_against_max_plants_before_anything_is_allocated() {
+    let hf = wide();
+    // Densities beyond one plant per square centimetre are refused outright.
+    for (field, v) in [("initial_per_ha", 1e300), ("seeds_per_ha", 1e300)] {
+        let mut p = EcoParams::default();
+        if field == "initial_per_ha" {
+            p.species[3].initial_per_ha = v;
+        } else {
+            p.species[3].seeds_per_ha = v;
+        }
+        let (name, msg) = refusal(Ecosystem::new(&hf, p));
+        assert_eq!(name, format!("Species::{field}"), "{msg}");
+        assert!(msg.contains("[0, 1e8]"), "{msg}");
+    }
+    let grass = |initial_per_ha, seeds_per_ha| EcoParams {
+        species: vec![Species {
+            initial_per_ha,
+            seeds_per_ha,
+            max_radius: 5.0,
+            ..Species::grass()
+        }],
+        ..EcoParams::default()
+    };
+    // A density within range whose count over this terrain (10¹³ seeds)
+    // exceeds max_plants: refused, naming the density, before allocating.
+    let (name, msg) = refusal(Ecosystem::new(&hf, grass(1e8, 0.0)));
+    assert_eq!(name, "Species::initial_per_ha", "{msg}");
+    assert!(msg.contains("grass") && msg.contains("max_plants"), "{msg}");
+    // The same for the seeds of a step.
+    let mut eco = Ecosystem::new(&hf, grass(0.0, 1e8)).unwrap();
+    match eco.step() {
+        Err(e @ PlantError::InvalidParameter { name, .. }) => {
+            assert_eq!(name, "Species::seeds_per_ha", "{e}");
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    // All species together against a small max_plants.
+    let p = EcoParams {
+        max_plants: 1000,
+        ..EcoParams::default()
+    };
+    let (name, msg) = refusal(Ecosystem::new(&hf, p));
+    assert_eq!(name, "Species::initial_per_ha", "{msg}");
+    assert!(msg.contains("max_plants = 1000"), "{msg}");
+}
+
+#[test]
+fn species_parameters_are_held_to_physical_ranges() {
+    let hf = valley();
+    type Edit = fn(&mut Species);
+    let cases: [(&str, Edit); 5] = [
+        ("Species::max_radius", |s| s.max_radius = 1e300),
+        ("Species::r0_min", |s| s.r0_min = 1e-300),
+        ("Species::r0_max", |s| s.r0_max = 5e3),
+        ("Species::growth", |s| s.growth = 1e300),
+        ("Species::seeds_per_ha", |s| s.seeds_per_ha = 1e9),
+    ];
+    for (field, set) in cases {
+        let mut p = EcoParams::default();
+        set(&mut p.species[0]);
+        let (name, msg) = refusal(Ecosystem::new(&hf, p));
+        assert_eq!(name, field, "{msg}");
+    }
+}
+
+#[test]
+fn a_neighbour_grid_too_fine_for_the_terrain_is_refused_before_it_is_built() {
+    let sp = Species {
+        r0_min: 1e-3,
+        r0_max: 1e-3,
+        max_radius: 2e-3,
+        initial_per_ha: 0.0,
+        seeds_per_ha: 0.0,
+        ..Species::default()
+    };
+    let p = EcoParams {
+        species: vec![sp],
+        ..EcoParams::default()
+    };
+    let (name, msg) = refusal(Ecosystem::new(&wide(), p.clone()));
+    assert_eq!(name, "Species::max_radius", "{msg}");
+    assert!(msg.contains("0.002"), "{msg}");
+    let resumed = Ecosystem::resume(&wide(), p, Vec::new(), 0);
+    assert!(matches!(
+        resumed,
+        Err(PlantError::InvalidParameter {
+            name: "Species::max_radius",
+            ..
+        })
+    ));
+}

@@ -93,9 +93,7 @@ impl Relief {
             (Some(d), Some(_)) => {
                 d.validate()?;
                 let k = cs.octaves as usize;
-                let finest = 1.0
-                    + (radius / (texture_scale * cs.frequency * d.finest_m)).ln()
-                        / cs.lacunarity.ln();
+                let finest = super::params::detail_finest_octave(radius, texture_scale, &cs, &d)?;
                 let octaves = finest - k as f64;
                 if octaves > 0.0 {
                     total = finest;

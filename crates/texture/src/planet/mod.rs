@@ -31,11 +31,11 @@ mod trace;
 pub use cube::{CubeFace, CubeMap, Face, SurfaceMap};
 pub use height::Relief;
 pub use params::{
-    CloudLayerParams, EARTH_RADIUS_M, LightParams, PlanetAtmosphereParams, PlanetDetailParams,
-    PlanetParams, SurfaceParams, TerrainParams,
+    CloudLayerParams, EARTH_RADIUS_M, LightParams, MAX_SUN_COLOUR, PlanetAtmosphereParams,
+    PlanetDetailParams, PlanetParams, SurfaceParams, TEXTURE_SCALE_RANGE, TerrainParams,
 };
-pub use render::{GroundViewParams, direction};
-pub use trace::{SurfaceHit, TraceSettings};
+pub use render::{GroundViewParams, MAX_ALTITUDE_M, direction};
+pub use trace::{EPSILON_RESOLUTION, MAX_TRACE_STEPS, SurfaceHit, TraceSettings};
 
 use glam::DVec3;
 use natura_atmos::Dir3;

@@ -11,6 +11,13 @@ use crate::giants::{GasGiantParams, RingsParams};
 /// Earth's mean radius, metres.
 pub const EARTH_RADIUS_M: f64 = 6.371e6;
 
+/// The brightest sun channel [`LightParams::sun_colour`] accepts: 10⁶ times
+/// the reference sun, far within `f32` range after every factor of shading.
+pub const MAX_SUN_COLOUR: f64 = 1e6;
+
+/// The range of [`TerrainParams::texture_scale`], texture units per radius.
+pub const TEXTURE_SCALE_RANGE: (f64, f64) = (1e-6, 1e6);
+
 /// Detail finer than the continents: the lower crossover, below which the
 /// relief turns smooth (Musgrave 1993, §2.2.1.4: "the smaller scale at which
 /// the surface becomes smooth and non-fractal").
@@ -104,7 +111,13 @@ impl TerrainParams {
     pub fn validate(&self) -> Result<()> {
         self.terran.validate()?;
         non_negative("relief_m", self.relief_m)?;
-        positive("texture_scale", self.texture_scale)?;
+        in_range(
+            "texture_scale",
+            self.texture_scale,
+            TEXTURE_SCALE_RANGE.0,
+            TEXTURE_SCALE_RANGE.1,
+            "must be in [10⁻⁶, 10⁶] texture units per radius",
+        )?;
         if let Some(d) = &self.detail {
             d.validate()?;
             let o = self.terran.spectral.octaves;
@@ -118,6 +131,45 @@ impl TerrainParams {
         }
         Ok(())
     }
+}
+
+/// The octave count, from the continents' first, of the detail's finest
+/// octave (lattice cell `d.finest_m`) on a planet of radius `radius_m` with
+/// `texture_scale` texture units per radius, under the continents'
+/// spectral parameters `cs`, checked against natura-noise's limits for the
+/// detail's own fBm (the octaves from the continents' last whole one down):
+/// at most 64 octaves spanning at most 2³² in frequency.
+///
+/// # Errors
+/// [`TextureError`](crate::TextureError) naming `detail.finest_m` (with the
+/// radius, scale and octave counts) if the detail's octaves are infinite or
+/// beyond those limits.
+pub(crate) fn detail_finest_octave(
+    radius_m: f64,
+    texture_scale: f64,
+    cs: &natura_noise::Spectral,
+    d: &PlanetDetailParams,
+) -> Result<f64> {
+    let finest =
+        1.0 + (radius_m / (texture_scale * cs.frequency * d.finest_m)).ln() / cs.lacunarity.ln();
+    let k = cs.octaves as usize;
+    let octaves = finest - k as f64;
+    if octaves > 0.0 || octaves.is_nan() {
+        let span = cs.lacunarity.powf(octaves.ceil() - 1.0);
+        if !(octaves <= 64.0 && span <= 2f64.powi(32)) {
+            return Err(crate::TextureError::InvalidParameter {
+                name: "detail.finest_m",
+                value: format!(
+                    "{:e} ({octaves} octaves of detail below the continents' {k}, on a radius of \
+                     {radius_m} m at texture_scale {texture_scale})",
+                    d.finest_m
+                ),
+                reason: "radius_m / (texture_scale × finest_m) must leave at most 64 octaves of \
+                         detail, spanning at most 2³² in frequency (natura-noise's limits)",
+            });
+        }
+    }
+    Ok(finest)
 }
 
 /// What covers the planet.
@@ -244,7 +296,8 @@ impl CloudLayerParams {
 pub struct LightParams {
     /// Direction towards the sun (normalised when the planet is built).
     pub sun: DVec3,
-    /// The sun's colour and intensity.
+    /// The sun's colour and intensity (linear, each channel in `[0, 10⁶]`:
+    /// [`MAX_SUN_COLOUR`]).
     pub sun_colour: DVec3,
     /// Light reaching every surface from elsewhere (fraction of the sun).
     pub ambient: f64,
@@ -274,7 +327,13 @@ impl LightParams {
     pub fn validate(&self) -> Result<()> {
         direction("sun", self.sun)?;
         for c in self.sun_colour.to_array() {
-            non_negative("sun_colour", c)?;
+            in_range(
+                "sun_colour",
+                c,
+                0.0,
+                MAX_SUN_COLOUR,
+                "each channel must be in [0, 10⁶]",
+            )?;
         }
         in_range("ambient", self.ambient, 0.0, 1.0, "must be in [0, 1]")?;
         in_range(
@@ -401,7 +460,19 @@ impl PlanetParams {
             "must be between 1 m and 10¹² m",
         )?;
         match &self.surface {
-            SurfaceParams::Terrain(t) => t.validate()?,
+            SurfaceParams::Terrain(t) => {
+                t.validate()?;
+                if t.relief_m > self.radius_m {
+                    return Err(invalid(
+                        "relief_m",
+                        t.relief_m,
+                        "must be in [0, radius_m]: mountains no higher than the planet is wide",
+                    ));
+                }
+                if let Some(d) = &t.detail {
+                    detail_finest_octave(self.radius_m, t.texture_scale, &t.terran.spectral, d)?;
+                }
+            }
             SurfaceParams::Venus(v) => v.validate()?,
             SurfaceParams::GasGiant(g) => g.validate()?,
             SurfaceParams::Luna(l) => l.validate()?,

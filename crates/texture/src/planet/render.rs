@@ -4,7 +4,7 @@ use glam::DVec3;
 use natura_core::{Image, Progress};
 
 use super::Planet;
-use crate::error::{Result, finite, in_range, non_negative, positive};
+use crate::error::{Result, TextureError, finite, in_range, non_negative};
 use crate::planet::trace::TraceSettings;
 use crate::raster::render_rows;
 use crate::view::View;
@@ -50,12 +50,18 @@ impl GroundViewParams {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) naming the bad field.
+    /// [`TextureError`] naming the bad field.
     pub fn validate(&self) -> Result<()> {
         finite("latitude", self.latitude)?;
         finite("longitude", self.longitude)?;
         non_negative("search_radius_m", self.search_radius_m)?;
-        positive("eye_height_m", self.eye_height_m)?;
+        in_range(
+            "eye_height_m",
+            self.eye_height_m,
+            f64::MIN_POSITIVE,
+            MAX_ALTITUDE_M,
+            "must be in (0, 10¹²] m",
+        )?;
         finite("heading", self.heading)?;
         in_range(
             "pitch",
@@ -67,6 +73,10 @@ impl GroundViewParams {
         Ok(())
     }
 }
+
+/// Highest eye above the surface a view accepts, metres (10¹²: the largest
+/// planet radius).
+pub const MAX_ALTITUDE_M: f64 = 1e12;
 
 /// The unit direction of latitude `lat` and longitude `lon` (radians).
 #[must_use]
@@ -85,8 +95,9 @@ impl Planet {
     /// and longitude `longitude` (radians), looking at the planet's centre.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) for a non-positive altitude or
-    /// a bad field of view or resolution.
+    /// [`TextureError`] naming `altitude_m` outside
+    /// `(0, 10¹²]` metres, a non-finite `latitude` or `longitude`, or a bad
+    /// field of view or resolution.
     pub fn orbit_view(
         &self,
         altitude_m: f64,
@@ -96,7 +107,15 @@ impl Planet {
         width: u32,
         height: u32,
     ) -> Result<View> {
-        positive("altitude_m", altitude_m)?;
+        in_range(
+            "altitude_m",
+            altitude_m,
+            f64::MIN_POSITIVE,
+            MAX_ALTITUDE_M,
+            "must be in (0, 10¹²] m",
+        )?;
+        finite("latitude", latitude)?;
+        finite("longitude", longitude)?;
         let up = direction(latitude, longitude);
         let eye = up * (self.radius() + altitude_m);
         let hint = if up.z.abs() > 0.999 {
@@ -143,10 +162,18 @@ impl Planet {
     /// and `pitch`.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) for bad view parameters or
-    /// resolution.
+    /// [`TextureError`] for bad view parameters or
+    /// resolution, naming `search_radius_m` if it exceeds half the
+    /// planet's circumference (`π R`).
     pub fn ground_view(&self, g: &GroundViewParams, width: u32, height: u32) -> Result<View> {
         g.validate()?;
+        if g.search_radius_m > std::f64::consts::PI * self.radius() {
+            return Err(TextureError::InvalidParameter {
+                name: "search_radius_m",
+                value: format!("{} (planet radius {} m)", g.search_radius_m, self.radius()),
+                reason: "must be in [0, π × radius_m]: half the planet's circumference",
+            });
+        }
         let up = self.summit_near(direction(g.latitude, g.longitude), g.search_radius_m);
         let ground = self.height(up, 0.01);
         let eye = up * (self.radius() + ground + g.eye_height_m);
@@ -161,17 +188,28 @@ impl Planet {
     /// light = 1.
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) for bad trace settings or an
-    /// image too large for memory.
+    /// [`TextureError`] for bad trace settings
+    /// ([`TraceSettings::validate_for`]: a tolerance finer than the scene
+    /// resolves), an image too large for memory, or naming `eye` for a view
+    /// whose eye is not above the surface (at the centre, below sea level
+    /// or inside a mountain), from where no pixel could be rendered.
     pub fn render(
         &self,
         view: &View,
         settings: &TraceSettings,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        settings.validate()?;
         let eye = view.eye();
+        settings.validate_for(self, eye)?;
         let alpha = view.pixel_angle();
+        let clearance = self.gap(eye, DVec3::Z, 0.0, alpha);
+        if clearance.is_nan() || clearance <= 0.0 {
+            return Err(TextureError::InvalidParameter {
+                name: "eye",
+                value: format!("{eye} ({clearance} m above the surface)"),
+                reason: "the view's eye must lie above the planet's surface",
+            });
+        }
         render_rows(view.width(), view.height(), "planet", progress, |y, row| {
             for (x, px) in row.iter_mut().enumerate() {
                 let d = view.pixel(x as u32, y);

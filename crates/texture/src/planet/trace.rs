@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{Planet, Surface};
-use crate::error::{Result, in_range, positive};
+use crate::error::{Result, TextureError, in_range, positive};
 use crate::footprint::Footprint;
 use crate::planet::height::Relief;
 use crate::view::sphere_hits;
@@ -20,7 +20,8 @@ pub struct TraceSettings {
     /// …or below this many metres, whichever is larger (10⁻⁴).
     pub min_epsilon_m: f64,
     /// Steps after which a ray that has not converged is taken as a hit at
-    /// its current point (a ray grazing the surface for a long way; 4096).
+    /// its current point (a ray grazing the surface for a long way; 4096;
+    /// at most [`MAX_TRACE_STEPS`]).
     pub max_steps: u32,
 }
 
@@ -35,19 +36,68 @@ impl Default for TraceSettings {
 }
 
 impl TraceSettings {
-    /// Checks every field.
+    /// Checks every field on its own; [`Planet::render`] also checks
+    /// `min_epsilon_m` against the scene ([`TraceSettings::validate_for`]).
     ///
     /// # Errors
-    /// [`TextureError`](crate::TextureError) naming the bad field.
+    /// [`TextureError`] naming the bad field.
     pub fn validate(&self) -> Result<()> {
         in_range("epsilon", self.epsilon, 0.0, 1e6, "must be in [0, 10⁶]")?;
         positive("min_epsilon_m", self.min_epsilon_m)?;
-        if self.max_steps == 0 {
-            return Err(crate::error::invalid("max_steps", 0, "must be at least 1"));
+        if !(1..=MAX_TRACE_STEPS).contains(&self.max_steps) {
+            return Err(crate::error::invalid(
+                "max_steps",
+                self.max_steps,
+                "must be in 1..=1048576",
+            ));
+        }
+        Ok(())
+    }
+
+    /// [`validate`](Self::validate), and whether the sphere tracer can
+    /// resolve `min_epsilon_m` on `planet` seen from `eye`: a gap is
+    /// computed from points as far from the centre as the eye or the
+    /// outermost surface, to `f64`'s precision of that distance, so the
+    /// tolerance must be at least that distance × [`EPSILON_RESOLUTION`]
+    /// (64 units in the last place). A finer tolerance could never be met,
+    /// and every ray would spend `max_steps` steps. With both bounds, a
+    /// ray's work is at most `max_steps` sphere-tracing steps plus 512 of
+    /// its shadow ray.
+    ///
+    /// # Errors
+    /// As [`validate`](Self::validate); [`TextureError`]
+    /// naming `min_epsilon_m` if it is below the resolution (a smooth planet,
+    /// which is not sphere traced, has no such bound).
+    pub fn validate_for(&self, planet: &Planet, eye: DVec3) -> Result<()> {
+        self.validate()?;
+        if planet.relief().is_some() {
+            let floor = (eye.length() + planet.max_radius()) * EPSILON_RESOLUTION;
+            if floor.is_nan() || self.min_epsilon_m < floor {
+                return Err(TextureError::InvalidParameter {
+                    name: "min_epsilon_m",
+                    value: format!(
+                        "{:e} (the planet's outermost radius {} m and the eye {} m from its \
+                         centre resolve {floor:e} m)",
+                        self.min_epsilon_m,
+                        planet.max_radius(),
+                        eye.length()
+                    ),
+                    reason: "must be at least (eye distance + outermost radius) × 2⁻⁴⁶, the \
+                             precision to which a gap can be computed",
+                });
+            }
         }
         Ok(())
     }
 }
+
+/// Most sphere-tracing steps per ray ([`TraceSettings::max_steps`]): 2²⁰.
+pub const MAX_TRACE_STEPS: u32 = 1 << 20;
+
+/// The finest tolerance per metre of distance from the planet's centre
+/// that [`TraceSettings::validate_for`] accepts: 2⁻⁴⁶, 64 units in the last
+/// place of an `f64`.
+pub const EPSILON_RESOLUTION: f64 = 1.0 / (1u64 << 46) as f64;
 
 /// Where a ray meets the planet's surface.
 #[derive(Clone, Copy, Debug, PartialEq)]

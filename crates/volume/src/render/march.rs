@@ -235,10 +235,14 @@ impl<'s> FastRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`Scene::validate`]; [`VolumeError::InvalidParameter`] for a bad
-    /// step, table size, powder or threshold.
+    /// As [`Scene::validate`] and [`Scene::majorant`] (the reference's rule:
+    /// an extinction times maximum density of 1e9 1/m or more, which would
+    /// overflow the march's optical depths, is refused);
+    /// [`VolumeError::InvalidParameter`] for a bad step, table size, powder
+    /// or threshold.
     pub fn new(scene: &'s Scene<'s>, settings: FastSettings) -> Result<Self> {
         scene.validate()?;
+        scene.majorant()?;
         settings.octaves.validate()?;
         in_range(
             "step_growth",

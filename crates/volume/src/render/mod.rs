@@ -47,6 +47,10 @@ pub struct LookAtCamera {
     pub height: usize,
 }
 
+/// The majorant (extinction × maximum density, 1/m) both renderers stay
+/// below: [`Scene::majorant`].
+pub const MAX_MAJORANT: f32 = 1e9;
+
 /// Largest image side accepted.
 pub const MAX_IMAGE_SIDE: usize = 16_384;
 
@@ -408,6 +412,31 @@ impl<'a> Scene<'a> {
             rgb("emission.colour", e.colour)?;
         }
         Ok(())
+    }
+
+    /// The majorant `σ̄ = extinction × the density's bound over its box`,
+    /// 1/m: the rule both renderers keep, so a grid or medium one refuses
+    /// the other refuses too.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] naming `majorant` (with the
+    /// extinction and the density's bound) if it exceeds
+    /// [`MAX_MAJORANT`] (an overflowing product included).
+    pub fn majorant(&self) -> Result<f32> {
+        let bound = self.density.bound_in(&self.density.bounds());
+        let majorant = self.medium.extinction * bound;
+        if !(majorant.is_finite() && (0.0..=MAX_MAJORANT).contains(&majorant)) {
+            return Err(VolumeError::InvalidParameter {
+                name: "majorant",
+                value: format!(
+                    "{majorant:e} (extinction {} × maximum density {bound:e})",
+                    self.medium.extinction
+                ),
+                expected: "extinction × maximum density must be below 1e9 1/m",
+            });
+        }
+        Ok(majorant)
     }
 
     /// The sun, normalised.

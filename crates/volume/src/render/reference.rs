@@ -43,7 +43,7 @@ use super::model::emitted;
 use super::{LookAtCamera, Scene};
 use crate::animate::unit;
 use crate::density::ray_box;
-use crate::error::Result;
+use crate::error::{Result, VolumeError};
 use crate::phase::{henyey_greenstein, sample_hg};
 
 /// The share of directions drawn from the forward peak's lobe about the sun
@@ -97,19 +97,23 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`Scene::validate`]; [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter)
-    /// for a sample count or depth of 0 or absurdly large.
+    /// As [`Scene::validate`] and [`Scene::majorant`];
+    /// [`VolumeError::InvalidParameter`] for a sample count or depth of 0
+    /// or absurdly large, and naming `extinction` if the expected
+    /// collisions with the majorant along the density box's diagonal
+    /// exceed [`MAX_COLLISIONS_PER_RAY`] (a medium too thick for delta
+    /// tracking to cross).
     pub fn new(scene: &'s Scene<'s>, settings: ReferenceSettings) -> Result<Self> {
         scene.validate()?;
         super::march::check_count("samples_per_pixel", settings.samples_per_pixel, 1_000_000)?;
         super::march::check_count("max_depth", settings.max_depth, 100_000)?;
-        let majorant = scene.medium.extinction * scene.density.bound_in(&scene.density.bounds());
-        crate::error::in_range(
-            "majorant",
+        let majorant = scene.majorant()?;
+        let b = scene.density.bounds();
+        check_collisions(
+            scene,
             majorant,
-            0.0,
-            1e9,
-            "extinction × maximum density must be below 1e9 1/m",
+            (b.max - b.min).length(),
+            "the box's diagonal",
         )?;
         Ok(Self {
             scene,
@@ -286,8 +290,49 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`LookAtCamera::validate`]; a too-large image.
+    /// As [`LookAtCamera::validate`]; a too-large image;
+    /// [`VolumeError::InvalidParameter`] naming `extinction` if the
+    /// majorant times the distance from the camera to the density box's
+    /// farthest corner exceeds [`MAX_COLLISIONS_PER_RAY`]: the distances an
+    /// eye ray tracks are then too long for `f32` to resolve the mean free
+    /// path, and its free flights would stall.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
+        camera.validate()?;
+        let b = self.scene.density.bounds();
+        let far = (b.min - camera.position)
+            .abs()
+            .max((b.max - camera.position).abs())
+            .length();
+        check_collisions(
+            self.scene,
+            self.majorant,
+            far,
+            "the distance from the camera to the box's farthest corner",
+        )?;
         super::render_image(camera, |o, d, x, y| self.pixel(o, d, x, y))
     }
+}
+
+/// Most expected collisions with the majorant along one tracked distance
+/// (2¹⁷): the bound on the reference's work per free flight, and, since a
+/// mean free path of the distance over 2¹⁷ is still 64 `f32` steps of it,
+/// what keeps each flight's distance resolvable.
+pub const MAX_COLLISIONS_PER_RAY: f32 = 131_072.0;
+
+/// Refuses a majorant whose expected collisions over `length` metres
+/// (`what`) exceed [`MAX_COLLISIONS_PER_RAY`].
+fn check_collisions(scene: &Scene<'_>, majorant: f32, length: f32, what: &str) -> Result<()> {
+    let n = majorant * length;
+    if n.is_finite() && n <= MAX_COLLISIONS_PER_RAY {
+        return Ok(());
+    }
+    Err(VolumeError::InvalidParameter {
+        name: "extinction",
+        value: format!(
+            "{} (majorant {majorant} 1/m over {what}, {length} m: {n:e} expected collisions)",
+            scene.medium.extinction
+        ),
+        expected: "extinction × maximum density × the longest distance a ray tracks \
+                   must be at most 131072 expected collisions",
+    })
 }

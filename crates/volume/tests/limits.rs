@@ -1,0 +1,100 @@
+//! Settings the renderers cannot carry out are refused up front, naming
+//! what the user set: a medium too thick for delta tracking to cross, a
+//! camera too far for `f32` to resolve the mean free path, a grid whose
+//! majorant overflows.
+
+use glam::Vec3;
+use natura_core::{Aabb, Grid3};
+use natura_volume::VolumeError;
+use natura_volume::density::Homogeneous;
+use natura_volume::grid::GridDensity;
+use natura_volume::phase::CloudPhase;
+use natura_volume::render::reference::MAX_COLLISIONS_PER_RAY;
+use natura_volume::render::{
+    FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
+    Scene,
+};
+
+fn medium(extinction: f32) -> MediumParams {
+    MediumParams {
+        extinction,
+        albedo: 0.5,
+        phase: CloudPhase::Isotropic,
+    }
+}
+
+fn unit_cube() -> Aabb {
+    Aabb {
+        min: Vec3::ZERO,
+        max: Vec3::ONE,
+    }
+}
+
+fn one_pixel(position: Vec3) -> LookAtCamera {
+    LookAtCamera {
+        position,
+        target: Vec3::splat(0.5),
+        vfov_deg: 30.0,
+        width: 1,
+        height: 1,
+    }
+}
+
+fn quick() -> ReferenceSettings {
+    ReferenceSettings {
+        samples_per_pixel: 1,
+        ..ReferenceSettings::default()
+    }
+}
+
+fn refused_naming<T: std::fmt::Debug>(r: Result<T, VolumeError>, field: &str) -> String {
+    match r {
+        Err(e @ VolumeError::InvalidParameter { name, .. }) => {
+            assert_eq!(name, field, "{e}");
+            e.to_string()
+        }
+        other => panic!("expected a refusal naming `{field}`, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_reference_refuses_a_medium_too_thick_to_cross() {
+    let cube = Homogeneous::new(unit_cube(), 1.0).unwrap();
+    // 1e9 1/m over a 1.7 m diagonal: 1.7e9 null collisions per crossing,
+    // and a mean free path far below f32's resolution of the distances.
+    for extinction in [1e9, 1e8, 1e6] {
+        let scene = Scene::new(&cube, medium(extinction), Vec3::ONE);
+        let msg = refused_naming(ReferenceRenderer::new(&scene, quick()), "extinction");
+        assert!(msg.contains("131072"), "{msg}");
+    }
+    // At the bound the renderer is built, and one pixel's work is bounded by it.
+    let ext = MAX_COLLISIONS_PER_RAY / 3f32.sqrt() * 0.999;
+    let scene = Scene::new(&cube, medium(ext), Vec3::ONE);
+    assert!(ReferenceRenderer::new(&scene, quick()).is_ok());
+}
+
+#[test]
+fn the_reference_refuses_a_camera_too_far_to_resolve_the_mean_free_path() {
+    let cube = Homogeneous::new(unit_cube(), 1.0).unwrap();
+    let scene = Scene::new(&cube, medium(50.0), Vec3::ONE);
+    let r = ReferenceRenderer::new(&scene, quick()).unwrap();
+    assert!(r.render(&one_pixel(Vec3::new(4.0, -3.0, 2.0))).is_ok());
+    // 50 1/m seen from 10 km: 5e5 expected collisions along the eye ray.
+    let msg = refused_naming(r.render(&one_pixel(Vec3::new(1e4, 0.0, 0.5))), "extinction");
+    assert!(msg.contains("camera"), "{msg}");
+}
+
+#[test]
+fn both_renderers_refuse_a_grid_whose_majorant_overflows() {
+    let mut g = Grid3::new(4, 4, 4, 0.1f32).unwrap();
+    g[(2, 1, 3)] = 3e38;
+    let grid = GridDensity::new(g, Vec3::ZERO, 0.25).unwrap();
+    let scene = Scene::new(&grid, medium(1.0), Vec3::ONE);
+    let fast = refused_naming(
+        FastRenderer::new(&scene, FastSettings::default()),
+        "majorant",
+    );
+    let reference = refused_naming(ReferenceRenderer::new(&scene, quick()), "majorant");
+    assert_eq!(fast, reference);
+    assert!(fast.contains("3e38") && fast.contains("1e9"), "{fast}");
+}
