@@ -11,9 +11,12 @@
 //!
 //! This file holds the scene's types and defaults; `text.rs` reads and
 //! writes it as TOML (errors name file, line, column and key) and
-//! `validate.rs` checks every value before any work starts.
+//! `validate.rs` checks every value before any work starts, and
+//! `budget.rs` the memory the scene asks for against
+//! [`MEMORY_BUDGET_BYTES`].
 
 mod animation;
+mod budget;
 mod clouds;
 mod terraces;
 mod text;
@@ -23,7 +26,9 @@ mod vegetation;
 
 pub use vegetation::{SPECIES_NAMES, VegetationDesc};
 
-pub use animation::{AnimationDesc, AnimationKey};
+pub use animation::{AnimationDesc, AnimationKey, MAX_DURATION_S};
+pub(crate) use budget::MAX_PLANTS;
+pub use budget::{MAX_SCENE_FILE_BYTES, MEMORY_BUDGET_BYTES};
 
 #[cfg(test)]
 mod tests;
