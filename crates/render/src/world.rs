@@ -19,7 +19,7 @@ use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
 use natura_noise::{
-    Displace, Fbm, Field, HybridMultifractal, NoiseError, HybridParams, Perlin, RidgedMultifractal,
+    Displace, Fbm, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
 use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};

@@ -14,8 +14,8 @@ use natura_volume::phase::CloudPhase;
 
 fn round_trip(s: &SceneDesc) {
     let text = s.to_toml_string().unwrap();
-    let back = SceneDesc::from_toml_str(&text, "again.toml")
-        .unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let back =
+        SceneDesc::from_toml_str(&text, "again.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
     assert_eq!(&back, s);
 }
 
@@ -101,12 +101,12 @@ fn another_phase_in_a_partial_scene_replaces_the_default() {
     s.validate().unwrap();
     // The same variant still merges: a partial variant table keeps the
     // default's other fields.
-    let s = SceneDesc::from_toml_str(
-        "[clouds.medium.phase.cloud]\ndiameter_um = 8.0\n",
-        "p.toml",
-    )
-    .unwrap();
-    assert_eq!(s.clouds.medium.phase, CloudPhase::Cloud { diameter_um: 8.0 });
+    let s = SceneDesc::from_toml_str("[clouds.medium.phase.cloud]\ndiameter_um = 8.0\n", "p.toml")
+        .unwrap();
+    assert_eq!(
+        s.clouds.medium.phase,
+        CloudPhase::Cloud { diameter_um: 8.0 }
+    );
     let s = SceneDesc::from_toml_str("[materials]\ndiffuse = \"lambert\"\n", "p.toml").unwrap();
     assert_eq!(s.materials.diffuse, Diffuse::Lambert);
 }
@@ -138,14 +138,22 @@ fn refused(text: &str, key: &str, words: &[&str]) {
 fn huge_values_are_named_and_printed_short() {
     refused("[terrain]\nh = -1e300\n", "terrain.h", &["-1e300"]);
     refused("[terrain]\ngain = 1e300\n", "terrain.gain", &["1e300"]);
-    refused("[terrain]\noffset = -1e300\n", "terrain.offset", &["-1e300"]);
+    refused(
+        "[terrain]\noffset = -1e300\n",
+        "terrain.offset",
+        &["-1e300"],
+    );
     refused("[water]\nlevel_m = 1e300\n", "water.level_m", &["1e300"]);
     refused(
         "[water]\nwind_azimuth_deg = 1e300\n",
         "water.wind_azimuth_deg",
         &["1e300"],
     );
-    refused("[sun]\nazimuth_deg = 1e300\n", "sun.azimuth_deg", &["1e300"]);
+    refused(
+        "[sun]\nazimuth_deg = 1e300\n",
+        "sun.azimuth_deg",
+        &["1e300"],
+    );
     refused(
         "[materials]\nsnow_line_m = 1e300\n",
         "materials.snow_line_m",
@@ -194,7 +202,11 @@ fn animation_keys_are_checked_as_written() {
         "animation.keys[3].height_above_ground_m",
         &[],
     );
-    refused(&keys("pitch_deg = 95.0"), "animation.keys[3].pitch_deg", &[]);
+    refused(
+        &keys("pitch_deg = 95.0"),
+        "animation.keys[3].pitch_deg",
+        &[],
+    );
     refused(
         &keys("sun_elevation_deg = -10.0"),
         "animation.keys[3].sun_elevation_deg",

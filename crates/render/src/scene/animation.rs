@@ -235,7 +235,8 @@ impl SceneDesc {
         for (i, k) in a.keys.iter().enumerate() {
             let name = |field: &str| format!("animation.keys[{i}].{field}");
             if let Some(e) = k.sun_elevation_deg {
-                self.sun.check_above_horizon(&name("sun_elevation_deg"), e)?;
+                self.sun
+                    .check_above_horizon(&name("sun_elevation_deg"), e)?;
             }
             let position = k.position_uv.unwrap_or(self.camera.position_uv);
             let target = k.target_uv.unwrap_or(self.camera.target_uv);

@@ -6,6 +6,15 @@
 //! [`DEFAULT_SCENE_TOML`]). A scene file only needs the keys it changes.
 //! Unknown keys are errors, so a typo never silently falls back to a default.
 //!
+//! Limits: a scene file is read only up to [`MAX_SCENE_FILE_BYTES`], and a
+//! scene whose values each lie in their ranges must still fit, all
+//! together, the memory budget [`MEMORY_BUDGET_BYTES`] (4 GiB): its
+//! terrain (64 bytes a sample of `terrain.size`²), image (32 bytes a pixel),
+//! clouds (voxels, shadow tables and the map of their shadows) and forest
+//! (the ecosystem's seedlings over the square around the eye, at most
+//! 20 000 000 plants) are estimated before any work, and a scene past the
+//! budget is refused naming the keys that make it large.
+//!
 //! Conventions: z up, metres, degrees in the file (radians in code).
 //! Compass azimuths are measured clockwise from north (+y) toward east (+x).
 //!

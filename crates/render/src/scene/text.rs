@@ -154,7 +154,8 @@ fn dotted_key(text: &str, pos: usize) -> Option<String> {
 fn read_scene_file(path: &Path) -> Result<String> {
     use std::io::Read;
     let fail = |what: String| RenderError::Scene(format!("{}: {what}", path.display()));
-    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read scene file: {e}")))?;
+    let file =
+        std::fs::File::open(path).map_err(|e| fail(format!("cannot read scene file: {e}")))?;
     let too_large = |len: u64| {
         fail(format!(
             "the scene file is {len} bytes or more; a scene file holds at most \

@@ -187,8 +187,18 @@ impl DetailDesc {
 impl MaterialDesc {
     fn validate(&self) -> Result<()> {
         in_range("materials.snow_line_m", self.snow_line_m, -1e6, 1e6)?;
-        in_range("materials.snow_line_noise_m", self.snow_line_noise_m, 0.0, 1e4)?;
-        in_range("materials.snow_max_slope_deg", self.snow_max_slope_deg, 0.0, 90.0)?;
+        in_range(
+            "materials.snow_line_noise_m",
+            self.snow_line_noise_m,
+            0.0,
+            1e4,
+        )?;
+        in_range(
+            "materials.snow_max_slope_deg",
+            self.snow_max_slope_deg,
+            0.0,
+            90.0,
+        )?;
         in_range("materials.rock_slope_deg", self.rock_slope_deg, 0.0, 90.0)?;
         in_range("materials.tree_line_m", self.tree_line_m, -1e6, 1e6)?;
         in_range("materials.sediment_min_m", self.sediment_min_m, 0.0, 1e4)?;
