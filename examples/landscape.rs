@@ -18,10 +18,18 @@
 mod common;
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
+use common::{Run, outln};
 use natura::render::{SceneDesc, World, render_world};
 
-fn main() {
+fn main() -> ExitCode {
+    common::run(landscape)
+}
+
+/// The program: every error returns through [`common::run`], which removes
+/// whatever was staged before reporting it.
+fn landscape() -> Run {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small terrain and image (CI)");
     let print = args.switch("--print-scene", "print the scene as TOML and exit");
@@ -54,7 +62,7 @@ fn main() {
     args.finish();
 
     let mut scene = match &scene_file {
-        Some(p) => common::check(SceneDesc::load(p)),
+        Some(p) => SceneDesc::load(p)?,
         None => SceneDesc::default(),
     };
     if quick {
@@ -109,13 +117,11 @@ fn main() {
     if print {
         // The built-in scene with its comments, which document every key.
         if scene == SceneDesc::default() {
-            print!("{}", natura::render::DEFAULT_SCENE_TOML);
-        } else {
-            print!("{}", common::check(scene.to_toml_string()));
+            return common::out(natura::render::DEFAULT_SCENE_TOML);
         }
-        return;
+        return common::out(scene.to_toml_string()?);
     }
-    common::check(scene.validate());
+    scene.validate()?;
     let png = out.join("landscape.png");
     let exr = out.join("landscape.exr");
     let relief = out.join("landscape_relief.png");
@@ -126,36 +132,36 @@ fn main() {
     if maps {
         targets.extend([&relief, &height]);
     }
-    let set = common::check(natura::core::io::OutputSet::new(targets));
+    let set = natura::core::io::OutputSet::new(targets)?;
 
     let bar = common::Bar::new();
-    let world = common::check(World::build(&scene, &bar));
+    let world = World::build(&scene, &bar)?;
     if maps {
-        common::check(
-            common::check(world.relief_map()).save_png(common::check(set.stage(&relief))),
-        );
-        common::check(
-            world
-                .terrain
-                .save_png16(common::check(set.stage(&height)), world.terrain.min_max()),
-        );
+        world.relief_map()?.save_png(set.stage(&relief)?)?;
+        world
+            .terrain
+            .save_png16(set.stage(&height)?, world.terrain.min_max())?;
     }
-    let rendered = common::check(render_world(&world, &bar));
-    common::check(rendered.save_staged(&set, &png, &exr));
-    common::check(set.commit());
+    let rendered = render_world(&world, &bar)?;
+    rendered.save_staged(&set, &png, &exr)?;
+    set.commit()?;
     if maps {
-        println!("wrote {} and {}", relief.display(), height.display());
+        outln(format_args!(
+            "wrote {} and {}",
+            relief.display(),
+            height.display()
+        ))?;
     }
     for (stage, d) in &rendered.times.stages {
-        println!("{stage:>14}: {:7.2} s", d.as_secs_f64());
+        outln(format_args!("{stage:>14}: {:7.2} s", d.as_secs_f64()))?;
     }
-    println!(
+    outln(format_args!(
         "{:>14}: {:7.2} s",
         "total",
         rendered.times.total().as_secs_f64()
-    );
+    ))?;
     if let Some(f) = &rendered.forest {
-        println!(
+        outln(format_args!(
             "forest: {} plants, {} trees ({} in full detail), {} meshes of {} triangles; \
              ecosystem {:.2} s, prototypes {:.2} s, instance BVH {:.3} s",
             f.plants,
@@ -166,9 +172,9 @@ fn main() {
             f.ecosystem.as_secs_f64(),
             f.prototypes.as_secs_f64(),
             f.tlas.as_secs_f64()
-        );
+        ))?;
     }
-    println!("exposure {:+.2} EV", rendered.exposure_ev);
-    println!("wrote {}", png.display());
-    println!("wrote {}", exr.display());
+    outln(format_args!("exposure {:+.2} EV", rendered.exposure_ev))?;
+    outln(format_args!("wrote {}", png.display()))?;
+    outln(format_args!("wrote {}", exr.display()))
 }

@@ -9,11 +9,19 @@
 mod common;
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
+use common::Run;
 use natura::render::scene::CameraKind;
 use natura::render::{SceneDesc, render_scene};
 
-fn main() {
+fn main() -> ExitCode {
+    common::run(panorama)
+}
+
+/// The program: every error returns through [`common::run`], which removes
+/// whatever was staged before reporting it.
+fn panorama() -> Run {
     let mut args = common::Args::from_env();
     let quick = args.switch("--quick", "small terrain and image (CI)");
     let spherical = args.switch("--spherical", "equirectangular instead of cylindrical");
@@ -46,7 +54,7 @@ fn main() {
     args.finish();
 
     let mut scene = match &scene_file {
-        Some(p) => common::check(SceneDesc::load(p)),
+        Some(p) => SceneDesc::load(p)?,
         None => SceneDesc::default(),
     };
     scene.camera.kind = if spherical {
@@ -68,11 +76,11 @@ fn main() {
         scene.clouds.voxel_m *= 4.0;
         scene.clouds.shadow_cell_m *= 4.0;
     }
-    common::check(scene.validate());
+    scene.validate()?;
     let png = out.join("panorama.png");
-    common::check(natura::core::io::check_writable(&png));
+    natura::core::io::check_writable(&png)?;
     let bar = common::Bar::new();
-    let rendered = common::check(render_scene(&scene, &bar));
-    common::check(rendered.display().save_png(&png));
-    println!("wrote {}", png.display());
+    let rendered = render_scene(&scene, &bar)?;
+    rendered.display().save_png(&png)?;
+    common::outln(format_args!("wrote {}", png.display()))
 }

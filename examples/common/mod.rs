@@ -1,6 +1,14 @@
-//! Shared helpers for the example programs: flag parsing, an `indicatif`
-//! binding of `natura_core::Progress`, and demo data ([`scene`]). Algorithms
-//! never live here.
+//! Shared helpers for the example programs: flag parsing, the clean-up of
+//! their outputs on every way out ([`run`], [`Exit`]), an `indicatif`
+//! binding of `natura_core::Progress`, and demo data ([`scene`]).
+//! Algorithms never live here.
+//!
+//! A program's files are staged under temporary names (natura-core's
+//! `OutputSet` and atomic writes, which register them) and renamed into
+//! place at the end. Whatever ends the program — an error returned through
+//! [`run`], [`fail`], Ctrl-C or SIGTERM — removes every staged or
+//! half-written file first, so nothing is left behind. A closed stdout
+//! (`… | head`) ends the program normally.
 #![allow(dead_code)]
 
 #[cfg(feature = "core")]
@@ -9,8 +17,99 @@ pub mod scene;
 pub mod tiles;
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 use std::str::FromStr;
 use std::sync::Mutex;
+
+/// Why a program stops early: the message for stderr (none for a quiet
+/// stop) and the exit status. Any error converts into one with status 2,
+/// so a program's body uses `?`.
+#[derive(Debug)]
+pub struct Exit {
+    code: u8,
+    message: String,
+}
+
+impl Exit {
+    /// A stop with `message` and status `code`.
+    pub fn new(code: u8, message: impl Into<String>) -> Self {
+        Self {
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// A normal, silent end (a reader closed stdout).
+    pub fn quiet() -> Self {
+        Self::new(0, "")
+    }
+}
+
+impl<E: std::fmt::Display> From<E> for Exit {
+    fn from(e: E) -> Self {
+        Self::new(2, e.to_string())
+    }
+}
+
+/// The result of a program's body.
+pub type Run = Result<(), Exit>;
+
+/// Removes every file this process has staged or is writing (natura-core's
+/// registry of temporary files) and returns how many.
+pub fn remove_staged() -> usize {
+    natura::core::io::remove_temp_files()
+}
+
+/// Installs, once, the interrupt handler: on Ctrl-C or SIGTERM the staged
+/// and half-written files are removed and the program exits with status
+/// 130.
+pub fn install_interrupt_cleanup() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let _ = ctrlc::set_handler(|| {
+            let n = remove_staged();
+            eprintln!("\ninterrupted: removed {n} temporary file(s), outputs left as they were");
+            std::process::exit(130);
+        });
+    });
+}
+
+/// Runs a program's body as `fn main() -> ExitCode { common::run(body) }`:
+/// with the interrupt clean-up installed; on an error, the staged files
+/// are removed, the message printed and its status returned.
+pub fn run(body: impl FnOnce() -> Run) -> ExitCode {
+    install_interrupt_cleanup();
+    let result = body();
+    // Every output was committed or dropped (which removes its staging);
+    // anything still registered was left by an error path.
+    remove_staged();
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            if !e.message.is_empty() {
+                eprintln!("error: {}", e.message);
+            }
+            ExitCode::from(e.code)
+        }
+    }
+}
+
+/// Writes `text` to stdout; a closed stdout (`… | head`) is a quiet,
+/// normal end ([`Exit::quiet`]), any other failure an error.
+pub fn out(text: impl std::fmt::Display) -> Run {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match write!(stdout, "{text}").and_then(|()| stdout.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(Exit::quiet()),
+        Err(e) => Err(Exit::new(2, format!("cannot write to stdout: {e}"))),
+    }
+}
+
+/// [`out`] with a newline.
+pub fn outln(text: impl std::fmt::Display) -> Run {
+    out(format_args!("{text}\n"))
+}
 
 /// A minimal `--flag value` / `--switch` parser that refuses unknown flags.
 pub struct Args {
@@ -26,12 +125,7 @@ impl Args {
     /// being written are removed (none is left half-written or as a
     /// temporary) and the program exits with status 130.
     pub fn from_env() -> Self {
-        #[cfg(feature = "core")]
-        let _ = ctrlc::set_handler(|| {
-            let n = natura::core::io::remove_temp_files();
-            eprintln!("\ninterrupted: removed {n} temporary file(s), outputs left as they were");
-            std::process::exit(130);
-        });
+        install_interrupt_cleanup();
         let mut it = std::env::args();
         let program = it.next().unwrap_or_default();
         Self {
@@ -125,10 +219,12 @@ impl Args {
     /// Call after reading every flag: prints help or refuses leftovers.
     pub fn finish(self) {
         if self.rest.iter().any(|a| a == "--help" || a == "-h") {
-            println!("usage: {} [flags]", self.program);
+            let mut help = format!("usage: {} [flags]\n", self.program);
             for (k, h) in &self.known {
-                println!("  {k:<14} {h}");
+                help.push_str(&format!("  {k:<14} {h}\n"));
             }
+            // A closed stdout ends the help as well as its last line.
+            let _ = out(help);
             std::process::exit(0);
         }
         if let Some(a) = self.rest.first() {
@@ -137,13 +233,17 @@ impl Args {
     }
 }
 
-/// Prints `msg` to stderr and exits with status 2.
+/// Removes the staged files, prints `msg` to stderr and exits with status
+/// 2 (for flag errors before any work; a program's body returns an [`Exit`]
+/// through [`run`] instead).
 pub fn fail(msg: &str) -> ! {
+    remove_staged();
     eprintln!("error: {msg}");
     std::process::exit(2);
 }
 
-/// Unwraps a result or exits with its error message.
+/// Unwraps a result or exits with its error message (removing the staged
+/// files first, as [`fail`]).
 pub fn check<T, E: std::fmt::Display>(r: Result<T, E>) -> T {
     r.unwrap_or_else(|e| fail(&e.to_string()))
 }

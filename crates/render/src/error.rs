@@ -65,12 +65,98 @@ impl RenderError {
                 let field = name.rsplit("::").next().unwrap_or(name);
                 RenderError::Invalid {
                     name: format!("{section}.{field}"),
-                    value,
+                    value: short(&value),
                     reason,
                 }
             }
             other => RenderError::Terrain(other),
         }
+    }
+}
+
+/// A number as a user reads it: its shortest round-trip digits, in
+/// scientific notation when very large or small (`1e300`, never 300 digits).
+pub(crate) fn fmt_f64(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// As [`fmt_f64`] for an `f32` key (its own shortest digits, not the `f64`'s).
+pub(crate) fn fmt_f32(v: f32) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// A value formatted elsewhere, shortened if it is a long number.
+pub(crate) fn short(value: &str) -> String {
+    match value.trim().parse::<f64>() {
+        Ok(v) if value.len() > 12 => fmt_f64(v),
+        _ => value.to_owned(),
+    }
+}
+
+/// A scene value in a range check: its number and how the user reads it.
+pub(crate) trait SceneValue: Copy {
+    /// The value as `f64`, for the comparison.
+    fn to_f64(self) -> f64;
+    /// The value as the user reads it.
+    fn show(self) -> String;
+}
+
+impl SceneValue for f64 {
+    fn to_f64(self) -> f64 {
+        self
+    }
+    fn show(self) -> String {
+        fmt_f64(self)
+    }
+}
+
+impl SceneValue for f32 {
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+    fn show(self) -> String {
+        fmt_f32(self)
+    }
+}
+
+impl SceneValue for u32 {
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+    fn show(self) -> String {
+        self.to_string()
+    }
+}
+
+impl SceneValue for usize {
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    fn show(self) -> String {
+        self.to_string()
+    }
+}
+
+/// Checks that `v` lies in `[lo, hi]`, saying so with the key, the value and
+/// the bounds in the message.
+pub(crate) fn in_range(name: &str, v: impl SceneValue, lo: f64, hi: f64) -> Result<()> {
+    let x = v.to_f64();
+    if x.is_finite() && x >= lo && x <= hi {
+        Ok(())
+    } else {
+        Err(RenderError::Invalid {
+            name: name.to_owned(),
+            value: v.show(),
+            reason: format!("must lie in [{}, {}]", fmt_f64(lo), fmt_f64(hi)),
+        })
     }
 }
 
@@ -81,7 +167,7 @@ impl From<natura_core::check::ParamError> for RenderError {
     fn from(e: natura_core::check::ParamError) -> Self {
         RenderError::Invalid {
             name: e.name.to_owned(),
-            value: e.value,
+            value: short(&e.value),
             reason: e.expected.to_owned(),
         }
     }

@@ -19,13 +19,13 @@ use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
 use natura_noise::{
-    Displace, Fbm, Field, HybridMultifractal, HybridParams, Perlin, RidgedMultifractal,
+    Displace, Fbm, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
 use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};
 use natura_terrain::synth::{FieldMapping, TerraceParams, fill_field};
 
-use crate::error::Result;
+use crate::error::{RenderError, Result, fmt_f64};
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
 
 /// The warp of the terrain's domain: displacement by vector fBm of Perlin
@@ -47,9 +47,13 @@ impl TerrainFunction {
     ///
     /// # Errors
     ///
-    /// Returns [`RenderError::Noise`](crate::RenderError::Noise) if the scene's terrain parameters make an
-    /// invalid or unbounded fractal.
+    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) naming
+    /// the `terrain` keys that make an invalid or unbounded fractal.
     pub fn new(scene: &SceneDesc, seed: Seed) -> Result<Self> {
+        Self::build(scene, seed).map_err(terrain_noise_error)
+    }
+
+    fn build(scene: &SceneDesc, seed: Seed) -> std::result::Result<Self, NoiseError> {
         let t = &scene.terrain;
         let spectral = Spectral::default()
             .with_h(t.h)
@@ -108,6 +112,45 @@ impl TerrainFunction {
                 self.ridged.eval2(q) * mask + 0.25 * mask
             }
         }
+    }
+}
+
+/// A noise error of the terrain's fractal, named by the scene's keys.
+fn terrain_noise_error(e: NoiseError) -> RenderError {
+    match e {
+        NoiseError::InvalidParam {
+            name,
+            value,
+            expected,
+        } => {
+            let key = match name {
+                "frequency" => "terrain.feature_size_m".to_owned(),
+                "h" | "lacunarity" | "octaves" | "offset" | "gain" => format!("terrain.{name}"),
+                _ => format!("terrain.warp ({name})"),
+            };
+            RenderError::invalid(&key, fmt_f64(value), expected)
+        }
+        NoiseError::OctavesBeyondPrecision {
+            octaves,
+            lacunarity,
+            max_octaves,
+            ..
+        } => RenderError::invalid(
+            "terrain.octaves",
+            fmt_f64(octaves),
+            &format!(
+                "at most {} octaves with terrain.lacunarity = {} (the finest octave's \
+                 frequency stays within 2^32 times the first's)",
+                fmt_f64(max_octaves),
+                fmt_f64(lacunarity)
+            ),
+        ),
+        NoiseError::Unbounded { bound, .. } => RenderError::invalid(
+            "terrain.offset, terrain.gain, terrain.h",
+            format_args!("a fractal bound of {bound:e}"),
+            "the terrain's fractal must stay bounded: reduce the offset, the gain or raise h",
+        ),
+        other => RenderError::Noise(other),
     }
 }
 

@@ -9,7 +9,12 @@
 use serde::{Deserialize, Serialize};
 
 use super::SceneDesc;
-use crate::error::{RenderError, Result};
+use super::validate::{MAX_AZIMUTH_DEG, in_range};
+use crate::error::{RenderError, Result, fmt_f64};
+
+/// Longest sequence, seconds: its time moves the ocean
+/// (`water.ocean_time_s`, within ±1e6 s) and carries the clouds.
+pub const MAX_DURATION_S: f64 = 1e6;
 
 /// The animation of a scene: frames, frame rate and the camera path.
 ///
@@ -67,8 +72,10 @@ impl AnimationDesc {
     /// # Errors
     ///
     /// Returns [`RenderError::Invalid`] for zero or more than a million
-    /// frames, a frame rate outside `(0, 1000]`, keys out of frame order or
-    /// past the last frame, and non-finite keyed values.
+    /// frames, a frame rate outside `(0, 1000]`, a sequence longer than
+    /// [`MAX_DURATION_S`], keys out of frame order or past the last frame,
+    /// and keyed values outside their section's range (named as the key
+    /// writes them: `animation.keys[3].position_uv[0]`).
     pub fn validate(&self) -> Result<()> {
         if !(1..=1_000_000).contains(&self.frames) {
             return Err(RenderError::invalid(
@@ -80,8 +87,20 @@ impl AnimationDesc {
         if !(self.fps > 0.0 && self.fps <= 1000.0) {
             return Err(RenderError::invalid(
                 "animation.fps",
-                self.fps,
+                fmt_f64(self.fps),
                 "in (0, 1000] frames per second",
+            ));
+        }
+        let duration = self.time_s(self.frames - 1);
+        if duration > MAX_DURATION_S {
+            return Err(RenderError::invalid(
+                "animation.frames, animation.fps",
+                format_args!("{}, {}", self.frames, fmt_f64(self.fps)),
+                &format!(
+                    "a sequence of at most {} s (frames − 1) / fps; this one lasts {} s",
+                    fmt_f64(MAX_DURATION_S),
+                    fmt_f64(duration)
+                ),
             ));
         }
         let mut previous: Option<u32> = None;
@@ -102,19 +121,25 @@ impl AnimationDesc {
                 ));
             }
             previous = Some(k.frame);
-            let values = [
-                ("position_uv[0]", k.position_uv.map(|p| p[0])),
-                ("position_uv[1]", k.position_uv.map(|p| p[1])),
-                ("target_uv[0]", k.target_uv.map(|p| p[0])),
-                ("target_uv[1]", k.target_uv.map(|p| p[1])),
-                ("height_above_ground_m", k.height_above_ground_m),
-                ("pitch_deg", k.pitch_deg),
-                ("sun_elevation_deg", k.sun_elevation_deg),
-                ("sun_azimuth_deg", k.sun_azimuth_deg),
-            ];
-            for (field, v) in values {
-                if let Some(v) = v.filter(|v| !v.is_finite()) {
-                    return Err(RenderError::invalid(&name(field), v, "a finite number"));
+            // Each key as written, against its own section's range, so an
+            // error names the key rather than a frame interpolated from it.
+            let uv = |field: &str, p: Option<[f64; 2]>| -> Result<()> {
+                for (j, v) in p.into_iter().flatten().enumerate() {
+                    in_range(&name(&format!("{field}[{j}]")), v, 0.0, 1.0)?;
+                }
+                Ok(())
+            };
+            uv("position_uv", k.position_uv)?;
+            uv("target_uv", k.target_uv)?;
+            let az = MAX_AZIMUTH_DEG;
+            for (field, v, lo, hi) in [
+                ("height_above_ground_m", k.height_above_ground_m, 0.01, 1e6),
+                ("pitch_deg", k.pitch_deg, -89.0, 89.0),
+                ("sun_elevation_deg", k.sun_elevation_deg, -90.0, 90.0),
+                ("sun_azimuth_deg", k.sun_azimuth_deg, -az, az),
+            ] {
+                if let Some(v) = v {
+                    in_range(&name(field), v, lo, hi)?;
                 }
             }
         }
@@ -187,8 +212,56 @@ impl SceneDesc {
                 s.clouds.layer.wind_offset[i] += (self.clouds.wind_m_s[i] * t) as f32;
             }
         }
-        s.validate()?;
+        s.validate().map_err(|e| match e {
+            RenderError::Invalid {
+                name,
+                value,
+                reason,
+            } => RenderError::Invalid {
+                name,
+                value,
+                reason: format!("{reason} (at frame {frame} of the animation)"),
+            },
+            other => other,
+        })?;
         Ok(s)
+    }
+
+    /// Checks the animation's keys against the rest of the scene: a sun
+    /// keyed below the horizon without twilight, a camera keyed onto its
+    /// own target, a sequence that moves the ocean's time out of range.
+    pub(super) fn validate_animation_keys(&self) -> Result<()> {
+        let a = &self.animation;
+        for (i, k) in a.keys.iter().enumerate() {
+            let name = |field: &str| format!("animation.keys[{i}].{field}");
+            if let Some(e) = k.sun_elevation_deg {
+                self.sun
+                    .check_above_horizon(&name("sun_elevation_deg"), e)?;
+            }
+            let position = k.position_uv.unwrap_or(self.camera.position_uv);
+            let target = k.target_uv.unwrap_or(self.camera.target_uv);
+            if position == target {
+                let (key, other) = if k.position_uv.is_some() {
+                    ("position_uv", "target_uv")
+                } else {
+                    ("target_uv", "position_uv")
+                };
+                return Err(RenderError::invalid(
+                    &name(key),
+                    format!("{position:?}"),
+                    &format!("must differ from the key's {other} (or camera.{other})"),
+                ));
+            }
+        }
+        let end = self.water.ocean_time_s + a.time_s(a.frames - 1);
+        if end > 1e6 {
+            return Err(RenderError::invalid(
+                "water.ocean_time_s, animation.frames, animation.fps",
+                fmt_f64(end),
+                "the ocean's time at the last frame must lie in [-1e6, 1e6] s",
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -191,7 +191,7 @@ pub(crate) fn in_section(section: &str, e: VolumeError) -> RenderError {
             expected,
         } => RenderError::Invalid {
             name: format!("{section}.{name}"),
-            value,
+            value: crate::error::short(&value),
             reason: expected.to_owned(),
         },
         VolumeError::InvalidBounds { min, max, .. } => RenderError::Invalid {

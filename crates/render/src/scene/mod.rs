@@ -6,14 +6,26 @@
 //! [`DEFAULT_SCENE_TOML`]). A scene file only needs the keys it changes.
 //! Unknown keys are errors, so a typo never silently falls back to a default.
 //!
+//! Limits: a scene file is read only up to [`MAX_SCENE_FILE_BYTES`], and a
+//! scene whose values each lie in their ranges must still fit, all
+//! together, the memory budget [`MEMORY_BUDGET_BYTES`] (4 GiB): its
+//! terrain (64 bytes a sample of `terrain.size`²), image (32 bytes a pixel),
+//! clouds (voxels, shadow tables and the map of their shadows) and forest
+//! (the ecosystem's seedlings over the square around the eye, at most
+//! 20 000 000 plants) are estimated before any work, and a scene past the
+//! budget is refused naming the keys that make it large.
+//!
 //! Conventions: z up, metres, degrees in the file (radians in code).
 //! Compass azimuths are measured clockwise from north (+y) toward east (+x).
 //!
 //! This file holds the scene's types and defaults; `text.rs` reads and
 //! writes it as TOML (errors name file, line, column and key) and
-//! `validate.rs` checks every value before any work starts.
+//! `validate.rs` checks every value before any work starts, and
+//! `budget.rs` the memory the scene asks for against
+//! [`MEMORY_BUDGET_BYTES`].
 
 mod animation;
+mod budget;
 mod clouds;
 mod terraces;
 mod text;
@@ -23,7 +35,9 @@ mod vegetation;
 
 pub use vegetation::{SPECIES_NAMES, VegetationDesc};
 
-pub use animation::{AnimationDesc, AnimationKey};
+pub use animation::{AnimationDesc, AnimationKey, MAX_DURATION_S};
+pub(crate) use budget::MAX_PLANTS;
+pub use budget::{MAX_SCENE_FILE_BYTES, MEMORY_BUDGET_BYTES};
 
 #[cfg(test)]
 mod tests;

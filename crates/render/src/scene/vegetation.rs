@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{RenderError, Result};
+use crate::error::{RenderError, Result, in_range as range};
 
 /// The tree species the forest can grow, by scene name.
 pub const SPECIES_NAMES: [&str; 3] = ["spruce", "pine", "beech"];
@@ -119,17 +119,5 @@ impl VegetationDesc {
             0.9,
         )?;
         Ok(())
-    }
-}
-
-fn range(name: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
-    if v.is_finite() && v >= lo && v <= hi {
-        Ok(())
-    } else {
-        Err(RenderError::invalid(
-            name,
-            v,
-            &format!("must lie in [{lo}, {hi}]"),
-        ))
     }
 }

@@ -179,7 +179,7 @@ impl Stand {
             steps: v.steps,
             seed: Seed(scene.seed.wrapping_add(v.seed_offset)).derive("vegetation"),
             sun: world.sun,
-            max_plants: 20_000_000,
+            max_plants: crate::scene::MAX_PLANTS,
         };
         let max_radius = params.species.iter().map(|s| s.max_radius as f32).collect();
         Ok(Some(Self {
