@@ -226,8 +226,9 @@ impl<'a> Derivation<'a> {
         &self.limits
     }
 
+    /// The growth error for a string that is already too large (the axiom).
     fn growth_error(&self, s: &ModuleString) -> PlantError {
-        Cap::new(&self.limits, self.step + 1).error(s.len(), s.param_count())
+        Cap::new(&self.limits, self.step).error(s.len(), s.param_count())
     }
 
     /// Performs `n` derivation steps.
