@@ -69,11 +69,12 @@ pub enum PlantError {
         "runaway growth at step {step}: {modules} modules and {params} parameters exceed the limit of {max_modules} modules / {max_params} parameters ({bytes} bytes)"
     )]
     Growth {
-        /// The derivation step at which the limit was reached (1-based).
+        /// The derivation step at which the limit was reached (1-based; 0 for
+        /// the axiom and the interpretation rules).
         step: u32,
-        /// Modules in the string when the limit was hit.
+        /// Modules the string would hold.
         modules: usize,
-        /// Parameters in the string when the limit was hit.
+        /// Parameters the string would hold.
         params: usize,
         /// The module limit in force.
         max_modules: usize,
@@ -81,6 +82,18 @@ pub enum PlantError {
         max_params: usize,
         /// Approximate memory the string would need, in bytes.
         bytes: usize,
+    },
+    /// A derivation did more work than [`crate::Limits::max_work`] allows.
+    #[error(
+        "work limit reached at step {step}: {work} units of work (modules read and written, 64 per step) exceed the limit `max_work` = {max_work}"
+    )]
+    Work {
+        /// The derivation step that would pass the limit (1-based).
+        step: u32,
+        /// The work the derivation would have done after that step's start.
+        work: u64,
+        /// The limit in force.
+        max_work: u64,
     },
     /// Decomposition or interpretation rules recursed deeper than the maximum depth.
     #[error("{span}: {production} recursed deeper than the maximum depth {depth}")]

@@ -126,6 +126,28 @@ impl ModuleString {
         );
     }
 
+    /// Makes room for `modules` more modules and `params` more parameters,
+    /// growing each array by doubling but never past `max_modules` modules
+    /// and `max_params` parameters (unless the room asked for needs more).
+    pub(crate) fn reserve_within(
+        &mut self,
+        modules: usize,
+        params: usize,
+        max_modules: usize,
+        max_params: usize,
+    ) {
+        fn grow<T>(v: &mut Vec<T>, extra: usize, limit: usize) {
+            let need = v.len() + extra;
+            if need > v.capacity() {
+                let target = (2 * v.capacity()).max(need).min(limit.max(need));
+                v.reserve_exact(target - v.len());
+            }
+        }
+        grow(&mut self.sym, modules, max_modules);
+        grow(&mut self.off, modules, max_modules.saturating_add(1));
+        grow(&mut self.params, params, max_params);
+    }
+
     /// Returns module `i`'s symbol id.
     ///
     /// # Panics

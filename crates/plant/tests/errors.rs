@@ -72,6 +72,7 @@ fn runaway_growth_is_reported() {
     let limits = Limits {
         max_modules: 1000,
         max_params: 1000,
+        ..Limits::default()
     };
     let mut d = Derivation::with_limits(&l, 0, limits).unwrap();
     let e = d.derive(20).unwrap_err();
@@ -111,6 +112,7 @@ fn check(text: &str) {
                 Limits {
                     max_modules: 10_000,
                     max_params: 40_000,
+                    ..Limits::default()
                 },
             ) {
                 for _ in 0..3 {

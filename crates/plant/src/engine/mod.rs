@@ -24,7 +24,15 @@ use crate::symbols::{CUT, LBRACKET, RBRACKET};
 
 pub(crate) use context::{bind_pred, match_left, match_right};
 
-/// Limits that stop runaway growth with an error instead of exhausting memory.
+/// Limits that stop runaway growth and runaway work with an error instead
+/// of exhausting memory or time.
+///
+/// A string never holds more than `max_modules` modules and `max_params`
+/// parameters: a step, a decomposition or the interpretation rules that
+/// would go past either stop with [`PlantError::Growth`] before the module
+/// is written, and the buffers grow no further than the limits. At the
+/// defaults, everything a derivation and the interpretation of its string
+/// hold (see [`Limits::memory_bound`]) stays under 2.5 GB.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
@@ -33,15 +41,41 @@ pub struct Limits {
     pub max_modules: usize,
     /// The most parameters a string may hold in all.
     pub max_params: usize,
+    /// The most work a derivation may do in all, in units of one module read
+    /// or written; every step costs [`Limits::STEP_COST`] units more, so a
+    /// long derivation of a short string ends too.
+    pub max_work: u64,
 }
 
 impl Default for Limits {
-    /// 64 M modules and 256 M parameters (about 2.5 GB for the two buffers).
+    /// 16 Mi modules, 64 Mi parameters and 2³³ units of work: at most
+    /// 2.22 GB of memory ([`Limits::memory_bound`]), and a few seconds to a
+    /// few minutes of work.
     fn default() -> Self {
         Self {
-            max_modules: 64 << 20,
-            max_params: 256 << 20,
+            max_modules: 16 << 20,
+            max_params: 64 << 20,
+            max_work: 1 << 33,
         }
+    }
+}
+
+impl Limits {
+    /// Units of work every derivation step costs besides its modules.
+    pub const STEP_COST: u64 = 64;
+
+    /// The most bytes the strings of a derivation and of the interpretation
+    /// of its string can hold at these limits: the derivation's two buffers
+    /// (a `u32` symbol and a `u32` offset per module, an `f64` per
+    /// parameter), its bracket scratch (two `u32` per module), and the
+    /// output of the interpretation rules with the origin of each of its
+    /// modules (`u32`).
+    #[must_use]
+    pub fn memory_bound(&self) -> u64 {
+        let m = self.max_modules as u64 + 1;
+        let p = self.max_params as u64;
+        let string = 8 * m + 8 * p;
+        2 * string + 8 * m + string + 4 * m
     }
 }
 
@@ -70,6 +104,8 @@ pub struct Derivation<'a> {
     seed: u64,
     limits: Limits,
     scratch: Scratch,
+    /// Work done so far (see [`Limits::max_work`]).
+    work: u64,
 }
 
 impl<'a> Derivation<'a> {
@@ -87,7 +123,8 @@ impl<'a> Derivation<'a> {
     ///
     /// # Errors
     ///
-    /// As [`Derivation::new`]; [`PlantError::Growth`] if the axiom already exceeds the limits.
+    /// As [`Derivation::new`]; [`PlantError::Growth`] if the axiom, or its
+    /// decomposition, exceeds the limits.
     pub fn with_limits(lsys: &'a LSystem, seed: u64, limits: Limits) -> Result<Self> {
         let nslots = max_slots(&lsys.productions)
             .max(max_slots(&lsys.decompositions))
@@ -103,7 +140,11 @@ impl<'a> Derivation<'a> {
                 slots: vec![0.0; nslots],
                 ..Scratch::default()
             },
+            work: 0,
         };
+        if lsys.axiom.len() > limits.max_modules || lsys.axiom.param_count() > limits.max_params {
+            return Err(d.growth_error(&lsys.axiom));
+        }
         if lsys.decompositions.is_empty() {
             d.cur = lsys.axiom.clone();
         } else {
@@ -123,11 +164,18 @@ impl<'a> Derivation<'a> {
                     &mut out,
                     &mut d.scratch,
                     &mut env,
+                    &Cap::new(&limits, 0),
                 )?;
             }
             d.cur = out;
         }
-        d.check_limits()?;
+        d.work = d.cur.len() as u64;
+        // A cut in the axiom erases the rest of its branch, as one in a successor does.
+        if d.cur.symbols().contains(&CUT) {
+            apply_cuts(&d.cur, &mut d.next);
+            std::mem::swap(&mut d.cur, &mut d.next);
+            d.next.clear();
+        }
         Ok(d)
     }
 
@@ -166,28 +214,21 @@ impl<'a> Derivation<'a> {
         self.cur.memory_bytes() + self.next.memory_bytes()
     }
 
-    fn check_limits(&self) -> Result<()> {
-        let s = &self.next;
-        let s = if s.len() > self.cur.len() {
-            s
-        } else {
-            &self.cur
-        };
-        if s.len() > self.limits.max_modules || s.param_count() > self.limits.max_params {
-            return Err(self.growth_error(s));
-        }
-        Ok(())
+    /// Work done so far, in the units of [`Limits::max_work`].
+    #[must_use]
+    pub fn work(&self) -> u64 {
+        self.work
     }
 
+    /// The limits in force.
+    #[must_use]
+    pub fn limits(&self) -> &Limits {
+        &self.limits
+    }
+
+    /// The growth error for a string that is already too large (the axiom).
     fn growth_error(&self, s: &ModuleString) -> PlantError {
-        PlantError::Growth {
-            step: self.step + 1,
-            modules: s.len(),
-            params: s.param_count(),
-            max_modules: self.limits.max_modules,
-            max_params: self.limits.max_params,
-            bytes: s.len() * 8 + s.param_count() * 8,
-        }
+        Cap::new(&self.limits, self.step).error(s.len(), s.param_count())
     }
 
     /// Performs `n` derivation steps.
@@ -210,8 +251,10 @@ impl<'a> Derivation<'a> {
     /// [`PlantError::Eval`] if a condition, block, probability or successor
     /// parameter fails (division by zero, NaN, array index out of range),
     /// [`PlantError::Depth`] if decomposition recurses past the maximum depth,
-    /// [`PlantError::Growth`] if the string would exceed the limits. On error
-    /// the current string is left as it was before the step.
+    /// [`PlantError::Growth`] if the string would exceed the limits,
+    /// [`PlantError::Work`] if the step would take the derivation's work past
+    /// [`Limits::max_work`]. On error the current string is left as it was
+    /// before the step.
     pub fn step(&mut self) -> Result<()> {
         let l = self.lsys;
         let Self {
@@ -221,8 +264,18 @@ impl<'a> Derivation<'a> {
             step,
             seed,
             limits,
+            work,
             ..
         } = self;
+        let cost = Limits::STEP_COST + cur.len() as u64;
+        if work.saturating_add(cost) > limits.max_work {
+            return Err(PlantError::Work {
+                step: *step + 1,
+                work: work.saturating_add(cost),
+                max_work: limits.max_work,
+            });
+        }
+        let cap = Cap::new(limits, *step + 1);
         next.clear();
         let old: &ModuleString = cur;
         if l.any_context {
@@ -231,47 +284,47 @@ impl<'a> Derivation<'a> {
         let rules = &l.productions;
         let mut has_cut = false;
         let decompose_on = !l.decompositions.is_empty();
-        for i in 0..old.len() {
-            let s = old.symbol(i);
-            let cands = rules.for_symbol(s);
-            if cands.is_empty() {
-                next.push_from(old, i);
-                continue;
-            }
-            let mut env = Env {
-                arrays: &l.arrays,
-                user: &l.user,
-                rng: Rng::default(),
-            };
-            let chosen = if rules.stochastic[s as usize] {
-                env.rng = Rng::for_module(*seed, *step, i as u64);
-                choose_stochastic(l, old, i, cands, scratch, &mut env)?
-            } else {
-                choose_first(l, old, i, cands, scratch, &mut env, *seed, *step)?
-            };
-            let Some(r) = chosen else {
-                next.push_from(old, i);
-                continue;
-            };
-            let rule = &rules.rules[r as usize];
-            if decompose_on {
-                has_cut |= emit_decomposed(l, rule, next, scratch, &mut env)?;
-            } else {
-                has_cut |= emit(l, rule, next, scratch, &mut env)?;
-            }
-            if next.len() > limits.max_modules || next.param_count() > limits.max_params {
-                let e = PlantError::Growth {
-                    step: *step + 1,
-                    modules: next.len(),
-                    params: next.param_count(),
-                    max_modules: limits.max_modules,
-                    max_params: limits.max_params,
-                    bytes: next.len() * 8 + next.param_count() * 8,
+        let r = (|| {
+            for i in 0..old.len() {
+                let s = old.symbol(i);
+                let cands = rules.for_symbol(s);
+                if cands.is_empty() {
+                    cap.room(next, 1, old.arity(i))?;
+                    next.push_from(old, i);
+                    continue;
+                }
+                let mut env = Env {
+                    arrays: &l.arrays,
+                    user: &l.user,
+                    rng: Rng::default(),
                 };
-                next.clear();
-                return Err(e);
+                let chosen = if rules.stochastic[s as usize] {
+                    env.rng = Rng::for_module(*seed, *step, i as u64);
+                    choose_stochastic(l, old, i, cands, scratch, &mut env)?
+                } else {
+                    choose_first(l, old, i, cands, scratch, &mut env, *seed, *step)?
+                };
+                let Some(r) = chosen else {
+                    cap.room(next, 1, old.arity(i))?;
+                    next.push_from(old, i);
+                    continue;
+                };
+                let rule = &rules.rules[r as usize];
+                if decompose_on {
+                    has_cut |= emit_decomposed(l, rule, next, scratch, &mut env, &cap)?;
+                } else {
+                    let params = rule.succ.iter().map(|m| m.params.len()).sum();
+                    cap.room(next, rule.succ.len(), params)?;
+                    has_cut |= emit(l, rule, next, scratch, &mut env)?;
+                }
             }
+            Ok(())
+        })();
+        if let Err(e) = r {
+            next.clear();
+            return Err(e);
         }
+        *work = work.saturating_add(cost + next.len() as u64);
         if has_cut {
             apply_cuts(next, cur);
         } else {
@@ -279,6 +332,49 @@ impl<'a> Derivation<'a> {
         }
         *step += 1;
         Ok(())
+    }
+}
+
+/// The growth limits while one string is written, and the step it belongs to.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cap {
+    max_modules: usize,
+    max_params: usize,
+    step: u32,
+}
+
+impl Cap {
+    /// The limits of `l` for derivation step `step` (0: the axiom or the
+    /// interpretation rules).
+    pub(crate) fn new(l: &Limits, step: u32) -> Self {
+        Self {
+            max_modules: l.max_modules,
+            max_params: l.max_params,
+            step,
+        }
+    }
+
+    /// Makes room in `out` for `modules` more modules holding `params`
+    /// parameters, or returns the growth error if they would pass the limits.
+    #[inline]
+    pub(crate) fn room(&self, out: &mut ModuleString, modules: usize, params: usize) -> Result<()> {
+        let (m, p) = (out.len() + modules, out.param_count() + params);
+        if m > self.max_modules || p > self.max_params {
+            return Err(self.error(m, p));
+        }
+        out.reserve_within(modules, params, self.max_modules, self.max_params);
+        Ok(())
+    }
+
+    pub(crate) fn error(&self, modules: usize, params: usize) -> PlantError {
+        PlantError::Growth {
+            step: self.step,
+            modules,
+            params,
+            max_modules: self.max_modules,
+            max_params: self.max_params,
+            bytes: modules * 8 + params * 8,
+        }
     }
 }
 
@@ -452,6 +548,7 @@ fn emit_decomposed(
     out: &mut ModuleString,
     sc: &mut Scratch,
     env: &mut Env<'_>,
+    cap: &Cap,
 ) -> Result<bool> {
     let mut cut = false;
     let mut params = std::mem::take(&mut sc.dparams);
@@ -468,7 +565,7 @@ fn emit_decomposed(
         }
         let p = std::mem::take(&mut params[0]);
         let before = out.len();
-        let r = decompose(l, m.sym, &p, 0, out, sc, env);
+        let r = decompose(l, m.sym, &p, 0, out, sc, env, cap);
         params[0] = p;
         r?;
         cut |= out.symbols()[before..].contains(&CUT);
@@ -479,6 +576,7 @@ fn emit_decomposed(
 
 /// Writes module (`sym`, `params`) to `out`, applying decomposition rules
 /// recursively (depth counts the rules applied above this module).
+#[allow(clippy::too_many_arguments)]
 fn decompose(
     l: &LSystem,
     sym: u32,
@@ -487,6 +585,7 @@ fn decompose(
     out: &mut ModuleString,
     sc: &mut Scratch,
     env: &mut Env<'_>,
+    cap: &Cap,
 ) -> Result<()> {
     expand(
         l,
@@ -498,6 +597,7 @@ fn decompose(
         &mut sc.dslots,
         &mut sc.estack,
         env,
+        cap,
     )
 }
 
@@ -514,6 +614,7 @@ pub(crate) fn expand(
     dslots: &mut Vec<Vec<f64>>,
     estack: &mut Vec<f64>,
     env: &mut Env<'_>,
+    cap: &Cap,
 ) -> Result<()> {
     let cands = set.for_symbol(sym);
     let d = depth as usize;
@@ -561,7 +662,18 @@ pub(crate) fn expand(
                     }
                 }
             }
-            if let Err(e) = expand(l, set, m.sym, &vals, depth + 1, out, dslots, estack, env) {
+            if let Err(e) = expand(
+                l,
+                set,
+                m.sym,
+                &vals,
+                depth + 1,
+                out,
+                dslots,
+                estack,
+                env,
+                cap,
+            ) {
                 dslots[d] = slots;
                 return Err(e);
             }
@@ -569,6 +681,7 @@ pub(crate) fn expand(
         dslots[d] = slots;
         return Ok(());
     }
+    cap.room(out, 1, params.len())?;
     out.push(sym, params);
     Ok(())
 }
@@ -577,6 +690,8 @@ pub(crate) fn expand(
 /// after it up to the end of its branch (the closing `]` stays).
 fn apply_cuts(src: &ModuleString, dst: &mut ModuleString) {
     dst.clear();
+    // The result is no longer than `src`: room for that, and no more.
+    dst.reserve_within(src.len(), src.param_count(), src.len(), src.param_count());
     let syms = src.symbols();
     let n = syms.len();
     let mut i = 0;

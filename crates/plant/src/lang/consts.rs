@@ -8,6 +8,16 @@ use super::text::{Ch, Cursor, Stmt};
 use super::vm::{Code, Env, Rng};
 use crate::error::{PlantError, Result, Span};
 
+/// The largest magnitude of each value of `tropism:` (a rotation of
+/// `e · |H × T|` radians per step is meaningless long before).
+pub(crate) const MAX_TROPISM: f64 = 1e6;
+
+/// The largest size of one array.
+pub(crate) const MAX_ARRAY_SIZE: usize = 10_000_000;
+
+/// The most values all the arrays of one L-system may hold together (128 MiB of values).
+pub(crate) const MAX_ARRAY_VALUES: usize = 1 << 24;
+
 pub(super) fn define(st: &Stmt, off: usize, g: &mut Globals) -> Result<()> {
     let mut cur = Cursor::new(&st.chars[off..]).end_at(st.end());
     let span = cur.span();
@@ -93,10 +103,20 @@ pub(super) fn define_arrays(
             }
         }
         let size = eval_const(&size_e, g, arrays, size_span)?;
-        if !(size >= 1.0 && size.fract() == 0.0 && size <= 1e7) {
+        if !(size >= 1.0 && size.fract() == 0.0 && size <= MAX_ARRAY_SIZE as f64) {
             return Err(PlantError::syntax(
                 size_span,
-                format!("array size {size} is not a positive integer"),
+                format!("array `{name}` size {size} is not an integer in 1..={MAX_ARRAY_SIZE}"),
+            ));
+        }
+        let held: usize = arrays.iter().map(Vec::len).sum();
+        if held + size as usize > MAX_ARRAY_VALUES {
+            return Err(PlantError::syntax(
+                size_span,
+                format!(
+                    "array `{name}` of size {size} brings the arrays to {} values, more than the {MAX_ARRAY_VALUES} allowed in all",
+                    held + size as usize
+                ),
             ));
         }
         if vals.len() > size as usize {
@@ -182,10 +202,13 @@ pub(super) fn tropism_values(
         let at = cur.span();
         let e = expr::parse_expr(&mut cur)?;
         let x = eval_const(&e, g, arrays, at)?;
-        if !x.is_finite() {
+        if x.is_nan() || x.abs() > MAX_TROPISM {
             return Err(PlantError::syntax(
                 at,
-                format!("tropism value {x} is not finite"),
+                format!(
+                    "`tropism:` value {} is outside the range -{MAX_TROPISM:e} ..= {MAX_TROPISM:e}",
+                    crate::turtle::num(x)
+                ),
             ));
         }
         *slot = x;

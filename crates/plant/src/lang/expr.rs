@@ -8,20 +8,36 @@
 //! and return degrees, as cpfg's do. Statements are `name = expr;`,
 //! `if (c) { … } else { … }` and `while (c) { … }`.
 
-use super::text::Cursor;
+use super::text::{Cursor, MAX_NESTING};
 use super::vm::{BinOp, Code, Func, Op};
 use crate::error::{PlantError, Result, Span};
+use std::cell::Cell;
 use std::collections::HashMap;
 
+/// An operator joining the terms of a left-associative chain.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Link {
+    Bin(BinOp),
+    And,
+    Or,
+}
+
 /// An expression tree.
+///
+/// Operators of one precedence level are kept as one flat [`Expr::Chain`]
+/// (`a + b - c + …`), so a long sum parses, compiles and drops without
+/// recursing once per term; everything that nests (parentheses, prefix
+/// operators, `^`, `?:`) is limited to [`MAX_NESTING`] levels by the parser.
 #[derive(Clone, Debug)]
 pub(crate) enum Expr {
     Num(f64),
     Var(String, Span),
     Unary(char, Box<Expr>, Span),
-    Bin(BinOp, Box<Expr>, Box<Expr>, Span),
-    And(Box<Expr>, Box<Expr>),
-    Or(Box<Expr>, Box<Expr>),
+    /// `a ^ b` (right-associative).
+    Pow(Box<Expr>, Box<Expr>, Span),
+    /// `a op b op c …`: the first term, then each operator, term and the
+    /// operator's position, evaluated left to right.
+    Chain(Box<Expr>, Vec<(Link, Expr, Span)>),
     Cond(Box<Expr>, Box<Expr>, Box<Expr>),
     Call(String, Vec<Expr>, Span),
     Index(String, Box<Expr>, Span),
@@ -47,7 +63,16 @@ pub(crate) struct Macro {
 pub(crate) struct Globals {
     pub macros: HashMap<String, Macro>,
     pub arrays: HashMap<String, u16>,
+    /// Operations compiled so far from the whole text (bounded by [`MAX_OPS`]).
+    pub compiled: Cell<usize>,
 }
+
+/// The most operations the programs of one L-system text may compile to, in
+/// all (macros that expand into each other can otherwise grow exponentially).
+pub(crate) const MAX_OPS: usize = 1 << 22;
+
+/// The deepest an expression may nest once its macros are expanded.
+const MAX_COMPILE_DEPTH: u32 = 4 * MAX_NESTING;
 
 /// Parses an expression, stopping at a character in `stop` at depth 0 (or the end).
 pub(crate) fn parse_expr(cur: &mut Cursor<'_>) -> Result<Expr> {
@@ -55,56 +80,67 @@ pub(crate) fn parse_expr(cur: &mut Cursor<'_>) -> Result<Expr> {
 }
 
 fn parse_ternary(cur: &mut Cursor<'_>) -> Result<Expr> {
+    cur.enter()?;
     let c = parse_or(cur)?;
-    if cur.eat('?') {
+    let r = if cur.eat('?') {
         let a = parse_ternary(cur)?;
         cur.expect(':', "in `c ? a : b`")?;
         let b = parse_ternary(cur)?;
-        return Ok(Expr::Cond(Box::new(c), Box::new(a), Box::new(b)));
+        Expr::Cond(Box::new(c), Box::new(a), Box::new(b))
+    } else {
+        c
+    };
+    cur.leave();
+    Ok(r)
+}
+
+/// Parses `term (op term)*` into one flat chain.
+fn chain(
+    cur: &mut Cursor<'_>,
+    term: fn(&mut Cursor<'_>) -> Result<Expr>,
+    op: fn(&mut Cursor<'_>) -> Option<(Link, Span)>,
+) -> Result<Expr> {
+    let first = term(cur)?;
+    let mut rest = Vec::new();
+    while let Some((link, span)) = op(cur) {
+        rest.push((link, term(cur)?, span));
     }
-    Ok(c)
+    Ok(if rest.is_empty() {
+        first
+    } else {
+        Expr::Chain(Box::new(first), rest)
+    })
 }
 
 fn parse_or(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_and(cur)?;
-    while cur.eat_str("||") {
-        let b = parse_and(cur)?;
-        a = Expr::Or(Box::new(a), Box::new(b));
-    }
-    Ok(a)
+    chain(cur, parse_and, |cur| {
+        cur.eat_str("||").then_some((Link::Or, Span::default()))
+    })
 }
 
 fn parse_and(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_eq(cur)?;
-    while cur.eat_str("&&") {
-        let b = parse_eq(cur)?;
-        a = Expr::And(Box::new(a), Box::new(b));
-    }
-    Ok(a)
+    chain(cur, parse_eq, |cur| {
+        cur.eat_str("&&").then_some((Link::And, Span::default()))
+    })
 }
 
 fn parse_eq(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_cmp(cur)?;
-    loop {
-        let span = {
-            cur.skip_ws();
-            cur.span()
-        };
+    chain(cur, parse_cmp, |cur| {
+        cur.skip_ws();
+        let span = cur.span();
         let op = if cur.eat_str("==") {
             BinOp::Eq
         } else if cur.eat_str("!=") {
             BinOp::Ne
         } else {
-            return Ok(a);
+            return None;
         };
-        let b = parse_cmp(cur)?;
-        a = Expr::Bin(op, Box::new(a), Box::new(b), span);
-    }
+        Some((Link::Bin(op), span))
+    })
 }
 
 fn parse_cmp(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_add(cur)?;
-    loop {
+    chain(cur, parse_add, |cur| {
         cur.skip_ws();
         let span = cur.span();
         let op = if cur.eat_str("<=") || cur.eat_str("≤") {
@@ -118,65 +154,68 @@ fn parse_cmp(cur: &mut Cursor<'_>) -> Result<Expr> {
             cur.bump();
             BinOp::Gt
         } else {
-            return Ok(a);
+            return None;
         };
-        let b = parse_add(cur)?;
-        a = Expr::Bin(op, Box::new(a), Box::new(b), span);
-    }
+        Some((Link::Bin(op), span))
+    })
 }
 
 fn parse_add(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_mul(cur)?;
-    loop {
+    chain(cur, parse_mul, |cur| {
         cur.skip_ws();
         let span = cur.span();
         let op = match cur.peek() {
             Some('+') => BinOp::Add,
             Some('-') if cur.peek_at(1) != Some('>') => BinOp::Sub,
-            _ => return Ok(a),
+            _ => return None,
         };
         cur.bump();
-        let b = parse_mul(cur)?;
-        a = Expr::Bin(op, Box::new(a), Box::new(b), span);
-    }
+        Some((Link::Bin(op), span))
+    })
 }
 
 fn parse_mul(cur: &mut Cursor<'_>) -> Result<Expr> {
-    let mut a = parse_unary(cur)?;
-    loop {
+    chain(cur, parse_unary, |cur| {
         cur.skip_ws();
         let span = cur.span();
         let op = match (cur.peek(), cur.peek_at(1)) {
-            (Some('*'), Some('*')) => return Ok(a),
+            (Some('*'), Some('*')) => return None,
             (Some('*'), _) => BinOp::Mul,
             (Some('/'), _) => BinOp::Div,
             (Some('%'), _) => BinOp::Rem,
-            _ => return Ok(a),
+            _ => return None,
         };
         cur.bump();
-        let b = parse_unary(cur)?;
-        a = Expr::Bin(op, Box::new(a), Box::new(b), span);
-    }
+        Some((Link::Bin(op), span))
+    })
 }
 
 fn parse_unary(cur: &mut Cursor<'_>) -> Result<Expr> {
-    cur.skip_ws();
-    let span = cur.span();
-    match cur.peek() {
-        Some('-') => {
-            cur.bump();
-            Ok(Expr::Unary('-', Box::new(parse_unary(cur)?), span))
+    // Prefix operators are read in a loop, each one a level of nesting.
+    let mut prefix = Vec::new();
+    let r = loop {
+        cur.skip_ws();
+        let span = cur.span();
+        match cur.peek() {
+            Some('-') => prefix.push(('-', span)),
+            Some('+') => {
+                cur.bump();
+                continue;
+            }
+            Some('!') if cur.peek_at(1) != Some('=') => prefix.push(('!', span)),
+            _ => break parse_pow(cur),
         }
-        Some('+') => {
-            cur.bump();
-            parse_unary(cur)
+        cur.bump();
+        if let Err(e) = cur.enter() {
+            break Err(e);
         }
-        Some('!') if cur.peek_at(1) != Some('=') => {
-            cur.bump();
-            Ok(Expr::Unary('!', Box::new(parse_unary(cur)?), span))
-        }
-        _ => parse_pow(cur),
+    };
+    let mut e = r?;
+    for (op, span) in prefix.into_iter().rev() {
+        e = Expr::Unary(op, Box::new(e), span);
+        cur.leave();
     }
+    Ok(e)
 }
 
 fn parse_pow(cur: &mut Cursor<'_>) -> Result<Expr> {
@@ -185,8 +224,10 @@ fn parse_pow(cur: &mut Cursor<'_>) -> Result<Expr> {
     let span = cur.span();
     if cur.eat_str("**") || cur.eat('^') {
         // Right-associative; the exponent may carry a sign.
+        cur.enter()?;
         let b = parse_unary(cur)?;
-        return Ok(Expr::Bin(BinOp::Pow, Box::new(a), Box::new(b), span));
+        cur.leave();
+        return Ok(Expr::Pow(Box::new(a), Box::new(b), span));
     }
     Ok(a)
 }
@@ -326,6 +367,13 @@ pub(crate) fn parse_block(cur: &mut Cursor<'_>) -> Result<Vec<Stmt>> {
 }
 
 fn parse_braced_or_single(cur: &mut Cursor<'_>) -> Result<Vec<Stmt>> {
+    cur.enter()?;
+    let r = braced_or_single(cur);
+    cur.leave();
+    r
+}
+
+fn braced_or_single(cur: &mut Cursor<'_>) -> Result<Vec<Stmt>> {
     if cur.eat('{') {
         let b = parse_block(cur)?;
         cur.expect('}', "to close the block")?;
@@ -369,6 +417,24 @@ impl Scope {
     }
 }
 
+/// The arguments of the macro whose body is being compiled: each parameter
+/// is bound to its argument as written at the call, which compiles in the
+/// caller's own bindings (so nothing is copied or substituted).
+struct Bindings<'e, 'p> {
+    params: &'e [String],
+    args: &'e [Expr],
+    caller: Option<&'p Bindings<'e, 'p>>,
+}
+
+impl<'e> Bindings<'e, '_> {
+    fn get(&self, name: &str) -> Option<&'e Expr> {
+        self.params
+            .iter()
+            .rposition(|p| p == name)
+            .map(|k| &self.args[k])
+    }
+}
+
 /// Compiles expressions and blocks against a scope and the globals.
 #[derive(Debug)]
 pub(crate) struct Compiler<'g> {
@@ -376,7 +442,10 @@ pub(crate) struct Compiler<'g> {
     pub scope: Scope,
     ops: Vec<Op>,
     spans: Vec<Span>,
+    /// Macro expansions open.
     depth: u32,
+    /// Expression levels being compiled (with macros expanded).
+    nest: u32,
 }
 
 impl<'g> Compiler<'g> {
@@ -387,6 +456,7 @@ impl<'g> Compiler<'g> {
             ops: Vec::new(),
             spans: Vec::new(),
             depth: 0,
+            nest: 0,
         }
     }
 
@@ -399,50 +469,66 @@ impl<'g> Compiler<'g> {
     fn finish(&mut self, span: Span) -> Code {
         let ops = std::mem::take(&mut self.ops);
         let spans = std::mem::take(&mut self.spans);
+        self.globals
+            .compiled
+            .set(self.globals.compiled.get() + ops.len());
         Code::new(ops, spans, span)
     }
 
     /// Compiles an expression into a program that leaves one value.
     pub fn expr(&mut self, e: &Expr, span: Span) -> Result<Code> {
-        self.lower(e, &HashMap::new())?;
+        let r = self.lower(e, None, span);
+        self.nest = 0;
+        self.depth = 0;
+        if let Err(err) = r {
+            self.ops.clear();
+            self.spans.clear();
+            return Err(err);
+        }
         Ok(self.finish(span))
     }
 
     /// Compiles a block into a program that leaves nothing.
     pub fn block(&mut self, b: &[Stmt], span: Span) -> Result<Code> {
-        self.gen_block(b)?;
+        let r = self.gen_block(b, span);
+        self.nest = 0;
+        self.depth = 0;
+        if let Err(err) = r {
+            self.ops.clear();
+            self.spans.clear();
+            return Err(err);
+        }
         Ok(self.finish(span))
     }
 
-    fn gen_block(&mut self, b: &[Stmt]) -> Result<()> {
-        let none = HashMap::new();
+    fn gen_block(&mut self, b: &[Stmt], at: Span) -> Result<()> {
         for s in b {
             match s {
                 Stmt::Assign(name, e, span) => {
-                    self.lower(e, &none)?;
+                    self.lower(e, None, *span)?;
                     let slot = self.scope.slot_or_new(name, *span)?;
                     self.emit(Op::Store(slot), *span);
                 }
                 Stmt::If(c, then, els) => {
-                    self.lower(c, &none)?;
+                    self.lower(c, None, at)?;
                     let jf = self.emit(Op::JumpIfFalse(0), Span::default());
-                    self.gen_block(then)?;
+                    self.gen_block(then, at)?;
                     if els.is_empty() {
                         let here = self.ops.len() as u32;
                         self.ops[jf] = Op::JumpIfFalse(here);
                     } else {
                         let j = self.emit(Op::Jump(0), Span::default());
                         self.ops[jf] = Op::JumpIfFalse(self.ops.len() as u32);
-                        self.gen_block(els)?;
+                        self.gen_block(els, at)?;
                         let here = self.ops.len() as u32;
                         self.ops[j] = Op::Jump(here);
                     }
                 }
                 Stmt::While(c, body, span) => {
                     let top = self.ops.len() as u32;
-                    self.lower(c, &none)?;
+                    self.lower(c, None, *span)?;
                     let jf = self.emit(Op::JumpIfFalse(0), *span);
-                    self.gen_block(body)?;
+                    self.gen_block(body, *span)?;
                     self.emit(Op::Loop(top), *span);
                     let here = self.ops.len() as u32;
                     self.ops[jf] = Op::JumpIfFalse(here);
@@ -452,26 +538,65 @@ impl<'g> Compiler<'g> {
         Ok(())
     }
 
-    fn lower(&mut self, e: &Expr, args: &HashMap<String, Expr>) -> Result<()> {
+    /// Compiles `e`; `at` is the nearest position known, for errors.
+    fn lower<'e>(&mut self, e: &'e Expr, b: Option<&Bindings<'e, '_>>, at: Span) -> Result<()> {
+        let at = match e {
+            Expr::Var(_, s)
+            | Expr::Unary(_, _, s)
+            | Expr::Pow(_, _, s)
+            | Expr::Call(_, _, s)
+            | Expr::Index(_, _, s) => *s,
+            _ => at,
+        };
+        if self.globals.compiled.get() + self.ops.len() >= MAX_OPS {
+            return Err(PlantError::syntax(
+                at,
+                format!(
+                    "the expressions compile to more than {MAX_OPS} operations in all (macros that double at each level?)"
+                ),
+            ));
+        }
+        self.nest += 1;
+        if self.nest > MAX_COMPILE_DEPTH {
+            return Err(PlantError::syntax(
+                at,
+                format!(
+                    "expression nested deeper than {MAX_COMPILE_DEPTH} levels once its macros are expanded"
+                ),
+            ));
+        }
+        self.lower_inner(e, b, at)?;
+        self.nest -= 1;
+        Ok(())
+    }
+
+    fn lower_inner<'e>(
+        &mut self,
+        e: &'e Expr,
+        b: Option<&Bindings<'e, '_>>,
+        at: Span,
+    ) -> Result<()> {
+        let g: &'g Globals = self.globals;
         match e {
             Expr::Num(v) => {
                 self.emit(Op::Const(*v), Span::default());
             }
             Expr::Var(name, span) => {
-                if let Some(a) = args.get(name) {
-                    let a = a.clone();
-                    return self.lower(&a, &HashMap::new());
+                if let Some(bind) = b {
+                    if let Some(a) = bind.get(name) {
+                        return self.lower(a, bind.caller, *span);
+                    }
                 }
                 if let Some(slot) = self.scope.slot(name) {
                     self.emit(Op::Load(slot), *span);
-                } else if let Some(m) = self.globals.macros.get(name.as_str()) {
+                } else if let Some(m) = g.macros.get(name.as_str()) {
                     if !m.params.is_empty() {
                         return Err(PlantError::syntax(
                             *span,
                             format!("macro `{name}` takes {} arguments", m.params.len()),
                         ));
                     }
-                    self.expand(&m.body.clone(), HashMap::new(), *span)?;
+                    self.expand(m, &[], None, *span)?;
                 } else if let Some(v) = constant(name) {
                     self.emit(Op::Const(v), *span);
                 } else {
@@ -483,53 +608,66 @@ impl<'g> Compiler<'g> {
                 }
             }
             Expr::Unary(op, a, span) => {
-                self.lower(a, args)?;
+                self.lower(a, b, *span)?;
                 self.emit(if *op == '-' { Op::Neg } else { Op::Not }, *span);
             }
-            Expr::Bin(op, a, b, span) => {
-                self.lower(a, args)?;
-                self.lower(b, args)?;
-                self.emit(Op::Bin(*op), *span);
+            Expr::Pow(x, y, span) => {
+                self.lower(x, b, *span)?;
+                self.lower(y, b, *span)?;
+                self.emit(Op::Bin(BinOp::Pow), *span);
             }
-            Expr::And(a, b) => {
-                self.lower(a, args)?;
-                let j = self.emit(Op::AndJump(0), Span::default());
-                self.lower(b, args)?;
-                self.emit(Op::ToBool, Span::default());
-                let here = self.ops.len() as u32;
-                self.ops[j] = Op::AndJump(here);
+            Expr::Chain(first, rest) => {
+                self.lower(first, b, at)?;
+                for (link, x, span) in rest {
+                    match link {
+                        Link::Bin(op) => {
+                            self.lower(x, b, *span)?;
+                            self.emit(Op::Bin(*op), *span);
+                        }
+                        Link::And | Link::Or => {
+                            let j = self.emit(
+                                if matches!(link, Link::And) {
+                                    Op::AndJump(0)
+                                } else {
+                                    Op::OrJump(0)
+                                },
+                                Span::default(),
+                            );
+                            self.lower(x, b, at)?;
+                            self.emit(Op::ToBool, Span::default());
+                            let here = self.ops.len() as u32;
+                            self.ops[j] = if matches!(link, Link::And) {
+                                Op::AndJump(here)
+                            } else {
+                                Op::OrJump(here)
+                            };
+                        }
+                    }
+                }
             }
-            Expr::Or(a, b) => {
-                self.lower(a, args)?;
-                let j = self.emit(Op::OrJump(0), Span::default());
-                self.lower(b, args)?;
-                self.emit(Op::ToBool, Span::default());
-                let here = self.ops.len() as u32;
-                self.ops[j] = Op::OrJump(here);
-            }
-            Expr::Cond(c, a, b) => {
-                self.lower(c, args)?;
+            Expr::Cond(c, x, y) => {
+                self.lower(c, b, at)?;
                 let jf = self.emit(Op::JumpIfFalse(0), Span::default());
-                self.lower(a, args)?;
+                self.lower(x, b, at)?;
                 let j = self.emit(Op::Jump(0), Span::default());
                 self.ops[jf] = Op::JumpIfFalse(self.ops.len() as u32);
-                self.lower(b, args)?;
+                self.lower(y, b, at)?;
                 let here = self.ops.len() as u32;
                 self.ops[j] = Op::Jump(here);
             }
             Expr::Index(name, i, span) => {
-                let Some(&arr) = self.globals.arrays.get(name.as_str()) else {
+                let Some(&arr) = g.arrays.get(name.as_str()) else {
                     return Err(PlantError::Undefined {
                         span: *span,
                         what: "array",
                         name: name.clone(),
                     });
                 };
-                self.lower(i, args)?;
+                self.lower(i, b, *span)?;
                 self.emit(Op::Index(arr), *span);
             }
             Expr::Call(name, a, span) => {
-                if let Some(m) = self.globals.macros.get(name.as_str()) {
+                if let Some(m) = g.macros.get(name.as_str()) {
                     if m.params.len() != a.len() {
                         return Err(PlantError::syntax(
                             *span,
@@ -540,13 +678,9 @@ impl<'g> Compiler<'g> {
                             ),
                         ));
                     }
-                    // Arguments are substituted as expressions (C's macro semantics,
+                    // Arguments are bound as expressions (C's macro semantics,
                     // but hygienic: each argument is one parenthesised operand).
-                    let mut bind = HashMap::new();
-                    for (p, x) in m.params.iter().zip(a) {
-                        bind.insert(p.clone(), substitute(x, args));
-                    }
-                    return self.expand(&m.body.clone(), bind, *span);
+                    return self.expand(m, a, b, *span);
                 }
                 let Some((f, arity)) = Func::lookup(name) else {
                     return Err(PlantError::Undefined {
@@ -565,7 +699,7 @@ impl<'g> Compiler<'g> {
                     ));
                 }
                 for x in a {
-                    self.lower(x, args)?;
+                    self.lower(x, b, *span)?;
                 }
                 self.emit(Op::Call(f, a.len() as u8), *span);
             }
@@ -573,7 +707,15 @@ impl<'g> Compiler<'g> {
         Ok(())
     }
 
-    fn expand(&mut self, body: &Expr, bind: HashMap<String, Expr>, span: Span) -> Result<()> {
+    /// Compiles the body of macro `m` with its parameters bound to `args`
+    /// (which compile in the caller's bindings `caller`).
+    fn expand<'e>(
+        &mut self,
+        m: &'e Macro,
+        args: &'e [Expr],
+        caller: Option<&Bindings<'e, '_>>,
+        span: Span,
+    ) -> Result<()> {
         self.depth += 1;
         if self.depth > 64 {
             return Err(PlantError::syntax(
@@ -581,40 +723,14 @@ impl<'g> Compiler<'g> {
                 "macro expansion nested deeper than 64 (recursive #define?)",
             ));
         }
-        let r = self.lower(body, &bind);
+        let bind = Bindings {
+            params: &m.params,
+            args,
+            caller,
+        };
+        let r = self.lower(&m.body, Some(&bind), span);
         self.depth -= 1;
         r
-    }
-}
-
-/// Replaces macro parameters inside a macro argument by the enclosing bindings.
-fn substitute(e: &Expr, args: &HashMap<String, Expr>) -> Expr {
-    if args.is_empty() {
-        return e.clone();
-    }
-    match e {
-        Expr::Var(n, _) => args.get(n).cloned().unwrap_or_else(|| e.clone()),
-        Expr::Num(_) => e.clone(),
-        Expr::Unary(o, a, s) => Expr::Unary(*o, Box::new(substitute(a, args)), *s),
-        Expr::Bin(o, a, b, s) => Expr::Bin(
-            *o,
-            Box::new(substitute(a, args)),
-            Box::new(substitute(b, args)),
-            *s,
-        ),
-        Expr::And(a, b) => Expr::And(Box::new(substitute(a, args)), Box::new(substitute(b, args))),
-        Expr::Or(a, b) => Expr::Or(Box::new(substitute(a, args)), Box::new(substitute(b, args))),
-        Expr::Cond(c, a, b) => Expr::Cond(
-            Box::new(substitute(c, args)),
-            Box::new(substitute(a, args)),
-            Box::new(substitute(b, args)),
-        ),
-        Expr::Call(n, a, s) => Expr::Call(
-            n.clone(),
-            a.iter().map(|x| substitute(x, args)).collect(),
-            *s,
-        ),
-        Expr::Index(n, i, s) => Expr::Index(n.clone(), Box::new(substitute(i, args)), *s),
     }
 }
 

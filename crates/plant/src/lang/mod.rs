@@ -26,7 +26,23 @@
 //! `-->`, `→`, `⇝` and `=>` are synonyms. `ε` or `*` is the empty successor.
 //! Condition blocks follow Prusinkiewicz et al. 2001, §2, eq. 1.
 //! A production continues on the next line while a `(` or `{` is open or
-//! while the next line holds no arrow and no directive.
+//! while the next line holds no arrow and no directive. A UTF-8 byte-order
+//! mark at the start of the text is skipped.
+//!
+//! The brackets `[` `]` of the axiom and of each successor must balance.
+//!
+//! ## Limits
+//!
+//! Text is refused with a [`PlantError::Syntax`] naming the line and column,
+//! never parsed into unbounded work or memory, when it is longer than
+//! [`MAX_SOURCE_BYTES`] (16 MiB); when parentheses, prefix operators, `^`,
+//! `?:` or `if` / `while` blocks nest deeper than 256 levels (a flat
+//! `a + b + …` of any length is fine); when its expressions, with their
+//! `#define`s expanded, compile to more than 2²² operations in all; when an
+//! array has more than 10⁷ values or all arrays more than 2²⁴; when
+//! `maximum depth:` is above 256; or when `step:` is outside `0 ..= 1e12` or a
+//! value of `tropism:` outside `±1e6`. A derivation is bounded by its
+//! [`crate::Limits`] (modules, parameters and total work).
 
 mod consts;
 pub(crate) mod expr;
@@ -39,6 +55,7 @@ use crate::error::{PlantError, Result, Span};
 use crate::string::ModuleString;
 use crate::symbols::SymbolTable;
 pub use funcs::{Curve, Function, UserFns};
+pub use text::MAX_SOURCE_BYTES;
 use vm::Code;
 
 /// A module of a predecessor or context: symbol, arity and the first slot its
@@ -177,7 +194,8 @@ impl LSystem {
     /// an undefined variable, function, array or macro, and
     /// [`PlantError::Eval`] if a constant expression (the axiom's parameters,
     /// an array's values, the derivation length) fails; each names the line
-    /// and column.
+    /// and column. Text past the language's limits (see the
+    /// [module documentation](self#limits)) is a [`PlantError::Syntax`].
     pub fn parse(text: &str) -> Result<Self> {
         parser::parse(text)
     }

@@ -2,12 +2,13 @@
 
 use super::consts::{const_count, const_value, define, define_arrays, run_const, tropism_values};
 use super::expr::{self, Compiler, Expr, Globals, Scope};
-use super::text::{self, Cursor, Stmt};
+use super::text::{self, Ch, Cursor, Stmt};
 use super::vm::Code;
 use super::{LSystem, Pattern, Production, RightElem, RuleSet, SuccModule, UserFns};
 use crate::error::{PlantError, Result, Span};
 use crate::string::ModuleString;
 use crate::symbols::{LBRACKET, RBRACKET, SymbolTable};
+use crate::turtle::{MAX_EXTENT, num};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Section {
@@ -30,6 +31,9 @@ struct RawModule {
     span: Span,
     params: Vec<Expr>,
 }
+
+/// The largest `maximum depth:` of decomposition and interpretation rules.
+pub(crate) const MAX_DEPTH: u32 = 256;
 
 /// Directive keywords (lower case) in the order they are tried.
 const KEYWORDS: &[&str] = &[
@@ -140,9 +144,30 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
             }
             "maximum depth" | "max depth" => {
                 max_depth = const_count(rest, &globals, &arrays, "maximum depth", st.span())?;
+                if max_depth > MAX_DEPTH {
+                    return Err(PlantError::syntax(
+                        st.span(),
+                        format!(
+                            "`maximum depth: {max_depth}` is more than the {MAX_DEPTH} levels decomposition and interpretation rules may nest"
+                        ),
+                    ));
+                }
             }
             "angle" => angle = Some(const_value(rest, &globals, &arrays, st.span())?),
-            "step" => step = Some(const_value(rest, &globals, &arrays, st.span())?),
+            "step" => {
+                let v = const_value(rest, &globals, &arrays, st.span())?;
+                if !(0.0..=MAX_EXTENT).contains(&v) {
+                    return Err(PlantError::syntax(
+                        st.span(),
+                        format!(
+                            "`step: {}` is outside the range 0 ..= {} a step length may take",
+                            num(v),
+                            num(MAX_EXTENT)
+                        ),
+                    ));
+                }
+                step = Some(v);
+            }
             "seed" => {
                 seed = Some(u64::from(const_count(
                     rest,
@@ -164,6 +189,7 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
             "axiom" | "ω" => {
                 let mut cur = Cursor::new(rest).end_at(st.end());
                 let raw = module_list(&mut cur, ModCtx::String)?;
+                check_brackets(&raw, "the axiom")?;
                 axiom = Some(raw);
             }
             "#ignore" | "ignore" | "#consider" | "consider" => {
@@ -301,7 +327,17 @@ fn module_list(cur: &mut Cursor<'_>, ctx: ModCtx) -> Result<Vec<RawModule>> {
                     if cur.eat(')') {
                         break;
                     }
-                    cur.expect(',', "between module parameters")?;
+                    if !cur.eat(',') {
+                        let found = cur
+                            .peek()
+                            .map_or("the end of the statement".to_string(), |c| format!("`{c}`"));
+                        return Err(PlantError::syntax(
+                            cur.span(),
+                            format!(
+                                "expected `,` or the `)` closing the `(` of module `{name}` at {span}, found {found}"
+                            ),
+                        ));
+                    }
                 }
             }
         }
@@ -311,6 +347,31 @@ fn module_list(cur: &mut Cursor<'_>, ctx: ModCtx) -> Result<Vec<RawModule>> {
         out.push(RawModule { name, span, params });
     }
     Ok(out)
+}
+
+/// Checks that the brackets of an axiom or a successor balance: each `]`
+/// closes a `[` of the same module string, and every `[` is closed.
+fn check_brackets(raw: &[RawModule], what: &str) -> Result<()> {
+    let mut open = Vec::new();
+    for m in raw {
+        match m.name.as_str() {
+            "[" => open.push(m.span),
+            "]" if open.pop().is_none() => {
+                return Err(PlantError::syntax(
+                    m.span,
+                    format!("`]` without a matching `[` in {what}"),
+                ));
+            }
+            _ => {}
+        }
+    }
+    match open.last() {
+        Some(&span) => Err(PlantError::syntax(
+            span,
+            format!("`[` is never closed in {what}"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Evaluates the parameters of a module list as constants.
@@ -498,11 +559,47 @@ fn production(
     // Condition part: `{block1} cond {block2}`.
     let nparams = scope.names.len();
     let mut comp = Compiler::new(g, scope);
+    let (pre, cond, post) = condition(&mut cur, &mut comp)?;
+    if !cur.at_end() {
+        let c = cur.peek().unwrap_or(' ');
+        return Err(PlantError::syntax(
+            cur.span(),
+            format!("unexpected `{c}` before the arrow"),
+        ));
+    }
+    let (succ, prob) = successor(rhs, st, &name, symbols, &mut comp)?;
+    let uses_random = [&pre, &cond, &post, &prob]
+        .iter()
+        .any(|c| c.as_ref().is_some_and(Code::uses_random))
+        || succ.iter().any(|m| m.params.iter().any(Code::uses_random));
+    Ok(Production {
+        name,
+        span,
+        pred: pred[0].0,
+        left: left.into_iter().map(|(p, _)| p).collect(),
+        right,
+        pre,
+        cond,
+        post,
+        succ,
+        prob,
+        nslots: comp.scope.names.len(),
+        nparams,
+        uses_random,
+    })
+}
+
+/// The condition part of a production after its `:`, `{block1} cond
+/// {block2}`: the blocks and the condition, each optional.
+fn condition(
+    cur: &mut Cursor<'_>,
+    comp: &mut Compiler<'_>,
+) -> Result<(Option<Code>, Option<Code>, Option<Code>)> {
     let (mut pre, mut cond, mut post) = (None, None, None);
     if cur.eat(':') {
         if cur.eat('{') {
             let s = cur.span();
-            let b = expr::parse_block(&mut cur)?;
+            let b = expr::parse_block(cur)?;
             cur.expect('}', "to close the block")?;
             pre = Some(comp.block(&b, s)?);
         }
@@ -511,24 +608,28 @@ fn production(
             cur.bump();
         } else if !cur.at_end() && cur.peek() != Some('{') {
             let s = cur.span();
-            let e = expr::parse_expr(&mut cur)?;
+            let e = expr::parse_expr(cur)?;
             cond = Some(comp.expr(&e, s)?);
         }
         if cur.eat('{') {
             let s = cur.span();
-            let b = expr::parse_block(&mut cur)?;
+            let b = expr::parse_block(cur)?;
             cur.expect('}', "to close the block")?;
             post = Some(comp.block(&b, s)?);
         }
     }
-    if !cur.at_end() {
-        let c = cur.peek().unwrap_or(' ');
-        return Err(PlantError::syntax(
-            cur.span(),
-            format!("unexpected `{c}` before the arrow"),
-        ));
-    }
-    // Successor and probability.
+    Ok((pre, cond, post))
+}
+
+/// The successor of a production (right of its arrow) and its probability
+/// after a top-level `:`, compiled.
+fn successor(
+    rhs: &[Ch],
+    st: &Stmt,
+    name: &str,
+    symbols: &mut SymbolTable,
+    comp: &mut Compiler<'_>,
+) -> Result<(Vec<SuccModule>, Option<Code>)> {
     let mut depth = 0i32;
     let mut colon = None;
     for (k, c) in rhs.iter().enumerate() {
@@ -554,6 +655,7 @@ fn production(
     } else {
         module_list(&mut scur, ModCtx::String)?
     };
+    check_brackets(&raw_succ, &format!("the successor of {name}"))?;
     let mut succ = Vec::with_capacity(raw_succ.len());
     for m in &raw_succ {
         let sym = symbols.intern(&m.name);
@@ -581,23 +683,5 @@ fn production(
         }
         None => None,
     };
-    let uses_random = [&pre, &cond, &post, &prob]
-        .iter()
-        .any(|c| c.as_ref().is_some_and(Code::uses_random))
-        || succ.iter().any(|m| m.params.iter().any(Code::uses_random));
-    Ok(Production {
-        name,
-        span,
-        pred: pred[0].0,
-        left: left.into_iter().map(|(p, _)| p).collect(),
-        right,
-        pre,
-        cond,
-        post,
-        succ,
-        prob,
-        nslots: comp.scope.names.len(),
-        nparams,
-        uses_random,
-    })
+    Ok((succ, prob))
 }

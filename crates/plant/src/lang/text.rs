@@ -7,6 +7,13 @@
 
 use crate::error::{PlantError, Result, Span};
 
+/// The deepest nesting of parentheses, prefix operators, `?:`, `^` and
+/// `if` / `while` blocks an expression or block may have.
+pub(crate) const MAX_NESTING: u32 = 256;
+
+/// The largest L-system text accepted, in bytes (16 MiB).
+pub const MAX_SOURCE_BYTES: usize = 16 << 20;
+
 /// A character and where it came from.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Ch {
@@ -39,6 +46,8 @@ impl Stmt {
 
 /// Strips comments and returns the lines as positioned characters.
 fn lines(src: &str) -> Result<Vec<Vec<Ch>>> {
+    // A UTF-8 byte-order mark (as some editors write) is not text.
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     let mut out = vec![Vec::new()];
     let mut line = 1u32;
     let mut col = 1u32;
@@ -151,6 +160,15 @@ fn open_depth(chars: &[Ch]) -> i32 {
 
 /// Splits L-system text into statements.
 pub(crate) fn statements(src: &str) -> Result<Vec<Stmt>> {
+    if src.len() > MAX_SOURCE_BYTES {
+        return Err(PlantError::syntax(
+            Span::new(1, 1),
+            format!(
+                "the text is {} bytes, more than the {MAX_SOURCE_BYTES} bytes (16 MiB) an L-system may have",
+                src.len()
+            ),
+        ));
+    }
     let mut out: Vec<Stmt> = Vec::new();
     let mut prev_is_production = false;
     for l in lines(src)? {
@@ -186,6 +204,8 @@ pub(crate) struct Cursor<'a> {
     pub pos: usize,
     /// Span reported at the end of input.
     pub end: Span,
+    /// Nesting of the recursive descent (parentheses, operators, blocks).
+    nest: u32,
 }
 
 impl<'a> Cursor<'a> {
@@ -194,7 +214,31 @@ impl<'a> Cursor<'a> {
             .last()
             .map(|c| Span::new(c.span.line, c.span.col + 1))
             .unwrap_or_default();
-        Self { chars, pos: 0, end }
+        Self {
+            chars,
+            pos: 0,
+            end,
+            nest: 0,
+        }
+    }
+
+    /// Enters one level of nesting; a syntax error past [`MAX_NESTING`] levels.
+    pub fn enter(&mut self) -> Result<()> {
+        self.nest += 1;
+        if self.nest > MAX_NESTING {
+            return Err(PlantError::syntax(
+                self.span(),
+                format!(
+                    "nested deeper than {MAX_NESTING} levels (parentheses, operators or blocks)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Leaves a level entered with [`Cursor::enter`].
+    pub fn leave(&mut self) {
+        self.nest = self.nest.saturating_sub(1);
     }
 
     /// Sets the span reported at the end of input when it holds no character

@@ -488,6 +488,16 @@ fn check_geometry(g: &Geometry) -> Result<()> {
                 "vertices and distance must be finite",
             ));
         }
+        if poly.vertices.len() > crate::turtle::MAX_POLYGON_VERTICES {
+            return Err(invalid(
+                "geometry.polygons",
+                format!("polygon {k} of {} vertices", poly.vertices.len()),
+                &format!(
+                    "a polygon may have at most {} vertices",
+                    crate::turtle::MAX_POLYGON_VERTICES
+                ),
+            ));
+        }
     }
     for (k, s) in g.surfaces.iter().enumerate() {
         let f = &s.frame;

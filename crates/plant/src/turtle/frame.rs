@@ -9,7 +9,9 @@
 //! ambiguous; this convention is the one that makes Prusinkiewicz et al.
 //! 2001's eq. 10 read `dΩ_U = T′·L`, `dΩ_L = −T′·U`.
 
+use crate::error::{PlantError, Result};
 use glam::DVec3;
+use natura_core::check;
 
 /// Position and orientation of the turtle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -153,22 +155,45 @@ impl TurtleFrame {
 /// The dot products are the sines of the small angles, as in the source.
 ///
 /// Returns the frames at `s = 0, ds, 2ds, …, ≤ length`.
+///
+/// # Errors
+///
+/// [`PlantError::InvalidParameter`] naming `length` or `ds` if `length` is
+/// not finite and non-negative, `ds` not finite and positive, or the curve
+/// would take more than [`MAX_CURVE_SAMPLES`] steps; naming `tangent` if it
+/// returns a non-finite vector.
 pub fn track_curve(
     start: TurtleFrame,
     length: f64,
     ds: f64,
     tangent: impl Fn(f64) -> DVec3,
-) -> Vec<TurtleFrame> {
-    let n = if ds > 0.0 && length.is_finite() && length > 0.0 {
-        (length / ds).floor() as usize
-    } else {
-        0
-    };
+) -> Result<Vec<TurtleFrame>> {
+    check::non_negative("track_curve length", length)?;
+    check::positive("track_curve ds", ds)?;
+    let steps = (length / ds).floor();
+    if steps.is_nan() || steps > MAX_CURVE_SAMPLES as f64 {
+        return Err(PlantError::InvalidParameter {
+            name: "track_curve ds",
+            value: format!("{ds:e} for length {length:e}"),
+            reason: format!(
+                "length / ds = {steps:e} steps, more than the {MAX_CURVE_SAMPLES} a curve may take"
+            ),
+        });
+    }
+    let n = steps as usize;
     let mut out = Vec::with_capacity(n + 1);
     let mut f = start;
     out.push(f);
     for k in 0..n {
-        let t = tangent((k + 1) as f64 * ds);
+        let s = (k + 1) as f64 * ds;
+        let t = tangent(s);
+        if !t.is_finite() {
+            return Err(PlantError::InvalidParameter {
+                name: "track_curve tangent",
+                value: format!("{t} at s = {s}"),
+                reason: "the tangent must be finite".into(),
+            });
+        }
         let d_u = t.dot(f.l).clamp(-1.0, 1.0).asin();
         let d_l = (-t.dot(f.u)).clamp(-1.0, 1.0).asin();
         f.turn(d_u);
@@ -176,5 +201,8 @@ pub fn track_curve(
         f.p += f.h * ds;
         out.push(f);
     }
-    out
+    Ok(out)
 }
+
+/// The most steps [`track_curve`] takes.
+pub const MAX_CURVE_SAMPLES: usize = 1 << 22;

@@ -4,6 +4,11 @@
 use super::{TurtleFrame, TurtleState};
 use glam::{DVec3, Vec3};
 
+/// The most vertices a polygon may have. Its triangulation (ear clipping in
+/// its plane) takes time quadratic in the vertices, cubic for a tangled
+/// outline, so the turtle and the mesher refuse longer ones with an error.
+pub const MAX_POLYGON_VERTICES: usize = 1024;
+
 /// A polygon recorded between `{` and `}`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {

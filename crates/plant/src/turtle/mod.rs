@@ -25,10 +25,15 @@
 mod frame;
 mod geometry;
 
-pub use frame::{TurtleFrame, rotate, track_curve};
-pub use geometry::{Geometry, Polygon, SurfaceInstance};
+pub use frame::{MAX_CURVE_SAMPLES, TurtleFrame, rotate, track_curve};
+pub use geometry::{Geometry, MAX_POLYGON_VERTICES, Polygon, SurfaceInstance};
 
-use crate::engine::expand;
+/// The farthest the turtle may go from the origin along any axis, and the
+/// largest width or surface size it draws: far enough for any plant, near
+/// enough that meshes (in `f32`) stay finite.
+pub const MAX_EXTENT: f64 = 1e12;
+
+use crate::engine::{Cap, Limits, expand};
 use crate::error::{PlantError, Result};
 use crate::lang::LSystem;
 use crate::lang::vm::{Env, Rng};
@@ -205,6 +210,7 @@ pub struct Turtle<'a> {
     lsys: &'a LSystem,
     params: TurtleParams,
     ops: Vec<Op>,
+    limits: Limits,
 }
 
 impl<'a> Turtle<'a> {
@@ -217,7 +223,20 @@ impl<'a> Turtle<'a> {
         params.validate()?;
         let t = lsys.symbols();
         let ops = (0..t.len() as u32).map(|id| op_for(t.name(id))).collect();
-        Ok(Self { lsys, params, ops })
+        Ok(Self {
+            lsys,
+            params,
+            ops,
+            limits: Limits::default(),
+        })
+    }
+
+    /// Bounds the output of the interpretation rules by `limits` (the
+    /// modules and parameters; [`Limits::default`] unless set).
+    #[must_use]
+    pub fn with_limits(mut self, limits: Limits) -> Self {
+        self.limits = limits;
+        self
     }
 
     /// The turtle's settings.
@@ -232,16 +251,23 @@ impl<'a> Turtle<'a> {
     ///
     /// # Errors
     ///
-    /// [`PlantError::Eval`] or [`PlantError::Depth`] from the rules.
+    /// [`PlantError::Eval`] or [`PlantError::Depth`] from the rules;
+    /// [`PlantError::Growth`] if the expanded string would pass the
+    /// turtle's limits ([`Turtle::with_limits`]).
     pub fn homomorphism(&self, s: &ModuleString) -> Result<(ModuleString, Vec<u32>)> {
         let l = self.lsys;
-        let mut out = ModuleString::with_capacity(s.len(), s.param_count());
-        let mut origin = Vec::with_capacity(s.len());
+        let cap = Cap::new(&self.limits, 0);
+        let mut out = ModuleString::with_capacity(
+            s.len().min(self.limits.max_modules),
+            s.param_count().min(self.limits.max_params),
+        );
+        let mut origin = Vec::with_capacity(s.len().min(self.limits.max_modules));
         let mut dslots = Vec::new();
         let mut estack = Vec::new();
         for i in 0..s.len() {
             let before = out.len();
             if l.homomorphisms.for_symbol(s.symbol(i)).is_empty() {
+                cap.room(&mut out, 1, s.arity(i))?;
                 out.push_from(s, i);
             } else {
                 let mut env = Env {
@@ -259,6 +285,7 @@ impl<'a> Turtle<'a> {
                     &mut dslots,
                     &mut estack,
                     &mut env,
+                    &cap,
                 )?;
             }
             origin.extend(std::iter::repeat_n(i as u32, out.len() - before));
@@ -314,6 +341,61 @@ impl<'a> Turtle<'a> {
         }
     }
 
+    /// Module `i` of `s` as written: `F(1e308)`.
+    fn module_text(&self, s: &ModuleString, i: usize) -> String {
+        let mut t = self.lsys.symbols().name(s.symbol(i)).to_string();
+        let a = s.params(i);
+        if !a.is_empty() {
+            let v: Vec<String> = a.iter().map(|&v| num(v)).collect();
+            t = format!("{t}({})", v.join(", "));
+        }
+        t
+    }
+
+    /// The error for module `i` taking a size out of the turtle's range:
+    /// `what` is the size (`"step length"`), `value` its value and `default`
+    /// where it came from when the module has no parameter.
+    fn out_of_reach(
+        &self,
+        s: &ModuleString,
+        i: usize,
+        what: &str,
+        value: f64,
+        default: &str,
+    ) -> PlantError {
+        let from = if s.arity(i) == 0 {
+            format!(" ({default})")
+        } else {
+            String::new()
+        };
+        self.bad(
+            s,
+            i,
+            format!(
+                "module {} at symbol index {i}: {what} {}{from} takes the turtle beyond ±{} (positions, widths and sizes must stay within it)",
+                self.module_text(s, i),
+                num(value),
+                num(MAX_EXTENT)
+            ),
+        )
+    }
+
+    /// A polygon past [`MAX_POLYGON_VERTICES`] vertices is an error at the
+    /// module that adds the vertex too many.
+    fn check_polygon(&self, s: &ModuleString, i: usize, poly: &Polygon) -> Result<()> {
+        if poly.vertices.len() > MAX_POLYGON_VERTICES {
+            return Err(self.bad(
+                s,
+                i,
+                format!(
+                    "a polygon (`{{` … `}}`) reaches {} vertices, more than the {MAX_POLYGON_VERTICES} a polygon may have",
+                    poly.vertices.len()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     fn bad(&self, s: &ModuleString, i: usize, message: impl Into<String>) -> PlantError {
         PlantError::Interpret {
             index: i,
@@ -362,11 +444,21 @@ impl<'a> Turtle<'a> {
                     let len = arg(p.step);
                     let start = st.frame.p;
                     st.frame.p += st.frame.h * len;
+                    if !st.frame.p.is_finite() || st.frame.p.abs().max_element() > MAX_EXTENT {
+                        return Err(self.out_of_reach(
+                            s,
+                            i,
+                            "step length",
+                            len,
+                            "the default step, from `step:` or `TurtleParams::step`",
+                        ));
+                    }
                     let d0 = st.distance;
                     st.distance += len.abs();
                     if let Some(poly) = polys.last_mut() {
                         if record {
                             poly.push_vertex(st.frame.p);
+                            self.check_polygon(s, i, poly)?;
                         }
                         st.last_seg = u32::MAX;
                     } else if draw {
@@ -402,11 +494,23 @@ impl<'a> Turtle<'a> {
                     } else {
                         a[0].abs()
                     };
+                    if st.width > MAX_EXTENT {
+                        return Err(self.out_of_reach(
+                            s,
+                            i,
+                            "width",
+                            st.width,
+                            "the width times `TurtleParams::width_factor`",
+                        ));
+                    }
                     st.taper_from = st.width;
                 }
                 Op::Taper => {
                     st.taper_from = st.width;
                     st.width = arg(st.width).abs();
+                    if st.width > MAX_EXTENT {
+                        return Err(self.out_of_reach(s, i, "width", st.width, ""));
+                    }
                 }
                 Op::Colour => {
                     st.colour = if a.is_empty() {
@@ -427,6 +531,7 @@ impl<'a> Turtle<'a> {
                 Op::PolyVertex => {
                     if let Some(poly) = polys.last_mut() {
                         poly.push_vertex(st.frame.p);
+                        self.check_polygon(s, i, poly)?;
                     }
                 }
                 Op::PolyEnd => {
@@ -453,6 +558,15 @@ impl<'a> Turtle<'a> {
                             [x] => (*x, *x),
                             [x, y, ..] => (*x, *y),
                         };
+                        if sl.abs().max(sw.abs()) > MAX_EXTENT {
+                            return Err(self.out_of_reach(
+                                s,
+                                i,
+                                "surface size",
+                                sl.abs().max(sw.abs()),
+                                "",
+                            ));
+                        }
                         g.surfaces.push(SurfaceInstance {
                             name: c,
                             frame: st.frame,
@@ -466,6 +580,9 @@ impl<'a> Turtle<'a> {
                 Op::Disc | Op::Sphere => {
                     if let Some(g) = geo.as_deref_mut() {
                         let r = arg(st.width * 0.5).abs();
+                        if r > MAX_EXTENT {
+                            return Err(self.out_of_reach(s, i, "radius", r, ""));
+                        }
                         g.surfaces.push(SurfaceInstance {
                             name: if op == Op::Disc { 'o' } else { 'O' },
                             frame: st.frame,
@@ -489,5 +606,14 @@ impl<'a> Turtle<'a> {
             });
         }
         Ok(())
+    }
+}
+
+/// A number as a user would write it: `1e308`, not 309 digits.
+pub(crate) fn num(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e9 || v.abs() < 1e-4) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
