@@ -54,6 +54,10 @@ use natura_core::colour::luminance;
 use natura_core::{Image, Progress};
 
 pub use error::{RenderError, Result};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The progress sink that reports nowhere, for [`render_scene`]'s last argument.
+pub use natura_core::NoProgress;
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
     AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc,

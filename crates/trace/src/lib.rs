@@ -86,9 +86,8 @@
 //!   one (`horizdir` for `vertdir`, Musgrave 1993, §8.6); see [`PanoramicCamera`].
 //!
 //! ```
-//! use natura_core::HeightField;
-//! use natura_trace::{MipmapTracer, Ray, Tracer};
-//! use glam::Vec3;
+//! use natura_trace::glam::Vec3;
+//! use natura_trace::{HeightField, MipmapTracer, Ray, Tracer};
 //!
 //! let hf = HeightField::from_fn(65, 65, 2.0, |i, j| ((i * j) % 7) as f32)?;
 //! let tracer = MipmapTracer::new(&hf)?;
@@ -128,6 +127,10 @@ mod tracer;
 
 pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, render_tiles, trace_image};
 pub use brute::{brute_force, detail_brute_force};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The height field every tracer works on.
+pub use natura_core::HeightField;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
     RAY_LANES, Stereo,
