@@ -86,6 +86,24 @@ mod guide_terrain {}
 #[cfg(all(doctest, feature = "plant"))]
 #[doc = include_str!("../docs/guide/plants.md")]
 mod guide_plants {}
+#[cfg(all(doctest, feature = "ocean"))]
+#[doc = include_str!("../docs/guide/ocean.md")]
+mod guide_ocean {}
+#[cfg(all(doctest, feature = "render"))]
+#[doc = include_str!("../docs/guide/render.md")]
+mod guide_render {}
+#[cfg(all(doctest, feature = "atmos"))]
+#[doc = include_str!("../docs/guide/sky.md")]
+mod guide_sky {}
+#[cfg(all(doctest, feature = "fluid"))]
+#[doc = include_str!("../docs/guide/fluids.md")]
+mod guide_fluids {}
+#[cfg(all(doctest, feature = "volume"))]
+#[doc = include_str!("../docs/guide/clouds.md")]
+mod guide_clouds {}
+#[cfg(all(doctest, feature = "texture"))]
+#[doc = include_str!("../docs/guide/textures.md")]
+mod guide_textures {}
 
 #[cfg(feature = "core")]
 pub use natura_core as core;
