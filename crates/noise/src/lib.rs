@@ -96,8 +96,9 @@ pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
 pub use fractal::vector_multifractal::{VectorMultifractal, VectorMultifractalParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};
 pub use natura_simd::{Simd, SimdLevel};
+pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
+pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};
+
 /// The vector types of the API (`DVec2`, `DVec3`, …), so users need no
 /// `glam` dependency of their own.
 pub use glam;
-pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
-pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};

@@ -76,10 +76,6 @@ use natura_core::colour::luminance;
 use natura_core::{Image, Progress};
 
 pub use error::{RenderError, Result};
-/// The vector types of the API, so users need no `glam` dependency of their own.
-pub use glam;
-/// The progress sink that reports nowhere, for [`render_scene`]'s last argument.
-pub use natura_core::NoProgress;
 pub use integrator::{Renderer, SceneCamera, WATER_IOR};
 pub use scene::{
     AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc,
@@ -91,6 +87,11 @@ pub use world::{
     ErodedTerrain, MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World,
     sun_direction,
 };
+
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The progress sink that reports nowhere, for [`render_scene`]'s last argument.
+pub use natura_core::NoProgress;
 
 /// The result of rendering a scene.
 #[derive(Debug)]

@@ -34,7 +34,10 @@ fn render(scene: &SceneDesc) -> (World, Rendered) {
 fn mean_over(out: &Rendered, rows: std::ops::Range<usize>, f: impl Fn(glam::Vec3) -> f32) -> f32 {
     let img = out.image.pixels();
     let n = rows.len() * img.width();
-    rows.flat_map(|y| img.row(y).iter().copied()).map(f).sum::<f32>() / n as f32
+    rows.flat_map(|y| img.row(y).iter().copied())
+        .map(f)
+        .sum::<f32>()
+        / n as f32
 }
 
 #[test]
@@ -59,7 +62,9 @@ fn the_quick_start_shows_sky_above_the_ground_at_a_landscape_exposure() {
         }
     }
     // …and the bottom row does.
-    let ray = camera.camera().ray(w as u32 / 2, h as u32 - 1, glam::Vec2::splat(0.5));
+    let ray = camera
+        .camera()
+        .ray(w as u32 / 2, h as u32 - 1, glam::Vec2::splat(0.5));
     assert!(tracer.trace(&ray, 0.0, f32::INFINITY).is_some());
 
     // The sky is blue: bluer than red, and bluer than the ground below it.
@@ -67,21 +72,38 @@ fn the_quick_start_shows_sky_above_the_ground_at_a_landscape_exposure() {
     let sky_blue = mean_over(&out, 0..top, blue_share);
     let ground_blue = mean_over(&out, h - top..h, blue_share);
     let sky = mean_over(&out, 0..top, |c| c.z - c.x);
-    println!("sky blue share {sky_blue:.3}, ground {ground_blue:.3}, exposure {:+.2} EV", out.exposure_ev);
+    println!(
+        "sky blue share {sky_blue:.3}, ground {ground_blue:.3}, exposure {:+.2} EV",
+        out.exposure_ev
+    );
     assert!(sky > 0.0, "the top rows are not bluer than red");
-    assert!(sky_blue > ground_blue, "sky {sky_blue} not bluer than ground {ground_blue}");
+    assert!(
+        sky_blue > ground_blue,
+        "sky {sky_blue} not bluer than ground {ground_blue}"
+    );
 
     // The automatic exposure is within 2 EV of the default landscape's at a
     // small size (its terrain shrunk to 128² of 480 m, the same 61 km).
     let (_, reference) = render(&common::small_scene());
     let d = out.exposure_ev - reference.exposure_ev;
-    println!("reference exposure {:+.2} EV, difference {d:+.2}", reference.exposure_ev);
-    assert!(d.abs() <= 2.0, "exposure {:+.2} EV vs the landscape's {:+.2} EV", out.exposure_ev, reference.exposure_ev);
+    println!(
+        "reference exposure {:+.2} EV, difference {d:+.2}",
+        reference.exposure_ev
+    );
+    assert!(
+        d.abs() <= 2.0,
+        "exposure {:+.2} EV vs the landscape's {:+.2} EV",
+        out.exposure_ev,
+        reference.exposure_ev
+    );
 
     // The same comparison by mean log luminance of the linear images.
     let log_lum = |r: &Rendered| {
         let px = r.image.pixels().as_slice();
-        px.iter().map(|c| luminance(*c).max(1e-6).log2()).sum::<f32>() / px.len() as f32
+        px.iter()
+            .map(|c| luminance(*c).max(1e-6).log2())
+            .sum::<f32>()
+            / px.len() as f32
     };
     let dl = log_lum(&out) - log_lum(&reference);
     println!("mean log2 luminance difference {dl:+.2}");

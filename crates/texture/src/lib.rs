@@ -73,9 +73,9 @@ pub mod view;
 pub mod water;
 
 pub use error::{Result, TextureError};
+pub use footprint::Footprint;
 /// The vector types of the API, so users need no `glam` dependency of their own.
 pub use glam;
-pub use footprint::Footprint;
 pub use spline::ColourSpline;
 pub use texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 pub use view::View;

@@ -127,10 +127,6 @@ mod tracer;
 
 pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, render_tiles, trace_image};
 pub use brute::{brute_force, detail_brute_force};
-/// The vector types of the API, so users need no `glam` dependency of their own.
-pub use glam;
-/// The height field every tracer works on.
-pub use natura_core::HeightField;
 pub use camera::{
     Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
     RAY_LANES, Stereo,
@@ -140,7 +136,11 @@ pub use detail::{Detail, DetailParams, DetailSurface, MAX_DETAIL_OCTAVES, RayCon
 pub use detail_tracer::DetailTracer;
 pub use error::{Result, TraceError};
 pub use field::MAX_SAMPLES_PER_AXIS;
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 pub use max_mipmap::{MaxMipmap, MipmapTracer};
+/// The height field every tracer works on.
+pub use natura_core::HeightField;
 pub use ray::{Hit, Ray, TraceStats, Triangle};
 pub use surface::surface_height;
 pub use tracer::Tracer;
