@@ -38,7 +38,7 @@
 //! [`AtmosError`]; nothing panics on user input.
 //!
 //! ```
-//! use glam::DVec3;
+//! use natura_atmos::glam::DVec3;
 //! use natura_atmos::{Dir3, Medium, medium::ExponentialMist};
 //! // Musgrave's mist with his Rayleigh-ish extinction vector: distant ridges go blue.
 //! let mist = ExponentialMist::new(
@@ -74,4 +74,6 @@ pub mod spectrum;
 
 pub use dir::Dir3;
 pub use error::{AtmosError, Result};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 pub use medium::{Attenuation, Medium};

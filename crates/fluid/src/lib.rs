@@ -28,7 +28,7 @@
 //! use natura_fluid::grid::Dims;
 //! use natura_fluid::shape::Shape;
 //! use natura_fluid::smoke::{Smoke, SmokeParams, SmokeSource};
-//! use glam::Vec3;
+//! use natura_fluid::glam::Vec3;
 //! let mut smoke = Smoke::new(Dims::plane(32, 64)?, 0.02, SmokeParams::default())?;
 //! smoke.add_source(SmokeSource {
 //!     shape: Shape::Sphere { centre: Vec3::new(0.32, 0.01, 0.2), radius: 0.08 },
@@ -54,6 +54,8 @@ mod par;
 pub mod pressure;
 
 pub use error::{FluidError, Result};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 mod diffuse;
 pub mod export;
 pub mod fft;

@@ -40,7 +40,7 @@
 //!
 //! ```
 //! use natura_noise::{Field, Fbm, Perlin, Spectral, Lattice2};
-//! use glam::DVec2;
+//! use natura_noise::glam::DVec2;
 //! let terrain = Fbm::new(Perlin::new(42), Spectral::default().with_h(0.8).with_frequency(0.01))?;
 //! let height = terrain.eval2(DVec2::new(120.0, -40.0));
 //! let (_, slope) = terrain.eval_grad2(DVec2::new(120.0, -40.0));
@@ -98,3 +98,7 @@ pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Oc
 pub use natura_simd::{Simd, SimdLevel};
 pub use vector::{DNoise, Smooth, VecNoise, VectorFbm, VectorField};
 pub use warp::{Displace, DistNoise, Twist, TwistLaw, VlNoise, Warp, Warped};
+
+/// The vector types of the API (`DVec2`, `DVec3`, …), so users need no
+/// `glam` dependency of their own.
+pub use glam;

@@ -70,6 +70,8 @@ pub mod surface;
 pub use cascade::{Cascade, CascadeFrame};
 pub use dispersion::{Dispersion, DispersionRelation, G, Quantized};
 pub use error::{OceanError, Result};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 
 pub use foam::{Foam, FoamParams};
 pub use frame::{Frame, FrameField, JacobianEigen, normal_from};

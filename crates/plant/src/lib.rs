@@ -55,4 +55,9 @@ pub mod eco;
 pub mod mesh;
 pub mod models;
 pub use mesh::{Material, MeshParams, PlantMesh};
+
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The mesh writers: binary glTF (one plant, or many as GPU instances) and OBJ.
+pub use mesh::{Instance, save_glb, save_glb_instanced, save_obj};
 pub mod preview;

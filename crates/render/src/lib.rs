@@ -26,15 +26,37 @@
 //! * [`render_scene`]: all of it, with stage timings, returning a linear
 //!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
 //!
-//! ```no_run
-//! use natura_core::NoProgress;
-//! use natura_render::{SceneDesc, render_scene};
+//! The default scene ([`SceneDesc::default`]) is a 2048² terrain of 30 m
+//! cells (61 km across) at 1920 × 1080. A quick look keeps the world's size
+//! and coarsens it: 64 samples of 960 m cover the same 61 km, so the camera,
+//! the sun and the haze keep the scene's proportions. (Shrinking
+//! `terrain.size` alone shrinks the world but not the atmosphere: the view
+//! is then hazy ground with no sky.)
+//!
+//! ```
+//! use natura_render::{NoProgress, SceneDesc, render_scene};
 //! let mut scene = SceneDesc::default();
-//! scene.terrain.size = 256;
-//! scene.render.width = 320;
-//! scene.render.height = 180;
+//! scene.terrain.size = 64; // 64 × 960 m = 2048 × 30 m
+//! scene.terrain.cell_size_m = 960.0;
+//! scene.erosion.stream_power_steps = 3;
+//! scene.erosion.thermal_steps = 3;
+//! scene.clouds.enabled = false; // the layer clouds and the forest cost
+//! scene.vegetation.enabled = false; // most; the default scene has both
+//! scene.render.width = 96;
+//! scene.render.height = 54;
+//! scene.render.spp = 1;
 //! let out = render_scene(&scene, &NoProgress)?;
-//! out.save("landscape.png", "landscape.exr")?;
+//! assert_eq!((out.image.width(), out.image.height()), (96, 54));
+//! assert!(out.image.first_non_finite().is_none() && out.exposure_ev.is_finite());
+//! // The top-left pixel is sky: bluer than it is red.
+//! let sky = out.image.get(0, 0).unwrap();
+//! assert!(sky.z > sky.x);
+//!
+//! let dir = std::env::temp_dir().join(format!("natura-render-quickstart-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir).unwrap();
+//! out.save(dir.join("landscape.png"), dir.join("landscape.exr"))?;
+//! assert!(dir.join("landscape.png").exists() && dir.join("landscape.exr").exists());
+//! std::fs::remove_dir_all(&dir).unwrap();
 //! # Ok::<(), natura_render::RenderError>(())
 //! ```
 #![forbid(unsafe_code)]
@@ -65,6 +87,11 @@ pub use world::{
     ErodedTerrain, MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World,
     sun_direction,
 };
+
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The progress sink that reports nowhere, for [`render_scene`]'s last argument.
+pub use natura_core::NoProgress;
 
 /// The result of rendering a scene.
 #[derive(Debug)]

@@ -23,7 +23,7 @@
 //! long work reporting to a [`natura_core::Progress`].
 //!
 //! ```
-//! use natura_core::Seed;
+//! use natura_terrain::Seed;
 //! use natura_terrain::synth::{SubdivisionParams, subdivide};
 //! let hf = subdivide(65, 65, 10.0, &SubdivisionParams::default(), Seed(1))?;
 //! assert_eq!(hf.nx(), 65);
@@ -43,3 +43,7 @@ pub mod export;
 pub mod synth;
 
 pub use error::{Result, TerrainError};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
+/// The height field every model works on, and the seed of the stochastic ones.
+pub use natura_core::{HeightField, Seed};

@@ -46,7 +46,7 @@
 //! with its shadow; rings; and the cube-sphere and equirectangular export.
 //!
 //! ```
-//! use glam::DVec3;
+//! use natura_texture::glam::DVec3;
 //! use natura_texture::{Footprint, SolidTexture, earth::{Terran, TerranParams}};
 //! let earth = Terran::new(TerranParams::default())?;
 //! let s = earth.sample(DVec3::new(0.3, -0.5, 0.81), Footprint::new(1e-3)?);
@@ -74,6 +74,8 @@ pub mod water;
 
 pub use error::{Result, TextureError};
 pub use footprint::Footprint;
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 pub use spline::ColourSpline;
 pub use texture::{Sample, SolidTexture, TextureKind, display_to_linear};
 pub use view::View;

@@ -86,9 +86,8 @@
 //!   one (`horizdir` for `vertdir`, Musgrave 1993, §8.6); see [`PanoramicCamera`].
 //!
 //! ```
-//! use natura_core::HeightField;
-//! use natura_trace::{MipmapTracer, Ray, Tracer};
-//! use glam::Vec3;
+//! use natura_trace::glam::Vec3;
+//! use natura_trace::{HeightField, MipmapTracer, Ray, Tracer};
 //!
 //! let hf = HeightField::from_fn(65, 65, 2.0, |i, j| ((i * j) % 7) as f32)?;
 //! let tracer = MipmapTracer::new(&hf)?;
@@ -137,7 +136,11 @@ pub use detail::{Detail, DetailParams, DetailSurface, MAX_DETAIL_OCTAVES, RayCon
 pub use detail_tracer::DetailTracer;
 pub use error::{Result, TraceError};
 pub use field::MAX_SAMPLES_PER_AXIS;
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
 pub use max_mipmap::{MaxMipmap, MipmapTracer};
+/// The height field every tracer works on.
+pub use natura_core::HeightField;
 pub use ray::{Hit, Ray, TraceStats, Triangle};
 pub use surface::surface_height;
 pub use tracer::Tracer;

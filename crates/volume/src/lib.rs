@@ -28,9 +28,9 @@
 //! ```
 //! use natura_volume::{Density, cloud::{cloud, nine_sphere_cumulus, CloudParams}};
 //! let c = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 7)?;
-//! let d = c.density(glam::Vec3::new(0.0, 0.0, 2.0));
+//! let d = c.density(natura_volume::glam::Vec3::new(0.0, 0.0, 2.0));
 //! assert!((0.0..=1.0).contains(&d));
-//! assert_eq!(c.density(glam::Vec3::splat(100.0)), 0.0);
+//! assert_eq!(c.density(natura_volume::glam::Vec3::splat(100.0)), 0.0);
 //! # Ok::<(), natura_volume::VolumeError>(())
 //! ```
 #![forbid(unsafe_code)]
@@ -51,3 +51,5 @@ pub mod vdb;
 
 pub use density::Density;
 pub use error::{Result, VolumeError};
+/// The vector types of the API, so users need no `glam` dependency of their own.
+pub use glam;
