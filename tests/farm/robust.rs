@@ -265,8 +265,8 @@ fn frames_times_tiles_beyond_the_limit_is_refused_by_flag() {
     let text = std::fs::read_to_string(SCENE)
         .unwrap()
         .replace("frames = 3", "frames = 1000000")
-        .replace("width = 64", "width = 16384")
-        .replace("height = 36", "height = 16384");
+        .replace("width = 64", "width = 1024")
+        .replace("height = 36", "height = 8192");
     std::fs::write(&scene, text).unwrap();
     // 1 000 000 × 4296 tasks wrap a 32-bit count.
     let o = natura(
