@@ -6,7 +6,7 @@
 //! examples use it.
 
 #[path = "../examples/common/mod.rs"]
-#[allow(dead_code, unused_imports)]
+#[allow(unused_imports)]
 mod common;
 
 use std::path::{Path, PathBuf};
