@@ -425,7 +425,7 @@ mod tests {
             vigor: 0.75,
             id: (3 << 40) | u64::from(k),
             species: k % 3,
-            dominated: k % 2 == 0,
+            dominated: k.is_multiple_of(2),
         };
         let prep = FramePrep {
             clouds: None,

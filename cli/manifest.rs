@@ -237,10 +237,10 @@ impl TileLine {
                 );
             }
         }
-        if let Some(ev) = self.exposure_ev {
-            if !ev.is_finite() {
-                return bad("exposure_ev", ev.to_string(), "a finite number");
-            }
+        if let Some(ev) = self.exposure_ev
+            && !ev.is_finite()
+        {
+            return bad("exposure_ev", ev.to_string(), "a finite number");
         }
         let file = tile_file(self.frame, self.tile, self.tiles);
         if self.file != file {

@@ -46,7 +46,7 @@ pub fn parse_tile(text: &str) -> std::result::Result<(u32, u32), String> {
 /// the one whose tiles are closest to square.
 pub fn grid(width: u32, height: u32, n: u32) -> Result<(u32, u32)> {
     let mut best: Option<(f64, u32, u32)> = None;
-    for cols in (1..=n).filter(|c| n % c == 0) {
+    for cols in (1..=n).filter(|c| n.is_multiple_of(*c)) {
         let rows = n / cols;
         if cols > width || rows > height {
             continue;

@@ -159,10 +159,10 @@ fn read_source(f: &str) -> String {
         ))
     };
     let file = std::fs::File::open(f).unwrap_or_else(|e| common::fail(&format!("{f}: {e}")));
-    if let Ok(m) = file.metadata() {
-        if m.len() > max as u64 {
-            too_big(m.len());
-        }
+    if let Ok(m) = file.metadata()
+        && m.len() > max as u64
+    {
+        too_big(m.len());
     }
     let mut bytes = Vec::new();
     file.take(max as u64 + 1)

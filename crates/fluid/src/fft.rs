@@ -138,7 +138,7 @@ pub(crate) fn symbols(dims: Dims, h: f32, variant: FftVariant) -> [Vec<(f64, f64
                     m as f64 - n as f64
                 };
                 let k = 2.0 * std::f64::consts::PI * signed / (n as f64 * h);
-                let nyquist = n % 2 == 0 && m == n / 2;
+                let nyquist = n.is_multiple_of(2) && m == n / 2;
                 match variant {
                     FftVariant::Spectral => (k * k, if nyquist { 0.0 } else { k }),
                     FftVariant::ModifiedWavenumber => {

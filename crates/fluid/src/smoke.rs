@@ -194,14 +194,14 @@ impl Smoke {
         s.shape.check_inside(self.dims, self.h, "smoke source")?;
         error::non_negative("source density", f64::from(s.density))?;
         error::positive("source temperature", f64::from(s.temperature))?;
-        if let Some(v) = s.velocity {
-            if !v.is_finite() {
-                return Err(FluidError::InvalidParameter {
-                    name: "source velocity",
-                    value: format!("{v:?}"),
-                    reason: "must be finite",
-                });
-            }
+        if let Some(v) = s.velocity
+            && !v.is_finite()
+        {
+            return Err(FluidError::InvalidParameter {
+                name: "source velocity",
+                value: format!("{v:?}"),
+                reason: "must be finite",
+            });
         }
         let mask = voxelise(&[Obstacle::fixed(s.shape)], self.dims, self.h);
         self.source_cells.push(

@@ -151,7 +151,7 @@ fn shared_path_advection_matches_per_field_bit_for_bit() {
         }
         let kinds: Vec<CellKind> = (0..d.cells())
             .map(|c| {
-                if natura_core::mix64(c as u64 ^ 3) % 7 == 0 {
+                if natura_core::mix64(c as u64 ^ 3).is_multiple_of(7) {
                     CellKind::Solid
                 } else {
                     CellKind::Fluid
@@ -241,7 +241,7 @@ fn lane_advection_matches_general_code_bit_for_bit() {
         }
         let kinds: Vec<CellKind> = (0..d.cells())
             .map(|c| {
-                if natura_core::mix64(c as u64 ^ 5) % 6 == 0 {
+                if natura_core::mix64(c as u64 ^ 5).is_multiple_of(6) {
                     CellKind::Solid
                 } else {
                     CellKind::Fluid

@@ -201,13 +201,13 @@ impl CascadeFrame {
     /// Returns [`OceanError::SizeMismatch`] if `foam` holds a different number of maps than there are patches
     /// or a map of the wrong size.
     pub fn surfaces(&self, foam: Option<&[Foam]>) -> Result<Vec<Surface>> {
-        if let Some(f) = foam {
-            if f.len() != self.frames.len() {
-                return Err(OceanError::SizeMismatch {
-                    expected: format!("{} foam maps", self.frames.len()),
-                    actual: format!("{}", f.len()),
-                });
-            }
+        if let Some(f) = foam
+            && f.len() != self.frames.len()
+        {
+            return Err(OceanError::SizeMismatch {
+                expected: format!("{} foam maps", self.frames.len()),
+                actual: format!("{}", f.len()),
+            });
         }
         self.frames
             .iter()

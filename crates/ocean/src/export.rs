@@ -26,13 +26,13 @@ use crate::frame::Frame;
 /// [`OceanError::Core`] if the file cannot be written.
 pub fn write_maps(path: impl AsRef<Path>, frame: &Frame, foam: Option<&Foam>) -> Result<()> {
     let (nx, ny) = frame.dims();
-    if let Some(f) = foam {
-        if f.coverage().dims() != (nx, ny) {
-            return Err(OceanError::SizeMismatch {
-                expected: format!("foam of {nx} × {ny}"),
-                actual: format!("{:?}", f.coverage().dims()),
-            });
-        }
+    if let Some(f) = foam
+        && f.coverage().dims() != (nx, ny)
+    {
+        return Err(OceanError::SizeMismatch {
+            expected: format!("foam of {nx} × {ny}"),
+            actual: format!("{:?}", f.coverage().dims()),
+        });
     }
     let normals = frame.normals();
     let split = |c: usize| -> Vec<f32> { normals.as_slice().iter().map(|n| n[c]).collect() };

@@ -247,7 +247,7 @@ impl Kernel for ColumnLeaf<'_, '_> {
 fn transpose_group(src: &[C32], dst: &mut [C32], gw: usize, cs: usize, ny: usize) {
     /// Rows per register block.
     const R: usize = 8;
-    if gw == 16 && ny % R == 0 {
+    if gw == 16 && ny.is_multiple_of(R) {
         // 16 × 8 blocks: contiguous loads of 8 rows per column, then
         // contiguous stores of 16 columns per row (no gathers).
         for y0 in (0..ny).step_by(R) {

@@ -53,13 +53,13 @@ impl Surface {
     /// Returns [`OceanError::SizeMismatch`](crate::OceanError::SizeMismatch) if `foam` is given with a size other than the frame's.
     pub fn new(frame: &Frame, foam: Option<&Foam>) -> Result<Self> {
         let (nx, ny) = frame.dims();
-        if let Some(f) = foam {
-            if f.coverage().dims() != (nx, ny) {
-                return Err(crate::OceanError::SizeMismatch {
-                    expected: format!("foam of {nx} × {ny}"),
-                    actual: format!("{:?}", f.coverage().dims()),
-                });
-            }
+        if let Some(f) = foam
+            && f.coverage().dims() != (nx, ny)
+        {
+            return Err(crate::OceanError::SizeMismatch {
+                expected: format!("foam of {nx} × {ny}"),
+                actual: format!("{:?}", f.coverage().dims()),
+            });
         }
         let disp = Grid2::from_fn(nx, ny, |i, j| {
             Vec2::new(frame.disp_x()[(i, j)], frame.disp_y()[(i, j)])

@@ -406,11 +406,10 @@ mod property {
                 return Ok(());
             }
             let t = Turtle::new(&l, TurtleParams::for_lsystem(&l)).unwrap().with_limits(limits);
-            if let Ok(g) = t.interpret(d.string()) {
-                if let Some((lo, hi)) = g.bounds() {
+            if let Ok(g) = t.interpret(d.string())
+                && let Some((lo, hi)) = g.bounds() {
                     prop_assert!(lo.is_finite() && hi.is_finite());
                 }
-            }
         }
     }
 }

@@ -24,10 +24,10 @@ fn end_point(src: &str, n: u32, p: TurtleParams) -> DVec3 {
     t.visit(s, |_, st| last = st.frame.p).unwrap();
     // The state before the last module; add the last move if it is F.
     let g = t.interpret(s).unwrap();
-    if let Some(e) = g.end.last() {
-        if s.symbols().last() == l.symbol("F").as_ref() {
-            last = e.as_dvec3();
-        }
+    if let Some(e) = g.end.last()
+        && s.symbols().last() == l.symbol("F").as_ref()
+    {
+        last = e.as_dvec3();
     }
     last
 }

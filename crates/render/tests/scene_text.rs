@@ -10,12 +10,12 @@ fn default_text() -> String {
 }
 
 fn check(text: &str) {
-    if let Ok(scene) = SceneDesc::from_toml_str(text, "edited.toml") {
-        if scene.validate().is_ok() {
-            let again = scene.to_toml_string().unwrap();
-            let back = SceneDesc::from_toml_str(&again, "again.toml").unwrap();
-            assert_eq!(back, scene);
-        }
+    if let Ok(scene) = SceneDesc::from_toml_str(text, "edited.toml")
+        && scene.validate().is_ok()
+    {
+        let again = scene.to_toml_string().unwrap();
+        let back = SceneDesc::from_toml_str(&again, "again.toml").unwrap();
+        assert_eq!(back, scene);
     }
 }
 

@@ -127,7 +127,7 @@ impl Mesh {
     /// naming `mesh` otherwise.
     pub fn check(&self) -> Result<()> {
         let n = self.positions.len();
-        if self.indices.is_empty() || self.indices.len() % 3 != 0 {
+        if self.indices.is_empty() || !self.indices.len().is_multiple_of(3) {
             return Err(invalid(
                 "mesh",
                 format!("{} indices", self.indices.len()),

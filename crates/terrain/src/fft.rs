@@ -62,7 +62,7 @@ pub(crate) fn inverse_real_2d(
             input.copy_from_slice(&spec[y * hx..(y + 1) * hx]);
             residue = residue.max(input[0].im.abs());
             input[0].im = 0.0;
-            if nx % 2 == 0 {
+            if nx.is_multiple_of(2) {
                 residue = residue.max(input[hx - 1].im.abs());
                 input[hx - 1].im = 0.0;
             }

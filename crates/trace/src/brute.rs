@@ -28,10 +28,10 @@ pub fn brute_force(hf: &HeightField, ray: &Ray, t_min: f32, t_max: f32) -> Resul
     let mut best: Option<CellHit> = None;
     for j in 0..f.ncy {
         for i in 0..f.ncx {
-            if let Some(h) = intersect_cell::<false>(&r, i, j, f.corners(i, j)) {
-                if best.is_none_or(|b| h.t < b.t) {
-                    best = Some(h);
-                }
+            if let Some(h) = intersect_cell::<false>(&r, i, j, f.corners(i, j))
+                && best.is_none_or(|b| h.t < b.t)
+            {
+                best = Some(h);
             }
         }
     }

@@ -204,10 +204,10 @@ impl<'a> GridTracer<'a> {
         let mut first = true;
         while let Some(v) = walk.next() {
             stats.nodes_visited += 1;
-            if let Some(p) = pending {
-                if p.t <= v.t_in {
-                    return pending;
-                }
+            if let Some(p) = pending
+                && p.t <= v.t_in
+            {
+                return pending;
             }
             let (i, j) = (v.cell.x, v.cell.y);
             if let Some(h) =

@@ -508,10 +508,10 @@ impl<'a> MipmapTracer<'a> {
         let mut pending: Option<CellHit> = None;
         loop {
             stats.nodes_visited += 1;
-            if let Some(p) = pending {
-                if p.t <= t {
-                    return pending;
-                }
+            if let Some(p) = pending
+                && p.t <= t
+            {
+                return pending;
             }
             let size = 1u32 << level;
             let mask = !(size - 1);

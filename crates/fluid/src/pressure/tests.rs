@@ -206,7 +206,7 @@ fn bad_params_are_refused() {
 fn mixed_kinds(d: Dims) -> Vec<CellKind> {
     let mut k = kinds_with_block(d);
     for (c, v) in k.iter_mut().enumerate() {
-        if natura_core::mix64(c as u64 ^ 0x5eed) % 17 == 0 && *v == CellKind::Fluid {
+        if natura_core::mix64(c as u64 ^ 0x5eed).is_multiple_of(17) && *v == CellKind::Fluid {
             *v = CellKind::Air;
         }
     }

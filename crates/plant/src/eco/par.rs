@@ -108,7 +108,7 @@ mod tests {
             let v: Vec<u32> = (0..n as u32)
                 .map(|i| i.wrapping_mul(2_654_435_761))
                 .collect();
-            let keep = |i: usize, x: &u32| (x ^ i as u32) % 3 != 0;
+            let keep = |i: usize, x: &u32| !(x ^ i as u32).is_multiple_of(3);
             let mut a = v.clone();
             super::retain(&mut a, keep);
             let b: Vec<u32> = v

@@ -582,10 +582,10 @@ impl<'g> Compiler<'g> {
                 self.emit(Op::Const(*v), Span::default());
             }
             Expr::Var(name, span) => {
-                if let Some(bind) = b {
-                    if let Some(a) = bind.get(name) {
-                        return self.lower(a, bind.caller, *span);
-                    }
+                if let Some(bind) = b
+                    && let Some(a) = bind.get(name)
+                {
+                    return self.lower(a, bind.caller, *span);
                 }
                 if let Some(slot) = self.scope.slot(name) {
                     self.emit(Op::Load(slot), *span);

@@ -343,10 +343,11 @@ impl Code {
             rng: Rng::default(),
         };
         let mut stack = Vec::new();
-        if let Ok(v) = self.run(&mut [], &mut stack, &mut env) {
-            if v.is_finite() && stack.is_empty() {
-                self.shape = Shape::Const(v);
-            }
+        if let Ok(v) = self.run(&mut [], &mut stack, &mut env)
+            && v.is_finite()
+            && stack.is_empty()
+        {
+            self.shape = Shape::Const(v);
         }
     }
 

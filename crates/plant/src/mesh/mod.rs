@@ -358,7 +358,7 @@ impl PlantMesh {
                 "needs one of each attribute per vertex",
             ));
         }
-        if n > u32::MAX as usize || self.indices.len() % 3 != 0 {
+        if n > u32::MAX as usize || !self.indices.len().is_multiple_of(3) {
             return Err(invalid(
                 "mesh",
                 format!("{n} vertices, {} indices", self.indices.len()),

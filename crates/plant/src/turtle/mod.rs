@@ -545,10 +545,10 @@ impl<'a> Turtle<'a> {
                             poly.vertices.pop();
                         }
                     }
-                    if let Some(g) = geo.as_deref_mut() {
-                        if poly.vertices.len() >= 3 {
-                            g.polygons.push(poly);
-                        }
+                    if let Some(g) = geo.as_deref_mut()
+                        && poly.vertices.len() >= 3
+                    {
+                        g.polygons.push(poly);
                     }
                 }
                 Op::Surface(c) => {

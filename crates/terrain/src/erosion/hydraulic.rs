@@ -303,7 +303,7 @@ impl MusgraveHydraulic {
     fn step_unchecked(&mut self, hf: &mut HeightField) {
         let (nx, ny) = (self.nx, self.ny);
         let p = &self.p.clone();
-        if p.rain_period > 0 && self.step % u64::from(p.rain_period) == 0 {
+        if p.rain_period > 0 && self.step.is_multiple_of(u64::from(p.rain_period)) {
             let a = hf.heights().as_slice();
             let mut added = 0.0f64;
             for (w, &h) in self.water.as_mut_slice().iter_mut().zip(a) {

@@ -60,14 +60,14 @@ impl SpectralParams {
         }
         non_negative("SpectralParams::sigma_m", self.sigma_m)?;
         non_negative("SpectralParams::low_cut", self.low_cut)?;
-        if let Some(hc) = self.high_cut {
-            if !(hc.is_finite() && hc > self.low_cut) {
-                return Err(invalid(
-                    "SpectralParams::high_cut",
-                    hc,
-                    "must be finite and > low_cut",
-                ));
-            }
+        if let Some(hc) = self.high_cut
+            && !(hc.is_finite() && hc > self.low_cut)
+        {
+            return Err(invalid(
+                "SpectralParams::high_cut",
+                hc,
+                "must be finite and > low_cut",
+            ));
         }
         Ok(())
     }

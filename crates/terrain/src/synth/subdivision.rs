@@ -97,14 +97,14 @@ impl MidpointParams {
             check_h("MidpointParams::h_schedule", h)?;
         }
         non_negative("MidpointParams::scale", self.scale)?;
-        if let EndpointMode::Fixed(a, b) = self.endpoints {
-            if !(a.is_finite() && b.is_finite()) {
-                return Err(invalid(
-                    "MidpointParams::endpoints",
-                    format!("({a}, {b})"),
-                    "must be finite",
-                ));
-            }
+        if let EndpointMode::Fixed(a, b) = self.endpoints
+            && !(a.is_finite() && b.is_finite())
+        {
+            return Err(invalid(
+                "MidpointParams::endpoints",
+                format!("({a}, {b})"),
+                "must be finite",
+            ));
         }
         Ok(())
     }
@@ -378,14 +378,14 @@ impl SubdivisionParams {
     /// NaN, infinite or outside its documented range.
     pub fn validate(&self) -> Result<()> {
         self.midpoint.validate()?;
-        if let Some(l) = self.levels {
-            if l > 16 {
-                return Err(invalid(
-                    "SubdivisionParams::levels",
-                    l,
-                    "must be at most 16 (65 537 cells per tile side)",
-                ));
-            }
+        if let Some(l) = self.levels
+            && l > 16
+        {
+            return Err(invalid(
+                "SubdivisionParams::levels",
+                l,
+                "must be at most 16 (65 537 cells per tile side)",
+            ));
         }
         Ok(())
     }
