@@ -131,14 +131,19 @@ impl<'s> ReferenceRenderer<'s> {
         if self.majorant <= 0.0 {
             return 1.0;
         }
-        let mut t = t0;
+        // Tracked from the box's entry point, so that the free-flight steps
+        // (about 1/majorant) still move the distance in f32 when the ray
+        // starts far from the box (a ground point under a low sun).
+        let entry = p + l * t0;
+        let length = t1 - t0;
+        let mut t = 0.0f32;
         let mut tr = 1.0f32;
         loop {
             t -= (1.0 - unit(rng)).ln() / self.majorant;
-            if t >= t1 {
+            if t >= length {
                 return tr;
             }
-            let sigma_t = sc.medium.extinction * sc.density.density(p + l * t);
+            let sigma_t = sc.medium.extinction * sc.density.density(entry + l * t);
             tr *= 1.0 - (sigma_t / self.majorant).min(1.0);
             if tr <= 0.0 {
                 return 0.0;
@@ -154,17 +159,19 @@ impl<'s> ReferenceRenderer<'s> {
         if self.majorant <= 0.0 {
             return None;
         }
-        let t1 = t1.min(t_max);
-        let mut t = t0;
+        // Tracked from the box's entry point (see `transmittance`).
+        let entry = o + d * t0;
+        let length = t1.min(t_max) - t0;
+        let mut t = 0.0f32;
         loop {
             t -= (1.0 - unit(rng)).ln() / self.majorant;
-            if t >= t1 {
+            if t >= length {
                 return None;
             }
-            let p = o + d * t;
+            let p = entry + d * t;
             let sigma_t = sc.medium.extinction * sc.density.density(p);
             if unit(rng) * self.majorant < sigma_t {
-                return Some((t, p));
+                return Some((t0 + t, p));
             }
         }
     }
