@@ -48,8 +48,9 @@ fn main() {
     let cap = (EcoParams::default().max_plants as f64).min(MAX_SEEDS_PER_SPECIES as f64);
     if 5.0 * grass * ha > cap {
         common::fail(&format!(
-            "--grass-per-ha {grass}: must be in 0..={:.0} on this {ha:.1} ha terrain \
+            "--grass-per-ha {}: must be in 0..={:.0} on this {ha:.1} ha terrain \
              (5 × it per hectare is sown at the start, at most {cap:.0} grass plants)",
+            common::short(grass),
             (cap / (5.0 * ha)).floor()
         ));
     }

@@ -63,7 +63,10 @@ fn main() {
     args.finish();
     let in_range = |flag: &str, v: f64, lo: f64, hi: f64, unit: &str| {
         if !(lo..=hi).contains(&v) {
-            common::fail(&format!("{flag} {v}: must be in {lo}..={hi} {unit}"));
+            common::fail(&format!(
+                "{flag} {}: must be in {lo}..={hi} {unit}",
+                common::short(v)
+            ));
         }
     };
     if let Some(v) = lat {
@@ -77,8 +80,13 @@ fn main() {
         in_range("--search", v, 0.0, 2e7, "m");
     }
     // Beyond ±20 stops the picture is white or black whatever it shows.
-    if let Some(v) = ev {
-        in_range("--ev", f64::from(v), -20.0, 20.0, "stops");
+    if let Some(v) = ev
+        && !(-20.0..=20.0).contains(&v)
+    {
+        common::fail(&format!(
+            "--ev {}: must be in -20..=20 stops",
+            common::short(v)
+        ));
     }
 
     let name = match view.as_str() {

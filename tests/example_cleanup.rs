@@ -124,3 +124,14 @@ fn child() {
         _ => unreachable!("{way}"),
     }
 }
+
+/// Flag errors print numbers as a person reads them, never three hundred
+/// digits for a 1e300 the user typed.
+#[test]
+fn numbers_in_flag_errors_are_short() {
+    assert_eq!(common::short(1e300f64), "1e300");
+    assert_eq!(common::short(-1e30f32), "-1e30");
+    assert_eq!(common::short(2.5f64), "2.5");
+    assert_eq!(common::short(1.5e-7f64), "1.5e-7");
+    assert_eq!(common::short(0.0f32), "0");
+}

@@ -168,10 +168,19 @@ impl Args {
         T: FromStr + PartialOrd + std::fmt::Display,
         T::Err: std::fmt::Display,
     {
+        // The value as the user wrote it, for the message (a parsed 1e300
+        // would print as three hundred digits).
+        let written = self
+            .rest
+            .iter()
+            .position(|a| a == name)
+            .and_then(|i| self.rest.get(i + 1))
+            .cloned();
         let v = self.value(name, default, help);
         if !range.contains(&v) {
+            let shown = written.unwrap_or_else(|| v.to_string());
             fail(&format!(
-                "{name} {v}: must be in {}..={}",
+                "{name} {shown}: must be in {}..={}",
                 range.start(),
                 range.end()
             ));
@@ -230,6 +239,20 @@ impl Args {
         if let Some(a) = self.rest.first() {
             fail(&format!("unknown argument `{a}` (try --help)"));
         }
+    }
+}
+
+/// A number as a person reads it: plain from 1e-4 to 1e6, otherwise in
+/// exponent form (`-1e300`, not three hundred digits).
+pub fn short<T>(v: T) -> String
+where
+    T: std::fmt::Display + std::fmt::LowerExp + Copy + Into<f64>,
+{
+    let a = v.into().abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }
 
