@@ -180,6 +180,9 @@ fn say(line: &str) {
     let mut out = std::io::stdout().lock();
     if let Err(e) = writeln!(out, "{line}").and_then(|()| out.flush()) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
+            // A normal end, but through the same clean-up as every other
+            // exit: nothing staged so far is left behind.
+            common::remove_staged();
             std::process::exit(0);
         }
         common::fail(&format!("standard output: {e}"));

@@ -234,6 +234,7 @@ impl Args {
             }
             // A closed stdout ends the help as well as its last line.
             let _ = out(help);
+            remove_staged();
             std::process::exit(0);
         }
         if let Some(a) = self.rest.first() {
