@@ -478,19 +478,18 @@ impl<'g> Compiler<'g> {
     /// Compiles an expression into a program that leaves one value.
     pub fn expr(&mut self, e: &Expr, span: Span) -> Result<Code> {
         let r = self.lower(e, None, span);
-        self.nest = 0;
-        self.depth = 0;
-        if let Err(err) = r {
-            self.ops.clear();
-            self.spans.clear();
-            return Err(err);
-        }
-        Ok(self.finish(span))
+        self.settle(r, span)
     }
 
     /// Compiles a block into a program that leaves nothing.
     pub fn block(&mut self, b: &[Stmt], span: Span) -> Result<Code> {
         let r = self.gen_block(b, span);
+        self.settle(r, span)
+    }
+
+    /// Ends a compilation: the depth counters reset, and the program is
+    /// taken, or on an error dropped.
+    fn settle(&mut self, r: Result<()>, span: Span) -> Result<Code> {
         self.nest = 0;
         self.depth = 0;
         if let Err(err) = r {
