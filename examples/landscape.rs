@@ -9,19 +9,82 @@
 //! cargo run --release --example landscape -- --no-clouds --no-textures  # clear sky, plain materials
 //! cargo run --release --example landscape -- --closeup --no-forest  # the slopes without trees
 //! cargo run --release --example landscape -- --no-terraces  # the eroded terrain without cliffs
+//! cargo run --release --example landscape -- --help          # every flag and its default
 //! ```
 //!
 //! Writes `landscape.png` (tone-mapped sRGB) and `landscape.exr` (linear
-//! radiance) into `--out` (default: the current directory), with a progress
-//! bar per stage.
+//! radiance) into `--out` (default: `./landscape/`), with a progress bar per
+//! stage.
 
 mod common;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use clap::Parser;
 use common::{Run, outln};
 use natura::render::{SceneDesc, World, render_world};
+
+/// The main natura picture: an eroded fractal landscape under a physical
+/// sky, rendered from a scene description (the built-in one unless
+/// --scene). Writes landscape.png (sRGB) and landscape.exr (linear
+/// radiance).
+#[derive(Parser)]
+#[command(name = "landscape", version)]
+struct Cli {
+    /// Small terrain and image (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Print the scene as TOML (with --scene, that scene after the flags)
+    /// and exit
+    #[arg(long)]
+    print_scene: bool,
+    /// Also write the terrain's relief map and 16-bit height map
+    #[arg(long)]
+    maps: bool,
+    /// A low camera looking down into the nearby slopes (for the detail)
+    #[arg(long)]
+    closeup: bool,
+    /// Trace the stored terrain without detail
+    #[arg(long)]
+    no_detail: bool,
+    /// A clear sky (no layer clouds or their shadows)
+    #[arg(long)]
+    no_clouds: bool,
+    /// No strata or grain on the surface
+    #[arg(long)]
+    no_textures: bool,
+    /// No cliffs and benches where the strata show (the eroded terrain as it
+    /// is)
+    #[arg(long)]
+    no_terraces: bool,
+    /// Grow no trees
+    #[arg(long)]
+    no_forest: bool,
+    /// Scene description (TOML; --print-scene shows every key) [default:
+    /// the built-in scene]
+    #[arg(long, value_name = "FILE")]
+    scene: Option<PathBuf>,
+    /// Random seed [default: the scene's]
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Terrain samples per side; the world keeps its size in metres
+    /// [default: the scene's]
+    #[arg(long)]
+    size: Option<usize>,
+    /// Image width, pixels [default: the scene's]
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height, pixels [default: the scene's]
+    #[arg(long)]
+    height: Option<u32>,
+    /// Samples per pixel [default: the scene's]
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "landscape")]
+    out: PathBuf,
+}
 
 fn main() -> ExitCode {
     common::run(landscape)
@@ -30,36 +93,25 @@ fn main() -> ExitCode {
 /// The program: every error returns through [`common::run`], which removes
 /// whatever was staged before reporting it.
 fn landscape() -> Run {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small terrain and image (CI)");
-    let print = args.switch("--print-scene", "print the scene as TOML and exit");
-    let maps = args.switch(
-        "--maps",
-        "also write the terrain's relief map and 16-bit height map",
-    );
-    let closeup = args.switch(
-        "--closeup",
-        "a low camera looking down into the nearby slopes (for the detail)",
-    );
-    let no_detail = args.switch("--no-detail", "trace the stored terrain without detail");
-    let no_clouds = args.switch(
-        "--no-clouds",
-        "a clear sky (no layer clouds or their shadows)",
-    );
-    let no_textures = args.switch("--no-textures", "no strata or grain on the surface");
-    let no_terraces = args.switch(
-        "--no-terraces",
-        "no cliffs and benches where the strata show (the eroded terrain as it is)",
-    );
-    let no_forest = args.switch("--no-forest", "grow no trees");
-    let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
-    let seed: Option<u64> = args.optional("--seed", "random seed");
-    let size: Option<usize> = args.optional("--size", "terrain samples per side");
-    let width: Option<u32> = args.optional("--width", "image width, pixels");
-    let height: Option<u32> = args.optional("--height", "image height, pixels");
-    let spp: Option<u32> = args.optional("--spp", "samples per pixel");
-    let out = args.out_dir(".");
-    args.finish();
+    let cli: Cli = common::parse();
+    let Cli {
+        quick,
+        print_scene: print,
+        maps,
+        closeup,
+        no_detail,
+        no_clouds,
+        no_textures,
+        no_terraces,
+        no_forest,
+        scene: scene_file,
+        seed,
+        size,
+        width,
+        height,
+        spp,
+        out,
+    } = cli;
 
     let mut scene = match &scene_file {
         Some(p) => SceneDesc::load(p)?,
@@ -122,6 +174,7 @@ fn landscape() -> Run {
         return common::out(scene.to_toml_string()?);
     }
     scene.validate()?;
+    let out = common::out_dir(&out)?;
     let png = out.join("landscape.png");
     let exr = out.join("landscape.exr");
     let relief = out.join("landscape_relief.png");

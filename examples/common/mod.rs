@@ -111,6 +111,66 @@ pub fn outln(text: impl std::fmt::Display) -> Run {
     out(format_args!("{text}\n"))
 }
 
+/// Parses the command line into `T` (a `clap` derive): `--help` and
+/// `--version` print and exit 0; an unknown flag, a missing value or one
+/// that does not parse prints clap's message, which names the flag and the
+/// value as typed, and exits 2. Also installs the interrupt clean-up
+/// ([`install_interrupt_cleanup`]).
+pub fn parse<T: clap::Parser>() -> T {
+    install_interrupt_cleanup();
+    T::parse()
+}
+
+/// A clap value parser for a number in `lo..=hi` (NaN never is): the value
+/// is parsed as `T`, and one outside the range is refused with a message
+/// clap prints after the flag and the value as the user typed it.
+pub fn in_range<T>(
+    lo: T,
+    hi: T,
+) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: FromStr + PartialOrd + std::fmt::Display + Copy + Send + Sync + 'static,
+    T::Err: std::fmt::Display,
+{
+    move |s: &str| {
+        let v: T = s.trim().parse().map_err(|e: T::Err| e.to_string())?;
+        if (lo..=hi).contains(&v) {
+            Ok(v)
+        } else {
+            Err(format!("must be in {lo}..={hi}"))
+        }
+    }
+}
+
+/// Creates the output directory given by `--out` (with its parents) and
+/// proves it can be written by creating and removing a probe file, before
+/// any work starts.
+///
+/// # Errors
+///
+/// An [`Exit`] with status 2 naming `--out` and the path when the directory
+/// cannot be created or written; nothing is left behind.
+pub fn out_dir(dir: &std::path::Path) -> Result<PathBuf, Exit> {
+    let refuse = |e: std::io::Error| Exit::new(2, format!("--out {}: {e}", dir.display()));
+    std::fs::create_dir_all(dir).map_err(refuse)?;
+    let probe = dir.join(format!(".natura-probe-{}", std::process::id()));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| {
+            Exit::new(
+                2,
+                format!(
+                    "--out {}: the directory cannot be written: {e}",
+                    dir.display()
+                ),
+            )
+        })?;
+    std::fs::remove_file(&probe).map_err(refuse)?;
+    Ok(dir.to_path_buf())
+}
+
 /// A minimal `--flag value` / `--switch` parser that refuses unknown flags.
 pub struct Args {
     program: String,
