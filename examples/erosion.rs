@@ -3,14 +3,23 @@
 //! maps.
 //!
 //! ```text
-//! cargo run --release --example erosion                 # 1024², docs/gallery/terrain
+//! cargo run --release --example erosion                 # 1024² into ./erosion/
 //! cargo run --release --example erosion -- --quick --out /tmp/erosion
+//! cargo run --release --example erosion -- --only pipe --size 512
+//! cargo run --release --example erosion -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `erosion_*.png` into `--out` (default: `./erosion/`), with a
+//! progress bar per erosion run.
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
+use clap::Parser;
+use clap::builder::PossibleValuesParser;
+use common::{Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{HeightField, Image, Seed};
 use natura::noise::{Perlin, RidgedMultifractal, RidgedParams, Spectral};
@@ -23,32 +32,52 @@ use natura::terrain::erosion::{
 use natura::terrain::export;
 use natura::terrain::synth::{FieldMapping, fill_noise};
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let size: usize = args.value("--size", if quick { 128 } else { 1024 }, "samples per side");
-    let seed: u64 = args.value("--seed", 7, "random seed");
-    let only: Option<String> = args.optional(
-        "--only",
-        "one method: stream_power, musgrave, pipe, droplets, thermal, diffusion, combined",
-    );
-    let out = args.out_dir("docs/gallery/terrain");
-    args.finish();
-    if size < 16 {
-        common::fail("--size must be at least 16");
-    }
-    const METHODS: [&str; 7] = [
-        "stream_power",
-        "musgrave",
-        "pipe",
-        "droplets",
-        "thermal",
-        "diffusion",
-        "combined",
-    ];
-    if let Some(o) = only.as_deref().filter(|o| !METHODS.contains(o)) {
-        common::fail(&format!("--only {o}: not one of {}", METHODS.join(", ")));
-    }
+/// The erosion methods, in the order they run (`--only`).
+const METHODS: [&str; 7] = [
+    "stream_power",
+    "musgrave",
+    "pipe",
+    "droplets",
+    "thermal",
+    "diffusion",
+    "combined",
+];
+
+/// A ridged-multifractal terrain (a 10 km tile, 1500 m of relief) eroded by
+/// each natura-terrain method. Writes hill-shaded relief pictures
+/// (erosion_*.png), a flow map, a deposition map and 16-bit height maps.
+#[derive(Parser)]
+#[command(name = "erosion", version)]
+struct Cli {
+    /// Small terrain, few steps (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Samples per side (the tile stays 10 km across; steps scale with it)
+    /// [default: 1024; 128 with --quick]
+    #[arg(long, value_parser = common::in_range(16usize, 16384))]
+    size: Option<usize>,
+    /// Random seed
+    #[arg(long, default_value_t = 7)]
+    seed: u64,
+    /// Run one method only [default: every method]
+    #[arg(long, value_name = "METHOD", value_parser = PossibleValuesParser::new(METHODS))]
+    only: Option<String>,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "erosion")]
+    out: PathBuf,
+}
+
+fn main() -> ExitCode {
+    common::run(erosion)
+}
+
+/// The program: every error returns through [`common::run`].
+fn erosion() -> Run {
+    let cli: Cli = common::parse();
+    let size = cli.size.unwrap_or(if cli.quick { 128 } else { 1024 });
+    let seed = cli.seed;
+    let only = cli.only;
+    let out = common::out_dir(&cli.out)?;
     let want = |name: &str| only.as_deref().is_none_or(|o| o == name);
     let bar = common::Bar::new();
     // Work scales with the grid so --quick stays quick; steps are per 1024².
@@ -62,14 +91,14 @@ fn main() {
         .with_lacunarity(2.0)
         .with_octaves(9.0)
         .with_frequency(1.0 / 3500.0);
-    let ridged = common::check(RidgedMultifractal::new(
+    let ridged = RidgedMultifractal::new(
         Perlin::new(seed),
         RidgedParams {
             spectral,
             ..Default::default()
         },
-    ));
-    let mut base = common::check(fill_noise(
+    )?;
+    let mut base = fill_noise(
         size,
         size,
         cell,
@@ -79,17 +108,17 @@ fn main() {
             ..Default::default()
         },
         &ridged,
-    ));
+    )?;
     let (lo, hi) = base.min_max();
     base.heights_mut()
         .as_mut_slice()
         .iter_mut()
         .for_each(|v| *v = (*v - lo) / (hi - lo) * 1500.0);
-    save_relief(&base, &out.join("erosion_before.png"));
-    common::check(export::save_height_png16(
-        &downsample_hf(&base),
+    save_relief(&base, &out.join("erosion_before.png"))?;
+    export::save_height_png16(
+        &downsample_hf(&base)?,
         out.join("erosion_before_height.png"),
-    ));
+    )?;
 
     // ---- stream power with uplift: the drainage network. The map edge is the
     // base level (sea level, 0 m) that every river reaches.
@@ -102,28 +131,24 @@ fn main() {
             }
         }
     }
-    let strata = common::check(Erodibility::strata(&base, 120.0, 1.4, 0.6, None));
+    let strata = Erodibility::strata(&base, 120.0, 1.4, 0.6, None)?;
     let sp_params = StreamPowerParams {
         k: 4e-5,
         dt_yr: 10_000.0,
         ..Default::default()
     };
-    let mut sp =
-        common::check(StreamPower::new(sp_params, &sp_hf).and_then(|m| m.with_erodibility(strata)));
+    let mut sp = StreamPower::new(sp_params, &sp_hf).and_then(|m| m.with_erodibility(strata))?;
     if want("stream_power") || want("combined") {
-        common::check(sp.run(&mut sp_hf, steps(120.0), &bar));
+        sp.run(&mut sp_hf, steps(120.0), &bar)?;
     }
     if want("stream_power") {
-        save_relief(&sp_hf, &out.join("erosion_stream_power.png"));
-        common::check(export::save_height_png16(
-            &downsample_hf(&sp_hf),
+        save_relief(&sp_hf, &out.join("erosion_stream_power.png"))?;
+        export::save_height_png16(
+            &downsample_hf(&sp_hf)?,
             out.join("erosion_stream_power_height.png"),
-        ));
-        let area = common::check(analysis::flow_accumulation_d8(&sp_hf, Depressions::Route));
-        save(
-            common::check(export::flow_image(&area)),
-            &out.join("erosion_flow.png"),
-        );
+        )?;
+        let area = analysis::flow_accumulation_d8(&sp_hf, Depressions::Route)?;
+        save(&export::flow_image(&area)?, &out.join("erosion_flow.png"))?;
     }
 
     if want("musgrave") {
@@ -134,17 +159,14 @@ fn main() {
             k_c: 5.0,
             ..Default::default()
         };
-        let mut m = common::check(MusgraveHydraulic::new(mkm, &mkm_hf));
-        common::check(m.run(&mut mkm_hf, steps(200.0), &bar));
+        let mut m = MusgraveHydraulic::new(mkm, &mkm_hf)?;
+        m.run(&mut mkm_hf, steps(200.0), &bar)?;
         let th = ThermalParams {
             talus_rate: 0.05,
             ..Default::default()
         };
-        common::check(
-            Thermal::new(th.clone(), &mkm_hf)
-                .and_then(|mut t| t.run(&mut mkm_hf, steps(100.0), &bar).map(|_| ())),
-        );
-        save_relief(&mkm_hf, &out.join("erosion_musgrave.png"));
+        Thermal::new(th, &mkm_hf)?.run(&mut mkm_hf, steps(100.0), &bar)?;
+        save_relief(&mkm_hf, &out.join("erosion_musgrave.png"))?;
     }
 
     if want("pipe") {
@@ -156,107 +178,93 @@ fn main() {
             k_c: 0.1,
             ..Default::default()
         };
-        let mut pipe = common::check(PipeModel::new(pp, &pipe_hf));
-        common::check(pipe.run(&mut pipe_hf, steps(600.0), &bar));
-        save_relief(&pipe_hf, &out.join("erosion_pipe.png"));
+        let mut pipe = PipeModel::new(pp, &pipe_hf)?;
+        pipe.run(&mut pipe_hf, steps(600.0), &bar)?;
+        save_relief(&pipe_hf, &out.join("erosion_pipe.png"))?;
     }
 
     if want("droplets") {
         // ---- droplets.
         let mut drop_hf = base.clone();
-        let mut drops = common::check(DropletErosion::new(
-            DropletParams::default(),
-            &drop_hf,
-            Seed(seed),
-        ));
-        common::check(drops.run(
+        let mut drops = DropletErosion::new(DropletParams::default(), &drop_hf, Seed(seed))?;
+        drops.run(
             &mut drop_hf,
             (400_000.0 * scale * scale).max(5000.0) as u64,
             &bar,
-        ));
-        save_relief(&drop_hf, &out.join("erosion_droplets.png"));
+        )?;
+        save_relief(&drop_hf, &out.join("erosion_droplets.png"))?;
     }
 
     // ---- thermal weathering and diffusion alone.
     if want("thermal") {
         let mut th_hf = base.clone();
-        common::check(
-            Thermal::new(
-                ThermalParams {
-                    talus_rate: 0.1,
-                    ..Default::default()
-                },
-                &th_hf,
-            )
-            .and_then(|mut t| t.run(&mut th_hf, steps(300.0), &bar).map(|_| ())),
-        );
-        save_relief(&th_hf, &out.join("erosion_thermal.png"));
+        let th = ThermalParams {
+            talus_rate: 0.1,
+            ..Default::default()
+        };
+        Thermal::new(th, &th_hf)?.run(&mut th_hf, steps(300.0), &bar)?;
+        save_relief(&th_hf, &out.join("erosion_thermal.png"))?;
     }
 
     if want("diffusion") {
         let mut df_hf = base.clone();
-        common::check(
-            Diffusion::new(DiffusionParams::default(), &df_hf)
-                .and_then(|mut d| d.run(&mut df_hf, steps(100.0), &bar).map(|_| ())),
-        );
-        save_relief(&df_hf, &out.join("erosion_diffusion.png"));
+        Diffusion::new(DiffusionParams::default(), &df_hf)?.run(&mut df_hf, steps(100.0), &bar)?;
+        save_relief(&df_hf, &out.join("erosion_diffusion.png"))?;
     }
 
     if want("combined") {
         // ---- the landscape pipeline: stream power, then pipe-model and thermal detail.
         let mut combo = sp_hf.clone();
-        let mut pipe = common::check(PipeModel::new(
+        let mut pipe = PipeModel::new(
             PipeParams {
                 edges: Edges::Open,
                 ..Default::default()
             },
             &combo,
-        ));
-        common::check(pipe.run(&mut combo, steps(300.0), &bar));
-        common::check(
-            Thermal::new(
-                ThermalParams {
-                    talus_rate: 0.05,
-                    ..Default::default()
-                },
-                &combo,
-            )
-            .and_then(|mut t| t.run(&mut combo, steps(50.0), &bar).map(|_| ())),
-        );
-        save_relief(&combo, &out.join("erosion_combined.png"));
+        )?;
+        pipe.run(&mut combo, steps(300.0), &bar)?;
+        let th = ThermalParams {
+            talus_rate: 0.05,
+            ..Default::default()
+        };
+        Thermal::new(th, &combo)?.run(&mut combo, steps(50.0), &bar)?;
+        save_relief(&combo, &out.join("erosion_combined.png"))?;
         let hi = analysis::hypsometric_integral(&combo).unwrap_or(0.0);
-        println!("hypsometric integral after stream power + pipe + thermal {hi:.3}");
-        common::check(export::save_height_png16(
-            &downsample_hf(&combo),
+        outln(format_args!(
+            "hypsometric integral after stream power + pipe + thermal {hi:.3}"
+        ))?;
+        export::save_height_png16(
+            &downsample_hf(&combo)?,
             out.join("erosion_combined_height.png"),
-        ));
-        let deposit = common::check(pipe.deposition());
+        )?;
+        let deposit = pipe.deposition()?;
         save(
-            Image::false_colour(&deposit, natura::core::Ramp::Coolwarm, -2.0, 2.0),
+            &Image::false_colour(&deposit, natura::core::Ramp::Coolwarm, -2.0, 2.0),
             &out.join("erosion_deposition.png"),
-        );
+        )?;
     }
 
     let hi_before = analysis::hypsometric_integral(&base).unwrap_or(0.0);
-    println!("{size} × {size} cells of {cell} m; hypsometric integral before {hi_before:.3}");
-    println!("wrote pictures to {}", out.display());
+    outln(format_args!(
+        "{size} × {size} cells of {cell} m; hypsometric integral before {hi_before:.3}"
+    ))?;
+    outln(format_args!("wrote pictures to {}", out.display()))
 }
 
 /// Gallery pictures are at most 512 px across (PNG size); heights stay f32.
-fn downsample_hf(hf: &HeightField) -> HeightField {
+fn downsample_hf(hf: &HeightField) -> Result<HeightField, common::Exit> {
     let factor = hf.nx().max(hf.ny()).div_ceil(512).max(1);
-    common::check(hf.box_downsample(factor))
+    Ok(hf.box_downsample(factor)?)
 }
 
-fn save_relief(hf: &HeightField, path: &Path) {
-    let img = common::check(export::relief_image(
-        hf,
-        Vec3::new(-1.0, 1.0, 0.9).normalize(),
-    ));
-    save(img, path);
+/// Writes `hf` as a hill-shaded relief picture.
+fn save_relief(hf: &HeightField, path: &Path) -> Run {
+    let img = export::relief_image(hf, Vec3::new(-1.0, 1.0, 0.9).normalize())?;
+    save(&img, path)
 }
 
 /// Writes `img`, box-filtered to at most 512 px across.
-fn save(img: Image, path: &Path) {
-    common::check(common::check(img.fit_within(512)).save_png(path));
+fn save(img: &Image, path: &Path) -> Run {
+    img.fit_within(512)?.save_png(path)?;
+    Ok(())
 }

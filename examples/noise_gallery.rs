@@ -2,20 +2,27 @@
 //! with the same seed, plus a contact sheet of them all.
 //!
 //! ```text
-//! cargo run --release --example noise_gallery                 # 512² tiles into docs/gallery/noise
+//! cargo run --release --example noise_gallery                 # 256² tiles into ./noise_gallery/
 //! cargo run --release --example noise_gallery -- --quick --out /tmp/noise
+//! cargo run --release --example noise_gallery -- --size 512 --seed 3
+//! cargo run --release --example noise_gallery -- --help       # every flag and its default
 //! ```
 //!
 //! Each file is named after what it shows (`basis_perlin.png`,
 //! `fractal_ridged_multifractal.png`, …); `contact_sheet.png` tiles them in
 //! the order of `index.md`. Values are mapped through the viridis ramp from
 //! each picture's own minimum to maximum (terrain-like fractals use the
-//! terrain ramp).
+//! terrain ramp). Everything goes into `--out` (default: `./noise_gallery/`).
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Run, outln};
 use natura::core::glam::DVec2;
-use natura::core::{Grid2, Image, Ramp, io};
+use natura::core::{Grid2, Image, Progress, Ramp, io};
 use natura::noise::*;
 
 struct Tile {
@@ -344,30 +351,46 @@ impl Field for XRamp {
     }
 }
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let size: usize = args.value(
-        "--size",
-        if quick { 96 } else { 256 },
-        "pixels per side of each picture",
-    );
-    let seed: u64 = args.value("--seed", 7, "random seed");
-    let out = args.out_dir("docs/gallery/noise");
-    args.finish();
-    if size < 8 {
-        common::fail("--size must be at least 8");
-    }
+/// One false-colour picture per natura-noise basis, fractal and distortion,
+/// all with the same seed, plus contact_sheet.png (all of them, in the order
+/// of index.md) and index.md (what each picture shows).
+#[derive(Parser)]
+#[command(name = "noise_gallery", version)]
+struct Cli {
+    /// Small pictures (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Pixels per side of each picture [default: 256; 96 with --quick]
+    #[arg(long, value_parser = common::in_range(8usize, 16384))]
+    size: Option<usize>,
+    /// Random seed
+    #[arg(long, default_value_t = 7)]
+    seed: u64,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "noise_gallery")]
+    out: PathBuf,
+}
 
-    let tiles = common::check(tiles(seed));
+fn main() -> ExitCode {
+    common::run(gallery)
+}
+
+/// The program: every error returns through [`common::run`].
+fn gallery() -> Run {
+    let cli: Cli = common::parse();
+    let size = cli.size.unwrap_or(if cli.quick { 96 } else { 256 });
+    let seed = cli.seed;
+    let out = common::out_dir(&cli.out)?;
+
+    let tiles = tiles(seed)?;
     let bar = common::Bar::new();
-    natura::core::Progress::start(&bar, "pictures", tiles.len() as u64);
+    bar.start("pictures", tiles.len() as u64);
     let mut thumbs = Vec::new();
     let mut index = String::from(
         "# natura-noise gallery\n\nSame seed for every picture; contact_sheet.png tiles them in this order (left to right, top to bottom).\n\n| file | what |\n|---|---|\n",
     );
     for t in &tiles {
-        let mut g = common::check(Grid2::new(size, size, 0.0f32));
+        let mut g = Grid2::new(size, size, 0.0f32)?;
         let step = t.span / size as f64;
         // Centre the picture on the origin; rows in parallel, each a batch fill.
         let origin = -t.span / 2.0;
@@ -377,36 +400,28 @@ fn main() {
             field.fill_row2(DVec2::new(origin, y), step, row);
         });
         if let Some((x, y, v)) = g.find(|v| !v.is_finite()) {
-            common::fail(&format!("{}: non-finite value {v} at ({x}, {y})", t.name));
+            return Err(common::Exit::new(
+                2,
+                format!("{}: non-finite value {v} at ({x}, {y})", t.name),
+            ));
         }
         let img = Image::false_colour_auto(&g, t.ramp);
         let path = out.join(format!("{}.png", t.name));
-        common::check(img.save_png(&path));
+        img.save_png(&path)?;
         index.push_str(&format!("| `{}.png` | {} |\n", t.name, t.what));
-        thumbs.push(img);
-        natura::core::Progress::advance(&bar, 1);
+        // Only the thumbnail is kept for the contact sheet (at most 128 px).
+        thumbs.push(img.fit_within(128)?);
+        bar.advance(1);
     }
-    natura::core::Progress::finish(&bar);
+    bar.finish();
 
-    // Contact sheet: 6 columns of thumbnails (at most 128 px), 2-pixel dark gutters.
-    let thumbs: Vec<Image> = thumbs
-        .iter()
-        .map(|t| common::check(t.fit_within(128)))
-        .collect();
-    let sheet = common::check(Image::contact_sheet(
-        &thumbs,
-        6,
-        2,
-        natura::core::glam::Vec3::splat(0.02),
-    ));
-    common::check(sheet.save_png(out.join("contact_sheet.png")));
-    common::check(io::write_bytes_atomic(
-        out.join("index.md"),
-        index.as_bytes(),
-    ));
-    println!(
+    // Contact sheet: 6 columns of thumbnails, 2-pixel dark gutters.
+    let sheet = Image::contact_sheet(&thumbs, 6, 2, natura::core::glam::Vec3::splat(0.02))?;
+    sheet.save_png(out.join("contact_sheet.png"))?;
+    io::write_bytes_atomic(out.join("index.md"), index.as_bytes())?;
+    outln(format_args!(
         "wrote {} pictures, contact_sheet.png and index.md to {}",
         tiles.len(),
         out.display()
-    );
+    ))
 }

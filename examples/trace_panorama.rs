@@ -3,17 +3,28 @@
 //!
 //! ```text
 //! cargo run --release --example trace_panorama                        # 360° × 120°, spherical
+//! cargo run --release --example trace_panorama -- --quick --out /tmp/panorama
 //! cargo run --release --example trace_panorama -- --projection cylindrical --vfov 100
 //! cargo run --release --example trace_panorama -- --stereo 40         # left and right eyes, 40 m apart
+//! cargo run --release --example trace_panorama -- --help              # every flag and its default
 //! ```
 //!
-//! Columns are equal steps of azimuth; with the spherical (equirectangular)
-//! screen rows are equal steps of elevation, so straight valleys bow, as in
-//! Musgrave's Valles Marineris panorama (Plate 8.1).
+//! Writes `trace_panorama.png` (or `trace_panorama_left.png` and
+//! `trace_panorama_right.png` with `--stereo`) into `--out` (default:
+//! `./trace_panorama/`), with a progress bar while tracing. Columns are equal
+//! steps of azimuth; with the spherical (equirectangular) screen rows are
+//! equal steps of elevation, so straight valleys bow, as in Musgrave's Valles
+//! Marineris panorama (Plate 8.1).
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use clap::builder::PossibleValuesParser;
 use common::scene::{LatticeTerrain, albedo, lattice_terrain};
+use common::{Run, outln};
 use natura::core::Seed;
 use natura::core::glam::Vec3;
 use natura::trace::{
@@ -21,57 +32,93 @@ use natura::trace::{
     trace_image,
 };
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let size: usize = args.value("--size", if quick { 257 } else { 1025 }, "samples per side");
-    let seed: u64 = args.value("--seed", 11, "random seed");
-    let width: u32 = args.ranged(
-        "--width",
-        if quick { 384 } else { 2048 },
-        16..=16384,
-        "image width, pixels",
-    );
-    let hfov: f32 = args.ranged(
-        "--hfov",
-        360.0,
-        1.0..=360.0,
-        "horizontal field of view, degrees",
-    );
-    let vfov: f32 = args.ranged(
-        "--vfov",
-        120.0,
-        1.0..=180.0,
-        "vertical field of view, degrees",
-    );
-    let proj: String = args.value(
-        "--projection",
-        "spherical".to_string(),
-        "spherical | cylindrical",
-    );
-    let stereo: Option<f32> = args.optional(
-        "--stereo",
-        "render a stereo pair with this eye separation, metres",
-    );
-    let spp: u32 = args.value("--spp", if quick { 1 } else { 2 }, "samples per pixel");
-    let out = args.out_dir("docs/gallery/trace");
-    args.finish();
+/// A panorama of a synthetic landscape (25 km across) through Musgrave's
+/// panoramic virtual screen, optionally as a stereo pair. Writes
+/// trace_panorama.png, or trace_panorama_left.png and
+/// trace_panorama_right.png with --stereo.
+#[derive(Parser)]
+#[command(name = "trace_panorama", version)]
+struct Cli {
+    /// Small field and image (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Samples per side of the field [default: 1025; 257 with --quick]
+    #[arg(long)]
+    size: Option<usize>,
+    /// Random seed
+    #[arg(long, default_value_t = 11)]
+    seed: u64,
+    /// Image width, pixels (the height follows from the fields of view)
+    /// [default: 2048; 384 with --quick]
+    #[arg(long, value_parser = common::in_range(16u32, 16384))]
+    width: Option<u32>,
+    /// Horizontal field of view, degrees
+    #[arg(
+        long,
+        value_name = "DEGREES",
+        default_value_t = 360.0,
+        value_parser = common::in_range(1.0f32, 360.0),
+        allow_negative_numbers = true
+    )]
+    hfov: f32,
+    /// Vertical field of view, degrees
+    #[arg(
+        long,
+        value_name = "DEGREES",
+        default_value_t = 120.0,
+        value_parser = common::in_range(1.0f32, 180.0),
+        allow_negative_numbers = true
+    )]
+    vfov: f32,
+    /// The virtual screen: rows in equal steps of elevation (spherical) or
+    /// of its tangent (cylindrical)
+    #[arg(
+        long,
+        default_value = "spherical",
+        value_parser = PossibleValuesParser::new(["spherical", "cylindrical"])
+    )]
+    projection: String,
+    /// Render a stereo pair with this eye separation, metres [default: one
+    /// view, no pair]
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    stereo: Option<f32>,
+    /// Samples per pixel [default: 2; 1 with --quick]
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "trace_panorama")]
+    out: PathBuf,
+}
 
+fn main() -> ExitCode {
+    common::run(panorama)
+}
+
+/// The program: every error returns through [`common::run`].
+fn panorama() -> Run {
+    let cli: Cli = common::parse();
+    let quick = cli.quick;
+    let size = cli.size.unwrap_or(if quick { 257 } else { 1025 });
+    let seed = cli.seed;
+    let width = cli.width.unwrap_or(if quick { 384 } else { 2048 });
+    let (hfov, vfov) = (cli.hfov, cli.vfov);
+    let proj = cli.projection;
+    let stereo = cli.stereo;
+    let spp = cli.spp.unwrap_or(if quick { 1 } else { 2 });
     let projection = match proj.as_str() {
-        "spherical" => Projection::Spherical,
         "cylindrical" => Projection::Cylindrical,
-        other => common::fail(&format!(
-            "unknown projection `{other}` (spherical | cylindrical)"
-        )),
+        _ => Projection::Spherical,
     };
+    let out = common::out_dir(&cli.out)?;
+
     let height = ((width as f32 * vfov / hfov).round() as u32).max(1);
-    let hf = common::check(lattice_terrain(
+    let hf = lattice_terrain(
         size,
         25600.0 / (size.max(2) - 1) as f32,
         Seed(seed),
         &LatticeTerrain::HETERO,
-    ));
-    let tracer = common::check(MipmapTracer::new(&hf));
+    )?;
+    let tracer = MipmapTracer::new(&hf)?;
     let (lo, hi) = hf.min_max();
     let relief = (hi - lo).max(1.0);
     let e = hf.extent();
@@ -103,7 +150,7 @@ fn main() {
             }
         }
     };
-    let camera = common::check(PanoramicCamera::new(
+    let camera = PanoramicCamera::new(
         eye,
         Vec3::new(1.0, 0.4, 0.0),
         Vec3::Z,
@@ -112,7 +159,7 @@ fn main() {
         projection,
         width,
         height,
-    ));
+    )?;
     let options = RenderOptions {
         samples_per_pixel: spp,
         seed: Seed(seed),
@@ -124,24 +171,28 @@ fn main() {
         Some(sep) => vec![
             (
                 "trace_panorama_left.png",
-                common::check(camera.with_stereo(Stereo {
+                camera.with_stereo(Stereo {
                     eye: Eye::Left,
                     separation: sep,
-                })),
+                })?,
             ),
             (
                 "trace_panorama_right.png",
-                common::check(camera.with_stereo(Stereo {
+                camera.with_stereo(Stereo {
                     eye: Eye::Right,
                     separation: sep,
-                })),
+                })?,
             ),
         ],
     };
     for (name, cam) in views {
-        let img = common::check(trace_image(&tracer, &cam, &options, &bar, shade));
+        let img = trace_image(&tracer, &cam, &options, &bar, shade)?;
         let path = out.join(name);
-        common::check(img.save_png(&path));
-        println!("wrote {} ({width} × {height}, {proj})", path.display());
+        img.save_png(&path)?;
+        outln(format_args!(
+            "wrote {} ({width} × {height}, {proj})",
+            path.display()
+        ))?;
     }
+    Ok(())
 }
