@@ -4,16 +4,57 @@
 //! the horizon; plus a plot of the ray paths.
 //!
 //! ```text
-//! cargo run --release --example mirage      # docs/gallery/atmos/mirage*.png
+//! cargo run --release --example mirage                 # ./mirage/mirage*.png
+//! cargo run --release --example mirage -- --quick      # small and fast
+//! cargo run --release --example mirage -- --excess 15  # a cooler road
+//! cargo run --release --example mirage -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `mirage.png` (the view down the road) and `mirage_paths.png` (the
+//! ray paths over the temperature profile) into `--out` (default:
+//! `./mirage/`), with a progress bar for the render.
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Run, outln};
 use natura::atmos::Dir3;
 use natura::atmos::mirage::{GrinTracer, PathEnd, StratifiedAir, TemperatureProfile};
 use natura::atmos::sky::{Atmosphere, AtmosphereParams, auto_exposure};
 use natura::core::glam::{DVec3, Vec3};
-use natura::core::{Image, ToneMap};
+use natura::core::{Image, Progress, ToneMap};
+
+/// An inferior mirage over a hot road: rays traced through air whose
+/// refractive index follows the temperature (Gladstone–Dale), bending back
+/// up above the hot layer so the sky and distant objects appear mirrored
+/// below the horizon. Writes mirage.png (the view down the road) and
+/// mirage_paths.png (the ray paths over the temperature profile).
+#[derive(Parser)]
+#[command(name = "mirage", version)]
+struct Cli {
+    /// Small and fast (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Image width, pixels (the height is 3/8 of it)
+    /// [default: 800; 200 with --quick]
+    #[arg(long, value_parser = common::in_range(16usize, 4096))]
+    width: Option<usize>,
+    /// Road surface excess temperature over the 20 °C air, K (from a
+    /// surface at 43 K to one at 1293 K)
+    #[arg(
+        long,
+        default_value_t = 40.0,
+        allow_negative_numbers = true,
+        value_parser = common::in_range(-250.0, 1000.0)
+    )]
+    excess: f64,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "mirage")]
+    out: PathBuf,
+}
 
 /// A vertical rectangle facing the camera at distance `x` (a post or a truck).
 struct Board {
@@ -32,26 +73,18 @@ impl Board {
     }
 }
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let width: usize = args.value(
-        "--width",
-        if quick { 200 } else { 800 },
-        "image width, pixels",
-    );
-    // The road under 20 °C air: from −250 K (a surface at 43 K) to +1000 K.
-    let excess: f64 = args.ranged(
-        "--excess",
-        40.0,
-        -250.0..=1000.0,
-        "road surface excess temperature, K",
-    );
-    let out = args.out_dir("docs/gallery/atmos");
-    args.finish();
-    if !(16..=4096).contains(&width) {
-        common::fail("--width must be in 16..=4096");
-    }
+fn main() -> ExitCode {
+    common::run(mirage)
+}
+
+/// The program: every error returns through [`common::run`], which removes
+/// whatever was staged before reporting it.
+fn mirage() -> Run {
+    let cli: Cli = common::parse();
+    let quick = cli.quick;
+    let width = cli.width.unwrap_or(if quick { 200 } else { 800 });
+    let excess = cli.excess;
+    let out = common::out_dir(&cli.out)?;
     let height = width * 3 / 8;
 
     let profile = TemperatureProfile::HotSurface {
@@ -60,7 +93,7 @@ fn main() {
         decay_m: 0.3,
         lapse_k_per_m: 0.0065,
     };
-    let air = common::check(StratifiedAir::new(profile, 101_325.0));
+    let air = StratifiedAir::new(profile, 101_325.0)?;
     let tracer = GrinTracer {
         tolerance_m: 1e-7,
         max_length_m: 3_000.0,
@@ -69,9 +102,10 @@ fn main() {
         ..GrinTracer::default()
     };
     let eye = DVec3::new(0.0, 0.0, 1.2);
-    let atm = common::check(Atmosphere::new(AtmosphereParams::default()));
-    let sun = common::check(Dir3::from_angles(55f64.to_radians(), 3.5));
-    let sky = common::check(atm.sky_view(eye, sun));
+    let bar = common::Bar::new();
+    let atm = Atmosphere::with_progress(AtmosphereParams::default(), &bar)?;
+    let sun = Dir3::from_angles(55f64.to_radians(), 3.5)?;
+    let sky = atm.sky_view(eye, sun)?;
     let e_sun = sky.sun_irradiance() * sun.get().z as f32 + sky.sky_irradiance();
 
     let mut boards = Vec::new();
@@ -150,11 +184,20 @@ fn main() {
             }
         }
     };
-    let img = common::check(Image::from_fn(width, height, shade));
+    // One unit per row: every row ends at x = width − 1.
+    bar.start("render", height as u64);
+    let img = Image::from_fn(width, height, |x, y| {
+        let c = shade(x, y);
+        if x + 1 == width {
+            bar.advance(1);
+        }
+        c
+    })?;
+    bar.finish();
     let ev = auto_exposure(&img, 0.18);
     let path = out.join("mirage.png");
-    common::check(img.tone_mapped(ev, ToneMap::AcesFilmic).save_png(&path));
-    println!("wrote {}", path.display());
+    img.tone_mapped(ev, ToneMap::AcesFilmic).save_png(&path)?;
+    outln(format_args!("wrote {}", path.display()))?;
 
     // Ray paths: elevation −0.5° … +0.05° from the eye, x to 1 km, z to 3 m.
     let (pw, ph) = (if quick { 300 } else { 900 }, if quick { 120 } else { 320 });
@@ -170,13 +213,11 @@ fn main() {
     let rays = 24;
     for k in 0..rays {
         let el = (-0.5 + 0.55 * k as f64 / (rays - 1) as f64).to_radians();
-        let p = common::check(
-            GrinTracer {
-                max_length_m: 1_000.0,
-                ..tracer
-            }
-            .trace(&air, eye, common::check(Dir3::from_angles(el, 0.0))),
-        );
+        let p = GrinTracer {
+            max_length_m: 1_000.0,
+            ..tracer
+        }
+        .trace(&air, eye, Dir3::from_angles(el, 0.0)?)?;
         let colour = match p.end {
             PathEnd::Ground { .. } => Vec3::new(0.9, 0.6, 0.2),
             _ => Vec3::new(0.4, 0.7, 1.0),
@@ -195,8 +236,8 @@ fn main() {
             }
         }
     }
-    let chart = common::check(Image::from_fn(pw, ph, |x, y| plot[y * pw + x]));
+    let chart = Image::from_fn(pw, ph, |x, y| plot[y * pw + x])?;
     let path = out.join("mirage_paths.png");
-    common::check(chart.save_png(&path));
-    println!("wrote {}", path.display());
+    chart.save_png(&path)?;
+    outln(format_args!("wrote {}", path.display()))
 }

@@ -3,17 +3,69 @@
 //!
 //! ```text
 //! cargo run --release --example panorama                 # 220° × 40° panorama
+//! cargo run --release --example panorama -- --quick      # small and fast
 //! cargo run --release --example panorama -- --hfov 360 --spherical
+//! cargo run --release --example panorama -- --scene my.toml --spp 16 --out renders
+//! cargo run --release --example panorama -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `panorama.png` (tone-mapped sRGB) into `--out` (default:
+//! `./panorama/`), with a progress bar per stage.
 
 mod common;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use clap::Parser;
 use common::Run;
 use natura::render::scene::CameraKind;
 use natura::render::{SceneDesc, render_scene};
+
+/// The landscape world seen through Musgrave's cylindrical virtual screen:
+/// a panorama wider than any pinhole camera allows, rendered from a scene
+/// description (the built-in one unless --scene). Writes panorama.png
+/// (sRGB).
+#[derive(Parser)]
+#[command(name = "panorama", version)]
+struct Cli {
+    /// Small terrain and image (CI)
+    #[arg(long)]
+    quick: bool,
+    /// An equirectangular (spherical) screen instead of a cylindrical one
+    #[arg(long)]
+    spherical: bool,
+    /// Scene description (TOML; landscape --print-scene shows every key)
+    /// [default: the built-in scene]
+    #[arg(long, value_name = "FILE")]
+    scene: Option<PathBuf>,
+    /// Horizontal field of view, degrees
+    #[arg(
+        long,
+        default_value_t = 220.0,
+        allow_negative_numbers = true,
+        value_parser = common::in_range(1.0, 360.0)
+    )]
+    hfov: f64,
+    /// Vertical field of view, degrees
+    #[arg(
+        long,
+        default_value_t = 40.0,
+        allow_negative_numbers = true,
+        value_parser = common::in_range(1.0, 179.0)
+    )]
+    vfov: f64,
+    /// Image width, pixels; the height follows the angular aspect ratio
+    /// [default: 2400; 480 with --quick]
+    #[arg(long, value_parser = common::in_range(16u32, 16_384))]
+    width: Option<u32>,
+    /// Samples per pixel [default: 4; 1 with --quick]
+    #[arg(long, value_parser = common::in_range(1u32, 4096))]
+    spp: Option<u32>,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "panorama")]
+    out: PathBuf,
+}
 
 fn main() -> ExitCode {
     common::run(panorama)
@@ -22,36 +74,19 @@ fn main() -> ExitCode {
 /// The program: every error returns through [`common::run`], which removes
 /// whatever was staged before reporting it.
 fn panorama() -> Run {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small terrain and image (CI)");
-    let spherical = args.switch("--spherical", "equirectangular instead of cylindrical");
-    let scene_file: Option<PathBuf> = args.optional("--scene", "scene description (TOML)");
-    let hfov: f64 = args.ranged(
-        "--hfov",
-        220.0,
-        1.0..=360.0,
-        "horizontal field of view, degrees",
-    );
-    let vfov: f64 = args.ranged(
-        "--vfov",
-        40.0,
-        1.0..=179.0,
-        "vertical field of view, degrees",
-    );
-    let width: u32 = args.ranged(
-        "--width",
-        if quick { 480 } else { 2400 },
-        16..=16384,
-        "image width, pixels",
-    );
-    let spp: u32 = args.ranged(
-        "--spp",
-        if quick { 1 } else { 4 },
-        1..=4096,
-        "samples per pixel",
-    );
-    let out = args.out_dir("docs/gallery/render");
-    args.finish();
+    let cli: Cli = common::parse();
+    let Cli {
+        quick,
+        spherical,
+        scene: scene_file,
+        hfov,
+        vfov,
+        width,
+        spp,
+        out,
+    } = cli;
+    let width = width.unwrap_or(if quick { 480 } else { 2400 });
+    let spp = spp.unwrap_or(if quick { 1 } else { 4 });
 
     let mut scene = match &scene_file {
         Some(p) => SceneDesc::load(p)?,
@@ -77,6 +112,7 @@ fn panorama() -> Run {
         scene.clouds.shadow_cell_m *= 4.0;
     }
     scene.validate()?;
+    let out = common::out_dir(&out)?;
     let png = out.join("panorama.png");
     natura::core::io::check_writable(&png)?;
     let bar = common::Bar::new();

@@ -2,15 +2,25 @@
 //! contact sheet of them all.
 //!
 //! ```text
-//! cargo run --release --example textures                     # docs/gallery/texture/textures/
+//! cargo run --release --example textures                     # ./textures/
 //! cargo run --release --example textures -- --quick --out /tmp/textures
+//! cargo run --release --example textures -- --help           # every flag and its default
 //! ```
+//!
+//! Writes `NAME_sphere.png` and `NAME_plane.png` for every texture and the
+//! sheet `textures.png` into `--out` (default: `./textures/`), with a
+//! progress bar per swatch.
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::io::check_writable;
-use natura::core::{Image, NoProgress, ToneMap};
+use natura::core::{Image, ToneMap};
 use natura::texture::air::{
     Cyclone, CycloneParams, PlanetClouds, PlanetCloudsParams, PuffyClouds, PuffyCloudsParams,
     Venus, VenusParams,
@@ -24,6 +34,26 @@ use natura::texture::multicolor::{Multicolor, MulticolorParams};
 use natura::texture::preview::{self, Plane};
 use natura::texture::water::{Ripples, RipplesParams, WindyWave, WindyWaveParams};
 use natura::texture::{SolidTexture, TextureError};
+
+/// Every solid texture of natura-texture on a sphere and on a plane, and a
+/// contact sheet of them all. Writes NAME_sphere.png and NAME_plane.png for
+/// every texture and the sheet textures.png.
+#[derive(Parser)]
+#[command(name = "textures", version)]
+struct Cli {
+    /// Small and fast (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Swatch side, pixels [default: 384; 96 with --quick]
+    #[arg(long)]
+    size: Option<u32>,
+    /// Random seed
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "textures")]
+    out: PathBuf,
+}
 
 /// A texture with how to show it on a plane: extent, which plane, emissive.
 struct Entry {
@@ -173,51 +203,43 @@ fn catalogue(seed: u64) -> Result<Vec<Entry>, TextureError> {
     ])
 }
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let size: u32 = args.value(
-        "--size",
-        if quick { 96 } else { 384 },
-        "swatch side, pixels",
-    );
-    let seed: u64 = args.value("--seed", 1, "random seed");
-    let out = args.out_dir("docs/gallery/texture/textures");
-    args.finish();
+fn main() -> ExitCode {
+    common::run(textures)
+}
 
-    let textures = common::check(catalogue(seed));
+/// The program: every error returns through [`common::run`], which removes
+/// whatever was staged before reporting it.
+fn textures() -> Run {
+    let cli: Cli = common::parse();
+    let size = cli.size.unwrap_or(if cli.quick { 96 } else { 384 });
+    let out = common::out_dir(&cli.out)?;
+
+    let textures = catalogue(cli.seed)?;
     let mut paths = vec![out.join("textures.png")];
     for e in &textures {
         paths.push(out.join(format!("{}_sphere.png", e.file)));
         paths.push(out.join(format!("{}_plane.png", e.file)));
     }
     for p in &paths {
-        common::check(check_writable(p));
+        check_writable(p)?;
     }
 
     let bar = common::Bar::new();
     let mut sheet = Vec::new();
     for e in &textures {
         let t = e.texture.as_ref();
-        let sphere = common::check(preview::sphere(t, size, e.emissive, &bar));
-        let plane = common::check(preview::plane(
-            t,
-            size,
-            e.extent,
-            e.plane,
-            e.emissive,
-            &NoProgress,
-        ));
-        save(&sphere, &out.join(format!("{}_sphere.png", e.file)));
-        save(&plane, &out.join(format!("{}_plane.png", e.file)));
+        let sphere = preview::sphere(t, size, e.emissive, &bar)?;
+        let plane = preview::plane(t, size, e.extent, e.plane, e.emissive, &bar)?;
+        save(&sphere, &out.join(format!("{}_sphere.png", e.file)))?;
+        save(&plane, &out.join(format!("{}_plane.png", e.file)))?;
         sheet.push(sphere);
         sheet.push(plane);
     }
-    let sheet = common::check(Image::contact_sheet(&sheet, 6, 4, Vec3::splat(0.01)));
-    save(&sheet, &paths[0]);
+    let sheet = Image::contact_sheet(&sheet, 6, 4, Vec3::splat(0.01))?;
+    save(&sheet, &paths[0])
 }
 
-fn save(image: &Image, path: &std::path::Path) {
-    common::check(image.tone_mapped(0.0, ToneMap::Clip).save_png(path));
-    println!("wrote {}", path.display());
+fn save(image: &Image, path: &std::path::Path) -> Run {
+    image.tone_mapped(0.0, ToneMap::Clip).save_png(path)?;
+    outln(format_args!("wrote {}", path.display()))
 }

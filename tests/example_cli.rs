@@ -66,6 +66,10 @@ fn entries(help: &str) -> Vec<Entry> {
             in_options = true;
             continue;
         }
+        if line.trim().is_empty() {
+            // clap's long layout separates options with blank lines.
+            continue;
+        }
         if !line.starts_with(' ') {
             in_options = false;
             continue;
