@@ -17,7 +17,7 @@
 
 use std::path::{Path, PathBuf};
 
-use natura::core::{Grid2, HeightField, NoProgress};
+use natura::core::{Grid2, HeightField, Progress};
 use natura::plant::eco::Plant;
 use natura::render::clouds::CloudSky;
 use natura::render::{ErodedTerrain, ErosionDesc, FramePrep, SceneDesc, TerrainDesc, World};
@@ -65,14 +65,19 @@ pub enum Source {
 }
 
 /// The eroded terrain of `scene`: from its cache file in `dir` when present,
-/// else computed and stored there (atomically).
-pub fn eroded(dir: &Path, scene: &SceneDesc) -> Result<(ErodedTerrain, Source)> {
+/// else computed (its stages reported to `progress`) and stored there
+/// (atomically).
+pub fn eroded(
+    dir: &Path,
+    scene: &SceneDesc,
+    progress: &dyn Progress,
+) -> Result<(ErodedTerrain, Source)> {
     let file = path(dir, scene)?;
     let key = key(scene)?;
     if file.exists() {
         return Ok((read(&file, &key)?, Source::Cached));
     }
-    let eroded = World::build_eroded(scene, &NoProgress)?;
+    let eroded = World::build_eroded(scene, progress)?;
     std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))?;
     write(&file, &key, &eroded)?;
     Ok((eroded, Source::Computed))
@@ -254,8 +259,13 @@ pub fn frame_path(dir: &Path, still: &SceneDesc) -> Result<PathBuf> {
 
 /// The preparation of `world` (built from frame scene `still`) that its
 /// tiles share: from its cache file in `dir` when present, else prepared
-/// and stored there (atomically).
-pub fn frame(dir: &Path, still: &SceneDesc, world: &World) -> Result<(FramePrep, Source)> {
+/// (its stages reported to `progress`) and stored there (atomically).
+pub fn frame(
+    dir: &Path,
+    still: &SceneDesc,
+    world: &World,
+    progress: &dyn Progress,
+) -> Result<(FramePrep, Source)> {
     let file = frame_path(dir, still)?;
     let key = frame_key(still)?;
     if file.exists() {
@@ -264,7 +274,7 @@ pub fn frame(dir: &Path, still: &SceneDesc, world: &World) -> Result<(FramePrep,
         let prep = frame_from_bytes(&body, &file)?;
         return Ok((prep, Source::Cached));
     }
-    let prep = FramePrep::new(world, &NoProgress)?;
+    let prep = FramePrep::new(world, progress)?;
     let body = frame_bytes(&prep);
     std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))?;
     store(&file, FRAME, &key, &body.len().to_string(), &body)?;

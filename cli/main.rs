@@ -20,6 +20,7 @@ mod farm;
 mod interrupt;
 mod limits;
 mod manifest;
+mod progress;
 mod shard;
 mod tiles;
 
@@ -200,12 +201,20 @@ fn run(cli: Cli) -> Result<()> {
             match a.tile {
                 None => say(&format!(
                     "wrote {}\n",
-                    shard::render_frame(&scene, a.frame, &a.out)?.display()
+                    shard::render_frame(&scene, a.frame, &a.out, &progress::Bar::new())?.display()
                 ))?,
                 Some((i, n)) => {
                     let cache = a.cache.unwrap_or_else(|| a.out.join("cache"));
                     writable_dir(&cache, "--cache")?;
-                    let line = shard::render_tile(&scene, a.frame, i, n, &a.out, &cache)?;
+                    let line = shard::render_tile(
+                        &scene,
+                        a.frame,
+                        i,
+                        n,
+                        &a.out,
+                        &cache,
+                        &progress::Bar::new(),
+                    )?;
                     say(&format!(
                         "frame {} tile {i}/{n}: {} sha256 {}\n",
                         a.frame, line.file, line.sha256
@@ -243,7 +252,7 @@ fn run(cli: Cli) -> Result<()> {
             let cache = a.cache.unwrap_or_else(|| a.out.join("cache"));
             writable_dir(&a.out, "--out")?;
             writable_dir(&cache, "--cache")?;
-            let prepared = shard::prepare(&scene, &cache, first, last)?;
+            let prepared = shard::prepare(&scene, &cache, first, last, &progress::Bar::new())?;
             let (world, source) = &prepared.world;
             say(&format!("world cache {} ({source:?})\n", world.display()))?;
             for (frame, path, source) in &prepared.frames {

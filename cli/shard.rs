@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use natura::core::{Image, NoProgress};
+use natura::core::{Image, Progress};
 use natura::render::{
     Rendered, SceneDesc, StageTimes, World, auto_exposure, render_world, scene_renderer_prepared,
 };
@@ -51,11 +51,17 @@ pub fn frame_files(out: &Path, frame: u32) -> (PathBuf, PathBuf) {
 }
 
 /// Renders frame `frame` whole in this process (no tiles, no cache): the
-/// reference that assembled frames equal byte for byte.
-pub fn render_frame(scene: &Scene, frame: u32, out: &Path) -> Result<PathBuf> {
+/// reference that assembled frames equal byte for byte. Its stages are
+/// reported to `progress`.
+pub fn render_frame(
+    scene: &Scene,
+    frame: u32,
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<PathBuf> {
     let still = scene.desc.at_frame(frame)?;
-    let world = World::build(&still, &NoProgress)?;
-    let rendered = render_world(&world, &NoProgress)?;
+    let world = World::build(&still, progress)?;
+    let rendered = render_world(&world, progress)?;
     let (png, exr) = frame_files(out, frame);
     rendered.save(&png, &exr)?;
     Ok(png)
@@ -71,17 +77,24 @@ pub struct Prepared {
 
 /// Builds the eroded terrain of `scene` into `cache_dir` (or checks the
 /// cache there), then the frame cache (clouds and forest) of frames
-/// `first..=last`, so that no tile computes either.
-pub fn prepare(scene: &Scene, cache_dir: &Path, first: u32, last: u32) -> Result<Prepared> {
-    let (eroded, source) = cache::eroded(cache_dir, &scene.desc)?;
+/// `first..=last`, so that no tile computes either. Its stages are reported
+/// to `progress`.
+pub fn prepare(
+    scene: &Scene,
+    cache_dir: &Path,
+    first: u32,
+    last: u32,
+    progress: &dyn Progress,
+) -> Result<Prepared> {
+    let (eroded, source) = cache::eroded(cache_dir, &scene.desc, progress)?;
     let mut out = Prepared {
         world: (cache::path(cache_dir, &scene.desc)?, source),
         frames: Vec::new(),
     };
     for frame in first..=last {
         let still = scene.desc.at_frame(frame)?;
-        let world = World::from_eroded(&still, eroded.clone(), &NoProgress)?;
-        let (_, source) = cache::frame(cache_dir, &still, &world)?;
+        let world = World::from_eroded(&still, eroded.clone(), progress)?;
+        let (_, source) = cache::frame(cache_dir, &still, &world, progress)?;
         out.frames
             .push((frame, cache::frame_path(cache_dir, &still)?, source));
     }
@@ -89,7 +102,8 @@ pub fn prepare(scene: &Scene, cache_dir: &Path, first: u32, last: u32) -> Result
 }
 
 /// Renders tile `tile` of `tiles` of frame `frame` into `out`: the tile's
-/// EXR and its manifest line. Returns the manifest line.
+/// EXR and its manifest line. Returns the manifest line. Its stages are
+/// reported to `progress`.
 pub fn render_tile(
     scene: &Scene,
     frame: u32,
@@ -97,15 +111,16 @@ pub fn render_tile(
     tiles: u32,
     out: &Path,
     cache_dir: &Path,
+    progress: &dyn Progress,
 ) -> Result<TileLine> {
     let still = scene.desc.at_frame(frame)?;
     let r = &still.render;
     let rect = tiles::rect(r.width, r.height, tile, tiles)?;
-    let (eroded, _) = cache::eroded(cache_dir, &scene.desc)?;
-    let world = World::from_eroded(&still, eroded, &NoProgress)?;
-    let (prep, _) = cache::frame(cache_dir, &still, &world)?;
-    let renderer = scene_renderer_prepared(&world, prep, &mut StageTimes::default(), &NoProgress)?;
-    let image = renderer.render_region(rect.x, rect.y, rect.width, rect.height, &NoProgress)?;
+    let (eroded, _) = cache::eroded(cache_dir, &scene.desc, progress)?;
+    let world = World::from_eroded(&still, eroded, progress)?;
+    let (prep, _) = cache::frame(cache_dir, &still, &world, progress)?;
+    let renderer = scene_renderer_prepared(&world, prep, &mut StageTimes::default(), progress)?;
+    let image = renderer.render_region(rect.x, rect.y, rect.width, rect.height, progress)?;
 
     let dir = frame_dir(out, frame);
     std::fs::create_dir_all(&dir).map_err(|e| crate::error::io(&dir, e))?;

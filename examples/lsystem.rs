@@ -6,7 +6,11 @@
 //! cargo run --release --example lsystem -- examples/lsystems/fig2_8.l --steps 5 --out /tmp/tree
 //! cargo run --release --example lsystem -- examples/lsystems/koch_curve.l --steps 2 --print
 //! cargo run --release --example lsystem -- --quick      # the built-in bush, small picture (CI)
+//! cargo run --release --example lsystem -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `NAME.glb`, `NAME.obj` (+ `NAME.mtl`) and `NAME.png`, NAME being
+//! the file's stem, into `--out` (default: `./lsystem/`).
 //!
 //! Where the L-system sets no widths (`!`, `#`), stems are drawn 1/150 of the
 //! plant's size wide, so line drawings such as ABOP's 2-D plants stay visible.
@@ -21,70 +25,113 @@
 
 mod common;
 
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Exit, Run, outln};
+use natura::core::Progress;
 use natura::core::glam::Vec3;
 use natura::plant::mesh::{save_glb, save_obj};
 use natura::plant::{Derivation, LSystem, MeshParams, PlantMesh, Turtle, TurtleParams, preview};
-use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
 
 /// ABOP fig. 1.24d, used when no file is given.
 const DEFAULT: &str = include_str!("lsystems/fig1_24d.l");
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch(
-        "--quick",
-        "small picture; the built-in bush if no FILE (CI)",
-    );
-    let print = args.switch("--print", "print the derived string");
-    let steps: Option<u32> = args.optional(
-        "--steps",
-        "derivation steps (default: the file's `derivation length:`)",
-    );
-    let seed: Option<u64> = args.optional(
-        "--seed",
-        "seed of stochastic productions (default: the file's `seed:`, else 1)",
-    );
-    let radial: u32 = args.ranged("--radial", 8, 3..=64, "vertices around a stem");
-    let out = args.out_dir("target/lsystem");
-    let file = args.positional();
-    args.finish();
+/// Derives an L-system file (cpfg / L-Py convention) and writes its mesh as
+/// NAME.glb and NAME.obj (+ NAME.mtl) and a picture, NAME.png, NAME being
+/// the file's stem.
+#[derive(Parser)]
+#[command(name = "lsystem", version)]
+struct Cli {
+    /// The L-system file; without one, --quick uses the built-in bush (ABOP
+    /// fig. 1.24d) and a bare call is an error
+    #[arg(value_name = "FILE")]
+    file: Option<PathBuf>,
+    /// Small picture; the built-in bush if no FILE (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Print the derived string
+    #[arg(long)]
+    print: bool,
+    /// Derivation steps [default: the file's `derivation length:`]
+    #[arg(long)]
+    steps: Option<u32>,
+    /// Seed of stochastic productions [default: the file's `seed:`, else 1]
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Vertices around a stem
+    #[arg(long, default_value_t = 8, value_parser = common::in_range(3u32, 64))]
+    radial: u32,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "lsystem")]
+    out: PathBuf,
+}
+
+fn main() -> ExitCode {
+    common::run(lsystem)
+}
+
+/// The program: every error returns through [`common::run`].
+fn lsystem() -> Run {
+    let Cli {
+        file,
+        quick,
+        print,
+        steps,
+        seed,
+        radial,
+        out,
+    } = common::parse();
 
     let (name, text) = match &file {
         Some(f) => {
-            let stem = Path::new(f)
+            let stem = f
                 .file_stem()
                 .map_or("plant".into(), |s| s.to_string_lossy().into_owned());
-            (stem, read_source(f))
+            (stem, read_source(f)?)
         }
         None if quick => ("fig1_24d".to_string(), DEFAULT.to_string()),
         None => {
-            common::fail("no L-system file given (try --help, or --quick for the built-in one)")
+            return Err(Exit::new(
+                2,
+                "no L-system file given (try --help, or --quick for the built-in one)",
+            ));
         }
     };
     // Every error from here on starts with the file's name.
-    let check = |what: &str, e: natura::plant::PlantError| -> ! {
-        common::fail(&format!("{name}: {what}{e}"))
+    let check = |what: &str| {
+        let name = name.clone();
+        let what = what.to_owned();
+        move |e: natura::plant::PlantError| Exit::new(2, format!("{name}: {what}{e}"))
     };
-    let lsys = LSystem::parse(&text).unwrap_or_else(|e| check("", e));
+    let lsys = LSystem::parse(&text).map_err(check(""))?;
+    let out = common::out_dir(&out)?;
     let seed = seed.or(lsys.seed()).unwrap_or(1);
-    let mut d = Derivation::new(&lsys, seed).unwrap_or_else(|e| check("derivation: ", e));
-    d.derive(steps.unwrap_or(lsys.derivation_length()))
-        .unwrap_or_else(|e| check("derivation: ", e));
+    let mut d = Derivation::new(&lsys, seed).map_err(check("derivation: "))?;
+    let bar = common::Bar::new();
+    let n = steps.unwrap_or(lsys.derivation_length());
+    bar.start("derivation", u64::from(n));
+    for _ in 0..n {
+        d.step().map_err(check("derivation: "))?;
+        bar.advance(1);
+    }
+    bar.finish();
     let s = d.string();
     if print {
-        say(&s.display(lsys.symbols()));
+        outln(s.display(lsys.symbols()))?;
     }
-    say(&format!(
+    outln(format_args!(
         "{name}: {} modules after {} steps",
         s.len(),
         d.steps()
-    ));
+    ))?;
 
     let mut tp = TurtleParams::for_lsystem(&lsys);
     let mut geo = Turtle::new(&lsys, tp.clone())
         .and_then(|t| t.interpret(s))
-        .unwrap_or_else(|e| check("interpretation: ", e));
+        .map_err(check("interpretation: "))?;
     let sets_width = ["!", "#"]
         .iter()
         .any(|w| lsys.symbol(w).is_some_and(|id| s.symbols().contains(&id)));
@@ -92,23 +139,23 @@ fn main() {
         tp.width = f64::from((hi - lo).max_element()) / 150.0;
         geo = Turtle::new(&lsys, tp)
             .and_then(|t| t.interpret(s))
-            .unwrap_or_else(|e| check("interpretation: ", e));
+            .map_err(check("interpretation: "))?;
     }
     let params = MeshParams {
         radial_segments: radial,
         ..MeshParams::default()
     };
-    let mesh = PlantMesh::from_geometry(&geo, &params).unwrap_or_else(|e| check("mesh: ", e));
-    say(&format!(
+    let mesh = PlantMesh::from_geometry(&geo, &params).map_err(check("mesh: "))?;
+    outln(format_args!(
         "{} segments, {} polygons, {} surfaces -> {} vertices, {} triangles",
         geo.segment_count(),
         geo.polygons.len(),
         geo.surfaces.len(),
         mesh.vertex_count(),
         mesh.triangle_count()
-    ));
+    ))?;
     if mesh.triangle_count() == 0 {
-        common::fail(&format!("{name}: the L-system draws nothing"));
+        return Err(Exit::new(2, format!("{name}: the L-system draws nothing")));
     }
     // Flat figures (in the turtle's x-z plane) are seen square on; 3-D plants a little from above.
     let (lo, hi) = mesh.bounds().unwrap_or_default();
@@ -119,72 +166,56 @@ fn main() {
         Vec3::new(0.25, 1.0, -0.3)
     };
     let size = if quick { 160 } else { 640 };
-    let img =
-        preview::snapshot(&mesh, size, size, view, None).unwrap_or_else(|e| check("picture: ", e));
+    let img = preview::snapshot(&mesh, size, size, view, None).map_err(check("picture: "))?;
 
     let glb = out.join(format!("{name}.glb"));
     let obj = out.join(format!("{name}.obj"));
     let png = out.join(format!("{name}.png"));
     // Each file is written atomically; if one fails, the ones before it go too.
     let mut written: Vec<PathBuf> = Vec::new();
-    let fail_cleanly = |written: &[PathBuf], msg: String| -> ! {
+    let fail_cleanly = |written: &[PathBuf], e: &dyn std::fmt::Display| {
         for p in written {
             let _ = std::fs::remove_file(p);
         }
-        common::fail(&format!("{name}: {msg}"))
+        Exit::new(2, format!("{name}: {e}"))
     };
-    if let Err(e) = save_glb(&mesh, &glb) {
-        fail_cleanly(&written, e.to_string());
-    }
+    save_glb(&mesh, &glb).map_err(|e| fail_cleanly(&written, &e))?;
     written.push(glb.clone());
-    if let Err(e) = save_obj(&mesh, &obj) {
-        fail_cleanly(&written, e.to_string());
-    }
+    save_obj(&mesh, &obj).map_err(|e| fail_cleanly(&written, &e))?;
     written.extend([obj.clone(), obj.with_extension("mtl")]);
-    if let Err(e) = img.save_png(&png) {
-        fail_cleanly(&written, e.to_string());
-    }
+    img.save_png(&png).map_err(|e| fail_cleanly(&written, &e))?;
     for p in [glb, obj, png] {
-        say(&format!("wrote {}", p.display()));
+        outln(format_args!("wrote {}", p.display()))?;
     }
+    Ok(())
 }
 
 /// Reads an L-system file, refusing one larger than the language allows
 /// before reading it (and reading no more than that from a special file).
-fn read_source(f: &str) -> String {
+fn read_source(f: &Path) -> Result<String, Exit> {
     let max = natura::plant::lang::MAX_SOURCE_BYTES;
-    let too_big = |n: u64| -> ! {
-        common::fail(&format!(
-            "{f}: {n} bytes or more, larger than the {max} bytes (16 MiB) an L-system file may have"
-        ))
+    let shown = f.display();
+    let too_big = |n: u64| {
+        Exit::new(
+            2,
+            format!(
+                "{shown}: {n} bytes or more, larger than the {max} bytes (16 MiB) an L-system file may have"
+            ),
+        )
     };
-    let file = std::fs::File::open(f).unwrap_or_else(|e| common::fail(&format!("{f}: {e}")));
+    let io = |e: std::io::Error| Exit::new(2, format!("{shown}: {e}"));
+    let file = std::fs::File::open(f).map_err(io)?;
     if let Ok(m) = file.metadata()
         && m.len() > max as u64
     {
-        too_big(m.len());
+        return Err(too_big(m.len()));
     }
     let mut bytes = Vec::new();
     file.take(max as u64 + 1)
         .read_to_end(&mut bytes)
-        .unwrap_or_else(|e| common::fail(&format!("{f}: {e}")));
+        .map_err(io)?;
     if bytes.len() > max {
-        too_big(bytes.len() as u64);
+        return Err(too_big(bytes.len() as u64));
     }
-    String::from_utf8(bytes).unwrap_or_else(|e| common::fail(&format!("{f}: not UTF-8 text: {e}")))
-}
-
-/// Prints a line to standard output; a reader that stopped reading (a
-/// closed pipe, as with `| head -1`) ends the program normally.
-fn say(line: &str) {
-    let mut out = std::io::stdout().lock();
-    if let Err(e) = writeln!(out, "{line}").and_then(|()| out.flush()) {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            // A normal end, but through the same clean-up as every other
-            // exit: nothing staged so far is left behind.
-            common::remove_staged();
-            std::process::exit(0);
-        }
-        common::fail(&format!("standard output: {e}"));
-    }
+    String::from_utf8(bytes).map_err(|e| Exit::new(2, format!("{shown}: not UTF-8 text: {e}")))
 }

@@ -6,14 +6,23 @@
 //! (Prusinkiewicz et al. 2001, Alg. 5 and 4).
 //!
 //! ```text
-//! cargo run --release --example plant_models                 # all, docs/gallery/plant
+//! cargo run --release --example plant_models                 # all, into ./plant_models/
 //! cargo run --release --example plant_models -- --model crowns --quick --out /tmp/m
+//! cargo run --release --example plant_models -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `MODEL.png` for each model into `--out` (default:
+//! `./plant_models/`).
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::outln;
 use natura::core::glam::{DVec3, Vec3};
-use natura::plant::models::Run;
+use natura::plant::models::Run as ModelRun;
 use natura::plant::models::{
     clonal, compound, crowns, phyllotaxis, positional, roots, roots3d, tiers,
 };
@@ -21,19 +30,49 @@ use natura::plant::preview::{PreviewCamera, PreviewParams, render};
 use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
+/// The models, in the order they are drawn.
+const MODELS: [&str; 8] = [
+    "tiers",
+    "clonal",
+    "roots",
+    "roots3d",
+    "crowns",
+    "phyllotaxis",
+    "ridley",
+    "compound",
+];
+
+/// The source papers' plant models as pictures: Honda's branch tiers, a
+/// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
+/// competing for light, phyllotaxis on a cone, Ridley's packing on a disc
+/// and a pinnate leaf. Writes MODEL.png for each.
+#[derive(Parser)]
+#[command(name = "plant_models", version)]
+struct Cli {
+    /// Small and fast (CI)
+    #[arg(long)]
+    quick: bool,
+    /// Draw only this model [default: all]
+    #[arg(long, value_parser = MODELS)]
+    model: Option<String>,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "plant_models")]
+    out: PathBuf,
+}
+
 /// Renders `g` seen along `view` into `name` under `out`.
-fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &str) {
-    let mesh = common::check(PlantMesh::from_geometry(g, &MeshParams::default()));
+fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &str) -> common::Run {
+    let mesh = PlantMesh::from_geometry(g, &MeshParams::default())?;
     let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
-    let cam = common::check(PreviewCamera::framing(lo, hi, view, None, 1.0));
-    let img = common::check(render(&mesh, &PreviewParams::new(size, size, cam)));
-    common::check(img.save_png(out.join(name)));
-    println!("{name}: {} triangles", mesh.triangle_count());
+    let cam = PreviewCamera::framing(lo, hi, view, None, 1.0)?;
+    let img = render(&mesh, &PreviewParams::new(size, size, cam))?;
+    img.save_png(out.join(name))?;
+    outln(format_args!("{name}: {} triangles", mesh.triangle_count()))
 }
 
 /// Renders the final string of a model's run.
-fn show(run: &Run, view: Vec3, size: u32, out: &std::path::Path, name: &str) {
-    picture(&common::check(run.geometry()), view, size, out, name);
+fn show(run: &ModelRun, view: Vec3, size: u32, out: &std::path::Path, name: &str) -> common::Run {
+    picture(&run.geometry()?, view, size, out, name)
 }
 
 /// Spheres at the given centres and radii, as turtle geometry.
@@ -55,34 +94,20 @@ fn spheres(items: impl Iterator<Item = (DVec3, f64)>) -> Geometry {
     g
 }
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let model: Option<String> = args.optional(
-        "--model",
-        "one of tiers, clonal, roots, roots3d, crowns, phyllotaxis, ridley, compound (default all)",
-    );
-    let out = args.out_dir("docs/gallery/plant");
-    args.finish();
-    const MODELS: [&str; 8] = [
-        "tiers",
-        "clonal",
-        "roots",
-        "roots3d",
-        "crowns",
-        "phyllotaxis",
-        "ridley",
-        "compound",
-    ];
-    if let Some(m) = model.as_deref().filter(|m| !MODELS.contains(m)) {
-        common::fail(&format!("--model {m}: not one of {}", MODELS.join(", ")));
-    }
+fn main() -> ExitCode {
+    common::run(plant_models)
+}
+
+/// The program: every error returns through [`common::run`].
+fn plant_models() -> common::Run {
+    let Cli { quick, model, out } = common::parse();
+    let out = common::out_dir(&out)?;
     let want = |n: &str| model.as_deref().is_none_or(|m| m == n);
     let size = if quick { 192 } else { 400 };
     if want("tiers") {
         // Fig. 5: two tiers competing for space, seen from above.
-        let (run, _) = common::check(tiers::tiers(&tiers::TiersParams::default()));
-        show(&run, Vec3::NEG_Z, size, &out, "tiers.png");
+        let (run, _) = tiers::tiers(&tiers::TiersParams::default())?;
+        show(&run, Vec3::NEG_Z, size, &out, "tiers.png")?;
     }
     if want("clonal") {
         // Fig. 7: the clone spreading over patches II, III and I, seen from
@@ -91,8 +116,8 @@ fn main() {
             steps: if quick { 60 } else { 182 },
             ..clonal::ClonalParams::fig7()
         };
-        let (run, _) = common::check(clonal::clonal(&p));
-        show(&run, Vec3::NEG_Z, size, &out, "clonal.png");
+        let (run, _) = clonal::clonal(&p)?;
+        show(&run, Vec3::NEG_Z, size, &out, "clonal.png")?;
     }
     if want("roots") {
         // Fig. 9: roots in a vertical section of soil, wet on the left, dry on the right.
@@ -100,15 +125,15 @@ fn main() {
             steps: if quick { 60 } else { 186 },
             ..roots::RootParams::default()
         };
-        let (run, _) = common::check(roots::roots(&p));
-        show(&run, Vec3::Y, size, &out, "roots.png");
+        let (run, _) = roots::roots(&p)?;
+        show(&run, Vec3::Y, size, &out, "roots.png")?;
     }
     if want("roots3d") {
         // Fig. 10: the same roots in a block of soil, seen obliquely.
         let mut p = roots3d::Roots3dParams::default();
         p.roots.steps = if quick { 60 } else { 301 };
-        let (run, _) = common::check(roots3d::roots_3d(&p));
-        show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png");
+        let (run, _) = roots3d::roots_3d(&p)?;
+        show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png")?;
     }
     if want("crowns") {
         // Fig. 14: two trees grown side by side, seen from the side.
@@ -117,20 +142,18 @@ fn main() {
             trees_x: vec![-1.0, 1.0],
             ..crowns::CrownParams::default()
         };
-        let run = common::check(crowns::crowns(&p));
-        show(&run, Vec3::Y, size, &out, "crowns.png");
+        let run = crowns::crowns(&p)?;
+        show(&run, Vec3::Y, size, &out, "crowns.png")?;
     }
     if want("phyllotaxis") {
         // Fig. 4: primordia on a cone, shrinking towards the tip.
-        let v = common::check(phyllotaxis::phyllotaxis(
-            &phyllotaxis::PhyllotaxisParams::default(),
-        ));
+        let v = phyllotaxis::phyllotaxis(&phyllotaxis::PhyllotaxisParams::default())?;
         let g = spheres(v.iter().map(|p| (p.centre, p.radius)));
-        picture(&g, Vec3::new(0.3, 0.5, -1.0), size, &out, "phyllotaxis.png");
+        picture(&g, Vec3::new(0.3, 0.5, -1.0), size, &out, "phyllotaxis.png")?;
     }
     if want("ridley") {
         // Fig. 13 (flat case): Vogel's pattern from Algorithm 5.
-        let v = common::check(positional::ridley(1.0, 1e-5, |s| (s, 0.0), |_| 0.04));
+        let v = positional::ridley(1.0, 1e-5, |s| (s, 0.0), |_| 0.04)?;
         let g = spheres(v.iter().map(|o| {
             let a = o.angle_deg.to_radians();
             (
@@ -138,11 +161,12 @@ fn main() {
                 o.radius * 0.9,
             )
         }));
-        picture(&g, Vec3::NEG_Z, size, &out, "ridley.png");
+        picture(&g, Vec3::NEG_Z, size, &out, "ridley.png")?;
     }
     if want("compound") {
         // Fig. 7 (f): a pinnate leaf on an arching stem, seen from the side.
-        let run = common::check(compound::compound(&compound::CompoundParams::fern()));
-        show(&run, Vec3::NEG_X, size, &out, "compound.png");
+        let run = compound::compound(&compound::CompoundParams::fern())?;
+        show(&run, Vec3::NEG_X, size, &out, "compound.png")?;
     }
+    Ok(())
 }
