@@ -23,7 +23,7 @@ fn pool(n: usize) -> rayon::ThreadPool {
 }
 
 fn terrain(n: usize) -> HeightField {
-    tiles::eroded_tile(n, 2.0, 1998).expect("terrain")
+    tiles::eroded_tile(n, 2.0, 1998, &NoProgress).expect("terrain")
 }
 
 fn ecosystem(c: &mut Criterion) {

@@ -68,8 +68,8 @@ struct Cli {
     #[arg(long)]
     exr: bool,
     /// Also export cube faces of N² samples and a 2N × N equirectangular map
-    /// (0: none)
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    /// (0: none; else 2 to 8192, checked before anything is rendered)
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = cube_size)]
     cube: usize,
     /// Gaea's multifractal continents (slower)
     #[arg(long)]
@@ -237,4 +237,16 @@ fn save(image: &Image, png: &std::path::Path, exr: bool, ev: f32) -> Run {
         outln(format_args!("wrote {}", p.display()))?;
     }
     Ok(())
+}
+
+/// `--cube`: 0 (no export) or a face size from 2 to 8192 samples, refused
+/// by the parser so a bad size fails before the render, not after it has
+/// written the picture.
+fn cube_size(s: &str) -> Result<usize, String> {
+    let n: usize = s.trim().parse().map_err(|e| format!("{e}"))?;
+    if n == 0 || (2..=8192).contains(&n) {
+        Ok(n)
+    } else {
+        Err("must be 0 (none) or in 2..=8192".into())
+    }
 }

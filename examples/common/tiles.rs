@@ -2,14 +2,20 @@
 //! so the benchmark times exactly the example's workload.
 
 use natura::core::HeightField;
-use natura::core::{NoProgress, Seed};
+use natura::core::{Progress, Seed};
 use natura::terrain::TerrainError;
 use natura::terrain::erosion::{StreamPower, StreamPowerParams};
 use natura::terrain::synth::{SpectralParams, spectral_synthesis};
 
 /// A spectral terrain of `n`² samples `cell` metres apart, rescaled to 150 m
-/// of relief and eroded by 40 stream-power steps.
-pub fn eroded_tile(n: usize, cell: f32, seed: u64) -> Result<HeightField, TerrainError> {
+/// of relief and eroded by 40 stream-power steps (reported to `progress`
+/// as the erosion's stage).
+pub fn eroded_tile(
+    n: usize,
+    cell: f32,
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<HeightField, TerrainError> {
     let sp = SpectralParams {
         sigma_m: 25.0,
         ..Default::default()
@@ -26,6 +32,6 @@ pub fn eroded_tile(n: usize, cell: f32, seed: u64) -> Result<HeightField, Terrai
         ..Default::default()
     };
     let mut m = StreamPower::new(p, &hf)?;
-    m.run(&mut hf, 40, &NoProgress)?;
+    m.run(&mut hf, 40, progress)?;
     Ok(hf)
 }
