@@ -8,12 +8,23 @@
 //! ```text
 //! cargo run --release --example clouds                 # 480 × 320 frames
 //! cargo run --release --example clouds -- --quick      # small, for CI
+//! cargo run --release --example clouds -- --seed 3 --vdb --out renders
+//! cargo run --release --example clouds -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `clouds_cumulus.png`, `clouds_cirrostratus.png`,
+//! `clouds_jet_stream.png` and `clouds_born.png` (and `cumulus.vdb`) into
+//! `--out` (default: `./clouds/`), with a progress bar per picture.
 
 mod common;
 
-use natura::core::Image;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
+use natura::core::{Image, Progress};
 use natura::volume::animate::{cloud_is_born, eased_amount, keyed_implicit};
 use natura::volume::cloud::{
     Cloud, CloudParams, JetStream, cirrostratus_primitives, cloud, nine_sphere_cumulus,
@@ -24,17 +35,54 @@ use natura::volume::render::{
 };
 use natura::volume::{Density, vdb};
 
+/// Ebert's procedural clouds: the nine-sphere cumulus, cirrostratus over
+/// cirrus, the cumulus warped along the jet stream and "A Cloud is Born",
+/// rendered with shadow tables and multiple scattering. Writes
+/// clouds_cumulus.png, clouds_cirrostratus.png, clouds_jet_stream.png and
+/// clouds_born.png (and cumulus.vdb with --vdb or --quick).
+#[derive(Parser)]
+#[command(name = "clouds", version)]
+struct Cli {
+    /// Small and fast (CI): 96 × 64 frames of coarse voxels; also writes
+    /// cumulus.vdb
+    #[arg(long)]
+    quick: bool,
+    /// Noise seed
+    #[arg(long, default_value_t = 7)]
+    seed: u64,
+    /// Also write the cumulus as cumulus.vdb (OpenVDB)
+    #[arg(long)]
+    vdb: bool,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "clouds")]
+    out: PathBuf,
+}
+
+/// The units of work [`render`] reports: the bake, the shadow tables and
+/// the render.
+const SHOT: u64 = 3;
+
 struct Look {
     width: usize,
     height: usize,
     cell: f32,
 }
 
-fn render(d: &dyn Density, look: &Look, extinction: f32, view: Vec3) -> Image {
+/// Bakes `d`, builds its shadow tables and renders it from `view` (a
+/// direction from the centre, in bounding radii), advancing `bar` by one
+/// unit after each ([`SHOT`] in all).
+fn render(
+    d: &dyn Density,
+    look: &Look,
+    extinction: f32,
+    view: Vec3,
+    bar: &dyn Progress,
+) -> Result<Image, Exit> {
     let b = d.bounds();
     let c = (b.min + b.max) * 0.5;
     let r = (b.max - b.min).length() * 0.5;
-    let baked = common::check(GridDensity::bake(d, look.cell));
+    let baked = GridDensity::bake(d, look.cell)?;
+    bar.advance(1);
     let scene = Scene {
         sun: Some(Sun {
             direction: Vec3::new(-0.5, -0.6, 0.62).normalize(),
@@ -62,34 +110,40 @@ fn render(d: &dyn Density, look: &Look, extinction: f32, view: Vec3) -> Image {
         width: look.width,
         height: look.height,
     };
-    let fast = common::check(FastRenderer::new(&scene, settings));
-    common::check(fast.render(&camera)).tone_mapped(0.0, natura::core::ToneMap::AcesFilmic)
+    let fast = FastRenderer::new(&scene, settings)?;
+    bar.advance(1);
+    let image = fast.render(&camera)?;
+    bar.advance(1);
+    Ok(image.tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
 }
 
 /// Images side by side with 4 px white gaps.
-fn strip(shots: &[Image]) -> Image {
+fn strip(shots: &[Image]) -> natura::core::Result<Image> {
     let (w, h) = (shots[0].width(), shots[0].height());
-    common::check(Image::from_fn(
-        w * shots.len() + 4 * (shots.len() - 1),
-        h,
-        |x, y| {
-            let (k, r) = (x / (w + 4), x % (w + 4));
-            if r >= w {
-                Vec3::ONE
-            } else {
-                shots[k].get(r, y).unwrap_or(Vec3::ONE)
-            }
-        },
-    ))
+    Image::from_fn(w * shots.len() + 4 * (shots.len() - 1), h, |x, y| {
+        let (k, r) = (x / (w + 4), x % (w + 4));
+        if r >= w {
+            Vec3::ONE
+        } else {
+            shots[k].get(r, y).unwrap_or(Vec3::ONE)
+        }
+    })
 }
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let seed: u64 = args.value("--seed", 7, "noise seed");
-    let write_vdb = args.switch("--vdb", "also write the cumulus as cumulus.vdb");
-    let out = args.out_dir("docs/gallery/volume");
-    args.finish();
+fn main() -> ExitCode {
+    common::run(clouds)
+}
+
+fn clouds() -> Run {
+    let cli: Cli = common::parse();
+    let Cli {
+        quick,
+        seed,
+        vdb: write_vdb,
+        out,
+    } = cli;
+    let out = common::out_dir(&out)?;
+    let write_vdb = write_vdb || quick;
     let look = if quick {
         Look {
             width: 96,
@@ -103,21 +157,23 @@ fn main() {
             cell: 0.08,
         }
     };
+    let bar = common::Bar::new();
 
     // (a) The nine-sphere cumulus with the source's parameters.
-    let cumulus = common::check(cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed));
-    let img = render(&cumulus, &look, 4.0, Vec3::new(0.0, -2.4, 0.25));
-    common::check(img.save_png(out.join("clouds_cumulus.png")));
-    if write_vdb || quick {
-        let baked = common::check(GridDensity::bake(&cumulus, look.cell));
-        common::check(vdb::write_vdb(
-            out.join("cumulus.vdb"),
-            &[("density", &baked)],
-        ));
+    bar.start("cumulus", SHOT + u64::from(write_vdb));
+    let cumulus = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed)?;
+    let img = render(&cumulus, &look, 4.0, Vec3::new(0.0, -2.4, 0.25), &bar)?;
+    img.save_png(out.join("clouds_cumulus.png"))?;
+    if write_vdb {
+        let baked = GridDensity::bake(&cumulus, look.cell)?;
+        vdb::write_vdb(out.join("cumulus.vdb"), &[("density", &baked)])?;
+        bar.advance(1);
     }
+    bar.finish();
 
     // (b) Cirrostratus: one large ellipsoid over cylinders, cirrus parameters.
-    let cs = common::check(cloud(
+    bar.start("cirrostratus", SHOT);
+    let cs = cloud(
         cirrostratus_primitives(),
         CloudParams {
             noise_frequency: 0.3,
@@ -125,19 +181,19 @@ fn main() {
             ..CloudParams::cirrus(Vec3::new(6.0, 0.0, 0.0))
         },
         seed,
-    ));
+    )?;
     let big = Look {
         cell: look.cell * 4.0,
         ..look
     };
-    common::check(
-        render(&cs, &big, 12.0, Vec3::new(0.0, -0.9, -0.35))
-            .save_png(out.join("clouds_cirrostratus.png")),
-    );
+    render(&cs, &big, 12.0, Vec3::new(0.0, -0.9, -0.35), &bar)?
+        .save_png(out.join("clouds_cirrostratus.png"))?;
+    bar.finish();
 
     // (c) The jet-stream warp, eased in over 96 frames; the primitives stay put.
     let frames = [0u32, 32, 64, 96];
-    let shots: Vec<Image> = frames
+    bar.start("jet stream", SHOT * frames.len() as u64);
+    let shots = frames
         .iter()
         .map(|&f| {
             let p = CloudParams {
@@ -148,34 +204,30 @@ fn main() {
                 }),
                 ..CloudParams::cumulus()
             };
-            let c: Cloud = common::check(cloud(nine_sphere_cumulus(), p, seed));
-            render(&c, &look, 4.0, Vec3::new(0.0, -2.6, 0.25))
+            let c: Cloud = cloud(nine_sphere_cumulus(), p, seed)?;
+            render(&c, &look, 4.0, Vec3::new(0.0, -2.6, 0.25), &bar)
         })
-        .collect();
-    common::check(strip(&shots).save_png(out.join("clouds_jet_stream.png")));
+        .collect::<Result<Vec<Image>, Exit>>()?;
+    strip(&shots)?.save_png(out.join("clouds_jet_stream.png"))?;
+    bar.finish();
 
     // (d) A Cloud is Born: three elements move together and grow.
     let keys = cloud_is_born();
-    let shots: Vec<Image> = [0.0f32, 0.35, 0.7, 1.0]
+    let times = [0.0f32, 0.35, 0.7, 1.0];
+    bar.start("cloud is born", SHOT * times.len() as u64);
+    let shots = times
         .iter()
         .map(|&t| {
-            let imp = common::check(keyed_implicit(&keys, t));
-            let c = common::check(natura::volume::cloud::Cloud::new(
-                imp,
-                CloudParams::cumulus(),
-                seed,
-            ));
-            render(&c, &look, 4.0, Vec3::new(0.0, -2.0, 0.25))
+            let imp = keyed_implicit(&keys, t)?;
+            let c = natura::volume::cloud::Cloud::new(imp, CloudParams::cumulus(), seed)?;
+            render(&c, &look, 4.0, Vec3::new(0.0, -2.0, 0.25), &bar)
         })
-        .collect();
-    common::check(strip(&shots).save_png(out.join("clouds_born.png")));
-    println!(
+        .collect::<Result<Vec<Image>, Exit>>()?;
+    strip(&shots)?.save_png(out.join("clouds_born.png"))?;
+    bar.finish();
+    outln(format_args!(
         "wrote clouds_cumulus.png, clouds_cirrostratus.png, clouds_jet_stream.png and clouds_born.png{} to {}",
-        if write_vdb || quick {
-            ", cumulus.vdb"
-        } else {
-            ""
-        },
+        if write_vdb { ", cumulus.vdb" } else { "" },
         out.display()
-    );
+    ))
 }

@@ -7,12 +7,23 @@
 //! ```text
 //! cargo run --release --example smoke3d                 # 48 × 48 × 96 cells, 3 s
 //! cargo run --release --example smoke3d -- --quick      # small, for CI
+//! cargo run --release --example smoke3d -- --n 64 --seconds 4 --out renders
+//! cargo run --release --example smoke3d -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `smoke3d.png` (four moments side by side), frames in
+//! `smoke3d_frames/` and volumes in `smoke3d_volumes/` into `--out`
+//! (default: `./smoke3d/`), with a progress bar over the simulation.
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Run, outln};
 use natura::core::glam::Vec3;
-use natura::core::{Image, Ramp};
+use natura::core::{Image, Progress, Ramp};
 use natura::fluid::advect::Advection;
 use natura::fluid::export::{field_image, slice, write_exr_volume, write_raw_volume};
 use natura::fluid::grid::Dims;
@@ -27,39 +38,51 @@ use natura::volume::render::{
     Solid, Sun,
 };
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let n: usize = args.ranged(
-        "--n",
-        if quick { 20 } else { 48 },
-        4..=256,
-        "cells across (height is 2×)",
-    );
-    let seconds: f32 = args.ranged(
-        "--seconds",
-        if quick { 1.0 } else { 3.0 },
-        0.01..=600.0,
-        "simulated time (s)",
-    );
-    let frames: usize = args.ranged(
-        "--frames",
-        if quick { 2 } else { 8 },
-        1..=1000,
-        "frames written",
-    );
-    let epsilon: f32 = args.ranged(
-        "--epsilon",
-        4.0,
-        0.0..=100.0,
-        "confinement strength ε (1/s)",
-    );
-    let out = args.out_dir("docs/gallery/fluid");
-    args.finish();
+/// A 3-D smoke plume rising around a sphere, with vorticity confinement
+/// and monotone cubic advection. Writes smoke3d.png (four moments side by
+/// side), renderings and mid-plane slices in smoke3d_frames/ and the final
+/// density as raw f32 and EXR volumes in smoke3d_volumes/.
+#[derive(Parser)]
+#[command(name = "smoke3d", version)]
+struct Cli {
+    /// Small and fast (CI): a coarser grid, a shorter run, fewer and smaller
+    /// frames
+    #[arg(long)]
+    quick: bool,
+    /// Cells across (the height is twice that) [default: 48; 20 with
+    /// --quick]
+    #[arg(long, value_parser = common::in_range(4usize, 256))]
+    n: Option<usize>,
+    /// Simulated time, seconds [default: 3; 1 with --quick]
+    #[arg(long, value_parser = common::in_range(0.01f32, 600.0))]
+    seconds: Option<f32>,
+    /// Frames written [default: 8; 2 with --quick]
+    #[arg(long, value_parser = common::in_range(1usize, 1000))]
+    frames: Option<usize>,
+    /// Confinement strength ε (1/s)
+    #[arg(long, default_value_t = 4.0, value_parser = common::in_range(0.0f32, 100.0))]
+    epsilon: f32,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "smoke3d")]
+    out: PathBuf,
+}
+
+fn main() -> ExitCode {
+    common::run(smoke3d)
+}
+
+fn smoke3d() -> Run {
+    let cli: Cli = common::parse();
+    let quick = cli.quick;
+    let n = cli.n.unwrap_or(if quick { 20 } else { 48 });
+    let seconds = cli.seconds.unwrap_or(if quick { 1.0 } else { 3.0 });
+    let frames = cli.frames.unwrap_or(if quick { 2 } else { 8 });
+    let epsilon = cli.epsilon;
+    let out = common::out_dir(&cli.out)?;
 
     let width = 1.0f32;
     let h = width / n as f32;
-    let dims = common::check(Dims::new(n, n, 2 * n));
+    let dims = Dims::new(n, n, 2 * n)?;
     let params = SmokeParams {
         epsilon,
         advection: Advection {
@@ -68,14 +91,14 @@ fn main() {
         },
         ..SmokeParams::default()
     };
-    let mut smoke = common::check(Smoke::new(dims, h, params));
+    let mut smoke = Smoke::new(dims, h, params)?;
     let c = 0.5 * width;
     let sphere = (Vec3::new(0.45 * width, c, 0.85 * width), 0.15 * width);
-    common::check(smoke.add_obstacle(Obstacle::fixed(Shape::Sphere {
+    smoke.add_obstacle(Obstacle::fixed(Shape::Sphere {
         centre: sphere.0,
         radius: sphere.1,
-    })));
-    common::check(smoke.add_source(SmokeSource {
+    }))?;
+    smoke.add_source(SmokeSource {
         shape: Shape::Sphere {
             centre: Vec3::new(c, c, 0.15 * width),
             radius: 0.08 * width,
@@ -83,77 +106,69 @@ fn main() {
         density: 1.0,
         temperature: 330.0,
         velocity: Some(Vec3::new(0.0, 0.0, 0.3)),
-    }));
+    })?;
     let dt = 0.5 * h / 0.6;
     let steps = (seconds / dt).ceil() as usize;
     let per_frame = (steps / frames.max(1)).max(1);
     let frame_dir = out.join("smoke3d_frames");
-    common::check(std::fs::create_dir_all(&frame_dir));
+    std::fs::create_dir_all(&frame_dir)?;
     let bar = common::Bar::new();
-    natura::core::Progress::start(&bar, "smoke 3d", steps as u64);
+    bar.start("simulation", steps as u64);
     let light = Vec3::new(-0.5, -0.3, 1.0).normalize();
     let bg = Vec3::new(0.05, 0.07, 0.12);
     let mut shots = Vec::new();
     let keep = [steps / 4, steps / 2, 3 * steps / 4, steps];
     for s in 0..steps {
-        common::check(smoke.step(dt));
-        natura::core::Progress::advance(&bar, 1);
+        smoke.step(dt)?;
+        bar.advance(1);
         if (s + 1) % per_frame == 0 || s + 1 == steps || keep.contains(&(s + 1)) {
-            let img = render(&smoke, sphere, light, bg, if quick { 48 } else { 200 });
-            common::check(img.save_png(frame_dir.join(format!("render_{:04}.png", s + 1))));
-            let sl = common::check(slice(smoke.density(), 1, n / 2));
-            common::check(
-                field_image(&sl, Ramp::Magma, 0.0, 1.0)
-                    .save_png(frame_dir.join(format!("slice_{:04}.png", s + 1))),
-            );
+            let img = render(&smoke, sphere, light, bg, if quick { 48 } else { 200 })?;
+            img.save_png(frame_dir.join(format!("render_{:04}.png", s + 1)))?;
+            let sl = slice(smoke.density(), 1, n / 2)?;
+            field_image(&sl, Ramp::Magma, 0.0, 1.0)
+                .save_png(frame_dir.join(format!("slice_{:04}.png", s + 1)))?;
             if keep.contains(&(s + 1)) {
                 shots.push(img);
             }
         }
     }
-    natura::core::Progress::finish(&bar);
+    bar.finish();
     let vol_dir = out.join("smoke3d_volumes");
-    common::check(std::fs::create_dir_all(&vol_dir));
-    common::check(write_raw_volume(
-        vol_dir.join("density.raw"),
-        smoke.density(),
-        h,
-    ));
-    common::check(write_exr_volume(
-        vol_dir.join("density.exr"),
-        smoke.density(),
-        h,
-    ));
+    std::fs::create_dir_all(&vol_dir)?;
+    write_raw_volume(vol_dir.join("density.raw"), smoke.density(), h)?;
+    write_exr_volume(vol_dir.join("density.exr"), smoke.density(), h)?;
     // The picture: the kept frames side by side, 4 px gaps.
     let path = out.join("smoke3d.png");
     let (w, hh) = (shots[0].width(), shots[0].height());
-    let strip = common::check(Image::from_fn(
-        w * shots.len() + 4 * (shots.len() - 1),
-        hh,
-        |x, y| {
-            let (k, r) = (x / (w + 4), x % (w + 4));
-            if r >= w {
-                Vec3::ONE
-            } else {
-                shots[k].get(r, y).unwrap_or(Vec3::ONE)
-            }
-        },
-    ));
-    common::check(strip.save_png(&path));
-    println!(
+    let strip = Image::from_fn(w * shots.len() + 4 * (shots.len() - 1), hh, |x, y| {
+        let (k, r) = (x / (w + 4), x % (w + 4));
+        if r >= w {
+            Vec3::ONE
+        } else {
+            shots[k].get(r, y).unwrap_or(Vec3::ONE)
+        }
+    })?;
+    strip.save_png(&path)?;
+    outln(format_args!(
         "{steps} steps on {dims}; wrote {}, frames in {}, volumes in {}",
         path.display(),
         frame_dir.display(),
         vol_dir.display()
-    );
+    ))
 }
 
 /// The smoke through natura-volume: Ebert's shadow-table march with the
 /// octave multiple-scattering approximation, warm smoke glowing by its
 /// temperature, the obstacle visible and casting its shadow on the smoke and
 /// the floor.
-fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usize) -> Image {
-    let vol = common::check(SmokeVolume::from_smoke(smoke));
+fn render(
+    smoke: &Smoke,
+    sphere: (Vec3, f32),
+    light: Vec3,
+    bg: Vec3,
+    width: usize,
+) -> natura::volume::Result<Image> {
+    let vol = SmokeVolume::from_smoke(smoke)?;
     let sky = bg * std::f32::consts::PI;
     let scene = Scene {
         sun: Some(Sun {
@@ -201,6 +216,8 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usiz
         width,
         height: width * 8 / 5,
     };
-    let fast = common::check(FastRenderer::new(&scene, settings));
-    common::check(fast.render(&camera)).tone_mapped(0.0, natura::core::ToneMap::AcesFilmic)
+    let fast = FastRenderer::new(&scene, settings)?;
+    Ok(fast
+        .render(&camera)?
+        .tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
 }

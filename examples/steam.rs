@@ -6,73 +6,107 @@
 //! ```text
 //! cargo run --release --example steam                 # 320 × 400 frames
 //! cargo run --release --example steam -- --quick      # small, for CI
+//! cargo run --release --example steam -- --seed 5 --out renders
+//! cargo run --release --example steam -- --help       # every flag and its default
 //! ```
+//!
+//! Writes `steam.png` (the four moments side by side) into `--out`
+//! (default: `./steam/`), with a progress bar over the frames.
 
 mod common;
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use common::{Run, outln};
 use natura::core::glam::Vec3;
-use natura::core::{Image, ToneMap};
+use natura::core::{Image, Progress, ToneMap};
 use natura::volume::gas::{Steam, SteamParams};
 use natura::volume::phase::CloudPhase;
 use natura::volume::render::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 
-fn main() {
-    let mut args = common::Args::from_env();
-    let quick = args.switch("--quick", "small and fast (CI)");
-    let seed: u64 = args.value("--seed", 3, "noise seed");
-    let out = args.out_dir("docs/gallery/volume");
-    args.finish();
+/// Steam rising from a teacup (Ebert's basic gas, shaped and drifting up):
+/// four moments rendered with the shadow-table march. Writes steam.png, the
+/// four side by side.
+#[derive(Parser)]
+#[command(name = "steam", version)]
+struct Cli {
+    /// Small and fast (CI): 64 × 80 frames, a coarser shadow table
+    #[arg(long)]
+    quick: bool,
+    /// Noise seed
+    #[arg(long, default_value_t = 3)]
+    seed: u64,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "steam")]
+    out: PathBuf,
+}
+
+fn main() -> ExitCode {
+    common::run(steam)
+}
+
+fn steam() -> Run {
+    let cli: Cli = common::parse();
+    let out = common::out_dir(&cli.out)?;
+    let (quick, seed) = (cli.quick, cli.seed);
     let (w, h) = if quick { (64, 80) } else { (320, 400) };
-    let shots: Vec<Image> = [0.0f32, 0.5, 1.0, 1.5]
-        .iter()
-        .map(|&time| {
-            let steam = common::check(Steam::new(
-                SteamParams {
-                    time,
-                    ..SteamParams::default()
-                },
-                seed,
-            ));
-            let medium = MediumParams {
-                extinction: 60.0,
-                albedo: 0.95,
-                phase: CloudPhase::HenyeyGreenstein(0.5),
-            };
-            let scene = Scene {
-                sun: Some(Sun {
-                    direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
-                    irradiance: Vec3::new(2.4, 2.2, 2.0),
-                }),
-                ..Scene::new(&steam, medium, Vec3::new(0.03, 0.03, 0.04))
-            };
-            let settings = FastSettings {
-                step: 0.0008,
-                shadows: Shadows::Table(if quick { 32 } else { 96 }),
-                ..FastSettings::default()
-            }
-            .multiple_scattering();
-            let camera = LookAtCamera {
-                position: Vec3::new(0.0, -0.35, 0.07),
-                target: Vec3::new(0.0, 0.0, 0.065),
-                vfov_deg: 22.0,
-                width: w,
-                height: h,
-            };
-            let fast = common::check(FastRenderer::new(&scene, settings));
-            common::check(fast.render(&camera)).tone_mapped(0.5, ToneMap::AcesFilmic)
-        })
-        .collect();
-    let strip = common::check(Image::from_fn(w * 4 + 12, h, |x, y| {
+    let times = [0.0f32, 0.5, 1.0, 1.5];
+    let bar = common::Bar::new();
+    // Two units per frame: its shadow tables and its render.
+    bar.start("frames", 2 * times.len() as u64);
+    let mut shots = Vec::new();
+    for time in times {
+        let steam = Steam::new(
+            SteamParams {
+                time,
+                ..SteamParams::default()
+            },
+            seed,
+        )?;
+        let medium = MediumParams {
+            extinction: 60.0,
+            albedo: 0.95,
+            phase: CloudPhase::HenyeyGreenstein(0.5),
+        };
+        let scene = Scene {
+            sun: Some(Sun {
+                direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
+                irradiance: Vec3::new(2.4, 2.2, 2.0),
+            }),
+            ..Scene::new(&steam, medium, Vec3::new(0.03, 0.03, 0.04))
+        };
+        let settings = FastSettings {
+            step: 0.0008,
+            shadows: Shadows::Table(if quick { 32 } else { 96 }),
+            ..FastSettings::default()
+        }
+        .multiple_scattering();
+        let camera = LookAtCamera {
+            position: Vec3::new(0.0, -0.35, 0.07),
+            target: Vec3::new(0.0, 0.0, 0.065),
+            vfov_deg: 22.0,
+            width: w,
+            height: h,
+        };
+        let fast = FastRenderer::new(&scene, settings)?;
+        bar.advance(1);
+        shots.push(fast.render(&camera)?.tone_mapped(0.5, ToneMap::AcesFilmic));
+        bar.advance(1);
+    }
+    bar.finish();
+    let strip = Image::from_fn(w * 4 + 12, h, |x, y| {
         let (k, r) = (x / (w + 4), x % (w + 4));
         if r >= w {
             Vec3::ONE
         } else {
             shots[k].get(r, y).unwrap_or(Vec3::ONE)
         }
-    }));
+    })?;
     let path = out.join("steam.png");
-    common::check(strip.save_png(&path));
-    println!("wrote {}", path.display());
+    strip.save_png(&path)?;
+    outln(format_args!("wrote {}", path.display()))
 }

@@ -4,7 +4,7 @@
 //! [`Density`] into a grid.
 
 use glam::Vec3;
-use natura_core::{Aabb, Grid3};
+use natura_core::{Aabb, Grid3, NoProgress, Progress};
 
 use crate::density::{Density, check_bounds};
 use crate::error::{Result, VolumeError, finite3, positive};
@@ -134,6 +134,22 @@ impl GridDensity {
     /// [`VolumeError::InvalidParameter`] for a bad `cell` or a grid over
     /// `natura_core::MAX_GRID_BYTES`; as [`GridDensity::new`].
     pub fn bake(density: &dyn Density, cell: f32) -> Result<Self> {
+        Self::bake_with_progress(density, cell, &NoProgress)
+    }
+
+    /// [`GridDensity::bake`], reporting to `progress` as the stage `"bake"`
+    /// with one unit per finished z slice (slices finish in any order when
+    /// baking in parallel; the grid is the same).
+    ///
+    /// # Errors
+    ///
+    /// As [`GridDensity::bake`]; nothing is reported when `cell` or the
+    /// bounds are refused.
+    pub fn bake_with_progress(
+        density: &dyn Density,
+        cell: f32,
+        progress: &dyn Progress,
+    ) -> Result<Self> {
         positive("cell", cell)?;
         let b = density.bounds();
         check_bounds("density bounds", &b)?;
@@ -159,13 +175,16 @@ impl GridDensity {
                     *v = density.density(p);
                 }
             }
+            progress.advance(1);
         };
+        progress.start("bake", nz as u64);
         #[cfg(feature = "parallel")]
         grid.par_slices_mut(fill);
         #[cfg(not(feature = "parallel"))]
         for k in 0..nz {
             fill(k, grid.slice_z_mut(k));
         }
+        progress.finish();
         Self::new(grid, origin, cell)
     }
 }
@@ -296,6 +315,23 @@ mod tests {
             let r = Aabb { min: p, max: p };
             assert!(d.sample(p) <= d.bound_in(&r) + 1e-6);
         }
+    }
+
+    #[test]
+    fn bake_reports_one_unit_per_slice_and_bakes_the_same_grid() {
+        let ball = crate::density::Ball::new(Vec3::new(0.5, 0.0, 1.0), 1.0, 2.0).unwrap();
+        let progress = natura_core::CountingProgress::new();
+        let reported = GridDensity::bake_with_progress(&ball, 0.25, &progress).unwrap();
+        let plain = GridDensity::bake(&ball, 0.25).unwrap();
+        let nz = plain.grid().dims().2;
+        assert_eq!(progress.stages(), vec![("bake".to_owned(), nz as u64)]);
+        assert_eq!(progress.advanced(), nz as u64);
+        assert_eq!(progress.finished(), 1);
+        assert_eq!(reported.grid(), plain.grid());
+        // A refused cell reports nothing.
+        let none = natura_core::CountingProgress::new();
+        assert!(GridDensity::bake_with_progress(&ball, 0.0, &none).is_err());
+        assert!(none.stages().is_empty());
     }
 
     #[test]

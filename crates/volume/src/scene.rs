@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams, SkyView};
+use natura_core::{NoProgress, Progress};
 
 use crate::error::{Result, in_range, positive};
 use crate::grid::GridDensity;
@@ -81,6 +82,21 @@ impl Cloudscape {
     /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) for a bad
     /// field; as [`LayerClouds::new`], [`GridDensity::bake`] and the sky of `natura-atmos`.
     pub fn new(p: &CloudscapeParams, seed: u64) -> Result<Self> {
+        Self::new_with_progress(p, seed, &NoProgress)
+    }
+
+    /// [`Cloudscape::new`], reporting the bake of the clouds to `progress`
+    /// (as [`GridDensity::bake_with_progress`]: the stage `"bake"`, one unit
+    /// per z slice).
+    ///
+    /// # Errors
+    ///
+    /// As [`Cloudscape::new`].
+    pub fn new_with_progress(
+        p: &CloudscapeParams,
+        seed: u64,
+        progress: &dyn Progress,
+    ) -> Result<Self> {
         in_range(
             "sun_elevation_deg",
             p.sun_elevation_deg,
@@ -99,7 +115,7 @@ impl Cloudscape {
             "must lie in [−80, 80]",
         )?;
         let layer = LayerClouds::new(p.layer, seed)?;
-        let clouds = GridDensity::bake(&layer, p.cell_m)?;
+        let clouds = GridDensity::bake_with_progress(&layer, p.cell_m, progress)?;
         let atm = Atmosphere::new(AtmosphereParams::default())?;
         let sun_dir = Atmosphere::sun_at_elevation_deg(f64::from(p.sun_elevation_deg))?;
         let eye = Vec3::new(0.0, 0.0, p.eye_height_m);

@@ -67,7 +67,7 @@
 //! 0.04), 0.014 of the mean.
 
 use glam::Vec3;
-use natura_core::{Aabb, Image};
+use natura_core::{Aabb, Image, NoProgress, Progress};
 
 use super::model::{
     PeakOrders, ScatterOctaves, emitted, powder, step_inscatter, step_transmittance,
@@ -241,6 +241,22 @@ impl<'s> FastRenderer<'s> {
     /// [`VolumeError::InvalidParameter`] for a bad step, table size, powder
     /// or threshold.
     pub fn new(scene: &'s Scene<'s>, settings: FastSettings) -> Result<Self> {
+        Self::new_with_progress(scene, settings, &NoProgress)
+    }
+
+    /// [`FastRenderer::new`], reporting the shadow tables' build to
+    /// `progress` as the stage `"shadow tables"`, with one unit per row of
+    /// table nodes (the sun's table and the sky's, one after the other).
+    /// With [`Shadows::Rays`] there are no tables and nothing is reported.
+    ///
+    /// # Errors
+    ///
+    /// As [`FastRenderer::new`].
+    pub fn new_with_progress(
+        scene: &'s Scene<'s>,
+        settings: FastSettings,
+        progress: &dyn Progress,
+    ) -> Result<Self> {
         scene.validate()?;
         scene.majorant()?;
         settings.octaves.validate()?;
@@ -299,26 +315,23 @@ impl<'s> FastRenderer<'s> {
                     });
                 }
                 let dims = table_dims(&bounds, n);
-                let sun = match scene.sun_unit() {
-                    Some(s) => Some(ShadowTable::build_with_solids(
+                let sun_dir = scene.sun_unit().map(|s| s.direction);
+                let tables = 1 + u64::from(sun_dir.is_some());
+                progress.start("shadow tables", tables * (dims[1] * dims[2]) as u64);
+                let build = |light| {
+                    ShadowTable::build_reporting(
                         scene.density,
                         ext,
-                        s.direction,
+                        light,
                         dims,
                         &scene.solids,
-                    )?),
-                    None => None,
+                        progress,
+                    )
                 };
-                (
-                    sun,
-                    Some(ShadowTable::build_with_solids(
-                        scene.density,
-                        ext,
-                        Vec3::Z,
-                        dims,
-                        &scene.solids,
-                    )?),
-                )
+                let sun = sun_dir.map(build).transpose()?;
+                let up = build(Vec3::Z)?;
+                progress.finish();
+                (sun, Some(up))
             }
             Shadows::Rays(h) => {
                 check_step("shadows", h, extent, 1e7)?;
@@ -627,7 +640,23 @@ impl<'s> FastRenderer<'s> {
     ///
     /// As [`LookAtCamera::validate`]; a too-large image.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
-        super::render_image(camera, |o, d, _, _| self.radiance(o, d))
+        self.render_with_progress(camera, &NoProgress)
+    }
+
+    /// [`FastRenderer::render`], reporting to `progress` as the stage
+    /// `"render"` with one unit per finished image row (rows finish in any
+    /// order when rendering in parallel; the image is the same).
+    ///
+    /// # Errors
+    ///
+    /// As [`FastRenderer::render`]; nothing is reported when the camera is
+    /// refused.
+    pub fn render_with_progress(
+        &self,
+        camera: &LookAtCamera,
+        progress: &dyn Progress,
+    ) -> Result<Image> {
+        super::render_image(camera, |o, d, _, _| self.radiance(o, d), "render", progress)
     }
 
     /// The transmittance of the scene's medium (its phase function's peak

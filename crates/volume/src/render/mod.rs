@@ -21,7 +21,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use natura_atmos::sky::{ApSample, SkyView};
-use natura_core::{Grid2, Image};
+use natura_core::{Grid2, Image, Progress};
 
 use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
@@ -557,17 +557,30 @@ fn rgb(name: &'static str, c: Vec3) -> Result<()> {
 }
 
 /// Renders `camera`'s image with `radiance(origin, direction, x, y)` per
-/// pixel, rows in parallel (bit-identical on any thread count).
+/// pixel, rows in parallel (bit-identical on any thread count), reporting
+/// the stage `stage` to `progress` with one unit per finished row.
 pub(crate) fn render_image(
     camera: &LookAtCamera,
     radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
+    stage: &str,
+    progress: &dyn Progress,
 ) -> Result<Image> {
     camera.validate()?;
-    let f = |x: usize, y: usize| radiance(camera.position, camera.ray(x, y), x, y);
+    let mut g = Grid2::new(camera.width, camera.height, Vec3::ZERO)?;
+    let row = |y: usize, row: &mut [Vec3]| {
+        for (x, v) in row.iter_mut().enumerate() {
+            *v = radiance(camera.position, camera.ray(x, y), x, y);
+        }
+        progress.advance(1);
+    };
+    progress.start(stage, camera.height as u64);
     #[cfg(feature = "parallel")]
-    let g = Grid2::par_from_fn(camera.width, camera.height, f)?;
+    g.par_rows_mut(row);
     #[cfg(not(feature = "parallel"))]
-    let g = Grid2::from_fn(camera.width, camera.height, f)?;
+    for (y, r) in g.rows_mut().enumerate() {
+        row(y, r);
+    }
+    progress.finish();
     Ok(Image::from_grid(g))
 }
 
@@ -582,4 +595,78 @@ pub(crate) fn check_step(name: &'static str, step: f32, extent: f32, max_steps: 
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use natura_core::CountingProgress;
+
+    use super::*;
+    use crate::density::Ball;
+
+    fn ball_scene(ball: &Ball) -> Scene<'_> {
+        Scene {
+            sun: Some(Sun {
+                direction: Vec3::new(0.3, -0.4, 0.8).normalize(),
+                irradiance: Vec3::ONE,
+            }),
+            ..Scene::new(ball, MediumParams::default(), Vec3::splat(0.2))
+        }
+    }
+
+    const CAMERA: LookAtCamera = LookAtCamera {
+        position: Vec3::new(0.0, -4.0, 0.0),
+        target: Vec3::ZERO,
+        vfov_deg: 40.0,
+        width: 12,
+        height: 9,
+    };
+
+    #[test]
+    fn the_fast_renderer_reports_its_tables_and_rows_and_renders_the_same() {
+        let ball = Ball::new(Vec3::ZERO, 1.0, 1.0).unwrap();
+        let scene = ball_scene(&ball);
+        let settings = FastSettings {
+            shadows: Shadows::Table(8),
+            ..FastSettings::default()
+        };
+        let progress = CountingProgress::new();
+        let fast = FastRenderer::new_with_progress(&scene, settings, &progress).unwrap();
+        let img = fast.render_with_progress(&CAMERA, &progress).unwrap();
+        let dims = shadow::table_dims(&ball.bounds(), 8);
+        let rows = (dims[1] * dims[2]) as u64;
+        assert_eq!(
+            progress.stages(),
+            vec![
+                ("shadow tables".to_owned(), 2 * rows),
+                ("render".to_owned(), 9),
+            ]
+        );
+        assert_eq!(progress.advanced(), 2 * rows + 9);
+        assert_eq!(progress.finished(), 2);
+        let plain = FastRenderer::new(&scene, settings).unwrap();
+        assert_eq!(img, plain.render(&CAMERA).unwrap());
+    }
+
+    #[test]
+    fn the_reference_reports_its_rows_and_renders_the_same() {
+        let ball = Ball::new(Vec3::ZERO, 1.0, 1.0).unwrap();
+        let scene = ball_scene(&ball);
+        let settings = ReferenceSettings {
+            samples_per_pixel: 1,
+            ..ReferenceSettings::default()
+        };
+        let r = ReferenceRenderer::new(&scene, settings).unwrap();
+        let progress = CountingProgress::new();
+        let img = r.render_with_progress(&CAMERA, &progress).unwrap();
+        assert_eq!(progress.stages(), vec![("reference".to_owned(), 9)]);
+        assert_eq!(progress.advanced(), 9);
+        assert_eq!(progress.finished(), 1);
+        assert_eq!(img, r.render(&CAMERA).unwrap());
+        // A refused camera reports nothing.
+        let none = CountingProgress::new();
+        let bad = LookAtCamera { width: 0, ..CAMERA };
+        assert!(r.render_with_progress(&bad, &none).is_err());
+        assert!(none.stages().is_empty());
+    }
 }

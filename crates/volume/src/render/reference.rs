@@ -36,7 +36,7 @@
 //! measured against.
 
 use glam::Vec3;
-use natura_core::{Image, Seed};
+use natura_core::{Image, NoProgress, Progress, Seed};
 use rand_core::Rng;
 
 use super::model::emitted;
@@ -304,6 +304,22 @@ impl<'s> ReferenceRenderer<'s> {
     /// eye ray tracks are then too long for `f32` to resolve the mean free
     /// path, and its free flights would stall.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
+        self.render_with_progress(camera, &NoProgress)
+    }
+
+    /// [`ReferenceRenderer::render`], reporting to `progress` as the stage
+    /// `"reference"` with one unit per finished image row (rows finish in
+    /// any order when rendering in parallel; the image is the same).
+    ///
+    /// # Errors
+    ///
+    /// As [`ReferenceRenderer::render`]; nothing is reported when the
+    /// camera or the scene is refused.
+    pub fn render_with_progress(
+        &self,
+        camera: &LookAtCamera,
+        progress: &dyn Progress,
+    ) -> Result<Image> {
         camera.validate()?;
         let b = self.scene.density.bounds();
         let far = (b.min - camera.position)
@@ -316,7 +332,12 @@ impl<'s> ReferenceRenderer<'s> {
             far,
             "the distance from the camera to the box's farthest corner",
         )?;
-        super::render_image(camera, |o, d, x, y| self.pixel(o, d, x, y))
+        super::render_image(
+            camera,
+            |o, d, x, y| self.pixel(o, d, x, y),
+            "reference",
+            progress,
+        )
     }
 }
 

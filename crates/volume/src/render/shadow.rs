@@ -14,7 +14,7 @@
 //! blur darkens the shadows of broken cloud: `e^{−mean τ} < mean e^{−τ}`.)
 
 use glam::Vec3;
-use natura_core::Aabb;
+use natura_core::{Aabb, NoProgress, Progress};
 
 use crate::density::{Density, check_bounds, ray_box};
 use crate::error::{Result, VolumeError, positive};
@@ -102,6 +102,20 @@ impl ShadowTable {
         dims: [usize; 3],
         solids: &[super::Solid],
     ) -> Result<Self> {
+        Self::build_reporting(density, extinction, light, dims, solids, &NoProgress)
+    }
+
+    /// [`ShadowTable::build_with_solids`], advancing `progress` by one unit
+    /// per finished row of `dims[0]` nodes (`dims[1] · dims[2]` in all); the
+    /// caller starts and finishes the stage.
+    pub(crate) fn build_reporting(
+        density: &dyn Density,
+        extinction: f32,
+        light: Vec3,
+        dims: [usize; 3],
+        solids: &[super::Solid],
+        progress: &dyn Progress,
+    ) -> Result<Self> {
         crate::error::non_negative("extinction", extinction)?;
         let light = unit("light", light)?;
         let bounds = density.bounds();
@@ -129,7 +143,7 @@ impl ShadowTable {
             light,
             tau: vec![0.0; total.unwrap_or(0)],
         };
-        t.fill(density, extinction, solids);
+        t.fill(density, extinction, solids, progress);
         Ok(t)
     }
 
@@ -137,14 +151,20 @@ impl ShadowTable {
         self.bounds.min + Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) * self.cell
     }
 
-    fn fill(&mut self, density: &dyn Density, extinction: f32, solids: &[super::Solid]) {
+    fn fill(
+        &mut self,
+        density: &dyn Density,
+        extinction: f32,
+        solids: &[super::Solid],
+        progress: &dyn Progress,
+    ) {
         let (nx, ny) = (self.dims[0], self.dims[1]);
         let step = self.cell.min_element();
         let light = self.light;
         let this = &*self;
         let tau = map_rows(self.dims[2] * ny, |row| {
             let (y, z) = (row % ny, row / ny);
-            (0..nx)
+            let nodes: Vec<f32> = (0..nx)
                 .map(|x| {
                     let p = this.node([x, y, z]);
                     // A node inside a solid looks past that solid, so lookups near its
@@ -158,7 +178,9 @@ impl ShadowTable {
                         optical_depth_ray(density, extinction, p, light, step)
                     }
                 })
-                .collect()
+                .collect();
+            progress.advance(1);
+            nodes
         });
         self.tau = tau;
     }
