@@ -5,7 +5,7 @@
 //! over the channel data) that [`read_exr`] verifies when present, so a file
 //! corrupted after writing is refused rather than silently misread.
 
-use std::io::{BufReader, Read, Seek};
+use std::io::{BufReader, Read, Seek, Write};
 use std::path::Path;
 
 use exr::prelude::*;
@@ -121,11 +121,71 @@ pub fn write_exr(
     );
     let image = Image::from_layer(layer);
     write_atomic(path, |w| {
-        image.write().to_buffered(w).map_err(|e| match e {
+        // Encoded in memory first: the encoder writes the header's custom
+        // attributes in the order of a randomly seeded hash map, so the
+        // same image would give different bytes from run to run. Sorting
+        // the header's attributes by name makes the file a function of its
+        // contents (the header keeps its length, so the offsets stay valid).
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write().to_buffered(&mut bytes).map_err(|e| match e {
             exr::error::Error::Io(e) => WriteError::Io(e),
             other => WriteError::Encode(other.to_string()),
-        })
+        })?;
+        let mut bytes = bytes.into_inner();
+        sort_header_attributes(&mut bytes).ok_or_else(|| {
+            WriteError::Encode("the encoder wrote a header this writer cannot read".into())
+        })?;
+        w.write_all(&bytes)?;
+        Ok(())
     })
+}
+
+/// Sorts the attributes of a single-part EXR header by name, in place.
+///
+/// An OpenEXR header (OpenEXR file layout, "Header") is a list of
+/// attributes — a null-terminated name, a null-terminated type name, a
+/// little-endian `i32` size and that many bytes of value — closed by an
+/// empty name. Their order carries no meaning, and the total length is
+/// unchanged, so the offset table after the header stays valid. Returns
+/// `None` (leaving `bytes` unchanged) for anything but a single-part file
+/// whose header parses.
+fn sort_header_attributes(bytes: &mut [u8]) -> Option<()> {
+    const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+    const MULTIPART: u8 = 0x10; // bit 12 of the version field
+    if bytes.len() < 8 || bytes[..4] != MAGIC || bytes[5] & MULTIPART != 0 {
+        return None;
+    }
+    let string_end = |from: usize| -> Option<usize> {
+        let n = bytes.get(from..)?.iter().position(|&b| b == 0)?;
+        Some(from + n)
+    };
+    let mut spans: Vec<(usize, usize, usize)> = Vec::new(); // (start, name end, end)
+    let mut at = 8;
+    loop {
+        let name_end = string_end(at)?;
+        if name_end == at {
+            break;
+        }
+        let type_end = string_end(name_end + 1)?;
+        let size_at = type_end + 1;
+        let size = i32::from_le_bytes(bytes.get(size_at..size_at + 4)?.try_into().ok()?);
+        let end = size_at
+            .checked_add(4)?
+            .checked_add(usize::try_from(size).ok()?)?;
+        if end > bytes.len() {
+            return None;
+        }
+        spans.push((at, name_end, end));
+        at = end;
+    }
+    let header = 8..at;
+    let mut sorted = Vec::with_capacity(header.len());
+    spans.sort_by(|a, b| bytes[a.0..a.1].cmp(&bytes[b.0..b.1]));
+    for &(start, _, end) in &spans {
+        sorted.extend_from_slice(&bytes[start..end]);
+    }
+    bytes[header].copy_from_slice(&sorted);
+    Some(())
 }
 
 /// Reads the first layer of an EXR file at its full resolution, converting
