@@ -1,4 +1,5 @@
-//! Shared helpers for the example programs: flag parsing, the clean-up of
+//! Shared helpers for the example programs: command lines (`clap` derive,
+//! through [`parse`], [`in_range`] and [`out_dir`]), the clean-up of
 //! their outputs on every way out ([`run`], [`Exit`]), an `indicatif`
 //! binding of `natura_core::Progress`, and demo data ([`scene`]).
 //! Algorithms never live here.
@@ -171,138 +172,6 @@ pub fn out_dir(dir: &std::path::Path) -> Result<PathBuf, Exit> {
     Ok(dir.to_path_buf())
 }
 
-/// A minimal `--flag value` / `--switch` parser that refuses unknown flags.
-pub struct Args {
-    program: String,
-    rest: Vec<String>,
-    known: Vec<(&'static str, &'static str)>,
-}
-
-impl Args {
-    /// Captures the process arguments. `usage` lines are printed for `--help`.
-    ///
-    /// Also installs the interrupt handler: on Ctrl-C or SIGTERM the files
-    /// being written are removed (none is left half-written or as a
-    /// temporary) and the program exits with status 130.
-    pub fn from_env() -> Self {
-        install_interrupt_cleanup();
-        let mut it = std::env::args();
-        let program = it.next().unwrap_or_default();
-        Self {
-            program,
-            rest: it.collect(),
-            known: vec![("--help", "print this help")],
-        }
-    }
-
-    /// Returns whether the switch `name` was given.
-    pub fn switch(&mut self, name: &'static str, help: &'static str) -> bool {
-        self.known.push((name, help));
-        if let Some(i) = self.rest.iter().position(|a| a == name) {
-            self.rest.remove(i);
-            true
-        } else {
-            false
-        }
-    }
-
-    /// Returns the parsed value of `name`, or `default` if absent. Exits with a
-    /// message if the value is missing or does not parse.
-    pub fn value<T: FromStr>(&mut self, name: &'static str, default: T, help: &'static str) -> T
-    where
-        T::Err: std::fmt::Display,
-    {
-        self.optional(name, help).unwrap_or(default)
-    }
-
-    /// Returns the parsed value of `name` (or `default`), exiting with a
-    /// message naming the flag unless it lies in `range` (NaN never does).
-    pub fn ranged<T>(
-        &mut self,
-        name: &'static str,
-        default: T,
-        range: std::ops::RangeInclusive<T>,
-        help: &'static str,
-    ) -> T
-    where
-        T: FromStr + PartialOrd + std::fmt::Display,
-        T::Err: std::fmt::Display,
-    {
-        // The value as the user wrote it, for the message (a parsed 1e300
-        // would print as three hundred digits).
-        let written = self
-            .rest
-            .iter()
-            .position(|a| a == name)
-            .and_then(|i| self.rest.get(i + 1))
-            .cloned();
-        let v = self.value(name, default, help);
-        if !range.contains(&v) {
-            let shown = written.unwrap_or_else(|| v.to_string());
-            fail(&format!(
-                "{name} {shown}: must be in {}..={}",
-                range.start(),
-                range.end()
-            ));
-        }
-        v
-    }
-
-    /// Returns the parsed value of `name` if given.
-    pub fn optional<T: FromStr>(&mut self, name: &'static str, help: &'static str) -> Option<T>
-    where
-        T::Err: std::fmt::Display,
-    {
-        self.known.push((name, help));
-        let i = self.rest.iter().position(|a| a == name)?;
-        if i + 1 >= self.rest.len() {
-            fail(&format!("{name} needs a value"));
-        }
-        let v = self.rest.remove(i + 1);
-        self.rest.remove(i);
-        match v.parse() {
-            Ok(x) => Some(x),
-            Err(e) => fail(&format!("{name} {v}: {e}")),
-        }
-    }
-
-    /// Returns the first argument that is not a flag (call after reading
-    /// every flag, so flag values are already taken).
-    pub fn positional(&mut self) -> Option<String> {
-        let i = self.rest.iter().position(|a| !a.starts_with('-'))?;
-        Some(self.rest.remove(i))
-    }
-
-    /// The output directory (`--out`, default `default`), created if needed.
-    pub fn out_dir(&mut self, default: &str) -> PathBuf {
-        let dir: PathBuf = self.value("--out", PathBuf::from(default), "output directory");
-        if let Err(e) = std::fs::create_dir_all(&dir) {
-            fail(&format!(
-                "cannot create output directory {}: {e}",
-                dir.display()
-            ));
-        }
-        dir
-    }
-
-    /// Call after reading every flag: prints help or refuses leftovers.
-    pub fn finish(self) {
-        if self.rest.iter().any(|a| a == "--help" || a == "-h") {
-            let mut help = format!("usage: {} [flags]\n", self.program);
-            for (k, h) in &self.known {
-                help.push_str(&format!("  {k:<14} {h}\n"));
-            }
-            // A closed stdout ends the help as well as its last line.
-            let _ = out(help);
-            remove_staged();
-            std::process::exit(0);
-        }
-        if let Some(a) = self.rest.first() {
-            fail(&format!("unknown argument `{a}` (try --help)"));
-        }
-    }
-}
-
 /// A number as a person reads it: plain from 1e-4 to 1e6, otherwise in
 /// exponent form (`-1e300`, not three hundred digits).
 pub fn short<T>(v: T) -> String
@@ -318,8 +187,8 @@ where
 }
 
 /// Removes the staged files, prints `msg` to stderr and exits with status
-/// 2 (for flag errors before any work; a program's body returns an [`Exit`]
-/// through [`run`] instead).
+/// 2, for an error where `?` cannot reach (inside a per-pixel closure); a
+/// program's body returns an [`Exit`] through [`run`] instead.
 pub fn fail(msg: &str) -> ! {
     remove_staged();
     eprintln!("error: {msg}");
