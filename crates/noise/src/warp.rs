@@ -227,10 +227,11 @@ impl<F: Field, W: Warp> Field for Warped<F, W> {
 
 /// Musgrave's `DistNoise(p, d) = N(p + d·VecNoise(p + ½))` (Musgrave 1998, "A
 /// Variety of fBm"): "variable lacunarity" noise with stringy, wispy features;
-/// about 4× the cost of `N`. The chapter's RenderMan version offsets the point
-/// by the scalar `snoise` (the same offset on all three axes, a diagonal shift
-/// rather than a distortion); that slip is not reproduced: the vector
-/// `VecNoise` is used, as in the C version.
+/// four evaluations of `N` in 3-D (three of them for `VecNoise`), three in
+/// 2-D. The chapter's RenderMan version offsets the point by the scalar
+/// `snoise` (the same offset on all three axes, a diagonal shift rather than
+/// a distortion); that slip is not reproduced: the vector `VecNoise` is used,
+/// as in the C version.
 pub type DistNoise<B> = Warped<B, Displace<VecNoise<B>>>;
 
 /// The dissertation's C `VLNoise(p, scale) = N(scale·p + DNoise(p))` (Musgrave

@@ -210,8 +210,8 @@ where
 /// rays of each tile (all their samples, generated together by
 /// [`Camera::rays_into`]) are traced together with
 /// [`Tracer::trace_many`] over `[0, ∞)` — for a [`crate::MipmapTracer`] its
-/// lock-step lanes, about 2.8× faster than one [`Tracer::trace`] per pixel
-/// on grazing views (CPU time) — and `shade(ray, hit)` turns each into a linear colour;
+/// lock-step lanes, faster than one [`Tracer::trace`] per pixel (figures in
+/// `docs/performance.md`) — and `shade(ray, hit)` turns each into a linear colour;
 /// a pixel's samples are averaged.
 ///
 /// The image equals [`render_camera`] with a `shade` that traces each ray

@@ -68,12 +68,8 @@
 //! camera tile's primary rays) first walk the pyramid once as a packet: a
 //! conservative bound over all their rays proves a stretch of empty space
 //! they cross together above the surface, and each ray's own walk starts
-//! after it (skipping about two thirds of the lane steps of a grazing view).
-//! They return
-//! exactly the hits of one call per ray (in CPU time on the benchmark
-//! machine about 2.8× faster than one call per ray on long grazing rays,
-//! 1.6–2.2× on short steep ones, 2.4× for shadow rays; see
-//! `docs/performance.md`).
+//! after it. They return exactly the hits of one call per ray, in less
+//! time; figures in `docs/performance.md`.
 //!
 //! ## Errata corrected
 //!

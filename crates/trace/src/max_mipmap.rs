@@ -17,7 +17,7 @@
 //! store `min` and `max` as 16-bit values quantised conservatively (min
 //! rounded down, max rounded up) over the field's height range, 4 bytes per
 //! node, about `N/3` bytes in all for `N` samples: one third of the `f32`
-//! field (the budget is 0.7×). Min and max make the cull valid for
+//! field. Min and max make the cull valid for
 //! rays from any direction, which the source's max-only `A` grid is not
 //! (Musgrave 1993, §3.3.1).
 

@@ -227,9 +227,9 @@ pub(crate) fn residual_row<const K: usize, T: Real>(
 /// `Σ a·b` in `f64` over one row: element `i` goes to lane `i mod 8` for
 /// the full groups of eight, the lanes are added in order and the tail
 /// elements after them. Eight independent sums instead of one running sum:
-/// a single `f64` chain is latency-bound (one add per four cycles) and was
-/// the dominant cost of the CG's dot products; the fixed grouping keeps the
-/// result deterministic and identical at every SIMD level.
+/// a single `f64` chain is latency-bound (one add per four cycles), which
+/// would make it the dominant cost of the CG's dot products; the fixed
+/// grouping keeps the result deterministic and identical at every SIMD level.
 #[inline(always)]
 pub(crate) fn lane_dot<A: Copy + Into<f64>, B: Copy + Into<f64>>(a: &[A], b: &[B]) -> f64 {
     let n = a.len().min(b.len());

@@ -201,7 +201,8 @@ impl Simplex {
     /// and as the sign bit of `y0 − x0` for the integer masks (`+ 0` turns
     /// an equal pair's `−0` into `+0`; a difference of unequal finite values
     /// is never zero): one comparison feeding both sides is compiled as a
-    /// branch, which on points that do not repeat costs 1.7× the time.
+    /// branch, which mispredicts on points that do not repeat (figures in
+    /// `docs/performance.md`).
     #[inline(always)]
     fn value2(&self, p: DVec2) -> f64 {
         let (i, j, x0, y0) = skew2(p.x, p.y, false);

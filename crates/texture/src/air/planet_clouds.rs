@@ -19,7 +19,8 @@ pub enum CloudBasis {
     Perlin,
     /// The dissertation's `VLNoise`, "variable lacunarity noise" (Musgrave
     /// 1993, §5.2): its fBm has a "stringy, wispy character, somewhat more
-    /// cloud-like", at about three times the cost.
+    /// cloud-like"; each octave evaluates the noise twice, once with its
+    /// gradient (`DNoise`), where Perlin noise evaluates it once.
     VariableLacunarity,
 }
 

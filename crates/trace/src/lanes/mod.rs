@@ -1,11 +1,11 @@
 //! Many rays at once: the max-mipmap walk run for [`LANES`] rays in lock
 //! step, without data-dependent branches.
 //!
-//! A grazing ray spends most of its walk (about 21 of 25 steps on the
-//! benchmark's 4096² view) descending from the coarse levels and stepping
-//! past nodes above it before it first reaches a cell. Done one ray at a
-//! time, each of those steps waits on a node load and then on a branch that
-//! goes either way (descend or advance, across x or across y). Here each
+//! A grazing ray spends most of its walk descending from the coarse levels
+//! and stepping past nodes above it before it first reaches a cell (step
+//! counts in `docs/performance.md`). Done one ray at a time, each of those
+//! steps waits on a node load and then on a branch that goes either way
+//! (descend or advance, across x or across y). Here each
 //! step computes both outcomes and selects one, for [`LANES`] independent
 //! rays at once; the loop over lanes is vectorised (with gathers of the
 //! nodes) for the widest instruction set the CPU has, chosen at run time

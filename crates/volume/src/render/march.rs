@@ -11,38 +11,27 @@
 //! the environment's mean radiance; each step adds the exact integral of
 //! that source over the step and multiplies the transmittance by
 //! `exp(−σ_t·Δt)`. The march stops when the transmittance falls below a
-//! threshold.
+//! threshold. The ambient term treats the environment as isotropic and
+//! occluded along the vertical only: an approximation, measured against the
+//! reference.
 //!
-//! The ambient term treats the environment as isotropic and occluded along
-//! the vertical only: an approximation, measured against the reference.
-//!
-//! A cloud's phase function sends about half of its scattering into a
-//! diffraction peak a fraction of a degree wide ([`CloudPhase::forward_peak`](crate::phase::CloudPhase::forward_peak)).
-//! Light scattered into it keeps its direction, so for the transport inside
-//! the volume it is as good as unscattered, yet the octave sums with the full
-//! extinction count it as lost. With [`FastSettings::truncate_forward_peak`]
-//! the phase function is split as `p = f·p_peak + (1 − f)·p'` and the
-//! sun's light is counted once in each part:
-//!
-//! - the part outside the peak travels through the δ-M medium of Wiscombe
-//!   1977 (its scaled optical depth and single-scattering albedo,
-//!   `σ_t' = σ_t(1 − ω f)`, `ω' = ω(1 − f)/(1 − ω f)`, and the phase `p'`
-//!   of asymmetry `g' = (g − f)/(1 − f)`:
-//!   [`MediumParams::without_forward_peak`](super::MediumParams::without_forward_peak)):
-//!   every optical depth (eye ray, shadow tables, what is seen through the
-//!   volume) and the whole octave sum, its first order included. The first
-//!   order `σ_s'·p'·e^{−τ'}` is the light the medium scatters out of the peak
-//!   once: `e^{−τ'}` is the sun's light that arrives unscattered or carried
-//!   along by the peak, the first term of the δ-M medium's own order series,
-//!   so nothing is counted in both it and the octaves beyond;
-//! - the light that scatters only within the peak, `e^{−τ'} − e^{−τ}` of
-//!   the sun along the line from the sun through the eye, is counted once,
-//!   at its first peak scattering: the unscattered sun in the exact medium
-//!   (`σ_s·f·e^{−τ}`), then the peak's orders along the eye ray, each
-//!   spreading the light wider ([`PeakOrders`], where the series is
-//!   derived), seen through the exact medium. The eye still sees the
-//!   aureole round a low sun through thin cloud, several pixels wide in a
-//!   1920-pixel frame, not below resolution.
+//! **The forward peak.** A cloud's phase function sends about half of its
+//! scattering into a diffraction peak a fraction of a degree wide
+//! ([`CloudPhase::forward_peak`](crate::phase::CloudPhase::forward_peak)):
+//! light that keeps its direction, as good as unscattered for the transport
+//! inside the volume. With [`FastSettings::truncate_forward_peak`] the phase
+//! function is split as `p = f·p_peak + (1 − f)·p'` and the sun's light is
+//! counted once in each part. The part outside the peak travels through the
+//! δ-M medium of Wiscombe 1977 (`σ_t' = σ_t(1 − ω f)`,
+//! `ω' = ω(1 − f)/(1 − ω f)`, `g' = (g − f)/(1 − f)`:
+//! [`MediumParams::without_forward_peak`](super::MediumParams::without_forward_peak)),
+//! which carries every optical depth and the whole octave sum; its first
+//! order `σ_s'·p'·e^{−τ'}` is the light scattered once out of the peak. The
+//! light that scatters only within the peak, `e^{−τ'} − e^{−τ}` of the sun,
+//! is counted at its first peak scattering (`σ_s·f·e^{−τ}` in the exact
+//! medium) and spread along the eye ray by the peak's orders ([`PeakOrders`],
+//! where the series is derived), so the aureole round a low sun shows through
+//! thin cloud.
 //!
 //! This is Nakajima & Tanaka's truncated multiple-scattering approximation
 //! (1988, §2, "TMS": the truncated medium for the multiple scattering, the
@@ -52,19 +41,11 @@
 //! exact depths alone drop every path of two or more; the peak's orders
 //! count each once.
 //!
-//! Near the sun the phase function is the peak, and what the eye sees is
-//! the sunlight each point of the eye ray receives, so a table's
-//! interpolated optical depths darken the aureole through cloud (Jensen's
-//! inequality: the mean of `e^{−τ}` exceeds `e^{−τ̄}`); with
-//! [`FastSettings::near_sun`] the eye rays within a few degrees of the sun
-//! march their own shadow rays ([`NearSunRays`]).
-//!
-//! The octave constants `a`, `b`, `c` of [`ScatterOctaves`] are a least-squares
-//! fit to the reference on training scenes (documented there), not derived
-//! from the δ-M medium. Measured against the reference on the cloudscape
-//! (which is not in the fit) at 4096 paths per pixel, the error per 3 × 3
-//! block of rays is 0.08 of the luminance (the reference's own noise about
-//! 0.04), 0.014 of the mean.
+//! With [`FastSettings::near_sun`] the eye rays within a few degrees of the
+//! sun march their own shadow rays instead of reading the table
+//! ([`NearSunRays`] says why). The octave constants are a least-squares fit
+//! to the reference ([`ScatterOctaves`]), not derived from the δ-M medium.
+//! The fast mode's error against the reference is in `docs/performance.md`.
 
 use glam::Vec3;
 use natura_core::{Aabb, Image, NoProgress, Progress};
@@ -125,11 +106,10 @@ pub struct FastSettings {
 /// apart on a kilometre-scale sky, smooths `τ_sun` over the cloud's
 /// structure, and the mean of `e^{−τ}` over that structure exceeds `e^{−τ̄}`
 /// (Jensen's inequality), so the table darkens the aureole through cloud
-/// (measured on the `cloudscape`: 0.4–0.6 of the reference within 2° of a
-/// low sun with a 256-node table, 0.95–1.1 with these rays). Away from the
-/// sun the phase function is broad, it averages the light over many
-/// directions, and the table serves. Between `within_deg` and 1.5 times it the
-/// two blend smoothly, so no ring shows where one hands over to the other.
+/// (figures in `docs/performance.md`). Away from the sun the phase function
+/// is broad, it averages the light over many directions, and the table
+/// serves. Between `within_deg` and 1.5 times it the two blend smoothly, so
+/// no ring shows where one hands over to the other.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
