@@ -168,7 +168,12 @@ fn render(
     bg: Vec3,
     width: usize,
 ) -> natura::volume::Result<Image> {
-    let vol = SmokeVolume::from_smoke(smoke)?;
+    let vol = SmokeVolume::from_solver(
+        smoke.density(),
+        smoke.temperature().clone(),
+        smoke.h(),
+        smoke.params().ambient_temperature,
+    )?;
     let sky = bg * std::f32::consts::PI;
     let scene = Scene {
         sun: Some(Sun {

@@ -1,6 +1,6 @@
 //! Voxel grids as densities: trilinear sampling of a `Grid3<f32>` placed in
-//! world space, with a block majorant for empty-space skipping; the smoke of
-//! `natura-fluid` (density, and temperature for emission); and baking any
+//! world space, with a block majorant for empty-space skipping; a fluid
+//! solver's smoke (density, and temperature for emission); and baking any
 //! [`Density`] into a grid.
 
 use glam::Vec3;
@@ -241,21 +241,30 @@ pub struct SmokeVolume {
 }
 
 impl SmokeVolume {
-    /// The density and temperature of `smoke` (cell-centred samples, origin
-    /// at 0). Advection undershoots leave tiny negative densities in a
-    /// solver's grid; those read as empty (0), as a density cannot be
-    /// negative. NaN and infinite voxels are still refused.
+    /// The density and temperature grids of a fluid solver's smoke
+    /// (cell-centred samples `cell` metres apart, origin at 0; for
+    /// natura-fluid's `Smoke`: `smoke.density()`, `smoke.temperature()`,
+    /// `smoke.h()` and `smoke.params().ambient_temperature`). Advection
+    /// undershoots leave tiny negative densities in a solver's grid; those
+    /// read as empty (0), as a density cannot be negative. NaN and infinite
+    /// voxels are still refused.
     ///
     /// # Errors
     ///
-    /// As [`GridDensity::new`] (a NaN or infinite voxel).
-    pub fn from_smoke(smoke: &natura_fluid::smoke::Smoke) -> Result<Self> {
+    /// [`VolumeError::SizeMismatch`] if the grids differ in size; as
+    /// [`GridDensity::new`] (a NaN or infinite voxel, a bad cell size).
+    pub fn from_solver(
+        density: &Grid3<f32>,
+        temperature: Grid3<f32>,
+        cell: f32,
+        ambient: f32,
+    ) -> Result<Self> {
         Self::from_grids(
-            smoke.density().map(|&v| if v < 0.0 { 0.0 } else { v }),
-            Some(smoke.temperature().clone()),
+            density.map(|&v| if v < 0.0 { 0.0 } else { v }),
+            Some(temperature),
             Vec3::ZERO,
-            smoke.h(),
-            smoke.params().ambient_temperature,
+            cell,
+            ambient,
         )
     }
 

@@ -12,7 +12,7 @@ use natura_volume::cloud::{
     BlendForm, Cloud, CloudParams, FrameConstants, SWIRL_PERIOD, cloud, nine_sphere_cumulus, warp,
 };
 use natura_volume::gas::{DensityShaping, Fog, Steam, SteamParams};
-use natura_volume::grid::{GridDensity, SmokeVolume};
+use natura_volume::grid::GridDensity;
 use natura_volume::implicit::{Implicit, ImplicitPrimitive, wyvill};
 use natura_volume::layer::{LayerClouds, LayerParams};
 use natura_volume::{Density, VolumeError};
@@ -485,29 +485,6 @@ fn baked_grid_matches_brute_force_trilinear() {
         };
         assert!(baked.density(p) <= baked.bound_in(&r) + 1e-6);
     }
-}
-
-#[test]
-fn smoke_volume_from_the_fluid_solver() {
-    use natura_fluid::smoke::{Smoke, SmokeParams};
-    let mut s = Smoke::new(
-        natura_fluid::grid::Dims::new(12, 12, 16).unwrap(),
-        0.1,
-        SmokeParams::default(),
-    )
-    .unwrap();
-    s.density_mut()[(6, 6, 2)] = 1.0;
-    s.temperature_mut()[(6, 6, 2)] = 400.0;
-    let v = SmokeVolume::from_smoke(&s).unwrap();
-    let c = Vec3::new(6.5, 6.5, 2.5) * 0.1;
-    assert!((v.density.density(c) - 1.0).abs() < 1e-6);
-    assert!(v.temperature.density(c) > v.ambient);
-    let mut bad = Grid3::new(12, 12, 16, 0.0f32).unwrap();
-    bad[(0, 0, 0)] = -1.0;
-    assert!(matches!(
-        SmokeVolume::from_grids(bad, None, Vec3::ZERO, 0.1, 293.0),
-        Err(VolumeError::BadVoxel { .. })
-    ));
 }
 
 #[test]
