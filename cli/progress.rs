@@ -1,6 +1,6 @@
 //! Progress on standard error: a `natura_core::Progress` shown as an
-//! `indicatif` bar per stage, with the look and the stage names of the
-//! examples' bars. `indicatif` hides the bars when standard error is not a
+//! `indicatif` bar per stage (the examples include this file for theirs,
+//! so both look alike). `indicatif` hides the bars when standard error is not a
 //! terminal, so farm logs, output files and standard output are unchanged.
 
 use std::sync::Mutex;

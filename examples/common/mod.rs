@@ -16,11 +16,16 @@
 pub mod scene;
 #[cfg(all(feature = "core", feature = "terrain"))]
 pub mod tiles;
+// The `natura` binary's progress bar, so the examples and the binary show
+// the same bars with one implementation.
+#[path = "../../cli/progress.rs"]
+mod progress;
+#[allow(unused_imports)] // not every example shows progress
+pub use progress::Bar;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::str::FromStr;
-use std::sync::Mutex;
 
 /// Why a program stops early: the message for stderr (none for a quiet
 /// stop) and the exit status. Any error converts into one with status 2,
@@ -199,50 +204,4 @@ pub fn fail(msg: &str) -> ! {
 /// files first, as [`fail`]).
 pub fn check<T, E: std::fmt::Display>(r: Result<T, E>) -> T {
     r.unwrap_or_else(|e| fail(&e.to_string()))
-}
-
-/// A `natura_core::Progress` shown as an `indicatif` bar per stage.
-pub struct Bar {
-    bar: Mutex<Option<indicatif::ProgressBar>>,
-}
-
-impl Bar {
-    pub fn new() -> Self {
-        Self {
-            bar: Mutex::new(None),
-        }
-    }
-}
-
-impl natura::core::Progress for Bar {
-    fn start(&self, stage: &str, total: u64) {
-        let bar = indicatif::ProgressBar::new(total);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{msg:>12} [{bar:40}] {pos}/{len} {elapsed_precise}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-        bar.set_message(stage.to_owned());
-        if let Ok(mut b) = self.bar.lock() {
-            *b = Some(bar);
-        }
-    }
-
-    fn advance(&self, n: u64) {
-        if let Ok(b) = self.bar.lock()
-            && let Some(b) = b.as_ref()
-        {
-            b.inc(n);
-        }
-    }
-
-    fn finish(&self) {
-        if let Ok(mut b) = self.bar.lock()
-            && let Some(b) = b.take()
-        {
-            b.finish();
-        }
-    }
 }
