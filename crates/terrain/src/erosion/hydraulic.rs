@@ -299,37 +299,47 @@ impl MusgraveHydraulic {
         "One step: rain (on schedule), transport, evaporation."
     );
 
-    #[allow(clippy::needless_range_loop)]
+    /// One step: rain on schedule, then what leaves each cell and where
+    /// ([`Self::send`]), then what each cell gathers ([`Self::gather`]).
     fn step_unchecked(&mut self, hf: &mut HeightField) {
-        let (nx, ny) = (self.nx, self.ny);
-        let p = &self.p.clone();
+        let p = self.p.clone();
         if p.rain_period > 0 && self.step.is_multiple_of(u64::from(p.rain_period)) {
-            let a = hf.heights().as_slice();
-            let mut added = 0.0f64;
-            for (w, &h) in self.water.as_mut_slice().iter_mut().zip(a) {
-                let r = p.rain.depth(h);
-                *w += r;
-                added += f64::from(r);
-            }
-            self.ledger.rain += added;
+            self.rain(&p, hf);
         }
-        let offsets = p.neighbourhood.offsets();
-        // Neighbour index deltas for interior cells (no edge handling needed).
-        let deltas: Vec<isize> = offsets
-            .iter()
-            .map(|&(dx, dy, _)| dy as isize * nx as isize + dx as isize)
-            .collect();
-        let deltas = &deltas;
-        let nbr = move |x: usize, y: usize, i: usize, k: usize| -> Option<usize> {
-            if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
-                Some((i as isize + deltas[k]) as usize)
-            } else {
-                let (dx, dy, _) = offsets[k];
-                p.edges.resolve(x, y, dx, dy, nx, ny)
-            }
+        self.send(&p, hf);
+        self.gather(&p);
+        hf.heights_mut().as_mut_slice().copy_from_slice(self.a1.as_slice());
+        self.step += 1;
+    }
+
+    /// Adds one rainfall to every cell, booked in the ledger.
+    fn rain(&mut self, p: &MusgraveParams, hf: &HeightField) {
+        let a = hf.heights().as_slice();
+        let mut added = 0.0f64;
+        for (w, &h) in self.water.as_mut_slice().iter_mut().zip(a) {
+            let r = p.rain.depth(h);
+            *w += r;
+            added += f64::from(r);
+        }
+        self.ledger.rain += added;
+    }
+
+    /// Pass 1, per cell from the state at time `t` only: the new bed, the
+    /// water and sediment that stay, those sent, and the fraction sent to
+    /// each neighbour (in proportion to its surface drop); what leaves
+    /// through open edges is booked in the ledger.
+    #[allow(clippy::needless_range_loop)]
+    fn send(&mut self, p: &MusgraveParams, hf: &HeightField) {
+        let (nx, ny) = (self.nx, self.ny);
+        let hood = Hood::new(p, nx, ny);
+        let hood = &hood;
+        let k = Rates {
+            capacity: p.k_c as f32,
+            deposition: p.k_d as f32,
+            softness: p.k_s as f32,
+            transfer: p.transfer as f32,
+            guard: p.erosion_guard,
         };
-        let (kc, kd, ks, tr) = (p.k_c as f32, p.k_d as f32, p.k_s as f32, p.transfer as f32);
-        // ---- pass 1: per cell, what leaves and where (reads state t only).
         let a = hf.heights().as_slice();
         let w = self.water.as_slice();
         let s = self.sediment.as_slice();
@@ -352,6 +362,7 @@ impl MusgraveHydraulic {
             f6.as_mut_slice(),
             f7.as_mut_slice(),
         ];
+        let open = p.edges == Edges::Open;
         let outflow: Vec<(f64, f64)> = par::map_bands(nx, ny, outs, |y0, y1, o| {
             let mut out_w = 0.0f64;
             let mut out_s = 0.0f64;
@@ -365,8 +376,8 @@ impl MusgraveHydraulic {
                     let mut total = 0.0f32;
                     let mut biggest = 0.0f32;
                     let mut lowest_bed = f32::INFINITY;
-                    for k in 0..offsets.len() {
-                        let d = match nbr(x, y, i, k) {
+                    for k in 0..hood.len() {
+                        let d = match hood.nbr(x, y, i, k) {
                             Some(j) => {
                                 let d = level - (a[j] + w[j]);
                                 if d > 0.0 {
@@ -375,7 +386,7 @@ impl MusgraveHydraulic {
                                 d
                             }
                             // Open edge: a water-free bed at v's level continues outward.
-                            None if p.edges == Edges::Open => {
+                            None if open => {
                                 lowest_bed = lowest_bed.min(av);
                                 wv
                             }
@@ -387,52 +398,20 @@ impl MusgraveHydraulic {
                             biggest = biggest.max(d);
                         }
                     }
-                    let (mut a_new, w_keep, s_keep, dw, sent);
-                    if wv <= 0.0 || total <= 0.0 {
-                        a_new = av + kd * sv;
-                        s_keep = sv - kd * sv;
-                        w_keep = wv;
-                        dw = 0.0;
-                        sent = 0.0;
-                    } else {
-                        dw = wv.min(tr * biggest);
-                        w_keep = wv - dw;
-                        let cs = kc * dw;
-                        if sv >= cs {
-                            sent = cs;
-                            let rest = sv - cs;
-                            a_new = av + kd * rest;
-                            s_keep = rest - kd * rest;
-                        } else {
-                            let soft = erod.map_or(ks, |e| ks * e[i]);
-                            let mut e = soft * (cs - sv);
-                            if p.erosion_guard {
-                                e = e.min((av - lowest_bed).max(0.0));
-                            }
-                            sent = sv + e;
-                            a_new = av - e;
-                            s_keep = 0.0;
-                        }
-                    }
-                    if !a_new.is_finite() {
-                        a_new = av;
-                    }
-                    o[0][r] = a_new;
-                    o[1][r] = w_keep;
-                    o[2][r] = s_keep;
-                    o[3][r] = dw;
-                    o[4][r] = sent;
+                    let soft = erod.map_or(k.softness, |e| k.softness * e[i]);
+                    let c = k.transport(av, wv, sv, total, biggest, lowest_bed, soft);
+                    o[0][r] = c.bed;
+                    o[1][r] = c.water_kept;
+                    o[2][r] = c.sediment_kept;
+                    o[3][r] = c.water_sent;
+                    o[4][r] = c.sediment_sent;
                     let inv = if total > 0.0 { 1.0 / total } else { 0.0 };
                     for k in 0..8 {
                         let f = drops[k] * inv;
                         o[5 + k][r] = f;
-                        if f > 0.0
-                            && k < offsets.len()
-                            && p.edges == Edges::Open
-                            && nbr(x, y, i, k).is_none()
-                        {
-                            out_w += f64::from(dw * f);
-                            out_s += f64::from(sent * f);
+                        if f > 0.0 && k < hood.len() && open && hood.nbr(x, y, i, k).is_none() {
+                            out_w += f64::from(c.water_sent * f);
+                            out_s += f64::from(c.sediment_sent * f);
                         }
                     }
                 }
@@ -443,25 +422,23 @@ impl MusgraveHydraulic {
             self.ledger.outflow_water += ow;
             self.ledger.outflow_sediment += os;
         }
-        // ---- pass 2: gather what neighbours send.
-        let (a1, wk, sk, ws, ss) = (
-            self.a1.as_slice(),
+    }
+
+    /// Pass 2: each cell keeps what stayed and gathers what its neighbours
+    /// sent it (Jacobi, gather form: independent of order and threads);
+    /// evaporation is booked in the ledger.
+    fn gather(&mut self, p: &MusgraveParams) {
+        let (nx, ny) = (self.nx, self.ny);
+        let hood = Hood::new(p, nx, ny);
+        let hood = &hood;
+        let (wk, sk, ws, ss) = (
             self.w_keep.as_slice(),
             self.s_keep.as_slice(),
             self.w_sent.as_slice(),
             self.s_sent.as_slice(),
         );
         let frac: Vec<&[f32]> = self.frac.iter().map(Vec::as_slice).collect();
-        // Direction index of the opposite offset.
-        let opposite: Vec<usize> = offsets
-            .iter()
-            .map(|&(dx, dy, _)| {
-                offsets
-                    .iter()
-                    .position(|&(ex, ey, _)| ex == -dx && ey == -dy)
-                    .unwrap_or(0)
-            })
-            .collect();
+        let frac = &frac;
         let evap = p.evaporation as f32;
         let evaporated: Vec<f64> = par::map_bands(
             nx,
@@ -475,9 +452,9 @@ impl MusgraveHydraulic {
                         let r = (y - y0) * nx + x;
                         let mut wn = wk[i];
                         let mut sn = sk[i];
-                        for k in 0..offsets.len() {
-                            if let Some(j) = nbr(x, y, i, k) {
-                                let f = frac[opposite[k]][j];
+                        for k in 0..hood.len() {
+                            if let Some(j) = hood.nbr(x, y, i, k) {
+                                let f = frac[hood.opposite[k]][j];
                                 if f > 0.0 {
                                     wn += ws[j] * f;
                                     sn += ss[j] * f;
@@ -494,8 +471,141 @@ impl MusgraveHydraulic {
             },
         );
         self.ledger.evaporated += evaporated.iter().sum::<f64>();
-        hf.heights_mut().as_mut_slice().copy_from_slice(a1);
-        self.step += 1;
+    }
+}
+
+/// The rates of the cell model, in the `f32` of the grids.
+struct Rates {
+    capacity: f32,
+    deposition: f32,
+    softness: f32,
+    transfer: f32,
+    guard: bool,
+}
+
+/// What one cell keeps and sends in one step.
+struct CellOutcome {
+    bed: f32,
+    water_kept: f32,
+    sediment_kept: f32,
+    water_sent: f32,
+    sediment_sent: f32,
+}
+
+impl Rates {
+    /// The cell model (Musgrave et al. 1989, §4.1, with the corrections in
+    /// the module's docs): a cell of bed `a`, water `w` and sediment `s`
+    /// whose lower neighbours' surface drops sum to `total` (largest
+    /// `biggest`, lowest receiving bed `lowest_bed`) sends
+    /// `ΔW = min(w, transfer·biggest)` carrying up to `C_s = K_c·ΔW`; over
+    /// capacity the excess settles at the cell (`K_d`), under it the bed is
+    /// eroded by `soft·(C_s − s)` (never below `lowest_bed` with the guard).
+    /// Standing water only settles its sediment. Conserves `a + s` exactly.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn transport(
+        &self,
+        a: f32,
+        w: f32,
+        s: f32,
+        total: f32,
+        biggest: f32,
+        lowest_bed: f32,
+        soft: f32,
+    ) -> CellOutcome {
+        let kd = self.deposition;
+        let (mut bed, water_kept, sediment_kept, water_sent, sediment_sent);
+        if w <= 0.0 || total <= 0.0 {
+            bed = a + kd * s;
+            sediment_kept = s - kd * s;
+            water_kept = w;
+            water_sent = 0.0;
+            sediment_sent = 0.0;
+        } else {
+            water_sent = w.min(self.transfer * biggest);
+            water_kept = w - water_sent;
+            let cs = self.capacity * water_sent;
+            if s >= cs {
+                sediment_sent = cs;
+                let rest = s - cs;
+                bed = a + kd * rest;
+                sediment_kept = rest - kd * rest;
+            } else {
+                let mut e = soft * (cs - s);
+                if self.guard {
+                    e = e.min((a - lowest_bed).max(0.0));
+                }
+                sediment_sent = s + e;
+                bed = a - e;
+                sediment_kept = 0.0;
+            }
+        }
+        if !bed.is_finite() {
+            bed = a;
+        }
+        CellOutcome {
+            bed,
+            water_kept,
+            sediment_kept,
+            water_sent,
+            sediment_sent,
+        }
+    }
+}
+
+/// A cell's neighbours: index deltas for interior cells, the edge rule
+/// elsewhere, and each direction's opposite.
+struct Hood<'p> {
+    p: &'p MusgraveParams,
+    offsets: &'static [(i32, i32, f32)],
+    deltas: Vec<isize>,
+    opposite: Vec<usize>,
+    nx: usize,
+    ny: usize,
+}
+
+impl<'p> Hood<'p> {
+    fn new(p: &'p MusgraveParams, nx: usize, ny: usize) -> Self {
+        let offsets = p.neighbourhood.offsets();
+        let deltas = offsets
+            .iter()
+            .map(|&(dx, dy, _)| dy as isize * nx as isize + dx as isize)
+            .collect();
+        let opposite = offsets
+            .iter()
+            .map(|&(dx, dy, _)| {
+                offsets
+                    .iter()
+                    .position(|&(ex, ey, _)| ex == -dx && ey == -dy)
+                    .unwrap_or(0)
+            })
+            .collect();
+        Self {
+            p,
+            offsets,
+            deltas,
+            opposite,
+            nx,
+            ny,
+        }
+    }
+
+    /// Directions.
+    #[inline]
+    fn len(&self) -> usize {
+        self.offsets.len()
+    }
+
+    /// The neighbour of cell `i = (x, y)` in direction `k`, if any.
+    #[inline]
+    fn nbr(&self, x: usize, y: usize, i: usize, k: usize) -> Option<usize> {
+        let (nx, ny) = (self.nx, self.ny);
+        if x > 0 && y > 0 && x < nx - 1 && y < ny - 1 {
+            Some((i as isize + self.deltas[k]) as usize)
+        } else {
+            let (dx, dy, _) = self.offsets[k];
+            self.p.edges.resolve(x, y, dx, dy, nx, ny)
+        }
     }
 }
 
