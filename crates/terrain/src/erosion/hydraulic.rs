@@ -308,7 +308,9 @@ impl MusgraveHydraulic {
         }
         self.send(&p, hf);
         self.gather(&p);
-        hf.heights_mut().as_mut_slice().copy_from_slice(self.a1.as_slice());
+        hf.heights_mut()
+            .as_mut_slice()
+            .copy_from_slice(self.a1.as_slice());
         self.step += 1;
     }
 
