@@ -76,7 +76,9 @@ impl Walk<'_, '_> {
         }
         let a = s.params(i);
         if let Some(v) = a.iter().find(|v| !v.is_finite()) {
-            return Err(self.turtle.bad(s, i, format!("parameter {v} is not finite")));
+            return Err(self
+                .turtle
+                .bad(s, i, format!("parameter {v} is not finite")));
         }
         let deg = std::f64::consts::PI / 180.0;
         let angle = a.first().copied().unwrap_or(self.params().angle_deg) * deg;
