@@ -99,9 +99,9 @@ fn keyword(st: &Stmt) -> Option<(&'static str, usize)> {
 
 pub(crate) fn parse(src: &str) -> Result<LSystem> {
     let stmts = text::statements(src)?;
+    // Pass 1: macros and arrays, which may be used anywhere.
     let mut globals = Globals::default();
     let mut arrays: Vec<Vec<f64>> = Vec::new();
-    // Pass 1: macros and arrays, which may be used anywhere.
     for st in &stmts {
         if let Some((k, off)) = keyword(st) {
             match k {
@@ -112,25 +112,105 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
             }
         }
     }
+    // Pass 2: directives and productions, in the order written.
+    let consts = Consts {
+        globals: &globals,
+        arrays: &arrays,
+    };
     let mut symbols = SymbolTable::new();
+    let mut head = Directives::default();
     let mut section = Section::Productions;
     let mut rules: [Vec<Production>; 3] = [Vec::new(), Vec::new(), Vec::new()];
-    let mut axiom = None;
-    let mut lsys_len = 0u32;
-    let mut max_depth = 16u32;
-    let mut filter = Filter::None;
-    let mut angle = None;
-    let mut step = None;
-    let mut seed = None;
-    let mut tropism = None;
-    let user = UserFns::default();
     for st in &stmts {
-        let Some((k, off)) = keyword(st) else {
-            let r = production(st, &globals, &mut symbols, section)?;
-            rules[section as usize].push(r);
-            continue;
-        };
-        let rest = &st.chars[off..];
+        match keyword(st) {
+            None => {
+                let r = production(st, &globals, &mut symbols, section)?;
+                rules[section as usize].push(r);
+            }
+            Some(("productions" | "production", _)) => section = Section::Productions,
+            Some(("decomposition", _)) => section = Section::Decomposition,
+            Some(("homomorphism" | "interpretation", _)) => section = Section::Homomorphism,
+            Some((k, off)) => head.directive(k, st, &st.chars[off..], &consts, &mut symbols)?,
+        }
+    }
+    let user = UserFns::default();
+    let Some(raw_axiom) = head.axiom.take() else {
+        return Err(PlantError::syntax(
+            Span::new(1, 1),
+            "no axiom (`axiom: …` or `ω: …`)",
+        ));
+    };
+    let axiom = constant_string(&raw_axiom, &globals, &arrays, &mut symbols, &user)?;
+    let nsyms = symbols.len();
+    let visible = head.filter.visibility(nsyms);
+    let [p, d, h] = rules;
+    let any_context = p.iter().any(Production::has_context);
+    Ok(LSystem {
+        symbols,
+        axiom,
+        productions: RuleSet::build(p, nsyms),
+        decompositions: RuleSet::build(d, nsyms),
+        homomorphisms: RuleSet::build(h, nsyms),
+        derivation_length: head.derivation_length,
+        max_depth: head.max_depth,
+        visible,
+        arrays,
+        user,
+        angle: head.angle,
+        step: head.step,
+        seed: head.seed,
+        tropism: head.tropism,
+        any_context,
+    })
+}
+
+/// The constants directives may use: `#define`d macros and arrays.
+struct Consts<'c> {
+    globals: &'c Globals,
+    arrays: &'c [Vec<f64>],
+}
+
+/// The directives of an L-system file (cpfg's header keywords).
+struct Directives {
+    derivation_length: u32,
+    max_depth: u32,
+    filter: Filter,
+    angle: Option<f64>,
+    step: Option<f64>,
+    seed: Option<u64>,
+    tropism: Option<([f64; 3], f64)>,
+    axiom: Option<Vec<RawModule>>,
+}
+
+impl Default for Directives {
+    /// No derivation, decomposition and interpretation 16 levels deep (cpfg's
+    /// default), nothing else set.
+    fn default() -> Self {
+        Self {
+            derivation_length: 0,
+            max_depth: 16,
+            filter: Filter::None,
+            angle: None,
+            step: None,
+            seed: None,
+            tropism: None,
+            axiom: None,
+        }
+    }
+}
+
+impl Directives {
+    /// Reads directive `k` of statement `st`, whose text after the keyword
+    /// is `rest`.
+    fn directive(
+        &mut self,
+        k: &str,
+        st: &Stmt,
+        rest: &[Ch],
+        c: &Consts<'_>,
+        symbols: &mut SymbolTable,
+    ) -> Result<()> {
+        let (g, arrays) = (c.globals, c.arrays);
         match k {
             "#define" | "define" | "array" | "lsystem" | "endlsystem" | "endgroup" | "group" => {}
             "#include" => {
@@ -140,22 +220,24 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
                 ));
             }
             "derivation length" => {
-                lsys_len = const_count(rest, &globals, &arrays, "derivation length", st.span())?
+                self.derivation_length =
+                    const_count(rest, g, arrays, "derivation length", st.span())?;
             }
             "maximum depth" | "max depth" => {
-                max_depth = const_count(rest, &globals, &arrays, "maximum depth", st.span())?;
-                if max_depth > MAX_DEPTH {
+                let depth = const_count(rest, g, arrays, "maximum depth", st.span())?;
+                if depth > MAX_DEPTH {
                     return Err(PlantError::syntax(
                         st.span(),
                         format!(
-                            "`maximum depth: {max_depth}` is more than the {MAX_DEPTH} levels decomposition and interpretation rules may nest"
+                            "`maximum depth: {depth}` is more than the {MAX_DEPTH} levels decomposition and interpretation rules may nest"
                         ),
                     ));
                 }
+                self.max_depth = depth;
             }
-            "angle" => angle = Some(const_value(rest, &globals, &arrays, st.span())?),
+            "angle" => self.angle = Some(const_value(rest, g, arrays, st.span())?),
             "step" => {
-                let v = const_value(rest, &globals, &arrays, st.span())?;
+                let v = const_value(rest, g, arrays, st.span())?;
                 if !(0.0..=MAX_EXTENT).contains(&v) {
                     return Err(PlantError::syntax(
                         st.span(),
@@ -166,31 +248,26 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
                         ),
                     ));
                 }
-                step = Some(v);
+                self.step = Some(v);
             }
             "seed" => {
-                seed = Some(u64::from(const_count(
-                    rest,
-                    &globals,
-                    &arrays,
-                    "seed",
-                    st.span(),
-                )?))
+                let seed = const_count(rest, g, arrays, "seed", st.span())?;
+                self.seed = Some(u64::from(seed));
             }
             "tropism" => {
-                if tropism.is_some() {
+                if self.tropism.is_some() {
                     return Err(PlantError::syntax(
                         st.span(),
                         "a second `tropism:` directive",
                     ));
                 }
-                tropism = Some(tropism_values(rest, &globals, &arrays, st.end())?);
+                self.tropism = Some(tropism_values(rest, g, arrays, st.end())?);
             }
             "axiom" | "ω" => {
                 let mut cur = Cursor::new(rest).end_at(st.end());
                 let raw = module_list(&mut cur, ModCtx::String)?;
                 check_brackets(&raw, "the axiom")?;
-                axiom = Some(raw);
+                self.axiom = Some(raw);
             }
             "#ignore" | "ignore" | "#consider" | "consider" => {
                 let mut cur = Cursor::new(rest).end_at(st.end());
@@ -200,70 +277,54 @@ pub(crate) fn parse(src: &str) -> Result<LSystem> {
                     .filter(|m| m.name != "[" && m.name != "]")
                     .map(|m| symbols.intern(&m.name))
                     .collect();
-                let consider = k.contains("consider");
-                filter = match (filter, consider) {
-                    (Filter::None, false) => Filter::Ignore(ids),
-                    (Filter::None, true) => Filter::Consider(ids),
-                    (Filter::Ignore(mut v), false) => {
-                        v.extend(ids);
-                        Filter::Ignore(v)
-                    }
-                    (Filter::Consider(mut v), true) => {
-                        v.extend(ids);
-                        Filter::Consider(v)
-                    }
-                    _ => {
-                        return Err(PlantError::syntax(
-                            st.span(),
-                            "both an ignore list and a consider list",
-                        ));
-                    }
-                };
+                let filter = std::mem::replace(&mut self.filter, Filter::None);
+                self.filter = filter.extend(ids, k.contains("consider"), st.span())?;
             }
-            "productions" | "production" => section = Section::Productions,
-            "decomposition" => section = Section::Decomposition,
-            "homomorphism" | "interpretation" => section = Section::Homomorphism,
             _ => unreachable!("every keyword is handled"),
         }
+        Ok(())
     }
-    let Some(raw_axiom) = axiom else {
-        return Err(PlantError::syntax(
-            Span::new(1, 1),
-            "no axiom (`axiom: …` or `ω: …`)",
-        ));
-    };
-    let axiom = constant_string(&raw_axiom, &globals, &arrays, &mut symbols, &user)?;
-    let nsyms = symbols.len();
-    let mut visible = vec![true; nsyms];
-    match &filter {
-        Filter::None => {}
-        Filter::Ignore(ids) => ids.iter().for_each(|&s| visible[s as usize] = false),
-        Filter::Consider(ids) => {
-            visible.iter_mut().for_each(|v| *v = false);
-            ids.iter().for_each(|&s| visible[s as usize] = true);
+}
+
+impl Filter {
+    /// This filter with `ids` added to its ignore list (or, with
+    /// `consider`, to its consider list); a file may have one kind only.
+    fn extend(self, ids: Vec<u32>, consider: bool, span: Span) -> Result<Self> {
+        Ok(match (self, consider) {
+            (Filter::None, false) => Filter::Ignore(ids),
+            (Filter::None, true) => Filter::Consider(ids),
+            (Filter::Ignore(mut v), false) => {
+                v.extend(ids);
+                Filter::Ignore(v)
+            }
+            (Filter::Consider(mut v), true) => {
+                v.extend(ids);
+                Filter::Consider(v)
+            }
+            _ => {
+                return Err(PlantError::syntax(
+                    span,
+                    "both an ignore list and a consider list",
+                ));
+            }
+        })
+    }
+
+    /// Which of `nsyms` symbols context matching sees; brackets always.
+    fn visibility(&self, nsyms: usize) -> Vec<bool> {
+        let mut visible = vec![true; nsyms];
+        match self {
+            Filter::None => {}
+            Filter::Ignore(ids) => ids.iter().for_each(|&s| visible[s as usize] = false),
+            Filter::Consider(ids) => {
+                visible.iter_mut().for_each(|v| *v = false);
+                ids.iter().for_each(|&s| visible[s as usize] = true);
+            }
         }
+        visible[LBRACKET as usize] = true;
+        visible[RBRACKET as usize] = true;
+        visible
     }
-    visible[LBRACKET as usize] = true;
-    visible[RBRACKET as usize] = true;
-    let [p, d, h] = rules;
-    let any_context = p.iter().any(Production::has_context);
-    Ok(LSystem {
-        symbols,
-        axiom,
-        productions: RuleSet::build(p, nsyms),
-        decompositions: RuleSet::build(d, nsyms),
-        homomorphisms: RuleSet::build(h, nsyms),
-        derivation_length: lsys_len,
-        max_depth,
-        visible,
-        arrays,
-        user,
-        angle,
-        step,
-        seed,
-        tropism,
-        any_context,
-    })
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
