@@ -92,6 +92,7 @@ pub use fractal::fbm::{Fbm, Turbulence};
 pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
+pub use fractal::lod::visible_octaves;
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
 pub use fractal::vector_multifractal::{VectorMultifractal, VectorMultifractalParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};
