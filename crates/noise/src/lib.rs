@@ -25,7 +25,8 @@
 //!   a field), parameterised by [`Spectral`] (H, lacunarity, real-valued
 //!   octaves, frequency, amplitude convention) with precomputed octave weights;
 //!   band-limited sums over a real-valued number of visible octaves
-//!   ([`Fbm::eval3_band`], for level of detail by pixel footprint), and
+//!   ([`Fbm::eval3_band`], for level of detail by pixel footprint, the count
+//!   given by the one footprint rule [`visible_octaves`]), and
 //!   Musgrave's vector multifractal [`VectorMultifractal`] (`MVfBm`).
 //! * **Batches at arbitrary points**: [`Perlin::fill_points3`] and
 //!   [`Fbm::fill_points3_band`] evaluate struct-of-arrays point lists (a
@@ -92,6 +93,7 @@ pub use fractal::fbm::{Fbm, Turbulence};
 pub use fractal::filtered::{FilteredFbm, filter_fade};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
+pub use fractal::lod::visible_octaves;
 pub use fractal::ridged::{RidgedMultifractal, RidgedParams};
 pub use fractal::vector_multifractal::{VectorMultifractal, VectorMultifractalParams};
 pub use fractal::{DEFAULT_LACUNARITY, GainConvention, MAX_BOUND, MAX_OCTAVES, Octaves, Spectral};

@@ -14,25 +14,32 @@
 //! finer than the footprint fade out smoothly and a planet seen from far
 //! away does not shimmer.
 //!
-//! Octave `k` of lattice frequency `f_k` is kept whole while
-//! `width·f_k ≤ ½` (half a lattice cell per sample: gradient noise has
-//! almost all its power below one cycle per cell, so such an octave is
-//! sampled at least twice per period of its highest significant frequency),
-//! and fades out linearly in `log f` until `width·f_k = ½·λ`. Single noise
-//! evaluations (a distortion vector, a crater ray) fade by the same rule
-//! with `λ = 2` ([`Footprint::fade`]); the shaders of Musgrave 1998 fade them
-//! with `filteredsnoise`, `1 − smoothstep(0.2, 0.6, width·f)` (natura-noise's
-//! `filter_fade`), which drops a distortion while the footprint still
-//! resolves it and so makes a wide footprint's value depart from the
-//! filtered texture; the octave rule keeps every noise consistent.
+//! The rule itself is natura-noise's [`visible_octaves`]: octave `k` of
+//! lattice frequency `f_k` is kept whole while `width·f_k ≤ ½/λ`, fades out
+//! linearly in `log f` over the octave below the Nyquist limit, and is gone
+//! from `width·f_k = ½` on (samples `width` apart represent frequencies up to
+//! `1/(2·width)`; see that function for why). The rule this module used to
+//! state, `1 + log_λ(½ / (width·f₀))`, faded each octave over the octave
+//! above the limit instead and so let every footprint alias a partial
+//! octave; it is corrected here by one octave. Single noise evaluations (a
+//! distortion vector, a crater ray) fade by the same rule with `λ = 2`
+//! ([`Footprint::fade`]); the shaders of Musgrave 1998 fade them with
+//! `filteredsnoise`, `1 − smoothstep(0.2, 0.6, width·f)` (natura-noise's
+//! `filter_fade`), whose ramp straddles the limit, so the octave rule keeps
+//! every noise consistent instead.
 
 use glam::DVec3;
-use natura_noise::{Fbm, Field, Spectral, Turbulence, VectorFbm, VectorField};
+use natura_noise::{Fbm, Field, Spectral, Turbulence, VectorFbm, VectorField, visible_octaves};
 
 use crate::error::{Result, invalid};
 
-/// `width × lattice frequency` up to which an octave is kept whole.
-pub const FULL_DETAIL: f64 = 0.5;
+/// `width × lattice frequency` at which an octave is gone: the Nyquist limit
+/// of natura-noise's rule ([`natura_noise::fractal::lod::NYQUIST`]). An
+/// octave is kept whole up to `FULL_DETAIL / λ`, a single noise evaluation
+/// ([`Footprint::fade`]) up to `FULL_DETAIL / 2`.
+#[deprecated(note = "the octave rule lives in natura_noise::visible_octaves; \
+                     an octave is gone, not whole, at width·f = FULL_DETAIL")]
+pub const FULL_DETAIL: f64 = natura_noise::fractal::lod::NYQUIST;
 
 /// The width of the area one sample covers, in the texture's own space
 /// (texture units, not pixels). Zero is a point sample: every octave is summed.
@@ -90,14 +97,11 @@ impl Footprint {
 
     /// The real-valued number of octaves of a fractal with base frequency
     /// `frequency` and lacunarity `lacunarity` that this footprint shows:
-    /// `1 + log_λ(½ / (width·f₀))`, at least 0, unbounded for a point sample.
+    /// natura-noise's [`visible_octaves`], `log_λ(½ / (width·f₀))`, at least
+    /// 0, unbounded for a point sample.
     #[must_use]
     pub fn visible_octaves(self, frequency: f64, lacunarity: f64) -> f64 {
-        if self.width <= 0.0 {
-            return f64::INFINITY;
-        }
-        let v = 1.0 + (FULL_DETAIL / (self.width * frequency)).ln() / lacunarity.ln();
-        if v > 0.0 { v } else { 0.0 }
+        visible_octaves(self.width, frequency, lacunarity)
     }
 
     /// [`visible_octaves`](Self::visible_octaves) for a fractal's spectral parameters.
@@ -107,8 +111,9 @@ impl Footprint {
     }
 
     /// The weight of one noise evaluation at lattice frequency `frequency`:
-    /// the octave rule with `λ = 2` — 1 while the footprint covers at most
-    /// half a cell, falling linearly in `log f` to 0 at a whole cell.
+    /// the octave rule with `λ = 2` — 1 while the footprint covers at most a
+    /// quarter of a cell, falling linearly in `log f` to 0 at half a cell
+    /// (the Nyquist limit).
     #[must_use]
     pub fn fade(self, frequency: f64) -> f64 {
         self.visible_octaves(frequency, 2.0).min(1.0)
@@ -159,12 +164,16 @@ mod tests {
 
     #[test]
     fn visible_octaves_step_by_the_lacunarity() {
+        // No octave at the Nyquist limit of the base frequency, one a
+        // factor λ below it.
         let fp = Footprint::new(0.5).unwrap();
-        assert!((fp.visible_octaves(1.0, 2.0) - 1.0).abs() < 1e-12);
+        assert_eq!(fp.visible_octaves(1.0, 2.0), 0.0);
+        assert_eq!(fp.fade(1.0), 0.0);
+        assert_eq!(Footprint::new(0.25).unwrap().fade(1.0), 1.0);
         // Each halving of the footprint shows one more octave at λ = 2.
         for k in 1..20 {
             let fp = Footprint::new(0.5 / f64::from(1u32 << k)).unwrap();
-            assert!((fp.visible_octaves(1.0, 2.0) - (1.0 + f64::from(k))).abs() < 1e-9);
+            assert!((fp.visible_octaves(1.0, 2.0) - f64::from(k)).abs() < 1e-9);
         }
         assert_eq!(Footprint::POINT.visible_octaves(1.0, 2.0), f64::INFINITY);
         assert_eq!(Footprint::new(1e9).unwrap().visible_octaves(1.0, 2.0), 0.0);

@@ -12,8 +12,10 @@
 //! the fractional-octave blend that keeps the octave count continuous
 //! (Musgrave 1993, §2.3.2.1): octave `k` (wavelength `λ₀/rᵏ`, amplitude
 //! `a·r^(−kH)`) has weight `clamp(n(w) − k, 0, 1)` with
-//! `n(w) = log_r(λ₀ / 2w)`, so it fades in between footprints `λₖ/2r` and
-//! `λₖ/2` (the Nyquist limit), and no octave is left once `w ≥ λ₀/2`.
+//! `n(w) = log_r(λ₀ / 2w)`, natura-noise's level-of-detail rule
+//! (`natura_noise::visible_octaves`, which states why), so it fades in
+//! between footprints `λₖ/2r` and `λₖ/2` (the Nyquist limit), and no octave
+//! is left once `w ≥ λ₀/2`.
 //!
 //! The tracer's bounds come from here too (Hart 1996, for the Lipschitz
 //! step): `|D| ≤ Σ aₖ` over the octaves present, `|∇D| ≤ L_noise·Σ wₖ aₖ/λₖ`,
@@ -23,7 +25,7 @@
 
 use glam::{DVec2, Vec3};
 use natura_core::{Boundary, Grid2, HeightField};
-use natura_noise::{Field, Perlin};
+use natura_noise::{Field, Perlin, visible_octaves};
 
 use crate::error::{Result, TraceError};
 use crate::surface::surface_height;
@@ -86,6 +88,8 @@ pub struct Detail {
     amp: Vec<f64>,
     freq: Vec<f64>,
     lambda0: f64,
+    /// `1/λ₀`, the first octave's frequency.
+    freq0: f64,
     ln_lac: f64,
     lac: f64,
     lip_noise: f64,
@@ -157,6 +161,7 @@ impl Detail {
             amp,
             freq,
             lambda0,
+            freq0: 1.0 / lambda0,
             ln_lac: lac.ln(),
             lac,
         })
@@ -181,14 +186,16 @@ impl Detail {
         0.5 * self.lambda0 / self.lac.powi(self.amp.len() as i32)
     }
 
-    /// The fractional octave count `n(w)`, clamped to `[0, octaves]`.
+    /// The fractional octave count `n(w)`, clamped to `[0, octaves]`:
+    /// natura-noise's level-of-detail rule [`visible_octaves`] for the base
+    /// frequency `1/λ₀`.
     #[inline]
     pub(crate) fn octaves_at(&self, w: f64) -> f64 {
         let n = self.amp.len() as f64;
         if w <= 0.0 {
             return n;
         }
-        ((self.lambda0 / (2.0 * w)).ln() / self.ln_lac).clamp(0.0, n)
+        visible_octaves(w, self.freq0, self.lac).min(n)
     }
 
     /// Octave `k`'s sample point: a fixed irrational shift per octave keeps

@@ -37,6 +37,7 @@ pub mod fbm;
 pub mod filtered;
 pub mod hetero;
 pub mod hybrid;
+pub mod lod;
 pub mod ridged;
 pub(crate) mod rows;
 pub mod vector_multifractal;
