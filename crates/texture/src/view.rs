@@ -2,7 +2,7 @@
 //! stays exact at planetary distances, and ray–sphere and ray–plane tests.
 
 use glam::{DVec3, Vec3};
-use natura_trace::{Camera, PinholeCamera};
+use natura_trace::PinholeCamera;
 
 use crate::error::{Result, direction, invalid};
 
