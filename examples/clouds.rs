@@ -55,13 +55,14 @@ fn render(d: &dyn Density, look: &Look, extinction: f32, view: Vec3) -> Image {
         ..FastSettings::default()
     }
     .multiple_scattering();
-    let camera = LookAtCamera {
-        position: c + view * r,
-        target: c,
-        vfov_deg: 40.0,
-        width: look.width,
-        height: look.height,
-    };
+    let camera = common::check(LookAtCamera::look_at(
+        c + view * r,
+        c,
+        Vec3::Z,
+        40f32.to_radians(),
+        look.width as u32,
+        look.height as u32,
+    ));
     let fast = common::check(FastRenderer::new(&scene, settings));
     common::check(fast.render(&camera)).tone_mapped(0.0, natura::core::ToneMap::AcesFilmic)
 }

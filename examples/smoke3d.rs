@@ -194,13 +194,14 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), light: Vec3, bg: Vec3, width: usiz
     }
     .multiple_scattering();
     let centre = (b.min + b.max) * 0.5;
-    let camera = LookAtCamera {
-        position: centre + Vec3::new(0.6, -3.4, 0.1),
-        target: centre,
-        vfov_deg: 40.0,
-        width,
-        height: width * 8 / 5,
-    };
+    let camera = common::check(LookAtCamera::look_at(
+        centre + Vec3::new(0.6, -3.4, 0.1),
+        centre,
+        Vec3::Z,
+        40f32.to_radians(),
+        width as u32,
+        (width * 8 / 5) as u32,
+    ));
     let fast = common::check(FastRenderer::new(&scene, settings));
     common::check(fast.render(&camera)).tone_mapped(0.0, natura::core::ToneMap::AcesFilmic)
 }

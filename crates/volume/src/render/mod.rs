@@ -21,6 +21,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use natura_atmos::sky::{ApSample, SkyView};
+use natura_core::camera::PinholeCamera;
 use natura_core::{Grid2, Image};
 
 use crate::density::Density;
@@ -31,80 +32,14 @@ pub use model::ScatterOctaves;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 
-/// A pinhole camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct LookAtCamera {
-    /// Eye position (m).
-    pub position: Vec3,
-    /// The point looked at (m).
-    pub target: Vec3,
-    /// Vertical field of view (degrees, in `(0, 180)`).
-    pub vfov_deg: f32,
-    /// Image width (pixels).
-    pub width: usize,
-    /// Image height (pixels).
-    pub height: usize,
-}
+/// The camera the renderers take: natura-core's [`PinholeCamera`], set up
+/// with [`PinholeCamera::look_at`] (radians, `u32` pixels, z up as the up
+/// hint for a level horizon). Each pixel's ray goes through its centre.
+pub type LookAtCamera = PinholeCamera;
 
 /// The majorant (extinction × maximum density, 1/m) both renderers stay
 /// below: [`Scene::majorant`].
 pub const MAX_MAJORANT: f32 = 1e9;
-
-/// Largest image side accepted.
-pub const MAX_IMAGE_SIDE: usize = 16_384;
-
-impl LookAtCamera {
-    /// Checks the camera.
-    ///
-    /// # Errors
-    ///
-    /// [`VolumeError::InvalidParameter`] for non-finite positions, a target
-    /// equal to the position or straight above or below it, a field of view
-    /// outside `(0, 180)`, or a side of 0 or above [`MAX_IMAGE_SIDE`].
-    pub fn validate(&self) -> Result<()> {
-        finite3("position", self.position)?;
-        finite3("target", self.target)?;
-        in_range(
-            "vfov_deg",
-            self.vfov_deg,
-            1e-3,
-            179.0,
-            "must lie in (0, 180) degrees",
-        )?;
-        for (name, n) in [("width", self.width), ("height", self.height)] {
-            if n == 0 || n > MAX_IMAGE_SIDE {
-                return Err(VolumeError::InvalidParameter {
-                    name,
-                    value: n.to_string(),
-                    expected: "must lie in 1..=16384",
-                });
-            }
-        }
-        let f = self.target - self.position;
-        if f.length() <= 0.0 || f.normalize().cross(Vec3::Z).length() < 1e-6 {
-            return Err(VolumeError::InvalidParameter {
-                name: "target",
-                value: format!("{:?}", self.target),
-                expected: "a point away from the eye and not straight above or below it",
-            });
-        }
-        Ok(())
-    }
-
-    /// The unit direction through the centre of pixel `(x, y)` (row 0 at the top).
-    #[must_use]
-    pub fn ray(&self, x: usize, y: usize) -> Vec3 {
-        let f = (self.target - self.position).normalize();
-        let r = f.cross(Vec3::Z).normalize();
-        let u = r.cross(f);
-        let th = (self.vfov_deg.to_radians() * 0.5).tan();
-        let aspect = self.width as f32 / self.height as f32;
-        let sx = (2.0 * (x as f32 + 0.5) / self.width as f32 - 1.0) * th * aspect;
-        let sy = (1.0 - 2.0 * (y as f32 + 0.5) / self.height as f32) * th;
-        (f + r * sx + u * sy).normalize()
-    }
-}
 
 /// The medium's optical properties: density `ρ` becomes extinction
 /// `σ_t = extinction·ρ` (1/m), of which the fraction `albedo` scatters.
@@ -559,15 +494,20 @@ fn rgb(name: &'static str, c: Vec3) -> Result<()> {
 /// Renders `camera`'s image with `radiance(origin, direction, x, y)` per
 /// pixel, rows in parallel (bit-identical on any thread count).
 pub(crate) fn render_image(
-    camera: &LookAtCamera,
+    camera: &PinholeCamera,
     radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
 ) -> Result<Image> {
-    camera.validate()?;
-    let f = |x: usize, y: usize| radiance(camera.position, camera.ray(x, y), x, y);
+    let eye = camera.eye();
+    let f = |x: usize, y: usize| {
+        let d = camera.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir;
+        radiance(eye, d, x, y)
+    };
+    let res = camera.resolution();
+    let (w, h) = (res.x as usize, res.y as usize);
     #[cfg(feature = "parallel")]
-    let g = Grid2::par_from_fn(camera.width, camera.height, f)?;
+    let g = Grid2::par_from_fn(w, h, f)?;
     #[cfg(not(feature = "parallel"))]
-    let g = Grid2::from_fn(camera.width, camera.height, f)?;
+    let g = Grid2::from_fn(w, h, f)?;
     Ok(Image::from_grid(g))
 }
 

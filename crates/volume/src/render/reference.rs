@@ -297,19 +297,16 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`LookAtCamera::validate`]; a too-large image;
+    /// [`VolumeError::Core`](crate::VolumeError::Core) for a too-large image;
     /// [`VolumeError::InvalidParameter`] naming `extinction` if the
     /// majorant times the distance from the camera to the density box's
     /// farthest corner exceeds [`MAX_COLLISIONS_PER_RAY`]: the distances an
     /// eye ray tracks are then too long for `f32` to resolve the mean free
     /// path, and its free flights would stall.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
-        camera.validate()?;
         let b = self.scene.density.bounds();
-        let far = (b.min - camera.position)
-            .abs()
-            .max((b.max - camera.position).abs())
-            .length();
+        let eye = camera.eye();
+        let far = (b.min - eye).abs().max((b.max - eye).abs()).length();
         check_collisions(
             self.scene,
             self.majorant,
