@@ -625,7 +625,7 @@ impl<'s> FastRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// [`VolumeError::Core`](crate::VolumeError::Core) for a too-large image.
+    /// [`VolumeError::Core`] for a too-large image.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
         super::render_image(camera, |o, d, _, _| self.radiance(o, d))
     }

@@ -297,7 +297,7 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// [`VolumeError::Core`](crate::VolumeError::Core) for a too-large image;
+    /// [`VolumeError::Core`] for a too-large image;
     /// [`VolumeError::InvalidParameter`] naming `extinction` if the
     /// majorant times the distance from the camera to the density box's
     /// farthest corner exceeds [`MAX_COLLISIONS_PER_RAY`]: the distances an
