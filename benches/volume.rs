@@ -77,20 +77,24 @@ fn shadows(c: &mut Criterion) {
     };
     let b = grid.bounds();
     let centre = (b.min + b.max) * 0.5;
-    let camera = LookAtCamera {
-        position: centre + Vec3::new(0.0, -24.0, 2.0),
-        target: centre,
-        vfov_deg: 40.0,
-        width: 240,
-        height: 160,
-    };
+    let camera = LookAtCamera::look_at(
+        centre + Vec3::new(0.0, -24.0, 2.0),
+        centre,
+        Vec3::Z,
+        40f32.to_radians(),
+        240,
+        160,
+    )
+    .unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
         .unwrap();
     let mut g = c.benchmark_group("shadows");
     g.sample_size(10);
-    g.throughput(Throughput::Elements((camera.width * camera.height) as u64));
+    g.throughput(Throughput::Elements(
+        u64::from(camera.resolution().x) * u64::from(camera.resolution().y),
+    ));
     // Same eye step; the table's nodes are 64 along the longest axis (its
     // march uses one node spacing per step), the shadow rays step 0.1 m.
     let table = FastSettings {
@@ -132,7 +136,9 @@ fn cloudscape(c: &mut Criterion) {
         .unwrap();
     let mut g = c.benchmark_group("cloudscape");
     g.sample_size(10);
-    g.throughput(Throughput::Elements((camera.width * camera.height) as u64));
+    g.throughput(Throughput::Elements(
+        u64::from(camera.resolution().x) * u64::from(camera.resolution().y),
+    ));
     g.bench_function("fast_1920x1080_2threads", |bch| {
         bch.iter(|| {
             pool.install(|| {

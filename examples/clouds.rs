@@ -103,13 +103,14 @@ fn render(
         ..FastSettings::default()
     }
     .multiple_scattering();
-    let camera = LookAtCamera {
-        position: c + view * r,
-        target: c,
-        vfov_deg: 40.0,
-        width: look.width,
-        height: look.height,
-    };
+    let camera = LookAtCamera::look_at(
+        c + view * r,
+        c,
+        Vec3::Z,
+        40f32.to_radians(),
+        look.width as u32,
+        look.height as u32,
+    )?;
     let fast = FastRenderer::new(&scene, settings)?;
     bar.advance(1);
     let image = fast.render(&camera)?;

@@ -214,13 +214,14 @@ fn render(
     }
     .multiple_scattering();
     let centre = (b.min + b.max) * 0.5;
-    let camera = LookAtCamera {
-        position: centre + Vec3::new(0.6, -3.4, 0.1),
-        target: centre,
-        vfov_deg: 40.0,
-        width,
-        height: width * 8 / 5,
-    };
+    let camera = LookAtCamera::look_at(
+        centre + Vec3::new(0.6, -3.4, 0.1),
+        centre,
+        Vec3::Z,
+        40f32.to_radians(),
+        width as u32,
+        (width * 8 / 5) as u32,
+    )?;
     let fast = FastRenderer::new(&scene, settings)?;
     Ok(fast
         .render(&camera)?

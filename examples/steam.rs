@@ -85,13 +85,14 @@ fn steam() -> Run {
             ..FastSettings::default()
         }
         .multiple_scattering();
-        let camera = LookAtCamera {
-            position: Vec3::new(0.0, -0.35, 0.07),
-            target: Vec3::new(0.0, 0.0, 0.065),
-            vfov_deg: 22.0,
-            width: w,
-            height: h,
-        };
+        let camera = LookAtCamera::look_at(
+            Vec3::new(0.0, -0.35, 0.07),
+            Vec3::new(0.0, 0.0, 0.065),
+            Vec3::Z,
+            22f32.to_radians(),
+            w as u32,
+            h as u32,
+        )?;
         let fast = FastRenderer::new(&scene, settings)?;
         bar.advance(1);
         shots.push(fast.render(&camera)?.tone_mapped(0.5, ToneMap::AcesFilmic));

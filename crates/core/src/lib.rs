@@ -4,7 +4,9 @@
 //! [`Grid3`]) with checked construction and interpolation, [`HeightField`]
 //! with PNG/EXR/raw input and output, linear colour and [`Image`]s, seeds
 //! and position-indexed random numbers ([`Seed`]), [`Progress`] reporting,
-//! and crash-safe file writing ([`io::write_atomic`]).
+//! crash-safe file writing ([`io::write_atomic`]), and the cameras every
+//! renderer shares ([`camera`]: pinhole, orthographic and panoramic maps from
+//! pixels to rays and back).
 //!
 //! Conventions (shared by every natura crate): right-handed, **z up**,
 //! metres, seconds, radians; `f32` for grids and images, `f64` where
@@ -22,6 +24,7 @@
 //! ```
 #![forbid(unsafe_code)]
 
+pub mod camera;
 pub mod check;
 pub mod colour;
 mod error;

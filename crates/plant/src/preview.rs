@@ -1,6 +1,9 @@
 //! Pictures of plant meshes: a small deterministic software rasterizer.
 //!
-//! Triangles are projected by an orthographic or perspective [`PreviewCamera`],
+//! Triangles are projected by an orthographic or perspective [`PreviewCamera`]
+//! (natura-core's [`OrthographicCamera`] or [`PinholeCamera`] does the
+//! projection; the framing and the degrees of a preview's field of view are
+//! this module's),
 //! filled with edge functions at pixel centres, resolved with a z-buffer and
 //! shaded per pixel with Lambert's law plus an ambient term, using the
 //! interpolated vertex normal turned towards the viewer (every surface is
@@ -11,12 +14,14 @@
 //! bytes and `Image::save_png` writes them (atomically).
 //!
 //! Triangles with a vertex closer to a perspective camera than its near
-//! plane are skipped rather than clipped (a preview frames the whole plant).
+//! plane, or behind an orthographic camera's screen, are skipped rather than
+//! clipped (a preview frames the whole plant).
 
 use crate::error::Result;
 use crate::mesh::{Instance, Material, PlantMesh, invalid};
 use glam::Vec3;
 use natura_core::Image;
+use natura_core::camera::{OrthographicCamera, PinholeCamera};
 
 /// How the camera projects.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -260,75 +265,68 @@ impl PreviewParams {
     }
 }
 
-/// The camera's basis and projection constants.
+/// The camera's projection (natura-core's [`OrthographicCamera`] or
+/// [`PinholeCamera`]) and what the rasterizer adds to it: the view axis for
+/// the depth key and the perspective near plane.
 struct View {
     eye: Vec3,
-    r: Vec3,
-    u: Vec3,
     f: Vec3,
-    /// Orthographic: metres per half picture height; perspective: tan(fov/2).
-    half: f32,
-    perspective: bool,
+    projection: Projection,
     near: f32,
-    w: f32,
-    h: f32,
-    aspect: f32,
+}
+
+/// The projection of a [`View`].
+enum Projection {
+    Orthographic(OrthographicCamera),
+    Perspective(PinholeCamera),
 }
 
 impl View {
-    fn new(c: &PreviewCamera, w: u32, h: u32) -> Self {
-        let f = (c.target - c.eye).normalize();
-        let r = f.cross(c.up).normalize();
-        let u = r.cross(f);
-        let (half, perspective) = match c.projection {
-            PreviewProjection::Orthographic { height } => (0.5 * height, false),
-            PreviewProjection::Perspective { fov_y_deg } => {
-                ((0.5 * fov_y_deg.to_radians()).tan(), true)
-            }
+    fn new(c: &PreviewCamera, w: u32, h: u32) -> Result<Self> {
+        let projection = match c.projection {
+            PreviewProjection::Orthographic { height } => Projection::Orthographic(
+                OrthographicCamera::look_at(c.eye, c.target, c.up, height, w, h)?,
+            ),
+            PreviewProjection::Perspective { fov_y_deg } => Projection::Perspective(
+                PinholeCamera::look_at(c.eye, c.target, c.up, fov_y_deg.to_radians(), w, h)?,
+            ),
         };
-        Self {
+        let f = match &projection {
+            Projection::Orthographic(o) => o.direction(),
+            Projection::Perspective(p) => p.direction(),
+        };
+        Ok(Self {
             eye: c.eye,
-            r,
-            u,
             f,
-            half,
-            perspective,
+            projection,
             near: 1e-4 * (c.target - c.eye).length(),
-            w: w as f32,
-            h: h as f32,
-            aspect: w as f32 / h as f32,
-        }
+        })
     }
 
     /// Screen x, y (pixels) and the depth key (larger is nearer, affine in
-    /// screen space), or `None` behind the near plane.
+    /// screen space), or `None` behind the near plane (perspective) or the
+    /// screen (orthographic).
     #[inline]
     fn project(&self, p: Vec3) -> Option<[f32; 3]> {
-        let q = p - self.eye;
-        let (x, y, z) = (q.dot(self.r), q.dot(self.u), q.dot(self.f));
-        let (nx, ny, key) = if self.perspective {
-            if z < self.near {
-                return None;
+        let z = (p - self.eye).dot(self.f);
+        let (q, key) = match &self.projection {
+            Projection::Perspective(c) => {
+                if z < self.near {
+                    return None;
+                }
+                (c.project(p)?, 1.0 / z)
             }
-            let s = 1.0 / (z * self.half);
-            (x * s, y * s, 1.0 / z)
-        } else {
-            (x / self.half, y / self.half, -z)
+            Projection::Orthographic(c) => (c.project(p)?, -z),
         };
-        Some([
-            (nx / self.aspect + 1.0) * 0.5 * self.w,
-            (1.0 - ny) * 0.5 * self.h,
-            key,
-        ])
+        Some([q.x, q.y, key])
     }
 
     /// Unit vector from `p` towards the viewer.
     #[inline]
     fn to_viewer(&self, p: Vec3) -> Vec3 {
-        if self.perspective {
-            (self.eye - p).normalize_or(-self.f)
-        } else {
-            -self.f
+        match self.projection {
+            Projection::Perspective(_) => (self.eye - p).normalize_or(-self.f),
+            Projection::Orthographic(_) => -self.f,
         }
     }
 }
@@ -355,7 +353,9 @@ pub fn render(mesh: &PlantMesh, params: &PreviewParams) -> Result<Image> {
 /// # Errors
 ///
 /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `params`, a mesh ([`PlantMesh::check`])
-/// or an instance ([`Instance::validate`]) is invalid.
+/// or an instance ([`Instance::validate`]) is invalid;
+/// [`PlantError::Core`](crate::PlantError::Core) if natura-core's camera
+/// refuses the view (a field of view that rounds to 180°).
 pub fn render_instances(
     items: &[(&PlantMesh, &[Instance])],
     params: &PreviewParams,
@@ -369,7 +369,7 @@ pub fn render_instances(
     }
     let s = params.supersample as usize;
     let (w, h) = (params.width as usize * s, params.height as usize * s);
-    let view = View::new(&params.camera, w as u32, h as u32);
+    let view = View::new(&params.camera, w as u32, h as u32)?;
     let mut fr = Frame {
         w,
         h,

@@ -3,7 +3,6 @@
 use natura_atmos::AtmosError;
 use natura_core::CoreError;
 use natura_noise::NoiseError;
-use natura_trace::TraceError;
 
 /// Everything that can go wrong in `natura-texture`.
 ///
@@ -39,10 +38,8 @@ pub enum TextureError {
     /// A parameter of the atmosphere (from natura-atmos).
     #[error(transparent)]
     Atmos(#[from] AtmosError),
-    /// A camera parameter (from natura-trace).
-    #[error(transparent)]
-    Trace(#[from] TraceError),
-    /// An I/O, image or allocation error (from natura-core).
+    /// An I/O, image or allocation error, or a camera parameter (from
+    /// natura-core).
     #[error(transparent)]
     Core(#[from] CoreError),
 }

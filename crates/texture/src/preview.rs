@@ -18,11 +18,14 @@ const LIGHT: DVec3 = DVec3::new(-0.5, -0.55, 0.67);
 const BACKDROP: DVec3 = DVec3::new(0.02, 0.035, 0.08);
 
 fn check_size(size: u32) -> Result<()> {
-    if size == 0 || size > natura_trace::MAX_RESOLUTION {
+    if size == 0 || size > natura_core::camera::MAX_RESOLUTION {
         return Err(TextureError::InvalidSize {
             name: "size",
             value: size as usize,
-            reason: format!("must be between 1 and {}", natura_trace::MAX_RESOLUTION),
+            reason: format!(
+                "must be between 1 and {}",
+                natura_core::camera::MAX_RESOLUTION
+            ),
         });
     }
     Ok(())

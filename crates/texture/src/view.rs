@@ -2,12 +2,12 @@
 //! stays exact at planetary distances, and ray–sphere and ray–plane tests.
 
 use glam::{DVec3, Vec3};
-use natura_trace::{Camera, PinholeCamera};
+use natura_core::camera::PinholeCamera;
 
 use crate::error::{Result, direction, invalid};
 
 /// A pinhole view: eye position in `f64` (a planet-scale coordinate stays
-/// exact) with the ray directions of natura-trace's [`PinholeCamera`] set
+/// exact) with the ray directions of natura-core's [`PinholeCamera`] set
 /// up at the origin, so only directions pass through `f32`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
@@ -23,7 +23,7 @@ impl View {
     /// # Errors
     /// [`TextureError`](crate::TextureError) for a non-finite eye or target,
     /// `eye == target`, an `up` parallel to the view, a bad field of view or
-    /// resolution (natura-trace's checks).
+    /// resolution (natura-core's camera checks).
     pub fn look_at(
         eye: DVec3,
         target: DVec3,

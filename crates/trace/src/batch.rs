@@ -8,9 +8,10 @@
 //! is bit-identical for any thread count or tile size.
 
 use glam::{Vec2, Vec3};
+use natura_core::camera::check_resolution;
 use natura_core::{Grid2, Image, Progress, Seed};
 
-use crate::camera::{Camera, check_resolution};
+use crate::camera::Camera;
 use crate::error::{Result, TraceError};
 use crate::ray::{Hit, Ray};
 use crate::tracer::Tracer;

@@ -21,9 +21,11 @@
 //!   footprint outgrows the cell the plain [`MipmapTracer`] takes over.
 //! * [`brute_force`]: every triangle, for tests; [`detail_brute_force`]: a
 //!   fine fixed-step march of the detailed surface, for tests.
-//! * Cameras implementing [`Camera`]: [`PinholeCamera`], [`OrthographicCamera`]
-//!   and the panoramic virtual screens of the dissertation's appendix B
-//!   ([`PanoramicCamera`], cylindrical or spherical, optionally stereo).
+//! * Cameras implementing [`Camera`]: natura-core's [`PinholeCamera`],
+//!   [`OrthographicCamera`] and the panoramic virtual screens of the
+//!   dissertation's appendix B ([`PanoramicCamera`], cylindrical or
+//!   spherical, optionally stereo), re-exported here; this crate adds their
+//!   jittered samples and lane-wise ray generation ([`Camera::rays_into`]).
 //! * [`render`] / [`render_camera`] / [`trace_image`]: deterministic
 //!   tile-parallel batch tracing with progress reporting; [`trace_image`]
 //!   traces each tile's rays together through the batch path.
@@ -123,10 +125,7 @@ mod tracer;
 
 pub use batch::{DEFAULT_TILE, RenderOptions, render, render_camera, render_tiles, trace_image};
 pub use brute::{brute_force, detail_brute_force};
-pub use camera::{
-    Camera, Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection,
-    RAY_LANES, Stereo,
-};
+pub use camera::{Camera, RAY_LANES};
 pub use dda::{CellVisit, CellWalk, GridTracer};
 pub use detail::{Detail, DetailParams, DetailSurface, MAX_DETAIL_OCTAVES, RayCone};
 pub use detail_tracer::DetailTracer;
@@ -137,6 +136,11 @@ pub use glam;
 pub use max_mipmap::{MaxMipmap, MipmapTracer};
 /// The height field every tracer works on.
 pub use natura_core::HeightField;
+/// The cameras (natura-core's): pinhole, orthographic and panoramic maps from
+/// pixels to rays and back.
+pub use natura_core::camera::{
+    Eye, MAX_RESOLUTION, OrthographicCamera, PanoramicCamera, PinholeCamera, Projection, Stereo,
+};
 pub use ray::{Hit, Ray, TraceStats, Triangle};
 pub use surface::surface_height;
 pub use tracer::Tracer;

@@ -2,41 +2,8 @@
 
 use glam::{UVec2, Vec3};
 
-/// A ray `origin + t·dir`, world space (z up, metres).
-///
-/// `dir` need not be unit length: hit distances `t` are in units of `|dir|`,
-/// so with a unit `dir` they are metres. A ray whose origin or direction is
-/// not finite, or whose direction is zero, never hits anything.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ray {
-    /// Where the ray starts.
-    pub origin: Vec3,
-    /// Which way it goes.
-    pub dir: Vec3,
-}
-
-impl Ray {
-    /// Returns the ray from `origin` along `dir`.
-    #[inline]
-    #[must_use]
-    pub const fn new(origin: Vec3, dir: Vec3) -> Self {
-        Self { origin, dir }
-    }
-
-    /// Returns the point at parameter `t`, `origin + t·dir`.
-    #[inline]
-    #[must_use]
-    pub fn at(&self, t: f32) -> Vec3 {
-        self.origin + t * self.dir
-    }
-
-    /// Whether the ray can be traced: finite origin, finite non-zero direction.
-    #[inline]
-    #[must_use]
-    pub fn is_valid(&self) -> bool {
-        self.origin.is_finite() && self.dir.is_finite() && self.dir != Vec3::ZERO
-    }
-}
+/// The ray type every camera returns, shared with natura-core's cameras.
+pub use natura_core::camera::Ray;
 
 /// Which of the two triangles of a cell.
 ///

@@ -30,7 +30,7 @@ pub struct CloudscapeParams {
     pub extinction: f32,
     /// Eye height above the plain (m).
     pub eye_height_m: f32,
-    /// LookAtCamera pitch above the horizon (degrees).
+    /// Camera pitch above the horizon (degrees).
     pub pitch_deg: f32,
     /// Image size.
     pub width: usize,
@@ -80,7 +80,9 @@ impl Cloudscape {
     /// # Errors
     ///
     /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) for a bad
-    /// field; as [`LayerClouds::new`], [`GridDensity::bake`] and the sky of `natura-atmos`.
+    /// field; [`VolumeError::Core`](crate::VolumeError::Core) for a bad image size (the
+    /// camera's checks); as [`LayerClouds::new`], [`GridDensity::bake`] and the sky of
+    /// `natura-atmos`.
     pub fn new(p: &CloudscapeParams, seed: u64) -> Result<Self> {
         Self::new_with_progress(p, seed, &NoProgress)
     }
@@ -127,14 +129,16 @@ impl Cloudscape {
             sky_irradiance: sky.sky_irradiance(),
         };
         let pitch = p.pitch_deg.to_radians();
-        let camera = LookAtCamera {
-            position: eye,
-            target: eye + Vec3::new(pitch.cos(), 0.0, pitch.sin()) * 1000.0,
-            vfov_deg: 50.0,
-            width: p.width,
-            height: p.height,
-        };
-        camera.validate()?;
+        // A side beyond `u32` is refused by the camera's own size check.
+        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let camera = LookAtCamera::look_at(
+            eye,
+            eye + Vec3::new(pitch.cos(), 0.0, pitch.sin()) * 1000.0,
+            Vec3::Z,
+            50f32.to_radians(),
+            side(p.width),
+            side(p.height),
+        )?;
         Ok(Self {
             clouds,
             sky,

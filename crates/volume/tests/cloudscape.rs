@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 mod common;
 
-use common::{frame_rays, lum, reference_lum};
+use common::{centre_ray, frame_rays, lum, reference_lum};
 
 /// Relative luminance error per pixel, over `b × b` blocks (to average the
 /// reference's noise), and of the mean.
@@ -69,10 +69,11 @@ fn cloudscape_fast_mode_against_the_reference() {
     let f = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
     let cam = cs.camera();
     let mut sums = [[0.0f64; 3]; 4];
-    for y in 0..cam.height {
-        for x in 0..cam.width {
-            let d = cam.ray(x, y);
-            let tr = f.transmittance(cam.position, d, f32::INFINITY);
+    let res = cam.resolution();
+    for y in 0..res.y as usize {
+        for x in 0..res.x as usize {
+            let d = centre_ray(&cam, x, y);
+            let tr = f.transmittance(cam.eye(), d, f32::INFINITY);
             let k = if d.z < 0.0 {
                 0
             } else if tr > 0.99 {
@@ -156,7 +157,7 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     let reference = |seed: u64| reference_lum(&scene, &cam, &rays, spp, seed);
     let a: Vec<f64> = rays
         .par_iter()
-        .map(|&(x, y)| lum(fast.radiance(cam.position, cam.ray(x, y))))
+        .map(|&(x, y)| lum(fast.radiance(cam.eye(), centre_ray(&cam, x, y))))
         .collect();
     let t = std::time::Instant::now();
     let r: Vec<Vec<f64>> = (1..=4).map(reference).collect();
@@ -174,10 +175,10 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     // Where the difference lies: ground, clear sky, cloud.
     let mut sums = [[0.0f64; 3]; 3];
     for (k, &(x, y)) in rays.iter().enumerate() {
-        let d = cam.ray(x, y);
+        let d = centre_ray(&cam, x, y);
         let c = if d.z < 0.0 {
             0
-        } else if fast.transmittance(cam.position, d, f32::INFINITY) > 0.99 {
+        } else if fast.transmittance(cam.eye(), d, f32::INFINITY) > 0.99 {
             1
         } else {
             2

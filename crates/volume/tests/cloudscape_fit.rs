@@ -31,7 +31,7 @@ use rayon::prelude::*;
 
 mod common;
 
-use common::{frame_rays, lum, reference_lum};
+use common::{centre_ray, frame_rays, lum, reference_lum};
 
 /// Sums of `v` (row-major, `w` wide) over `b × b` blocks.
 fn blocks(v: &[f64], w: usize, b: usize) -> Vec<f64> {
@@ -91,7 +91,7 @@ fn score(t: &Training, oc: ScatterOctaves) -> (f64, f64, f64) {
     let a: Vec<f64> = t
         .rays
         .par_iter()
-        .map(|&(x, y)| lum(f.radiance(t.cam.position, t.cam.ray(x, y))))
+        .map(|&(x, y)| lum(f.radiance(t.cam.eye(), centre_ray(&t.cam, x, y))))
         .collect();
     let (ba, br) = (blocks(&a, t.w, 3), blocks(&t.reference, t.w, 3));
     let (mut d2, mut r2, mut d1, mut r1) = (0.0, 0.0, 0.0, 0.0);
@@ -168,7 +168,7 @@ fn where_the_error_lies() {
     let a: Vec<f64> = t
         .rays
         .iter()
-        .map(|&(x, y)| lum(f.radiance(t.cam.position, t.cam.ray(x, y))))
+        .map(|&(x, y)| lum(f.radiance(t.cam.eye(), centre_ray(&t.cam, x, y))))
         .collect();
     let (ba, br, bn) = (
         blocks(&a, t.w, 3),
@@ -194,9 +194,9 @@ fn where_the_error_lies() {
     for &(d, k) in rows.iter().take(25) {
         let (bx, by) = (k % bw, k / bw);
         let (x, y) = t.rays[(by * 3 + 1) * t.w + bx * 3 + 1];
-        let dir = t.cam.ray(x, y);
+        let dir = centre_ray(&t.cam, x, y);
         let ang = dir.dot(sun).clamp(-1.0, 1.0).acos().to_degrees();
-        let tr = f.transmittance(t.cam.position, dir, f32::INFINITY);
+        let tr = f.transmittance(t.cam.eye(), dir, f32::INFINITY);
         eprintln!(
             "block ({bx:2},{by:2}) share {:.3} fast {:.3} ref {:.3} ref2 {:.3} angle to sun {ang:5.1} T {tr:.3}",
             d / err,
@@ -211,9 +211,9 @@ fn where_the_error_lies() {
     for k in 0..ba.len() {
         let (bx, by) = (k % bw, k / bw);
         let (x, y) = t.rays[(by * 3 + 1) * t.w + bx * 3 + 1];
-        let dir = t.cam.ray(x, y);
+        let dir = centre_ray(&t.cam, x, y);
         let ang = dir.dot(sun).clamp(-1.0, 1.0).acos().to_degrees();
-        let tr = f.transmittance(t.cam.position, dir, f32::INFINITY);
+        let tr = f.transmittance(t.cam.eye(), dir, f32::INFINITY);
         let r = 0.5 * (br[k] + bn[k]);
         if ang < 3.0 && tr < 0.5 {
             near[0] += ba[k];

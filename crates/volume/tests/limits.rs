@@ -31,13 +31,15 @@ fn unit_cube() -> Aabb {
 }
 
 fn one_pixel(position: Vec3) -> LookAtCamera {
-    LookAtCamera {
+    LookAtCamera::look_at(
         position,
-        target: Vec3::splat(0.5),
-        vfov_deg: 30.0,
-        width: 1,
-        height: 1,
-    }
+        Vec3::splat(0.5),
+        Vec3::Z,
+        30f32.to_radians(),
+        1,
+        1,
+    )
+    .unwrap()
 }
 
 fn quick() -> ReferenceSettings {

@@ -30,13 +30,8 @@ fn camera_for(b: &Aabb, azimuth_deg: f32, w: usize, h: usize) -> LookAtCamera {
     let c = (b.min + b.max) * 0.5;
     let r = (b.max - b.min).length() * 0.5;
     let a = azimuth_deg.to_radians();
-    LookAtCamera {
-        position: c + Vec3::new(a.sin() * 1.5 * r, -a.cos() * 1.5 * r, 0.2 * r),
-        target: c,
-        vfov_deg: 45.0,
-        width: w,
-        height: h,
-    }
+    let position = c + Vec3::new(a.sin() * 1.5 * r, -a.cos() * 1.5 * r, 0.2 * r);
+    LookAtCamera::look_at(position, c, Vec3::Z, 45f32.to_radians(), w as u32, h as u32).unwrap()
 }
 
 struct Training {
@@ -144,8 +139,8 @@ fn fit_octave_constants() {
         let mut rays = Vec::new();
         for y in 0..h {
             for x in 0..w {
-                let d = cam.ray(x, y);
-                if f.transmittance(cam.position, d, f32::INFINITY) < 0.98 {
+                let d = cam.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir;
+                if f.transmittance(cam.eye(), d, f32::INFINITY) < 0.98 {
                     rays.push((d, lum(r.get(x, y).unwrap())));
                 }
             }
@@ -168,7 +163,7 @@ fn fit_octave_constants() {
             .unwrap();
             let (mut d2, mut r2, mut sf, mut sr) = (0.0, 0.0, 0.0, 0.0);
             for &(d, lr) in rays {
-                let lf = lum(f.radiance(cam.position, d));
+                let lf = lum(f.radiance(cam.eye(), d));
                 d2 += (lf - lr) * (lf - lr);
                 r2 += lr * lr;
                 sf += lf;

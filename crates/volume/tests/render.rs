@@ -335,9 +335,13 @@ fn compare_lit(
     .unwrap();
     // The pixels whose rays lose more than 2 % to the volume.
     let f = FastRenderer::new(&scene, base).unwrap();
-    let mask: Vec<bool> = (0..camera.height)
-        .flat_map(|y| (0..camera.width).map(move |x| (x, y)))
-        .map(|(x, y)| f.transmittance(camera.position, camera.ray(x, y), f32::INFINITY) < 0.98)
+    let res = camera.resolution();
+    let mask: Vec<bool> = (0..res.y)
+        .flat_map(|y| (0..res.x).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let d = camera.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir;
+            f.transmittance(camera.eye(), d, f32::INFINITY) < 0.98
+        })
         .collect();
     let (es, em, ew) = (
         rel_error(&single, &reference, &mask),
@@ -360,13 +364,8 @@ fn compare_lit(
 fn camera_for(b: &Aabb, w: usize, h: usize) -> LookAtCamera {
     let c = (b.min + b.max) * 0.5;
     let r = (b.max - b.min).length() * 0.5;
-    LookAtCamera {
-        position: c + Vec3::new(0.0, -2.6 * r, 0.3 * r),
-        target: c,
-        vfov_deg: 45.0,
-        width: w,
-        height: h,
-    }
+    let position = c + Vec3::new(0.0, -2.6 * r, 0.3 * r);
+    LookAtCamera::look_at(position, c, Vec3::Z, 45f32.to_radians(), w as u32, h as u32).unwrap()
 }
 
 #[test]
@@ -550,26 +549,13 @@ fn bad_render_input_is_a_typed_error() {
     };
     assert!(FastRenderer::new(&sun0, FastSettings::default()).is_err());
     let f = FastRenderer::new(&scene, FastSettings::default()).unwrap();
-    let cam = LookAtCamera {
-        position: Vec3::ZERO,
-        target: Vec3::X,
-        vfov_deg: 40.0,
-        width: 0,
-        height: 10,
+    let cam = |target: Vec3, vfov: f32, width: u32| {
+        LookAtCamera::look_at(Vec3::ZERO, target, Vec3::Z, vfov, width, 10)
     };
-    assert!(f.render(&cam).is_err());
-    let cam = LookAtCamera {
-        width: 10,
-        target: Vec3::new(0.0, 0.0, 5.0),
-        ..cam
-    };
-    assert!(f.render(&cam).is_err());
-    let cam = LookAtCamera {
-        target: Vec3::X,
-        vfov_deg: 0.0,
-        ..cam
-    };
-    assert!(f.render(&cam).is_err());
+    assert!(cam(Vec3::X, 0.7, 0).is_err());
+    assert!(cam(Vec3::new(0.0, 0.0, 5.0), 0.7, 10).is_err());
+    assert!(cam(Vec3::X, 0.0, 10).is_err());
+    assert!(f.render(&cam(Vec3::X, 0.7, 10).unwrap()).is_ok());
 }
 
 #[test]
@@ -711,14 +697,10 @@ fn sampling_toward_the_suns_peak_keeps_the_mean_and_lowers_the_variance() {
             Vec3::new(0.15, 0.2, 0.3),
         )
     };
-    let cam = LookAtCamera {
-        width: 8,
-        height: 6,
-        ..camera_for(&b, 8, 6)
-    };
-    let rays: Vec<(Vec3, Vec3)> = (0..cam.height)
-        .flat_map(|y| (0..cam.width).map(move |x| (x, y)))
-        .map(|(x, y)| (cam.position, cam.ray(x, y)))
+    let cam = camera_for(&b, 8, 6);
+    let rays: Vec<(Vec3, Vec3)> = (0..6)
+        .flat_map(|y| (0..8).map(move |x| (x, y)))
+        .map(|(x, y)| (cam.eye(), cam.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir))
         .collect();
     let stats = |peak: bool, n: usize| {
         let r = ReferenceRenderer::new(

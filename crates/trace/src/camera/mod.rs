@@ -1,28 +1,18 @@
-//! Cameras: maps from pixels to primary rays.
+//! Primary rays in batches from the cameras of [`natura_core::camera`].
 //!
-//! Every camera implements [`Camera`]: a resolution and a map from continuous
-//! pixel coordinates to a [`Ray`]. Pixel `(x, y)` covers `[x, x + 1) × [y, y + 1)`
-//! with `x` to the right and `y` **down** (row 0 at the top, as in
-//! [`natura_core::Image`]); its centre is `(x + 0.5, y + 0.5)`, which is what
-//! [`Camera::ray`] gives for a jitter of `(0.5, 0.5)`. Directions are unit length.
-
-mod orthographic;
-mod panoramic;
-mod pinhole;
-
-pub use orthographic::OrthographicCamera;
-pub use panoramic::{Eye, PanoramicCamera, Projection, Stereo};
-pub use pinhole::PinholeCamera;
+//! The projections themselves (pinhole, orthographic, panoramic) and their
+//! pixel convention live in natura-core. Pixel `(x, y)` covers
+//! `[x, x + 1) × [y, y + 1)` with `x` to the right and `y` **down** (row 0 at
+//! the top, as in [`natura_core::Image`]); its centre is `(x + 0.5, y + 0.5)`,
+//! which is what [`Camera::ray`] gives for a jitter of `(0.5, 0.5)`.
+//! Directions are unit length. Here is only what tracing adds: jittered
+//! samples and the generation of a tile's rays [`RAY_LANES`] at a time.
 
 use glam::{UVec2, Vec2, Vec3};
+use natura_core::camera::{OrthographicCamera, PanoramicCamera, PinholeCamera};
 
 use crate::batch::RenderOptions;
-use crate::error::{Result, TraceError};
 use crate::ray::Ray;
-
-/// Largest image side a camera accepts (pixels): big enough for any print,
-/// small enough that a typo fails with an error instead of an allocation.
-pub const MAX_RESOLUTION: u32 = 1 << 16;
 
 /// A map from image pixels to primary rays.
 pub trait Camera: Sync {
@@ -49,8 +39,9 @@ pub trait Camera: Sync {
     ///
     /// [`PinholeCamera`] and [`OrthographicCamera`] generate the rays
     /// [`RAY_LANES`] at a time in struct-of-arrays form (their screen
-    /// coordinates are affine in the pixel coordinates), so the arithmetic
-    /// runs in vector registers; [`crate::trace_image`] calls this once per
+    /// coordinates are affine in the pixel coordinates, and their `ray_at`
+    /// is inlined into a loop over lanes), so the arithmetic runs in vector
+    /// registers; [`crate::trace_image`] calls this once per
     /// tile. The block must lie within the image for the rays to be the
     /// image's, but nothing is checked: pixels outside it extrapolate the
     /// camera's map.
@@ -127,45 +118,104 @@ pub(crate) fn pixel_lanes(
     }
 }
 
-/// Checks a resolution.
-pub(crate) fn check_resolution(width: u32, height: u32) -> Result<()> {
-    for (name, v) in [("width", width), ("height", height)] {
-        if v == 0 || v > MAX_RESOLUTION {
-            return Err(TraceError::param(
-                name,
-                v,
-                "must be between 1 and MAX_RESOLUTION (65536) pixels",
-            ));
+/// Appends the rays of [`Camera::rays_into`]'s block, computing them
+/// [`RAY_LANES`] at a time with `ray_at` (the camera's own map, inlined into
+/// the loop over lanes) into struct-of-arrays lanes: the same rays, bit for
+/// bit, as one call per pixel.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
+fn lane_rays(
+    x0: u32,
+    y0: u32,
+    w: u32,
+    h: u32,
+    options: &RenderOptions,
+    out: &mut Vec<Ray>,
+    ray_at: impl Fn(f32, f32) -> Ray,
+) {
+    out.reserve(w as usize * h as usize * options.samples_per_pixel as usize);
+    pixel_lanes(x0, y0, w, h, options, |px, py, n| {
+        let mut o = [[0.0f32; RAY_LANES]; 3];
+        let mut d = [[0.0f32; RAY_LANES]; 3];
+        for l in 0..RAY_LANES {
+            let r = ray_at(px[l], py[l]);
+            o[0][l] = r.origin.x;
+            o[1][l] = r.origin.y;
+            o[2][l] = r.origin.z;
+            d[0][l] = r.dir.x;
+            d[1][l] = r.dir.y;
+            d[2][l] = r.dir.z;
         }
-    }
-    Ok(())
+        out.extend((0..n).map(|l| {
+            Ray::new(
+                Vec3::new(o[0][l], o[1][l], o[2][l]),
+                Vec3::new(d[0][l], d[1][l], d[2][l]),
+            )
+        }));
+    });
 }
 
-/// Checks that `v` is finite.
-pub(crate) fn check_vec(name: &'static str, v: Vec3) -> Result<()> {
-    if v.is_finite() {
-        Ok(())
-    } else {
-        Err(TraceError::param(name, v, "must be finite"))
+impl Camera for PinholeCamera {
+    fn resolution(&self) -> UVec2 {
+        PinholeCamera::resolution(self)
+    }
+
+    #[inline]
+    fn ray_at(&self, px: f32, py: f32) -> Ray {
+        PinholeCamera::ray_at(self, px, py)
+    }
+
+    /// [`RAY_LANES`] rays at a time (see [`Camera::rays_into`]).
+    fn rays_into(
+        &self,
+        x0: u32,
+        y0: u32,
+        w: u32,
+        h: u32,
+        options: &RenderOptions,
+        out: &mut Vec<Ray>,
+    ) {
+        lane_rays(x0, y0, w, h, options, out, |px, py| {
+            PinholeCamera::ray_at(self, px, py)
+        });
     }
 }
 
-/// An orthonormal view frame `(forward, right, up)` from a view direction and
-/// an up hint; fails if either is zero or they are parallel.
-pub(crate) fn frame(dir: Vec3, up: Vec3) -> Result<(Vec3, Vec3, Vec3)> {
-    check_vec("direction", dir)?;
-    check_vec("up", up)?;
-    let f = dir
-        .try_normalize()
-        .ok_or_else(|| TraceError::param("direction", dir, "must be non-zero (eye ≠ target)"))?;
-    // Musgrave 1993, §8.6: "The view and up directions are identical?"
-    let r = f.cross(up).try_normalize().ok_or_else(|| {
-        TraceError::param(
-            "up",
-            up,
-            "must be non-zero and not parallel to the view direction",
-        )
-    })?;
-    let u = r.cross(f);
-    Ok((f, r, u))
+impl Camera for OrthographicCamera {
+    fn resolution(&self) -> UVec2 {
+        OrthographicCamera::resolution(self)
+    }
+
+    #[inline]
+    fn ray_at(&self, px: f32, py: f32) -> Ray {
+        OrthographicCamera::ray_at(self, px, py)
+    }
+
+    /// [`RAY_LANES`] rays at a time (see [`Camera::rays_into`]).
+    fn rays_into(
+        &self,
+        x0: u32,
+        y0: u32,
+        w: u32,
+        h: u32,
+        options: &RenderOptions,
+        out: &mut Vec<Ray>,
+    ) {
+        lane_rays(x0, y0, w, h, options, out, |px, py| {
+            OrthographicCamera::ray_at(self, px, py)
+        });
+    }
+}
+
+/// One ray per pixel sample (the trait's default): the panorama's
+/// trigonometry does not vectorise the way an affine screen does.
+impl Camera for PanoramicCamera {
+    fn resolution(&self) -> UVec2 {
+        PanoramicCamera::resolution(self)
+    }
+
+    #[inline]
+    fn ray_at(&self, px: f32, py: f32) -> Ray {
+        PanoramicCamera::ray_at(self, px, py)
+    }
 }

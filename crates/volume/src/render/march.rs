@@ -618,7 +618,7 @@ impl<'s> FastRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`LookAtCamera::validate`]; a too-large image.
+    /// [`VolumeError::Core`] for a too-large image.
     pub fn render(&self, camera: &LookAtCamera) -> Result<Image> {
         self.render_with_progress(camera, &NoProgress)
     }

@@ -21,6 +21,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use natura_atmos::sky::{ApSample, SkyView};
+use natura_core::camera::PinholeCamera;
 use natura_core::{Grid2, Image, Progress};
 
 use crate::density::Density;
@@ -31,80 +32,14 @@ pub use model::ScatterOctaves;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 
-/// A pinhole camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct LookAtCamera {
-    /// Eye position (m).
-    pub position: Vec3,
-    /// The point looked at (m).
-    pub target: Vec3,
-    /// Vertical field of view (degrees, in `(0, 180)`).
-    pub vfov_deg: f32,
-    /// Image width (pixels).
-    pub width: usize,
-    /// Image height (pixels).
-    pub height: usize,
-}
+/// The camera the renderers take: natura-core's [`PinholeCamera`], set up
+/// with [`PinholeCamera::look_at`] (radians, `u32` pixels, z up as the up
+/// hint for a level horizon). Each pixel's ray goes through its centre.
+pub type LookAtCamera = PinholeCamera;
 
 /// The majorant (extinction × maximum density, 1/m) both renderers stay
 /// below: [`Scene::majorant`].
 pub const MAX_MAJORANT: f32 = 1e9;
-
-/// Largest image side accepted.
-pub const MAX_IMAGE_SIDE: usize = 16_384;
-
-impl LookAtCamera {
-    /// Checks the camera.
-    ///
-    /// # Errors
-    ///
-    /// [`VolumeError::InvalidParameter`] for non-finite positions, a target
-    /// equal to the position or straight above or below it, a field of view
-    /// outside `(0, 180)`, or a side of 0 or above [`MAX_IMAGE_SIDE`].
-    pub fn validate(&self) -> Result<()> {
-        finite3("position", self.position)?;
-        finite3("target", self.target)?;
-        in_range(
-            "vfov_deg",
-            self.vfov_deg,
-            1e-3,
-            179.0,
-            "must lie in (0, 180) degrees",
-        )?;
-        for (name, n) in [("width", self.width), ("height", self.height)] {
-            if n == 0 || n > MAX_IMAGE_SIDE {
-                return Err(VolumeError::InvalidParameter {
-                    name,
-                    value: n.to_string(),
-                    expected: "must lie in 1..=16384",
-                });
-            }
-        }
-        let f = self.target - self.position;
-        if f.length() <= 0.0 || f.normalize().cross(Vec3::Z).length() < 1e-6 {
-            return Err(VolumeError::InvalidParameter {
-                name: "target",
-                value: format!("{:?}", self.target),
-                expected: "a point away from the eye and not straight above or below it",
-            });
-        }
-        Ok(())
-    }
-
-    /// The unit direction through the centre of pixel `(x, y)` (row 0 at the top).
-    #[must_use]
-    pub fn ray(&self, x: usize, y: usize) -> Vec3 {
-        let f = (self.target - self.position).normalize();
-        let r = f.cross(Vec3::Z).normalize();
-        let u = r.cross(f);
-        let th = (self.vfov_deg.to_radians() * 0.5).tan();
-        let aspect = self.width as f32 / self.height as f32;
-        let sx = (2.0 * (x as f32 + 0.5) / self.width as f32 - 1.0) * th * aspect;
-        let sy = (1.0 - 2.0 * (y as f32 + 0.5) / self.height as f32) * th;
-        (f + r * sx + u * sy).normalize()
-    }
-}
 
 /// The medium's optical properties: density `ρ` becomes extinction
 /// `σ_t = extinction·ρ` (1/m), of which the fraction `albedo` scatters.
@@ -560,20 +495,23 @@ fn rgb(name: &'static str, c: Vec3) -> Result<()> {
 /// pixel, rows in parallel (bit-identical on any thread count), reporting
 /// the stage `stage` to `progress` with one unit per finished row.
 pub(crate) fn render_image(
-    camera: &LookAtCamera,
+    camera: &PinholeCamera,
     radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
     stage: &str,
     progress: &dyn Progress,
 ) -> Result<Image> {
-    camera.validate()?;
-    let mut g = Grid2::new(camera.width, camera.height, Vec3::ZERO)?;
+    let eye = camera.eye();
+    let res = camera.resolution();
+    let (w, h) = (res.x as usize, res.y as usize);
+    let mut g = Grid2::new(w, h, Vec3::ZERO)?;
     let row = |y: usize, row: &mut [Vec3]| {
         for (x, v) in row.iter_mut().enumerate() {
-            *v = radiance(camera.position, camera.ray(x, y), x, y);
+            let d = camera.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir;
+            *v = radiance(eye, d, x, y);
         }
         progress.advance(1);
     };
-    progress.start(stage, camera.height as u64);
+    progress.start(stage, h as u64);
     #[cfg(feature = "parallel")]
     g.par_rows_mut(row);
     #[cfg(not(feature = "parallel"))]
@@ -614,13 +552,17 @@ mod tests {
         }
     }
 
-    const CAMERA: LookAtCamera = LookAtCamera {
-        position: Vec3::new(0.0, -4.0, 0.0),
-        target: Vec3::ZERO,
-        vfov_deg: 40.0,
-        width: 12,
-        height: 9,
-    };
+    fn camera() -> LookAtCamera {
+        LookAtCamera::look_at(
+            Vec3::new(0.0, -4.0, 0.0),
+            Vec3::ZERO,
+            Vec3::Z,
+            40f32.to_radians(),
+            12,
+            9,
+        )
+        .unwrap()
+    }
 
     #[test]
     fn the_fast_renderer_reports_its_tables_and_rows_and_renders_the_same() {
@@ -632,7 +574,7 @@ mod tests {
         };
         let progress = CountingProgress::new();
         let fast = FastRenderer::new_with_progress(&scene, settings, &progress).unwrap();
-        let img = fast.render_with_progress(&CAMERA, &progress).unwrap();
+        let img = fast.render_with_progress(&camera(), &progress).unwrap();
         let dims = shadow::table_dims(&ball.bounds(), 8);
         let rows = (dims[1] * dims[2]) as u64;
         assert_eq!(
@@ -645,7 +587,7 @@ mod tests {
         assert_eq!(progress.advanced(), 2 * rows + 9);
         assert_eq!(progress.finished(), 2);
         let plain = FastRenderer::new(&scene, settings).unwrap();
-        assert_eq!(img, plain.render(&CAMERA).unwrap());
+        assert_eq!(img, plain.render(&camera()).unwrap());
     }
 
     #[test]
@@ -658,15 +600,15 @@ mod tests {
         };
         let r = ReferenceRenderer::new(&scene, settings).unwrap();
         let progress = CountingProgress::new();
-        let img = r.render_with_progress(&CAMERA, &progress).unwrap();
+        let img = r.render_with_progress(&camera(), &progress).unwrap();
         assert_eq!(progress.stages(), vec![("reference".to_owned(), 9)]);
         assert_eq!(progress.advanced(), 9);
         assert_eq!(progress.finished(), 1);
-        assert_eq!(img, r.render(&CAMERA).unwrap());
-        // A refused camera reports nothing.
-        let none = CountingProgress::new();
-        let bad = LookAtCamera { width: 0, ..CAMERA };
-        assert!(r.render_with_progress(&bad, &none).is_err());
-        assert!(none.stages().is_empty());
+        assert_eq!(img, r.render(&camera()).unwrap());
+        // A zero-sized camera cannot be built, so no render can start with one.
+        assert!(
+            LookAtCamera::look_at(Vec3::new(0.0, -4.0, 0.0), Vec3::ZERO, Vec3::Z, 0.7, 0, 9)
+                .is_err()
+        );
     }
 }

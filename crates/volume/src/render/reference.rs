@@ -297,7 +297,7 @@ impl<'s> ReferenceRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`LookAtCamera::validate`]; a too-large image;
+    /// [`VolumeError::Core`] for a too-large image;
     /// [`VolumeError::InvalidParameter`] naming `extinction` if the
     /// majorant times the distance from the camera to the density box's
     /// farthest corner exceeds [`MAX_COLLISIONS_PER_RAY`]: the distances an
@@ -314,18 +314,15 @@ impl<'s> ReferenceRenderer<'s> {
     /// # Errors
     ///
     /// As [`ReferenceRenderer::render`]; nothing is reported when the
-    /// camera or the scene is refused.
+    /// scene is refused.
     pub fn render_with_progress(
         &self,
         camera: &LookAtCamera,
         progress: &dyn Progress,
     ) -> Result<Image> {
-        camera.validate()?;
         let b = self.scene.density.bounds();
-        let far = (b.min - camera.position)
-            .abs()
-            .max((b.max - camera.position).abs())
-            .length();
+        let eye = camera.eye();
+        let far = (b.min - eye).abs().max((b.max - eye).abs()).length();
         check_collisions(
             self.scene,
             self.majorant,

@@ -11,10 +11,16 @@ pub fn lum(c: Vec3) -> f64 {
     f64::from(natura_core::colour::luminance(c))
 }
 
+/// The unit direction through the centre of pixel `(x, y)` of `cam`.
+pub fn centre_ray(cam: &LookAtCamera, x: usize, y: usize) -> Vec3 {
+    cam.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir
+}
+
 /// The centres of every `stride`-th pixel across and down `cam`'s frame,
 /// row by row, and how many there are across.
 pub fn frame_rays(cam: &LookAtCamera, stride: usize) -> (Vec<(usize, usize)>, usize) {
-    let (w, h) = (cam.width / stride, cam.height / stride);
+    let res = cam.resolution();
+    let (w, h) = (res.x as usize / stride, res.y as usize / stride);
     let rays = (0..h)
         .flat_map(|j| (0..w).map(move |i| (i * stride + stride / 2, j * stride + stride / 2)))
         .collect();
@@ -40,6 +46,6 @@ pub fn reference_lum(
     )
     .unwrap();
     rays.par_iter()
-        .map(|&(x, y)| lum(r.pixel(cam.position, cam.ray(x, y), x, y)))
+        .map(|&(x, y)| lum(r.pixel(cam.eye(), centre_ray(cam, x, y), x, y)))
         .collect()
 }

@@ -1,11 +1,12 @@
 //! Musgrave's panoramic virtual screen (Musgrave 1993, ch. 8
 //! and appendix B; published in *Graphics Gems III*).
 
-use glam::{UVec2, Vec3};
+use std::f32::consts::{FRAC_PI_2, PI, TAU};
 
-use super::{Camera, check_resolution, check_vec};
-use crate::error::{Result, TraceError};
-use crate::ray::Ray;
+use glam::{UVec2, Vec2, Vec3};
+
+use super::{Ray, check_resolution, check_vec, param};
+use crate::error::Result;
 
 /// How rows of a [`PanoramicCamera`] map to elevation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,7 +90,7 @@ impl PanoramicCamera {
     ///
     /// # Errors
     ///
-    /// Fails on non-finite
+    /// [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) on non-finite
     /// vectors, a zero `up`, a `look_dir` parallel to `up`, a non-positive
     /// or non-finite field of view, or a bad resolution.
     #[allow(clippy::too_many_arguments)]
@@ -109,29 +110,25 @@ impl PanoramicCamera {
         check_vec("up", up)?;
         let up = up
             .try_normalize()
-            .ok_or_else(|| TraceError::param("up", up, "must be non-zero"))?;
+            .ok_or_else(|| param("up", up, "must be non-zero"))?;
         let forward = (look_dir - look_dir.dot(up) * up)
             .try_normalize()
             .ok_or_else(|| {
-                TraceError::param(
+                param(
                     "look_dir",
                     look_dir,
                     "must be non-zero and not parallel to up",
                 )
             })?;
         if !(hfov.is_finite() && hfov > 0.0) {
-            return Err(TraceError::param(
-                "hfov",
-                hfov,
-                "must be finite and > 0 radians",
-            ));
+            return Err(param("hfov", hfov, "must be finite and > 0 radians"));
         }
         let vmax = match projection {
-            Projection::Cylindrical => std::f32::consts::PI,
+            Projection::Cylindrical => PI,
             Projection::Spherical => f32::INFINITY,
         };
         if !(vfov.is_finite() && vfov > 0.0 && vfov < vmax) {
-            return Err(TraceError::param(
+            return Err(param(
                 "vfov",
                 vfov,
                 "must be finite and > 0 radians (and < π for a cylindrical screen)",
@@ -156,11 +153,11 @@ impl PanoramicCamera {
     ///
     /// # Errors
     ///
-    /// Fails unless
+    /// [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) unless
     /// `stereo.separation` is finite and non-negative.
     pub fn with_stereo(mut self, stereo: Stereo) -> Result<Self> {
         if !(stereo.separation.is_finite() && stereo.separation >= 0.0) {
-            return Err(TraceError::param(
+            return Err(param(
                 "separation",
                 stereo.separation,
                 "must be finite and ≥ 0 metres",
@@ -196,15 +193,20 @@ impl PanoramicCamera {
         let (s, c) = az.sin_cos();
         c * self.forward + s * self.left
     }
-}
 
-impl Camera for PanoramicCamera {
-    fn resolution(&self) -> UVec2 {
+    /// Image size in pixels, `(width, height)`.
+    #[must_use]
+    pub fn resolution(&self) -> UVec2 {
         UVec2::new(self.width, self.height)
     }
 
+    /// Returns the ray through continuous pixel coordinates `(px, py)`: the
+    /// direction at [`PanoramicCamera::azimuth`] and
+    /// [`PanoramicCamera::elevation`], from the position (mono) or from the
+    /// column's eye point (stereo).
     #[inline]
-    fn ray_at(&self, px: f32, py: f32) -> Ray {
+    #[must_use]
+    pub fn ray_at(&self, px: f32, py: f32) -> Ray {
         let h = self.horizontal(self.azimuth(px));
         let dir = match self.projection {
             Projection::Cylindrical => {
@@ -214,10 +216,9 @@ impl Camera for PanoramicCamera {
             Projection::Spherical => {
                 // The source's tan table is periodic in 180° and right-side-up:
                 // wrap the elevation into [−90°, 90°].
-                let half_pi = std::f32::consts::FRAC_PI_2;
                 let mut e = self.elevation(py);
-                if e.abs() > half_pi {
-                    e -= std::f32::consts::PI * ((e + half_pi) / std::f32::consts::PI).floor();
+                if e.abs() > FRAC_PI_2 {
+                    e -= PI * ((e + FRAC_PI_2) / PI).floor();
                 }
                 let (s, c) = e.sin_cos();
                 (c * h + s * self.up).normalize()
@@ -234,5 +235,73 @@ impl Camera for PanoramicCamera {
             }
         };
         Ray::new(origin, dir)
+    }
+
+    /// Returns the continuous pixel coordinates `(px, py)` whose ray passes
+    /// through `point` (the inverse of [`PanoramicCamera::ray_at`]), or
+    /// `None` if no ray of the camera's map reaches it: the point is not
+    /// finite, sits at the position (or, for a stereo eye, within
+    /// `separation / 2` of the vertical through it), or lies on the vertical
+    /// through the position for a cylindrical screen.
+    ///
+    /// A stereo eye's column is the one whose eye point sees `point` straight
+    /// ahead horizontally: with `q` the point's horizontal offset from the
+    /// position at azimuth `φ` and distance `r`, the column's azimuth is
+    /// `φ − asin(±separation / 2r)`.
+    ///
+    /// Where the screen wraps (a horizontal field over 2π, or a spherical
+    /// vertical field over π, Musgrave 1993, §8.3) the first of the columns
+    /// or rows showing the point is returned. Otherwise the coordinates lie
+    /// outside `[0, width] × [0, height]` for a point outside the picture.
+    #[must_use]
+    pub fn project(&self, point: Vec3) -> Option<Vec2> {
+        let q = point - self.position;
+        let (qf, ql, qv) = (q.dot(self.forward), q.dot(self.left), q.dot(self.up));
+        let phi = ql.atan2(qf);
+        let r = qf.hypot(ql);
+        let (az, run) = match self.stereo {
+            None => (phi, r),
+            Some(st) => {
+                let side = match st.eye {
+                    Eye::Left => 0.5 * st.separation,
+                    Eye::Right => -0.5 * st.separation,
+                };
+                if r.is_nan() || r <= side.abs() {
+                    return None;
+                }
+                // The eye point sits `side` along `up × h(az)`, i.e. at
+                // azimuth `az + π/2`: `r·sin(φ − az) = side`.
+                let a = (side / r).asin();
+                (phi - a, r * a.cos())
+            }
+        };
+        let (w, h) = (self.width as f32, self.height as f32);
+        let mut px = (0.5 - az / self.hfov) * w;
+        if self.hfov > TAU {
+            px = px.rem_euclid(w * TAU / self.hfov);
+        }
+        let py = match self.projection {
+            Projection::Cylindrical => {
+                if run.is_nan() || run <= 0.0 {
+                    return None;
+                }
+                let s = qv / run / self.tan_half_v;
+                (1.0 - s) * 0.5 * h
+            }
+            Projection::Spherical => {
+                if run.is_nan() || (run <= 0.0 && qv == 0.0) {
+                    return None;
+                }
+                let s = 2.0 * qv.atan2(run) / self.vfov;
+                let py = (1.0 - s) * 0.5 * h;
+                if self.vfov > PI {
+                    py.rem_euclid(h * PI / self.vfov)
+                } else {
+                    py
+                }
+            }
+        };
+        let p = Vec2::new(px, py);
+        p.is_finite().then_some(p)
     }
 }

@@ -1,11 +1,9 @@
 //! A parallel projection: every ray has the same direction.
 
-use glam::{UVec2, Vec3};
+use glam::{UVec2, Vec2, Vec3};
 
-use super::{Camera, RAY_LANES, check_resolution, check_vec, frame, pixel_lanes};
-use crate::batch::RenderOptions;
-use crate::error::{Result, TraceError};
-use crate::ray::Ray;
+use super::{Ray, check_resolution, check_vec, frame, param, pixel_from_screen};
+use crate::error::Result;
 
 /// An orthographic camera: parallel rays from a rectangle perpendicular to
 /// the view direction, for maps, top-down views and elevations.
@@ -17,6 +15,7 @@ pub struct OrthographicCamera {
     up: Vec3,
     half_w: f32,
     half_h: f32,
+    aspect: f32,
     width: u32,
     height: u32,
 }
@@ -29,8 +28,8 @@ impl OrthographicCamera {
     ///
     /// # Errors
     ///
-    /// Fails like [`crate::PinholeCamera::look_at`], or if `view_height` is
-    /// not finite and positive.
+    /// Fails like [`PinholeCamera::look_at`](super::PinholeCamera::look_at),
+    /// or if `view_height` is not finite and positive.
     pub fn look_at(
         eye: Vec3,
         target: Vec3,
@@ -43,7 +42,7 @@ impl OrthographicCamera {
         check_vec("eye", eye)?;
         check_vec("target", target)?;
         if !(view_height.is_finite() && view_height > 0.0) {
-            return Err(TraceError::param(
+            return Err(param(
                 "view_height",
                 view_height,
                 "must be finite and > 0 metres",
@@ -58,9 +57,22 @@ impl OrthographicCamera {
             up,
             half_w: half_h * width as f32 / height as f32,
             half_h,
+            aspect: width as f32 / height as f32,
             width,
             height,
         })
+    }
+
+    /// Image size in pixels, `(width, height)`.
+    #[must_use]
+    pub fn resolution(&self) -> UVec2 {
+        UVec2::new(self.width, self.height)
+    }
+
+    /// The centre of the screen (the `eye` it was set up with).
+    #[must_use]
+    pub fn centre(&self) -> Vec3 {
+        self.centre
     }
 
     /// The unit view direction shared by all rays.
@@ -68,49 +80,33 @@ impl OrthographicCamera {
     pub fn direction(&self) -> Vec3 {
         self.forward
     }
-}
 
-impl Camera for OrthographicCamera {
-    fn resolution(&self) -> UVec2 {
-        UVec2::new(self.width, self.height)
-    }
-
+    /// Returns the ray through continuous pixel coordinates `(px, py)`: from
+    /// `centre + sx·right + sy·up'` along the view direction, with
+    /// `sx = (2·px/w − 1)·half_width`, `sy = (1 − 2·py/h)·half_height`.
     #[inline]
-    fn ray_at(&self, px: f32, py: f32) -> Ray {
+    #[must_use]
+    pub fn ray_at(&self, px: f32, py: f32) -> Ray {
         let sx = (2.0 * px / self.width as f32 - 1.0) * self.half_w;
         let sy = (1.0 - 2.0 * py / self.height as f32) * self.half_h;
         Ray::new(self.centre + sx * self.right + sy * self.up, self.forward)
     }
 
-    /// [`RAY_LANES`] rays at a time: the origins `centre + sx·right +
-    /// sy·up` (affine in the pixel coordinates) as loops over lanes, with the
-    /// same `f32` operations in the same order as [`Camera::ray_at`], so the
-    /// rays are equal bit for bit.
-    #[allow(clippy::needless_range_loop)] // `l` indexes every lane array alike
-    fn rays_into(
-        &self,
-        x0: u32,
-        y0: u32,
-        w: u32,
-        h: u32,
-        options: &RenderOptions,
-        out: &mut Vec<Ray>,
-    ) {
-        out.reserve(w as usize * h as usize * options.samples_per_pixel as usize);
-        let (wf, hf) = (self.width as f32, self.height as f32);
-        let (c, r, u) = (self.centre, self.right, self.up);
-        let (hw, hh) = (self.half_w, self.half_h);
-        pixel_lanes(x0, y0, w, h, options, |px, py, n| {
-            let mut o = [[0.0f32; RAY_LANES]; 3];
-            for l in 0..RAY_LANES {
-                let sx = (2.0 * px[l] / wf - 1.0) * hw;
-                let sy = (1.0 - 2.0 * py[l] / hf) * hh;
-                o[0][l] = c.x + sx * r.x + sy * u.x;
-                o[1][l] = c.y + sx * r.y + sy * u.y;
-                o[2][l] = c.z + sx * r.z + sy * u.z;
-            }
-            let f = self.forward;
-            out.extend((0..n).map(|l| Ray::new(Vec3::new(o[0][l], o[1][l], o[2][l]), f)));
-        });
+    /// Returns the continuous pixel coordinates `(px, py)` whose ray passes
+    /// through `point` (the inverse of [`OrthographicCamera::ray_at`]), or
+    /// `None` if `point` lies behind the screen (rays start on it) or is not
+    /// finite. The coordinates lie outside `[0, width] × [0, height]` for a
+    /// point outside the picture.
+    #[inline]
+    #[must_use]
+    pub fn project(&self, point: Vec3) -> Option<Vec2> {
+        let q = point - self.centre;
+        let (x, y, z) = (q.dot(self.right), q.dot(self.up), q.dot(self.forward));
+        if z.is_nan() || z < 0.0 {
+            return None;
+        }
+        let (nx, ny) = (x / self.half_h, y / self.half_h);
+        let p = pixel_from_screen(nx / self.aspect, ny, self.width, self.height);
+        p.is_finite().then_some(p)
     }
 }
