@@ -1,5 +1,6 @@
 //! Building the world a scene describes: fractal terrain, erosion, the maps
-//! materials read (deposition, wetness), the water level and the atmosphere.
+//! materials read (deposition, and the wetness the forest's ecosystem reads
+//! too), the water level and the atmosphere.
 //!
 //! This is Musgrave's landscape pipeline (Musgrave 1993, ch. 2–4; Musgrave et al. 1989): noise
 //! synthesis of a multifractal height field, erosion that carves drainage
@@ -22,7 +23,8 @@ use natura_noise::{
     Displace, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
-use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};
+use natura_terrain::analysis;
+use natura_terrain::erosion::{DropletErosion, PipeModel, StreamPower, Thermal};
 use natura_terrain::synth::{FieldMapping, TerraceParams, fill_field};
 use natura_terrain::water::{CoastParams, LakeParams};
 
@@ -186,7 +188,8 @@ pub struct ErodedTerrain {
     pub terrain: HeightField,
     /// Sediment deposited by erosion, metres (≥ 0).
     pub deposition: Grid2<f32>,
-    /// Wetness from the drainage area, 0 (ridges) to 1 (main rivers).
+    /// Wetness in `[0, 1]` of the final terrain: natura-terrain's
+    /// [`wetness`](natura_terrain::analysis::wetness).
     pub wetness: Grid2<f32>,
 }
 
@@ -199,7 +202,9 @@ pub struct World {
     pub terrain: HeightField,
     /// Sediment deposited by erosion, metres (≥ 0; erosion is not negative deposition here).
     pub deposition: Grid2<f32>,
-    /// Wetness from the drainage area, 0 (ridges) to 1 (main rivers).
+    /// Wetness in `[0, 1]` of the terrain: natura-terrain's
+    /// [`wetness`](natura_terrain::analysis::wetness), the one map the
+    /// materials and the forest's ecosystem read.
     pub wetness: Grid2<f32>,
     /// The sea level, metres, if the scene has water.
     pub water_level: Option<f32>,
@@ -230,10 +235,10 @@ impl World {
         let mut times = StageTimes::default();
 
         let mut terrain = times.time("synthesis", || synthesize(scene, seed, progress))?;
-        let (deposition, wetness) =
-            times.time("erosion", || erode(scene, &mut terrain, progress))?;
+        let deposition = times.time("erosion", || erode(scene, &mut terrain, progress))?;
         times.time("terraces", || terrace(scene, seed, &mut terrain))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
+        let wetness = times.time("wetness", || analysis::wetness(&terrain))?;
         Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
 
@@ -267,9 +272,10 @@ impl World {
         scene.validate()?;
         let seed = Seed(scene.seed);
         let mut terrain = synthesize(scene, seed, progress)?;
-        let (deposition, wetness) = erode(scene, &mut terrain, progress)?;
+        let deposition = erode(scene, &mut terrain, progress)?;
         terrace(scene, seed, &mut terrain)?;
         sink_coast(scene, seed, &mut terrain)?;
+        let wetness = analysis::wetness(&terrain)?;
         Ok(ErodedTerrain {
             terrain,
             deposition,
@@ -321,8 +327,9 @@ impl World {
     }
 
     /// A world over a given height field (a DEM, or terrain made elsewhere):
-    /// no synthesis or erosion; deposition is zero and wetness comes from D8
-    /// flow accumulation. The scene's terrain and erosion sections are ignored.
+    /// no synthesis or erosion; deposition is zero and wetness is
+    /// natura-terrain's [`wetness`](natura_terrain::analysis::wetness) of
+    /// the field. The scene's terrain and erosion sections are ignored.
     ///
     /// # Errors
     ///
@@ -339,10 +346,7 @@ impl World {
         let mut times = StageTimes::default();
         let (nx, ny) = (terrain.nx(), terrain.ny());
         let deposition = Grid2::new(nx, ny, 0.0f32)?;
-        let wetness = times.time("analysis", || -> Result<Grid2<f32>> {
-            let area = natura_terrain::analysis::flow_accumulation_d8(&terrain, Depressions::Fill)?;
-            Ok(wetness_from_area(&area, terrain.cell_size()))
-        })?;
+        let wetness = times.time("analysis", || analysis::wetness(&terrain))?;
         Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
 
@@ -535,16 +539,11 @@ fn sink_coast(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()>
 }
 
 /// Stream power, then the pipe model, then thermal weathering. Returns the
-/// deposition map (metres, ≥ 0) and the wetness map (0–1).
-fn erode(
-    scene: &SceneDesc,
-    hf: &mut HeightField,
-    progress: &dyn Progress,
-) -> Result<(Grid2<f32>, Grid2<f32>)> {
+/// deposition map (metres, ≥ 0).
+fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Result<Grid2<f32>> {
     let e = &scene.erosion;
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut deposition = Grid2::new(nx, ny, 0.0f32)?;
-    let mut area: Option<Grid2<f32>> = None;
 
     if e.stream_power_steps > 0 {
         let mut sp = StreamPower::new(e.stream_power.clone(), hf)?;
@@ -553,7 +552,6 @@ fn erode(
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
             *d += s.max(0.0);
         }
-        area = Some(sp.drainage_area()?);
     }
     let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
     if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
@@ -578,19 +576,7 @@ fn erode(
         th.run(hf, e.thermal_steps, progress)?;
     }
     hf.check_finite()?;
-    let area = match area {
-        Some(a) => a,
-        None => natura_terrain::analysis::flow_accumulation_d8(hf, Depressions::Fill)?,
-    };
-    Ok((deposition, wetness_from_area(&area, hf.cell_size())))
-}
-
-/// Wetness from drainage area (m²): log area in cells, from 50 cells (damp
-/// hollows) to 50 000 cells (the main rivers), mapped to `[0, 1]`.
-fn wetness_from_area(area: &Grid2<f32>, cell_size: f32) -> Grid2<f32> {
-    let cell = f64::from(cell_size).powi(2);
-    let (lo, hi) = (50f64.ln(), 50_000f64.ln());
-    area.map(|&a| (((f64::from(a) / cell).max(1.0).ln() - lo) / (hi - lo)).clamp(0.0, 1.0) as f32)
+    Ok(deposition)
 }
 
 /// Lakes shallower than this (metres) are left dry: puddles in the
