@@ -3,7 +3,8 @@
 //!
 //! 1. natura-plant's ecosystem (Deussen et al. 1998, §4) runs on the terrain
 //!    within `radius_m` of the eye: species establish by altitude, slope,
-//!    wetness and light ([`species`]), grow, and thin themselves out. The
+//!    wetness and light (natura-plant's [`catalogue`]), grow, and thin
+//!    themselves out. The
 //!    wetness is the world's own map (cut to the same window), the one the
 //!    materials read.
 //! 2. Its approximate instancing (§5) quantizes each species' plant sizes
@@ -18,7 +19,6 @@
 pub mod bvh;
 pub mod proto;
 pub mod shade;
-pub mod species;
 pub mod tri;
 
 use std::time::{Duration, Instant};
@@ -30,8 +30,8 @@ use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Plant};
 use crate::error::{RenderError, Result};
 use crate::world::World;
 use bvh::{Instanced, Mesh, Placement};
+use natura_plant::eco::catalogue::{self, Look};
 pub use shade::Light;
-use species::Look;
 
 /// Brightness of a low-polygon crown relative to a lit leaf: the mean
 /// self-shadowing of a full crown seen from afar (own value, matched by eye
@@ -176,7 +176,7 @@ impl Stand {
         let mut species = Vec::new();
         let mut looks = Vec::new();
         for (i, name) in v.species.iter().enumerate() {
-            let (s, l) = species::species(
+            let (s, l) = catalogue::species(
                 name,
                 v.density_per_ha,
                 (lo, hi),
