@@ -1,5 +1,6 @@
 //! Building the world a scene describes: fractal terrain, erosion, the maps
-//! materials read (deposition, wetness), the water level and the atmosphere.
+//! materials read (deposition, and the wetness the forest's ecosystem reads
+//! too), the water level and the atmosphere.
 //!
 //! This is Musgrave's landscape pipeline (Musgrave 1993, ch. 2–4; Musgrave et al. 1989): noise
 //! synthesis of a multifractal height field, erosion that carves drainage
@@ -19,11 +20,13 @@ use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
 use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
 use natura_noise::{
-    Displace, Fbm, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
+    Displace, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
 };
-use natura_terrain::erosion::{Depressions, DropletErosion, PipeModel, StreamPower, Thermal};
+use natura_terrain::analysis;
+use natura_terrain::erosion::{DropletErosion, PipeModel, StreamPower, Thermal};
 use natura_terrain::synth::{FieldMapping, TerraceParams, fill_field};
+use natura_terrain::water::{CoastParams, LakeParams};
 
 use crate::error::{RenderError, Result, fmt_f64};
 use crate::scene::{HydraulicModel, SceneDesc, TerrainGenerator};
@@ -185,7 +188,8 @@ pub struct ErodedTerrain {
     pub terrain: HeightField,
     /// Sediment deposited by erosion, metres (≥ 0).
     pub deposition: Grid2<f32>,
-    /// Wetness from the drainage area, 0 (ridges) to 1 (main rivers).
+    /// Wetness in `[0, 1]` of the final terrain: natura-terrain's
+    /// [`wetness`](natura_terrain::analysis::wetness).
     pub wetness: Grid2<f32>,
 }
 
@@ -198,7 +202,9 @@ pub struct World {
     pub terrain: HeightField,
     /// Sediment deposited by erosion, metres (≥ 0; erosion is not negative deposition here).
     pub deposition: Grid2<f32>,
-    /// Wetness from the drainage area, 0 (ridges) to 1 (main rivers).
+    /// Wetness in `[0, 1]` of the terrain: natura-terrain's
+    /// [`wetness`](natura_terrain::analysis::wetness), the one map the
+    /// materials and the forest's ecosystem read.
     pub wetness: Grid2<f32>,
     /// The sea level, metres, if the scene has water.
     pub water_level: Option<f32>,
@@ -229,10 +235,10 @@ impl World {
         let mut times = StageTimes::default();
 
         let mut terrain = times.time("synthesis", || synthesize(scene, seed, progress))?;
-        let (deposition, wetness) =
-            times.time("erosion", || erode(scene, &mut terrain, progress))?;
+        let deposition = times.time("erosion", || erode(scene, &mut terrain, progress))?;
         times.time("terraces", || terrace(scene, seed, &mut terrain))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
+        let wetness = times.time("wetness", || analysis::wetness(&terrain))?;
         Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
 
@@ -266,9 +272,10 @@ impl World {
         scene.validate()?;
         let seed = Seed(scene.seed);
         let mut terrain = synthesize(scene, seed, progress)?;
-        let (deposition, wetness) = erode(scene, &mut terrain, progress)?;
+        let deposition = erode(scene, &mut terrain, progress)?;
         terrace(scene, seed, &mut terrain)?;
         sink_coast(scene, seed, &mut terrain)?;
+        let wetness = analysis::wetness(&terrain)?;
         Ok(ErodedTerrain {
             terrain,
             deposition,
@@ -320,8 +327,9 @@ impl World {
     }
 
     /// A world over a given height field (a DEM, or terrain made elsewhere):
-    /// no synthesis or erosion; deposition is zero and wetness comes from D8
-    /// flow accumulation. The scene's terrain and erosion sections are ignored.
+    /// no synthesis or erosion; deposition is zero and wetness is
+    /// natura-terrain's [`wetness`](natura_terrain::analysis::wetness) of
+    /// the field. The scene's terrain and erosion sections are ignored.
     ///
     /// # Errors
     ///
@@ -338,10 +346,7 @@ impl World {
         let mut times = StageTimes::default();
         let (nx, ny) = (terrain.nx(), terrain.ny());
         let deposition = Grid2::new(nx, ny, 0.0f32)?;
-        let wetness = times.time("analysis", || -> Result<Grid2<f32>> {
-            let area = natura_terrain::analysis::flow_accumulation_d8(&terrain, Depressions::Fill)?;
-            Ok(wetness_from_area(&area, terrain.cell_size()))
-        })?;
+        let wetness = times.time("analysis", || analysis::wetness(&terrain))?;
         Self::finish(scene, terrain, deposition, wetness, times, progress)
     }
 
@@ -356,7 +361,11 @@ impl World {
         mut times: StageTimes,
         progress: &dyn Progress,
     ) -> Result<World> {
-        let water_level = scene.water.enabled.then(|| water_level(scene, &terrain));
+        let water_level = if scene.water.enabled {
+            Some(water_level(scene, &terrain)?)
+        } else {
+            None
+        };
         let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
         let sun = sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg);
         let atmosphere = times.time("atmosphere", || {
@@ -513,52 +522,28 @@ fn terrace(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()> {
     Ok(())
 }
 
-/// Sinks the border of the field below the water over `coast_fraction` of
-/// its side, along a coastline that wanders with low-frequency fBm, so the
-/// land ends in a sea instead of a cliff at the edge of the data.
+/// Sinks the border of the field below the water
+/// ([`sink_coast`](natura_terrain::water::sink_coast)) with the scene's
+/// `terrain.coast_fraction` and `terrain.coast_depth_m`, the coastline's
+/// wander from sub-seed `"coast"` of the scene's seed.
 fn sink_coast(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()> {
     let t = &scene.terrain;
-    let coast = t.coast_fraction as f32;
-    if coast <= 0.0 {
-        return Ok(());
-    }
-    let depth = t.coast_depth_m as f32;
-    let wander = Fbm::new(
-        Perlin::new(seed.derive("coast").0),
-        Spectral::default()
-            .with_h(0.6)
-            .with_octaves(5.0)
-            .with_frequency(6.0),
-    )?;
-    let (nx, ny) = (hf.nx(), hf.ny());
-    let g = hf.heights_mut();
-    for j in 0..ny {
-        let v = j as f32 / (ny - 1) as f32;
-        for i in 0..nx {
-            let u = i as f32 / (nx - 1) as f32;
-            let edge = u.min(1.0 - u).min(v).min(1.0 - v);
-            let d =
-                edge + 0.35 * coast * wander.eval2(DVec2::new(f64::from(u), f64::from(v))) as f32;
-            let m = crate::material::smoothstep(0.0, coast, d);
-            let h = g[(i, j)];
-            g[(i, j)] = -depth + (h + depth) * m;
-        }
-    }
+    let params = CoastParams {
+        fraction: t.coast_fraction as f32,
+        depth_m: t.coast_depth_m as f32,
+        ..CoastParams::default()
+    };
+    natura_terrain::water::sink_coast(hf, &params, seed)?;
     hf.check_finite()?;
     Ok(())
 }
 
 /// Stream power, then the pipe model, then thermal weathering. Returns the
-/// deposition map (metres, ≥ 0) and the wetness map (0–1).
-fn erode(
-    scene: &SceneDesc,
-    hf: &mut HeightField,
-    progress: &dyn Progress,
-) -> Result<(Grid2<f32>, Grid2<f32>)> {
+/// deposition map (metres, ≥ 0).
+fn erode(scene: &SceneDesc, hf: &mut HeightField, progress: &dyn Progress) -> Result<Grid2<f32>> {
     let e = &scene.erosion;
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut deposition = Grid2::new(nx, ny, 0.0f32)?;
-    let mut area: Option<Grid2<f32>> = None;
 
     if e.stream_power_steps > 0 {
         let mut sp = StreamPower::new(e.stream_power.clone(), hf)?;
@@ -567,7 +552,6 @@ fn erode(
         for (d, s) in deposition.as_mut_slice().iter_mut().zip(dep.as_slice()) {
             *d += s.max(0.0);
         }
-        area = Some(sp.drainage_area()?);
     }
     let droplets = (e.droplets_per_sample * (hf.nx() * hf.ny()) as f64).round() as u64;
     if e.hydraulic_model == HydraulicModel::Droplets && droplets > 0 {
@@ -592,114 +576,47 @@ fn erode(
         th.run(hf, e.thermal_steps, progress)?;
     }
     hf.check_finite()?;
-    let area = match area {
-        Some(a) => a,
-        None => natura_terrain::analysis::flow_accumulation_d8(hf, Depressions::Fill)?,
-    };
-    Ok((deposition, wetness_from_area(&area, hf.cell_size())))
-}
-
-/// Wetness from drainage area (m²): log area in cells, from 50 cells (damp
-/// hollows) to 50 000 cells (the main rivers), mapped to `[0, 1]`.
-fn wetness_from_area(area: &Grid2<f32>, cell_size: f32) -> Grid2<f32> {
-    let cell = f64::from(cell_size).powi(2);
-    let (lo, hi) = (50f64.ln(), 50_000f64.ln());
-    area.map(|&a| (((f64::from(a) / cell).max(1.0).ln() - lo) / (hi - lo)).clamp(0.0, 1.0) as f32)
+    Ok(deposition)
 }
 
 /// Lakes shallower than this (metres) are left dry: puddles in the
-/// triangulated surface, not lakes.
+/// triangulated surface, not lakes (natura-terrain's
+/// [`LakeParams::min_depth_m`]).
 pub const MIN_LAKE_DEPTH_M: f32 = 1.0;
 
-/// Lakes of fewer samples than this are left dry (pits, not lakes).
+/// Lakes of fewer samples than this are left dry (pits, not lakes;
+/// natura-terrain's [`LakeParams::min_cells`]).
 pub const MIN_LAKE_SAMPLES: usize = 48;
 
-/// The terrain with its water on top: depressions filled to their spill
-/// level (Priority-Flood) where deeper than [`MIN_LAKE_DEPTH_M`], and
-/// everything below `sea` raised to it. Without water, the terrain itself.
+/// The terrain with its water on top (natura-terrain's
+/// [`water_surface`](natura_terrain::water::water_surface) with
+/// [`MIN_LAKE_DEPTH_M`] and [`MIN_LAKE_SAMPLES`]). Without water, the
+/// terrain itself.
 fn water_surface(terrain: &HeightField, sea: Option<f32>) -> Result<HeightField> {
     let Some(sea) = sea else {
         return Ok(terrain.clone());
     };
-    let (filled, depth) = natura_terrain::analysis::fill_depressions(terrain)?;
-    let (nx, ny) = (terrain.nx(), terrain.ny());
-    let wet: Vec<bool> = depth
-        .as_slice()
-        .iter()
-        .map(|&d| d > MIN_LAKE_DEPTH_M)
-        .collect();
-    let keep = large_components(&wet, nx, ny, MIN_LAKE_SAMPLES);
-    let mut s = terrain.clone();
-    let levels = filled.heights().as_slice();
-    for (k, v) in s.heights_mut().as_mut_slice().iter_mut().enumerate() {
-        if keep[k] {
-            *v = levels[k];
-        }
-        *v = v.max(sea);
-    }
-    Ok(s)
+    let lakes = LakeParams {
+        min_depth_m: MIN_LAKE_DEPTH_M,
+        min_cells: MIN_LAKE_SAMPLES,
+    };
+    Ok(natura_terrain::water::water_surface(terrain, sea, &lakes)?)
 }
 
-/// Marks the cells of 4-connected components of `mask` with at least `min` cells.
-fn large_components(mask: &[bool], nx: usize, ny: usize, min: usize) -> Vec<bool> {
-    let mut keep = vec![false; mask.len()];
-    let mut seen = vec![false; mask.len()];
-    let mut stack = Vec::new();
-    let mut comp = Vec::new();
-    for start in 0..mask.len() {
-        if !mask[start] || seen[start] {
-            continue;
-        }
-        comp.clear();
-        stack.push(start);
-        seen[start] = true;
-        while let Some(k) = stack.pop() {
-            comp.push(k);
-            let (x, y) = (k % nx, k / nx);
-            let mut visit = |n: usize| {
-                if mask[n] && !seen[n] {
-                    seen[n] = true;
-                    stack.push(n);
-                }
-            };
-            if x > 0 {
-                visit(k - 1);
-            }
-            if x + 1 < nx {
-                visit(k + 1);
-            }
-            if y > 0 {
-                visit(k - nx);
-            }
-            if y + 1 < ny {
-                visit(k + nx);
-            }
-        }
-        if comp.len() >= min {
-            for &k in &comp {
-                keep[k] = true;
-            }
-        }
-    }
-    keep
-}
-
-/// The water level: given, or the `level_quantile` of the heights of the
-/// interior (the land inside the coastal border).
-fn water_level(scene: &SceneDesc, hf: &HeightField) -> f32 {
+/// The water level: the scene's `water.level_m`, or the `water.level_quantile`
+/// of the heights inside the coastal border (natura-terrain's
+/// [`water_level`](natura_terrain::water::water_level)), never below the
+/// datum.
+fn water_level(scene: &SceneDesc, hf: &HeightField) -> Result<f32> {
     if let Some(l) = scene.water.level_m {
-        return l as f32;
+        return Ok(l as f32);
     }
-    let n = hf.nx();
-    let b = (scene.terrain.coast_fraction * n as f64).ceil() as usize;
-    let b = b.min(n / 2 - 1);
-    let mut hs: Vec<f32> = Vec::with_capacity((n - 2 * b) * (n - 2 * b));
-    for j in b..n - b {
-        hs.extend_from_slice(&hf.heights().row(j)[b..n - b]);
-    }
-    hs.sort_by(f32::total_cmp);
-    let k = ((hs.len() - 1) as f64 * scene.water.level_quantile).round() as usize;
-    hs[k].max(0.0)
+    let level = natura_terrain::water::water_level(
+        hf,
+        scene.terrain.coast_fraction,
+        scene.water.level_quantile,
+    )?;
+    Ok(level.max(0.0))
 }
 
 /// Atmosphere parameters for the scene: Earth's, with the haze and options of

@@ -23,7 +23,10 @@ fn small_scene() -> SceneDesc {
     s
 }
 
-/// A flat world at sea level without water, looking along +x, the sun high.
+/// A flat world at sea level without water, looking along +x, the sun high,
+/// its ground dry: an open, bright ground whose shadows show through the
+/// haze (the wetness of a flat field only follows the routing across its
+/// flats, and where it is high the ground is dark forest).
 fn flat_world(mut scene: SceneDesc) -> World {
     scene.water.enabled = false;
     scene.sun.elevation_deg = 40.0;
@@ -32,7 +35,9 @@ fn flat_world(mut scene: SceneDesc) -> World {
     scene.camera.height_above_ground_m = 200.0;
     scene.camera.pitch_deg = -2.0;
     let hf = HeightField::flat(128, 128, 480.0, 0.0).unwrap();
-    World::from_height_field(&scene, hf, &NoProgress).unwrap()
+    let mut world = World::from_height_field(&scene, hf, &NoProgress).unwrap();
+    world.wetness.as_mut_slice().fill(0.0);
+    world
 }
 
 fn clouds_of(world: &World) -> CloudSky {

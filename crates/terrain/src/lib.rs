@@ -14,6 +14,9 @@
 //! * [`analysis`]: slope, curvature, D8 and multiple-flow directions, flow
 //!   accumulation, depression filling, drainage networks, wetness, hypsometry,
 //!   and fractal statistics (spectral slope and variogram estimates of H).
+//! * [`water`]: water bodies — a sea level, lakes filled to their spill
+//!   points, connected water bodies, and a coast sunk below the sea at the
+//!   border.
 //! * [`export`]: 16-bit PNG / EXR height maps, flow and wetness images, and
 //!   triangle meshes as binary glTF or OBJ.
 //!
@@ -41,6 +44,7 @@ pub mod analysis;
 pub mod erosion;
 pub mod export;
 pub mod synth;
+pub mod water;
 
 pub use error::{Result, TerrainError};
 /// The vector types of the API, so users need no `glam` dependency of their own.

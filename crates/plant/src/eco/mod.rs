@@ -15,6 +15,9 @@
 //!    plant; the output is an instance list (species, prototype, position,
 //!    scale, rotation) plus the prototypes' turtle geometry.
 //!
+//! [`catalogue`] holds ready-made species at landscape scale (spruce, pine,
+//! beech), each with its L-system and the colours of its bark and leaves.
+//!
 //! ```
 //! use natura_core::HeightField;
 //! use natura_plant::eco::{EcoParams, Ecosystem, Instancing};
@@ -26,6 +29,7 @@
 //! # Ok::<(), natura_plant::PlantError>(())
 //! ```
 
+pub mod catalogue;
 mod instance;
 mod par;
 mod picture;

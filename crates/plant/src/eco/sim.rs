@@ -194,6 +194,30 @@ impl Ecosystem {
     pub fn new(hf: &natura_core::HeightField, params: EcoParams) -> Result<Self> {
         params.validate()?;
         let site = Site::new(hf, params.sun)?;
+        Self::sown(site, params)
+    }
+
+    /// As [`Self::new`] on a site whose wetness is given ([`Site::with_wetness`]):
+    /// the plants read the same map as whatever else reads `wetness` (a
+    /// renderer's materials), not one computed from `hf` alone.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::new`]; [`Site::with_wetness`]'s errors for a wetness map
+    /// of the wrong size or with values outside `[0, 1]`.
+    pub fn with_wetness(
+        hf: &natura_core::HeightField,
+        wetness: natura_core::Grid2<f32>,
+        params: EcoParams,
+    ) -> Result<Self> {
+        params.validate()?;
+        let site = Site::with_wetness(hf, params.sun, wetness)?;
+        Self::sown(site, params)
+    }
+
+    /// The ecosystem on `site` (built for `params.sun`, `params` validated)
+    /// with its initial population sown.
+    fn sown(site: Site, params: EcoParams) -> Result<Self> {
         let max_r: Vec<f32> = params.species.iter().map(|s| s.max_radius as f32).collect();
         let r_max = max_r.iter().copied().fold(0.0, f32::max);
         let mut eco = Self {
@@ -232,6 +256,33 @@ impl Ecosystem {
         plants: Vec<Plant>,
         step: u32,
     ) -> Result<Self> {
+        Self::resumed(hf, None, params, plants, step)
+    }
+
+    /// As [`Self::resume`] for an ecosystem made by [`Self::with_wetness`]
+    /// with the same `wetness`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::resume`]; [`Site::with_wetness`]'s errors.
+    pub fn resume_with_wetness(
+        hf: &natura_core::HeightField,
+        wetness: natura_core::Grid2<f32>,
+        params: EcoParams,
+        plants: Vec<Plant>,
+        step: u32,
+    ) -> Result<Self> {
+        Self::resumed(hf, Some(wetness), params, plants, step)
+    }
+
+    /// [`Self::resume`] on `wetness` if given, else on the field's own.
+    fn resumed(
+        hf: &natura_core::HeightField,
+        wetness: Option<natura_core::Grid2<f32>>,
+        params: EcoParams,
+        plants: Vec<Plant>,
+        step: u32,
+    ) -> Result<Self> {
         params.validate()?;
         let refuse = |value: String, reason: &str| PlantError::InvalidParameter {
             name: "Ecosystem::resume",
@@ -250,7 +301,10 @@ impl Ecosystem {
                 &format!("at most EcoParams::max_plants = {}", params.max_plants),
             ));
         }
-        let site = Site::new(hf, params.sun)?;
+        let site = match wetness {
+            Some(w) => Site::with_wetness(hf, params.sun, w)?,
+            None => Site::new(hf, params.sun)?,
+        };
         let (ex, ey) = site.extent();
         let n = params.species.len();
         if let Some((i, p)) = plants.iter().enumerate().find(|(_, p)| {

@@ -3,10 +3,13 @@
 //!
 //! Deussen et al. 1998, §4.2, feed the population simulation with the
 //! terrain's altitude, normals and a soil-humidity map from a rain-water flow
-//! simulation whose parameters they do not give. Here the humidity is the
-//! topographic wetness index over multiple-flow-direction accumulation
-//! (natura-terrain's drainage analysis), rescaled to `[0, 1]` over the field,
-//! and the light is the hill-shade under a given sun.
+//! simulation whose parameters they do not give. Here the humidity is
+//! natura-terrain's wetness ([`analysis::wetness`]: the topographic wetness
+//! index of Beven & Kirkby 1979 over multiple-flow-direction accumulation,
+//! rescaled to `[0, 1]` over the field), computed from the terrain or handed
+//! in by a caller who shades the same terrain with it
+//! ([`Site::with_wetness`]), and the light is the hill-shade under a given
+//! sun.
 
 use glam::Vec3;
 use natura_core::{Grid2, HeightField};
@@ -21,7 +24,8 @@ pub struct Site {
     pub altitude: Grid2<f32>,
     /// Slope angle, radians.
     pub slope: Grid2<f32>,
-    /// Topographic wetness rescaled to `[0, 1]`.
+    /// Wetness in `[0, 1]`: natura-terrain's [`analysis::wetness`] of the
+    /// field, or the map given to [`Site::with_wetness`].
     pub wetness: Grid2<f32>,
     /// Terrain light in `[0, 1]`: the cosine between the surface normal and the sun.
     pub light: Grid2<f32>,
@@ -37,8 +41,22 @@ fn normalise(g: &Grid2<f32>) -> Grid2<f32> {
     g.map(|&v| if span > 0.0 { (v - lo) / span } else { 0.5 })
 }
 
+/// Refuses a field smaller than 3×3 samples or with a non-finite height.
+fn check_field(hf: &HeightField) -> Result<()> {
+    if hf.nx() < 3 || hf.ny() < 3 {
+        return Err(PlantError::InvalidParameter {
+            name: "HeightField",
+            value: format!("{}×{}", hf.nx(), hf.ny()),
+            reason: "an ecosystem needs at least 3×3 samples".into(),
+        });
+    }
+    hf.check_finite()?;
+    Ok(())
+}
+
 impl Site {
-    /// Analyses `hf` under the sun direction `sun` (pointing towards the sun).
+    /// Analyses `hf` under the sun direction `sun` (pointing towards the
+    /// sun), with natura-terrain's [`analysis::wetness`] of `hf`.
     ///
     /// # Errors
     ///
@@ -46,22 +64,43 @@ impl Site {
     /// [`PlantError::Core`] for a non-finite height or a zero `sun`;
     /// [`PlantError::Terrain`] from the drainage analysis.
     pub fn new(hf: &HeightField, sun: Vec3) -> Result<Self> {
-        if hf.nx() < 3 || hf.ny() < 3 {
+        check_field(hf)?;
+        let wetness = analysis::wetness(hf)?;
+        Self::with_wetness(hf, sun, wetness)
+    }
+
+    /// As [`Site::new`] with a given wetness map (values in `[0, 1]`, one per
+    /// sample of `hf`) instead of one computed from `hf`: for a field cut
+    /// from a larger terrain whose wetness ([`analysis::wetness`] of the
+    /// whole) other readers share, so the plants and they see the same
+    /// values.
+    ///
+    /// # Errors
+    ///
+    /// As [`Site::new`]; [`PlantError::InvalidParameter`] naming `wetness` if
+    /// its size differs from the field's or a value is not in `[0, 1]`.
+    pub fn with_wetness(hf: &HeightField, sun: Vec3, wetness: Grid2<f32>) -> Result<Self> {
+        check_field(hf)?;
+        if wetness.dims() != (hf.nx(), hf.ny()) {
             return Err(PlantError::InvalidParameter {
-                name: "HeightField",
-                value: format!("{}×{}", hf.nx(), hf.ny()),
-                reason: "an ecosystem needs at least 3×3 samples".into(),
+                name: "wetness",
+                value: format!("{}×{}", wetness.width(), wetness.height()),
+                reason: format!("one value per sample of the {}×{} field", hf.nx(), hf.ny()),
             });
         }
-        hf.check_finite()?;
+        if let Some((x, y, v)) = wetness.find(|v| !(0.0..=1.0).contains(v)) {
+            return Err(PlantError::InvalidParameter {
+                name: "wetness",
+                value: format!("{v} at ({x}, {y})"),
+                reason: "values in [0, 1]".into(),
+            });
+        }
         let light = hf.hillshade(sun)?;
         let slope = analysis::slope(hf)?;
-        let area = analysis::flow_accumulation_mfd(hf, 1.1)?;
-        let wet = analysis::wetness_index(hf, &area)?;
         Ok(Self {
             altitude: normalise(hf.heights()),
             slope,
-            wetness: normalise(&wet),
+            wetness,
             light,
             cell: hf.cell_size(),
             heights: hf.heights().clone(),

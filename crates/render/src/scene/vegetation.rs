@@ -6,8 +6,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{RenderError, Result, in_range as range};
 
-/// The tree species the forest can grow, by scene name.
-pub const SPECIES_NAMES: [&str; 3] = ["spruce", "pine", "beech"];
+/// The tree species the forest can grow, by scene name: natura-plant's
+/// [`catalogue::NAMES`](natura_plant::eco::catalogue::NAMES).
+pub const SPECIES_NAMES: [&str; 3] = natura_plant::eco::catalogue::NAMES;
 
 /// A forest of instanced trees on the terrain around the camera.
 ///

@@ -3,7 +3,10 @@
 //!
 //! 1. natura-plant's ecosystem (Deussen et al. 1998, §4) runs on the terrain
 //!    within `radius_m` of the eye: species establish by altitude, slope,
-//!    wetness and light ([`species`]), grow, and thin themselves out.
+//!    wetness and light (natura-plant's [`catalogue`]), grow, and thin
+//!    themselves out. The
+//!    wetness is the world's own map (cut to the same window), the one the
+//!    materials read.
 //! 2. Its approximate instancing (§5) quantizes each species' plant sizes
 //!    into a few prototypes grown from the species' L-system; each is meshed
 //!    ([`proto`]) in full and as a low-polygon crown.
@@ -16,20 +19,19 @@
 pub mod bvh;
 pub mod proto;
 pub mod shade;
-pub mod species;
 pub mod tri;
 
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
-use natura_core::{HeightField, Progress, Seed};
+use natura_core::{Grid2, HeightField, Progress, Seed};
 use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Plant};
 
 use crate::error::{RenderError, Result};
 use crate::world::World;
 use bvh::{Instanced, Mesh, Placement};
+use natura_plant::eco::catalogue::{self, Look};
 pub use shade::Light;
-use species::Look;
 
 /// Brightness of a low-polygon crown relative to a lit leaf: the mean
 /// self-shadowing of a full crown seen from afar (own value, matched by eye
@@ -86,9 +88,16 @@ pub struct Forest {
 }
 
 /// The part of `world`'s terrain within `radius` of `(x, y)`, clipped to the
-/// field: the cropped field and its origin in metres, or `None` if fewer
-/// than 3×3 samples remain.
-fn crop(terrain: &HeightField, x: f32, y: f32, radius: f32) -> Result<Option<(HeightField, Vec3)>> {
+/// field, with the same window of its wetness map: the cropped field, its
+/// wetness and its origin in metres, or `None` if fewer than 3×3 samples
+/// remain.
+fn crop(
+    terrain: &HeightField,
+    wetness: &Grid2<f32>,
+    x: f32,
+    y: f32,
+    radius: f32,
+) -> Result<Option<(HeightField, Grid2<f32>, Vec3)>> {
     let c = terrain.cell_size();
     let (nx, ny) = (terrain.nx() as i64, terrain.ny() as i64);
     let lo = |v: f32| (((v - radius) / c).floor() as i64).clamp(0, nx.max(ny) - 1);
@@ -100,13 +109,14 @@ fn crop(terrain: &HeightField, x: f32, y: f32, radius: f32) -> Result<Option<(He
     }
     let h = terrain.heights();
     let (i0, j0) = (i0 as usize, j0 as usize);
-    let hf = HeightField::from_fn(
-        (i1 - i0 as i64 + 1) as usize,
-        (j1 - j0 as i64 + 1) as usize,
-        c,
-        |i, j| h[(i0 + i, j0 + j)],
-    )?;
-    Ok(Some((hf, Vec3::new(i0 as f32 * c, j0 as f32 * c, 0.0))))
+    let (w, d) = ((i1 - i0 as i64 + 1) as usize, (j1 - j0 as i64 + 1) as usize);
+    let hf = HeightField::from_fn(w, d, c, |i, j| h[(i0 + i, j0 + j)])?;
+    let wet = Grid2::from_fn(w, d, |i, j| wetness[(i0 + i, j0 + j)])?;
+    Ok(Some((
+        hf,
+        wet,
+        Vec3::new(i0 as f32 * c, j0 as f32 * c, 0.0),
+    )))
 }
 
 /// `placements` with each tree's foot moved to `ground(base)` (metres;
@@ -134,6 +144,8 @@ fn grounded(
 /// simulation's parameters.
 struct Stand {
     hf: HeightField,
+    /// The world's wetness over `hf`.
+    wetness: Grid2<f32>,
     origin: Vec3,
     looks: Vec<Look>,
     params: EcoParams,
@@ -149,7 +161,14 @@ impl Stand {
             return Ok(None);
         }
         let eye = world.eye();
-        let Some((hf, origin)) = crop(&world.terrain, eye.x, eye.y, v.radius_m as f32)? else {
+        let Some((hf, wetness, origin)) = crop(
+            &world.terrain,
+            &world.wetness,
+            eye.x,
+            eye.y,
+            v.radius_m as f32,
+        )?
+        else {
             return Ok(None);
         };
         let (lo, hi) = hf.min_max();
@@ -157,7 +176,7 @@ impl Stand {
         let mut species = Vec::new();
         let mut looks = Vec::new();
         for (i, name) in v.species.iter().enumerate() {
-            let (s, l) = species::species(
+            let (s, l) = catalogue::species(
                 name,
                 v.density_per_ha,
                 (lo, hi),
@@ -184,6 +203,7 @@ impl Stand {
         let max_radius = params.species.iter().map(|s| s.max_radius as f32).collect();
         Ok(Some(Self {
             hf,
+            wetness,
             origin,
             looks,
             params,
@@ -218,7 +238,7 @@ impl Forest {
         let Some(stand) = Stand::of(world)? else {
             return Ok(None);
         };
-        let mut eco = Ecosystem::new(&stand.hf, stand.params)?;
+        let mut eco = Ecosystem::with_wetness(&stand.hf, stand.wetness, stand.params)?;
         eco.run(progress)?;
         Ok(Some(eco.plants().to_vec()))
     }
@@ -230,7 +250,7 @@ impl Forest {
     ///
     /// As [`Self::build`]; [`RenderError::Plant`] if `plants` cannot be the
     /// population of this world's ecosystem
-    /// ([`Ecosystem::resume`]'s errors).
+    /// ([`Ecosystem::resume_with_wetness`]'s errors).
     pub fn build_with_plants(
         world: &World,
         plants: Vec<Plant>,
@@ -252,6 +272,7 @@ impl Forest {
         let v = &scene.vegetation;
         let Some(Stand {
             hf,
+            wetness,
             origin,
             looks,
             params,
@@ -267,9 +288,9 @@ impl Forest {
 
         let t0 = Instant::now();
         let eco = match plants {
-            Some(p) => Ecosystem::resume(&hf, params, p, v.steps)?,
+            Some(p) => Ecosystem::resume_with_wetness(&hf, wetness, params, p, v.steps)?,
             None => {
-                let mut eco = Ecosystem::new(&hf, params)?;
+                let mut eco = Ecosystem::with_wetness(&hf, wetness, params)?;
                 eco.run(progress)?;
                 eco
             }
@@ -437,6 +458,52 @@ impl Forest {
             l * CROWN_HULL_SHADE
         } else {
             l
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use natura_core::NoProgress;
+
+    use super::*;
+    use crate::scene::SceneDesc;
+
+    /// The forest's plants and the materials read one wetness map: the
+    /// site the ecosystem grows on holds the world's wetness, element for
+    /// element, over the ecosystem's window.
+    #[test]
+    fn the_ecosystem_reads_the_worlds_wetness() {
+        let mut scene = SceneDesc::default();
+        scene.water.enabled = false;
+        scene.vegetation.tree_line_m = 80.0;
+        scene.camera.position_uv = [0.5, 0.25];
+        scene.vegetation.radius_m = 60.0;
+        scene.vegetation.steps = 2;
+        let hf = HeightField::from_fn(96, 96, 5.0, |i, j| {
+            let (x, y) = (i as f32 * 0.11, j as f32 * 0.13);
+            0.15 * j as f32 + 2.0 * x.sin() * y.cos()
+        })
+        .unwrap();
+        let world = World::from_height_field(&scene, hf, &NoProgress).unwrap();
+        let stand = Stand::of(&world).unwrap().expect("a stand around the eye");
+        let c = world.terrain.cell_size();
+        let (i0, j0) = (
+            (stand.origin.x / c).round() as usize,
+            (stand.origin.y / c).round() as usize,
+        );
+        let eco = Ecosystem::with_wetness(&stand.hf, stand.wetness, stand.params).unwrap();
+        let site = eco.site().wetness.clone();
+        // A window of the world, not the whole of it.
+        assert!(site.width() >= 3 && site.width() < 96, "{}", site.width());
+        for j in 0..site.height() {
+            for i in 0..site.width() {
+                assert_eq!(
+                    site[(i, j)].to_bits(),
+                    world.wetness[(i0 + i, j0 + j)].to_bits(),
+                    "({i}, {j})"
+                );
+            }
         }
     }
 }

@@ -11,7 +11,7 @@
 
 use glam::Vec3;
 
-use super::species::Look;
+use natura_plant::eco::catalogue::Look;
 
 /// Fraction of the sky a point on a crown's surface sees (the rest is the
 /// crown itself and its neighbours): an own value.

@@ -200,6 +200,35 @@ pub fn wetness_index(hf: &HeightField, area: &Grid2<f32>) -> Result<Grid2<f32>> 
     })?)
 }
 
+/// The exponent of the multiple-flow-direction routing under [`wetness`]:
+/// 1.1, the value Freeman 1991 recommends.
+pub const WETNESS_MFD_EXPONENT: f64 = 1.1;
+
+/// The wetness of a terrain in `[0, 1]`: the topographic wetness index
+/// `ln(a / tan β)` of Beven & Kirkby 1979 ([`wetness_index`]) over the
+/// multiple-flow-direction drainage area of Freeman 1991
+/// ([`flow_accumulation_mfd`] with exponent [`WETNESS_MFD_EXPONENT`]),
+/// rescaled linearly so the driest sample of the field is 0 and the wettest
+/// 1 (0.5 everywhere if the index is the same everywhere). The rescaling is
+/// natura's own: it stands in for the soil-humidity map of Deussen et al.
+/// 1998, §4.2, whose species preferences are relative to their terrain.
+///
+/// This is natura's one wetness model: the materials a scene is shaded with
+/// and the ecosystem its forest grows from read the same map.
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) if `hf` is
+/// too small for the flow graph, and [`TerrainError::Core`](crate::TerrainError::Core)
+/// naming the first NaN or infinite height, or if a grid cannot be allocated.
+pub fn wetness(hf: &HeightField) -> Result<Grid2<f32>> {
+    let area = flow_accumulation_mfd(hf, WETNESS_MFD_EXPONENT)?;
+    let twi = wetness_index(hf, &area)?;
+    let (lo, hi) = (twi.min(), twi.max());
+    let span = hi - lo;
+    Ok(twi.map(|&v| if span > 0.0 { (v - lo) / span } else { 0.5 }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -226,6 +255,30 @@ mod tests {
         let w = wetness_index(&hf, &d8).unwrap();
         assert!(w[(1, 5)] > w[(14, 5)]);
         assert!(channel_network(&d8, 0.0).is_err());
+    }
+
+    #[test]
+    fn wetness_is_the_rescaled_index_over_mfd_area() {
+        // A valley along y: wettest in its floor, driest on the ridges.
+        let hf = HeightField::from_fn(33, 25, 10.0, |i, j| {
+            (i as f32 - 16.0).abs() * 3.0 + j as f32 * 0.5
+        })
+        .unwrap();
+        let w = wetness(&hf).unwrap();
+        let twi = wetness_index(&hf, &flow_accumulation_mfd(&hf, 1.1).unwrap()).unwrap();
+        let (lo, hi) = (twi.min(), twi.max());
+        for (a, b) in w.as_slice().iter().zip(twi.as_slice()) {
+            assert_eq!(*a, (b - lo) / (hi - lo));
+        }
+        assert_eq!((w.min(), w.max()), (0.0, 1.0));
+        assert!(w[(16, 12)] > w[(4, 12)]);
+        // A flat field: the routing across its flats still orders it.
+        let flat = HeightField::flat(8, 8, 1.0, 3.0).unwrap();
+        let f = wetness(&flat).unwrap();
+        assert!(f.as_slice().iter().all(|v| (0.0..=1.0).contains(v)));
+        let mut nan = flat.clone();
+        nan.heights_mut()[(2, 2)] = f32::NAN;
+        assert!(wetness(&nan).is_err());
     }
 
     #[test]

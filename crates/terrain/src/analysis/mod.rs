@@ -9,8 +9,8 @@ pub mod surface;
 
 pub use flow::{Depressions, FlowGraph, fill_depressions};
 pub use hydrology::{
-    channel_network, d8_directions, flow_accumulation_d8, flow_accumulation_mfd, strahler_order,
-    wetness_index,
+    WETNESS_MFD_EXPONENT, channel_network, d8_directions, flow_accumulation_d8,
+    flow_accumulation_mfd, strahler_order, wetness, wetness_index,
 };
 pub use stats::{
     RadialSpectrum, hypsometric_curve, hypsometric_integral, radial_power_spectrum, spectral_h,

@@ -1,21 +1,27 @@
-//! The forest's species catalogue: natura-plant ecosystem species at
-//! landscape scale (radii in metres, altitude bands in metres above the
-//! water), each with the L-system its prototypes grow from and the colours
-//! its bark and leaves are shaded with. The values are our own; the
-//! ecosystem's parameters are those of Deussen et al. 1998, §4.3.
+//! The species catalogue: ecosystem species at landscape scale (radii in
+//! metres, altitude bands in metres above the water), each with the
+//! L-system its prototypes grow from and the colours its bark and leaves are
+//! shaded with. The values are natura's own; the species' parameters are
+//! those of Deussen et al. 1998, §4.3 (see [`Species`]), and the beech's
+//! branching follows Prusinkiewicz & Lindenmayer 1990, Fig. 2.8.
 
 use glam::Vec3;
-use natura_plant::eco::Species;
 
-/// How a species looks: what the renderer needs beyond the ecosystem.
+use super::Species;
+
+/// The names [`species`] knows, in catalogue order.
+pub const NAMES: [&str; 3] = ["spruce", "pine", "beech"];
+
+/// How a species looks: what a renderer needs beyond the ecosystem (natura's
+/// own values).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Look {
-    /// Height of a mature tree relative to the scene's `tree_height_m`.
+    /// Height of a mature tree relative to a scene's tree height.
     pub height_factor: f32,
     /// Linear albedo of the leaves (reflectance).
     pub leaf: Vec3,
-    /// Linear colour of the light a leaf transmits (times the scene's
-    /// `leaf_transmission`).
+    /// Linear colour of the light a leaf transmits (times a scene's leaf
+    /// transmission).
     pub leaf_transmit: Vec3,
     /// Linear albedo of the bark.
     pub bark: Vec3,
@@ -44,7 +50,7 @@ const BEECH: &str = "angle: 30
 A -> !F(1)[&(32)F(0.9)~L(1.5)A]/(125)[&(34)F(0.9)~L(1.5)A]/(110)[&(30)F(0.9)~L(1.5)A]";
 
 /// The ecosystem species and look of the catalogue entry `name` (one of
-/// [`SPECIES_NAMES`](crate::scene::SPECIES_NAMES)), for a terrain whose
+/// [`NAMES`]), for a terrain whose
 /// heights span `lo..hi` metres with the water at `water` metres and the
 /// tree line at `tree_line` metres; seedlings per hectare per step
 /// `density`. `None` for an unknown name.
@@ -149,4 +155,26 @@ pub fn species(
         },
         look,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_is_a_valid_species_and_no_other() {
+        for name in NAMES {
+            let (sp, look) = species(name, 50.0, (0.0, 1000.0), 100.0, 700.0).unwrap();
+            assert_eq!(sp.name, name);
+            assert!(sp.altitude_min < sp.altitude_max, "{name}");
+            assert!((0.0..=1.0).contains(&sp.altitude_max), "{name}");
+            assert!(look.height_factor > 0.0);
+            let eco = crate::eco::EcoParams {
+                species: vec![sp],
+                ..crate::eco::EcoParams::default()
+            };
+            eco.validate().unwrap();
+        }
+        assert!(species("oak", 50.0, (0.0, 1000.0), 100.0, 700.0).is_none());
+    }
 }
