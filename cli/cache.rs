@@ -29,10 +29,17 @@ use crate::manifest::{VERSION, hex};
 
 const MAGIC: &str = "natura world cache";
 
+/// The meaning of a world cache's contents, part of its key: raised when
+/// what the cache holds changes within one version of natura (2: the
+/// wetness is natura-terrain's topographic wetness index of the final
+/// terrain), so a cache of another meaning is never found and reused.
+const WORLD_FORMAT: u32 = 2;
+
 /// What the eroded terrain is a function of.
 #[derive(Serialize)]
 struct Key<'a> {
     natura: &'a str,
+    format: u32,
     seed: u64,
     terrain: &'a TerrainDesc,
     erosion: &'a ErosionDesc,
@@ -42,6 +49,7 @@ struct Key<'a> {
 pub fn key(scene: &SceneDesc) -> Result<String> {
     let json = serde_json::to_string(&Key {
         natura: VERSION,
+        format: WORLD_FORMAT,
         seed: scene.seed,
         terrain: &scene.terrain,
         erosion: &scene.erosion,
