@@ -95,7 +95,8 @@ for name in $(printf '%s\n' "${!area[@]}" | sort); do
   wanted "$name" || continue
   case "$name" in
     landscape)
-      run landscape --out "$out/render"
+      # The README shows the built-in scene at 1280×720.
+      run landscape --out "$out/render" --width 1280 --height 720
       variant landscape landscape.png valley_morning.png \
         --scene examples/scenes/valley_morning.toml --width 960 --height 540
       variant landscape landscape.png landscape_detail_off.png \
