@@ -51,7 +51,7 @@ struct Cli {
     cell_size: Option<f32>,
     /// Heights in metres of grey 0 and 65535 in a PNG [default: the range
     /// stored in the file]
-    #[arg(long, value_name = "LO,HI", value_parser = parse_range, allow_hyphen_values = true)]
+    #[arg(long, value_name = "LO,HI", value_parser = common::parse_range, allow_hyphen_values = true)]
     range: Option<(f32, f32)>,
     /// Samples per side of the synthetic field [default: 1025; 193 with
     /// --quick]
@@ -118,18 +118,6 @@ fn parse3(s: &str) -> Result<Vec3, String> {
     match v[..] {
         [x, y, z] => Ok(Vec3::new(x, y, z)),
         _ => Err("needs X,Y,Z".to_owned()),
-    }
-}
-
-/// `LO,HI` as two numbers (the loader checks that they make a range).
-fn parse_range(s: &str) -> Result<(f32, f32), String> {
-    let v = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|e| e.to_string()))
-        .collect::<Result<Vec<f32>, String>>()?;
-    match v[..] {
-        [lo, hi] => Ok((lo, hi)),
-        _ => Err("needs LO,HI".to_owned()),
     }
 }
 

@@ -148,6 +148,19 @@ where
     }
 }
 
+/// A clap value parser for `LO,HI`: two numbers (the height-map loader
+/// checks that they make a range).
+pub fn parse_range(s: &str) -> Result<(f32, f32), String> {
+    let v = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|e| e.to_string()))
+        .collect::<Result<Vec<f32>, String>>()?;
+    match v[..] {
+        [lo, hi] => Ok((lo, hi)),
+        _ => Err("needs LO,HI".to_owned()),
+    }
+}
+
 /// Creates the output directory given by `--out` (with its parents) and
 /// proves it can be written by creating and removing a probe file, before
 /// any work starts.
