@@ -155,57 +155,41 @@ fn lane_rays(
     });
 }
 
-impl Camera for PinholeCamera {
-    fn resolution(&self) -> UVec2 {
-        PinholeCamera::resolution(self)
-    }
+/// The [`Camera`] of a core camera whose screen is affine in the pixel
+/// coordinates: its own map, and [`RAY_LANES`] rays at a time in
+/// [`Camera::rays_into`].
+macro_rules! affine_camera {
+    ($t:ty) => {
+        impl Camera for $t {
+            fn resolution(&self) -> UVec2 {
+                <$t>::resolution(self)
+            }
 
-    #[inline]
-    fn ray_at(&self, px: f32, py: f32) -> Ray {
-        PinholeCamera::ray_at(self, px, py)
-    }
+            #[inline]
+            fn ray_at(&self, px: f32, py: f32) -> Ray {
+                <$t>::ray_at(self, px, py)
+            }
 
-    /// [`RAY_LANES`] rays at a time (see [`Camera::rays_into`]).
-    fn rays_into(
-        &self,
-        x0: u32,
-        y0: u32,
-        w: u32,
-        h: u32,
-        options: &RenderOptions,
-        out: &mut Vec<Ray>,
-    ) {
-        lane_rays(x0, y0, w, h, options, out, |px, py| {
-            PinholeCamera::ray_at(self, px, py)
-        });
-    }
+            /// [`RAY_LANES`] rays at a time (see [`Camera::rays_into`]).
+            fn rays_into(
+                &self,
+                x0: u32,
+                y0: u32,
+                w: u32,
+                h: u32,
+                options: &RenderOptions,
+                out: &mut Vec<Ray>,
+            ) {
+                lane_rays(x0, y0, w, h, options, out, |px, py| {
+                    <$t>::ray_at(self, px, py)
+                });
+            }
+        }
+    };
 }
 
-impl Camera for OrthographicCamera {
-    fn resolution(&self) -> UVec2 {
-        OrthographicCamera::resolution(self)
-    }
-
-    #[inline]
-    fn ray_at(&self, px: f32, py: f32) -> Ray {
-        OrthographicCamera::ray_at(self, px, py)
-    }
-
-    /// [`RAY_LANES`] rays at a time (see [`Camera::rays_into`]).
-    fn rays_into(
-        &self,
-        x0: u32,
-        y0: u32,
-        w: u32,
-        h: u32,
-        options: &RenderOptions,
-        out: &mut Vec<Ray>,
-    ) {
-        lane_rays(x0, y0, w, h, options, out, |px, py| {
-            OrthographicCamera::ray_at(self, px, py)
-        });
-    }
-}
+affine_camera!(PinholeCamera);
+affine_camera!(OrthographicCamera);
 
 /// One ray per pixel sample (the trait's default): the panorama's
 /// trigonometry does not vectorise the way an affine screen does.
