@@ -629,8 +629,7 @@ impl<'s> FastRenderer<'s> {
     ///
     /// # Errors
     ///
-    /// As [`FastRenderer::render`]; nothing is reported when the camera is
-    /// refused.
+    /// As [`FastRenderer::render`].
     pub fn render_with_progress(
         &self,
         camera: &LookAtCamera,
