@@ -68,8 +68,9 @@ struct Cli {
     #[arg(long)]
     exr: bool,
     /// Also export cube faces of N² samples and a 2N × N equirectangular map
-    /// (0: none; else 2 to 8192, checked before anything is rendered)
-    #[arg(long, value_name = "N", default_value_t = 0, value_parser = cube_size)]
+    /// (0: none; a size the cube map refuses is refused before anything is
+    /// rendered)
+    #[arg(long, value_name = "N", default_value_t = 0)]
     cube: usize,
     /// Gaea's multifractal continents (slower)
     #[arg(long)]
@@ -166,6 +167,11 @@ fn planet() -> Run {
     let (width, height) = (width.unwrap_or(w0), height.unwrap_or(h0));
     let lat = lat.unwrap_or(if orbit { 0.35 } else { 0.3 });
     let lon = lon.unwrap_or(if orbit { 0.25 } else { 2.1 });
+    if cube > 0 {
+        // The cube map's own check, before the render writes its picture.
+        natura::texture::planet::CubeMap::check_size(cube)
+            .map_err(|e| common::Exit::new(2, format!("--cube {cube}: {e}")))?;
+    }
     let out = common::out_dir(&out)?;
     let png = out.join(format!("{name}.png"));
     check_writable(&png)?;
@@ -237,16 +243,4 @@ fn save(image: &Image, png: &std::path::Path, exr: bool, ev: f32) -> Run {
         outln(format_args!("wrote {}", p.display()))?;
     }
     Ok(())
-}
-
-/// `--cube`: 0 (no export) or a face size from 2 to 8192 samples, refused
-/// by the parser so a bad size fails before the render, not after it has
-/// written the picture.
-fn cube_size(s: &str) -> Result<usize, String> {
-    let n: usize = s.trim().parse().map_err(|e| format!("{e}"))?;
-    if n == 0 || (2..=8192).contains(&n) {
-        Ok(n)
-    } else {
-        Err("must be 0 (none) or in 2..=8192".into())
-    }
 }

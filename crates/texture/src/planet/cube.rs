@@ -182,10 +182,7 @@ impl Planet {
     /// # Errors
     /// [`TextureError::InvalidSize`] for `size < 2` or a map over the memory cap.
     pub fn cube_map(&self, size: usize, progress: &dyn Progress) -> Result<CubeMap> {
-        let samples = (size as u128)
-            .saturating_mul(size as u128)
-            .saturating_mul(6);
-        check_size("face_size", size, 2, samples)?;
+        CubeMap::check_size(size)?;
         let k = size as i64 - 1;
         let footprint = self.radius() * std::f64::consts::FRAC_PI_2 / k as f64;
         let mut faces = Vec::with_capacity(6);
@@ -286,6 +283,19 @@ fn write_pair(
 }
 
 impl CubeMap {
+    /// Checks a face size before any work: what
+    /// [`Planet::cube_map`](crate::planet::Planet::cube_map) accepts.
+    ///
+    /// # Errors
+    /// [`TextureError::InvalidSize`](crate::TextureError::InvalidSize) for
+    /// `size < 2` or six faces over the memory cap.
+    pub fn check_size(size: usize) -> Result<()> {
+        let samples = (size as u128)
+            .saturating_mul(size as u128)
+            .saturating_mul(6);
+        check_size("face_size", size, 2, samples)
+    }
+
     /// The files [`write_exr`](Self::write_exr) writes into `dir`:
     /// `{name}_{face}_height.exr` and `{name}_{face}_colour.exr` per face.
     #[must_use]
