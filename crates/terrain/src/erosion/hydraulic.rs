@@ -306,8 +306,9 @@ impl MusgraveHydraulic {
         if p.rain_period > 0 && self.step.is_multiple_of(u64::from(p.rain_period)) {
             self.rain(&p, hf);
         }
-        self.send(&p, hf);
-        self.gather(&p);
+        let hood = Hood::new(&p, self.nx, self.ny);
+        self.send(&p, &hood, hf);
+        self.gather(&p, &hood);
         hf.heights_mut()
             .as_mut_slice()
             .copy_from_slice(self.a1.as_slice());
@@ -331,10 +332,8 @@ impl MusgraveHydraulic {
     /// each neighbour (in proportion to its surface drop); what leaves
     /// through open edges is booked in the ledger.
     #[allow(clippy::needless_range_loop)]
-    fn send(&mut self, p: &MusgraveParams, hf: &HeightField) {
+    fn send(&mut self, p: &MusgraveParams, hood: &Hood<'_>, hf: &HeightField) {
         let (nx, ny) = (self.nx, self.ny);
-        let hood = Hood::new(p, nx, ny);
-        let hood = &hood;
         let k = Rates {
             capacity: p.k_c as f32,
             deposition: p.k_d as f32,
@@ -429,10 +428,8 @@ impl MusgraveHydraulic {
     /// Pass 2: each cell keeps what stayed and gathers what its neighbours
     /// sent it (Jacobi, gather form: independent of order and threads);
     /// evaporation is booked in the ledger.
-    fn gather(&mut self, p: &MusgraveParams) {
+    fn gather(&mut self, p: &MusgraveParams, hood: &Hood<'_>) {
         let (nx, ny) = (self.nx, self.ny);
-        let hood = Hood::new(p, nx, ny);
-        let hood = &hood;
         let (wk, sk, ws, ss) = (
             self.w_keep.as_slice(),
             self.s_keep.as_slice(),
