@@ -24,6 +24,7 @@ use common::{Run, outln};
 use natura::atmos::Dir3;
 use natura::atmos::mirage::{GrinTracer, PathEnd, StratifiedAir, TemperatureProfile};
 use natura::atmos::sky::{Atmosphere, AtmosphereParams, auto_exposure};
+use natura::core::camera::PinholeCamera;
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Image, Progress, ToneMap};
 
@@ -156,15 +157,19 @@ fn mirage() -> Run {
         }
     };
     // A narrow, slightly downward view: the mirage lives within a degree of the horizon.
-    let fov_y = 1.2f64.to_radians();
-    let pitch = -0.15f64.to_radians();
+    let pitch = -0.15f32.to_radians();
+    let look = Vec3::new(pitch.cos(), 0.0, pitch.sin());
+    let camera = PinholeCamera::look_at(
+        eye.as_vec3(),
+        eye.as_vec3() + look,
+        Vec3::Z,
+        1.2f32.to_radians(),
+        u32::try_from(width)?,
+        u32::try_from(height)?,
+    )?;
     let shade = |x: usize, y: usize| -> Vec3 {
-        let t = (0.5 * fov_y).tan();
-        let sx = (2.0 * (x as f64 + 0.5) / width as f64 - 1.0) * t * width as f64 / height as f64;
-        let sy = (1.0 - 2.0 * (y as f64 + 0.5) / height as f64) * t;
-        let fwd = DVec3::new(pitch.cos(), 0.0, pitch.sin());
-        let up = DVec3::new(-pitch.sin(), 0.0, pitch.cos());
-        let d = common::check(Dir3::new(fwd + DVec3::new(0.0, -1.0, 0.0) * sx + up * sy));
+        let ray = camera.ray_at(x as f32 + 0.5, y as f32 + 0.5);
+        let d = common::check(Dir3::new(ray.dir.as_dvec3()));
         let path = common::check(tracer.trace(&air, eye, d));
         for w in path.points.windows(2) {
             for b in &boards {

@@ -90,13 +90,14 @@ fn rainbow() -> Run {
     let ground = Ground {
         albedo: Vec3::new(0.10, 0.14, 0.07),
     };
-    let background = view.render(projection, width, height, Some(ground), true)?;
+    let camera = projection.camera(width, height)?;
+    let background = view.render_camera(&camera, Some(ground), true)?;
     let e_sun = view.sun_irradiance().as_dvec3();
     // A rain curtain from 400 m to 2400 m in front of the camera.
     let (near, depth) = (400.0f32, 2000.0f32);
     let img = Image::from_fn(width, height, |x, y| {
         let bg = background.get(x, y).unwrap_or(Vec3::ZERO);
-        let Some(d) = projection.direction(x, y, width, height) else {
+        let Some(d) = camera.direction(x, y) else {
             return bg;
         };
         let reach = view.ground_distance(d).unwrap_or(f32::INFINITY);

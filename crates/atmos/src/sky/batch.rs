@@ -19,7 +19,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec3, Vec4};
 
-use super::render::{Ground, SkyProjection};
+use super::picture::{Ground, SkyCamera};
 use super::view::{ApSample, SkyView};
 use crate::error::{Result, invalid};
 use crate::simd::{self, Kernel, Simd};
@@ -371,7 +371,7 @@ impl SkyView {
     #[inline(always)]
     pub(crate) fn shade_row(
         &self,
-        rays: &RowRays,
+        camera: &SkyCamera,
         y: usize,
         row: &mut [Vec3],
         ground: Option<&Ground>,
@@ -382,7 +382,7 @@ impl SkyView {
         for (chunk, out) in row.chunks_mut(L).enumerate() {
             let x0 = chunk * L;
             let (mut dx, mut dy, mut dz) = ([0.0f32; L], [0.0f32; L], [0.0f32; L]);
-            rays.fill(x0, y, w, &mut dx, &mut dy, &mut dz);
+            fill_directions(camera, x0, y, w, &mut dx, &mut dy, &mut dz);
             let lanes = Lanes::new(&c, &dx, &dy, &dz);
             let mut t = [-1.0f32; L];
             let mut k = [0u32; L];
@@ -430,7 +430,7 @@ impl SkyView {
     pub(crate) fn render_rows(
         &self,
         simd: Simd,
-        rays: &RowRays,
+        camera: &SkyCamera,
         grid: &mut natura_core::Grid2<Vec3>,
         ground: Option<Ground>,
         sun_disc: bool,
@@ -440,7 +440,7 @@ impl SkyView {
                 simd,
                 RowKernel {
                     view: self,
-                    rays,
+                    camera,
                     y,
                     row,
                     ground: ground.as_ref(),
@@ -528,7 +528,7 @@ impl Kernel for ApKernel<'_> {
 
 struct RowKernel<'a> {
     view: &'a SkyView,
-    rays: &'a RowRays,
+    camera: &'a SkyCamera,
     y: usize,
     row: &'a mut [Vec3],
     ground: Option<&'a Ground>,
@@ -540,7 +540,7 @@ impl Kernel for RowKernel<'_> {
     #[inline(always)]
     fn call(self) {
         self.view
-            .shade_row(self.rays, self.y, self.row, self.ground, self.sun_disc);
+            .shade_row(self.camera, self.y, self.row, self.ground, self.sun_disc);
     }
 }
 
@@ -584,91 +584,22 @@ impl Lanes {
     }
 }
 
-/// How a render generates the view directions of a row of pixels.
-pub(crate) enum RowRays {
-    /// Pinhole camera with the per-column and per-row terms precomputed, so a
-    /// direction is `normalise(row_base + right · sx)`: three FMAs and a square root.
-    Pinhole {
-        /// `sx` of every column, padded to a multiple of `L`.
-        sx: Vec<f32>,
-        /// `sy` of every row.
-        sy: Vec<f32>,
-        fwd: Vec3,
-        right: Vec3,
-        up: Vec3,
-    },
-    /// Any other projection, per pixel through [`SkyProjection::direction`].
-    General { projection: SkyProjection, h: usize },
-}
-
-impl RowRays {
-    pub(crate) fn new(projection: SkyProjection, w: usize, h: usize) -> Self {
-        match projection {
-            SkyProjection::Pinhole { fov_y, yaw, pitch } => {
-                let t = (0.5 * fov_y as f32).tan();
-                let aspect = w as f32 / h as f32;
-                let sx = (0..w.next_multiple_of(L))
-                    .map(|x| (2.0 * (x as f32 + 0.5) / w as f32 - 1.0) * t * aspect)
-                    .collect();
-                let sy = (0..h)
-                    .map(|y| (1.0 - 2.0 * (y as f32 + 0.5) / h as f32) * t)
-                    .collect();
-                let (sp, cp) = (pitch as f32).sin_cos();
-                let (sy_, cy_) = (yaw as f32).sin_cos();
-                let fwd = Vec3::new(cp * cy_, cp * sy_, sp);
-                let right = Vec3::new(sy_, -cy_, 0.0);
-                let up = right.cross(fwd);
-                RowRays::Pinhole {
-                    sx,
-                    sy,
-                    fwd,
-                    right,
-                    up,
-                }
-            }
-            projection => RowRays::General { projection, h },
-        }
-    }
-
-    /// Fills the directions of pixels `x0 .. x0 + L` of row `y` (zero past the
-    /// row's end and outside the projection, which the kernels treat as invalid).
-    #[inline(always)]
-    fn fill(
-        &self,
-        x0: usize,
-        y: usize,
-        w: usize,
-        dx: &mut [f32; L],
-        dy: &mut [f32; L],
-        dz: &mut [f32; L],
-    ) {
-        match self {
-            RowRays::Pinhole {
-                sx,
-                sy,
-                fwd,
-                right,
-                up,
-            } => {
-                let b = *fwd + *up * sy[y];
-                let sx: &[f32; L] = sx[x0..x0 + L].try_into().expect("padded to L");
-                for i in 0..L {
-                    let x = b.x + right.x * sx[i];
-                    let yv = b.y + right.y * sx[i];
-                    let z = b.z + right.z * sx[i];
-                    let inv = 1.0 / (x * x + yv * yv + z * z).sqrt();
-                    dx[i] = x * inv;
-                    dy[i] = yv * inv;
-                    dz[i] = z * inv;
-                }
-            }
-            RowRays::General { projection, h } => {
-                for i in 0..L.min(w - x0) {
-                    if let Some(d) = projection.direction(x0 + i, y, w, *h) {
-                        (dx[i], dy[i], dz[i]) = (d.x, d.y, d.z);
-                    }
-                }
-            }
+/// Fills the directions of pixels `x0 .. x0 + L` of row `y` (zero past the
+/// row's end and where the camera sees nothing, which the kernels treat as
+/// invalid), each through the camera's own map.
+#[inline(always)]
+fn fill_directions(
+    camera: &SkyCamera,
+    x0: usize,
+    y: usize,
+    w: usize,
+    dx: &mut [f32; L],
+    dy: &mut [f32; L],
+    dz: &mut [f32; L],
+) {
+    for i in 0..L.min(w - x0) {
+        if let Some(d) = camera.direction(x0 + i, y) {
+            (dx[i], dy[i], dz[i]) = (d.x, d.y, d.z);
         }
     }
 }

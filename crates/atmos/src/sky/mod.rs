@@ -39,7 +39,7 @@ mod channels;
 mod data;
 mod model;
 mod params;
-mod render;
+mod picture;
 mod view;
 
 use std::sync::Arc;
@@ -51,7 +51,7 @@ pub use model::{RGB_WAVELENGTHS_NM, SPECTRAL_BANDS};
 pub use params::{
     AtmosphereParams, Evaluation, LutSettings, MieParams, MiePhase, OzoneParams, RayleighParams,
 };
-pub use render::{Ground, SkyProjection, auto_exposure};
+pub use picture::{Ground, SkyCamera, SkyProjection, auto_exposure};
 pub use view::{ApSample, SkyView};
 
 use crate::Dir3;

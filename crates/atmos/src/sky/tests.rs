@@ -1,7 +1,7 @@
 //! Sky tests: LUT model against the ray-marched reference, colours of noon
 //! and sunset, physical sanity, determinism and bad input.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
 use super::*;
 
@@ -324,7 +324,8 @@ mod batch {
 
     use super::*;
     use crate::simd::Simd;
-    use crate::sky::batch::{L, RowRays, fast_acos};
+    use crate::sky::SkyCamera;
+    use crate::sky::batch::{L, fast_acos};
 
     /// A&S 4.4.46 in `f32` against `f64::acos` on a dense grid (2²¹ + 1 points
     /// and the endpoints): the bound stated on `fast_acos`.
@@ -423,16 +424,8 @@ mod batch {
 
     /// The pre-batch per-pixel shading, in `f64` where it was: the oracle for
     /// the row kernels of `render`.
-    fn reference_pixel(
-        v: &SkyView,
-        p: SkyProjection,
-        x: usize,
-        y: usize,
-        w: usize,
-        h: usize,
-        g: &Ground,
-    ) -> Vec3 {
-        let Some(d) = p.direction(x, y, w, h) else {
+    fn reference_pixel(v: &SkyView, camera: &SkyCamera, x: usize, y: usize, g: &Ground) -> Vec3 {
+        let Some(d) = camera.direction(x, y) else {
             return Vec3::ZERO;
         };
         if let Some(t) = v.ground_distance(d) {
@@ -441,8 +434,8 @@ mod batch {
         v.radiance_f32(d) + v.sun_disc_f32(d)
     }
 
-    /// `render` (pinhole rows with precomputed per-row/column terms, `f32`
-    /// ground intersection) against per-pixel scalar shading: every pixel
+    /// `render` (SIMD rows, `f32` ground intersection) against per-pixel
+    /// scalar shading: every pixel
     /// within 1e-4 relative per channel (on a floor of 1e-3 of the image's
     /// peak; measured worst 7e-6), and identical bits at every SIMD level and
     /// thread count.
@@ -467,6 +460,7 @@ mod batch {
             },
         ] {
             let img = v.render(p, w, h, Some(g), true).unwrap();
+            let camera = p.camera(w, h).unwrap();
             let px = img.pixels();
             let peak = px
                 .as_slice()
@@ -474,7 +468,7 @@ mod batch {
                 .fold(0.0f32, |m, c| m.max(c.max_element()));
             for y in 0..h {
                 for x in 0..w {
-                    let r = reference_pixel(&v, p, x, y, w, h, &g);
+                    let r = reference_pixel(&v, &camera, x, y, &g);
                     let got = px[(x, y)];
                     let floor = Vec3::splat(1e-3 * peak).max(r.abs());
                     let rel = ((got - r).abs() / floor).max_element();
@@ -482,7 +476,6 @@ mod batch {
                 }
             }
             // Every SIMD level and thread count gives the same bits.
-            let rays = RowRays::new(p, w, h);
             for simd in Simd::supported() {
                 for threads in [1, 2] {
                     let pool = rayon::ThreadPoolBuilder::new()
@@ -490,7 +483,7 @@ mod batch {
                         .build()
                         .unwrap();
                     let mut grid = natura_core::Grid2::new(w, h, Vec3::ZERO).unwrap();
-                    pool.install(|| v.render_rows(simd, &rays, &mut grid, Some(g), true));
+                    pool.install(|| v.render_rows(simd, &camera, &mut grid, Some(g), true));
                     assert!(
                         grid.as_slice()
                             .iter()
@@ -502,4 +495,54 @@ mod batch {
             }
         }
     }
+}
+
+/// The sky's framings are natura-core's cameras, oriented as documented: the
+/// dome's centre is the zenith with north up and east on the left; the
+/// panorama's middle column looks towards −x, its edges towards +x, its rows
+/// span the elevation window; the pinhole looks at its yaw and pitch.
+#[test]
+fn framings_are_oriented_as_documented() {
+    let dome = SkyProjection::Fisheye.camera(101, 101).unwrap();
+    let zenith = dome.direction(50, 50).unwrap();
+    assert!((zenith - Vec3::Z).length() < 1e-3);
+    assert!(dome.direction(50, 0).unwrap().y > 0.99, "north is up");
+    assert!(dome.direction(0, 50).unwrap().x > 0.99, "east is left");
+    assert!(dome.direction(0, 0).is_none(), "corners see nothing");
+
+    let (lo, hi) = (-0.3f64, 1.2f64);
+    let pano = SkyProjection::Panorama {
+        min_elevation: lo,
+        max_elevation: hi,
+    }
+    .camera(360, 90)
+    .unwrap();
+    let mid = pano.direction(180, 45).unwrap();
+    assert!(mid.x < -0.5 && mid.y.abs() < 0.02, "{mid}");
+    let edge = pano.direction(0, 45).unwrap();
+    assert!(edge.x > 0.5 && edge.y.abs() < 0.02, "{edge}");
+    let top = pano.direction(10, 0).unwrap().z.asin();
+    let bottom = pano.direction(10, 89).unwrap().z.asin();
+    let half_row = (hi - lo) / 180.0;
+    assert!((f64::from(top) - (hi - half_row)).abs() < 1e-5, "{top}");
+    assert!(
+        (f64::from(bottom) - (lo + half_row)).abs() < 1e-5,
+        "{bottom}"
+    );
+
+    let (yaw, pitch) = (1.3f64, 0.2f64);
+    let pin = SkyProjection::Pinhole {
+        fov_y: 0.8,
+        yaw,
+        pitch,
+    }
+    .camera(64, 64)
+    .unwrap();
+    let c = pin.direction(32, 32).unwrap().as_dvec3();
+    let want = DVec3::new(
+        pitch.cos() * yaw.cos(),
+        pitch.cos() * yaw.sin(),
+        pitch.sin(),
+    );
+    assert!((c - want).length() < 0.02, "{c}");
 }

@@ -16,7 +16,8 @@
 //! * [`OrthographicCamera`]: parallel rays from a rectangle;
 //! * [`PanoramicCamera`]: Musgrave's cylindrical and spherical virtual
 //!   screens (Musgrave 1993, ch. 8 and appendix B), optionally one eye of a
-//!   [`Stereo`] pair.
+//!   [`Stereo`] pair;
+//! * [`FisheyeCamera`]: the equidistant fisheye of sky photographs.
 //!
 //! Generating many rays at once (lanes, jittered samples) is the renderer's
 //! business: natura-trace's `Camera::rays_into` calls these maps.
@@ -31,10 +32,12 @@
 //! # Ok::<(), natura_core::CoreError>(())
 //! ```
 
+mod fisheye;
 mod orthographic;
 mod panoramic;
 mod pinhole;
 
+pub use fisheye::FisheyeCamera;
 pub use orthographic::OrthographicCamera;
 pub use panoramic::{Eye, PanoramicCamera, Projection, Stereo};
 pub use pinhole::PinholeCamera;

@@ -8,7 +8,9 @@ use glam::{UVec2, Vec2, Vec3};
 use super::{Ray, check_resolution, check_vec, param};
 use crate::error::Result;
 
-/// How rows of a [`PanoramicCamera`] map to elevation.
+/// How rows of a [`PanoramicCamera`] map to elevation. The formulas below
+/// are for a screen centred on the horizon;
+/// [`PanoramicCamera::with_elevation_centre`] shifts it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Projection {
     /// A cylindrical screen sampled evenly in height (Musgrave 1993,
@@ -73,6 +75,10 @@ pub struct PanoramicCamera {
     hfov: f32,
     vfov: f32,
     tan_half_v: f32,
+    /// Elevation of the middle row (spherical screen), radians.
+    centre: f32,
+    /// Height on the cylinder of the middle row, `tan(centre)` (cylindrical).
+    tan_centre: f32,
     projection: Projection,
     stereo: Option<Stereo>,
     width: u32,
@@ -142,6 +148,8 @@ impl PanoramicCamera {
             hfov,
             vfov,
             tan_half_v: (0.5 * vfov).tan(),
+            centre: 0.0,
+            tan_centre: 0.0,
             projection,
             stereo: None,
             width,
@@ -167,6 +175,36 @@ impl PanoramicCamera {
         Ok(self)
     }
 
+    /// Returns the camera with its middle row at elevation `centre` (radians)
+    /// instead of the horizon: a rise of the screen, like a view camera's
+    /// shift, which keeps verticals vertical.
+    ///
+    /// On the spherical screen the rows then span the elevations
+    /// `centre ± vfov/2`; on the cylindrical screen the screen slides up the
+    /// cylinder by `tan(centre)`, keeping its height `2·tan(vfov/2)`.
+    ///
+    /// # Errors
+    ///
+    /// [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter)
+    /// unless `centre` is finite, and for a cylindrical screen inside
+    /// `(−π/2, π/2)`.
+    pub fn with_elevation_centre(mut self, centre: f32) -> Result<Self> {
+        let ok = match self.projection {
+            Projection::Cylindrical => centre.abs() < FRAC_PI_2,
+            Projection::Spherical => centre.is_finite(),
+        };
+        if !ok {
+            return Err(param(
+                "centre",
+                centre,
+                "must be finite radians (inside (−π/2, π/2) for a cylindrical screen)",
+            ));
+        }
+        self.centre = centre;
+        self.tan_centre = if centre == 0.0 { 0.0 } else { centre.tan() };
+        Ok(self)
+    }
+
     /// Azimuth of continuous column `px`, radians counterclockwise about `up`
     /// from the levelled view direction: `hfov·(½ − px/w)`.
     #[inline]
@@ -182,8 +220,8 @@ impl PanoramicCamera {
     pub fn elevation(&self, py: f32) -> f32 {
         let s = 1.0 - 2.0 * py / self.height as f32;
         match self.projection {
-            Projection::Cylindrical => (self.tan_half_v * s).atan(),
-            Projection::Spherical => 0.5 * self.vfov * s,
+            Projection::Cylindrical => (self.tan_centre + self.tan_half_v * s).atan(),
+            Projection::Spherical => self.centre + 0.5 * self.vfov * s,
         }
     }
 
@@ -211,7 +249,7 @@ impl PanoramicCamera {
         let dir = match self.projection {
             Projection::Cylindrical => {
                 let s = 1.0 - 2.0 * py / self.height as f32;
-                (h + (self.tan_half_v * s) * self.up).normalize()
+                (h + (self.tan_centre + self.tan_half_v * s) * self.up).normalize()
             }
             Projection::Spherical => {
                 // The source's tan table is periodic in 180° and right-side-up:
@@ -285,14 +323,14 @@ impl PanoramicCamera {
                 if run.is_nan() || run <= 0.0 {
                     return None;
                 }
-                let s = qv / run / self.tan_half_v;
+                let s = (qv / run - self.tan_centre) / self.tan_half_v;
                 (1.0 - s) * 0.5 * h
             }
             Projection::Spherical => {
                 if run.is_nan() || (run <= 0.0 && qv == 0.0) {
                     return None;
                 }
-                let s = 2.0 * qv.atan2(run) / self.vfov;
+                let s = 2.0 * (qv.atan2(run) - self.centre) / self.vfov;
                 let py = (1.0 - s) * 0.5 * h;
                 if self.vfov > PI {
                     py.rem_euclid(h * PI / self.vfov)

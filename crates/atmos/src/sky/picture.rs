@@ -2,7 +2,10 @@
 //! projections, with an optional Lambertian ground seen through the aerial
 //! perspective. Used by the examples and benchmarks, and as a backdrop.
 
+use std::f32::consts::{PI, TAU};
+
 use glam::{DVec3, Vec3};
+use natura_core::camera::{FisheyeCamera, PanoramicCamera, PinholeCamera, Projection};
 use natura_core::{Grid2, Image};
 
 use super::SkyView;
@@ -13,11 +16,12 @@ use crate::error::{Result, in_range, invalid};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SkyProjection {
     /// The upper hemisphere, equidistant fisheye: zenith at the centre, the
-    /// horizon on the inscribed circle, north (+y) up, east (+x) right.
+    /// horizon on the inscribed circle, north (+y) up, east (+x) left (the
+    /// sky as seen lying on the ground, head to the south).
     Fisheye,
-    /// Equirectangular: azimuth 0–360° across (+x at the left edge, turning
-    /// towards +y), elevation from `max_elevation` (top) to `min_elevation`
-    /// (bottom), radians.
+    /// Equirectangular: azimuth 0–360° across (+x at both edges, −x in the
+    /// middle, turning clockwise seen from above), elevation linear from
+    /// `max_elevation` (top) to `min_elevation` (bottom), radians.
     Panorama {
         /// Lowest elevation shown, radians.
         min_elevation: f64,
@@ -76,53 +80,114 @@ impl SkyProjection {
         }
     }
 
-    /// The unit view direction of pixel centre `(x, y)` in a `w × h` image, or
-    /// `None` outside the projection (fisheye corners).
-    #[inline]
-    #[must_use]
-    pub fn direction(&self, x: usize, y: usize, w: usize, h: usize) -> Option<Vec3> {
-        let (fx, fy) = (x as f32 + 0.5, y as f32 + 0.5);
-        match *self {
-            SkyProjection::Fisheye => {
-                let s = w.min(h) as f32;
-                let u = (2.0 * fx - w as f32) / s;
-                let v = (h as f32 - 2.0 * fy) / s;
-                let rr = (u * u + v * v).sqrt();
-                if rr > 1.0 {
-                    return None;
-                }
-                let theta = rr * std::f32::consts::FRAC_PI_2;
-                let (st, ct) = theta.sin_cos();
-                let (cu, cv) = if rr > 0.0 {
-                    (u / rr, v / rr)
-                } else {
-                    (0.0, 0.0)
-                };
-                Some(Vec3::new(st * cu, st * cv, ct))
-            }
+    /// Returns the camera of this framing on a `w × h` image: natura-core's
+    /// [`FisheyeCamera`] looking at the zenith with north up, its
+    /// [`PanoramicCamera`] on the spherical screen (the whole horizon, the
+    /// middle column looking towards −x, the rows raised to span
+    /// `[min_elevation, max_elevation]`), or its [`PinholeCamera`].
+    ///
+    /// As with every natura-core camera the picture's left shows what is on
+    /// the camera's left: the dome has east on the left, the panorama turns
+    /// clockwise (seen from above) from left to right.
+    ///
+    /// # Errors
+    ///
+    /// [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter)
+    /// for an invalid projection, or a zero or oversized image.
+    pub fn camera(&self, w: usize, h: usize) -> Result<SkyCamera> {
+        self.validate()?;
+        let side = |name, v: usize| {
+            u32::try_from(v).map_err(|_| invalid(name, v, "must fit the camera's u32 sizes"))
+        };
+        let (w, h) = (side("width", w)?, side("height", h)?);
+        let eye = Vec3::ZERO;
+        Ok(match *self {
+            SkyProjection::Fisheye => FisheyeCamera::new(eye, Vec3::Z, Vec3::Y, PI, w, h)?.into(),
             SkyProjection::Panorama {
                 min_elevation,
                 max_elevation,
             } => {
-                let az = fx / w as f32 * std::f32::consts::TAU;
-                let el =
-                    max_elevation as f32 - (max_elevation - min_elevation) as f32 * fy / h as f32;
-                let (se, ce) = el.sin_cos();
-                Some(Vec3::new(ce * az.cos(), ce * az.sin(), se))
+                let vfov = (max_elevation - min_elevation) as f32;
+                let centre = (0.5 * (min_elevation + max_elevation)) as f32;
+                PanoramicCamera::new(
+                    eye,
+                    Vec3::NEG_X,
+                    Vec3::Z,
+                    TAU,
+                    vfov,
+                    Projection::Spherical,
+                    w,
+                    h,
+                )?
+                .with_elevation_centre(centre)?
+                .into()
             }
             SkyProjection::Pinhole { fov_y, yaw, pitch } => {
-                let t = (0.5 * fov_y as f32).tan();
-                let aspect = w as f32 / h as f32;
-                let sx = (2.0 * fx / w as f32 - 1.0) * t * aspect;
-                let sy = (1.0 - 2.0 * fy / h as f32) * t;
                 let (sp, cp) = (pitch as f32).sin_cos();
-                let (sy_, cy_) = (yaw as f32).sin_cos();
-                let fwd = Vec3::new(cp * cy_, cp * sy_, sp);
-                let right = Vec3::new(sy_, -cy_, 0.0);
-                let up = right.cross(fwd);
-                Some((fwd + right * sx + up * sy).normalize())
+                let (sy, cy) = (yaw as f32).sin_cos();
+                let fwd = Vec3::new(cp * cy, cp * sy, sp);
+                PinholeCamera::look_at(eye, fwd, Vec3::Z, fov_y as f32, w, h)?.into()
             }
-        }
+        })
+    }
+}
+
+/// The camera of a sky picture: any of natura-core's cameras that can look
+/// at the sky. Only the directions of its rays matter; the eye is the
+/// [`SkyView`]'s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SkyCamera {
+    /// A flat virtual screen.
+    Pinhole(PinholeCamera),
+    /// A cylindrical or spherical panorama.
+    Panoramic(PanoramicCamera),
+    /// An equidistant fisheye (pixels outside its circle are black).
+    Fisheye(FisheyeCamera),
+}
+
+impl From<PinholeCamera> for SkyCamera {
+    fn from(c: PinholeCamera) -> Self {
+        SkyCamera::Pinhole(c)
+    }
+}
+
+impl From<PanoramicCamera> for SkyCamera {
+    fn from(c: PanoramicCamera) -> Self {
+        SkyCamera::Panoramic(c)
+    }
+}
+
+impl From<FisheyeCamera> for SkyCamera {
+    fn from(c: FisheyeCamera) -> Self {
+        SkyCamera::Fisheye(c)
+    }
+}
+
+impl SkyCamera {
+    /// Image size in pixels, `(width, height)`.
+    #[must_use]
+    pub fn resolution(&self) -> (usize, usize) {
+        let r = match self {
+            SkyCamera::Pinhole(c) => c.resolution(),
+            SkyCamera::Panoramic(c) => c.resolution(),
+            SkyCamera::Fisheye(c) => c.resolution(),
+        };
+        (r.x as usize, r.y as usize)
+    }
+
+    /// The unit view direction through the centre of pixel `(x, y)` (world
+    /// frame, z up), or `None` where the camera sees nothing (outside a
+    /// fisheye's circle).
+    #[inline]
+    #[must_use]
+    pub fn direction(&self, x: usize, y: usize) -> Option<Vec3> {
+        let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
+        let ray = match self {
+            SkyCamera::Pinhole(c) => c.ray_at(px, py),
+            SkyCamera::Panoramic(c) => c.ray_at(px, py),
+            SkyCamera::Fisheye(c) => c.ray_at(px, py),
+        };
+        ray.is_valid().then_some(ray.dir)
     }
 }
 
@@ -170,13 +235,9 @@ impl SkyView {
         ap.apply(l)
     }
 
-    /// Renders linear radiance for every pixel: sky (with the sun disc if
-    /// `sun_disc`), and the ground if given (otherwise the sky LUT's value below
-    /// the horizon). Pixels outside the projection are black. Rows run in
-    /// parallel, each in SIMD chunks of 16 pixels at the widest instruction set
-    /// the CPU has (see [`crate::simd`]); the result equals per-pixel
-    /// [`SkyView::radiance_f32`] / [`SkyView::ground_radiance`] shading to
-    /// 1e-4 relative, and is bit-identical for any thread count.
+    /// Renders linear radiance for every pixel of the framing `projection`
+    /// on a `w × h` image (through [`SkyProjection::camera`]); see
+    /// [`SkyView::render_camera`].
     ///
     /// # Errors
     ///
@@ -190,15 +251,37 @@ impl SkyView {
         ground: Option<Ground>,
         sun_disc: bool,
     ) -> Result<Image> {
-        projection.validate()?;
+        self.render_camera(&projection.camera(w, h)?, ground, sun_disc)
+    }
+
+    /// Renders linear radiance for every pixel of `camera`: sky (with the sun
+    /// disc if `sun_disc`), and the ground if given (otherwise the sky LUT's
+    /// value below the horizon). Pixels where the camera sees nothing are
+    /// black. Only the directions of the camera's rays are used; the eye is
+    /// this view's. Rows run in
+    /// parallel, each in SIMD chunks of 16 pixels at the widest instruction set
+    /// the CPU has (see [`crate::simd`]); the result equals per-pixel
+    /// [`SkyView::radiance_f32`] / [`SkyView::ground_radiance`] shading to
+    /// 1e-4 relative, and is bit-identical for any thread count.
+    ///
+    /// # Errors
+    ///
+    /// Returns [`AtmosError::InvalidParameter`](crate::AtmosError::InvalidParameter) for a negative or non-finite
+    /// ground albedo.
+    pub fn render_camera(
+        &self,
+        camera: &SkyCamera,
+        ground: Option<Ground>,
+        sun_disc: bool,
+    ) -> Result<Image> {
         if let Some(g) = ground {
             crate::error::non_negative3("albedo", g.albedo.as_dvec3())?;
         }
+        let (w, h) = camera.resolution();
         let mut grid = Grid2::new(w, h, Vec3::ZERO)?;
-        let rays = super::batch::RowRays::new(projection, w, h);
         self.render_rows(
             crate::simd::Simd::best(),
-            &rays,
+            camera,
             &mut grid,
             ground,
             sun_disc,
