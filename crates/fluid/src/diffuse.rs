@@ -10,7 +10,7 @@
 //! of 1e-6 (the general-form conjugate-gradient solve is kept as the test
 //! oracle).
 
-use crate::par;
+use crate::chunks;
 use natura_core::simd::{self, Kernel, Simd};
 
 /// An unknown sample.
@@ -101,7 +101,7 @@ pub(crate) fn diffuse_in(
             a,
             g,
         };
-        par::for_chunks2_sum2(xo, d, n0, |r, xo, d| {
+        chunks::for_chunks2_sum2(xo, d, n0, |r, xo, d| {
             if masked {
                 simd::run(simd, PassRow::<true> { p: &p, r, xo, d })
             } else {
@@ -364,8 +364,8 @@ pub(crate) fn diffuse_ref(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8
         }
     }
     let apply = |x: &[f32], y: &mut [f32]| {
-        par::for_chunks(y, par::BLOCK, |bi, yc| {
-            let s0 = bi * par::BLOCK;
+        chunks::for_chunks(y, chunks::BLOCK, |bi, yc| {
+            let s0 = bi * chunks::BLOCK;
             for (o, yv) in yc.iter_mut().enumerate() {
                 let s = s0 + o;
                 if fixed[s] {
@@ -390,8 +390,8 @@ pub(crate) fn diffuse_ref(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8
         });
     };
     let dot = |a: &[f32], b: &[f32]| {
-        par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
-            let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
+        chunks::sum_blocks(len.div_ceil(chunks::BLOCK), chunks::BLOCK, |bi| {
+            let r = bi * chunks::BLOCK..((bi + 1) * chunks::BLOCK).min(len);
             a[r.clone()]
                 .iter()
                 .zip(&b[r])

@@ -166,13 +166,13 @@ impl PoissonSystem {
                 // preconditioner reads, and r·r. Every vector is zero off
                 // the unknowns, so the flat sum equals the interior one.
                 let q = &self.q;
-                let rr = crate::par::for_chunks3_sum(
+                let rr = crate::chunks::for_chunks3_sum(
                     x,
                     &mut r,
                     &mut self.r,
-                    crate::par::BLOCK,
+                    crate::chunks::BLOCK,
                     |bi, xc, rc, r32| {
-                        let s = bi * crate::par::BLOCK;
+                        let s = bi * crate::chunks::BLOCK;
                         let n = xc.len();
                         let dd = &d[s..s + n];
                         let qq = &q[s..s + n];
@@ -217,8 +217,8 @@ impl PoissonSystem {
                 let beta = (rz_new / rz) as f32;
                 rz = rz_new;
                 let z = &self.z;
-                crate::par::for_chunks(&mut self.d, crate::par::BLOCK, |bi, dc| {
-                    let s = bi * crate::par::BLOCK;
+                crate::chunks::for_chunks(&mut self.d, crate::chunks::BLOCK, |bi, dc| {
+                    let s = bi * crate::chunks::BLOCK;
                     let n = dc.len();
                     for (dv, &zv) in dc.iter_mut().zip(&z[s..s + n]) {
                         *dv = zv + beta * *dv;
@@ -239,8 +239,8 @@ impl PoissonSystem {
     /// `z = M⁻¹ r` for an `f64` residual.
     pub(super) fn precondition_from(&mut self, r: &[f64], solver: PressureSolver) {
         let r32 = &mut self.r;
-        crate::par::for_chunks(r32, crate::par::BLOCK, |bi, c| {
-            let s = bi * crate::par::BLOCK;
+        crate::chunks::for_chunks(r32, crate::chunks::BLOCK, |bi, c| {
+            let s = bi * crate::chunks::BLOCK;
             for (o, &v) in c.iter_mut().zip(&r[s..]) {
                 *o = v as f32;
             }

@@ -8,7 +8,7 @@ use std::collections::BinaryHeap;
 
 use super::receivers::{cell_distance, nb_bit, nb_offsets};
 use super::{FlowGraph, StackScratch};
-use crate::par;
+use crate::bands;
 
 impl FlowGraph {
     /// Links every closed basin to the edge through its lowest pass; returns whether
@@ -45,25 +45,26 @@ impl FlowGraph {
         let nb_basins = pits.len() - 1;
         let per = nb_basins.div_ceil(64).max(1);
         let masks_ref = &*masks;
-        let walks: Vec<Vec<u32>> = par::run(pits[1..].chunks(per).collect(), |group: &[u32]| {
-            let mut out = Vec::new();
-            let mut work: Vec<u32> = Vec::new();
-            for &pit in group {
-                // Each basin's cells end with a marker: its pit, flagged.
-                work.push(pit);
-                while let Some(c) = work.pop() {
-                    out.push(c);
-                    let mut m = masks_ref[c as usize];
-                    while m != 0 {
-                        let k = m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        work.push((c as isize + off[k]) as u32);
+        let walks: Vec<Vec<u32>> =
+            bands::run(pits[1..].chunks(per).collect(), |group: &[u32]| {
+                let mut out = Vec::new();
+                let mut work: Vec<u32> = Vec::new();
+                for &pit in group {
+                    // Each basin's cells end with a marker: its pit, flagged.
+                    work.push(pit);
+                    while let Some(c) = work.pop() {
+                        out.push(c);
+                        let mut m = masks_ref[c as usize];
+                        while m != 0 {
+                            let k = m.trailing_zeros() as usize;
+                            m &= m - 1;
+                            work.push((c as isize + off[k]) as u32);
+                        }
                     }
+                    out.push(u32::MAX);
                 }
-                out.push(u32::MAX);
-            }
-            out
-        });
+                out
+            });
         let mut cells: Vec<u32> = Vec::new();
         let mut b = 1u32;
         for w in &walks {
@@ -87,7 +88,7 @@ impl FlowGraph {
         let per = cells.len().div_ceil(64).max(1);
         let basin_ref = &*basin;
         let found: Vec<Vec<(u32, u32, Pass)>> =
-            par::run(cells.chunks(per).collect(), |part: &[u32]| {
+            bands::run(cells.chunks(per).collect(), |part: &[u32]| {
                 let mut out: Vec<(u32, u32, Pass)> = Vec::new();
                 for &c in part {
                     let c = c as usize;

@@ -5,7 +5,7 @@
 //! and evaporation; sediment transport), each a gather over row bands.
 //!
 //! The same passes, given [`Path::Rows`](super::Path::Rows), send the
-//! interior of each row through the row kernels of [`super::rows`] instead
+//! interior of each row through the row kernels of [`super::row_kernels`] instead
 //! (the grid's edge cells always come here); the tests hold the two to the
 //! same bits.
 
@@ -13,12 +13,12 @@ use natura_core::HeightField;
 
 use super::grid::{B, L, Outflows, R, Rows, Step, T};
 use super::model::{CellIn, Coefficients, bilinear};
-use super::rows::{
+use super::row_kernels::{
     UpdateRows, flux_pass_row, semi_lagrangian_pass_row, transport_pass_row, update_pass_row,
 };
 use super::{PipeModel, SedimentTransport, replay};
+use crate::bands;
 use crate::erosion::Edges;
-use crate::par;
 
 /// Steps 1 and 2 for cell `x` of a row: returns `d₁` and updates the cell's
 /// four fluxes.
@@ -163,7 +163,7 @@ impl PipeModel {
                 fb.as_mut_slice(),
                 ft.as_mut_slice(),
             ];
-            par::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
+            bands::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
                 for y in y0..y1 {
                     let r = (y - y0) * nx..(y - y0 + 1) * nx;
                     flux_pass_row(
@@ -199,7 +199,7 @@ impl PipeModel {
                 u.as_mut_slice(),
                 v.as_mut_slice(),
             ];
-            par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo]| {
+            bands::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo]| {
                 let mut evaporated = 0.0f64;
                 let mut out_w = Vec::new();
                 for y in y0..y1 {
@@ -237,7 +237,7 @@ impl PipeModel {
         let (u, v) = (&self.vel[0], &self.vel[1]);
         let transport = self.p.transport;
         let outflow_s: Vec<Outflows> =
-            par::map_bands(nx, ny, [self.sediment.as_mut_slice()], |y0, y1, [so]| {
+            bands::map_bands(nx, ny, [self.sediment.as_mut_slice()], |y0, y1, [so]| {
                 let mut out_s = Vec::new();
                 for y in y0..y1 {
                     let row = &mut so[(y - y0) * nx..(y - y0 + 1) * nx];

@@ -1,17 +1,17 @@
 //! The fused sweep: the whole step (conservative transport) as one pass per
 //! chunk of rows, with the halo rows each chunk needs of its neighbours
 //! computed first from the untouched state. It calls the same row functions
-//! as the three passes ([`super::rows`]), in an order that reads each row
+//! as the three passes ([`super::row_kernels`]), in an order that reads each row
 //! of every plane from memory once per step; the tests hold it to the three
 //! passes' bits on one and on two threads.
 
 use natura_core::HeightField;
 
 use super::grid::{Outflows, Rows, Step, opt_rows};
-use super::rows::{UpdateRows, flux_pass_row, transport_pass_row, update_pass_row};
+use super::row_kernels::{UpdateRows, flux_pass_row, transport_pass_row, update_pass_row};
 use super::{PipeModel, replay};
+use crate::bands;
 use crate::erosion::Edges;
-use crate::par;
 
 impl PipeModel {
     /// Rows `[y0, y1)` of each chunk of the fused sweep: about `chunk_rows`
@@ -59,7 +59,7 @@ impl PipeModel {
                 bed,
                 erod,
             };
-            par::run(bounds, |yb| halo(c, &state, yb))
+            bands::run(bounds, |yb| halo(c, &state, yb))
         };
         let [u, v] = &mut self.vel;
         let [f0, f1, f2, f3] = &mut self.flux;
@@ -89,7 +89,7 @@ impl PipeModel {
                 (chunks[k], planes, lower, upper)
             })
             .collect();
-        let results = par::run(jobs, |((y0, y1), planes, lower, upper)| {
+        let results = bands::run(jobs, |((y0, y1), planes, lower, upper)| {
             sweep(c, y0, y1, planes, bed, erod, lower, upper)
         });
         let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
