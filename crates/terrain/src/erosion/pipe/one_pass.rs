@@ -232,53 +232,6 @@ fn sweep(
     let mut s1r = vec![0.0f32; 4 * nx];
     let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
     let ring = |y: usize| (y % 4) * nx..(y % 4 + 1) * nx;
-    // A plane's rows around `y` from the chunk (`inside`, indexed by `at`) or the halos.
-    fn around<'a>(
-        y: usize,
-        y0: usize,
-        y1: usize,
-        inside: &'a [f32],
-        at: impl Fn(usize) -> std::ops::Range<usize>,
-        lo: Option<&'a [f32]>,
-        hi: Option<&'a [f32]>,
-    ) -> Rows<'a> {
-        Rows {
-            b: if y == y0 {
-                lo
-            } else {
-                Some(&inside[at(y - 1)])
-            },
-            c: &inside[at(y)],
-            t: if y + 1 == y1 {
-                hi
-            } else {
-                Some(&inside[at(y + 1)])
-            },
-        }
-    }
-    // The four flux planes' rows around `y`.
-    fn flux_rows<'a>(
-        y: usize,
-        y0: usize,
-        y1: usize,
-        nx: usize,
-        f: &'a [&mut [f32]; 4],
-        lower: Option<&'a Halo>,
-        upper: Option<&'a Halo>,
-    ) -> [Rows<'a>; 4] {
-        let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
-        std::array::from_fn(|k| {
-            around(
-                y,
-                y0,
-                y1,
-                f[k],
-                loc,
-                lower.map(|h| h.f[0][k].as_slice()),
-                upper.map(|h| h.f[1][k].as_slice()),
-            )
-        })
-    }
     let mut evaporated = 0.0f64;
     let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
     for t in y0..y1 + 2 {
@@ -352,4 +305,53 @@ fn sweep(
         }
     }
     (evaporated, out_w, out_s)
+}
+
+/// A plane's rows around `y` from the chunk `[y0, y1)` (`inside`, indexed by
+/// `at`) or the halos `lo` and `hi`.
+fn around<'a>(
+    y: usize,
+    y0: usize,
+    y1: usize,
+    inside: &'a [f32],
+    at: impl Fn(usize) -> std::ops::Range<usize>,
+    lo: Option<&'a [f32]>,
+    hi: Option<&'a [f32]>,
+) -> Rows<'a> {
+    Rows {
+        b: if y == y0 {
+            lo
+        } else {
+            Some(&inside[at(y - 1)])
+        },
+        c: &inside[at(y)],
+        t: if y + 1 == y1 {
+            hi
+        } else {
+            Some(&inside[at(y + 1)])
+        },
+    }
+}
+/// The four flux planes' rows around `y` in the chunk `[y0, y1)`.
+fn flux_rows<'a>(
+    y: usize,
+    y0: usize,
+    y1: usize,
+    nx: usize,
+    f: &'a [&mut [f32]; 4],
+    lower: Option<&'a Halo>,
+    upper: Option<&'a Halo>,
+) -> [Rows<'a>; 4] {
+    let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
+    std::array::from_fn(|k| {
+        around(
+            y,
+            y0,
+            y1,
+            f[k],
+            loc,
+            lower.map(|h| h.f[0][k].as_slice()),
+            upper.map(|h| h.f[1][k].as_slice()),
+        )
+    })
 }

@@ -152,36 +152,47 @@ impl PipeModel {
         self.water1.resize(nx * ny, 0.0);
         self.sediment1.resize(nx * ny, 0.0);
         let bed = hf.heights().as_slice();
-        // ---- Rain and outflow fluxes (in place: each cell owns its 4 pipes).
-        {
-            let water = &self.water;
-            let [fl, fr, fb, ft] = &mut self.flux;
-            let outs = [
-                self.water1.as_mut_slice(),
-                fl.as_mut_slice(),
-                fr.as_mut_slice(),
-                fb.as_mut_slice(),
-                ft.as_mut_slice(),
-            ];
-            bands::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
-                for y in y0..y1 {
-                    let r = (y - y0) * nx..(y - y0 + 1) * nx;
-                    flux_pass_row(
-                        c,
-                        c.rows(water, y),
-                        c.rows(bed, y),
-                        [
-                            &mut fl[r.clone()],
-                            &mut fr[r.clone()],
-                            &mut fb[r.clone()],
-                            &mut ft[r.clone()],
-                        ],
-                        &mut d1o[r],
-                    );
-                }
-            });
-        }
-        // ---- Depth, velocity, erosion / deposition, evaporation.
+        self.flux_pass(c, bed);
+        self.update_pass(c, bed);
+        self.transport_pass(c);
+    }
+
+    /// Rain and outflow fluxes (in place: each cell owns its 4 pipes), the
+    /// depth after rain and outflow into `water1`.
+    fn flux_pass(&mut self, c: &Step, bed: &[f32]) {
+        let (nx, ny) = (self.nx, self.ny);
+        let water = &self.water;
+        let [fl, fr, fb, ft] = &mut self.flux;
+        let outs = [
+            self.water1.as_mut_slice(),
+            fl.as_mut_slice(),
+            fr.as_mut_slice(),
+            fb.as_mut_slice(),
+            ft.as_mut_slice(),
+        ];
+        bands::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
+            for y in y0..y1 {
+                let r = (y - y0) * nx..(y - y0 + 1) * nx;
+                flux_pass_row(
+                    c,
+                    c.rows(water, y),
+                    c.rows(bed, y),
+                    [
+                        &mut fl[r.clone()],
+                        &mut fr[r.clone()],
+                        &mut fb[r.clone()],
+                        &mut ft[r.clone()],
+                    ],
+                    &mut d1o[r],
+                );
+            }
+        });
+    }
+
+    /// Depth, velocity, erosion / deposition, evaporation: the new water,
+    /// bed and velocity, the post-erosion sediment into `sediment1`.
+    fn update_pass(&mut self, c: &Step, bed: &[f32]) {
+        let (nx, ny) = (self.nx, self.ny);
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
         // The three passes always compute u and v (the semi-Lagrangian transport reads them).
         for p in &mut self.vel {
@@ -230,7 +241,12 @@ impl PipeModel {
             out_w.extend(o);
         }
         replay(&mut self.ledger.outflow_water, &out_w);
-        // ---- Sediment transport.
+    }
+
+    /// Sediment transport, conservative or semi-Lagrangian, from
+    /// `sediment1` into the sediment.
+    fn transport_pass(&mut self, c: &Step) {
+        let (nx, ny) = (self.nx, self.ny);
         let s1 = &self.sediment1;
         let d1 = &self.water1;
         let f = &self.flux;
