@@ -51,15 +51,7 @@ pub enum AtmosError {
 /// Shorthand for `Result<T, AtmosError>`.
 pub type Result<T, E = AtmosError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for AtmosError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        AtmosError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(AtmosError::InvalidParameter, expected: reason);
 
 /// An [`AtmosError::InvalidParameter`].
 pub(crate) fn invalid(

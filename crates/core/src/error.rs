@@ -92,12 +92,44 @@ impl CoreError {
 /// Shorthand for `Result<T, CoreError>`.
 pub type Result<T, E = CoreError> = std::result::Result<T, E>;
 
-impl From<crate::check::ParamError> for CoreError {
-    fn from(e: crate::check::ParamError) -> Self {
-        CoreError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
+crate::from_param_error!(CoreError::InvalidParameter, expected: reason);
+
+/// Writes the conversion from a failed parameter check
+/// ([`ParamError`](crate::check::ParamError)) into a crate's own error enum,
+/// so that `check::positive("cell_size", c)?` works whatever the error type.
+///
+/// `from_param_error!(MyError::Variant, expected: field)` fills the struct
+/// variant's `name` and `value` from the check's, and its `field` from what
+/// the check expected; each through `Into`, so the variant may hold
+/// `&'static str` or `String`. An optional `value: f` passes the formatted
+/// value through `f(&String) -> String` first (to shorten it, say).
+///
+/// ```
+/// #[derive(Debug)]
+/// pub enum MyError {
+///     Invalid { name: String, value: String, reason: String },
+/// }
+/// natura_core::from_param_error!(MyError::Invalid, expected: reason);
+///
+/// fn gain(g: f64) -> Result<f64, MyError> {
+///     Ok(natura_core::check::positive("gain", g)?)
+/// }
+/// let MyError::Invalid { name, reason, .. } = gain(-1.0).unwrap_err();
+/// assert_eq!((name.as_str(), reason.as_str()), ("gain", "must be finite and > 0"));
+/// ```
+#[macro_export]
+macro_rules! from_param_error {
+    ($error:ident :: $variant:ident, expected: $field:ident $(, value: $map:expr)? $(,)?) => {
+        impl ::core::convert::From<$crate::check::ParamError> for $error {
+            fn from(e: $crate::check::ParamError) -> Self {
+                let value = e.value;
+                $(let value = ($map)(&value);)?
+                $error::$variant {
+                    name: ::core::convert::Into::into(e.name),
+                    value: ::core::convert::Into::into(value),
+                    $field: ::core::convert::Into::into(e.expected),
+                }
+            }
         }
-    }
+    };
 }

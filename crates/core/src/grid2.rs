@@ -45,6 +45,114 @@ pub fn checked_len<T>(dims: &[usize]) -> Result<usize> {
     Ok(count as usize)
 }
 
+/// Writes the methods the dense grids ([`Grid2`], [`crate::Grid3`]) share,
+/// over their row-major `data` and their coordinates `$c` (x fastest): the
+/// sample count, checked access by position (through the grid's own
+/// `contains` and `index`), the flat sample slice, and the `f32` grids'
+/// statistics.
+macro_rules! dense_grid {
+    ($grid:ident, $($c:ident),+) => {
+        impl<T> $grid<T> {
+            /// Number of samples (never zero).
+            #[inline]
+            #[must_use]
+            pub fn len(&self) -> usize {
+                self.data.len()
+            }
+
+            /// Always `false`: a grid has at least one sample. Present for API symmetry.
+            #[inline]
+            #[must_use]
+            pub fn is_empty(&self) -> bool {
+                self.data.is_empty()
+            }
+
+            #[doc = concat!("The sample at `(", stringify!($($c),+), ")`, or `None` outside the grid.")]
+            #[inline]
+            #[must_use]
+            pub fn get(&self, $($c: usize),+) -> Option<&T> {
+                self.contains($($c),+).then(|| &self.data[self.index($($c),+)])
+            }
+
+            #[doc = concat!("The sample at `(", stringify!($($c),+), ")` mutably, or `None` outside the grid.")]
+            #[inline]
+            pub fn get_mut(&mut self, $($c: usize),+) -> Option<&mut T> {
+                if self.contains($($c),+) {
+                    let i = self.index($($c),+);
+                    Some(&mut self.data[i])
+                } else {
+                    None
+                }
+            }
+
+            #[doc = concat!("Sets the sample at `(", stringify!($($c),+), ")` and returns the previous value, or `None` (and")]
+            /// changes nothing) outside the grid.
+            #[inline]
+            pub fn set(&mut self, $($c: usize,)+ value: T) -> Option<T> {
+                self.get_mut($($c),+)
+                    .map(|slot| std::mem::replace(slot, value))
+            }
+
+            /// All samples, x fastest.
+            #[inline]
+            #[must_use]
+            pub fn as_slice(&self) -> &[T] {
+                &self.data
+            }
+
+            /// All samples, x fastest, mutably.
+            #[inline]
+            pub fn as_mut_slice(&mut self) -> &mut [T] {
+                &mut self.data
+            }
+
+            /// Consumes the grid and returns its samples, x fastest.
+            #[must_use]
+            pub fn into_vec(self) -> Vec<T> {
+                self.data
+            }
+        }
+
+        impl $grid<f32> {
+            /// `(min, max)` in one pass (NaN samples are skipped; NaN if all are NaN).
+            #[must_use]
+            pub fn min_max(&self) -> (f32, f32) {
+                self.data
+                    .iter()
+                    .fold((f32::NAN, f32::NAN), |(lo, hi), &v| (lo.min(v), hi.max(v)))
+            }
+
+            /// Smallest sample (NaN samples are skipped; NaN if all are NaN).
+            #[must_use]
+            pub fn min(&self) -> f32 {
+                self.data.iter().copied().fold(f32::NAN, f32::min)
+            }
+
+            /// Largest sample (NaN samples are skipped; NaN if all are NaN).
+            #[must_use]
+            pub fn max(&self) -> f32 {
+                self.data.iter().copied().fold(f32::NAN, f32::max)
+            }
+
+            /// Sum of all samples, accumulated in `f64` with pairwise (blocked) summation.
+            #[must_use]
+            pub fn sum(&self) -> f64 {
+                self.data
+                    .chunks(4096)
+                    .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>())
+                    .sum()
+            }
+
+            /// Arithmetic mean, accumulated in `f64` so large grids do not lose precision.
+            #[must_use]
+            pub fn mean(&self) -> f64 {
+                self.sum() / self.data.len() as f64
+            }
+        }
+    };
+}
+pub(crate) use dense_grid;
+
 /// A dense 2-D grid of `T`, stored row by row (`x` fastest).
 ///
 /// Sample `(x, y)` lives at index `y·width + x`. The grid is never empty:
@@ -145,18 +253,10 @@ impl<T> Grid2<T> {
         (self.width, self.height)
     }
 
-    /// Number of samples, `width·height` (never zero).
+    /// Whether `(x, y)` lies inside the grid.
     #[inline]
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.data.len()
-    }
-
-    /// Always `false`: a grid has at least one sample. Present for API symmetry.
-    #[inline]
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.data.is_empty()
+    fn contains(&self, x: usize, y: usize) -> bool {
+        x < self.width && y < self.height
     }
 
     /// Returns the linear index of `(x, y)`; `x < width`, `y < height` are the caller's contract
@@ -166,46 +266,6 @@ impl<T> Grid2<T> {
     pub fn index(&self, x: usize, y: usize) -> usize {
         debug_assert!(x < self.width && y < self.height);
         y * self.width + x
-    }
-
-    /// Returns the sample at `(x, y)`, or `None` outside the grid.
-    #[inline]
-    #[must_use]
-    pub fn get(&self, x: usize, y: usize) -> Option<&T> {
-        (x < self.width && y < self.height).then(|| &self.data[y * self.width + x])
-    }
-
-    /// Returns a mutable reference to the sample at `(x, y)`, or `None` outside the grid.
-    #[inline]
-    pub fn get_mut(&mut self, x: usize, y: usize) -> Option<&mut T> {
-        (x < self.width && y < self.height).then(|| &mut self.data[y * self.width + x])
-    }
-
-    /// Sets the sample at `(x, y)` and returns the previous value, or `None` (and
-    /// changes nothing) outside the grid.
-    #[inline]
-    pub fn set(&mut self, x: usize, y: usize, value: T) -> Option<T> {
-        self.get_mut(x, y)
-            .map(|slot| std::mem::replace(slot, value))
-    }
-
-    /// All samples in row-major order.
-    #[inline]
-    #[must_use]
-    pub fn as_slice(&self) -> &[T] {
-        &self.data
-    }
-
-    /// All samples in row-major order, mutably.
-    #[inline]
-    pub fn as_mut_slice(&mut self) -> &mut [T] {
-        &mut self.data
-    }
-
-    /// Consumes the grid and returns its row-major samples.
-    #[must_use]
-    pub fn into_vec(self) -> Vec<T> {
-        self.data
     }
 
     /// Row `y` as a slice of `width` samples. Panics if `y >= height` (an index bug,
@@ -423,42 +483,9 @@ impl<T: Interpolate> Grid2<T> {
     }
 }
 
+dense_grid!(Grid2, x, y);
+
 impl Grid2<f32> {
-    /// Smallest sample (NaN samples are skipped; NaN if all are NaN).
-    #[must_use]
-    pub fn min(&self) -> f32 {
-        self.data.iter().copied().fold(f32::NAN, f32::min)
-    }
-
-    /// Largest sample (NaN samples are skipped; NaN if all are NaN).
-    #[must_use]
-    pub fn max(&self) -> f32 {
-        self.data.iter().copied().fold(f32::NAN, f32::max)
-    }
-
-    /// `(min, max)` in one pass.
-    #[must_use]
-    pub fn min_max(&self) -> (f32, f32) {
-        self.data
-            .iter()
-            .fold((f32::NAN, f32::NAN), |(lo, hi), &v| (lo.min(v), hi.max(v)))
-    }
-
-    /// Arithmetic mean, accumulated in `f64` so large grids do not lose precision.
-    #[must_use]
-    pub fn mean(&self) -> f64 {
-        self.sum() / self.data.len() as f64
-    }
-
-    /// Sum of all samples, accumulated in `f64` with pairwise (blocked) summation.
-    #[must_use]
-    pub fn sum(&self) -> f64 {
-        self.data
-            .chunks(4096)
-            .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>())
-            .sum()
-    }
-
     /// Returns the first NaN or infinite sample as an error naming its cell.
     ///
     /// # Errors

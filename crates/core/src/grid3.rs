@@ -1,7 +1,7 @@
 //! `Grid3<T>`: a dense 3-D array (x fastest, then y, then z) with checked construction.
 
 use crate::error::{CoreError, Result};
-use crate::grid2::checked_len;
+use crate::grid2::{checked_len, dense_grid};
 use crate::sample::{Boundary, Interpolate, resolve, split};
 
 /// A dense 3-D grid of `T`. Sample `(x, y, z)` lives at index `(z·ny + y)·nx + x`.
@@ -103,18 +103,10 @@ impl<T> Grid3<T> {
         self.nz
     }
 
-    /// Number of samples (never zero).
+    /// Whether `(x, y, z)` lies inside the grid.
     #[inline]
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.data.len()
-    }
-
-    /// Always `false`: a grid has at least one sample.
-    #[inline]
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.data.is_empty()
+    fn contains(&self, x: usize, y: usize, z: usize) -> bool {
+        x < self.nx && y < self.ny && z < self.nz
     }
 
     /// Linear index of `(x, y, z)`; bounds are the caller's contract (checked in debug builds).
@@ -123,47 +115,6 @@ impl<T> Grid3<T> {
     pub fn index(&self, x: usize, y: usize, z: usize) -> usize {
         debug_assert!(x < self.nx && y < self.ny && z < self.nz);
         (z * self.ny + y) * self.nx + x
-    }
-
-    /// The sample at `(x, y, z)`, or `None` outside.
-    #[inline]
-    #[must_use]
-    pub fn get(&self, x: usize, y: usize, z: usize) -> Option<&T> {
-        (x < self.nx && y < self.ny && z < self.nz)
-            .then(|| &self.data[(z * self.ny + y) * self.nx + x])
-    }
-
-    /// The sample at `(x, y, z)` mutably, or `None` outside.
-    #[inline]
-    pub fn get_mut(&mut self, x: usize, y: usize, z: usize) -> Option<&mut T> {
-        (x < self.nx && y < self.ny && z < self.nz)
-            .then(|| &mut self.data[(z * self.ny + y) * self.nx + x])
-    }
-
-    /// Sets `(x, y, z)` and returns the old value, or `None` (changing nothing) outside.
-    #[inline]
-    pub fn set(&mut self, x: usize, y: usize, z: usize, value: T) -> Option<T> {
-        self.get_mut(x, y, z)
-            .map(|slot| std::mem::replace(slot, value))
-    }
-
-    /// All samples, x fastest.
-    #[inline]
-    #[must_use]
-    pub fn as_slice(&self) -> &[T] {
-        &self.data
-    }
-
-    /// All samples mutably.
-    #[inline]
-    pub fn as_mut_slice(&mut self) -> &mut [T] {
-        &mut self.data
-    }
-
-    /// Consumes the grid and returns its samples.
-    #[must_use]
-    pub fn into_vec(self) -> Vec<T> {
-        self.data
     }
 
     /// The row of `nx` samples at `(y, z)`. Panics outside (an index bug).
@@ -320,42 +271,7 @@ impl<T: Interpolate> Grid3<T> {
     }
 }
 
-impl Grid3<f32> {
-    /// `(min, max)` of all samples (NaN skipped).
-    #[must_use]
-    pub fn min_max(&self) -> (f32, f32) {
-        self.data
-            .iter()
-            .fold((f32::NAN, f32::NAN), |(lo, hi), &v| (lo.min(v), hi.max(v)))
-    }
-
-    /// Smallest sample.
-    #[must_use]
-    pub fn min(&self) -> f32 {
-        self.min_max().0
-    }
-
-    /// Largest sample.
-    #[must_use]
-    pub fn max(&self) -> f32 {
-        self.min_max().1
-    }
-
-    /// Sum of all samples in `f64`.
-    #[must_use]
-    pub fn sum(&self) -> f64 {
-        self.data
-            .chunks(4096)
-            .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>())
-            .sum()
-    }
-
-    /// Mean of all samples in `f64`.
-    #[must_use]
-    pub fn mean(&self) -> f64 {
-        self.sum() / self.data.len() as f64
-    }
-}
+dense_grid!(Grid3, x, y, z);
 
 #[cfg(test)]
 mod tests {

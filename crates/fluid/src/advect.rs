@@ -18,9 +18,9 @@
 
 use natura_core::Grid3;
 
+use crate::chunks;
 use crate::grid::{CellKind, Dims, MacVelocity};
 use crate::interp::{AxisW, Interpolation, Sampler};
-use crate::par;
 
 /// The advection scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -275,7 +275,7 @@ fn sl_pass(
 ) {
     if range.is_none()
         && adv.interpolation == Interpolation::Linear
-        && crate::lanes::sl_linear(&mut [&mut *dst], &[*src], vel, dt_h, adv.tracer, solids)
+        && crate::advect_linear::sl_linear(&mut [&mut *dst], &[*src], vel, dt_h, adv.tracer, solids)
     {
         return;
     }
@@ -305,7 +305,7 @@ pub(crate) fn sl_pass_general(
     let w = vel.grid_weights(n, off);
     let w = &w;
     match range {
-        None => par::for_chunks(dst, n[0], |r, row| {
+        None => chunks::for_chunks(dst, n[0], |r, row| {
             let (j, k) = (r % n[1], r / n[1]);
             for (i, out) in row.iter_mut().enumerate() {
                 let v1 = vel.at_grid(w, i, j, k);
@@ -316,7 +316,7 @@ pub(crate) fn sl_pass_general(
         Some((lo, hi)) => {
             // Three outputs per row: zip the range buffers row by row.
             let mut lohi: Vec<(f32, f32)> = vec![(0.0, 0.0); dst.len()];
-            par::for_chunks2(dst, &mut lohi, n[0], |r, row, rr| {
+            chunks::for_chunks2(dst, &mut lohi, n[0], |r, row, rr| {
                 let (j, k) = (r % n[1], r / n[1]);
                 for (i, (out, lh)) in row.iter_mut().zip(rr.iter_mut()).enumerate() {
                     let v1 = vel.at_grid(w, i, j, k);
@@ -414,7 +414,7 @@ pub(crate) fn advect_many(
         return;
     }
     if adv.interpolation == Interpolation::Linear
-        && crate::lanes::sl_linear(dsts, srcs, vel, dt_h, adv.tracer, solids)
+        && crate::advect_linear::sl_linear(dsts, srcs, vel, dt_h, adv.tracer, solids)
     {
         return;
     }
@@ -422,7 +422,7 @@ pub(crate) fn advect_many(
     let w = vel.grid_weights(n, off);
     let w = &w;
     let mut feet = vec![[0.0f32; 3]; n[0] * n[1] * n[2]];
-    par::for_chunks(&mut feet, n[0], |r, row| {
+    chunks::for_chunks(&mut feet, n[0], |r, row| {
         let (j, k) = (r % n[1], r / n[1]);
         for (i, q) in row.iter_mut().enumerate() {
             let p = [i as f32 + off[0], j as f32 + off[1], k as f32 + off[2]];
@@ -432,7 +432,7 @@ pub(crate) fn advect_many(
     });
     let feet = &feet;
     for (d, s) in dsts.iter_mut().zip(srcs) {
-        par::for_chunks(d, n[0], |r, row| {
+        chunks::for_chunks(d, n[0], |r, row| {
             let fr = &feet[r * n[0]..r * n[0] + row.len()];
             for (o, &q) in row.iter_mut().zip(fr) {
                 *o = s.sample(q, adv.interpolation);

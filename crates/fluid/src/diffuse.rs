@@ -10,7 +10,7 @@
 //! of 1e-6 (the general-form conjugate-gradient solve is kept as the test
 //! oracle).
 
-use crate::par;
+use crate::chunks;
 use natura_core::simd::{self, Kernel, Simd};
 
 /// An unknown sample.
@@ -101,7 +101,7 @@ pub(crate) fn diffuse_in(
             a,
             g,
         };
-        par::for_chunks2_sum2(xo, d, n0, |r, xo, d| {
+        chunks::for_chunks2_sum2(xo, d, n0, |r, xo, d| {
             if masked {
                 simd::run(simd, PassRow::<true> { p: &p, r, xo, d })
             } else {
@@ -181,24 +181,7 @@ impl Pass<'_> {
         let (n, x, role) = (self.n, self.x, self.role);
         let n0 = n[0];
         let s0 = r * n0;
-        let (j, k) = (r % n[1], r / n[1]);
-        let mut nbs: [Option<usize>; 4] = [None; 4];
-        if n[1] > 1 {
-            nbs[0] = (j > 0).then(|| s0 - n0);
-            nbs[1] = (j + 1 < n[1]).then(|| s0 + n0);
-        }
-        if n[2] > 1 {
-            let sz = n0 * n[1];
-            nbs[2] = (k > 0).then(|| s0 - sz);
-            nbs[3] = (k + 1 < n[2]).then(|| s0 + sz);
-        }
-        let w_of = |m: u8| {
-            if MASKED {
-                f32::from(u8::from(m != EXCLUDED))
-            } else {
-                1.0
-            }
-        };
+        let nbs = self.row_neighbours(r);
         let xr = &x[s0..s0 + n0];
         let (mut rr, mut bb) = (0.0f64, 0.0f64);
         let mut acc = [0.0f32; CH];
@@ -206,79 +189,19 @@ impl Pass<'_> {
         let mut res = [0.0f32; CH];
         for c0 in (0..n0).step_by(CH) {
             let w = CH.min(n0 - c0);
-            let (a, xs) = (&mut acc[..w], &xr[c0..c0 + w]);
-            a.fill(0.0);
-            // Σ w_nb (x_nb − x_s): left, right, then the y and z rows.
-            if n0 > 1 {
-                let lo = c0.max(1);
-                for ((av, &xn), (&xv, &m)) in
-                    a[lo - c0..].iter_mut().zip(&xr[lo - 1..c0 + w - 1]).zip(
-                        xr[lo..c0 + w]
-                            .iter()
-                            .zip(&role[s0 + lo - 1..s0 + c0 + w - 1]),
-                    )
-                {
-                    *av += w_of(m) * (xn - xv);
-                }
-                let hi = (c0 + w).min(n0 - 1);
-                for ((av, &xn), (&xv, &m)) in a[..hi - c0]
-                    .iter_mut()
-                    .zip(&xr[c0 + 1..hi + 1])
-                    .zip(xr[c0..hi].iter().zip(&role[s0 + c0 + 1..s0 + hi + 1]))
-                {
-                    *av += w_of(m) * (xn - xv);
-                }
-            }
-            for &o in nbs.iter().flatten() {
-                let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
-                for ((av, (&xn, &m)), &xv) in a.iter_mut().zip(xn.iter().zip(rn)).zip(xs) {
-                    *av += w_of(m) * (xn - xv);
-                }
-            }
+            let block = Block { s0, c0, w, nbs };
+            let a = &mut acc[..w];
+            self.neighbour_differences::<MASKED>(&block, a);
             if self.first {
-                // b_s = data_s + coef Σ data_nb over Dirichlet neighbours
-                // (x_0 is the data).
                 let ba = &mut bacc[..w];
-                ba.fill(0.0);
-                let dir = |m: u8| f32::from(u8::from(m == DIRICHLET));
-                if n0 > 1 {
-                    let lo = c0.max(1);
-                    for ((bv, &xn), &m) in ba[lo - c0..]
-                        .iter_mut()
-                        .zip(&xr[lo - 1..c0 + w - 1])
-                        .zip(&role[s0 + lo - 1..s0 + c0 + w - 1])
-                    {
-                        *bv += dir(m) * xn;
-                    }
-                    let hi = (c0 + w).min(n0 - 1);
-                    for ((bv, &xn), &m) in ba[..hi - c0]
-                        .iter_mut()
-                        .zip(&xr[c0 + 1..hi + 1])
-                        .zip(&role[s0 + c0 + 1..s0 + hi + 1])
-                    {
-                        *bv += dir(m) * xn;
-                    }
-                }
-                for &o in nbs.iter().flatten() {
-                    let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
-                    for ((bv, &xn), &m) in ba.iter_mut().zip(xn).zip(rn) {
-                        *bv += dir(m) * xn;
-                    }
-                }
-                for ((bv, &v), &m) in ba
-                    .iter_mut()
-                    .zip(&self.b[s0 + c0..s0 + c0 + w])
-                    .zip(&role[s0 + c0..s0 + c0 + w])
-                {
-                    let t = v + self.coef * *bv;
-                    *bv = if m == FREE { t } else { 0.0 };
-                }
+                self.right_hand_side(&block, ba);
                 bb += lane_dot(ba, ba);
             }
             // r = b − x + coef·acc on free samples (0 on fixed ones),
             // d = a d + g r (d = g r on the first step), x' = x + d.
             let rs = &mut res[..w];
             let (coef, g, a_) = (self.coef, self.g, self.a);
+            let xs = &xr[c0..c0 + w];
             let bs = &self.b[s0 + c0..s0 + c0 + w];
             let ms = &role[s0 + c0..s0 + c0 + w];
             let (ds, xos) = (&mut d[c0..c0 + w], &mut xo[c0..c0 + w]);
@@ -303,6 +226,124 @@ impl Pass<'_> {
         }
         (rr, bb)
     }
+
+    /// Starts of the rows beside row `r` that exist: below and above in y,
+    /// then in z.
+    #[inline(always)]
+    fn row_neighbours(&self, r: usize) -> [Option<usize>; 4] {
+        let n = self.n;
+        let n0 = n[0];
+        let s0 = r * n0;
+        let (j, k) = (r % n[1], r / n[1]);
+        let mut nbs: [Option<usize>; 4] = [None; 4];
+        if n[1] > 1 {
+            nbs[0] = (j > 0).then(|| s0 - n0);
+            nbs[1] = (j + 1 < n[1]).then(|| s0 + n0);
+        }
+        if n[2] > 1 {
+            let sz = n0 * n[1];
+            nbs[2] = (k > 0).then(|| s0 - sz);
+            nbs[3] = (k + 1 < n[2]).then(|| s0 + sz);
+        }
+        nbs
+    }
+
+    /// `a = Σ w_nb (x_nb − x_s)` over the block's samples: left, right,
+    /// then the y and z rows (`w_nb` 0 for excluded neighbours when
+    /// `MASKED`, else 1).
+    #[inline(always)]
+    fn neighbour_differences<const MASKED: bool>(&self, blk: &Block, a: &mut [f32]) {
+        let (x, role, n0) = (self.x, self.role, self.n[0]);
+        let Block { s0, c0, w, nbs } = *blk;
+        let w_of = |m: u8| {
+            if MASKED {
+                f32::from(u8::from(m != EXCLUDED))
+            } else {
+                1.0
+            }
+        };
+        let xr = &x[s0..s0 + n0];
+        let xs = &xr[c0..c0 + w];
+        a.fill(0.0);
+        if n0 > 1 {
+            let lo = c0.max(1);
+            for ((av, &xn), (&xv, &m)) in a[lo - c0..].iter_mut().zip(&xr[lo - 1..c0 + w - 1]).zip(
+                xr[lo..c0 + w]
+                    .iter()
+                    .zip(&role[s0 + lo - 1..s0 + c0 + w - 1]),
+            ) {
+                *av += w_of(m) * (xn - xv);
+            }
+            let hi = (c0 + w).min(n0 - 1);
+            for ((av, &xn), (&xv, &m)) in a[..hi - c0]
+                .iter_mut()
+                .zip(&xr[c0 + 1..hi + 1])
+                .zip(xr[c0..hi].iter().zip(&role[s0 + c0 + 1..s0 + hi + 1]))
+            {
+                *av += w_of(m) * (xn - xv);
+            }
+        }
+        for &o in nbs.iter().flatten() {
+            let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
+            for ((av, (&xn, &m)), &xv) in a.iter_mut().zip(xn.iter().zip(rn)).zip(xs) {
+                *av += w_of(m) * (xn - xv);
+            }
+        }
+    }
+
+    /// The first step's right-hand side over the block:
+    /// `b_s = data_s + coef Σ data_nb` over Dirichlet neighbours on free
+    /// samples, 0 on fixed ones (`x_0` is the data).
+    #[inline(always)]
+    fn right_hand_side(&self, blk: &Block, ba: &mut [f32]) {
+        let (x, role, n0) = (self.x, self.role, self.n[0]);
+        let Block { s0, c0, w, nbs } = *blk;
+        let xr = &x[s0..s0 + n0];
+        ba.fill(0.0);
+        let dir = |m: u8| f32::from(u8::from(m == DIRICHLET));
+        if n0 > 1 {
+            let lo = c0.max(1);
+            for ((bv, &xn), &m) in ba[lo - c0..]
+                .iter_mut()
+                .zip(&xr[lo - 1..c0 + w - 1])
+                .zip(&role[s0 + lo - 1..s0 + c0 + w - 1])
+            {
+                *bv += dir(m) * xn;
+            }
+            let hi = (c0 + w).min(n0 - 1);
+            for ((bv, &xn), &m) in ba[..hi - c0]
+                .iter_mut()
+                .zip(&xr[c0 + 1..hi + 1])
+                .zip(&role[s0 + c0 + 1..s0 + hi + 1])
+            {
+                *bv += dir(m) * xn;
+            }
+        }
+        for &o in nbs.iter().flatten() {
+            let (xn, rn) = (&x[o + c0..o + c0 + w], &role[o + c0..o + c0 + w]);
+            for ((bv, &xn), &m) in ba.iter_mut().zip(xn).zip(rn) {
+                *bv += dir(m) * xn;
+            }
+        }
+        for ((bv, &v), &m) in ba
+            .iter_mut()
+            .zip(&self.b[s0 + c0..s0 + c0 + w])
+            .zip(&role[s0 + c0..s0 + c0 + w])
+        {
+            let t = v + self.coef * *bv;
+            *bv = if m == FREE { t } else { 0.0 };
+        }
+    }
+}
+
+/// One block of a row in [`Pass::row`]: the row's start `s0`, the block's
+/// first column `c0` and width `w`, and the starts of the neighbouring rows.
+#[derive(Clone, Copy)]
+struct Block {
+    s0: usize,
+    c0: usize,
+    w: usize,
+    nbs: [Option<usize>; 4],
 }
 
 /// Row block length of the operator (stack accumulator).
@@ -364,8 +405,8 @@ pub(crate) fn diffuse_ref(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8
         }
     }
     let apply = |x: &[f32], y: &mut [f32]| {
-        par::for_chunks(y, par::BLOCK, |bi, yc| {
-            let s0 = bi * par::BLOCK;
+        chunks::for_chunks(y, chunks::BLOCK, |bi, yc| {
+            let s0 = bi * chunks::BLOCK;
             for (o, yv) in yc.iter_mut().enumerate() {
                 let s = s0 + o;
                 if fixed[s] {
@@ -390,8 +431,8 @@ pub(crate) fn diffuse_ref(data: &mut [f32], n: [usize; 3], coef: f32, role: &[u8
         });
     };
     let dot = |a: &[f32], b: &[f32]| {
-        par::sum_blocks(len.div_ceil(par::BLOCK), par::BLOCK, |bi| {
-            let r = bi * par::BLOCK..((bi + 1) * par::BLOCK).min(len);
+        chunks::sum_blocks(len.div_ceil(chunks::BLOCK), chunks::BLOCK, |bi| {
+            let r = bi * chunks::BLOCK..((bi + 1) * chunks::BLOCK).min(len);
             a[r.clone()]
                 .iter()
                 .zip(&b[r])

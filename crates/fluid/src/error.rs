@@ -70,15 +70,7 @@ pub enum FluidError {
 /// Shorthand for `Result<T, FluidError>`.
 pub type Result<T, E = FluidError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for FluidError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        FluidError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(FluidError::InvalidParameter, expected: reason);
 
 /// `Ok(())` if `value` is finite and `> 0`, else [`FluidError::InvalidParameter`].
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {

@@ -16,9 +16,9 @@ use natura_core::Grid3;
 use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 
+use crate::chunks;
 use crate::error::{FluidError, Result};
 use crate::grid::Dims;
-use crate::par;
 
 /// Which wavenumbers the Fourier operators use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -77,7 +77,7 @@ impl Fft3 {
             let plan = if inverse { &self.inv[a] } else { &self.fwd[a] };
             let Some(plan) = plan else { continue };
             if a == 0 {
-                par::for_chunks(data, n[0], |_, row| {
+                chunks::for_chunks(data, n[0], |_, row| {
                     let mut scratch = vec![Complex64::default(); plan.get_inplace_scratch_len()];
                     plan.process_with_scratch(row, &mut scratch);
                 });
@@ -94,7 +94,7 @@ impl Fft3 {
                 }
             };
             let src: &[Complex64] = data;
-            let out: Vec<Vec<Complex64>> = par::map_collect(lines, |l| {
+            let out: Vec<Vec<Complex64>> = chunks::map_collect(lines, |l| {
                 let b = base_of(l);
                 let mut v: Vec<Complex64> = (0..n[a]).map(|t| src[b + t * st[a]]).collect();
                 plan.process(&mut v);

@@ -313,12 +313,12 @@ impl MacVelocity {
                 .iter()
                 .map(|g| {
                     let s = g.as_slice();
-                    crate::par::sum_blocks(
-                        s.len().div_ceil(crate::par::BLOCK),
-                        crate::par::BLOCK,
+                    crate::chunks::sum_blocks(
+                        s.len().div_ceil(crate::chunks::BLOCK),
+                        crate::chunks::BLOCK,
                         |bi| {
-                            let r =
-                                bi * crate::par::BLOCK..((bi + 1) * crate::par::BLOCK).min(s.len());
+                            let r = bi * crate::chunks::BLOCK
+                                ..((bi + 1) * crate::chunks::BLOCK).min(s.len());
                             crate::diffuse::lane_dot(&s[r.clone()], &s[r])
                         },
                     )
@@ -396,11 +396,11 @@ pub(crate) fn check_grid(g: &Grid3<f32>, field: &'static str, stage: &'static st
 /// Whether every sample is finite: blocks in parallel, each a fold without
 /// early exit (`|x| < ∞` is false for NaN and ±∞) so that it vectorises.
 pub(crate) fn all_finite(v: &[f32]) -> bool {
-    let bad = crate::par::sum_blocks(
-        v.len().div_ceil(crate::par::BLOCK),
-        crate::par::BLOCK,
+    let bad = crate::chunks::sum_blocks(
+        v.len().div_ceil(crate::chunks::BLOCK),
+        crate::chunks::BLOCK,
         |bi| {
-            let r = bi * crate::par::BLOCK..((bi + 1) * crate::par::BLOCK).min(v.len());
+            let r = bi * crate::chunks::BLOCK..((bi + 1) * crate::chunks::BLOCK).min(v.len());
             let ok = v[r]
                 .iter()
                 .fold(1u32, |m, &x| m & u32::from(x.abs() < f32::INFINITY));

@@ -11,9 +11,9 @@
 
 use natura_core::Grid3;
 
+use crate::chunks;
 use crate::grid::Dims;
 use crate::interp::Sampler;
-use crate::par;
 
 /// A level-set function sampled at cell centres.
 #[derive(Clone, Debug, PartialEq)]
@@ -110,7 +110,7 @@ impl LevelSet {
     fn rate(&self, g: &[f32], u: &[Grid3<f32>; 3]) -> Vec<f32> {
         let d = self.dims;
         let mut out = vec![0.0f32; d.cells()];
-        par::for_chunks(&mut out, d.nx, |r, row| {
+        chunks::for_chunks(&mut out, d.nx, |r, row| {
             let (j, k) = (r % d.ny, r / d.ny);
             for (i, o) in row.iter_mut().enumerate() {
                 let c = [i, j, k];
@@ -201,7 +201,7 @@ impl LevelSet {
             let s0r = &s0;
             let tr = &target;
             let g0r = &g0;
-            par::for_chunks(self.phi.as_mut_slice(), d.nx, |r, row| {
+            chunks::for_chunks(self.phi.as_mut_slice(), d.nx, |r, row| {
                 let (j, k) = (r % d.ny, r / d.ny);
                 for (i, o) in row.iter_mut().enumerate() {
                     let c = [i, j, k];

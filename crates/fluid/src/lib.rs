@@ -46,11 +46,11 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod advect;
+mod advect_linear;
+mod chunks;
 mod error;
 pub mod grid;
 pub mod interp;
-mod lanes;
-mod par;
 pub mod pressure;
 
 pub use error::{FluidError, Result};

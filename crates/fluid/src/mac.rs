@@ -12,9 +12,9 @@
 
 use natura_core::Grid3;
 
+use crate::chunks;
 use crate::error::Result;
 use crate::grid::{Boundaries, CellKind, Dims, MacVelocity, Side};
-use crate::par;
 use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 
 /// Returns the MAC divergence `(∇·u)_c` (1/s) at every cell centre (Fedkiw et al. 2001, App. A).
@@ -24,7 +24,7 @@ use crate::pressure::{PoissonSystem, SolveStats, SolverParams};
 /// Returns [`FluidError::Core`](crate::FluidError::Core) if the grid cannot be allocated.
 pub fn divergence(vel: &MacVelocity, h: f32) -> Result<Grid3<f32>> {
     let mut out = vel.dims().zeros()?;
-    par::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
+    chunks::for_chunks(out.as_mut_slice(), vel.dims().n()[0], |r, row| {
         divergence_row(vel, h, r, row);
     });
     Ok(out)
@@ -93,7 +93,7 @@ pub fn max_fluid_divergence(vel: &MacVelocity, kinds: &Grid3<CellKind>, h: f32) 
         }
         m
     };
-    Ok(par::max_over_rows(rows, n0, fold))
+    Ok(chunks::max_over_rows(rows, n0, fold))
 }
 
 /// Whether face `f` (index into component `a`'s grid) is fixed — a domain
@@ -231,7 +231,7 @@ pub(crate) fn face_cells(
 pub(crate) fn fixed_faces(d: Dims, kinds: &[CellKind], bounds: &Boundaries, a: usize) -> Vec<u8> {
     let fd = d.face_dims(a);
     let mut fx = vec![false; fd[0] * fd[1] * fd[2]];
-    par::for_chunks(&mut fx, fd[0], |r, row| {
+    chunks::for_chunks(&mut fx, fd[0], |r, row| {
         fixed_row(d, kinds, bounds, a, r % fd[1], r / fd[1], row);
     });
     fx.into_iter().map(u8::from).collect()
@@ -250,7 +250,7 @@ pub(crate) fn enforce_solids(
             continue;
         }
         let fn_ = d.face_dims(a);
-        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fn_[0], |r, row| {
+        chunks::for_chunks(vel.comp_mut(a).as_mut_slice(), fn_[0], |r, row| {
             let (j, k) = (r % fn_[1], r / fn_[1]);
             let mut fx = vec![false; row.len()];
             fixed_row(d, kinds, bounds, a, j, k, &mut fx);
@@ -286,7 +286,7 @@ pub(crate) fn add_centre_forces(
         let fd = d.face_dims(a);
         let n = d.n();
         let n0 = n[0];
-        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
+        chunks::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
             let mut fx = vec![false; row.len()];
             fixed_row(d, kinds, bounds, a, j, k, &mut fx);
@@ -447,7 +447,7 @@ pub(crate) fn apply_pressure(
         let fd = d.face_dims(a);
         let n = d.n();
         let n0 = n[0];
-        par::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
+        chunks::for_chunks(vel.comp_mut(a).as_mut_slice(), fd[0], |r, row| {
             let (j, k) = (r % fd[1], r / fd[1]);
             let mut fx = vec![false; row.len()];
             fixed_row(d, kinds, bounds, a, j, k, &mut fx);
@@ -536,7 +536,7 @@ pub fn centre_velocity(vel: &MacVelocity) -> Result<[Grid3<f32>; 3]> {
             continue;
         }
         let g = vel.comp(a);
-        par::for_chunks(o.as_mut_slice(), n[0], |r, row| {
+        chunks::for_chunks(o.as_mut_slice(), n[0], |r, row| {
             let (j, k) = (r % n[1], r / n[1]);
             for (i, v) in row.iter_mut().enumerate() {
                 let mut hi = [i, j, k];
@@ -563,7 +563,7 @@ pub fn vorticity(vel: &MacVelocity, h: f32) -> Result<[Grid3<f32>; 3]> {
     let (ux, uy, uz) = (u[0].as_slice(), u[1].as_slice(), u[2].as_slice());
     let [w0, w1, w2] = &mut w;
     for (comp, out) in [(0usize, w0), (1, w1), (2, w2)] {
-        par::for_chunks(out.as_mut_slice(), n[0], |r, row| {
+        chunks::for_chunks(out.as_mut_slice(), n[0], |r, row| {
             let (j, k) = (r % n[1], r / n[1]);
             for (i, v) in row.iter_mut().enumerate() {
                 let c = [i, j, k];
@@ -604,7 +604,7 @@ pub fn confinement_force(vel: &MacVelocity, h: f32, epsilon: f32) -> Result<[Gri
     let n = d.n();
     let scale = epsilon * h;
     let ws = [w[0].as_slice(), w[1].as_slice(), w[2].as_slice()];
-    let forces: Vec<glam::Vec3> = par::map_collect(n[1] * n[2], |r| {
+    let forces: Vec<glam::Vec3> = chunks::map_collect(n[1] * n[2], |r| {
         let (j, k) = (r % n[1], r / n[1]);
         (0..n[0])
             .map(|i| {

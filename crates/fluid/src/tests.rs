@@ -224,8 +224,8 @@ fn lane_advection_matches_general_code_bit_for_bit() {
         Advection, Solids, TraceIntegrator, VelSampler, centre_sampler, face_sampler,
         sl_pass_general,
     };
+    use crate::advect_linear::sl_linear;
     use crate::grid::{CellKind, Dims, MacVelocity};
-    use crate::lanes::sl_linear;
     // Sizes that are not multiples of the 16 lanes, thin grids, 2-D and 3-D.
     for d in [
         Dims::plane(37, 21).unwrap(),
@@ -295,8 +295,8 @@ fn lane_advection_matches_general_code_bit_for_bit() {
 #[test]
 fn lane_advection_declines_periodic_grids() {
     use crate::advect::{TraceIntegrator, VelSampler, centre_sampler};
+    use crate::advect_linear::sl_linear;
     use crate::grid::Dims;
-    use crate::lanes::sl_linear;
     let d = Dims::plane(8, 8).unwrap();
     let comps = [d.zeros().unwrap(), d.zeros().unwrap(), d.zeros().unwrap()];
     let vs = VelSampler::collocated(&comps, d);

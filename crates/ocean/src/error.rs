@@ -65,15 +65,7 @@ pub enum OceanError {
 /// Shorthand for `Result<T, OceanError>`.
 pub type Result<T, E = OceanError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for OceanError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        OceanError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(OceanError::InvalidParameter, expected: reason);
 
 /// Builds an [`OceanError::InvalidParameter`].
 pub(crate) fn invalid(

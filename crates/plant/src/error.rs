@@ -1,7 +1,6 @@
 //! The error type of `natura-plant`.
 
 use natura_core::CoreError;
-use natura_core::check::ParamError;
 use std::fmt;
 
 /// A position in L-system text: 1-based line and column (in characters).
@@ -147,15 +146,7 @@ pub enum PlantError {
     Terrain(#[from] natura_terrain::TerrainError),
 }
 
-impl From<ParamError> for PlantError {
-    fn from(e: ParamError) -> Self {
-        Self::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected.to_string(),
-        }
-    }
-}
+natura_core::from_param_error!(PlantError::InvalidParameter, expected: reason);
 
 impl PlantError {
     /// Returns a syntax error at `span`.

@@ -163,12 +163,4 @@ pub(crate) fn in_range(name: &str, v: impl SceneValue, lo: f64, hi: f64) -> Resu
 /// Shorthand for `Result<T, RenderError>`.
 pub type Result<T, E = RenderError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for RenderError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        RenderError::Invalid {
-            name: e.name.to_owned(),
-            value: short(&e.value),
-            reason: e.expected.to_owned(),
-        }
-    }
-}
+natura_core::from_param_error!(RenderError::Invalid, expected: reason, value: short);

@@ -61,12 +61,13 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod camera;
 pub mod clouds;
 mod error;
 mod integrator;
 pub mod material;
 pub mod scene;
-pub mod strata;
+pub mod surface_textures;
 pub mod vegetation;
 mod world;
 
@@ -75,8 +76,9 @@ use std::path::Path;
 use natura_core::colour::luminance;
 use natura_core::{Image, Progress};
 
+pub use camera::SceneCamera;
 pub use error::{RenderError, Result};
-pub use integrator::{Renderer, SceneCamera, WATER_IOR};
+pub use integrator::{Renderer, WATER_IOR};
 pub use scene::{
     AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc,
     DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc,

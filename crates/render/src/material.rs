@@ -10,11 +10,12 @@
 
 use glam::{DVec2, DVec3, Vec3};
 use natura_core::colour::srgb_decode_rgb;
+use natura_core::smoothstep;
 use natura_noise::{Fbm, Field, Perlin, Spectral};
 
 use crate::error::Result;
 use crate::scene::{Diffuse, MaterialDesc};
-use crate::strata::SurfaceTextures;
+use crate::surface_textures::SurfaceTextures;
 
 /// Everything the material mapping reads at a surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,8 +59,6 @@ struct Albedos {
     sediment: Vec3,
     sand: Vec3,
 }
-
-pub use natura_core::smoothstep;
 
 impl Materials {
     /// Builds the mapping from the scene's material description (validated by

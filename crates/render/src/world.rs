@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 use glam::{DVec2, DVec3, Vec3};
 use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
-use natura_core::{Boundary, Grid2, HeightField, Progress, Seed};
+use natura_core::{Grid2, HeightField, Progress, Seed};
 use natura_noise::{
     Displace, Field, HybridMultifractal, HybridParams, NoiseError, Perlin, RidgedMultifractal,
     RidgedParams, Spectral, VecNoise, VectorFbm, Warped,
@@ -384,31 +384,6 @@ impl World {
         })
     }
 
-    /// The eye position the scene's camera description gives: above the terrain
-    /// (or water) at `position_uv` by `height_above_ground_m`.
-    #[must_use]
-    pub fn eye(&self) -> Vec3 {
-        let c = &self.scene.camera;
-        let e = self.terrain.extent();
-        let (x, y) = (c.position_uv[0] as f32 * e.x, c.position_uv[1] as f32 * e.y);
-        let ground = self.surface.sample(x, y, Boundary::Clamp);
-        Vec3::new(x, y, ground + c.height_above_ground_m as f32)
-    }
-
-    /// The horizontal view direction rotated up by the scene's pitch.
-    #[must_use]
-    pub fn view_direction(&self) -> Vec3 {
-        let c = &self.scene.camera;
-        let e = self.terrain.extent();
-        let to = glam::Vec2::new(
-            (c.target_uv[0] - c.position_uv[0]) as f32 * e.x,
-            (c.target_uv[1] - c.position_uv[1]) as f32 * e.y,
-        )
-        .normalize_or(glam::Vec2::Y);
-        let p = (c.pitch_deg as f32).to_radians();
-        Vec3::new(to.x * p.cos(), to.y * p.cos(), p.sin())
-    }
-
     /// A shaded-relief map of the terrain (north up): terrain false colour,
     /// hill-shaded from the scene's sun, water in blue, deposition in light
     /// grey. For checking a scene's terrain before rendering it.
@@ -503,7 +478,7 @@ fn terrace(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()> {
         min_slope_deg: t.min_slope_deg,
         min_altitude_m: t.min_altitude_m,
     };
-    let strata = crate::strata::strata_of(&scene.textures, seed.derive("textures"))?;
+    let strata = crate::surface_textures::strata_of(&scene.textures, seed.derive("textures"))?;
     let cell = f64::from(hf.cell_size());
     let h = hf.heights();
     let fill = |i: usize, j: usize| {

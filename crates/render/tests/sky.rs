@@ -6,7 +6,7 @@ use glam::Vec3;
 use natura_core::{HeightField, NoProgress, Seed};
 use natura_render::clouds::CloudSky;
 use natura_render::material::Materials;
-use natura_render::strata::SurfaceTextures;
+use natura_render::surface_textures::SurfaceTextures;
 use natura_render::{Renderer, SceneDesc, World};
 use natura_trace::Ray;
 

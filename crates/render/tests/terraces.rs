@@ -5,7 +5,7 @@
 use glam::Vec3;
 use natura_core::{HeightField, NoProgress, Seed};
 use natura_render::material::Materials;
-use natura_render::strata::SurfaceTextures;
+use natura_render::surface_textures::SurfaceTextures;
 use natura_render::{SceneDesc, World};
 
 mod common;

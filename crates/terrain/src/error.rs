@@ -65,15 +65,7 @@ pub enum TerrainError {
 /// Shorthand for `Result<T, TerrainError>`.
 pub type Result<T, E = TerrainError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for TerrainError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        TerrainError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected.to_owned(),
-        }
-    }
-}
+natura_core::from_param_error!(TerrainError::InvalidParameter, expected: reason);
 
 /// Builds an [`TerrainError::InvalidParameter`].
 pub(crate) fn invalid(

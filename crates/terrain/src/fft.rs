@@ -6,7 +6,7 @@ use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
-use crate::par;
+use crate::bands;
 
 /// Number of complex columns of the half spectrum of a row of `nx` reals.
 #[inline]
@@ -19,7 +19,7 @@ pub(crate) fn forward_real_2d(data: &[f64], nx: usize, ny: usize) -> Vec<Complex
     let hx = half(nx);
     let r2c = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
     let rows: Vec<usize> = (0..ny).collect();
-    let spec_rows: Vec<Vec<Complex<f64>>> = par::run(chunk_list(rows), |rows| {
+    let spec_rows: Vec<Vec<Complex<f64>>> = bands::run(chunk_list(rows), |rows| {
         let mut input = r2c.make_input_vec();
         let mut scratch = r2c.make_scratch_vec();
         let mut out = Vec::with_capacity(rows.len() * hx);
@@ -52,7 +52,7 @@ pub(crate) fn inverse_real_2d(
     let norm = 1.0 / (nx as f64 * ny as f64);
     let rows: Vec<usize> = (0..ny).collect();
     let spec = &spec;
-    let parts: Vec<(Vec<f64>, f64)> = par::run(chunk_list(rows), |rows| {
+    let parts: Vec<(Vec<f64>, f64)> = bands::run(chunk_list(rows), |rows| {
         let mut input = c2r.make_input_vec();
         let mut scratch = c2r.make_scratch_vec();
         let mut output = c2r.make_output_vec();
@@ -97,7 +97,7 @@ fn columns(spec: &mut [Complex<f64>], w: usize, h: usize, inverse: bool) {
     }
     let chunk = h * 8;
     let jobs: Vec<&mut [Complex<f64>]> = t.chunks_mut(chunk).collect();
-    par::run(jobs, |cols| {
+    bands::run(jobs, |cols| {
         let mut scratch = vec![Complex::new(0.0, 0.0); fft.get_inplace_scratch_len()];
         for c in cols.chunks_mut(h) {
             fft.process_with_scratch(c, &mut scratch);

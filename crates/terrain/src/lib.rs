@@ -36,9 +36,9 @@
 // `#[target_feature]` functions it writes.
 #![deny(unsafe_code)]
 
+mod bands;
 mod error;
 mod fft;
-mod par;
 
 pub mod analysis;
 pub mod erosion;

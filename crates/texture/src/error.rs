@@ -62,15 +62,7 @@ pub(crate) fn invalid(
 
 pub(crate) use natura_core::check::{finite, in_range, non_negative, positive};
 
-impl From<natura_core::check::ParamError> for TextureError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        TextureError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(TextureError::InvalidParameter, expected: reason);
 
 /// Returns `Ok(c)` if every channel of the colour `c` is in `[0, 1]`.
 pub(crate) fn colour(name: &'static str, c: glam::DVec3) -> Result<glam::DVec3> {

@@ -66,7 +66,7 @@ pub mod multicolor;
 pub mod normal;
 pub mod planet;
 pub mod preview;
-pub mod raster;
+pub mod row_fill;
 pub mod spline;
 mod texture;
 pub mod view;

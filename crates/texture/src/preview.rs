@@ -8,7 +8,7 @@ use natura_core::{Image, Progress};
 use crate::error::{Result, TextureError, positive};
 use crate::footprint::Footprint;
 use crate::normal::bump;
-use crate::raster::render_rows;
+use crate::row_fill::render_rows;
 use crate::texture::{SolidTexture, TextureKind};
 use crate::view::View;
 

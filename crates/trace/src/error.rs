@@ -53,12 +53,4 @@ impl TraceError {
 /// Shorthand for `Result<T, TraceError>`.
 pub type Result<T, E = TraceError> = std::result::Result<T, E>;
 
-impl From<natura_core::check::ParamError> for TraceError {
-    fn from(e: natura_core::check::ParamError) -> Self {
-        TraceError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            reason: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(TraceError::InvalidParameter, expected: reason);

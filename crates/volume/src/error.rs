@@ -1,7 +1,6 @@
 //! The error type of `natura-volume`.
 
 use natura_core::CoreError;
-use natura_core::check::ParamError;
 
 /// Everything that can go wrong in `natura-volume`.
 #[derive(Debug, thiserror::Error)]
@@ -69,15 +68,7 @@ pub enum VolumeError {
     Atmos(#[from] natura_atmos::AtmosError),
 }
 
-impl From<ParamError> for VolumeError {
-    fn from(e: ParamError) -> Self {
-        VolumeError::InvalidParameter {
-            name: e.name,
-            value: e.value,
-            expected: e.expected,
-        }
-    }
-}
+natura_core::from_param_error!(VolumeError::InvalidParameter, expected: expected);
 
 /// Shorthand for `Result<T, VolumeError>`.
 pub type Result<T, E = VolumeError> = std::result::Result<T, E>;

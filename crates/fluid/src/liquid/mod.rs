@@ -522,11 +522,10 @@ impl Liquid {
         Ok(report)
     }
 
-    fn ns_step(&mut self, dt: f32) -> Result<StepReport> {
+    /// Semi-Lagrangian convection of the velocity `old` (paths clipped at
+    /// the objects' cells, if any) into `self.vel`.
+    fn convect(&mut self, old: &MacVelocity, dt: f32) {
         let (d, h) = (self.dims, self.h);
-        let bounds = self.params.bounds;
-        self.classify();
-        let kinds = self.pressure_kinds();
         let solid_kinds: Vec<CellKind> = self
             .cells
             .as_slice()
@@ -539,28 +538,31 @@ impl Liquid {
                 }
             })
             .collect();
-        // 2. Convection (SL) + explicit viscosity + gravity.
-        let old = self.vel.clone();
-        {
-            let vs = VelSampler::mac(&old);
-            let sol = Solids {
-                kinds: &solid_kinds,
-                dims: d,
-            };
-            let clip = (!self.obstacles.is_empty()).then_some(&sol);
-            for a in 0..3 {
-                if d.active(a) {
-                    advect::advect(
-                        self.vel.comp_mut(a).as_mut_slice(),
-                        &advect::face_sampler(old.comp(a), a),
-                        &vs,
-                        dt / h,
-                        &self.params.advection,
-                        clip,
-                    );
-                }
+        let vs = VelSampler::mac(old);
+        let sol = Solids {
+            kinds: &solid_kinds,
+            dims: d,
+        };
+        let clip = (!self.obstacles.is_empty()).then_some(&sol);
+        for a in 0..3 {
+            if d.active(a) {
+                advect::advect(
+                    self.vel.comp_mut(a).as_mut_slice(),
+                    &advect::face_sampler(old.comp(a), a),
+                    &vs,
+                    dt / h,
+                    &self.params.advection,
+                    clip,
+                );
             }
         }
+    }
+
+    /// Explicit viscosity (the Laplacian of the pre-convection velocity
+    /// `old`, the viscosity capped for stability) and gravity, added to
+    /// `self.vel`.
+    fn viscosity_and_gravity(&mut self, old: &MacVelocity, dt: f32) {
+        let (d, h) = (self.dims, self.h);
         let nu_cap = 0.9 * h * h / (2.0 * d.active_axes() as f32 * dt);
         let nu = self.params.viscosity.min(nu_cap);
         for a in 0..3 {
@@ -596,6 +598,17 @@ impl Liquid {
                 }
             }
         }
+    }
+
+    fn ns_step(&mut self, dt: f32) -> Result<StepReport> {
+        let (d, h) = (self.dims, self.h);
+        let bounds = self.params.bounds;
+        self.classify();
+        let kinds = self.pressure_kinds();
+        // 2. Convection (SL) + explicit viscosity + gravity.
+        let old = self.vel.clone();
+        self.convect(&old, dt);
+        self.viscosity_and_gravity(&old, dt);
         self.vel.check_finite("velocity update")?;
         // Domain walls stay closed.
         let open_kinds = vec![CellKind::Fluid; d.cells()];

@@ -67,7 +67,7 @@ impl Liquid {
         let ext: [f32; 3] = std::array::from_fn(|a| d.n()[a] as f32 * h);
         let band = (self.params.extrapolation_layers.max(2) - 1) as f32 * h;
         let phi = &self.phi;
-        let moved: Vec<(Vec3, Vec3)> = crate::par::map_collect(self.particles.len(), |i| {
+        let moved: Vec<(Vec3, Vec3)> = crate::chunks::map_collect(self.particles.len(), |i| {
             let p = self.particles[i];
             let (q, v) = if phi.value_at(p) > band {
                 let v = self.pvel[i] + dt * g;

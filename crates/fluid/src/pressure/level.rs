@@ -7,8 +7,8 @@
 
 use super::kernels::{ApplyRow, GsRow, ResidualRow};
 use super::operator::{self, Real, lane_dot, lane_sum};
+use crate::chunks;
 use crate::grid::{Boundaries, CellKind, Side};
-use crate::par;
 use natura_core::simd::{self, Simd};
 
 /// Leading guard element so that `row_base − 1` is always a valid index.
@@ -203,7 +203,7 @@ impl Level {
     fn rows_par<T: Send>(&self, out: &mut [T], f: impl Fn(usize, usize, &mut [T]) + Sync + Send) {
         let m0 = self.m[0];
         let body = &mut out[GUARD..GUARD + self.rows() * m0];
-        par::for_chunks(body, m0, |r, row| {
+        chunks::for_chunks(body, m0, |r, row| {
             if let Some(base) = self.row_base(r) {
                 f(r, base, row);
             }
@@ -237,7 +237,7 @@ impl Level {
         let (p0, n0, m0) = (self.pad[0], self.n[0], self.m[0]);
         let simd = Simd::best();
         let body = &mut y[GUARD..GUARD + self.rows() * m0];
-        par::for_chunks_sum(body, m0, |r, yrow| {
+        chunks::for_chunks_sum(body, m0, |r, yrow| {
             let Some(base) = self.row_base(r) else {
                 return 0.0;
             };
@@ -395,8 +395,8 @@ impl Level {
         let mut t = std::mem::take(&mut self.t);
         let wc = &self.invc[first];
         let b = &self.b;
-        par::for_chunks(&mut t, par::BLOCK, |bi, tc| {
-            let s = bi * par::BLOCK;
+        chunks::for_chunks(&mut t, chunks::BLOCK, |bi, tc| {
+            let s = bi * chunks::BLOCK;
             let n = tc.len();
             for ((o, &bv), &iv) in tc.iter_mut().zip(&b[s..s + n]).zip(&wc[s..s + n]) {
                 // The update with a zero iterate and neighbour sum: `b + 0`
@@ -453,7 +453,7 @@ impl Level {
         b: &[B],
     ) -> f64 {
         let (p0, n0) = (self.pad[0], self.n[0]);
-        par::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
+        chunks::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
             Some(base) => {
                 let s = base + p0;
                 lane_dot(&a[s..s + n0], &b[s..s + n0])
@@ -466,7 +466,7 @@ impl Level {
     /// [`lane_sum`], the rows added in order.
     pub fn sum<T: Copy + Into<f64> + Sync>(&self, v: &[T]) -> f64 {
         let (p0, n0) = (self.pad[0], self.n[0]);
-        par::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
+        chunks::sum_blocks(self.rows(), n0, |r| match self.row_base(r) {
             Some(base) => lane_sum(&v[base + p0..base + p0 + n0]),
             None => 0.0,
         })

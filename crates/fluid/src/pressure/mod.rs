@@ -363,7 +363,7 @@ impl PoissonSystem {
         dst[..GUARD].fill(T::default());
         let end = GUARD + l.rows() * m0;
         dst[end..].fill(T::default());
-        crate::par::for_chunks(&mut dst[GUARD..end], m0, |r, row| {
+        crate::chunks::for_chunks(&mut dst[GUARD..end], m0, |r, row| {
             let Some(base) = l.row_base(r) else {
                 row.fill(T::default());
                 return;
@@ -386,7 +386,7 @@ impl PoissonSystem {
     fn unpad_into<T: Copy + Default + Send + Sync>(&self, src: &[T], dst: &mut [T]) {
         let l = &self.levels[0];
         let (n0, n1) = (l.n[0], l.n[1]);
-        crate::par::for_chunks(dst, n0, |u, row| {
+        crate::chunks::for_chunks(dst, n0, |u, row| {
             let s = l.pidx([0, u % n1, u / n1]);
             let ms = &l.mask[s..s + n0];
             for ((o, &v), &m) in row.iter_mut().zip(&src[s..s + n0]).zip(ms) {

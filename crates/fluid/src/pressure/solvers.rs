@@ -162,46 +162,7 @@ impl PoissonSystem {
                     continue 'outer;
                 }
                 let alpha = rz / dq;
-                // One pass: x += αd, r −= αq, the f32 copy of r the
-                // preconditioner reads, and r·r. Every vector is zero off
-                // the unknowns, so the flat sum equals the interior one.
-                let q = &self.q;
-                let rr = crate::par::for_chunks3_sum(
-                    x,
-                    &mut r,
-                    &mut self.r,
-                    crate::par::BLOCK,
-                    |bi, xc, rc, r32| {
-                        let s = bi * crate::par::BLOCK;
-                        let n = xc.len();
-                        let dd = &d[s..s + n];
-                        let qq = &q[s..s + n];
-                        for ((((xv, rv), o), &dv), &qv) in xc
-                            .iter_mut()
-                            .zip(rc.iter_mut())
-                            .zip(r32.iter_mut())
-                            .zip(dd)
-                            .zip(qq)
-                        {
-                            *xv += alpha * f64::from(dv);
-                            let nr = *rv - alpha * f64::from(qv);
-                            *rv = nr;
-                            *o = nr as f32;
-                        }
-                        // r·r of the block while it is in cache: eight
-                        // lane sums (a single running sum would keep the
-                        // loop scalar), added in a fixed order.
-                        let mut lanes = [0.0f64; 8];
-                        let mut it8 = rc.chunks_exact(8);
-                        for c in &mut it8 {
-                            for (a, &v) in lanes.iter_mut().zip(c) {
-                                *a += v * v;
-                            }
-                        }
-                        let tail: f64 = it8.remainder().iter().map(|&v| v * v).sum();
-                        lanes.iter().sum::<f64>() + tail
-                    },
-                );
+                let rr = step_iterate(x, &mut r, &mut self.r, &d, &self.q, alpha);
                 self.d = d;
                 if rr.sqrt() / bn <= tol {
                     continue 'outer;
@@ -216,14 +177,7 @@ impl PoissonSystem {
                 }
                 let beta = (rz_new / rz) as f32;
                 rz = rz_new;
-                let z = &self.z;
-                crate::par::for_chunks(&mut self.d, crate::par::BLOCK, |bi, dc| {
-                    let s = bi * crate::par::BLOCK;
-                    let n = dc.len();
-                    for (dv, &zv) in dc.iter_mut().zip(&z[s..s + n]) {
-                        *dv = zv + beta * *dv;
-                    }
-                });
+                update_direction(&mut self.d, &self.z, beta);
             }
         }
         self.b64 = b64;
@@ -239,12 +193,65 @@ impl PoissonSystem {
     /// `z = M⁻¹ r` for an `f64` residual.
     pub(super) fn precondition_from(&mut self, r: &[f64], solver: PressureSolver) {
         let r32 = &mut self.r;
-        crate::par::for_chunks(r32, crate::par::BLOCK, |bi, c| {
-            let s = bi * crate::par::BLOCK;
+        crate::chunks::for_chunks(r32, crate::chunks::BLOCK, |bi, c| {
+            let s = bi * crate::chunks::BLOCK;
             for (o, &v) in c.iter_mut().zip(&r[s..]) {
                 *o = v as f32;
             }
         });
         self.precondition(solver);
     }
+}
+
+/// One pass of a CG iteration: `x += αd`, `r −= αq`, the `f32` copy `r32`
+/// of `r` the preconditioner reads, and `r·r`, returned. Every vector is
+/// zero off the unknowns, so the flat sum equals the interior one.
+fn step_iterate(
+    x: &mut [f64],
+    r: &mut [f64],
+    r32: &mut [f32],
+    d: &[f32],
+    q: &[f32],
+    alpha: f64,
+) -> f64 {
+    crate::chunks::for_chunks3_sum(x, r, r32, crate::chunks::BLOCK, |bi, xc, rc, r32| {
+        let s = bi * crate::chunks::BLOCK;
+        let n = xc.len();
+        let dd = &d[s..s + n];
+        let qq = &q[s..s + n];
+        for ((((xv, rv), o), &dv), &qv) in xc
+            .iter_mut()
+            .zip(rc.iter_mut())
+            .zip(r32.iter_mut())
+            .zip(dd)
+            .zip(qq)
+        {
+            *xv += alpha * f64::from(dv);
+            let nr = *rv - alpha * f64::from(qv);
+            *rv = nr;
+            *o = nr as f32;
+        }
+        // r·r of the block while it is in cache: eight lane sums (a single
+        // running sum would keep the loop scalar), added in a fixed order.
+        let mut lanes = [0.0f64; 8];
+        let mut it8 = rc.chunks_exact(8);
+        for c in &mut it8 {
+            for (a, &v) in lanes.iter_mut().zip(c) {
+                *a += v * v;
+            }
+        }
+        let tail: f64 = it8.remainder().iter().map(|&v| v * v).sum();
+        lanes.iter().sum::<f64>() + tail
+    })
+}
+
+/// The next search direction, `d = z + βd`.
+fn update_direction(d: &mut [f32], z: &[f32], beta: f32) {
+    crate::chunks::for_chunks(d, crate::chunks::BLOCK, |bi, dc| {
+        let s = bi * crate::chunks::BLOCK;
+        let n = dc.len();
+        for (dv, &zv) in dc.iter_mut().zip(&z[s..s + n]) {
+            *dv = zv + beta * *dv;
+        }
+    });
 }

@@ -11,8 +11,8 @@
 
 use super::kernels::{ProlongRow, RestrictRow};
 use super::level::{GUARD, Level};
+use crate::chunks;
 use crate::grid::CellKind;
-use crate::par;
 use natura_core::simd::{self, Simd};
 
 /// Per-axis transfer weights between a fine and a coarse level.
@@ -105,7 +105,7 @@ impl Transfer {
         // with the standard weights.
         let (lo_c, hi_c) = interior_range(n0, nf0, fine.n[0] > 1);
         let simd = Simd::best();
-        par::for_chunks(body, m0, |row_i, row| {
+        chunks::for_chunks(body, m0, |row_i, row| {
             simd::run(
                 simd,
                 RestrictRow {
@@ -133,7 +133,7 @@ impl Transfer {
         let fl: &Level = fine;
         let body = &mut fx[GUARD..GUARD + fl.rows() * m0];
         let simd = Simd::best();
-        par::for_chunks(body, m0, |row_i, row| {
+        chunks::for_chunks(body, m0, |row_i, row| {
             simd::run(
                 simd,
                 ProlongRow {
@@ -157,7 +157,7 @@ impl Transfer {
         let (p0, n0) = (coarse.pad[0], coarse.n[0]);
         let cl: &Level = coarse;
         let body = &mut cb[GUARD..GUARD + cl.rows() * m0];
-        par::for_chunks(body, m0, |row_i, row| {
+        chunks::for_chunks(body, m0, |row_i, row| {
             let Some(base) = cl.row_base(row_i) else {
                 return;
             };
@@ -194,7 +194,7 @@ impl Transfer {
         let fl: &Level = fine;
         let cx = &coarse.x;
         let body = &mut fx[GUARD..GUARD + fl.rows() * m0];
-        par::for_chunks(body, m0, |row_i, row| {
+        chunks::for_chunks(body, m0, |row_i, row| {
             let Some((base, rows)) = self.coarse_rows(coarse, fl, row_i) else {
                 return;
             };

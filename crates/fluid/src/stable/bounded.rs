@@ -168,6 +168,40 @@ impl BoundedFluid {
         self.roles = Roles::default();
     }
 
+    /// Adds the substances' sources, then advects them through the new
+    /// velocity (paths clipped at solids when `has_solids`), diffuses and
+    /// dissipates them.
+    fn step_substances(&mut self, dt: f32, has_solids: bool) {
+        let (dims, h) = (self.dims, self.h);
+        let solids = Solids {
+            kinds: self.solid.kinds.as_slice(),
+            dims,
+        };
+        self.subs.add_sources(dims, h, dt);
+        let vs = VelSampler::mac(&self.vel);
+        let role = &self.roles.cells;
+        for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
+            let old = field.clone();
+            advect::advect(
+                field.as_mut_slice(),
+                &advect::centre_sampler(&old, false),
+                &vs,
+                dt / h,
+                &self.params.advection,
+                has_solids.then_some(&solids),
+            );
+            diffuse::diffuse_in(
+                &mut self.scratch,
+                field.as_mut_slice(),
+                dims.n(),
+                s.diffusion * dt / (h * h),
+                role,
+            );
+            let k = 1.0 / (1.0 + dt * s.dissipation);
+            field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
+        }
+    }
+
     /// Advances by `dt` seconds: force → advect → diffuse → project, then the
     /// substances (Stam 1999, §3.2). Moving obstacles advance at the end.
     ///
@@ -259,30 +293,7 @@ impl BoundedFluid {
         vel.check_finite("projection")?;
         // The start velocity's buffer becomes the next step's spare.
         std::mem::swap(&mut self.vel, &mut self.spare);
-        // Substances.
-        self.subs.add_sources(dims, h, dt);
-        let vs = VelSampler::mac(&self.vel);
-        let role = &self.roles.cells;
-        for (s, field) in self.subs.specs.iter().zip(self.subs.fields.iter_mut()) {
-            let old = field.clone();
-            advect::advect(
-                field.as_mut_slice(),
-                &advect::centre_sampler(&old, false),
-                &vs,
-                dt / h,
-                &self.params.advection,
-                has_solids.then_some(&solids),
-            );
-            diffuse::diffuse_in(
-                &mut self.scratch,
-                field.as_mut_slice(),
-                dims.n(),
-                s.diffusion * dt / (h * h),
-                role,
-            );
-            let k = 1.0 / (1.0 + dt * s.dissipation);
-            field.as_mut_slice().iter_mut().for_each(|v| *v *= k);
-        }
+        self.step_substances(dt, has_solids);
         self.subs.check_finite("substance step")?;
         self.force
             .iter_mut()

@@ -30,8 +30,8 @@
 //! ```
 
 pub mod catalogue;
+mod in_order;
 mod instance;
-mod par;
 mod picture;
 mod quantize;
 mod sim;

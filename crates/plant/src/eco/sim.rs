@@ -20,7 +20,7 @@
 use glam::Vec3;
 use natura_core::{Progress, Seed, check};
 
-use super::par;
+use super::in_order;
 use super::site::Site;
 use super::species::Species;
 use crate::error::{PlantError, Result};
@@ -467,7 +467,7 @@ impl Ecosystem {
         let mut out = Vec::new();
         for ((si, sp), &n) in self.params.species.iter().enumerate().zip(&counts) {
             let site = &self.site;
-            let born = par::map(n as usize, |k| {
+            let born = in_order::map(n as usize, |k| {
                 let k = k as u64;
                 let (st, s) = (u64::from(step), si as u64);
                 let x = uniform(seed, st, s, k, 1) * ex;
@@ -521,7 +521,7 @@ impl Ecosystem {
     /// Sorts the plants by grid cell (stable) and returns the cell start offsets.
     fn sort_by_cell(&mut self) -> Vec<u32> {
         let (gx, gy) = self.grid_dims();
-        let keys = par::map(self.plants.len(), |i| {
+        let keys = in_order::map(self.plants.len(), |i| {
             self.cell_of(&self.plants[i], gx, gy) as u32
         });
         let mut start = vec![0u32; gx * gy + 1];
@@ -580,7 +580,7 @@ impl Ecosystem {
         let mut stats = StepStats::default();
         // Growth; plants dominated last step and still alive do not grow.
         let species = &self.params.species;
-        par::for_each_mut(&mut self.plants, |_, p| {
+        in_order::for_each_mut(&mut self.plants, |_, p| {
             if !p.dominated {
                 p.radius += (species[p.species as usize].growth as f32) * p.vigor;
             }
@@ -588,7 +588,7 @@ impl Ecosystem {
         });
         let before = self.plants.len();
         let max_r = &self.max_r;
-        par::retain(&mut self.plants, |_, p| {
+        in_order::retain(&mut self.plants, |_, p| {
             p.radius < max_r[p.species as usize]
         });
         stats.old = before - self.plants.len();
@@ -601,7 +601,7 @@ impl Ecosystem {
         let species = &self.params.species;
         let seed = self.params.seed.derive("eco.domination");
         let st = u64::from(self.step);
-        let fate = par::map(self.plants.len(), |i| {
+        let fate = in_order::map(self.plants.len(), |i| {
             if !self.is_dominated(i, &start, gx, gy) {
                 return 0u8;
             }
@@ -617,8 +617,8 @@ impl Ecosystem {
             stats.survived += usize::from(f == 1);
             stats.thinned += usize::from(f == 2);
         }
-        par::for_each_mut(&mut self.plants, |i, p| p.dominated = fate[i] == 1);
-        par::retain(&mut self.plants, |i, _| fate[i] != 2);
+        in_order::for_each_mut(&mut self.plants, |i, p| p.dominated = fate[i] == 1);
+        in_order::retain(&mut self.plants, |i, _| fate[i] != 2);
         stats.alive = self.plants.len();
         Ok(stats)
     }

@@ -575,37 +575,11 @@ impl<'g> Compiler<'g> {
         b: Option<&Bindings<'e, '_>>,
         at: Span,
     ) -> Result<()> {
-        let g: &'g Globals = self.globals;
         match e {
             Expr::Num(v) => {
                 self.emit(Op::Const(*v), Span::default());
             }
-            Expr::Var(name, span) => {
-                if let Some(bind) = b
-                    && let Some(a) = bind.get(name)
-                {
-                    return self.lower(a, bind.caller, *span);
-                }
-                if let Some(slot) = self.scope.slot(name) {
-                    self.emit(Op::Load(slot), *span);
-                } else if let Some(m) = g.macros.get(name.as_str()) {
-                    if !m.params.is_empty() {
-                        return Err(PlantError::syntax(
-                            *span,
-                            format!("macro `{name}` takes {} arguments", m.params.len()),
-                        ));
-                    }
-                    self.expand(m, &[], None, *span)?;
-                } else if let Some(v) = constant(name) {
-                    self.emit(Op::Const(v), *span);
-                } else {
-                    return Err(PlantError::Undefined {
-                        span: *span,
-                        what: "variable",
-                        name: name.clone(),
-                    });
-                }
-            }
+            Expr::Var(name, span) => return self.lower_var(name, b, *span),
             Expr::Unary(op, a, span) => {
                 self.lower(a, b, *span)?;
                 self.emit(if *op == '-' { Op::Neg } else { Op::Not }, *span);
@@ -618,30 +592,7 @@ impl<'g> Compiler<'g> {
             Expr::Chain(first, rest) => {
                 self.lower(first, b, at)?;
                 for (link, x, span) in rest {
-                    match link {
-                        Link::Bin(op) => {
-                            self.lower(x, b, *span)?;
-                            self.emit(Op::Bin(*op), *span);
-                        }
-                        Link::And | Link::Or => {
-                            let j = self.emit(
-                                if matches!(link, Link::And) {
-                                    Op::AndJump(0)
-                                } else {
-                                    Op::OrJump(0)
-                                },
-                                Span::default(),
-                            );
-                            self.lower(x, b, at)?;
-                            self.emit(Op::ToBool, Span::default());
-                            let here = self.ops.len() as u32;
-                            self.ops[j] = if matches!(link, Link::And) {
-                                Op::AndJump(here)
-                            } else {
-                                Op::OrJump(here)
-                            };
-                        }
-                    }
+                    self.lower_link(*link, x, b, at, *span)?;
                 }
             }
             Expr::Cond(c, x, y) => {
@@ -655,7 +606,7 @@ impl<'g> Compiler<'g> {
                 self.ops[j] = Op::Jump(here);
             }
             Expr::Index(name, i, span) => {
-                let Some(&arr) = g.arrays.get(name.as_str()) else {
+                let Some(&arr) = self.globals.arrays.get(name.as_str()) else {
                     return Err(PlantError::Undefined {
                         span: *span,
                         what: "array",
@@ -665,44 +616,129 @@ impl<'g> Compiler<'g> {
                 self.lower(i, b, *span)?;
                 self.emit(Op::Index(arr), *span);
             }
-            Expr::Call(name, a, span) => {
-                if let Some(m) = g.macros.get(name.as_str()) {
-                    if m.params.len() != a.len() {
-                        return Err(PlantError::syntax(
-                            *span,
-                            format!(
-                                "macro `{name}` takes {} arguments, {} given",
-                                m.params.len(),
-                                a.len()
-                            ),
-                        ));
-                    }
-                    // Arguments are bound as expressions (C's macro semantics,
-                    // but hygienic: each argument is one parenthesised operand).
-                    return self.expand(m, a, b, *span);
-                }
-                let Some((f, arity)) = Func::lookup(name) else {
-                    return Err(PlantError::Undefined {
-                        span: *span,
-                        what: "function",
-                        name: name.clone(),
-                    });
+            Expr::Call(name, a, span) => return self.lower_call(name, a, b, *span),
+        }
+        Ok(())
+    }
+
+    /// A variable: a bound macro argument, a local slot, a macro without
+    /// parameters or a named constant, in that order.
+    fn lower_var<'e>(
+        &mut self,
+        name: &str,
+        b: Option<&Bindings<'e, '_>>,
+        span: Span,
+    ) -> Result<()> {
+        let g: &'g Globals = self.globals;
+        if let Some(bind) = b
+            && let Some(a) = bind.get(name)
+        {
+            return self.lower(a, bind.caller, span);
+        }
+        if let Some(slot) = self.scope.slot(name) {
+            self.emit(Op::Load(slot), span);
+        } else if let Some(m) = g.macros.get(name) {
+            if !m.params.is_empty() {
+                return Err(PlantError::syntax(
+                    span,
+                    format!("macro `{name}` takes {} arguments", m.params.len()),
+                ));
+            }
+            self.expand(m, &[], None, span)?;
+        } else if let Some(v) = constant(name) {
+            self.emit(Op::Const(v), span);
+        } else {
+            return Err(PlantError::Undefined {
+                span,
+                what: "variable",
+                name: name.to_owned(),
+            });
+        }
+        Ok(())
+    }
+
+    /// One link of a chain: a binary operator, or a short-circuit `&&`/`||`
+    /// whose jump is patched past the right operand.
+    fn lower_link<'e>(
+        &mut self,
+        link: Link,
+        x: &'e Expr,
+        b: Option<&Bindings<'e, '_>>,
+        at: Span,
+        span: Span,
+    ) -> Result<()> {
+        match link {
+            Link::Bin(op) => {
+                self.lower(x, b, span)?;
+                self.emit(Op::Bin(op), span);
+            }
+            Link::And | Link::Or => {
+                let j = self.emit(
+                    if matches!(link, Link::And) {
+                        Op::AndJump(0)
+                    } else {
+                        Op::OrJump(0)
+                    },
+                    Span::default(),
+                );
+                self.lower(x, b, at)?;
+                self.emit(Op::ToBool, Span::default());
+                let here = self.ops.len() as u32;
+                self.ops[j] = if matches!(link, Link::And) {
+                    Op::AndJump(here)
+                } else {
+                    Op::OrJump(here)
                 };
-                if !arity.contains(&a.len()) {
-                    return Err(PlantError::syntax(
-                        *span,
-                        format!(
-                            "function `{name}` takes {arity:?} arguments, {} given",
-                            a.len()
-                        ),
-                    ));
-                }
-                for x in a {
-                    self.lower(x, b, *span)?;
-                }
-                self.emit(Op::Call(f, a.len() as u8), *span);
             }
         }
+        Ok(())
+    }
+
+    /// A call: a macro with its arguments, or a built-in function of the
+    /// right arity.
+    fn lower_call<'e>(
+        &mut self,
+        name: &str,
+        a: &'e [Expr],
+        b: Option<&Bindings<'e, '_>>,
+        span: Span,
+    ) -> Result<()> {
+        let g: &'g Globals = self.globals;
+        if let Some(m) = g.macros.get(name) {
+            if m.params.len() != a.len() {
+                return Err(PlantError::syntax(
+                    span,
+                    format!(
+                        "macro `{name}` takes {} arguments, {} given",
+                        m.params.len(),
+                        a.len()
+                    ),
+                ));
+            }
+            // Arguments are bound as expressions (C's macro semantics,
+            // but hygienic: each argument is one parenthesised operand).
+            return self.expand(m, a, b, span);
+        }
+        let Some((f, arity)) = Func::lookup(name) else {
+            return Err(PlantError::Undefined {
+                span,
+                what: "function",
+                name: name.to_owned(),
+            });
+        };
+        if !arity.contains(&a.len()) {
+            return Err(PlantError::syntax(
+                span,
+                format!(
+                    "function `{name}` takes {arity:?} arguments, {} given",
+                    a.len()
+                ),
+            ));
+        }
+        for x in a {
+            self.lower(x, b, span)?;
+        }
+        self.emit(Op::Call(f, a.len() as u8), span);
         Ok(())
     }
 

@@ -546,40 +546,14 @@ fn production(
     };
     let (lhs, rhs) = (&chars[..ai], &chars[ai + alen..]);
     let mut cur = Cursor::new(lhs).end_at(st.span());
-    // Optional label `p12:`.
-    let mut label = None;
-    let save = cur.pos;
-    if let Some(id) = cur.ident() {
-        let is_label =
-            id.starts_with('p') && id.len() > 1 && id[1..].chars().all(|c| c.is_ascii_digit());
-        if is_label && cur.eat(':') {
-            label = Some(id);
-        } else {
-            cur.pos = save;
-        }
-    } else {
-        cur.pos = save;
-    }
+    let label = production_label(&mut cur);
     let span = cur.span();
     let name = match &label {
         Some(l) => format!("production {l}"),
         None => format!("production at line {}", span.line),
     };
     let mut scope = Scope::default();
-    let first = module_list(&mut cur, ModCtx::Pattern)?;
-    let (left_raw, pred_raw, right_raw);
-    if cur.eat('<') {
-        left_raw = first;
-        pred_raw = module_list(&mut cur, ModCtx::Pattern)?;
-    } else {
-        left_raw = Vec::new();
-        pred_raw = first;
-    }
-    if cur.eat('>') {
-        right_raw = module_list(&mut cur, ModCtx::Pattern)?;
-    } else {
-        right_raw = Vec::new();
-    }
+    let (left_raw, pred_raw, right_raw) = context_parts(&mut cur)?;
     if pred_raw.len() != 1 {
         return Err(PlantError::syntax(
             span,
@@ -648,6 +622,41 @@ fn production(
         nparams,
         uses_random,
     })
+}
+
+/// The optional label `p12:` at the start of a production; the cursor is
+/// left where it was when there is none.
+fn production_label(cur: &mut Cursor<'_>) -> Option<String> {
+    let save = cur.pos;
+    if let Some(id) = cur.ident() {
+        let is_label =
+            id.starts_with('p') && id.len() > 1 && id[1..].chars().all(|c| c.is_ascii_digit());
+        if is_label && cur.eat(':') {
+            return Some(id);
+        }
+    }
+    cur.pos = save;
+    None
+}
+
+/// The predecessor side `left < pred > right` of a production, as the
+/// raw module lists of the left context, the strict predecessor and the
+/// right context (the contexts empty when absent).
+fn context_parts(
+    cur: &mut Cursor<'_>,
+) -> Result<(Vec<RawModule>, Vec<RawModule>, Vec<RawModule>)> {
+    let first = module_list(cur, ModCtx::Pattern)?;
+    let (left_raw, pred_raw) = if cur.eat('<') {
+        (first, module_list(cur, ModCtx::Pattern)?)
+    } else {
+        (Vec::new(), first)
+    };
+    let right_raw = if cur.eat('>') {
+        module_list(cur, ModCtx::Pattern)?
+    } else {
+        Vec::new()
+    };
+    Ok((left_raw, pred_raw, right_raw))
 }
 
 /// The condition part of a production after its `:`, `{block1} cond

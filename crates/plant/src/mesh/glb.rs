@@ -141,89 +141,15 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
         for i in inst.iter() {
             i.validate()?;
         }
-        let n = m.vertex_count();
-        let pos: Vec<[f32; 3]> = m.positions.iter().map(|&p| yup(p)).collect();
-        let (lo, hi) = min_max(pos.iter().copied());
-        let v = b.view(pos.iter().flatten().copied(), Some(ARRAY_BUFFER));
-        let a_pos = b.accessor(v, 0, FLOAT, n, "VEC3", Some((&lo, &hi)));
-        let v = b.view(m.normals.iter().flat_map(|&p| yup(p)), Some(ARRAY_BUFFER));
-        let a_nrm = b.accessor(v, 0, FLOAT, n, "VEC3", None);
-        let v = b.view(m.uvs.iter().flat_map(|p| p.to_array()), Some(ARRAY_BUFFER));
-        let a_uv = b.accessor(v, 0, FLOAT, n, "VEC2", None);
-        let (wlo, whi) = min_max(m.wind.iter().map(|&w| [w]));
-        let v = b.view(m.wind.iter().copied(), Some(ARRAY_BUFFER));
-        let a_wind = b.accessor(v, 0, FLOAT, n, "SCALAR", Some((&wlo, &whi)));
-        let start = b.bin.len();
-        for &i in &m.indices {
-            b.bin.extend_from_slice(&i.to_le_bytes());
-        }
-        let iv = b.push_view(start, Some(ELEMENT_ARRAY_BUFFER));
-        let prims: Vec<String> = m
-            .primitives
-            .iter()
-            .filter(|p| p.count > 0)
-            .map(|p| {
-                let a = b.accessor(
-                    iv,
-                    p.first as usize * 4,
-                    UNSIGNED_INT,
-                    p.count as usize,
-                    "SCALAR",
-                    None,
-                );
-                let mat = match p.material {
-                    Material::Bark => 0,
-                    Material::Leaf => usize::from(bark_used),
-                };
-                format!(
-                    r#"{{"attributes":{{"POSITION":{a_pos},"NORMAL":{a_nrm},"TEXCOORD_0":{a_uv},"_WIND":{a_wind}}},"indices":{a},"material":{mat},"mode":4}}"#
-                )
-            })
-            .collect();
-        meshes.push(format!(
-            r#"{{"name":"plant{mi}","primitives":[{}]}}"#,
-            prims.join(",")
-        ));
+        meshes.push(mesh_json(&mut b, mi, m, bark_used));
         if inst.is_empty() {
             nodes.push(format!(r#"{{"name":"plant{mi}","mesh":{mi}}}"#));
         } else {
             instanced = true;
-            let c = inst.len();
-            let t: Vec<[f32; 3]> = inst.iter().map(|i| yup(i.translation)).collect();
-            let v = b.view(t.iter().flatten().copied(), None);
-            let (lo, hi) = min_max(t.iter().copied());
-            let a_t = b.accessor(v, 0, FLOAT, c, "VEC3", Some((&lo, &hi)));
-            let v = b.view(
-                inst.iter().flat_map(|i| {
-                    let q: Quat = i.rotation.normalize();
-                    [q.x, q.z, -q.y, q.w]
-                }),
-                None,
-            );
-            let a_r = b.accessor(v, 0, FLOAT, c, "VEC4", None);
-            let v = b.view(
-                inst.iter().flat_map(|i| [i.scale.x, i.scale.z, i.scale.y]),
-                None,
-            );
-            let a_s = b.accessor(v, 0, FLOAT, c, "VEC3", None);
-            nodes.push(format!(
-                r#"{{"name":"plants{mi}","mesh":{mi},"extensions":{{"EXT_mesh_gpu_instancing":{{"attributes":{{"TRANSLATION":{a_t},"ROTATION":{a_r},"SCALE":{a_s}}}}}}}}}"#
-            ));
+            nodes.push(instanced_node_json(&mut b, mi, inst));
         }
     }
-    let mut materials = Vec::new();
-    if bark_used {
-        materials.push(format!(
-            r#"{{"name":"bark","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.9}}}}"#,
-            colour_json(Material::Bark.base_colour())
-        ));
-    }
-    if leaf_used {
-        materials.push(format!(
-            r#"{{"name":"leaf","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.6}},"doubleSided":true,"alphaMode":"OPAQUE"}}"#,
-            colour_json(Material::Leaf.base_colour())
-        ));
-    }
+    let materials = materials_json(bark_used, leaf_used);
     let node_list = (0..nodes.len())
         .map(|k| k.to_string())
         .collect::<Vec<_>>()
@@ -254,6 +180,100 @@ pub fn glb_bytes(items: &[(&PlantMesh, &[Instance])]) -> Result<Vec<u8>> {
         bin: Some(&b.bin),
     };
     Ok(glb.to_bytes()?)
+}
+
+/// Writes mesh `mi`'s vertex attributes and indices to the buffer and
+/// returns its glTF mesh: one primitive per material it uses (bark is
+/// material 0; leaf is 1 where bark is used, else 0).
+fn mesh_json(b: &mut Builder, mi: usize, m: &PlantMesh, bark_used: bool) -> String {
+    let n = m.vertex_count();
+    let pos: Vec<[f32; 3]> = m.positions.iter().map(|&p| yup(p)).collect();
+    let (lo, hi) = min_max(pos.iter().copied());
+    let v = b.view(pos.iter().flatten().copied(), Some(ARRAY_BUFFER));
+    let a_pos = b.accessor(v, 0, FLOAT, n, "VEC3", Some((&lo, &hi)));
+    let v = b.view(m.normals.iter().flat_map(|&p| yup(p)), Some(ARRAY_BUFFER));
+    let a_nrm = b.accessor(v, 0, FLOAT, n, "VEC3", None);
+    let v = b.view(m.uvs.iter().flat_map(|p| p.to_array()), Some(ARRAY_BUFFER));
+    let a_uv = b.accessor(v, 0, FLOAT, n, "VEC2", None);
+    let (wlo, whi) = min_max(m.wind.iter().map(|&w| [w]));
+    let v = b.view(m.wind.iter().copied(), Some(ARRAY_BUFFER));
+    let a_wind = b.accessor(v, 0, FLOAT, n, "SCALAR", Some((&wlo, &whi)));
+    let start = b.bin.len();
+    for &i in &m.indices {
+        b.bin.extend_from_slice(&i.to_le_bytes());
+    }
+    let iv = b.push_view(start, Some(ELEMENT_ARRAY_BUFFER));
+    let prims: Vec<String> = m
+        .primitives
+        .iter()
+        .filter(|p| p.count > 0)
+        .map(|p| {
+            let a = b.accessor(
+                iv,
+                p.first as usize * 4,
+                UNSIGNED_INT,
+                p.count as usize,
+                "SCALAR",
+                None,
+            );
+            let mat = match p.material {
+                Material::Bark => 0,
+                Material::Leaf => usize::from(bark_used),
+            };
+            format!(
+                r#"{{"attributes":{{"POSITION":{a_pos},"NORMAL":{a_nrm},"TEXCOORD_0":{a_uv},"_WIND":{a_wind}}},"indices":{a},"material":{mat},"mode":4}}"#
+            )
+        })
+        .collect();
+    format!(
+        r#"{{"name":"plant{mi}","primitives":[{}]}}"#,
+        prims.join(",")
+    )
+}
+
+/// Writes the translations, rotations and scales of mesh `mi`'s (non-empty)
+/// instances to the buffer and returns the node placing the mesh at each
+/// (`EXT_mesh_gpu_instancing`).
+fn instanced_node_json(b: &mut Builder, mi: usize, inst: &[Instance]) -> String {
+    let c = inst.len();
+    let t: Vec<[f32; 3]> = inst.iter().map(|i| yup(i.translation)).collect();
+    let v = b.view(t.iter().flatten().copied(), None);
+    let (lo, hi) = min_max(t.iter().copied());
+    let a_t = b.accessor(v, 0, FLOAT, c, "VEC3", Some((&lo, &hi)));
+    let v = b.view(
+        inst.iter().flat_map(|i| {
+            let q: Quat = i.rotation.normalize();
+            [q.x, q.z, -q.y, q.w]
+        }),
+        None,
+    );
+    let a_r = b.accessor(v, 0, FLOAT, c, "VEC4", None);
+    let v = b.view(
+        inst.iter().flat_map(|i| [i.scale.x, i.scale.z, i.scale.y]),
+        None,
+    );
+    let a_s = b.accessor(v, 0, FLOAT, c, "VEC3", None);
+    format!(
+        r#"{{"name":"plants{mi}","mesh":{mi},"extensions":{{"EXT_mesh_gpu_instancing":{{"attributes":{{"TRANSLATION":{a_t},"ROTATION":{a_r},"SCALE":{a_s}}}}}}}}}"#
+    )
+}
+
+/// The glTF materials of the used ones, bark first.
+fn materials_json(bark_used: bool, leaf_used: bool) -> Vec<String> {
+    let mut materials = Vec::new();
+    if bark_used {
+        materials.push(format!(
+            r#"{{"name":"bark","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.9}}}}"#,
+            colour_json(Material::Bark.base_colour())
+        ));
+    }
+    if leaf_used {
+        materials.push(format!(
+            r#"{{"name":"leaf","pbrMetallicRoughness":{{"baseColorFactor":{},"metallicFactor":0,"roughnessFactor":0.6}},"doubleSided":true,"alphaMode":"OPAQUE"}}"#,
+            colour_json(Material::Leaf.base_colour())
+        ));
+    }
+    materials
 }
 
 /// Writes one mesh as a `.glb` at the origin (see [`glb_bytes`]), atomically.

@@ -182,7 +182,7 @@ impl CloudSky {
         Self::new(
             world,
             camera.camera(),
-            crate::integrator::pixel_angle(world),
+            crate::camera::pixel_angle(world),
             &view,
             progress,
         )

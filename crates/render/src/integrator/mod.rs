@@ -21,15 +21,15 @@ use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
 use natura_noise::{FilteredFbm, Perlin, Spectral};
 use natura_ocean::{Ocean, OceanParams, Phillips, Surface, WaterSurface};
 use natura_trace::{
-    Camera, Detail, DetailParams, DetailSurface, DetailTracer, Hit, MipmapTracer, PanoramicCamera,
-    PinholeCamera, Projection, Ray, RayCone, Tracer,
+    Detail, DetailParams, DetailSurface, DetailTracer, Hit, MipmapTracer, Ray, RayCone, Tracer,
 };
 
+use crate::camera::{SceneCamera, pixel_angle};
 use crate::clouds::CloudSky;
 use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
-use crate::scene::{CameraKind, WaterWaves};
-use crate::strata::SurfaceTextures;
+use crate::scene::{SceneDesc, WaterDesc, WaterWaves};
+use crate::surface_textures::SurfaceTextures;
 use crate::vegetation::{Forest, Light, TreeHit};
 use crate::world::World;
 
@@ -40,75 +40,6 @@ use surface::detail_surface;
 
 /// Refractive index of water used for the lake surface.
 pub const WATER_IOR: f64 = 1.333;
-
-/// The angle a pixel subtends at the image's centre (radians): the
-/// vertical field of view over the image's height.
-pub(crate) fn pixel_angle(world: &World) -> f32 {
-    let scene = &world.scene;
-    (scene.camera.vfov_deg as f32).to_radians() / scene.render.height as f32
-}
-
-/// The camera of a scene.
-#[derive(Clone, Copy, Debug)]
-pub enum SceneCamera {
-    /// A pinhole camera.
-    Pinhole(PinholeCamera),
-    /// A cylindrical or spherical panorama.
-    Panoramic(PanoramicCamera),
-}
-
-impl SceneCamera {
-    /// The camera of `world`'s scene: at the eye, looking along the view
-    /// direction, with the scene's kind, fields of view and image size.
-    ///
-    /// # Errors
-    ///
-    /// [`RenderError::Trace`](crate::RenderError::Trace) for a degenerate
-    /// view or field of view.
-    pub fn of_world(world: &World) -> Result<Self> {
-        let scene = &world.scene;
-        let r = &scene.render;
-        let eye = world.eye();
-        let dir = world.view_direction();
-        let c = &scene.camera;
-        let camera = match c.kind {
-            CameraKind::Pinhole => SceneCamera::Pinhole(PinholeCamera::look_at(
-                eye,
-                eye + dir,
-                Vec3::Z,
-                (c.vfov_deg as f32).to_radians(),
-                r.width,
-                r.height,
-            )?),
-            CameraKind::Cylindrical | CameraKind::Spherical => {
-                SceneCamera::Panoramic(PanoramicCamera::new(
-                    eye,
-                    dir,
-                    Vec3::Z,
-                    (c.hfov_deg as f32).to_radians(),
-                    (c.vfov_deg as f32).to_radians(),
-                    if c.kind == CameraKind::Cylindrical {
-                        Projection::Cylindrical
-                    } else {
-                        Projection::Spherical
-                    },
-                    r.width,
-                    r.height,
-                )?)
-            }
-        };
-        Ok(camera)
-    }
-
-    /// The camera as a natura-trace [`Camera`] (primary rays per pixel).
-    #[must_use]
-    pub fn camera(&self) -> &dyn Camera {
-        match self {
-            SceneCamera::Pinhole(c) => c,
-            SceneCamera::Panoramic(c) => c,
-        }
-    }
-}
 
 /// Everything needed per sample, built once per render from a [`World`].
 pub struct Renderer<'w> {
@@ -275,46 +206,8 @@ impl<'w> Renderer<'w> {
                 .with_frequency(1.0 / w.ripple_size_m),
             0.0,
         )?;
-        let ocean = match w.waves {
-            WaterWaves::Ripples => None,
-            WaterWaves::Ocean => {
-                progress.start("ocean", 1);
-                let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
-                let params = OceanParams {
-                    nx: n,
-                    ny: n,
-                    lx: l,
-                    ly: l,
-                    choppiness: 1.0,
-                    ..OceanParams::default()
-                };
-                let spectrum = Phillips {
-                    wind_speed: w.wind_speed_m_s,
-                    // Compass azimuth (clockwise from +y) to the angle from +x.
-                    wind_direction: (90.0 - w.wind_azimuth_deg).to_radians(),
-                    small_wave_length: l / n as f64,
-                    ..Phillips::default()
-                };
-                let ocean = Ocean::new(&params, &spectrum, seed.derive("ocean"))?;
-                let surface = Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?;
-                progress.advance(1);
-                progress.finish();
-                Some(surface)
-            }
-        };
-        let rainbow = if scene.atmosphere.rain_extinction_per_m > 0.0 {
-            progress.start("rainbow table", 1);
-            let params = RainbowParams {
-                rays_per_wavelength: 20_000,
-                ..RainbowParams::default()
-            };
-            let rb = Rainbow::new(&params)?;
-            progress.advance(1);
-            progress.finish();
-            Some(rb)
-        } else {
-            None
-        };
+        let ocean = ocean_surface(w, seed, progress)?;
+        let rainbow = rainbow_table(scene, progress)?;
         let clouds = match prepared {
             Some(c) => c,
             None => CloudSky::new(world, camera.camera(), pixel_angle, &view, progress)?,
@@ -588,5 +481,54 @@ impl<'w> Renderer<'w> {
                 point: ray.at(t_plane),
             }),
         }
+    }
+}
+
+/// The ocean patch whose normals shade the water (`waves = "ocean"`): a
+/// Phillips spectrum in the scene's wind, evaluated at the scene's time.
+fn ocean_surface(w: &WaterDesc, seed: Seed, progress: &dyn Progress) -> Result<Option<Surface>> {
+    match w.waves {
+        WaterWaves::Ripples => Ok(None),
+        WaterWaves::Ocean => {
+            progress.start("ocean", 1);
+            let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
+            let params = OceanParams {
+                nx: n,
+                ny: n,
+                lx: l,
+                ly: l,
+                choppiness: 1.0,
+                ..OceanParams::default()
+            };
+            let spectrum = Phillips {
+                wind_speed: w.wind_speed_m_s,
+                // Compass azimuth (clockwise from +y) to the angle from +x.
+                wind_direction: (90.0 - w.wind_azimuth_deg).to_radians(),
+                small_wave_length: l / n as f64,
+                ..Phillips::default()
+            };
+            let ocean = Ocean::new(&params, &spectrum, seed.derive("ocean"))?;
+            let surface = Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?;
+            progress.advance(1);
+            progress.finish();
+            Ok(Some(surface))
+        }
+    }
+}
+
+/// The rainbow's table when the scene has rain, else `None`.
+fn rainbow_table(scene: &SceneDesc, progress: &dyn Progress) -> Result<Option<Rainbow>> {
+    if scene.atmosphere.rain_extinction_per_m > 0.0 {
+        progress.start("rainbow table", 1);
+        let params = RainbowParams {
+            rays_per_wavelength: 20_000,
+            ..RainbowParams::default()
+        };
+        let rb = Rainbow::new(&params)?;
+        progress.advance(1);
+        progress.finish();
+        Ok(Some(rb))
+    } else {
+        Ok(None)
     }
 }

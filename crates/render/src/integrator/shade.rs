@@ -142,7 +142,7 @@ impl Renderer<'_> {
             // Normals of the wind sea, flattened where a pixel covers many
             // wavelengths (the mean normal of a rough patch is its plane).
             let patch = wdesc.ocean_patch_m as f32;
-            let fade = 1.0 - crate::material::smoothstep(0.01 * patch, 0.2 * patch, footprint);
+            let fade = 1.0 - natura_core::smoothstep(0.01 * patch, 0.2 * patch, footprint);
             let n = ocean.normal_at(Vec2::new(p.x, p.y));
             (Vec3::Z + (n - Vec3::Z) * fade).normalize()
         } else {

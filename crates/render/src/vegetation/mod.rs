@@ -287,14 +287,7 @@ impl Forest {
         let mut stats = ForestStats::default();
 
         let t0 = Instant::now();
-        let eco = match plants {
-            Some(p) => Ecosystem::resume_with_wetness(&hf, wetness, params, p, v.steps)?,
-            None => {
-                let mut eco = Ecosystem::with_wetness(&hf, wetness, params)?;
-                eco.run(progress)?;
-                eco
-            }
-        };
+        let eco = grow(&hf, wetness, params, plants, v.steps, progress)?;
         stats.plants = eco.plants().len();
         stats.ecosystem = t0.elapsed();
 
@@ -302,14 +295,7 @@ impl Forest {
         let inst = Instancing::new(&eco, v.prototypes_per_species)?;
         drop(eco);
         // Mesh 2k is prototype k in full, 2k + 1 its crown.
-        let mut meshes = Vec::with_capacity(2 * inst.prototypes.len());
-        for p in &inst.prototypes {
-            let (tris, leaf) = proto::triangles(&p.geometry)?;
-            let full = Mesh::new(tris, leaf);
-            let crown = proto::crown_hull(&full, 0.8);
-            meshes.push(full);
-            meshes.push(crown);
-        }
+        let meshes = prototype_meshes(&inst)?;
         stats.meshes = meshes.len();
         stats.triangles = meshes.iter().map(Mesh::len).sum();
         stats.prototypes = t1.elapsed();
@@ -329,10 +315,7 @@ impl Forest {
             }
             let p = pi.position + origin;
             let dist = (p.truncate() - eye.truncate()).length();
-            let (gi, gj) = (
-                ((p.x / cell).round() as usize).min(g.width() - 1),
-                ((p.y / cell).round() as usize).min(g.height() - 1),
-            );
+            let (gi, gj) = nearest_cell(p, cell, g);
             // The forest thins out over the outer quarter of the radius
             // instead of ending in a line.
             let keep = 4.0 * (1.0 - dist / radius);
@@ -460,6 +443,48 @@ impl Forest {
             l
         }
     }
+}
+
+/// The ecosystem of the stand: `plants` resumed where given (a frame's
+/// cached population), else grown from the start.
+fn grow(
+    hf: &HeightField,
+    wetness: Grid2<f32>,
+    params: EcoParams,
+    plants: Option<Vec<Plant>>,
+    steps: u32,
+    progress: &dyn Progress,
+) -> Result<Ecosystem> {
+    Ok(match plants {
+        Some(p) => Ecosystem::resume_with_wetness(hf, wetness, params, p, steps)?,
+        None => {
+            let mut eco = Ecosystem::with_wetness(hf, wetness, params)?;
+            eco.run(progress)?;
+            eco
+        }
+    })
+}
+
+/// The grid cell of `g` (spacing `cell`) nearest to `p`, clamped to the grid.
+fn nearest_cell(p: Vec3, cell: f32, g: &Grid2<f32>) -> (usize, usize) {
+    (
+        ((p.x / cell).round() as usize).min(g.width() - 1),
+        ((p.y / cell).round() as usize).min(g.height() - 1),
+    )
+}
+
+/// The meshes of the instancing's prototypes: mesh 2k is prototype k in
+/// full, 2k + 1 its crown hull (the low-polygon stand-in far away).
+fn prototype_meshes(inst: &Instancing) -> Result<Vec<Mesh>> {
+    let mut meshes = Vec::with_capacity(2 * inst.prototypes.len());
+    for p in &inst.prototypes {
+        let (tris, leaf) = proto::triangles(&p.geometry)?;
+        let full = Mesh::new(tris, leaf);
+        let crown = proto::crown_hull(&full, 0.8);
+        meshes.push(full);
+        meshes.push(crown);
+    }
+    Ok(meshes)
 }
 
 #[cfg(test)]

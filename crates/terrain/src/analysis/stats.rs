@@ -196,7 +196,7 @@ pub fn variogram(hf: &HeightField, max_lag: usize) -> Result<Vec<(f64, f64)>> {
     let h = hf.heights();
     let c = f64::from(hf.cell_size());
     let lags: Vec<usize> = (1..=max_lag).collect();
-    let out = crate::par::run(lags, |r| {
+    let out = crate::bands::run(lags, |r| {
         let (mut s, mut n) = (0.0f64, 0u64);
         for y in 0..ny {
             let row = h.row(y);

@@ -3,8 +3,8 @@
 
 use natura_core::{Grid2, HeightField};
 
+use crate::bands;
 use crate::error::Result;
-use crate::par;
 
 /// Slope angle at every sample, radians in `[0, π/2)` (central differences).
 ///
@@ -15,7 +15,7 @@ use crate::par;
 pub fn slope(hf: &HeightField) -> Result<Grid2<f32>> {
     let (nx, ny) = (hf.nx(), hf.ny());
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
-    par::map_bands(nx, ny, [g.as_mut_slice()], |y0, y1, [o]| {
+    bands::map_bands(nx, ny, [g.as_mut_slice()], |y0, y1, [o]| {
         for y in y0..y1 {
             for x in 0..nx {
                 o[(y - y0) * nx + x] = hf.slope_at_sample(x, y);
@@ -52,7 +52,7 @@ pub fn curvature(hf: &HeightField) -> Result<Curvature> {
     let mut profile = Grid2::new(nx, ny, 0.0f32)?;
     let mut plan = Grid2::new(nx, ny, 0.0f32)?;
     let mut lap = Grid2::new(nx, ny, 0.0f32)?;
-    par::map_bands(
+    bands::map_bands(
         nx,
         ny,
         [

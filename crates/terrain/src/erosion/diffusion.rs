@@ -17,8 +17,8 @@ use super::{
     Edges, Erodibility, Neighbourhood, check_conserving_edges, check_erodibility, check_model_size,
     check_neighbour_rate,
 };
+use crate::bands;
 use crate::error::{Result, invalid};
-use crate::par;
 
 /// Parameters of [`Diffusion`].
 #[derive(Clone, Debug, PartialEq)]
@@ -120,7 +120,7 @@ impl Diffusion {
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
         let p = &self.p;
         let eight = p.neighbourhood == Neighbourhood::Eight;
-        par::map_bands(nx, ny, [self.next.as_mut_slice()], |y0, y1, [out]| {
+        bands::map_bands(nx, ny, [self.next.as_mut_slice()], |y0, y1, [out]| {
             for y in y0..y1 {
                 let row = &mut out[(y - y0) * nx..(y - y0 + 1) * nx];
                 if y == 0 || y == ny - 1 || erod.is_some() {

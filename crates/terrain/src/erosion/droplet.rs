@@ -38,8 +38,8 @@
 use natura_core::{Grid2, HeightField, Progress, Seed};
 
 use super::{Erodibility, check_erodibility, check_field, check_model_size};
+use crate::bands;
 use crate::error::{Result, in_range, invalid, non_negative, positive};
-use crate::par;
 
 /// Parameters of [`DropletErosion`]; defaults are Beyer's (2015).
 #[derive(Clone, Debug, PartialEq)]
@@ -314,7 +314,7 @@ impl DropletErosion {
                 (h_rest, d_rest, row) = (h_next, d_next, hi);
                 jobs.push((ids, h_band, d_band, lo * nx));
             }
-            let outs = par::run(jobs, |(ids, h, deposition, offset)| {
+            let outs = bands::run(jobs, |(ids, h, deposition, offset)| {
                 let mut ground = Ground {
                     h,
                     deposition,

@@ -37,8 +37,8 @@
 use natura_core::{Grid2, HeightField};
 
 use super::{Edges, Erodibility, Neighbourhood, check_model_size, check_softness};
+use crate::bands;
 use crate::error::{Result, in_range, invalid, non_negative};
-use crate::par;
 
 /// How much rain falls on a cell when it rains.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -364,7 +364,7 @@ impl MusgraveHydraulic {
             f7.as_mut_slice(),
         ];
         let open = p.edges == Edges::Open;
-        let outflow: Vec<(f64, f64)> = par::map_bands(nx, ny, outs, |y0, y1, o| {
+        let outflow: Vec<(f64, f64)> = bands::map_bands(nx, ny, outs, |y0, y1, o| {
             let mut out_w = 0.0f64;
             let mut out_s = 0.0f64;
             for y in y0..y1 {
@@ -439,7 +439,7 @@ impl MusgraveHydraulic {
         let frac: Vec<&[f32]> = self.frac.iter().map(Vec::as_slice).collect();
         let frac = &frac;
         let evap = p.evaporation as f32;
-        let evaporated: Vec<f64> = par::map_bands(
+        let evaporated: Vec<f64> = bands::map_bands(
             nx,
             ny,
             [self.water.as_mut_slice(), self.sediment.as_mut_slice()],

@@ -23,8 +23,8 @@ use natura_core::{Grid2, HeightField};
 use super::{Erodibility, check_erodibility, check_model_size};
 pub use crate::analysis::flow::Depressions;
 use crate::analysis::flow::{FlowGraph, next_up};
+use crate::bands;
 use crate::error::{Result, in_range, invalid, non_negative, positive};
-use crate::par;
 
 /// Parameters of [`StreamPower`].
 #[derive(Clone, Debug, PartialEq)]
@@ -211,7 +211,7 @@ impl StreamPower {
         let up = (p.uplift_m_per_yr * p.dt_yr) as f32;
         let h = hf.heights_mut().as_mut_slice();
         // Uplift everything but the base level.
-        par::map_bands(nx, ny, [&mut *h], |y0, y1, [hb]| {
+        bands::map_bands(nx, ny, [&mut *h], |y0, y1, [hb]| {
             for y in y0.max(1)..y1.min(ny - 1) {
                 let r = (y - y0) * nx;
                 for v in &mut hb[r + 1..r + nx - 1] {
@@ -281,12 +281,12 @@ impl StreamPower {
                 let seg = w[0]..w[1];
                 jobs.push((&g.stack[seg.clone()], &g.rpos[seg], a, b));
             }
-            par::run(jobs, |(stack, rpos, z, area)| {
+            bands::run(jobs, |(stack, rpos, z, area)| {
                 solve_group(c, stack, rpos, &grid, z, area);
             });
         }
         let out = &o.h;
-        par::map_bands(self.nx, self.ny, [h], |y0, _y1, [hb]| {
+        bands::map_bands(self.nx, self.ny, [h], |y0, _y1, [hb]| {
             let src = &out[y0 * self.nx..y0 * self.nx + hb.len()];
             for (d, s) in hb.iter_mut().zip(src) {
                 *d = f32::from_bits(s.load(Relaxed));

@@ -26,8 +26,8 @@ use super::{
     Edges, Erodibility, Neighbourhood, check_conserving_edges, check_erodibility, check_model_size,
     check_neighbour_rate,
 };
+use crate::bands;
 use crate::error::{Result, invalid};
-use crate::par;
 
 /// Parameters of [`Thermal`] weathering.
 #[derive(Clone, Debug, PartialEq)]
@@ -153,7 +153,7 @@ impl Thermal {
         let src = hf.heights().as_slice();
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
         let p = &self.p;
-        par::map_bands(nx, ny, [self.next.as_mut_slice()], |y0, y1, [out]| {
+        bands::map_bands(nx, ny, [self.next.as_mut_slice()], |y0, y1, [out]| {
             for y in y0..y1 {
                 let row = &mut out[(y - y0) * nx..(y - y0 + 1) * nx];
                 if y == 0 || y == ny - 1 {

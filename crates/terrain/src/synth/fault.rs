@@ -13,8 +13,8 @@
 use natura_core::{Grid2, HeightField, Seed};
 use rand_core::Rng;
 
+use crate::bands;
 use crate::error::{Result, invalid, min_size, non_negative};
-use crate::par;
 
 /// Parameters of [`poisson_faults`].
 #[derive(Clone, Debug, PartialEq)]
@@ -94,7 +94,7 @@ pub fn poisson_faults(
         })
         .collect();
     let mut heights = Grid2::new(nx, ny, 0.0f32)?;
-    par::map_bands(nx, ny, [heights.as_mut_slice()], |y0, _y1, [out]| {
+    bands::map_bands(nx, ny, [heights.as_mut_slice()], |y0, _y1, [out]| {
         let mut diff = vec![0.0f64; nx + 1];
         for (r, row) in out.chunks_mut(nx).enumerate() {
             let y = (y0 + r) as f64 - cy;

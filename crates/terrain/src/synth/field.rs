@@ -14,8 +14,8 @@ use glam::DVec2;
 use natura_core::{Grid2, HeightField};
 use natura_noise::Field;
 
+use crate::bands;
 use crate::error::{Result, TerrainError, invalid, min_size};
-use crate::par;
 
 /// Where and how a field is sampled onto the grid.
 ///
@@ -116,7 +116,7 @@ where
     min_size("fill_field", nx, ny, 1, 1)?;
     natura_core::check::positive("cell_size", f64::from(cell_size))?;
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
-    par::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {
+    bands::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {
         for (r, row) in out.chunks_mut(nx).enumerate() {
             for (i, v) in row.iter_mut().enumerate() {
                 let p = map.point(i, y0 + r, cell_size);
@@ -151,7 +151,7 @@ where
     natura_core::check::positive("cell_size", f64::from(cell_size))?;
     let mut g = Grid2::new(nx, ny, 0.0f32)?;
     let dx = f64::from(cell_size) * map.frequency;
-    par::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {
+    bands::map_bands(nx, ny, [g.as_mut_slice()], |y0, _, [out]| {
         for (r, line) in out.chunks_mut(nx).enumerate() {
             let p = map.point(0, y0 + r, cell_size);
             row(p.x, p.y, dx, line);

@@ -105,7 +105,7 @@ pub(crate) fn spectral_with_residue(
     natura_core::checked_len::<f64>(&[nx, ny, 4])?;
     let seed = seed.derive("spectral");
     let mut noise = vec![0.0f64; nx * ny];
-    crate::par::map_bands(nx, ny, [noise.as_mut_slice()], |y0, _, [out]| {
+    crate::bands::map_bands(nx, ny, [noise.as_mut_slice()], |y0, _, [out]| {
         for (r, row) in out.chunks_mut(nx).enumerate() {
             for (x, v) in row.iter_mut().enumerate() {
                 *v = seed.gaussian2(x as i64, (y0 + r) as i64);

@@ -10,8 +10,8 @@
 
 use natura_core::{Grid2, HeightField, Seed};
 
+use crate::bands;
 use crate::error::{Result, in_range, invalid, min_size, non_negative};
-use crate::par;
 
 /// Parameters of [`successive_random_additions`].
 #[derive(Clone, Debug, PartialEq)]
@@ -108,7 +108,7 @@ pub fn successive_random_additions(
         let sd = p.sigma_m * lat.powf(-p.h * f64::from(g));
         let mut next = Grid2::new(w, h, 0.0f64)?;
         let pr = &prev;
-        par::map_bands(w, h, [next.as_mut_slice()], |y0, _, [out]| {
+        bands::map_bands(w, h, [next.as_mut_slice()], |y0, _, [out]| {
             for (r, row) in out.chunks_mut(w).enumerate() {
                 let j = y0 + r;
                 let fy = j as f64 / lat;

@@ -22,8 +22,8 @@
 use glam::DVec2;
 use natura_core::{Grid2, HeightField, Seed};
 
+use crate::bands;
 use crate::error::{Result, TerrainError, invalid, non_negative};
-use crate::par;
 
 /// The largest subdivision depth accepted (2^24 + 1 samples per side of 1-D curves).
 pub const MAX_LEVELS: u32 = 24;
@@ -528,7 +528,7 @@ fn level_pass(
     let (na, nb) = ((w - 1) / s + 1, (h - 1) / s + 1);
     let rows: Vec<usize> = (0..nb).collect();
     let gr = &*g;
-    let updates: Vec<Vec<(usize, f64)>> = par::run(rows, |b| {
+    let updates: Vec<Vec<(usize, f64)>> = bands::run(rows, |b| {
         (0..na)
             .filter_map(|a| f(gr, a, b).map(|v| (a, v)))
             .collect()

@@ -8,7 +8,7 @@ use natura_core::{Image, NoProgress, Progress};
 use crate::earth::terran::Terran;
 use crate::error::{Result, direction, in_range};
 use crate::footprint::Footprint;
-use crate::raster::render_rows;
+use crate::row_fill::render_rows;
 use crate::view::{View, sphere_hits};
 
 /// A view of the unit sphere (the texture sphere) lit by a distant sun.

@@ -10,7 +10,7 @@ use natura_core::{Grid2, MAX_GRID_BYTES, NoProgress, Progress};
 use super::{Planet, Surface};
 use crate::error::{Result, TextureError};
 use crate::footprint::Footprint;
-use crate::raster::fill_rows;
+use crate::row_fill::fill_rows;
 
 /// A face of the cube sphere, named by its outward axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -233,7 +233,7 @@ impl Planet {
             for (i, cell) in row.iter_mut().enumerate() {
                 let lon =
                     -std::f64::consts::PI + std::f64::consts::TAU * (i as f64 + 0.5) / width as f64;
-                *cell = self.surface_sample(super::render::direction(lat, lon), footprint);
+                *cell = self.surface_sample(super::views::direction(lat, lon), footprint);
             }
         });
         Ok(SurfaceMap {

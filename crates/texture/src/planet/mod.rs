@@ -24,9 +24,9 @@
 mod cube;
 mod height;
 mod params;
-mod render;
 mod shade;
 mod trace;
+mod views;
 
 pub use cube::{CubeFace, CubeMap, Face, SurfaceMap};
 pub use height::Relief;
@@ -34,8 +34,8 @@ pub use params::{
     CloudLayerParams, EARTH_RADIUS_M, LightParams, MAX_SUN_COLOUR, PlanetAtmosphereParams,
     PlanetDetailParams, PlanetParams, SurfaceParams, TEXTURE_SCALE_RANGE, TerrainParams,
 };
-pub use render::{GroundViewParams, MAX_ALTITUDE_M, direction};
 pub use trace::{EPSILON_RESOLUTION, MAX_TRACE_STEPS, SurfaceHit, TraceSettings};
+pub use views::{GroundViewParams, MAX_ALTITUDE_M, direction};
 
 use glam::DVec3;
 use natura_atmos::Dir3;

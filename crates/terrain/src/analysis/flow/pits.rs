@@ -8,7 +8,7 @@ use std::collections::BinaryHeap;
 
 use super::receivers::{cell_distance, nb_bit, nb_offsets};
 use super::{FlowGraph, StackScratch};
-use crate::par;
+use crate::bands;
 
 impl FlowGraph {
     /// Links every closed basin to the edge through its lowest pass; returns whether
@@ -39,108 +39,23 @@ impl FlowGraph {
             basin.clear();
             basin.resize(n, 0);
         }
-        // Walk each pit's basin over the donor masks (groups of pits in
-        // parallel), then label the cells: `cells` lists each basin's cells in
-        // pit order.
-        let nb_basins = pits.len() - 1;
-        let per = nb_basins.div_ceil(64).max(1);
-        let masks_ref = &*masks;
-        let walks: Vec<Vec<u32>> = par::run(pits[1..].chunks(per).collect(), |group: &[u32]| {
-            let mut out = Vec::new();
-            let mut work: Vec<u32> = Vec::new();
-            for &pit in group {
-                // Each basin's cells end with a marker: its pit, flagged.
-                work.push(pit);
-                while let Some(c) = work.pop() {
-                    out.push(c);
-                    let mut m = masks_ref[c as usize];
-                    while m != 0 {
-                        let k = m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        work.push((c as isize + off[k]) as u32);
-                    }
-                }
-                out.push(u32::MAX);
-            }
-            out
-        });
-        let mut cells: Vec<u32> = Vec::new();
-        let mut b = 1u32;
-        for w in &walks {
-            for &c in w {
-                if c == u32::MAX {
-                    b += 1;
-                } else {
-                    basin[c as usize] = b;
-                    cells.push(c);
-                }
-            }
-        }
-        drop(walks);
-        // Lowest pass between each pair of adjacent basins: every cell of a
-        // closed basin is interior, so all eight neighbours exist. Equal
-        // ranges of the basins' cells are scanned in parallel, each keeping
-        // its lowest pass per basin pair; the pairs are then merged by
-        // sorting, so the result is scheduling-independent (the same passes
-        // as a scan of every edge of the grid: a pass is the same seen from
-        // either side).
-        let per = cells.len().div_ceil(64).max(1);
-        let basin_ref = &*basin;
-        let found: Vec<Vec<(u32, u32, Pass)>> =
-            par::run(cells.chunks(per).collect(), |part: &[u32]| {
-                let mut out: Vec<(u32, u32, Pass)> = Vec::new();
-                for &c in part {
-                    let c = c as usize;
-                    let bc = basin_ref[c];
-                    for &o in &off {
-                        let j = (c as isize + o) as usize;
-                        let bj = basin_ref[j];
-                        if bj != bc {
-                            let p = Pass::new(h[c].max(h[j]), c.min(j) as u32, c.max(j) as u32);
-                            out.push((bc.min(bj), bc.max(bj), p));
-                        }
-                    }
-                }
-                out.sort_unstable();
-                out.dedup_by_key(|e| (e.0, e.1));
-                out
-            });
-        let mut pairs: Vec<(u32, u32, Pass)> = found.concat();
-        pairs.sort_unstable();
-        pairs.dedup_by_key(|e| (e.0, e.1));
-        let mut adjacency: Vec<Vec<(u32, Pass)>> = vec![Vec::new(); pits.len()];
-        for &(a, b, p) in &pairs {
-            adjacency[a as usize].push((b, p));
-            adjacency[b as usize].push((a, p));
-        }
-        let links = minimax_links(&adjacency);
+        let cells = label_basins(masks, &pits, &off, basin);
+        let adjacency = basin_graph(&cells, basin, h, &off, pits.len());
         // Reverse receivers from the pass cell inside each basin down to its pit,
         // then drain the pass cell across to the neighbouring basin; the donor
         // masks follow every change.
-        for (b, p) in links {
+        for (b, p) in minimax_links(&adjacency) {
             let (inside, outside) = if basin[p.a as usize] == b {
                 (p.a, p.b)
             } else {
                 (p.b, p.a)
             };
-            let pit = pits[b as usize];
-            let mut prev = outside;
-            let mut cur = inside;
-            loop {
-                let (c, pv) = (cur as usize, prev as usize);
-                let next = self.receiver[c];
-                if next != cur {
-                    masks[next as usize] &= !nb_bit(next as usize, c, nx);
-                }
-                masks[pv] |= nb_bit(pv, c, nx);
-                self.receiver[c] = prev;
-                self.distance[c] = cell_distance(c, pv, nx);
-                if cur == pit || next == cur {
-                    break;
-                }
-                prev = cur;
-                cur = next;
-            }
+            let path = Path {
+                pit: pits[b as usize],
+                inside,
+                outside,
+            };
+            path.reverse(&mut self.receiver, &mut self.distance, masks, nx);
         }
         for &c in &cells {
             basin[c as usize] = 0;
@@ -149,6 +64,124 @@ impl FlowGraph {
         let rec = &self.receiver;
         roots.retain(|&i| rec[i as usize] == i);
         true
+    }
+}
+
+/// Walks each pit's basin over the donor `masks` (groups of pits in
+/// parallel) and labels its cells in `basin` with the pit's number; returns
+/// each basin's cells in pit order.
+fn label_basins(masks: &[u8], pits: &[u32], off: &[isize; 8], basin: &mut [u32]) -> Vec<u32> {
+    let nb_basins = pits.len() - 1;
+    let per = nb_basins.div_ceil(64).max(1);
+    let walks: Vec<Vec<u32>> = bands::run(pits[1..].chunks(per).collect(), |group: &[u32]| {
+        let mut out = Vec::new();
+        let mut work: Vec<u32> = Vec::new();
+        for &pit in group {
+            // Each basin's cells end with a marker: its pit, flagged.
+            work.push(pit);
+            while let Some(c) = work.pop() {
+                out.push(c);
+                let mut m = masks[c as usize];
+                while m != 0 {
+                    let k = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    work.push((c as isize + off[k]) as u32);
+                }
+            }
+            out.push(u32::MAX);
+        }
+        out
+    });
+    let mut cells: Vec<u32> = Vec::new();
+    let mut b = 1u32;
+    for w in &walks {
+        for &c in w {
+            if c == u32::MAX {
+                b += 1;
+            } else {
+                basin[c as usize] = b;
+                cells.push(c);
+            }
+        }
+    }
+    cells
+}
+
+/// The basin graph: for each of `nb_basins` basins, its neighbours and the
+/// lowest pass to each. Every cell of a closed basin is interior, so all
+/// eight neighbours exist. Equal ranges of the basins' `cells` are scanned
+/// in parallel, each keeping its lowest pass per basin pair; the pairs are
+/// then merged by sorting, so the result is scheduling-independent (the
+/// same passes as a scan of every edge of the grid: a pass is the same seen
+/// from either side).
+fn basin_graph(
+    cells: &[u32],
+    basin: &[u32],
+    h: &[f32],
+    off: &[isize; 8],
+    nb_basins: usize,
+) -> Vec<Vec<(u32, Pass)>> {
+    let per = cells.len().div_ceil(64).max(1);
+    let found: Vec<Vec<(u32, u32, Pass)>> =
+        bands::run(cells.chunks(per).collect(), |part: &[u32]| {
+            let mut out: Vec<(u32, u32, Pass)> = Vec::new();
+            for &c in part {
+                let c = c as usize;
+                let bc = basin[c];
+                for &o in off {
+                    let j = (c as isize + o) as usize;
+                    let bj = basin[j];
+                    if bj != bc {
+                        let p = Pass::new(h[c].max(h[j]), c.min(j) as u32, c.max(j) as u32);
+                        out.push((bc.min(bj), bc.max(bj), p));
+                    }
+                }
+            }
+            out.sort_unstable();
+            out.dedup_by_key(|e| (e.0, e.1));
+            out
+        });
+    let mut pairs: Vec<(u32, u32, Pass)> = found.concat();
+    pairs.sort_unstable();
+    pairs.dedup_by_key(|e| (e.0, e.1));
+    let mut adjacency: Vec<Vec<(u32, Pass)>> = vec![Vec::new(); nb_basins];
+    for &(a, b, p) in &pairs {
+        adjacency[a as usize].push((b, p));
+        adjacency[b as usize].push((a, p));
+    }
+    adjacency
+}
+
+/// The receiver path a basin's link reverses: from the pass cell `inside`
+/// the basin down to its `pit`, the pass cell then draining to `outside`.
+struct Path {
+    pit: u32,
+    inside: u32,
+    outside: u32,
+}
+
+impl Path {
+    /// Reverses the receivers along the path (each cell now drains to the
+    /// one it received from, the pass cell to `outside`), updating the
+    /// distances and the donor masks.
+    fn reverse(&self, receiver: &mut [u32], distance: &mut [f32], masks: &mut [u8], nx: usize) {
+        let mut prev = self.outside;
+        let mut cur = self.inside;
+        loop {
+            let (c, pv) = (cur as usize, prev as usize);
+            let next = receiver[c];
+            if next != cur {
+                masks[next as usize] &= !nb_bit(next as usize, c, nx);
+            }
+            masks[pv] |= nb_bit(pv, c, nx);
+            receiver[c] = prev;
+            distance[c] = cell_distance(c, pv, nx);
+            if cur == self.pit || next == cur {
+                break;
+            }
+            prev = cur;
+            cur = next;
+        }
     }
 }
 

@@ -4,7 +4,7 @@
 
 use natura_core::simd::Simd;
 
-use crate::par;
+use crate::bands;
 
 /// Neighbour offsets in the fixed tie-break order, with distances in cells.
 pub(crate) const D8: [(i32, i32, f32); 8] = [
@@ -83,14 +83,14 @@ pub(crate) fn d8_receivers_into(
     rec.resize(n, 0);
     dist.resize(n, 0.0);
     // Receivers and distances of each band of rows in one task.
-    let chunk = nx * par::BAND_ROWS;
+    let chunk = nx * bands::BAND_ROWS;
     let jobs: Vec<_> = rec
         .chunks_mut(chunk.max(1))
         .zip(dist.chunks_mut(chunk.max(1)))
         .enumerate()
         .collect();
-    par::run(jobs, |(b, (r, d))| {
-        let y0 = b * par::BAND_ROWS;
+    bands::run(jobs, |(b, (r, d))| {
+        let y0 = b * bands::BAND_ROWS;
         for (y, (row, drow)) in (y0..).zip(r.chunks_mut(nx).zip(d.chunks_mut(nx))) {
             let i0 = y * nx;
             if y == 0 || y == ny - 1 || nx < 3 {
@@ -161,7 +161,7 @@ fn d8_row<'a>(simd: Simd, h: &'a [f32], i0: usize, nx: usize, out: &'a mut [u32]
 
 /// Cells that are their own receiver (outlets and pits), in increasing order.
 pub(super) fn find_roots(rec: &[u32], nx: usize, ny: usize, roots: &mut Vec<u32>) {
-    let bands = par::reduce_bands(ny, |y0, y1| {
+    let bands = bands::reduce_bands(ny, |y0, y1| {
         (y0 * nx..y1 * nx)
             .filter(|&i| rec[i] as usize == i)
             .map(|i| i as u32)
@@ -177,7 +177,7 @@ pub(super) fn find_roots(rec: &[u32], nx: usize, ny: usize, roots: &mut Vec<u32>
 /// has this cell as its receiver. Pure per cell, in parallel over bands.
 pub(super) fn donor_masks_into(simd: Simd, rec: &[u32], nx: usize, ny: usize, masks: &mut Vec<u8>) {
     masks.resize(nx * ny, 0);
-    par::map_bands(nx, ny, [masks.as_mut_slice()], |y0, y1, [m]| {
+    bands::map_bands(nx, ny, [masks.as_mut_slice()], |y0, y1, [m]| {
         for y in y0..y1 {
             let row = &mut m[(y - y0) * nx..(y - y0 + 1) * nx];
             let general = |x: usize| {

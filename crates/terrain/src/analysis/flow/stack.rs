@@ -9,7 +9,7 @@ use super::{
     StackScratch,
     receivers::{donor_masks_into, find_roots},
 };
-use crate::par;
+use crate::bands;
 #[cfg(test)]
 use natura_core::simd::Simd;
 
@@ -27,7 +27,7 @@ impl FlowGraph {
         let masks = &self.scratch.masks;
         let per = roots.len().div_ceil(STACK_GROUPS).max(1);
         let parts: Vec<(Vec<u32>, Vec<u32>)> =
-            par::run(roots.chunks(per).collect(), |roots: &[u32]| {
+            bands::run(roots.chunks(per).collect(), |roots: &[u32]| {
                 let mut part = Vec::new();
                 let mut rp = Vec::new();
                 let mut work: Vec<(u32, u32)> = Vec::new();
@@ -65,7 +65,7 @@ impl FlowGraph {
             rp = d;
             jobs.push((a, c, part));
         }
-        par::run(jobs, |(a, c, (p, r))| {
+        bands::run(jobs, |(a, c, (p, r))| {
             a.copy_from_slice(&p);
             c.copy_from_slice(&r);
         });

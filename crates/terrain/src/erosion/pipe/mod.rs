@@ -34,18 +34,18 @@
 //! The code is laid out so that the model is read in one place:
 //! `pipe/model.rs` holds the per-cell equations (the only place the
 //! model's arithmetic is written), the reference passes (`reference.rs`)
-//! call them cell by cell, the row kernels (`rows.rs`) call them in
+//! call them cell by cell, the row kernels (`row_kernels.rs`) call them in
 //! vectorised loops over the interior of each row, and the fused sweep
-//! (`fused.rs`) runs the whole step in one pass over the rows.
+//! (`one_pass.rs`) runs the whole step in one pass over the rows.
 //! Every path computes the same operations in the same order, so they agree
 //! bit for bit.
 
-mod fused;
 mod grid;
 mod model;
+mod one_pass;
 mod params;
 mod reference;
-mod rows;
+mod row_kernels;
 #[cfg(test)]
 mod tests;
 
@@ -53,8 +53,8 @@ use natura_core::simd::Simd;
 use natura_core::{Grid2, HeightField, Progress};
 
 use super::{Erodibility, check_field, check_model_size, check_softness};
+use crate::bands;
 use crate::error::{Result, invalid};
-use crate::par;
 use grid::Step;
 use model::Coefficients;
 
@@ -207,7 +207,7 @@ impl PipeModel {
                 "must be >= 0",
             ));
         }
-        self.ledger.rain += water.sum() - par::sum_f32(&self.water);
+        self.ledger.rain += water.sum() - bands::sum_f32(&self.water);
         self.water.copy_from_slice(water.as_slice());
         Ok(())
     }
@@ -271,13 +271,13 @@ impl PipeModel {
     /// Σ water depth, metres.
     #[must_use]
     pub fn total_water(&self) -> f64 {
-        par::sum_f32(&self.water)
+        bands::sum_f32(&self.water)
     }
 
     /// Σ suspended sediment, metres.
     #[must_use]
     pub fn total_sediment(&self) -> f64 {
-        par::sum_f32(&self.sediment)
+        bands::sum_f32(&self.sediment)
     }
 
     /// The ledger.
@@ -347,7 +347,7 @@ impl PipeModel {
     fn add_deposit(&mut self, hf: &HeightField) {
         let nx = self.nx;
         let (now, start) = (hf.heights().as_slice(), self.bed_start.as_slice());
-        par::map_bands(nx, self.ny, [self.deposit.as_mut_slice()], |y0, y1, [d]| {
+        bands::map_bands(nx, self.ny, [self.deposit.as_mut_slice()], |y0, y1, [d]| {
             let (now, start) = (&now[y0 * nx..y1 * nx], &start[y0 * nx..y1 * nx]);
             for ((d, &h), &h0) in d.iter_mut().zip(now).zip(start) {
                 *d += h - h0;
@@ -356,7 +356,7 @@ impl PipeModel {
     }
 
     /// One step. With the default conservative transport the whole step is
-    /// one fused sweep per chunk of rows (`fused.rs`); the semi-Lagrangian
+    /// one fused sweep per chunk of rows (`one_pass.rs`); the semi-Lagrangian
     /// transport (which gathers from up to two rows away) runs as three
     /// passes over the grid (`reference.rs`). Both use
     /// the same row functions, which send the interior of each row through
@@ -398,14 +398,14 @@ impl PipeModel {
     }
 }
 /// Adds per-cell outflows (`(row, amount)`, in row order) to a ledger the way
-/// the band passes sum them: per band of [`par::BAND_ROWS`] rows from zero,
+/// the band passes sum them: per band of [`bands::BAND_ROWS`] rows from zero,
 /// then band by band, so every path gives the same ledger bit for bit.
 fn replay(ledger: &mut f64, contributions: &[(usize, f64)]) {
     let mut i = 0;
     while i < contributions.len() {
-        let band = contributions[i].0 / par::BAND_ROWS;
+        let band = contributions[i].0 / bands::BAND_ROWS;
         let mut acc = 0.0f64;
-        while i < contributions.len() && contributions[i].0 / par::BAND_ROWS == band {
+        while i < contributions.len() && contributions[i].0 / bands::BAND_ROWS == band {
             acc += contributions[i].1;
             i += 1;
         }

@@ -7,7 +7,7 @@
 //! or diverges).
 //!
 //! The reference passes ([`super::reference`]) call these functions once
-//! per cell, resolving the grid's edges; the row kernels ([`super::rows`])
+//! per cell, resolving the grid's edges; the row kernels ([`super::row_kernels`])
 //! call them in plain loops over the interior of a row, which the compiler
 //! vectorises. Every choice is a compare and select (no `f32::min`/`max`
 //! NaN rule, no branch around a division), so the inlined functions stay

@@ -5,7 +5,7 @@
 //! and evaporation; sediment transport), each a gather over row bands.
 //!
 //! The same passes, given [`Path::Rows`](super::Path::Rows), send the
-//! interior of each row through the row kernels of [`super::rows`] instead
+//! interior of each row through the row kernels of [`super::row_kernels`] instead
 //! (the grid's edge cells always come here); the tests hold the two to the
 //! same bits.
 
@@ -13,12 +13,12 @@ use natura_core::HeightField;
 
 use super::grid::{B, L, Outflows, R, Rows, Step, T};
 use super::model::{CellIn, Coefficients, bilinear};
-use super::rows::{
+use super::row_kernels::{
     UpdateRows, flux_pass_row, semi_lagrangian_pass_row, transport_pass_row, update_pass_row,
 };
 use super::{PipeModel, SedimentTransport, replay};
+use crate::bands;
 use crate::erosion::Edges;
-use crate::par;
 
 /// Steps 1 and 2 for cell `x` of a row: returns `d₁` and updates the cell's
 /// four fluxes.
@@ -152,36 +152,47 @@ impl PipeModel {
         self.water1.resize(nx * ny, 0.0);
         self.sediment1.resize(nx * ny, 0.0);
         let bed = hf.heights().as_slice();
-        // ---- Rain and outflow fluxes (in place: each cell owns its 4 pipes).
-        {
-            let water = &self.water;
-            let [fl, fr, fb, ft] = &mut self.flux;
-            let outs = [
-                self.water1.as_mut_slice(),
-                fl.as_mut_slice(),
-                fr.as_mut_slice(),
-                fb.as_mut_slice(),
-                ft.as_mut_slice(),
-            ];
-            par::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
-                for y in y0..y1 {
-                    let r = (y - y0) * nx..(y - y0 + 1) * nx;
-                    flux_pass_row(
-                        c,
-                        c.rows(water, y),
-                        c.rows(bed, y),
-                        [
-                            &mut fl[r.clone()],
-                            &mut fr[r.clone()],
-                            &mut fb[r.clone()],
-                            &mut ft[r.clone()],
-                        ],
-                        &mut d1o[r],
-                    );
-                }
-            });
-        }
-        // ---- Depth, velocity, erosion / deposition, evaporation.
+        self.flux_pass(c, bed);
+        self.update_pass(c, bed);
+        self.transport_pass(c);
+    }
+
+    /// Rain and outflow fluxes (in place: each cell owns its 4 pipes), the
+    /// depth after rain and outflow into `water1`.
+    fn flux_pass(&mut self, c: &Step, bed: &[f32]) {
+        let (nx, ny) = (self.nx, self.ny);
+        let water = &self.water;
+        let [fl, fr, fb, ft] = &mut self.flux;
+        let outs = [
+            self.water1.as_mut_slice(),
+            fl.as_mut_slice(),
+            fr.as_mut_slice(),
+            fb.as_mut_slice(),
+            ft.as_mut_slice(),
+        ];
+        bands::map_bands(nx, ny, outs, |y0, y1, [d1o, fl, fr, fb, ft]| {
+            for y in y0..y1 {
+                let r = (y - y0) * nx..(y - y0 + 1) * nx;
+                flux_pass_row(
+                    c,
+                    c.rows(water, y),
+                    c.rows(bed, y),
+                    [
+                        &mut fl[r.clone()],
+                        &mut fr[r.clone()],
+                        &mut fb[r.clone()],
+                        &mut ft[r.clone()],
+                    ],
+                    &mut d1o[r],
+                );
+            }
+        });
+    }
+
+    /// Depth, velocity, erosion / deposition, evaporation: the new water,
+    /// bed and velocity, the post-erosion sediment into `sediment1`.
+    fn update_pass(&mut self, c: &Step, bed: &[f32]) {
+        let (nx, ny) = (self.nx, self.ny);
         let erod = self.erodibility.as_ref().map(|e| e.map().as_slice());
         // The three passes always compute u and v (the semi-Lagrangian transport reads them).
         for p in &mut self.vel {
@@ -199,7 +210,7 @@ impl PipeModel {
                 u.as_mut_slice(),
                 v.as_mut_slice(),
             ];
-            par::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo]| {
+            bands::map_bands(nx, ny, outs, |y0, y1, [wo, bo, so, uo, vo]| {
                 let mut evaporated = 0.0f64;
                 let mut out_w = Vec::new();
                 for y in y0..y1 {
@@ -230,14 +241,19 @@ impl PipeModel {
             out_w.extend(o);
         }
         replay(&mut self.ledger.outflow_water, &out_w);
-        // ---- Sediment transport.
+    }
+
+    /// Sediment transport, conservative or semi-Lagrangian, from
+    /// `sediment1` into the sediment.
+    fn transport_pass(&mut self, c: &Step) {
+        let (nx, ny) = (self.nx, self.ny);
         let s1 = &self.sediment1;
         let d1 = &self.water1;
         let f = &self.flux;
         let (u, v) = (&self.vel[0], &self.vel[1]);
         let transport = self.p.transport;
         let outflow_s: Vec<Outflows> =
-            par::map_bands(nx, ny, [self.sediment.as_mut_slice()], |y0, y1, [so]| {
+            bands::map_bands(nx, ny, [self.sediment.as_mut_slice()], |y0, y1, [so]| {
                 let mut out_s = Vec::new();
                 for y in y0..y1 {
                     let row = &mut so[(y - y0) * nx..(y - y0 + 1) * nx];

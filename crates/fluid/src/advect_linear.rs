@@ -313,7 +313,7 @@ pub(crate) fn sl_linear(
     let v = Vel { comps: vc };
     let simd = Simd::best();
     let band_rows = (4096 / n[0]).max(1);
-    crate::par::for_bands(dsts, n[0] * band_rows, |band, outs| {
+    crate::chunks::for_bands(dsts, n[0] * band_rows, |band, outs| {
         let geo = Geo {
             n0: n[0],
             n1: n[1],

@@ -118,10 +118,7 @@ impl SurfaceTextures {
         let c = self.strata.colour(p.as_dvec3(), fp).as_vec3();
         // Bands per footprint: fade to the mean from a half to two bands.
         let bands = footprint_m * self.cycles_per_m * (STRATA_KNOTS.len() - 3) as f32;
-        let c = c.lerp(
-            self.strata_mean,
-            crate::material::smoothstep(0.5, 2.0, bands),
-        );
+        let c = c.lerp(self.strata_mean, natura_core::smoothstep(0.5, 2.0, bands));
         let scale = luminance(rock) / luminance(self.strata_mean).max(1e-6);
         // The bands' brightness on the rock's own colour, tinted toward the
         // listing's tans and buffs by `tint`.

@@ -6,7 +6,7 @@ use natura_core::{Image, Progress};
 use super::Planet;
 use crate::error::{Result, TextureError, finite, in_range, non_negative};
 use crate::planet::trace::TraceSettings;
-use crate::raster::render_rows;
+use crate::row_fill::render_rows;
 use crate::view::View;
 
 /// Where to stand for a view from the ground.

@@ -1,17 +1,17 @@
 //! The fused sweep: the whole step (conservative transport) as one pass per
 //! chunk of rows, with the halo rows each chunk needs of its neighbours
 //! computed first from the untouched state. It calls the same row functions
-//! as the three passes ([`super::rows`]), in an order that reads each row
+//! as the three passes ([`super::row_kernels`]), in an order that reads each row
 //! of every plane from memory once per step; the tests hold it to the three
 //! passes' bits on one and on two threads.
 
 use natura_core::HeightField;
 
 use super::grid::{Outflows, Rows, Step, opt_rows};
-use super::rows::{UpdateRows, flux_pass_row, transport_pass_row, update_pass_row};
+use super::row_kernels::{UpdateRows, flux_pass_row, transport_pass_row, update_pass_row};
 use super::{PipeModel, replay};
+use crate::bands;
 use crate::erosion::Edges;
-use crate::par;
 
 impl PipeModel {
     /// Rows `[y0, y1)` of each chunk of the fused sweep: about `chunk_rows`
@@ -59,7 +59,7 @@ impl PipeModel {
                 bed,
                 erod,
             };
-            par::run(bounds, |yb| halo(c, &state, yb))
+            bands::run(bounds, |yb| halo(c, &state, yb))
         };
         let [u, v] = &mut self.vel;
         let [f0, f1, f2, f3] = &mut self.flux;
@@ -89,7 +89,7 @@ impl PipeModel {
                 (chunks[k], planes, lower, upper)
             })
             .collect();
-        let results = par::run(jobs, |((y0, y1), planes, lower, upper)| {
+        let results = bands::run(jobs, |((y0, y1), planes, lower, upper)| {
             sweep(c, y0, y1, planes, bed, erod, lower, upper)
         });
         let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
@@ -232,53 +232,6 @@ fn sweep(
     let mut s1r = vec![0.0f32; 4 * nx];
     let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
     let ring = |y: usize| (y % 4) * nx..(y % 4 + 1) * nx;
-    // A plane's rows around `y` from the chunk (`inside`, indexed by `at`) or the halos.
-    fn around<'a>(
-        y: usize,
-        y0: usize,
-        y1: usize,
-        inside: &'a [f32],
-        at: impl Fn(usize) -> std::ops::Range<usize>,
-        lo: Option<&'a [f32]>,
-        hi: Option<&'a [f32]>,
-    ) -> Rows<'a> {
-        Rows {
-            b: if y == y0 {
-                lo
-            } else {
-                Some(&inside[at(y - 1)])
-            },
-            c: &inside[at(y)],
-            t: if y + 1 == y1 {
-                hi
-            } else {
-                Some(&inside[at(y + 1)])
-            },
-        }
-    }
-    // The four flux planes' rows around `y`.
-    fn flux_rows<'a>(
-        y: usize,
-        y0: usize,
-        y1: usize,
-        nx: usize,
-        f: &'a [&mut [f32]; 4],
-        lower: Option<&'a Halo>,
-        upper: Option<&'a Halo>,
-    ) -> [Rows<'a>; 4] {
-        let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
-        std::array::from_fn(|k| {
-            around(
-                y,
-                y0,
-                y1,
-                f[k],
-                loc,
-                lower.map(|h| h.f[0][k].as_slice()),
-                upper.map(|h| h.f[1][k].as_slice()),
-            )
-        })
-    }
     let mut evaporated = 0.0f64;
     let (mut out_w, mut out_s) = (Vec::new(), Vec::new());
     for t in y0..y1 + 2 {
@@ -352,4 +305,53 @@ fn sweep(
         }
     }
     (evaporated, out_w, out_s)
+}
+
+/// A plane's rows around `y` from the chunk `[y0, y1)` (`inside`, indexed by
+/// `at`) or the halos `lo` and `hi`.
+fn around<'a>(
+    y: usize,
+    y0: usize,
+    y1: usize,
+    inside: &'a [f32],
+    at: impl Fn(usize) -> std::ops::Range<usize>,
+    lo: Option<&'a [f32]>,
+    hi: Option<&'a [f32]>,
+) -> Rows<'a> {
+    Rows {
+        b: if y == y0 {
+            lo
+        } else {
+            Some(&inside[at(y - 1)])
+        },
+        c: &inside[at(y)],
+        t: if y + 1 == y1 {
+            hi
+        } else {
+            Some(&inside[at(y + 1)])
+        },
+    }
+}
+/// The four flux planes' rows around `y` in the chunk `[y0, y1)`.
+fn flux_rows<'a>(
+    y: usize,
+    y0: usize,
+    y1: usize,
+    nx: usize,
+    f: &'a [&mut [f32]; 4],
+    lower: Option<&'a Halo>,
+    upper: Option<&'a Halo>,
+) -> [Rows<'a>; 4] {
+    let loc = |y: usize| (y - y0) * nx..(y - y0 + 1) * nx;
+    std::array::from_fn(|k| {
+        around(
+            y,
+            y0,
+            y1,
+            f[k],
+            loc,
+            lower.map(|h| h.f[0][k].as_slice()),
+            upper.map(|h| h.f[1][k].as_slice()),
+        )
+    })
 }
