@@ -6,7 +6,8 @@
 //! and position-indexed random numbers ([`Seed`]), [`Progress`] reporting,
 //! crash-safe file writing ([`io::write_atomic`]), and the cameras every
 //! renderer shares ([`camera`]: pinhole, orthographic and panoramic maps from
-//! pixels to rays and back).
+//! pixels to rays and back), and the preview rasterizer every crate's small
+//! pictures are drawn with ([`preview`]).
 //!
 //! Conventions (shared by every natura crate): right-handed, **z up**,
 //! metres, seconds, radians; `f32` for grids and images, `f64` where
@@ -33,6 +34,7 @@ mod grid3;
 mod heightfield;
 mod image;
 pub mod io;
+pub mod preview;
 mod progress;
 mod sample;
 mod seed;

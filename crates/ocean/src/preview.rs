@@ -7,7 +7,7 @@
 //! image row `ny − 1 − j`.
 
 use glam::{Vec2, Vec3};
-use natura_core::{Grid2, Image, Ramp, ToneMap};
+use natura_core::{Grid2, Image, NoProgress, Ramp, ToneMap, preview};
 
 use crate::error::Result;
 use crate::foam::Foam;
@@ -74,6 +74,7 @@ pub fn foam_image(foam: &Foam) -> Result<Image> {
 /// An orthographic view straight down the grid, one pixel per sample,
 /// shaded by [`WaterShader`] under a zenith-to-horizon sky gradient, with
 /// foam blended over the water. Tone-mapped (ACES filmic) for display.
+/// Drawn with natura-core's preview loop ([`natura_core::preview`]).
 #[derive(Clone, Debug)]
 pub struct TopView {
     /// Direction the camera looks (unit, pointing down into the water).
@@ -126,13 +127,16 @@ impl TopView {
     ///
     /// Returns [`OceanError::InvalidParameter`](crate::OceanError::InvalidParameter)
     /// from [`WaterShader::validate`] and
-    /// [`OceanError::Core`](crate::OceanError::Core) for a zero or huge `n`.
+    /// [`OceanError::Core`](crate::OceanError::Core) for a zero `n` or one
+    /// over natura-core's [`MAX_RESOLUTION`](natura_core::camera::MAX_RESOLUTION).
     pub fn render(&self, surface: &Surface, n: usize, extent: Vec2) -> Result<Image> {
         self.shader.validate()?;
         let sky = |d: Vec3| self.sky(d);
         let cell = extent / n.max(1) as f32;
-        let img = Image::from_fn(n, n, |i, r| {
-            let p = Vec2::new(i as f32 + 0.5, (n - 1 - r) as f32 + 0.5) * cell;
+        let side = u32::try_from(n).unwrap_or(u32::MAX);
+        let img = preview::shade_pixels(side, side, 1, "top view", &NoProgress, |x, y| {
+            // Image row 0 is the grid's north edge.
+            let p = Vec2::new(x as f32, n as f32 - y as f32) * cell;
             let c = self
                 .shader
                 .shade(self.view, surface.normal_at(p), 0.0, Some(&sky));

@@ -1,17 +1,17 @@
-//! Pictures of plant meshes: a small deterministic software rasterizer.
+//! Pictures of plant meshes, drawn by natura-core's preview rasterizer
+//! ([`natura_core::preview`]).
 //!
 //! Triangles are projected by an orthographic or perspective [`PreviewCamera`]
-//! (natura-core's [`OrthographicCamera`] or [`PinholeCamera`] does the
-//! projection; the framing and the degrees of a preview's field of view are
-//! this module's),
-//! filled with edge functions at pixel centres, resolved with a z-buffer and
-//! shaded per pixel with Lambert's law plus an ambient term, using the
-//! interpolated vertex normal turned towards the viewer (every surface is
-//! lit on both sides). Supersampling (a box filter over `s × s` samples per
-//! pixel) smooths edges. The rasterizer is single-threaded and uses no
-//! randomness, so the same mesh and parameters always give the same image.
-//! The result is a linear-light [`Image`]; `Image::to_srgb8` gives the RGB8
-//! bytes and `Image::save_png` writes them (atomically).
+//! (natura-core's, re-exported here, with its framing of a bounding box),
+//! filled with edge functions at sample centres, resolved with a z-buffer and
+//! shaded with Lambert's law plus an ambient term, using the vertex normals
+//! turned towards the viewer (every surface is lit on both sides) and the
+//! vertex colours interpolated across the triangle. Supersampling (a box
+//! filter over `s × s` samples per pixel) smooths edges. The rasterizer is
+//! single-threaded and uses no randomness, so the same mesh and parameters
+//! always give the same image. The result is a linear-light [`Image`];
+//! `Image::to_srgb8` gives the RGB8 bytes and `Image::save_png` writes them
+//! (atomically).
 //!
 //! Triangles with a vertex closer to a perspective camera than its near
 //! plane, or behind an orthographic camera's screen, are skipped rather than
@@ -21,155 +21,9 @@ use crate::error::Result;
 use crate::mesh::{Instance, Material, PlantMesh, invalid};
 use glam::Vec3;
 use natura_core::Image;
-use natura_core::camera::{OrthographicCamera, PinholeCamera};
+use natura_core::preview::{Projector, Raster, facing, lambert};
 
-/// How the camera projects.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum PreviewProjection {
-    /// Parallel projection; `height` is the visible height in metres.
-    Orthographic {
-        /// Visible height in metres.
-        height: f32,
-    },
-    /// Pinhole projection with the vertical field of view in degrees.
-    Perspective {
-        /// Vertical field of view in degrees, in (0, 180).
-        fov_y_deg: f32,
-    },
-}
-
-/// A camera looking from `eye` at `target`, `up` pointing up in the picture.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct PreviewCamera {
-    /// Position of the eye.
-    pub eye: Vec3,
-    /// Point looked at (the centre of the picture).
-    pub target: Vec3,
-    /// Direction that appears upward (need not be ⟂ to the view).
-    pub up: Vec3,
-    /// The projection.
-    pub projection: PreviewProjection,
-}
-
-impl PreviewCamera {
-    /// Returns a camera looking along `view_dir` that frames the box
-    /// `lo..hi` with a small margin in a picture of the given aspect ratio
-    /// (width / height), with z up in the picture (y up if looking along z).
-    /// For a perspective camera pass the field of view; `None` gives an
-    /// orthographic one.
-    ///
-    /// # Errors
-    ///
-    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) for a non-finite box, a zero or
-    /// non-finite `view_dir`, a non-positive aspect or a field of view outside (0, 180).
-    pub fn framing(
-        lo: Vec3,
-        hi: Vec3,
-        view_dir: Vec3,
-        fov_y_deg: Option<f32>,
-        aspect: f32,
-    ) -> Result<Self> {
-        if !lo.is_finite() || !hi.is_finite() {
-            return Err(invalid("bounds", format!("{lo}..{hi}"), "must be finite"));
-        }
-        let f = view_dir
-            .try_normalize()
-            .ok_or_else(|| invalid("view_dir", view_dir, "must be finite and non-zero"))?;
-        if !(aspect.is_finite() && aspect > 0.0) {
-            return Err(invalid("aspect", aspect, "must be finite and > 0"));
-        }
-        let up = if f.cross(Vec3::Z).length() > 1e-3 {
-            Vec3::Z
-        } else {
-            Vec3::Y
-        };
-        let r = f.cross(up).normalize();
-        let u = r.cross(f);
-        let centre = 0.5 * (lo + hi);
-        let radius = (0.5 * (hi - lo).length()).max(1e-3);
-        let (mut r0, mut r1, mut u0, mut u1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
-        for k in 0..8 {
-            let c = Vec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            ) - centre;
-            r0 = r0.min(c.dot(r));
-            r1 = r1.max(c.dot(r));
-            u0 = u0.min(c.dot(u));
-            u1 = u1.max(c.dot(u));
-        }
-        let target = centre + r * (0.5 * (r0 + r1)) + u * (0.5 * (u0 + u1));
-        let cam = match fov_y_deg {
-            None => {
-                let h = ((u1 - u0).max((r1 - r0) / aspect) * 1.06).max(1e-3);
-                Self {
-                    eye: target - f * (4.0 * radius),
-                    target,
-                    up,
-                    projection: PreviewProjection::Orthographic { height: h },
-                }
-            }
-            Some(fov) => {
-                let half = 0.5 * fov.to_radians();
-                let half = half.min((half.tan() * aspect).atan());
-                Self {
-                    eye: target - f * (1.08 * radius / half.sin()),
-                    target,
-                    up,
-                    projection: PreviewProjection::Perspective { fov_y_deg: fov },
-                }
-            }
-        };
-        cam.validate()?;
-        Ok(cam)
-    }
-
-    /// Checks the camera can project.
-    ///
-    /// # Errors
-    ///
-    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) naming the field.
-    pub fn validate(&self) -> Result<()> {
-        let f = self.target - self.eye;
-        if !self.eye.is_finite() || !self.target.is_finite() || f.length() < 1e-9 {
-            return Err(invalid(
-                "PreviewCamera::target",
-                format!("eye {} target {}", self.eye, self.target),
-                "eye and target must be finite and distinct",
-            ));
-        }
-        if !self.up.is_finite() || f.normalize().cross(self.up).length() < 1e-6 {
-            return Err(invalid(
-                "PreviewCamera::up",
-                self.up,
-                "must be finite and not parallel to the view",
-            ));
-        }
-        match self.projection {
-            PreviewProjection::Orthographic { height } if !(height.is_finite() && height > 0.0) => {
-                Err(invalid(
-                    "PreviewCamera::projection.height",
-                    height,
-                    "must be finite and > 0",
-                ))
-            }
-            PreviewProjection::Perspective { fov_y_deg }
-                if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) =>
-            {
-                Err(invalid(
-                    "PreviewCamera::projection.fov_y_deg",
-                    fov_y_deg,
-                    "must lie in (0, 180)",
-                ))
-            }
-            _ => Ok(()),
-        }
-    }
-}
+pub use natura_core::preview::{PreviewCamera, PreviewProjection};
 
 /// Settings of a preview picture.
 #[derive(Clone, Debug, PartialEq)]
@@ -261,82 +115,8 @@ impl PreviewParams {
         ] {
             check::non_negative3(name, c.as_dvec3())?;
         }
-        self.camera.validate()
+        Ok(self.camera.validate()?)
     }
-}
-
-/// The camera's projection (natura-core's [`OrthographicCamera`] or
-/// [`PinholeCamera`]) and what the rasterizer adds to it: the view axis for
-/// the depth key and the perspective near plane.
-struct View {
-    eye: Vec3,
-    f: Vec3,
-    projection: Projection,
-    near: f32,
-}
-
-/// The projection of a [`View`].
-enum Projection {
-    Orthographic(OrthographicCamera),
-    Perspective(PinholeCamera),
-}
-
-impl View {
-    fn new(c: &PreviewCamera, w: u32, h: u32) -> Result<Self> {
-        let projection = match c.projection {
-            PreviewProjection::Orthographic { height } => Projection::Orthographic(
-                OrthographicCamera::look_at(c.eye, c.target, c.up, height, w, h)?,
-            ),
-            PreviewProjection::Perspective { fov_y_deg } => Projection::Perspective(
-                PinholeCamera::look_at(c.eye, c.target, c.up, fov_y_deg.to_radians(), w, h)?,
-            ),
-        };
-        let f = match &projection {
-            Projection::Orthographic(o) => o.direction(),
-            Projection::Perspective(p) => p.direction(),
-        };
-        Ok(Self {
-            eye: c.eye,
-            f,
-            projection,
-            near: 1e-4 * (c.target - c.eye).length(),
-        })
-    }
-
-    /// Screen x, y (pixels) and the depth key (larger is nearer, affine in
-    /// screen space), or `None` behind the near plane (perspective) or the
-    /// screen (orthographic).
-    #[inline]
-    fn project(&self, p: Vec3) -> Option<[f32; 3]> {
-        let z = (p - self.eye).dot(self.f);
-        let (q, key) = match &self.projection {
-            Projection::Perspective(c) => {
-                if z < self.near {
-                    return None;
-                }
-                (c.project(p)?, 1.0 / z)
-            }
-            Projection::Orthographic(c) => (c.project(p)?, -z),
-        };
-        Some([q.x, q.y, key])
-    }
-
-    /// Unit vector from `p` towards the viewer.
-    #[inline]
-    fn to_viewer(&self, p: Vec3) -> Vec3 {
-        match self.projection {
-            Projection::Perspective(_) => (self.eye - p).normalize_or(-self.f),
-            Projection::Orthographic(_) => -self.f,
-        }
-    }
-}
-
-/// The supersampled frame being drawn.
-struct Frame {
-    w: usize,
-    h: usize,
-    depth: Vec<f32>,
-    colour: Vec<Vec3>,
 }
 
 /// Renders one mesh at the origin.
@@ -367,15 +147,10 @@ pub fn render_instances(
             i.validate()?;
         }
     }
-    let s = params.supersample as usize;
-    let (w, h) = (params.width as usize * s, params.height as usize * s);
-    let view = View::new(&params.camera, w as u32, h as u32)?;
-    let mut fr = Frame {
-        w,
-        h,
-        depth: vec![f32::NEG_INFINITY; w * h],
-        colour: vec![params.background; w * h],
-    };
+    let s = params.supersample;
+    let mut frame = Raster::new(params.width, params.height, s, params.background)?;
+    let (w, h) = frame.samples();
+    let view = Projector::new(&params.camera, w, h)?;
     let light = params.light.normalize();
     let mut screen: Vec<Option<[f32; 3]>> = Vec::new();
     let mut world: Vec<Vec3> = Vec::new();
@@ -393,39 +168,25 @@ pub fn render_instances(
                     Material::Bark => params.bark,
                     Material::Leaf => params.leaf,
                 };
+                // Lit vertex colours, computed once a sample of the triangle is drawn.
+                let lit = |k: usize| {
+                    let n = facing(normals[k], view.to_viewer(world[k]));
+                    base * lambert(n, light, params.ambient)
+                };
                 let r = prim.first as usize..(prim.first + prim.count) as usize;
                 for t in m.indices[r].chunks_exact(3) {
                     let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
                     if let (Some(pa), Some(pb), Some(pc)) = (screen[a], screen[b], screen[c]) {
-                        let shade = |k: usize, n: Vec3| {
-                            let v = view.to_viewer(world[k]);
-                            let n = if n.dot(v) < 0.0 { -n } else { n };
-                            let lam = n.dot(light).max(0.0);
-                            base * (params.ambient + (1.0 - params.ambient) * lam)
-                        };
-                        fill(
-                            &mut fr,
-                            [pa, pb, pc],
-                            [normals[a], normals[b], normals[c]],
-                            &shade,
-                            [a, b, c],
-                        );
+                        let mut colours = None;
+                        frame.triangle([pa, pb, pc], |f| {
+                            f.mix(*colours.get_or_insert_with(|| [lit(a), lit(b), lit(c)]))
+                        })?;
                     }
                 }
             }
         }
     }
-    let (ow, oh) = (params.width as usize, params.height as usize);
-    let inv = 1.0 / (s * s) as f32;
-    Ok(Image::from_fn(ow, oh, |x, y| {
-        let mut acc = Vec3::ZERO;
-        for j in 0..s {
-            for i in 0..s {
-                acc += fr.colour[(y * s + j) * w + x * s + i];
-            }
-        }
-        acc * inv
-    })?)
+    Ok(frame.resolve()?)
 }
 
 /// Renders `mesh` into a `width × height` picture framed by
@@ -449,69 +210,6 @@ pub fn snapshot(
     let aspect = width.max(1) as f32 / height.max(1) as f32;
     let camera = PreviewCamera::framing(lo, hi, view_dir, fov_y_deg, aspect)?;
     render(mesh, &PreviewParams::new(width, height, camera))
-}
-
-/// Fills one triangle: z-test per sample, then shades with the interpolated normal.
-fn fill(
-    fr: &mut Frame,
-    p: [[f32; 3]; 3],
-    n: [Vec3; 3],
-    shade: &dyn Fn(usize, Vec3) -> Vec3,
-    idx: [usize; 3],
-) {
-    let edge = |a: [f32; 3], b: [f32; 3], x: f32, y: f32| {
-        (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])
-    };
-    let area = edge(p[0], p[1], p[2][0], p[2][1]);
-    if area.is_nan() || area.abs() <= 1e-12 {
-        return;
-    }
-    let xs = [p[0][0], p[1][0], p[2][0]];
-    let ys = [p[0][1], p[1][1], p[2][1]];
-    let x0 = xs.iter().copied().fold(f32::MAX, f32::min).floor().max(0.0);
-    let x1 = xs
-        .iter()
-        .copied()
-        .fold(f32::MIN, f32::max)
-        .ceil()
-        .min(fr.w as f32);
-    let y0 = ys.iter().copied().fold(f32::MAX, f32::min).floor().max(0.0);
-    let y1 = ys
-        .iter()
-        .copied()
-        .fold(f32::MIN, f32::max)
-        .ceil()
-        .min(fr.h as f32);
-    if !(x0 < x1 && y0 < y1) {
-        return;
-    }
-    let inv = 1.0 / area;
-    let mut lit: Option<[Vec3; 3]> = None;
-    for y in y0 as usize..y1 as usize {
-        let py = y as f32 + 0.5;
-        for x in x0 as usize..x1 as usize {
-            let px = x as f32 + 0.5;
-            let w0 = edge(p[1], p[2], px, py) * inv;
-            let w1 = edge(p[2], p[0], px, py) * inv;
-            let w2 = 1.0 - w0 - w1;
-            if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
-                continue;
-            }
-            let key = w0 * p[0][2] + w1 * p[1][2] + w2 * p[2][2];
-            let k = y * fr.w + x;
-            if key > fr.depth[k] {
-                fr.depth[k] = key;
-                let c = *lit.get_or_insert_with(|| {
-                    [
-                        shade(idx[0], n[0]),
-                        shade(idx[1], n[1]),
-                        shade(idx[2], n[2]),
-                    ]
-                });
-                fr.colour[k] = c[0] * w0 + c[1] * w1 + c[2] * w2;
-            }
-        }
-    }
 }
 
 #[cfg(test)]

@@ -1,14 +1,15 @@
 //! Pictures of a texture on its own: on a sphere, on a plane, and as water
 //! (natura-core's `Image::contact_sheet` lays several out). These are what the examples write; they are
-//! simple fixed renderers, not a scene description.
+//! simple fixed renderers, not a scene description, drawn with natura-core's
+//! preview loop ([`natura_core::preview::shade_pixels`]: rows in parallel,
+//! the same bits on any number of threads).
 
 use glam::DVec3;
-use natura_core::{Image, Progress};
+use natura_core::{Image, Progress, preview};
 
 use crate::error::{Result, TextureError, positive};
 use crate::footprint::Footprint;
 use crate::normal::bump;
-use crate::row_fill::render_rows;
 use crate::texture::{SolidTexture, TextureKind};
 use crate::view::View;
 
@@ -65,21 +66,19 @@ pub fn sphere(
     check_size(size)?;
     let px = 2.2 / f64::from(size);
     let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
-    render_rows(size, size, texture.name(), progress, |y, row| {
-        let v = 1.1 - (f64::from(y) + 0.5) * px;
-        for (x, out) in row.iter_mut().enumerate() {
-            let u = (x as f64 + 0.5) * px - 1.1;
-            let r2 = u * u + v * v;
-            let c = if r2 < 1.0 {
-                // The hemisphere facing the viewer, who looks along +y with z up.
-                let n = DVec3::new(u, -(1.0 - r2).sqrt(), v);
-                look(texture, n, n, fp, emissive)
-            } else {
-                BACKDROP
-            };
-            *out = c.as_vec3();
-        }
-    })
+    let image = preview::shade_pixels(size, size, 1, texture.name(), progress, |x, y| {
+        let (u, v) = (x * px - 1.1, 1.1 - y * px);
+        let r2 = u * u + v * v;
+        let c = if r2 < 1.0 {
+            // The hemisphere facing the viewer, who looks along +y with z up.
+            let n = DVec3::new(u, -(1.0 - r2).sqrt(), v);
+            look(texture, n, n, fp, emissive)
+        } else {
+            BACKDROP
+        };
+        c.as_vec3()
+    })?;
+    Ok(image)
 }
 
 /// Which plane a [`plane`] swatch shows.
@@ -108,17 +107,15 @@ pub fn plane(
     positive("extent", extent)?;
     let px = extent / f64::from(size);
     let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
-    render_rows(size, size, texture.name(), progress, |y, row| {
-        let b = 0.5 * extent - (f64::from(y) + 0.5) * px;
-        for (x, out) in row.iter_mut().enumerate() {
-            let a = (x as f64 + 0.5) * px - 0.5 * extent;
-            let (p, n) = match which {
-                Plane::Horizontal => (DVec3::new(a, b, 0.37), DVec3::Z),
-                Plane::Vertical => (DVec3::new(a, 0.37, b + 0.5 * extent), DVec3::NEG_Y),
-            };
-            *out = look(texture, p, n, fp, emissive).as_vec3();
-        }
-    })
+    let image = preview::shade_pixels(size, size, 1, texture.name(), progress, |x, y| {
+        let (a, b) = (x * px - 0.5 * extent, 0.5 * extent - y * px);
+        let (p, n) = match which {
+            Plane::Horizontal => (DVec3::new(a, b, 0.37), DVec3::Z),
+            Plane::Vertical => (DVec3::new(a, 0.37, b + 0.5 * extent), DVec3::NEG_Y),
+        };
+        look(texture, p, n, fp, emissive).as_vec3()
+    })?;
+    Ok(image)
 }
 
 /// A height texture as water: a mirror-like plane (`z = 0` displaced by
@@ -152,24 +149,23 @@ pub fn water(
         base + DVec3::new(1.0, 0.9, 0.7) * (d.dot(sun).max(0.0).powi(4000) * 12.0)
     };
     let alpha = view.pixel_angle();
-    render_rows(width, height, texture.name(), progress, |y, row| {
-        for (x, out) in row.iter_mut().enumerate() {
-            let d = view.pixel(x as u32, y);
-            let c = if d.z >= -1e-4 {
-                sky(d)
-            } else {
-                let t = -eye.z / d.z;
-                let p = eye + d * t;
-                let fp = Footprint::new(t * alpha / scale).unwrap_or(Footprint::POINT);
-                let g = texture.height_gradient(p / scale, fp);
-                let n = bump(DVec3::Z, g);
-                let r = d - n * (2.0 * d.dot(n));
-                let cos = (-d.dot(n)).clamp(0.0, 1.0);
-                let f = 0.02 + 0.98 * (1.0 - cos).powi(5);
-                let deep = DVec3::new(0.01, 0.04, 0.05);
-                deep.lerp(sky(DVec3::new(r.x, r.y, r.z.abs())), f)
-            };
-            *out = c.as_vec3();
-        }
-    })
+    let image = preview::shade_pixels(width, height, 1, texture.name(), progress, |x, y| {
+        let d = view.direction(x, y);
+        let c = if d.z >= -1e-4 {
+            sky(d)
+        } else {
+            let t = -eye.z / d.z;
+            let p = eye + d * t;
+            let fp = Footprint::new(t * alpha / scale).unwrap_or(Footprint::POINT);
+            let g = texture.height_gradient(p / scale, fp);
+            let n = bump(DVec3::Z, g);
+            let r = d - n * (2.0 * d.dot(n));
+            let cos = (-d.dot(n)).clamp(0.0, 1.0);
+            let f = 0.02 + 0.98 * (1.0 - cos).powi(5);
+            let deep = DVec3::new(0.01, 0.04, 0.05);
+            deep.lerp(sky(DVec3::new(r.x, r.y, r.z.abs())), f)
+        };
+        c.as_vec3()
+    })?;
+    Ok(image)
 }

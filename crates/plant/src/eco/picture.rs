@@ -1,9 +1,10 @@
 //! A top-down picture of an ecosystem: every plant's circle of influence,
 //! coloured by species, over the hill-shaded terrain (as in Deussen et al.
-//! 1998, Fig. 4 and 6, which draw the plants as circles).
+//! 1998, Fig. 4 and 6, which draw the plants as circles), drawn with
+//! natura-core's preview loops ([`natura_core::preview`]).
 
-use glam::Vec3;
-use natura_core::Image;
+use glam::{Vec2, Vec3};
+use natura_core::{Image, NoProgress, preview};
 
 use super::sim::Ecosystem;
 use crate::error::{PlantError, Result};
@@ -29,7 +30,9 @@ pub fn species_colour(k: usize) -> Vec3 {
 /// # Errors
 ///
 /// [`PlantError::InvalidParameter`] if `width` is 0 or above 16384; [`PlantError::Core`] if
-/// the image cannot be allocated.
+/// the height (from the terrain's aspect) is over natura-core's
+/// [`MAX_RESOLUTION`](natura_core::camera::MAX_RESOLUTION) or the image
+/// cannot be allocated.
 pub fn top_view(eco: &Ecosystem, width: usize) -> Result<Image> {
     if width == 0 || width > 16384 {
         return Err(PlantError::InvalidParameter {
@@ -42,14 +45,20 @@ pub fn top_view(eco: &Ecosystem, width: usize) -> Result<Image> {
     let (ex, ey) = site.extent();
     let height = ((width as f32 * ey / ex).round() as usize).max(1);
     let px = ex / width as f32;
-    let mut img = Image::from_fn(width, height, |x, y| {
-        // Row 0 at the top is the terrain's far (+y) edge.
-        let wx = (x as f32 + 0.5) * px;
-        let wy = ey - (y as f32 + 0.5) * px;
-        let (i, j) = site.nearest(wx, wy);
-        let shade = 0.25 + 0.6 * site.light[(i, j)];
-        Vec3::new(0.55, 0.5, 0.42) * shade
-    })?;
+    let mut img = preview::shade_pixels(
+        width as u32,
+        u32::try_from(height).unwrap_or(u32::MAX),
+        1,
+        "top view",
+        &NoProgress,
+        |x, y| {
+            // Row 0 at the top is the terrain's far (+y) edge.
+            let (wx, wy) = (x as f32 * px, ey - y as f32 * px);
+            let (i, j) = site.nearest(wx, wy);
+            let shade = 0.25 + 0.6 * site.light[(i, j)];
+            Vec3::new(0.55, 0.5, 0.42) * shade
+        },
+    )?;
     // Small plants first, so crowns of trees lie on top of the meadow.
     let mut order: Vec<usize> = (0..eco.plants().len()).collect();
     order.sort_by(|&a, &b| {
@@ -60,24 +69,11 @@ pub fn top_view(eco: &Ecosystem, width: usize) -> Result<Image> {
     });
     for p in order.iter().map(|&i| &eco.plants()[i]) {
         let c = species_colour(p.species as usize);
-        let (cx, cy) = (p.x / px, (ey - p.y) / px);
+        let centre = Vec2::new(p.x / px, (ey - p.y) / px);
         let r = (p.radius / px).max(0.5);
-        let (x0, x1) = (
-            (cx - r).floor().max(0.0) as usize,
-            ((cx + r).ceil() as usize).min(width),
-        );
-        let (y0, y1) = (
-            (cy - r).floor().max(0.0) as usize,
-            ((cy + r).ceil() as usize).min(height),
-        );
-        for y in y0..y1 {
-            for x in x0..x1 {
-                let (dx, dy) = (x as f32 + 0.5 - cx, y as f32 + 0.5 - cy);
-                if dx * dx + dy * dy <= r * r {
-                    let base = img.get(x, y).unwrap_or(c);
-                    img.set(x, y, base * 0.25 + c * 0.75);
-                }
-            }
+        for (x, y) in preview::disc_pixels(centre, r, width, height) {
+            let base = img.get(x, y).unwrap_or(c);
+            img.set(x, y, base * 0.25 + c * 0.75);
         }
     }
     Ok(img)
