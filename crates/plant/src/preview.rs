@@ -135,7 +135,8 @@ pub fn render(mesh: &PlantMesh, params: &PreviewParams) -> Result<Image> {
 /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `params`, a mesh ([`PlantMesh::check`])
 /// or an instance ([`Instance::validate`]) is invalid;
 /// [`PlantError::Core`](crate::PlantError::Core) if natura-core's camera
-/// refuses the view (a field of view that rounds to 180°).
+/// refuses the view (a field of view that rounds to 180°) or the
+/// supersampled frame is too large to allocate.
 pub fn render_instances(
     items: &[(&PlantMesh, &[Instance])],
     params: &PreviewParams,

@@ -194,6 +194,23 @@ impl Projector {
     /// The near plane of a perspective camera lies at `1e-4` of the
     /// eye–target distance.
     ///
+    /// ```
+    /// use natura_core::glam::Vec3;
+    /// use natura_core::preview::{PreviewCamera, PreviewProjection, Projector};
+    /// let camera = PreviewCamera {
+    ///     eye: Vec3::new(0.0, -5.0, 0.0),
+    ///     target: Vec3::ZERO,
+    ///     up: Vec3::Z,
+    ///     projection: PreviewProjection::Perspective { fov_y_deg: 60.0 },
+    /// };
+    /// let p = Projector::new(&camera, 64, 48)?;
+    /// let [x, y, key] = p.project(Vec3::ZERO).expect("the target is in view");
+    /// assert!((x - 32.0).abs() < 1e-4 && (y - 24.0).abs() < 1e-4);
+    /// assert!((key - 0.2).abs() < 1e-6); // 1 / distance along the view
+    /// assert!(p.project(Vec3::new(0.0, -6.0, 0.0)).is_none()); // behind the eye
+    /// # Ok::<(), natura_core::CoreError>(())
+    /// ```
+    ///
     /// # Errors
     ///
     /// [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter)

@@ -386,3 +386,24 @@ fn bad_input_is_an_error_naming_the_parameter() {
             .is_none()
     );
 }
+
+proptest::proptest! {
+    /// Any finite triangle, however large or thin, draws without panicking
+    /// and writes only samples inside the frame, as many as it reports.
+    #[test]
+    fn any_finite_triangle_draws_without_panicking(
+        v in proptest::array::uniform3(proptest::array::uniform3(-1e30f32..1e30f32)),
+        scale in proptest::sample::select(vec![1e-6f32, 1.0, 1e3, 1e30]),
+    ) {
+        let v = v.map(|p| [p[0] / 1e30 * 40.0 * scale, p[1] / 1e30 * 40.0 * scale, p[2]]);
+        let mut r = Raster::new(16, 16, 2, Vec3::ZERO).unwrap();
+        let mut seen = 0;
+        let n = r.triangle(v, |f| {
+            seen += 1;
+            assert!(f.x < 32 && f.y < 32);
+            Vec3::ONE
+        });
+        proptest::prop_assert!(n.is_ok());
+        proptest::prop_assert_eq!(n.unwrap(), seen);
+    }
+}
