@@ -68,7 +68,7 @@ mod error;
 mod field;
 pub mod fractal;
 mod hash;
-mod lanes;
+mod lattice_math;
 pub mod vector;
 pub mod warp;
 

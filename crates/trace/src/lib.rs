@@ -97,9 +97,9 @@
 //! ```
 // `unsafe` is denied crate-wide; the only exceptions are the calls that
 // natura-simd's `multiversion!` writes into the `#[target_feature]` lane
-// kernels (`lanes/kernels.rs`), one float-to-int truncation of a value
-// clamped to cell coordinates (`num.rs`), and the AVX2 event mask of the
-// lane step (`lanes/node.rs`: two unaligned loads of 16 `u32`, called only
+// kernels (`lockstep/kernels.rs`), one float-to-int truncation of a value
+// clamped to cell coordinates (`float.rs`), and the AVX2 event mask of the
+// lane step (`lockstep/node.rs`: two unaligned loads of 16 `u32`, called only
 // under a token that proves AVX2).
 #![deny(unsafe_code)]
 
@@ -111,12 +111,12 @@ mod detail;
 mod detail_tracer;
 mod error;
 mod field;
+mod float;
 mod frustum;
 mod grid_ray;
-mod lanes;
 mod leaf;
+mod lockstep;
 mod max_mipmap;
-mod num;
 mod ray;
 mod ray_cell;
 mod step;

@@ -29,6 +29,7 @@
 
 pub mod altitude;
 mod band;
+pub(crate) mod batch_rows;
 pub mod cascade;
 pub mod crossover;
 #[cfg(feature = "alloc")]
@@ -39,7 +40,6 @@ pub mod hetero;
 pub mod hybrid;
 pub mod lod;
 pub mod ridged;
-pub(crate) mod rows;
 pub mod vector_multifractal;
 
 use crate::error::{NoiseError, Result, finite, in_range};
