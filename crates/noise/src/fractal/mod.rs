@@ -36,6 +36,7 @@ pub mod crossover;
 pub mod driven;
 pub mod fbm;
 pub mod filtered;
+pub mod footprint;
 pub mod hetero;
 pub mod hybrid;
 pub mod lod;
