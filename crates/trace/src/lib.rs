@@ -13,7 +13,7 @@
 //!   (Musgrave 1993, §3.5) — which skips empty space at the coarsest level the
 //!   ray allows. The fast path, with the same hits.
 //! * [`DetailTracer`] over a [`DetailSurface`]: the field plus procedural
-//!   detail octaves ([`Detail`], natura-noise's Perlin noise) down to each
+//!   detail octaves ([`Detail`], natura-noise's `FootprintFbm`) down to each
 //!   ray's pixel [`RayCone`] — Musgrave's procedural level of detail
 //!   (Musgrave 1993, §6.3). The pyramid widened by the detail's amplitude
 //!   bound skips empty space, a Lipschitz-bounded march closed by
