@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::fractal::fbm::sign;
-use crate::lanes::{Simd, run};
+use crate::lattice_math::{Simd, run};
 
 /// The ridged basis `1 − |N|` (Musgrave 1993, §2.3.2.5.3; Musgrave 2001,
 /// "Perlin") (range `[1 − B, 1]`, so `[0, 1]` for a unit basis; exactly 1 on

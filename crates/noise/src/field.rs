@@ -3,7 +3,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::error::{NoiseError, Result};
-use crate::lanes::Simd;
+use crate::lattice_math::Simd;
 
 /// A deterministic scalar field `R² → R` and `R³ → R`, evaluated at `f64` points.
 ///

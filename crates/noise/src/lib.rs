@@ -26,7 +26,9 @@
 //!   octaves, frequency, amplitude convention) with precomputed octave weights;
 //!   band-limited sums over a real-valued number of visible octaves
 //!   ([`Fbm::eval3_band`], for level of detail by pixel footprint, the count
-//!   given by the one footprint rule [`visible_octaves`]), and
+//!   given by the one footprint rule [`visible_octaves`]; [`FootprintFbm`],
+//!   the world-unit fBm of a height field's detail with per-octave offsets,
+//!   its gradient and the bounds a ray marcher needs), and
 //!   Musgrave's vector multifractal [`VectorMultifractal`] (`MVfBm`).
 //! * **Batches at arbitrary points**: [`Perlin::fill_points3`] and
 //!   [`Fbm::fill_points3_band`] evaluate struct-of-arrays point lists (a
@@ -68,7 +70,7 @@ mod error;
 mod field;
 pub mod fractal;
 mod hash;
-mod lanes;
+mod lattice_math;
 pub mod vector;
 pub mod warp;
 
@@ -91,6 +93,7 @@ pub use fractal::crossover::CrossoverFbm;
 pub use fractal::driven::{Driven, DrivenKind, Param};
 pub use fractal::fbm::{Fbm, Turbulence};
 pub use fractal::filtered::{FilteredFbm, filter_fade};
+pub use fractal::footprint::{FootprintFbm, FootprintParams};
 pub use fractal::hetero::{HeteroTerrain, HeteroTerrainParams};
 pub use fractal::hybrid::{HybridMultifractal, HybridParams};
 pub use fractal::lod::visible_octaves;

@@ -7,17 +7,17 @@
 //! optional bilinear mask over the samples (0 keeps a region bare, e.g.
 //! water), and `D` an fBm of Perlin noise in world metres whose octaves start
 //! at the cell size and stop at the footprint `w` (metres) of the ray's pixel
-//! there. This is Musgrave's procedural level of detail, "band-limiting the
-//! fractal function as a function of distance" (Musgrave 1993, §6.3), with
-//! the fractional-octave blend that keeps the octave count continuous
-//! (Musgrave 1993, §2.3.2.1): octave `k` (wavelength `λ₀/rᵏ`, amplitude
-//! `a·r^(−kH)`) has weight `clamp(n(w) − k, 0, 1)` with
-//! `n(w) = log_r(λ₀ / 2w)`, natura-noise's level-of-detail rule
-//! (`natura_noise::visible_octaves`, which states why), so it fades in
-//! between footprints `λₖ/2r` and `λₖ/2` (the Nyquist limit), and no octave
-//! is left once `w ≥ λ₀/2`.
+//! there: natura-noise's [`FootprintFbm`], which holds the model (Musgrave's
+//! procedural level of detail, "band-limiting the fractal function as a
+//! function of distance", Musgrave 1993, §6.3, with the fractional-octave
+//! blend of Musgrave 1993, §2.3.2.1), its per-octave offsets and its bounds.
+//! Octave `k` (wavelength `λ₀/rᵏ`, amplitude `a·r^(−kH)`) has weight
+//! `clamp(n(w) − k, 0, 1)` with `n(w) = log_r(λ₀ / 2w)`, natura-noise's
+//! level-of-detail rule (`natura_noise::visible_octaves`, which states why),
+//! so it fades in between footprints `λₖ/2r` and `λₖ/2` (the Nyquist limit),
+//! and no octave is left once `w ≥ λ₀/2`.
 //!
-//! The tracer's bounds come from here too (Hart 1996, for the Lipschitz
+//! The tracer's bounds come from there too (Hart 1996, for the Lipschitz
 //! step): `|D| ≤ Σ aₖ` over the octaves present, `|∇D| ≤ L_noise·Σ wₖ aₖ/λₖ`,
 //! and `|∂D/∂w|` from the one octave being blended. Each bound is
 //! non-increasing in `w`, so one taken where a ray's footprint is smallest
@@ -25,7 +25,7 @@
 
 use glam::{DVec2, Vec3};
 use natura_core::{Boundary, Grid2, HeightField};
-use natura_noise::{Field, Perlin, visible_octaves};
+use natura_noise::{FootprintFbm, FootprintParams, NoiseError, Perlin};
 
 use crate::error::{Result, TraceError};
 use crate::surface::surface_height;
@@ -80,27 +80,13 @@ impl RayCone {
     }
 }
 
-/// The detail octaves: values, gradients and bounds at a footprint.
+/// The detail octaves: values, gradients and bounds at a footprint. A thin
+/// wrapper of natura-noise's [`FootprintFbm`] of [`Perlin`] noise (which
+/// holds the model, its octave offsets and its bounds) with the tracer's
+/// parameter limits and names.
 #[derive(Clone, Debug)]
 pub struct Detail {
-    noise: Perlin,
-    /// Octave amplitudes (metres) and frequencies (1/metres).
-    amp: Vec<f64>,
-    freq: Vec<f64>,
-    lambda0: f64,
-    /// `1/λ₀`, the first octave's frequency.
-    freq0: f64,
-    ln_lac: f64,
-    lac: f64,
-    lip_noise: f64,
-    /// `Σ_{j<k} aⱼ` and `Σ_{j<k} aⱼ fⱼ` (index `k` from 0 to the octave
-    /// count), and `max_{j<k} aⱼ / w_min,j` for the footprint bound.
-    amp_pre: Vec<f64>,
-    lip_pre: Vec<f64>,
-    fp_max: Vec<f64>,
-    /// Octave `k` is present (`n(w) > k`) below the footprint `λ₀/(2rᵏ)`,
-    /// widened by a relative 1e-9 so that rounding never drops one.
-    nyquist: Vec<f64>,
+    fbm: FootprintFbm<Perlin>,
 }
 
 impl Detail {
@@ -109,9 +95,10 @@ impl Detail {
     /// # Errors
     ///
     /// Returns [`TraceError::InvalidParameter`] naming the first parameter
-    /// that is NaN or out of range: `amplitude_m` (finite, ≥ 0), `h`
-    /// (finite, in `[0, 2]`), `lacunarity` (in `(1, 16]`), `octaves` (at
-    /// most [`MAX_DETAIL_OCTAVES`]), `wavelength_m` (finite, > 0).
+    /// that is NaN or out of range: `amplitude_m` (finite, ≥ 0, and small
+    /// enough that the octave amplitudes sum to at most 1e30), `h` (finite,
+    /// in `[0, 2]`), `lacunarity` (in `(1, 16]`), `octaves` (at most
+    /// [`MAX_DETAIL_OCTAVES`]), `wavelength_m` (finite, > 0).
     pub fn new(p: &DetailParams) -> Result<Self> {
         let bad = |name, v: f32, why| Err(TraceError::param(name, v, why));
         if !(p.amplitude_m.is_finite() && p.amplitude_m >= 0.0) {
@@ -133,165 +120,114 @@ impl Detail {
         if !(p.wavelength_m.is_finite() && p.wavelength_m > 0.0) {
             return bad("wavelength_m", p.wavelength_m, "finite and > 0");
         }
-        let lac = f64::from(p.lacunarity);
-        let n = if p.amplitude_m > 0.0 { p.octaves } else { 0 };
-        let lambda0 = f64::from(p.wavelength_m);
-        let amp: Vec<f64> = (0..n)
-            .map(|k| f64::from(p.amplitude_m) * lac.powf(-f64::from(k) * f64::from(p.h)))
-            .collect();
-        let freq: Vec<f64> = (0..n).map(|k| lac.powi(k as i32) / lambda0).collect();
-        let noise = Perlin::new(p.seed);
-        let (mut amp_pre, mut lip_pre, mut fp_max) = (vec![0.0f64], vec![0.0f64], vec![0.0f64]);
-        let nyquist = (0..n)
-            .map(|k| 0.5 * lambda0 / lac.powi(k as i32) * (1.0 + 1e-9))
-            .collect();
-        for k in 0..n as usize {
-            amp_pre.push(amp_pre[k] + amp[k]);
-            lip_pre.push(lip_pre[k] + amp[k] * freq[k]);
-            let wmin = 0.5 * lambda0 / lac.powi(k as i32 + 1);
-            fp_max.push(fp_max[k].max(amp[k] / wmin));
-        }
-        Ok(Self {
-            nyquist,
-            amp_pre,
-            lip_pre,
-            fp_max,
-            lip_noise: noise.lipschitz2(),
-            noise,
-            amp,
-            freq,
-            lambda0,
-            freq0: 1.0 / lambda0,
-            ln_lac: lac.ln(),
-            lac,
-        })
+        let params = FootprintParams {
+            amplitude: f64::from(p.amplitude_m),
+            h: f64::from(p.h),
+            lacunarity: f64::from(p.lacunarity),
+            octaves: p.octaves,
+            wavelength: f64::from(p.wavelength_m),
+        };
+        let fbm = FootprintFbm::new(Perlin::new(p.seed), &params).map_err(|e| match e {
+            // The only limit left after the checks above: the amplitudes' sum.
+            NoiseError::Unbounded { .. } => TraceError::param(
+                "amplitude_m",
+                p.amplitude_m,
+                "small enough that the octave amplitudes sum to at most 1e30",
+            ),
+            other => TraceError::param("detail", other, "parameters natura-noise accepts"),
+        })?;
+        Ok(Self { fbm })
+    }
+
+    /// The octaves: natura-noise's footprint-limited fBm.
+    #[must_use]
+    pub fn octaves(&self) -> &FootprintFbm<Perlin> {
+        &self.fbm
     }
 
     /// Whether there is any detail at all (amplitude and octaves > 0).
     #[must_use]
     pub fn is_active(&self) -> bool {
-        !self.amp.is_empty()
+        self.fbm.octave_count() > 0
     }
 
     /// The footprint (metres) from which on no octave is left: `λ₀/2`.
     #[must_use]
     pub fn far_footprint(&self) -> f64 {
-        0.5 * self.lambda0
+        self.fbm.far_footprint()
     }
 
     /// The smallest footprint that still changes the detail (all octaves
     /// full below it): `λ₀ / (2 r^octaves)`.
     #[must_use]
     pub fn finest_footprint(&self) -> f64 {
-        0.5 * self.lambda0 / self.lac.powi(self.amp.len() as i32)
+        self.fbm.finest_footprint()
     }
 
-    /// The fractional octave count `n(w)`, clamped to `[0, octaves]`:
-    /// natura-noise's level-of-detail rule [`visible_octaves`] for the base
-    /// frequency `1/λ₀`.
+    /// The fractional octave count `n(w)`, clamped to `[0, octaves]`
+    /// ([`FootprintFbm::visible`]).
     #[inline]
     pub(crate) fn octaves_at(&self, w: f64) -> f64 {
-        let n = self.amp.len() as f64;
-        if w <= 0.0 {
-            return n;
-        }
-        visible_octaves(w, self.freq0, self.lac).min(n)
-    }
-
-    /// Octave `k`'s sample point: a fixed irrational shift per octave keeps
-    /// the lattices' zeros from lining up.
-    #[inline]
-    fn point(&self, k: usize, p: DVec2) -> DVec2 {
-        let s = (k + 1) as f64;
-        p * self.freq[k] + DVec2::new(0.618_034 * s, 0.414_214 * s)
+        self.fbm.visible(w)
     }
 
     /// Octave `k`'s weighted term of `D(p; w)` where `n = n(w)`.
     #[inline]
     pub(crate) fn octave(&self, k: usize, n: f64, p: DVec2) -> f64 {
-        (n - k as f64).min(1.0) * self.amp[k] * self.noise.eval2(self.point(k, p))
+        self.fbm.octave_term(k, n, p)
     }
 
     /// A bound on `|Σ_{k0 ≤ k < k1} wₖ aₖ Nₖ|` (the octaves `k0..k1`).
     #[inline]
     pub(crate) fn amplitude_between(&self, k0: usize, k1: usize) -> f64 {
-        (self.amp_pre[k1] - self.amp_pre[k0]) * self.noise.bound()
+        self.fbm.amplitude_between(k0, k1)
     }
 
     /// A bound on the gradient of the first `k` octaves at any footprint
     /// (every weight taken as 1).
     #[inline]
     pub(crate) fn lipschitz_first(&self, k: usize) -> f64 {
-        self.lip_pre[k] * self.lip_noise
+        self.fbm.lipschitz_first(k)
     }
 
     /// `D(p; w)`, metres.
+    #[inline]
     #[must_use]
     pub fn height(&self, p: DVec2, w: f64) -> f64 {
-        let n = self.octaves_at(w);
-        let mut sum = 0.0;
-        for k in 0..n.ceil() as usize {
-            let wk = (n - k as f64).min(1.0);
-            sum += wk * self.amp[k] * self.noise.eval2(self.point(k, p));
-        }
-        sum
+        self.fbm.eval2(p, w)
     }
 
     /// `D(p; w)` and its gradient `∇D` (per metre), analytically.
+    #[inline]
     #[must_use]
     pub fn height_grad(&self, p: DVec2, w: f64) -> (f64, DVec2) {
-        let n = self.octaves_at(w);
-        let (mut v, mut g) = (0.0, DVec2::ZERO);
-        for k in 0..n.ceil() as usize {
-            let wk = (n - k as f64).min(1.0) * self.amp[k];
-            let (nv, ng) = self.noise.eval_grad2(self.point(k, p));
-            v += wk * nv;
-            g += wk * self.freq[k] * ng;
-        }
-        (v, g)
+        self.fbm.eval_grad2(p, w)
     }
 
     /// A bound on `|D(·; w')|` for every `w' ≥ w`: the sum of the amplitudes
     /// of the octaves present at `w`.
     #[must_use]
     pub fn amplitude_bound(&self, w: f64) -> f64 {
-        let present = self.nyquist.iter().take_while(|&&f| w < f).count();
-        self.amp_pre[present] * self.noise.bound()
+        self.fbm.amplitude_bound(w)
     }
 
     /// A bound on `|∇D(·; w')|` for every `w' ≥ w`: `L_noise · Σ wₖ aₖ fₖ`.
     #[must_use]
     pub fn lipschitz_bound(&self, w: f64) -> f64 {
-        let n = self.octaves_at(w);
-        let mut s = 0.0;
-        for k in 0..n.ceil() as usize {
-            s += (n - k as f64).min(1.0) * self.amp[k] * self.freq[k];
-        }
-        s * self.lip_noise
+        self.fbm.lipschitz_bound(w)
     }
 
-    /// A bound on `|∂D/∂w'|` for every `w' ≥ w`. Only the octave being
-    /// blended depends on `w'`: `|∂D/∂w'| ≤ a_k / (w' ln r)` while
-    /// `n(w') ∈ [k, k + 1)`, where `w' ≥ λ₀/(2 r^(k+1))`.
+    /// A bound on `|∂D/∂w'|` for every `w' ≥ w`
+    /// ([`FootprintFbm::footprint_bound`]).
     #[must_use]
     pub fn footprint_bound(&self, w: f64) -> f64 {
-        self.footprint_bound_n(w, self.octaves_at(w))
+        self.fbm.footprint_bound(w)
     }
 
     /// [`Self::footprint_bound`] with `n = n(w)` already known.
     #[inline]
     pub(crate) fn footprint_bound_n(&self, w: f64, n: f64) -> f64 {
-        if n <= 0.0 {
-            return 0.0;
-        }
-        let top = self.amp.len();
-        let kstar = (n.floor() as usize).min(top);
-        let mut b = 0.0f64;
-        if kstar < top && w > 0.0 {
-            b = self.amp[kstar] / w;
-        }
-        b = b.max(self.fp_max[kstar]);
-        b * self.noise.bound() / self.ln_lac
+        self.fbm.footprint_bound_visible(w, n)
     }
 }
 

@@ -142,9 +142,9 @@ impl MipmapTracer<'_> {
                     g.t0[l] * h,
                 ];
                 for k in 0..7 {
-                    acc[k][l] = crate::num::fmin(acc[k][l], if on { v[k] } else { big });
+                    acc[k][l] = crate::float::fmin(acc[k][l], if on { v[k] } else { big });
                 }
-                zacc[l] = crate::num::fmax(zacc[l], if on { g.zm[l] } else { 0.0 });
+                zacc[l] = crate::float::fmax(zacc[l], if on { g.zm[l] } else { 0.0 });
             }
         }
         let mut ext = [big; 7];
@@ -152,9 +152,9 @@ impl MipmapTracer<'_> {
         let mut bad = 0;
         for l in 0..SETUP_LANES {
             for k in 0..7 {
-                ext[k] = crate::num::fmin(ext[k], acc[k][l]);
+                ext[k] = crate::float::fmin(ext[k], acc[k][l]);
             }
-            zm = crate::num::fmax(zm, zacc[l]);
+            zm = crate::float::fmax(zm, zacc[l]);
             bad |= bacc[l];
         }
         // A ray whose range starts behind the origin (`t_min < 0`) is not
@@ -297,7 +297,7 @@ mod tests {
     use natura_core::HeightField;
 
     use crate::grid_ray::{SETUP_LANES, SetupLanes};
-    use crate::lanes::kernels::setup_with;
+    use crate::lockstep::kernels::setup_with;
     use crate::{MipmapTracer, Ray, brute_force};
     use natura_core::simd::Simd;
 

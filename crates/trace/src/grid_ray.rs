@@ -8,7 +8,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::field::FieldView;
-use crate::num::{cell_of, fmax, fmin};
+use crate::float::{cell_of, fmax, fmin};
 use crate::ray::Ray;
 
 /// Per-ray constants of Woop, Benthin & Wald's watertight test (JCGT 2013):

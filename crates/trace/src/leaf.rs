@@ -3,8 +3,8 @@
 //! edge or corner the ray passes within rounding distance of.
 
 use crate::field::FieldView;
+use crate::float::coord;
 use crate::grid_ray::GridRay;
-use crate::num::coord;
 use crate::ray::TraceStats;
 use crate::ray_cell::{CellHit, intersect_cell};
 use crate::step::{Exit, corner_range, span_meets};

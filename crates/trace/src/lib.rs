@@ -13,7 +13,7 @@
 //!   (Musgrave 1993, §3.5) — which skips empty space at the coarsest level the
 //!   ray allows. The fast path, with the same hits.
 //! * [`DetailTracer`] over a [`DetailSurface`]: the field plus procedural
-//!   detail octaves ([`Detail`], natura-noise's Perlin noise) down to each
+//!   detail octaves ([`Detail`], natura-noise's `FootprintFbm`) down to each
 //!   ray's pixel [`RayCone`] — Musgrave's procedural level of detail
 //!   (Musgrave 1993, §6.3). The pyramid widened by the detail's amplitude
 //!   bound skips empty space, a Lipschitz-bounded march closed by
@@ -97,9 +97,9 @@
 //! ```
 // `unsafe` is denied crate-wide; the only exceptions are the calls that
 // natura-simd's `multiversion!` writes into the `#[target_feature]` lane
-// kernels (`lanes/kernels.rs`), one float-to-int truncation of a value
-// clamped to cell coordinates (`num.rs`), and the AVX2 event mask of the
-// lane step (`lanes/node.rs`: two unaligned loads of 16 `u32`, called only
+// kernels (`lockstep/kernels.rs`), one float-to-int truncation of a value
+// clamped to cell coordinates (`float.rs`), and the AVX2 event mask of the
+// lane step (`lockstep/node.rs`: two unaligned loads of 16 `u32`, called only
 // under a token that proves AVX2).
 #![deny(unsafe_code)]
 
@@ -111,12 +111,12 @@ mod detail;
 mod detail_tracer;
 mod error;
 mod field;
+mod float;
 mod frustum;
 mod grid_ray;
-mod lanes;
 mod leaf;
+mod lockstep;
 mod max_mipmap;
-mod num;
 mod ray;
 mod ray_cell;
 mod step;

@@ -16,8 +16,8 @@ use glam::{UVec2, Vec3};
 use natura_core::HeightField;
 
 use crate::field::FieldView;
+use crate::float::coord;
 use crate::grid_ray::{GridRay, Shear};
-use crate::num::coord;
 use crate::ray::{Hit, Ray, Triangle};
 
 /// A cell's corner `(x, y, h)` in the ray's sheared frame (origin `o`):

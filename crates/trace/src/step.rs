@@ -2,7 +2,7 @@
 //! the two-sided altitude cull, and the step into the next node.
 //!
 //! The single-ray walks ([`crate::MipmapTracer`], [`crate::GridTracer`]) and
-//! the lock-step lanes ([`crate::lanes`]) call these same functions, so every
+//! the lock-step lanes ([`crate::lockstep`]) call these same functions, so every
 //! path computes the same `f32` and integer values in the same order and
 //! returns the same hits, bit for bit. Each function is `#[inline(always)]`
 //! and free of loads and side effects, so inside a loop over lanes LLVM
@@ -15,7 +15,7 @@
 //! rejected only when it lies wholly above the maximum or wholly below the
 //! minimum, each widened by the ray's altitude rounding bound.
 
-use crate::num::{coord, fmax, fmax_nan_lo, fmin, trunc};
+use crate::float::{coord, fmax, fmax_nan_lo, fmin, trunc};
 
 /// The signs of a ray's horizontal direction: which way it crosses x and y.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

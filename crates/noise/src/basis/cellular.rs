@@ -24,7 +24,7 @@ use crate::basis::cellular_rows::{chunk2, chunk3};
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::hash::{PX, PY, PZ, corner, corner_spread, row2, row3, seed32};
-use crate::lanes::{Real, Simd, max_fast, min_fast, split};
+use crate::lattice_math::{Real, Simd, max_fast, min_fast, split};
 
 /// The distance metric between a point and a feature point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -24,7 +24,7 @@ use glam::DVec3;
 
 use crate::basis::cellular::{Dist, Worley, insert_k};
 use crate::hash::{PX, PY, PZ, corner_spread};
-use crate::lanes::{Kernel, Simd, min_fast, run, split_fast};
+use crate::lattice_math::{Kernel, Simd, min_fast, run, split_fast};
 
 #[cfg(doc)]
 use crate::basis::SPAN_MAX_STEP;

@@ -3,7 +3,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::field::Field;
-use crate::lanes::split;
+use crate::lattice_math::split;
 
 /// `+1` / `−1` alternating over unit lattice cells (Musgrave 2001,
 /// "Checkerboard"): `+1` where `⌊x⌋ + ⌊y⌋ (+ ⌊z⌋)` is even. Discontinuous

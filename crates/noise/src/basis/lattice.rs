@@ -2,7 +2,7 @@
 //! the generic n-D point evaluator (value and analytic gradient, in f64).
 
 use crate::hash::{corner, row1, row2, row3, row4};
-use crate::lanes::split;
+use crate::lattice_math::split;
 
 /// The hash of lattice corner `idx` (1 to 4 dimensions) under `seed`.
 #[inline(always)]

@@ -62,11 +62,11 @@ macro_rules! with_fade32 {
     ($fade:expr, |$f:ident| $body:expr) => {
         match $fade {
             $crate::basis::Fade::Quintic => {
-                let $f = $crate::lanes::quintic32;
+                let $f = $crate::lattice_math::quintic32;
                 $body
             }
             $crate::basis::Fade::Cubic => {
-                let $f = $crate::lanes::cubic32;
+                let $f = $crate::lattice_math::cubic32;
                 $body
             }
         }

@@ -39,10 +39,10 @@ use crate::field::{Field, Lattice3};
 use crate::hash::{
     PX, PY, PZ, corner_spread, dot2, dot3_lanes, dot3_pair, grad1, grad2, grad3, grad4, seed32,
 };
-use crate::lanes::{Kernel, Simd, run, split, split_fast, split_n};
+use crate::lattice_math::{Kernel, Simd, run, split, split_fast, split_n};
 
+mod batch_rows;
 mod points;
-mod rows;
 
 /// sup |raw 1-D gradient noise| (either fade): at the cell centre, `2·½·½`.
 pub const PERLIN1_SUP: f64 = 0.5;

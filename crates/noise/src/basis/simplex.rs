@@ -26,7 +26,7 @@ use natura_simd::multiversion;
 
 use crate::field::Field;
 use crate::hash::{GRAD2_64, PX, PY, PZ, corner_spread, dot3, flat2, flat3, grad2, grad3, seed32};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, split, split_fast, split_floor_n};
+use crate::lattice_math::{BLOCK, LaneOffsets, Simd, rebase, split, split_fast, split_floor_n};
 
 /// sup |raw 2-D simplex noise| with the ½-radius kernel and unit gradients.
 pub const SIMPLEX2_SUP: f64 = 0.010_080_205;

@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::hash::{corner, mix32, row2, row3, seed32, signed_unit, unit_hi, unit_lo};
-use crate::lanes::split;
+use crate::lattice_math::split;
 
 /// The kernel splatted at each impulse (radius 1 lattice cell).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

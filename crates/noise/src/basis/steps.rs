@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
-use crate::lanes::split;
+use crate::lattice_math::split;
 
 const SALT: u64 = 0x5354_4550; // "STEP"
 

@@ -16,7 +16,7 @@ use crate::basis::lattice::lattice_sum;
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
-use crate::lanes::{Simd, split_fast};
+use crate::lattice_math::{Simd, split_fast};
 
 /// How value noise interpolates across a cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -238,12 +238,12 @@ multiversion! {
                     }
                     ValueInterp::Cubic => {
                         for (k, o) in span.iter_mut().enumerate() {
-                            *o = a + b * crate::lanes::cubic32(t0 + (k as i32) as f32 * s32);
+                            *o = a + b * crate::lattice_math::cubic32(t0 + (k as i32) as f32 * s32);
                         }
                     }
                     ValueInterp::Quintic => {
                         for (k, o) in span.iter_mut().enumerate() {
-                            *o = a + b * crate::lanes::quintic32(t0 + (k as i32) as f32 * s32);
+                            *o = a + b * crate::lattice_math::quintic32(t0 + (k as i32) as f32 * s32);
                         }
                     }
                 }
@@ -257,8 +257,8 @@ multiversion! {
                 let fx = fx as f32;
                 let u = match interp {
                     ValueInterp::Linear => fx,
-                    ValueInterp::Cubic => crate::lanes::cubic32(fx),
-                    ValueInterp::Quintic => crate::lanes::quintic32(fx),
+                    ValueInterp::Cubic => crate::lattice_math::cubic32(fx),
+                    ValueInterp::Quintic => crate::lattice_math::quintic32(fx),
                 };
                 let mut acc = 0.0f32;
                 for r in 0..nr {

@@ -4,8 +4,8 @@
 use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::rows::{Pt, multifractal, octave_rows};
-use crate::lanes::Simd;
+use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::lattice_math::Simd;
 use glam::{DVec2, DVec3};
 
 /// Parameters of [`StatsByAltitude`] (the `c_t`, `c_s`, `c_0` of Musgrave 1993,

@@ -6,9 +6,9 @@ use crate::error::Result;
 use crate::field::Field;
 #[cfg(doc)]
 use crate::fractal::MAX_OCTAVES;
-use crate::fractal::rows::{Pt, octave_rows};
+use crate::fractal::batch_rows::{Pt, octave_rows};
 use crate::fractal::{Octaves, Spectral};
-use crate::lanes::Simd;
+use crate::lattice_math::Simd;
 
 /// Declares a monofractal: the struct (basis, spectral parameters, octave
 /// table), its validating constructor and accessors, and its [`Field`]
@@ -146,7 +146,7 @@ Fbm, "Fbm", false,
 "fBm of `basis` with `spectral` parameters (validated)."
 }
 
-fn fbm_rows<P: crate::fractal::rows::RowPoint, B: Field>(
+fn fbm_rows<P: crate::fractal::batch_rows::RowPoint, B: Field>(
     basis: &B,
     simd: Simd,
     oct: &Octaves,

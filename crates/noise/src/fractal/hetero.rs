@@ -3,8 +3,8 @@
 use crate::error::{NoiseError, Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::rows::{Pt, multifractal, octave_rows};
-use crate::lanes::Simd;
+use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::lattice_math::Simd;
 
 /// Parameters of [`HeteroTerrain`].
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -29,17 +29,18 @@
 
 pub mod altitude;
 mod band;
+pub(crate) mod batch_rows;
 pub mod cascade;
 pub mod crossover;
 #[cfg(feature = "alloc")]
 pub mod driven;
 pub mod fbm;
 pub mod filtered;
+pub mod footprint;
 pub mod hetero;
 pub mod hybrid;
 pub mod lod;
 pub mod ridged;
-pub(crate) mod rows;
 pub mod vector_multifractal;
 
 use crate::error::{NoiseError, Result, finite, in_range};

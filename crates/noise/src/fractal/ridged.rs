@@ -3,9 +3,9 @@
 use crate::error::{Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
+use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
 use crate::fractal::fbm::sign;
-use crate::fractal::rows::{Pt, multifractal, octave_rows};
-use crate::lanes::Simd;
+use crate::lattice_math::Simd;
 
 /// Parameters of [`RidgedMultifractal`].
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -3,7 +3,7 @@
 //! share, in `f64` and `f32`.
 
 use crate::hash::rehash;
-use crate::lanes::{Real, max_fast, min_fast};
+use crate::lattice_math::{Real, max_fast, min_fast};
 
 /// Where the cells' feature points lie: relative to its cell's corner, a
 /// feature point is at `margin + jitter·u` on each axis, `margin = (1 −

@@ -19,7 +19,7 @@ use crate::error::{NoiseError, Result};
 use crate::field::Field;
 use crate::fractal::fbm::Fbm;
 use crate::hash::{corner, grad3, row3};
-use crate::lanes::{Simd, cubic32, quintic32, split_fast};
+use crate::lattice_math::{Simd, cubic32, quintic32, split_fast};
 
 /// Points per chunk of the batch fBm (stack scratch buffers, no allocation).
 const CHUNK: usize = 256;

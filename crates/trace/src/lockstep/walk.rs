@@ -5,6 +5,7 @@
 use super::kernels::{cells_with, step_with};
 use super::node::NodeTable;
 use super::{CellOut, Exact, FOUND, GOING, LANE_MASK, LANES, Lanes, MIN_LANE_LEVEL, Rays, SCALAR};
+use crate::field::FieldView;
 use crate::leaf::leaf;
 use crate::max_mipmap::{Cursor, MipmapTracer};
 use crate::ray::TraceStats;
@@ -97,6 +98,25 @@ pub(super) fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
             },
         ))
     };
+    drive::<ANY, R>(simd, f, &k, rays, &take, lo, scale, out);
+}
+
+/// The lanes' loop: fills [`LANES`] lanes from `take`, runs the lane steps
+/// until [`PARK_BATCH`] lanes wait at cells (or none is stepping), runs a
+/// pass of exact tests for the waiting lanes, settles each, and refills a
+/// lane whose ray is done, until no ray is left: `out[k]` says how ray `k`
+/// ended.
+#[allow(clippy::too_many_arguments)]
+fn drive<const ANY: bool, R: Rays + ?Sized>(
+    simd: Simd,
+    f: &FieldView<'_>,
+    k: &NodeTable<'_>,
+    rays: &R,
+    take: &impl Fn(&mut usize) -> Option<(usize, Cursor)>,
+    lo: f32,
+    scale: f32,
+    out: &mut [Outcome],
+) {
     let mut next = 0;
     let mut s = Lanes::new();
     let mut x = Exact::new();
@@ -119,7 +139,7 @@ pub(super) fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
     while live != 0 {
         if live & !parked != 0 && parked.count_ones() < PARK_BATCH {
             // Lanes already parked report `AT_CELL` again: nothing new.
-            let ev = step_with(simd, &mut s, &k, &mut events);
+            let ev = step_with(simd, &mut s, k, &mut events);
             parked |= ev & LANE_MASK;
             let mut left = (ev >> LANES) & !parked;
             while left != 0 {
@@ -127,7 +147,7 @@ pub(super) fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
                 left &= left - 1;
                 out[s.ray[l]] = Outcome::Miss;
                 refill(
-                    &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
+                    &mut s, &mut x, &mut live, &mut next, l, take, rays, lo, scale,
                 );
             }
             continue;
@@ -143,7 +163,7 @@ pub(super) fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
                 corners[q][l] = v;
             }
         }
-        cells_with::<ANY>(simd, &mut s, &k, &x, &corners, parked, &mut co);
+        cells_with::<ANY>(simd, &mut s, k, &x, &corners, parked, &mut co);
         // Lanes whose miss stepped on to the next cell stay parked; into a
         // new level-1 node, they go back to the lane steps; the others are
         // decided one by one.
@@ -152,72 +172,106 @@ pub(super) fn walk_lanes_with<const ANY: bool, R: Rays + ?Sized>(
         while pm != 0 {
             let l = pm.trailing_zeros() as usize;
             pm &= pm - 1;
-            let kr = s.ray[l];
-            let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
-            let t_exit = co.t_exit[l];
-            let exit = co.exit[l];
-            let flags = co.flags[l];
-            let h = if flags & SCALAR != 0 {
-                // Within rounding distance of an edge, or a zero edge
-                // function: the single-ray walk's cell test, neighbours and all.
-                let first = t == s.t0[l];
-                leaf::<ANY>(f, &rays.ray(kr), ci, cj, t, t_exit, exit, first, &mut stats)
-            } else if flags & FOUND != 0 {
-                let pair = PairHit {
-                    found: true,
-                    upper: co.upper[l],
-                    t: co.t[l],
-                    bary: [co.bary[0][l], co.bary[1][l], co.bary[2][l]],
-                };
-                CellHit::from_pair(pair, (ci, cj))
-            } else {
-                None
-            };
-            let end = match h {
-                Some(h) if ANY || h.t <= t_exit + x.ttol[l] => Some(Outcome::Hit(h)),
-                Some(_) => Some(Outcome::Walk(Cursor {
-                    ci,
-                    cj,
-                    t,
-                    level: 0,
-                })),
-                None => {
-                    // The walk's step past a cell (as the lane step at level 0).
-                    let (nci, ncj, out) = step_out(
-                        exit == Exit::X,
-                        Signs(s.sign[l]),
-                        ci,
-                        cj,
-                        ci,
-                        cj,
-                        1,
-                        true,
-                        0.0,
-                        0.0,
-                        k.ncx,
-                        k.ncy,
+            match settle::<ANY, R>(f, k, rays, &mut s, &x, &co, l, &mut stats) {
+                Settled::NextCell => {}
+                Settled::Climbed => parked &= !(1 << l),
+                Settled::Done(e) => {
+                    out[s.ray[l]] = e;
+                    parked &= !(1 << l);
+                    refill(
+                        &mut s, &mut x, &mut live, &mut next, l, take, rays, lo, scale,
                     );
-                    if exit == Exit::End || out {
-                        Some(Outcome::Miss)
-                    } else {
-                        s.ci[l] = nci;
-                        s.cj[l] = ncj;
-                        s.t[l] = t_exit;
-                        if k.top > 0 && leaves_parent(ci, cj, nci, ncj, 0) {
-                            // Back to the nodes: the lane steps on at level 1.
-                            s.level[l] = 1;
-                            parked &= !(1 << l);
-                        }
-                        None
-                    }
                 }
-            };
-            if let Some(e) = end {
-                out[kr] = e;
-                parked &= !(1 << l);
-                refill(
-                    &mut s, &mut x, &mut live, &mut next, l, &take, rays, lo, scale,
-                );
+            }
+        }
+    }
+}
+
+/// How a parked lane's cell ended after a pass of exact tests.
+enum Settled {
+    /// The ray is done (or goes to the single-ray walk): its outcome.
+    Done(Outcome),
+    /// It missed and stepped on to the next cell of its level-1 node: it
+    /// stays parked.
+    NextCell,
+    /// It missed and stepped on into a new level-1 node: it goes back to
+    /// the lane steps at level 1.
+    Climbed,
+}
+
+/// Decides parked lane `l` after the pass of exact tests `co` (one the
+/// pass could not settle alone): its hit (through the single-ray cell test
+/// [`leaf`] for a cell within rounding distance of an edge), or the walk's
+/// step past its cell (as the lane step at level 0).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn settle<const ANY: bool, R: Rays + ?Sized>(
+    f: &FieldView<'_>,
+    k: &NodeTable<'_>,
+    rays: &R,
+    s: &mut Lanes,
+    x: &Exact,
+    co: &CellOut,
+    l: usize,
+    stats: &mut TraceStats,
+) -> Settled {
+    let kr = s.ray[l];
+    let (ci, cj, t) = (s.ci[l], s.cj[l], s.t[l]);
+    let t_exit = co.t_exit[l];
+    let exit = co.exit[l];
+    let flags = co.flags[l];
+    let h = if flags & SCALAR != 0 {
+        // Within rounding distance of an edge, or a zero edge
+        // function: the single-ray walk's cell test, neighbours and all.
+        let first = t == s.t0[l];
+        leaf::<ANY>(f, &rays.ray(kr), ci, cj, t, t_exit, exit, first, stats)
+    } else if flags & FOUND != 0 {
+        let pair = PairHit {
+            found: true,
+            upper: co.upper[l],
+            t: co.t[l],
+            bary: [co.bary[0][l], co.bary[1][l], co.bary[2][l]],
+        };
+        CellHit::from_pair(pair, (ci, cj))
+    } else {
+        None
+    };
+    match h {
+        Some(h) if ANY || h.t <= t_exit + x.ttol[l] => Settled::Done(Outcome::Hit(h)),
+        Some(_) => Settled::Done(Outcome::Walk(Cursor {
+            ci,
+            cj,
+            t,
+            level: 0,
+        })),
+        None => {
+            // The walk's step past a cell (as the lane step at level 0).
+            let (nci, ncj, out) = step_out(
+                exit == Exit::X,
+                Signs(s.sign[l]),
+                ci,
+                cj,
+                ci,
+                cj,
+                1,
+                true,
+                0.0,
+                0.0,
+                k.ncx,
+                k.ncy,
+            );
+            if exit == Exit::End || out {
+                return Settled::Done(Outcome::Miss);
+            }
+            s.ci[l] = nci;
+            s.cj[l] = ncj;
+            s.t[l] = t_exit;
+            if k.top > 0 && leaves_parent(ci, cj, nci, ncj, 0) {
+                // Back to the nodes: the lane steps on at level 1.
+                s.level[l] = 1;
+                Settled::Climbed
+            } else {
+                Settled::NextCell
             }
         }
     }

@@ -1,5 +1,7 @@
-//! Lane arithmetic shared by the f32 batch kernels: splitting a coordinate
-//! into its lattice index and fraction, block rebasing, and the fades.
+//! Lattice arithmetic shared by the point paths and the f32 batch kernels:
+//! splitting a coordinate into its lattice index and fraction, block
+//! rebasing, the fades, and the `Real` trait a model is written against once
+//! for `f64` points and `f32` lanes.
 //!
 //! The kernels themselves run through natura-simd's dispatch (one
 //! `#[target_feature]` trampoline per level, chosen at run time); every level

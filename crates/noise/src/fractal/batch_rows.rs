@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 
 use crate::field::Field;
 use crate::fractal::{CHUNK, Octaves};
-use crate::lanes::{Simd, run};
+use crate::lattice_math::{Simd, run};
 
 /// A row start point of any dimension, scaled by an octave frequency.
 pub(crate) trait RowPoint: Copy {
@@ -183,7 +183,7 @@ macro_rules! multifractal {
             }
             fn fill_row2_with(
                 &self,
-                simd: $crate::lanes::Simd,
+                simd: $crate::lattice_math::Simd,
                 origin: glam::DVec2,
                 step: f64,
                 out: &mut [f32],
@@ -192,7 +192,7 @@ macro_rules! multifractal {
             }
             fn fill_row3_with(
                 &self,
-                simd: $crate::lanes::Simd,
+                simd: $crate::lattice_math::Simd,
                 origin: glam::DVec3,
                 step: f64,
                 out: &mut [f32],

@@ -6,9 +6,9 @@ use glam::Vec3;
 
 use super::node::NodeTable;
 use super::{CellOut, Exact, FOUND, LANES, Lanes, SCALAR};
+use crate::float::coord;
 use crate::grid_ray::Shear;
 use crate::leaf::near;
-use crate::num::coord;
 use crate::ray_cell::{any_zero, edges32, pair, project_cell};
 use crate::step::{Exit, Signs, corner_range, leaves_parent, node_exits, span_meets, step_out};
 

@@ -17,7 +17,7 @@ use super::Perlin;
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
-use crate::lanes::{BLOCK, LaneOffsets, Simd, rebase, split_fast};
+use crate::lattice_math::{BLOCK, LaneOffsets, Simd, rebase, split_fast};
 
 impl Perlin {
     /// The 2-D row fill behind [`Field::fill_row2_with`].

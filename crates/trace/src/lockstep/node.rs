@@ -3,9 +3,9 @@
 //! data-dependent branches.
 
 use super::{AT_CELL, LANES, LEFT, Lanes};
+use crate::float::{coord, trunc};
 use crate::grid_ray::{SETUP_LANES, SetupLanes};
 use crate::max_mipmap::MipmapTracer;
-use crate::num::{coord, trunc};
 use crate::step::{Exit, Signs, leaves_parent, node_exits, span_meets, step_out};
 
 /// What every lane step needs besides the lanes.
