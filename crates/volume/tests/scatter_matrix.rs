@@ -410,11 +410,11 @@ fn summary(res: &[(Case, Errors)]) {
     }
 }
 
-/// The reduced matrix's errors measured with the octaves of Wrenninge et
-/// al. 2013 as fitted for clouds (`a = b = 0.4`, `c = 0.85`): `(|total|,
-/// block)` per scene, the bounds a multiple-scattering model must stay
-/// within (each with 5 points of margin for the reference's noise).
-const REDUCED_MEASURED: [(f64, f64); 5] = [
+/// The reduced matrix's errors `(|total|, block)` per scene with the
+/// octaves of Wrenninge et al. 2013 as fitted for clouds (`a = b = 0.4`,
+/// `c = 0.85`) applied unchanged, before their medium's form
+/// ([`natura_volume::transport::MediumOctaves`]): mean block error 0.42.
+const REDUCED_BEFORE: [(f64, f64); 5] = [
     (0.122, 0.160),
     (0.036, 0.104),
     (0.506, 0.474),
@@ -422,17 +422,27 @@ const REDUCED_MEASURED: [(f64, f64); 5] = [
     (0.482, 0.479),
 ];
 
+/// The bound on the reduced matrix's mean block error: the octaves applied
+/// unchanged measured 0.42 (`REDUCED_BEFORE`), their medium's form 0.25.
+const REDUCED_MEAN_BLOCK_BOUND: f64 = 0.30;
+
 #[test]
 fn reduced_matrix_within_bounds() {
     let res = run(&reduced_matrix(), 32, 48);
     summary(&res);
-    for ((c, e), (total, block)) in res.iter().zip(REDUCED_MEASURED) {
+    let worst_before = REDUCED_BEFORE
+        .iter()
+        .map(|&(t, b)| t.max(b))
+        .fold(0.0, f64::max);
+    for (c, e) in &res {
         assert!(
-            e.total.abs() <= total + 0.05 && e.block <= block + 0.05,
+            e.total.abs() <= worst_before && e.block <= worst_before,
             "{}: {e:?}",
             describe(c)
         );
     }
+    let mean = res.iter().map(|(_, e)| e.block).sum::<f64>() / res.len() as f64;
+    assert!(mean <= REDUCED_MEAN_BLOCK_BOUND, "mean block error {mean}");
 }
 
 #[test]
@@ -600,8 +610,8 @@ fn median_block(cases: &[Case], px: u32, spp: u32, octaves: ScatterOctaves) -> f
     v[v.len() / 2]
 }
 
-/// The octave constants refitted
-/// on the even scenes of the
+/// The octave constants refitted in the medium's form
+/// ([`natura_volume::transport::MediumOctaves`]) on the even scenes of the
 /// matrix (the median block error), and tested on the odd ones.
 #[test]
 #[ignore = "slow: a fit, not a check"]

@@ -29,7 +29,7 @@ use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::phase::CloudPhase;
 pub use march::{FastRenderer, FastSettings, NearSunRays, Seen, Shadows};
-pub use model::ScatterOctaves;
+pub use model::{MediumOctaves, ScatterOctaves};
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 
