@@ -11,10 +11,10 @@ use natura::core::glam::Vec3;
 use natura::volume::Density;
 use natura::volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura::volume::grid::GridDensity;
-use natura::volume::render::{
+use natura::volume::scene::{Cloudscape, CloudscapeParams};
+use natura::volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
-use natura::volume::scene::{Cloudscape, CloudscapeParams};
 
 fn density(c: &mut Criterion) {
     let cu = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), 7).unwrap();

@@ -30,7 +30,7 @@ use natura::volume::cloud::{
     Cloud, CloudParams, JetStream, cirrostratus_primitives, cloud, nine_sphere_cumulus,
 };
 use natura::volume::grid::GridDensity;
-use natura::volume::render::{
+use natura::volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 use natura::volume::{Density, vdb};

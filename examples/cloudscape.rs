@@ -26,8 +26,8 @@ use std::time::Instant;
 use clap::Parser;
 use common::{Run, outln};
 use natura::core::ToneMap;
-use natura::volume::render::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 use natura::volume::scene::{Cloudscape, CloudscapeParams};
+use natura::volume::transport::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 
 /// A layer-cloud sky over a plain at sunset, rendered with the fast volume
 /// mode (optionally also with the null-scattering reference, printing the

@@ -33,7 +33,7 @@ use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 use natura::volume::Density;
 use natura::volume::grid::SmokeVolume;
 use natura::volume::phase::CloudPhase;
-use natura::volume::render::{
+use natura::volume::transport::{
     Emission, FastRenderer, FastSettings, GroundPlane, LookAtCamera, MediumParams, Scene, Shadows,
     Solid, Sun,
 };

@@ -24,7 +24,7 @@ use natura::core::glam::Vec3;
 use natura::core::{Image, Progress, ToneMap};
 use natura::volume::gas::{Steam, SteamParams};
 use natura::volume::phase::CloudPhase;
-use natura::volume::render::{
+use natura::volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
 };
 

@@ -12,7 +12,7 @@ use crate::error::{Result, in_range, positive};
 use crate::grid::GridDensity;
 use crate::layer::{LayerClouds, LayerParams};
 use crate::phase::CloudPhase;
-use crate::render::{
+use crate::transport::{
     FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays, ScatterOctaves, Scene,
     Shadows, SkyRadiance, Sun,
 };

@@ -198,30 +198,7 @@ fn uuid(bytes: &[u8]) -> String {
 /// [`VolumeError::InvalidParameter`] for no grids, an empty, duplicate or
 /// over-long name, or a grid over 2³¹ voxels along an axis.
 pub fn encode_vdb(grids: &[(&str, &GridDensity)]) -> Result<Vec<u8>> {
-    if grids.is_empty() {
-        return Err(VolumeError::InvalidParameter {
-            name: "grids",
-            value: "0".into(),
-            expected: "at least one grid",
-        });
-    }
-    for (i, (name, g)) in grids.iter().enumerate() {
-        if name.is_empty() || name.len() > 256 || grids[..i].iter().any(|(n, _)| n == name) {
-            return Err(VolumeError::InvalidParameter {
-                name: "grid name",
-                value: (*name).to_string(),
-                expected: "non-empty, at most 256 bytes, and unique",
-            });
-        }
-        let (nx, ny, nz) = g.grid().dims();
-        if nx.max(ny).max(nz) > i32::MAX as usize {
-            return Err(VolumeError::InvalidParameter {
-                name: "grid size",
-                value: format!("{nx} × {ny} × {nz}"),
-                expected: "fewer than 2^31 voxels per axis",
-            });
-        }
-    }
+    check_grids(grids)?;
     let mut o = Out(Vec::new());
     o.i64(MAGIC);
     o.u32(FILE_VERSION);
@@ -248,85 +225,130 @@ pub fn encode_vdb(grids: &[(&str, &GridDensity)]) -> Result<Vec<u8>> {
     o.meta_string("creator", "natura");
     o.u32(grids.len() as u32);
     for (name, g) in grids {
-        let (tree, bbox, count) = build_tree(g.grid());
-        o.name(name);
-        o.name(GRID_TYPE);
-        o.name(""); // no instance parent
-        let offsets_at = o.0.len();
-        o.u64(0);
-        o.u64(0);
-        o.u64(0);
-        let grid_pos = o.0.len() as u64;
-        o.u32(0); // no compression
-        // Grid metadata, sorted by name as OpenVDB's map keeps it.
-        let n_meta = if bbox.is_some() { 7 } else { 5 };
-        o.u32(n_meta);
-        o.meta_string("class", "fog volume");
-        if let Some((lo, hi)) = bbox {
-            o.meta_vec3i("file_bbox_max", hi);
-            o.meta_vec3i("file_bbox_min", lo);
-        }
-        let leaves: usize = tree
-            .values()
-            .flat_map(|n5| n5.values())
-            .map(BTreeMap::len)
-            .sum();
-        o.meta_i64("file_mem_bytes", (leaves * (512 * 4 + 64)) as i64);
-        o.meta_i64("file_voxel_count", count);
-        o.meta_bool("is_saved_as_half_float", false);
-        o.meta_string("name", name);
-        // Transform: index (i, j, k) → world origin + (ijk + ½)·cell.
-        let cell = f64::from(g.cell());
-        let t = (g.origin() + Vec3::splat(0.5 * g.cell())).as_dvec3();
-        o.name("UniformScaleTranslateMap");
-        o.dvec3(t);
-        o.dvec3(DVec3::splat(cell));
-        o.dvec3(DVec3::splat(cell));
-        o.dvec3(DVec3::splat(1.0 / cell));
-        o.dvec3(DVec3::splat(1.0 / (cell * cell)));
-        o.dvec3(DVec3::splat(0.5 / cell));
-        // Topology.
-        o.u32(1); // buffer count
-        o.f32(0.0); // background
-        o.u32(0); // tiles
-        o.u32(tree.len() as u32);
-        for (origin, n5) in &tree {
-            o.coord(*origin);
-            let mut child5 = vec![0u64; 512];
-            for &i in n5.keys() {
-                child5[i as usize / 64] |= 1 << (i % 64);
-            }
-            o.mask(&child5);
-            o.mask(&[0u64; 512]);
-            o.values(&vec![0.0; 32768]);
-            for n4 in n5.values() {
-                let mut child4 = vec![0u64; 64];
-                for &i in n4.keys() {
-                    child4[i as usize / 64] |= 1 << (i % 64);
-                }
-                o.mask(&child4);
-                o.mask(&[0u64; 64]);
-                o.values(&[0.0; 4096]);
-                for leaf in n4.values() {
-                    o.mask(&leaf.mask);
-                }
-            }
-        }
-        let block_pos = o.0.len() as u64;
-        for leaf in tree
-            .values()
-            .flat_map(|n5| n5.values())
-            .flat_map(|n4| n4.values())
-        {
-            o.mask(&leaf.mask);
-            o.values(&leaf.values);
-        }
-        let end_pos = o.0.len() as u64;
-        for (k, v) in [grid_pos, block_pos, end_pos].into_iter().enumerate() {
-            o.0[offsets_at + 8 * k..offsets_at + 8 * k + 8].copy_from_slice(&v.to_le_bytes());
-        }
+        write_grid(&mut o, name, g);
     }
     Ok(o.0)
+}
+
+/// Checks [`encode_vdb`]'s grids: at least one, names non-empty, short and
+/// unique, sizes within `i32` voxel coordinates.
+fn check_grids(grids: &[(&str, &GridDensity)]) -> Result<()> {
+    if grids.is_empty() {
+        return Err(VolumeError::InvalidParameter {
+            name: "grids",
+            value: "0".into(),
+            expected: "at least one grid",
+        });
+    }
+    for (i, (name, g)) in grids.iter().enumerate() {
+        if name.is_empty() || name.len() > 256 || grids[..i].iter().any(|(n, _)| n == name) {
+            return Err(VolumeError::InvalidParameter {
+                name: "grid name",
+                value: (*name).to_string(),
+                expected: "non-empty, at most 256 bytes, and unique",
+            });
+        }
+        let (nx, ny, nz) = g.grid().dims();
+        if nx.max(ny).max(nz) > i32::MAX as usize {
+            return Err(VolumeError::InvalidParameter {
+                name: "grid size",
+                value: format!("{nx} × {ny} × {nz}"),
+                expected: "fewer than 2^31 voxels per axis",
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Writes one grid: its descriptor, metadata, transform, topology and leaf
+/// buffers, then patches the descriptor's three stream offsets.
+fn write_grid(o: &mut Out, name: &str, g: &GridDensity) {
+    let (tree, bbox, count) = build_tree(g.grid());
+    o.name(name);
+    o.name(GRID_TYPE);
+    o.name(""); // no instance parent
+    let offsets_at = o.0.len();
+    o.u64(0);
+    o.u64(0);
+    o.u64(0);
+    let grid_pos = o.0.len() as u64;
+    o.u32(0); // no compression
+    write_grid_metadata(o, name, &tree, bbox, count);
+    // Transform: index (i, j, k) → world origin + (ijk + ½)·cell.
+    let cell = f64::from(g.cell());
+    let t = (g.origin() + Vec3::splat(0.5 * g.cell())).as_dvec3();
+    o.name("UniformScaleTranslateMap");
+    o.dvec3(t);
+    o.dvec3(DVec3::splat(cell));
+    o.dvec3(DVec3::splat(cell));
+    o.dvec3(DVec3::splat(1.0 / cell));
+    o.dvec3(DVec3::splat(1.0 / (cell * cell)));
+    o.dvec3(DVec3::splat(0.5 / cell));
+    write_topology(o, &tree);
+    let block_pos = o.0.len() as u64;
+    for leaf in tree
+        .values()
+        .flat_map(|n5| n5.values())
+        .flat_map(|n4| n4.values())
+    {
+        o.mask(&leaf.mask);
+        o.values(&leaf.values);
+    }
+    let end_pos = o.0.len() as u64;
+    for (k, v) in [grid_pos, block_pos, end_pos].into_iter().enumerate() {
+        o.0[offsets_at + 8 * k..offsets_at + 8 * k + 8].copy_from_slice(&v.to_le_bytes());
+    }
+}
+
+/// A grid's metadata, sorted by name as OpenVDB's map keeps it.
+fn write_grid_metadata(o: &mut Out, name: &str, tree: &Tree, bbox: IndexBox, count: i64) {
+    let n_meta = if bbox.is_some() { 7 } else { 5 };
+    o.u32(n_meta);
+    o.meta_string("class", "fog volume");
+    if let Some((lo, hi)) = bbox {
+        o.meta_vec3i("file_bbox_max", hi);
+        o.meta_vec3i("file_bbox_min", lo);
+    }
+    let leaves: usize = tree
+        .values()
+        .flat_map(|n5| n5.values())
+        .map(BTreeMap::len)
+        .sum();
+    o.meta_i64("file_mem_bytes", (leaves * (512 * 4 + 64)) as i64);
+    o.meta_i64("file_voxel_count", count);
+    o.meta_bool("is_saved_as_half_float", false);
+    o.meta_string("name", name);
+}
+
+/// The tree's topology: the root's children, each internal node's child
+/// and value masks with its (inactive) tile values, and the leaves' masks.
+fn write_topology(o: &mut Out, tree: &Tree) {
+    o.u32(1); // buffer count
+    o.f32(0.0); // background
+    o.u32(0); // tiles
+    o.u32(tree.len() as u32);
+    for (origin, n5) in tree {
+        o.coord(*origin);
+        let mut child5 = vec![0u64; 512];
+        for &i in n5.keys() {
+            child5[i as usize / 64] |= 1 << (i % 64);
+        }
+        o.mask(&child5);
+        o.mask(&[0u64; 512]);
+        o.values(&vec![0.0; 32768]);
+        for n4 in n5.values() {
+            let mut child4 = vec![0u64; 64];
+            for &i in n4.keys() {
+                child4[i as usize / 64] |= 1 << (i % 64);
+            }
+            o.mask(&child4);
+            o.mask(&[0u64; 64]);
+            o.values(&[0.0; 4096]);
+            for leaf in n4.values() {
+                o.mask(&leaf.mask);
+            }
+        }
+    }
 }
 
 /// Writes named float grids (for example `("density", …)`, `("temperature", …)`)
@@ -515,139 +537,155 @@ pub fn decode_vdb(bytes: &[u8]) -> Result<Vec<VdbGrid>> {
     if n > bytes.len() / 32 {
         return Err(err(format!("{n} grids cannot fit in the file")));
     }
-    let mut out = Vec::new();
-    for _ in 0..n {
-        let name = r.name()?;
-        let ty = r.name()?;
-        let _parent = r.name()?;
-        let (grid_pos, block_pos, end_pos) = (r.u64()?, r.u64()?, r.u64()?);
-        if ty != GRID_TYPE {
+    (0..n).map(|_| decode_grid(&mut r)).collect()
+}
+
+/// Decodes the grid whose descriptor starts at `r`'s position, leaving `r`
+/// at the grid's end.
+fn decode_grid(r: &mut In<'_>) -> Result<VdbGrid> {
+    let name = r.name()?;
+    let ty = r.name()?;
+    let _parent = r.name()?;
+    let (grid_pos, block_pos, end_pos) = (r.u64()?, r.u64()?, r.u64()?);
+    if ty != GRID_TYPE {
+        return Err(err(format!(
+            "grid `{name}` has type `{ty}`; only {GRID_TYPE} is supported"
+        )));
+    }
+    r.seek(grid_pos)?;
+    let compression = r.u32()?;
+    if compression & (COMPRESS_ZIP | COMPRESS_BLOSC) != 0 {
+        return Err(err(format!(
+            "grid `{name}` is zip or Blosc compressed, which this reader does not support"
+        )));
+    }
+    for (k, t, v) in r.metadata()? {
+        if k == "is_saved_as_half_float" && t == "bool" && v.first().is_some_and(|&b| b != 0) {
             return Err(err(format!(
-                "grid `{name}` has type `{ty}`; only {GRID_TYPE} is supported"
+                "grid `{name}` is stored as half floats, which this reader does not support"
             )));
         }
-        r.seek(grid_pos)?;
-        let compression = r.u32()?;
-        if compression & (COMPRESS_ZIP | COMPRESS_BLOSC) != 0 {
-            return Err(err(format!(
-                "grid `{name}` is zip or Blosc compressed, which this reader does not support"
-            )));
-        }
-        for (k, t, v) in r.metadata()? {
-            if k == "is_saved_as_half_float" && t == "bool" && v.first().is_some_and(|&b| b != 0) {
-                return Err(err(format!(
-                    "grid `{name}` is stored as half floats, which this reader does not support"
-                )));
-            }
-        }
-        let map = r.name()?;
-        let (translation, scale) = match map.as_str() {
-            "UniformScaleTranslateMap" | "ScaleTranslateMap" => {
-                let t = r.dvec3()?;
-                let s = r.dvec3()?;
-                for _ in 0..4 {
-                    r.dvec3()?;
-                }
-                (t, s)
-            }
-            "UniformScaleMap" | "ScaleMap" => {
-                let s = r.dvec3()?;
-                for _ in 0..4 {
-                    r.dvec3()?;
-                }
-                (DVec3::ZERO, s)
-            }
-            other => {
-                return Err(err(format!(
-                    "grid `{name}`: transform `{other}` is not supported"
-                )));
-            }
-        };
-        let cell = scale.x;
-        if !(translation.is_finite()
-            && cell.is_finite()
-            && cell > 0.0
-            && (scale - DVec3::splat(cell)).abs().max_element() <= 1e-9 * cell)
-        {
-            return Err(err(format!(
-                "grid `{name}`: the transform must be a uniform positive scale (got {scale:?})"
-            )));
-        }
-        // Topology.
-        if r.u32()? != 1 {
-            return Err(err("multi-buffer trees are not supported"));
-        }
-        let _background = r.f32()?;
-        let (tiles, children) = (r.u32()? as usize, r.u32()? as usize);
-        if tiles > 0 {
-            return Err(err(format!("grid `{name}`: root tiles are not supported")));
-        }
-        if children > bytes.len() / 8192 {
-            return Err(err(format!(
-                "{children} root children cannot fit in the file"
-            )));
-        }
-        let mut leaves: Vec<([i64; 3], Vec<u64>)> = Vec::new();
-        for _ in 0..children {
-            let o5 = [
-                i64::from(r.i32()?),
-                i64::from(r.i32()?),
-                i64::from(r.i32()?),
+    }
+    let (translation, cell) = read_transform(r, &name)?;
+    let leaves = read_topology(r, &name, compression)?;
+    // Leaf buffers.
+    r.seek(block_pos)?;
+    let mut voxels: Vec<([i64; 3], f32)> = Vec::new();
+    for o3 in &leaves {
+        let mask = r.mask(8)?;
+        let v = r.values(512, &mask, compression)?;
+        for i in (0..512usize).filter(|&i| mask[i / 64] >> (i % 64) & 1 == 1) {
+            let c = [
+                o3[0] + (i >> 6) as i64,
+                o3[1] + ((i >> 3) & 7) as i64,
+                o3[2] + (i & 7) as i64,
             ];
-            let child5 = r.mask(512)?;
-            let value5 = r.mask(512)?;
-            r.values(32768, &value5, compression)?;
-            if value5.iter().any(|&w| w != 0) {
+            voxels.push((c, v[i]));
+        }
+    }
+    r.seek(end_pos)?;
+    Ok(VdbGrid {
+        density: dense(&name, &voxels, translation, cell)?,
+        name,
+    })
+}
+
+/// Reads a grid's transform: `(translation, cell)`, refusing any map but a
+/// uniform positive scale with an optional translation.
+fn read_transform(r: &mut In<'_>, name: &str) -> Result<(DVec3, f64)> {
+    let map = r.name()?;
+    let (translation, scale) = match map.as_str() {
+        "UniformScaleTranslateMap" | "ScaleTranslateMap" => {
+            let t = r.dvec3()?;
+            let s = r.dvec3()?;
+            for _ in 0..4 {
+                r.dvec3()?;
+            }
+            (t, s)
+        }
+        "UniformScaleMap" | "ScaleMap" => {
+            let s = r.dvec3()?;
+            for _ in 0..4 {
+                r.dvec3()?;
+            }
+            (DVec3::ZERO, s)
+        }
+        other => {
+            return Err(err(format!(
+                "grid `{name}`: transform `{other}` is not supported"
+            )));
+        }
+    };
+    let cell = scale.x;
+    if !(translation.is_finite()
+        && cell.is_finite()
+        && cell > 0.0
+        && (scale - DVec3::splat(cell)).abs().max_element() <= 1e-9 * cell)
+    {
+        return Err(err(format!(
+            "grid `{name}`: the transform must be a uniform positive scale (got {scale:?})"
+        )));
+    }
+    Ok((translation, cell))
+}
+
+/// Reads a grid's topology: the index-space origins of its leaves, in the
+/// order their buffers follow.
+fn read_topology(r: &mut In<'_>, name: &str, compression: u32) -> Result<Vec<[i64; 3]>> {
+    if r.u32()? != 1 {
+        return Err(err("multi-buffer trees are not supported"));
+    }
+    let _background = r.f32()?;
+    let (tiles, children) = (r.u32()? as usize, r.u32()? as usize);
+    if tiles > 0 {
+        return Err(err(format!("grid `{name}`: root tiles are not supported")));
+    }
+    if children > r.b.len() / 8192 {
+        return Err(err(format!(
+            "{children} root children cannot fit in the file"
+        )));
+    }
+    let mut leaves = Vec::new();
+    for _ in 0..children {
+        let o5 = [
+            i64::from(r.i32()?),
+            i64::from(r.i32()?),
+            i64::from(r.i32()?),
+        ];
+        let child5 = r.mask(512)?;
+        let value5 = r.mask(512)?;
+        r.values(32768, &value5, compression)?;
+        if value5.iter().any(|&w| w != 0) {
+            return Err(err(format!(
+                "grid `{name}`: active tiles are not supported"
+            )));
+        }
+        for i5 in (0..32768usize).filter(|&i| child5[i / 64] >> (i % 64) & 1 == 1) {
+            let o4 = [
+                o5[0] + ((i5 >> 10) as i64) * 128,
+                o5[1] + (((i5 >> 5) & 31) as i64) * 128,
+                o5[2] + ((i5 & 31) as i64) * 128,
+            ];
+            let child4 = r.mask(64)?;
+            let value4 = r.mask(64)?;
+            r.values(4096, &value4, compression)?;
+            if value4.iter().any(|&w| w != 0) {
                 return Err(err(format!(
                     "grid `{name}`: active tiles are not supported"
                 )));
             }
-            for i5 in (0..32768usize).filter(|&i| child5[i / 64] >> (i % 64) & 1 == 1) {
-                let o4 = [
-                    o5[0] + ((i5 >> 10) as i64) * 128,
-                    o5[1] + (((i5 >> 5) & 31) as i64) * 128,
-                    o5[2] + ((i5 & 31) as i64) * 128,
+            for i4 in (0..4096usize).filter(|&i| child4[i / 64] >> (i % 64) & 1 == 1) {
+                let o3 = [
+                    o4[0] + ((i4 >> 8) as i64) * 8,
+                    o4[1] + (((i4 >> 4) & 15) as i64) * 8,
+                    o4[2] + ((i4 & 15) as i64) * 8,
                 ];
-                let child4 = r.mask(64)?;
-                let value4 = r.mask(64)?;
-                r.values(4096, &value4, compression)?;
-                if value4.iter().any(|&w| w != 0) {
-                    return Err(err(format!(
-                        "grid `{name}`: active tiles are not supported"
-                    )));
-                }
-                for i4 in (0..4096usize).filter(|&i| child4[i / 64] >> (i % 64) & 1 == 1) {
-                    let o3 = [
-                        o4[0] + ((i4 >> 8) as i64) * 8,
-                        o4[1] + (((i4 >> 4) & 15) as i64) * 8,
-                        o4[2] + ((i4 & 15) as i64) * 8,
-                    ];
-                    leaves.push((o3, r.mask(8)?));
-                }
+                r.mask(8)?;
+                leaves.push(o3);
             }
         }
-        // Leaf buffers.
-        r.seek(block_pos)?;
-        let mut voxels: Vec<([i64; 3], f32)> = Vec::new();
-        for (o3, _) in &leaves {
-            let mask = r.mask(8)?;
-            let v = r.values(512, &mask, compression)?;
-            for i in (0..512usize).filter(|&i| mask[i / 64] >> (i % 64) & 1 == 1) {
-                let c = [
-                    o3[0] + (i >> 6) as i64,
-                    o3[1] + ((i >> 3) & 7) as i64,
-                    o3[2] + (i & 7) as i64,
-                ];
-                voxels.push((c, v[i]));
-            }
-        }
-        r.seek(end_pos)?;
-        out.push(VdbGrid {
-            density: dense(&name, &voxels, translation, cell)?,
-            name,
-        });
     }
-    Ok(out)
+    Ok(leaves)
 }
 
 /// The dense grid over the bounding box of `voxels`.

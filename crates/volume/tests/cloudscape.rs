@@ -8,8 +8,8 @@
 
 use glam::Vec3;
 use natura_core::Image;
-use natura_volume::render::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 use natura_volume::scene::{Cloudscape, CloudscapeParams};
+use natura_volume::transport::{FastRenderer, ReferenceRenderer, ReferenceSettings};
 use rayon::prelude::*;
 
 mod common;

@@ -25,8 +25,8 @@
 //! 10–50 % too bright, and a few blocks are the 256-path references' own
 //! fireflies (one reference four times the other).
 
-use natura_volume::render::{FastRenderer, LookAtCamera, ScatterOctaves};
 use natura_volume::scene::{Cloudscape, CloudscapeParams};
+use natura_volume::transport::{FastRenderer, LookAtCamera, ScatterOctaves};
 use rayon::prelude::*;
 
 mod common;
@@ -82,7 +82,7 @@ fn score(t: &Training, oc: ScatterOctaves) -> (f64, f64, f64) {
     let scene = t.cs.scene();
     let f = FastRenderer::new(
         &scene,
-        natura_volume::render::FastSettings {
+        natura_volume::transport::FastSettings {
             octaves: oc,
             ..t.cs.fast_settings()
         },

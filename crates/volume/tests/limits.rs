@@ -9,8 +9,8 @@ use natura_volume::VolumeError;
 use natura_volume::density::Homogeneous;
 use natura_volume::grid::GridDensity;
 use natura_volume::phase::CloudPhase;
-use natura_volume::render::reference::MAX_COLLISIONS_PER_RAY;
-use natura_volume::render::{
+use natura_volume::transport::reference::MAX_COLLISIONS_PER_RAY;
+use natura_volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
     Scene,
 };

@@ -3,10 +3,10 @@
 
 use glam::Vec3;
 use natura_core::camera::PinholeCamera;
-use natura_volume::render::{
+use natura_volume::scene::{Cloudscape, CloudscapeParams};
+use natura_volume::transport::{
     FastRenderer, FastSettings, NearSunRays, ReferenceRenderer, ReferenceSettings,
 };
-use natura_volume::scene::{Cloudscape, CloudscapeParams};
 use rayon::prelude::*;
 
 /// The unit direction through the centre of pixel `(x, y)` of `cam`.

@@ -17,7 +17,7 @@ use natura_volume::Density;
 use natura_volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura_volume::grid::GridDensity;
 use natura_volume::implicit::ImplicitPrimitive;
-use natura_volume::render::{
+use natura_volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
     ScatterOctaves, Scene, Sun,
 };

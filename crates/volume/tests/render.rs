@@ -9,8 +9,8 @@ use natura_volume::density::{Ball, Homogeneous};
 use natura_volume::grid::GridDensity;
 use natura_volume::implicit::ImplicitPrimitive;
 use natura_volume::phase::CloudPhase;
-use natura_volume::render::shadow::optical_depth_ray;
-use natura_volume::render::{
+use natura_volume::transport::shadow::optical_depth_ray;
+use natura_volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
     Scene, ShadowTable, Shadows, Sun,
 };
@@ -194,7 +194,7 @@ fn shadow_table_agrees_with_shadow_rays() {
     // (node spacing ≈ 1.4 voxels) mean |ΔT| < 0.005 and max < 0.04; at 128
     // nodes mean < 0.002 and max < 0.015.
     for (nodes, mean_tol, max_tol) in [(64usize, 0.005f32, 0.04f32), (128, 0.002, 0.015)] {
-        let dims = natura_volume::render::shadow::table_dims(&b, nodes);
+        let dims = natura_volume::transport::shadow::table_dims(&b, nodes);
         let table = ShadowTable::build(&g, ext, sun, dims).unwrap();
         let (mut worst, mut sum, mut n) = (0.0f32, 0.0f32, 0);
         let mut s = 12345u32;
@@ -560,7 +560,7 @@ fn bad_render_input_is_a_typed_error() {
 
 #[test]
 fn solids_are_seen_and_cast_shadows_in_both_renderers() {
-    use natura_volume::render::{GroundPlane, Solid};
+    use natura_volume::transport::{GroundPlane, Solid};
     // A thin fog slab over a floor, a sphere above it between the slab and the sun.
     let region = Aabb {
         min: Vec3::new(-4.0, -4.0, 0.0),
@@ -644,7 +644,7 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
             FastSettings {
                 step: 0.01,
                 shadows: Shadows::Rays(0.01),
-                octaves: natura_volume::render::ScatterOctaves::SINGLE,
+                octaves: natura_volume::transport::ScatterOctaves::SINGLE,
                 ..FastSettings::default()
             },
         )

@@ -13,7 +13,7 @@
 //! cells of [`CloudsDesc::cache_pixels`] pixels) with natura-volume's fast
 //! renderer (Ebert's low-albedo march with shadow tables, the octave
 //! multiple-scattering approximation and the forward peak truncated; see
-//! [`natura_volume::render::march`]), and looked up bilinearly: the clouds'
+//! [`natura_volume::transport::march`]), and looked up bilinearly: the clouds'
 //! radiance in front of the sky and their transmittance, with the sky and
 //! sun disc behind added at full resolution.
 //!
@@ -38,8 +38,8 @@ use natura_core::{Grid2, Progress, Seed};
 use natura_trace::Camera;
 use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
-use natura_volume::render::shadow::optical_depth_ray;
-use natura_volume::render::{
+use natura_volume::transport::shadow::optical_depth_ray;
+use natura_volume::transport::{
     FastRenderer, FastSettings, NearSunRays, ScatterOctaves, Scene, Shadows, SkyRadiance, Sun,
 };
 

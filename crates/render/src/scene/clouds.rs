@@ -6,7 +6,7 @@
 use natura_volume::VolumeError;
 use natura_volume::layer::LayerParams;
 use natura_volume::phase::CloudPhase;
-use natura_volume::render::MediumParams;
+use natura_volume::transport::MediumParams;
 use serde::{Deserialize, Serialize};
 
 use super::validate::in_range;

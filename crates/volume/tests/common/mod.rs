@@ -3,7 +3,7 @@
 #![allow(dead_code)] // each test binary uses its own part
 
 use glam::Vec3;
-use natura_volume::render::{LookAtCamera, ReferenceRenderer, ReferenceSettings, Scene};
+use natura_volume::transport::{LookAtCamera, ReferenceRenderer, ReferenceSettings, Scene};
 use rayon::prelude::*;
 
 /// Relative luminance of a linear colour.

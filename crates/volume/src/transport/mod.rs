@@ -1,5 +1,6 @@
-//! Volume rendering: a camera, the medium's optical properties, sun and sky
-//! light (from `natura-atmos` or constant), an optional lit ground, and three
+//! Light transport through a volume (volume rendering): a camera, the
+//! medium's optical properties, sun and sky light (from `natura-atmos` or
+//! constant), an optional lit ground, and three
 //! ways to render: Ebert's low-albedo ray march with 3-D shadow tables
 //! ([`march`]), the same march with the octave multiple-scattering
 //! approximation, and the unbiased reference ([`reference`](mod@reference)), a
@@ -28,7 +29,7 @@ use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::phase::CloudPhase;
 pub use march::{FastRenderer, FastSettings, NearSunRays, Seen, Shadows};
-pub use model::ScatterOctaves;
+pub use model::{MediumOctaves, ScatterOctaves};
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 

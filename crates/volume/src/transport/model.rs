@@ -23,7 +23,9 @@ pub fn step_transmittance(sigma_t: f32, dt: f32) -> f32 {
 /// σ_a·L_e`), seen through the step itself: `source·(1 − e^{−σ_t Δt})/σ_t`,
 /// which tends to `source·Δt` as `σ_t → 0`. Ebert's low-albedo sum
 /// `T·albedo·ρ·L_i·Δt` is its first-order term; the exact step integral keeps
-/// thick steps from adding more light than they can scatter.
+/// thick steps from adding more light than they can scatter (the
+/// energy-conserving integration of Hillaire 2016, clouds chapter,
+/// `(S − S·e^{−σ_t Δt})/σ_t`).
 #[inline]
 #[must_use]
 pub fn step_inscatter(source: Vec3, sigma_t: f32, dt: f32) -> Vec3 {
@@ -144,6 +146,21 @@ impl ScatterOctaves {
         s
     }
 
+    /// `Σ_{i≥1} a^i·e^{−b^i τ}`: the ambient octaves beyond single
+    /// scattering (0 for one octave).
+    #[inline]
+    #[must_use]
+    pub fn ambient_scattered(&self, tau: f32) -> f32 {
+        let (mut sa, mut sb) = (self.a, self.b);
+        let mut s = 0.0;
+        for _ in 1..self.count {
+            s += sa * (-sb * tau).exp();
+            sa *= self.a;
+            sb *= self.b;
+        }
+        s
+    }
+
     /// `Σ_i a^i·e^{−b^i τ}`: the same sum for isotropic ambient light.
     #[inline]
     #[must_use]
@@ -156,6 +173,78 @@ impl ScatterOctaves {
             sb *= self.b;
         }
         s
+    }
+}
+
+/// The octaves of [`ScatterOctaves`] carried over to a medium of any
+/// single-scattering albedo and size (the form the fast mode applies them
+/// in).
+///
+/// The constants were fitted on clouds (albedo ≈ 1, optically thick), so
+/// two differences of another medium are carried by the transport
+/// equations rather than refitted:
+///
+/// - **Albedo.** Octave `i` stands for light scattered `i` times more than
+///   the single-scattering term, and each scattering keeps a fraction `ω`
+///   of it: its weight `a^i` becomes `(ω a)^i` (Pharr et al. 2023, §14.1:
+///   the albedo multiplies the path throughput at every scattering event).
+/// - **Size.** The octaves add light in proportion to single scattering at
+///   every optical depth, so in a thin medium, where scattered light mostly
+///   leaves without scattering again, they add far too much (+70 % on a
+///   ball of optical diameter 0.3). The light that reaches a point having
+///   scattered more than once has met the medium around it; the fast mode
+///   knows its extent along one line, the sun's through the point, of
+///   optical depth `τ_c` (the shadow table read where the line leaves the
+///   volume), and the sun's octaves beyond the first are weighted by the
+///   chance `1 − e^{−τ_c}` that light crossing it interacts (Beer–Lambert).
+///   In a thick cloud the weight is 1.
+///
+/// Measured over the scene matrix of `crates/volume/tests/scatter_matrix.rs`
+/// (63 scenes: ball, slab and voxel blob; Henyey–Greenstein `g` from −0.3 to
+/// 0.8 and the cloud phase at 5 and 20 µm; three suns; albedo 0.8–0.999;
+/// optical thickness 0.3–50), the median 4 × 4-block error falls from 46 %
+/// (the octaves applied unchanged) to 17 %. A third change, scaling the
+/// octaves' depths by the similarity relation `(1 − g)/(1 − g_cloud)`,
+/// measured worse (23 %) and is not made. What remains is the optically
+/// thick, conservative scenes, where the octaves' total weight
+/// `Σ (ωa)^i ≤ a/(1 − a)` is far below multiple scattering's share, and
+/// strongly forward media (`g = 0.8`) lit from behind the viewer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MediumOctaves {
+    /// The octaves with `a` scaled by the albedo.
+    octaves: ScatterOctaves,
+}
+
+impl MediumOctaves {
+    /// `octaves` in a medium of single-scattering `albedo` (the transport
+    /// medium's: the δ-M one when the forward peak is truncated).
+    #[must_use]
+    pub fn new(octaves: ScatterOctaves, albedo: f32) -> Self {
+        Self {
+            octaves: ScatterOctaves {
+                a: octaves.a * albedo,
+                ..octaves
+            },
+        }
+    }
+
+    /// The sun's in-scatter factor at optical depth `tau` toward the sun,
+    /// on a line through the medium along the sun of optical depth `chord`
+    /// (`τ_c ≥ τ`):
+    /// `p(cos θ)·e^{−τ} + (1 − e^{−τ_c})·Σ_{i≥1} (ω a)^i·p_{c^i}(cos θ)·e^{−b^i τ}`.
+    #[inline]
+    #[must_use]
+    pub fn sun(&self, phase: &CloudPhase, cos_theta: f32, tau: f32, chord: f32) -> f32 {
+        phase.eval(cos_theta) * (-tau).exp()
+            + (1.0 - (-chord).exp()) * self.octaves.sun_scattered(phase, cos_theta, tau)
+    }
+
+    /// The same for isotropic ambient light at optical depth `tau` toward it:
+    /// `e^{−τ} + Σ_{i≥1} (ω a)^i·e^{−b^i τ}`.
+    #[inline]
+    #[must_use]
+    pub fn ambient(&self, tau: f32) -> f32 {
+        (-tau).exp() + self.octaves.ambient_scattered(tau)
     }
 }
 
@@ -344,6 +433,28 @@ mod tests {
             ScatterOctaves::default().ambient(5.0) > ScatterOctaves::SINGLE.ambient(5.0) * 10.0
         );
         assert_eq!(powder(1.0, 0.0), 1.0);
+    }
+
+    #[test]
+    fn medium_octaves_reduce_to_the_fitted_ones_in_a_thick_cloud() {
+        let oc = ScatterOctaves::default();
+        let cloud = CloudPhase::default().forward_peak().1;
+        let m = MediumOctaves::new(oc, 1.0);
+        for (mu, tau) in [(0.3f32, 0.5f32), (-0.8, 3.0), (0.9, 12.0)] {
+            // Conservative, its extent along the sun unbounded: the fitted octaves.
+            let (a, b) = (m.sun(&cloud, mu, tau, 1e9), oc.sun(&cloud, mu, tau));
+            assert!((a - b).abs() <= 1e-5 * b, "{a} vs {b}");
+            // No medium along the sun: single scattering only.
+            let single = cloud.eval(mu) * (-tau).exp();
+            assert!((m.sun(&cloud, mu, tau, 0.0) - single).abs() <= 1e-7);
+            // A thin line: less than a thick one.
+            assert!(m.sun(&cloud, mu, tau, tau + 0.3) < a);
+        }
+        assert!((m.ambient(2.0) - oc.ambient(2.0)).abs() < 1e-6);
+        // Absorption weakens every octave beyond the first.
+        let grey = MediumOctaves::new(oc, 0.5);
+        assert!(grey.ambient(1.0) < m.ambient(1.0));
+        assert!((grey.ambient(1.0) - (-1.0f32).exp()) > 0.0);
     }
 
     #[test]

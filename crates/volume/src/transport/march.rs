@@ -7,7 +7,9 @@
 //! with the density's bound): the source at a sample is
 //! `σ_s·(E_sun·P(τ_sun) + A·Q(τ_up)) + σ_a·L_e`, where `τ` are optical depths toward the sun and
 //! up (from tables or direct shadow rays), `P`, `Q` the octave sums of
-//! [`ScatterOctaves`] (plain `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
+//! [`ScatterOctaves`] in the medium's form ([`MediumOctaves`]: weighted by the
+//! albedo, and the sun's by the medium's extent along the sun; plain
+//! `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
 //! the environment's mean radiance; each step adds the exact integral of
 //! that source over the step and multiplies the transmittance by
 //! `exp(−σ_t·Δt)`. The march stops when the transmittance falls below a
@@ -51,10 +53,10 @@ use glam::Vec3;
 use natura_core::{Aabb, Image, NoProgress, Progress};
 
 use super::model::{
-    PeakOrders, ScatterOctaves, emitted, powder, step_inscatter, step_transmittance,
+    MediumOctaves, PeakOrders, ScatterOctaves, emitted, powder, step_inscatter, step_transmittance,
 };
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
-use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, check_step};
+use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, Surface, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
 
@@ -164,6 +166,8 @@ pub struct FastRenderer<'s> {
     ratio: f32,
     /// The truncated peak, `f` times its lobe (`None` without truncation).
     peak: Option<ScaledPhase>,
+    /// The octaves in the transport medium.
+    octaves: MediumOctaves,
 }
 
 /// What [`FastRenderer::seen`] finds along a ray.
@@ -188,6 +192,34 @@ pub struct Seen {
 struct ScaledPhase {
     weight: f32,
     g: f32,
+}
+
+/// What stays constant along one eye ray of [`FastRenderer::seen`].
+struct EyeRay {
+    o: Vec3,
+    d: Vec3,
+    sun: Option<super::Sun>,
+    /// The forward peak's orders toward this eye ray.
+    orders: Option<PeakOrders>,
+    /// The share `ω f` of the exact medium's extinction that is peak scattering.
+    peak_share: f32,
+    /// The share of direct shadow rays in the sun's optical depths.
+    near: f32,
+}
+
+/// The running sums of one eye ray's march.
+struct Along {
+    /// Transmittance of the transport medium.
+    tr: f32,
+    /// Transmittance of the exact medium.
+    tr0: f32,
+    /// Radiance gathered.
+    l: Vec3,
+    /// Weight and weighted distance of the gathered light (its mean depth).
+    depth_w: f32,
+    depth_sum: f32,
+    /// The exact medium's optical depth from the eye.
+    tau_eye0: f32,
 }
 
 impl std::fmt::Debug for FastRenderer<'_> {
@@ -336,6 +368,7 @@ impl<'s> FastRenderer<'s> {
             up_table,
             ambient: ambient / n as f32,
             bounds,
+            octaves: MediumOctaves::new(settings.octaves, medium.albedo),
             medium,
             ratio,
             peak,
@@ -390,6 +423,23 @@ impl<'s> FastRenderer<'s> {
         }
     }
 
+    /// Optical depth of the whole line through `p` along the sun `l` within
+    /// the volume's bounds: the sun's optical depth where the line leaves
+    /// the bounds away from the sun.
+    #[inline]
+    fn sun_chord(&self, p: Vec3, l: Vec3) -> f32 {
+        match ray_box(p, (-l).recip(), &self.bounds) {
+            Some((_, t1)) if t1 > 0.0 => {
+                let q = p - l * (t1 * (1.0 - 1e-4));
+                match self.sun_table.as_ref() {
+                    Some(t) => t.optical_depth(q),
+                    None => self.tau_sun(q, l),
+                }
+            }
+            _ => self.tau_sun(p, l),
+        }
+    }
+
     /// Optical depth straight up at `p` (solids included).
     #[inline]
     fn tau_up(&self, p: Vec3) -> f32 {
@@ -430,188 +480,239 @@ impl<'s> FastRenderer<'s> {
     #[must_use]
     pub fn seen(&self, o: Vec3, d: Vec3) -> Seen {
         let sc = self.scene;
-        // The exact medium (the sun's single scattering) and the one the rest travels through.
-        let (m0, m) = (&sc.medium, &self.medium);
-        let truncated = self.peak.is_some();
         let sun = sc.sun_unit();
         let surface = sc.surface_hit(o, d);
         let t_ground = surface.map_or(f32::INFINITY, |(t, _)| t);
-        // Transmittance of the transport medium and of the exact one.
-        let mut tr = 1.0f32;
-        let mut tr0 = 1.0f32;
-        let mut l = Vec3::ZERO;
-        let mut depth_w = 0.0f32;
-        let mut depth_sum = 0.0f32;
-        // The peak's orders toward this eye ray, and the exact medium's optical
-        // depth from the eye (the peak scatterings it holds: `ω f τ_e`).
-        let orders = match (self.peak, sun) {
-            (Some(hg), Some(s)) => Some(PeakOrders::new(hg.g, d.dot(s.direction))),
-            _ => None,
+        let ray = EyeRay {
+            o,
+            d,
+            sun,
+            // The peak's orders toward this eye ray.
+            orders: match (self.peak, sun) {
+                (Some(hg), Some(s)) => Some(PeakOrders::new(hg.g, d.dot(s.direction))),
+                _ => None,
+            },
+            peak_share: self.peak.map_or(0.0, |hg| hg.weight * sc.medium.albedo),
+            near: self.near_sun_share(d),
         };
-        let peak_share = self.peak.map_or(0.0, |hg| hg.weight * m0.albedo);
-        let near = self.near_sun_share(d);
-        let mut tau_eye0 = 0.0f32;
+        let mut a = Along {
+            tr: 1.0,
+            tr0: 1.0,
+            l: Vec3::ZERO,
+            depth_w: 0.0,
+            depth_sum: 0.0,
+            tau_eye0: 0.0,
+        };
         if let Some((t0, t1)) = ray_box(o, d.recip(), &self.bounds) {
-            let t1 = t1.min(t_ground);
-            let h = self.settings.step;
-            let growth = self.settings.step_growth;
-            // With no growth, the steps divide [t0, t1] evenly (so a box is
-            // crossed exactly); otherwise each grows with the distance from the eye.
-            let uniform = {
-                let n = ((t1 - t0) / h).ceil().max(1.0);
-                (t1 - t0) / n
-            };
-            let step_at = |t: f32| {
-                if growth > 0.0 {
-                    (h + growth * t).min(t1 - t)
-                } else {
-                    uniform
-                }
-            };
-            let skip = 8.0f32;
-            const BATCH: usize = 16;
-            let (mut xs, mut ys, mut zs) = ([0.0f32; BATCH], [0.0f32; BATCH], [0.0f32; BATCH]);
-            let (mut steps, mut mids, mut rhos) =
-                ([0.0f32; BATCH], [0.0f32; BATCH], [0.0f32; BATCH]);
-            let mut t = t0;
-            'march: while t1 - t > 1e-6 * t1.abs().max(1.0) {
-                // Empty-space skipping over blocks of steps.
-                let span = (step_at(t) * skip).min(t1 - t);
-                let (a, b) = (o + d * t, o + d * (t + span));
-                let block = Aabb {
-                    min: a.min(b),
-                    max: a.max(b),
-                };
-                if sc.emission.is_none() && sc.density.bound_in(&block) <= 0.0 {
-                    t += span;
-                    continue;
-                }
-                let end = t + span;
-                let open = |t: f32| end - t > 1e-6 * end.abs().max(1.0);
-                while open(t) {
-                    // The block's next steps, their densities in one batch.
-                    let mut n = 0;
-                    while n < BATCH && open(t) {
-                        let dt = step_at(t).min(end - t);
-                        let tm = t + 0.5 * dt;
-                        t += dt;
-                        let p = o + d * tm;
-                        (steps[n], mids[n]) = (dt, tm);
-                        (xs[n], ys[n], zs[n]) = (p.x, p.y, p.z);
-                        n += 1;
-                    }
-                    if sc
-                        .density
-                        .density_batch(&xs[..n], &ys[..n], &zs[..n], &mut rhos[..n])
-                        .is_err()
-                    {
-                        // Unreachable (the slices are equally long); the point path.
-                        for i in 0..n {
-                            rhos[i] = sc.density.density(Vec3::new(xs[i], ys[i], zs[i]));
-                        }
-                    }
-                    for i in 0..n {
-                        let (dt, tm, rho) = (steps[i], mids[i], rhos[i]);
-                        let p = o + d * tm;
-                        let le = sc.emission.map_or(Vec3::ZERO, |e| {
-                            emitted(e.colour, e.field.density(p), e.offset)
-                        });
-                        if rho <= 0.0 && le == Vec3::ZERO {
-                            continue;
-                        }
-                        let sigma_t = m.extinction * rho;
-                        let sigma_t0 = m0.extinction * rho;
-                        let mut src = le * (sigma_t * (1.0 - m.albedo));
-                        let mut src0 = Vec3::ZERO;
-                        let sigma_s = sigma_t * m.albedo;
-                        if sigma_s > 0.0 {
-                            let oc = &self.settings.octaves;
-                            if let Some(s) = sun {
-                                let tau = self.tau_sun_near(p, s.direction, near);
-                                let mu = d.dot(s.direction);
-                                let pw = powder(tau, self.settings.powder);
-                                // Every order, the first included, in the transport
-                                // medium: sunlight carried in by the peak counts.
-                                src += s.irradiance * (sigma_s * oc.sun(&m.phase, mu, tau) * pw);
-                                // The peak's own single scattering toward the eye, in
-                                // the exact medium (optical depths scale with the
-                                // extinction).
-                                if let (Some(hg), Some(po)) = (self.peak, orders) {
-                                    let tau0 = tau / self.ratio;
-                                    let lobe = po.eval(peak_share * tau_eye0);
-                                    src0 = s.irradiance
-                                        * (sigma_t0
-                                            * m0.albedo
-                                            * hg.weight
-                                            * lobe
-                                            * (-tau0).exp()
-                                            * pw);
-                                }
-                            }
-                            src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
-                        }
-                        let add = if truncated {
-                            step_inscatter(src, sigma_t, dt) * tr
-                                + step_inscatter(src0, sigma_t0, dt) * tr0
-                        } else {
-                            step_inscatter(src + src0, sigma_t, dt) * tr
-                        };
-                        l += add;
-                        let w = add.element_sum();
-                        depth_w += w;
-                        depth_sum += w * tm;
-                        tr *= step_transmittance(sigma_t, dt);
-                        tau_eye0 += sigma_t0 * dt;
-                        tr0 = if truncated {
-                            tr0 * step_transmittance(sigma_t0, dt)
-                        } else {
-                            tr
-                        };
-
-                        if tr < self.settings.min_transmittance {
-                            tr = 0.0;
-                            break 'march;
-                        }
-                    }
-                }
-            }
+            self.march(&ray, t0, t1.min(t_ground), &mut a);
         }
-        let depth = if depth_w > 0.0 {
-            depth_sum / depth_w
+        let depth = if a.depth_w > 0.0 {
+            a.depth_sum / a.depth_w
         } else {
             f32::INFINITY
         };
-        let back = if let Some((t, kind)) = surface {
-            let p = o + d * t;
-            let q = sc.lift(kind, p);
-            // Surfaces take a direct shadow ray: one per pixel, and exact at the
-            // surface, where a table would interpolate across it.
-            let ts = sun.map_or(1.0, |s| {
-                if sc.blocked(q, s.direction) {
-                    0.0
-                } else {
-                    let h = match self.settings.shadows {
-                        Shadows::Rays(h) => h,
-                        Shadows::Table(_) => self.settings.step,
-                    };
-                    (-optical_depth_ray(sc.density, m.extinction, q, s.direction, h)).exp()
-                }
-            });
-            sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
-        } else {
-            sc.environment.radiance(d)
-        };
+        let back = self.behind(o, d, surface);
         // The air between the eye and the volume dims its light and adds its
         // own in-scatter where the volume hides what lies behind; the sky and
         // ground behind already carry the air's light along the whole ray:
         // `T_air·L + (1 − T)·L_air + T·L_back`.
         let air = sc.air(d, depth);
         Seen {
-            radiance: air.transmittance * l + air.in_scatter * (1.0 - tr),
-            transmittance: tr,
-            direct_transmittance: if tr > 0.0 { tr0 } else { 0.0 },
+            radiance: air.transmittance * a.l + air.in_scatter * (1.0 - a.tr),
+            transmittance: a.tr,
+            direct_transmittance: if a.tr > 0.0 { a.tr0 } else { 0.0 },
             behind: back,
         }
+    }
+
+    /// Marches the eye ray over `[t0, t1]`: steps (uniform, or growing with
+    /// the distance), empty space skipped over blocks of steps, densities
+    /// fetched in batches, each sample added by [`Self::add_sample`] until
+    /// the transmittance falls below the threshold.
+    fn march(&self, ray: &EyeRay, t0: f32, t1: f32, a: &mut Along) {
+        let sc = self.scene;
+        let (o, d) = (ray.o, ray.d);
+        let h = self.settings.step;
+        let growth = self.settings.step_growth;
+        // With no growth, the steps divide [t0, t1] evenly (so a box is
+        // crossed exactly); otherwise each grows with the distance from the eye.
+        let uniform = {
+            let n = ((t1 - t0) / h).ceil().max(1.0);
+            (t1 - t0) / n
+        };
+        let step_at = |t: f32| {
+            if growth > 0.0 {
+                (h + growth * t).min(t1 - t)
+            } else {
+                uniform
+            }
+        };
+        let skip = 8.0f32;
+        const BATCH: usize = 16;
+        let (mut xs, mut ys, mut zs) = ([0.0f32; BATCH], [0.0f32; BATCH], [0.0f32; BATCH]);
+        let (mut steps, mut mids, mut rhos) = ([0.0f32; BATCH], [0.0f32; BATCH], [0.0f32; BATCH]);
+        let mut t = t0;
+        while t1 - t > 1e-6 * t1.abs().max(1.0) {
+            // Empty-space skipping over blocks of steps.
+            let span = (step_at(t) * skip).min(t1 - t);
+            let (pa, pb) = (o + d * t, o + d * (t + span));
+            let block = Aabb {
+                min: pa.min(pb),
+                max: pa.max(pb),
+            };
+            if sc.emission.is_none() && sc.density.bound_in(&block) <= 0.0 {
+                t += span;
+                continue;
+            }
+            let end = t + span;
+            let open = |t: f32| end - t > 1e-6 * end.abs().max(1.0);
+            while open(t) {
+                // The block's next steps, their densities in one batch.
+                let mut n = 0;
+                while n < BATCH && open(t) {
+                    let dt = step_at(t).min(end - t);
+                    let tm = t + 0.5 * dt;
+                    t += dt;
+                    let p = o + d * tm;
+                    (steps[n], mids[n]) = (dt, tm);
+                    (xs[n], ys[n], zs[n]) = (p.x, p.y, p.z);
+                    n += 1;
+                }
+                if sc
+                    .density
+                    .density_batch(&xs[..n], &ys[..n], &zs[..n], &mut rhos[..n])
+                    .is_err()
+                {
+                    // Unreachable (the slices are equally long); the point path.
+                    for i in 0..n {
+                        rhos[i] = sc.density.density(Vec3::new(xs[i], ys[i], zs[i]));
+                    }
+                }
+                for i in 0..n {
+                    if self.add_sample(ray, mids[i], steps[i], rhos[i], a) {
+                        return;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds the step of length `dt` centred at `tm` along the eye ray, of
+    /// density `rho`, to the sums `a`; true once the march is to stop (the
+    /// transmittance below the threshold, then set to 0).
+    #[inline]
+    fn add_sample(&self, ray: &EyeRay, tm: f32, dt: f32, rho: f32, a: &mut Along) -> bool {
+        let sc = self.scene;
+        let (m0, m) = (&sc.medium, &self.medium);
+        let truncated = self.peak.is_some();
+        let p = ray.o + ray.d * tm;
+        let le = sc.emission.map_or(Vec3::ZERO, |e| {
+            emitted(e.colour, e.field.density(p), e.offset)
+        });
+        if rho <= 0.0 && le == Vec3::ZERO {
+            return false;
+        }
+        let sigma_t = m.extinction * rho;
+        let sigma_t0 = m0.extinction * rho;
+        let (src, src0) = self.sources(ray, p, sigma_t, sigma_t0, le, a.tau_eye0);
+        let add = if truncated {
+            step_inscatter(src, sigma_t, dt) * a.tr + step_inscatter(src0, sigma_t0, dt) * a.tr0
+        } else {
+            step_inscatter(src + src0, sigma_t, dt) * a.tr
+        };
+        a.l += add;
+        let w = add.element_sum();
+        a.depth_w += w;
+        a.depth_sum += w * tm;
+        a.tr *= step_transmittance(sigma_t, dt);
+        a.tau_eye0 += sigma_t0 * dt;
+        a.tr0 = if truncated {
+            a.tr0 * step_transmittance(sigma_t0, dt)
+        } else {
+            a.tr
+        };
+        if a.tr < self.settings.min_transmittance {
+            a.tr = 0.0;
+            return true;
+        }
+        false
+    }
+
+    /// The sources at `p` (radiance per metre): in the transport medium
+    /// (emission, the sun's light of every order, the first included, and
+    /// the ambient light), and the forward peak's own single scattering of
+    /// the sun in the exact medium (zero without truncation). `tau_eye0` is
+    /// the exact medium's optical depth from the eye (the peak scatterings
+    /// it holds: `ω f τ_e`).
+    #[inline]
+    fn sources(
+        &self,
+        ray: &EyeRay,
+        p: Vec3,
+        sigma_t: f32,
+        sigma_t0: f32,
+        le: Vec3,
+        tau_eye0: f32,
+    ) -> (Vec3, Vec3) {
+        let (m0, m) = (&self.scene.medium, &self.medium);
+        let mut src = le * (sigma_t * (1.0 - m.albedo));
+        let mut src0 = Vec3::ZERO;
+        let sigma_s = sigma_t * m.albedo;
+        if sigma_s > 0.0 {
+            let oc = &self.octaves;
+            if let Some(s) = ray.sun {
+                let tau = self.tau_sun_near(p, s.direction, ray.near);
+                let mu = ray.d.dot(s.direction);
+                let pw = powder(tau, self.settings.powder);
+                // Every order, the first included, in the transport
+                // medium: sunlight carried in by the peak counts.
+                // The chord is at least τ; past τ = 8 its weight
+                // `1 − e^{−τ_c}` is 1 to within 3.4·10⁻⁴, and the lookup is skipped.
+                let chord = if tau < 8.0 {
+                    self.sun_chord(p, s.direction)
+                } else {
+                    f32::INFINITY
+                };
+                src += s.irradiance * (sigma_s * oc.sun(&m.phase, mu, tau, chord) * pw);
+                // The peak's own single scattering toward the eye, in
+                // the exact medium (optical depths scale with the
+                // extinction).
+                if let (Some(hg), Some(po)) = (self.peak, ray.orders) {
+                    let tau0 = tau / self.ratio;
+                    let lobe = po.eval(ray.peak_share * tau_eye0);
+                    src0 = s.irradiance
+                        * (sigma_t0 * m0.albedo * hg.weight * lobe * (-tau0).exp() * pw);
+                }
+            }
+            src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
+        }
+        (src, src0)
+    }
+
+    /// The radiance behind the volume along the eye ray: the surface hit
+    /// (lit through a direct shadow ray, seen through the air), or the
+    /// environment.
+    fn behind(&self, o: Vec3, d: Vec3, surface: Option<(f32, Surface)>) -> Vec3 {
+        let sc = self.scene;
+        let Some((t, kind)) = surface else {
+            return sc.environment.radiance(d);
+        };
+        let p = o + d * t;
+        let q = sc.lift(kind, p);
+        // Surfaces take a direct shadow ray: one per pixel, and exact at the
+        // surface, where a table would interpolate across it.
+        let ts = sc.sun_unit().map_or(1.0, |s| {
+            if sc.blocked(q, s.direction) {
+                0.0
+            } else {
+                let h = match self.settings.shadows {
+                    Shadows::Rays(h) => h,
+                    Shadows::Table(_) => self.settings.step,
+                };
+                (-optical_depth_ray(sc.density, self.medium.extinction, q, s.direction, h)).exp()
+            }
+        });
+        sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
     }
 
     /// Renders `camera`'s image.
