@@ -17,7 +17,7 @@
 //! * [`clouds`]: a layer-cloud sky from natura-volume over the whole scene,
 //!   lit by the sun and sky, marched once per direction of a grid, with a
 //!   2-D map of its shadows on the terrain and water (`[clouds]`).
-//! * [`strata`]: natura-texture's rock strata on cliffs and a fine grain on
+//! * [`surface_textures`]: natura-texture's rock strata on cliffs and a fine grain on
 //!   snow, grass and scree, band-limited at the pixel's footprint
 //!   (`[textures]`).
 //! * [`vegetation::Forest`]: an ecosystem of natura-plant species grown on

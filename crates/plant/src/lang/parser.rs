@@ -642,9 +642,7 @@ fn production_label(cur: &mut Cursor<'_>) -> Option<String> {
 /// The predecessor side `left < pred > right` of a production, as the
 /// raw module lists of the left context, the strict predecessor and the
 /// right context (the contexts empty when absent).
-fn context_parts(
-    cur: &mut Cursor<'_>,
-) -> Result<(Vec<RawModule>, Vec<RawModule>, Vec<RawModule>)> {
+fn context_parts(cur: &mut Cursor<'_>) -> Result<(Vec<RawModule>, Vec<RawModule>, Vec<RawModule>)> {
     let first = module_list(cur, ModCtx::Pattern)?;
     let (left_raw, pred_raw) = if cur.eat('<') {
         (first, module_list(cur, ModCtx::Pattern)?)
