@@ -275,7 +275,7 @@ impl<B: Field> FootprintFbm<B> {
     pub fn eval2(&self, p: DVec2, w: f64) -> f64 {
         let n = self.visible(w);
         let mut sum = 0.0;
-        for k in 0..n.ceil() as usize {
+        for k in 0..libm::ceil(n) as usize {
             sum += self.octave_term(k, n, p);
         }
         sum
@@ -287,7 +287,7 @@ impl<B: Field> FootprintFbm<B> {
     pub fn eval_grad2(&self, p: DVec2, w: f64) -> (f64, DVec2) {
         let n = self.visible(w);
         let (mut v, mut g) = (0.0, DVec2::ZERO);
-        for k in 0..n.ceil() as usize {
+        for k in 0..libm::ceil(n) as usize {
             let wk = (n - k as f64).min(1.0) * self.amp[k];
             let (nv, ng) = self.basis.eval_grad2(self.point(k, p));
             v += wk * nv;
@@ -328,7 +328,7 @@ impl<B: Field> FootprintFbm<B> {
     pub fn lipschitz_bound(&self, w: f64) -> f64 {
         let n = self.visible(w);
         let mut s = 0.0;
-        for k in 0..n.ceil() as usize {
+        for k in 0..libm::ceil(n) as usize {
             s += (n - k as f64).min(1.0) * self.amp[k] * self.freq[k];
         }
         s * self.basis_lipschitz
@@ -351,7 +351,7 @@ impl<B: Field> FootprintFbm<B> {
             return 0.0;
         }
         let top = self.count;
-        let kstar = (visible.floor() as usize).min(top);
+        let kstar = (libm::floor(visible) as usize).min(top);
         let mut b = 0.0f64;
         if kstar < top && w > 0.0 {
             b = self.amp[kstar] / w;
