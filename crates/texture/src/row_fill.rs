@@ -1,11 +1,13 @@
-//! Row-parallel filling of images and grids: every renderer of the crate
-//! computes each row independently, so results do not depend on the number
-//! of threads.
+//! Row-parallel filling of images and grids (natura-core's preview row
+//! loop): every renderer of the crate computes each row independently, so
+//! results do not depend on the number of threads.
 
 use glam::Vec3;
 use natura_core::{Grid2, Image, Progress};
 
 use crate::error::Result;
+
+pub use natura_core::preview::fill_rows;
 
 /// Fills a `width × height` image row by row with `row(y, pixels)` (rows in
 /// parallel with the `parallel` feature), reporting one unit per row to
@@ -23,31 +25,4 @@ pub fn render_rows(
     let mut grid = Grid2::new(width as usize, height as usize, Vec3::ZERO)?;
     fill_rows(&mut grid, stage, progress, |y, r| row(y as u32, r));
     Ok(Image::from_grid(grid))
-}
-
-/// Fills the rows of `grid` with `row(y, cells)`, in parallel with the
-/// `parallel` feature.
-pub fn fill_rows<T: Send>(
-    grid: &mut Grid2<T>,
-    stage: &str,
-    progress: &dyn Progress,
-    row: impl Fn(usize, &mut [T]) + Sync,
-) {
-    let (w, h) = grid.dims();
-    progress.start(stage, h as u64);
-    let run = |(y, r): (usize, &mut [T])| {
-        row(y, r);
-        progress.advance(1);
-    };
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        grid.as_mut_slice()
-            .par_chunks_mut(w)
-            .enumerate()
-            .for_each(run);
-    }
-    #[cfg(not(feature = "parallel"))]
-    grid.as_mut_slice().chunks_mut(w).enumerate().for_each(run);
-    progress.finish();
 }

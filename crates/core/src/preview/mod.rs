@@ -127,12 +127,26 @@ pub fn render_rows(
 ) -> Result<Image> {
     check_resolution(width, height)?;
     let mut grid = Grid2::new(width as usize, height as usize, Vec3::ZERO)?;
-    progress.start(stage, u64::from(height));
-    let run = |(y, r): (usize, &mut [Vec3])| {
-        row(y as u32, r);
+    fill_rows(&mut grid, stage, progress, |y, r| row(y as u32, r));
+    Ok(Image::from_grid(grid))
+}
+
+/// Fills the rows of `grid` with `row(y, cells)`, rows in parallel with the
+/// `parallel` feature (each row computed alone, so the result does not
+/// depend on the number of threads), reporting one unit per row to
+/// `progress` under `stage`.
+pub fn fill_rows<T: Send>(
+    grid: &mut Grid2<T>,
+    stage: &str,
+    progress: &dyn Progress,
+    row: impl Fn(usize, &mut [T]) + Sync,
+) {
+    let (w, h) = grid.dims();
+    progress.start(stage, h as u64);
+    let run = |(y, r): (usize, &mut [T])| {
+        row(y, r);
         progress.advance(1);
     };
-    let w = width as usize;
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
@@ -144,7 +158,6 @@ pub fn render_rows(
     #[cfg(not(feature = "parallel"))]
     grid.as_mut_slice().chunks_mut(w).enumerate().for_each(run);
     progress.finish();
-    Ok(Image::from_grid(grid))
 }
 
 /// A `width × height` image whose every pixel is the mean of
