@@ -13,8 +13,8 @@ use crate::grid::GridDensity;
 use crate::layer::{LayerClouds, LayerParams};
 use crate::phase::CloudPhase;
 use crate::transport::{
-    FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays, ScatterOctaves, Scene,
-    Shadows, SkyRadiance, Sun,
+    CacheParams, FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays, Scattering,
+    Scene, Shadows, SkyRadiance, Sun,
 };
 
 /// Parameters of [`Cloudscape`].
@@ -183,15 +183,22 @@ impl Cloudscape {
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
     /// of the distance, shadow tables of 256 nodes across (direct shadow
     /// rays in 20 m steps for the eye rays within 3° of the sun, blended into
-    /// the table out to 4.5°), the octave multiple-scattering approximation
-    /// with the forward peak truncated.
+    /// the table out to 4.5°), the multiple-scattering cache (48 cells
+    /// across, bands up to 3, two million events: the clouds are thick and
+    /// their multiply scattered light is broad) with the forward peak
+    /// truncated.
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
         FastSettings {
             step: 40.0,
             step_growth: 0.01,
             shadows: Shadows::Table(256),
-            octaves: ScatterOctaves::default(),
+            scattering: Scattering::Cache(CacheParams {
+                cells: 48,
+                events: 2_000_000,
+                order: 3,
+                ..CacheParams::default()
+            }),
             powder: 0.0,
             min_transmittance: 0.01,
             truncate_forward_peak: true,

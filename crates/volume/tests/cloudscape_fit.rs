@@ -83,7 +83,7 @@ fn score(t: &Training, oc: ScatterOctaves) -> (f64, f64, f64) {
     let f = FastRenderer::new(
         &scene,
         natura_volume::transport::FastSettings {
-            octaves: oc,
+            scattering: natura_volume::transport::Scattering::Octaves(oc),
             ..t.cs.fast_settings()
         },
     )

@@ -156,7 +156,7 @@ fn fit_octave_constants() {
                 &scene,
                 FastSettings {
                     step: 0.05,
-                    octaves: oc,
+                    scattering: natura_volume::transport::Scattering::Octaves(oc),
                     ..FastSettings::default()
                 },
             )

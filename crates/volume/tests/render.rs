@@ -644,7 +644,7 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
             FastSettings {
                 step: 0.01,
                 shadows: Shadows::Rays(0.01),
-                octaves: natura_volume::transport::ScatterOctaves::SINGLE,
+                scattering: natura_volume::transport::Scattering::Single,
                 ..FastSettings::default()
             },
         )

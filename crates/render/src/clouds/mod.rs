@@ -40,7 +40,8 @@ use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
 use natura_volume::transport::shadow::optical_depth_ray;
 use natura_volume::transport::{
-    FastRenderer, FastSettings, NearSunRays, ScatterOctaves, Scene, Shadows, SkyRadiance, Sun,
+    FastRenderer, FastSettings, NearSunRays, ScatterOctaves, Scattering, Scene, Shadows,
+    SkyRadiance, Sun,
 };
 
 use crate::error::{RenderError, Result};
@@ -134,7 +135,7 @@ impl CloudSky {
                 step: desc.step_m,
                 step_growth: desc.step_growth,
                 shadows: Shadows::Table(desc.shadow_table_nodes),
-                octaves: ScatterOctaves::default(),
+                scattering: Scattering::Octaves(ScatterOctaves::default()),
                 powder: 0.0,
                 min_transmittance: 0.01,
                 truncate_forward_peak: true,

@@ -1,15 +1,18 @@
 //! Ebert's low-albedo ray march (Ebert 2001, "Volume rendering": single
 //! scattering with atmospheric attenuation along the eye ray, shadows from
-//! 3-D shadow tables), with the octave multiple-scattering approximation and
-//! the powder term as options.
+//! 3-D shadow tables), with multiple scattering ([`Scattering`]: a grid of
+//! the sun's multiply scattered light traced once per scene, or the octave
+//! approximation) and the powder term as options.
 //!
 //! Along the eye ray, in steps of `Δt` (midpoint samples, empty space skipped
 //! with the density's bound): the source at a sample is
 //! `σ_s·(E_sun·P(τ_sun) + A·Q(τ_up)) + σ_a·L_e`, where `τ` are optical depths toward the sun and
-//! up (from tables or direct shadow rays), `P`, `Q` the octave sums of
-//! [`ScatterOctaves`] in the medium's form ([`MediumOctaves`]: weighted by the
-//! albedo, and the sun's by the medium's extent along the sun; plain
-//! `p·e^{−τ}` and `e^{−τ}` for single scattering) and `A`
+//! up (from tables or direct shadow rays), `P` the sun's single scattering
+//! `p·e^{−τ}` plus the multiply scattered light (the cache's
+//! [`ScatterCache::toward_eye`](super::cache::ScatterCache::toward_eye), or
+//! the octave sum of [`ScatterOctaves`](super::ScatterOctaves) in the
+//! medium's form, [`MediumOctaves`](super::MediumOctaves)), `Q` the
+//! environment's octave sum (plain `e^{−τ}` for single scattering) and `A`
 //! the environment's mean radiance; each step adds the exact integral of
 //! that source over the step and multiplies the transmittance by
 //! `exp(−σ_t·Δt)`. The march stops when the transmittance falls below a
@@ -45,16 +48,16 @@
 //!
 //! With [`FastSettings::near_sun`] the eye rays within a few degrees of the
 //! sun march their own shadow rays instead of reading the table
-//! ([`NearSunRays`] says why). The octave constants are a least-squares fit
-//! to the reference ([`ScatterOctaves`]), not derived from the δ-M medium.
-//! The fast mode's error against the reference is in `docs/performance.md`.
+//! ([`NearSunRays`] says why). The multiple-scattering cache is traced in
+//! the δ-M medium, as the rest of the transport. The fast mode's error
+//! against the reference is in `docs/performance.md`.
 
 use glam::Vec3;
 use natura_core::{Aabb, Image, NoProgress, Progress};
 
-use super::model::{
-    MediumOctaves, PeakOrders, ScatterOctaves, emitted, powder, step_inscatter, step_transmittance,
-};
+use super::cache::EyeBasis;
+use super::model::{PeakOrders, emitted, powder, step_inscatter, step_transmittance};
+use super::multiple::{Multiple, Scattering};
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
 use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, Surface, check_step};
 use crate::density::ray_box;
@@ -83,8 +86,9 @@ pub struct FastSettings {
     pub step_growth: f32,
     /// Shadow method.
     pub shadows: Shadows,
-    /// The multiple-scattering approximation ([`ScatterOctaves::SINGLE`]: Ebert's single scattering).
-    pub octaves: ScatterOctaves,
+    /// How light scattered more than once is counted ([`Scattering::Single`]:
+    /// Ebert's single scattering).
+    pub scattering: Scattering,
     /// Strength of the powder term in `[0, 1]` (0: off).
     pub powder: f32,
     /// The march stops below this transmittance, in `[0, 1)`.
@@ -131,7 +135,7 @@ impl Default for FastSettings {
             step: 0.1,
             step_growth: 0.0,
             shadows: Shadows::Table(64),
-            octaves: ScatterOctaves::SINGLE,
+            scattering: Scattering::Single,
             powder: 0.0,
             min_transmittance: 1e-3,
             truncate_forward_peak: true,
@@ -141,11 +145,12 @@ impl Default for FastSettings {
 }
 
 impl FastSettings {
-    /// These settings with the multiple-scattering approximation (default octaves).
+    /// These settings with multiple scattering (the slab along the sun,
+    /// [`Scattering::default`]).
     #[must_use]
     pub fn multiple_scattering(self) -> Self {
         Self {
-            octaves: ScatterOctaves::default(),
+            scattering: Scattering::default(),
             ..self
         }
     }
@@ -166,8 +171,8 @@ pub struct FastRenderer<'s> {
     ratio: f32,
     /// The truncated peak, `f` times its lobe (`None` without truncation).
     peak: Option<ScaledPhase>,
-    /// The octaves in the transport medium.
-    octaves: MediumOctaves,
+    /// The multiple scattering, prepared for the transport medium.
+    multiple: Multiple,
 }
 
 /// What [`FastRenderer::seen`] finds along a ray.
@@ -205,6 +210,8 @@ struct EyeRay {
     peak_share: f32,
     /// The share of direct shadow rays in the sun's optical depths.
     near: f32,
+    /// The multiple-scattering cache's factors toward this eye ray.
+    eye: Option<EyeBasis>,
 }
 
 /// The running sums of one eye ray's march.
@@ -271,7 +278,7 @@ impl<'s> FastRenderer<'s> {
     ) -> Result<Self> {
         scene.validate()?;
         scene.majorant()?;
-        settings.octaves.validate()?;
+        settings.scattering.validate()?;
         in_range(
             "step_growth",
             settings.step_growth,
@@ -368,7 +375,12 @@ impl<'s> FastRenderer<'s> {
             up_table,
             ambient: ambient / n as f32,
             bounds,
-            octaves: MediumOctaves::new(settings.octaves, medium.albedo),
+            multiple: Multiple::new(
+                &settings.scattering,
+                scene.density,
+                &medium,
+                scene.sun_unit().map(|s| s.direction),
+            )?,
             medium,
             ratio,
             peak,
@@ -494,6 +506,7 @@ impl<'s> FastRenderer<'s> {
             },
             peak_share: self.peak.map_or(0.0, |hg| hg.weight * sc.medium.albedo),
             near: self.near_sun_share(d),
+            eye: self.multiple.eye(d),
         };
         let mut a = Along {
             tr: 1.0,
@@ -659,21 +672,22 @@ impl<'s> FastRenderer<'s> {
         let mut src0 = Vec3::ZERO;
         let sigma_s = sigma_t * m.albedo;
         if sigma_s > 0.0 {
-            let oc = &self.octaves;
+            let ms = &self.multiple;
             if let Some(s) = ray.sun {
                 let tau = self.tau_sun_near(p, s.direction, ray.near);
                 let mu = ray.d.dot(s.direction);
                 let pw = powder(tau, self.settings.powder);
                 // Every order, the first included, in the transport
-                // medium: sunlight carried in by the peak counts.
-                // The chord is at least τ; past τ = 8 its weight
-                // `1 − e^{−τ_c}` is 1 to within 3.4·10⁻⁴, and the lookup is skipped.
-                let chord = if tau < 8.0 {
+                // medium: sunlight carried in by the peak counts. The
+                // octaves' chord weight `1 − e^{−τ_c}` is 1 to within
+                // 3.4·10⁻⁴ past τ = 8, and their lookup is skipped there.
+                let chord = if ms.needs_chord(tau) {
                     self.sun_chord(p, s.direction)
                 } else {
                     f32::INFINITY
                 };
-                src += s.irradiance * (sigma_s * oc.sun(&m.phase, mu, tau, chord) * pw);
+                src += s.irradiance
+                    * (sigma_s * ms.sun(&m.phase, p, ray.eye.as_ref(), mu, tau, chord) * pw);
                 // The peak's own single scattering toward the eye, in
                 // the exact medium (optical depths scale with the
                 // extinction).
@@ -684,7 +698,7 @@ impl<'s> FastRenderer<'s> {
                         * (sigma_t0 * m0.albedo * hg.weight * lobe * (-tau0).exp() * pw);
                 }
             }
-            src += self.ambient * (sigma_s * oc.ambient(self.tau_up(p)));
+            src += self.ambient * (sigma_s * ms.ambient(self.tau_up(p)));
         }
         (src, src0)
     }

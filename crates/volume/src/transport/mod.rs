@@ -13,8 +13,10 @@
 //! Radiance is linear RGB; the sun is a directional light given by its
 //! irradiance normal to the beam.
 
+pub mod cache;
 pub mod march;
 pub mod model;
+pub mod multiple;
 pub mod reference;
 pub mod shadow;
 
@@ -28,8 +30,10 @@ use natura_core::{Grid2, Image, Progress};
 use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::phase::CloudPhase;
+pub use cache::{CacheParams, ScatterCache};
 pub use march::{FastRenderer, FastSettings, NearSunRays, Seen, Shadows};
 pub use model::{MediumOctaves, ScatterOctaves};
+pub use multiple::Scattering;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
 

@@ -251,7 +251,7 @@ pub(crate) fn unit(name: &'static str, v: Vec3) -> Result<Vec3> {
 
 /// `(0..rows).flat_map(f)` with the rows computed in parallel when the
 /// `parallel` feature is on (the result does not depend on scheduling).
-fn map_rows(rows: usize, f: impl Fn(usize) -> Vec<f32> + Sync + Send) -> Vec<f32> {
+pub(crate) fn map_rows(rows: usize, f: impl Fn(usize) -> Vec<f32> + Sync + Send) -> Vec<f32> {
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
