@@ -21,7 +21,7 @@ use clap::Parser;
 use clap::builder::PossibleValuesParser;
 use common::{Run, outln};
 use natura::core::glam::Vec3;
-use natura::core::{HeightField, Image, Seed};
+use natura::core::{Grid2, HeightField, Image, Seed};
 use natura::noise::{Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura::terrain::analysis::{self, Depressions};
 use natura::terrain::erosion::{
@@ -88,8 +88,8 @@ fn erosion() -> Run {
     // ---- the ridged multifractal (natura-noise), 1500 m of relief.
     let spectral = Spectral::default()
         .with_h(1.0)
-        .with_lacunarity(2.0)
-        .with_octaves(9.0)
+        .with_lacunarity(natura::noise::DEFAULT_LACUNARITY)
+        .with_octaves(8.0)
         .with_frequency(1.0 / 3500.0);
     let ridged = RidgedMultifractal::new(
         Perlin::new(seed),
@@ -237,11 +237,24 @@ fn erosion() -> Run {
             &downsample_hf(&combo)?,
             out.join("erosion_combined_height.png"),
         )?;
-        let deposit = pipe.deposition()?;
-        save(
-            &Image::false_colour(&deposit, natura::core::Ramp::Coolwarm, -2.0, 2.0),
-            &out.join("erosion_deposition.png"),
-        )?;
+        // Net deposition swings by metres either way from one cell to the
+        // next (the per-cell balance of pick-up and drop-off): its mean over
+        // 50 m, on the scale of that mean, tints the hill shading, north up
+        // like the relief pictures, so it reads against the valleys.
+        let r = (2.0 * scale).round().max(1.0) as usize;
+        let deposit = box_blur(&pipe.deposition()?, r)?;
+        let lim = quantile_abs(&deposit, 0.99).max(1e-6);
+        let shade = export::hillshade_image(&combo, Vec3::new(-1.0, 1.0, 0.9).normalize())?;
+        let (nx, ny) = deposit.dims();
+        let img = Image::from_fn(nx, ny, |x, row| {
+            let c = natura::core::Ramp::Coolwarm.map(deposit[(x, ny - 1 - row)], -lim, lim);
+            c * (0.35 + 0.65 * shade.pixels()[(x, row)].x)
+        })?;
+        save(&img, &out.join("erosion_deposition.png"))?;
+        outln(format_args!(
+            "deposition (mean over {} m) shown from −{lim:.2} m to +{lim:.2} m",
+            f64::from(cell) * (2 * r + 1) as f64
+        ))?;
     }
 
     let hi_before = analysis::hypsometric_integral(&base).unwrap_or(0.0);
@@ -249,6 +262,45 @@ fn erosion() -> Run {
         "{size} × {size} cells of {cell} m; hypsometric integral before {hi_before:.3}"
     ))?;
     outln(format_args!("wrote pictures to {}", out.display()))
+}
+
+/// The mean of `g` over the `(2r + 1)²` cells round each cell (clamped at
+/// the edges): two passes of a running sum.
+fn box_blur(g: &Grid2<f32>, r: usize) -> Result<Grid2<f32>, common::Exit> {
+    let (nx, ny) = g.dims();
+    let pass = |src: &[f32], n: usize, m: usize, at: &dyn Fn(usize, usize) -> usize| {
+        let mut out = vec![0.0f32; src.len()];
+        for j in 0..m {
+            let mut sum = 0.0f64;
+            let mut count = 0usize;
+            for i in 0..n.min(r + 1) {
+                sum += f64::from(src[at(i, j)]);
+                count += 1;
+            }
+            for i in 0..n {
+                out[at(i, j)] = (sum / count as f64) as f32;
+                if i + r + 1 < n {
+                    sum += f64::from(src[at(i + r + 1, j)]);
+                    count += 1;
+                }
+                if i >= r {
+                    sum -= f64::from(src[at(i - r, j)]);
+                    count -= 1;
+                }
+            }
+        }
+        out
+    };
+    let rows = pass(g.as_slice(), nx, ny, &|i, j| j * nx + i);
+    let both = pass(&rows, ny, nx, &|j, i| j * nx + i);
+    Ok(Grid2::from_vec(nx, ny, both)?)
+}
+
+/// The `q`-quantile of `|v|` over `g`.
+fn quantile_abs(g: &Grid2<f32>, q: f64) -> f32 {
+    let mut a: Vec<f32> = g.as_slice().iter().map(|v| v.abs()).collect();
+    a.sort_by(f32::total_cmp);
+    a[((a.len() - 1) as f64 * q).round() as usize]
 }
 
 /// Gallery pictures are at most 512 px across (PNG size); heights stay f32.

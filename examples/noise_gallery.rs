@@ -12,7 +12,8 @@
 //! `fractal_ridged_multifractal.png`, …); `contact_sheet.png` tiles them in
 //! the order of `index.md`. Values are mapped through the viridis ramp from
 //! each picture's own minimum to maximum (terrain-like fractals use the
-//! terrain ramp). Everything goes into `--out` (default: `./noise_gallery/`).
+//! terrain ramp; the multiplicative cascade, whose values span decades, is
+//! shown on a logarithmic scale). Everything goes into `--out` (default: `./noise_gallery/`).
 
 mod common;
 
@@ -32,6 +33,8 @@ struct Tile {
     /// Lattice cells across the picture.
     span: f64,
     ramp: Ramp,
+    /// Whether the picture shows the logarithm of the field.
+    log: bool,
 }
 
 fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
@@ -43,6 +46,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
         field,
         span,
         ramp,
+        log: false,
     };
     let worley = |feature, metric| {
         Worley::new(
@@ -190,13 +194,18 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
             4.0,
             v,
         ),
-        t(
-            "fractal_multifractal",
-            "multiplicative cascade",
-            Box::new(Multifractal::new(p, MultifractalParams::default())?),
-            4.0,
-            Ramp::Magma,
-        ),
+        // A product of octaves spans decades, a few peaks towering over a
+        // dark floor: its logarithm (a sum of octaves) is what the eye can read.
+        Tile {
+            log: true,
+            ..t(
+                "fractal_multifractal",
+                "multiplicative cascade, logarithmic scale",
+                Box::new(Multifractal::new(p, MultifractalParams::default())?),
+                4.0,
+                Ramp::Magma,
+            )
+        },
         t(
             "fractal_hetero_terrain",
             "heterogeneous terrain (Musgrave 1993, §2.3.2.5)",
@@ -329,6 +338,28 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
     ])
 }
 
+/// Replaces a non-negative field by its natural logarithm, from the
+/// smallest positive value the picture holds (zeros, where one octave's
+/// factor vanished, take that floor); refuses negative values.
+fn to_log(g: &mut Grid2<f32>, name: &str) -> Run {
+    let floor = g
+        .as_slice()
+        .iter()
+        .copied()
+        .filter(|&v| v > 0.0)
+        .fold(f32::INFINITY, f32::min);
+    if !floor.is_finite() || g.as_slice().iter().any(|&v| v < 0.0) {
+        return Err(common::Exit::new(
+            2,
+            format!("{name}: a logarithmic picture needs values ≥ 0, some > 0"),
+        ));
+    }
+    g.as_mut_slice()
+        .iter_mut()
+        .for_each(|v| *v = v.max(floor).ln());
+    Ok(())
+}
+
 /// x across the picture, from −1 to 1 (drives H in `fractal_driven_h`).
 #[derive(Debug)]
 struct XRamp;
@@ -404,6 +435,9 @@ fn gallery() -> Run {
                 2,
                 format!("{}: non-finite value {v} at ({x}, {y})", t.name),
             ));
+        }
+        if t.log {
+            to_log(&mut g, t.name)?;
         }
         let img = Image::false_colour_auto(&g, t.ramp);
         let path = out.join(format!("{}.png", t.name));

@@ -18,7 +18,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use common::{Run, outln};
-use natura::core::glam::Vec3;
+use natura::core::glam::{DVec3, Vec3};
 use natura::core::io::check_writable;
 use natura::core::{Image, ToneMap};
 use natura::texture::air::{
@@ -62,6 +62,8 @@ struct Entry {
     extent: f64,
     plane: Plane,
     emissive: bool,
+    /// Where the sphere is seen from (from its centre towards the viewer).
+    eye: DVec3,
 }
 
 fn entry(file: &'static str, texture: Box<dyn SolidTexture>, extent: f64) -> Entry {
@@ -71,6 +73,7 @@ fn entry(file: &'static str, texture: Box<dyn SolidTexture>, extent: f64) -> Ent
         extent,
         plane: Plane::Horizontal,
         emissive: false,
+        eye: DVec3::NEG_Y,
     }
 }
 
@@ -92,14 +95,19 @@ fn catalogue(seed: u64) -> Result<Vec<Entry>, TextureError> {
             })?),
             6.0,
         ),
-        entry(
-            "cyclone",
-            Box::new(Cyclone::new(CycloneParams {
-                seed,
-                ..Default::default()
-            })?),
-            2.4,
-        ),
+        // The storm turns about the z axis: its sphere is seen from 25°
+        // off the pole, where the spiral is (from the side it is on the limb).
+        Entry {
+            eye: DVec3::new(0.0, -(25f64.to_radians().sin()), 25f64.to_radians().cos()),
+            ..entry(
+                "cyclone",
+                Box::new(Cyclone::new(CycloneParams {
+                    seed,
+                    ..Default::default()
+                })?),
+                2.4,
+            )
+        },
         entry(
             "venus",
             Box::new(Venus::new(VenusParams {
@@ -228,7 +236,7 @@ fn textures() -> Run {
     let mut sheet = Vec::new();
     for e in &textures {
         let t = e.texture.as_ref();
-        let sphere = preview::sphere(t, size, e.emissive, &bar)?;
+        let sphere = preview::sphere_from(t, size, e.emissive, e.eye, &bar)?;
         let plane = preview::plane(t, size, e.extent, e.plane, e.emissive, &bar)?;
         save(&sphere, &out.join(format!("{}_sphere.png", e.file)))?;
         save(&plane, &out.join(format!("{}_plane.png", e.file)))?;

@@ -73,7 +73,7 @@ pub use error::{OceanError, Result};
 /// The vector types of the API, so users need no `glam` dependency of their own.
 pub use glam;
 
-pub use foam::{Foam, FoamParams};
+pub use foam::{Foam, FoamParams, whitecap_coverage};
 pub use frame::{Frame, FrameField, JacobianEigen, normal_from};
 
 pub use gerstner::{GerstnerSea, GerstnerWave};

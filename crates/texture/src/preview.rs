@@ -63,15 +63,44 @@ pub fn sphere(
     emissive: bool,
     progress: &dyn Progress,
 ) -> Result<Image> {
+    // The hemisphere facing the viewer, who looks along +y with z up.
+    sphere_from(texture, size, emissive, DVec3::NEG_Y, progress)
+}
+
+/// The texture on the unit sphere as [`sphere`] draws it, seen from the
+/// direction `eye` (from the centre towards the viewer; [`sphere`] is
+/// `eye = −y`): a texture whose feature sits at a pole (the cyclone's eye)
+/// can be seen from above it. The image's up is the projection of +z (of +y
+/// when looking along the z axis).
+///
+/// # Errors
+/// [`TextureError::InvalidSize`] for a zero or oversize `size`;
+/// [`TextureError::InvalidParameter`] naming `eye` if it is zero or not finite.
+pub fn sphere_from(
+    texture: &dyn SolidTexture,
+    size: u32,
+    emissive: bool,
+    eye: DVec3,
+    progress: &dyn Progress,
+) -> Result<Image> {
     check_size(size)?;
+    let toward = eye
+        .try_normalize()
+        .ok_or_else(|| crate::error::invalid("eye", eye, "must be finite and non-zero"))?;
+    let hint = if toward.z.abs() > 0.999 {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    let right = hint.cross(toward).normalize();
+    let up = toward.cross(right);
     let px = 2.2 / f64::from(size);
     let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
     let image = preview::shade_pixels(size, size, 1, texture.name(), progress, |x, y| {
         let (u, v) = (x * px - 1.1, 1.1 - y * px);
         let r2 = u * u + v * v;
         let c = if r2 < 1.0 {
-            // The hemisphere facing the viewer, who looks along +y with z up.
-            let n = DVec3::new(u, -(1.0 - r2).sqrt(), v);
+            let n = right * u + up * v + toward * (1.0 - r2).sqrt();
             look(texture, n, n, fp, emissive)
         } else {
             BACKDROP

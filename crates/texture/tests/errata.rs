@@ -12,7 +12,6 @@ use natura_core::Seed;
 use natura_noise::{
     DistNoise, Fbm, Field, GainConvention, Perlin, Spectral, VecNoise, VectorField,
 };
-use natura_texture::Footprint;
 use natura_texture::air::{
     Cyclone, CycloneParams, PlanetClouds, PlanetCloudsParams, Venus, VenusParams,
 };
@@ -22,6 +21,7 @@ use natura_texture::earth::{
 use natura_texture::fire::{Flame, FlameBasis, FlameParams};
 use natura_texture::multicolor::{Multicolor, MulticolorParams, fold};
 use natura_texture::water::{Ripples, RipplesParams, WindyWave, WindyWaveParams};
+use natura_texture::{Footprint, SolidTexture};
 
 const P: Footprint = Footprint::POINT;
 
@@ -470,4 +470,56 @@ fn erratum_19_flame_abs_of_sum_and_ridged_basis() {
     let p1 = DVec3::new(0.2, 0.3, 0.5);
     let i1 = listing.index(p1, P) - 0.85 * listing.chaos(p1, P);
     assert!((i0 - i1 - 0.8 * 0.5).abs() < 1e-12);
+}
+
+/// `luna`: the relief's slope stays bounded over the crater, its mare and
+/// the globe (the listing's `vv = (x, 0, z)/radial` sent the rough detail's
+/// lattice point to infinity at the pole, ringing the crater with moiré,
+/// and its highland/mare displacement was a cliff at every shore), and the
+/// height is finite everywhere.
+#[test]
+fn luna_relief_slope_is_bounded() {
+    use std::f64::consts::{PI, TAU};
+    let l = Luna::new(LunaParams::default()).unwrap();
+    let h = |p: DVec3| l.sample(p, P).height;
+    let at = |colat: f64, lon: f64| {
+        DVec3::new(
+            colat.sin() * lon.cos(),
+            colat.sin() * lon.sin(),
+            colat.cos(),
+        )
+    };
+    // Walks in steps of `step` along the sphere; the steepest |Δh|/step.
+    let step = 1e-4;
+    let steepest = |path: &mut dyn Iterator<Item = DVec3>| {
+        let mut prev: Option<(DVec3, f64)> = None;
+        let mut worst = 0.0f64;
+        for p in path {
+            let v = h(p);
+            assert!(v.is_finite(), "height at {p}");
+            if let Some((q, u)) = prev {
+                worst = worst.max((v - u).abs() / (p - q).length());
+            }
+            prev = Some((p, v));
+        }
+        worst
+    };
+    let mut worst = 0.0f64;
+    // Rings round the crater's axis out to twice the outer rim.
+    for i in 0..40 {
+        let colat = PI * 0.1 * (f64::from(i) + 0.5) / 40.0;
+        let n = (TAU * colat.sin() / step).ceil() as u32;
+        let mut ring = (0..=n).map(|k| at(colat, TAU * f64::from(k) / f64::from(n)));
+        worst = worst.max(steepest(&mut ring));
+    }
+    // Meridians from pole to pole, crossing the maria's shores.
+    for k in 0..8 {
+        let lon = TAU * f64::from(k) / 8.0 + 0.1;
+        let n = (PI / step).ceil() as u32;
+        let mut meridian = (0..=n).map(|j| at(PI * f64::from(j) / f64::from(n), lon));
+        worst = worst.max(steepest(&mut meridian));
+    }
+    // The rough central peak reaches a slope of about 1.4; the listing's
+    // shore cliffs and its pole-bound `vv` gave 12 and more.
+    assert!(worst < 2.0, "steepest slope {worst}");
 }

@@ -359,3 +359,81 @@ fn an_unwritable_export_fails_before_writing_anything() {
     assert_eq!(back.channel("Y").unwrap(), map.faces[0].height.as_slice());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Thin sunlit air seen against space has the colour of Rayleigh single
+/// scattering: each channel's in-scattered light in proportion to its
+/// extinction (blue/red = 33.1/5.8 for Earth's air). A blue fog colour
+/// counted the air's blue twice (14 times the red, not 5.7) and tinted
+/// brown continents lilac from orbit.
+#[test]
+fn thin_air_scatters_in_proportion_to_its_extinction() {
+    let planet = gaea();
+    let a = planet.params().atmosphere.unwrap();
+    let s = planet.sun();
+    let side = s.cross(DVec3::Z).normalize();
+    for h in [40e3, 60e3] {
+        // A ray grazing the subsolar point h above the sea, from space to space.
+        let closest = s * (EARTH_RADIUS_M + h);
+        let o = closest - side * 3.0 * EARTH_RADIUS_M;
+        let l = planet.radiance(o, side, 1e-4, &TraceSettings::default());
+        assert!(l.min_element() > 0.0, "lit haze at {h} m: {l}");
+        let seen = l.z / l.x;
+        let rayleigh = a.extinction.z / a.extinction.x;
+        assert!(
+            (seen / rayleigh - 1.0).abs() < 0.1,
+            "blue/red {seen} at {h} m, extinction ratio {rayleigh}"
+        );
+    }
+}
+
+/// The coast is filtered at the pixel footprint: where a footprint straddles
+/// it, the land fraction `normal_bump_and_land` gives is close to the
+/// share of land a 16 × 16 supersampling of the same footprint finds,
+/// far closer than the point-sampled step (whose error made coastlines a
+/// staircase of whole pixels); away from the coast it is 0 or 1 exactly.
+#[test]
+fn coast_is_filtered_at_the_footprint() {
+    let planet = gaea();
+    let relief = planet.relief().unwrap();
+    let fp = relief.footprint(9000.0);
+    let w = fp.width();
+    let mut rng = Rng(11);
+    let (mut filtered_err, mut step_err, mut straddling) = (0.0, 0.0, 0);
+    for _ in 0..20_000 {
+        let dir = rng.unit();
+        let (_, b, land) = relief.normal_bump_and_land(dir * EARTH_RADIUS_M, fp);
+        let chaos = relief.chaos_above_sea(b);
+        assert!((0.0..=1.0).contains(&land));
+        if land == 0.0 || land == 1.0 {
+            assert_eq!(land == 1.0, chaos > 0.0);
+            continue;
+        }
+        // The footprint's square on the tangent plane, supersampled.
+        let u = dir.cross(DVec3::Z).normalize();
+        let v = dir.cross(u);
+        let mut inside = 0u32;
+        for i in 0..16 {
+            for j in 0..16 {
+                let (a, c) = (
+                    (f64::from(i) + 0.5) / 16.0 - 0.5,
+                    (f64::from(j) + 0.5) / 16.0 - 0.5,
+                );
+                let q = (dir + (u * a + v * c) * w).normalize();
+                inside += u32::from(relief.chaos_above_sea(relief.bump(q, fp)) > 0.0);
+            }
+        }
+        let share = f64::from(inside) / 256.0;
+        filtered_err += (land - share).abs();
+        step_err += (f64::from(u8::from(chaos > 0.0)) - share).abs();
+        straddling += 1;
+    }
+    assert!(straddling > 20, "only {straddling} footprints on the coast");
+    let (f, s) = (
+        filtered_err / straddling as f64,
+        step_err / straddling as f64,
+    );
+    assert!(
+        f < 0.15 && f < 0.5 * s,
+        "filtered error {f}, point-sampled {s}"
+    );
+}

@@ -324,3 +324,83 @@ fn bad_parameters_are_refused_by_name() {
     assert!(e.contains("axis"), "{e}");
     assert!(Footprint::new(f64::NAN).is_err());
 }
+
+/// The cyclone's clouds spiral on the sphere: round each circle about the
+/// storm's axis, the twisted density is the untwisted storm's (`twist = 0`:
+/// a half turn everywhere) turned by an angle read off the fields
+/// themselves (the lag of best correlation), and that angle, measured from
+/// the rim's, grows towards the eye — `π(1 − r)³` under the shader's cubic
+/// law. Seen from the side the spiral sits on the limb, so the swatch
+/// looks from above the pole ([`preview::sphere_from`]).
+#[test]
+fn cyclone_spirals_tighter_towards_the_eye() {
+    use std::f64::consts::{PI, TAU};
+    let twisted = Cyclone::new(CycloneParams::default()).unwrap();
+    let straight = Cyclone::new(CycloneParams {
+        twist: 0.0,
+        ..Default::default()
+    })
+    .unwrap();
+    let n = 1440;
+    let profile = |c: &Cyclone, r: f64| -> Vec<f64> {
+        let z = (1.0 - r * r).sqrt();
+        let v: Vec<f64> = (0..n)
+            .map(|k| {
+                let phi = TAU * f64::from(k) / f64::from(n);
+                c.density(
+                    DVec3::new(r * phi.cos(), r * phi.sin(), z),
+                    Footprint::POINT,
+                )
+            })
+            .collect();
+        let mean = v.iter().sum::<f64>() / f64::from(n);
+        v.iter().map(|x| x - mean).collect()
+    };
+    let mut last = f64::INFINITY;
+    for r in [0.15, 0.3, 0.45, 0.6, 0.75, 0.9] {
+        let (a, b) = (profile(&twisted, r), profile(&straight, r));
+        // twisted(φ) = straight(φ + lag): the lag of best correlation.
+        let best = (0..n)
+            .max_by(|&i, &j| {
+                let c = |s: u32| -> f64 {
+                    (0..n)
+                        .map(|k| a[k as usize] * b[((k + s) % n) as usize])
+                        .sum()
+                };
+                c(i).total_cmp(&c(j))
+            })
+            .unwrap();
+        let lag = TAU * f64::from(best) / f64::from(n);
+        let expected = PI * (1.0 - (1.0 - r).powi(3));
+        let miss = (lag - expected + PI).rem_euclid(TAU) - PI;
+        assert!(
+            miss.abs() < 1f64.to_radians(),
+            "r {r}: lag {lag}, law {expected}"
+        );
+        // Turned from the rim's angle (π) by more the nearer the eye.
+        let from_rim = PI - lag;
+        assert!(
+            from_rim < last && from_rim > 0.0,
+            "r {r}: {from_rim} after {last}"
+        );
+        last = from_rim;
+        if r == 0.15 {
+            assert!(from_rim > 1.5, "near the eye the clouds turn by {from_rim}");
+        }
+    }
+}
+
+/// The sphere seen from `−y` is [`preview::sphere`]'s picture, bit for
+/// bit; from the pole it shows the texture's other face; a zero eye is refused.
+#[test]
+fn sphere_from_matches_the_default_view() {
+    let c = Cyclone::new(CycloneParams::default()).unwrap();
+    let side = preview::sphere(&c, 48, false, &NoProgress).unwrap();
+    let same = preview::sphere_from(&c, 48, false, DVec3::NEG_Y * 3.0, &NoProgress).unwrap();
+    assert_eq!(side.pixels().as_slice(), same.pixels().as_slice());
+    let top = preview::sphere_from(&c, 48, false, DVec3::Z, &NoProgress).unwrap();
+    assert_ne!(side.pixels().as_slice(), top.pixels().as_slice());
+    for bad in [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0)] {
+        assert!(preview::sphere_from(&c, 48, false, bad, &NoProgress).is_err());
+    }
+}

@@ -138,7 +138,8 @@ pub struct CraterProfile {
 ///   pole so the crater sits in a mare; highland where `chaos` exceeds
 ///   `highland_threshold` (lighter, `Ct += highland_color·chaos`, raised by
 ///   `chaos·highland_altitude`), mare elsewhere (darker,
-///   `Ct *= maria_basecolor + maria_color·chaos`);
+///   `Ct *= maria_basecolor + maria_color·chaos`, sloping by
+///   `maria_altitude` per unit of chaos below the shore);
 /// * **a rayed crater** at the north pole, in the pole distance
 ///   `pd = colatitude/π` (the shader's `1 − v`): a central peak, a flat floor,
 ///   a steep inner rim and a gentle outer rim ([`Luna::crater`]), rough
@@ -157,7 +158,18 @@ pub struct CraterProfile {
 /// the crater; it is 0 there. The rim's rough detail is added as
 /// `0.0025·(½uu + ½fBm)`, which jumps where `uu` reaches 0 at the outer rim;
 /// here it fades with `uu`, `0.0025·uu·(½ + ½fBm)`. The seam between the
-/// first and last ray (the source: "never been visible") is kept.
+/// first and last ray (the source: "never been visible") is kept. The
+/// rough detail's offset `3·vv` is meant to follow the direction round the
+/// crater; the listing's `vv` has the component `z/radial`, which grows
+/// without bound towards the pole and rings the crater with aliased
+/// moiré: here `vv = (x, y, 0)/max(radial, r_peak)`, the radial direction
+/// (linear inside the peak, so it stays smooth at the axis), with the
+/// footprint widened by its stretch `3/max(radial, r_peak)`. The listing
+/// displaces highland by `chaos·highland_altitude` and mare by
+/// `chaos·maria_altitude`, a cliff of `threshold·(highland_altitude −
+/// maria_altitude)` at every shore that bump mapping draws as a black
+/// line; here the mare continues from the shore's height,
+/// `threshold·highland_altitude + (chaos − threshold)·maria_altitude`.
 #[derive(Clone, Debug)]
 pub struct Luna {
     params: LunaParams,
@@ -263,7 +275,8 @@ impl SolidTexture for Luna {
         } else {
             (
                 q.colour * (q.maria_basecolor + q.maria_color * chaos),
-                chaos * q.maria_altitude,
+                q.highland_threshold * q.highland_altitude
+                    + (chaos - q.highland_threshold) * q.maria_altitude,
             )
         };
         let n = p.normalize_or_zero();
@@ -273,16 +286,19 @@ impl SolidTexture for Luna {
         height += crater.height;
         ct += DVec3::splat(0.2 * crater.lighten);
         if crater.uu > 0.0 {
-            let vv = if radial > 0.0 {
-                DVec3::new(p.x / radial, 0.0, p.z / radial)
-            } else {
-                DVec3::ZERO
-            };
+            // The radial direction round the crater's axis, linear through
+            // the peak so it stays smooth where the direction is undefined;
+            // it stretches the rough detail by 1/max(radial, peak radius),
+            // and the footprint widens by as much.
+            let r0 = (q.peak_rad * std::f64::consts::PI).sin();
+            let reach = radial.max(r0);
+            let vv = DVec3::new(p.x, p.y, 0.0) / reach;
+            let stretch = 3.0 / reach;
             if pd < q.peak_rad {
-                let rough = fbm_at(&self.rough, p * 5.0 + vv * 3.0, fp.scaled(5.0));
+                let rough = fbm_at(&self.rough, p * 5.0 + vv * 3.0, fp.scaled(5.0 + stretch));
                 height += 0.0025 * crater.uu * rough;
             } else {
-                let rough = fbm_at(&self.rough, p * 6.0 + vv * 3.0, fp.scaled(6.0));
+                let rough = fbm_at(&self.rough, p * 6.0 + vv * 3.0, fp.scaled(6.0 + stretch));
                 let uu = if radial > q.rim_rad {
                     crater.uu * crater.uu
                 } else {

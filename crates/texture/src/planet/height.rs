@@ -268,16 +268,38 @@ impl Relief {
     /// evaluation of the fractal and its gradient).
     #[must_use]
     pub fn normal_and_bump(&self, p: DVec3, fp: Footprint) -> (DVec3, f64) {
+        let (n, b, _) = self.normal_bump_and_land(p, fp);
+        (n, b)
+    }
+
+    /// The outward unit normal at `p`, the bump value there, and the
+    /// fraction of the footprint `fp` that is land: the coast, a level set
+    /// of the bump, filtered over the footprint as a linear ramp across
+    /// it, `clamp(½ + chaos/(|∇b|·w), 0, 1)` (`chaos` the height of the bump
+    /// above sea level, `∇b` its gradient along the sphere, `w` the
+    /// footprint's width), so coastlines are anti-aliased instead of a
+    /// staircase of whole pixels.
+    #[must_use]
+    pub fn normal_bump_and_land(&self, p: DVec3, fp: Footprint) -> (DVec3, f64, f64) {
         let r = p.length();
         let n = p / r;
         let (b, g) = self.bump_grad(n, fp);
+        let along = (g - n * n.dot(g)).length() * fp.width();
+        let chaos = self.chaos_above_sea(b);
+        let land = if along > 0.0 {
+            (0.5 + chaos / along).clamp(0.0, 1.0)
+        } else if chaos > 0.0 {
+            1.0
+        } else {
+            0.0
+        };
         let g = if self.terran.is_land(b) {
             g * self.metres
         } else {
             DVec3::ZERO
         };
         let tangential = g - n * n.dot(g);
-        ((n - tangential * (self.scale / r)).normalize(), b)
+        ((n - tangential * (self.scale / r)).normalize(), b, land)
     }
 
     /// The bump value and its gradient with respect to the texture-sphere

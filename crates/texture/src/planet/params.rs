@@ -199,7 +199,10 @@ pub struct PlanetAtmosphereParams {
     /// coefficients at 680, 550 and 440 nm, Bruneton & Neyret 2008).
     pub extinction: DVec3,
     /// The day side's fog colour `I_a`: what an infinitely thick atmosphere
-    /// looks like in full sun.
+    /// looks like in full sun. The fog's colour comes from `extinction`
+    /// (in-scattering `I_a·(1 − e^{−τ})` grows with each channel's `τ`); a
+    /// blue `I_a` counts the air's blue twice. Earth's is grey: a thick
+    /// layer of non-absorbing air scatters every wavelength alike.
     pub day_colour: DVec3,
     /// The night side's fog colour (inside the planet's shadow cylinder).
     pub night_colour: DVec3,
@@ -217,7 +220,7 @@ impl Default for PlanetAtmosphereParams {
         Self {
             scale_height_m: 8000.0,
             extinction: DVec3::new(5.8e-6, 13.5e-6, 33.1e-6),
-            day_colour: DVec3::new(0.3, 0.45, 0.75),
+            day_colour: DVec3::splat(0.3),
             night_colour: DVec3::new(0.002, 0.003, 0.006),
             umbra_margin_m: 1000.0,
             lambert_haze: true,

@@ -21,6 +21,10 @@ pub const SUN_DISC: f64 = 20.0;
 /// a Blinn–Phong lobe.
 const GLINT: (f64, i32) = (0.35, 96);
 
+/// How far above and below the coast's bump value the colours blended at a
+/// coastline are taken (a tiny step: the shades just either side of it).
+const COAST_STEP: f64 = 1e-9;
+
 /// How far (metres) a point must be from the cloud shell or the ring plane
 /// to be shadowed by it; points on the layer itself are lit by the sun.
 const SELF_SHADOW_MARGIN_M: f64 = 1.0;
@@ -221,26 +225,36 @@ impl Planet {
         match &self.surface {
             Surface::Terrain(relief) => {
                 let fp = h.footprint;
-                let (n, b) = relief.normal_and_bump(p, fp);
+                let (n, b, land) = relief.normal_bump_and_land(p, fp);
                 let t = relief.terran();
                 let mottle = t.mottle(relief.texture_point(dir), fp);
-                let shade = t.shade(b, dir.z.abs(), mottle);
+                // Land and sea blended by the footprint's share of each: the
+                // other side's colour is the one at the coast.
+                let shore = b - relief.chaos_above_sea(b);
+                let lat = dir.z.abs();
+                let colour = if land > 0.0 && land < 1.0 {
+                    let above = t.shade(b.max(shore + COAST_STEP), lat, mottle).colour;
+                    let below = t.shade(b.min(shore - COAST_STEP), lat, mottle).colour;
+                    below.lerp(above, land)
+                } else {
+                    t.shade(b, lat, mottle).colour
+                };
                 let ambient = DVec3::splat(self.params.light.ambient);
                 let cos = n.dot(self.sun);
                 if cos <= 0.0 {
-                    return shade.colour * ambient;
+                    return colour * ambient;
                 }
                 let eps = (settings.epsilon * h.footprint_m).max(settings.min_epsilon_m);
                 if self.params.light.terrain_shadows
                     && self.terrain_occludes(p, n, self.sun, h.footprint_m, eps)
                 {
-                    return shade.colour * ambient;
+                    return colour * ambient;
                 }
                 let sun = self.sunlight(p, h.footprint_m);
-                let mut l = shade.colour * (ambient + sun * cos);
-                if !shade.land {
+                let mut l = colour * (ambient + sun * cos);
+                if land < 1.0 {
                     let half = (self.sun - d).normalize();
-                    l += sun * (GLINT.0 * n.dot(half).max(0.0).powi(GLINT.1));
+                    l += sun * ((1.0 - land) * GLINT.0 * n.dot(half).max(0.0).powi(GLINT.1));
                 }
                 l
             }
