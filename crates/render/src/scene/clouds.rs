@@ -4,6 +4,7 @@
 //! checks.
 
 use natura_volume::VolumeError;
+use natura_volume::detail::DetailParams;
 use natura_volume::layer::LayerParams;
 use natura_volume::phase::CloudPhase;
 use natura_volume::transport::MediumParams;
@@ -52,6 +53,13 @@ pub struct CloudsDesc {
     /// second toward +x (east) and +y (north): frame `f` adds
     /// `wind_m_s · f / fps` to `layer.wind_offset`.
     pub wind_m_s: [f64; 2],
+    /// Detail down to the footprint of the marched directions:
+    /// natura-volume's [`DetailParams`] (the baked layer eroded by noise
+    /// octaves that stop where a cell of [`CloudsDesc::cache_pixels`] pixels
+    /// can no longer show them; Schneider 2015's erosion). Its `eye` and
+    /// `pixel_angle` are replaced by the camera's; `amplitude = 0` turns the
+    /// detail off (the baked layer alone, as before it existed).
+    pub detail: DetailParams,
 }
 
 impl Default for CloudsDesc {
@@ -71,6 +79,7 @@ impl Default for CloudsDesc {
                 detail_erosion: 0.35,
                 density_scale: 1.0,
                 wind_offset: [0.0, 0.0],
+                detail: None,
             },
             medium: MediumParams {
                 extinction: 0.03,
@@ -85,6 +94,10 @@ impl Default for CloudsDesc {
             shadow_cell_m: 100.0,
             seed_offset: 0,
             wind_m_s: [6.0, 2.0],
+            detail: DetailParams {
+                feature_m: 250.0,
+                ..DetailParams::default()
+            },
         }
     }
 }
@@ -136,6 +149,14 @@ impl CloudsDesc {
             0.0,
             100.0,
         )?;
+        if l.detail.is_some() {
+            // Baked into voxels, the footprint's octaves would be lost.
+            return Err(RenderError::invalid(
+                "clouds.layer.detail",
+                "a table",
+                "the layer is baked into voxels: give its detail as clouds.detail",
+            ));
+        }
         l.validate().map_err(|e| in_section("clouds.layer", e))?;
         in_range(
             "clouds.medium.extinction",
@@ -177,6 +198,9 @@ impl CloudsDesc {
             1.0,
             10_000.0,
         )?;
+        self.detail
+            .validate()
+            .map_err(|e| in_section("clouds.detail", e))?;
         Ok(())
     }
 }
