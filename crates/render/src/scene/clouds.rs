@@ -94,8 +94,10 @@ impl Default for CloudsDesc {
             shadow_cell_m: 100.0,
             seed_offset: 0,
             wind_m_s: [6.0, 2.0],
+            // No warp: it would add about half again to the detail's cost.
             detail: DetailParams {
                 feature_m: 250.0,
+                warp: 0.0,
                 ..DetailParams::default()
             },
         }
@@ -224,5 +226,42 @@ pub(crate) fn in_section(section: &str, e: VolumeError) -> RenderError {
             reason: "the layer's box must be finite and not empty".to_owned(),
         },
         other => RenderError::Volume(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn invalid_name(e: RenderError) -> String {
+        match e {
+            RenderError::Invalid { name, .. } => name,
+            other => panic!("expected Invalid, got {other:?}"),
+        }
+    }
+
+    /// The detail's keys are checked by their scene names; a layer's own
+    /// detail (which baking would lose) is refused.
+    #[test]
+    fn bad_detail_keys_are_named() {
+        let mut d = CloudsDesc::default();
+        d.validate().unwrap();
+        d.detail.amplitude = 1.5;
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.detail.amplitude"
+        );
+        let mut d = CloudsDesc::default();
+        d.detail.feature_m = f32::NAN;
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.detail.feature_m"
+        );
+        let mut d = CloudsDesc::default();
+        d.layer.detail = Some(DetailParams::default());
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.layer.detail"
+        );
     }
 }
