@@ -24,6 +24,7 @@ use glam::Vec3;
 use natura_core::Aabb;
 
 use crate::density::{Density, expand};
+use crate::detail::{Detail, DetailParams};
 use crate::error::{Result, finite3, in_range, non_negative, positive};
 use crate::gas::GasNoise;
 use crate::implicit::Implicit;
@@ -131,6 +132,11 @@ pub struct CloudParams {
     pub jet_stream: Option<JetStream>,
     /// Mackerel modulation, if any.
     pub mackerel: Option<Mackerel>,
+    /// Erosion by noise octaves down to the pixel footprint of a camera
+    /// ([`crate::detail`]: Schneider 2015's erosion of the thin parts, the
+    /// finest of Ebert 2003, ch. 9's microstructure); `None`: Ebert's
+    /// procedure alone, bit for bit.
+    pub detail: Option<DetailParams>,
 }
 
 impl Default for CloudParams {
@@ -146,6 +152,7 @@ impl Default for CloudParams {
             frame: 0,
             jet_stream: None,
             mackerel: None,
+            detail: None,
         }
     }
 }
@@ -217,7 +224,8 @@ impl CloudParams {
     ///
     /// # Errors
     ///
-    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) naming the bad field.
+    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) naming the bad field
+    /// (as [`DetailParams::validate`] for the detail's).
     pub fn validate(&self) -> Result<()> {
         positive("density_scale", self.density_scale)?;
         positive("exponent", self.exponent)?;
@@ -240,6 +248,9 @@ impl CloudParams {
                 Vec3::new(m.wave_number[0], m.wave_number[1], m.turbulence),
             )?;
         }
+        if let Some(d) = &self.detail {
+            d.validate()?;
+        }
         Ok(())
     }
 }
@@ -254,6 +265,7 @@ pub struct Cloud {
     noise: GasNoise,
     bounds: Aabb,
     margin: Vec3,
+    detail: Option<Detail>,
 }
 
 impl Cloud {
@@ -275,7 +287,12 @@ impl Cloud {
             BlendForm::Additive => expand(&implicit.bounds(), margin * 2.0 + Vec3::ONE),
         };
         crate::density::check_bounds("cloud", &bounds)?;
+        let detail = match &params.detail {
+            Some(d) => Some(Detail::new(d, seed ^ 0x0063_6c6f_7564)?),
+            None => None,
+        };
         Ok(Self {
+            detail,
             frame: FrameConstants::new(params.frame),
             params,
             implicit,
@@ -355,6 +372,16 @@ impl Cloud {
         (d.powf(p.exponent), m)
     }
 
+    /// The density `d` at `p` eroded by the detail, if any (never above `d`,
+    /// so the bounds hold).
+    #[inline]
+    fn eroded(&self, p: Vec3, d: f32) -> f32 {
+        match &self.detail {
+            Some(f) => f.erode(p, d, self.max_density()),
+            None => d,
+        }
+    }
+
     /// Height of `p` within the primitives' box, `0` at the bottom, `1` at the top.
     fn relative_height(&self, p: Vec3) -> f32 {
         let b = self.implicit.bounds();
@@ -375,7 +402,7 @@ impl Density for Cloud {
         if !self.bounds.contains(p) {
             return 0.0;
         }
-        self.evaluate(p).0
+        self.eroded(p, self.evaluate(p).0)
     }
     fn bounds(&self) -> Aabb {
         self.bounds
@@ -438,7 +465,7 @@ impl Density for Cloud {
             for (i, j) in r.enumerate() {
                 let pw = Vec3::new(x[j], y[j], z[j]);
                 o[i] = if self.bounds.contains(pw) {
-                    self.shape(pw, v[i]).0
+                    self.eroded(pw, self.shape(pw, v[i]).0)
                 } else {
                     0.0
                 };

@@ -15,6 +15,7 @@ use natura_core::Aabb;
 use natura_noise::{Field, GainConvention, Perlin, Spectral, Turbulence};
 
 use crate::density::{Density, check_bounds};
+use crate::detail::{Detail, DetailParams};
 use crate::error::{Result, in_range, non_negative, positive};
 
 /// Noise `∈ [−1, 1]` and turbulence `∈ [0, 1]` from one seed, the two
@@ -228,6 +229,9 @@ pub struct SteamParams {
     pub rise_speed: f32,
     /// Time (s).
     pub time: f32,
+    /// Erosion by noise octaves down to the pixel footprint of a camera
+    /// ([`crate::detail`]); `None`: Ebert's steam alone, bit for bit.
+    pub detail: Option<DetailParams>,
 }
 
 impl Default for SteamParams {
@@ -244,6 +248,7 @@ impl Default for SteamParams {
             vertical_falloff: 1.5,
             rise_speed: 0.03,
             time: 0.0,
+            detail: None,
         }
     }
 }
@@ -253,7 +258,8 @@ impl SteamParams {
     ///
     /// # Errors
     ///
-    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) naming the bad field.
+    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) naming the bad field
+    /// (as [`DetailParams::validate`] for the detail's).
     pub fn validate(&self) -> Result<()> {
         crate::error::finite3("mouth", self.mouth)?;
         positive("radius", self.radius)?;
@@ -265,6 +271,9 @@ impl SteamParams {
         non_negative("vertical_falloff", self.vertical_falloff)?;
         crate::error::finite3("rise_speed", Vec3::splat(self.rise_speed))?;
         crate::error::finite3("time", Vec3::splat(self.time))?;
+        if let Some(d) = &self.detail {
+            d.validate()?;
+        }
         Ok(())
     }
 }
@@ -276,6 +285,7 @@ impl SteamParams {
 pub struct Steam {
     params: SteamParams,
     noise: GasNoise,
+    detail: Option<Detail>,
 }
 
 impl Steam {
@@ -286,9 +296,14 @@ impl Steam {
     /// As [`SteamParams::validate`].
     pub fn new(params: SteamParams, seed: u64) -> Result<Self> {
         params.validate()?;
+        let detail = match &params.detail {
+            Some(d) => Some(Detail::new(d, seed ^ 0x0073_7465_616d)?),
+            None => None,
+        };
         Ok(Self {
             params,
             noise: GasNoise::new(seed, 5)?,
+            detail,
         })
     }
 }
@@ -304,7 +319,12 @@ impl Density for Steam {
         }
         let anim = q - Vec3::Z * (s.rise_speed * s.time);
         let d = basic_gas(&self.noise, anim, s.frequency, s.denseness, s.wispiness);
-        d * (1.0 - r2).powf(s.radial_falloff) * (1.0 - h).powf(s.vertical_falloff)
+        let d = d * (1.0 - r2).powf(s.radial_falloff) * (1.0 - h).powf(s.vertical_falloff);
+        match &self.detail {
+            // The detail drifts with the steam, like its turbulence.
+            Some(f) => f.erode_drifting(p, anim - q, d, 1.0),
+            None => d,
+        }
     }
     fn bounds(&self) -> Aabb {
         let s = &self.params;

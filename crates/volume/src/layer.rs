@@ -15,6 +15,7 @@ use natura_core::{Aabb, smoothstep};
 use natura_noise::{Fbm, Field, Perlin, Spectral, Worley, WorleyParams};
 
 use crate::density::{Density, check_bounds};
+use crate::detail::{Detail, DetailParams};
 use crate::error::{Result, in_range, positive};
 
 /// Parameters of [`LayerClouds`].
@@ -46,6 +47,11 @@ pub struct LayerParams {
     pub density_scale: f32,
     /// Horizontal wind offset of the noise fields (m), to animate drift.
     pub wind_offset: [f32; 2],
+    /// Erosion by noise octaves down to the pixel footprint of a camera
+    /// ([`crate::detail`]; `None`: the density above, bit for bit). It
+    /// belongs to the field as one camera sees it: a layer baked to voxels
+    /// takes it around the grid instead ([`crate::detail::Detailed`]).
+    pub detail: Option<DetailParams>,
 }
 
 impl Default for LayerParams {
@@ -64,6 +70,7 @@ impl Default for LayerParams {
             detail_erosion: 0.35,
             density_scale: 1.0,
             wind_offset: [0.0, 0.0],
+            detail: None,
         }
     }
 }
@@ -75,7 +82,7 @@ impl LayerParams {
     ///
     /// [`VolumeError::InvalidBounds`](crate::VolumeError::InvalidBounds) for an empty or
     /// inverted region or base ≥ top; [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter)
-    /// naming any other bad field.
+    /// naming any other bad field (as [`DetailParams::validate`] for the detail's).
     pub fn validate(&self) -> Result<()> {
         check_bounds("layer", &self.bounds())?;
         in_range("coverage", self.coverage, 0.0, 1.0, "must lie in [0, 1]")?;
@@ -101,6 +108,9 @@ impl LayerParams {
             "wind_offset",
             Vec3::new(self.wind_offset[0], self.wind_offset[1], 0.0),
         )?;
+        if let Some(d) = &self.detail {
+            d.validate()?;
+        }
         Ok(())
     }
 
@@ -121,6 +131,7 @@ pub struct LayerClouds {
     weather: Fbm<Perlin>,
     shape: Fbm<Perlin>,
     detail: Worley,
+    fine: Option<Detail>,
     w_norm: f64,
     s_norm: f64,
 }
@@ -153,7 +164,12 @@ impl LayerClouds {
                 .with_frequency(1.0 / f64::from(params.shape_scale_m)),
         )?;
         let detail = Worley::new(seed.wrapping_add(2), WorleyParams::default())?;
+        let fine = match &params.detail {
+            Some(d) => Some(Detail::new(d, seed.wrapping_add(3))?),
+            None => None,
+        };
         Ok(Self {
+            fine,
             w_norm: 1.0 / weather.bound(),
             s_norm: 1.0 / shape.bound(),
             params,
@@ -237,7 +253,14 @@ impl Density for LayerClouds {
             lp.detail_erosion * self.detail_noise(p) * (1.0 - base),
             1.0,
         );
-        (eroded * lp.density_scale).max(0.0)
+        let d = (eroded * lp.density_scale).max(0.0);
+        match &self.fine {
+            Some(f) => {
+                let wind = Vec3::new(lp.wind_offset[0], lp.wind_offset[1], 0.0);
+                f.erode_drifting(p, wind, d, lp.density_scale)
+            }
+            None => d,
+        }
     }
     fn bounds(&self) -> Aabb {
         self.params.bounds()

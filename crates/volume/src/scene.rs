@@ -8,6 +8,7 @@ use glam::Vec3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams, SkyView};
 use natura_core::{NoProgress, Progress};
 
+use crate::detail::{DetailParams, Detailed};
 use crate::error::{Result, in_range, positive};
 use crate::grid::GridDensity;
 use crate::layer::{LayerClouds, LayerParams};
@@ -36,6 +37,10 @@ pub struct CloudscapeParams {
     pub width: usize,
     /// Image size.
     pub height: usize,
+    /// Detail down to the pixel footprint around the baked grid
+    /// ([`crate::detail`]), or `None` (the grid alone, bit for bit). Its
+    /// `eye` and `pixel_angle` are replaced by the scene camera's.
+    pub detail: Option<DetailParams>,
 }
 
 impl Default for CloudscapeParams {
@@ -58,6 +63,7 @@ impl Default for CloudscapeParams {
             pitch_deg: 9.0,
             width: 1920,
             height: 1080,
+            detail: None,
         }
     }
 }
@@ -66,7 +72,7 @@ impl Default for CloudscapeParams {
 /// at the eye, the sun, the plain and the camera.
 #[derive(Clone, Debug)]
 pub struct Cloudscape {
-    clouds: GridDensity,
+    clouds: Detailed<GridDensity>,
     sky: Arc<SkyView>,
     sun: Sun,
     ground: GroundPlane,
@@ -81,8 +87,8 @@ impl Cloudscape {
     ///
     /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter) for a bad
     /// field; [`VolumeError::Core`](crate::VolumeError::Core) for a bad image size (the
-    /// camera's checks); as [`LayerClouds::new`], [`GridDensity::bake`] and the sky of
-    /// `natura-atmos`.
+    /// camera's checks); as [`LayerClouds::new`], [`GridDensity::bake`],
+    /// [`DetailParams::validate`] and the sky of `natura-atmos`.
     pub fn new(p: &CloudscapeParams, seed: u64) -> Result<Self> {
         Self::new_with_progress(p, seed, &NoProgress)
     }
@@ -131,14 +137,22 @@ impl Cloudscape {
         let pitch = p.pitch_deg.to_radians();
         // A side beyond `u32` is refused by the camera's own size check.
         let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let fov = 50f32.to_radians();
         let camera = LookAtCamera::look_at(
             eye,
             eye + Vec3::new(pitch.cos(), 0.0, pitch.sin()) * 1000.0,
             Vec3::Z,
-            50f32.to_radians(),
+            fov,
             side(p.width),
             side(p.height),
         )?;
+        let clouds = match &p.detail {
+            Some(d) => {
+                let d = d.seen_from(eye, fov / p.height.max(1) as f32);
+                Detailed::new(clouds, &d, seed.wrapping_add(7))?
+            }
+            None => Detailed::without_detail(clouds),
+        };
         Ok(Self {
             clouds,
             sky,
@@ -174,9 +188,15 @@ impl Cloudscape {
         self.camera
     }
 
-    /// The baked clouds.
+    /// The baked clouds (without the detail).
     #[must_use]
     pub fn clouds(&self) -> &GridDensity {
+        self.clouds.base()
+    }
+
+    /// The clouds the scene renders: the baked grid with its detail, if any.
+    #[must_use]
+    pub fn density(&self) -> &Detailed<GridDensity> {
         &self.clouds
     }
 

@@ -21,6 +21,9 @@
 //! lattice units (multiples of the golden ratio's and √2's fractional parts),
 //! so no two octaves' lattices line up with each other or with the samples
 //! (our choice; [`Fbm`](crate::Fbm) keeps the sources' unshifted loop).
+//! The 3-D evaluation ([`FootprintFbm::eval3`]) adds a third component
+//! `(k + 1)·0.732051` (√3's fractional part), [`octave_offset3`]; its first
+//! two components are the 2-D offsets, and the 2-D evaluation is unchanged.
 //!
 //! **Frequency range.** Unlike [`Spectral`](crate::Spectral), the top octave
 //! may lie beyond [`MAX_FREQUENCY_RATIO`](crate::fractal::MAX_FREQUENCY_RATIO)
@@ -36,7 +39,7 @@
 //! being blended. Each is non-increasing in `w`, so one taken where a ray's
 //! footprint is smallest holds further along it.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use crate::error::{NoiseError, Result, bounded};
 use crate::field::Field;
@@ -86,6 +89,15 @@ pub fn octave_offset(k: usize) -> DVec2 {
     DVec2::new(0.618_034 * s, 0.414_214 * s)
 }
 
+/// The fixed offset of octave `k` of the 3-D evaluation, in its lattice
+/// units: `(k + 1)·(0.618034, 0.414214, 0.732051)`, the 2-D
+/// [`octave_offset`] with a third component of √3's fractional part (see the
+/// [module documentation](self)).
+#[must_use]
+pub fn octave_offset3(k: usize) -> DVec3 {
+    octave_offset(k).extend(0.732_051 * (k + 1) as f64)
+}
+
 /// fBm of `basis` band-limited to a footprint, with per-octave offsets, its
 /// analytic 2-D gradient and bounds over ranges of octaves and footprints
 /// (see the [module documentation](self) for the model and its sources).
@@ -113,6 +125,8 @@ pub struct FootprintFbm<B> {
     freq: [f64; MAX_OCTAVES],
     /// [`octave_offset`] of each octave.
     offset: [DVec2; MAX_OCTAVES],
+    /// [`octave_offset3`] of each octave.
+    offset3: [DVec3; MAX_OCTAVES],
     /// Octave `k` is present (`v(w) > k`) below the footprint `λ₀/(2rᵏ)`,
     /// widened by a relative 1e-9 so that rounding never drops one.
     nyquist: [f64; MAX_OCTAVES],
@@ -126,9 +140,10 @@ pub struct FootprintFbm<B> {
     frequency: f64,
     lacunarity: f64,
     ln_lacunarity: f64,
-    /// The basis's bound and 2-D Lipschitz constant.
+    /// The basis's bound and 2-D and 3-D Lipschitz constants.
     basis_bound: f64,
     basis_lipschitz: f64,
+    basis_lipschitz3: f64,
 }
 
 impl<B: Field> FootprintFbm<B> {
@@ -175,6 +190,7 @@ impl<B: Field> FootprintFbm<B> {
             amp: [0.0; MAX_OCTAVES],
             freq: [0.0; MAX_OCTAVES],
             offset: [DVec2::ZERO; MAX_OCTAVES],
+            offset3: [DVec3::ZERO; MAX_OCTAVES],
             nyquist: [0.0; MAX_OCTAVES],
             amp_pre: [0.0; MAX_OCTAVES + 1],
             lip_pre: [0.0; MAX_OCTAVES + 1],
@@ -185,6 +201,7 @@ impl<B: Field> FootprintFbm<B> {
             ln_lacunarity: libm::log(lac),
             basis_bound: basis.bound(),
             basis_lipschitz: basis.lipschitz2(),
+            basis_lipschitz3: basis.lipschitz3(),
             basis,
         };
         for k in 0..count {
@@ -192,6 +209,7 @@ impl<B: Field> FootprintFbm<B> {
             f.amp[k] = p.amplitude * libm::pow(lac, -(k as f64) * p.h);
             f.freq[k] = powi(lac, k as u32) / lambda0;
             f.offset[k] = octave_offset(k);
+            f.offset3[k] = octave_offset3(k);
             f.nyquist[k] = 0.5 * lambda0 / powi(lac, k as u32) * (1.0 + 1e-9);
             f.amp_pre[k + 1] = f.amp_pre[k] + f.amp[k];
             f.lip_pre[k + 1] = f.lip_pre[k] + f.amp[k] * f.freq[k];
@@ -296,6 +314,61 @@ impl<B: Field> FootprintFbm<B> {
         (v, g)
     }
 
+    /// Octave `k`'s lattice point for the 3-D world point `p`: `f_k·p + o_k`
+    /// with the 3-D offset [`octave_offset3`].
+    #[inline]
+    fn point3(&self, k: usize, p: DVec3) -> DVec3 {
+        p * self.freq[k] + self.offset3[k]
+    }
+
+    /// The 3-D octave term `c_k·a_k·N(f_k·p + o_k)` (as
+    /// [`octave_term`](Self::octave_term), with the 3-D basis and offsets):
+    /// summed in order from `k = 0` it gives [`eval3`](Self::eval3) bit for bit.
+    #[inline]
+    #[must_use]
+    pub fn octave_term3(&self, k: usize, visible: f64, p: DVec3) -> f64 {
+        (visible - k as f64).min(1.0) * self.amp[k] * self.basis.eval3(self.point3(k, p))
+    }
+
+    /// `D(p; w)` of a 3-D point: the same octaves, amplitudes, footprint
+    /// rule and bounds as [`eval2`](Self::eval2), with the basis's 3-D
+    /// evaluation and the offsets of [`octave_offset3`]. For volumes whose
+    /// detail must stop at a pixel's footprint (Musgrave 1993, §6.3).
+    #[inline]
+    #[must_use]
+    pub fn eval3(&self, p: DVec3, w: f64) -> f64 {
+        let n = self.visible(w);
+        let mut sum = 0.0;
+        for k in 0..libm::ceil(n) as usize {
+            sum += self.octave_term3(k, n, p);
+        }
+        sum
+    }
+
+    /// [`eval3`](Self::eval3) and its analytic gradient
+    /// `∇D = Σ_k c_k a_k f_k ∇N` (its norm is bounded by
+    /// [`lipschitz_bound3`](Self::lipschitz_bound3)).
+    #[inline]
+    #[must_use]
+    pub fn eval_grad3(&self, p: DVec3, w: f64) -> (f64, DVec3) {
+        let n = self.visible(w);
+        let (mut v, mut g) = (0.0, DVec3::ZERO);
+        for k in 0..libm::ceil(n) as usize {
+            let wk = (n - k as f64).min(1.0) * self.amp[k];
+            let (nv, ng) = self.basis.eval_grad3(self.point3(k, p));
+            v += wk * nv;
+            g += wk * self.freq[k] * ng;
+        }
+        (v, g)
+    }
+
+    /// A bound on `|∇D(·; w')|` of the 3-D evaluation for every `w' ≥ w`:
+    /// `L_N·Σ c_k(w) a_k f_k` with the basis's 3-D Lipschitz constant.
+    #[must_use]
+    pub fn lipschitz_bound3(&self, w: f64) -> f64 {
+        self.lipschitz_bound(w) / self.basis_lipschitz * self.basis_lipschitz3
+    }
+
     /// A bound on `|Σ_{k0 ≤ k < k1} c_k a_k N_k|` at any footprint (the
     /// octaves `k0..k1`, `k0 ≤ k1 ≤ `[`octave_count`](Self::octave_count)).
     #[inline]
@@ -358,6 +431,128 @@ impl<B: Field> FootprintFbm<B> {
         }
         b = b.max(self.fp_max[kstar]);
         b * self.basis_bound / self.ln_lacunarity
+    }
+}
+
+impl FootprintFbm<crate::Perlin> {
+    /// [`eval3`](Self::eval3) at many points in `f32` lanes: `out[i]` is
+    /// `Σ_k c_k(w[i])·a_k·N(f_k·p_i + o_k)` over the point's own octaves,
+    /// each octave's noise from the lane kernel of
+    /// [`Perlin::fill_points3`](crate::Perlin::fill_points3) (within 1e-5
+    /// of the point path's noise) and the sum in `f32`, in octave order.
+    /// The octaves of all the points go through the kernel together, and a
+    /// point's value depends on that point alone, not on the others in the
+    /// batch or their number: a batch of one gives the same bits, so a
+    /// field can evaluate its points one by one or together and see one
+    /// field.
+    ///
+    /// # Errors
+    ///
+    /// [`NoiseError::BufferLength`] if a slice is not as long as `out`.
+    pub fn fill_points3(
+        &self,
+        x: &[f64],
+        y: &[f64],
+        z: &[f64],
+        w: &[f64],
+        out: &mut [f32],
+    ) -> Result<()> {
+        for len in [x.len(), y.len(), z.len(), w.len()] {
+            if len != out.len() {
+                return Err(NoiseError::BufferLength {
+                    expected: out.len(),
+                    got: len,
+                });
+            }
+        }
+        // Small scratch for one point, so single points stay cheap.
+        if out.len() <= 1 {
+            self.points_lanes::<1, 32>(x, y, z, w, out)
+        } else {
+            self.points_lanes::<16, 256>(x, y, z, w, out)
+        }
+    }
+
+    /// [`fill_points3`](Self::fill_points3) in chunks of `P` points with
+    /// `L ≥ P` lanes of scratch.
+    fn points_lanes<const P: usize, const L: usize>(
+        &self,
+        x: &[f64],
+        y: &[f64],
+        z: &[f64],
+        w: &[f64],
+        out: &mut [f32],
+    ) -> Result<()> {
+        let mut lanes = Lanes::<L> {
+            x: [0.0; L],
+            y: [0.0; L],
+            z: [0.0; L],
+            noise: [0.0; L],
+            weight: [0.0; L],
+            who: [0; L],
+            len: 0,
+        };
+        let (mut vis, mut top) = ([0.0f64; P], [0usize; P]);
+        for (c, acc) in out.chunks_mut(P).enumerate() {
+            let r = c * P..c * P + acc.len();
+            let mut most = 0;
+            for (i, j) in r.clone().enumerate() {
+                vis[i] = self.visible(w[j]);
+                top[i] = (libm::ceil(vis[i]) as usize).min(self.count);
+                most = most.max(top[i]);
+            }
+            acc.fill(0.0);
+            for k in 0..most {
+                if lanes.len + acc.len() > L {
+                    lanes.flush(&self.basis, acc)?;
+                }
+                let (f, o) = (self.freq[k], self.offset3[k]);
+                for (i, j) in r.clone().enumerate() {
+                    if k < top[i] {
+                        let n = lanes.len;
+                        lanes.x[n] = x[j] * f + o.x;
+                        lanes.y[n] = y[j] * f + o.y;
+                        lanes.z[n] = z[j] * f + o.z;
+                        lanes.weight[n] = ((vis[i] - k as f64).min(1.0) * self.amp[k]) as f32;
+                        lanes.who[n] = i;
+                        lanes.len += 1;
+                    }
+                }
+            }
+            lanes.flush(&self.basis, acc)?;
+        }
+        Ok(())
+    }
+}
+
+/// The octave lanes of [`FootprintFbm::fill_points3`] waiting for the kernel:
+/// lattice points, weights, and the point each belongs to.
+struct Lanes<const L: usize> {
+    x: [f64; L],
+    y: [f64; L],
+    z: [f64; L],
+    noise: [f32; L],
+    weight: [f32; L],
+    who: [usize; L],
+    len: usize,
+}
+
+impl<const L: usize> Lanes<L> {
+    /// Runs the kernel over the waiting lanes and adds each weighted value
+    /// to its point's sum, in the order the lanes were added.
+    fn flush(&mut self, basis: &crate::Perlin, acc: &mut [f32]) -> Result<()> {
+        let n = self.len;
+        basis.fill_points3(
+            &self.x[..n],
+            &self.y[..n],
+            &self.z[..n],
+            &mut self.noise[..n],
+        )?;
+        for l in 0..n {
+            acc[self.who[l]] += self.weight[l] * self.noise[l];
+        }
+        self.len = 0;
+        Ok(())
     }
 }
 

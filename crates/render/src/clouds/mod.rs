@@ -17,6 +17,16 @@
 //! radiance in front of the sky and their transmittance, with the sky and
 //! sun disc behind added at full resolution.
 //!
+//! Detail: the baked layer is soft below its voxels, so it is eroded by
+//! natura-volume's detail ([`natura_volume::detail`]: noise octaves in
+//! the manner of Schneider 2015's erosion, band-limited to a footprint)
+//! down to the footprint of one cell of the grid of directions at each
+//! point's distance from the eye: as fine as the marched directions can
+//! show, and no finer, so the lookup does not alias it
+//! ([`CloudsDesc::detail`](crate::scene::CloudsDesc::detail); an amplitude
+//! of 0 is the baked layer alone). The shadow map below keeps the baked
+//! layer: its cells are far coarser than the detail.
+//!
 //! The clouds' shadows: the sun's transmittance through the layer depends
 //! only on where the sun's ray from a point enters the layer's base, so it
 //! is a 2-D map over the base, covering the terrain's extent projected
@@ -36,6 +46,7 @@ use glam::{Vec2, Vec3};
 use natura_atmos::sky::SkyView;
 use natura_core::{Grid2, Progress, Seed};
 use natura_trace::Camera;
+use natura_volume::detail::Detailed;
 use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
 use natura_volume::transport::shadow::optical_depth_ray;
@@ -112,6 +123,16 @@ impl CloudSky {
         let seed = Seed(world.scene.seed.wrapping_add(desc.seed_offset)).derive("clouds");
         let layer = LayerClouds::new(*l, seed.0)?;
         let grid = GridDensity::bake(&layer, desc.voxel_m)?;
+        // The directions are marched a cell apart: the detail stops at the
+        // cell's footprint, so the grid of directions does not alias it.
+        let layout = Dome::layout(camera, pixel_angle * desc.cache_pixels);
+        let clouds = if desc.detail.amplitude > 0.0 {
+            let d = desc.detail.seen_from(eye, layout.cell);
+            Detailed::new(&grid, &d, seed.derive("cloud detail").0)
+                .map_err(|e| crate::scene::clouds_in_section("clouds.detail", e))?
+        } else {
+            Detailed::without_detail(&grid)
+        };
         progress.advance(1);
 
         let sky = Arc::new(view.clone());
@@ -120,7 +141,7 @@ impl CloudSky {
             irradiance: view.sun_irradiance(),
         };
         let scene = Scene {
-            density: &grid,
+            density: &clouds,
             medium: desc.medium,
             sun: Some(sun),
             environment: SkyRadiance::Sky(sky.clone()),
@@ -148,7 +169,7 @@ impl CloudSky {
             },
         )
         .map_err(|e| crate::scene::clouds_in_section("clouds", e))?;
-        let dome = Dome::new(&fast, eye, camera, pixel_angle * desc.cache_pixels)?;
+        let dome = Dome::new(&fast, eye, &layout)?;
         progress.advance(1);
         let shadow = ShadowMap::new(world, &grid, desc)?;
         progress.advance(1);
@@ -235,6 +256,17 @@ impl CloudSky {
     }
 }
 
+/// Where the directions of a [`Dome`] lie: the first azimuth, whether the
+/// grid wraps round, the cell (radians) and the grid's size.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    az0: f32,
+    wrap: bool,
+    cell: f32,
+    nx: usize,
+    ny: usize,
+}
+
 /// The clouds seen from the eye over a grid of directions: azimuth
 /// (`atan2(x, y)`) by elevation, each cell the clouds' radiance (3), their
 /// transmittance and the exact medium's (for the sun disc).
@@ -263,7 +295,9 @@ fn dir(az: f32, el: f32) -> Vec3 {
 }
 
 impl Dome {
-    fn new(fast: &FastRenderer<'_>, eye: Vec3, camera: &dyn Camera, cell: f32) -> Result<Self> {
+    /// The grid's layout over `camera`'s view, with cells of `cell`
+    /// radians (coarsened so that there are at most [`MAX_DIRECTIONS`]).
+    fn layout(camera: &dyn Camera, cell: f32) -> Layout {
         use std::f32::consts::{FRAC_PI_2, PI, TAU};
         // The camera's azimuths (about its centre's) and elevations, on a
         // lattice of rays over the image; reflections look up at minus the
@@ -299,10 +333,23 @@ impl Dome {
         while count(cell) > MAX_DIRECTIONS {
             cell *= 1.25;
         }
-        let (nx, ny) = (
-            (span / cell).ceil() as usize + 2,
-            (el_span / cell).ceil() as usize + 2,
-        );
+        Layout {
+            az0,
+            wrap,
+            cell,
+            nx: (span / cell).ceil() as usize + 2,
+            ny: (el_span / cell).ceil() as usize + 2,
+        }
+    }
+
+    fn new(fast: &FastRenderer<'_>, eye: Vec3, layout: &Layout) -> Result<Self> {
+        let Layout {
+            az0,
+            wrap,
+            cell,
+            nx,
+            ny,
+        } = *layout;
         let el0 = 0.0;
         let f = |i: usize, j: usize| {
             let d = dir(az0 + i as f32 * cell, el0 + j as f32 * cell);

@@ -4,6 +4,7 @@
 //! checks.
 
 use natura_volume::VolumeError;
+use natura_volume::detail::DetailParams;
 use natura_volume::layer::LayerParams;
 use natura_volume::phase::CloudPhase;
 use natura_volume::transport::MediumParams;
@@ -52,6 +53,13 @@ pub struct CloudsDesc {
     /// second toward +x (east) and +y (north): frame `f` adds
     /// `wind_m_s · f / fps` to `layer.wind_offset`.
     pub wind_m_s: [f64; 2],
+    /// Detail down to the footprint of the marched directions:
+    /// natura-volume's [`DetailParams`] (the baked layer eroded by noise
+    /// octaves that stop where a cell of [`CloudsDesc::cache_pixels`] pixels
+    /// can no longer show them; Schneider 2015's erosion). Its `eye` and
+    /// `pixel_angle` are replaced by the camera's; `amplitude = 0` turns the
+    /// detail off (the baked layer alone, as before it existed).
+    pub detail: DetailParams,
 }
 
 impl Default for CloudsDesc {
@@ -71,6 +79,7 @@ impl Default for CloudsDesc {
                 detail_erosion: 0.35,
                 density_scale: 1.0,
                 wind_offset: [0.0, 0.0],
+                detail: None,
             },
             medium: MediumParams {
                 extinction: 0.03,
@@ -85,6 +94,12 @@ impl Default for CloudsDesc {
             shadow_cell_m: 100.0,
             seed_offset: 0,
             wind_m_s: [6.0, 2.0],
+            // No warp: it would add about half again to the detail's cost.
+            detail: DetailParams {
+                feature_m: 250.0,
+                warp: 0.0,
+                ..DetailParams::default()
+            },
         }
     }
 }
@@ -136,6 +151,14 @@ impl CloudsDesc {
             0.0,
             100.0,
         )?;
+        if l.detail.is_some() {
+            // Baked into voxels, the footprint's octaves would be lost.
+            return Err(RenderError::invalid(
+                "clouds.layer.detail",
+                "a table",
+                "the layer is baked into voxels: give its detail as clouds.detail",
+            ));
+        }
         l.validate().map_err(|e| in_section("clouds.layer", e))?;
         in_range(
             "clouds.medium.extinction",
@@ -177,6 +200,9 @@ impl CloudsDesc {
             1.0,
             10_000.0,
         )?;
+        self.detail
+            .validate()
+            .map_err(|e| in_section("clouds.detail", e))?;
         Ok(())
     }
 }
@@ -200,5 +226,42 @@ pub(crate) fn in_section(section: &str, e: VolumeError) -> RenderError {
             reason: "the layer's box must be finite and not empty".to_owned(),
         },
         other => RenderError::Volume(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn invalid_name(e: RenderError) -> String {
+        match e {
+            RenderError::Invalid { name, .. } => name,
+            other => panic!("expected Invalid, got {other:?}"),
+        }
+    }
+
+    /// The detail's keys are checked by their scene names; a layer's own
+    /// detail (which baking would lose) is refused.
+    #[test]
+    fn bad_detail_keys_are_named() {
+        let mut d = CloudsDesc::default();
+        d.validate().unwrap();
+        d.detail.amplitude = 1.5;
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.detail.amplitude"
+        );
+        let mut d = CloudsDesc::default();
+        d.detail.feature_m = f32::NAN;
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.detail.feature_m"
+        );
+        let mut d = CloudsDesc::default();
+        d.layer.detail = Some(DetailParams::default());
+        assert_eq!(
+            invalid_name(d.validate().unwrap_err()),
+            "clouds.layer.detail"
+        );
     }
 }
