@@ -9,7 +9,7 @@
 //! ```text
 //! cargo run --release --example cloudscape                 # 1920 × 1080
 //! cargo run --release --example cloudscape -- --quick      # small, for CI
-//! cargo run --release --example cloudscape -- --no-detail  # the baked grid alone, no detail
+//! cargo run --release --example cloudscape -- --detail     # with noise detail down to the pixel (see --help)
 //! cargo run --release --example cloudscape -- --sun 20 --coverage 0.6 --out renders
 //! cargo run --release --example cloudscape -- --help       # every flag and its default
 //! ```
@@ -53,9 +53,12 @@ struct Cli {
     /// Reference paths per pixel (0: no reference render)
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = common::in_range(0u32, 100_000))]
     reference: u32,
-    /// Without the detail down to the pixel footprint (the baked grid alone)
+    /// Erode the baked grid with noise detail down to each pixel's
+    /// footprint. Off by default: the march's steps (40 m, growing by 1 % of
+    /// the distance) are far longer than the finest octaves, which then
+    /// alias along the eye rays into combed streaks at the cloud edges
     #[arg(long)]
-    no_detail: bool,
+    detail: bool,
     /// Warp of the detail for wisps, a fraction of its coarsest wavelength
     /// (0: none; 0.15 adds about a fifth to the render's time)
     #[arg(long, default_value_t = 0.0, value_parser = common::in_range(0.0f32, 1.0))]
@@ -77,7 +80,7 @@ fn cloudscape() -> Run {
         ..CloudscapeParams::default()
     };
     p.layer.coverage = cli.coverage;
-    if !cli.no_detail {
+    if cli.detail {
         // Eroded by noise octaves down to each pixel's footprint (the
         // scene puts in its camera's eye and pixel angle).
         p.detail = Some(DetailParams {
