@@ -342,7 +342,6 @@ impl<T> Grid2<T> {
     }
 }
 
-#[cfg(feature = "parallel")]
 impl<T> Grid2<T>
 where
     T: Copy + Default + std::ops::Add<Output = T> + std::ops::Mul<f32, Output = T>,
@@ -376,8 +375,10 @@ where
     }
 }
 
+#[cfg(feature = "parallel")]
 impl<T: Send + Sync> Grid2<T> {
-    /// Calls `f(y, row)` for every row in parallel (rayon).
+    /// Calls `f(y, row)` for every row in parallel (rayon; with the
+    /// `parallel` feature).
     ///
     /// Each row is handed to exactly one call, so the result never depends on
     /// scheduling as long as `f` only writes its own row.
