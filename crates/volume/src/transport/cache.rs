@@ -159,11 +159,7 @@ pub fn sh_basis(order: usize, d: Vec3, out: &mut [f32; MAX_COEFFS]) {
                 p_prev = p;
                 p = next;
             }
-            let mut k = (2 * l + 1) as f64 / (4.0 * std::f64::consts::PI);
-            for i in (l - m + 1)..=(l + m) {
-                k /= i as f64;
-            }
-            let k = k.sqrt() * p;
+            let k = norms()[l * l + l + m] * p;
             let at = l * l + l;
             if m == 0 {
                 out[at] = k as f32;
@@ -174,6 +170,26 @@ pub fn sh_basis(order: usize, d: Vec3, out: &mut [f32; MAX_COEFFS]) {
             }
         }
     }
+}
+
+/// `√((2l+1)/(4π)·(l−m)!/(l+m)!)` at `l² + l + m` for `0 ≤ m ≤ l ≤
+/// MAX_ORDER`, computed once: [`sh_basis`] runs at every scattering event
+/// of the cache's photons.
+fn norms() -> &'static [f64; MAX_COEFFS] {
+    static NORMS: std::sync::OnceLock<[f64; MAX_COEFFS]> = std::sync::OnceLock::new();
+    NORMS.get_or_init(|| {
+        let mut t = [0.0f64; MAX_COEFFS];
+        for l in 0..=MAX_ORDER {
+            for m in 0..=l {
+                let mut k = (2 * l + 1) as f64 / (4.0 * std::f64::consts::PI);
+                for i in (l - m + 1)..=(l + m) {
+                    k /= i as f64;
+                }
+                t[l * l + l + m] = k.sqrt();
+            }
+        }
+        t
+    })
 }
 
 /// The Legendre moments `χ_l = 2π ∫ p(μ) P_l(μ) dμ` of a phase function,
