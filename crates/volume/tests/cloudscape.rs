@@ -139,8 +139,8 @@ fn errors(a: &[f64], r: &[f64], w: usize, b: usize) -> (f64, f64) {
 /// (96 × 54 rays), and the fast mode's values there are exactly those of its
 /// full-frame image. The reference is itself noisy (a cloud's phase function
 /// has a diffraction peak a fraction of a degree wide toward a low sun; the
-/// reference draws some directions toward it, which lowers but does not
-/// remove that noise), so it is four seeds of 1024 paths averaged (4096
+/// reference lights it by two strategies, which bounds the brightest paths
+/// but does not remove the noise), so it is four seeds of 1024 paths averaged (4096
 /// paths per pixel), and its own noise is printed beside, from the
 /// difference of its two 2048-path halves.
 #[test]

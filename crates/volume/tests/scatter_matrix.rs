@@ -222,8 +222,9 @@ fn camera(shape: Shape, px: u32) -> LookAtCamera {
 /// The fast settings of the comparison: eye steps of 1/200 of the box's
 /// diagonal, a 96-node shadow table, the default multiple scattering, the
 /// forward peak truncated. The knobs `MATRIX_CELLS`, `MATRIX_ORDER`,
-/// `MATRIX_TABLE` and `MATRIX_SINGLE` (in `fast_lums`) change the cache's
-/// grid and band, the table's nodes, or turn multiple scattering off, for studies.
+/// `MATRIX_TABLE`, `MATRIX_SINGLE` and `MATRIX_NOTRUNC` (in `fast_lums`)
+/// change the cache's grid and band, the table's nodes, turn multiple
+/// scattering off, or keep the forward peak in the transport, for studies.
 fn fast_settings(b: &Aabb) -> FastSettings {
     FastSettings {
         step: (b.max - b.min).length() / 200.0,
@@ -569,6 +570,9 @@ fn fast_lums(c: &Case, px: u32, scattering: Scattering) -> Vec<f64> {
     };
     if let Some(n) = knob("MATRIX_TABLE") {
         settings.shadows = Shadows::Table(n as usize);
+    }
+    if std::env::var("MATRIX_NOTRUNC").is_ok() {
+        settings.truncate_forward_peak = false;
     }
     lums(
         &FastRenderer::new(&scene, settings)

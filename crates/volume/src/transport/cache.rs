@@ -609,11 +609,7 @@ impl ScatterCache {
                 let (mut w, mut d) = (w0, beam);
                 for _ in 0..MAX_EVENTS_PER_PHOTON {
                     events += 1;
-                    let (nd, pw) = medium
-                        .phase
-                        .sample(d, [unit(&mut rng), unit(&mut rng), unit(&mut rng)]);
-                    d = nd;
-                    w *= pw;
+                    d = medium.phase.sample(d, &mut || unit(&mut rng));
                     let mut y = [0.0f32; MAX_COEFFS];
                     sh_basis(self.order, d, &mut y);
                     let target = -(1.0 - unit(&mut rng)).ln();
