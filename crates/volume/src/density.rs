@@ -216,6 +216,65 @@ pub fn check_bounds(name: &'static str, b: &Aabb) -> Result<()> {
     }
 }
 
+/// Points per axis of [`probe_density`]'s lattice.
+pub const PROBE_POINTS: usize = 16;
+
+/// Checks a density before any rendering work: at a lattice of
+/// [`PROBE_POINTS`]³ points through its bounds (cell centres, shifted by a
+/// fixed irrational fraction so that the lattice does not sit on the planes
+/// of symmetry of a procedural field), every value must be finite, at
+/// least 0 and at most [`Density::max_density`] (the majorant the
+/// reference's delta tracking and the march's empty-space skipping rely on).
+/// A probe, not a proof: a field that goes wrong only between the points
+/// passes.
+///
+/// # Errors
+///
+/// [`VolumeError::InvalidParameter`] naming `density` for a NaN, infinite
+/// or negative value, or `max_density` for a value above the bound, with
+/// the point where it was found.
+pub fn probe_density(density: &dyn Density) -> Result<()> {
+    let b = density.bounds();
+    let n = PROBE_POINTS;
+    let shift = Vec3::new(0.618_034, 0.414_213_56, 0.732_050_8) - Vec3::splat(0.5);
+    let size = b.max - b.min;
+    let mut xs = Vec::with_capacity(n * n * n);
+    let (mut ys, mut zs) = (Vec::with_capacity(n * n * n), Vec::with_capacity(n * n * n));
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let u = (Vec3::new(i as f32, j as f32, k as f32) + Vec3::splat(0.5) + shift * 0.5)
+                    / n as f32;
+                let p = b.min + size * u;
+                xs.push(p.x);
+                ys.push(p.y);
+                zs.push(p.z);
+            }
+        }
+    }
+    let mut out = vec![0.0f32; xs.len()];
+    density.density_batch(&xs, &ys, &zs, &mut out)?;
+    let bound = density.max_density();
+    for (i, &v) in out.iter().enumerate() {
+        let at = || format!("{v} at ({}, {}, {})", xs[i], ys[i], zs[i]);
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(VolumeError::InvalidParameter {
+                name: "density",
+                value: at(),
+                expected: "a finite density ≥ 0 everywhere",
+            });
+        }
+        if v > bound * (1.0 + 1e-5) + 1e-30 {
+            return Err(VolumeError::InvalidParameter {
+                name: "max_density",
+                value: format!("{bound} below the density {}", at()),
+                expected: "a bound at least the density everywhere",
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Whether two boxes overlap (touching counts).
 #[inline]
 #[must_use]

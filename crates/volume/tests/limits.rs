@@ -121,3 +121,47 @@ fn the_reference_tracks_a_ray_that_starts_far_from_a_dense_box() {
         assert!(l.is_finite() && l.min_element() >= 0.0, "{l}");
     }
 }
+
+/// A field that goes wrong inside one corner of its box: NaN, negative, or
+/// above the bound it declares.
+struct Faulty(f32);
+
+impl natura_volume::Density for Faulty {
+    fn density(&self, p: Vec3) -> f32 {
+        if p.x > 0.7 && p.y > 0.7 && p.z > 0.7 {
+            self.0
+        } else {
+            0.5
+        }
+    }
+    fn bounds(&self) -> Aabb {
+        unit_cube()
+    }
+    fn bound_in(&self, _: &Aabb) -> f32 {
+        1.0
+    }
+    fn max_density(&self) -> f32 {
+        1.0
+    }
+}
+
+#[test]
+fn both_renderers_refuse_a_density_that_is_nan_negative_or_above_its_bound() {
+    for (value, field) in [
+        (f32::NAN, "density"),
+        (-0.25, "density"),
+        (f32::INFINITY, "density"),
+        (1.5, "max_density"),
+    ] {
+        let field_ = Faulty(value);
+        let scene = Scene::new(&field_, medium(1.0), Vec3::ONE);
+        let fast = refused_naming(FastRenderer::new(&scene, FastSettings::default()), field);
+        let reference = refused_naming(ReferenceRenderer::new(&scene, quick()), field);
+        assert_eq!(fast, reference);
+        assert!(fast.contains(" at ("), "{fast}");
+    }
+    // The same field within its bound is accepted.
+    let fine = Faulty(0.9);
+    let scene = Scene::new(&fine, medium(1.0), Vec3::ONE);
+    assert!(FastRenderer::new(&scene, FastSettings::default()).is_ok());
+}

@@ -289,12 +289,14 @@ impl<'a> Scene<'a> {
         }
     }
 
-    /// Checks the medium, lights and ground.
+    /// Checks the medium, lights, ground and the density (probed with
+    /// [`probe_density`](crate::density::probe_density)).
     ///
     /// # Errors
     ///
-    /// [`VolumeError::InvalidParameter`] naming the bad field;
-    /// [`VolumeError::InvalidBounds`] for bad density bounds.
+    /// [`VolumeError::InvalidParameter`] naming the bad field (`density`
+    /// for a NaN or negative density, `max_density` for a density above
+    /// its bound); [`VolumeError::InvalidBounds`] for bad density bounds.
     pub fn validate(&self) -> Result<()> {
         self.medium.validate()?;
         crate::density::check_bounds("density bounds", &self.density.bounds())?;
@@ -306,6 +308,7 @@ impl<'a> Scene<'a> {
                 expected: "a finite bound ≥ 0",
             });
         }
+        crate::density::probe_density(self.density)?;
         if let Some(s) = self.sun {
             shadow::unit("sun.direction", s.direction)?;
             rgb("sun.irradiance", s.irradiance)?;
