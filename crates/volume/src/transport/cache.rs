@@ -61,7 +61,7 @@ const CHUNKS: usize = 4;
 const MAX_EVENTS_PER_PHOTON: u32 = 1 << 20;
 
 /// The default highest band (see [`CacheParams::order`]).
-pub const ORDER_DEFAULT: u32 = 5;
+pub const ORDER_DEFAULT: u32 = 7;
 
 /// Settings of the multiple-scattering cache.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
