@@ -11,8 +11,10 @@
 //! direction does not depend on the sample, so it is marched once per cell
 //! of a grid of directions over the camera's view (azimuth and elevation,
 //! cells of [`CloudsDesc::cache_pixels`] pixels) with natura-volume's fast
-//! renderer (Ebert's low-albedo march with shadow tables, the octave
-//! multiple-scattering approximation and the forward peak truncated; see
+//! renderer (Ebert's low-albedo march with shadow tables, the multiple
+//! scattering of [`CloudsDesc::scattering`](crate::scene::CloudsDesc::scattering)
+//! — by default the sun's light traced once onto a grid — and the forward
+//! peak truncated; see
 //! [`natura_volume::transport::march`]), and looked up bilinearly: the clouds'
 //! radiance in front of the sky and their transmittance, with the sky and
 //! sun disc behind added at full resolution.
@@ -51,8 +53,7 @@ use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
 use natura_volume::transport::shadow::optical_depth_ray;
 use natura_volume::transport::{
-    FastRenderer, FastSettings, NearSunRays, ScatterOctaves, Scattering, Scene, Shadows,
-    SkyRadiance, Sun,
+    FastRenderer, FastSettings, NearSunRays, Scene, Shadows, SkyRadiance, Sun,
 };
 
 use crate::error::{RenderError, Result};
@@ -156,7 +157,7 @@ impl CloudSky {
                 step: desc.step_m,
                 step_growth: desc.step_growth,
                 shadows: Shadows::Table(desc.shadow_table_nodes),
-                scattering: Scattering::Octaves(ScatterOctaves::default()),
+                scattering: desc.scattering,
                 powder: 0.0,
                 min_transmittance: 0.01,
                 truncate_forward_peak: true,
