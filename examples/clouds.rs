@@ -2,7 +2,7 @@
 //! Volumetric Procedural Clouds"): the nine-sphere cumulus, a cirrostratus
 //! layer over cirrus, the cumulus warped along the jet stream with an eased
 //! amount, and "A Cloud is Born". Rendered with Ebert's shadow-table march
-//! plus the octave multiple-scattering approximation; the cumulus is also
+//! plus the multiple-scattering cache; the cumulus is also
 //! written as an OpenVDB file with `--vdb` (and always with `--quick`).
 //!
 //! ```text

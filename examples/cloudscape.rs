@@ -1,7 +1,7 @@
 //! A layer-cloud sky over a plain at sunset: kilometre-scale clouds (coverage,
 //! type, Worley erosion) lit by the sun and sky of `natura-atmos`, seen
 //! through its aerial perspective, rendered with the fast mode (shadow
-//! tables and the octave multiple-scattering approximation). With
+//! tables and the multiple-scattering cache). With
 //! `--reference N`, also renders the null-scattering reference at N paths
 //! per pixel and prints the fast mode's relative luminance error. The PNG is
 //! written at half the render's size.

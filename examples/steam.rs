@@ -22,6 +22,7 @@ use clap::Parser;
 use common::{Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress, ToneMap};
+use natura::volume::detail::DetailParams;
 use natura::volume::gas::{Steam, SteamParams};
 use natura::volume::phase::CloudPhase;
 use natura::volume::transport::{
@@ -59,10 +60,26 @@ fn steam() -> Run {
     // Two units per frame: its shadow tables and its render.
     bar.start("frames", 2 * times.len() as u64);
     let mut shots = Vec::new();
+    let eye = Vec3::new(0.0, -0.35, 0.07);
+    let fov = 22f32.to_radians();
+    let step = 0.0008;
+    // Wisps: the steam eroded by warped noise octaves down to a pixel's
+    // footprint, or the march's step where that is longer (finer octaves
+    // would alias along the eye rays into streaks).
+    let detail = DetailParams {
+        feature_m: 0.02,
+        octaves: 8,
+        h: 0.8,
+        amplitude: 0.45,
+        warp: 0.35,
+        ..DetailParams::default()
+    }
+    .seen_from(eye, (fov / h as f32).max(step / eye.length()));
     for time in times {
         let steam = Steam::new(
             SteamParams {
                 time,
+                detail: Some(detail),
                 ..SteamParams::default()
             },
             seed,
@@ -80,16 +97,16 @@ fn steam() -> Run {
             ..Scene::new(&steam, medium, Vec3::new(0.03, 0.03, 0.04))
         };
         let settings = FastSettings {
-            step: 0.0008,
+            step,
             shadows: Shadows::Table(if quick { 32 } else { 96 }),
             ..FastSettings::default()
         }
         .multiple_scattering();
         let camera = LookAtCamera::look_at(
-            Vec3::new(0.0, -0.35, 0.07),
+            eye,
             Vec3::new(0.0, 0.0, 0.065),
             Vec3::Z,
-            22f32.to_radians(),
+            fov,
             w as u32,
             h as u32,
         )?;

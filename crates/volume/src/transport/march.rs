@@ -145,8 +145,8 @@ impl Default for FastSettings {
 }
 
 impl FastSettings {
-    /// These settings with multiple scattering (the slab along the sun,
-    /// [`Scattering::default`]).
+    /// These settings with multiple scattering ([`Scattering::default`]:
+    /// the sun's light traced once onto a grid).
     #[must_use]
     pub fn multiple_scattering(self) -> Self {
         Self {
