@@ -5,14 +5,14 @@
 //! or the wind carries it away:
 //!
 //! * **Altitude.** Above the snow line (`snow_line_m`, perturbed by a
-//!   large-scale fractal of `snow_line_noise_m` as in Musgrave's snow line,
-//!   Musgrave 1993, §5.3) precipitation falls as snow and outlasts the melt.
+//!   large-scale fractal of `snow_line_noise_m`, Musgrave's fractal snow
+//!   line, Musgrave 2001, "Driving Function Parameters with Functions") precipitation falls as snow and outlasts the melt.
 //! * **Slope.** Snow holds on gentle ground and sloughs off steep ground: the
 //!   cover falls from full at `snow_max_slope_deg − snow_slope_band_deg` to
-//!   none at `snow_max_slope_deg + snow_slope_band_deg`. Fearing 2000, §4
-//!   ("Stability"), lets snow slide off wherever the slope exceeds the angle
+//!   none at `snow_max_slope_deg + snow_slope_band_deg`. Fearing 2000 (its
+//!   stability pass) lets snow slide off wherever the slope exceeds the angle
 //!   of repose; slab avalanches release between about 30° and 50° and slopes
-//!   above about 60° hold almost no snow (McClung & Schaerer 2006, ch. 4),
+//!   above about 60° hold almost no snow (McClung & Schaerer 2006, the chapter on avalanche formation),
 //!   which the default band (45° ± 15°) spans.
 //! * **Sun.** A slope that faces the sun takes more of its light and loses
 //!   its snow lower down: the snow line rises by `snow_sun_m` times the
@@ -22,8 +22,9 @@
 //!   their snow.
 //! * **Wind.** Wind strips snow from exposed ridges and drops it in their
 //!   lee. The measure of shelter is Winstral et al.'s upwind slope parameter
-//!   `Sx` (Winstral et al. 2002, §2b, eq. 1): the largest angle up to the
-//!   terrain upwind within `snow_shelter_distance_m`, positive in a lee and
+//!   `Sx`: the largest angle up to the
+//!   terrain upwind within `snow_shelter_distance_m` (Winstral et al. 2002,
+//!   the upwind slope parameter), positive in a lee and
 //!   negative on a crest. The snow line falls by `snow_wind_m` where
 //!   `Sx ≥ 17°` and rises as much where `Sx ≤ −17°`. The wind is the
 //!   scene's prevailing one (`water.wind_azimuth_deg`): the snow lies as
@@ -64,7 +65,7 @@ impl Shelter {
     /// azimuth `wind_azimuth_deg` (clockwise from north, +y), searching the
     /// terrain upwind out to `distance_m` in steps of one cell.
     ///
-    /// Winstral et al. 2002, §2b, eq. 1:
+    /// Winstral et al. 2002, the upwind slope parameter:
     /// `Sx(x) = max over 0 < d ≤ dmax of atan((z(x − d·ŵ) − z(x)) / d)`,
     /// with `ŵ` the unit vector the wind blows toward.
     ///

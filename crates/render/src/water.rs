@@ -2,7 +2,7 @@
 //! filtered at the pixel's footprint.
 //!
 //! The waves are a Tessendorf patch (natura-ocean, Tessendorf 2001, §3.4)
-//! of the JONSWAP spectrum (Hasselmann et al. 1973, eqs. 2.8–2.10: the
+//! of the JONSWAP spectrum (Hasselmann et al. 1973: the
 //! peak frequency and Phillips constant of a sea the wind has blown over
 //! a fetch `F`), spread about the wind with Hasselmann et al.'s (1980)
 //! directional spreading. A lake's fetch is its size: the square root of
@@ -10,14 +10,15 @@
 //!
 //! A pixel sees the waves averaged over its footprint. Their slopes are
 //! kept as a pyramid of means and mean squares (LEAN mapping, Olano &
-//! Baker 2010, §3: the first and second moments of the slopes filter
+//! Baker 2010: the first and second moments of the slopes filter
 //! linearly), so a pixel reflects about the mean normal of its footprint
 //! and the slopes it does not resolve become the width of the sun's
 //! glitter instead. Slopes finer than the patch's grid (the capillary and
-//! short gravity waves) make up the rest of Cox & Munk's (1954, §6, eq. 2)
+//! short gravity waves) make up the rest of Cox & Munk's (1954, the clean surface's fit)
 //! mean square slope of a wind of that speed, `0.003 + 5.12·10⁻³ U`. The
 //! sun's glitter is their slope distribution, a Gaussian, seen at the
-//! half-vector of the sun and the viewer (Cox & Munk 1954, §3, eq. 1):
+//! half-vector of the sun and the viewer (Cox & Munk 1954, the glitter's
+//! radiance):
 //! `L = E_sun · F · p(zₓ, z_y) / (4 cos θ_v cos⁴ β)`, with `β` the tilt of
 //! the facet that mirrors the sun to the viewer. The reflection of
 //! everything else (sky, terrain, trees) is traced about the mean normal of
@@ -34,7 +35,7 @@ use natura_ocean::{Directional, Jonswap, Ocean, OceanParams, Surface};
 use crate::error::Result;
 use crate::scene::WaterDesc;
 
-/// Cox & Munk's (1954, §6, eq. 2) mean square slope of a clean sea in a
+/// Cox & Munk's (1954, the clean surface's fit) mean square slope of a clean sea in a
 /// wind of `speed_m_s` measured 12.5 m up (both axes together).
 #[must_use]
 pub fn cox_munk_mss(speed_m_s: f32) -> f32 {
@@ -172,7 +173,8 @@ impl WindSea {
     }
 }
 
-/// The sun's glitter on waves of `wave` (Cox & Munk 1954, §3, eq. 1): the
+/// The sun's glitter on waves of `wave` (Cox & Munk 1954, the glitter's
+/// radiance): the
 /// radiance toward the viewer along `-d` of the sun's irradiance `e_sun`
 /// from unit direction `sun`, before the Fresnel factor `fresnel` of the
 /// mirroring facet, which the caller gives as a function of the cosine
