@@ -254,7 +254,7 @@ impl Renderer<'_> {
             fresnel(1.0, WATER_IOR, f64::from(c)).unpolarized() as f32
         });
         // Skip the shadow ray where the glitter could not show.
-        if g.max_element() <= 1e-6 * e.max_element() {
+        if g.max_element() <= 1e-3 * e.max_element() {
             return Vec3::ZERO;
         }
         let o = p + Vec3::Z * 1e-2;
