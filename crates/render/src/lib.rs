@@ -67,8 +67,11 @@ mod error;
 mod integrator;
 pub mod material;
 pub mod scene;
+pub mod snow;
+pub mod stray;
 pub mod surface_textures;
 pub mod vegetation;
+pub mod water;
 mod world;
 
 use std::path::Path;

@@ -2,19 +2,21 @@
 //! perturbed by fractal noise, with Lambert or Oren–Nayar diffuse reflection.
 //!
 //! The layering follows Musgrave's practice of "driving parameters with
-//! functions" (Musgrave 2001, "Driving Function Parameters with Functions"): the snow line is
-//! `altitude + fractal` thresholded, so its edge is fractal; rock shows where
+//! functions" (Musgrave 2001, "Driving Function Parameters with Functions"): snow lies
+//! where altitude, slope, sun and wind let it ([`crate::snow`]), with a
+//! fractal edge band-limited at the footprint; rock shows where
 //! the slope exceeds a threshold; vegetation grows below the tree line,
 //! densest where the drainage network keeps the ground wet; sediment shows
 //! where erosion deposited it; sand rims the water.
 
 use glam::{DVec2, DVec3, Vec3};
 use natura_core::colour::srgb_decode_rgb;
-use natura_core::smoothstep;
-use natura_noise::{Fbm, Field, Perlin, Spectral};
+use natura_core::{HeightField, smoothstep};
+use natura_noise::{Fbm, Field, Perlin, Spectral, visible_octaves};
 
 use crate::error::Result;
 use crate::scene::{Diffuse, MaterialDesc};
+use crate::snow::{Shelter, SnowCover};
 use crate::surface_textures::SurfaceTextures;
 
 /// Everything the material mapping reads at a surface point.
@@ -43,7 +45,7 @@ pub struct Materials {
     /// Bump detail (small scale).
     bump: Fbm<Perlin>,
     cos_rock: (f32, f32),
-    cos_snow: (f32, f32),
+    snow: SnowCover,
     sigma: Option<(f32, f32)>,
     /// Solid textures at the footprint (strata, grain), if the scene has them.
     textures: Option<SurfaceTextures>,
@@ -103,7 +105,6 @@ impl Materials {
         )?;
         let band = 5f32.to_radians();
         let rock = desc.rock_slope_deg.to_radians();
-        let snow = desc.snow_max_slope_deg.to_radians();
         let sigma = match desc.diffuse {
             Diffuse::Lambert => None,
             Diffuse::OrenNayar { sigma_deg } => {
@@ -128,7 +129,7 @@ impl Materials {
             bump,
             // n.z above the first edge: not rock; below the second: rock.
             cos_rock: ((rock - band).max(0.0).cos(), (rock + band).min(1.5).cos()),
-            cos_snow: ((snow - band).max(0.0).cos(), (snow + band).min(1.5).cos()),
+            snow: SnowCover::new(desc, s("snow-edge"))?,
             sigma,
             textures: None,
         })
@@ -138,6 +139,31 @@ impl Materials {
     #[must_use]
     pub fn with_textures(self, textures: Option<SurfaceTextures>) -> Self {
         Self { textures, ..self }
+    }
+
+    /// The same mapping with the snow's sun exposure toward `sun` (a unit
+    /// vector toward the sun), the ground whose slope holds it and, if
+    /// given, the wind's shelter and drift ([`SnowCover::with_exposure`]).
+    #[must_use]
+    pub fn with_snow_exposure(
+        self,
+        sun: Vec3,
+        ground: Option<HeightField>,
+        shelter: Option<(Shelter, f32)>,
+    ) -> Self {
+        Self {
+            snow: self.snow.with_exposure(sun, ground, shelter),
+            ..self
+        }
+    }
+
+    /// The fraction of the ground under snow at a surface sample seen with
+    /// a footprint of `footprint_m` metres ([`SnowCover::cover`]).
+    #[must_use]
+    pub fn snow_cover(&self, s: &SurfaceSample, footprint_m: f32) -> f32 {
+        let p = s.point.as_dvec3();
+        let large = self.large.eval2(DVec2::new(p.x, p.y)) as f32;
+        self.snow.cover(s.point, s.normal, large, footprint_m)
     }
 
     /// The linear albedo at a surface sample (point-sampled textures).
@@ -184,9 +210,7 @@ impl Materials {
                 * smoothstep(-0.2, 0.3, mottle + 0.5 * large);
             c = c.lerp(a.sand, beach);
         }
-        let line = d.snow_line_m + d.snow_line_noise_m * large;
-        let snow = smoothstep(line - 40.0, line + 40.0, h)
-            * smoothstep(self.cos_snow.1, self.cos_snow.0, nz);
+        let snow = self.snow.cover(s.point, s.normal, large, footprint_m);
         c = c.lerp(a.snow, snow);
         // Mottling: ±15 % brightness variation, less on snow.
         let c = c * (1.0 + (0.15 - 0.1 * snow) * mottle);
@@ -197,22 +221,31 @@ impl Materials {
         c.clamp(Vec3::ZERO, Vec3::ONE)
     }
 
-    /// The shading normal with procedural bump detail, faded out where the
-    /// pixel footprint (metres) approaches the bump scale so it never aliases.
+    /// The shading normal with procedural bump detail band-limited at the
+    /// pixel's footprint (metres): each octave fades out as the footprint
+    /// approaches half its wavelength (natura-noise's band-limited fBm,
+    /// Musgrave 1993, §5.1.2), so no octave finer than a pixel flips the
+    /// normal of a single pixel (which showed as isolated dark specks, on
+    /// snow lit only by the blue sky).
     #[must_use]
     pub fn bumped_normal(&self, point: Vec3, normal: Vec3, footprint_m: f32) -> Vec3 {
         let d = &self.desc;
         if d.bump_size_m <= 0.0 || d.bump_strength <= 0.0 {
             return normal;
         }
-        let fade = 1.0 - smoothstep(0.25 * d.bump_size_m, d.bump_size_m, footprint_m);
-        if fade <= 0.0 {
+        let sp = self.bump.spectral();
+        // The band's own Nyquist margin: an octave fades from a quarter to
+        // half a wavelength per pixel.
+        let visible = visible_octaves(f64::from(footprint_m.max(0.0)), sp.frequency, sp.lacunarity);
+        if visible <= 0.0 {
             return normal;
         }
         let p = point.as_dvec3();
-        let (_, g) = self.bump.eval_grad3(DVec3::new(p.x, p.y, p.z));
+        let (_, g) = self
+            .bump
+            .eval_grad3_band(DVec3::new(p.x, p.y, p.z), visible);
         // The field's gradient is per metre times its frequency; scale to slope units.
-        let g = (g.as_vec3() * d.bump_size_m) * (d.bump_strength * fade);
+        let g = (g.as_vec3() * d.bump_size_m) * d.bump_strength;
         let tangential = g - normal * g.dot(normal);
         (normal - tangential).try_normalize().unwrap_or(normal)
     }

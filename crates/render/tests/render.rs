@@ -213,7 +213,10 @@ fn spread(v: &[f32]) -> f32 {
 #[test]
 fn ocean_waves_roughen_the_water_and_calm_water_is_a_mirror() {
     use natura_render::WaterWaves;
-    let calm = sea_luminances(|s| s.water.ripple_height_m = 0.0);
+    let calm = sea_luminances(|s| {
+        s.water.ripple_height_m = 0.0;
+        s.water.wind_speed_m_s = 0.0;
+    });
     let ocean = sea_luminances(|s| {
         s.water.waves = WaterWaves::Ocean;
         s.water.ocean_resolution = 64;

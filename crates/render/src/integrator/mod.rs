@@ -29,8 +29,10 @@ use crate::clouds::CloudSky;
 use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
 use crate::scene::{SceneDesc, WaterDesc, WaterWaves};
+use crate::snow::Shelter;
 use crate::surface_textures::SurfaceTextures;
 use crate::vegetation::{Forest, Light, TreeHit};
+use crate::water::{WindSea, glitter};
 use crate::world::World;
 
 mod shade;
@@ -55,6 +57,9 @@ pub struct Renderer<'w> {
     ripples: FilteredFbm<Perlin>,
     /// The ocean patch whose normals shade the water (`waves = "ocean"`).
     ocean: Option<Surface>,
+    /// The wind sea whose filtered slopes shade the water (`waves = "wind"`
+    /// in a wind).
+    wind_sea: Option<WindSea>,
     rainbow: Option<Rainbow>,
     /// The scene's layer clouds and their shadows, if any.
     clouds: Option<CloudSky>,
@@ -198,6 +203,11 @@ impl<'w> Renderer<'w> {
             seed.derive("textures"),
         )?);
         let w = &scene.water;
+        let materials = materials.with_snow_exposure(
+            world.sun,
+            Some(world.terrain.clone()),
+            snow_shelter(world)?,
+        );
         let ripples = FilteredFbm::new(
             Perlin::new(seed.derive("ripples").0),
             Spectral::default()
@@ -207,6 +217,12 @@ impl<'w> Renderer<'w> {
             0.0,
         )?;
         let ocean = ocean_surface(w, seed, progress)?;
+        let wind_sea = match w.waves {
+            WaterWaves::Wind if world.water_level.is_some() => {
+                WindSea::new(w, fetch_m(world), seed, progress)?
+            }
+            _ => None,
+        };
         let rainbow = rainbow_table(scene, progress)?;
         let clouds = match prepared {
             Some(c) => c,
@@ -221,6 +237,7 @@ impl<'w> Renderer<'w> {
             materials,
             ripples,
             ocean,
+            wind_sea,
             rainbow,
             clouds,
             forest: None,
@@ -488,7 +505,7 @@ impl<'w> Renderer<'w> {
 /// Phillips spectrum in the scene's wind, evaluated at the scene's time.
 fn ocean_surface(w: &WaterDesc, seed: Seed, progress: &dyn Progress) -> Result<Option<Surface>> {
     match w.waves {
-        WaterWaves::Ripples => Ok(None),
+        WaterWaves::Ripples | WaterWaves::Wind => Ok(None),
         WaterWaves::Ocean => {
             progress.start("ocean", 1);
             let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
@@ -514,6 +531,38 @@ fn ocean_surface(w: &WaterDesc, seed: Seed, progress: &dyn Progress) -> Result<O
             Ok(Some(surface))
         }
     }
+}
+
+/// The fetch of the scene's wind over its water, metres: `water.fetch_m`,
+/// or the square root of the water's area (at least one cell).
+fn fetch_m(world: &World) -> f64 {
+    if let Some(f) = world.scene.water.fetch_m {
+        return f;
+    }
+    let (s, g) = (world.surface.heights(), world.terrain.heights());
+    let wet = s
+        .as_slice()
+        .iter()
+        .zip(g.as_slice())
+        .filter(|(s, g)| s > g)
+        .count()
+        .max(1);
+    f64::from(world.terrain.cell_size()) * (wet as f64).sqrt()
+}
+
+/// The prevailing wind's shelter of the snow with `snow_wind_m`, or `None`
+/// where the wind moves no snow (`snow_wind_m` 0).
+fn snow_shelter(world: &World) -> Result<Option<(Shelter, f32)>> {
+    let (m, w) = (&world.scene.materials, &world.scene.water);
+    if m.snow_wind_m <= 0.0 {
+        return Ok(None);
+    }
+    let shelter = Shelter::new(
+        &world.terrain,
+        w.wind_azimuth_deg,
+        m.snow_shelter_distance_m,
+    )?;
+    Ok(Some((shelter, m.snow_wind_m)))
 }
 
 /// The rainbow's table when the scene has rain, else `None`.

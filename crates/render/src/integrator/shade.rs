@@ -42,8 +42,18 @@ impl Renderer<'_> {
     /// The sky seen from `o` along unit `d` (a ray that left the terrain),
     /// with the sun's disc and the clouds in front of both.
     pub(super) fn sky(&self, o: Vec3, d: Vec3) -> Vec3 {
+        self.sky_with(o, d, true)
+    }
+
+    /// [`Self::sky`], with the sun's disc only if `disc` (the wind sea's
+    /// reflection leaves it to the glitter).
+    pub(super) fn sky_with(&self, o: Vec3, d: Vec3, disc: bool) -> Vec3 {
         let sky = self.view.radiance_f32(d);
-        let disc = Dir3::from_f32(d).map_or(Vec3::ZERO, |dir| self.view.sun_disc(dir));
+        let disc = if disc {
+            Dir3::from_f32(d).map_or(Vec3::ZERO, |dir| self.view.sun_disc(dir))
+        } else {
+            Vec3::ZERO
+        };
         match self.clouds.as_ref().and_then(|c| c.view(o, d)) {
             Some(c) => c.radiance + sky * c.transmittance + disc * c.sun_transmittance,
             None => sky + disc,
@@ -138,7 +148,13 @@ impl Renderer<'_> {
         // 1/|d_z| along it at grazing angles; their geometric mean is the
         // isotropic filter width.
         let footprint = t * self.pixel_angle / d.z.abs().max(1e-3).sqrt();
-        let n = if let Some(ocean) = &self.ocean {
+        let wave = self
+            .wind_sea
+            .as_ref()
+            .map(|s| s.sample(Vec2::new(p.x, p.y), footprint));
+        let n = if let Some(w) = &wave {
+            w.normal
+        } else if let Some(ocean) = &self.ocean {
             // Normals of the wind sea, flattened where a pixel covers many
             // wavelengths (the mean normal of a rough patch is its plane).
             let patch = wdesc.ocean_patch_m as f32;
@@ -186,7 +202,7 @@ impl Renderer<'_> {
                 (None, Some(SurfaceHit::Terrain(h))) => {
                     (self.shade_terrain(&self.terrain_point(&h), r, t + h.t), h.t)
                 }
-                (None, None) => (self.sky(p, r), f32::INFINITY),
+                (None, None) => (self.sky_with(p, r, wave.is_none()), f32::INFINITY),
             };
             if tr.is_finite() {
                 let ap = self.view.aerial_perspective_f32(r, tr);
@@ -195,7 +211,7 @@ impl Renderer<'_> {
                 lt
             }
         } else {
-            self.sky(p, r)
+            self.sky_with(p, r, wave.is_none())
         };
 
         // Transmission: the bed seen through absorbing, scattering water.
@@ -223,7 +239,34 @@ impl Renderer<'_> {
         } else {
             Vec3::ZERO
         };
-        fr * reflected + (1.0 - fr) * transmitted
+        let surface = fr * reflected + (1.0 - fr) * transmitted;
+        match &wave {
+            Some(w) => surface + self.sun_glitter(w, p, d, footprint),
+            None => surface,
+        }
+    }
+
+    /// The sun's glitter on the wind sea at `p` seen along `d`
+    /// ([`glitter`]), where the terrain and trees let the sun through.
+    fn sun_glitter(&self, w: &crate::water::WaveSample, p: Vec3, d: Vec3, footprint: f32) -> Vec3 {
+        let e = self.sun_irradiance * self.cloud_shadow(p);
+        let g = glitter(w, d, self.sun, e, |c| {
+            fresnel(1.0, WATER_IOR, f64::from(c)).unpolarized() as f32
+        });
+        // Skip the shadow ray where the glitter could not show.
+        if g.max_element() <= 1e-3 * e.max_element() {
+            return Vec3::ZERO;
+        }
+        let o = p + Vec3::Z * 1e-2;
+        let fp = RayCone {
+            at_origin_m: footprint,
+            per_metre: self.pixel_angle,
+        };
+        let shadowed =
+            self.tracer
+                .occluded_footprint(&Ray::new(o, self.sun), 0.0, f32::INFINITY, fp)
+                || self.trees_occlude(o, 1e-2);
+        if shadowed { Vec3::ZERO } else { g }
     }
 
     /// Rain between `rain_distance_m` and the hit: extinction of what is behind

@@ -192,23 +192,29 @@ pub struct WaterDesc {
     pub level_m: Option<f64>,
     /// Water level as the fraction of land cells it floods (0–1).
     pub level_quantile: f64,
-    /// What shapes the surface's normals: fBm ripples (lakes) or a
-    /// Tessendorf ocean patch from natura-ocean (seas).
+    /// What shapes the surface's normals: the wind sea of the scene's wind
+    /// over the water's fetch, fBm ripples, or a Tessendorf ocean patch
+    /// (Phillips spectrum) from natura-ocean.
     pub waves: WaterWaves,
     /// Wave height scale of the ripples, metres (`waves = "ripples"`).
     pub ripple_height_m: f64,
     /// Wavelength of the largest ripples, metres.
     pub ripple_size_m: f64,
-    /// Wind speed 10 m above the sea driving the ocean's Phillips spectrum,
-    /// m/s (`waves = "ocean"`).
+    /// Wind speed 10 m above the water, m/s: it drives the wind sea
+    /// (`waves = "wind"`; 0 is a calm, the ripples alone) and the ocean's
+    /// Phillips spectrum (`waves = "ocean"`, at least 0.1).
     pub wind_speed_m_s: f64,
     /// Compass direction the wind blows toward, degrees clockwise from north
-    /// (+y) toward east (+x) (`waves = "ocean"`).
+    /// (+y) toward east (+x): the waves', and the prevailing wind that
+    /// drifted the snow.
     pub wind_azimuth_deg: f64,
-    /// Side of the periodic ocean patch, metres (`waves = "ocean"`).
+    /// Distance the wind has blown over the water, metres (`waves =
+    /// "wind"`); if absent, the square root of the water's area.
+    pub fetch_m: Option<f64>,
+    /// Side of the periodic wave patch, metres (`waves = "wind"` or `"ocean"`).
     pub ocean_patch_m: f64,
-    /// FFT samples along each side of the ocean patch, a power of two
-    /// (`waves = "ocean"`).
+    /// FFT samples along each side of the wave patch, a power of two
+    /// (`waves = "wind"` or `"ocean"`).
     pub ocean_resolution: usize,
     /// Time of the ocean snapshot, seconds (`waves = "ocean"`).
     pub ocean_time_s: f64,
@@ -223,8 +229,12 @@ pub struct WaterDesc {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WaterWaves {
-    /// Isotropic fBm ripples of `ripple_size_m` and `ripple_height_m`.
+    /// The fetch-limited wind sea (JONSWAP) of `wind_speed_m_s` over
+    /// `fetch_m`, filtered at the pixel's footprint, with the sun's
+    /// glitter (see [`crate::water`]); in a calm, the ripples.
     #[default]
+    Wind,
+    /// Isotropic fBm ripples of `ripple_size_m` and `ripple_height_m`.
     Ripples,
     /// A wind-driven Tessendorf FFT ocean patch (Phillips spectrum), tiled
     /// over the water (natura-ocean's [`Surface`](natura_ocean::Surface)).
@@ -285,8 +295,24 @@ pub struct MaterialDesc {
     pub snow_line_m: f32,
     /// Amplitude of the fractal perturbation of the snow line, metres.
     pub snow_line_noise_m: f32,
-    /// Snow does not hold on slopes steeper than this, degrees.
+    /// Slope on which half the snow holds, degrees: snow sloughs off
+    /// steeper ground (see `snow_slope_band_deg`).
     pub snow_max_slope_deg: f32,
+    /// Half the width of the slopes over which the snow thins out, degrees:
+    /// full cover below `snow_max_slope_deg` minus this, none above it plus this.
+    pub snow_slope_band_deg: f32,
+    /// How much higher the snow line lies on a steep slope facing the sun
+    /// than on level ground, metres (shady slopes: as much lower).
+    pub snow_sun_m: f32,
+    /// How much lower the snow line lies in the lee of the prevailing wind
+    /// (`water.wind_azimuth_deg`), and higher on crests it scours, metres.
+    pub snow_wind_m: f32,
+    /// How far upwind the terrain shelters the snow, metres.
+    pub snow_shelter_distance_m: f32,
+    /// Amplitude of the fine noise on the snow's edge, metres of altitude.
+    pub snow_edge_m: f32,
+    /// Largest wavelength of the noise on the snow's edge, metres.
+    pub snow_edge_size_m: f32,
     /// Slopes steeper than this are bare rock, degrees.
     pub rock_slope_deg: f32,
     /// Vegetation thins out above this altitude, metres.
@@ -477,11 +503,12 @@ impl Default for WaterDesc {
             enabled: true,
             level_m: None,
             level_quantile: 0.12,
-            waves: WaterWaves::Ripples,
+            waves: WaterWaves::Wind,
             ripple_height_m: 0.12,
             ripple_size_m: 40.0,
-            wind_speed_m_s: 8.0,
+            wind_speed_m_s: 4.0,
             wind_azimuth_deg: 200.0,
+            fetch_m: None,
             ocean_patch_m: 256.0,
             ocean_resolution: 256,
             ocean_time_s: 0.0,
@@ -520,7 +547,13 @@ impl Default for MaterialDesc {
         Self {
             snow_line_m: 1450.0,
             snow_line_noise_m: 220.0,
-            snow_max_slope_deg: 42.0,
+            snow_max_slope_deg: 45.0,
+            snow_slope_band_deg: 15.0,
+            snow_sun_m: 150.0,
+            snow_wind_m: 150.0,
+            snow_shelter_distance_m: 300.0,
+            snow_edge_m: 60.0,
+            snow_edge_size_m: 150.0,
             rock_slope_deg: 40.0,
             tree_line_m: 950.0,
             sediment_min_m: 0.5,

@@ -142,7 +142,7 @@ fn impossible_values_are_refused_by_name() {
         ),
         (
             "water.wind_speed_m_s",
-            Box::new(|s| s.water.wind_speed_m_s = 0.0),
+            Box::new(|s| s.water.wind_speed_m_s = -1.0),
         ),
     ];
     for (key, mutate) in cases {

@@ -4,7 +4,7 @@
 
 use super::{
     AtmosphereDesc, CameraDesc, CameraKind, DetailDesc, Diffuse, ErosionDesc, MaterialDesc,
-    RenderDesc, SceneDesc, SunDesc, TerrainDesc, WaterDesc,
+    RenderDesc, SceneDesc, SunDesc, TerrainDesc, WaterDesc, WaterWaves,
 };
 use crate::error::{RenderError, Result, fmt_f64};
 
@@ -106,7 +106,15 @@ impl WaterDesc {
         in_range("water.level_quantile", self.level_quantile, 0.0, 1.0)?;
         in_range("water.ripple_height_m", self.ripple_height_m, 0.0, 100.0)?;
         in_range("water.ripple_size_m", self.ripple_size_m, 1e-3, 1e6)?;
-        in_range("water.wind_speed_m_s", self.wind_speed_m_s, 0.1, 60.0)?;
+        let calm = if self.waves == WaterWaves::Ocean {
+            0.1
+        } else {
+            0.0
+        };
+        in_range("water.wind_speed_m_s", self.wind_speed_m_s, calm, 60.0)?;
+        if let Some(f) = self.fetch_m {
+            in_range("water.fetch_m", f, 1.0, 1e7)?;
+        }
         let az = MAX_AZIMUTH_DEG;
         in_range("water.wind_azimuth_deg", self.wind_azimuth_deg, -az, az)?;
         in_range("water.ocean_patch_m", self.ocean_patch_m, 1.0, 1e5)?;
@@ -198,6 +206,27 @@ impl MaterialDesc {
             self.snow_max_slope_deg,
             0.0,
             90.0,
+        )?;
+        in_range(
+            "materials.snow_slope_band_deg",
+            self.snow_slope_band_deg,
+            0.1,
+            45.0,
+        )?;
+        in_range("materials.snow_sun_m", self.snow_sun_m, 0.0, 1e4)?;
+        in_range("materials.snow_wind_m", self.snow_wind_m, 0.0, 1e4)?;
+        in_range(
+            "materials.snow_shelter_distance_m",
+            self.snow_shelter_distance_m,
+            0.0,
+            1e4,
+        )?;
+        in_range("materials.snow_edge_m", self.snow_edge_m, 0.0, 1e4)?;
+        in_range(
+            "materials.snow_edge_size_m",
+            self.snow_edge_size_m,
+            0.1,
+            1e5,
         )?;
         in_range("materials.rock_slope_deg", self.rock_slope_deg, 0.0, 90.0)?;
         in_range("materials.tree_line_m", self.tree_line_m, -1e6, 1e6)?;

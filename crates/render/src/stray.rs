@@ -1,0 +1,98 @@
+//! Stray pixels: isolated bright pixels a viewer reads as specks (a sun
+//! glint caught by one sample, a firefly of the sampling, a gap in a
+//! surface). The test is local and scale-free: a pixel is stray when its
+//! luminance exceeds [`STRAY_RATIO`] times the median luminance of the
+//! 5 × 5 pixels around it (itself included) while none of its eight
+//! neighbours does. Real highlights larger than a pixel (a glitter path,
+//! a lit ridge) have bright neighbours and are not counted.
+
+use natura_core::Image;
+use natura_core::colour::luminance;
+
+/// How many times brighter than its neighbourhood's median a stray pixel is.
+pub const STRAY_RATIO: f32 = 4.0;
+
+/// The pixels `(x, y)` of `image` that are stray (see the module docs), in
+/// row order. `image` holds linear colours: best the picture as shown
+/// (exposed and tone-mapped, or an 8-bit picture decoded to linear), whose
+/// contrasts are the viewer's; the luminance is Rec. 709's. Pixels within
+/// two of the border see the border pixels repeated.
+#[must_use]
+pub fn stray_pixels(image: &Image) -> Vec<(usize, usize)> {
+    let (w, h) = (image.width(), image.height());
+    if w == 0 || h == 0 {
+        return Vec::new();
+    }
+    let px = image.pixels();
+    let lum: Vec<f32> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| luminance(px[(x, y)]))
+        .collect();
+    let at = |x: isize, y: isize| {
+        let (x, y) = (x.clamp(0, w as isize - 1), y.clamp(0, h as isize - 1));
+        lum[y as usize * w + x as usize]
+    };
+    let bright = |x: isize, y: isize| {
+        let mut v = [0.0f32; 25];
+        for (k, s) in v.iter_mut().enumerate() {
+            *s = at(x + (k % 5) as isize - 2, y + (k / 5) as isize - 2);
+        }
+        v.sort_unstable_by(f32::total_cmp);
+        at(x, y) > STRAY_RATIO * v[12]
+    };
+    let mut out = Vec::new();
+    for y in 0..h as isize {
+        for x in 0..w as isize {
+            if !bright(x, y) {
+                continue;
+            }
+            let lonely = (-1..=1)
+                .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
+                .filter(|&d| d != (0, 0))
+                .filter(|&(dx, dy)| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    (0..w as isize).contains(&nx) && (0..h as isize).contains(&ny)
+                })
+                .all(|(dx, dy)| !bright(x + dx, y + dy));
+            if lonely {
+                out.push((x as usize, y as usize));
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn finds_a_lone_speck_but_not_a_blob_or_a_texture() {
+        let grey = Vec3::splat(0.1);
+        let mut img = Image::new(16, 12, grey).unwrap();
+        assert!(stray_pixels(&img).is_empty());
+        img.set(5, 4, Vec3::splat(0.5));
+        assert_eq!(stray_pixels(&img), vec![(5, 4)]);
+        // Just below the ratio: not stray.
+        img.set(5, 4, Vec3::splat(0.39));
+        assert!(stray_pixels(&img).is_empty());
+        // Two bright pixels side by side are a feature, not a speck.
+        img.set(5, 4, Vec3::splat(0.5));
+        img.set(6, 4, Vec3::splat(0.5));
+        assert!(stray_pixels(&img).is_empty());
+        // A speck at the corner is found too.
+        img.set(0, 0, Vec3::splat(1.0));
+        assert_eq!(stray_pixels(&img), vec![(0, 0)]);
+        // Stripes a pixel wide are texture: the median is the bright value.
+        let cb = Image::from_fn(9, 9, |x, _| {
+            if x % 2 == 0 {
+                Vec3::ONE
+            } else {
+                Vec3::splat(0.01)
+            }
+        })
+        .unwrap();
+        assert!(stray_pixels(&cb).is_empty());
+    }
+}
