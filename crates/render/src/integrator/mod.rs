@@ -30,6 +30,7 @@ use crate::error::Result;
 use crate::material::{Materials, SurfaceSample};
 use crate::scene::{SceneDesc, WaterDesc, WaterWaves};
 use crate::surface_textures::SurfaceTextures;
+use crate::vegetation::canopy::Ground;
 use crate::vegetation::{Forest, Light, TreeHit};
 use crate::world::World;
 
