@@ -145,6 +145,9 @@ pub struct Canopy {
     eye: Vec2,
     radius: f32,
     slant: f32,
+    /// The crowns' side-to-top ratio of their full reach, `H/(πR)` of the
+    /// stand's mean crown depth `H` and reach `R`: the floor's sky.
+    reach_slant: f32,
     /// Mean height of the stand's crowns' tops, metres.
     height: f32,
     /// The stand's opacity: its crown-area index times this is the Boolean
@@ -237,6 +240,7 @@ impl Canopy {
         let far = grid(nx, ny, |i, j| lookup(suit[(i, j)]))?;
         let (stand_index, layer_index) = means(&suit, &area, &far, cell, inp.eye, inp.radius);
         let probes = probe(inp, &far);
+        let reach_slant = slant;
         let (opacity, slant, fit) = fit(&probes, slant);
         let colour = colours(inp, &site, nx, ny)?;
         let near = grid(nx, ny, |i, j| {
@@ -276,6 +280,7 @@ impl Canopy {
             eye: inp.eye,
             radius: inp.radius,
             slant,
+            reach_slant,
             height,
             opacity,
             clumps,
@@ -385,11 +390,12 @@ impl Canopy {
         let p = g.point;
         let a_all = self.index_at(p, g.footprint);
         let a_far = a_all * self.far_share(p, 0.0);
-        let a_near = self.opacity
-            * self
-                .near
-                .sample_bilinear(p.x / self.cell, p.y / self.cell, Boundary::Clamp);
-        let a = a_far + a_near;
+        let a_near = self
+            .near
+            .sample_bilinear(p.x / self.cell, p.y / self.cell, Boundary::Clamp);
+        // The floor under the crowns' full reach (the index before the
+        // opacity: branches and trunks shade it too).
+        let a = a_far / self.opacity + a_near;
         if a <= 0.0 {
             return g.radiance;
         }
@@ -399,7 +405,7 @@ impl Canopy {
         let q = DVec2::new(f64::from(p.x), f64::from(p.y));
         let grain = self.floor.eval2_width(q, f64::from(g.footprint)) as f32;
         let floor = g.albedo.lerp(LITTER * (1.0 + 0.5 * grain), under);
-        let sky_gap = (-a * (1.0 + self.slant)).exp();
+        let sky_gap = (-a * (1.0 + self.reach_slant)).exp();
         let sun_gap = (-a_far * (1.0 + self.slant * run(light.sun, g.normal))).exp();
         let ground = floor * inv_pi * (g.sun * sun_gap + g.sky * sky_gap);
         if a_far <= 0.0 {
