@@ -20,9 +20,11 @@
 //! * [`surface_textures`]: natura-texture's rock strata on cliffs and a fine grain on
 //!   snow, grass and scree, band-limited at the pixel's footprint
 //!   (`[textures]`).
-//! * [`vegetation::Forest`]: an ecosystem of natura-plant species grown on
-//!   the terrain near the camera, instanced tree meshes traced through a
-//!   two-level BVH, with shadows both ways and translucent leaves.
+//! * [`vegetation::Forest`]: an ecosystem of natura-plant species (conifers,
+//!   a broad-leaved tree, a shrub, a ground cover) grown on the terrain near
+//!   the camera, instanced plant meshes traced through a two-level BVH, with
+//!   shadows both ways and translucent leaves; beyond them a canopy layer
+//!   grown from the same species carries the forest to the horizon.
 //! * [`render_scene`]: all of it, with stage timings, returning a linear
 //!   image and its exposure; [`Rendered::save`] writes EXR and PNG.
 //!

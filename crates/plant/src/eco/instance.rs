@@ -7,6 +7,8 @@
 //! source's importance weight standing for screen area) and each
 //! representative becomes one prototype: the species' L-system derived for a
 //! number of steps proportional to its size, interpreted by the turtle.
+//! Each prototype is derived with its own seed, so a stochastic L-system
+//! gives every size class a plant of its own form as well as its own age.
 
 use std::path::Path;
 
@@ -104,10 +106,13 @@ impl Instancing {
             let lsys = LSystem::parse(&sp.lsystem)?;
             let turtle = Turtle::new(&lsys, TurtleParams::for_lsystem(&lsys))?;
             let base = prototypes.len() as u32;
-            for &r in &q.codebook {
+            for (k, &r) in q.codebook.iter().enumerate() {
                 let frac = f64::from(r) / sp.max_radius;
                 let steps = ((f64::from(sp.max_steps) * frac).round() as u32).max(1);
-                let mut d = Derivation::new(&lsys, seed.derive_index(si as u64).0)?;
+                // Each prototype its own derivation seed: a stochastic
+                // L-system grows another plant of the species for each.
+                let variant = seed.derive_index(si as u64).derive_index(k as u64);
+                let mut d = Derivation::new(&lsys, variant.0)?;
                 d.derive(steps)?;
                 let geometry = turtle.interpret(d.string())?;
                 let geometry_radius = crown_radius(&geometry);

@@ -15,8 +15,10 @@
 //!    plant; the output is an instance list (species, prototype, position,
 //!    scale, rotation) plus the prototypes' turtle geometry.
 //!
-//! [`catalogue`] holds ready-made species at landscape scale (spruce, pine,
-//! beech), each with its L-system and the colours of its bark and leaves.
+//! [`catalogue`] holds ready-made species at landscape scale (the conifers
+//! spruce and pine, the broad-leaved beech, the shrub juniper and the ground
+//! cover heather), each with its stochastic L-system and the colours of its
+//! bark and leaves through the seasons.
 //!
 //! ```
 //! use natura_core::HeightField;

@@ -31,6 +31,7 @@ use crate::material::{Materials, SurfaceSample};
 use crate::scene::{SceneDesc, WaterDesc, WaterWaves};
 use crate::snow::Shelter;
 use crate::surface_textures::SurfaceTextures;
+use crate::vegetation::canopy::Ground;
 use crate::vegetation::{Forest, Light, TreeHit};
 use crate::water::{WindSea, glitter};
 use crate::world::World;

@@ -89,6 +89,7 @@ impl Renderer<'_> {
         let n = self.materials.bumped_normal(tp.point, tp.smooth, footprint);
         let v = -d;
         let mut l = Vec3::ZERO;
+        let mut e_sun = None;
 
         // Direct sun, with a shadow ray from just above the surface.
         let cos_i = n.dot(self.sun);
@@ -106,6 +107,7 @@ impl Renderer<'_> {
             {
                 let f = self.materials.diffuse_factor(n, self.sun, v) * self.cloud_shadow(tp.point);
                 l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
+                e_sun = Some(self.sun_irradiance * cos_i * f);
             }
         }
         // Sky light over the visible hemisphere, plus light bounced off the
@@ -116,7 +118,28 @@ impl Renderer<'_> {
             * 0.25
             * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
         l += albedo / std::f32::consts::PI * (self.sky_irradiance * up + bounce);
-        l
+        match &self.forest {
+            // The forest's floor, and its canopy beyond the trees.
+            Some(f) => f.ground_radiance(
+                &Ground {
+                    point: tp.point,
+                    dir: d,
+                    normal: tp.smooth,
+                    footprint,
+                    albedo,
+                    sun: e_sun.unwrap_or(Vec3::ZERO),
+                    sky: self.sky_irradiance * up + bounce,
+                    sun_visible: e_sun.is_some(),
+                    radiance: l,
+                },
+                &Light {
+                    sun: self.sun,
+                    sun_irradiance: self.sun_irradiance * self.cloud_shadow(tp.point),
+                    sky_irradiance: self.sky_irradiance,
+                },
+            ),
+            None => l,
+        }
     }
 
     /// The normal of the fBm ripples at `p`, band-limited to a pixel of the

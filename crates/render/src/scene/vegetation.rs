@@ -8,7 +8,7 @@ use crate::error::{RenderError, Result, in_range as range};
 
 /// The tree species the forest can grow, by scene name: natura-plant's
 /// [`catalogue::NAMES`](natura_plant::eco::catalogue::NAMES).
-pub const SPECIES_NAMES: [&str; 3] = natura_plant::eco::catalogue::NAMES;
+pub const SPECIES_NAMES: [&str; 5] = natura_plant::eco::catalogue::NAMES;
 
 /// A forest of instanced trees on the terrain around the camera.
 ///
@@ -17,17 +17,22 @@ pub const SPECIES_NAMES: [&str; 3] = natura_plant::eco::catalogue::NAMES;
 /// wetness and light; growth; self-thinning), and every surviving plant is
 /// drawn as an instance of one of a few prototype meshes per species. Trees
 /// farther than `lod_distance_m` use a low-polygon crown; beyond `radius_m`
-/// the terrain's forest colour stands for the trees.
+/// (fading in over its outer quarter) a canopy layer over the terrain
+/// carries the forest to the horizon (`far_field`), as dense as the stand
+/// wherever the same species would establish.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct VegetationDesc {
     /// Whether to grow and draw the forest at all.
     pub enabled: bool,
-    /// Species to grow, by name: `"spruce"` (cool upper slopes), `"pine"`
-    /// (dry, sunny ground) and `"beech"` (moist, low ground).
+    /// Species to grow, by name: the conifers `"spruce"` (cool upper
+    /// slopes) and `"pine"` (dry, sunny ground), the broad-leaved `"beech"`
+    /// (moist, low ground), the shrub `"juniper"` (dry, open ground up past
+    /// the tree line) and the ground cover `"heather"` (open heath).
     pub species: Vec<String>,
-    /// Seedlings per hectare per simulation step for each species where it
-    /// may grow (0.1 to 500); the forest's density follows from seeding and
+    /// Seedlings per hectare per simulation step for each tree species where
+    /// it may grow (0.1 to 500; the shrub and the ground cover seed more
+    /// densely); the forest's density follows from seeding and
     /// self-thinning.
     pub density_per_ha: f64,
     /// Height of a mature tree, metres (1 to 120); younger trees are smaller.
@@ -47,6 +52,16 @@ pub struct VegetationDesc {
     pub lod_distance_m: f64,
     /// Fraction of the sunlight a leaf transmits to its shaded side (0 to 0.9).
     pub leaf_transmission: f64,
+    /// Time of year of the leaves' colour (0 to 1): 0 the spring flush, 0.5
+    /// high summer, 1 the height of autumn colour (the beech turns, the
+    /// heather flowers, the conifers barely change).
+    pub season: f64,
+    /// Spread of each plant's leaf colour about its species' (0 to 0.5): its
+    /// brightness and its shift toward yellow vary by up to this fraction.
+    pub leaf_variation: f64,
+    /// Whether the forest goes on beyond `radius_m` as a canopy layer over
+    /// the terrain (else the trees end there).
+    pub far_field: bool,
     /// Added to the scene's seed for the ecosystem (another forest over the
     /// same terrain).
     pub seed_offset: u64,
@@ -56,15 +71,24 @@ impl Default for VegetationDesc {
     fn default() -> Self {
         Self {
             enabled: true,
-            species: vec!["spruce".into(), "pine".into(), "beech".into()],
+            species: vec![
+                "spruce".into(),
+                "pine".into(),
+                "beech".into(),
+                "juniper".into(),
+                "heather".into(),
+            ],
             density_per_ha: 8.0,
             tree_height_m: 22.0,
             tree_line_m: 1400.0,
             radius_m: 2500.0,
             steps: 14,
-            prototypes_per_species: 3,
+            prototypes_per_species: 8,
             lod_distance_m: 1000.0,
             leaf_transmission: 0.3,
+            season: 0.5,
+            leaf_variation: 0.2,
+            far_field: true,
             seed_offset: 0,
         }
     }
@@ -119,6 +143,8 @@ impl VegetationDesc {
             0.0,
             0.9,
         )?;
+        range("vegetation.season", self.season, 0.0, 1.0)?;
+        range("vegetation.leaf_variation", self.leaf_variation, 0.0, 0.5)?;
         Ok(())
     }
 }

@@ -55,6 +55,10 @@ pub struct Mesh {
     pub tris: Vec<[Vec3; 3]>,
     /// Unit geometric normal per triangle.
     pub normals: Vec<Vec3>,
+    /// Unit shading normal at each corner of each triangle, interpolated
+    /// across it (smooth over a crown; the geometric normal where the mesh
+    /// was built without them).
+    pub shading: Vec<[Vec3; 3]>,
     /// Whether each triangle is leaf (true) or bark.
     pub leaf: Vec<bool>,
     /// Bounds of the triangles.
@@ -63,11 +67,22 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// Builds the hierarchy over `tris` (degenerate triangles are dropped).
+    /// Builds the hierarchy over `tris` (degenerate triangles are dropped),
+    /// shaded flat.
     #[must_use]
     pub fn new(tris: Vec<[Vec3; 3]>, leaf: Vec<bool>) -> Self {
+        let shading = vec![[Vec3::ZERO; 3]; tris.len()];
+        Self::with_shading(tris, leaf, shading)
+    }
+
+    /// As [`Self::new`], with a shading normal at each corner of each
+    /// triangle (a corner whose normal is not finite and non-zero takes the
+    /// triangle's geometric normal).
+    #[must_use]
+    pub fn with_shading(tris: Vec<[Vec3; 3]>, leaf: Vec<bool>, shading: Vec<[Vec3; 3]>) -> Self {
         let (mut t2, mut l2, mut normals) = (Vec::new(), Vec::new(), Vec::new());
-        for (t, l) in tris.into_iter().zip(leaf) {
+        let mut s2 = Vec::new();
+        for ((t, l), sh) in tris.into_iter().zip(leaf).zip(shading) {
             let n = (t[1] - t[0]).cross(t[2] - t[0]);
             if let Some(n) = n
                 .try_normalize()
@@ -76,6 +91,7 @@ impl Mesh {
                 t2.push(t);
                 l2.push(l);
                 normals.push(n);
+                s2.push(sh.map(|c| c.try_normalize().unwrap_or(n)));
             }
         }
         let boxes: Vec<Aabb> = t2
@@ -100,6 +116,7 @@ impl Mesh {
             bvh: build(&boxes),
             tris: t2,
             normals,
+            shading: s2,
             leaf: l2,
             bounds,
         }
@@ -179,7 +196,7 @@ impl Placement {
     /// A world point or direction (`w = 0`) into the mesh's frame; directions
     /// are divided by the scale too, so ray parameters stay world distances.
     #[inline]
-    fn local(&self, v: Vec3, point: bool) -> Vec3 {
+    pub(crate) fn local(&self, v: Vec3, point: bool) -> Vec3 {
         let q = if point { v - self.position } else { v };
         let (c, s) = self.cos_sin;
         Vec3::new(c * q.x + s * q.y, -s * q.x + c * q.y, q.z) / self.scale

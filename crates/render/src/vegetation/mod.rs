@@ -14,9 +14,16 @@
 //!    its height); trees farther than `lod_distance_m` from the eye use the
 //!    crown, so distant forest costs a few dozen triangles a tree.
 //! 4. Rays meet the trees through obvhs' wide BVHs ([`bvh`]): one over the
-//!    instances, one per mesh; shading ([`shade`]) adds leaf translucency.
+//!    instances, one per mesh; shading ([`shade`]) adds leaf translucency,
+//!    on normals interpolated over each crown, and each plant's leaves take
+//!    their own colour at the scene's season.
+//! 5. Beyond the instanced trees the forest goes on to the horizon as a
+//!    canopy layer over the terrain ([`canopy`]), its density learned from
+//!    the stand and spread by the same species' establishment rules over
+//!    the whole terrain, fading in as the trees thin out.
 
 pub mod bvh;
+pub mod canopy;
 pub mod proto;
 pub mod shade;
 pub mod tri;
@@ -30,8 +37,19 @@ use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Plant};
 use crate::error::{RenderError, Result};
 use crate::world::World;
 use bvh::{Instanced, Mesh, Placement};
+use canopy::{Canopy, CanopyInput, Ground, StandTree};
 use natura_plant::eco::catalogue::{self, Look};
 pub use shade::Light;
+
+/// The share of the forest drawn as instanced trees at horizontal distance
+/// `dist` from the eye in a forest of radius `radius` (metres): 1 within
+/// three quarters of the radius, falling linearly to 0 at the radius. The
+/// trees thin out with it, and the canopy layer ([`canopy`]) takes the
+/// rest.
+#[must_use]
+pub fn near_share(dist: f32, radius: f32) -> f32 {
+    (4.0 * (1.0 - dist / radius)).clamp(0.0, 1.0)
+}
 
 /// Brightness of a low-polygon crown relative to a lit leaf: the mean
 /// self-shadowing of a full crown seen from afar (own value, matched by eye
@@ -47,6 +65,9 @@ pub struct TreeHit {
     pub point: Vec3,
     /// Unit geometric normal of the triangle hit (either side).
     pub normal: Vec3,
+    /// Unit shading normal there: the mesh's corner normals interpolated
+    /// (smooth across a crown).
+    pub shading: Vec3,
     /// Whether the surface is leaf (else bark).
     pub leaf: bool,
     /// Index of the instance hit.
@@ -72,6 +93,8 @@ pub struct ForestStats {
     pub prototypes: Duration,
     /// Time of the top-level BVH over the instances.
     pub tlas: Duration,
+    /// Time of the canopy layer beyond the trees (zero without it).
+    pub canopy: Duration,
 }
 
 /// Instanced trees ready to trace and shade.
@@ -82,6 +105,11 @@ pub struct Forest {
     looks: Vec<Look>,
     /// Species index per placement.
     species_of: Vec<u16>,
+    /// Leaf albedo and transmitted colour per placement: the species' at the
+    /// plant's own season, with the plant's own tint.
+    leaf_of: Vec<(Vec3, Vec3)>,
+    /// The forest beyond the trees, if the scene has it.
+    canopy: Option<Canopy>,
     transmission: f32,
     brute: bool,
     stats: ForestStats,
@@ -303,6 +331,9 @@ impl Forest {
         let t2 = Instant::now();
         let mut placements = Vec::new();
         let mut species_of = Vec::new();
+        let mut leaf_of = Vec::new();
+        let mut trees = Vec::new();
+        let tint = Seed(scene.seed.wrapping_add(v.seed_offset)).derive("vegetation.leaf");
         let (s, g) = (world.surface.heights(), world.terrain.heights());
         let cell = world.terrain.cell_size();
         let edge = Seed(scene.seed.wrapping_add(v.seed_offset)).derive("vegetation.edge");
@@ -318,7 +349,7 @@ impl Forest {
             let (gi, gj) = nearest_cell(p, cell, g);
             // The forest thins out over the outer quarter of the radius
             // instead of ending in a line.
-            let keep = 4.0 * (1.0 - dist / radius);
+            let keep = near_share(dist, radius);
             if keep < 1.0
                 && edge.uniform(&[i64::from(p.x.to_bits()), i64::from(p.y.to_bits())]) as f32
                     >= keep
@@ -333,6 +364,15 @@ impl Forest {
             let h =
                 v.tree_height_m as f32 * looks[si].height_factor * (r / max_radius[si]).min(1.0);
             let scale = h / height;
+            if looks[si].layer.is_canopy() {
+                let (lo, hi) = full.bounds;
+                trees.push(StandTree {
+                    position: p,
+                    crown_radius: 0.25 * scale * ((hi.x - lo.x) + (hi.y - lo.y)),
+                    height: h,
+                });
+            }
+            leaf_of.push(plant_leaf(&looks[si], v, tint, p));
             let near = f64::from(dist) <= v.lod_distance_m;
             stats.near += usize::from(near);
             placements.push(Placement {
@@ -353,10 +393,19 @@ impl Forest {
         }
         let scene_bvh = Instanced::new(meshes, placements);
         stats.tlas = t2.elapsed();
+        let t3 = Instant::now();
+        let canopy = if v.far_field {
+            Some(Canopy::new(&canopy_input(world, trees, &scene_bvh))?)
+        } else {
+            None
+        };
+        stats.canopy = t3.elapsed();
         Ok(Some(Self {
             scene: scene_bvh,
             looks,
             species_of,
+            leaf_of,
+            canopy,
             transmission: v.leaf_transmission as f32,
             brute: false,
             stats,
@@ -386,6 +435,23 @@ impl Forest {
         self.stats.tlas += t.elapsed();
     }
 
+    /// The canopy layer that carries the forest beyond the trees, if the
+    /// scene has it (`vegetation.far_field`).
+    #[must_use]
+    pub fn canopy(&self) -> Option<&Canopy> {
+        self.canopy.as_ref()
+    }
+
+    /// Radiance toward `-g.dir` of the ground `g` with the forest on it:
+    /// the canopy layer's crowns and the floor under them
+    /// ([`Canopy::ground_radiance`]); `g.radiance` without the layer.
+    #[must_use]
+    pub fn ground_radiance(&self, g: &Ground, light: &Light) -> Vec3 {
+        self.canopy
+            .as_ref()
+            .map_or(g.radiance, |c| c.ground_radiance(g, light))
+    }
+
     /// Traces by testing every triangle of every tree instead of the BVH
     /// (identical results, for checking; slow).
     pub fn set_brute_force(&mut self, brute: bool) {
@@ -402,10 +468,18 @@ impl Forest {
         }?;
         let p = &self.scene.placements[h.instance as usize];
         let m = &self.scene.meshes[p.mesh as usize];
+        let k = h.triangle as usize;
+        let point = o + d * h.t;
+        let w = tri::barycentric(p.local(point, true), &m.tris[k]);
+        let [a, b, c] = m.shading[k];
+        let shading = (a * w[0] + b * w[1] + c * w[2])
+            .try_normalize()
+            .unwrap_or(m.normals[k]);
         Some(TreeHit {
             t: h.t,
-            point: o + d * h.t,
-            normal: p.normal_to_world(m.normals[h.triangle as usize]),
+            point,
+            normal: p.normal_to_world(m.normals[k]),
+            shading: p.normal_to_world(shading),
             leaf: m.leaf[h.triangle as usize],
             instance: h.instance,
         })
@@ -425,11 +499,17 @@ impl Forest {
     /// only if `sun_visible`).
     #[must_use]
     pub fn shade(&self, hit: &TreeHit, d: Vec3, light: &Light, sun_visible: bool) -> Vec3 {
-        let look = &self.looks[self.species_of[hit.instance as usize] as usize];
+        let i = hit.instance as usize;
+        let (leaf, leaf_transmit) = self.leaf_of[i];
+        let look = Look {
+            leaf,
+            leaf_transmit,
+            ..self.looks[self.species_of[i] as usize]
+        };
         let l = shade::radiance(
-            look,
+            &look,
             hit.leaf,
-            hit.normal,
+            hit.shading,
             d,
             light,
             sun_visible,
@@ -442,6 +522,71 @@ impl Forest {
         } else {
             l
         }
+    }
+}
+
+/// Largest shift of a plant's own season from the scene's (natura's own
+/// value: neighbours leaf out and colour a few weeks apart).
+const SEASON_SPREAD: f32 = 0.08;
+
+/// The leaf albedo and transmitted colour of the plant of `look` at `p`:
+/// the species' colours at the scene's season shifted by the plant's own,
+/// times its own brightness and a shift between green and yellow, both
+/// within `leaf_variation` (stateless hashes of the position under `tint`).
+fn plant_leaf(look: &Look, v: &crate::scene::VegetationDesc, tint: Seed, p: Vec3) -> (Vec3, Vec3) {
+    let key =
+        |k: i64| tint.uniform(&[i64::from(p.x.to_bits()), i64::from(p.y.to_bits()), k]) as f32;
+    let season = v.season as f32 + SEASON_SPREAD * (2.0 * key(0) - 1.0);
+    let var = v.leaf_variation as f32;
+    let bright = 1.0 + var * (2.0 * key(1) - 1.0);
+    let yellow = var * (2.0 * key(2) - 1.0);
+    let t = Vec3::new(
+        bright * (1.0 + 0.8 * yellow),
+        bright * (1.0 + 0.3 * yellow),
+        bright * (1.0 - 0.5 * yellow),
+    );
+    (look.leaf_at(season) * t, look.leaf_transmit_at(season) * t)
+}
+
+/// What the canopy layer reads of `world`: the canopy species of its scene
+/// over the whole terrain (altitudes normalised over it) and the stand's
+/// `trees`.
+fn canopy_input<'a>(
+    world: &'a World,
+    trees: Vec<StandTree>,
+    stand: &'a Instanced,
+) -> CanopyInput<'a> {
+    let v = &world.scene.vegetation;
+    let (lo, hi) = world.terrain.min_max();
+    let water = world.water_level.unwrap_or(lo);
+    let species = v
+        .species
+        .iter()
+        .filter_map(|name| {
+            catalogue::species(
+                name,
+                v.density_per_ha,
+                (lo, hi),
+                water,
+                v.tree_line_m as f32,
+            )
+        })
+        .filter(|(_, look)| look.layer.is_canopy())
+        .collect();
+    let eye = world.eye();
+    CanopyInput {
+        terrain: &world.terrain,
+        surface: &world.surface,
+        wetness: &world.wetness,
+        sun: world.sun,
+        water,
+        species,
+        season: v.season as f32,
+        eye: eye.truncate(),
+        radius: v.radius_m as f32,
+        trees,
+        stand,
+        seed: Seed(world.scene.seed.wrapping_add(v.seed_offset)).derive("vegetation.canopy"),
     }
 }
 
@@ -478,8 +623,7 @@ fn nearest_cell(p: Vec3, cell: f32, g: &Grid2<f32>) -> (usize, usize) {
 fn prototype_meshes(inst: &Instancing) -> Result<Vec<Mesh>> {
     let mut meshes = Vec::with_capacity(2 * inst.prototypes.len());
     for p in &inst.prototypes {
-        let (tris, leaf) = proto::triangles(&p.geometry)?;
-        let full = Mesh::new(tris, leaf);
+        let full = proto::full_mesh(&p.geometry)?;
         let crown = proto::crown_hull(&full, 0.8);
         meshes.push(full);
         meshes.push(crown);

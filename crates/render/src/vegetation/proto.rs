@@ -2,6 +2,14 @@
 //! natura-plant's turtle mesher (full detail), and for far trees a
 //! low-polygon crown: a closed hull of rings around the leaves on a
 //! three-sided trunk.
+//!
+//! Both are shaded smooth. A leaf's shading normal leans from its own
+//! normal toward the normal of the ellipsoid around the crown, so a crown
+//! of thousands of small leaves shades as one rounded body lit on its sunny
+//! side rather than as a noise of facets (the "crown normals" of real-time
+//! foliage rendering; the weight is natura's own); bark keeps the mesher's
+//! smooth stem normals, and the hull's corners average the normals of the
+//! faces that meet there.
 
 use glam::Vec3;
 use natura_plant::mesh::{Material, MeshParams, PlantMesh};
@@ -21,26 +29,91 @@ fn params() -> MeshParams {
     }
 }
 
+/// Weight of the crown's ellipsoid normal in a leaf's shading normal.
+pub const CROWN_NORMAL_WEIGHT: f32 = 0.7;
+
+/// The full mesh of turtle geometry: its triangles, which are leaf, and
+/// smooth shading normals (see the module docs).
+///
+/// # Errors
+///
+/// The mesher's errors for inconsistent geometry.
+pub fn full_mesh(g: &Geometry) -> Result<Mesh> {
+    let m = PlantMesh::from_geometry(g, &params())?;
+    let mut tris = Vec::with_capacity(m.triangle_count());
+    let mut leaf = Vec::with_capacity(m.triangle_count());
+    let mut shading = Vec::with_capacity(m.triangle_count());
+    let crown = Ellipsoid::around(
+        m.triangles(Material::Leaf)
+            .flat_map(|t| t.map(|i| m.positions[i as usize])),
+    );
+    for mat in [Material::Bark, Material::Leaf] {
+        for corners in m.triangles(mat) {
+            let p = corners.map(|i| m.positions[i as usize]);
+            let n = corners.map(|i| m.normals[i as usize]);
+            tris.push(p);
+            leaf.push(mat == Material::Leaf);
+            shading.push(match (&crown, mat) {
+                (Some(e), Material::Leaf) => [0, 1, 2].map(|k| e.lean(p[k], n[k])),
+                _ => n,
+            });
+        }
+    }
+    Ok(Mesh::with_shading(tris, leaf, shading))
+}
+
 /// Triangles of turtle geometry and whether each is leaf.
 ///
 /// # Errors
 ///
 /// The mesher's errors for inconsistent geometry.
 pub fn triangles(g: &Geometry) -> Result<(Vec<[Vec3; 3]>, Vec<bool>)> {
-    let m = PlantMesh::from_geometry(g, &params())?;
-    let mut tris = Vec::with_capacity(m.triangle_count());
-    let mut leaf = Vec::with_capacity(m.triangle_count());
-    for mat in [Material::Bark, Material::Leaf] {
-        for [a, b, c] in m.triangles(mat) {
-            tris.push([
-                m.positions[a as usize],
-                m.positions[b as usize],
-                m.positions[c as usize],
-            ]);
-            leaf.push(mat == Material::Leaf);
+    let m = full_mesh(g)?;
+    Ok((m.tris, m.leaf))
+}
+
+/// The axis-aligned ellipsoid around a crown's leaves, centred on the
+/// stem's axis.
+struct Ellipsoid {
+    centre_z: f32,
+    /// Inverse squared semi-axes, horizontal and vertical.
+    inv2: (f32, f32),
+}
+
+impl Ellipsoid {
+    /// The ellipsoid spanning the points' heights and their farthest
+    /// horizontal reach; `None` without points.
+    fn around(points: impl Iterator<Item = Vec3>) -> Option<Self> {
+        let (mut z0, mut z1, mut r) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
+        for p in points {
+            (z0, z1, r) = (z0.min(p.z), z1.max(p.z), r.max(p.truncate().length()));
         }
+        if !z0.is_finite() {
+            return None;
+        }
+        let (a, c) = (r.max(1e-3), (0.5 * (z1 - z0)).max(1e-3));
+        Some(Self {
+            centre_z: 0.5 * (z0 + z1),
+            inv2: (1.0 / (a * a), 1.0 / (c * c)),
+        })
     }
-    Ok((tris, leaf))
+
+    /// The leaf normal `n` at `p` leant toward the ellipsoid's outward
+    /// normal there (turned first to the ellipsoid's side).
+    fn lean(&self, p: Vec3, n: Vec3) -> Vec3 {
+        let q = Vec3::new(
+            p.x * self.inv2.0,
+            p.y * self.inv2.0,
+            (p.z - self.centre_z) * self.inv2.1,
+        );
+        let Some(out) = q.try_normalize() else {
+            return n;
+        };
+        let n = if n.dot(out) < 0.0 { -n } else { n };
+        (n * (1.0 - CROWN_NORMAL_WEIGHT) + out * CROWN_NORMAL_WEIGHT)
+            .try_normalize()
+            .unwrap_or(out)
+    }
 }
 
 /// Sectors around the crown hull.
@@ -133,5 +206,29 @@ pub fn crown_hull(full: &Mesh, shrink: f32) -> Mesh {
             leaf.extend([true, true]);
         }
     }
-    Mesh::new(tris, leaf)
+    let shading = smooth_normals(&tris, &leaf);
+    Mesh::with_shading(tris, leaf, shading)
+}
+
+/// Corner normals of `tris` averaged over the triangles of the same kind
+/// (`leaf`) that share the corner's position, weighted by area; bark and
+/// leaf corners are not mixed.
+fn smooth_normals(tris: &[[Vec3; 3]], leaf: &[bool]) -> Vec<[Vec3; 3]> {
+    use std::collections::BTreeMap;
+    // Positions a rounding apart (the ring's last corner is its first, by
+    // another angle) are one corner.
+    let q = |v: f32| (v * 1e4).round() as i64;
+    let key = |p: Vec3, l: bool| (q(p.x), q(p.y), q(p.z), l);
+    let mut sum: BTreeMap<(i64, i64, i64, bool), Vec3> = BTreeMap::new();
+    for (t, &l) in tris.iter().zip(leaf) {
+        // Twice the area times the unit normal.
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        for &p in t {
+            *sum.entry(key(p, l)).or_insert(Vec3::ZERO) += n;
+        }
+    }
+    tris.iter()
+        .zip(leaf)
+        .map(|(t, &l)| t.map(|p| sum[&key(p, l)]))
+        .collect()
 }

@@ -71,8 +71,11 @@ mod tests {
 
     fn look() -> Look {
         Look {
+            layer: natura_plant::eco::catalogue::Layer::Conifer,
             height_factor: 1.0,
             leaf: Vec3::splat(0.1),
+            leaf_spring: Vec3::splat(0.1),
+            leaf_autumn: Vec3::splat(0.1),
             leaf_transmit: Vec3::splat(0.5),
             bark: Vec3::splat(0.2),
         }

@@ -36,9 +36,47 @@ pub fn intersect(o: Vec3, d: Vec3, v: &[Vec3; 3], t_min: f32, t_max: f32) -> Opt
     (t > t_min && t < t_max).then_some(t)
 }
 
+/// Barycentric weights `(w0, w1, w2)` of the point `p` (in the plane of
+/// triangle `v`, as a hit is): the solution of `p = w0·v0 + w1·v1 + w2·v2`,
+/// `w0 + w1 + w2 = 1`, by the normal equations of the two edges; clamped to
+/// the triangle and renormalised against rounding. A degenerate triangle
+/// gives its first corner.
+#[must_use]
+pub fn barycentric(p: Vec3, v: &[Vec3; 3]) -> [f32; 3] {
+    let (e1, e2, w) = (v[1] - v[0], v[2] - v[0], p - v[0]);
+    let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (d20, d21) = (w.dot(e1), w.dot(e2));
+    let den = d00 * d11 - d01 * d01;
+    if den <= 0.0 || !den.is_finite() {
+        return [1.0, 0.0, 0.0];
+    }
+    let b1 = ((d11 * d20 - d01 * d21) / den).clamp(0.0, 1.0);
+    let b2 = ((d00 * d21 - d01 * d20) / den).clamp(0.0, 1.0);
+    let s = (b1 + b2).max(1.0);
+    let (b1, b2) = (b1 / s, b2 / s);
+    [1.0 - b1 - b2, b1, b2]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn barycentric_weights_rebuild_the_point() {
+        let v = [
+            Vec3::new(1.0, 0.0, 2.0),
+            Vec3::new(4.0, 1.0, 2.0),
+            Vec3::new(2.0, 5.0, 3.0),
+        ];
+        let w = [0.2, 0.5, 0.3];
+        let p = v[0] * w[0] + v[1] * w[1] + v[2] * w[2];
+        let b = barycentric(p, &v);
+        for k in 0..3 {
+            approx::assert_relative_eq!(b[k], w[k], epsilon = 1e-5);
+        }
+        // At a corner, that corner alone.
+        assert_eq!(barycentric(v[1], &v), [0.0, 1.0, 0.0]);
+    }
 
     const T: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::Y];
 
