@@ -67,10 +67,10 @@ fn steam() -> Run {
     // footprint, or the march's step where that is longer (finer octaves
     // would alias along the eye rays into streaks).
     let detail = DetailParams {
-        feature_m: 0.02,
+        feature_m: 0.015,
         octaves: 8,
         h: 0.8,
-        amplitude: 0.45,
+        amplitude: 0.12,
         warp: 0.35,
         ..DetailParams::default()
     }
