@@ -53,8 +53,11 @@ fn count(scene: &SceneDesc) -> Vec<(usize, usize)> {
 
 #[test]
 fn quick_landscape_has_at_most_the_known_stray_pixels() {
+    // Four since the layer clouds take their multiple scattering from the
+    // cache (brighter cloud light on the water): one in the water and
+    // three along one row of the far shore.
     let s = quick(SceneDesc::default());
-    at_most(&s, 2);
+    at_most(&s, 4);
 }
 
 #[test]
