@@ -30,7 +30,7 @@
 
 use glam::{Vec2, Vec3};
 use natura_core::{Boundary, Grid2, Progress, Seed};
-use natura_ocean::{Directional, Jonswap, Ocean, OceanParams, Surface};
+use natura_ocean::{Directional, Jonswap, Ocean, OceanParams, Spectrum, Surface};
 
 use crate::error::Result;
 use crate::scene::WaterDesc;
@@ -70,6 +70,34 @@ pub struct WaveSample {
     pub variance: Vec2,
 }
 
+/// The angle of `w`'s wind from +x, radians, counter-clockwise: the scene
+/// gives it as a compass azimuth, clockwise from north (+y).
+pub(crate) fn wind_angle_rad(w: &WaterDesc) -> f64 {
+    (90.0 - w.wind_azimuth_deg).to_radians()
+}
+
+/// The periodic wave patch of `w` (its side, resolution and snapshot time)
+/// under `spectrum`: the one construction both the wind sea and the ocean
+/// waves use.
+///
+/// # Errors
+///
+/// [`RenderError::Ocean`](crate::RenderError::Ocean) if natura-ocean refuses
+/// the patch or the spectrum.
+pub(crate) fn wave_patch(w: &WaterDesc, spectrum: &dyn Spectrum, seed: Seed) -> Result<Surface> {
+    let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
+    let params = OceanParams {
+        nx: n,
+        ny: n,
+        lx: l,
+        ly: l,
+        choppiness: 1.0,
+        ..OceanParams::default()
+    };
+    let ocean = Ocean::new(&params, spectrum, seed)?;
+    Ok(Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?)
+}
+
 impl WindSea {
     /// The wind sea of `w` over a fetch of `fetch_m` metres, or `None` in a
     /// calm (`wind_speed_m_s` 0: the water keeps its ripples).
@@ -89,24 +117,14 @@ impl WindSea {
             return Ok(None);
         }
         progress.start("wind sea", 1);
-        let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
-        let params = OceanParams {
-            nx: n,
-            ny: n,
-            lx: l,
-            ly: l,
-            choppiness: 1.0,
-            ..OceanParams::default()
-        };
         let jonswap = Jonswap {
             wind_speed: w.wind_speed_m_s,
             fetch: fetch_m,
             ..Jonswap::default()
         };
-        // Compass azimuth (clockwise from +y) to the angle from +x.
-        let spectrum = Directional::new(jonswap, (90.0 - w.wind_azimuth_deg).to_radians());
-        let ocean = Ocean::new(&params, &spectrum, seed.derive("wind-sea"))?;
-        let surface = Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?;
+        let spectrum = Directional::new(jonswap, wind_angle_rad(w));
+        let surface = wave_patch(w, &spectrum, seed.derive("wind-sea"))?;
+        let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
         let sea = Self::from_surface(&surface, n, l as f32, w.wind_speed_m_s as f32)?;
         progress.advance(1);
         progress.finish();

@@ -19,7 +19,7 @@ use natura_atmos::rainbow::{Rainbow, RainbowParams};
 use natura_atmos::sky::SkyView;
 use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
 use natura_noise::{FilteredFbm, Perlin, Spectral};
-use natura_ocean::{Ocean, OceanParams, Phillips, Surface, WaterSurface};
+use natura_ocean::{Phillips, Surface, WaterSurface};
 use natura_trace::{
     Detail, DetailParams, DetailSurface, DetailTracer, Hit, MipmapTracer, Ray, RayCone, Tracer,
 };
@@ -510,23 +510,13 @@ fn ocean_surface(w: &WaterDesc, seed: Seed, progress: &dyn Progress) -> Result<O
         WaterWaves::Ocean => {
             progress.start("ocean", 1);
             let (n, l) = (w.ocean_resolution, w.ocean_patch_m);
-            let params = OceanParams {
-                nx: n,
-                ny: n,
-                lx: l,
-                ly: l,
-                choppiness: 1.0,
-                ..OceanParams::default()
-            };
             let spectrum = Phillips {
                 wind_speed: w.wind_speed_m_s,
-                // Compass azimuth (clockwise from +y) to the angle from +x.
-                wind_direction: (90.0 - w.wind_azimuth_deg).to_radians(),
+                wind_direction: crate::water::wind_angle_rad(w),
                 small_wave_length: l / n as f64,
                 ..Phillips::default()
             };
-            let ocean = Ocean::new(&params, &spectrum, seed.derive("ocean"))?;
-            let surface = Surface::new(&ocean.evaluate(w.ocean_time_s)?, None)?;
+            let surface = crate::water::wave_patch(w, &spectrum, seed.derive("ocean"))?;
             progress.advance(1);
             progress.finish();
             Ok(Some(surface))
