@@ -46,7 +46,7 @@ pub use grid3::Grid3;
 pub use heightfield::{Aabb, HeightField};
 pub use image::Image;
 pub use progress::{CountingProgress, NoProgress, Progress};
-pub use sample::{Boundary, Interpolate, smoothstep};
+pub use sample::{Boundary, Interpolate, floor_f32, smoothstep};
 pub use seed::{Seed, mix64, unit_f64};
 
 /// Run-time SIMD levels and dispatch (re-export of `natura-simd`), so the

@@ -498,7 +498,7 @@ impl ScatterCache {
         let mut delta = [f32::INFINITY; 3];
         for a in 0..3 {
             let n = self.dims[a] as i64;
-            c[a] = (p[a].floor() as i64).clamp(0, n - 1);
+            c[a] = (natura_core::floor_f32(p[a]) as i64).clamp(0, n - 1);
             if d[a] > 0.0 {
                 step[a] = 1;
                 delta[a] = h[a] * inv[a];
