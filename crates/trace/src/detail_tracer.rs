@@ -265,7 +265,15 @@ impl<'a> DetailTracer<'a> {
             }
         }
         let kids = &mut kids[..n];
-        kids.sort_by(|x, y| x.2.total_cmp(&y.2));
+        // Nearest first: a stable insertion sort of at most four (the
+        // library sort is not inlined, and cost more than the node's tests).
+        for i in 1..n {
+            let mut j = i;
+            while j > 0 && kids[j - 1].2.total_cmp(&kids[j].2).is_gt() {
+                kids.swap(j - 1, j);
+                j -= 1;
+            }
+        }
         kids.iter()
             .find_map(|&(ca, cb, s0, s1)| self.node(r, k - 1, ca, cb, s0, s1))
     }

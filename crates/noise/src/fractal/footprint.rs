@@ -7,7 +7,7 @@
 //! (the canonical convention of the crate, Musgrave 1993, §2.3.2.1) and a
 //! fixed offset `o_k` in its lattice units. The octave count follows the
 //! footprint `w` of the sample: `c_k(w) = clamp(v(w) − k, 0, 1)` with
-//! `v(w) = `[`visible_octaves`]`(w, 1/λ₀, r)`, Musgrave's procedural level of
+//! `v(w) = `[`visible_octaves`](crate::fractal::lod::visible_octaves)`(w, 1/λ₀, r)`, Musgrave's procedural level of
 //! detail, "band-limiting the fractal function as a function of distance"
 //! (Musgrave 1993, §6.3), with the fractional-octave blend that keeps the sum
 //! continuous in the octave count (Musgrave 1993, §2.3.2.1). So octave `k`
@@ -44,7 +44,7 @@ use glam::{DVec2, DVec3};
 use crate::error::{NoiseError, Result, bounded};
 use crate::field::Field;
 use crate::fractal::MAX_OCTAVES;
-use crate::fractal::lod::visible_octaves;
+use crate::fractal::lod::visible_octaves_ln;
 
 /// Parameters of a [`FootprintFbm`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -259,7 +259,7 @@ impl<B: Field> FootprintFbm<B> {
     }
 
     /// The real-valued number of octaves `v(w)` at footprint `w`: the
-    /// crate's level-of-detail rule [`visible_octaves`] for the base
+    /// crate's level-of-detail rule [`visible_octaves`](crate::fractal::lod::visible_octaves) for the base
     /// frequency `1/λ₀`, at most the octave count (all of them for `w ≤ 0`).
     #[inline]
     #[must_use]
@@ -268,7 +268,7 @@ impl<B: Field> FootprintFbm<B> {
         if w <= 0.0 {
             return n;
         }
-        visible_octaves(w, self.frequency, self.lacunarity).min(n)
+        visible_octaves_ln(w, self.frequency, self.ln_lacunarity).min(n)
     }
 
     /// Octave `k`'s lattice point for the world point `p`: `f_k·p + o_k`.
