@@ -158,42 +158,60 @@ fn biome_colours_follow_altitude_latitude_and_moisture() {
     let b = biomes();
     let pole = b.temperature(1.0, 0.0);
     assert!(near(
-        b.land(pole, 0.5, 100.0, 0.0),
+        b.land(pole, 0.5, 100.0, 0.0, 0.0),
         [0.94, 0.95, 0.95],
         1e-9
     ));
     let peak = b.temperature(0.0, 6500.0);
     assert!(near(
-        b.land(peak, 0.5, 6500.0, 0.0),
+        b.land(peak, 0.5, 6500.0, 0.0, 0.0),
         [0.94, 0.95, 0.95],
         1e-9
     ));
     let equator = b.temperature(0.0, 300.0);
     assert!(near(
-        b.land(equator, 0.05, 300.0, 0.0),
+        b.land(equator, 0.05, 300.0, 0.0, 0.0),
         [0.6, 0.5, 0.23],
         1e-9
     ));
     assert!(near(
-        b.land(equator, 0.95, 300.0, 0.0),
+        b.land(equator, 0.95, 300.0, 0.0, 0.0),
         [0.065, 0.22, 0.04],
         1e-9
     ));
     let temperate = b.temperature(45f64.to_radians().sin(), 300.0);
     assert!(near(
-        b.land(temperate, 0.95, 300.0, 0.0),
+        b.land(temperate, 0.95, 300.0, 0.0, 0.0),
         [0.085, 0.2, 0.04],
         0.02
     ));
     let arctic = b.temperature(70f64.to_radians().sin(), 50.0);
     assert!((-5.0..-2.0).contains(&arctic), "{arctic} °C at 70°");
-    assert!(near(b.land(arctic, 0.5, 50.0, 0.0), [0.42, 0.4, 0.3], 1e-9));
-    assert!(near(b.land(equator, 0.6, 1.0, 0.0), [0.76, 0.7, 0.5], 1e-9));
     assert!(near(
-        b.land(equator, 0.6, 300.0, 3.0),
+        b.land(arctic, 0.5, 50.0, 0.0, 0.0),
+        [0.42, 0.4, 0.3],
+        1e-9
+    ));
+    assert!(near(
+        b.land(equator, 0.6, 1.0, 0.0, 0.0),
+        [0.76, 0.7, 0.5],
+        1e-9
+    ));
+    assert!(near(
+        b.land(equator, 0.6, 300.0, 3.0, 0.0),
         [0.44, 0.39, 0.33],
         1e-9
     ));
+    // Just below the snow line a footprint whose temperature spreads over
+    // 5 °C holds a share of snow: neither white nor bare.
+    let snow_c = b.params().snow_c;
+    let bare = b.land(snow_c + 2.5, 0.5, 5000.0, 0.0, 0.0);
+    let part = b.land(snow_c + 2.5, 0.5, 5000.0, 0.0, 5.0);
+    let white = b.land(snow_c - 9.0, 0.5, 5000.0, 0.0, 5.0);
+    assert!(
+        part.x > bare.x + 0.05 && part.x < white.x - 0.05,
+        "{bare} {part} {white}"
+    );
     let (shallow, deep) = (b.sea(25.0, 10.0), b.sea(25.0, 4000.0));
     assert!(deep.element_sum() < 0.5 * shallow.element_sum());
     assert!(deep.z > deep.y && deep.y > deep.x);
@@ -220,6 +238,7 @@ fn continents_are_never_lilac() {
             rng.f(),
             rng.range(0.0, 8000.0),
             rng.range(0.0, 3.0),
+            rng.range(0.0, 5.0),
         );
         assert!(c.y >= c.x.min(c.z), "lilac {c}");
     }

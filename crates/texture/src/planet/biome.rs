@@ -169,6 +169,13 @@ impl Biomes {
         })
     }
 
+    /// The spread of temperature (°C) over a footprint whose height has
+    /// standard deviation `height_sd_m`: the lapse rate times it.
+    #[must_use]
+    pub fn spread(&self, height_sd_m: f64) -> f64 {
+        self.params.lapse_c_per_km * height_sd_m / 1e3
+    }
+
     /// The parameters.
     #[must_use]
     pub fn params(&self) -> &BiomeParams {
@@ -199,11 +206,23 @@ impl Biomes {
     /// `moisture`, `height_m` above sea level and slope `slope` (rise over
     /// run): desert, savanna, grass, forest and jungle by warmth and
     /// moisture; tundra where cold; bare rock on steep slopes; sand on the
-    /// beach; snow below `snow_c`.
+    /// beach; snow below `snow_c`. `spread_c` is how much the temperature
+    /// varies over the footprint (its altitude's spread times the lapse
+    /// rate): the snow line is blended over that much more, so a peak
+    /// narrower than a pixel shows the share of snow on it rather than a
+    /// white speck.
     #[must_use]
-    pub fn land(&self, temp_c: f64, moisture: f64, height_m: f64, slope: f64) -> DVec3 {
+    pub fn land(
+        &self,
+        temp_c: f64,
+        moisture: f64,
+        height_m: f64,
+        slope: f64,
+        spread_c: f64,
+    ) -> DVec3 {
         use palette::*;
         let q = &self.params;
+        let snow = 2.0f64.hypot(2.0 * spread_c.max(0.0));
         let warm = smoothstep(4.0, 20.0, temp_c);
         let dry = TUNDRA.lerp(DESERT, warm);
         let middling = GRASS.lerp(SAVANNA, smoothstep(12.0, 24.0, temp_c));
@@ -220,7 +239,7 @@ impl Biomes {
         c = c.lerp(SAND, sand);
         c = c.lerp(
             SNOW,
-            1.0 - smoothstep(q.snow_c - 2.0, q.snow_c + 2.0, temp_c),
+            1.0 - smoothstep(q.snow_c - snow, q.snow_c + snow, temp_c),
         );
         display_to_linear(c)
     }

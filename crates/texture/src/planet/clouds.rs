@@ -23,7 +23,7 @@ struct Storm {
 ///
 /// ```text
 /// q       = storms(dir)                          each storm turns the sphere round its
-///                                                centre by twist·(1 − r/R)³
+///                                                centre by twist·(1 − r/R)²
 /// x       = fBm(q + distortion·V(q)) + offset + belts·cos 6φ + storm_cover·(1 − r/R)²
 /// density = smoothstep(0, softness, x)
 /// ```
@@ -122,7 +122,7 @@ impl CloudShell {
             let r = c.acos();
             if r < s.radius {
                 let f = 1.0 - r / s.radius;
-                let (sin, cos) = (s.twist * f * f * f).sin_cos();
+                let (sin, cos) = (s.twist * f * f).sin_cos();
                 // Rodrigues: q turned about the centre.
                 q = q * cos + s.centre.cross(q) * sin + s.centre * (s.centre.dot(q) * (1.0 - cos));
                 boost += p.storm_cover * f * f;

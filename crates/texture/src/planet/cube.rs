@@ -168,7 +168,7 @@ impl Planet {
                             let fp = Footprint::new(footprint_m / self.radius())
                                 .unwrap_or(Footprint::POINT);
                             let temp = biomes.temperature(dir.z, height);
-                            biomes.land(temp, biomes.moisture(dir, fp), height, 0.0)
+                            biomes.land(temp, biomes.moisture(dir, fp), height, 0.0, 0.0)
                         } else {
                             let temp = biomes.temperature(dir.z, 0.0);
                             biomes.sea(temp, -chaos * relief.metres_per_chaos())

@@ -88,18 +88,21 @@ impl TerrainParams {
         1.0 + (radius_m / (texture_scale * finest_m)).ln() / lacunarity.ln()
     }
 
-    /// Earth-scale terrain: the terran texture's colouring with fBm
-    /// continents of `H = 0.6`, `λ = 2` and 16 octaves (down to ~100 m cells
-    /// at Earth's radius: rough enough for mountains at every scale from
-    /// continents to hills) and 8 km of relief per unit of chaos, then
-    /// detail (`H = 1`) down to 1 cm, coloured by biome. The climate index is squared
-    /// ("driving back the glaciers", `map_exp` 2; natura's choice for an
-    /// Earth-scale relief, whose chaos spans more than the texture's bump)
-    /// so temperate green reaches further from the equator.
+    /// Earth-scale terrain: fBm continents of `H = 0.5` (the terran
+    /// shader's `spectral_exp`), `λ = 2` and 16 octaves (down to ~100 m
+    /// cells at Earth's radius: rough enough for mountains at every scale
+    /// from continents to hills, a few hundred metres of relief across a
+    /// few kilometres) and 8 km of relief per unit of chaos, then
+    /// detail (`H = 1`) down to 1 cm, coloured by biome
+    /// ([`BiomeParams`]). Without biomes the terran climate index colours
+    /// it; that index is squared ("driving back the glaciers", `map_exp` 2;
+    /// natura's choice for an Earth-scale relief, whose chaos spans more
+    /// than the texture's bump) so temperate green reaches further from
+    /// the equator.
     #[must_use]
     pub fn earth() -> Self {
         let terran = TerranParams {
-            spectral: spectral(0.6, 2.0, 16.0),
+            spectral: spectral(0.5, 2.0, 16.0),
             map_exp: 2.0,
             ..TerranParams::default()
         };
@@ -276,11 +279,12 @@ pub struct CloudLayerParams {
     /// How much the cover rises in the wet circulation belts and falls under
     /// the subtropical highs (`belts·cos 6φ`, 0.2).
     pub belts: f64,
-    /// Width of the clouds' soft edge, in units of the cloud fBm (0.3).
+    /// Width of the clouds' soft edge, in units of the cloud fBm (0.6: most
+    /// of a cloud is thinner than opaque, so its billows show).
     pub softness: f64,
-    /// Number of storms wound into the shell (6).
+    /// Number of storms wound into the shell (8).
     pub storms: u32,
-    /// A storm's angular radius, radians (0.2; each storm is 0.6 to 1.4
+    /// A storm's angular radius, radians (0.25; each storm is 0.6 to 1.4
     /// times it).
     pub storm_radius: f64,
     /// A storm's rotation at its centre, radians (5).
@@ -291,24 +295,27 @@ pub struct CloudLayerParams {
 
 impl Default for CloudLayerParams {
     /// The RenderMan `planetclouds` defaults with 13 octaves (fine enough
-    /// to stay detailed from a mountain top), a gentle distortion (0.3: the
-    /// shader's 1 folds the domain into streaks, see
-    /// [`CloudShell`](crate::planet::CloudShell)) and six storms.
+    /// to stay detailed from a mountain top), cloud systems half the
+    /// shader's size (`rescale` 2, so a storm winds several of them into
+    /// its arms), a gentle distortion (0.3: the shader's 1 folds the domain
+    /// into streaks, see [`CloudShell`](crate::planet::CloudShell)) and
+    /// eight storms.
     fn default() -> Self {
         Self {
             clouds: PlanetCloudsParams {
                 octaves: 13.0,
-                offset: -0.05,
+                offset: -0.1,
                 distortion: 0.3,
+                rescale: 2.0,
                 ..PlanetCloudsParams::default()
             },
             altitude_m: 10_000.0,
             albedo: DVec3::splat(0.95),
             shadows: true,
             belts: 0.2,
-            softness: 0.3,
-            storms: 6,
-            storm_radius: 0.2,
+            softness: 0.6,
+            storms: 8,
+            storm_radius: 0.25,
             storm_twist: 5.0,
             storm_cover: 0.35,
         }

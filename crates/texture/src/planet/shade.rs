@@ -256,7 +256,10 @@ impl Planet {
                 let height = relief.height_of(above);
                 let fp = Footprint::new(h.footprint_m / self.radius()).unwrap_or(Footprint::POINT);
                 let temp = biomes.temperature(dir.z, height);
-                biomes.land(temp, biomes.moisture(dir, fp), height, slope)
+                // The height's spread over the footprint: the coast's
+                // half-width is √5 standard deviations of the chaos.
+                let spread = biomes.spread(metres * width / 5f64.sqrt());
+                biomes.land(temp, biomes.moisture(dir, fp), height, slope, spread)
             } else {
                 DVec3::ZERO
             };
@@ -293,10 +296,13 @@ impl Planet {
                 if cos_land.max(cos_sea) > 0.0 {
                     let eps = (settings.epsilon * h.footprint_m).max(settings.min_epsilon_m);
                     let normal = if cos_land > 0.0 { n } else { dir };
-                    let shadowed = self.params.light.terrain_shadows
-                        && self.terrain_occludes(p, normal, self.sun, h.footprint_m, eps);
-                    if !shadowed {
-                        sun = self.sunlight(p, h.footprint_m);
+                    let visible = if self.params.light.terrain_shadows {
+                        self.terrain_visibility(p, normal, self.sun, h.footprint_m, eps)
+                    } else {
+                        1.0
+                    };
+                    if visible > 0.0 {
+                        sun = self.sunlight(p, h.footprint_m) * visible;
                     }
                 }
                 let on_land = land_colour * (ambient + sun * cos_land.max(0.0));
