@@ -9,7 +9,8 @@
 //! same parallel, so here the index is split into the two quantities a
 //! biome depends on: a temperature (latitude and altitude, the index's two
 //! terms) and a moisture (a band-limited fBm over the planet's circulation
-//! belts), read off a Whittaker-style chart whose colours are the terran
+//! belts), read off a chart of temperature against moisture (natura's
+//! thresholds) whose colours are the terran
 //! texture's own palette ([`LAND_KNOTS`](crate::earth::terran::LAND_KNOTS):
 //! browns, greens, buff, white; the ocean colour (0.12, 0.3, 0.6) darkened
 //! with depth as the terran shader darkens it).

@@ -50,19 +50,6 @@ pub struct CloudShell {
     storms: Vec<Storm>,
 }
 
-/// SplitMix64: the storms' positions from the seed.
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
-/// A uniform number in `[0, 1)` from `seed` and `k`.
-fn uniform(seed: u64, k: u64) -> f64 {
-    (mix(seed ^ mix(k)) >> 11) as f64 / (1u64 << 53) as f64
-}
-
 impl CloudShell {
     /// The shell for `params`.
     ///
@@ -71,21 +58,22 @@ impl CloudShell {
     pub fn new(params: CloudLayerParams) -> Result<Self> {
         params.validate()?;
         let clouds = PlanetClouds::new(params.clouds)?;
-        let seed = params.clouds.seed ^ 0x5707_3a11;
+        let seed = natura_core::Seed(params.clouds.seed).derive("storms");
         let storms = (0..params.storms)
             .map(|i| {
-                let k = u64::from(i) * 4;
+                let k = i64::from(i) * 4;
+                let uniform = |j: i64| seed.uniform1(j);
                 // Alternate hemispheres; latitudes of the storm tracks,
                 // 12°–60°, every fourth a tropical cyclone nearer the equator.
                 let north = i % 2 == 0;
                 let lat = if i % 4 == 3 {
-                    0.21 + 0.15 * uniform(seed, k)
+                    0.21 + 0.15 * uniform(k)
                 } else {
-                    0.6 + 0.45 * uniform(seed, k)
+                    0.6 + 0.45 * uniform(k)
                 };
                 let lat = if north { lat } else { -lat };
-                let lon = std::f64::consts::TAU * uniform(seed, k + 1);
-                let size = 0.6 + 0.8 * uniform(seed, k + 2);
+                let lon = std::f64::consts::TAU * uniform(k + 1);
+                let size = 0.6 + 0.8 * uniform(k + 2);
                 Storm {
                     centre: super::views::direction(lat, lon),
                     radius: params.storm_radius * size,

@@ -287,7 +287,8 @@ impl Relief {
 
     /// The RMS of the bump's octaves too fine for `visible` octaves (the
     /// part of the one straddling it that is faded out, and every finer
-    /// one): [`OCTAVE_RMS`] times the root of their summed squared bounds.
+    /// one): 0.26 (the measured RMS of one octave over its bound) times the
+    /// root of their summed squared bounds.
     #[must_use]
     pub fn unresolved_rms(&self, visible: f64) -> f64 {
         let n = self.tail.len() - 1;
