@@ -53,11 +53,11 @@ struct Cli {
     /// mountain top)
     #[arg(long, value_enum, default_value_t = View::Orbit)]
     view: View,
-    /// Image width, pixels [default: 1920 orbit, 1280 ground; 240 with
+    /// Image width, pixels [default: 1920 orbit, 960 ground; 240 with
     /// --quick]
     #[arg(long)]
     width: Option<u32>,
-    /// Image height, pixels [default: 1080 orbit, 720 ground; 135 with
+    /// Image height, pixels [default: 1080 orbit, 540 ground; 135 with
     /// --quick]
     #[arg(long)]
     height: Option<u32>,
@@ -92,18 +92,18 @@ struct Cli {
         value_parser = common::in_range(1e-3, 3.0)
     )]
     vfov: f64,
-    /// Latitude below the camera, radians [default: 0.35 orbit, 0.3 ground]
+    /// Latitude below the camera, radians [default: 0.35 orbit, 0.5 ground]
     #[arg(
         long,
         allow_negative_numbers = true,
         value_parser = common::in_range(-FRAC_PI_2, FRAC_PI_2)
     )]
     lat: Option<f64>,
-    /// Longitude below the camera, radians [default: 0.25 orbit, 2.1 ground]
+    /// Longitude below the camera, radians [default: 0.25 orbit, 1.0 ground]
     #[arg(long, allow_negative_numbers = true, value_parser = common::in_range(-TAU, TAU))]
     lon: Option<f64>,
     /// Ground view: peak search radius, m (at most half of Gaea's
-    /// circumference) [default: 150000; 100000 with --quick]
+    /// circumference) [default: 100000]
     #[arg(long, allow_negative_numbers = true, value_parser = common::in_range(0.0, 2e7))]
     search: Option<f64>,
     /// Ground view: compass heading, radians
@@ -115,7 +115,7 @@ struct Cli {
     )]
     heading: f64,
     /// Exposure, stops (beyond ±20 the picture is white or black whatever it
-    /// shows) [default: 0 orbit, +1.5 ground]
+    /// shows) [default: 0 orbit, +1 ground]
     #[arg(
         long,
         allow_negative_numbers = true,
@@ -126,6 +126,13 @@ struct Cli {
     #[arg(long, value_name = "DIR", default_value = "planet")]
     out: PathBuf,
 }
+
+/// Grey aerosol extinction added to the ground view's air, per metre
+/// (with the air's Rayleigh green, a visual range near 240 km).
+const AEROSOL_PER_M: f64 = 3e-6;
+
+/// Light from the sky on the ground view, a fraction of the sun's.
+const SKYLIGHT: f64 = 0.2;
 
 fn main() -> ExitCode {
     common::run(planet)
@@ -162,11 +169,11 @@ fn planet() -> Run {
     let (w0, h0) = match (quick, orbit) {
         (true, _) => (240, 135),
         (false, true) => (1920, 1080),
-        (false, false) => (1280, 720),
+        (false, false) => (960, 540),
     };
     let (width, height) = (width.unwrap_or(w0), height.unwrap_or(h0));
-    let lat = lat.unwrap_or(if orbit { 0.35 } else { 0.3 });
-    let lon = lon.unwrap_or(if orbit { 0.25 } else { 2.1 });
+    let lat = lat.unwrap_or(if orbit { 0.35 } else { 0.5 });
+    let lon = lon.unwrap_or(if orbit { 0.25 } else { 1.0 });
     if cube > 0 {
         // The cube map's own check, before the render writes its picture.
         natura::texture::planet::CubeMap::check_size(cube)
@@ -189,11 +196,26 @@ fn planet() -> Run {
     if let Some(c) = &mut params.clouds {
         c.clouds.seed = seed;
     }
-    // The sun 75° round from the view (orbit), or low in the east (ground).
+    // From the ground the air holds a little aerosol besides its
+    // molecules, a grey extinction that fades far ridges towards the sky's
+    // colour, and the sky lights what the sun does not (ambient 0.2 of the
+    // sun). From orbit nothing but the night air's faint glow lights the
+    // night side: a uniform 2 % of the sun there left its texture a level
+    // or two above black in the picture, specks of single pixels.
+    if orbit {
+        params.light.ambient = 0.0;
+    } else {
+        if let Some(a) = &mut params.atmosphere {
+            a.extinction += glam::DVec3::splat(AEROSOL_PER_M);
+        }
+        params.light.ambient = SKYLIGHT;
+    }
+    // The sun 75° round from the view (orbit), or in the morning east,
+    // 40° round (ground).
     params.light.sun = if orbit {
         direction(0.2, lon + 1.3)
     } else {
-        direction(lat - 0.1, lon + 1.25)
+        direction(lat + 0.1, lon + 0.7)
     };
     let planet = Planet::new(params)?;
     let camera = if orbit {
@@ -202,8 +224,11 @@ fn planet() -> Run {
         let g = GroundViewParams {
             latitude: lat,
             longitude: lon,
-            search_radius_m: search.unwrap_or(if quick { 100_000.0 } else { 150_000.0 }),
+            search_radius_m: search.unwrap_or(100_000.0),
             heading,
+            // A person on a rise, looking a little down the valleys.
+            eye_height_m: 30.0,
+            pitch: -0.1,
             ..GroundViewParams::default()
         };
         planet.ground_view(&g, width, height)?
@@ -215,7 +240,7 @@ fn planet() -> Run {
         "rendered {width}×{height} in {:.2} s",
         started.elapsed().as_secs_f64()
     ))?;
-    let ev = ev.unwrap_or(if orbit { 0.0 } else { 1.5 });
+    let ev = ev.unwrap_or(if orbit { 0.0 } else { 1.0 });
     save(&image, &png, exr, ev)?;
 
     if cube > 0 {

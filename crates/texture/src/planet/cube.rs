@@ -160,10 +160,27 @@ impl Planet {
             Surface::Terrain(relief) => {
                 let fp = relief.footprint(footprint_m);
                 let b = relief.bump(dir, fp);
-                let t = relief.terran();
-                let mottle = t.mottle(relief.texture_point(dir), fp);
-                let c = t.shade(b, dir.z.abs(), mottle).colour;
-                (relief.height_of(b) as f32, c.as_vec3())
+                let height = relief.height_of(b);
+                let c = match &self.biomes {
+                    Some(biomes) => {
+                        let chaos = relief.chaos_above_sea(b);
+                        if chaos > 0.0 {
+                            let fp = Footprint::new(footprint_m / self.radius())
+                                .unwrap_or(Footprint::POINT);
+                            let temp = biomes.temperature(dir.z, height);
+                            biomes.land(temp, biomes.moisture(dir, fp), height, 0.0, 0.0)
+                        } else {
+                            let temp = biomes.temperature(dir.z, 0.0);
+                            biomes.sea(temp, -chaos * relief.metres_per_chaos())
+                        }
+                    }
+                    None => {
+                        let t = relief.terran();
+                        let mottle = t.mottle(relief.texture_point(dir), fp);
+                        t.shade(b, dir.z.abs(), mottle).colour
+                    }
+                };
+                (height as f32, c.as_vec3())
             }
             Surface::Textured(tex) => {
                 let fp = Footprint::new(footprint_m / self.radius()).unwrap_or(Footprint::POINT);

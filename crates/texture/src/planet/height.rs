@@ -64,7 +64,13 @@ pub struct Relief {
     total: f64,
     bound: Vec<f64>,
     slope: Vec<f64>,
+    /// `tail[k]`: the summed squares of the per-octave bounds from octave `k` on.
+    tail: Vec<f64>,
 }
+
+/// The RMS of one octave of the bump as a fraction of its bound (measured
+/// over the sphere: 0.26 for Perlin octaves, whose bound is 1).
+const OCTAVE_RMS: f64 = 0.26;
 
 impl Relief {
     /// The relief of `terran` on a planet of radius `radius` (m), `relief_m`
@@ -124,9 +130,16 @@ impl Relief {
             total,
             bound: Vec::new(),
             slope: Vec::new(),
+            tail: Vec::new(),
         };
         relief.bound = (0..=n).map(|k| relief.bound_at(k as f64)).collect();
         relief.slope = (0..=n).map(|k| relief.slope_at(k as f64)).collect();
+        let mut tail = vec![0.0; n + 1];
+        for k in (0..n).rev() {
+            let b = relief.bound[k + 1] - relief.bound[k];
+            tail[k] = tail[k + 1] + b * b;
+        }
+        relief.tail = tail;
         let max_chaos = relief.bound_at(f64::INFINITY) + q.offset - q.sea_level;
         relief.max_height = metres * max_chaos.max(0.0);
         Ok(relief)
@@ -272,22 +285,65 @@ impl Relief {
         (n, b)
     }
 
+    /// The RMS of the bump's octaves too fine for `visible` octaves (the
+    /// part of the one straddling it that is faded out, and every finer
+    /// one): 0.26 (the measured RMS of one octave over its bound) times the
+    /// root of their summed squared bounds.
+    #[must_use]
+    pub fn unresolved_rms(&self, visible: f64) -> f64 {
+        let n = self.tail.len() - 1;
+        let v = visible.clamp(0.0, n as f64);
+        let k = (v as usize).min(n);
+        let part = if k < n {
+            let b = (self.bound[k + 1] - self.bound[k]) * (1.0 - (v - k as f64));
+            b * b + self.tail[k + 1]
+        } else {
+            0.0
+        };
+        OCTAVE_RMS * part.sqrt()
+    }
+
+    /// The half-width `a` of the smoothstep that filters the coast at
+    /// footprint `fp` where the bump's gradient along the sphere is
+    /// `along` (per texture unit): `a = √5·σ`, `σ² = (|∇b|·w)²/12 + σ_f²`
+    /// the variance of the chaos over the footprint — its linear change
+    /// across a box of width `w`, and the unresolved octaves' `σ_f` —
+    /// matched to `smoothstep(−a, a, ·)` read as a distribution (variance
+    /// `a²/5`).
+    #[must_use]
+    pub fn coast_width(&self, along: f64, fp: Footprint) -> f64 {
+        let linear = along * fp.width();
+        let fine = self.unresolved_rms(self.visible(fp));
+        (5.0 * (linear * linear / 12.0 + fine * fine)).sqrt()
+    }
+
     /// The outward unit normal at `p`, the bump value there, and the
     /// fraction of the footprint `fp` that is land: the coast, a level set
-    /// of the bump, filtered over the footprint as a linear ramp across
-    /// it, `clamp(½ + chaos/(|∇b|·w), 0, 1)` (`chaos` the height of the bump
-    /// above sea level, `∇b` its gradient along the sphere, `w` the
-    /// footprint's width), so coastlines are anti-aliased instead of a
-    /// staircase of whole pixels.
+    /// of the bump, filtered over the footprint as
+    /// `smoothstep(−a, a, chaos)` ([`coast_width`](Self::coast_width)) of
+    /// the chaos above sea level: the share of land a footprint whose chaos
+    /// varies about the centre's with the gradient across it and with the
+    /// octaves too fine to sum holds, so coastlines are anti-aliased
+    /// instead of a staircase of whole pixels, and a coast seen coarsely
+    /// holds as much land as the finer coast it stands for.
     #[must_use]
     pub fn normal_bump_and_land(&self, p: DVec3, fp: Footprint) -> (DVec3, f64, f64) {
+        let (n, b, land, _) = self.normal_bump_land_width(p, fp);
+        (n, b, land)
+    }
+
+    /// [`normal_bump_and_land`](Self::normal_bump_and_land) and the coast's
+    /// half-width `a` in chaos.
+    #[must_use]
+    pub fn normal_bump_land_width(&self, p: DVec3, fp: Footprint) -> (DVec3, f64, f64, f64) {
         let r = p.length();
         let n = p / r;
         let (b, g) = self.bump_grad(n, fp);
-        let along = (g - n * n.dot(g)).length() * fp.width();
+        let along = (g - n * n.dot(g)).length();
         let chaos = self.chaos_above_sea(b);
-        let land = if along > 0.0 {
-            (0.5 + chaos / along).clamp(0.0, 1.0)
+        let a = self.coast_width(along, fp);
+        let land = if a > 0.0 {
+            crate::footprint::smoothstep(-a, a, chaos)
         } else if chaos > 0.0 {
             1.0
         } else {
@@ -299,7 +355,7 @@ impl Relief {
             DVec3::ZERO
         };
         let tangential = g - n * n.dot(g);
-        ((n - tangential * (self.scale / r)).normalize(), b, land)
+        ((n - tangential * (self.scale / r)).normalize(), b, land, a)
     }
 
     /// The bump value and its gradient with respect to the texture-sphere

@@ -21,6 +21,8 @@
 //! Coordinates are world metres with the planet's centre at the origin and
 //! its rotation axis (and ring plane normal) along z.
 
+mod biome;
+mod clouds;
 mod cube;
 mod height;
 mod params;
@@ -28,6 +30,8 @@ mod shade;
 mod trace;
 mod views;
 
+pub use biome::{BiomeParams, Biomes};
+pub use clouds::CloudShell;
 pub use cube::{CubeFace, CubeMap, Face, SurfaceMap};
 pub use height::Relief;
 pub use params::{
@@ -41,10 +45,10 @@ use glam::DVec3;
 use natura_atmos::Dir3;
 use natura_atmos::medium::{RadialAtmosphere, Umbra};
 
-use crate::air::PlanetClouds;
 use crate::air::Venus;
 use crate::earth::{Luna, Terran};
 use crate::error::Result;
+use crate::footprint::Footprint;
 use crate::giants::{GasGiant, Rings};
 use crate::texture::SolidTexture;
 
@@ -78,7 +82,8 @@ pub struct Planet {
     params: PlanetParams,
     surface: Surface,
     air: Option<Air>,
-    clouds: Option<PlanetClouds>,
+    biomes: Option<Biomes>,
+    clouds: Option<CloudShell>,
     rings: Option<Rings>,
     sun: DVec3,
 }
@@ -103,6 +108,13 @@ impl Planet {
             SurfaceParams::Venus(v) => Surface::Textured(Box::new(Venus::new(*v)?)),
             SurfaceParams::GasGiant(g) => Surface::Textured(Box::new(GasGiant::new(*g)?)),
             SurfaceParams::Luna(l) => Surface::Textured(Box::new(Luna::new(*l)?)),
+        };
+        let biomes = match &params.surface {
+            SurfaceParams::Terrain(t) => match &t.biomes {
+                Some(b) => Some(Biomes::new(*b, t.terran.seed)?),
+                None => None,
+            },
+            _ => None,
         };
         let sun = params.light.sun.normalize();
         let air = match &params.atmosphere {
@@ -135,7 +147,7 @@ impl Planet {
         };
         let clouds = match &params.clouds {
             None => None,
-            Some(c) => Some(PlanetClouds::new(c.clouds)?),
+            Some(c) => Some(CloudShell::new(*c)?),
         };
         let rings = match &params.rings {
             None => None,
@@ -145,6 +157,7 @@ impl Planet {
             params,
             surface,
             air,
+            biomes,
             clouds,
             rings,
             sun,
@@ -169,6 +182,26 @@ impl Planet {
         match &self.surface {
             Surface::Terrain(r) => Some(r),
             Surface::Textured(_) => None,
+        }
+    }
+
+    /// The biome colouring, if the surface is terrain coloured by biome.
+    #[must_use]
+    pub fn biomes(&self) -> Option<&Biomes> {
+        self.biomes.as_ref()
+    }
+
+    /// The cloud shell's density in the unit direction `dir` for a
+    /// footprint of `footprint_m` metres on the shell (0 without clouds).
+    #[must_use]
+    pub fn cloud_density(&self, dir: DVec3, footprint_m: f64) -> f64 {
+        match (&self.clouds, &self.params.clouds) {
+            (Some(shell), Some(c)) => {
+                let rc = self.radius() + c.altitude_m;
+                let fp = Footprint::new(footprint_m / rc).unwrap_or(Footprint::POINT);
+                shell.density(dir.normalize(), fp)
+            }
+            _ => 0.0,
         }
     }
 

@@ -7,6 +7,7 @@ use crate::earth::{LunaParams, TerranParams};
 use crate::error::{Result, colour, direction, in_range, invalid, non_negative, positive};
 use crate::fractals::spectral;
 use crate::giants::{GasGiantParams, RingsParams};
+use crate::planet::biome::BiomeParams;
 
 /// Earth's mean radius, metres.
 pub const EARTH_RADIUS_M: f64 = 6.371e6;
@@ -25,8 +26,10 @@ pub const TEXTURE_SCALE_RANGE: (f64, f64) = (1e-6, 1e6);
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PlanetDetailParams {
-    /// Spectral exponent of the detail octaves (1.5: smoother than the
-    /// continents; above 1 the slopes shrink at finer scales).
+    /// Spectral exponent of the detail octaves (1: smoother than the
+    /// continents; every octave adds about the same slope, so the ground
+    /// stays rough at every scale a footprint shows, where well above 1 the
+    /// slopes shrink and near ground turns to a blur).
     pub h: f64,
     /// Lattice cell of the finest octave, metres (0.01: 1 cm).
     pub finest_m: f64,
@@ -35,7 +38,7 @@ pub struct PlanetDetailParams {
 impl Default for PlanetDetailParams {
     fn default() -> Self {
         Self {
-            h: 1.5,
+            h: 1.0,
             finest_m: 0.01,
         }
     }
@@ -70,6 +73,10 @@ pub struct TerrainParams {
     /// Octaves finer than the continents', continuing their fBm with another
     /// `H` (fBm continents with a whole number of octaves only).
     pub detail: Option<PlanetDetailParams>,
+    /// Colour by biome — altitude, latitude and moisture ([`Biomes`](crate::planet::Biomes)) —
+    /// instead of the terran texture's climate index (`None`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub biomes: Option<BiomeParams>,
 }
 
 impl TerrainParams {
@@ -81,18 +88,21 @@ impl TerrainParams {
         1.0 + (radius_m / (texture_scale * finest_m)).ln() / lacunarity.ln()
     }
 
-    /// Earth-scale terrain: the terran texture's colouring with fBm
-    /// continents of `H = 0.6`, `λ = 2` and 16 octaves (down to ~100 m cells
-    /// at Earth's radius: rough enough for mountains at every scale from
-    /// continents to hills) and 8 km of relief per unit of chaos, then
-    /// smooth detail (`H = 1.5`) down to 1 cm. The climate index is squared
-    /// ("driving back the glaciers", `map_exp` 2; natura's choice for an
-    /// Earth-scale relief, whose chaos spans more than the texture's bump)
-    /// so temperate green reaches further from the equator.
+    /// Earth-scale terrain: fBm continents of `H = 0.5` (the terran
+    /// shader's `spectral_exp`), `λ = 2` and 16 octaves (down to ~100 m
+    /// cells at Earth's radius: rough enough for mountains at every scale
+    /// from continents to hills, a few hundred metres of relief across a
+    /// few kilometres) and 8 km of relief per unit of chaos, then
+    /// detail (`H = 1`) down to 1 cm, coloured by biome
+    /// ([`BiomeParams`]). Without biomes the terran climate index colours
+    /// it; that index is squared ("driving back the glaciers", `map_exp` 2;
+    /// natura's choice for an Earth-scale relief, whose chaos spans more
+    /// than the texture's bump) so temperate green reaches further from
+    /// the equator.
     #[must_use]
     pub fn earth() -> Self {
         let terran = TerranParams {
-            spectral: spectral(0.6, 2.0, 16.0),
+            spectral: spectral(0.5, 2.0, 16.0),
             map_exp: 2.0,
             ..TerranParams::default()
         };
@@ -101,6 +111,7 @@ impl TerrainParams {
             relief_m: 8000.0,
             texture_scale: 1.0,
             detail: Some(PlanetDetailParams::default()),
+            biomes: Some(BiomeParams::default()),
         }
     }
 
@@ -118,6 +129,9 @@ impl TerrainParams {
             TEXTURE_SCALE_RANGE.1,
             "must be in [10⁻⁶, 10⁶] texture units per radius",
         )?;
+        if let Some(b) = &self.biomes {
+            b.validate()?;
+        }
         if let Some(d) = &self.detail {
             d.validate()?;
             let o = self.terran.spectral.octaves;
@@ -176,6 +190,9 @@ pub(crate) fn detail_finest_octave(
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+// Plain `Copy` parameters: boxing the terrain to shrink the enum would cost
+// the `Copy` every caller relies on for a few hundred bytes.
+#[allow(clippy::large_enum_variant)]
 pub enum SurfaceParams {
     /// Displaced terrain with oceans (Gaea).
     Terrain(TerrainParams),
@@ -259,22 +276,48 @@ pub struct CloudLayerParams {
     pub albedo: DVec3,
     /// Whether the clouds shadow the ground (true).
     pub shadows: bool,
+    /// How much the cover rises in the wet circulation belts and falls under
+    /// the subtropical highs (`belts·cos 6φ`, 0.2).
+    pub belts: f64,
+    /// Width of the clouds' soft edge, in units of the cloud fBm (0.6: most
+    /// of a cloud is thinner than opaque, so its billows show).
+    pub softness: f64,
+    /// Number of storms wound into the shell (8).
+    pub storms: u32,
+    /// A storm's angular radius, radians (0.25; each storm is 0.6 to 1.4
+    /// times it).
+    pub storm_radius: f64,
+    /// A storm's rotation at its centre, radians (5).
+    pub storm_twist: f64,
+    /// How much a storm adds to the cover at its centre (0.35).
+    pub storm_cover: f64,
 }
 
 impl Default for CloudLayerParams {
     /// The RenderMan `planetclouds` defaults with 13 octaves (fine enough
-    /// to stay detailed from a mountain top) and a little more cover.
+    /// to stay detailed from a mountain top), cloud systems half the
+    /// shader's size (`rescale` 2, so a storm winds several of them into
+    /// its arms), a gentle distortion (0.3: the shader's 1 folds the domain
+    /// into streaks, see [`CloudShell`](crate::planet::CloudShell)) and
+    /// eight storms.
     fn default() -> Self {
         Self {
             clouds: PlanetCloudsParams {
                 octaves: 13.0,
-                offset: 0.1,
-                distortion: 1.2,
+                offset: -0.1,
+                distortion: 0.3,
+                rescale: 2.0,
                 ..PlanetCloudsParams::default()
             },
             altitude_m: 10_000.0,
             albedo: DVec3::splat(0.95),
             shadows: true,
+            belts: 0.2,
+            softness: 0.6,
+            storms: 8,
+            storm_radius: 0.25,
+            storm_twist: 5.0,
+            storm_cover: 0.35,
         }
     }
 }
@@ -288,6 +331,38 @@ impl CloudLayerParams {
         self.clouds.validate()?;
         positive("altitude_m", self.altitude_m)?;
         colour("albedo", self.albedo)?;
+        in_range("belts", self.belts, 0.0, 1.0, "must be in [0, 1]")?;
+        in_range(
+            "softness",
+            self.softness,
+            1e-6,
+            10.0,
+            "must be in [10⁻⁶, 10]",
+        )?;
+        if self.storms > 64 {
+            return Err(invalid("storms", self.storms, "must be at most 64"));
+        }
+        in_range(
+            "storm_radius",
+            self.storm_radius,
+            0.0,
+            1.0,
+            "must be in [0, 1] radians",
+        )?;
+        in_range(
+            "storm_twist",
+            self.storm_twist,
+            -50.0,
+            50.0,
+            "must be in [−50, 50] radians",
+        )?;
+        in_range(
+            "storm_cover",
+            self.storm_cover,
+            0.0,
+            2.0,
+            "must be in [0, 2]",
+        )?;
         Ok(())
     }
 }

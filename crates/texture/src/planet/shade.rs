@@ -8,6 +8,7 @@ use natura_atmos::{Dir3, Medium};
 use super::{Planet, Surface};
 use crate::footprint::Footprint;
 use crate::normal::bump;
+use crate::planet::height::Relief;
 use crate::planet::trace::{SurfaceHit, TraceSettings};
 use crate::texture::TextureKind;
 use crate::view::{equator_plane_hit, sphere_hits};
@@ -21,8 +22,9 @@ pub const SUN_DISC: f64 = 20.0;
 /// a Blinn–Phong lobe.
 const GLINT: (f64, i32) = (0.35, 96);
 
-/// How far above and below the coast's bump value the colours blended at a
-/// coastline are taken (a tiny step: the shades just either side of it).
+/// How far above and below the coast's bump value the terran colours
+/// blended at a coastline are taken (a tiny step: the shades just either
+/// side of it).
 const COAST_STEP: f64 = 1e-9;
 
 /// How far (metres) a point must be from the cloud shell or the ring plane
@@ -218,6 +220,60 @@ impl Planet {
         ambient + self.sunlight(p, footprint_m) * cos
     }
 
+    /// The albedos (linear RGB) either side of the coast at the hit `h`
+    /// in the unit direction `dir` with bump value `b`, land share and
+    /// coast half-width `(land, a)` (chaos) and slope `slope`: the land's
+    /// and the sea's, each taken at least `a/2` of chaos from the coast —
+    /// about the mean of its own part of a footprint the coast crosses, so
+    /// a coarse pixel is not painted with the thin beach or shelf its
+    /// centre happens to lie on. By biome when the planet has
+    /// [`Biomes`](crate::planet::Biomes), else by the terran texture's
+    /// climate index.
+    fn shore_colours(
+        &self,
+        relief: &Relief,
+        dir: DVec3,
+        b: f64,
+        (land, width): (f64, f64),
+        h: &SurfaceHit,
+        slope: f64,
+    ) -> (DVec3, DVec3) {
+        let metres = relief.metres_per_chaos();
+        let chaos = relief.chaos_above_sea(b);
+        let shore = b - chaos;
+        let (above, below) = (
+            b.max(shore + (0.5 * width).max(COAST_STEP)),
+            b.min(shore - (0.5 * width).max(COAST_STEP)),
+        );
+        if let Some(biomes) = &self.biomes {
+            let sea = if land < 1.0 {
+                let temp = biomes.temperature(dir.z, 0.0);
+                biomes.sea(temp, -relief.chaos_above_sea(below) * metres)
+            } else {
+                DVec3::ZERO
+            };
+            let ground = if land > 0.0 {
+                let height = relief.height_of(above);
+                let fp = Footprint::new(h.footprint_m / self.radius()).unwrap_or(Footprint::POINT);
+                let temp = biomes.temperature(dir.z, height);
+                // The height's spread over the footprint: the coast's
+                // half-width is √5 standard deviations of the chaos.
+                let spread = biomes.spread(metres * width / 5f64.sqrt());
+                biomes.land(temp, biomes.moisture(dir, fp), height, slope, spread)
+            } else {
+                DVec3::ZERO
+            };
+            return (ground, sea);
+        }
+        let t = relief.terran();
+        let mottle = t.mottle(relief.texture_point(dir), h.footprint);
+        let lat = dir.z.abs();
+        (
+            t.shade(above, lat, mottle).colour,
+            t.shade(below, lat, mottle).colour,
+        )
+    }
+
     /// The light leaving the surface hit `h` towards the eye.
     fn surface_radiance(&self, h: &SurfaceHit, d: DVec3, settings: &TraceSettings) -> DVec3 {
         let p = h.point;
@@ -225,38 +281,35 @@ impl Planet {
         match &self.surface {
             Surface::Terrain(relief) => {
                 let fp = h.footprint;
-                let (n, b, land) = relief.normal_bump_and_land(p, fp);
-                let t = relief.terran();
-                let mottle = t.mottle(relief.texture_point(dir), fp);
-                // Land and sea blended by the footprint's share of each: the
-                // other side's colour is the one at the coast.
-                let shore = b - relief.chaos_above_sea(b);
-                let lat = dir.z.abs();
-                let colour = if land > 0.0 && land < 1.0 {
-                    let above = t.shade(b.max(shore + COAST_STEP), lat, mottle).colour;
-                    let below = t.shade(b.min(shore - COAST_STEP), lat, mottle).colour;
-                    below.lerp(above, land)
-                } else {
-                    t.shade(b, lat, mottle).colour
-                };
+                let (n, b, land, width) = relief.normal_bump_land_width(p, fp);
+                let c = n.dot(dir).clamp(1e-6, 1.0);
+                let slope = (1.0 - c * c).sqrt() / c;
+                let (land_colour, sea_colour) =
+                    self.shore_colours(relief, dir, b, (land, width), h, slope);
+                // Land and sea each lit by its own normal and blended by the
+                // footprint's share of each, so the coast is filtered in
+                // radiance, not only in colour (a steep shore beside a flat
+                // sea would otherwise still step from pixel to pixel).
                 let ambient = DVec3::splat(self.params.light.ambient);
-                let cos = n.dot(self.sun);
-                if cos <= 0.0 {
-                    return colour * ambient;
+                let (cos_land, cos_sea) = (n.dot(self.sun), dir.dot(self.sun));
+                let mut sun = DVec3::ZERO;
+                if cos_land.max(cos_sea) > 0.0 {
+                    let eps = (settings.epsilon * h.footprint_m).max(settings.min_epsilon_m);
+                    let normal = if cos_land > 0.0 { n } else { dir };
+                    let visible = if self.params.light.terrain_shadows {
+                        self.terrain_visibility(p, normal, self.sun, h.footprint_m, eps)
+                    } else {
+                        1.0
+                    };
+                    if visible > 0.0 {
+                        sun = self.sunlight(p, h.footprint_m) * visible;
+                    }
                 }
-                let eps = (settings.epsilon * h.footprint_m).max(settings.min_epsilon_m);
-                if self.params.light.terrain_shadows
-                    && self.terrain_occludes(p, n, self.sun, h.footprint_m, eps)
-                {
-                    return colour * ambient;
-                }
-                let sun = self.sunlight(p, h.footprint_m);
-                let mut l = colour * (ambient + sun * cos);
-                if land < 1.0 {
-                    let half = (self.sun - d).normalize();
-                    l += sun * ((1.0 - land) * GLINT.0 * n.dot(half).max(0.0).powi(GLINT.1));
-                }
-                l
+                let on_land = land_colour * (ambient + sun * cos_land.max(0.0));
+                let half = (self.sun - d).normalize_or_zero();
+                let glint = sun * (GLINT.0 * dir.dot(half).max(0.0).powi(GLINT.1));
+                let on_sea = sea_colour * (ambient + sun * cos_sea.max(0.0)) + glint;
+                on_sea.lerp(on_land, land)
             }
             Surface::Textured(tex) => {
                 let s = tex.sample(dir, h.footprint);

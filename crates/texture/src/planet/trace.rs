@@ -194,7 +194,17 @@ impl Planet {
             (relief.footprint(m), m, pixel_angle)
         };
         let eps = |m: f64| (settings.epsilon * m).max(settings.min_epsilon_m);
-        let (t, steps, met) = self.march(relief, o, d, t, t_end, lod, eps, settings.max_steps);
+        let mut no_penumbra = None;
+        let (t, steps, met) = self.march(
+            relief,
+            o,
+            d,
+            (t, t_end),
+            lod,
+            eps,
+            settings.max_steps,
+            &mut no_penumbra,
+        );
         (met || crosses).then(|| {
             let (fp, m, _) = lod(t);
             hit(o, d, t, fp, m, steps)
@@ -238,34 +248,53 @@ impl Planet {
         crosses.then_some(t_end)
     }
 
-    /// Whether the terrain blocks the sun from the surface point `p`
-    /// (normal `n`, footprint `footprint_m` metres), marching towards
-    /// `to_sun` with tolerance `eps` metres.
+    /// How much of the sun the terrain leaves visible from the surface
+    /// point `p` (normal `n`, footprint `footprint_m` metres), marching
+    /// towards `to_sun` with tolerance `eps` metres: 0 where the ray meets
+    /// the terrain, else `smoothstep(0, 1, min gap/(footprint + t·θ_sun))`
+    /// over the march beyond four footprints — a penumbra as wide as the
+    /// sun's disc seen past the ridge that nearly blocks it (and no less
+    /// than the pixel), so a shadow's edge is as soft as the sun makes it
+    /// and a pixel the shadow ray barely escapes is not lit as brightly as
+    /// open ground.
     ///
     /// The shadow ray's footprint grows with distance by the sun's angular
     /// radius: detail smaller than the penumbra it would cast is not summed.
-    pub(crate) fn terrain_occludes(
+    pub(crate) fn terrain_visibility(
         &self,
         p: DVec3,
         n: DVec3,
         to_sun: DVec3,
         footprint_m: f64,
         eps: f64,
-    ) -> bool {
+    ) -> f64 {
         let Surface::Terrain(relief) = &self.surface else {
-            return false;
+            return 1.0;
         };
         let o = p + n * (2.0 * eps);
         let Some((_, t_end)) = sphere_hits(o, to_sun, self.max_radius()) else {
-            return false;
+            return 1.0;
         };
         let cone = self.params.light.sun_radius;
         let lod = |t: f64| {
             let m = footprint_m + t.max(0.0) * cone;
             (relief.footprint(m), m, cone)
         };
-        let (_, _, met) = self.march(relief, o, to_sun, 0.0, t_end, lod, |_| 0.5 * eps, 512);
-        met
+        let mut closest = Some((f64::INFINITY, 4.0 * footprint_m));
+        let (_, _, met) = self.march(
+            relief,
+            o,
+            to_sun,
+            (0.0, t_end),
+            lod,
+            |_| 0.5 * eps,
+            512,
+            &mut closest,
+        );
+        match closest {
+            Some((c, _)) if !met => crate::footprint::smoothstep(0.0, 1.0, c),
+            _ => 0.0,
+        }
     }
 
     /// Sphere traces the ray `o + t·d` for `t ∈ [t, t_end]` against the
@@ -285,18 +314,20 @@ impl Planet {
     /// surface. Every envelope lies above the surface, so every step is safe.
     /// Over the sea the surface is the flat sphere `R` for as far as the
     /// chaos cannot climb to sea level, so a ray reaching it within that
-    /// distance meets it exactly.
+    /// distance meets it exactly. With `closest = Some((c, from))` it also
+    /// keeps in `c` the least ratio of the gap (or a lower bound of it) to
+    /// the footprint width over the steps from `t = from` on.
     #[allow(clippy::too_many_arguments)]
     fn march(
         &self,
         relief: &Relief,
         o: DVec3,
         d: DVec3,
-        mut t: f64,
-        t_end: f64,
+        (mut t, t_end): (f64, f64),
         lod: impl Fn(f64) -> (Footprint, f64, f64),
         eps: impl Fn(f64) -> f64,
         max_steps: u32,
+        closest: &mut Option<(f64, f64)>,
     ) -> (f64, u32, bool) {
         let radius = self.radius();
         let metres = relief.metres_per_chaos();
@@ -318,6 +349,7 @@ impl Planet {
                 let tail = relief.bump_bound(v) - relief.bump_bound(m as f64);
                 let gap = r - radius - relief.height_of(b + tail);
                 if gap > (metres * tail).max(tol) {
+                    note(closest, t, gap, width);
                     let l = relief.lipschitz_visible(m as f64);
                     step = Some(gap / (1.0 + l * l).sqrt());
                     break;
@@ -331,6 +363,7 @@ impl Planet {
                     if gap <= tol || steps >= max_steps {
                         return (t, steps, true);
                     }
+                    note(closest, t, gap, width);
                     let l = relief.lipschitz_visible(v);
                     let band = if width > 0.0 {
                         relief.band_slope(v) * growth / (width * relief.ln_lacunarity())
@@ -367,6 +400,17 @@ impl Planet {
                 return (t, steps, true);
             }
         }
+    }
+}
+
+/// Keeps in `closest = Some((c, from))` the least `gap/width` seen at
+/// `t ≥ from`.
+fn note(closest: &mut Option<(f64, f64)>, t: f64, gap: f64, width: f64) {
+    if let Some((c, from)) = closest
+        && t >= *from
+        && width > 0.0
+    {
+        *c = c.min(gap / width);
     }
 }
 
