@@ -713,18 +713,30 @@ impl<'s> FastRenderer<'s> {
         };
         let p = o + d * t;
         let q = sc.lift(kind, p);
-        // Surfaces take a direct shadow ray: one per pixel, and exact at the
-        // surface, where a table would interpolate across it.
+        // A surface inside the volume takes a direct shadow ray, exact at the
+        // surface, where a table would interpolate across it; its steps are
+        // the eye march's at the surface's distance (they grow with it as the
+        // pixel's footprint does). A surface outside the volume (a plain below
+        // a cloud layer) reads the table where its sunward ray enters the
+        // volume: the table's nodes on that face hold exact rays, and the
+        // lookup there is bilinear across the face, never across the surface.
         let ts = sc.sun_unit().map_or(1.0, |s| {
             if sc.blocked(q, s.direction) {
-                0.0
-            } else {
-                let h = match self.settings.shadows {
-                    Shadows::Rays(h) => h,
-                    Shadows::Table(_) => self.settings.step,
-                };
-                (-optical_depth_ray(sc.density, self.medium.extinction, q, s.direction, h)).exp()
+                return 0.0;
             }
+            let tau = match (&self.sun_table, self.settings.shadows) {
+                (Some(table), Shadows::Table(_)) if !sc.density.bounds().contains(q) => {
+                    table.optical_depth(q)
+                }
+                (_, shadows) => {
+                    let h = match shadows {
+                        Shadows::Rays(h) => h,
+                        Shadows::Table(_) => self.settings.step + self.settings.step_growth * t,
+                    };
+                    optical_depth_ray(sc.density, self.medium.extinction, q, s.direction, h)
+                }
+            };
+            (-tau).exp()
         });
         sc.through_air(d, t, sc.surface_radiance(kind, p, ts))
     }
