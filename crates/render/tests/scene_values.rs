@@ -273,6 +273,19 @@ fn a_forest_beyond_the_memory_budget_is_refused_by_its_keys() {
 }
 
 #[test]
+fn the_far_forest_layer_counts_in_the_memory_budget() {
+    // A terrain that fits alone (about 3.1 GiB with the image, the clouds
+    // and the forest) but not with the canopy layer's maps over all of it.
+    let big = "[terrain]\nsize = 7168\n[vegetation]\nfar_field = ";
+    let e = error_of(&format!("{big}true\n"));
+    let m = e.to_string();
+    assert!(matches!(e, RenderError::Invalid { .. }), "{m}");
+    assert!(m.contains("memory budget"), "{m}");
+    let s = SceneDesc::from_toml_str(&format!("{big}false\n"), "s.toml").unwrap();
+    s.validate().unwrap();
+}
+
+#[test]
 fn scenes_beyond_the_memory_budget_are_refused_by_their_keys() {
     for (text, keys) in [
         ("[terrain]\nsize = 16384\n", &["terrain.size"][..]),

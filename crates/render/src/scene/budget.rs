@@ -8,7 +8,7 @@ use super::SceneDesc;
 use crate::error::{RenderError, Result, fmt_f64};
 
 /// Most memory a scene may ask for, bytes (4 GiB): the sum of the estimates
-/// of its terrain, image, clouds and forest.
+/// of its terrain, image, clouds and forest (with its far canopy layer).
 pub const MEMORY_BUDGET_BYTES: u64 = 4 << 30;
 
 /// Largest scene file read, bytes (16 MiB): far more than any scene needs
@@ -24,6 +24,11 @@ const TERRAIN_BYTES_PER_SAMPLE: f64 = 64.0;
 /// encoders' buffers.
 const IMAGE_BYTES_PER_PIXEL: f64 = 32.0;
 
+/// Bytes per terrain sample of the far forest's canopy layer while it is
+/// built: the ecosystem's five site maps over the whole terrain (altitude,
+/// slope, wetness, light, heights), the suitability, the stand's crown area
+/// and the layer's far and near indices, each an `f32`.
+const CANOPY_BYTES_PER_SAMPLE: f64 = 9.0 * 4.0;
 /// Most plants the forest's ecosystem may hold at once (its `max_plants`).
 pub(crate) const MAX_PLANTS: usize = 20_000_000;
 
@@ -61,6 +66,13 @@ impl SceneDesc {
         }
         if self.vegetation.enabled {
             parts.push(self.forest_part()?);
+            if self.vegetation.far_field {
+                parts.push(Part {
+                    keys: "vegetation.far_field, terrain.size",
+                    values: format!("true, {}", t.size),
+                    bytes: n * n * CANOPY_BYTES_PER_SAMPLE,
+                });
+            }
         }
         Ok(parts)
     }
