@@ -1,6 +1,6 @@
 //! Ebert's low-albedo ray march (Ebert 2001, "Volume rendering": single
 //! scattering with atmospheric attenuation along the eye ray, shadows from
-//! 3-D shadow tables), with multiple scattering ([`Scattering`]: a grid of
+//! 3-D shadow tables), with multiple scattering ([`Scattering`](super::Scattering): a grid of
 //! the sun's multiply scattered light traced once per scene, or the octave
 //! approximation) and the powder term as options.
 //!
@@ -57,104 +57,12 @@ use natura_core::{Aabb, Image, NoProgress, Progress};
 
 use super::cache::EyeBasis;
 use super::model::{PeakOrders, emitted, powder, step_inscatter, step_transmittance};
-use super::multiple::{Multiple, Scattering};
+use super::multiple::Multiple;
+pub use super::settings::{FastSettings, NearSunRays, Shadows};
 use super::shadow::{ShadowTable, optical_depth_ray, table_dims};
 use super::{BLOCKED_DEPTH, LookAtCamera, MediumParams, Scene, Surface, check_step};
 use crate::density::ray_box;
 use crate::error::{Result, VolumeError, in_range, positive};
-
-/// How the march finds the optical depth toward the lights.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Shadows {
-    /// Ebert's 3-D shadow tables with this many nodes along the volume's longest axis.
-    Table(usize),
-    /// A direct shadow ray per sample with steps of this length (m).
-    Rays(f32),
-}
-
-/// Settings of the fast renderer.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct FastSettings {
-    /// Eye-ray step (m) at the eye.
-    pub step: f32,
-    /// Growth of the step with distance from the eye (m per m, `≥ 0`; 0:
-    /// uniform steps). Kilometre-scale skies use it to spend samples near the eye.
-    pub step_growth: f32,
-    /// Shadow method.
-    pub shadows: Shadows,
-    /// How light scattered more than once is counted ([`Scattering::Single`]:
-    /// Ebert's single scattering).
-    pub scattering: Scattering,
-    /// Strength of the powder term in `[0, 1]` (0: off).
-    pub powder: f32,
-    /// The march stops below this transmittance, in `[0, 1)`.
-    pub min_transmittance: f32,
-    /// Treat the phase function's forward diffraction peak as transmitted
-    /// light (the δ-M medium for everything but the peak's own single
-    /// scattering of the sun, which stays exact: see the module docs); no
-    /// effect on phase functions without such a peak.
-    pub truncate_forward_peak: bool,
-    /// Direct shadow rays toward the sun for the eye rays near it, instead
-    /// of the table (`None`: the table everywhere; see [`NearSunRays`]).
-    pub near_sun: Option<NearSunRays>,
-}
-
-/// Direct shadow rays toward the sun for eye rays within an angle of it.
-///
-/// Near the sun a cloud's phase function is its forward peak, a fraction of
-/// a degree wide, so what the eye sees there is the sunlight that reaches
-/// each point of the eye ray, `e^{−τ_sun}`, point by point: a shadow table,
-/// whose optical depths are interpolated between nodes hundreds of metres
-/// apart on a kilometre-scale sky, smooths `τ_sun` over the cloud's
-/// structure, and the mean of `e^{−τ}` over that structure exceeds `e^{−τ̄}`
-/// (Jensen's inequality), so the table darkens the aureole through cloud
-/// (figures in `docs/performance.md`). Away from the sun the phase function
-/// is broad, it averages the light over many directions, and the table
-/// serves. Between `within_deg` and 1.5 times it the two blend smoothly, so
-/// no ring shows where one hands over to the other.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
-pub struct NearSunRays {
-    /// Eye rays within this angle of the sun (degrees, in `(0, 60]`) march
-    /// their own shadow rays.
-    pub within_deg: f32,
-    /// The shadow rays' step (m).
-    pub step: f32,
-}
-
-impl Default for FastSettings {
-    /// Uniform steps of 0.1 m, a 64-node table, single scattering, no powder,
-    /// stop at `T < 10⁻³`, the forward peak truncated.
-    fn default() -> Self {
-        Self {
-            step: 0.1,
-            step_growth: 0.0,
-            shadows: Shadows::Table(64),
-            scattering: Scattering::Single,
-            powder: 0.0,
-            min_transmittance: 1e-3,
-            truncate_forward_peak: true,
-            near_sun: None,
-        }
-    }
-}
-
-impl FastSettings {
-    /// These settings with multiple scattering ([`Scattering::default`]:
-    /// the sun's light traced once onto a grid).
-    #[must_use]
-    pub fn multiple_scattering(self) -> Self {
-        Self {
-            scattering: Scattering::default(),
-            ..self
-        }
-    }
-}
 
 /// The fast renderer: shadow tables built once for a scene, then any number
 /// of rays or images.

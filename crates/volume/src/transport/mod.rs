@@ -18,6 +18,7 @@ pub mod march;
 pub mod model;
 pub mod multiple;
 pub mod reference;
+mod settings;
 pub mod shadow;
 
 use std::sync::Arc;
