@@ -203,10 +203,12 @@ impl Cloudscape {
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
     /// of the distance, shadow tables of 256 nodes across (direct shadow
     /// rays in 20 m steps for the eye rays within 3° of the sun, blended into
-    /// the table out to 4.5°), the multiple-scattering cache (48 cells
-    /// across, bands up to 3, two million events: the clouds are thick and
-    /// their multiply scattered light is broad) with the forward peak
-    /// truncated.
+    /// the table out to 4.5°), the multiple-scattering cache (64 cells
+    /// across, bands up to 3 with a zonal tail about the sun's beam up to
+    /// band 23, two million events: the clouds are thick and their
+    /// multiply scattered light broad, except toward the low sun, where the
+    /// tail keeps its peak) with the forward peak truncated, the march
+    /// stopped below a transmittance of 0.003.
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
         FastSettings {
@@ -214,13 +216,14 @@ impl Cloudscape {
             step_growth: 0.01,
             shadows: Shadows::Table(256),
             scattering: Scattering::Cache(CacheParams {
-                cells: 48,
+                cells: 64,
                 events: 2_000_000,
                 order: 3,
+                zonal: 23,
                 ..CacheParams::default()
             }),
             powder: 0.0,
-            min_transmittance: 0.01,
+            min_transmittance: 0.003,
             truncate_forward_peak: true,
             near_sun: Some(NearSunRays {
                 within_deg: 3.0,

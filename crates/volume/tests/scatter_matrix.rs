@@ -222,9 +222,10 @@ fn camera(shape: Shape, px: u32) -> LookAtCamera {
 /// The fast settings of the comparison: eye steps of 1/200 of the box's
 /// diagonal, a 96-node shadow table, the default multiple scattering, the
 /// forward peak truncated. The knobs `MATRIX_CELLS`, `MATRIX_ORDER`,
-/// `MATRIX_TABLE`, `MATRIX_SINGLE` and `MATRIX_NOTRUNC` (in `fast_lums`)
-/// change the cache's grid and band, the table's nodes, turn multiple
-/// scattering off, or keep the forward peak in the transport, for studies.
+/// `MATRIX_ZONAL`, `MATRIX_TABLE`, `MATRIX_SINGLE` and `MATRIX_NOTRUNC` (in
+/// `fast_lums`) change the cache's grid, band and zonal tail, the table's
+/// nodes, turn multiple scattering off, or keep the forward peak in the
+/// transport, for studies.
 fn fast_settings(b: &Aabb) -> FastSettings {
     FastSettings {
         step: (b.max - b.min).length() / 200.0,
@@ -549,12 +550,14 @@ fn fast_lums(c: &Case, px: u32, scattering: Scattering) -> Vec<f64> {
             Vec3::ZERO,
         )
     };
-    // `MATRIX_CELLS` and `MATRIX_ORDER` override the cache's grid and band (a study's knobs).
+    // `MATRIX_CELLS`, `MATRIX_ORDER` and `MATRIX_ZONAL` override the cache's grid, band
+    // and zonal tail (a study's knobs).
     let knob = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u32>().ok());
     let scattering = match scattering {
         Scattering::Cache(c) => Scattering::Cache(natura_volume::transport::CacheParams {
             cells: knob("MATRIX_CELLS").unwrap_or(c.cells),
             order: knob("MATRIX_ORDER").unwrap_or(c.order),
+            zonal: knob("MATRIX_ZONAL").unwrap_or(c.zonal),
             ..c
         }),
         s => s,

@@ -111,6 +111,7 @@ impl Default for CloudsDesc {
                 cells: 96,
                 events: 4_000_000,
                 order: 3,
+                zonal: 0,
                 seed: 0x5ca7,
             }),
         }

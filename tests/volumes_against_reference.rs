@@ -1,0 +1,294 @@
+//! The fast mode against the reference path tracer on the `steam` and
+//! `smoke3d` examples' scenes (slow: run with
+//! `cargo test --release --test volumes_against_reference -- --ignored --nocapture`).
+//!
+//! Each scene is the example's (medium, lights, surfaces, detail, march
+//! settings) at a reduced size. The reference is two seeds, and its own
+//! noise, estimated from their difference, is subtracted from the errors:
+//! the error of the total and the mean error over 4 × 4-pixel blocks, both
+//! over the pixels that see the volume.
+
+use natura::core::Image;
+use natura::core::glam::Vec3;
+use natura::fluid::advect::Advection;
+use natura::fluid::grid::Dims;
+use natura::fluid::interp::{CubicLimiter, Interpolation};
+use natura::fluid::shape::{Obstacle, Shape};
+use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
+use natura::volume::Density;
+use natura::volume::detail::{DetailParams, Detailed};
+use natura::volume::gas::{Steam, SteamParams};
+use natura::volume::grid::SmokeVolume;
+use natura::volume::phase::CloudPhase;
+use natura::volume::transport::{
+    Emission, FastRenderer, FastSettings, GroundPlane, LookAtCamera, MediumParams,
+    ReferenceRenderer, ReferenceSettings, Scene, Shadows, Solid, Sun,
+};
+
+/// Relative luminance of every pixel.
+fn lums(img: &Image) -> Vec<f64> {
+    img.pixels()
+        .as_slice()
+        .iter()
+        .map(|&c| f64::from(natura::core::colour::luminance(c)))
+        .collect()
+}
+
+/// `√max(e² − σ², 0)` with the sign of `e`: an error with the reference's
+/// noise `σ` taken out.
+fn denoise(e: f64, sigma: f64) -> f64 {
+    e.signum() * (e * e - sigma * sigma).max(0.0).sqrt()
+}
+
+/// The relative error of the total over the pixels that see the volume
+/// (`mask`), and the mean relative error over the 4 × 4 blocks of those
+/// pixels, of the fast image `fast` against the two reference seeds `a` and
+/// `b` (`w` pixels across), the reference's noise subtracted; and that
+/// noise, relative to the total.
+fn errors(fast: &[f64], a: &[f64], b: &[f64], mask: &[bool], w: usize) -> (f64, f64, f64) {
+    let r: Vec<f64> = a.iter().zip(b).map(|(x, y)| 0.5 * (x + y)).collect();
+    let half: Vec<f64> = a.iter().zip(b).map(|(x, y)| 0.5 * (x - y)).collect();
+    let h = fast.len() / w;
+    let (mut tf, mut tr, mut tn2) = (0.0, 0.0, 0.0);
+    let (mut err, mut base) = (0.0, 0.0);
+    for by in 0..h / 4 {
+        for bx in 0..w / 4 {
+            let (mut f, mut rr, mut n2) = (0.0, 0.0, 0.0);
+            for y in by * 4..by * 4 + 4 {
+                for x in bx * 4..bx * 4 + 4 {
+                    let i = y * w + x;
+                    if mask[i] {
+                        f += fast[i];
+                        rr += r[i];
+                        n2 += half[i] * half[i];
+                    }
+                }
+            }
+            err += denoise(f - rr, n2.sqrt()).abs();
+            base += rr;
+            (tf, tr, tn2) = (tf + f, tr + rr, tn2 + n2);
+        }
+    }
+    let noise = tn2.sqrt();
+    (denoise(tf - tr, noise) / tr, err / base, noise / tr)
+}
+
+/// Renders `scene` through `camera` with the fast mode and two reference
+/// seeds of `spp` paths, prints the errors over the pixels that see the
+/// volume (the fast mode's transmittance along the pixel's centre below
+/// 0.99) and checks them against the goal: the total within ±5 %, the
+/// blocks within 10 %.
+fn compare(name: &str, scene: &Scene<'_>, settings: FastSettings, camera: &LookAtCamera, spp: u32) {
+    let renderer = FastRenderer::new(scene, settings).unwrap();
+    let fast = renderer.render(camera).unwrap();
+    let (w, h) = (fast.width(), fast.height());
+    let mask: Vec<bool> = (0..w * h)
+        .map(|i| {
+            let d = camera
+                .ray_at((i % w) as f32 + 0.5, (i / w) as f32 + 0.5)
+                .dir;
+            renderer.transmittance(camera.eye(), d, f32::INFINITY) < 0.99
+        })
+        .collect();
+    let seen = mask.iter().filter(|&&m| m).count();
+    assert!(seen >= 200, "{name}: the volume covers {seen} pixels");
+    let t = std::time::Instant::now();
+    let reference = |seed: u64| {
+        let r = ReferenceRenderer::new(
+            scene,
+            ReferenceSettings {
+                samples_per_pixel: spp,
+                seed,
+                ..ReferenceSettings::default()
+            },
+        )
+        .unwrap();
+        lums(&r.render(camera).unwrap())
+    };
+    let (a, b) = (reference(1), reference(2));
+    let (total, block, noise) = errors(&lums(&fast), &a, &b, &mask, w);
+    eprintln!(
+        "{name}: {seen} of {} pixels see the volume; over them total {:+.1} %, 4×4 blocks \
+         {:.1} % (the reference's noise {:.2} % of the total; two seeds of {spp} paths in {:.0} s)",
+        w * h,
+        100.0 * total,
+        100.0 * block,
+        100.0 * noise,
+        t.elapsed().as_secs_f64()
+    );
+    assert!(
+        total.abs() <= 0.05 && block <= 0.10,
+        "{name}: {total} {block}"
+    );
+}
+
+#[test]
+#[ignore = "slow: minutes"]
+fn steam_fast_mode_against_the_reference() {
+    // The steam example's frame at t = 1 s, at 48 × 60 pixels.
+    let (w, h) = (48u32, 60u32);
+    let eye = Vec3::new(0.0, -0.35, 0.07);
+    let fov = 22f32.to_radians();
+    let step = 0.0008;
+    let detail = DetailParams {
+        feature_m: 0.015,
+        octaves: 8,
+        h: 0.8,
+        amplitude: 0.12,
+        warp: 0.35,
+        ..DetailParams::default()
+    }
+    .seen_from(eye, (fov / h as f32).max(step / eye.length()));
+    let steam = Steam::new(
+        SteamParams {
+            time: 1.0,
+            detail: Some(detail),
+            ..SteamParams::default()
+        },
+        3,
+    )
+    .unwrap();
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
+            irradiance: Vec3::new(2.4, 2.2, 2.0),
+        }),
+        ..Scene::new(
+            &steam,
+            MediumParams {
+                extinction: 60.0,
+                albedo: 0.95,
+                phase: CloudPhase::HenyeyGreenstein(0.5),
+            },
+            Vec3::new(0.03, 0.03, 0.04),
+        )
+    };
+    let settings = FastSettings {
+        step,
+        shadows: Shadows::Table(96),
+        ..FastSettings::default()
+    }
+    .multiple_scattering();
+    let camera =
+        LookAtCamera::look_at(eye, Vec3::new(0.0, 0.0, 0.065), Vec3::Z, fov, w, h).unwrap();
+    // Measured 2026-11-29: 430 of 2880 pixels see the steam; over them the
+    // total +1.4 %, blocks 1.2 % (the reference's noise 0.17 %).
+    compare("steam", &scene, settings, &camera, 1024);
+}
+
+#[test]
+#[ignore = "slow: minutes"]
+fn smoke3d_fast_mode_against_the_reference() {
+    // The smoke3d example's scene after its three seconds, on a coarser grid
+    // (32 cells across instead of 48), at 60 × 96 pixels.
+    let (n, width) = (32usize, 1.0f32);
+    let h = width / n as f32;
+    let mut smoke = Smoke::new(
+        Dims::new(n, n, 2 * n).unwrap(),
+        h,
+        SmokeParams {
+            epsilon: 4.0,
+            advection: Advection {
+                interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
+                ..Advection::default()
+            },
+            ..SmokeParams::default()
+        },
+    )
+    .unwrap();
+    let c = 0.5 * width;
+    let sphere = (Vec3::new(0.45 * width, c, 0.85 * width), 0.15 * width);
+    smoke
+        .add_obstacle(Obstacle::fixed(Shape::Sphere {
+            centre: sphere.0,
+            radius: sphere.1,
+        }))
+        .unwrap();
+    smoke
+        .add_source(SmokeSource {
+            shape: Shape::Sphere {
+                centre: Vec3::new(c, c, 0.15 * width),
+                radius: 0.08 * width,
+            },
+            density: 1.0,
+            temperature: 330.0,
+            velocity: Some(Vec3::new(0.0, 0.0, 0.3)),
+        })
+        .unwrap();
+    let dt = 0.5 * h / 0.6;
+    for _ in 0..(3.0 / dt).ceil() as usize {
+        smoke.step(dt).unwrap();
+    }
+    let vol = SmokeVolume::from_solver(
+        smoke.density(),
+        smoke.temperature().clone(),
+        smoke.h(),
+        smoke.params().ambient_temperature,
+    )
+    .unwrap();
+    let bg = Vec3::new(0.05, 0.07, 0.12);
+    let sky = bg * std::f32::consts::PI;
+    let b = vol.density.bounds();
+    let centre = (b.min + b.max) * 0.5;
+    let eye = centre + Vec3::new(0.6, -3.4, 0.1);
+    let fov = 40f32.to_radians();
+    let (px_w, px_h) = (60u32, 96u32);
+    let step = 0.5 * vol.density.cell();
+    let detail = DetailParams {
+        feature_m: 2.0 * vol.density.cell(),
+        octaves: 6,
+        h: 0.8,
+        amplitude: 0.4,
+        warp: 0.3,
+        ..DetailParams::default()
+    }
+    .seen_from(eye, (fov / px_h as f32).max(step / (eye - centre).length()));
+    let density = Detailed::new(&vol.density, &detail, 0x5e0c).unwrap();
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(-0.5, -0.3, 1.0).normalize(),
+            irradiance: Vec3::new(2.6, 2.5, 2.3),
+        }),
+        ground: Some(GroundPlane {
+            height: 0.0,
+            albedo: Vec3::splat(0.35),
+            sky_irradiance: sky,
+        }),
+        solids: vec![Solid {
+            centre: sphere.0,
+            radius: sphere.1,
+            albedo: Vec3::new(0.7, 0.35, 0.25),
+            sky_irradiance: sky,
+        }],
+        emission: Some(Emission {
+            field: &vol.temperature,
+            offset: vol.ambient,
+            colour: Vec3::new(0.008, 0.003, 0.0008),
+        }),
+        ..Scene::new(
+            &density,
+            MediumParams {
+                extinction: 40.0,
+                albedo: 0.9,
+                phase: CloudPhase::HenyeyGreenstein(0.3),
+            },
+            bg,
+        )
+    };
+    let settings = FastSettings {
+        step,
+        shadows: Shadows::Table(96),
+        ..FastSettings::default()
+    }
+    .multiple_scattering();
+    // Measured 2026-11-29 over the 287 pixels that see the smoke: total
+    // −26 %, blocks 28 %. This fails. Taken apart (the reference re-run for
+    // each): without the ground −21 %, without the sphere −15 %, without the
+    // glow −23 %, with none of the three −10.6 %, and without the detail
+    // too −6.3 % (blocks 12 %); direct shadow rays instead of the table
+    // change none of these by more than 2 points. The fast mode does not
+    // light the smoke by the ground's and the sphere's reflected light, nor
+    // by the glow's scattered light; the reference does.
+    let camera = LookAtCamera::look_at(eye, centre, Vec3::Z, fov, px_w, px_h).unwrap();
+    compare("smoke3d", &scene, settings, &camera, 1024);
+}
