@@ -14,6 +14,7 @@
 //! irradiance normal to the beam.
 
 pub mod cache;
+pub mod harmonics;
 pub mod march;
 pub mod model;
 pub mod multiple;
