@@ -79,8 +79,11 @@ fn errors(fast: &[f64], a: &[f64], b: &[f64], mask: &[bool], w: usize) -> (f64, 
 /// 0.99) and checks them against the goal: the total within ±5 %, the
 /// blocks within 10 %.
 fn compare(name: &str, scene: &Scene<'_>, settings: FastSettings, camera: &LookAtCamera, spp: u32) {
+    let t = std::time::Instant::now();
     let renderer = FastRenderer::new(scene, settings).unwrap();
+    let built = t.elapsed().as_secs_f64();
     let fast = renderer.render(camera).unwrap();
+    let rendered = t.elapsed().as_secs_f64() - built;
     let (w, h) = (fast.width(), fast.height());
     let mask: Vec<bool> = (0..w * h)
         .map(|i| {
@@ -109,7 +112,8 @@ fn compare(name: &str, scene: &Scene<'_>, settings: FastSettings, camera: &LookA
     let (total, block, noise) = errors(&lums(&fast), &a, &b, &mask, w);
     eprintln!(
         "{name}: {seen} of {} pixels see the volume; over them total {:+.1} %, 4×4 blocks \
-         {:.1} % (the reference's noise {:.2} % of the total; two seeds of {spp} paths in {:.0} s)",
+         {:.1} % (the reference's noise {:.2} % of the total; two seeds of {spp} paths in {:.0} s; \
+         the fast mode built in {built:.2} s, rendered in {rendered:.2} s)",
         w * h,
         100.0 * total,
         100.0 * block,
@@ -282,13 +286,9 @@ fn smoke3d_fast_mode_against_the_reference() {
     }
     .multiple_scattering();
     // Measured 2026-11-29 over the 287 pixels that see the smoke: total
-    // −26 %, blocks 28 %. This fails. Taken apart (the reference re-run for
-    // each): without the ground −21 %, without the sphere −15 %, without the
-    // glow −23 %, with none of the three −10.6 %, and without the detail
-    // too −6.3 % (blocks 12 %); direct shadow rays instead of the table
-    // change none of these by more than 2 points. The fast mode does not
-    // light the smoke by the ground's and the sphere's reflected light, nor
-    // by the glow's scattered light; the reference does.
+    // −0.2 %, blocks 7.0 %. Without the cache's light of the floor, the
+    // sphere and the glow (`local: 0`) it was −26 %, blocks 28 %: the
+    // fast mode saw the surfaces and the glow only along the eye ray.
     let camera = LookAtCamera::look_at(eye, centre, Vec3::Z, fov, px_w, px_h).unwrap();
     compare("smoke3d", &scene, settings, &camera, 1024);
 }

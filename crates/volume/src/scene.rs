@@ -207,8 +207,9 @@ impl Cloudscape {
     /// across, bands up to 3 with a zonal tail about the sun's beam up to
     /// band 23, two million events: the clouds are thick and their
     /// multiply scattered light broad, except toward the low sun, where the
-    /// tail keeps its peak) with the forward peak truncated, the march
-    /// stopped below a transmittance of 0.003.
+    /// tail keeps its peak; the ground's light left to the ambient term)
+    /// with the forward peak truncated, the march stopped below a
+    /// transmittance of 0.003.
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
         FastSettings {
@@ -220,6 +221,10 @@ impl Cloudscape {
                 events: 2_000_000,
                 order: 3,
                 zonal: 23,
+                // The ground's light by the environment's ambient term: traced
+                // (shadowed by the clouds), it moves the clouds' mean by
+                // 0.2 % and costs 0.4 s.
+                local: 0,
                 ..CacheParams::default()
             }),
             powder: 0.0,

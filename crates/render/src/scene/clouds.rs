@@ -112,6 +112,9 @@ impl Default for CloudsDesc {
                 events: 4_000_000,
                 order: 3,
                 zonal: 0,
+                // The terrain is drawn apart from the clouds' scene, which
+                // has no ground or solids to light them.
+                local: 0,
                 seed: 0x5ca7,
             }),
         }

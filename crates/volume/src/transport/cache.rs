@@ -65,16 +65,15 @@ use glam::Vec3;
 use natura_core::{Aabb, Seed};
 
 use super::MediumParams;
+use super::cells::{CellGrid, Flight};
 use super::harmonics::{MAX_CELL, dot, zonal_basis};
 pub use super::harmonics::{
     MAX_COEFFS, MAX_ORDER, MAX_ZONAL, legendre_moments, sh_basis, sigma_factor,
 };
 use crate::animate::unit;
-use crate::density::{Density, ray_box};
+use crate::density::Density;
 use crate::error::{Result, VolumeError};
 
-/// Fewest cells along a thin axis (see [`ScatterCache::new`]).
-const MIN_THIN_CELLS: usize = 16;
 /// Photon chunks (each its own random stream and grid; summed in order).
 const CHUNKS: usize = 4;
 /// Most scattering events one photon is followed through.
@@ -100,19 +99,26 @@ pub struct CacheParams {
     /// `order + 1` to 31 (`zonal − order` more coefficients per cell; see
     /// the module docs).
     pub zonal: u32,
+    /// Scattering events traced for the light of the scene's ground,
+    /// solids and glow in the medium: 0 for none (that light is then left
+    /// out, but for the ground's share of the environment's ambient term),
+    /// or `10⁴` to `10⁹` (see [`local`](super::local)).
+    pub local: u32,
     /// Seed of the photons' random streams.
     pub seed: u64,
 }
 
 impl Default for CacheParams {
     /// 64 cells along the longest axis, four million events, bands up to
-    /// [`ORDER_DEFAULT`], no zonal tail.
+    /// [`ORDER_DEFAULT`], no zonal tail, a million events for the light of
+    /// the scene's surfaces and glow.
     fn default() -> Self {
         Self {
             cells: 64,
             events: 4_000_000,
             order: ORDER_DEFAULT,
             zonal: 0,
+            local: 1_000_000,
             seed: 0x5ca7,
         }
     }
@@ -125,7 +131,8 @@ impl CacheParams {
     ///
     /// [`VolumeError::InvalidParameter`] naming `cache.cells` outside
     /// `4..=1024`, `cache.order` outside `1..=7`, `cache.zonal` neither 0
-    /// nor in `order + 1 ..= 31`, or `cache.events` outside `10⁴ ..= 10⁹`.
+    /// nor in `order + 1 ..= 31`, `cache.events` outside `10⁴ ..= 10⁹`, or
+    /// `cache.local` neither 0 nor in `10⁴ ..= 10⁹`.
     pub fn validate(&self) -> Result<()> {
         if !(4..=1024).contains(&self.cells) {
             return Err(VolumeError::InvalidParameter {
@@ -155,6 +162,13 @@ impl CacheParams {
                 expected: "10000 to 1000000000 scattering events",
             });
         }
+        if self.local != 0 && !(10_000..=1_000_000_000).contains(&self.local) {
+            return Err(VolumeError::InvalidParameter {
+                name: "cache.local",
+                value: self.local.to_string(),
+                expected: "0, or 10000 to 1000000000 scattering events",
+            });
+        }
         Ok(())
     }
 }
@@ -162,12 +176,8 @@ impl CacheParams {
 /// The multiple-scattering cache of one scene (see the module docs).
 #[derive(Clone, Debug)]
 pub struct ScatterCache {
-    origin: Vec3,
-    /// Cell size per axis (m).
-    h: Vec3,
-    dims: [usize; 3],
-    /// Per cell: extinction (1/m) of the transport medium.
-    sigma: Vec<f32>,
+    /// The cells and the medium's extinction in each.
+    grid: CellGrid,
     /// The highest band of the full series.
     order: usize,
     /// The highest band of the zonal tail (`order` when there is none).
@@ -192,12 +202,6 @@ pub struct EyeBasis {
     memo: std::cell::Cell<Option<(usize, [f32; 8])>>,
 }
 
-/// A photon's flight through the grid: where it collides, if it does.
-enum Flight {
-    Collided(Vec3),
-    Left,
-}
-
 impl ScatterCache {
     /// Traces the sun's light (unit direction `sun` toward it) through
     /// `density` with the transport `medium`.
@@ -213,35 +217,24 @@ impl ScatterCache {
         params: &CacheParams,
     ) -> Result<Self> {
         params.validate()?;
-        let b = density.bounds();
-        let size = b.max - b.min;
-        // Cubes along the longest axis; a thin axis keeps at least
-        // `MIN_THIN_CELLS` cells (a cloud layer kilometres wide and one
-        // thick still resolves its height).
-        let cube = size.max_element() / params.cells as f32;
-        let n = |x: f32| {
-            ((x / cube).ceil() as usize)
-                .max(MIN_THIN_CELLS.min(params.cells as usize))
-                .max(1)
-        };
-        let dims = [n(size.x), n(size.y), n(size.z)];
-        let h = size / Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
-        let count = dims[0] * dims[1] * dims[2];
-        if count > 1 << 26 {
-            return Err(VolumeError::InvalidParameter {
-                name: "cache.cells",
-                value: params.cells.to_string(),
-                expected: "a grid of at most 2^26 cells",
-            });
-        }
+        let grid = CellGrid::new(density, medium.extinction, params.cells)?;
+        Ok(Self::on_grid(grid, medium, sun, params))
+    }
+
+    /// The cache on `grid` (the transport medium's extinction per cell);
+    /// `params` already checked.
+    pub(crate) fn on_grid(
+        grid: CellGrid,
+        medium: &MediumParams,
+        sun: Vec3,
+        params: &CacheParams,
+    ) -> Self {
+        let count = grid.count();
         let order = params.order as usize;
         let zonal = (params.zonal as usize).max(order);
         let per = (order + 1) * (order + 1) + zonal - order;
         let mut cache = Self {
-            origin: b.min,
-            h,
-            dims,
-            sigma: Vec::new(),
+            grid,
             order,
             zonal,
             axis: -sun,
@@ -254,31 +247,22 @@ impl ScatterCache {
         for (l, b) in cache.band.iter_mut().enumerate().take(zonal + 1) {
             *b = chi[l] * sigma_factor(l, zonal);
         }
-        cache.sigma = cache.voxelize(density, medium.extinction);
-        if medium.albedo > 0.0 && cache.sigma.iter().any(|&s| s > 0.0) {
+        if medium.albedo > 0.0 && cache.grid.sigma.iter().any(|&s| s > 0.0) {
             cache.trace(medium, sun, params);
         }
-        Ok(cache)
+        cache
     }
 
     /// The grid's cells per axis.
     #[must_use]
     pub fn dims(&self) -> [usize; 3] {
-        self.dims
+        self.grid.dims
     }
 
     /// The grid's bounds.
     #[must_use]
     pub fn bounds(&self) -> Aabb {
-        let n = Vec3::new(
-            self.dims[0] as f32,
-            self.dims[1] as f32,
-            self.dims[2] as f32,
-        );
-        Aabb {
-            min: self.origin,
-            max: self.origin + n * self.h,
-        }
+        self.grid.bounds()
     }
 
     /// The factors of an eye looking along unit `d` (the light it sees
@@ -311,49 +295,16 @@ impl ScatterCache {
         zonal_basis(self.order, self.zonal, d.dot(self.axis), &mut out[full..]);
     }
 
-    /// The eight cells round `p` (the lower corner's index per axis, the
-    /// upper's, and the weights toward the upper), trilinear between cell
-    /// centres and clamped to the grid.
+    /// `f` of the coefficients of each of the eight cells round `p`, and
+    /// the trilinear weights.
     #[inline]
-    fn corners(&self, p: Vec3) -> ([usize; 3], [usize; 3], [f32; 3]) {
-        let g = (p - self.origin) / self.h - Vec3::splat(0.5);
-        let mut i = [0usize; 3];
-        let mut j = [0usize; 3];
-        let mut w = [0.0f32; 3];
-        for a in 0..3 {
-            let hi = (self.dims[a] - 1) as f32;
-            let x = g[a].clamp(0.0, hi);
-            let k = x as usize;
-            i[a] = k.min(self.dims[a] - 1);
-            j[a] = (k + 1).min(self.dims[a] - 1);
-            w[a] = x - k as f32;
-        }
-        (i, j, w)
-    }
-
-    /// `f` of each of the eight cells round a lower corner `i` (upper `j`).
-    #[inline]
-    fn corner_values(&self, i: [usize; 3], j: [usize; 3], f: impl Fn(&[f32]) -> f32) -> [f32; 8] {
+    fn corner_values(&self, cells: &[usize; 8], f: impl Fn(&[f32]) -> f32) -> [f32; 8] {
         let mut v = [0.0f32; 8];
-        for (c, out) in v.iter_mut().enumerate() {
-            let x = if c & 1 == 0 { i[0] } else { j[0] };
-            let y = if c & 2 == 0 { i[1] } else { j[1] };
-            let z = if c & 4 == 0 { i[2] } else { j[2] };
-            let at = self.index(x, y, z) * self.n;
+        for (out, &c) in v.iter_mut().zip(cells) {
+            let at = c * self.n;
             *out = f(&self.coeffs[at..at + self.n]);
         }
         v
-    }
-
-    /// The trilinear blend of eight corner values.
-    #[inline]
-    fn blend(v: &[f32; 8], w: [f32; 3]) -> f32 {
-        let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
-        let x0 = lerp(v[0], v[1], w[0]);
-        let x1 = lerp(v[2], v[3], w[0]);
-        let x2 = lerp(v[4], v[5], w[0]);
-        let x3 = lerp(v[6], v[7], w[0]);
-        lerp(lerp(x0, x1, w[1]), lerp(x2, x3, w[1]), w[2])
     }
 
     /// The light scattered more than once toward the eye at `p`, per unit
@@ -365,147 +316,27 @@ impl ScatterCache {
     #[inline]
     #[must_use]
     pub fn toward_eye(&self, p: Vec3, basis: &EyeBasis) -> f32 {
-        let (i, j, w) = self.corners(p);
-        let key = self.index(i[0], i[1], i[2]);
+        let (i, j, w) = self.grid.corners(p);
+        let key = self.grid.index(i[0], i[1], i[2]);
         let dots = match basis.memo.get() {
             Some((k, v)) if k == key => v,
             _ => {
-                let v = self.corner_values(i, j, |c| dot(c, &basis.factors));
+                let v =
+                    self.corner_values(&self.grid.corner_cells(i, j), |c| dot(c, &basis.factors));
                 basis.memo.set(Some((key, v)));
                 v
             }
         };
-        Self::blend(&dots, w).max(0.0)
+        CellGrid::blend(&dots, w).max(0.0)
     }
 
     /// The same light's mean over every direction, `φ/(4π) = c₀₀·Y₀₀`.
     #[inline]
     #[must_use]
     pub fn mean(&self, p: Vec3) -> f32 {
-        let (i, j, w) = self.corners(p);
-        Self::blend(&self.corner_values(i, j, |c| c[0]), w) * 0.282_094_8
-    }
-
-    #[inline]
-    fn index(&self, x: usize, y: usize, z: usize) -> usize {
-        (z * self.dims[1] + y) * self.dims[0] + x
-    }
-
-    /// Each cell's mean extinction from `2³` samples (rows of cells in
-    /// parallel with the `parallel` feature).
-    fn voxelize(&self, density: &dyn Density, extinction: f32) -> Vec<f32> {
-        let [nx, ny, nz] = self.dims;
-        let row = |r: usize| -> Vec<f32> {
-            let (y, z) = (r % ny, r / ny);
-            let mut xs = Vec::with_capacity(nx * 8);
-            let (mut ys, mut zs) = (Vec::with_capacity(nx * 8), Vec::with_capacity(nx * 8));
-            for x in 0..nx {
-                for s in 0..8 {
-                    let o = Vec3::new(
-                        (s & 1) as f32 * 0.5 + 0.25,
-                        ((s >> 1) & 1) as f32 * 0.5 + 0.25,
-                        ((s >> 2) & 1) as f32 * 0.5 + 0.25,
-                    );
-                    let p = self.origin + (Vec3::new(x as f32, y as f32, z as f32) + o) * self.h;
-                    xs.push(p.x);
-                    ys.push(p.y);
-                    zs.push(p.z);
-                }
-            }
-            let mut rho = vec![0.0f32; nx * 8];
-            if density.density_batch(&xs, &ys, &zs, &mut rho).is_err() {
-                for (i, r) in rho.iter_mut().enumerate() {
-                    *r = density.density(Vec3::new(xs[i], ys[i], zs[i]));
-                }
-            }
-            rho.chunks(8)
-                .map(|c| extinction * c.iter().sum::<f32>() / 8.0)
-                .collect()
-        };
-        super::shadow::map_rows(ny * nz, row)
-    }
-
-    /// Calls `f(cell, t_in, t_out)` for each cell the ray from `o` along unit
-    /// `d` crosses inside the grid, in order, until `f` returns false.
-    fn cross(&self, o: Vec3, d: Vec3, mut f: impl FnMut(usize, f32, f32) -> bool) {
-        let inv = d.recip();
-        let Some((t0, t1)) = ray_box(o, inv, &self.bounds()) else {
-            return;
-        };
-        let mut t = t0.max(0.0);
-        if t >= t1 {
-            return;
-        }
-        let p = (o + d * t - self.origin) / self.h;
-        let h = self.h;
-        let mut c = [0i64; 3];
-        let mut step = [0i64; 3];
-        let mut next = [f32::INFINITY; 3];
-        let mut delta = [f32::INFINITY; 3];
-        for a in 0..3 {
-            let n = self.dims[a] as i64;
-            c[a] = (natura_core::floor_f32(p[a]) as i64).clamp(0, n - 1);
-            if d[a] > 0.0 {
-                step[a] = 1;
-                delta[a] = h[a] * inv[a];
-                next[a] = t + ((c[a] + 1) as f32 - p[a]) * h[a] * inv[a];
-            } else if d[a] < 0.0 {
-                step[a] = -1;
-                delta[a] = -h[a] * inv[a];
-                next[a] = t + (c[a] as f32 - p[a]) * h[a] * inv[a];
-            }
-        }
-        loop {
-            let a = if next[0] <= next[1] && next[0] <= next[2] {
-                0
-            } else if next[1] <= next[2] {
-                1
-            } else {
-                2
-            };
-            let t_out = next[a].min(t1).max(t);
-            let cell = self.index(c[0] as usize, c[1] as usize, c[2] as usize);
-            if !f(cell, t, t_out) || t_out >= t1 {
-                return;
-            }
-            t = t_out;
-            c[a] += step[a];
-            if c[a] < 0 || c[a] >= self.dims[a] as i64 {
-                return;
-            }
-            next[a] += delta[a];
-        }
-    }
-
-    /// The optical depth of the ray from `o` along `d` through the grid.
-    fn optical_depth(&self, o: Vec3, d: Vec3) -> f32 {
-        let mut tau = 0.0;
-        self.cross(o, d, |c, a, b| {
-            tau += self.sigma[c] * (b - a);
-            true
-        });
-        tau
-    }
-
-    /// Flies from `o` along `d` until optical depth `target` is used up,
-    /// calling `score(cell, length)` for each stretch flown.
-    fn fly(&self, o: Vec3, d: Vec3, target: f32, mut score: impl FnMut(usize, f32)) -> Flight {
-        let mut left = target;
-        let mut hit = None;
-        self.cross(o, d, |c, a, b| {
-            let s = self.sigma[c];
-            let len = b - a;
-            if s * len >= left {
-                let l = left / s;
-                score(c, l);
-                hit = Some(o + d * (a + l));
-                return false;
-            }
-            left -= s * len;
-            score(c, len);
-            true
-        });
-        hit.map_or(Flight::Left, Flight::Collided)
+        let (i, j, w) = self.grid.corners(p);
+        let v = self.corner_values(&self.grid.corner_cells(i, j), |c| c[0]);
+        CellGrid::blend(&v, w) * 0.282_094_8
     }
 
     /// Traces the photons and sets the moments (per unit irradiance).
@@ -540,14 +371,17 @@ impl ScatterCache {
                 photons += 1;
                 let a = lo + (hi - lo) * glam::Vec2::new(unit(&mut rng), unit(&mut rng));
                 let o = centre + sun * (radius * 2.0) + u * a.x + v * a.y;
-                let tau = self.optical_depth(o, beam);
+                let tau = self.grid.optical_depth(o, beam);
                 if tau <= 0.0 {
                     events += 1;
                     continue;
                 }
                 let p_hit = -(-tau).exp_m1();
                 let target = -(-unit(&mut rng) * p_hit).ln_1p();
-                let Flight::Collided(mut x) = self.fly(o, beam, target.min(tau), |_, _| {}) else {
+                let Flight::Collided(mut x) =
+                    self.grid
+                        .fly(o, beam, target.min(tau), f32::INFINITY, |_, _| {})
+                else {
                     events += 1;
                     continue;
                 };
@@ -559,7 +393,7 @@ impl ScatterCache {
                     let mut y = [0.0f32; MAX_CELL];
                     self.basis(d, &mut y);
                     let target = -(1.0 - unit(&mut rng)).ln();
-                    let flight = self.fly(x, d, target, |c, len| {
+                    let flight = self.grid.fly(x, d, target, f32::INFINITY, |c, len| {
                         let s = w * len;
                         for (g, b) in grid[c * per..(c + 1) * per].iter_mut().zip(&y) {
                             *g += s * b;
@@ -588,7 +422,7 @@ impl ScatterCache {
         };
         #[cfg(not(feature = "parallel"))]
         let chunks: Vec<(Vec<f32>, u64)> = (0..CHUNKS).map(run).collect();
-        let volume = self.h.x * self.h.y * self.h.z;
+        let volume = self.grid.cell_volume();
         for (grid, photons) in &chunks {
             // Each chunk's photons stand for the whole beam: area·E over its count.
             let s = area / (*photons as f32 * CHUNKS as f32 * volume);
@@ -728,6 +562,13 @@ mod tests {
                     ..CacheParams::default()
                 },
                 "cache.zonal",
+            ),
+            (
+                CacheParams {
+                    local: 5,
+                    ..CacheParams::default()
+                },
+                "cache.local",
             ),
         ] {
             let e = p.validate().unwrap_err().to_string();

@@ -56,6 +56,7 @@ use glam::Vec3;
 use natura_core::{Aabb, Image, NoProgress, Progress};
 
 use super::cache::EyeBasis;
+use super::local::LocalEye;
 use super::model::{PeakOrders, emitted, powder, step_inscatter, step_transmittance};
 use super::multiple::Multiple;
 pub use super::settings::{FastSettings, NearSunRays, Shadows};
@@ -120,6 +121,8 @@ struct EyeRay {
     near: f32,
     /// The multiple-scattering cache's factors toward this eye ray.
     eye: Option<EyeBasis>,
+    /// The surfaces' and glow's light's factors toward this eye ray.
+    local: Option<LocalEye>,
 }
 
 /// The running sums of one eye ray's march.
@@ -265,13 +268,18 @@ impl<'s> FastRenderer<'s> {
                 (None, None)
             }
         };
+        let multiple = Multiple::new(&settings.scattering, scene, &medium, ratio)?;
         // The environment's mean radiance over the sphere, the ground's unshadowed
-        // radiance below the horizon.
+        // radiance below the horizon (unless the cache traces the ground's light).
         let n = 512;
         let mut ambient = Vec3::ZERO;
         for d in sphere_dirs(n) {
             ambient += if scene.ground.is_some() && d.z < 0.0 {
-                scene.ground_radiance(1.0)
+                if multiple.traces_ground() {
+                    Vec3::ZERO
+                } else {
+                    scene.ground_radiance(1.0)
+                }
             } else {
                 scene.environment.radiance(d)
             };
@@ -283,12 +291,7 @@ impl<'s> FastRenderer<'s> {
             up_table,
             ambient: ambient / n as f32,
             bounds,
-            multiple: Multiple::new(
-                &settings.scattering,
-                scene.density,
-                &medium,
-                scene.sun_unit().map(|s| s.direction),
-            )?,
+            multiple,
             medium,
             ratio,
             peak,
@@ -415,6 +418,7 @@ impl<'s> FastRenderer<'s> {
             peak_share: self.peak.map_or(0.0, |hg| hg.weight * sc.medium.albedo),
             near: self.near_sun_share(d),
             eye: self.multiple.eye(d),
+            local: self.multiple.local_eye(d),
         };
         let mut a = Along {
             tr: 1.0,
@@ -607,6 +611,9 @@ impl<'s> FastRenderer<'s> {
                 }
             }
             src += self.ambient * (sigma_s * ms.ambient(self.tau_up(p)));
+            if let Some(e) = &ray.local {
+                src += sigma_s * ms.local(p, e);
+            }
         }
         (src, src0)
     }

@@ -14,7 +14,9 @@
 //! irradiance normal to the beam.
 
 pub mod cache;
+mod cells;
 pub mod harmonics;
+pub mod local;
 pub mod march;
 pub mod model;
 pub mod multiple;

@@ -3,10 +3,11 @@
 
 use glam::Vec3;
 
-use super::MediumParams;
 use super::cache::{CacheParams, EyeBasis, ScatterCache};
+use super::cells::CellGrid;
+use super::local::{LocalEye, LocalLight};
 use super::model::{MediumOctaves, ScatterOctaves};
-use crate::density::Density;
+use super::{MediumParams, Scene};
 use crate::error::Result;
 use crate::phase::CloudPhase;
 
@@ -23,8 +24,10 @@ pub enum Scattering {
     /// strongly forward-scattering media.
     Octaves(ScatterOctaves),
     /// The sun's multiply scattered light traced once per scene onto a grid
-    /// ([`ScatterCache`], where the model and its error are described); the
-    /// environment's light by the default octaves.
+    /// ([`ScatterCache`], where the model and its error are described), with
+    /// the light of the scene's surfaces and glow on the same grid
+    /// ([`local`](super::local)); the environment's light by the default
+    /// octaves.
     Cache(CacheParams),
 }
 
@@ -58,33 +61,59 @@ pub(crate) struct Multiple {
     octaves: MediumOctaves,
     /// The sun's cache.
     cache: Option<Box<ScatterCache>>,
+    /// The light of the scene's surfaces and glow.
+    local: Option<Box<LocalLight>>,
 }
 
 impl Multiple {
-    /// Prepares `choice` for `density` in the transport `medium` lit by a
-    /// sun toward unit `sun`.
+    /// Prepares `choice` for `scene` in the transport `medium` (its
+    /// extinction `ratio` times the scene's).
     pub(crate) fn new(
         choice: &Scattering,
-        density: &dyn Density,
+        scene: &Scene<'_>,
         medium: &MediumParams,
-        sun: Option<Vec3>,
+        ratio: f32,
     ) -> Result<Self> {
         Ok(match choice {
             Scattering::Single => Self {
                 octaves: MediumOctaves::new(ScatterOctaves::SINGLE, 1.0),
                 cache: None,
+                local: None,
             },
             Scattering::Octaves(o) => Self {
                 octaves: MediumOctaves::new(*o, medium.albedo),
                 cache: None,
+                local: None,
             },
-            Scattering::Cache(c) => Self {
-                octaves: MediumOctaves::new(ScatterOctaves::default(), medium.albedo),
-                cache: sun
-                    .map(|s| ScatterCache::new(density, medium, s, c).map(Box::new))
-                    .transpose()?,
-            },
+            Scattering::Cache(c) => {
+                c.validate()?;
+                let sun = scene.sun_unit();
+                let grid = if sun.is_some() || c.local > 0 {
+                    Some(CellGrid::new(scene.density, medium.extinction, c.cells)?)
+                } else {
+                    None
+                };
+                let local = grid
+                    .as_ref()
+                    .filter(|_| c.local > 0)
+                    .and_then(|g| LocalLight::new(scene, g.clone(), medium, ratio, c.local, c.seed))
+                    .map(Box::new);
+                let cache = sun
+                    .zip(grid)
+                    .map(|(s, g)| Box::new(ScatterCache::on_grid(g, medium, s.direction, c)));
+                Self {
+                    octaves: MediumOctaves::new(ScatterOctaves::default(), medium.albedo),
+                    cache,
+                    local,
+                }
+            }
         })
+    }
+
+    /// Whether the light of the scene's ground is traced (the environment's
+    /// mean radiance then leaves it out).
+    pub(crate) fn traces_ground(&self) -> bool {
+        self.local.as_ref().is_some_and(|l| l.has_ground())
     }
 
     /// Whether the sun's factor needs the chord at optical depth `tau`
@@ -120,6 +149,22 @@ impl Multiple {
             (Some(c), Some(e)) => phase.eval(mu) * (-tau).exp() + c.toward_eye(p, e),
             _ => self.octaves.sun(phase, mu, tau, chord),
         }
+    }
+
+    /// The factors of the surfaces' and glow's light for an eye looking
+    /// along unit `d` (`None` without that light).
+    #[inline]
+    pub(crate) fn local_eye(&self, d: Vec3) -> Option<LocalEye> {
+        self.local.as_ref().map(|l| l.eye(d))
+    }
+
+    /// The surfaces' and glow's light scattered toward the eye at `p`, per
+    /// unit scattering coefficient, for the eye's factors `eye`.
+    #[inline]
+    pub(crate) fn local(&self, p: Vec3, eye: &LocalEye) -> Vec3 {
+        self.local
+            .as_ref()
+            .map_or(Vec3::ZERO, |l| l.toward_eye(p, eye))
     }
 
     /// The environment's in-scatter factor at optical depth `tau` straight up.

@@ -1,0 +1,623 @@
+//! The light the medium receives from the scene's own surfaces and glow,
+//! traced once per scene onto the fast mode's grid of cells.
+//!
+//! **What it models.** Besides the sun and the sky, a medium is lit by
+//! the ground and the solids under and beside it (Lambertian surfaces lit
+//! by the sun, shadowed by the medium and by each other, and by the sky:
+//! [`lit_ground`]) and by its own glow (the emission `σ_a·L_e` of a hot
+//! gas, scattered before it leaves). The reference path tracer gathers
+//! both: a path that reaches a surface takes its radiance, and every real
+//! collision adds the emission there. The fast mode's march sees a surface
+//! and the glow only straight along the eye ray; this cache adds the light
+//! they send into the medium, scattered toward the eye at any order.
+//!
+//! **How.** Photons start on the sources, each chosen with probability in
+//! proportion to its (unshadowed) power. The ground's light is drawn where
+//! it enters the grid's box: a point on the box's floor or sides (above the
+//! ground) and a cosine-distributed direction into the box, whose ray back
+//! meets the ground at `q` (the space between holds no medium), with power
+//! `π·L(q)·A` over the photons drawn (`A` the faces' area; a ray back that
+//! meets the sky or a solid carries nothing here): every point of the
+//! infinite plane is counted and no photon misses the grid. A solid's
+//! photons leave its surface along cosine-distributed directions with power
+//! `π·L·4πr²`, and glow photons leave points in the cells, drawn in
+//! proportion to their glow, along uniform directions with `4π·σ_a·L_e·V`.
+//! A surface's radiance `L` takes the sun's transmittance to it through the
+//! cells. Each photon is then followed through
+//! free flights and scatterings sampled as the reference samples them,
+//! every flight scored by its track length (Lux & Koblinger 1991, ch. 5)
+//! into the cells' projections on the real spherical harmonics of bands 0
+//! and 1 per colour channel; a flight ends where it meets a surface (the
+//! surfaces do not reflect the medium's light back, as in the reference).
+//! The march reads `Σ σ_l χ_l c_lm Y_lm(ω_o)` per channel, as it reads the
+//! sun's cache ([`super::cache`]): band 1 is enough for light that comes
+//! from below and beside over wide solid angles.
+//!
+//! **What it costs.** Its photons run with the sun's (the scattering
+//! events are [`CacheParams::local`](super::CacheParams::local)). The march reads
+//! eight cells per sample, kept while an eye ray stays among the same
+//! cells. With it, the environment's mean radiance no longer counts the
+//! ground below the horizon (the cache carries that light, shadowed).
+
+use glam::Vec3;
+use natura_core::Seed;
+use rand_core::Rng;
+
+use super::cells::{CellGrid, Flight};
+use super::harmonics::{MAX_COEFFS, legendre_moments, sh_basis, sigma_factor};
+use super::model::lit_ground;
+use super::{MediumParams, Scene, Surface};
+use crate::animate::unit;
+use crate::density::ray_box;
+
+/// Photon chunks (each its own random stream and grid; summed in order).
+const CHUNKS: usize = 4;
+/// Coefficients per channel: bands 0 and 1.
+const PER: usize = 4;
+/// Most scattering events one photon is followed through.
+const MAX_EVENTS_PER_PHOTON: u32 = 1 << 20;
+/// Most photons drawn per scattering event of the budget (photons that
+/// carry nothing into the grid count no event).
+const MAX_DRAWS_PER_EVENT: u64 = 64;
+
+/// The light of the scene's surfaces and glow in the medium (see the
+/// module docs).
+#[derive(Clone, Debug)]
+pub(crate) struct LocalLight {
+    grid: CellGrid,
+    /// Per cell, per channel, the coefficients `∫ L Y_lm dω` of bands 0
+    /// and 1 (radiance units).
+    coeffs: Vec<[f32; 3 * PER]>,
+    /// Band 1's Legendre moment times its σ-factor.
+    band1: f32,
+    /// Whether the ground is one of the sources.
+    ground: bool,
+}
+
+/// The factors of one eye direction, and the last eight cells' light
+/// toward it along the eye ray.
+#[derive(Clone, Debug)]
+pub(crate) struct LocalEye {
+    factors: [f32; PER],
+    memo: std::cell::Cell<Option<(usize, [Vec3; 8])>>,
+}
+
+/// What a photon leaves.
+#[derive(Clone, Copy)]
+enum Source {
+    Ground,
+    Solid(usize),
+    Glow,
+}
+
+/// A rectangle `origin + a·u + b·v` (`a`, `b` in `[0, 1]`) and its normal
+/// into the grid's box.
+struct Face {
+    origin: Vec3,
+    u: Vec3,
+    v: Vec3,
+    inward: Vec3,
+    area: f32,
+}
+
+impl Face {
+    fn new(origin: Vec3, u: Vec3, v: Vec3, inward: Vec3) -> Self {
+        Self {
+            origin,
+            u,
+            v,
+            inward,
+            area: u.cross(v).length(),
+        }
+    }
+}
+
+/// The faces of the grid's box above the ground (its floor and sides), by
+/// which the ground's light enters, with their cumulative areas.
+struct GroundFaces {
+    faces: Vec<Face>,
+    cdf: Vec<f32>,
+    area: f32,
+}
+
+/// The scene's sources and how each is drawn.
+struct Sources {
+    /// `(source, cumulative probability)`.
+    choice: Vec<(Source, f32)>,
+    /// The faces of the grid's box the ground's light enters by.
+    ground: Option<GroundFaces>,
+    /// Per cell, the glow's power `4π·σ_a·L_e·V` (RGB), and the cumulative
+    /// luminance over the cells.
+    glow: Vec<Vec3>,
+    glow_cdf: Vec<f32>,
+}
+
+impl LocalLight {
+    /// Traces the light of `scene`'s ground, solids and emission through
+    /// `grid` (the transport medium's extinction per cell; `medium` that
+    /// medium, `ratio` its extinction over the scene's), with `events`
+    /// scattering events and random streams from `seed`. `None` when the
+    /// scene has no such source or the medium does not scatter.
+    pub(crate) fn new(
+        scene: &Scene<'_>,
+        grid: CellGrid,
+        medium: &MediumParams,
+        ratio: f32,
+        events: u32,
+        seed: u64,
+    ) -> Option<Self> {
+        if medium.albedo <= 0.0 || !grid.sigma.iter().any(|&s| s > 0.0) {
+            return None;
+        }
+        let chi = legendre_moments(&medium.phase);
+        let mut light = Self {
+            coeffs: vec![[0.0; 3 * PER]; grid.count()],
+            grid,
+            band1: chi[1] * sigma_factor(1, 1),
+            ground: false,
+        };
+        let sources = light.sources(scene)?;
+        light.ground = sources.ground.is_some();
+        light.trace(scene, &sources, medium, ratio, events, seed);
+        Some(light)
+    }
+
+    /// Whether the light includes the ground's (the environment's mean
+    /// radiance then leaves the ground out).
+    pub(crate) fn has_ground(&self) -> bool {
+        self.ground
+    }
+
+    /// The factors of an eye looking along unit `d`.
+    pub(crate) fn eye(&self, d: Vec3) -> LocalEye {
+        let mut y = [0.0f32; MAX_COEFFS];
+        sh_basis(1, -d, &mut y);
+        LocalEye {
+            factors: [
+                y[0],
+                y[1] * self.band1,
+                y[2] * self.band1,
+                y[3] * self.band1,
+            ],
+            memo: std::cell::Cell::new(None),
+        }
+    }
+
+    /// The light scattered toward the eye at `p` per unit scattering
+    /// coefficient (radiance per metre over `σ_s`), per channel clamped at
+    /// zero, trilinear between cell centres.
+    #[inline]
+    pub(crate) fn toward_eye(&self, p: Vec3, eye: &LocalEye) -> Vec3 {
+        let (i, j, w) = self.grid.corners(p);
+        let key = self.grid.index(i[0], i[1], i[2]);
+        let v = match eye.memo.get() {
+            Some((k, v)) if k == key => v,
+            _ => {
+                let mut v = [Vec3::ZERO; 8];
+                for (out, c) in v.iter_mut().zip(self.grid.corner_cells(i, j)) {
+                    let s = &self.coeffs[c];
+                    let f = &eye.factors;
+                    let ch = |k: usize| {
+                        s[k * PER] * f[0]
+                            + s[k * PER + 1] * f[1]
+                            + s[k * PER + 2] * f[2]
+                            + s[k * PER + 3] * f[3]
+                    };
+                    *out = Vec3::new(ch(0), ch(1), ch(2));
+                }
+                eye.memo.set(Some((key, v)));
+                v
+            }
+        };
+        CellGrid::blend(&v, w).max(Vec3::ZERO)
+    }
+
+    /// The radiance leaving surface point `q` (lifted off the surface)
+    /// whose normal is `n`, of `albedo` and sky irradiance `sky`: the sun
+    /// through the cells (`ratio` turns the transport medium's optical depth
+    /// into the scene's) and the solids.
+    fn surface(
+        scene: &Scene<'_>,
+        grid: &CellGrid,
+        ratio: f32,
+        q: Vec3,
+        n: Vec3,
+        albedo: Vec3,
+        sky: Vec3,
+    ) -> Vec3 {
+        match scene.sun_unit() {
+            Some(s) => {
+                let cos = n.dot(s.direction);
+                let t = if cos <= 0.0 || scene.blocked(q, s.direction) {
+                    0.0
+                } else {
+                    (-grid.optical_depth(q, s.direction) / ratio).exp()
+                };
+                lit_ground(albedo, s.irradiance, cos, t, sky)
+            }
+            None => lit_ground(albedo, Vec3::ZERO, 0.0, 1.0, sky),
+        }
+    }
+
+    /// The scene's sources, each with its share of the photons (`None`
+    /// when it has none).
+    fn sources(&self, scene: &Scene<'_>) -> Option<Sources> {
+        let grid = &self.grid;
+        let b = grid.bounds();
+        let lum = |c: Vec3| natura_core::colour::luminance(c).max(0.0);
+        let mut power: Vec<(Source, f32)> = Vec::new();
+        let mut ground = None;
+        if let Some(g) = scene.ground
+            && b.max.z > g.height
+        {
+            // The grid's box above the ground: its floor and its four sides.
+            let z0 = b.min.z.max(g.height);
+            let d = Vec3::new(b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - z0);
+            let lo = Vec3::new(b.min.x, b.min.y, z0);
+            let (ex, ey, ez) = (Vec3::X * d.x, Vec3::Y * d.y, Vec3::Z * d.z);
+            let faces = vec![
+                Face::new(lo, ex, ey, Vec3::Z),
+                Face::new(lo, ey, ez, Vec3::X),
+                Face::new(lo + ex, ey, ez, -Vec3::X),
+                Face::new(lo, ex, ez, Vec3::Y),
+                Face::new(lo + ey, ex, ez, -Vec3::Y),
+            ];
+            let mut sum = 0.0;
+            let cdf = faces
+                .iter()
+                .map(|f| {
+                    sum += f.area;
+                    sum
+                })
+                .collect();
+            let unshadowed = match scene.sun_unit() {
+                Some(s) => lit_ground(g.albedo, s.irradiance, s.direction.z, 1.0, g.sky_irradiance),
+                None => lit_ground(g.albedo, Vec3::ZERO, 0.0, 1.0, g.sky_irradiance),
+            };
+            // The floor takes the ground's light from every inward direction,
+            // a side from about half of them.
+            let seen = faces[0].area + 0.5 * (sum - faces[0].area);
+            power.push((
+                Source::Ground,
+                std::f32::consts::PI * lum(unshadowed) * seen,
+            ));
+            ground = Some(GroundFaces {
+                faces,
+                cdf,
+                area: sum,
+            });
+        }
+        for (i, s) in scene.solids.iter().enumerate() {
+            let e = scene.sun_unit().map_or(Vec3::ZERO, |s| s.irradiance);
+            let l = s.albedo * std::f32::consts::FRAC_1_PI * (e * 0.5 + s.sky_irradiance);
+            let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
+            power.push((Source::Solid(i), std::f32::consts::PI * lum(l) * area));
+        }
+        let (mut glow, mut glow_cdf) = (Vec::new(), Vec::new());
+        if let Some(e) = scene.emission {
+            let k = scene.medium.extinction * (1.0 - scene.medium.albedo);
+            let density = scene.density;
+            let mean = grid.mean_per_cell(|xs, ys, zs, out| {
+                let mut t = vec![0.0f32; out.len()];
+                if density.density_batch(xs, ys, zs, out).is_err()
+                    || e.field.density_batch(xs, ys, zs, &mut t).is_err()
+                {
+                    for i in 0..out.len() {
+                        let p = Vec3::new(xs[i], ys[i], zs[i]);
+                        out[i] = density.density(p);
+                        t[i] = e.field.density(p);
+                    }
+                }
+                for (o, t) in out.iter_mut().zip(&t) {
+                    *o *= k * (t - e.offset).max(0.0);
+                }
+            });
+            let v = 4.0 * std::f32::consts::PI * grid.cell_volume();
+            let mut sum = 0.0f32;
+            for m in mean {
+                let p = e.colour * (m * v);
+                sum += lum(p);
+                glow.push(p);
+                glow_cdf.push(sum);
+            }
+            if sum > 0.0 {
+                power.push((Source::Glow, sum));
+            }
+        }
+        let total: f32 = power.iter().map(|p| p.1).sum();
+        if !(total.is_finite() && total > 0.0) {
+            return None;
+        }
+        let mut acc = 0.0;
+        let choice = power
+            .into_iter()
+            .map(|(s, p)| {
+                acc += p / total;
+                (s, acc)
+            })
+            .collect();
+        Some(Sources {
+            choice,
+            ground,
+            glow,
+            glow_cdf,
+        })
+    }
+
+    /// Draws one photon: its start, direction and power (RGB), or `None`
+    /// when its source gives it no power.
+    fn draw(
+        &self,
+        scene: &Scene<'_>,
+        src: &Sources,
+        ratio: f32,
+        rng: &mut impl Rng,
+    ) -> Option<(Vec3, Vec3, Vec3)> {
+        use std::f32::consts::PI;
+        let u = unit(rng);
+        let k = src
+            .choice
+            .iter()
+            .position(|c| u < c.1)
+            .unwrap_or(src.choice.len() - 1);
+        let prob = src.choice[k].1 - if k == 0 { 0.0 } else { src.choice[k - 1].1 };
+        let (o, n, power) = match src.choice[k].0 {
+            Source::Ground => {
+                // A point on a face of the grid's box and a direction into
+                // it; the ground's radiance where that ray came from.
+                let gf = src.ground.as_ref()?;
+                let g = scene.ground?;
+                let x = unit(rng) * gf.area;
+                let f = &gf.faces[gf.cdf.partition_point(|&c| c <= x).min(gf.faces.len() - 1)];
+                let o = f.origin + f.u * unit(rng) + f.v * unit(rng);
+                let d = cosine_about(f.inward, rng);
+                match scene.surface_hit(o, -d) {
+                    Some((t, Surface::GroundPlane)) if d.z > 0.0 => {
+                        let q = o - d * t + Vec3::Z * 1e-3;
+                        let l = Self::surface(
+                            scene,
+                            &self.grid,
+                            ratio,
+                            q,
+                            Vec3::Z,
+                            g.albedo,
+                            g.sky_irradiance,
+                        );
+                        return Some((o, d, l * (PI * gf.area / prob)));
+                    }
+                    // The sky's light (the ambient term's), or a solid's
+                    // (its own photons carry it).
+                    _ => return None,
+                }
+            }
+            Source::Solid(i) => {
+                let s = &scene.solids[i];
+                let n = uniform_sphere(rng);
+                let q = s.centre + n * (s.radius * 1.001 + 1e-4);
+                let l = Self::surface(scene, &self.grid, ratio, q, n, s.albedo, s.sky_irradiance);
+                (q, n, l * (PI * 4.0 * PI * s.radius * s.radius / prob))
+            }
+            Source::Glow => {
+                let total = *src.glow_cdf.last()?;
+                let x = unit(rng) * total;
+                let c = src
+                    .glow_cdf
+                    .partition_point(|&v| v <= x)
+                    .min(src.glow.len() - 1);
+                let before = if c == 0 { 0.0 } else { src.glow_cdf[c - 1] };
+                let p_cell = (src.glow_cdf[c] - before) / total;
+                if p_cell <= 0.0 {
+                    return None;
+                }
+                let q = self.grid.cell_corner(c)
+                    + Vec3::new(unit(rng), unit(rng), unit(rng)) * self.grid.h;
+                return Some((q, uniform_sphere(rng), src.glow[c] / (prob * p_cell)));
+            }
+        };
+        let d = cosine_about(n, rng);
+        ray_box(o, d.recip(), &self.grid.bounds())?;
+        Some((o, d, power))
+    }
+
+    /// Traces the photons and sets the coefficients.
+    fn trace(
+        &mut self,
+        scene: &Scene<'_>,
+        src: &Sources,
+        medium: &MediumParams,
+        ratio: f32,
+        events: u32,
+        seed: u64,
+    ) {
+        let per_chunk = (u64::from(events) / CHUNKS as u64).max(1);
+        let lum = |c: Vec3| natura_core::colour::luminance(c);
+        let run = |k: usize| -> (Vec<[f32; 3 * PER]>, u64) {
+            let mut grid = vec![[0.0f32; 3 * PER]; self.coeffs.len()];
+            // Streams apart from the sun cache's (which are 0..CHUNKS).
+            let mut rng = Seed(seed).derive_index((CHUNKS + k) as u64).rng();
+            let (mut drawn, mut used) = (0u64, 0u64);
+            while used < per_chunk && drawn < MAX_DRAWS_PER_EVENT * per_chunk {
+                drawn += 1;
+                let Some((mut x, mut d, mut w)) = self.draw(scene, src, ratio, &mut rng) else {
+                    continue;
+                };
+                let w0 = lum(w);
+                if w0.is_nan() || w0 <= 0.0 {
+                    continue;
+                }
+                for _ in 0..MAX_EVENTS_PER_PHOTON {
+                    used += 1;
+                    let mut y = [0.0f32; MAX_COEFFS];
+                    sh_basis(1, d, &mut y);
+                    let target = -(1.0 - unit(&mut rng)).ln();
+                    let t_max = scene.surface_hit(x, d).map_or(f32::INFINITY, |(t, _)| t);
+                    let flight = self.grid.fly(x, d, target, t_max, |c, len| {
+                        let cell = &mut grid[c];
+                        for (ch, wc) in w.to_array().into_iter().enumerate() {
+                            let s = wc * len;
+                            for (m, b) in y[..PER].iter().enumerate() {
+                                cell[ch * PER + m] += s * b;
+                            }
+                        }
+                    });
+                    match flight {
+                        Flight::Left => break,
+                        Flight::Collided(p) => x = p,
+                    }
+                    w *= medium.albedo;
+                    if lum(w) < 0.1 * w0 {
+                        if unit(&mut rng) < 0.5 {
+                            w *= 2.0;
+                        } else {
+                            break;
+                        }
+                    }
+                    d = medium.phase.sample(d, &mut || unit(&mut rng));
+                }
+            }
+            (grid, drawn)
+        };
+        #[cfg(feature = "parallel")]
+        let chunks: Vec<(Vec<[f32; 3 * PER]>, u64)> = {
+            use rayon::prelude::*;
+            (0..CHUNKS).into_par_iter().map(run).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let chunks: Vec<(Vec<[f32; 3 * PER]>, u64)> = (0..CHUNKS).map(run).collect();
+        let volume = self.grid.cell_volume();
+        for (grid, drawn) in &chunks {
+            let s = 1.0 / (*drawn as f32 * CHUNKS as f32 * volume);
+            for (m, g) in self.coeffs.iter_mut().zip(grid) {
+                for (a, b) in m.iter_mut().zip(g) {
+                    *a += b * s;
+                }
+            }
+        }
+    }
+}
+
+/// A direction about unit `n` with density `cos θ/π`.
+fn cosine_about(n: Vec3, rng: &mut impl Rng) -> Vec3 {
+    let (u, v) = n.any_orthonormal_pair();
+    let r = unit(rng).sqrt();
+    let phi = 2.0 * std::f32::consts::PI * unit(rng);
+    let z = (1.0 - r * r).max(0.0).sqrt();
+    (u * (r * phi.cos()) + v * (r * phi.sin()) + n * z).normalize()
+}
+
+/// A direction uniform over the sphere.
+fn uniform_sphere(rng: &mut impl Rng) -> Vec3 {
+    let z = 1.0 - 2.0 * unit(rng);
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * std::f32::consts::PI * unit(rng);
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::density::Homogeneous;
+    use crate::phase::CloudPhase;
+    use crate::transport::{Emission, GroundPlane, Sun};
+    use natura_core::Aabb;
+
+    /// `E₂(τ) = ∫₀¹ e^{−τ/μ} dμ` by the midpoint rule.
+    fn e2(tau: f64) -> f64 {
+        let n = 200_000;
+        (0..n)
+            .map(|i| (-tau / ((i as f64 + 0.5) / n as f64)).exp())
+            .sum::<f64>()
+            / n as f64
+    }
+
+    /// A wide slab of optical half-thickness 0.5 between `z0` and `z0 + 0.5`,
+    /// nearly absorbing (single scattering negligible), isotropic.
+    fn slab(z0: f32) -> (Homogeneous, MediumParams) {
+        let region = Aabb {
+            min: Vec3::new(-6.0, -6.0, z0),
+            max: Vec3::new(6.0, 6.0, z0 + 0.5),
+        };
+        let medium = MediumParams {
+            extinction: 2.0,
+            albedo: 0.005,
+            phase: CloudPhase::Isotropic,
+        };
+        (Homogeneous::new(region, 1.0).unwrap(), medium)
+    }
+
+    /// The light at `p` toward a horizontal eye (the flux there is
+    /// vertical, so this is the mean radiance over every direction).
+    fn light_at(scene: &Scene<'_>, p: Vec3) -> Vec3 {
+        let grid = CellGrid::new(scene.density, scene.medium.extinction, 8).unwrap();
+        let l = LocalLight::new(scene, grid, &scene.medium, 1.0, 2_000_000, 7).unwrap();
+        l.toward_eye(p, &l.eye(Vec3::X))
+    }
+
+    #[test]
+    fn a_glowing_slab_holds_the_mean_radiance_of_its_glow() {
+        // Emission σ_a·L_e throughout; at the middle of the slab the
+        // radiance along μ is (1 − ω)·L_e·(1 − e^{−τ/|μ|}), τ = 0.5, whose
+        // mean over the sphere is (1 − ω)·L_e·(1 − E₂(τ)).
+        let (d, medium) = slab(-0.25);
+        let colour = Vec3::new(1.0, 0.5, 0.25);
+        let scene = Scene {
+            emission: Some(Emission {
+                field: &d,
+                offset: 0.0,
+                colour,
+            }),
+            ..Scene::new(&d, medium, Vec3::ZERO)
+        };
+        let got = light_at(&scene, Vec3::ZERO);
+        let want = colour * ((1.0 - medium.albedo) * (1.0 - e2(0.5)) as f32);
+        for k in 0..3 {
+            let e = (got[k] - want[k]) / want[k];
+            assert!(
+                e.abs() < 0.03,
+                "channel {k}: {} vs {} ({e:+.3})",
+                got[k],
+                want[k]
+            );
+        }
+    }
+
+    #[test]
+    fn a_slab_over_a_lit_ground_holds_the_ground_light_through_its_own_shadow() {
+        // A slab resting on the ground, the sun overhead: the ground below it
+        // is lit through the slab's whole optical thickness 1 and by the sky,
+        // L_g = a/π·(E·e^{−1} + E_sky), and seen from the centre of a cell
+        // at height 0.28125 (optical depth 0.5625 above the ground) through
+        // optical depth 0.5625/μ below the horizon only: the mean over the
+        // sphere is L_g·E₂(0.5625)/2.
+        let (d, medium) = slab(0.0);
+        let (albedo, sun, sky) = (0.5f32, 1.0f32, 0.3f32);
+        let scene = Scene {
+            sun: Some(Sun {
+                direction: Vec3::Z,
+                irradiance: Vec3::splat(sun),
+            }),
+            ground: Some(GroundPlane {
+                height: 0.0,
+                albedo: Vec3::splat(albedo),
+                sky_irradiance: Vec3::splat(sky),
+            }),
+            ..Scene::new(&d, medium, Vec3::ZERO)
+        };
+        let got = light_at(&scene, Vec3::new(0.0, 0.0, 0.281_25));
+        let lg = f64::from(albedo) / std::f64::consts::PI
+            * (f64::from(sun) * (-1f64).exp() + f64::from(sky));
+        let want = (lg * e2(0.5625) / 2.0) as f32;
+        let e = (got.x - want) / want;
+        assert!(e.abs() < 0.03, "{} vs {want} ({e:+.3})", got.x);
+        // Grey: the same in every channel.
+        assert!((got.y - got.x).abs() < 1e-6 && (got.z - got.x).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_scene_without_surfaces_or_glow_has_no_local_light() {
+        let (d, medium) = slab(0.0);
+        let scene = Scene::new(&d, medium, Vec3::ONE);
+        let grid = CellGrid::new(&d, medium.extinction, 8).unwrap();
+        assert!(LocalLight::new(&scene, grid, &medium, 1.0, 100_000, 1).is_none());
+    }
+}
