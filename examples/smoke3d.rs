@@ -24,20 +24,12 @@ use clap::Parser;
 use common::{Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress, Ramp};
-use natura::fluid::advect::Advection;
 use natura::fluid::export::{field_image, slice, write_exr_volume, write_raw_volume};
-use natura::fluid::grid::Dims;
-use natura::fluid::interp::{CubicLimiter, Interpolation};
-use natura::fluid::shape::{Obstacle, Shape};
-use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
-use natura::volume::Density;
-use natura::volume::detail::{DetailParams, Detailed};
+use natura::fluid::plume::Plume;
+use natura::fluid::smoke::Smoke;
 use natura::volume::grid::SmokeVolume;
-use natura::volume::phase::CloudPhase;
-use natura::volume::transport::{
-    Emission, FastRenderer, FastSettings, GroundPlane, LookAtCamera, MediumParams, Scene, Shadows,
-    Solid, Sun,
-};
+use natura::volume::scene::SmokeAroundSphere;
+use natura::volume::transport::FastRenderer;
 
 /// A 3-D smoke plume rising around a sphere, with vorticity confinement
 /// and monotone cubic advection. Writes smoke3d.png (four moments side by
@@ -81,49 +73,28 @@ fn smoke3d() -> Run {
     let epsilon = cli.epsilon;
     let out = common::out_dir(&cli.out)?;
 
-    let width = 1.0f32;
-    let h = width / n as f32;
-    let dims = Dims::new(n, n, 2 * n)?;
-    let params = SmokeParams {
+    let plume = Plume {
+        cells: n,
         epsilon,
-        advection: Advection {
-            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-            ..Advection::default()
-        },
-        ..SmokeParams::default()
+        ..Plume::default()
     };
-    let mut smoke = Smoke::new(dims, h, params)?;
-    let c = 0.5 * width;
-    let sphere = (Vec3::new(0.45 * width, c, 0.85 * width), 0.15 * width);
-    smoke.add_obstacle(Obstacle::fixed(Shape::Sphere {
-        centre: sphere.0,
-        radius: sphere.1,
-    }))?;
-    smoke.add_source(SmokeSource {
-        shape: Shape::Sphere {
-            centre: Vec3::new(c, c, 0.15 * width),
-            radius: 0.08 * width,
-        },
-        density: 1.0,
-        temperature: 330.0,
-        velocity: Some(Vec3::new(0.0, 0.0, 0.3)),
-    })?;
-    let dt = 0.5 * h / 0.6;
-    let steps = (seconds / dt).ceil() as usize;
+    let h = plume.cell();
+    let mut smoke = plume.build()?;
+    let dims = smoke.dims();
+    let dt = plume.dt();
+    let steps = plume.steps(seconds);
     let per_frame = (steps / frames.max(1)).max(1);
     let frame_dir = out.join("smoke3d_frames");
     std::fs::create_dir_all(&frame_dir)?;
     let bar = common::Bar::new();
     bar.start("simulation", steps as u64);
-    let light = Vec3::new(-0.5, -0.3, 1.0).normalize();
-    let bg = Vec3::new(0.05, 0.07, 0.12);
     let mut shots = Vec::new();
     let keep = [steps / 4, steps / 2, 3 * steps / 4, steps];
     for s in 0..steps {
         smoke.step(dt)?;
         bar.advance(1);
         if (s + 1) % per_frame == 0 || s + 1 == steps || keep.contains(&(s + 1)) {
-            let img = render(&smoke, sphere, light, bg, if quick { 48 } else { 200 })?;
+            let img = render(&smoke, plume.sphere(), if quick { 48 } else { 200 })?;
             img.save_png(frame_dir.join(format!("render_{:04}.png", s + 1)))?;
             let sl = slice(smoke.density(), 1, n / 2)?;
             field_image(&sl, Ramp::Magma, 0.0, 1.0)
@@ -158,88 +129,22 @@ fn smoke3d() -> Run {
     ))
 }
 
-/// The smoke through natura-volume: Ebert's shadow-table march with the
-/// multiple-scattering cache and noise detail below the solver's cells,
-/// warm smoke glowing by its
-/// temperature, the obstacle visible and casting its shadow on the smoke and
-/// the floor.
-fn render(
-    smoke: &Smoke,
-    sphere: (Vec3, f32),
-    light: Vec3,
-    bg: Vec3,
-    width: usize,
-) -> natura::volume::Result<Image> {
+/// The smoke through natura-volume's preset: Ebert's shadow-table march with
+/// the multiple-scattering cache (the sun's light and the floor's, the
+/// sphere's and the glow's) and noise detail below the solver's cells, warm
+/// smoke glowing by its temperature, the obstacle visible and casting its
+/// shadow on the smoke and the floor.
+fn render(smoke: &Smoke, sphere: (Vec3, f32), width: usize) -> natura::volume::Result<Image> {
     let vol = SmokeVolume::from_solver(
         smoke.density(),
         smoke.temperature().clone(),
         smoke.h(),
         smoke.params().ambient_temperature,
     )?;
-    let sky = bg * std::f32::consts::PI;
-    let b = vol.density.bounds();
-    let centre = (b.min + b.max) * 0.5;
-    let eye = centre + Vec3::new(0.6, -3.4, 0.1);
-    let fov = 40f32.to_radians();
-    let height = width * 8 / 5;
-    let step = 0.5 * vol.density.cell();
-    // Turbulence below the solver's cells: the smoke eroded by warped noise
-    // octaves from two cells down to a pixel's footprint, or the march's
-    // step where that is longer (finer octaves would alias along the eye
-    // rays into streaks).
-    let detail = DetailParams {
-        feature_m: 2.0 * vol.density.cell(),
-        octaves: 6,
-        h: 0.8,
-        amplitude: 0.4,
-        warp: 0.3,
-        ..DetailParams::default()
-    }
-    .seen_from(
-        eye,
-        (fov / height as f32).max(step / (eye - centre).length()),
-    );
-    let density = Detailed::new(&vol.density, &detail, 0x5e0c)?;
-    let scene = Scene {
-        sun: Some(Sun {
-            direction: light,
-            irradiance: Vec3::new(2.6, 2.5, 2.3),
-        }),
-        ground: Some(GroundPlane {
-            height: 0.0,
-            albedo: Vec3::splat(0.35),
-            sky_irradiance: sky,
-        }),
-        solids: vec![Solid {
-            centre: sphere.0,
-            radius: sphere.1,
-            albedo: Vec3::new(0.7, 0.35, 0.25),
-            sky_irradiance: sky,
-        }],
-        emission: Some(Emission {
-            field: &vol.temperature,
-            offset: vol.ambient,
-            colour: Vec3::new(0.008, 0.003, 0.0008),
-        }),
-        ..Scene::new(
-            &density,
-            MediumParams {
-                extinction: 40.0,
-                albedo: 0.9,
-                phase: CloudPhase::HenyeyGreenstein(0.3),
-            },
-            bg,
-        )
-    };
-    let settings = FastSettings {
-        step,
-        shadows: Shadows::Table(96),
-        ..FastSettings::default()
-    }
-    .multiple_scattering();
-    let camera = LookAtCamera::look_at(eye, centre, Vec3::Z, fov, width as u32, height as u32)?;
-    let fast = FastRenderer::new(&scene, settings)?;
+    let shot = SmokeAroundSphere::new(vol, sphere, width as u32, (width * 8 / 5) as u32)?;
+    let scene = shot.scene();
+    let fast = FastRenderer::new(&scene, shot.fast_settings())?;
     Ok(fast
-        .render(&camera)?
+        .render(&shot.camera())?
         .tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
 }

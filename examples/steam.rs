@@ -22,12 +22,8 @@ use clap::Parser;
 use common::{Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress, ToneMap};
-use natura::volume::detail::DetailParams;
-use natura::volume::gas::{Steam, SteamParams};
-use natura::volume::phase::CloudPhase;
-use natura::volume::transport::{
-    FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
-};
+use natura::volume::scene::SteamCup;
+use natura::volume::transport::{FastRenderer, Shadows};
 
 /// Steam rising from a teacup (Ebert's basic gas, shaped and drifting up):
 /// four moments rendered with the shadow-table march. Writes steam.png, the
@@ -60,59 +56,19 @@ fn steam() -> Run {
     // Two units per frame: its shadow tables and its render.
     bar.start("frames", 2 * times.len() as u64);
     let mut shots = Vec::new();
-    let eye = Vec3::new(0.0, -0.35, 0.07);
-    let fov = 22f32.to_radians();
-    let step = 0.0008;
-    // Wisps: the steam eroded by warped noise octaves down to a pixel's
-    // footprint, or the march's step where that is longer (finer octaves
-    // would alias along the eye rays into streaks).
-    let detail = DetailParams {
-        feature_m: 0.015,
-        octaves: 8,
-        h: 0.8,
-        amplitude: 0.12,
-        warp: 0.35,
-        ..DetailParams::default()
-    }
-    .seen_from(eye, (fov / h as f32).max(step / eye.length()));
     for time in times {
-        let steam = Steam::new(
-            SteamParams {
-                time,
-                detail: Some(detail),
-                ..SteamParams::default()
-            },
-            seed,
-        )?;
-        let medium = MediumParams {
-            extinction: 60.0,
-            albedo: 0.95,
-            phase: CloudPhase::HenyeyGreenstein(0.5),
-        };
-        let scene = Scene {
-            sun: Some(Sun {
-                direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
-                irradiance: Vec3::new(2.4, 2.2, 2.0),
-            }),
-            ..Scene::new(&steam, medium, Vec3::new(0.03, 0.03, 0.04))
-        };
-        let settings = FastSettings {
-            step,
-            shadows: Shadows::Table(if quick { 32 } else { 96 }),
-            ..FastSettings::default()
+        let cup = SteamCup::new(time, seed, w as u32, h as u32)?;
+        let mut settings = cup.fast_settings();
+        if quick {
+            settings.shadows = Shadows::Table(32);
         }
-        .multiple_scattering();
-        let camera = LookAtCamera::look_at(
-            eye,
-            Vec3::new(0.0, 0.0, 0.065),
-            Vec3::Z,
-            fov,
-            w as u32,
-            h as u32,
-        )?;
+        let scene = cup.scene();
         let fast = FastRenderer::new(&scene, settings)?;
         bar.advance(1);
-        shots.push(fast.render(&camera)?.tone_mapped(0.5, ToneMap::AcesFilmic));
+        shots.push(
+            fast.render(&cup.camera())?
+                .tone_mapped(0.5, ToneMap::AcesFilmic),
+        );
         bar.advance(1);
     }
     bar.finish();

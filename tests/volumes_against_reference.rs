@@ -2,27 +2,18 @@
 //! `smoke3d` examples' scenes (slow: run with
 //! `cargo test --release --test volumes_against_reference -- --ignored --nocapture`).
 //!
-//! Each scene is the example's (medium, lights, surfaces, detail, march
-//! settings) at a reduced size. The reference is two seeds, and its own
+//! Each scene is the example's, from the same preset (medium, lights,
+//! surfaces, detail, march settings), at a reduced size. The reference is two seeds, and its own
 //! noise, estimated from their difference, is subtracted from the errors:
 //! the error of the total and the mean error over 4 × 4-pixel blocks, both
 //! over the pixels that see the volume.
 
 use natura::core::Image;
-use natura::core::glam::Vec3;
-use natura::fluid::advect::Advection;
-use natura::fluid::grid::Dims;
-use natura::fluid::interp::{CubicLimiter, Interpolation};
-use natura::fluid::shape::{Obstacle, Shape};
-use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
-use natura::volume::Density;
-use natura::volume::detail::{DetailParams, Detailed};
-use natura::volume::gas::{Steam, SteamParams};
+use natura::fluid::plume::Plume;
 use natura::volume::grid::SmokeVolume;
-use natura::volume::phase::CloudPhase;
+use natura::volume::scene::{SmokeAroundSphere, SteamCup};
 use natura::volume::transport::{
-    Emission, FastRenderer, FastSettings, GroundPlane, LookAtCamera, MediumParams,
-    ReferenceRenderer, ReferenceSettings, Scene, Shadows, Solid, Sun,
+    FastRenderer, FastSettings, LookAtCamera, ReferenceRenderer, ReferenceSettings, Scene,
 };
 
 /// Relative luminance of every pixel.
@@ -130,54 +121,16 @@ fn compare(name: &str, scene: &Scene<'_>, settings: FastSettings, camera: &LookA
 #[ignore = "slow: minutes"]
 fn steam_fast_mode_against_the_reference() {
     // The steam example's frame at t = 1 s, at 48 × 60 pixels.
-    let (w, h) = (48u32, 60u32);
-    let eye = Vec3::new(0.0, -0.35, 0.07);
-    let fov = 22f32.to_radians();
-    let step = 0.0008;
-    let detail = DetailParams {
-        feature_m: 0.015,
-        octaves: 8,
-        h: 0.8,
-        amplitude: 0.12,
-        warp: 0.35,
-        ..DetailParams::default()
-    }
-    .seen_from(eye, (fov / h as f32).max(step / eye.length()));
-    let steam = Steam::new(
-        SteamParams {
-            time: 1.0,
-            detail: Some(detail),
-            ..SteamParams::default()
-        },
-        3,
-    )
-    .unwrap();
-    let scene = Scene {
-        sun: Some(Sun {
-            direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
-            irradiance: Vec3::new(2.4, 2.2, 2.0),
-        }),
-        ..Scene::new(
-            &steam,
-            MediumParams {
-                extinction: 60.0,
-                albedo: 0.95,
-                phase: CloudPhase::HenyeyGreenstein(0.5),
-            },
-            Vec3::new(0.03, 0.03, 0.04),
-        )
-    };
-    let settings = FastSettings {
-        step,
-        shadows: Shadows::Table(96),
-        ..FastSettings::default()
-    }
-    .multiple_scattering();
-    let camera =
-        LookAtCamera::look_at(eye, Vec3::new(0.0, 0.0, 0.065), Vec3::Z, fov, w, h).unwrap();
+    let cup = SteamCup::new(1.0, 3, 48, 60).unwrap();
     // Measured 2026-11-29: 430 of 2880 pixels see the steam; over them the
     // total +1.4 %, blocks 1.2 % (the reference's noise 0.17 %).
-    compare("steam", &scene, settings, &camera, 1024);
+    compare(
+        "steam",
+        &cup.scene(),
+        cup.fast_settings(),
+        &cup.camera(),
+        1024,
+    );
 }
 
 #[test]
@@ -185,44 +138,11 @@ fn steam_fast_mode_against_the_reference() {
 fn smoke3d_fast_mode_against_the_reference() {
     // The smoke3d example's scene after its three seconds, on a coarser grid
     // (32 cells across instead of 48), at 60 × 96 pixels.
-    let (n, width) = (32usize, 1.0f32);
-    let h = width / n as f32;
-    let mut smoke = Smoke::new(
-        Dims::new(n, n, 2 * n).unwrap(),
-        h,
-        SmokeParams {
-            epsilon: 4.0,
-            advection: Advection {
-                interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-                ..Advection::default()
-            },
-            ..SmokeParams::default()
-        },
-    )
-    .unwrap();
-    let c = 0.5 * width;
-    let sphere = (Vec3::new(0.45 * width, c, 0.85 * width), 0.15 * width);
-    smoke
-        .add_obstacle(Obstacle::fixed(Shape::Sphere {
-            centre: sphere.0,
-            radius: sphere.1,
-        }))
-        .unwrap();
-    smoke
-        .add_source(SmokeSource {
-            shape: Shape::Sphere {
-                centre: Vec3::new(c, c, 0.15 * width),
-                radius: 0.08 * width,
-            },
-            density: 1.0,
-            temperature: 330.0,
-            velocity: Some(Vec3::new(0.0, 0.0, 0.3)),
-        })
-        .unwrap();
-    let dt = 0.5 * h / 0.6;
-    for _ in 0..(3.0 / dt).ceil() as usize {
-        smoke.step(dt).unwrap();
-    }
+    let plume = Plume {
+        cells: 32,
+        ..Plume::default()
+    };
+    let smoke = plume.simulate(3.0).unwrap();
     let vol = SmokeVolume::from_solver(
         smoke.density(),
         smoke.temperature().clone(),
@@ -230,65 +150,16 @@ fn smoke3d_fast_mode_against_the_reference() {
         smoke.params().ambient_temperature,
     )
     .unwrap();
-    let bg = Vec3::new(0.05, 0.07, 0.12);
-    let sky = bg * std::f32::consts::PI;
-    let b = vol.density.bounds();
-    let centre = (b.min + b.max) * 0.5;
-    let eye = centre + Vec3::new(0.6, -3.4, 0.1);
-    let fov = 40f32.to_radians();
-    let (px_w, px_h) = (60u32, 96u32);
-    let step = 0.5 * vol.density.cell();
-    let detail = DetailParams {
-        feature_m: 2.0 * vol.density.cell(),
-        octaves: 6,
-        h: 0.8,
-        amplitude: 0.4,
-        warp: 0.3,
-        ..DetailParams::default()
-    }
-    .seen_from(eye, (fov / px_h as f32).max(step / (eye - centre).length()));
-    let density = Detailed::new(&vol.density, &detail, 0x5e0c).unwrap();
-    let scene = Scene {
-        sun: Some(Sun {
-            direction: Vec3::new(-0.5, -0.3, 1.0).normalize(),
-            irradiance: Vec3::new(2.6, 2.5, 2.3),
-        }),
-        ground: Some(GroundPlane {
-            height: 0.0,
-            albedo: Vec3::splat(0.35),
-            sky_irradiance: sky,
-        }),
-        solids: vec![Solid {
-            centre: sphere.0,
-            radius: sphere.1,
-            albedo: Vec3::new(0.7, 0.35, 0.25),
-            sky_irradiance: sky,
-        }],
-        emission: Some(Emission {
-            field: &vol.temperature,
-            offset: vol.ambient,
-            colour: Vec3::new(0.008, 0.003, 0.0008),
-        }),
-        ..Scene::new(
-            &density,
-            MediumParams {
-                extinction: 40.0,
-                albedo: 0.9,
-                phase: CloudPhase::HenyeyGreenstein(0.3),
-            },
-            bg,
-        )
-    };
-    let settings = FastSettings {
-        step,
-        shadows: Shadows::Table(96),
-        ..FastSettings::default()
-    }
-    .multiple_scattering();
+    let shot = SmokeAroundSphere::new(vol, plume.sphere(), 60, 96).unwrap();
     // Measured 2026-11-29 over the 287 pixels that see the smoke: total
     // −0.2 %, blocks 7.0 %. Without the cache's light of the floor, the
     // sphere and the glow (`local: 0`) it was −26 %, blocks 28 %: the
     // fast mode saw the surfaces and the glow only along the eye ray.
-    let camera = LookAtCamera::look_at(eye, centre, Vec3::Z, fov, px_w, px_h).unwrap();
-    compare("smoke3d", &scene, settings, &camera, 1024);
+    compare(
+        "smoke3d",
+        &shot.scene(),
+        shot.fast_settings(),
+        &shot.camera(),
+        1024,
+    );
 }

@@ -11,6 +11,7 @@
 //! |---|---|
 //! | [`stable`] | [`stable::PeriodicFluid`] (FFT, collocated) and [`stable::BoundedFluid`] (MAC, walls, obstacles), substances |
 //! | [`smoke`] | [`smoke::Smoke`]: buoyancy, vorticity confinement, obstacles, sources |
+//! | [`plume`] | [`plume::Plume`]: a preset, smoke rising past a sphere (the `smoke3d` example's) |
 //! | [`liquid`] | [`liquid::Liquid`]: level set + marker particles, free surface, objects, gravity |
 //! | [`pressure`] | MG-PCG, MIC(0)-PCG and the Gauss–Seidel baseline for `−h²∇²p = b` |
 //! | [`fft`] | periodic FFT diffusion/projection and Poisson solves |
@@ -62,6 +63,7 @@ pub mod fft;
 pub mod levelset;
 pub mod liquid;
 pub mod mac;
+pub mod plume;
 pub mod shape;
 pub mod smoke;
 pub mod stable;

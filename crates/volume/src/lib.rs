@@ -17,7 +17,7 @@
 //! | [`grid`] | voxel grids, baking, a fluid solver's smoke (density, temperature) | |
 //! | [`transport`] | light transport: camera, medium, sun and sky from `natura-atmos`; Ebert's low-albedo march with 3-D shadow tables (direct shadow rays near the sun), multiple scattering (a photon cache of the sun's light, and of the light of the scene's ground, solids and glow, on a grid; or the octave approximation), the null-scattering reference path tracer | Ebert 2001, "Volume rendering"; Wrenninge et al. 2013; Lux & Koblinger 1991; Pharr et al. 2023, §14.1–14.2 |
 //! | [`vdb`], [`export`] | OpenVDB float-grid writer and reader; raw and EXR slices | Museth 2013 |
-//! | [`scene`] | a layer-cloud sky over a plain at sunset, lit by `natura-atmos` | |
+//! | [`scene`] | presets: a layer-cloud sky over a plain at sunset, lit by `natura-atmos`; steam over a teacup; a solver's smoke round a sphere | Ebert 2001; Fedkiw et al. 2001 |
 //! | [`phase`] | isotropic, Henyey–Greenstein, dual-lobe HG, HG + Draine cloud phase | Henyey & Greenstein 1941; Jendersie & d'Eon 2023 |
 //!
 //! Conventions: z up, metres; densities are dimensionless and scaled to

@@ -1,6 +1,14 @@
-//! A ready-made kilometre-scale scene: layer clouds over a plain at sunset,
-//! lit by the sun and sky of `natura-atmos` and seen through its aerial
-//! perspective. The `cloudscape` example and the benchmarks render it.
+//! Ready-made scenes, each the one set-up its example, its tests and its
+//! benchmarks share:
+//!
+//! - [`Cloudscape`]: kilometre-scale layer clouds over a plain at sunset,
+//!   lit by the sun and sky of `natura-atmos` and seen through its aerial
+//!   perspective (the `cloudscape` example);
+//! - [`SteamCup`]: Ebert's steam rising from a teacup, lit from behind and
+//!   the side (the `steam` example);
+//! - [`SmokeAroundSphere`]: a fluid solver's warm smoke rising round a
+//!   sphere over a floor, glowing by its temperature (the `smoke3d`
+//!   example; the smoke itself comes from natura-fluid's `plume` preset).
 
 use std::sync::Arc;
 
@@ -8,14 +16,16 @@ use glam::Vec3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams, SkyView};
 use natura_core::{NoProgress, Progress};
 
+use crate::density::Density;
 use crate::detail::{DetailParams, Detailed};
 use crate::error::{Result, in_range, positive};
-use crate::grid::GridDensity;
+use crate::gas::{Steam, SteamParams};
+use crate::grid::{GridDensity, SmokeVolume};
 use crate::layer::{LayerClouds, LayerParams};
 use crate::phase::CloudPhase;
 use crate::transport::{
-    CacheParams, FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays, Scattering,
-    Scene, Shadows, SkyRadiance, Sun,
+    CacheParams, Emission, FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays,
+    Scattering, Scene, Shadows, SkyRadiance, Solid, Sun,
 };
 
 /// Parameters of [`Cloudscape`].
@@ -235,5 +245,262 @@ impl Cloudscape {
                 step: 20.0,
             }),
         }
+    }
+}
+
+/// Ebert's steam rising from a teacup at one moment (Ebert 2001, "Steam
+/// rising from a teacup"): the basic gas shaped radially and vertically,
+/// eroded by warped noise octaves down to a pixel's footprint, lit from
+/// behind and the side, seen from 35 cm.
+#[derive(Debug)]
+pub struct SteamCup {
+    steam: Steam,
+    camera: LookAtCamera,
+    step: f32,
+}
+
+impl SteamCup {
+    /// The eye (m; the cup's rim is at the origin's height).
+    pub const EYE: Vec3 = Vec3::new(0.0, -0.35, 0.07);
+    /// The march's step (m).
+    pub const STEP: f32 = 0.0008;
+
+    /// The steam at `time` (s) from noise `seed`, for a `width × height`
+    /// picture (its detail stops at that picture's pixel footprint, or at
+    /// the march's step where that is longer: finer octaves would alias
+    /// along the eye rays into streaks).
+    ///
+    /// # Errors
+    ///
+    /// As [`Steam::new`] (a bad time) and [`LookAtCamera::look_at`] (a bad
+    /// picture size).
+    pub fn new(time: f32, seed: u64, width: u32, height: u32) -> Result<Self> {
+        let fov = 22f32.to_radians();
+        let camera = LookAtCamera::look_at(
+            Self::EYE,
+            Vec3::new(0.0, 0.0, 0.065),
+            Vec3::Z,
+            fov,
+            width,
+            height,
+        )?;
+        let detail = DetailParams {
+            feature_m: 0.015,
+            octaves: 8,
+            h: 0.8,
+            amplitude: 0.12,
+            warp: 0.35,
+            ..DetailParams::default()
+        }
+        .seen_from(
+            Self::EYE,
+            (fov / height as f32).max(Self::STEP / Self::EYE.length()),
+        );
+        let steam = Steam::new(
+            SteamParams {
+                time,
+                detail: Some(detail),
+                ..SteamParams::default()
+            },
+            seed,
+        )?;
+        Ok(Self {
+            steam,
+            camera,
+            step: Self::STEP,
+        })
+    }
+
+    /// The scene: the steam (extinction 60 /m, albedo 0.95, Henyey–Greenstein
+    /// g = 0.5) under a warm sun behind and beside it, a dim blue-grey room.
+    #[must_use]
+    pub fn scene(&self) -> Scene<'_> {
+        Scene {
+            sun: Some(Sun {
+                direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
+                irradiance: Vec3::new(2.4, 2.2, 2.0),
+            }),
+            ..Scene::new(
+                &self.steam,
+                MediumParams {
+                    extinction: 60.0,
+                    albedo: 0.95,
+                    phase: CloudPhase::HenyeyGreenstein(0.5),
+                },
+                Vec3::new(0.03, 0.03, 0.04),
+            )
+        }
+    }
+
+    /// The camera.
+    #[must_use]
+    pub fn camera(&self) -> LookAtCamera {
+        self.camera
+    }
+
+    /// The fast mode's settings: 0.8 mm steps, a shadow table of 96 nodes
+    /// across, the multiple-scattering cache.
+    #[must_use]
+    pub fn fast_settings(&self) -> FastSettings {
+        FastSettings {
+            step: self.step,
+            shadows: Shadows::Table(96),
+            ..FastSettings::default()
+        }
+        .multiple_scattering()
+    }
+}
+
+/// A fluid solver's warm smoke rising round a sphere over a floor (Fedkiw,
+/// Stam & Jensen 2001, Fig. 5 in spirit): the smoke eroded by warped noise
+/// octaves below the solver's cells, glowing by its temperature, the
+/// sphere visible and casting its shadow on the smoke and the floor, the
+/// sun high behind the camera's left.
+#[derive(Debug)]
+pub struct SmokeAroundSphere {
+    density: Detailed<GridDensity>,
+    temperature: GridDensity,
+    ambient: f32,
+    sphere: (Vec3, f32),
+    camera: LookAtCamera,
+    step: f32,
+}
+
+impl SmokeAroundSphere {
+    /// The sky's radiance behind the smoke.
+    pub const BACKGROUND: Vec3 = Vec3::new(0.05, 0.07, 0.12);
+
+    /// The scene of `volume` (a solver's density and temperature) round the
+    /// sphere of `centre` and `radius` (m), for a `width × height` picture
+    /// seen from 3.4 box widths in front (the detail stops at the
+    /// picture's pixel footprint or the march's step of half a cell,
+    /// whichever is longer).
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`](crate::VolumeError::InvalidParameter)
+    /// naming `radius` when it is not finite and positive; as
+    /// [`LookAtCamera::look_at`] (a bad picture size) and [`Detailed::new`].
+    pub fn new(volume: SmokeVolume, sphere: (Vec3, f32), width: u32, height: u32) -> Result<Self> {
+        positive("radius", sphere.1)?;
+        let b = volume.density.bounds();
+        let centre = (b.min + b.max) * 0.5;
+        let eye = centre + Vec3::new(0.6, -3.4, 0.1);
+        let fov = 40f32.to_radians();
+        let camera = LookAtCamera::look_at(eye, centre, Vec3::Z, fov, width, height)?;
+        let step = 0.5 * volume.density.cell();
+        let detail = DetailParams {
+            feature_m: 2.0 * volume.density.cell(),
+            octaves: 6,
+            h: 0.8,
+            amplitude: 0.4,
+            warp: 0.3,
+            ..DetailParams::default()
+        }
+        .seen_from(
+            eye,
+            (fov / height as f32).max(step / (eye - centre).length()),
+        );
+        let SmokeVolume {
+            density,
+            temperature,
+            ambient,
+        } = volume;
+        Ok(Self {
+            density: Detailed::new(density, &detail, 0x5e0c)?,
+            temperature,
+            ambient,
+            sphere,
+            camera,
+            step,
+        })
+    }
+
+    /// The scene: the smoke (extinction 40 /m, albedo 0.9, Henyey–Greenstein
+    /// g = 0.3, glowing by its temperature above the ambient), a grey floor
+    /// at height 0, the terracotta sphere, and the sun.
+    #[must_use]
+    pub fn scene(&self) -> Scene<'_> {
+        let sky = Self::BACKGROUND * std::f32::consts::PI;
+        Scene {
+            sun: Some(Sun {
+                direction: Vec3::new(-0.5, -0.3, 1.0).normalize(),
+                irradiance: Vec3::new(2.6, 2.5, 2.3),
+            }),
+            ground: Some(GroundPlane {
+                height: 0.0,
+                albedo: Vec3::splat(0.35),
+                sky_irradiance: sky,
+            }),
+            solids: vec![Solid {
+                centre: self.sphere.0,
+                radius: self.sphere.1,
+                albedo: Vec3::new(0.7, 0.35, 0.25),
+                sky_irradiance: sky,
+            }],
+            emission: Some(Emission {
+                field: &self.temperature,
+                offset: self.ambient,
+                colour: Vec3::new(0.008, 0.003, 0.0008),
+            }),
+            ..Scene::new(
+                &self.density,
+                MediumParams {
+                    extinction: 40.0,
+                    albedo: 0.9,
+                    phase: CloudPhase::HenyeyGreenstein(0.3),
+                },
+                Self::BACKGROUND,
+            )
+        }
+    }
+
+    /// The camera.
+    #[must_use]
+    pub fn camera(&self) -> LookAtCamera {
+        self.camera
+    }
+
+    /// The fast mode's settings: steps of half a cell, a shadow table of 96
+    /// nodes across, the multiple-scattering cache (with the light of the
+    /// floor, the sphere and the glow).
+    #[must_use]
+    pub fn fast_settings(&self) -> FastSettings {
+        FastSettings {
+            step: self.step,
+            shadows: Shadows::Table(96),
+            ..FastSettings::default()
+        }
+        .multiple_scattering()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use natura_core::Grid3;
+
+    #[test]
+    fn the_small_presets_build_their_scenes_and_refuse_bad_input() {
+        let cup = SteamCup::new(1.0, 3, 16, 20).unwrap();
+        let scene = cup.scene();
+        assert!(scene.validate().is_ok());
+        assert_eq!(cup.camera().resolution().x, 16);
+        assert!(SteamCup::new(1.0, 3, 0, 20).is_err());
+
+        let n = 8;
+        let mut rho = Grid3::new(n, n, 2 * n, 0.0f32).unwrap();
+        rho[(4, 4, 4)] = 1.0;
+        let t = Grid3::new(n, n, 2 * n, 300.0f32).unwrap();
+        let vol = || SmokeVolume::from_solver(&rho, t.clone(), 0.125, 290.0).unwrap();
+        let sphere = (Vec3::new(0.45, 0.5, 0.85), 0.15);
+        let shot = SmokeAroundSphere::new(vol(), sphere, 10, 16).unwrap();
+        let scene = shot.scene();
+        assert!(scene.validate().is_ok());
+        assert_eq!(scene.solids.len(), 1);
+        assert!(scene.ground.is_some() && scene.emission.is_some());
+        let e = SmokeAroundSphere::new(vol(), (sphere.0, f32::NAN), 10, 16).unwrap_err();
+        assert!(e.to_string().contains("radius"), "{e}");
+        assert!(SmokeAroundSphere::new(vol(), sphere, 10, 0).is_err());
     }
 }
