@@ -18,6 +18,10 @@ const MIN_THIN_CELLS: usize = 16;
 /// Most cells a grid may have.
 const MAX_GRID_CELLS: usize = 1 << 26;
 
+/// The most mean optical depth a cell may span along an axis, while that
+/// axis has fewer cells than the grid's longest (see [`CellGrid::new`]).
+pub(crate) const MAX_CELL_DEPTH: f32 = 1.0;
+
 /// Cubic cells over a density's bounds and the medium's mean extinction in
 /// each.
 #[derive(Clone, Debug)]
@@ -40,7 +44,11 @@ impl CellGrid {
     /// Cubes of `cells` along the bounds' longest axis over `density`, a
     /// thin axis keeping at least 16 (a cloud layer kilometres wide and one
     /// thick still resolves its height); each cell's extinction is the mean
-    /// of `2³` samples times `extinction`.
+    /// of `2³` samples times `extinction`. An axis whose cells would each
+    /// span more than [`MAX_CELL_DEPTH`] of the medium's mean optical depth
+    /// (its mean extinction over the cells it fills) gets more cells, up to
+    /// `cells`: a thick slab's lit face needs cells no deeper than a mean
+    /// free path along its thin axis, where cubes would leave it a few.
     ///
     /// # Errors
     ///
@@ -55,17 +63,48 @@ impl CellGrid {
                 .max(MIN_THIN_CELLS.min(cells as usize))
                 .max(1)
         };
-        let dims = [n(size.x), n(size.y), n(size.z)];
+        let grid = Self::voxelized(
+            density,
+            extinction,
+            b.min,
+            size,
+            [n(size.x), n(size.y), n(size.z)],
+        )?;
+        let filled: Vec<f32> = grid.sigma.iter().copied().filter(|&s| s > 0.0).collect();
+        if filled.is_empty() {
+            return Ok(grid);
+        }
+        let mean = filled.iter().map(|&s| f64::from(s)).sum::<f64>() / filled.len() as f64;
+        let mut dims = grid.dims;
+        for (a, d) in dims.iter_mut().enumerate() {
+            let want = (f64::from(size[a]) * mean / f64::from(MAX_CELL_DEPTH)).ceil() as usize;
+            *d = (*d).max(want.min(cells as usize));
+        }
+        if dims == grid.dims {
+            return Ok(grid);
+        }
+        Self::voxelized(density, extinction, b.min, size, dims)
+    }
+
+    /// The grid of `dims` cells over the box at `origin` of `size`, its
+    /// extinction voxelized.
+    fn voxelized(
+        density: &dyn Density,
+        extinction: f32,
+        origin: Vec3,
+        size: Vec3,
+        dims: [usize; 3],
+    ) -> Result<Self> {
         if dims[0] * dims[1] * dims[2] > MAX_GRID_CELLS {
             return Err(VolumeError::InvalidParameter {
                 name: "cache.cells",
-                value: cells.to_string(),
+                value: dims.iter().max().copied().unwrap_or(0).to_string(),
                 expected: "a grid of at most 2^26 cells",
             });
         }
         let h = size / Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
         let mut grid = Self {
-            origin: b.min,
+            origin,
             h,
             dims,
             sigma: Vec::new(),
@@ -301,5 +340,37 @@ impl CellGrid {
             true
         });
         hit.map_or(Flight::Left, Flight::Collided)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::density::Homogeneous;
+
+    #[test]
+    fn a_thin_axis_gets_a_cell_per_mean_free_path_up_to_the_longest_axis_count() {
+        // A 4 × 4 × 1 m slab: cubes of 4/64 m leave its height 16 cells.
+        let slab = Homogeneous::new(
+            Aabb {
+                min: Vec3::new(-2.0, -2.0, 0.0),
+                max: Vec3::new(2.0, 2.0, 1.0),
+            },
+            1.0,
+        )
+        .unwrap();
+        let dims = |extinction: f32| CellGrid::new(&slab, extinction, 64).unwrap().dims;
+        // Optically thin across its height: cubes.
+        assert_eq!(dims(5.0), [64, 64, 16]);
+        // 20 and 50 mean free paths high: a cell per path.
+        assert_eq!(dims(20.0), [64, 64, 20]);
+        assert_eq!(dims(50.0), [64, 64, 50]);
+        // 500: no more cells than the longest axis has.
+        assert_eq!(dims(500.0), [64, 64, 64]);
+        // Refined, the cells still hold the medium's extinction.
+        let g = CellGrid::new(&slab, 50.0, 64).unwrap();
+        assert!(g.sigma.iter().all(|&s| (s - 50.0).abs() < 1e-3));
+        let tau = g.optical_depth(Vec3::new(0.1, 0.2, 2.0), -Vec3::Z);
+        assert!((tau - 50.0).abs() < 1e-2, "{tau}");
     }
 }
