@@ -342,12 +342,7 @@ impl SteamCup {
     /// across, the multiple-scattering cache.
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
-        FastSettings {
-            step: self.step,
-            shadows: Shadows::Table(96),
-            ..FastSettings::default()
-        }
-        .multiple_scattering()
+        small_scene_settings(self.step)
     }
 }
 
@@ -466,13 +461,19 @@ impl SmokeAroundSphere {
     /// floor, the sphere and the glow).
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
-        FastSettings {
-            step: self.step,
-            shadows: Shadows::Table(96),
-            ..FastSettings::default()
-        }
-        .multiple_scattering()
+        small_scene_settings(self.step)
     }
+}
+
+/// The fast mode of the small presets: steps of `step`, a shadow table of
+/// 96 nodes across, the multiple-scattering cache with its defaults.
+fn small_scene_settings(step: f32) -> FastSettings {
+    FastSettings {
+        step,
+        shadows: Shadows::Table(96),
+        ..FastSettings::default()
+    }
+    .multiple_scattering()
 }
 
 #[cfg(test)]
