@@ -115,10 +115,10 @@ impl CellGrid {
                     *r = density.density(Vec3::new(xs[i], ys[i], zs[i]));
                 }
             }
-            for r in out.iter_mut() {
-                *r *= extinction;
-            }
         });
+        for s in &mut grid.sigma {
+            *s *= extinction;
+        }
         Ok(grid)
     }
 
