@@ -8,7 +8,7 @@
 use glam::Vec3;
 
 use crate::advect::Advection;
-use crate::error::{FluidError, Result, non_negative};
+use crate::error::{FluidError, Result, non_negative, positive};
 use crate::grid::Dims;
 use crate::interp::{CubicLimiter, Interpolation};
 use crate::shape::{Obstacle, Shape};
@@ -52,13 +52,7 @@ impl Plume {
                 reason: "4 to 512 cells across",
             });
         }
-        if !(self.width.is_finite() && self.width > 0.0) {
-            return Err(FluidError::InvalidParameter {
-                name: "width",
-                value: self.width.to_string(),
-                reason: "a finite width above 0 m",
-            });
-        }
+        positive("width", f64::from(self.width))?;
         non_negative("epsilon", f64::from(self.epsilon))
     }
 

@@ -212,31 +212,26 @@ impl LocalLight {
         CellGrid::blend(&v, w).max(Vec3::ZERO)
     }
 
-    /// The radiance leaving surface point `q` (lifted off the surface)
-    /// whose normal is `n`, of `albedo` and sky irradiance `sky`: the sun
-    /// through the cells (`ratio` turns the transport medium's optical depth
-    /// into the scene's) and the solids.
+    /// The radiance leaving surface `kind` at `q` (lifted off it), whose
+    /// normal is `n`: the scene's own surface radiance, with the sun's
+    /// transmittance taken through the cells (`ratio` turns the transport
+    /// medium's optical depth into the scene's) and zero behind a solid.
     fn surface(
         scene: &Scene<'_>,
         grid: &CellGrid,
         ratio: f32,
+        kind: Surface,
         q: Vec3,
         n: Vec3,
-        albedo: Vec3,
-        sky: Vec3,
     ) -> Vec3 {
-        match scene.sun_unit() {
-            Some(s) => {
-                let cos = n.dot(s.direction);
-                let t = if cos <= 0.0 || scene.blocked(q, s.direction) {
-                    0.0
-                } else {
-                    (-grid.optical_depth(q, s.direction) / ratio).exp()
-                };
-                lit_ground(albedo, s.irradiance, cos, t, sky)
+        let t = scene.sun_unit().map_or(1.0, |s| {
+            if n.dot(s.direction) <= 0.0 || scene.blocked(q, s.direction) {
+                0.0
+            } else {
+                (-grid.optical_depth(q, s.direction) / ratio).exp()
             }
-            None => lit_ground(albedo, Vec3::ZERO, 0.0, 1.0, sky),
-        }
+        });
+        scene.surface_radiance(kind, q, t)
     }
 
     /// The scene's sources, each with its share of the photons (`None`
@@ -366,7 +361,6 @@ impl LocalLight {
                 // A point on a face of the grid's box and a direction into
                 // it; the ground's radiance where that ray came from.
                 let gf = src.ground.as_ref()?;
-                let g = scene.ground?;
                 let x = unit(rng) * gf.area;
                 let f = &gf.faces[gf.cdf.partition_point(|&c| c <= x).min(gf.faces.len() - 1)];
                 let o = f.origin + f.u * unit(rng) + f.v * unit(rng);
@@ -378,10 +372,9 @@ impl LocalLight {
                             scene,
                             &self.grid,
                             ratio,
+                            Surface::GroundPlane,
                             q,
                             Vec3::Z,
-                            g.albedo,
-                            g.sky_irradiance,
                         );
                         return Some((o, d, l * (PI * gf.area / prob)));
                     }
@@ -394,7 +387,7 @@ impl LocalLight {
                 let s = &scene.solids[i];
                 let n = uniform_sphere(rng);
                 let q = s.centre + n * (s.radius * 1.001 + 1e-4);
-                let l = Self::surface(scene, &self.grid, ratio, q, n, s.albedo, s.sky_irradiance);
+                let l = Self::surface(scene, &self.grid, ratio, Surface::Solid(i), q, n);
                 (q, n, l * (PI * 4.0 * PI * s.radius * s.radius / prob))
             }
             Source::Glow => {
