@@ -49,7 +49,9 @@ pub struct CloudscapeParams {
     pub height: usize,
     /// Detail down to the pixel footprint around the baked grid
     /// ([`crate::detail`]), or `None` (the grid alone, bit for bit). Its
-    /// `eye` and `pixel_angle` are replaced by the scene camera's.
+    /// `eye` and `pixel_angle` are replaced by the scene camera's, the
+    /// angle widened to the march's parts where those are longer (see
+    /// [`Cloudscape::fast_settings`]).
     pub detail: Option<DetailParams>,
 }
 
@@ -158,7 +160,14 @@ impl Cloudscape {
         )?;
         let clouds = match &p.detail {
             Some(d) => {
-                let d = d.seen_from(eye, fov / p.height.max(1) as f32);
+                // The octaves stop at a pixel's footprint, or at the length
+                // of the march's parts where that is longer: octaves finer
+                // than the eye ray's samples would fold into slices along it.
+                let pixel = fov / p.height.max(1) as f32;
+                let d = d.seen_from(
+                    eye,
+                    pixel.max(Self::STEP_GROWTH / Self::DETAIL_SUBSTEPS as f32),
+                );
                 Detailed::new(clouds, &d, seed.wrapping_add(7))?
             }
             None => Detailed::without_detail(clouds),
@@ -210,8 +219,16 @@ impl Cloudscape {
         &self.clouds
     }
 
+    /// The march's step at the eye (m).
+    pub const STEP: f32 = 40.0;
+    /// The growth of the march's step with the distance (m per m).
+    pub const STEP_GROWTH: f32 = 0.01;
+    /// Density samples per step with the detail (the grid alone takes one).
+    pub const DETAIL_SUBSTEPS: u32 = 4;
+
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
-    /// of the distance, shadow tables of 256 nodes across (direct shadow
+    /// of the distance (with the detail, four density samples per step, the
+    /// light looked up once: [`FastSettings::substeps`]), shadow tables of 256 nodes across (direct shadow
     /// rays in 20 m steps for the eye rays within 3° of the sun, blended into
     /// the table out to 4.5°), the multiple-scattering cache (64 cells
     /// across, bands up to 3 with a zonal tail about the sun's beam up to
@@ -223,8 +240,8 @@ impl Cloudscape {
     #[must_use]
     pub fn fast_settings(&self) -> FastSettings {
         FastSettings {
-            step: 40.0,
-            step_growth: 0.01,
+            step: Self::STEP,
+            step_growth: Self::STEP_GROWTH,
             shadows: Shadows::Table(256),
             scattering: Scattering::Cache(CacheParams {
                 cells: 64,
@@ -244,6 +261,11 @@ impl Cloudscape {
                 within_deg: 3.0,
                 step: 20.0,
             }),
+            substeps: if self.clouds.detail().is_some() {
+                Self::DETAIL_SUBSTEPS
+            } else {
+                1
+            },
         }
     }
 }

@@ -167,6 +167,9 @@ impl CloudSky {
                     within_deg: 3.0,
                     step: 20.0,
                 }),
+                // One density sample per step: parts would multiply the
+                // march's density samples, beyond the clouds' CPU budget.
+                substeps: 1,
             },
         )
         .map_err(|e| crate::scene::clouds_in_section("clouds", e))?;

@@ -35,7 +35,7 @@ use crate::density::Density;
 use crate::error::{Result, VolumeError, finite3, in_range, non_negative, positive};
 use crate::phase::CloudPhase;
 pub use cache::{CacheParams, ScatterCache};
-pub use march::{FastRenderer, FastSettings, NearSunRays, Seen, Shadows};
+pub use march::{FastRenderer, FastSettings, MAX_SUBSTEPS, NearSunRays, Seen, Shadows};
 pub use model::{MediumOctaves, ScatterOctaves};
 pub use multiple::Scattering;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
