@@ -57,7 +57,7 @@ struct Cli {
     /// march's density samples (about 3 pixels at 1080 rows). The march then
     /// samples the density four times a step, the light once, so the octaves
     /// finer than a step do not fold into combed streaks along the eye rays;
-    /// it costs about 1.6 times the plain render's time, which is why it is
+    /// it costs about 1.5 times the plain render's time, which is why it is
     /// off by default
     #[arg(long)]
     detail: bool,

@@ -31,6 +31,17 @@ pub trait Density: Send + Sync {
         self.max_density()
     }
 
+    /// An upper bound of the density in the box `centre ± radius` (every
+    /// axis), such as the box round a march's step of length `2·radius`
+    /// centred at `centre`. The default is [`bound_in`](Density::bound_in)
+    /// of that box; fields with a quicker bound for short steps override it.
+    fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
+        self.bound_in(&Aabb {
+            min: centre - Vec3::splat(radius),
+            max: centre + Vec3::splat(radius),
+        })
+    }
+
     /// An upper bound of the density over all space.
     fn max_density(&self) -> f32;
 
@@ -81,6 +92,9 @@ impl<D: Density + ?Sized> Density for &D {
     fn bound_in(&self, region: &Aabb) -> f32 {
         (**self).bound_in(region)
     }
+    fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
+        (**self).bound_near(centre, radius)
+    }
     fn max_density(&self) -> f32 {
         (**self).max_density()
     }
@@ -98,6 +112,9 @@ impl<D: Density + ?Sized> Density for Box<D> {
     }
     fn bound_in(&self, region: &Aabb) -> f32 {
         (**self).bound_in(region)
+    }
+    fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
+        (**self).bound_near(centre, radius)
     }
     fn max_density(&self) -> f32 {
         (**self).max_density()

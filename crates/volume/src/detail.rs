@@ -464,6 +464,9 @@ impl<D: Density> Density for Detailed<D> {
     fn bound_in(&self, region: &Aabb) -> f32 {
         self.base.bound_in(region)
     }
+    fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
+        self.base.bound_near(centre, radius)
+    }
     fn max_density(&self) -> f32 {
         self.full
     }

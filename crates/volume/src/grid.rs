@@ -12,6 +12,75 @@ use crate::error::{Result, VolumeError, finite3, positive};
 /// Edge of a majorant block, in voxels.
 const BLOCK: usize = 8;
 
+/// Edge of a fine majorant block, in voxels: the bound of a short segment
+/// (a march's step) without the coarse blocks' reach.
+const FINE: usize = 2;
+
+/// The most fine blocks along an axis of a region bounded with the fine
+/// majorants (larger regions read the coarse ones).
+const FINE_SPAN: f32 = 4.0;
+
+/// The majorants of `grid`'s blocks of `b` voxels: each covers its voxels
+/// and the one-voxel rim that trilinear interpolation inside the block can
+/// reach.
+fn majorants(grid: &Grid3<f32>, b: usize) -> Result<Grid3<f32>> {
+    let (nx, ny, nz) = grid.dims();
+    Ok(Grid3::from_fn(
+        nx.div_ceil(b),
+        ny.div_ceil(b),
+        nz.div_ceil(b),
+        |i, j, k| {
+            let r = |i: usize, n: usize| (i * b).saturating_sub(1)..((i + 1) * b + 1).min(n);
+            let mut m = 0.0f32;
+            for z in r(k, nz) {
+                for y in r(j, ny) {
+                    for &v in &grid.row(y, z)[r(i, nx)] {
+                        m = m.max(v);
+                    }
+                }
+            }
+            m
+        },
+    )?)
+}
+
+/// The largest of `blocks` (blocks of `b` voxels of edge `cell`, from
+/// `origin`) over those `region` overlaps, or `None` when that is more
+/// than `span` blocks along an axis.
+fn block_bound(
+    blocks: &Grid3<f32>,
+    b: usize,
+    origin: Vec3,
+    inv_cell: f32,
+    region: &Aabb,
+    span: f32,
+) -> Option<f32> {
+    let s = inv_cell / b as f32;
+    let floor = |v: Vec3| Vec3::new(floor_f32(v.x), floor_f32(v.y), floor_f32(v.z));
+    let lo = floor((region.min - origin) * s);
+    let hi = floor((region.max - origin) * s);
+    let (bx, by, bz) = blocks.dims();
+    let clampi = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
+    if hi.x < 0.0 || hi.y < 0.0 || hi.z < 0.0 {
+        return Some(0.0);
+    }
+    if lo.x >= bx as f32 || lo.y >= by as f32 || lo.z >= bz as f32 {
+        return Some(0.0);
+    }
+    if (hi - lo).max_element() >= span {
+        return None;
+    }
+    let mut m = 0.0f32;
+    for z in clampi(lo.z, bz)..=clampi(hi.z, bz) {
+        for y in clampi(lo.y, by)..=clampi(hi.y, by) {
+            for &v in &blocks.row(y, z)[clampi(lo.x, bx)..=clampi(hi.x, bx)] {
+                m = m.max(v);
+            }
+        }
+    }
+    Some(m)
+}
+
 /// A density on a regular grid of cubic voxels: voxel `(i, j, k)` holds the
 /// value at its centre `origin + (i + ½, j + ½, k + ½)·cell`, sampled
 /// trilinearly and zero outside the box `[origin, origin + n·cell]`
@@ -24,6 +93,10 @@ pub struct GridDensity {
     inv_cell: f32,
     max: f32,
     blocks: Grid3<f32>,
+    fine: Grid3<f32>,
+    /// Each fine block's majorant with its 26 neighbours': the bound of
+    /// any point within a fine block's edge of a point in the block.
+    near: Grid3<f32>,
 }
 
 impl GridDensity {
@@ -37,7 +110,7 @@ impl GridDensity {
     pub fn new(grid: Grid3<f32>, origin: Vec3, cell: f32) -> Result<Self> {
         finite3("origin", origin)?;
         positive("cell", cell)?;
-        let (nx, ny, nz) = grid.dims();
+        let (nx, ny, _) = grid.dims();
         for (n, &v) in grid.as_slice().iter().enumerate() {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(VolumeError::BadVoxel {
@@ -50,18 +123,15 @@ impl GridDensity {
             }
         }
         let max = grid.as_slice().iter().fold(0.0f32, |a, &b| a.max(b));
-        let bx = nx.div_ceil(BLOCK);
-        let by = ny.div_ceil(BLOCK);
-        let bz = nz.div_ceil(BLOCK);
-        // Each block's majorant covers its voxels and the one-voxel rim that
-        // trilinear interpolation inside the block can reach.
-        let blocks = Grid3::from_fn(bx, by, bz, |a, b, c| {
-            let r =
-                |i: usize, n: usize| (i * BLOCK).saturating_sub(1)..((i + 1) * BLOCK + 1).min(n);
+        let blocks = majorants(&grid, BLOCK)?;
+        let fine = majorants(&grid, FINE)?;
+        let (fx, fy, fz) = fine.dims();
+        let around = |i: usize, n: usize| i.saturating_sub(1)..(i + 2).min(n);
+        let near = Grid3::from_fn(fx, fy, fz, |i, j, k| {
             let mut m = 0.0f32;
-            for z in r(c, nz) {
-                for y in r(b, ny) {
-                    for &v in &grid.row(y, z)[r(a, nx)] {
+            for z in around(k, fz) {
+                for y in around(j, fy) {
+                    for &v in &fine.row(y, z)[around(i, fx)] {
                         m = m.max(v);
                     }
                 }
@@ -75,6 +145,8 @@ impl GridDensity {
             inv_cell: 1.0 / cell,
             max,
             blocks,
+            fine,
+            near,
         };
         check_bounds("grid", &g.bounds())?;
         Ok(g)
@@ -218,27 +290,31 @@ impl Density for GridDensity {
         }
     }
     fn bound_in(&self, region: &Aabb) -> f32 {
-        let s = self.inv_cell / BLOCK as f32;
-        let floor = |v: Vec3| Vec3::new(floor_f32(v.x), floor_f32(v.y), floor_f32(v.z));
-        let lo = floor((region.min - self.origin) * s);
-        let hi = floor((region.max - self.origin) * s);
-        let (bx, by, bz) = self.blocks.dims();
-        let clampi = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
-        if hi.x < 0.0 || hi.y < 0.0 || hi.z < 0.0 {
-            return 0.0;
-        }
-        if lo.x >= bx as f32 || lo.y >= by as f32 || lo.z >= bz as f32 {
-            return 0.0;
-        }
-        let mut m = 0.0f32;
-        for z in clampi(lo.z, bz)..=clampi(hi.z, bz) {
-            for y in clampi(lo.y, by)..=clampi(hi.y, by) {
-                for &v in &self.blocks.row(y, z)[clampi(lo.x, bx)..=clampi(hi.x, bx)] {
-                    m = m.max(v);
-                }
+        // A short segment reads the fine blocks; a long one, the coarse.
+        let at = |blocks, b, span| block_bound(blocks, b, self.origin, self.inv_cell, region, span);
+        at(&self.fine, FINE, FINE_SPAN)
+            .or_else(|| at(&self.blocks, BLOCK, f32::INFINITY))
+            .unwrap_or(self.max)
+    }
+    fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
+        // Within a fine block's edge of the centre: one lookup of the
+        // centre's block with its neighbours.
+        let b = FINE as f32;
+        if radius <= b * self.cell {
+            let q = (centre - self.origin) * (self.inv_cell / b);
+            let (fx, fy, fz) = self.near.dims();
+            let inside = |v: f32, n: usize| v >= 0.0 && v < n as f32;
+            if inside(q.x, fx) && inside(q.y, fy) && inside(q.z, fz) {
+                return *self
+                    .near
+                    .get(q.x as usize, q.y as usize, q.z as usize)
+                    .unwrap_or(&self.max);
             }
         }
-        m
+        self.bound_in(&Aabb {
+            min: centre - Vec3::splat(radius),
+            max: centre + Vec3::splat(radius),
+        })
     }
     fn max_density(&self) -> f32 {
         self.max

@@ -551,3 +551,60 @@ fn batch_density_agrees_with_the_point_path() {
         ));
     }
 }
+
+/// A 24 × 20 × 12 grid of cells of 0.5 m, empty but for `spots` voxels.
+fn sparse_grid(spots: &[(usize, usize, usize, f32)]) -> GridDensity {
+    let mut g = Grid3::new(24, 20, 12, 0.0f32).unwrap();
+    for &(i, j, k, v) in spots {
+        g.row_mut(j, k)[i] = v;
+    }
+    GridDensity::new(g, Vec3::new(-3.0, 2.0, -1.0), 0.5).unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    /// The bounds of a box round a step (`bound_near`) and of a box
+    /// (`bound_in`) bound every sample in the box, whatever the box's size
+    /// and place (inside, across the faces, outside the grid).
+    #[test]
+    fn the_grids_bounds_hold_over_their_boxes(
+        spots in proptest::collection::vec((0usize..24, 0usize..20, 0usize..12, 0.01f32..5.0), 1..6),
+        dx in -2.5f32..2.5, dy in -2.5f32..2.5, dz in -2.5f32..2.5,
+        radius in 0.0f32..3.0,
+        seed in 0u64..1000,
+    ) {
+        let g = sparse_grid(&spots);
+        // Round the first spot, where the bounds have something to miss.
+        let (i, j, k, _) = spots[0];
+        let spot = g.origin() + (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * g.cell();
+        let c = spot + Vec3::new(dx, dy, dz);
+        let r = Aabb { min: c - radius, max: c + radius };
+        let (near, within) = (g.bound_near(c, radius), g.bound_in(&r));
+        let mut max = 0.0f32;
+        for p in pts(400, r, seed).into_iter().chain([r.min, r.max, c]) {
+            max = max.max(g.density(p));
+        }
+        prop_assert!(max <= near, "{max} > bound_near {near}");
+        prop_assert!(max <= within, "{max} > bound_in {within}");
+    }
+}
+
+#[test]
+fn a_short_step_far_from_the_density_is_bound_by_zero() {
+    // One dense voxel at a corner: steps a few cells away read an empty
+    // neighbourhood, not the coarse blocks' reach of eight voxels.
+    let g = sparse_grid(&[(1, 1, 1, 2.0)]);
+    let far = g.origin() + Vec3::new(8.0, 8.0, 4.0);
+    assert_eq!(g.bound_near(far, 0.4), 0.0);
+    assert_eq!(
+        g.bound_in(&Aabb {
+            min: far - 0.4,
+            max: far + 0.4
+        }),
+        0.0
+    );
+    // Near the voxel the bounds see it.
+    let at = g.origin() + Vec3::splat(0.75);
+    assert!(g.bound_near(at + 0.3, 0.4) >= g.density(at));
+    assert_eq!(g.bound_near(at, 100.0), 2.0);
+}

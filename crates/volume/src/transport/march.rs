@@ -519,6 +519,13 @@ impl<'s> FastRenderer<'s> {
                     let (mut c, mut n) = (0, 0);
                     while c < per && open(t) {
                         let dt = step_at(t).min(end - t);
+                        // A step the density's bound finds empty costs no samples.
+                        if sc.emission.is_none()
+                            && sc.density.bound_near(o + d * (t + 0.5 * dt), 0.5 * dt) <= 0.0
+                        {
+                            t += dt;
+                            continue;
+                        }
                         (whole[c], centre[c]) = (dt, t + 0.5 * dt);
                         let h = dt / parts as f32;
                         for j in 0..parts {

@@ -46,8 +46,25 @@ pub fn optical_depth_ray(
             max: a.max(b),
         }) > 0.0
         {
-            for j in i..end {
-                tau += density.density(p + l * (t0 + (j as f32 + 0.5) * dt));
+            // The block's densities in one batch (the same bits as one by one).
+            let (mut x, mut y, mut z, mut rho) =
+                ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
+            let m = end - i;
+            for (k, j) in (i..end).enumerate() {
+                let q = p + l * (t0 + (j as f32 + 0.5) * dt);
+                (x[k], y[k], z[k]) = (q.x, q.y, q.z);
+            }
+            if density
+                .density_batch(&x[..m], &y[..m], &z[..m], &mut rho[..m])
+                .is_err()
+            {
+                // Unreachable (the slices are equally long); the point path.
+                for k in 0..m {
+                    rho[k] = density.density(Vec3::new(x[k], y[k], z[k]));
+                }
+            }
+            for &r in &rho[..m] {
+                tau += r;
             }
         }
         i = end;
