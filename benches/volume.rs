@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo bench --bench volume -- shadows      # shadow tables vs ray-traced shadows, same cumulus
-//! cargo bench --bench volume -- cloudscape   # 1920×1080 fast mode, 2 threads
+//! cargo bench --bench volume -- cloudscape   # 1920×1080 fast mode, 2 threads, with and without the detail
 //! cargo bench --bench volume -- density      # cumulus with turbulence, samples/s, 1 thread
 //! ```
 
@@ -127,28 +127,48 @@ fn shadows(c: &mut Criterion) {
 }
 
 fn cloudscape(c: &mut Criterion) {
-    let cs = Cloudscape::new(&CloudscapeParams::default(), 11).unwrap();
-    let scene = cs.scene();
-    let camera = cs.camera();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
         .unwrap();
     let mut g = c.benchmark_group("cloudscape");
     g.sample_size(10);
-    g.throughput(Throughput::Elements(
-        u64::from(camera.resolution().x) * u64::from(camera.resolution().y),
-    ));
-    g.bench_function("fast_1920x1080_2threads", |bch| {
-        bch.iter(|| {
-            pool.install(|| {
-                FastRenderer::new(&scene, cs.fast_settings())
-                    .unwrap()
-                    .render(&camera)
-                    .unwrap()
+    // The plain baked grid, and the grid eroded by the detail (four density
+    // samples a step: `cloudscape --detail`).
+    for (name, detail) in [
+        ("fast_1920x1080_2threads", None),
+        (
+            "fast_detail_1920x1080_2threads",
+            Some(natura::volume::detail::DetailParams {
+                warp: 0.0,
+                ..Default::default()
+            }),
+        ),
+    ] {
+        let cs = Cloudscape::new(
+            &CloudscapeParams {
+                detail,
+                ..CloudscapeParams::default()
+            },
+            11,
+        )
+        .unwrap();
+        let scene = cs.scene();
+        let camera = cs.camera();
+        g.throughput(Throughput::Elements(
+            u64::from(camera.resolution().x) * u64::from(camera.resolution().y),
+        ));
+        g.bench_function(name, |bch| {
+            bch.iter(|| {
+                pool.install(|| {
+                    FastRenderer::new(&scene, cs.fast_settings())
+                        .unwrap()
+                        .render(&camera)
+                        .unwrap()
+                })
             })
-        })
-    });
+        });
+    }
     g.finish();
 }
 
