@@ -514,7 +514,7 @@ impl<'s> FastRenderer<'s> {
                 // Whole steps, `BATCH / parts` at a time, each as its parts'
                 // densities in one batch.
                 let per = BATCH / parts;
-                let (mut whole, mut centre) = ([0.0f32; BATCH], [0.0f32; BATCH]);
+                let mut centre = [0.0f32; BATCH];
                 while open(t) {
                     let (mut c, mut n) = (0, 0);
                     while c < per && open(t) {
@@ -526,7 +526,7 @@ impl<'s> FastRenderer<'s> {
                             t += dt;
                             continue;
                         }
-                        (whole[c], centre[c]) = (dt, t + 0.5 * dt);
+                        centre[c] = t + 0.5 * dt;
                         let h = dt / parts as f32;
                         for j in 0..parts {
                             let tm = t + (j as f32 + 0.5) * h;
