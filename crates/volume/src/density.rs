@@ -64,6 +64,23 @@ pub trait Density: Send + Sync {
     }
 }
 
+/// The densities of `density` at `(x[i], y[i], z[i])` into `out`: one
+/// batch, or point by point should the batch refuse the slices (it does
+/// only when their lengths differ; callers pass equal lengths).
+pub(crate) fn fill_densities(
+    density: &dyn Density,
+    x: &[f32],
+    y: &[f32],
+    z: &[f32],
+    out: &mut [f32],
+) {
+    if density.density_batch(x, y, z, out).is_err() {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = density.density(Vec3::new(x[i], y[i], z[i]));
+        }
+    }
+}
+
 /// Checks that the coordinate slices of a batch evaluation are as long as its output.
 ///
 /// # Errors

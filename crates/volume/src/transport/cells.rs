@@ -9,7 +9,7 @@
 use glam::Vec3;
 use natura_core::Aabb;
 
-use crate::density::{Density, ray_box};
+use crate::density::{Density, fill_densities, ray_box};
 use crate::error::{Result, VolumeError};
 
 /// Fewest cells along a thin axis (see [`CellGrid::new`]).
@@ -109,13 +109,7 @@ impl CellGrid {
             dims,
             sigma: Vec::new(),
         };
-        grid.sigma = grid.mean_per_cell(|xs, ys, zs, out| {
-            if density.density_batch(xs, ys, zs, out).is_err() {
-                for (i, r) in out.iter_mut().enumerate() {
-                    *r = density.density(Vec3::new(xs[i], ys[i], zs[i]));
-                }
-            }
-        });
+        grid.sigma = grid.mean_per_cell(|xs, ys, zs, out| fill_densities(density, xs, ys, zs, out));
         for s in &mut grid.sigma {
             *s *= extinction;
         }

@@ -48,7 +48,7 @@ use super::harmonics::{MAX_COEFFS, legendre_moments, sh_basis, sigma_factor};
 use super::model::lit_ground;
 use super::{MediumParams, Scene, Surface};
 use crate::animate::unit;
-use crate::density::ray_box;
+use crate::density::{fill_densities, ray_box};
 
 /// Photon chunks (each its own random stream and grid; summed in order).
 const CHUNKS: usize = 4;
@@ -294,15 +294,8 @@ impl LocalLight {
             let density = scene.density;
             let mean = grid.mean_per_cell(|xs, ys, zs, out| {
                 let mut t = vec![0.0f32; out.len()];
-                if density.density_batch(xs, ys, zs, out).is_err()
-                    || e.field.density_batch(xs, ys, zs, &mut t).is_err()
-                {
-                    for i in 0..out.len() {
-                        let p = Vec3::new(xs[i], ys[i], zs[i]);
-                        out[i] = density.density(p);
-                        t[i] = e.field.density(p);
-                    }
-                }
+                fill_densities(density, xs, ys, zs, out);
+                fill_densities(e.field, xs, ys, zs, &mut t);
                 for (o, t) in out.iter_mut().zip(&t) {
                     *o *= k * (t - e.offset).max(0.0);
                 }

@@ -16,7 +16,7 @@
 use glam::Vec3;
 use natura_core::{Aabb, NoProgress, Progress};
 
-use crate::density::{Density, check_bounds, ray_box};
+use crate::density::{Density, check_bounds, fill_densities, ray_box};
 use crate::error::{Result, VolumeError, positive};
 
 /// Optical depth `∫ σ·ρ ds` from `p` along the unit direction `l` to the
@@ -54,15 +54,7 @@ pub fn optical_depth_ray(
                 let q = p + l * (t0 + (j as f32 + 0.5) * dt);
                 (x[k], y[k], z[k]) = (q.x, q.y, q.z);
             }
-            if density
-                .density_batch(&x[..m], &y[..m], &z[..m], &mut rho[..m])
-                .is_err()
-            {
-                // Unreachable (the slices are equally long); the point path.
-                for k in 0..m {
-                    rho[k] = density.density(Vec3::new(x[k], y[k], z[k]));
-                }
-            }
+            fill_densities(density, &x[..m], &y[..m], &z[..m], &mut rho[..m]);
             for &r in &rho[..m] {
                 tau += r;
             }
