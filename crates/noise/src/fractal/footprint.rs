@@ -465,11 +465,13 @@ impl FootprintFbm<crate::Perlin> {
                 });
             }
         }
-        // Small scratch for one point, so single points stay cheap.
+        // Small scratch for one point, so single points stay cheap; for
+        // more, four octaves of 16 points per pass of the kernel (the
+        // scratch is zeroed on every call, so it is kept small).
         if out.len() <= 1 {
             self.points_lanes::<1, 32>(x, y, z, w, out)
         } else {
-            self.points_lanes::<16, 256>(x, y, z, w, out)
+            self.points_lanes::<16, 64>(x, y, z, w, out)
         }
     }
 
