@@ -56,7 +56,9 @@ pub struct CloudsDesc {
     /// Detail down to the footprint of the marched directions:
     /// natura-volume's [`DetailParams`] (the baked layer eroded by noise
     /// octaves that stop where a cell of [`CloudsDesc::cache_pixels`] pixels
-    /// can no longer show them; Schneider 2015's erosion). Its `eye` and
+    /// can no longer show them, or at a third of the march's step where
+    /// that is longer: the march samples the density in three parts a
+    /// step when the detail is on; Schneider 2015's erosion). Its `eye` and
     /// `pixel_angle` are replaced by the camera's; `amplitude = 0` turns the
     /// detail off (the baked layer alone, as before it existed).
     pub detail: DetailParams,
