@@ -177,6 +177,25 @@ impl Materials {
     /// any, show the detail that footprint resolves.
     #[must_use]
     pub fn albedo_at(&self, s: &SurfaceSample, footprint_m: f32) -> Vec3 {
+        self.albedo_with_snow_at(s, footprint_m, footprint_m)
+    }
+
+    /// [`Self::albedo_at`], with the snow's cover seen over a footprint
+    /// `snow_footprint_m` metres wide instead ([`Self::snow_cover`]): the
+    /// pixel's footprint on ground seen at a slant, stretched along the
+    /// view. The cover is a threshold of its edge noise, snow (albedo near
+    /// 0.85) or bare ground (near 0.15): noise left finer than the footprint
+    /// turns into strips of full cover narrower than a pixel, which one
+    /// sample of a pixel catches and its neighbours miss. The mottling and
+    /// solid textures modulate the colour by some per cent and keep
+    /// `footprint_m`.
+    #[must_use]
+    pub fn albedo_with_snow_at(
+        &self,
+        s: &SurfaceSample,
+        footprint_m: f32,
+        snow_footprint_m: f32,
+    ) -> Vec3 {
         let d = &self.desc;
         let a = &self.lin;
         let p = s.point.as_dvec3();
@@ -210,7 +229,7 @@ impl Materials {
                 * smoothstep(-0.2, 0.3, mottle + 0.5 * large);
             c = c.lerp(a.sand, beach);
         }
-        let snow = self.snow.cover(s.point, s.normal, large, footprint_m);
+        let snow = self.snow.cover(s.point, s.normal, large, snow_footprint_m);
         c = c.lerp(a.snow, snow);
         // Mottling: ±15 % brightness variation, less on snow.
         let c = c * (1.0 + (0.15 - 0.1 * snow) * mottle);

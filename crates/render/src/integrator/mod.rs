@@ -476,20 +476,28 @@ impl<'w> Renderer<'w> {
             return Some(SurfaceHit::Terrain(h));
         }
         let level = self.cell_level(h.cell);
-        if h.point.z - level <= 1e-3 * (1.0 + level.abs()) {
-            return Some(SurfaceHit::Water {
-                t: h.t,
-                point: h.point,
-            });
-        }
         let t0 = (h.t - 1e-3 * h.t.max(1.0)).max(0.0);
         if ray.dir.z >= 0.0 {
-            // A rising ray above the water level never meets the plane: what
-            // it hit on the shore triangle is the bare bank (or nothing).
+            // A rising ray never meets the plane from above: what it hit on
+            // the shore triangle is the bare bank (or nothing). This holds
+            // however close to the level the hit is: a ray reflected off the
+            // water leaves a hair above the level and meets the shore
+            // triangle within centimetres of it, and taken for water there
+            // it mirrors the bright sky at the horizon (lone bright pixels
+            // along far shores).
             return self
                 .ground
                 .trace(ray, t0, f32::INFINITY)
                 .map(SurfaceHit::Terrain);
+        }
+        // On the level to the hit point's rounding (a few ulps of the
+        // heights and distances involved): the lake's flat triangles. Any
+        // higher, the hit is on a shore triangle and is resolved exactly.
+        if h.point.z - level <= 1e-5 * (1.0 + level.abs() + h.t) {
+            return Some(SurfaceHit::Water {
+                t: h.t,
+                point: h.point,
+            });
         }
         let t_plane = (level - ray.origin.z) / ray.dir.z;
         match self.ground.trace(ray, t0, t_plane) {

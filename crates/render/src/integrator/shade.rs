@@ -73,6 +73,16 @@ impl Renderer<'_> {
         }
     }
 
+    /// The width, metres, of a pixel's footprint on a surface of unit
+    /// normal `n` met at distance `t` along the unit view direction `d`:
+    /// `t·α` across the view (`α` the pixel's angle), stretched by `1/|d·n|`
+    /// along it where the view grazes the surface; their geometric mean is
+    /// the isotropic width the water's waves and the snow's cover are
+    /// filtered to.
+    pub(super) fn surface_footprint(&self, t: f32, d: Vec3, n: Vec3) -> f32 {
+        t * self.pixel_angle / d.dot(n).abs().max(1e-3).sqrt()
+    }
+
     /// Radiance leaving a terrain point toward `-d`, at distance `t` from the viewer.
     pub(super) fn shade_terrain(&self, tp: &TerrainPoint, d: Vec3, t: f32) -> Vec3 {
         let w = self.world;
@@ -85,7 +95,15 @@ impl Renderer<'_> {
             wetness: w.wetness.sample_bilinear(gx, gy, Boundary::Clamp),
         };
         let footprint = t * self.pixel_angle;
-        let albedo = self.materials.albedo_at(&sample, footprint);
+        // The snow is seen over the pixel's footprint on the ground, which a
+        // grazing view stretches: over its width across the view only, the
+        // snow's edge noise left strips of snow a fraction of a pixel tall
+        // on slopes seen edge-on, and one sample of a pixel caught a strip
+        // its neighbours missed (rows of lone white pixels on far slopes).
+        let on_ground = self.surface_footprint(t, d, tp.smooth);
+        let albedo = self
+            .materials
+            .albedo_with_snow_at(&sample, footprint, on_ground);
         let n = self.materials.bumped_normal(tp.point, tp.smooth, footprint);
         let v = -d;
         let mut l = Vec3::ZERO;
@@ -167,10 +185,7 @@ impl Renderer<'_> {
     /// whether reflection rays may hit the terrain, off for secondary bounces).
     pub(super) fn shade_water(&self, p: Vec3, d: Vec3, t: f32, reflect_terrain: bool) -> Vec3 {
         let wdesc = &self.world.scene.water;
-        // A pixel's footprint on the water: t·α across the view, stretched by
-        // 1/|d_z| along it at grazing angles; their geometric mean is the
-        // isotropic filter width.
-        let footprint = t * self.pixel_angle / d.z.abs().max(1e-3).sqrt();
+        let footprint = self.surface_footprint(t, d, Vec3::Z);
         let wave = self
             .wind_sea
             .as_ref()
