@@ -133,7 +133,7 @@ fn cloudscape(c: &mut Criterion) {
         .unwrap();
     let mut g = c.benchmark_group("cloudscape");
     g.sample_size(10);
-    // The plain baked grid, and the grid eroded by the detail (four density
+    // The plain baked grid, and the grid eroded by the detail (three density
     // samples a step: `cloudscape --detail`).
     for (name, detail) in [
         ("fast_1920x1080_2threads", None),

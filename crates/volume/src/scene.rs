@@ -224,10 +224,10 @@ impl Cloudscape {
     /// The growth of the march's step with the distance (m per m).
     pub const STEP_GROWTH: f32 = 0.01;
     /// Density samples per step with the detail (the grid alone takes one).
-    pub const DETAIL_SUBSTEPS: u32 = 4;
+    pub const DETAIL_SUBSTEPS: u32 = 3;
 
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
-    /// of the distance (with the detail, four density samples per step, the
+    /// of the distance (with the detail, three density samples per step, the
     /// light looked up once: [`FastSettings::substeps`]), shadow tables of 256 nodes across (direct shadow
     /// rays in 20 m steps for the eye rays within 3° of the sun, blended into
     /// the table out to 4.5°), the multiple-scattering cache (64 cells
