@@ -389,26 +389,16 @@ impl<'w> Renderer<'w> {
     }
 
     /// Sample `s` of pixel `(x, y)`: the camera ray through its jittered
-    /// position in a stratified `⌈√spp⌉²` grid, with a unit direction.
+    /// position in the pixel ([`sample_position`]), with a unit direction.
     fn primary_ray(&self, x: u32, y: u32, s: u32) -> Ray {
-        let n = self.spp;
-        let side = (n as f32).sqrt().ceil() as u32;
         let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
-        let (jx, jy) = (
+        let jitter = (
             unit_f64(h) as f32,
             unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
         );
-        let jitter = if n == 1 {
-            glam::Vec2::splat(0.5)
-        } else {
-            // Stratum (s mod side, s / side) of a side × side grid, jittered inside.
-            let (sx, sy) = ((s % side) as f32, (s / side) as f32);
-            glam::Vec2::new(
-                (sx + jx) / side as f32,
-                ((sy + jy) / side as f32).min(1.0 - f32::EPSILON),
-            )
-        };
-        let ray = self.camera.camera().ray(x, y, jitter);
+        let shuffle = self.seed.hash(&[i64::from(x), i64::from(y), -1]);
+        let p = sample_position(s, self.spp, jitter, shuffle);
+        let ray = self.camera.camera().ray(x, y, p);
         Ray::new(ray.origin, ray.dir.normalize())
     }
 
@@ -578,5 +568,99 @@ fn rainbow_table(scene: &SceneDesc, progress: &dyn Progress) -> Result<Option<Ra
         Ok(Some(rb))
     } else {
         Ok(None)
+    }
+}
+
+/// Sample `s` of `n` in the unit pixel, jittered by `jitter ∈ [0, 1)²`:
+/// the centre for one sample; for a square count `n = k²`, stratum
+/// `(s mod k, s div k)` of a `k × k` grid; for any other count, a Latin
+/// hypercube ("n-rooks", Shirley 1991; Pharr et al. 2023, §8.5): the x
+/// stratum `s` and the y stratum `(a·s + b) mod n` of `n` each, with `a`
+/// coprime to `n` and `b` drawn per pixel from `shuffle`, so every row and
+/// every column of strata holds one sample. (A `⌈√n⌉²` grid filled in
+/// order would leave its last rows empty: with 2 samples both fell in the
+/// pixel's top half.)
+fn sample_position(s: u32, n: u32, jitter: (f32, f32), shuffle: u64) -> glam::Vec2 {
+    let (jx, jy) = jitter;
+    let below_one = |v: f32| v.min(1.0 - f32::EPSILON);
+    if n <= 1 {
+        return glam::Vec2::splat(0.5);
+    }
+    let side = (n as f32).sqrt().round() as u32;
+    if side * side == n {
+        let (sx, sy) = ((s % side) as f32, (s / side) as f32);
+        return glam::Vec2::new((sx + jx) / side as f32, below_one((sy + jy) / side as f32));
+    }
+    let gcd = |mut a: u64, mut b: u64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    let n64 = u64::from(n);
+    let mut a = 1 + (shuffle >> 32) % (n64 - 1);
+    while gcd(a, n64) != 1 {
+        a = a % (n64 - 1) + 1;
+    }
+    let b = (shuffle & 0xFFFF_FFFF) % n64;
+    let row = (a * u64::from(s % n) + b) % n64;
+    glam::Vec2::new(
+        below_one((s as f32 + jx) / n as f32),
+        below_one((row as f32 + jy) / n as f32),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sample_position;
+
+    /// Every count's samples are stratified: for a square count one in
+    /// each cell of the grid, for any other one in each row and each
+    /// column of `n` strata; all inside the pixel.
+    #[test]
+    fn samples_fill_the_pixel_for_every_count() {
+        for n in 1..=40u32 {
+            for pixel in 0..20u64 {
+                let shuffle = pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234_5678;
+                let pts: Vec<_> = (0..n)
+                    .map(|s| {
+                        // Jitters away from the strata's edges, where
+                        // rounding could move a point across one.
+                        let j = (
+                            (((s * 7 + 3) % 11) as f32 + 0.5) / 12.0,
+                            (((s * 5 + 1) % 13) as f32 + 0.5) / 14.0,
+                        );
+                        sample_position(s, n, j, shuffle.wrapping_add(u64::from(pixel as u32)))
+                    })
+                    .collect();
+                assert!(
+                    pts.iter()
+                        .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
+                );
+                let side = (n as f32).sqrt().round() as u32;
+                let (cols, rows) = if side * side == n {
+                    (side, side)
+                } else {
+                    (n, n)
+                };
+                let mut seen_x = vec![0; cols as usize];
+                let mut seen_y = vec![0; rows as usize];
+                for p in &pts {
+                    seen_x[(p.x * cols as f32) as usize] += 1;
+                    seen_y[(p.y * rows as f32) as usize] += 1;
+                }
+                let per = n / cols;
+                assert!(
+                    seen_x.iter().all(|&c| c == per),
+                    "n {n}: columns {seen_x:?}"
+                );
+                assert!(seen_y.iter().all(|&c| c == per), "n {n}: rows {seen_y:?}");
+            }
+        }
+        // Two samples: one in each half of the pixel, top and bottom.
+        let two: Vec<_> = (0..2)
+            .map(|s| sample_position(s, 2, (0.5, 0.5), 99))
+            .collect();
+        assert!(two.iter().any(|p| p.y < 0.5) && two.iter().any(|p| p.y >= 0.5));
     }
 }
