@@ -8,7 +8,9 @@
 //! * W5 2-D Worley F1 (Euclidean), 1024² grid
 //! * P1–P8 per-point evaluation (one call per point, as textures make them)
 //!   of 2-D and 3-D Perlin, simplex, Worley F1 and 8-octave fBm of Perlin
-//!   noise on one fixed quasi-random point set, natura's `eval2`/`eval3`
+//!   noise on one fixed quasi-random point set (and simplex noise also on a
+//!   coherent set, a grid walked row by row at 0.731 cells per sample, as
+//!   terrain and textures call it), natura's `eval2`/`eval3`
 //!   against fastnoise-lite's `get_noise_2d`/`get_noise_3d` and noise-rs's
 //!   `get`; after each group the CPU-time rates and natura's ratio to each
 //!   peer are printed (`[noise] ratio ...`)
@@ -543,8 +545,45 @@ fn interleaved_rates(
     Some(rates)
 }
 
+/// Lattice cells per sample of the coherent per-point sets.
+const GRID_STEP: f64 = 0.731;
+
+/// The coherent per-point set: a regular grid of `dims` samples (x fastest)
+/// walked row by row, `GRID_STEP` cells apart and centred on the origin,
+/// the way terrain and textures call a field one point at a time.
+fn grid_set(dims: [usize; 3]) -> Vec<[f64; 3]> {
+    let c = dims.map(|n| (n as f64 - 1.0) * 0.5 * GRID_STEP + 0.137);
+    let mut p = Vec::with_capacity(dims.iter().product());
+    for k in 0..dims[2] {
+        for j in 0..dims[1] {
+            for i in 0..dims[0] {
+                let v = [i, j, k].map(|n| n as f64 * GRID_STEP);
+                p.push([
+                    v[0] - c[0],
+                    v[1] - c[1],
+                    if dims[2] > 1 { v[2] - c[2] } else { 0.0 },
+                ]);
+            }
+        }
+    }
+    p
+}
+
 fn points2() -> (Vec<DVec2>, Vec<[f32; 2]>, Vec<[f64; 2]>) {
-    let p = point_set(POINTS, 2);
+    split2(point_set(POINTS, 2))
+}
+
+/// The 2-D coherent set: a 1024 × 1024 grid.
+fn grid_points2() -> (Vec<DVec2>, Vec<[f32; 2]>, Vec<[f64; 2]>) {
+    split2(grid_set([1024, 1024, 1]))
+}
+
+/// The 3-D coherent set: a 128 × 128 × 64 grid.
+fn grid_points3() -> (Vec<DVec3>, Vec<[f32; 3]>, Vec<[f64; 3]>) {
+    split3(grid_set([128, 128, 64]))
+}
+
+fn split2(p: Vec<[f64; 3]>) -> (Vec<DVec2>, Vec<[f32; 2]>, Vec<[f64; 2]>) {
     (
         p.iter().map(|p| DVec2::new(p[0], p[1])).collect(),
         p.iter().map(|p| [p[0] as f32, p[1] as f32]).collect(),
@@ -553,11 +592,14 @@ fn points2() -> (Vec<DVec2>, Vec<[f32; 2]>, Vec<[f64; 2]>) {
 }
 
 fn points3() -> (Vec<DVec3>, Vec<[f32; 3]>, Vec<[f64; 3]>) {
-    let p = point_set(POINTS, 3);
+    split3(point_set(POINTS, 3))
+}
+
+fn split3(p: Vec<[f64; 3]>) -> (Vec<DVec3>, Vec<[f32; 3]>, Vec<[f64; 3]>) {
     (
         p.iter().map(|p| DVec3::from_array(*p)).collect(),
         p.iter().map(|p| p.map(|v| v as f32)).collect(),
-        p.clone(),
+        p,
     )
 }
 
@@ -680,6 +722,18 @@ fn p_simplex(c: &mut Criterion) {
     point_group(
         c,
         "P6_simplex3d_point",
+        vec![natura3(&s, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
+    );
+    let (n2, f2, r2) = grid_points2();
+    let (n3, f3, r3) = grid_points3();
+    point_group(
+        c,
+        "P2_simplex2d_grid_point",
+        vec![natura2(&s, &n2), fnl2(&fl, &f2), noise_rs(&nr, &r2)],
+    );
+    point_group(
+        c,
+        "P6_simplex3d_grid_point",
         vec![natura3(&s, &n3), fnl3(&fl, &f3), noise_rs(&nr, &r3)],
     );
 }
