@@ -28,11 +28,24 @@ impl Mix {
         let v = (u * 2.0 - 1.0) * SCALES[(h & 7) as usize];
         match (h >> 3) & 15 {
             0 => v.round(),
-            1 => v.round().next_up(),
-            2 => v.round().next_down(),
+            1 => next_up(v.round()),
+            2 => -next_up(-v.round()),
             _ => v,
         }
     }
+}
+
+/// The next float above finite `x` (`f64::next_up`, which needs Rust 1.86).
+fn next_up(x: f64) -> f64 {
+    let bits = x.to_bits();
+    let abs = bits & !(1 << 63);
+    f64::from_bits(if abs == 0 {
+        1
+    } else if bits == abs {
+        bits + 1
+    } else {
+        bits - 1
+    })
 }
 
 /// FNV-1a over the values' bits.
