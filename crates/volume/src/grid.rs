@@ -246,6 +246,19 @@ impl GridDensity {
         trilinear(c, t)
     }
 
+    /// Where the voxels are, for the batch path's lanes, or `None` for a
+    /// grid too large for their `i32` indices (it is sampled point by point).
+    fn layout(&self) -> Option<lanes::Layout> {
+        let (nx, ny, nz) = self.grid.dims();
+        lanes::Layout::fits(nx, ny, nz).then(|| lanes::Layout {
+            origin: self.origin,
+            inv_cell: self.inv_cell,
+            dims: [nx as f32, ny as f32, nz as f32],
+            sy: nx as i32,
+            sz: (nx * ny) as i32,
+        })
+    }
+
     /// Bakes `density` into a grid over its bounds with voxel edge `cell`,
     /// evaluating at voxel centres (in parallel over z slices).
     ///
@@ -359,15 +372,7 @@ impl Density for GridDensity {
     /// [`VolumeError::SizeMismatch`] if the slices differ in length.
     fn density_batch(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) -> Result<()> {
         check_batch(x, y, z, out)?;
-        let (nx, ny, nz) = self.grid.dims();
-        if lanes::Layout::fits(nx, ny, nz) {
-            let layout = lanes::Layout {
-                origin: self.origin,
-                inv_cell: self.inv_cell,
-                dims: [nx as f32, ny as f32, nz as f32],
-                sy: nx as i32,
-                sz: (nx * ny) as i32,
-            };
+        if let Some(layout) = self.layout() {
             lanes::samples(
                 Simd::best(),
                 &layout,
@@ -572,14 +577,7 @@ mod tests {
             pts.iter().map(|p| p.y).collect(),
             pts.iter().map(|p| p.z).collect(),
         );
-        let (nx, ny, nz) = d.grid.dims();
-        let layout = lanes::Layout {
-            origin: d.origin,
-            inv_cell: d.inv_cell,
-            dims: [nx as f32, ny as f32, nz as f32],
-            sy: nx as i32,
-            sz: (nx * ny) as i32,
-        };
+        let layout = d.layout().unwrap();
         let mut interior = 0;
         for simd in Simd::supported() {
             for len in [1, 5, 15, 16, 17, 33, pts.len()] {

@@ -396,7 +396,7 @@ impl<'w> Renderer<'w> {
             unit_f64(h) as f32,
             unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
         );
-        let shuffle = self.seed.hash(&[i64::from(x), i64::from(y), -1]);
+        let shuffle = || self.seed.hash(&[i64::from(x), i64::from(y), -1]);
         let p = sample_position(s, self.spp, jitter, shuffle);
         let ray = self.camera.camera().ray(x, y, p);
         Ray::new(ray.origin, ray.dir.normalize())
@@ -576,11 +576,17 @@ fn rainbow_table(scene: &SceneDesc, progress: &dyn Progress) -> Result<Option<Ra
 /// `(s mod k, s div k)` of a `k × k` grid; for any other count, a Latin
 /// hypercube ("n-rooks", Shirley 1991; Pharr et al. 2023, §8.5): the x
 /// stratum `s` and the y stratum `(a·s + b) mod n` of `n` each, with `a`
-/// coprime to `n` and `b` drawn per pixel from `shuffle`, so every row and
+/// coprime to `n` and `b` drawn per pixel from the hash `shuffle` (asked
+/// for only then), so every row and
 /// every column of strata holds one sample. (A `⌈√n⌉²` grid filled in
 /// order would leave its last rows empty: with 2 samples both fell in the
 /// pixel's top half.)
-fn sample_position(s: u32, n: u32, jitter: (f32, f32), shuffle: u64) -> glam::Vec2 {
+fn sample_position(
+    s: u32,
+    n: u32,
+    jitter: (f32, f32),
+    shuffle: impl FnOnce() -> u64,
+) -> glam::Vec2 {
     let (jx, jy) = jitter;
     let below_one = |v: f32| v.min(1.0 - f32::EPSILON);
     if n <= 1 {
@@ -597,7 +603,7 @@ fn sample_position(s: u32, n: u32, jitter: (f32, f32), shuffle: u64) -> glam::Ve
         }
         a
     };
-    let n64 = u64::from(n);
+    let (n64, shuffle) = (u64::from(n), shuffle());
     let mut a = 1 + (shuffle >> 32) % (n64 - 1);
     while gcd(a, n64) != 1 {
         a = a % (n64 - 1) + 1;
@@ -630,7 +636,7 @@ mod tests {
                             (((s * 7 + 3) % 11) as f32 + 0.5) / 12.0,
                             (((s * 5 + 1) % 13) as f32 + 0.5) / 14.0,
                         );
-                        sample_position(s, n, j, shuffle.wrapping_add(u64::from(pixel as u32)))
+                        sample_position(s, n, j, || shuffle.wrapping_add(u64::from(pixel as u32)))
                     })
                     .collect();
                 assert!(
@@ -659,7 +665,7 @@ mod tests {
         }
         // Two samples: one in each half of the pixel, top and bottom.
         let two: Vec<_> = (0..2)
-            .map(|s| sample_position(s, 2, (0.5, 0.5), 99))
+            .map(|s| sample_position(s, 2, (0.5, 0.5), || 99))
             .collect();
         assert!(two.iter().any(|p| p.y < 0.5) && two.iter().any(|p| p.y >= 0.5));
     }
