@@ -13,7 +13,7 @@ pub use hydrology::{
     flow_accumulation_mfd, strahler_order, wetness, wetness_index,
 };
 pub use stats::{
-    RadialSpectrum, hypsometric_curve, hypsometric_integral, radial_power_spectrum, spectral_h,
-    variogram, variogram_h,
+    RadialSpectrum, hypsometric_curve, hypsometric_integral, path_h, radial_power_spectrum,
+    spectral_h, variogram, variogram_h,
 };
-pub use surface::{Curvature, curvature, slope};
+pub use surface::{Curvature, curvature, slope, surface_area};

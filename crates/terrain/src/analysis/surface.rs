@@ -93,6 +93,40 @@ pub fn curvature(hf: &HeightField) -> Result<Curvature> {
     })
 }
 
+/// Area of the surface, m²: each cell split into two triangles on its
+/// `(+1, +1)` diagonal (the usual height-field triangulation, Musgrave et
+/// al. 1989, §5), their areas summed in `f64`. A flat field's area is its
+/// horizontal extent; roughness only adds to it. Needs at least 2 × 2
+/// samples.
+///
+/// ```
+/// use natura_terrain::{HeightField, analysis::surface_area};
+/// // A plane rising 1 m per metre along x: area √2 times the 4 m × 3 m extent.
+/// let hf = HeightField::from_fn(5, 4, 1.0, |i, _| i as f32)?;
+/// assert!((surface_area(&hf)? - 12.0 * 2f64.sqrt()).abs() < 1e-9);
+/// # Ok::<(), natura_terrain::TerrainError>(())
+/// ```
+///
+/// # Errors
+///
+/// Returns [`TerrainError::BadSize`](crate::TerrainError::BadSize) for fewer
+/// than 2 × 2 samples and [`TerrainError::Core`](crate::TerrainError::Core)
+/// for a height that is not finite.
+pub fn surface_area(hf: &HeightField) -> Result<f64> {
+    crate::error::min_size("surface_area", hf.nx(), hf.ny(), 2, 2)?;
+    hf.check_finite()?;
+    let p = |i: usize, j: usize| hf.point(i, j).as_dvec3();
+    let tri = |a: glam::DVec3, b: glam::DVec3, c: glam::DVec3| 0.5 * (b - a).cross(c - a).length();
+    let mut area = 0.0;
+    for j in 0..hf.ny() - 1 {
+        for i in 0..hf.nx() - 1 {
+            let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
+            area += tri(a, b, c) + tri(a, c, d);
+        }
+    }
+    Ok(area)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,8 +1,9 @@
 //! Height-field synthesis: stochastic subdivision (lines, triangles, quads,
-//! diamond-square), Poisson faulting, successive random additions, Fourier
+//! diamond-square) and B-spline surfaces on its points, Poisson faulting, successive random additions, Fourier
 //! synthesis and noise synthesis from any scalar field; terraces of
 //! quantised altitude.
 
+pub mod bspline;
 pub mod fault;
 pub mod field;
 pub mod mesh;
@@ -11,6 +12,7 @@ pub mod sra;
 pub mod subdivision;
 pub mod terrace;
 
+pub use bspline::{bspline_surface, cubic_bspline_weights};
 pub use fault::{FaultParams, poisson_faults};
 pub use field::{FieldMapping, fill_field, fill_noise, fill_rows};
 pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};
