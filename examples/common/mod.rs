@@ -13,6 +13,8 @@
 #![allow(dead_code)]
 
 #[cfg(feature = "core")]
+pub mod plot;
+#[cfg(feature = "core")]
 pub mod scene;
 #[cfg(all(feature = "core", feature = "terrain"))]
 pub mod tiles;
