@@ -26,8 +26,10 @@ use common::plot::{Canvas, Panel, Pen, colour};
 use common::{Exit, Run, outln};
 use natura::core::colour::srgb_decode;
 use natura::core::glam::{DVec2, Vec3};
+use natura::core::preview::{PreviewCamera, PreviewProjection, Projector, Raster};
 use natura::core::{Grid2, Image, io::OutputSet};
-use natura::ocean::optics::{N_AIR, N_WATER, critical_angle, fresnel_reflectance};
+use natura::ocean::optics::{N_AIR, N_WATER, critical_angle, fresnel_reflectance, reflect};
+use natura::ocean::preview::TopView;
 use natura::ocean::{
     Dispersion, DispersionRelation, Frame, G, GerstnerSea, GerstnerWave, Ocean, OceanParams,
     Phillips, Quantized, Seed,
@@ -67,15 +69,18 @@ enum Fig {
     Choppy,
     /// Figs. 21-22: Fresnel reflectivity, air to water and water to air
     Fresnel,
+    /// Figs. 9, 17-18, 23-24: perspective renders (facet sizes, chop, shaders)
+    Renders,
 }
 
 impl Fig {
-    const ALL: [Fig; 5] = [
+    const ALL: [Fig; 6] = [
         Fig::Gerstner,
         Fig::Dispersion,
         Fig::Directional,
         Fig::Choppy,
         Fig::Fresnel,
+        Fig::Renders,
     ];
 
     fn files(self) -> &'static [&'static str] {
@@ -91,6 +96,11 @@ impl Fig {
                 "tessendorf_fig20_eigenvalue.png",
             ],
             Fig::Fresnel => &["tessendorf_fig21-22_fresnel.png"],
+            Fig::Renders => &[
+                "tessendorf_fig09_facet_sizes.png",
+                "tessendorf_fig17-18_chop.png",
+                "tessendorf_fig23-24_shaders.png",
+            ],
         }
     }
 }
@@ -122,6 +132,7 @@ fn figures() -> Run {
             Fig::Directional => vec![directional(seed, cli.quick)?],
             Fig::Choppy => choppy(seed, cli.quick)?,
             Fig::Fresnel => vec![fresnel()?],
+            Fig::Renders => renders(seed, cli.quick)?,
         };
         for (img, name) in images.iter().zip(fig.files()) {
             img.save_png(set.stage(out.join(name))?)?;
@@ -507,6 +518,149 @@ fn fresnel() -> R<Image> {
         reflectivity(90.0, N_AIR, N_WATER)
     ))?;
     Ok(c.into_image()?)
+}
+
+/// How a render shades the water.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Look {
+    /// A generic plastic: grey-blue, diffuse plus a highlight (Figs. 17-18, 23).
+    Plastic,
+    /// natura-ocean's water shader: Fresnel-weighted sky and upwelling light (Figs. 9, 24).
+    Water,
+}
+
+/// A perspective view over `frame`'s surface from 0.1 patch lengths up,
+/// the patch tiled 3 × 2 (it is periodic) and continued to the horizon by a
+/// flat plane, under natura-ocean's preview sky.
+fn render_view(frame: &Frame, look: Look, size: (u32, u32)) -> R<Image> {
+    let (nx, ny) = frame.dims();
+    let l = frame.extent().x;
+    let top = TopView::default();
+    let sky = |d: Vec3| top.sky(d);
+    let eye = Vec3::new(0.5 * l, -0.05 * l, 0.12 * l);
+    let camera = PreviewCamera {
+        eye,
+        target: Vec3::new(0.5 * l, 0.25 * l, 0.0),
+        up: Vec3::Z,
+        projection: PreviewProjection::Perspective { fov_y_deg: 30.0 },
+    };
+    let mut raster = Raster::new(size.0, size.1, 2, top.horizon)?;
+    let (w, h) = raster.samples();
+    let view = Projector::new(&camera, w, h)?;
+    let light = Vec3::new(-0.85, 0.35, 0.3).normalize();
+    let shade = |p: Vec3, n: Vec3| -> Vec3 {
+        let n = n.normalize_or(Vec3::Z);
+        let incident = (p - eye).normalize_or(Vec3::Y);
+        match look {
+            Look::Water => top.shader.shade(incident, n, p.distance(eye), Some(&sky)),
+            Look::Plastic => {
+                let spec = reflect(incident, n).dot(light).max(0.0).powi(40);
+                Vec3::new(0.30, 0.34, 0.40) * (0.25 + 0.75 * n.dot(light).max(0.0))
+                    + Vec3::splat(0.6 * spec)
+            }
+        }
+    };
+    // One tile's points and normals with a wrapped last row and column.
+    let (tx, ty) = (nx + 1, ny + 1);
+    let mut pos = Vec::with_capacity(tx * ty);
+    let mut nrm = Vec::with_capacity(tx * ty);
+    for j in 0..ty {
+        for i in 0..tx {
+            let wrap = Vec3::new((i / nx) as f32 * l, (j / ny) as f32 * l, 0.0);
+            pos.push(frame.position(i % nx, j % ny) + wrap);
+            nrm.push(frame.normal_up(i % nx, j % ny));
+        }
+    }
+    for (ox, oy) in [
+        (-1.0, 0.0),
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (-1.0, 1.0),
+        (0.0, 1.0),
+        (1.0, 1.0),
+    ] {
+        let off = Vec3::new(ox * l, oy * l, 0.0);
+        let world: Vec<Vec3> = pos.iter().map(|&p| p + off).collect();
+        let screen: Vec<Option<[f32; 3]>> = world.iter().map(|&p| view.project(p)).collect();
+        for j in 0..ny {
+            for i in 0..nx {
+                let k = j * tx + i;
+                for t in [[k, k + 1, k + tx + 1], [k, k + tx + 1, k + tx]] {
+                    let [a, b, c] = t;
+                    if let (Some(sa), Some(sb), Some(sc)) = (screen[a], screen[b], screen[c]) {
+                        raster.triangle([sa, sb, sc], |f| {
+                            shade(
+                                f.mix([world[a], world[b], world[c]]),
+                                f.mix([nrm[a], nrm[b], nrm[c]]),
+                            )
+                        })?;
+                    }
+                }
+            }
+        }
+    }
+    // Calm water from the tiles' far edge to the horizon.
+    let far = [(-60.0, 2.0), (61.0, 2.0), (61.0, 400.0), (-60.0, 400.0)]
+        .map(|(x, y)| Vec3::new(x * l, y * l, 0.0));
+    for t in [[0, 1, 2], [0, 2, 3]] {
+        let p = t.map(|i| far[i]);
+        if let [Some(a), Some(b), Some(c)] = p.map(|q| view.project(q)) {
+            raster.triangle([a, b, c], |f| shade(f.mix(p), Vec3::Z))?;
+        }
+    }
+    Ok(raster.resolve()?)
+}
+
+/// A wind sea of `n`² samples over `length` metres, `wind` m/s along +y
+/// (away from the camera), with `choppiness`.
+fn render_ocean(seed: Seed, n: usize, length: f64, wind: f64, choppiness: f64) -> R<Frame> {
+    let params = OceanParams {
+        nx: n,
+        ny: n,
+        lx: length,
+        ly: length,
+        choppiness,
+        ..OceanParams::default()
+    };
+    let spectrum = Phillips {
+        wind_speed: wind,
+        wind_direction: std::f64::consts::FRAC_PI_2,
+        small_wave_length: 0.0,
+        ..Phillips::default()
+    };
+    Ok(Ocean::new(&params, &spectrum, seed)?.evaluate(0.0)?)
+}
+
+/// Figs. 9, 17-18 and 23-24 as perspective views: the water shader on a
+/// 6.4 m patch at facet sizes 10, 5 and 2.5 cm (9, top to bottom); a 64 m
+/// patch without and with strong chop in plastic (17, 18); the choppy
+/// patch in plastic and in the water shader (23, 24).
+fn renders(seed: Seed, quick: bool) -> R<Vec<Image>> {
+    let size = if quick { (200, 112) } else { (400, 225) };
+    let facets: &[usize] = if quick {
+        &[16, 32, 64]
+    } else {
+        &[64, 128, 256]
+    };
+    let mut fig9 = Vec::new();
+    for &n in facets {
+        let frame = render_ocean(seed, n, 6.4, 3.0, 0.0)?;
+        fig9.push(render_view(&frame, Look::Water, size)?);
+    }
+    let n = if quick { 64 } else { 256 };
+    let calm = render_ocean(seed, n, 64.0, 9.0, 0.0)?;
+    let chop = render_ocean(seed, n, 64.0, 9.0, 2.0)?;
+    let (plain, choppy) = (
+        render_view(&calm, Look::Plastic, size)?,
+        render_view(&chop, Look::Plastic, size)?,
+    );
+    let water = render_view(&chop, Look::Water, size)?;
+    let white = Vec3::ONE;
+    Ok(vec![
+        Image::contact_sheet(&fig9, 1, 4, white)?,
+        Image::contact_sheet(&[plain, choppy.clone()], 2, 4, white)?,
+        Image::contact_sheet(&[choppy, water], 2, 4, white)?,
+    ])
 }
 
 #[cfg(test)]
