@@ -247,7 +247,7 @@ pub fn variogram_h(hf: &HeightField, lo: usize, hi: usize) -> Result<f64> {
 /// profile or [`midpoint_1d`](crate::synth::midpoint_1d)) as half the
 /// log-log slope of its variogram `E[(z(t + r) − z(t))²] ∝ r^(2H)` between
 /// lags `lo..=hi` samples. The graph of such a path has fractal dimension
-/// `D = 2 − H` (Fournier et al. 1982, §2, after Mandelbrot; a surface's is
+/// `D = 2 − H` (Fournier et al. 1982, §3.1, after Mandelbrot; a surface's is
 /// `3 − H`, Musgrave et al. 1989, §3.1).
 ///
 /// ```

@@ -2,7 +2,7 @@
 //! surface whose control net is a height field — Fournier et al.'s way to
 //! avoid the creases and divergent normals of polygon subdivision, "using
 //! the stochastically interpolated points as control points for a B-spline
-//! surface" (Fournier et al. 1982, §4.1.2, Fig. 15).
+//! surface" (Fournier et al. 1982, §4.1.2.1, Fig. 15).
 //!
 //! Span `(i, j)` of the surface is blended from the 4 × 4 control points
 //! `i..i+4, j..j+4` with the uniform cubic B-spline basis
@@ -37,7 +37,7 @@ pub fn cubic_bspline_weights(u: f64) -> [f64; 4] {
 /// Samples the bicubic B-spline surface whose control net is `control`
 /// (`n × m` heights, `cell_size` apart) at `samples_per_span` samples per
 /// span and axis: `(n − 3)·s + 1 × (m − 3)·s + 1` heights, `cell_size / s`
-/// apart (Fournier et al. 1982, §4.1.2, Fig. 15).
+/// apart (Fournier et al. 1982, §4.1.2.1, Fig. 15).
 ///
 /// Sample `(0, 0)` lies above control point `(1, 1)` and the last sample
 /// above control point `(n − 2, m − 2)`: a uniform B-spline's domain ends
@@ -49,7 +49,7 @@ pub fn cubic_bspline_weights(u: f64) -> [f64; 4] {
 /// let net = HeightField::from_fn(6, 5, 2.0, |i, j| (i + 2 * j) as f32)?;
 /// let s = bspline_surface(&net, 4)?;
 /// assert_eq!((s.nx(), s.ny(), s.cell_size()), (13, 9, 0.5));
-/// assert!((s.heights()[(4, 4)] - 4.0).abs() < 1e-5); // above control point (2, 2)
+/// assert!((s.heights()[(4, 4)] - 6.0).abs() < 1e-5); // above control point (2, 2): 2 + 2·2
 /// # Ok::<(), natura_terrain::TerrainError>(())
 /// ```
 ///
