@@ -438,44 +438,22 @@ fn bspline(seed: Seed, quick: bool) -> R<Image> {
 /// Vertices of a sphere: an icosahedron split `n` times, projected.
 fn icosphere(n: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut pos: Vec<DVec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
-    .collect();
+    #[rustfmt::skip]
+    let corners = [
+        (-1.0, t, 0.0), (1.0, t, 0.0), (-1.0, -t, 0.0), (1.0, -t, 0.0),
+        (0.0, -1.0, t), (0.0, 1.0, t), (0.0, -1.0, -t), (0.0, 1.0, -t),
+        (t, 0.0, -1.0), (t, 0.0, 1.0), (-t, 0.0, -1.0), (-t, 0.0, 1.0),
+    ];
+    let mut pos: Vec<DVec3> = corners
+        .iter()
+        .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
+        .collect();
+    #[rustfmt::skip]
     let mut tris: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
+        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
+        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
+        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
+        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
     ];
     for _ in 0..n {
         let mut mid = std::collections::HashMap::new();
@@ -563,6 +541,21 @@ fn planet_view(land: &TriMesh, sea: &TriMesh, px: u32, target: Vec3, height: f32
     )
 }
 
+/// The highest point of a planet above the unit sphere, in radii.
+fn highest_peak(m: &TriMesh) -> f64 {
+    m.positions
+        .iter()
+        .map(|p| p.length() - 1.0)
+        .fold(0.0f64, f64::max)
+}
+
+/// The relief that puts the highest peak of the whole planet at `level`
+/// about 0.1 radii up: a first pass at a small relief fixes the scale.
+fn planet_relief(seed: Seed, base: u32, level: u32) -> R<f64> {
+    let (probe, _) = planet_meshes(seed, base, level, 0.02, &|_| true)?;
+    Ok(0.02 * 0.1 / highest_peak(&probe).max(1e-9))
+}
+
 /// Figs. 17-19: the planet at levels 2, 3, 4, 5 at one size (17), at sizes
 /// that keep the spacing of computed points on screen the same (18), and
 /// four views zooming twice at each step into its lower left, one level
@@ -572,15 +565,7 @@ fn planet(seed: Seed, quick: bool) -> R<Vec<Image>> {
     let (base, px, zooms) = if quick { (1, 160, 2) } else { (2, 256, 4) };
     let levels = [2u32, 3, 4, 5];
     let all = |_: [DVec3; 3]| true;
-    let top = |m: &TriMesh| {
-        m.positions
-            .iter()
-            .map(|p| p.length() - 1.0)
-            .fold(0.0f64, f64::max)
-    };
-    // A first pass at a small relief fixes the scale of the highest peak.
-    let (probe, _) = planet_meshes(seed, base, levels[3], 0.02, &all)?;
-    let relief = 0.02 * 0.1 / top(&probe).max(1e-9);
+    let relief = planet_relief(seed, base, levels[3])?;
     let mut same_size = Vec::new();
     let mut sized = Vec::new();
     for (k, &l) in levels.iter().enumerate() {
@@ -592,7 +577,7 @@ fn planet(seed: Seed, quick: bool) -> R<Vec<Image>> {
             outln(format_args!(
                 "  Figs. 17-18: h = 0.6, levels {levels:?} over a {}-face sphere; highest peak {:.3} radii",
                 20 * 4u32.pow(base),
-                top(&land)
+                highest_peak(&land)
             ))?;
         }
     }
@@ -760,6 +745,35 @@ mod tests {
             let a = surface_area(&scaled).unwrap();
             assert!((a / area - 1.0).abs() < 1e-4, "h {h}: {a} vs {area}");
             assert!(s < 1.0, "a rougher sheet is shrunk");
+        }
+    }
+
+    #[test]
+    fn the_planets_peaks_are_a_tenth_of_its_radius_and_the_zoom_draws_its_points() {
+        // Figs. 17-19: h = 0.6, the highest peaks about 10% of the radius.
+        let seed = Seed(1982);
+        let relief = planet_relief(seed, 1, 4).unwrap();
+        let (land, _) = planet_meshes(seed, 1, 4, relief, &|_| true).unwrap();
+        assert!(
+            (highest_peak(&land) - 0.1).abs() < 0.01,
+            "{}",
+            highest_peak(&land)
+        );
+        // A zoom subdivides only some base triangles; every point it draws
+        // is the whole planet's point with that identifier, bit for bit.
+        let spot = DVec3::new(-0.5, -0.5f64.sqrt(), -0.5);
+        let near = |t: [DVec3; 3]| t.iter().any(|v| v.dot(spot) > 0.8);
+        let (part, _) = planet_meshes(seed, 1, 4, relief, &near).unwrap();
+        assert!(part.triangles.len() < land.triangles.len() / 4);
+        let whole: std::collections::HashMap<u64, DVec3> = land
+            .ids
+            .iter()
+            .copied()
+            .zip(land.positions.iter().copied())
+            .collect();
+        for (id, p) in part.ids.iter().zip(&part.positions) {
+            let q = whole.get(id).expect("a point of the whole planet");
+            assert_eq!(p.to_array(), q.to_array());
         }
     }
 
