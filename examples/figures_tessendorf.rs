@@ -554,9 +554,9 @@ fn render_view(frame: &Frame, look: Look, size: (u32, u32)) -> R<Image> {
         match look {
             Look::Water => top.shader.shade(incident, n, p.distance(eye), Some(&sky)),
             Look::Plastic => {
-                let spec = reflect(incident, n).dot(light).max(0.0).powi(40);
+                let highlight = reflect(incident, n).dot(light).max(0.0).powi(40);
                 Vec3::new(0.30, 0.34, 0.40) * (0.25 + 0.75 * n.dot(light).max(0.0))
-                    + Vec3::splat(0.6 * spec)
+                    + Vec3::splat(0.6 * highlight)
             }
         }
     };
