@@ -160,14 +160,8 @@ impl Cloudscape {
         )?;
         let clouds = match &p.detail {
             Some(d) => {
-                // The octaves stop at a pixel's footprint, or at the length
-                // of the march's parts where that is longer: octaves finer
-                // than the eye ray's samples would fold into slices along it.
                 let pixel = fov / p.height.max(1) as f32;
-                let d = d.seen_from(
-                    eye,
-                    pixel.max(Self::STEP_GROWTH / Self::DETAIL_SUBSTEPS as f32),
-                );
+                let d = d.seen_by_march(eye, pixel, Self::STEP_GROWTH);
                 Detailed::new(clouds, &d, seed.wrapping_add(7))?
             }
             None => Detailed::without_detail(clouds),
@@ -223,8 +217,9 @@ impl Cloudscape {
     pub const STEP: f32 = 40.0;
     /// The growth of the march's step with the distance (m per m).
     pub const STEP_GROWTH: f32 = 0.01;
-    /// Density samples per step with the detail (the grid alone takes one).
-    pub const DETAIL_SUBSTEPS: u32 = 3;
+    /// Density samples per step with the detail (the grid alone takes one):
+    /// [`DetailParams::MARCH_SUBSTEPS`].
+    pub const DETAIL_SUBSTEPS: u32 = DetailParams::MARCH_SUBSTEPS;
 
     /// The fast mode's settings for this scene: steps of 40 m growing by 1 %
     /// of the distance (with the detail, three density samples per step, the

@@ -50,7 +50,7 @@ use glam::{Vec2, Vec3};
 use natura_atmos::sky::SkyView;
 use natura_core::{Grid2, Progress, Seed};
 use natura_trace::Camera;
-use natura_volume::detail::Detailed;
+use natura_volume::detail::{DetailParams, Detailed};
 use natura_volume::grid::GridDensity;
 use natura_volume::layer::LayerClouds;
 use natura_volume::transport::shadow::optical_depth_ray;
@@ -61,15 +61,6 @@ use natura_volume::transport::{
 use crate::error::{RenderError, Result};
 use crate::scene::CloudsDesc;
 
-/// Density samples per step of the march when the clouds have detail
-/// (natura-volume's [`FastSettings::substeps`]): the detail stops at the
-/// footprint of a part, `step_growth / 3` of the distance, where that is
-/// longer than a cell of the marched directions. Octaves finer than the
-/// samples along an eye ray fold onto the planes where neighbouring rays
-/// sample the density, combed streaks at the clouds' edges; three parts
-/// a step bring that folding from about 8 % of the clouds' mean radiance
-/// to under 1 % (measured on natura-volume's cloudscape).
-const DETAIL_SUBSTEPS: u32 = 3;
 use crate::world::World;
 
 /// Most cells of the direction grid; a finer grid is coarsened to this.
@@ -137,17 +128,18 @@ impl CloudSky {
         let layer = LayerClouds::new(*l, seed.0)?;
         let grid = GridDensity::bake(&layer, desc.voxel_m)?;
         // The directions are marched a cell apart: the detail stops at the
-        // cell's footprint, so the grid of directions does not alias it;
-        // or, where that is longer, at the length of the march's parts, so
-        // that octaves finer than the samples along a ray do not fold into
-        // combed streaks across it.
+        // cell's footprint or at the march's parts (see `seen_by_march`).
         let layout = Dome::layout(camera, pixel_angle * desc.cache_pixels);
         let detailed = desc.detail.amplitude > 0.0;
-        let parts = if detailed { DETAIL_SUBSTEPS } else { 1 };
+        let parts = if detailed {
+            DetailParams::MARCH_SUBSTEPS
+        } else {
+            1
+        };
         let clouds = if detailed {
             let d = desc
                 .detail
-                .seen_from(eye, layout.cell.max(desc.step_growth / parts as f32));
+                .seen_by_march(eye, layout.cell, desc.step_growth);
             Detailed::new(&grid, &d, seed.derive("cloud detail").0)
                 .map_err(|e| crate::scene::clouds_in_section("clouds.detail", e))?
         } else {
