@@ -408,8 +408,21 @@ pub struct RenderDesc {
     pub width: u32,
     /// Image height, pixels.
     pub height: u32,
-    /// Samples per pixel (stratified).
+    /// Samples per pixel (stratified): every pixel takes these.
     pub spp: u32,
+    /// Samples a pixel takes in all where its `spp` samples disagree
+    /// (their luminance contrast exceeds `adaptive_contrast`): a silhouette
+    /// against a far brighter sky, lit needles among shade. With `spp = k²`
+    /// and `adaptive_samples = spp·m²` all of them fill a `km × km` grid.
+    /// At most `spp` (0 included), or with one sample a pixel: no pixel
+    /// takes more, and every pixel is as without refinement.
+    pub adaptive_samples: u32,
+    /// The contrast `(max − min) / (max + min)` of a pixel's sample
+    /// luminances above which it takes `adaptive_samples`, in `[0, 1]`:
+    /// lower refines more pixels (smoother edges, a slower render), 1
+    /// none. Differences near black and above white (at the scene's
+    /// sunlit white surface) do not count.
+    pub adaptive_contrast: f32,
     /// Exposure in stops; absent = automatic (log-average luminance to mid grey).
     pub exposure_ev: Option<f32>,
     /// Tone map for the PNG.
@@ -605,6 +618,8 @@ impl Default for RenderDesc {
             width: 1920,
             height: 1080,
             spp: 4,
+            adaptive_samples: 16,
+            adaptive_contrast: 0.25,
             exposure_ev: None,
             tone_map: ToneMap::AcesFilmic,
         }
