@@ -282,7 +282,7 @@ fn unwritable_output_and_bad_scene_are_refused_before_work() {
 /// Refinement where a pixel's samples disagree: the pixels that take only
 /// their four base samples equal the render without refinement bit for
 /// bit, the others took the scene's `adaptive_samples`, and the tile
-/// render equals the per-pixel samples with it.
+/// render equals the per-pixel samples with it, on one thread as on two.
 #[test]
 fn refinement_leaves_agreeing_pixels_as_they_were() {
     let mut scene = small_scene();
@@ -298,6 +298,12 @@ fn refinement_leaves_agreeing_pixels_as_they_were() {
         on.render(&NoProgress).unwrap(),
         off.render(&NoProgress).unwrap(),
     );
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| on.render(&NoProgress).unwrap());
+    assert_eq!(common::image_bits(&a), common::image_bits(&one_thread));
     let (pa, pb) = (a.pixels(), b.pixels());
     let bits = |c: Vec3| c.to_array().map(f32::to_bits);
     let mut refined = 0;
