@@ -13,7 +13,8 @@
 //! * [`Renderer`]: the integrator (primary rays by maximum-mipmap grid
 //!   tracing, sun shadows by any-hit rays, water reflection and refraction,
 //!   aerial perspective per segment, sky for escaped rays, stratified
-//!   samples, rainbow in rain), tile-parallel and deterministic.
+//!   samples with more where a pixel's samples disagree, rainbow in rain),
+//!   tile-parallel and deterministic.
 //! * [`clouds`]: a layer-cloud sky from natura-volume over the whole scene,
 //!   lit by the sun and sky, marched once per direction of a grid, with a
 //!   2-D map of its shadows on the terrain and water (`[clouds]`).

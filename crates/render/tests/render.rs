@@ -278,3 +278,51 @@ fn unwritable_output_and_bad_scene_are_refused_before_work() {
     );
     assert!(natura_core::io::check_writable("/no/such/dir/landscape.png").is_err());
 }
+
+/// Refinement where a pixel's samples disagree: the pixels that take only
+/// their four base samples equal the render without refinement bit for
+/// bit, the others took the scene's `adaptive_samples`, and the tile
+/// render equals the per-pixel samples with it, on one thread as on two.
+#[test]
+fn refinement_leaves_agreeing_pixels_as_they_were() {
+    let mut scene = small_scene();
+    scene.render.spp = 4;
+    scene.render.adaptive_samples = 16;
+    let world = World::build(&scene, &NoProgress).unwrap();
+    let on = Renderer::new(&world, &NoProgress).unwrap();
+    let mut plain = scene.clone();
+    plain.render.adaptive_samples = 0;
+    let plain_world = World::build(&plain, &NoProgress).unwrap();
+    let off = Renderer::new(&plain_world, &NoProgress).unwrap();
+    let (a, b) = (
+        on.render(&NoProgress).unwrap(),
+        off.render(&NoProgress).unwrap(),
+    );
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| on.render(&NoProgress).unwrap());
+    assert_eq!(common::image_bits(&a), common::image_bits(&one_thread));
+    let (pa, pb) = (a.pixels(), b.pixels());
+    let bits = |c: Vec3| c.to_array().map(f32::to_bits);
+    let mut refined = 0;
+    for y in 0..scene.render.height {
+        for x in 0..scene.render.width {
+            let (v, taken) = on.pixel_samples(x, y);
+            let (ia, ib) = (pa[(x as usize, y as usize)], pb[(x as usize, y as usize)]);
+            assert_eq!(bits(ia), bits(v), "pixel ({x}, {y})");
+            match taken {
+                4 => assert_eq!(bits(ia), bits(ib), "pixel ({x}, {y})"),
+                16 => refined += 1,
+                n => panic!("pixel ({x}, {y}) took {n} samples"),
+            }
+            assert_eq!(off.pixel_samples(x, y).1, 4);
+        }
+    }
+    let all = (scene.render.width * scene.render.height) as usize;
+    assert!(
+        refined > 0 && refined < all / 2,
+        "{refined} of {all} refined"
+    );
+}

@@ -17,6 +17,7 @@ use natura_atmos::Dir3;
 use natura_atmos::optics::fresnel;
 use natura_atmos::rainbow::{Rainbow, RainbowParams};
 use natura_atmos::sky::SkyView;
+use natura_core::colour::luminance;
 use natura_core::{Boundary, Image, Progress, Seed, mix64, unit_f64};
 use natura_noise::{FilteredFbm, Perlin, Spectral};
 use natura_ocean::{Phillips, Surface, WaterSurface};
@@ -36,9 +37,11 @@ use crate::vegetation::{Forest, Light, TreeHit};
 use crate::water::{WindSea, glitter};
 use crate::world::World;
 
+mod sampling;
 mod shade;
 mod surface;
 
+use sampling::{Adaptive, refined_position};
 use surface::detail_surface;
 
 /// Refractive index of water used for the lake surface.
@@ -74,6 +77,8 @@ pub struct Renderer<'w> {
     width: u32,
     height: u32,
     spp: u32,
+    /// When a pixel takes more than its `spp` samples.
+    adaptive: Adaptive,
     seed: Seed,
 }
 
@@ -85,6 +90,7 @@ impl std::fmt::Debug for Renderer<'_> {
             .field("width", &self.width)
             .field("height", &self.height)
             .field("spp", &self.spp)
+            .field("adaptive_samples", &self.adaptive.total())
             .finish_non_exhaustive()
     }
 }
@@ -250,6 +256,14 @@ impl<'w> Renderer<'w> {
             width: r.width,
             height: r.height,
             spp: r.spp,
+            adaptive: Adaptive::new(
+                r.spp,
+                r.adaptive_samples,
+                r.adaptive_contrast,
+                // A white Lambertian surface in the sun and the sky.
+                luminance(sun_irradiance * world.sun.z.max(0.0) + sky_irradiance)
+                    / std::f32::consts::PI,
+            ),
             seed: seed.derive("pixels"),
         })
     }
@@ -304,10 +318,13 @@ impl<'w> Renderer<'w> {
     ///
     /// Each pixel averages `spp` stratified samples whose positions are
     /// random numbers indexed by pixel and sample, so the image is
-    /// bit-identical for any thread count. The primary rays of a tile (all
-    /// their samples) are traced together with [`Tracer::trace_many`], the
-    /// mipmap tracer's lock-step lanes; every pixel equals [`Self::pixel`]
-    /// bit for bit.
+    /// bit-identical for any thread count; a pixel whose samples disagree
+    /// takes more, up to the scene's `adaptive_samples`, and averages them
+    /// all (the refinement's samples fill the pixel with its base ones). The
+    /// primary rays of a tile (all their base samples, then the further
+    /// samples of its pixels that take them) are traced together with
+    /// [`Tracer::trace_many`], the mipmap tracer's lock-step lanes; every
+    /// pixel equals [`Self::pixel`] bit for bit.
     ///
     /// # Errors
     ///
@@ -364,40 +381,90 @@ impl<'w> Renderer<'w> {
                     }
                 }
                 let hits = self.tracer.trace_many(&rays, 0.0, f32::INFINITY);
+                // Pixels whose samples disagree: their index in the tile
+                // and their base samples' sum, to which their further
+                // samples (traced together below) are added in order.
+                let mut refine = Vec::new();
+                let mut base = Vec::with_capacity(n);
                 for (r, h) in rays.chunks_exact(n).zip(hits.chunks_exact(n)) {
-                    let mut sum = Vec3::ZERO;
+                    base.clear();
+                    base.extend(
+                        r.iter()
+                            .zip(h)
+                            .map(|(ray, hit)| self.radiance_traced(ray, hit.as_ref())),
+                    );
+                    let sum = base.iter().fold(Vec3::ZERO, |a, &l| a + l);
+                    if self.adaptive.disagree(&base) {
+                        refine.push((out.len(), sum));
+                    }
+                    out.push(sum / self.spp as f32);
+                }
+                if refine.is_empty() {
+                    return;
+                }
+                let total = self.adaptive.total();
+                rays.clear();
+                for &(i, _) in &refine {
+                    let (x, y) = (bx + i as u32 % w, by + i as u32 / w);
+                    rays.extend((self.spp..total).map(|s| self.primary_ray(x, y, s)));
+                }
+                let hits = self.tracer.trace_many(&rays, 0.0, f32::INFINITY);
+                let more = (total - self.spp) as usize;
+                for ((i, mut sum), (r, h)) in refine
+                    .into_iter()
+                    .zip(rays.chunks_exact(more).zip(hits.chunks_exact(more)))
+                {
                     for (ray, hit) in r.iter().zip(h) {
                         sum += self.radiance_traced(ray, hit.as_ref());
                     }
-                    out.push(sum / self.spp as f32);
+                    out[i] = sum / total as f32;
                 }
             },
         )?;
         Ok(Image::from_grid(grid))
     }
 
-    /// The average radiance of pixel `(x, y)` over its stratified samples.
+    /// The average radiance of pixel `(x, y)` over its stratified samples:
+    /// its `spp` base samples, and where they disagree its further samples
+    /// up to the scene's `adaptive_samples`.
     #[must_use]
     pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
-        let mut sum = Vec3::ZERO;
-        for s in 0..self.spp {
+        self.pixel_samples(x, y).0
+    }
+
+    /// [`Self::pixel`] and the number of samples it took: `spp`, or the
+    /// scene's `adaptive_samples` where the base samples disagree.
+    #[must_use]
+    pub fn pixel_samples(&self, x: u32, y: u32) -> (Vec3, u32) {
+        let sample = |s: u32| {
             let ray = self.primary_ray(x, y, s);
             let hit = self.tracer.trace(&ray, 0.0, f32::INFINITY);
-            sum += self.radiance_traced(&ray, hit.as_ref());
+            self.radiance_traced(&ray, hit.as_ref())
+        };
+        let base: Vec<Vec3> = (0..self.spp).map(sample).collect();
+        let mut sum = base.iter().fold(Vec3::ZERO, |a, &l| a + l);
+        if !self.adaptive.disagree(&base) {
+            return (sum / self.spp as f32, self.spp);
         }
-        sum / self.spp as f32
+        let total = self.adaptive.total();
+        for s in self.spp..total {
+            sum += sample(s);
+        }
+        (sum / total as f32, total)
     }
 
     /// Sample `s` of pixel `(x, y)`: the camera ray through its jittered
-    /// position in the pixel ([`sample_position`]), with a unit direction.
+    /// position in the pixel ([`refined_position`]), with a unit direction.
     fn primary_ray(&self, x: u32, y: u32, s: u32) -> Ray {
-        let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
-        let jitter = (
-            unit_f64(h) as f32,
-            unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
-        );
-        let shuffle = || self.seed.hash(&[i64::from(x), i64::from(y), -1]);
-        let p = sample_position(s, self.spp, jitter, shuffle);
+        let jitter = |s: u32| {
+            let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
+            (
+                unit_f64(h) as f32,
+                unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
+            )
+        };
+        let shuffle = |k: i64| self.seed.hash(&[i64::from(x), i64::from(y), k]);
+        let p = refined_position(s, self.spp, self.adaptive.total(), jitter, shuffle);
         let ray = self.camera.camera().ray(x, y, p);
         Ray::new(ray.origin, ray.dir.normalize())
     }
@@ -568,105 +635,5 @@ fn rainbow_table(scene: &SceneDesc, progress: &dyn Progress) -> Result<Option<Ra
         Ok(Some(rb))
     } else {
         Ok(None)
-    }
-}
-
-/// Sample `s` of `n` in the unit pixel, jittered by `jitter ∈ [0, 1)²`:
-/// the centre for one sample; for a square count `n = k²`, stratum
-/// `(s mod k, s div k)` of a `k × k` grid; for any other count, a Latin
-/// hypercube ("n-rooks", Shirley 1991; Pharr et al. 2023, §8.5): the x
-/// stratum `s` and the y stratum `(a·s + b) mod n` of `n` each, with `a`
-/// coprime to `n` and `b` drawn per pixel from the hash `shuffle` (asked
-/// for only then), so every row and
-/// every column of strata holds one sample. (A `⌈√n⌉²` grid filled in
-/// order would leave its last rows empty: with 2 samples both fell in the
-/// pixel's top half.)
-fn sample_position(
-    s: u32,
-    n: u32,
-    jitter: (f32, f32),
-    shuffle: impl FnOnce() -> u64,
-) -> glam::Vec2 {
-    let (jx, jy) = jitter;
-    let below_one = |v: f32| v.min(1.0 - f32::EPSILON);
-    if n <= 1 {
-        return glam::Vec2::splat(0.5);
-    }
-    let side = (n as f32).sqrt().round() as u32;
-    if side * side == n {
-        let (sx, sy) = ((s % side) as f32, (s / side) as f32);
-        return glam::Vec2::new((sx + jx) / side as f32, below_one((sy + jy) / side as f32));
-    }
-    let gcd = |mut a: u64, mut b: u64| {
-        while b != 0 {
-            (a, b) = (b, a % b);
-        }
-        a
-    };
-    let (n64, shuffle) = (u64::from(n), shuffle());
-    let mut a = 1 + (shuffle >> 32) % (n64 - 1);
-    while gcd(a, n64) != 1 {
-        a = a % (n64 - 1) + 1;
-    }
-    let b = (shuffle & 0xFFFF_FFFF) % n64;
-    let row = (a * u64::from(s % n) + b) % n64;
-    glam::Vec2::new(
-        below_one((s as f32 + jx) / n as f32),
-        below_one((row as f32 + jy) / n as f32),
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::sample_position;
-
-    /// Every count's samples are stratified: for a square count one in
-    /// each cell of the grid, for any other one in each row and each
-    /// column of `n` strata; all inside the pixel.
-    #[test]
-    fn samples_fill_the_pixel_for_every_count() {
-        for n in 1..=40u32 {
-            for pixel in 0..20u64 {
-                let shuffle = pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234_5678;
-                let pts: Vec<_> = (0..n)
-                    .map(|s| {
-                        // Jitters away from the strata's edges, where
-                        // rounding could move a point across one.
-                        let j = (
-                            (((s * 7 + 3) % 11) as f32 + 0.5) / 12.0,
-                            (((s * 5 + 1) % 13) as f32 + 0.5) / 14.0,
-                        );
-                        sample_position(s, n, j, || shuffle.wrapping_add(u64::from(pixel as u32)))
-                    })
-                    .collect();
-                assert!(
-                    pts.iter()
-                        .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
-                );
-                let side = (n as f32).sqrt().round() as u32;
-                let (cols, rows) = if side * side == n {
-                    (side, side)
-                } else {
-                    (n, n)
-                };
-                let mut seen_x = vec![0; cols as usize];
-                let mut seen_y = vec![0; rows as usize];
-                for p in &pts {
-                    seen_x[(p.x * cols as f32) as usize] += 1;
-                    seen_y[(p.y * rows as f32) as usize] += 1;
-                }
-                let per = n / cols;
-                assert!(
-                    seen_x.iter().all(|&c| c == per),
-                    "n {n}: columns {seen_x:?}"
-                );
-                assert!(seen_y.iter().all(|&c| c == per), "n {n}: rows {seen_y:?}");
-            }
-        }
-        // Two samples: one in each half of the pixel, top and bottom.
-        let two: Vec<_> = (0..2)
-            .map(|s| sample_position(s, 2, (0.5, 0.5), || 99))
-            .collect();
-        assert!(two.iter().any(|p| p.y < 0.5) && two.iter().any(|p| p.y >= 0.5));
     }
 }

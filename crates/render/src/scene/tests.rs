@@ -37,8 +37,60 @@ fn round_trips_through_toml() {
     s.render.exposure_ev = Some(-3.5);
     s.materials.diffuse = Diffuse::Lambert;
     s.camera.kind = CameraKind::Cylindrical;
+    s.render.adaptive_samples = 64;
+    s.render.adaptive_contrast = 0.4;
     let text = s.to_toml_string().unwrap();
     assert_eq!(SceneDesc::from_toml_str(&text, "x").unwrap(), s);
+}
+
+#[test]
+fn adaptive_sampling_keys_are_read_and_refused_by_name() {
+    let text = "[render]\nadaptive_samples = 36\nadaptive_contrast = 0.5\n";
+    let s = SceneDesc::from_toml_str(text, "a.toml").unwrap();
+    assert_eq!(
+        (s.render.adaptive_samples, s.render.adaptive_contrast),
+        (36, 0.5)
+    );
+    assert_eq!(s.render.spp, RenderDesc::default().spp);
+    s.validate().unwrap();
+    // Off, written either way, is valid.
+    for off in [0, 4] {
+        let mut s = SceneDesc::default();
+        s.render.adaptive_samples = off;
+        s.validate().unwrap();
+    }
+    type Mutation = Box<dyn Fn(&mut SceneDesc)>;
+    let cases: Vec<(&str, Mutation)> = vec![
+        (
+            "render.adaptive_samples",
+            Box::new(|s| s.render.adaptive_samples = 5000),
+        ),
+        (
+            "render.adaptive_contrast",
+            Box::new(|s| s.render.adaptive_contrast = f32::NAN),
+        ),
+        (
+            "render.adaptive_contrast",
+            Box::new(|s| s.render.adaptive_contrast = -0.1),
+        ),
+        (
+            "render.adaptive_contrast",
+            Box::new(|s| s.render.adaptive_contrast = 1.5),
+        ),
+    ];
+    for (key, mutate) in cases {
+        let mut s = SceneDesc::default();
+        mutate(&mut s);
+        let err = s.validate().unwrap_err().to_string();
+        assert!(err.contains(key), "{key}: {err}");
+    }
+    let err = SceneDesc::from_toml_str("[render]\nadaptive_samples = -4\n", "a.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("a.toml:2:") && err.contains("render.adaptive_samples"),
+        "{err}"
+    );
 }
 
 #[test]

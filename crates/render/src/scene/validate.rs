@@ -292,6 +292,13 @@ impl RenderDesc {
         in_range("render.width", self.width, 1.0, 16_384.0)?;
         in_range("render.height", self.height, 1.0, 16_384.0)?;
         in_range("render.spp", self.spp, 1.0, 4096.0)?;
+        in_range(
+            "render.adaptive_samples",
+            self.adaptive_samples,
+            0.0,
+            4096.0,
+        )?;
+        in_range("render.adaptive_contrast", self.adaptive_contrast, 0.0, 1.0)?;
         if let Some(ev) = self.exposure_ev {
             in_range("render.exposure_ev", ev, -64.0, 64.0)?;
         }
