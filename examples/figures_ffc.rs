@@ -20,11 +20,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, ValueEnum};
+use common::figures::{self, Figure};
 use common::plot::{Canvas, Panel, Pen, colour};
 use common::{Exit, Run, outln};
 use natura::core::glam::{DVec2, DVec3, Vec3};
 use natura::core::preview::{PreviewCamera, PreviewProjection, Projector, Raster, facing, lambert};
-use natura::core::{HeightField, Image, Ramp, io::OutputSet};
+use natura::core::{HeightField, Image, Ramp};
 use natura::terrain::Seed;
 use natura::terrain::analysis::{path_h, surface_area};
 use natura::terrain::synth::{
@@ -73,8 +74,8 @@ enum Fig {
     Paper,
 }
 
-impl Fig {
-    const ALL: [Fig; 7] = [
+impl Figure for Fig {
+    const ALL: &'static [Fig] = &[
         Fig::Paths,
         Fig::TwoResolutions,
         Fig::Polyline,
@@ -84,7 +85,6 @@ impl Fig {
         Fig::Paper,
     ];
 
-    /// The files the figure writes.
     fn files(self) -> &'static [&'static str] {
         match self {
             Fig::Paths => &["ffc_fig01-03_paths.png"],
@@ -123,20 +123,10 @@ fn main() -> ExitCode {
 fn figures() -> Run {
     let cli: Cli = common::parse();
     let out = common::out_dir(&cli.out)?;
-    let figs: Vec<Fig> = Fig::ALL
-        .into_iter()
-        .filter(|f| cli.only.is_empty() || cli.only.contains(f))
-        .collect();
-    let targets: Vec<PathBuf> = figs
-        .iter()
-        .flat_map(|f| f.files().iter().map(|n| out.join(n)))
-        .collect();
-    let set = OutputSet::new(&targets)?;
     let seed = Seed(cli.seed);
     let q = cli.quick;
-    for fig in &figs {
-        let t0 = std::time::Instant::now();
-        let images = match fig {
+    figures::make(&out, &cli.only, |fig| {
+        Ok(match fig {
             Fig::Paths => vec![paths(seed, q)?],
             Fig::TwoResolutions => vec![two_resolutions(seed)?],
             Fig::Polyline => vec![polyline(seed)?],
@@ -144,21 +134,8 @@ fn figures() -> Run {
             Fig::Bspline => vec![bspline(seed, q)?],
             Fig::Planet => planet(seed, q)?,
             Fig::Paper => vec![paper(seed, q)?],
-        };
-        for (img, name) in images.iter().zip(fig.files()) {
-            img.save_png(set.stage(out.join(name))?)?;
-        }
-        outln(format_args!(
-            "{:<16} {:6.2} s",
-            format!("{fig:?}"),
-            t0.elapsed().as_secs_f64()
-        ))?;
-    }
-    set.commit()?;
-    for t in &targets {
-        outln(format_args!("wrote {}", t.display()))?;
-    }
-    Ok(())
+        })
+    })
 }
 
 /// Midpoint parameters with Hurst exponent `h` and roughness `scale`.

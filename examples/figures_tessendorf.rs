@@ -22,12 +22,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, ValueEnum};
+use common::figures::{self, Figure};
 use common::plot::{Canvas, Panel, Pen, colour};
 use common::{Exit, Run, outln};
 use natura::core::colour::srgb_decode;
 use natura::core::glam::{DVec2, Vec3};
 use natura::core::preview::{PreviewCamera, PreviewProjection, Projector, Raster};
-use natura::core::{Grid2, Image, io::OutputSet};
+use natura::core::{Grid2, Image};
 use natura::ocean::optics::{N_AIR, N_WATER, critical_angle, fresnel_reflectance, reflect};
 use natura::ocean::preview::TopView;
 use natura::ocean::{
@@ -73,8 +74,8 @@ enum Fig {
     Renders,
 }
 
-impl Fig {
-    const ALL: [Fig; 6] = [
+impl Figure for Fig {
+    const ALL: &'static [Fig] = &[
         Fig::Gerstner,
         Fig::Dispersion,
         Fig::Directional,
@@ -114,40 +115,22 @@ fn main() -> ExitCode {
 fn figures() -> Run {
     let cli: Cli = common::parse();
     let out = common::out_dir(&cli.out)?;
-    let figs: Vec<Fig> = Fig::ALL
-        .into_iter()
-        .filter(|f| cli.only.is_empty() || cli.only.contains(f))
-        .collect();
-    let targets: Vec<PathBuf> = figs
-        .iter()
-        .flat_map(|f| f.files().iter().map(|n| out.join(n)))
-        .collect();
-    let set = OutputSet::new(&targets)?;
     let seed = Seed(cli.seed);
-    for fig in &figs {
-        let t0 = std::time::Instant::now();
-        let images = match fig {
+    figures::make(&out, &cli.only, |fig| {
+        Ok(match fig {
             Fig::Gerstner => vec![gerstner()?],
             Fig::Dispersion => vec![dispersion()?],
             Fig::Directional => vec![directional(seed, cli.quick)?],
             Fig::Choppy => choppy(seed, cli.quick)?,
             Fig::Fresnel => vec![fresnel()?],
             Fig::Renders => renders(seed, cli.quick)?,
-        };
-        for (img, name) in images.iter().zip(fig.files()) {
-            img.save_png(set.stage(out.join(name))?)?;
-        }
-        outln(format_args!(
-            "{:<12} {:6.2} s",
-            format!("{fig:?}"),
-            t0.elapsed().as_secs_f64()
-        ))?;
-    }
-    set.commit()?;
-    for t in &targets {
-        outln(format_args!("wrote {}", t.display()))?;
-    }
-    Ok(())
+        })
+    })
+}
+
+/// The mean of the squares of `v` (its variance about zero), in f64.
+fn mean_square(v: &[f32]) -> f64 {
+    v.iter().map(|&x| f64::from(x) * f64::from(x)).sum::<f64>() / v.len().max(1) as f64
 }
 
 /// A Gerstner sea of waves travelling along +x: (wavelength m, kA, phase).
@@ -266,18 +249,8 @@ fn directional(seed: Seed, quick: bool) -> R<Image> {
     let mut shots = Vec::new();
     for p in [2.0, 6.0] {
         let frame = Ocean::new(&params, &gale(p), seed)?.evaluate(0.0)?;
-        let ratio = frame
-            .slope_y()
-            .as_slice()
-            .iter()
-            .map(|&v| f64::from(v * v))
-            .sum::<f64>()
-            / frame
-                .slope_x()
-                .as_slice()
-                .iter()
-                .map(|&v| f64::from(v * v))
-                .sum::<f64>();
+        let ratio =
+            mean_square(frame.slope_y().as_slice()) / mean_square(frame.slope_x().as_slice());
         outln(format_args!(
             "  Figs. 6-8: |k̂·ŵ|^{p}: slope variance across / along the wind {ratio:.3} (1/(p+1) = {:.3} for a wide band)",
             1.0 / (p + 1.0)

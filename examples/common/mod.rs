@@ -13,6 +13,8 @@
 #![allow(dead_code)]
 
 #[cfg(feature = "core")]
+pub mod figures;
+#[cfg(feature = "core")]
 pub mod plot;
 #[cfg(feature = "core")]
 pub mod scene;

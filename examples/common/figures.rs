@@ -1,0 +1,133 @@
+//! The driver the figure programs share: the figures a command line asks
+//! for (every one when it names none), each made, timed and written under
+//! a temporary name, and all renamed into place together at the end, so a
+//! failure leaves the previous pictures as they were.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use natura::core::{Image, io::OutputSet};
+
+use super::{Exit, Run, outln};
+
+/// The figures of one source, in the source's order.
+pub trait Figure: Copy + PartialEq + std::fmt::Debug + 'static {
+    /// Every figure, in the source's order.
+    const ALL: &'static [Self];
+
+    /// The files the figure writes, in the order its maker returns images.
+    fn files(self) -> &'static [&'static str];
+}
+
+/// The figures of `F` that `only` asks for (every one when it is empty),
+/// in the source's order.
+pub fn selected<F: Figure>(only: &[F]) -> Vec<F> {
+    F::ALL
+        .iter()
+        .copied()
+        .filter(|f| only.is_empty() || only.contains(f))
+        .collect()
+}
+
+/// Makes the figures `only` asks for with `draw` (one image per file of
+/// the figure), writes them as PNGs into `out` and prints each figure's
+/// time and then the files written.
+///
+/// Fails when `draw` fails, when it returns a different number of images
+/// than the figure has files, or when a file cannot be written; nothing is
+/// renamed into place then.
+pub fn make<F: Figure>(
+    out: &Path,
+    only: &[F],
+    mut draw: impl FnMut(F) -> Result<Vec<Image>, Exit>,
+) -> Run {
+    let figs = selected(only);
+    let targets: Vec<PathBuf> = figs
+        .iter()
+        .flat_map(|f| f.files().iter().map(|n| out.join(n)))
+        .collect();
+    let set = OutputSet::new(&targets)?;
+    let width = F::ALL
+        .iter()
+        .map(|f| format!("{f:?}").len())
+        .max()
+        .unwrap_or(0);
+    for fig in figs {
+        let t0 = Instant::now();
+        let images = draw(fig)?;
+        if images.len() != fig.files().len() {
+            return Err(Exit::new(
+                2,
+                format!(
+                    "figure {fig:?} made {} pictures for {} files",
+                    images.len(),
+                    fig.files().len()
+                ),
+            ));
+        }
+        for (img, name) in images.iter().zip(fig.files()) {
+            img.save_png(set.stage(out.join(name))?)?;
+        }
+        outln(format_args!(
+            "{:<width$} {:6.2} s",
+            format!("{fig:?}"),
+            t0.elapsed().as_secs_f64()
+        ))?;
+    }
+    set.commit()?;
+    for t in &targets {
+        outln(format_args!("wrote {}", t.display()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    enum Two {
+        A,
+        B,
+    }
+
+    impl Figure for Two {
+        const ALL: &'static [Self] = &[Two::A, Two::B];
+        fn files(self) -> &'static [&'static str] {
+            match self {
+                Two::A => &["a.png"],
+                Two::B => &["b1.png", "b2.png"],
+            }
+        }
+    }
+
+    #[test]
+    fn an_empty_choice_is_every_figure_in_order() {
+        assert_eq!(selected::<Two>(&[]), vec![Two::A, Two::B]);
+        assert_eq!(selected(&[Two::B, Two::A]), vec![Two::A, Two::B]);
+        assert_eq!(selected(&[Two::B]), vec![Two::B]);
+    }
+
+    fn tiny() -> Image {
+        Image::new(2, 2, natura::core::glam::Vec3::ONE).expect("a 2x2 image")
+    }
+
+    #[test]
+    fn a_figure_with_too_few_pictures_writes_nothing() {
+        let dir = std::env::temp_dir().join(format!("natura-figures-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary directory");
+        let r = make(&dir, &[], |f: Two| {
+            Ok(match f {
+                Two::A => vec![tiny()],
+                Two::B => vec![tiny()],
+            })
+        });
+        assert!(r.is_err());
+        assert!(!dir.join("a.png").exists() && !dir.join("b1.png").exists());
+        make(&dir, &[], |f: Two| Ok(vec![tiny(); f.files().len()])).expect("every figure written");
+        for n in ["a.png", "b1.png", "b2.png"] {
+            assert!(dir.join(n).is_file(), "{n}");
+        }
+        std::fs::remove_dir_all(&dir).expect("clean-up");
+    }
+}
