@@ -1,6 +1,6 @@
 //! Deussen et al.'s ecosystem figures (Deussen et al. 1998) that the plant
 //! examples do not show: self-thinning as pictures (Fig. 4) and as a plot
-//! (Fig. 5).
+//! (Fig. 5), and eight species that sort themselves by wetness (Fig. 6).
 //!
 //! ```text
 //! cargo run --release --example figures_deussen                 # every figure
@@ -20,12 +20,13 @@ use clap::{Parser, ValueEnum};
 use common::figures::{self, Figure};
 use common::plot::{Canvas, Panel, Pen, colour};
 use common::{Exit, Run, outln};
+use natura::core::NoProgress;
 use natura::core::glam::Vec3;
 use natura::core::{HeightField, Image, Seed};
 use natura::plant::eco::{EcoParams, Ecosystem, Plant, Species};
 
 /// Deussen et al.'s ecosystem figures (Deussen et al. 1998) not shown by
-/// the plant examples: self-thinning.
+/// the plant examples: self-thinning, and species sorted by wetness.
 #[derive(Parser)]
 #[command(name = "figures_deussen", version)]
 struct Cli {
@@ -45,10 +46,12 @@ struct Cli {
 enum Fig {
     /// Figs. 4-5: self-thinning, three moments of the field and the log-log plot
     SelfThinning,
+    /// Fig. 6: eight species sorted by the wetness they prefer
+    Species,
 }
 
 impl Figure for Fig {
-    const ALL: &'static [Fig] = &[Fig::SelfThinning];
+    const ALL: &'static [Fig] = &[Fig::SelfThinning, Fig::Species];
 
     fn files(self) -> &'static [&'static str] {
         match self {
@@ -56,6 +59,7 @@ impl Figure for Fig {
                 "deussen_fig04_self_thinning.png",
                 "deussen_fig05_thinning_plot.png",
             ],
+            Fig::Species => &["deussen_fig06_species_by_wetness.png"],
         }
     }
 }
@@ -72,6 +76,7 @@ fn run() -> Run {
     let q = cli.quick;
     figures::make(&out, &cli.only, |fig| match fig {
         Fig::SelfThinning => self_thinning(q),
+        Fig::Species => Ok(vec![species_by_wetness(q)?]),
     })
 }
 
@@ -249,6 +254,131 @@ fn self_thinning(quick: bool) -> R<Vec<Image>> {
     Ok(vec![sheet, c.into_image()?])
 }
 
+/// Species of Fig. 6.
+const KINDS: usize = 8;
+
+/// Fig. 6's ecosystem: [`KINDS`] species alike but for the wetness they
+/// prefer (species `k` at `k / 7`, 0 the driest site, 1 the wettest, with a
+/// tolerance of 0.1), sown and thinned for 24 steps on an eroded terrain
+/// of `n`² samples 2 m apart, its wetness natura-terrain's topographic
+/// wetness. The source names the five parameters of a species but gives
+/// none of their values.
+fn species_run(n: usize) -> R<Ecosystem> {
+    let hf = common::tiles::eroded_tile(n, 2.0, 1998, &NoProgress)?;
+    let species = (0..KINDS)
+        .map(|k| Species {
+            name: format!("wetness {k}"),
+            seeds_per_ha: 120.0,
+            initial_per_ha: 400.0,
+            r0_min: 0.2,
+            r0_max: 0.5,
+            max_radius: 2.5,
+            growth: 0.12,
+            survive_domination: 0.2,
+            wet_optimum: k as f64 / (KINDS - 1) as f64,
+            wet_tolerance: 0.1,
+            light_tolerance: 10.0,
+            altitude_min: 0.0,
+            altitude_max: 1.0,
+            max_slope: 1.2,
+            vigor_spread: 0.3,
+            ..Species::default()
+        })
+        .collect();
+    let params = EcoParams {
+        species,
+        steps: 24,
+        seed: Seed(6),
+        ..EcoParams::default()
+    };
+    let mut eco = Ecosystem::new(&hf, params)?;
+    eco.run(&NoProgress)?;
+    Ok(eco)
+}
+
+/// The colour of species `k`: from ochre (dry) through green to blue (wet),
+/// as the source draws its wet-loving species blue.
+fn wet_colour(k: usize) -> Vec3 {
+    let t = k as f32 / (KINDS - 1) as f32;
+    let (dry, mid, wet) = (
+        Vec3::new(0.85, 0.40, 0.0),
+        Vec3::new(0.05, 0.55, 0.05),
+        Vec3::new(0.0, 0.12, 0.85),
+    );
+    if t < 0.5 {
+        dry.lerp(mid, 2.0 * t)
+    } else {
+        mid.lerp(wet, 2.0 * t - 1.0)
+    }
+}
+
+/// The mean wetness of the sites of each species' plants.
+fn mean_wetness(eco: &Ecosystem) -> Vec<f64> {
+    let site = eco.site();
+    let mut sum = vec![(0.0f64, 0usize); KINDS];
+    for p in eco.plants() {
+        let (i, j) = site.nearest(p.x, p.y);
+        let e = &mut sum[p.species as usize];
+        e.0 += f64::from(site.wetness[(i, j)]);
+        e.1 += 1;
+    }
+    sum.iter().map(|&(w, n)| w / n.max(1) as f64).collect()
+}
+
+/// Fig. 6: the terrain's wetness (left, white dry to blue wet) and the
+/// plants on a faint copy of it (right), each circle coloured by the
+/// wetness its species prefers.
+fn species_by_wetness(quick: bool) -> R<Image> {
+    let n = if quick { 64 } else { 112 };
+    let eco = species_run(n)?;
+    let wet = mean_wetness(&eco);
+    outln(format_args!(
+        "  Fig. 6: {} plants; mean site wetness by species, driest-loving first: {}",
+        eco.plants().len(),
+        wet.iter()
+            .map(|w| format!("{w:.2}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    ))?;
+    let site = eco.site();
+    let (ex, ey) = site.extent();
+    let size = if quick { 256 } else { 600 };
+    let (gw, gh) = site.wetness.dims();
+    let map = Image::from_fn(size, size, |x, y| {
+        let i = (x * gw / size).min(gw - 1);
+        let j = ((size - 1 - y) * gh / size).min(gh - 1);
+        Vec3::ONE.lerp(
+            Vec3::new(0.1, 0.3, 0.85),
+            site.wetness[(i, j)].clamp(0.0, 1.0),
+        )
+    })?;
+    let mut c = Canvas::new(size, size);
+    let panel = Panel::new(
+        [0.0, 0.0, size as f32, size as f32],
+        [0.0, f64::from(ex), 0.0, f64::from(ey)],
+    );
+    let px = size as f32 / ex;
+    for p in eco.plants() {
+        c.dots(
+            &panel,
+            &[(f64::from(p.x), f64::from(p.y))],
+            wet_colour(p.species as usize),
+            (p.radius * px).max(0.8),
+        );
+    }
+    // The plants over a faint copy of the map (where the canvas is blank).
+    let plants = c.into_image()?;
+    let over = Image::from_fn(size, size, |x, y| {
+        let p = plants.get(x, y).unwrap_or(Vec3::ONE);
+        if p.min_element() > 0.999 {
+            Vec3::ONE.lerp(map.get(x, y).unwrap_or(Vec3::ONE), 0.45)
+        } else {
+            p
+        }
+    })?;
+    Ok(Image::contact_sheet(&[map, over], 2, 6, Vec3::ONE)?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,5 +413,17 @@ mod tests {
                 .windows(2)
                 .all(|w| w[1].plants.len() < w[0].plants.len())
         );
+    }
+
+    #[test]
+    fn species_settle_where_the_wetness_suits_them() {
+        // Fig. 6: the wet-loving species gather in the wet places. The
+        // mean wetness under each species rises with the wetness it
+        // prefers, and the wettest-loving sits far wetter than the driest.
+        let eco = species_run(64).unwrap();
+        let wet = mean_wetness(&eco);
+        let rising = wet.windows(2).filter(|w| w[1] > w[0]).count();
+        assert!(rising >= KINDS - 2, "{wet:?}");
+        assert!(wet[KINDS - 1] > wet[0] + 0.3, "{wet:?}");
     }
 }
