@@ -22,6 +22,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
+use common::cloudshot::{Look, SHOT, render, strip};
 use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
@@ -30,10 +31,7 @@ use natura::volume::cloud::{
     Cloud, CloudParams, JetStream, cirrostratus_primitives, cloud, nine_sphere_cumulus,
 };
 use natura::volume::grid::GridDensity;
-use natura::volume::transport::{
-    FastRenderer, FastSettings, LookAtCamera, MediumParams, Scene, Shadows, Sun,
-};
-use natura::volume::{Density, vdb};
+use natura::volume::vdb;
 
 /// Ebert's procedural clouds: the nine-sphere cumulus, cirrostratus over
 /// cirrus, the cumulus warped along the jet stream and "A Cloud is Born",
@@ -58,79 +56,6 @@ struct Cli {
     out: PathBuf,
 }
 
-/// The units of work [`render`] reports: the bake, the shadow tables and
-/// the render.
-const SHOT: u64 = 3;
-
-struct Look {
-    width: usize,
-    height: usize,
-    cell: f32,
-}
-
-/// Bakes `d`, builds its shadow tables and renders it from `view` (a
-/// direction from the centre, in bounding radii), advancing `bar` by one
-/// unit after each ([`SHOT`] in all).
-fn render(
-    d: &dyn Density,
-    look: &Look,
-    extinction: f32,
-    view: Vec3,
-    bar: &dyn Progress,
-) -> Result<Image, Exit> {
-    let b = d.bounds();
-    let c = (b.min + b.max) * 0.5;
-    let r = (b.max - b.min).length() * 0.5;
-    let baked = GridDensity::bake(d, look.cell)?;
-    bar.advance(1);
-    let scene = Scene {
-        sun: Some(Sun {
-            direction: Vec3::new(-0.5, -0.6, 0.62).normalize(),
-            irradiance: Vec3::new(3.2, 3.0, 2.7),
-        }),
-        ..Scene::new(
-            &baked,
-            MediumParams {
-                extinction,
-                ..MediumParams::default()
-            },
-            Vec3::new(0.18, 0.3, 0.55),
-        )
-    };
-    let settings = FastSettings {
-        step: look.cell * 0.5,
-        shadows: Shadows::Table(96),
-        ..FastSettings::default()
-    }
-    .multiple_scattering();
-    let camera = LookAtCamera::look_at(
-        c + view * r,
-        c,
-        Vec3::Z,
-        40f32.to_radians(),
-        look.width as u32,
-        look.height as u32,
-    )?;
-    let fast = FastRenderer::new(&scene, settings)?;
-    bar.advance(1);
-    let image = fast.render(&camera)?;
-    bar.advance(1);
-    Ok(image.tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
-}
-
-/// Images side by side with 4 px white gaps.
-fn strip(shots: &[Image]) -> natura::core::Result<Image> {
-    let (w, h) = (shots[0].width(), shots[0].height());
-    Image::from_fn(w * shots.len() + 4 * (shots.len() - 1), h, |x, y| {
-        let (k, r) = (x / (w + 4), x % (w + 4));
-        if r >= w {
-            Vec3::ONE
-        } else {
-            shots[k].get(r, y).unwrap_or(Vec3::ONE)
-        }
-    })
-}
-
 fn main() -> ExitCode {
     common::run(clouds)
 }
@@ -150,12 +75,16 @@ fn clouds() -> Run {
             width: 96,
             height: 64,
             cell: 0.4,
+            shadow_nodes: 24,
+            cache_events: 100_000,
         }
     } else {
         Look {
             width: 480,
             height: 320,
             cell: 0.08,
+            shadow_nodes: 96,
+            cache_events: 4_000_000,
         }
     };
     let bar = common::Bar::new();

@@ -12,6 +12,8 @@
 //! (`… | head`) ends the program normally.
 #![allow(dead_code)]
 
+#[cfg(feature = "volume")]
+pub mod cloudshot;
 #[cfg(feature = "core")]
 pub mod figures;
 #[cfg(feature = "core")]

@@ -1,0 +1,99 @@
+//! One picture of a cloud for the cloud programs (`clouds`,
+//! `figures_ebert`): a density baked to voxels, shadow tables, the fast
+//! renderer with multiple scattering, ACES tone mapping.
+
+use natura::core::glam::Vec3;
+use natura::core::{Image, Progress};
+use natura::volume::Density;
+use natura::volume::grid::GridDensity;
+use natura::volume::transport::{
+    CacheParams, FastRenderer, FastSettings, LookAtCamera, MediumParams, Scattering, Scene,
+    Shadows, Sun,
+};
+
+use super::Exit;
+
+/// The units of work [`render`] reports: the bake, the shadow tables and
+/// the render.
+pub const SHOT: u64 = 3;
+
+/// The size of a shot and of its voxels.
+pub struct Look {
+    /// Width, pixels.
+    pub width: usize,
+    /// Height, pixels.
+    pub height: usize,
+    /// Voxel size, metres.
+    pub cell: f32,
+    /// Nodes of the shadow table along the volume's longest axis.
+    pub shadow_nodes: usize,
+    /// Scattering events the multiple-scattering cache traces (its set-up
+    /// cost; its noise falls as the inverse square root).
+    pub cache_events: u32,
+}
+
+/// Bakes `d`, builds its shadow tables and renders it from `view` (a
+/// direction from the centre, in bounding radii), advancing `bar` by one
+/// unit after each ([`SHOT`] in all).
+pub fn render(
+    d: &dyn Density,
+    look: &Look,
+    extinction: f32,
+    view: Vec3,
+    bar: &dyn Progress,
+) -> Result<Image, Exit> {
+    let b = d.bounds();
+    let c = (b.min + b.max) * 0.5;
+    let r = (b.max - b.min).length() * 0.5;
+    let baked = GridDensity::bake(d, look.cell)?;
+    bar.advance(1);
+    let scene = Scene {
+        sun: Some(Sun {
+            direction: Vec3::new(-0.5, -0.6, 0.62).normalize(),
+            irradiance: Vec3::new(3.2, 3.0, 2.7),
+        }),
+        ..Scene::new(
+            &baked,
+            MediumParams {
+                extinction,
+                ..MediumParams::default()
+            },
+            Vec3::new(0.18, 0.3, 0.55),
+        )
+    };
+    let settings = FastSettings {
+        step: look.cell * 0.5,
+        shadows: Shadows::Table(look.shadow_nodes),
+        scattering: Scattering::Cache(CacheParams {
+            events: look.cache_events,
+            ..CacheParams::default()
+        }),
+        ..FastSettings::default()
+    };
+    let camera = LookAtCamera::look_at(
+        c + view * r,
+        c,
+        Vec3::Z,
+        40f32.to_radians(),
+        look.width as u32,
+        look.height as u32,
+    )?;
+    let fast = FastRenderer::new(&scene, settings)?;
+    bar.advance(1);
+    let image = fast.render(&camera)?;
+    bar.advance(1);
+    Ok(image.tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
+}
+
+/// Images side by side with 4 px white gaps.
+pub fn strip(shots: &[Image]) -> natura::core::Result<Image> {
+    let (w, h) = (shots[0].width(), shots[0].height());
+    Image::from_fn(w * shots.len() + 4 * (shots.len() - 1), h, |x, y| {
+        let (k, r) = (x / (w + 4), x % (w + 4));
+        if r >= w {
+            Vec3::ONE
+        } else {
+            shots[k].get(r, y).unwrap_or(Vec3::ONE)
+        }
+    })
+}
