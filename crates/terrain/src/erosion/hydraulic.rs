@@ -625,6 +625,50 @@ mod tests {
         (hf.heights().sum() + m.sediment().sum(), m.water().sum())
     }
 
+    /// Erratum 1: over capacity, the excess settles at `v`, the cell the
+    /// water leaves (Musgrave 1993, §2.4.1), not at the receiving `u` as
+    /// Musgrave et al. 1989, §4.1 prints. A 3 × 3 field, flat but for a
+    /// raised centre holding water and more sediment than the water can
+    /// carry: after one step the centre has risen by exactly
+    /// `K_d (s − C_s)` and the eight receivers have not moved (the printed
+    /// rule would raise them and leave the centre as it was).
+    #[test]
+    fn deposition_over_capacity_lands_where_the_water_leaves() {
+        let mut hf =
+            HeightField::from_fn(3, 3, 1.0, |i, j| if (i, j) == (1, 1) { 0.1 } else { 0.0 })
+                .unwrap();
+        let p = MusgraveParams {
+            rain_period: 0,
+            ..Default::default()
+        };
+        let mut m = MusgraveHydraulic::new(p.clone(), &hf).unwrap();
+        let mut w = Grid2::new(3, 3, 0.0f32).unwrap();
+        w[(1, 1)] = 0.05;
+        m.set_water(w).unwrap();
+        let s_v = 1.0f32;
+        m.sediment[(1, 1)] = s_v;
+        m.run(&mut hf, 1, &NoProgress).unwrap();
+        // All 0.05 m of water leaves (half the 0.15 m drop would be more),
+        // carrying C_s = K_c·ΔW; K_d of the excess settles at the centre.
+        let c_s = p.k_c as f32 * 0.05;
+        let settled = p.k_d as f32 * (s_v - c_s);
+        let h = hf.heights();
+        assert!(
+            (h[(1, 1)] - (0.1 + settled)).abs() < 1e-6,
+            "centre {}",
+            h[(1, 1)]
+        );
+        for (i, j) in (0..3).flat_map(|i| (0..3).map(move |j| (i, j))) {
+            if (i, j) != (1, 1) {
+                assert_eq!(h[(i, j)], 0.0, "receiver ({i}, {j})");
+            }
+        }
+        // Nothing is lost: the bed, the suspended load and what was carried
+        // add up to the centre's 0.1 m and its 1 m of sediment.
+        let total = h.sum() + m.sediment().sum();
+        assert!((total - 1.1).abs() < 1e-5, "{total}");
+    }
+
     #[test]
     fn conserves_material_and_water_closed() {
         let mut hf = tilted(32);
