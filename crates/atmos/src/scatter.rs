@@ -171,6 +171,31 @@ mod tests {
         assert!(Phase::CornetteShanks(0.8).validate().is_ok());
     }
 
+    /// Eq. 4.0 (Musgrave 1993, §4.1.2) divides by the number density `N`;
+    /// since `n − 1` is itself proportional to `N`, the coefficient grows
+    /// with density: at a fraction `q` of the reference density it is
+    /// `q·β₀` (to the size of `n − 1`, from `(n² − 1)² = (n − 1)²(n + 1)²`).
+    /// Dividing by the local `N` while holding `n` fixed, the reading the
+    /// equation invites, would give `β₀/q` instead.
+    #[test]
+    fn rayleigh_grows_with_density_not_against_it() {
+        let (n1, big_n) = (2.9e-4, 2.545e25);
+        let b0 = rayleigh_coefficient(550.0, n1, big_n, 1.0).unwrap();
+        for q in [0.05, 0.37, 1.0, 1.8] {
+            let physical = rayleigh_coefficient(550.0, q * n1, q * big_n, 1.0).unwrap();
+            assert!(
+                (physical / (q * b0) - 1.0).abs() < 1e-3,
+                "q {q}: {physical} vs {}",
+                q * b0
+            );
+            let misread = rayleigh_coefficient(550.0, n1, q * big_n, 1.0).unwrap();
+            assert!((misread / (b0 / q) - 1.0).abs() < 1e-12);
+            if q != 1.0 {
+                assert!((misread / physical - 1.0).abs() > 0.5);
+            }
+        }
+    }
+
     #[test]
     fn rayleigh_follows_inverse_fourth_power() {
         let b550 = rayleigh_coefficient(550.0, 3e-4, 2.545e25, 1.0).unwrap();

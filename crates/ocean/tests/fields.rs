@@ -144,6 +144,37 @@ fn fast_path_matches_the_direct_sum_at_grid_points() {
     }
 }
 
+/// The resolution paragraph of Tessendorf 2001, §3.4 swaps N and M in
+/// `Δx = Lx/N`, `Δz = Lz/M`; eq. 19 is right. On a patch whose sample
+/// counts (64 × 16) and lengths (120 m × 80 m) both differ, the FFT grid
+/// matches the direct sum of eq. 19 only if sample (i, j) sits at
+/// (i·Lx/N, j·Ly/M): with the swapped spacings it would sit at
+/// (i·Lx/M, j·Ly/N), where the surface is different.
+#[test]
+fn a_non_square_patch_samples_eq_19_at_lx_over_n_and_ly_over_m() {
+    let p = small(64, 16, 0.5);
+    let ocean = Ocean::new(&p, &phillips(7.0), Seed(12)).unwrap();
+    let t = 2.0;
+    let frame = ocean.evaluate(t).unwrap();
+    let c = p.cell_size();
+    assert_eq!((c.x, c.y), (120.0 / 64.0, 80.0 / 16.0));
+    let h = frame.field(FrameField::Height);
+    let tol = 2e-5 * f64::from(rms(h).max(1e-3));
+    let (mut swapped_err, mut n) = (0.0, 0.0);
+    for (i, j) in [(0, 0), (5, 3), (63, 15), (40, 9), (17, 12)] {
+        let right = ocean.sample_direct(i as f64 * c.x, j as f64 * c.y, t);
+        assert!(
+            (f64::from(h[(i, j)]) - right.height).abs() < tol,
+            "({i}, {j})"
+        );
+        let swapped = ocean.sample_direct(i as f64 * p.lx / 16.0, j as f64 * p.ly / 64.0, t);
+        swapped_err += (f64::from(h[(i, j)]) - swapped.height).abs();
+        n += 1.0;
+    }
+    // Sample (0, 0) agrees under both readings; the rest do not.
+    assert!(swapped_err / n > 100.0 * tol, "{}", swapped_err / n);
+}
+
 #[test]
 fn periodic_in_space() {
     let p = small(32, 16, 0.5);

@@ -2,6 +2,7 @@
 //! paper's step size, falling drops and the particle band.
 
 use super::*;
+use natura_fluid::liquid::ObjectMode;
 
 #[test]
 fn reinitialisation_restores_distance() {
@@ -174,5 +175,63 @@ fn a_falling_drop_follows_gravity_and_particles_respect_the_band() {
         ((l.volume() - v0) / v0).abs() < 0.05,
         "{v0} → {}",
         l.volume()
+    );
+}
+
+/// Foster & Fedkiw 2001, §9 states two rules for object velocities that
+/// contradict each other: set the normal velocity to the object's always
+/// ([`ObjectMode::StickyNormal`]), or only where the liquid would flow into
+/// the object ([`ObjectMode::Separating`], the default). A plate resting on
+/// a still pool, in zero gravity, lifts off at 0.2 m/s: separating, the
+/// pool stays still; sticky, the plate drags the liquid up with it.
+#[test]
+fn a_plate_lifting_off_a_pool_drags_it_only_when_sticky() {
+    let run = |mode: ObjectMode| {
+        let d = Dims::plane(32, 32).unwrap();
+        let h = 1.0 / 32.0;
+        let params = LiquidParams {
+            gravity: Vec3::ZERO,
+            object_mode: mode,
+            ..LiquidParams::default()
+        };
+        let mut l = Liquid::new(d, h, params).unwrap();
+        l.fill(
+            Shape::Cuboid {
+                min: Vec3::ZERO,
+                max: Vec3::new(1.0, h, 0.5),
+            },
+            Vec3::ZERO,
+        )
+        .unwrap();
+        l.add_obstacle(Obstacle {
+            shape: Shape::Cuboid {
+                min: Vec3::new(0.25, 0.0, 0.5),
+                max: Vec3::new(0.75, h, 0.6),
+            },
+            velocity: Vec3::new(0.0, 0.0, 0.2),
+            angular_velocity: Vec3::ZERO,
+            temperature: None,
+        })
+        .unwrap();
+        l.step(0.01).unwrap();
+        // The fastest vertical velocity inside the pool (faces between two
+        // liquid cells, below the plate's bottom at z = 0.5 m), and the one
+        // just under the plate's middle.
+        let w = l.velocity().comp(2);
+        let fastest = (0..32)
+            .flat_map(|i| (1..16).map(move |k| (i, k)))
+            .map(|(i, k)| w[(i, 0, k)].abs())
+            .fold(0.0f32, f32::max);
+        (fastest, w[(16, 0, 15)])
+    };
+    let (e_sep, w_sep) = run(ObjectMode::Separating);
+    let (e_sticky, w_sticky) = run(ObjectMode::StickyNormal);
+    assert!(
+        e_sep < 1e-8 && w_sep.abs() < 1e-6,
+        "separating: {e_sep} {w_sep}"
+    );
+    assert!(
+        w_sticky > 0.05 && e_sticky > 1e-5,
+        "sticky: {e_sticky} {w_sticky}"
     );
 }
