@@ -269,3 +269,34 @@ fn trifoliate_leaves_change_the_picture_not_the_clone() {
     }
     assert_eq!(gd.start, gt.start, "the spacers are the same");
 }
+
+/// The leaf radius is printed `sqrt(15-x*5)π` (Měch & Prusinkiewicz 1996,
+/// Fig. 6's listing); read here as the radius of a disc of area `15 − 5x`,
+/// `sqrt((15 − 5x)/π)`. Every ramet's disc has an area in `[10, 15]` (light
+/// `x` in `[0, 1]`): radii 1.78 to 2.19, where the printed form would give
+/// 9.9 to 12.2 — five times wider than the spacers are long.
+#[test]
+fn ramet_leaves_are_discs_of_area_fifteen_minus_five_x() {
+    let p = ClonalParams {
+        steps: 60,
+        background: 0.6,
+        ..strip(7)
+    };
+    assert_eq!(p.leaf_area, [15.0, 5.0]);
+    let (run, _) = clonal(&p).unwrap();
+    let radii = first_params(&run, "@o");
+    assert!(radii.len() > 5, "{}", radii.len());
+    for r in &radii {
+        let area = std::f64::consts::PI * r * r;
+        assert!(
+            (10.0 - 1e-9..=15.0 + 1e-9).contains(&area),
+            "radius {r}, area {area}"
+        );
+    }
+    // Ramets in the half light (0.6, area 12) and in full light (area 10)
+    // both occur.
+    let (lo, hi) = radii
+        .iter()
+        .fold((f64::MAX, f64::MIN), |a, &r| (a.0.min(r), a.1.max(r)));
+    assert!(hi - lo > 0.1, "{lo} {hi}");
+}

@@ -185,3 +185,31 @@ fn params_fill_left_out_keys_and_refuse_unknown_ones() {
     );
     assert!(serde_json::from_str::<RootParams>(r#"{"stepz": 5}"#).is_err());
 }
+
+/// p5 is printed `[(BrAngle[n])A(…)…]` (Měch & Prusinkiewicz 1996, Fig. 8's
+/// listing): the turn symbol was lost. Restored as `+(BrAngle[n])`, every
+/// lateral root starts by turning away from its parent by the branching
+/// angle of its parent's order: each `[` of the grown string opens with
+/// `+(BrAngle[0])` or `+(BrAngle[1])` (the random heading changes never hit
+/// those values exactly), and the laterals leave their parents at that
+/// angle give or take the heading's own random change.
+#[test]
+fn lateral_roots_turn_by_the_branching_angle() {
+    let p = halves(11);
+    let (run, _) = roots(&p).unwrap();
+    let open = run.lsystem.symbol("[").unwrap();
+    let plus = run.lsystem.symbol("+").unwrap();
+    let s = &run.string;
+    let mut laterals = 0;
+    for i in (0..s.len()).filter(|&i| s.symbol(i) == open) {
+        assert_eq!(s.symbol(i + 1), plus, "module after [ at {i}");
+        let a = s.params(i + 1)[0];
+        assert!(
+            p.branch_angle_deg.contains(&a),
+            "lateral at {i} turns by {a}, not by {:?}",
+            p.branch_angle_deg
+        );
+        laterals += 1;
+    }
+    assert!(laterals > 5, "{laterals} laterals");
+}
