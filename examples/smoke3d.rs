@@ -29,7 +29,7 @@ use natura::fluid::plume::Plume;
 use natura::fluid::smoke::Smoke;
 use natura::volume::grid::SmokeVolume;
 use natura::volume::scene::SmokeAroundSphere;
-use natura::volume::transport::FastRenderer;
+use natura::volume::transport::{CacheParams, FastRenderer, Scattering};
 
 /// A 3-D smoke plume rising around a sphere, with vorticity confinement
 /// and monotone cubic advection. Writes smoke3d.png (four moments side by
@@ -94,7 +94,7 @@ fn smoke3d() -> Run {
         smoke.step(dt)?;
         bar.advance(1);
         if (s + 1) % per_frame == 0 || s + 1 == steps || keep.contains(&(s + 1)) {
-            let img = render(&smoke, plume.sphere(), if quick { 48 } else { 200 })?;
+            let img = render(&smoke, plume.sphere(), if quick { 48 } else { 200 }, quick)?;
             img.save_png(frame_dir.join(format!("render_{:04}.png", s + 1)))?;
             let sl = slice(smoke.density(), 1, n / 2)?;
             field_image(&sl, Ramp::Magma, 0.0, 1.0)
@@ -134,7 +134,15 @@ fn smoke3d() -> Run {
 /// sphere's and the glow's) and noise detail below the solver's cells, warm
 /// smoke glowing by its temperature, the obstacle visible and casting its
 /// shadow on the smoke and the floor.
-fn render(smoke: &Smoke, sphere: (Vec3, f32), width: usize) -> natura::volume::Result<Image> {
+///
+/// With `quick`, the multiple-scattering cache traces a fortieth of its
+/// default events (its set-up cost; the picture is noisier).
+fn render(
+    smoke: &Smoke,
+    sphere: (Vec3, f32),
+    width: usize,
+    quick: bool,
+) -> natura::volume::Result<Image> {
     let vol = SmokeVolume::from_solver(
         smoke.density(),
         smoke.temperature().clone(),
@@ -143,7 +151,15 @@ fn render(smoke: &Smoke, sphere: (Vec3, f32), width: usize) -> natura::volume::R
     )?;
     let shot = SmokeAroundSphere::new(vol, sphere, width as u32, (width * 8 / 5) as u32)?;
     let scene = shot.scene();
-    let fast = FastRenderer::new(&scene, shot.fast_settings())?;
+    let mut settings = shot.fast_settings();
+    if quick {
+        settings.scattering = Scattering::Cache(CacheParams {
+            events: 100_000,
+            local: 100_000,
+            ..CacheParams::default()
+        });
+    }
+    let fast = FastRenderer::new(&scene, settings)?;
     Ok(fast
         .render(&shot.camera())?
         .tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
