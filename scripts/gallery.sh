@@ -42,7 +42,7 @@ declare -A area=(
   [trace_heightmap]=trace [trace_panorama]=trace
   [sky]=atmos [rainbow]=atmos [mirage]=atmos
   [ocean]=ocean
-  [figures_ffc]=figures [figures_tessendorf]=figures
+  [figures_ffc]=figures [figures_tessendorf]=figures [figures_musgrave]=figures
   [smoke2d]=fluid [smoke3d]=fluid [liquid2d]=fluid
   [planet]=texture [planets]=texture [textures]=texture/textures
   [clouds]=volume [cloudscape]=volume [steam]=volume
