@@ -2,8 +2,9 @@
 //! example shows, re-made by composing natura's models: "Misty Mountains"
 //! (Pl. 1.2, strata in exponential mist), "Zabriskie Point"'s planar mirage
 //! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2,
-//! MKM 5), the dispersing prism under the empirical bow (Pl. 4.9) and the
-//! full-circle rainbow modulated by fBm (Pl. 4.12).
+//! MKM 5), the "Fractal Mandala" of glowing gas (Pl. 4.8), the dispersing
+//! prism under the empirical bow (Pl. 4.9) and the full-circle rainbow
+//! modulated by fBm (Pl. 4.12).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -37,8 +38,9 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie
-/// Point", the planar-to-space-filling patch, the prism under the empirical
-/// bow and the full-circle rainbow modulated by fBm.
+/// Point", the planar-to-space-filling patch, the fractal mandala, the
+/// prism under the empirical bow and the full-circle rainbow modulated by
+/// fBm.
 #[derive(Parser)]
 #[command(name = "figures_musgrave", version)]
 struct Cli {
@@ -65,6 +67,8 @@ enum Fig {
     MistyMountains,
     /// Pl. 1.3: "Zabriskie Point": badlands over a planar mirage
     Zabriskie,
+    /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
+    Mandala,
     /// Pl. 4.9: a dispersing prism on a checkerboard under the empirical bow
     Prism,
     /// Pl. 4.12: a full-circle rainbow on black, modulated by 2-D fBm
@@ -76,6 +80,7 @@ impl Figure for Fig {
         Fig::MistyMountains,
         Fig::Zabriskie,
         Fig::SpaceFilling,
+        Fig::Mandala,
         Fig::Prism,
         Fig::FullCircleBow,
     ];
@@ -85,6 +90,7 @@ impl Figure for Fig {
             Fig::MistyMountains => &["musgrave_pl1-2_misty_mountains.png"],
             Fig::Zabriskie => &["musgrave_pl1-3_zabriskie_mirage.png"],
             Fig::SpaceFilling => &["musgrave_pl2-2_space_filling.png"],
+            Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
         }
@@ -95,6 +101,8 @@ type R<T> = Result<T, Exit>;
 
 #[path = "musgrave/landscape.rs"]
 mod landscape;
+#[path = "musgrave/mandala.rs"]
+mod mandala;
 #[path = "musgrave/prism.rs"]
 mod prism;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
@@ -111,6 +119,7 @@ fn figures() -> Run {
             Fig::MistyMountains => vec![misty_mountains(cli.seed, cli.quick)?],
             Fig::Zabriskie => vec![zabriskie(cli.seed, cli.quick)?],
             Fig::SpaceFilling => vec![space_filling(cli.seed, cli.quick)?],
+            Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
         })
