@@ -3,8 +3,9 @@
 //! (Pl. 1.2, strata in exponential mist), "Zabriskie Point"'s planar mirage
 //! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2,
 //! MKM 5), the "Fractal Mandala" of glowing gas (Pl. 4.8), the dispersing
-//! prism under the empirical bow (Pl. 4.9) and the full-circle rainbow
-//! modulated by fBm (Pl. 4.12).
+//! prism under the empirical bow (Pl. 4.9), the full-circle rainbow
+//! modulated by fBm (Pl. 4.12) and the multifractal Milky Way (Musgrave
+//! 2001, fig. 32).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -39,8 +40,8 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie
 /// Point", the planar-to-space-filling patch, the fractal mandala, the
-/// prism under the empirical bow and the full-circle rainbow modulated by
-/// fBm.
+/// prism under the empirical bow, the full-circle rainbow modulated by fBm
+/// and the multifractal Milky Way (Musgrave 2001).
 #[derive(Parser)]
 #[command(name = "figures_musgrave", version)]
 struct Cli {
@@ -73,6 +74,8 @@ enum Fig {
     Prism,
     /// Pl. 4.12: a full-circle rainbow on black, modulated by 2-D fBm
     FullCircleBow,
+    /// Musgrave 2001, fig. 32: a multifractal Milky Way
+    MilkyWay,
 }
 
 impl Figure for Fig {
@@ -83,6 +86,7 @@ impl Figure for Fig {
         Fig::Mandala,
         Fig::Prism,
         Fig::FullCircleBow,
+        Fig::MilkyWay,
     ];
 
     fn files(self) -> &'static [&'static str] {
@@ -93,6 +97,7 @@ impl Figure for Fig {
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
+            Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
         }
     }
 }
@@ -103,6 +108,8 @@ type R<T> = Result<T, Exit>;
 mod landscape;
 #[path = "musgrave/mandala.rs"]
 mod mandala;
+#[path = "musgrave/milky_way.rs"]
+mod milky_way;
 #[path = "musgrave/prism.rs"]
 mod prism;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
@@ -122,6 +129,7 @@ fn figures() -> Run {
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
+            Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
         })
     })
 }
