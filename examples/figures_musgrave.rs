@@ -4,8 +4,8 @@
 //! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2,
 //! MKM 5), the "Fractal Mandala" of glowing gas (Pl. 4.8), the dispersing
 //! prism under the empirical bow (Pl. 4.9), the full-circle rainbow
-//! modulated by fBm (Pl. 4.12) and the multifractal Milky Way (Musgrave
-//! 2001, fig. 32).
+//! modulated by fBm (Pl. 4.12), "Bay Fog" (Pl. 5.1) and the multifractal
+//! Milky Way (Musgrave 2001, fig. 32).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -40,8 +40,8 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie
 /// Point", the planar-to-space-filling patch, the fractal mandala, the
-/// prism under the empirical bow, the full-circle rainbow modulated by fBm
-/// and the multifractal Milky Way (Musgrave 2001).
+/// prism under the empirical bow, the full-circle rainbow modulated by
+/// fBm, "Bay Fog" and the multifractal Milky Way (Musgrave 2001).
 #[derive(Parser)]
 #[command(name = "figures_musgrave", version)]
 struct Cli {
@@ -74,6 +74,8 @@ enum Fig {
     Prism,
     /// Pl. 4.12: a full-circle rainbow on black, modulated by 2-D fBm
     FullCircleBow,
+    /// Pl. 5.1: "Bay Fog": an fBm fog sheet on a plane, with its shadows
+    BayFog,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
 }
@@ -86,6 +88,7 @@ impl Figure for Fig {
         Fig::Mandala,
         Fig::Prism,
         Fig::FullCircleBow,
+        Fig::BayFog,
         Fig::MilkyWay,
     ];
 
@@ -97,6 +100,7 @@ impl Figure for Fig {
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
+            Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
         }
     }
@@ -104,6 +108,8 @@ impl Figure for Fig {
 
 type R<T> = Result<T, Exit>;
 
+#[path = "musgrave/bay_fog.rs"]
+mod bay_fog;
 #[path = "musgrave/landscape.rs"]
 mod landscape;
 #[path = "musgrave/mandala.rs"]
@@ -129,6 +135,7 @@ fn figures() -> Run {
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
+            Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
         })
     })
@@ -172,6 +179,7 @@ fn misty_mountains(seed: u64, quick: bool) -> R<Image> {
         medium: &mist,
         sun: Vec3::new(-0.6, 0.5, 0.45).normalize(),
         sky: misty_sky,
+        shadows: false,
     };
     let (w, h) = if quick { (320, 180) } else { (1200, 675) };
     let x0 = 12_000.0;
@@ -261,6 +269,7 @@ fn zabriskie(seed: u64, quick: bool) -> R<Image> {
         medium: &haze,
         sun: Vec3::new(-0.55, -0.45, 0.70).normalize(),
         sky: desert_sky,
+        shadows: false,
     };
     let look = |o: Vec3, d: Vec3| scene.look(o, d);
     let (w, h) = if quick { (360, 150) } else { (1200, 500) };

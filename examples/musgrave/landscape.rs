@@ -27,6 +27,8 @@ pub(crate) struct Landscape<'a, M> {
     pub sun: Vec3,
     /// The sky's radiance by direction, before the medium.
     pub sky: fn(Vec3) -> Vec3,
+    /// Whether the medium shades the sunlight too (a fog sheet's shadows).
+    pub shadows: bool,
 }
 
 impl<M: Medium> Landscape<'_, M> {
@@ -51,7 +53,18 @@ impl<M: Medium> Landscape<'_, M> {
                 let from = Ray::new(h.point + h.geometric_normal * 0.5, self.sun);
                 let shadow = lit > 0.0 && self.tracer.occluded(&from, 0.0, f32::INFINITY);
                 let direct = if shadow { 0.0 } else { lit };
-                let c = albedo * (sun_light * direct + sky_light * (0.5 + 0.5 * n.z));
+                let through = match Dir3::new(self.sun.as_dvec3()) {
+                    Ok(s) if self.shadows && direct > 0.0 => {
+                        let tau = self.medium.optical_depth_to_infinity(p, s);
+                        Vec3::new(
+                            (-tau.x).exp() as f32,
+                            (-tau.y).exp() as f32,
+                            (-tau.z).exp() as f32,
+                        )
+                    }
+                    _ => Vec3::ONE,
+                };
+                let c = albedo * (sun_light * through * direct + sky_light * (0.5 + 0.5 * n.z));
                 self.medium
                     .composite(o.as_dvec3(), p, c.as_dvec3())
                     .as_vec3()
