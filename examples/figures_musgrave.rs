@@ -62,12 +62,12 @@ struct Cli {
 /// The plates, in the dissertation's order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Fig {
-    /// Pl. 2.2 (MKM 5): a patch going from planar to space filling, β = 1/x
-    SpaceFilling,
     /// Pl. 1.2: "Misty Mountains": strata and exponential mist
     MistyMountains,
     /// Pl. 1.3: "Zabriskie Point": badlands over a planar mirage
     Zabriskie,
+    /// Pl. 2.2 (MKM 5): a patch going from planar to space filling, β = 1/x
+    SpaceFilling,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
     Mandala,
     /// Pl. 4.9: a dispersing prism on a checkerboard under the empirical bow
