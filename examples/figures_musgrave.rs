@@ -1,11 +1,12 @@
 //! Musgrave's plates (Musgrave 1993, Musgrave et al. 1989) that no other
 //! example shows, re-made by composing natura's models: "Misty Mountains"
 //! (Pl. 1.2, strata in exponential mist), "Zabriskie Point"'s planar mirage
-//! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2,
-//! MKM 5), the "Fractal Mandala" of glowing gas (Pl. 4.8), the dispersing
-//! prism under the empirical bow (Pl. 4.9), the full-circle rainbow
-//! modulated by fBm (Pl. 4.12), "Bay Fog" (Pl. 5.1) and the multifractal
-//! Milky Way (Musgrave 2001, fig. 32).
+//! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2, MKM
+//! 5), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
+//! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
+//! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
+//! fig. 32).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -38,10 +39,11 @@ use natura::texture::earth::{Strata, StrataParams};
 use natura::trace::{MipmapTracer, Ray, Tracer};
 
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
-/// example shows: "Misty Mountains", the planar mirage of "Zabriskie
-/// Point", the planar-to-space-filling patch, the fractal mandala, the
-/// prism under the empirical bow, the full-circle rainbow modulated by
-/// fBm, "Bay Fog" and the multifractal Milky Way (Musgrave 2001).
+/// example shows: "Misty Mountains", the planar mirage of "Zabriskie Point",
+/// the planar-to-space-filling patch, DLA in radial fog, the fractal
+/// mandala, the prism under the empirical bow, the full-circle rainbow
+/// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
+/// 2001).
 #[derive(Parser)]
 #[command(name = "figures_musgrave", version)]
 struct Cli {
@@ -68,6 +70,8 @@ enum Fig {
     Zabriskie,
     /// Pl. 2.2 (MKM 5): a patch going from planar to space filling, β = 1/x
     SpaceFilling,
+    /// Pl. 4.7: a diffusion-limited aggregate in radial fog
+    DlaFog,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
     Mandala,
     /// Pl. 4.9: a dispersing prism on a checkerboard under the empirical bow
@@ -85,6 +89,7 @@ impl Figure for Fig {
         Fig::MistyMountains,
         Fig::Zabriskie,
         Fig::SpaceFilling,
+        Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
         Fig::FullCircleBow,
@@ -97,6 +102,7 @@ impl Figure for Fig {
             Fig::MistyMountains => &["musgrave_pl1-2_misty_mountains.png"],
             Fig::Zabriskie => &["musgrave_pl1-3_zabriskie_mirage.png"],
             Fig::SpaceFilling => &["musgrave_pl2-2_space_filling.png"],
+            Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
@@ -110,6 +116,8 @@ type R<T> = Result<T, Exit>;
 
 #[path = "musgrave/bay_fog.rs"]
 mod bay_fog;
+#[path = "musgrave/dla_fog.rs"]
+mod dla_fog;
 #[path = "musgrave/landscape.rs"]
 mod landscape;
 #[path = "musgrave/mandala.rs"]
@@ -132,6 +140,7 @@ fn figures() -> Run {
             Fig::MistyMountains => vec![misty_mountains(cli.seed, cli.quick)?],
             Fig::Zabriskie => vec![zabriskie(cli.seed, cli.quick)?],
             Fig::SpaceFilling => vec![space_filling(cli.seed, cli.quick)?],
+            Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
