@@ -11,6 +11,7 @@
 //! | [`ExponentialMist`] | Musgrave 1993, §4.1.5 | closed form with `(1 − e^{−x})/x`, exact for horizontal rays |
 //! | [`RadialAtmosphere`] | Musgrave 1993, §4.1.6–4.1.6.4 | exact Gaussian-radial line integral with `erf`/`erfcx` |
 //! | [`Umbra`] | Musgrave 1993, §4.1.6.5 | day/night media switched on a shadow cylinder |
+//! | [`FogSheet`] | Musgrave 1993, Plate 5.1 ("Bay Fog") | a texture at the plane's crossing times the length below it |
 //!
 //! Colours are linear RGB `DVec3` (or any three channels); each channel has its
 //! own extinction, which is all of Musgrave's Rayleigh approximation
@@ -53,11 +54,13 @@ macro_rules! beer_medium {
 }
 
 mod exponential;
+mod fog_sheet;
 mod homogeneous;
 mod radial;
 mod umbra;
 
 pub use exponential::ExponentialMist;
+pub use fog_sheet::FogSheet;
 pub use homogeneous::HomogeneousFog;
 pub use radial::RadialAtmosphere;
 pub use umbra::Umbra;

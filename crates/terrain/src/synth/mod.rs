@@ -4,6 +4,7 @@
 //! quantised altitude.
 
 pub mod bspline;
+pub mod dla;
 pub mod fault;
 pub mod field;
 pub mod mesh;
@@ -13,6 +14,7 @@ pub mod subdivision;
 pub mod terrace;
 
 pub use bspline::{bspline_surface, cubic_bspline_weights};
+pub use dla::{MAX_DLA_PARTICLES, dla};
 pub use fault::{FaultParams, poisson_faults};
 pub use field::{FieldMapping, fill_field, fill_noise, fill_rows};
 pub use mesh::{TriMesh, subdivide_mesh, subdivide_mesh_until};

@@ -1,0 +1,751 @@
+//! Musgrave's plates (Musgrave 1993, Musgrave et al. 1989) that no other
+//! example shows, re-made by composing natura's models: "Misty Mountains"
+//! (Pl. 1.2, strata in exponential mist), "Zabriskie Point"'s planar mirage
+//! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2, MKM
+//! 5), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
+//! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
+//! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
+//! fig. 32).
+//!
+//! ```text
+//! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
+//! cargo run --release --example figures_musgrave -- --quick --out /tmp/musgrave
+//! cargo run --release --example figures_musgrave -- --only space-filling
+//! cargo run --release --example figures_musgrave -- --help       # every flag and its default
+//! ```
+//!
+//! One picture per plate (`musgrave_pl2-2_space_filling.png`, …);
+//! docs/figures.md sets each beside the source's caption. The world is z up.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, ValueEnum};
+use common::figures::{self, Figure};
+use common::{Exit, Run, outln};
+use natura::atmos::Dir3;
+use natura::atmos::medium::{ExponentialMist, HomogeneousFog};
+use natura::atmos::mirage::{PlanarMirage, StratifiedAir};
+use natura::atmos::rainbow::{Rainbow, RainbowParams};
+use natura::core::camera::PinholeCamera;
+use natura::core::glam::{DVec2, DVec3, Vec3};
+use natura::core::preview::{PreviewCamera, PreviewProjection, Projector, Raster, facing, lambert};
+use natura::core::{HeightField, Image};
+use natura::noise::{Driven, DrivenKind, Fade, Fbm, Field, Param, Perlin, Spectral};
+use natura::texture::earth::{Strata, StrataParams};
+use natura::trace::{MipmapTracer, Ray, Tracer};
+
+/// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
+/// example shows: "Misty Mountains", the planar mirage of "Zabriskie Point",
+/// the planar-to-space-filling patch, DLA in radial fog, the fractal
+/// mandala, the prism under the empirical bow, the full-circle rainbow
+/// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
+/// 2001).
+#[derive(Parser)]
+#[command(name = "figures_musgrave", version)]
+struct Cli {
+    /// Small and fast (CI): smaller patches and pictures
+    #[arg(long)]
+    quick: bool,
+    /// Only this figure; repeat for several [default: all]
+    #[arg(long, value_enum, value_name = "NAME")]
+    only: Vec<Fig>,
+    /// Random seed
+    #[arg(long, default_value_t = 1993)]
+    seed: u64,
+    /// Output directory (created if needed)
+    #[arg(long, value_name = "DIR", default_value = "figures_musgrave")]
+    out: PathBuf,
+}
+
+/// The plates, in the dissertation's order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Fig {
+    /// Pl. 1.2: "Misty Mountains": strata and exponential mist
+    MistyMountains,
+    /// Pl. 1.3: "Zabriskie Point": badlands over a planar mirage
+    Zabriskie,
+    /// Pl. 2.2 (MKM 5): a patch going from planar to space filling, β = 1/x
+    SpaceFilling,
+    /// Pl. 4.7: a diffusion-limited aggregate in radial fog
+    DlaFog,
+    /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
+    Mandala,
+    /// Pl. 4.9: a dispersing prism on a checkerboard under the empirical bow
+    Prism,
+    /// Pl. 4.12: a full-circle rainbow on black, modulated by 2-D fBm
+    FullCircleBow,
+    /// Pl. 5.1: "Bay Fog": an fBm fog sheet on a plane, with its shadows
+    BayFog,
+    /// Musgrave 2001, fig. 32: a multifractal Milky Way
+    MilkyWay,
+}
+
+impl Figure for Fig {
+    const ALL: &'static [Fig] = &[
+        Fig::MistyMountains,
+        Fig::Zabriskie,
+        Fig::SpaceFilling,
+        Fig::DlaFog,
+        Fig::Mandala,
+        Fig::Prism,
+        Fig::FullCircleBow,
+        Fig::BayFog,
+        Fig::MilkyWay,
+    ];
+
+    fn files(self) -> &'static [&'static str] {
+        match self {
+            Fig::MistyMountains => &["musgrave_pl1-2_misty_mountains.png"],
+            Fig::Zabriskie => &["musgrave_pl1-3_zabriskie_mirage.png"],
+            Fig::SpaceFilling => &["musgrave_pl2-2_space_filling.png"],
+            Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
+            Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
+            Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
+            Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
+            Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
+            Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
+        }
+    }
+}
+
+type R<T> = Result<T, Exit>;
+
+#[path = "musgrave/bay_fog.rs"]
+mod bay_fog;
+#[path = "musgrave/dla_fog.rs"]
+mod dla_fog;
+#[path = "musgrave/landscape.rs"]
+mod landscape;
+#[path = "musgrave/mandala.rs"]
+mod mandala;
+#[path = "musgrave/milky_way.rs"]
+mod milky_way;
+#[path = "musgrave/prism.rs"]
+mod prism;
+use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
+
+fn main() -> ExitCode {
+    common::run(figures)
+}
+
+fn figures() -> Run {
+    let cli: Cli = common::parse();
+    let out = common::out_dir(&cli.out)?;
+    figures::make(&out, &cli.only, |fig| {
+        Ok(match fig {
+            Fig::MistyMountains => vec![misty_mountains(cli.seed, cli.quick)?],
+            Fig::Zabriskie => vec![zabriskie(cli.seed, cli.quick)?],
+            Fig::SpaceFilling => vec![space_filling(cli.seed, cli.quick)?],
+            Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
+            Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
+            Fig::Prism => vec![prism::prism_picture(cli.quick)?],
+            Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
+            Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
+            Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
+        })
+    })
+}
+
+// ---------------------------------------------------------------- Pl. 1.2
+
+/// Pl. 1.2's mist: extinction at the valley floor (per metre, slightly more
+/// in blue) and its scale height, m (the source gives neither).
+const MIST_EXTINCTION: [f64; 3] = [1.6e-3, 1.75e-3, 2.0e-3];
+const MIST_SCALE_HEIGHT_M: f64 = 400.0;
+
+/// Pl. 1.2's exponential-by-altitude mist (Musgrave 1993, §4.1.5).
+fn misty_mist() -> R<ExponentialMist> {
+    let [r, g, b] = MIST_EXTINCTION;
+    Ok(ExponentialMist::new(
+        DVec3::new(r, g, b),
+        DVec3::new(0.86, 0.88, 0.92),
+        0.0,
+        MIST_SCALE_HEIGHT_M,
+    )?)
+}
+
+/// Pl. 1.2 "Misty Mountains": ridged mountains banded by natura-texture's
+/// sedimentary strata, rising out of exponential mist that fills the
+/// valleys, the ridges receding into it.
+fn misty_mountains(seed: u64, quick: bool) -> R<Image> {
+    let n = if quick { 257 } else { 1025 };
+    let hf = ridged_field(seed, n, 24_000.0, 7000.0, 0.2, 1600.0, |_, _| 1.0)?;
+    let tracer = MipmapTracer::new(&hf)?;
+    let strata = Strata::new(StrataParams {
+        seed,
+        txtscale: 1.0 / 150.0,
+        turbscale: 0.15,
+        ..StrataParams::default()
+    })?;
+    let mist = misty_mist()?;
+    let scene = Landscape {
+        tracer: &tracer,
+        strata: &strata,
+        medium: &mist,
+        sun: Vec3::new(-0.6, 0.5, 0.45).normalize(),
+        sky: misty_sky,
+        shadows: false,
+    };
+    let (w, h) = if quick { (320, 180) } else { (1200, 675) };
+    let x0 = 12_000.0;
+    let ground = hf.height_at(x0, 1500.0).unwrap_or(0.0);
+    let eye = Vec3::new(x0, 1500.0, ground.max(0.0) + 1300.0);
+    let camera = PinholeCamera::look_at(
+        eye,
+        Vec3::new(x0, 18_000.0, 0.0),
+        Vec3::Z,
+        32f32.to_radians(),
+        w,
+        h,
+    )?;
+    let img = supersampled(w, h, if quick { 1 } else { 2 }, |x, y| {
+        scene.look(eye, camera.ray_at(x, y).dir.normalize())
+    })?;
+    outln(format_args!(
+        "  Pl. 1.2: mist extinction {:.2}/km at the floor, falling by e every {MIST_SCALE_HEIGHT_M} m",
+        MIST_EXTINCTION[1] * 1000.0
+    ))?;
+    Ok(img)
+}
+
+// ---------------------------------------------------------------- Pl. 1.3
+
+/// Air temperatures above and below Pl. 1.3's mirage plane, K: 20 °C air
+/// over a 60 °C layer on the desert floor (the source gives none).
+const MIRAGE_AIR_K: [f64; 2] = [293.15, 333.15];
+/// Sea-level pressure, Pa.
+const PRESSURE_PA: f64 = 101_325.0;
+/// The mirage plane's and the eye's heights above the floor, m.
+const MIRAGE_PLANE_M: f64 = 0.5;
+const EYE_M: f64 = 1.7;
+
+/// The mirage plane of Pl. 1.3 (Musgrave 1993, §4.3): one index step.
+fn mirage_plane() -> R<PlanarMirage> {
+    let [above, below] = MIRAGE_AIR_K;
+    Ok(PlanarMirage::from_temperatures(
+        MIRAGE_PLANE_M,
+        above,
+        below,
+        PRESSURE_PA,
+    )?)
+}
+
+/// Badlands: a flat floor, then separate ridged multifractal hills (the
+/// part above half the peak kept, up to 130 m) in a belt 3.6 km to 5.8 km
+/// out, on an 8 km square: gaps between them open onto the far floor and
+/// the sky, which the mirage mirrors.
+fn badlands(seed: u64, n: usize) -> R<HeightField> {
+    ridged_field(seed, n, 8192.0, 1600.0, 0.5, 130.0, |_, y| {
+        smoothstep(3600.0, 4400.0, y) * (1.0 - smoothstep(5000.0, 5800.0, y))
+    })
+}
+
+/// Pl. 1.3: badlands seen across a hot desert floor through Musgrave's
+/// planar mirage, whose normal an fBm bump tilts by about 0.1°: below the
+/// horizon, within the critical grazing angle, the sky and the feet of the
+/// hills appear mirrored. Strata texture on the hills, a light haze.
+fn zabriskie(seed: u64, quick: bool) -> R<Image> {
+    let plane = mirage_plane()?;
+    let critical = plane
+        .critical_grazing_angle()
+        .ok_or_else(|| Exit::new(2, "the mirage layer is not thinner"))?;
+    let hf = badlands(seed, if quick { 257 } else { 1025 })?;
+    let tracer = MipmapTracer::new(&hf)?;
+    let strata = Strata::new(StrataParams {
+        seed,
+        txtscale: 1.0 / 30.0,
+        ..StrataParams::default()
+    })?;
+    let bump = Fbm::new(
+        Perlin::new(seed ^ 0x13),
+        Spectral {
+            octaves: 4.0,
+            frequency: 0.02,
+            ..Spectral::default()
+        },
+    )?;
+    let haze = HomogeneousFog::new(
+        DVec3::new(2.2e-5, 2.8e-5, 3.6e-5),
+        DVec3::new(0.78, 0.82, 0.9),
+    )?;
+    let scene = Landscape {
+        tracer: &tracer,
+        strata: &strata,
+        medium: &haze,
+        sun: Vec3::new(-0.55, -0.45, 0.70).normalize(),
+        sky: desert_sky,
+        shadows: false,
+    };
+    let look = |o: Vec3, d: Vec3| scene.look(o, d);
+    let (w, h) = if quick { (360, 150) } else { (1200, 500) };
+    let eye = Vec3::new(4096.0, 300.0, EYE_M as f32);
+    let pitch = 0.55f32.to_radians();
+    let camera = PinholeCamera::look_at(
+        eye,
+        eye + Vec3::new(0.0, pitch.cos(), pitch.sin()),
+        Vec3::Z,
+        4.2f32.to_radians(),
+        w,
+        h,
+    )?;
+    let mut err = None;
+    let mut pixel = |x: f32, y: f32| {
+        let d = camera.ray_at(x, y).dir.normalize();
+        let hit_first = tracer.trace(&Ray::new(eye, d), 0.0, f32::INFINITY);
+        let Ok(dir) = Dir3::new(d.as_dvec3()) else {
+            return Vec3::ZERO;
+        };
+        let Some(meet) = plane.interact(eye.as_dvec3(), dir, None) else {
+            return look(eye, d);
+        };
+        if hit_first.is_some_and(|hh| f64::from(hh.t) < meet.point.distance(eye.as_dvec3())) {
+            return look(eye, d);
+        }
+        // The bumped normal at the meeting point.
+        let g = bump.eval_grad2(DVec2::new(meet.point.x, meet.point.y)).1 * 0.002;
+        let normal = match Dir3::new(DVec3::new(-g.x, -g.y, 1.0)) {
+            Ok(n) => n,
+            Err(e) => {
+                err.get_or_insert(e);
+                return Vec3::ZERO;
+            }
+        };
+        let Some(meet) = plane.interact(eye.as_dvec3(), dir, Some(normal)) else {
+            return look(eye, d);
+        };
+        let at = meet.point.as_vec3();
+        let r = meet.reflectance as f32;
+        let mut c = look(at + Vec3::Z * 1e-3, meet.reflected.as_vec3()) * r;
+        if let Some(t) = meet.refracted {
+            c += look(at - Vec3::Z * 1e-3, t.as_vec3()) * (1.0 - r);
+        }
+        c
+    };
+    let img = supersampled(w, h, if quick { 1 } else { 3 }, &mut pixel)?;
+    if let Some(e) = err {
+        return Err(e.into());
+    }
+    outln(format_args!(
+        "  Pl. 1.3: indices {:.6} over {:.6}; critical grazing angle {:.2}°, so the mirage starts {:.0} m out",
+        StratifiedAir::index_of(MIRAGE_AIR_K[0], PRESSURE_PA),
+        StratifiedAir::index_of(MIRAGE_AIR_K[1], PRESSURE_PA),
+        critical.to_degrees(),
+        (EYE_M - MIRAGE_PLANE_M) / critical.tan()
+    ))?;
+    Ok(img)
+}
+
+// ---------------------------------------------------------------- Pl. 2.2
+
+/// The spectral exponent β of a profile of fBm with exponent H: a profile's
+/// power spectrum falls as 1/f^β with β = 2H + 1 (Musgrave 1993, §2.2.1.4;
+/// natura-noise's [`GainConvention::H`](natura::noise::GainConvention::H)).
+/// Plate 2.3's pairs (H = 1, β = 3) and (H = 0, β = 1) obey it.
+fn beta_of_h(h: f64) -> f64 {
+    2.0 * h + 1.0
+}
+
+/// The H of β = 1/x: H = (1/x − 1)/2, which goes from ∞ (planar, 1/f^∞)
+/// as x → 0 to 0 (space filling, 1/f^1 in a profile) at x = 1. The source
+/// prints "H = 1/x − 3/2" (Musgrave 1993, §2.3.2.2; Musgrave et al. 1989,
+/// §3.2), which would be H = −1/2 at x = 1, past space filling, and would
+/// break Plate 2.3's pairs.
+fn h_of_x(x: f64) -> f64 {
+    0.5 * (1.0 / x - 1.0)
+}
+
+/// The H the source prints for β = 1/x.
+#[cfg(test)]
+fn printed_h_of_x(x: f64) -> f64 {
+    1.0 / x - 1.5
+}
+
+/// H across the patch, `h_of_x` of the point's x (the patch spans x in
+/// (0, 1]); unbounded as x → 0, so its bounds are infinite.
+#[derive(Clone, Copy, Debug)]
+struct BetaOverX;
+
+impl Field for BetaOverX {
+    fn eval2(&self, p: DVec2) -> f64 {
+        h_of_x(p.x)
+    }
+    fn eval3(&self, p: DVec3) -> f64 {
+        h_of_x(p.x)
+    }
+    fn bound(&self) -> f64 {
+        f64::INFINITY
+    }
+    fn lipschitz2(&self) -> f64 {
+        f64::INFINITY
+    }
+    fn lipschitz3(&self) -> f64 {
+        f64::INFINITY
+    }
+}
+
+/// The longest and shortest wavelengths of Plate 2.2 in patch widths: the
+/// upper and lower crossover scales "approximately 7 and 1/128"
+/// (Musgrave 1993, §2.3.2.2).
+const CROSSOVERS: [f64; 2] = [7.0, 1.0 / 128.0];
+
+/// Plate 2.2's fBm: Perlin noise with the sources' cubic fade, λ = 2, the
+/// first octave at the upper crossover and as many octaves as reach the
+/// lower one (log₂ 896 ≈ 9.81), H = (1/x − 1)/2 at each point.
+fn plate_2_2_fbm(seed: u64) -> R<Driven<Perlin>> {
+    let spectral = Spectral {
+        h: 0.5,
+        lacunarity: 2.0,
+        octaves: (CROSSOVERS[0] / CROSSOVERS[1]).log2(),
+        frequency: 1.0 / CROSSOVERS[0],
+        ..Spectral::default()
+    };
+    let basis = Perlin::with_fade(seed, Fade::Cubic);
+    Ok(Driven::new(basis, spectral, DrivenKind::Fbm)?
+        .with_h(Param::Field(std::sync::Arc::new(BetaOverX))))
+}
+
+/// The patch: `n` samples across x in (0, 1] (x = (i + 1)/n, never 0) and
+/// half as many along y, heights scaled by `relief`.
+fn patch(fbm: &Driven<Perlin>, n: usize, relief: f64) -> R<HeightField> {
+    let cell = 1.0 / n as f32;
+    let ny = n / 2;
+    Ok(HeightField::from_fn(n, ny, cell, |i, j| {
+        let p = DVec2::new((i + 1) as f64 / n as f64, (j + 1) as f64 / n as f64);
+        (relief * fbm.eval2(p)) as f32
+    })?)
+}
+
+/// A height field as triangles, two per cell.
+fn field_mesh(hf: &HeightField) -> (Vec<Vec3>, Vec<[usize; 3]>) {
+    let (nx, ny) = (hf.nx(), hf.ny());
+    let pos = (0..nx * ny).map(|k| hf.point(k % nx, k / nx)).collect();
+    let mut tris = Vec::with_capacity(2 * nx * ny);
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let v = |a: usize, b: usize| b * nx + a;
+            tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+            tris.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    (pos, tris)
+}
+
+/// Pl. 2.2: the patch seen from the front and above, flat-shaded in one
+/// stone colour so the roughness reads from the shading alone.
+fn space_filling(seed: u64, quick: bool) -> R<Image> {
+    let n = if quick { 96 } else { 512 };
+    let fbm = plate_2_2_fbm(seed)?;
+    let hf = patch(&fbm, n, 0.1)?;
+    let (lo, hi) = hf.heights().min_max();
+    for x in [0.1, 0.25, 0.5, 0.75, 1.0] {
+        outln(format_args!(
+            "  Pl. 2.2: x = {x:<4}: β = {:.2}, H = {:.2}",
+            beta_of_h(h_of_x(x)),
+            h_of_x(x)
+        ))?;
+    }
+    let (pos, tris) = field_mesh(&hf);
+    let size = if quick { (320, 200) } else { (1200, 750) };
+    let extent = Vec3::new(hf.nx() as f32, hf.ny() as f32, 0.0) * hf.cell_size();
+    let mut cam = PreviewCamera::framing(
+        Vec3::new(0.0, 0.0, lo),
+        Vec3::new(extent.x, extent.y, hi),
+        Vec3::new(0.0, 1.0, -0.85),
+        Some(30.0),
+        size.0 as f32 / size.1 as f32,
+    )?;
+    cam.projection = PreviewProjection::Perspective { fov_y_deg: 20.0 };
+    let mut frame = Raster::new(size.0, size.1, 2, Vec3::new(0.55, 0.66, 0.82))?;
+    let (w, h) = frame.samples();
+    let view = Projector::new(&cam, w, h)?;
+    let screen: Vec<Option<[f32; 3]>> = pos.iter().map(|&p| view.project(p)).collect();
+    let light = Vec3::new(-0.5, -0.6, 0.62).normalize();
+    let stone = Vec3::new(0.72, 0.62, 0.50);
+    for t in &tris {
+        let [a, b, c] = *t;
+        let (Some(pa), Some(pb), Some(pc)) = (screen[a], screen[b], screen[c]) else {
+            continue;
+        };
+        let centre = (pos[a] + pos[b] + pos[c]) / 3.0;
+        let nrm = (pos[b] - pos[a]).cross(pos[c] - pos[a]).normalize_or_zero();
+        let col = stone * lambert(facing(nrm, view.to_viewer(centre)), light, 0.2);
+        frame.triangle([pa, pb, pc], |_| col)?;
+    }
+    Ok(frame.resolve()?)
+}
+
+// ---------------------------------------------------------------- Pl. 4.12
+
+/// The rainbow table of Pl. 4.12: the dissertation's (13 jittered
+/// wavelengths, orders 1 and 2, 0.1° bins, a 0.5° sun), with fewer rays
+/// when quick.
+fn bow_table(quick: bool) -> R<Rainbow> {
+    let params = RainbowParams {
+        rays_per_wavelength: if quick { 5_000 } else { 50_000 },
+        ..RainbowParams::default()
+    };
+    Ok(Rainbow::new(&params)?)
+}
+
+/// The largest angle from the antisolar point the picture shows, degrees.
+const BOW_FIELD_DEG: f64 = 60.0;
+
+/// The view direction of pixel (x, y) of an n × n picture centred on the
+/// antisolar point (−z, the sun behind the viewer at +z), in an equidistant
+/// projection (angle from the centre proportional to the radius), so the
+/// bows are circles; `None` outside the field.
+fn bow_view(x: usize, y: usize, n: usize) -> Option<DVec3> {
+    let half = n as f64 / 2.0;
+    let u = (x as f64 + 0.5 - half) / half;
+    let v = (half - (y as f64 + 0.5)) / half;
+    let r = u.hypot(v);
+    let theta = r * BOW_FIELD_DEG.to_radians();
+    if r > 1.0 {
+        return None;
+    }
+    let (s, c) = theta.sin_cos();
+    let (cu, cv) = if r > 0.0 { (u / r, v / r) } else { (0.0, 0.0) };
+    Some(DVec3::new(s * cu, s * cv, -c))
+}
+
+/// Pl. 4.12: the primary and secondary bows as full circles on black, the
+/// rain's optical depth scaled by 2-D fBm of the view direction (cloud
+/// shadows and patchy rain, Musgrave 1993, §4.2.4.3.2).
+fn full_circle_bow(seed: u64, quick: bool) -> R<Image> {
+    let rainbow = bow_table(quick)?;
+    let n = if quick { 192 } else { 900 };
+    let sun = Dir3::new(DVec3::Z)?;
+    let patchy = Fbm::new(
+        Perlin::new(seed ^ 0x412),
+        Spectral {
+            h: 0.5,
+            lacunarity: 2.0,
+            octaves: 6.0,
+            frequency: 2.5,
+            ..Spectral::default()
+        },
+    )?;
+    let irradiance = DVec3::splat(1.0);
+    // Exposed so the primary's brightest channel, through the mean rain,
+    // is 0.7.
+    let [primary, secondary] = bow_peaks(&rainbow);
+    let brightest = rainbow
+        .table()
+        .lookup(primary[0].to_radians())
+        .max_element();
+    // Rain 1 km deep; 1e-3 /m is a heavy shower's geometric extinction.
+    let (depth, extinction) = (1000.0, 1e-3f64);
+    let exposure = 0.7 / (brightest * -(-extinction * depth).exp_m1());
+    let mut err = None;
+    let img = Image::from_fn(n, n, |x, y| {
+        let Some(d) = bow_view(x, y, n) else {
+            return Vec3::ZERO;
+        };
+        let Ok(view) = Dir3::new(d) else {
+            return Vec3::ZERO;
+        };
+        // The rain's density, e^(2.5·fBm): smooth, positive, patchy.
+        let m = (2.5 * patchy.eval2(DVec2::new(d.x, d.y) / (1.0 - d.z).max(1e-9))).exp();
+        match rainbow.radiance(view, sun, irradiance, extinction * m, depth) {
+            Ok(c) => (c * exposure).as_vec3(),
+            Err(e) => {
+                err.get_or_insert(e);
+                Vec3::ZERO
+            }
+        }
+    })?;
+    if let Some(e) = err {
+        return Err(e.into());
+    }
+    outln(format_args!(
+        "  Pl. 4.12: primary red {:.1}°, blue {:.1}°; secondary red {:.1}°, blue {:.1}°; \
+         Alexander's band {:.2} of the light inside the primary",
+        primary[0],
+        primary[1],
+        secondary[0],
+        secondary[1],
+        mean_luminance(&rainbow, 44.0, 49.0) / mean_luminance(&rainbow, 30.0, 40.0)
+    ))?;
+    Ok(img)
+}
+
+/// The angle (degrees) of the brightest bin of `channel` (0 red, 2 blue)
+/// of the rainbow table between `lo`° and `hi`°.
+fn peak(rainbow: &Rainbow, channel: usize, lo: f64, hi: f64) -> f64 {
+    let t = rainbow.table();
+    let w = t.bin_width().to_degrees();
+    let bins = t.bins();
+    ((lo / w) as usize..(hi / w) as usize)
+        .max_by(|&i, &j| bins[i][channel].total_cmp(&bins[j][channel]))
+        .map_or(f64::NAN, |i| (i as f64 + 0.5) * w)
+}
+
+/// The red and blue peaks (degrees) of the primary (30°–46°) and the
+/// secondary (46°–60°): `[[red, blue]; 2]`.
+fn bow_peaks(rainbow: &Rainbow) -> [[f64; 2]; 2] {
+    [(30.0, 46.0), (46.0, 60.0)]
+        .map(|(lo, hi)| [peak(rainbow, 0, lo, hi), peak(rainbow, 2, lo, hi)])
+}
+
+/// The table's mean luminance (Rec. 709 weights) over `lo`°–`hi`°.
+fn mean_luminance(rainbow: &Rainbow, lo: f64, hi: f64) -> f64 {
+    let t = rainbow.table();
+    let w = t.bin_width().to_degrees();
+    let bins = &t.bins()[(lo / w) as usize..(hi / w) as usize];
+    bins.iter()
+        .map(|c| c.dot(DVec3::new(0.2126, 0.7152, 0.0722)))
+        .sum::<f64>()
+        / bins.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use natura::atmos::Medium;
+    use natura::terrain::analysis::path_h;
+
+    #[test]
+    fn docs_figures_md_links_every_picture() {
+        let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+        let text = std::fs::read_to_string(docs.join("figures.md")).unwrap();
+        for f in Fig::ALL {
+            for name in f.files() {
+                assert!(text.contains(&format!("gallery/figures/{name}")), "{name}");
+                assert!(docs.join("gallery/figures").join(name).is_file(), "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_mist_has_the_sources_mean_extinction() {
+        // Musgrave 1993, eq. 4.1.5: along a ray from altitude z₁ to z₂ (in
+        // scale heights) the mean extinction is (e^−z₁ − e^−z₂)/(z₂ − z₁),
+        // and e^−z₁ for a level ray (eq. 4.1.6); τ is it times the length.
+        let mist = misty_mist().unwrap();
+        let h = MIST_SCALE_HEIGHT_M;
+        let (a, b) = (DVec3::new(0.0, 0.0, 200.0), DVec3::new(0.0, 9000.0, 1100.0));
+        let (z1, z2) = (a.z / h, b.z / h);
+        let mean = ((-z1).exp() - (-z2).exp()) / (z2 - z1);
+        let tau = mist.optical_depth(a, b);
+        let want = DVec3::from(MIST_EXTINCTION) * mean * a.distance(b);
+        assert!(
+            ((tau - want) / want).abs().max_element() < 1e-9,
+            "{tau} {want}"
+        );
+        let level = mist.optical_depth(a, a + DVec3::Y * 5000.0);
+        let want = DVec3::from(MIST_EXTINCTION) * (-z1).exp() * 5000.0;
+        assert!(((level - want) / want).abs().max_element() < 1e-12);
+    }
+
+    #[test]
+    fn the_mirage_air_is_1_00027_and_reflects_totally_below_half_a_degree() {
+        // Musgrave 1993, §4.3.2: air at room temperature and pressure has
+        // an index of approximately 1.00027 (Gladstone–Dale here; the
+        // source's rounding is ±5e-6).
+        let n = StratifiedAir::index_of(MIRAGE_AIR_K[0], PRESSURE_PA);
+        assert!((n - 1.00027).abs() < 5e-6, "{n}");
+        // 60 °C under 20 °C air: a critical grazing angle near 0.46°.
+        let plane = mirage_plane().unwrap();
+        let c = plane.critical_grazing_angle().unwrap();
+        assert!((c.to_degrees() - 0.46).abs() < 0.01, "{}", c.to_degrees());
+        // Below it the eye's ray is mirrored whole (TIR, no refraction);
+        // above it most of the light goes through.
+        let eye = DVec3::new(0.0, 0.0, EYE_M);
+        for (grazing, total) in [(0.5 * c, true), (2.0 * c, false)] {
+            let d = Dir3::new(DVec3::new(0.0, grazing.cos(), -grazing.sin())).unwrap();
+            let m = plane.interact(eye, d, None).unwrap();
+            assert_eq!(m.refracted.is_none(), total, "{grazing}");
+            assert_eq!(m.reflectance == 1.0, total);
+            assert!((m.reflected.get().z - grazing.sin()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn beta_over_x_goes_from_planar_to_space_filling() {
+        // Pl. 2.2: β = 1/x on (0, 1]; 1/f^∞ at the left edge, space filling
+        // (H = 0, D_f = 3) at the right.
+        for x in [0.05, 0.2, 0.5, 0.8, 1.0] {
+            assert!((beta_of_h(h_of_x(x)) - 1.0 / x).abs() < 1e-12, "{x}");
+        }
+        assert_eq!(h_of_x(1.0), 0.0);
+        assert!(h_of_x(1e-6) > 1e5);
+        // Pl. 2.3's pairs (H = 1, β = 3), (H = 0, β = 1).
+        assert_eq!((beta_of_h(1.0), beta_of_h(0.0)), (3.0, 1.0));
+    }
+
+    #[test]
+    fn the_printed_h_of_beta_over_x_is_not_beta_equals_2h_plus_1() {
+        // The printed H = 1/x − 3/2 agrees with β = 2H + 1 only at x = 1/2
+        // and reaches H = −1/2 (past space filling) at x = 1.
+        assert!((printed_h_of_x(0.5) - h_of_x(0.5)).abs() < 1e-12);
+        assert_eq!(printed_h_of_x(1.0), -0.5);
+        for x in [0.25, 0.4, 2.0 / 3.0, 0.9] {
+            assert!((beta_of_h(printed_h_of_x(x)) - 1.0 / x).abs() > 0.1, "{x}");
+        }
+    }
+
+    #[test]
+    fn the_crossovers_give_about_ten_octaves() {
+        // Upper and lower crossover scales ≈ 7 and 1/128: log₂ 896 octaves.
+        let f = plate_2_2_fbm(1).unwrap();
+        assert!((f.spectral.octaves - 9.807).abs() < 1e-3);
+        assert!((f.spectral.frequency - 1.0 / 7.0).abs() < 1e-15);
+    }
+
+    /// The variogram H of profiles along y at a fixed x, over lags inside
+    /// the crossovers (1/64 to 1/8 of the patch), averaged over 8 seeds.
+    fn measured_h(x: f64) -> (f64, f64) {
+        let hs: Vec<f64> = (0..8)
+            .map(|s| {
+                let f = plate_2_2_fbm(100 + s).unwrap();
+                let v: Vec<f64> = (0..4096)
+                    .map(|j| f.eval2(DVec2::new(x, j as f64 / 256.0)))
+                    .collect();
+                path_h(&v, 4, 32).unwrap()
+            })
+            .collect();
+        let m = hs.iter().sum::<f64>() / hs.len() as f64;
+        let var = hs.iter().map(|h| (h - m).powi(2)).sum::<f64>() / (hs.len() - 1) as f64;
+        (m, (var / hs.len() as f64).sqrt())
+    }
+
+    #[test]
+    fn the_patch_has_the_h_of_beta_over_x() {
+        // Profiles at x = 0.4, 1/2, 2/3, where β = 1/x gives H = 0.75, 0.5,
+        // 0.25 and the printed formula 1.0, 0.5, 0. The noise basis biases
+        // the variogram estimate by up to ±0.1 for H ≤ 0.5 (its smooth
+        // interpolant); the 8 seeds' standard error is ≈ 0.01.
+        for x in [0.4, 0.5, 2.0 / 3.0] {
+            let (m, se) = measured_h(x);
+            assert!(se < 0.03, "x = {x}: standard error {se}");
+            assert!((m - h_of_x(x)).abs() < 0.1, "x = {x}: H {m}");
+            if x != 0.5 {
+                assert!(
+                    (m - h_of_x(x)).abs() < (m - printed_h_of_x(x)).abs() - 0.1,
+                    "x = {x}: H {m} nearer the printed {}",
+                    printed_h_of_x(x)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_bows_are_at_42_and_52_degrees_with_a_dark_band_between() {
+        // Musgrave 1993, §4.2.4.3: the primary ≈ 42°, red outside, the
+        // secondary ≈ 52°, red inside, Alexander's dark band between them.
+        // Tolerance 0.5°: the 0.5° sun's smear plus a 0.1° bin.
+        let bow = bow_table(true).unwrap();
+        let [[p_red, p_blue], [s_red, s_blue]] = bow_peaks(&bow);
+        assert!((p_red - 42.0).abs() < 0.5, "primary red at {p_red}°");
+        assert!(p_blue < p_red && s_red < s_blue);
+        let s_mid = 0.5 * (s_red + s_blue);
+        assert!((s_mid - 52.0).abs() < 0.5, "secondary at {s_mid}°");
+        let band = mean_luminance(&bow, 44.0, 49.0);
+        assert!(band < 0.05 * mean_luminance(&bow, 30.0, 40.0), "{band}");
+        assert!(band < 0.05 * mean_luminance(&bow, 54.0, 60.0), "{band}");
+    }
+}
