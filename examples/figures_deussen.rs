@@ -315,7 +315,7 @@ fn wet_colour(k: usize) -> Vec3 {
 /// The mean wetness of the sites of each species' plants.
 fn mean_wetness(eco: &Ecosystem) -> Vec<f64> {
     let site = eco.site();
-    let mut sum = vec![(0.0f64, 0usize); KINDS];
+    let mut sum = [(0.0f64, 0usize); KINDS];
     for p in eco.plants() {
         let (i, j) = site.nearest(p.x, p.y);
         let e = &mut sum[p.species as usize];
