@@ -46,3 +46,17 @@ def terrain_save(
     range: Optional[Tuple[float, float]],
     step: int,
 ) -> None: ...
+def lsystem_derive(text: str, steps: Optional[int] = None, seed: Optional[int] = None) -> str: ...
+def lsystem_mesh(
+    text: str,
+    steps: Optional[int] = None,
+    seed: Optional[int] = None,
+    params: Optional[Dict[str, Any]] = None,
+) -> Dict[str, np.ndarray]: ...
+def lsystem_save_glb(
+    text: str,
+    path: Union[str, "os.PathLike[str]"],
+    steps: Optional[int] = None,
+    seed: Optional[int] = None,
+    params: Optional[Dict[str, Any]] = None,
+) -> None: ...

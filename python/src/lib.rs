@@ -1,5 +1,5 @@
 //! The compiled part of the `natura` Python package (`natura._native`):
-//! numpy arrays in and out of natura's noise and terrain crates.
+//! numpy arrays in and out of natura's noise, terrain and plant crates.
 //!
 //! The Python modules `natura.noise` and `natura.terrain` (in `python/natura/`)
 //! give these functions their keyword signatures and docstrings; this module
@@ -9,6 +9,7 @@
 
 mod args;
 mod noise;
+mod plant;
 mod terrain;
 
 use pyo3::prelude::*;
@@ -28,5 +29,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     noise::register(m)?;
     terrain::register(m)?;
+    plant::register(m)?;
     Ok(())
 }

@@ -14,7 +14,7 @@ use natura_noise::{
     WorleyParams,
 };
 use numpy::{IntoPyArray, PyArrayDyn};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -266,8 +266,12 @@ struct Built {
 }
 
 fn build(spec: &Bound<'_, PyAny>) -> PyResult<Built> {
-    let kw = Kw::new(spec, "noise")?;
-    let kind = kw.string("kind", "")?;
+    let kind: String = match spec.get_item("kind") {
+        Ok(k) => k
+            .extract()
+            .map_err(|_| PyTypeError::new_err("kind must be a string"))?,
+        Err(_) => String::new(),
+    };
     let kw = Kw::new(spec, &kind)?;
     kw.string("kind", "")?;
     if BASES.contains(&kind.as_str()) {

@@ -1,11 +1,11 @@
 //! The reference values of the Python tests (`python/tests/reference.json`),
 //! computed here through natura's Rust API: the noises on a 2-D and a 3-D
-//! lattice and at 2-D and 3-D points, synthesis, every erosion model and
-//! the drainage analysis. The test fails if the file differs from what the
-//! Rust API computes now; `NATURA_BLESS=1 cargo test --release -p
-//! natura-python --test reference` rewrites it. The Python tests compute
-//! the same values through `natura` and compare them bit for bit, so the
-//! two together show the bindings equal the Rust API.
+//! lattice and at 2-D and 3-D points, synthesis, every erosion model, the
+//! drainage analysis, and an L-system's string and mesh. The test fails if
+//! the file differs from what the Rust API computes now; `NATURA_BLESS=1
+//! cargo test --release -p natura-python --test reference` rewrites it. The
+//! Python tests compute the same values through `natura` and compare them
+//! bit for bit, so the two together show the bindings equal the Rust API.
 
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -17,6 +17,7 @@ use natura_noise::{
     Lattice3, Multifractal, Perlin, RidgedMultifractal, Simplex, Sine, SparseConvolution, Spectral,
     StatsByAltitude, Steps, Turbulence, Value, VlNoise, Worley,
 };
+use natura_plant::{Derivation, LSystem, MeshParams, PlantMesh, Turtle, TurtleParams};
 use natura_terrain::analysis::{fill_depressions, flow_accumulation_mfd, strahler_order, wetness};
 use natura_terrain::erosion::{
     Diffusion, DropletErosion, MusgraveHydraulic, PipeModel, StreamPower, Thermal,
@@ -229,12 +230,44 @@ fn terrain() -> Vec<String> {
     v
 }
 
+/// The bush of The Algorithmic Beauty of Plants, fig. 1.25
+/// (examples/lsystems/fig1_25.l), 4 steps: its string and its mesh.
+fn plant() -> Vec<String> {
+    let text = include_str!("../../examples/lsystems/fig1_25.l");
+    let l = LSystem::parse(text).unwrap();
+    let mut d = Derivation::new(&l, 1).unwrap();
+    d.derive(4).unwrap();
+    let s = d.string();
+    let shown = s.display(l.symbols());
+    let geo = Turtle::new(&l, TurtleParams::for_lsystem(&l))
+        .unwrap()
+        .interpret(s)
+        .unwrap();
+    let m = PlantMesh::from_geometry(&geo, &MeshParams::default()).unwrap();
+    let pos: Vec<f32> = m.positions.iter().flat_map(|p| p.to_array()).collect();
+    let nrm: Vec<f32> = m.normals.iter().flat_map(|p| p.to_array()).collect();
+    vec![
+        format!("    \"string_hash\": {}", fnv(shown.bytes())),
+        format!("    \"string_len\": {}", shown.len()),
+        format!("    \"positions\": {}", hash_f32(&pos)),
+        format!("    \"normals\": {}", hash_f32(&nrm)),
+        format!(
+            "    \"indices\": {}",
+            fnv(m.indices.iter().flat_map(|i| i.to_le_bytes()))
+        ),
+        format!("    \"vertices\": {}", m.positions.len()),
+        format!("    \"triangles\": {}", m.indices.len() / 3),
+    ]
+}
+
 #[test]
 fn reference_values_match_the_rust_api() {
     let mut text = String::from("{\n  \"noise\": {\n");
     text += &noises().join(",\n");
     text += "\n  },\n  \"terrain\": {\n";
     text += &terrain().join(",\n");
+    text += "\n  },\n  \"plant\": {\n";
+    text += &plant().join(",\n");
     writeln!(text, "\n  }}\n}}").unwrap();
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/reference.json");
     if std::env::var_os("NATURA_BLESS").is_some() {
