@@ -1,0 +1,34 @@
+//! The compiled part of the `natura` Python package (`natura._native`):
+//! numpy arrays in and out of natura's noise, terrain and plant crates.
+//!
+//! The Python modules `natura.noise` and `natura.terrain` (in `python/natura/`)
+//! give these functions their keyword signatures and docstrings; this module
+//! checks every argument (a wrong dtype, shape or value raises `TypeError` or
+//! `ValueError` naming it), releases the GIL for the computation and turns a
+//! Rust panic into `RuntimeError`.
+
+mod args;
+mod noise;
+mod plant;
+mod terrain;
+
+use pyo3::prelude::*;
+
+/// Raises `RuntimeError` from a Rust panic carrying `message`: the boundary's
+/// last resort, exposed so the Python tests can show that a panic never
+/// crosses into Python as anything else.
+#[pyfunction]
+fn _panic_for_test(py: Python<'_>, message: String) -> PyResult<()> {
+    args::run(py, move || -> PyResult<()> { panic!("{message}") })
+}
+
+/// The module `natura._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
+    noise::register(m)?;
+    terrain::register(m)?;
+    plant::register(m)?;
+    Ok(())
+}
