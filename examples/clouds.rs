@@ -70,23 +70,7 @@ fn clouds() -> Run {
     } = cli;
     let out = common::out_dir(&out)?;
     let write_vdb = write_vdb || quick;
-    let look = if quick {
-        Look {
-            width: 96,
-            height: 64,
-            cell: 0.4,
-            shadow_nodes: 24,
-            cache_events: 100_000,
-        }
-    } else {
-        Look {
-            width: 480,
-            height: 320,
-            cell: 0.08,
-            shadow_nodes: 96,
-            cache_events: 4_000_000,
-        }
-    };
+    let look = Look::new(quick);
     let bar = common::Bar::new();
 
     // (a) The nine-sphere cumulus with the source's parameters.

@@ -73,23 +73,7 @@ fn main() -> ExitCode {
 fn run() -> Run {
     let cli: Cli = common::parse();
     let out = common::out_dir(&cli.out)?;
-    let look = if cli.quick {
-        Look {
-            width: 96,
-            height: 64,
-            cell: 0.4,
-            shadow_nodes: 24,
-            cache_events: 100_000,
-        }
-    } else {
-        Look {
-            width: 480,
-            height: 320,
-            cell: 0.08,
-            shadow_nodes: 96,
-            cache_events: 4_000_000,
-        }
-    };
+    let look = Look::new(cli.quick);
     let seed = cli.seed;
     figures::make(&out, &cli.only, |fig| {
         Ok(vec![match fig {
