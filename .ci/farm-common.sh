@@ -3,7 +3,10 @@
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 export CARGO_TERM_COLOR=never
 scene="${NATURA_FARM_SCENE:-tests/data/farm_tiny.toml}"
-cargo build --release --quiet --bin natura
+# --workspace with the examples: the features of the README's test command,
+# so after it nothing is compiled again (the binary alone resolves its
+# dependencies' features differently and would rebuild every crate).
+cargo build --workspace --release --quiet --bins --examples
 natura="${CARGO_TARGET_DIR:-$PWD/target}/release/natura"
 
 # same_as_single_process OUT FRAME...: every assembled frame's EXR and PNG

@@ -78,7 +78,7 @@ stage="target/gallery-stage"
 run() { # example, then its flags
   local name="$1"; shift
   printf '\n==> %s %s\n' "$name" "$*"
-  cargo run --quiet --locked --release --example "$name" -- "${quick[@]}" "$@"
+  "$bin/$name" "${quick[@]}" "$@"
 }
 # example, picture it writes, gallery name, then its flags
 variant() {
@@ -91,7 +91,11 @@ variant() {
   rm -rf "$dir"
 }
 
-cargo build --quiet --locked --release --examples
+# Built with --workspace: the features of the README's test command, so
+# after `cargo test --workspace --release` nothing is compiled again (built
+# alone, the root package resolves its dependencies' features differently).
+cargo build --quiet --locked --workspace --release --examples
+bin="${CARGO_TARGET_DIR:-target}/release/examples"
 for name in $(printf '%s\n' "${!area[@]}" | sort); do
   wanted "$name" || continue
   case "$name" in
