@@ -11,7 +11,9 @@
 //! (here `r1` = 0.94, `r2` = 0.87, as the text's values say); the text says
 //! two of the axiom's branches hold a `/` that rolls the apex 180° so
 //! branching alternates sides, but the listing lost it — here it is placed
-//! before the apex in the second and fourth branch. The cluster radius ρ is
+//! before the apex in the second and fourth branch, as `/(180)` (a bare `/`
+//! would roll by the listing's default angle and lift those branches out of
+//! the tier's plane). The cluster radius ρ is
 //! not printed; the default is our own. The source does not say in which
 //! order the apices of one step are checked: here every apex of a step is
 //! checked against the clusters of earlier steps, then the step's clusters
@@ -21,9 +23,9 @@
 //! segments and 140 leaf clusters. The source omits the two parameters the
 //! counts depend on: the cluster radius ρ and the distance between the two
 //! tiers. With the defaults here (ρ = 0.45, tiers 5 apart, first segments of
-//! length 1) the model makes **522 segments and 522 clusters**; without
+//! length 1) the model makes **438 segments and 438 clusters**; without
 //! competition it would make 630. A sweep of ρ from 0.3 to 0.9 in steps of
-//! 0.0005 at this spacing never gives 138 (the count jumps from 158 to 126
+//! 0.0005 at this spacing never gives 138 (the count jumps from 150 to 120
 //! at ρ ≈ 0.818), so the table is not reproduced by tuning ρ alone. Here
 //! every cluster belongs to one segment's apex, so the two counts are
 //! equal; the table's two extra clusters would fit one cluster at each
@@ -114,7 +116,7 @@ impl TiersParams {
     /// The model's L-system text (the source's listing with the errata above applied).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
-        let whorl = "-(90)[F(1)?E(1)A(1)]+(φ)[F(1)/?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]+(φ)[F(1)/?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]";
+        let whorl = "-(90)[F(1)?E(1)A(1)]+(φ)[F(1)/(180)?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]+(φ)[F(1)/(180)?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]";
         let mut axiom = String::new();
         // Tiers side by side along x: turn to +x, move, turn back.
         for k in 0..self.tiers {
@@ -232,8 +234,8 @@ mod tests {
     fn counts_for_table_1() {
         // Our counts for the source's Fig. 5 set-up (see the module docs).
         let (run, env) = tiers(&TiersParams::default()).unwrap();
-        assert_eq!(run.count("F"), 522);
-        assert_eq!(env.clusters.len(), 522);
+        assert_eq!(run.count("F"), 438);
+        assert_eq!(env.clusters.len(), 438);
         // No competition (a vanishing ρ): 5·(2⁶ − 1) segments per tier.
         let (run, _) = tiers(&TiersParams {
             cluster_radius: 1e-9,
@@ -241,6 +243,66 @@ mod tests {
         })
         .unwrap();
         assert_eq!(run.count("F"), 630);
+    }
+
+    /// The side (sign of the vertical component of heading × lateral) to
+    /// which each whorl branch sends its first lateral daughter, in the
+    /// order of the whorl, for the model's text `text` grown one step
+    /// without competition.
+    fn lateral_sides(text: &str) -> Vec<f32> {
+        let l = LSystem::parse(text).unwrap();
+        let t = TurtleParams {
+            start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+            ..TurtleParams::for_lsystem(&l)
+        };
+        let mut env = ClusterField {
+            radius: 1e-9,
+            clusters: Vec::new(),
+        };
+        let g = run_open(l, t, &mut env, 1, 0).unwrap().geometry().unwrap();
+        // Five whorl segments of length 1, each with two daughters, all in
+        // the horizontal plane (a roll of other than 180° would leave it).
+        assert_eq!(g.segment_count(), 15);
+        assert!(g.start.iter().chain(&g.end).all(|p| p.z.abs() < 1e-5));
+        let len = |i: usize| (g.end[i] - g.start[i]).length();
+        let whorl: Vec<usize> = (0..15).filter(|&i| g.start[i].length() < 1e-5).collect();
+        assert_eq!(whorl.len(), 5);
+        whorl
+            .iter()
+            .map(|&w| {
+                let daughters: Vec<usize> = (0..15)
+                    .filter(|&i| (g.start[i] - g.end[w]).length() < 1e-5)
+                    .collect();
+                assert_eq!(daughters.len(), 2, "two daughters of branch {w}");
+                // The lateral daughter is the shorter one (r2 < r1).
+                let lat = *daughters
+                    .iter()
+                    .min_by(|&&a, &&b| len(a).total_cmp(&len(b)))
+                    .unwrap();
+                assert!((len(lat) - 0.87).abs() < 1e-4, "{}", len(lat));
+                let d = g.end[w] - g.start[w];
+                let side = d.cross(g.end[lat] - g.start[lat]).z;
+                assert!(side.abs() > 0.1, "a lateral off the heading");
+                side.signum()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_roll_in_two_branches_alternates_the_branching_side() {
+        // With the `/` the text describes in the second and fourth branch,
+        // those two branch to the other side from the first, third and fifth.
+        let p = TiersParams {
+            tiers: 1,
+            ..TiersParams::default()
+        };
+        let text = p.lsystem_text();
+        let s = lateral_sides(&text);
+        assert_eq!(s, [s[0], -s[0], s[0], -s[0], s[0]]);
+        // The listing as printed (no `/`): every branch to the same side.
+        let printed = text.replace("F(1)/(180)?E(1)", "F(1)?E(1)");
+        assert_ne!(printed, text);
+        assert_eq!(lateral_sides(&printed), [s[0]; 5]);
     }
 
     #[test]
