@@ -31,6 +31,12 @@
 //! (values not printed); the default layout (a drier top layer, wet soil
 //! below on the left, dry on the right) and the diffusion rate are ours.
 //! An apex outside the field finds no water.
+//!
+//! Table 1 of the source gives Fig. 9 4 194 branch segments and 34 active
+//! apices after 186 steps. The defaults here make 2 375 to 2 537 segments
+//! and 23 to 32 active apices over seeds 0 to 7 (the default seed 1: 2 479
+//! and 32): the apices come close to the table's, the segments do not — their
+//! count follows the painted water, which the source does not print.
 
 use glam::DVec3;
 use natura_core::check;

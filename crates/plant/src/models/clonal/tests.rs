@@ -300,3 +300,13 @@ fn ramet_leaves_are_discs_of_area_fifteen_minus_five_x() {
         .fold((f64::MAX, f64::MIN), |a, &r| (a.0.min(r), a.1.max(r)));
     assert!(hi - lo > 0.1, "{lo} {hi}");
 }
+
+/// Our counts for the source's Fig. 7 (Table 1: 786 segments, 229 leaf
+/// clusters after 182 steps; see the module docs).
+#[test]
+fn counts_for_table_1() {
+    let p = ClonalParams::fig7();
+    assert_eq!(p.steps, 182);
+    let (run, _) = clonal(&p).unwrap();
+    assert_eq!((run.count("F"), run.count("@o")), (1460, 348));
+}

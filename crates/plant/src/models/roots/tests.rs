@@ -213,3 +213,12 @@ fn lateral_roots_turn_by_the_branching_angle() {
     }
     assert!(laterals > 5, "{laterals} laterals");
 }
+
+/// Our counts for the source's Fig. 9 (Table 1: 4 194 segments, 34 active
+/// apices after 186 steps; see the module docs).
+#[test]
+fn counts_for_table_1() {
+    let (run, _) = roots(&RootParams::default()).unwrap();
+    assert_eq!(RootParams::default().steps, 186);
+    assert_eq!((run.count("F"), run.count("A")), (2479, 32));
+}
