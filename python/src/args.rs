@@ -2,6 +2,7 @@
 //! keys are errors, numpy arrays of the right dtype and shape, and the
 //! boundary that releases the GIL and catches panics.
 
+use std::cell::RefCell;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
@@ -15,7 +16,28 @@ use pyo3::types::{PyDict, PyDictMethods};
 /// # Errors
 /// `f`'s own error, or `RuntimeError` if it panicked.
 pub fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> PyResult<T> + Send) -> PyResult<T> {
-    py.detach(|| match catch_unwind(AssertUnwindSafe(f)) {
+    py.detach(|| caught(f))
+}
+
+/// As [`run`], but a call of `work` elements below [`SMALL`] keeps the GIL:
+/// releasing and taking it back costs more than so little work, and other
+/// threads gain nothing from the pause.
+///
+/// # Errors
+/// `f`'s own error, or `RuntimeError` if it panicked.
+pub fn run_sized<T: Send>(
+    py: Python<'_>,
+    work: usize,
+    f: impl FnOnce() -> PyResult<T> + Send,
+) -> PyResult<T> {
+    if work < SMALL { caught(f) } else { run(py, f) }
+}
+
+/// Below this many elements a call keeps the GIL (see [`run_sized`]).
+pub const SMALL: usize = 256;
+
+fn caught<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    match catch_unwind(AssertUnwindSafe(f)) {
         Ok(result) => result,
         Err(payload) => {
             let msg = payload
@@ -27,7 +49,7 @@ pub fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> PyResult<T> + Send) -> P
                 "internal error (a Rust panic): {msg}"
             )))
         }
-    })
+    }
 }
 
 /// A library error as `ValueError` (natura's errors name the parameter).
@@ -35,17 +57,18 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
-/// The keyword arguments of one call: each read removes its key, and
-/// [`Kw::finish`] refuses whatever is left.
+/// The keyword arguments of one call: each read notes its key, and
+/// [`Kw::finish`] refuses any key that was not read. (The caller's
+/// dictionary is only read, never copied or changed.)
 #[derive(Debug)]
 pub struct Kw<'py> {
     dict: Bound<'py, PyDict>,
     what: String,
+    read: RefCell<Vec<&'static str>>,
 }
 
 impl<'py> Kw<'py> {
-    /// A copy of `dict` (the caller's dictionary is left alone), `what`
-    /// naming the call in errors.
+    /// The parameters in `dict`, `what` naming the call in errors.
     ///
     /// # Errors
     /// `TypeError` if `dict` is not a dict.
@@ -53,26 +76,35 @@ impl<'py> Kw<'py> {
         let dict = dict
             .cast::<PyDict>()
             .map_err(|_| PyTypeError::new_err(format!("{what}: parameters must be a dict")))?
-            .copy()?;
+            .clone();
         Ok(Self {
             dict,
             what: what.to_owned(),
+            read: RefCell::new(Vec::new()),
         })
     }
 
-    fn take(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+    /// The value of `key` (also when it is `None`), noting the key as read.
+    fn get(&self, key: &'static str) -> PyResult<Option<Bound<'py, PyAny>>> {
         let v = self.dict.get_item(key)?;
         if v.is_some() {
-            self.dict.del_item(key)?;
+            let mut read = self.read.borrow_mut();
+            if !read.contains(&key) {
+                read.push(key);
+            }
         }
-        Ok(v.filter(|v| !v.is_none()))
+        Ok(v)
+    }
+
+    fn take(&self, key: &'static str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Ok(self.get(key)?.filter(|v| !v.is_none()))
     }
 
     /// A float parameter, `default` when absent or `None`.
     ///
     /// # Errors
     /// `TypeError` naming `key` if the value is not a real number.
-    pub fn f64(&self, key: &str, default: f64) -> PyResult<f64> {
+    pub fn f64(&self, key: &'static str, default: f64) -> PyResult<f64> {
         match self.take(key)? {
             None => Ok(default),
             Some(v) => v.extract::<f64>().map_err(|_| {
@@ -88,7 +120,7 @@ impl<'py> Kw<'py> {
     /// if it does not fit.
     pub fn int<T: pyo3::conversion::FromPyObjectOwned<'py>>(
         &self,
-        key: &str,
+        key: &'static str,
         default: T,
     ) -> PyResult<T> {
         match self.take(key)? {
@@ -111,7 +143,7 @@ impl<'py> Kw<'py> {
     ///
     /// # Errors
     /// `TypeError` naming `key` if the value is not a bool.
-    pub fn bool(&self, key: &str, default: bool) -> PyResult<bool> {
+    pub fn bool(&self, key: &'static str, default: bool) -> PyResult<bool> {
         match self.take(key)? {
             None => Ok(default),
             Some(v) => v
@@ -124,11 +156,10 @@ impl<'py> Kw<'py> {
     ///
     /// # Errors
     /// `TypeError` naming `key` if the value is neither a real number nor `None`.
-    pub fn opt_f64(&self, key: &str, default: Option<f64>) -> PyResult<Option<f64>> {
-        match self.dict.get_item(key)? {
+    pub fn opt_f64(&self, key: &'static str, default: Option<f64>) -> PyResult<Option<f64>> {
+        match self.get(key)? {
             None => Ok(default),
             Some(v) => {
-                self.dict.del_item(key)?;
                 if v.is_none() {
                     return Ok(None);
                 }
@@ -147,7 +178,12 @@ impl<'py> Kw<'py> {
     /// # Errors
     /// `TypeError` naming `key` if the value is not a string, `ValueError`
     /// naming it and listing the choices if it is none of them.
-    pub fn choice<T: Copy>(&self, key: &str, choices: &[(&str, T)], default: T) -> PyResult<T> {
+    pub fn choice<T: Copy>(
+        &self,
+        key: &'static str,
+        choices: &[(&str, T)],
+        default: T,
+    ) -> PyResult<T> {
         let Some(v) = self.take(key)? else {
             return Ok(default);
         };
@@ -172,7 +208,7 @@ impl<'py> Kw<'py> {
     ///
     /// # Errors
     /// `TypeError` naming `key` if the value is not a dict.
-    pub fn dict(&self, key: &str) -> PyResult<Option<Kw<'py>>> {
+    pub fn dict(&self, key: &'static str) -> PyResult<Option<Kw<'py>>> {
         match self.take(key)? {
             None => Ok(None),
             Some(v) => Kw::new(&v, &format!("{}: {key}", self.what)).map(Some),
@@ -183,7 +219,7 @@ impl<'py> Kw<'py> {
     ///
     /// # Errors
     /// `TypeError` naming `key` if the value is not a string.
-    pub fn string(&self, key: &str, default: &str) -> PyResult<String> {
+    pub fn string(&self, key: &'static str, default: &str) -> PyResult<String> {
         match self.take(key)? {
             None => Ok(default.to_owned()),
             Some(v) => v.extract::<String>().map_err(|_| {
@@ -197,12 +233,21 @@ impl<'py> Kw<'py> {
     /// # Errors
     /// `TypeError` naming the first unknown parameter.
     pub fn finish(self) -> PyResult<()> {
-        if let Some((k, _)) = self.dict.iter().next() {
-            return Err(PyTypeError::new_err(format!(
-                "{}: unknown parameter {}",
-                self.what,
-                k.repr()?
-            )));
+        let read = self.read.into_inner();
+        if self.dict.len() == read.len() {
+            return Ok(());
+        }
+        for (k, _) in self.dict.iter() {
+            let known = k
+                .extract::<String>()
+                .is_ok_and(|name| read.contains(&name.as_str()));
+            if !known {
+                return Err(PyTypeError::new_err(format!(
+                    "{}: unknown parameter {}",
+                    self.what,
+                    k.repr()?
+                )));
+            }
         }
         Ok(())
     }

@@ -18,7 +18,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Dv, Kw, floats, name_of, run, value_error};
+use crate::args::{Dv, Kw, floats, name_of, run, run_sized, value_error};
 
 const FADES: &[(&str, Fade)] = &[("quintic", Fade::Quintic), ("cubic", Fade::Cubic)];
 const INTERPS: &[(&str, ValueInterp)] = &[
@@ -383,7 +383,7 @@ fn noise_points<'py>(
         }
     };
     let out_shape = shape[..shape.len() - 1].to_vec();
-    let values = run(py, move || {
+    let values = run_sized(py, coords.len() / dim, move || {
         let n = coords.len() / dim;
         let mut out = vec![0.0f32; n];
         if dim == 2 {
