@@ -1,5 +1,6 @@
-"""Type stubs of the compiled module natura._native (see natura.noise and
-natura.terrain for the documented, keyword-argument API)."""
+"""Type stubs of the compiled module natura._native (see natura.noise,
+natura.terrain, natura.plant and natura.ocean for the documented,
+keyword-argument API)."""
 
 import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
@@ -11,6 +12,7 @@ NOISE_BASES: List[str]
 NOISE_FRACTALS: List[str]
 TERRAIN_MODELS: List[str]
 TERRAIN_SYNTHS: List[str]
+OCEAN_SPECTRA: List[str]
 
 def _panic_for_test(message: str) -> None: ...
 def noise_points(spec: Dict[str, Any], points: np.ndarray) -> np.ndarray: ...
@@ -60,3 +62,11 @@ def lsystem_save_glb(
     seed: Optional[int] = None,
     params: Optional[Dict[str, Any]] = None,
 ) -> None: ...
+def ocean_frames(
+    params: Dict[str, Any],
+    spectrum_spec: Dict[str, Any],
+    seed: int,
+    times: Sequence[float],
+    foam: Optional[Dict[str, Any]] = None,
+) -> Dict[str, np.ndarray]: ...
+def ocean_defaults(name: str) -> Dict[str, Any]: ...

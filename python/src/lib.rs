@@ -1,7 +1,8 @@
 //! The compiled part of the `natura` Python package (`natura._native`):
-//! numpy arrays in and out of natura's noise, terrain and plant crates.
+//! numpy arrays in and out of natura's noise, terrain, plant and ocean crates.
 //!
-//! The Python modules `natura.noise` and `natura.terrain` (in `python/natura/`)
+//! The Python modules `natura.noise`, `natura.terrain`, `natura.plant` and
+//! `natura.ocean` (in `python/natura/`)
 //! give these functions their keyword signatures and docstrings; this module
 //! checks every argument (a wrong dtype, shape or value raises `TypeError` or
 //! `ValueError` naming it), releases the GIL for the computation and turns a
@@ -9,6 +10,7 @@
 
 mod args;
 mod noise;
+mod ocean;
 mod plant;
 mod terrain;
 
@@ -30,5 +32,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     noise::register(m)?;
     terrain::register(m)?;
     plant::register(m)?;
+    ocean::register(m)?;
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! The reference values of the Python tests (`python/tests/reference.json`),
 //! computed here through natura's Rust API: the noises on a 2-D and a 3-D
 //! lattice and at 2-D and 3-D points, synthesis, every erosion model, the
-//! drainage analysis, and an L-system's string and mesh. The test fails if
+//! drainage analysis, an L-system's string and mesh, and ocean fields. The test fails if
 //! the file differs from what the Rust API computes now; `NATURA_BLESS=1
 //! cargo test --release -p natura-python --test reference` rewrites it. The
 //! Python tests compute the same values through `natura` and compare them
@@ -260,6 +260,82 @@ fn plant() -> Vec<String> {
     ]
 }
 
+/// A 32² TMA patch in finite depth, choppy enough to fold (foam forms),
+/// evaluated at 0, 1.5 and 4 s with foam: each field's hash over the three
+/// times (as the Python side stacks them), and a Phillips patch's height
+/// at 2 s.
+fn ocean() -> Vec<String> {
+    use natura_ocean::spectrum::{Directional, Spreading};
+    use natura_ocean::{
+        Dispersion, Foam, FoamParams, FrameField, Jonswap, Ocean, OceanParams, Phillips, Tma,
+    };
+    let dispersion = Dispersion::FiniteDepth {
+        g: natura_ocean::G,
+        depth: 20.0,
+    };
+    let params = OceanParams {
+        nx: 32,
+        ny: 32,
+        lx: 80.0,
+        ly: 60.0,
+        dispersion,
+        choppiness: 3.0,
+        ..OceanParams::default()
+    };
+    let spectrum = Directional {
+        spectrum: Tma {
+            jonswap: Jonswap {
+                wind_speed: 14.0,
+                fetch: 20_000.0,
+                ..Jonswap::default()
+            },
+            depth: 20.0,
+        },
+        spreading: Spreading::Cos2s { s: 6.0 },
+        wind_direction: 0.4,
+        dispersion,
+    };
+    let ocean = Ocean::new(&params, &spectrum, Seed(5)).unwrap();
+    let mut fields: Vec<Vec<f32>> = vec![Vec::new(); FrameField::ALL.len() + 1];
+    let mut frame = ocean.evaluate(0.0).unwrap();
+    let mut foam = Foam::for_frame(&frame, FoamParams::default()).unwrap();
+    for t in [0.0, 1.5, 4.0] {
+        ocean.evaluate_into(t, &mut frame).unwrap();
+        for (v, f) in fields.iter_mut().zip(FrameField::ALL) {
+            v.extend_from_slice(frame.field(f).as_slice());
+        }
+        foam.update(&frame).unwrap();
+        fields[FrameField::ALL.len()].extend_from_slice(foam.coverage().as_slice());
+    }
+    let names = FrameField::ALL.iter().map(|f| f.name()).chain(["foam"]);
+    let mut v: Vec<String> = names
+        .zip(&fields)
+        .map(|(n, f)| format!("    \"{n}\": {}", hash_f32(f)))
+        .collect();
+    let phillips = Ocean::new(
+        &OceanParams {
+            nx: 16,
+            ny: 32,
+            lx: 50.0,
+            ly: 100.0,
+            ..OceanParams::default()
+        },
+        &Phillips {
+            wind_speed: 9.0,
+            small_wave_length: 0.05,
+            ..Phillips::default()
+        },
+        Seed(0),
+    )
+    .unwrap();
+    let h = phillips.evaluate(2.0).unwrap();
+    v.push(format!(
+        "    \"phillips_height\": {}",
+        hash_f32(h.height().as_slice())
+    ));
+    v
+}
+
 #[test]
 fn reference_values_match_the_rust_api() {
     let mut text = String::from("{\n  \"noise\": {\n");
@@ -268,6 +344,8 @@ fn reference_values_match_the_rust_api() {
     text += &terrain().join(",\n");
     text += "\n  },\n  \"plant\": {\n";
     text += &plant().join(",\n");
+    text += "\n  },\n  \"ocean\": {\n";
+    text += &ocean().join(",\n");
     writeln!(text, "\n  }}\n}}").unwrap();
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/reference.json");
     if std::env::var_os("NATURA_BLESS").is_some() {
