@@ -346,3 +346,49 @@ pub fn defaults_dict<'py>(
     }
     Ok(dict)
 }
+
+/// An `f32` as written (0.3, not 0.30000001192092896): the Python float
+/// that rounds to it, for comparing defaults with Python signatures.
+#[must_use]
+pub fn as_written(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(f64::from(x))
+}
+
+/// Declares `$parse(kw) -> $ty` (each field read from `kw` with the
+/// `Default` value as its default) and `$defaults() -> [(name, default)]`
+/// from one field list, so names and defaults cannot drift apart. A field's
+/// kind is `f64`, `f32` (read as a Python float, its default given as
+/// written), `int`, `bool`, `opt` (an optional float), `[TABLE]` (one of a
+/// table's names) or `rain_law` (natura.terrain's rain keys, read by the
+/// caller's `rain` and `rain_name`).
+macro_rules! params {
+    ($parse:ident, $defaults:ident, $ty:ident { $($f:ident: $how:tt),* $(,)? }) => {
+        fn $parse(kw: &Kw<'_>) -> PyResult<$ty> {
+            let d = $ty::default();
+            Ok($ty { $($f: params!(@get kw, d, $f, $how)),* })
+        }
+        fn $defaults() -> Vec<(&'static str, Dv)> {
+            let d = $ty::default();
+            vec![$((stringify!($f), params!(@dv d, $f, $how))),*]
+        }
+    };
+    (@get $kw:ident, $d:ident, $f:ident, f64) => { $kw.f64(stringify!($f), $d.$f)? };
+    (@get $kw:ident, $d:ident, $f:ident, f32) => {
+        $kw.f64(stringify!($f), f64::from($d.$f))? as f32
+    };
+    (@get $kw:ident, $d:ident, $f:ident, int) => { $kw.int(stringify!($f), $d.$f)? };
+    (@get $kw:ident, $d:ident, $f:ident, bool) => { $kw.bool(stringify!($f), $d.$f)? };
+    (@get $kw:ident, $d:ident, $f:ident, [$table:ident]) => {
+        $kw.choice(stringify!($f), $table, $d.$f)?
+    };
+    (@get $kw:ident, $d:ident, $f:ident, rain_law) => { rain(&$kw, $d.$f)? };
+    (@get $kw:ident, $d:ident, $f:ident, opt) => { $kw.opt_f64(stringify!($f), $d.$f)? };
+    (@dv $d:ident, $f:ident, f64) => { Dv::F($d.$f) };
+    (@dv $d:ident, $f:ident, f32) => { Dv::F($crate::args::as_written($d.$f)) };
+    (@dv $d:ident, $f:ident, int) => { Dv::I($d.$f as u64) };
+    (@dv $d:ident, $f:ident, bool) => { Dv::B($d.$f) };
+    (@dv $d:ident, $f:ident, [$table:ident]) => { Dv::S(name_of($table, $d.$f)) };
+    (@dv $d:ident, $f:ident, rain_law) => { Dv::S(rain_name($d.$f)) };
+    (@dv $d:ident, $f:ident, opt) => { $d.$f.map_or(Dv::N, Dv::F) };
+}
+pub(crate) use params;

@@ -14,7 +14,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Dv, Kw, defaults_dict, name_of, run, value_error};
+use crate::args::{Dv, Kw, defaults_dict, name_of, params, run, value_error};
 
 const AMPLITUDES: &[(&str, AmplitudeScheme)] = &[
     ("complex_gaussian", AmplitudeScheme::ComplexGaussian),
@@ -87,17 +87,48 @@ fn ocean_params(kw: &Kw<'_>) -> PyResult<OceanParams> {
     })
 }
 
-fn jonswap(kw: &Kw<'_>) -> PyResult<Jonswap> {
-    let d = Jonswap::default();
-    Ok(Jonswap {
-        wind_speed: kw.f64("wind_speed", d.wind_speed)?,
-        fetch: kw.f64("fetch", d.fetch)?,
-        gamma: kw.f64("gamma", d.gamma)?,
-        sigma_low: kw.f64("sigma_low", d.sigma_low)?,
-        sigma_high: kw.f64("sigma_high", d.sigma_high)?,
-        g: kw.f64("g", d.g)?,
-    })
-}
+params!(
+    phillips_params,
+    phillips_defaults,
+    Phillips {
+        amplitude: f64,
+        wind_speed: f64,
+        wind_direction: f64,
+        g: f64,
+        small_wave_length: f64,
+        direction_exponent: f64,
+        against_wind: f64,
+    }
+);
+params!(
+    pierson_moskowitz_params,
+    pierson_moskowitz_defaults,
+    PiersonMoskowitz {
+        wind_speed: f64,
+        g: f64,
+    }
+);
+params!(
+    jonswap_params,
+    jonswap_defaults,
+    Jonswap {
+        wind_speed: f64,
+        fetch: f64,
+        gamma: f64,
+        sigma_low: f64,
+        sigma_high: f64,
+        g: f64,
+    }
+);
+params!(
+    foam_params,
+    foam_defaults,
+    FoamParams {
+        threshold: f32,
+        range: f32,
+        decay_time: f32,
+    }
+);
 
 /// `spreading`: `"hasselmann"` or a number, the fixed exponent `s` of `cos2s`.
 fn spreading(kw: &Kw<'_>) -> PyResult<Spreading> {
@@ -134,24 +165,9 @@ fn spectrum(spec: &Bound<'_, PyAny>, dispersion: Dispersion) -> PyResult<Box<dyn
         Ok((spreading(kw)?, kw.f64("wind_direction", 0.0)?))
     };
     let s: Box<dyn Spectrum> = match kind.as_str() {
-        "phillips" => {
-            let d = Phillips::default();
-            Box::new(Phillips {
-                amplitude: kw.f64("amplitude", d.amplitude)?,
-                wind_speed: kw.f64("wind_speed", d.wind_speed)?,
-                wind_direction: kw.f64("wind_direction", d.wind_direction)?,
-                g: kw.f64("g", d.g)?,
-                small_wave_length: kw.f64("small_wave_length", d.small_wave_length)?,
-                direction_exponent: kw.f64("direction_exponent", d.direction_exponent)?,
-                against_wind: kw.f64("against_wind", d.against_wind)?,
-            })
-        }
+        "phillips" => Box::new(phillips_params(&kw)?),
         "pierson_moskowitz" => {
-            let d = PiersonMoskowitz::default();
-            let f = PiersonMoskowitz {
-                wind_speed: kw.f64("wind_speed", d.wind_speed)?,
-                g: kw.f64("g", d.g)?,
-            };
+            let f = pierson_moskowitz_params(&kw)?;
             let (spreading, wind_direction) = directional(&kw)?;
             Box::new(Directional {
                 spectrum: f,
@@ -161,7 +177,7 @@ fn spectrum(spec: &Bound<'_, PyAny>, dispersion: Dispersion) -> PyResult<Box<dyn
             })
         }
         "jonswap" => {
-            let f = jonswap(&kw)?;
+            let f = jonswap_params(&kw)?;
             let (spreading, wind_direction) = directional(&kw)?;
             Box::new(Directional {
                 spectrum: f,
@@ -171,7 +187,7 @@ fn spectrum(spec: &Bound<'_, PyAny>, dispersion: Dispersion) -> PyResult<Box<dyn
             })
         }
         "tma" => {
-            let jonswap = jonswap(&kw)?;
+            let jonswap = jonswap_params(&kw)?;
             let depth = kw.opt_f64("depth", None)?.ok_or_else(|| {
                 PyValueError::new_err("spectrum: depth is needed for kind = \"tma\"")
             })?;
@@ -193,15 +209,6 @@ fn spectrum(spec: &Bound<'_, PyAny>, dispersion: Dispersion) -> PyResult<Box<dyn
     kw.finish()?;
     s.validate().map_err(value_error)?;
     Ok(s)
-}
-
-fn foam_params(kw: &Kw<'_>) -> PyResult<FoamParams> {
-    let d = FoamParams::default();
-    Ok(FoamParams {
-        threshold: kw.f64("threshold", f64::from(d.threshold))? as f32,
-        range: kw.f64("range", f64::from(d.range))? as f32,
-        decay_time: kw.f64("decay_time", f64::from(d.decay_time))? as f32,
-    })
 }
 
 /// A float32 3-D numpy array.
@@ -319,44 +326,11 @@ fn ocean_defaults<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDic
                 ("k_max", f(o.k_max)),
             ]
         }
-        "foam" => {
-            // The f32 fields as written (0.3, not 0.30000001192092896): a
-            // Python float rounds to the same f32.
-            let written = |x: f32| f(x.to_string().parse().unwrap_or(f64::from(x)));
-            let d = FoamParams::default();
-            vec![
-                ("threshold", written(d.threshold)),
-                ("range", written(d.range)),
-                ("decay_time", written(d.decay_time)),
-            ]
-        }
-        "phillips" => {
-            let d = Phillips::default();
-            vec![
-                ("amplitude", f(d.amplitude)),
-                ("wind_speed", f(d.wind_speed)),
-                ("wind_direction", f(d.wind_direction)),
-                ("g", f(d.g)),
-                ("small_wave_length", f(d.small_wave_length)),
-                ("direction_exponent", f(d.direction_exponent)),
-                ("against_wind", f(d.against_wind)),
-            ]
-        }
-        "pierson_moskowitz" => {
-            let d = PiersonMoskowitz::default();
-            vec![("wind_speed", f(d.wind_speed)), ("g", f(d.g))]
-        }
-        "jonswap" | "tma" => {
-            let d = Jonswap::default();
-            vec![
-                ("wind_speed", f(d.wind_speed)),
-                ("fetch", f(d.fetch)),
-                ("gamma", f(d.gamma)),
-                ("sigma_low", f(d.sigma_low)),
-                ("sigma_high", f(d.sigma_high)),
-                ("g", f(d.g)),
-            ]
-        }
+        "foam" => foam_defaults(),
+        "phillips" => phillips_defaults(),
+        "pierson_moskowitz" => pierson_moskowitz_defaults(),
+        // TMA takes JONSWAP's parameters and a depth, which has no default.
+        "jonswap" | "tma" => jonswap_defaults(),
         other => {
             return Err(PyValueError::new_err(format!(
                 "{other:?} is not ocean, foam or one of {}",

@@ -21,7 +21,7 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Dv, Kw, defaults_dict, heights, name_of, run, value_error};
+use crate::args::{Dv, Kw, defaults_dict, heights, name_of, params, run, value_error};
 
 const NEIGHBOURHOODS: &[(&str, Neighbourhood)] = &[
     ("four", Neighbourhood::Four),
@@ -54,36 +54,6 @@ pub const MODELS: &[&str] = &[
 
 /// The synthesis methods, by their Python names.
 pub const SYNTHS: &[&str] = &["spectral", "sra", "faults"];
-
-/// Declares `$parse(kw) -> $ty` (each field read from `kw` with the
-/// `Default` value as its default) and `$defaults() -> [(name, default)]`
-/// from one field list, so names and defaults cannot drift apart.
-macro_rules! params {
-    ($parse:ident, $defaults:ident, $ty:ident { $($f:ident: $how:tt),* $(,)? }) => {
-        fn $parse(kw: &Kw<'_>) -> PyResult<$ty> {
-            let d = $ty::default();
-            Ok($ty { $($f: params!(@get kw, d, $f, $how)),* })
-        }
-        fn $defaults() -> Vec<(&'static str, Dv)> {
-            let d = $ty::default();
-            vec![$((stringify!($f), params!(@dv d, $f, $how))),*]
-        }
-    };
-    (@get $kw:ident, $d:ident, $f:ident, f64) => { $kw.f64(stringify!($f), $d.$f)? };
-    (@get $kw:ident, $d:ident, $f:ident, int) => { $kw.int(stringify!($f), $d.$f)? };
-    (@get $kw:ident, $d:ident, $f:ident, bool) => { $kw.bool(stringify!($f), $d.$f)? };
-    (@get $kw:ident, $d:ident, $f:ident, [$table:ident]) => {
-        $kw.choice(stringify!($f), $table, $d.$f)?
-    };
-    (@get $kw:ident, $d:ident, $f:ident, rain_law) => { rain(&$kw, $d.$f)? };
-    (@get $kw:ident, $d:ident, $f:ident, opt) => { $kw.opt_f64(stringify!($f), $d.$f)? };
-    (@dv $d:ident, $f:ident, f64) => { Dv::F($d.$f) };
-    (@dv $d:ident, $f:ident, int) => { Dv::I($d.$f as u64) };
-    (@dv $d:ident, $f:ident, bool) => { Dv::B($d.$f) };
-    (@dv $d:ident, $f:ident, [$table:ident]) => { Dv::S(name_of($table, $d.$f)) };
-    (@dv $d:ident, $f:ident, rain_law) => { Dv::S(rain_name($d.$f)) };
-    (@dv $d:ident, $f:ident, opt) => { $d.$f.map_or(Dv::N, Dv::F) };
-}
 
 params!(
     thermal_params,
