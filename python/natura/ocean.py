@@ -91,8 +91,9 @@ class Phillips(Spectrum):
 class PiersonMoskowitz(Spectrum):
     """The Pierson-Moskowitz spectrum of a fully developed sea (``wind_speed`` at 19.5 m).
 
-    Spread about ``wind_direction`` by ``spreading`` (``"hasselmann"``, or
-    ``"cos2s"`` with the exponent ``spreading_s``).
+    Spread about ``wind_direction`` by ``spreading``: ``"hasselmann"`` (the
+    default), or ``"cos2s"`` with the exponent ``spreading_s`` (giving
+    ``spreading_s`` alone means ``"cos2s"``).
     """
 
     kind = "pierson_moskowitz"
@@ -102,14 +103,14 @@ class PiersonMoskowitz(Spectrum):
         *,
         wind_speed: float = 10.0,
         g: float = G,
-        spreading: str = "hasselmann",
+        spreading: Optional[str] = None,
         spreading_s: Optional[float] = None,
         wind_direction: float = 0.0,
     ) -> None:
         super().__init__(
             wind_speed=wind_speed,
             g=g,
-            spreading=spreading if spreading_s is None else "cos2s",
+            spreading=spreading,
             spreading_s=spreading_s,
             wind_direction=wind_direction,
         )
@@ -134,7 +135,7 @@ class Jonswap(Spectrum):
         sigma_low: float = 0.07,
         sigma_high: float = 0.09,
         g: float = G,
-        spreading: str = "hasselmann",
+        spreading: Optional[str] = None,
         spreading_s: Optional[float] = None,
         wind_direction: float = 0.0,
     ) -> None:
@@ -145,7 +146,7 @@ class Jonswap(Spectrum):
             sigma_low=sigma_low,
             sigma_high=sigma_high,
             g=g,
-            spreading=spreading if spreading_s is None else "cos2s",
+            spreading=spreading,
             spreading_s=spreading_s,
             wind_direction=wind_direction,
         )
@@ -170,7 +171,7 @@ class Tma(Spectrum):
         sigma_low: float = 0.07,
         sigma_high: float = 0.09,
         g: float = G,
-        spreading: str = "hasselmann",
+        spreading: Optional[str] = None,
         spreading_s: Optional[float] = None,
         wind_direction: float = 0.0,
     ) -> None:
@@ -182,7 +183,7 @@ class Tma(Spectrum):
             sigma_low=sigma_low,
             sigma_high=sigma_high,
             g=g,
-            spreading=spreading if spreading_s is None else "cos2s",
+            spreading=spreading,
             spreading_s=spreading_s,
             wind_direction=wind_direction,
         )

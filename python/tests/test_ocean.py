@@ -119,6 +119,7 @@ def test_every_spectrum_has_a_class():
         (dict(spectrum=ocean.Phillips(wind_speed=-1.0)), "wind_speed"),
         (dict(spectrum=ocean.Jonswap(fetch=float("nan"))), "fetch"),
         (dict(spectrum=ocean.Jonswap(spreading="wide")), "spreading"),
+        (dict(spectrum=ocean.Jonswap(spreading="hasselmann", spreading_s=6.0)), "spreading_s"),
         (dict(spectrum={"kind": "swell"}), "kind"),
         (dict(foam=ocean.FoamParams(decay_time=0.0)), "decay_time"),
     ],
