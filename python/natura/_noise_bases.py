@@ -8,23 +8,11 @@ from typing import Any, Dict, Optional, Union
 import numpy as np
 
 from natura import _native
+from natura._params import Params
 
 
-class Basis:
+class Basis(Params):
     """A basis with its parameters, for a fractal's ``basis`` argument."""
-
-    kind: str = ""
-
-    def __init__(self, **params: Any) -> None:
-        self.params: Dict[str, Any] = params
-
-    def spec(self) -> Dict[str, Any]:
-        """The parameter dictionary natura's native module reads."""
-        return {"kind": self.kind, **self.params}
-
-    def __repr__(self) -> str:
-        args = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
-        return f"{type(self).__name__}({args})"
 
 
 class Perlin(Basis):

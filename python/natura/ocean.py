@@ -32,26 +32,14 @@ from typing import Any, Dict, Optional, Union
 import numpy as np
 
 from natura import _native
+from natura._params import Params
 
 #: Gravity natura-ocean uses by default, m/s^2.
 G = 9.8
 
 
-class Spectrum:
+class Spectrum(Params):
     """A wave spectrum with its parameters, for the ``spectrum`` argument."""
-
-    kind: str = ""
-
-    def __init__(self, **params: Any) -> None:
-        self.params: Dict[str, Any] = params
-
-    def spec(self) -> Dict[str, Any]:
-        """The parameter dictionary natura's native module reads."""
-        return {"kind": self.kind, **self.params}
-
-    def __repr__(self) -> str:
-        args = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
-        return f"{type(self).__name__}({args})"
 
 
 class Phillips(Spectrum):
@@ -189,19 +177,17 @@ class Tma(Spectrum):
         )
 
 
-class FoamParams:
+class FoamParams(Params):
     """Whitecaps from the Jacobian J: coverage appears where J < ``threshold``,
     full ``range`` below it, and old foam decays with time constant
     ``decay_time`` (s)."""
 
+    kind = "foam"
+
     def __init__(
         self, *, threshold: float = 0.3, range: float = 0.5, decay_time: float = 3.0
     ) -> None:
-        self.params = {"threshold": threshold, "range": range, "decay_time": decay_time}
-
-    def __repr__(self) -> str:
-        args = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
-        return f"FoamParams({args})"
+        super().__init__(threshold=threshold, range=range, decay_time=decay_time)
 
 
 SpectrumLike = Union[Spectrum, Dict[str, Any]]
