@@ -4,10 +4,9 @@
 //! coverage accumulated over those times in order.
 
 use natura_core::Seed;
-use natura_ocean::spectrum::{Directional, Spreading};
 use natura_ocean::{
-    AmplitudeScheme, Dispersion, Foam, FoamParams, FrameField, G, Jonswap, Ocean, OceanParams,
-    Phillips, PiersonMoskowitz, Spectrum, Tma,
+    AmplitudeScheme, Directional, Dispersion, Foam, FoamParams, FrameField, FrequencySpectrum, G,
+    Jonswap, Ocean, OceanParams, Phillips, PiersonMoskowitz, Spectrum, Spreading, Tma,
 };
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -154,6 +153,21 @@ fn spreading(kw: &Kw<'_>) -> PyResult<Spreading> {
     }
 }
 
+/// The frequency spectrum `f` spread about `wind_direction` by `spreading`
+/// (both read from `kw`), its wavenumbers mapped by `dispersion`.
+fn directional<F: FrequencySpectrum + 'static>(
+    kw: &Kw<'_>,
+    f: F,
+    dispersion: Dispersion,
+) -> PyResult<Box<dyn Spectrum>> {
+    Ok(Box::new(Directional {
+        spectrum: f,
+        spreading: spreading(kw)?,
+        wind_direction: kw.f64("wind_direction", 0.0)?,
+        dispersion,
+    }))
+}
+
 /// The spectrum of the dictionary `spec` (`kind` and the Rust struct's
 /// fields; a frequency spectrum also takes `spreading`, `spreading_s` and
 /// `wind_direction`, and maps wavenumber to frequency with the ocean's
@@ -161,43 +175,16 @@ fn spreading(kw: &Kw<'_>) -> PyResult<Spreading> {
 fn spectrum(spec: &Bound<'_, PyAny>, dispersion: Dispersion) -> PyResult<Box<dyn Spectrum>> {
     let kw = Kw::new(spec, "spectrum")?;
     let kind = kw.string("kind", "phillips")?;
-    let directional = |kw: &Kw<'_>| -> PyResult<(Spreading, f64)> {
-        Ok((spreading(kw)?, kw.f64("wind_direction", 0.0)?))
-    };
     let s: Box<dyn Spectrum> = match kind.as_str() {
         "phillips" => Box::new(phillips_params(&kw)?),
-        "pierson_moskowitz" => {
-            let f = pierson_moskowitz_params(&kw)?;
-            let (spreading, wind_direction) = directional(&kw)?;
-            Box::new(Directional {
-                spectrum: f,
-                spreading,
-                wind_direction,
-                dispersion,
-            })
-        }
-        "jonswap" => {
-            let f = jonswap_params(&kw)?;
-            let (spreading, wind_direction) = directional(&kw)?;
-            Box::new(Directional {
-                spectrum: f,
-                spreading,
-                wind_direction,
-                dispersion,
-            })
-        }
+        "pierson_moskowitz" => directional(&kw, pierson_moskowitz_params(&kw)?, dispersion)?,
+        "jonswap" => directional(&kw, jonswap_params(&kw)?, dispersion)?,
         "tma" => {
             let jonswap = jonswap_params(&kw)?;
             let depth = kw.opt_f64("depth", None)?.ok_or_else(|| {
                 PyValueError::new_err("spectrum: depth is needed for kind = \"tma\"")
             })?;
-            let (spreading, wind_direction) = directional(&kw)?;
-            Box::new(Directional {
-                spectrum: Tma { jonswap, depth },
-                spreading,
-                wind_direction,
-                dispersion,
-            })
+            directional(&kw, Tma { jonswap, depth }, dispersion)?
         }
         other => {
             return Err(PyValueError::new_err(format!(
