@@ -2,11 +2,11 @@
 //! numpy arrays in and out of natura's noise, terrain, plant and ocean crates.
 //!
 //! The Python modules `natura.noise`, `natura.terrain`, `natura.plant` and
-//! `natura.ocean` (in `python/natura/`)
-//! give these functions their keyword signatures and docstrings; this module
-//! checks every argument (a wrong dtype, shape or value raises `TypeError` or
-//! `ValueError` naming it), releases the GIL for the computation and turns a
-//! Rust panic into `RuntimeError`.
+//! `natura.ocean` (in `python/natura/`) give these functions their keyword
+//! signatures and docstrings; this module checks every argument (a wrong
+//! dtype, shape or value raises `TypeError` or `ValueError` naming it),
+//! releases the GIL for the computation (a noise call on fewer than 256
+//! points keeps it) and turns a Rust panic into `RuntimeError`.
 
 mod args;
 mod noise;
