@@ -125,18 +125,27 @@ fn basin_graph(
     let found: Vec<Vec<(u32, u32, Pass)>> =
         bands::run(cells.chunks(per).collect(), |part: &[u32]| {
             let mut out: Vec<(u32, u32, Pass)> = Vec::new();
+            // A basin's cells come one after another: its lowest pass to
+            // each neighbouring basin is kept as they are scanned, so only
+            // those (not every boundary edge) are sorted.
+            let mut best = Neighbours::default();
             for &c in part {
                 let c = c as usize;
                 let bc = basin[c];
+                if bc != best.basin {
+                    best.flush(&mut out);
+                    best.basin = bc;
+                }
                 for &o in off {
                     let j = (c as isize + o) as usize;
                     let bj = basin[j];
                     if bj != bc {
                         let p = Pass::new(h[c].max(h[j]), c.min(j) as u32, c.max(j) as u32);
-                        out.push((bc.min(bj), bc.max(bj), p));
+                        best.offer(bj, p, &mut out);
                     }
                 }
             }
+            best.flush(&mut out);
             out.sort_unstable();
             out.dedup_by_key(|e| (e.0, e.1));
             out
@@ -150,6 +159,39 @@ fn basin_graph(
         adjacency[b as usize].push((a, p));
     }
     adjacency
+}
+
+/// The lowest pass found so far from one basin to each of its neighbours.
+#[derive(Default)]
+struct Neighbours {
+    basin: u32,
+    lowest: Vec<(u32, Pass)>,
+}
+
+impl Neighbours {
+    /// The most neighbours kept; passes to further basins go straight to
+    /// the output (the sort there keeps the lowest all the same).
+    const MAX: usize = 32;
+
+    /// A pass from this basin to basin `other`.
+    #[inline]
+    fn offer(&mut self, other: u32, p: Pass, out: &mut Vec<(u32, u32, Pass)>) {
+        if let Some(e) = self.lowest.iter_mut().find(|e| e.0 == other) {
+            if p < e.1 {
+                e.1 = p;
+            }
+        } else if self.lowest.len() < Self::MAX {
+            self.lowest.push((other, p));
+        } else {
+            out.push((self.basin.min(other), self.basin.max(other), p));
+        }
+    }
+
+    /// Moves the passes kept to `out` as `(lower basin, higher basin, pass)`.
+    fn flush(&mut self, out: &mut Vec<(u32, u32, Pass)>) {
+        let b = self.basin;
+        out.extend(self.lowest.drain(..).map(|(o, p)| (b.min(o), b.max(o), p)));
+    }
 }
 
 /// The receiver path a basin's link reverses: from the pass cell `inside`
