@@ -677,6 +677,14 @@ mod tests {
             }
         }
         assert_eq!(n, 87, "rows in docs/figures.md");
+        // The header's tally is the rows' statuses.
+        let count = |status: &str| text.matches(&format!("| {status} |")).count();
+        let (made, partly, missing) = (count("re-made"), count("partly"), count("missing"));
+        assert_eq!(made + partly + missing, n);
+        let tally = format!(
+            "Of the {n}, {made} are re-made, {partly} partly (a flat colour map where the\nsource shows a rendered patch, a different scene, a missing element) and\n{missing} missing"
+        );
+        assert!(text.contains(&tally), "the header should read: {tally}");
         for f in Fig::ALL {
             for name in f.files() {
                 assert!(text.contains(&format!("gallery/figures/{name}")), "{name}");

@@ -2,7 +2,10 @@
 //! example shows, re-made by composing natura's models: "Misty Mountains"
 //! (Pl. 1.2, strata in exponential mist), "Zabriskie Point"'s planar mirage
 //! (Pl. 1.3), the patch that goes from planar to space filling (Pl. 2.2, MKM
-//! 5), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! 5), the terrain models as rendered patches (the fractal dimension from 2
+//! to 3, Pl. 2.3; statistics by altitude with "Spirit Lake", Pl. 2.4–2.5;
+//! the ridge by position, Pl. 2.6; Terrain(), Pl. 2.8; "Hell", Pl. 2.9), a
+//! diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
@@ -32,7 +35,6 @@ use natura::atmos::mirage::{PlanarMirage, StratifiedAir};
 use natura::atmos::rainbow::{Rainbow, RainbowParams};
 use natura::core::camera::PinholeCamera;
 use natura::core::glam::{DVec2, DVec3, Vec3};
-use natura::core::preview::{PreviewCamera, PreviewProjection, Projector, Raster, facing, lambert};
 use natura::core::{HeightField, Image};
 use natura::noise::{Driven, DrivenKind, Fade, Fbm, Field, Param, Perlin, Spectral};
 use natura::texture::earth::{Strata, StrataParams};
@@ -40,7 +42,8 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie Point",
-/// the planar-to-space-filling patch, DLA in radial fog, the fractal
+/// the planar-to-space-filling patch, the terrain models as rendered
+/// patches (Pl. 2.3–2.9), DLA in radial fog, the fractal
 /// mandala, the prism under the empirical bow, the full-circle rainbow
 /// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
 /// 2001).
@@ -70,6 +73,16 @@ enum Fig {
     Zabriskie,
     /// Pl. 2.2 (MKM 5): a patch going from planar to space filling, β = 1/x
     SpaceFilling,
+    /// Pl. 2.3 (MKM 6): fractal dimension from 2 to 3 across the patch
+    Dimension,
+    /// Pl. 2.4–2.5 (MKM 3, 11): statistics by altitude, with "Spirit Lake"
+    SpiritLake,
+    /// Pl. 2.6 (MKM 4): a ridge line by horizontal position
+    Ridge,
+    /// Pl. 2.8: Terrain(), the heterogeneous terrain model
+    Terrain,
+    /// Pl. 2.9: "Hell": ridged heterogeneous terrain over lava
+    Hell,
     /// Pl. 4.7: a diffusion-limited aggregate in radial fog
     DlaFog,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
@@ -89,6 +102,11 @@ impl Figure for Fig {
         Fig::MistyMountains,
         Fig::Zabriskie,
         Fig::SpaceFilling,
+        Fig::Dimension,
+        Fig::SpiritLake,
+        Fig::Ridge,
+        Fig::Terrain,
+        Fig::Hell,
         Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
@@ -102,6 +120,11 @@ impl Figure for Fig {
             Fig::MistyMountains => &["musgrave_pl1-2_misty_mountains.png"],
             Fig::Zabriskie => &["musgrave_pl1-3_zabriskie_mirage.png"],
             Fig::SpaceFilling => &["musgrave_pl2-2_space_filling.png"],
+            Fig::Dimension => &["musgrave_pl2-3_dimension_2_to_3.png"],
+            Fig::SpiritLake => &["musgrave_pl2-4_spirit_lake.png"],
+            Fig::Ridge => &["musgrave_pl2-6_ridge.png"],
+            Fig::Terrain => &["musgrave_pl2-8_terrain.png"],
+            Fig::Hell => &["musgrave_pl2-9_hell.png"],
             Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
@@ -124,6 +147,8 @@ mod landscape;
 mod mandala;
 #[path = "musgrave/milky_way.rs"]
 mod milky_way;
+#[path = "musgrave/patches.rs"]
+mod patches;
 #[path = "musgrave/prism.rs"]
 mod prism;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
@@ -140,6 +165,15 @@ fn figures() -> Run {
             Fig::MistyMountains => vec![misty_mountains(cli.seed, cli.quick)?],
             Fig::Zabriskie => vec![zabriskie(cli.seed, cli.quick)?],
             Fig::SpaceFilling => vec![space_filling(cli.seed, cli.quick)?],
+            Fig::Dimension => vec![patches::dimension_2_to_3(
+                cli.seed,
+                plate_2_2_spectral(),
+                cli.quick,
+            )?],
+            Fig::SpiritLake => vec![patches::spirit_lake(cli.seed, cli.quick)?],
+            Fig::Ridge => vec![patches::ridge(cli.seed, cli.quick)?],
+            Fig::Terrain => vec![patches::terrain(cli.seed, cli.quick)?],
+            Fig::Hell => vec![patches::hell(cli.seed, cli.quick)?],
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
@@ -392,19 +426,24 @@ impl Field for BetaOverX {
 /// (Musgrave 1993, §2.3.2.2).
 const CROSSOVERS: [f64; 2] = [7.0, 1.0 / 128.0];
 
-/// Plate 2.2's fBm: Perlin noise with the sources' cubic fade, λ = 2, the
-/// first octave at the upper crossover and as many octaves as reach the
-/// lower one (log₂ 896 ≈ 9.81), H = (1/x − 1)/2 at each point.
-fn plate_2_2_fbm(seed: u64) -> R<Driven<Perlin>> {
-    let spectral = Spectral {
+/// Plate 2.2's spectrum (Plate 2.3's too): λ = 2, the first octave at the
+/// upper crossover and as many octaves as reach the lower one.
+fn plate_2_2_spectral() -> Spectral {
+    Spectral {
         h: 0.5,
         lacunarity: 2.0,
         octaves: (CROSSOVERS[0] / CROSSOVERS[1]).log2(),
         frequency: 1.0 / CROSSOVERS[0],
         ..Spectral::default()
-    };
+    }
+}
+
+/// Plate 2.2's fBm: Perlin noise with the sources' cubic fade, λ = 2, the
+/// first octave at the upper crossover and as many octaves as reach the
+/// lower one (log₂ 896 ≈ 9.81), H = (1/x − 1)/2 at each point.
+fn plate_2_2_fbm(seed: u64) -> R<Driven<Perlin>> {
     let basis = Perlin::with_fade(seed, Fade::Cubic);
-    Ok(Driven::new(basis, spectral, DrivenKind::Fbm)?
+    Ok(Driven::new(basis, plate_2_2_spectral(), DrivenKind::Fbm)?
         .with_h(Param::Field(std::sync::Arc::new(BetaOverX))))
 }
 
@@ -419,28 +458,12 @@ fn patch(fbm: &Driven<Perlin>, n: usize, relief: f64) -> R<HeightField> {
     })?)
 }
 
-/// A height field as triangles, two per cell.
-fn field_mesh(hf: &HeightField) -> (Vec<Vec3>, Vec<[usize; 3]>) {
-    let (nx, ny) = (hf.nx(), hf.ny());
-    let pos = (0..nx * ny).map(|k| hf.point(k % nx, k / nx)).collect();
-    let mut tris = Vec::with_capacity(2 * nx * ny);
-    for j in 0..ny - 1 {
-        for i in 0..nx - 1 {
-            let v = |a: usize, b: usize| b * nx + a;
-            tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
-            tris.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
-        }
-    }
-    (pos, tris)
-}
-
 /// Pl. 2.2: the patch seen from the front and above, flat-shaded in one
 /// stone colour so the roughness reads from the shading alone.
 fn space_filling(seed: u64, quick: bool) -> R<Image> {
     let n = if quick { 96 } else { 512 };
     let fbm = plate_2_2_fbm(seed)?;
     let hf = patch(&fbm, n, 0.1)?;
-    let (lo, hi) = hf.heights().min_max();
     for x in [0.1, 0.25, 0.5, 0.75, 1.0] {
         outln(format_args!(
             "  Pl. 2.2: x = {x:<4}: β = {:.2}, H = {:.2}",
@@ -448,34 +471,14 @@ fn space_filling(seed: u64, quick: bool) -> R<Image> {
             h_of_x(x)
         ))?;
     }
-    let (pos, tris) = field_mesh(&hf);
     let size = if quick { (320, 200) } else { (1200, 750) };
-    let extent = Vec3::new(hf.nx() as f32, hf.ny() as f32, 0.0) * hf.cell_size();
-    let mut cam = PreviewCamera::framing(
-        Vec3::new(0.0, 0.0, lo),
-        Vec3::new(extent.x, extent.y, hi),
-        Vec3::new(0.0, 1.0, -0.85),
-        Some(30.0),
-        size.0 as f32 / size.1 as f32,
-    )?;
-    cam.projection = PreviewProjection::Perspective { fov_y_deg: 20.0 };
-    let mut frame = Raster::new(size.0, size.1, 2, Vec3::new(0.55, 0.66, 0.82))?;
-    let (w, h) = frame.samples();
-    let view = Projector::new(&cam, w, h)?;
-    let screen: Vec<Option<[f32; 3]>> = pos.iter().map(|&p| view.project(p)).collect();
-    let light = Vec3::new(-0.5, -0.6, 0.62).normalize();
     let stone = Vec3::new(0.72, 0.62, 0.50);
-    for t in &tris {
-        let [a, b, c] = *t;
-        let (Some(pa), Some(pb), Some(pc)) = (screen[a], screen[b], screen[c]) else {
-            continue;
-        };
-        let centre = (pos[a] + pos[b] + pos[c]) / 3.0;
-        let nrm = (pos[b] - pos[a]).cross(pos[c] - pos[a]).normalize_or_zero();
-        let col = stone * lambert(facing(nrm, view.to_viewer(centre)), light, 0.2);
-        frame.triangle([pa, pb, pc], |_| col)?;
-    }
-    Ok(frame.resolve()?)
+    patches::render_patch(&hf, size, Vec3::new(0.55, 0.66, 0.82), &|_, _| {
+        patches::Facet {
+            albedo: stone,
+            emission: Vec3::ZERO,
+        }
+    })
 }
 
 // ---------------------------------------------------------------- Pl. 4.12
