@@ -48,7 +48,10 @@ fn every_pair_is_separated_and_phi_n_is_n_times_137_5_on_every_receptacle() {
     for (name, p) in [
         ("cone", PhyllotaxisParams::default()),
         ("disc", params(Receptacle::Disc { radius: 1.0 }, 0.04, 0.04)),
-        ("sphere", params(Receptacle::Sphere { radius: 1.0 }, 0.08, 0.08)),
+        (
+            "sphere",
+            params(Receptacle::Sphere { radius: 1.0 }, 0.08, 0.08),
+        ),
         ("dome", params(dome(), 0.06, 0.03)),
     ] {
         let v = phyllotaxis(&p).unwrap();
@@ -59,7 +62,10 @@ fn every_pair_is_separated_and_phi_n_is_n_times_137_5_on_every_receptacle() {
             assert!(d < 1e-6, "{name}: φ_{n} off by {d}°");
             assert!(a.t >= p.t_min && a.t <= p.t_max, "{name}: t_{n} = {}", a.t);
             let c = p.receptacle.point(a.phi, a.t);
-            assert!(c.distance(a.centre) < 1e-12, "{name}: centre off the receptacle");
+            assert!(
+                c.distance(a.centre) < 1e-12,
+                "{name}: centre off the receptacle"
+            );
         }
         // The receptacle is full: placement stopped before max_count.
         assert!(v.len() < p.max_count, "{name}");
@@ -75,7 +81,12 @@ fn with_delta_t_falls_back_at_most_by_the_new_radius() {
     let speed = 2f64.sqrt();
     for (n, w) in v.windows(2).enumerate() {
         let delta = p.radius(w[0].t) / speed;
-        assert!(w[1].t >= w[0].t - delta - 1e-9, "t_{} = {} < t_{n} − δ", n + 1, w[1].t);
+        assert!(
+            w[1].t >= w[0].t - delta - 1e-9,
+            "t_{} = {} < t_{n} − δ",
+            n + 1,
+            w[1].t
+        );
     }
 }
 
@@ -91,7 +102,11 @@ fn the_decreasing_size_fix_keeps_small_primordia_out_of_gaps_at_the_base() {
         ..PhyllotaxisParams::default()
     };
     let drop = |use_delta: bool| {
-        let v = phyllotaxis(&PhyllotaxisParams { use_delta, ..base.clone() }).unwrap();
+        let v = phyllotaxis(&PhyllotaxisParams {
+            use_delta,
+            ..base.clone()
+        })
+        .unwrap();
         assert_no_overlap(&v, 1e-9);
         // The largest fall of t below the highest t reached so far.
         let mut top = 0.0f64;
@@ -104,7 +119,10 @@ fn the_decreasing_size_fix_keeps_small_primordia_out_of_gaps_at_the_base() {
     };
     let (with, without) = (drop(true), drop(false));
     println!("fall with δ {with:?}, without {without:?}");
-    assert!(without.0 > 0.3, "without δ the worst fall is only {without:?}");
+    assert!(
+        without.0 > 0.3,
+        "without δ the worst fall is only {without:?}"
+    );
     assert!(with.0 < 0.1, "with δ a primordium still falls {with:?}");
 }
 
@@ -142,7 +160,7 @@ fn parastichies_on_a_flat_head_are_consecutive_fibonacci_numbers() {
     let (a, b) = (counts[0].1.min(counts[1].1), counts[0].1.max(counts[1].1));
     println!("parastichies: {a}, {b} ({counts:?})");
     assert!(is_fibonacci(a) && is_fibonacci(b), "{counts:?}");
-    // Consecutive: b is the Fibonacci number after a .
+    // Consecutive: b is the Fibonacci number after a.
     let (mut x, mut y) = (1, 2);
     while x < a {
         (x, y) = (y, x + y);
@@ -166,20 +184,30 @@ fn numeric_normal(r: &Receptacle, phi: f64, t: f64) -> DVec3 {
 fn organ_frames_are_orthonormal_follow_the_receptacle_and_scale_with_the_primordium() {
     for (name, p) in [
         ("cone", PhyllotaxisParams::default()),
-        ("sphere", params(Receptacle::Sphere { radius: 1.0 }, 0.1, 0.1)),
+        (
+            "sphere",
+            params(Receptacle::Sphere { radius: 1.0 }, 0.1, 0.1),
+        ),
         ("dome", params(dome(), 0.08, 0.04)),
     ] {
         let v = phyllotaxis(&p).unwrap();
         let f = organ_frames(&p.receptacle, &v).unwrap();
         assert_eq!(f.len(), v.len());
         for (q, o) in v.iter().zip(&f) {
-            for (a, b) in [(o.normal, o.tangent), (o.normal, o.side), (o.tangent, o.side)] {
+            for (a, b) in [
+                (o.normal, o.tangent),
+                (o.normal, o.side),
+                (o.tangent, o.side),
+            ] {
                 assert!(a.dot(b).abs() < 1e-9, "{name}: not orthogonal");
             }
             for a in [o.normal, o.tangent, o.side] {
                 assert!((a.length() - 1.0).abs() < 1e-9, "{name}: not unit");
             }
-            assert!((o.tangent.cross(o.side).dot(o.normal) - 1.0).abs() < 1e-9, "{name}");
+            assert!(
+                (o.tangent.cross(o.side).dot(o.normal) - 1.0).abs() < 1e-9,
+                "{name}"
+            );
             // The contact point goes to the centre; local +z is the normal.
             assert!(o.to_world(DVec3::ZERO).distance(q.centre) < 1e-12);
             if q.t > 1e-3 && q.t < 1.0 - 1e-3 {
@@ -212,7 +240,12 @@ fn cauliflower_heads_carry_heads_that_satisfy_the_collision_condition() {
     let frames = organ_frames(&outer.receptacle, &heads).unwrap();
     let inner = params(dome(), 0.12, 0.08);
     let own = phyllotaxis(&inner).unwrap();
-    assert!(heads.len() > 10 && own.len() > 20, "{} {}", heads.len(), own.len());
+    assert!(
+        heads.len() > 10 && own.len() > 20,
+        "{} {}",
+        heads.len(),
+        own.len()
+    );
     for f in &frames {
         let placed: Vec<Primordium> = own
             .iter()
@@ -241,11 +274,42 @@ fn name_of(e: &PlantError) -> &'static str {
 fn bad_input_is_an_error_naming_the_parameter() {
     let d = PhyllotaxisParams::default();
     let cases: Vec<(PhyllotaxisParams, &str)> = vec![
-        (PhyllotaxisParams { r_base: f64::NAN, ..d.clone() }, "r_base"),
-        (PhyllotaxisParams { r_tip: -0.1, ..d.clone() }, "r_tip"),
-        (PhyllotaxisParams { t_min: 0.8, t_max: 0.2, ..d.clone() }, "t_min"),
-        (PhyllotaxisParams { t_max: f64::NAN, ..d.clone() }, "t_max"),
-        (PhyllotaxisParams { divergence_deg: f64::INFINITY, ..d.clone() }, "divergence_deg"),
+        (
+            PhyllotaxisParams {
+                r_base: f64::NAN,
+                ..d.clone()
+            },
+            "r_base",
+        ),
+        (
+            PhyllotaxisParams {
+                r_tip: -0.1,
+                ..d.clone()
+            },
+            "r_tip",
+        ),
+        (
+            PhyllotaxisParams {
+                t_min: 0.8,
+                t_max: 0.2,
+                ..d.clone()
+            },
+            "t_min",
+        ),
+        (
+            PhyllotaxisParams {
+                t_max: f64::NAN,
+                ..d.clone()
+            },
+            "t_max",
+        ),
+        (
+            PhyllotaxisParams {
+                divergence_deg: f64::INFINITY,
+                ..d.clone()
+            },
+            "divergence_deg",
+        ),
         (
             PhyllotaxisParams {
                 receptacle: Receptacle::Bezier { segments: vec![] },
@@ -269,8 +333,20 @@ fn bad_input_is_an_error_naming_the_parameter() {
             },
             "receptacle.radius",
         ),
-        (PhyllotaxisParams { order_decay: 1.0, ..d.clone() }, "order_decay"),
-        (PhyllotaxisParams { order_decay: -0.1, ..d.clone() }, "order_decay"),
+        (
+            PhyllotaxisParams {
+                order_decay: 1.0,
+                ..d.clone()
+            },
+            "order_decay",
+        ),
+        (
+            PhyllotaxisParams {
+                order_decay: -0.1,
+                ..d.clone()
+            },
+            "order_decay",
+        ),
     ];
     for (p, want) in cases {
         let e = phyllotaxis(&p).unwrap_err();
