@@ -676,7 +676,7 @@ mod tests {
                 assert!(docs.join("gallery").join(path).is_file(), "{path} in {row}");
             }
         }
-        assert_eq!(n, 87, "rows in docs/figures.md");
+        assert_eq!(n, 97, "rows in docs/figures.md");
         for f in Fig::ALL {
             for name in f.files() {
                 assert!(text.contains(&format!("gallery/figures/{name}")), "{name}");
