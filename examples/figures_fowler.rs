@@ -183,18 +183,18 @@ fn draw(fig: Fig, d: Detail) -> R<Image> {
             report("daisy", &daisy)?;
             report("chrysanthemum", &pink)?;
             let mut s = Mesh::default();
-            add(&mut s, &daisy.mesh, [-2.3, 0.4, 0.0], tilt(-0.5, 0.2), 1.0);
+            add(&mut s, &daisy.mesh, [-2.6, 0.6, 0.0], tilt(0.35, 0.2), 1.0);
+            add(&mut s, &daisy.mesh, [2.6, 0.9, 0.3], tilt(0.3, -0.3), 0.95);
+            add(&mut s, &daisy.mesh, [0.9, 3.2, 1.2], tilt(0.2, 0.1), 0.9);
             add(
                 &mut s,
-                &daisy.mesh,
-                [2.4, 0.8, 0.3],
-                tilt(-0.35, -0.3),
-                0.95,
+                &pink.mesh,
+                [-0.2, -0.8, -0.3],
+                tilt(0.45, 0.0),
+                1.15,
             );
-            add(&mut s, &daisy.mesh, [0.3, 2.6, 0.9], tilt(-0.2, 0.1), 0.9);
-            add(&mut s, &pink.mesh, [0.0, -0.4, 0.2], tilt(-0.6, 0.0), 1.2);
-            add(&mut s, &gold.mesh, [-0.9, 2.3, -0.6], tilt(-0.45, 0.5), 0.9);
-            render(&s, &front(1.4).zoomed(1.5), d.size * 4 / 3, d.size)
+            add(&mut s, &gold.mesh, [-1.8, 3.0, 0.8], tilt(0.35, 0.5), 1.0);
+            render(&s, &front(1.1).zoomed(1.4), d.size * 4 / 3, d.size)
         }
         Fig::Raspberries => scenes::raspberries(res, d),
         Fig::Buttonbush => scenes::buttonbush(res, d),

@@ -310,7 +310,7 @@ pub fn dome() -> Receptacle {
 /// phyllotactic head of buds (`buds` coloured), a dome in turn.
 pub fn brassica(stalk: f64, buds: Vec3, leaves: bool, res: u32) -> R<Head> {
     let rec = dome();
-    let (v, f) = place(rec.clone(), 0.2, 0.13, [0.0, 0.99])?;
+    let (v, f) = place(rec.clone(), 0.2, 0.13, [0.1, 0.99])?;
     let inner = dome();
     let (_, fi) = place(inner.clone(), 0.16, 0.11, [0.0, 0.98])?;
     // One floret: stalk, its small dome, its buds.
@@ -340,8 +340,8 @@ pub fn brassica(stalk: f64, buds: Vec3, leaves: bool, res: u32) -> R<Head> {
         for k in 0..7 {
             let a = f64::from(k) * 137.5f64.to_radians();
             let l = organs::leaf(2.4, 1.6, 0.12, Vec3::new(0.08, 0.25, 0.1), res);
-            let rot = DMat3::from_rotation_z(a) * DMat3::from_rotation_y(-0.35);
-            m.put(&l, DVec3::new(0.0, 0.0, -0.3), rot, 1.0);
+            let rot = DMat3::from_rotation_z(a) * DMat3::from_rotation_y(-0.25);
+            m.put(&l, DVec3::new(0.0, 0.0, -0.2), rot, 1.0);
         }
     } else {
         stem(&mut m, DVec3::new(0.0, 0.0, -2.0), DVec3::ZERO, 0.45);
