@@ -1,10 +1,10 @@
 //! Collision-based spiral phyllotaxis (Fowler, Prusinkiewicz & Battjes 1992).
 //!
-//! Fowler et al. 1992, §3: primordia are spheres centred on a receptacle, a
+//! Fowler et al. 1992, §2.3–2.4: primordia are spheres centred on a receptacle, a
 //! surface of revolution `(φ, ρ(t), h(t))`. The n-th primordium sits at
 //! `φ_n = n·137.5°`, and at the smallest `t ≥ t'_min` where it touches no
 //! earlier primordium: `‖P_i − P_n‖ ≥ r_i + r_n` for all `i < n` (the
-//! recurrence of §3). `t'_min = max(t_min, t_{n−1} − δ)` with `δ` about the
+//! recurrence of §2.4). `t'_min = max(t_min, t_{n−1} − δ)` with `δ` about the
 //! new primordium's radius keeps small late primordia from falling into gaps
 //! near the base (the source's fix for decreasing sizes). Placement ends when
 //! no `t` fits.
