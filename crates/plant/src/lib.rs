@@ -18,7 +18,8 @@
 //! Prusinkiewicz 1996 with their environments (Honda's branch tiers, a clonal
 //! plant foraging over patches of light, roots growing in soil water in a
 //! vertical section or in 3-D soil, tree crowns competing for light),
-//! collision-based phyllotaxis (Fowler et al. 1992) and positional-information
+//! collision-based phyllotaxis with its organ placement (Fowler et al. 1992)
+//! and positional-information
 //! algorithms (organ spacing, compound leaves, Ridley's packing and branch
 //! mapping; Prusinkiewicz et al. 2001);
 //! and plant ecosystems over a natura-terrain height field after Deussen et

@@ -9,7 +9,7 @@
 //! | roots growing in soil water | Měch & Prusinkiewicz 1996, §7, Fig. 8–9 | [`roots`] |
 //! | the same in 3-D soil | Měch & Prusinkiewicz 1996, §7, Fig. 10 | [`roots3d`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–16 | [`crowns`] |
-//! | collision-based spiral phyllotaxis | Fowler et al. 1992, §3 | [`phyllotaxis`] |
+//! | collision-based spiral phyllotaxis and organ placement | Fowler et al. 1992, §2.4, §3.1 | [`phyllotaxis`] |
 //! | compound leaves (organs at a density along a curved stem) | Prusinkiewicz et al. 2001, §5, Alg. 4 | [`compound`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
