@@ -5,7 +5,8 @@
 //! 5), the terrain models as rendered patches (the fractal dimension from 2
 //! to 3, Pl. 2.3; statistics by altitude with "Spirit Lake", Pl. 2.4–2.5;
 //! the ridge by position, Pl. 2.6; Terrain(), Pl. 2.8; "Hell", Pl. 2.9), a
-//! diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! stream-bed patch before and after hydraulic erosion and thermal
+//! weathering (Pl. 2.10–2.11, MKM 2 and 9), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
@@ -43,7 +44,8 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 /// Musgrave's plates (Musgrave 1993; Musgrave et al. 1989) that no other
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie Point",
 /// the planar-to-space-filling patch, the terrain models as rendered
-/// patches (Pl. 2.3–2.9), DLA in radial fog, the fractal
+/// patches (Pl. 2.3–2.9), fluvial erosion before and after (Pl.
+/// 2.10–2.11), DLA in radial fog, the fractal
 /// mandala, the prism under the empirical bow, the full-circle rainbow
 /// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
 /// 2001).
@@ -83,6 +85,9 @@ enum Fig {
     Terrain,
     /// Pl. 2.9: "Hell": ridged heterogeneous terrain over lava
     Hell,
+    /// Pl. 2.10–2.11 (MKM 2, 9): a stream-bed patch before and after 2000
+    /// steps of hydraulic erosion and thermal weathering
+    Fluvial,
     /// Pl. 4.7: a diffusion-limited aggregate in radial fog
     DlaFog,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
@@ -107,6 +112,7 @@ impl Figure for Fig {
         Fig::Ridge,
         Fig::Terrain,
         Fig::Hell,
+        Fig::Fluvial,
         Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
@@ -125,6 +131,10 @@ impl Figure for Fig {
             Fig::Ridge => &["musgrave_pl2-6_ridge.png"],
             Fig::Terrain => &["musgrave_pl2-8_terrain.png"],
             Fig::Hell => &["musgrave_pl2-9_hell.png"],
+            Fig::Fluvial => &[
+                "musgrave_pl2-10_stream_bed.png",
+                "musgrave_pl2-11_eroded.png",
+            ],
             Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
@@ -141,6 +151,8 @@ type R<T> = Result<T, Exit>;
 mod bay_fog;
 #[path = "musgrave/dla_fog.rs"]
 mod dla_fog;
+#[path = "musgrave/erosion.rs"]
+mod erosion;
 #[path = "musgrave/landscape.rs"]
 mod landscape;
 #[path = "musgrave/mandala.rs"]
@@ -174,6 +186,7 @@ fn figures() -> Run {
             Fig::Ridge => vec![patches::ridge(cli.seed, cli.quick)?],
             Fig::Terrain => vec![patches::terrain(cli.seed, cli.quick)?],
             Fig::Hell => vec![patches::hell(cli.seed, cli.quick)?],
+            Fig::Fluvial => erosion::fluvial(cli.seed, cli.quick)?,
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
