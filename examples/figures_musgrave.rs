@@ -6,7 +6,8 @@
 //! to 3, Pl. 2.3; statistics by altitude with "Spirit Lake", Pl. 2.4–2.5;
 //! the ridge by position, Pl. 2.6; Terrain(), Pl. 2.8; "Hell", Pl. 2.9), a
 //! stream-bed patch before and after hydraulic erosion and thermal
-//! weathering (Pl. 2.10–2.11, MKM 2 and 9), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! weathering (Pl. 2.10–2.11, MKM 2 and 9), dunes by slumping (Pl.
+//! 2.12–2.13, MKM 7 and 8), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
@@ -45,7 +46,7 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 /// example shows: "Misty Mountains", the planar mirage of "Zabriskie Point",
 /// the planar-to-space-filling patch, the terrain models as rendered
 /// patches (Pl. 2.3–2.9), fluvial erosion before and after (Pl.
-/// 2.10–2.11), DLA in radial fog, the fractal
+/// 2.10–2.11), dunes by slumping (Pl. 2.12–2.13), DLA in radial fog, the fractal
 /// mandala, the prism under the empirical bow, the full-circle rainbow
 /// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
 /// 2001).
@@ -88,6 +89,9 @@ enum Fig {
     /// Pl. 2.10–2.11 (MKM 2, 9): a stream-bed patch before and after 2000
     /// steps of hydraulic erosion and thermal weathering
     Fluvial,
+    /// Pl. 2.12–2.13 (MKM 7, 8): a patch of non-uniform lacunarity before
+    /// and after 100 steps of thermal weathering (dunes)
+    Dunes,
     /// Pl. 4.7: a diffusion-limited aggregate in radial fog
     DlaFog,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
@@ -113,6 +117,7 @@ impl Figure for Fig {
         Fig::Terrain,
         Fig::Hell,
         Fig::Fluvial,
+        Fig::Dunes,
         Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
@@ -134,6 +139,10 @@ impl Figure for Fig {
             Fig::Fluvial => &[
                 "musgrave_pl2-10_stream_bed.png",
                 "musgrave_pl2-11_eroded.png",
+            ],
+            Fig::Dunes => &[
+                "musgrave_pl2-12_dunes_before.png",
+                "musgrave_pl2-13_dunes_after.png",
             ],
             Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
@@ -187,6 +196,7 @@ fn figures() -> Run {
             Fig::Terrain => vec![patches::terrain(cli.seed, cli.quick)?],
             Fig::Hell => vec![patches::hell(cli.seed, cli.quick)?],
             Fig::Fluvial => erosion::fluvial(cli.seed, cli.quick)?,
+            Fig::Dunes => erosion::dunes(cli.seed, cli.quick)?,
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],

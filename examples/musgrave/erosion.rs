@@ -2,11 +2,13 @@
 //! for erosion, with a stream bed down its diagonal, before and after 2000
 //! time steps of Musgrave–Kolb–Mace hydraulic erosion and thermal
 //! weathering with the sources' constants (natura-terrain's
-//! `MusgraveHydraulic` and `Thermal`).
+//! `MusgraveHydraulic` and `Thermal`); Plates 2.12–2.13 (MKM 7 and 8): a
+//! patch of non-uniform lacunarity before and after 100 steps of thermal
+//! weathering, "a rough approximation of sand dunes".
 
 use natura::core::glam::{DVec2, Vec3};
 use natura::core::{HeightField, Image};
-use natura::noise::{Fbm, Field, Perlin, Spectral};
+use natura::noise::{DistNoise, Fbm, Field, Perlin, Spectral};
 use natura::terrain::erosion::{MusgraveHydraulic, MusgraveParams, Thermal, ThermalParams};
 
 use super::R;
@@ -128,6 +130,104 @@ pub(crate) fn fluvial(seed: u64, quick: bool) -> R<Vec<Image>> {
     ])
 }
 
+/// The dune patch's relief, m, over [`SIDE_M`].
+const DUNE_RELIEF_M: f32 = 36.0;
+
+/// The thermal steps of Plate 2.13.
+pub(crate) const DUNE_STEPS: u32 = 100;
+
+/// Plate 2.12's patch: fBm of Perlin noise with locally modulated
+/// lacunarity, the basis's point displaced by vector noise (Musgrave 1993,
+/// §2.3.2.4: `N(p + N⃗(p))`, the basis of Plate 2.7d; natura-noise's
+/// `DistNoise` at distortion 1), 4 octaves, H = 0.5, 2.5 lattice units across
+/// the patch, rescaled to [`DUNE_RELIEF_M`] of relief. The sources give
+/// no numbers.
+pub(crate) fn dune_patch(seed: u64, n: usize) -> R<HeightField> {
+    let f = Fbm::new(
+        DistNoise::dist_noise(Perlin::new(seed), 1.0)?,
+        Spectral {
+            octaves: 4.0,
+            frequency: 2.5,
+            ..Spectral::default()
+        },
+    )?;
+    let raw: Vec<f64> = (0..n * n)
+        .map(|k| f.eval2(DVec2::new((k % n) as f64 + 0.5, (k / n) as f64 + 0.5) / n as f64))
+        .collect();
+    let (lo, hi) = raw
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let scale = f64::from(DUNE_RELIEF_M) / (hi - lo).max(f64::MIN_POSITIVE);
+    Ok(HeightField::from_fn(
+        n,
+        n,
+        (SIDE_M / n as f64) as f32,
+        |i, j| ((raw[j * n + i] - lo) * scale) as f32,
+    )?)
+}
+
+/// Plate 2.13's slumping: thermal weathering toward sand's angle of
+/// repose (33°, natura-terrain's default talus angle), moving a tenth of
+/// each excess a step (the sources give neither; `c_t` 0.001 of their
+/// combined run would barely move in 100 steps).
+pub(crate) fn slump(hf: &mut HeightField, steps: u32) -> R<()> {
+    let mut talus = Thermal::new(
+        ThermalParams {
+            talus_rate: 0.1,
+            ..ThermalParams::default()
+        },
+        hf,
+    )?;
+    for _ in 0..steps {
+        talus.step(hf)?;
+    }
+    Ok(())
+}
+
+/// Plates 2.12 and 2.13: the patch before and after slumping, in sand.
+pub(crate) fn dunes(seed: u64, quick: bool) -> R<Vec<Image>> {
+    let n = if quick { 64 } else { 200 };
+    let before = dune_patch(seed, n)?;
+    let mut after = before.clone();
+    slump(&mut after, DUNE_STEPS)?;
+    let size = if quick { (320, 240) } else { (1000, 750) };
+    let sky = Vec3::new(0.62, 0.72, 0.86);
+    let sand = |c: Vec3, _n: Vec3| Facet {
+        albedo: Vec3::new(0.80, 0.62, 0.40).lerp(
+            Vec3::new(0.90, 0.76, 0.52),
+            (c.z / DUNE_RELIEF_M).clamp(0.0, 1.0),
+        ),
+        emission: Vec3::ZERO,
+    };
+    Ok(vec![
+        render_patch(&before, size, sky, &sand)?,
+        render_patch(&after, size, sky, &sand)?,
+    ])
+}
+
+/// The steepest slope between 8-neighbours of `hf`, as an angle (degrees).
+#[cfg(test)]
+fn steepest_deg(hf: &HeightField) -> f64 {
+    let (nx, ny, cell) = (hf.nx(), hf.ny(), f64::from(hf.cell_size()));
+    let h = hf.heights();
+    let mut m = 0.0f64;
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let z = f64::from(h[(i, j)]);
+            for (a, b, d) in [
+                (i + 1, j, cell),
+                (i, j + 1, cell),
+                (i + 1, j + 1, cell * 2f64.sqrt()),
+            ] {
+                m = m.max((f64::from(h[(a, b)]) - z).abs() / d);
+            }
+        }
+    }
+    m.atan().to_degrees()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -173,5 +273,32 @@ mod tests {
         let (lo, hi) = before.heights().min_max();
         let (lo2, hi2) = hf.heights().min_max();
         assert!(hi2 <= hi && lo2 >= lo - 1e-3, "{lo} {hi} → {lo2} {hi2}");
+    }
+
+    #[test]
+    fn slumping_brings_the_dunes_toward_the_angle_of_repose() {
+        // Plate 2.13: thermal weathering relaxes every slope steeper than
+        // the talus angle (33°) toward it, and keeps the soil.
+        let mut hf = dune_patch(2, 100).unwrap();
+        let (before, sum0) = (
+            steepest_deg(&hf),
+            hf.heights()
+                .as_slice()
+                .iter()
+                .map(|&v| f64::from(v))
+                .sum::<f64>(),
+        );
+        assert!(
+            before > 45.0,
+            "the patch should start steeper than sand stands ({before}°)"
+        );
+        slump(&mut hf, 2 * DUNE_STEPS).unwrap();
+        let after = steepest_deg(&hf);
+        assert!(after < before - 5.0, "{before}° → {after}°");
+        let sum1: f64 = hf.heights().as_slice().iter().map(|&v| f64::from(v)).sum();
+        assert!(
+            (sum1 - sum0).abs() < 1e-6 * sum0.abs().max(1.0) * 1e3,
+            "{sum0} → {sum1}"
+        );
     }
 }
