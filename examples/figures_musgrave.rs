@@ -9,7 +9,8 @@
 //! weathering (Pl. 2.10–2.11, MKM 2 and 9), dunes by slumping (Pl.
 //! 2.12–2.13, MKM 7 and 8), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
-//! empirical bow (Pl. 4.9), the full-circle rainbow modulated by fBm (Pl.
+//! empirical bow (Pl. 4.9), the physical bow's spectral aliasing and its
+//! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
 //! fig. 32).
 //!
@@ -98,6 +99,8 @@ enum Fig {
     Mandala,
     /// Pl. 4.9: a dispersing prism on a checkerboard under the empirical bow
     Prism,
+    /// Pl. 4.10–4.11: the physical rainbow's spectral aliasing, and jittered
+    SpectralAliasing,
     /// Pl. 4.12: a full-circle rainbow on black, modulated by 2-D fBm
     FullCircleBow,
     /// Pl. 5.1: "Bay Fog": an fBm fog sheet on a plane, with its shadows
@@ -121,6 +124,7 @@ impl Figure for Fig {
         Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
+        Fig::SpectralAliasing,
         Fig::FullCircleBow,
         Fig::BayFog,
         Fig::MilkyWay,
@@ -147,6 +151,10 @@ impl Figure for Fig {
             Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
             Fig::Prism => &["musgrave_pl4-9_prism_empirical_bow.png"],
+            Fig::SpectralAliasing => &[
+                "musgrave_pl4-10_spectral_aliasing.png",
+                "musgrave_pl4-11_jittered.png",
+            ],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
             Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
@@ -172,6 +180,8 @@ mod milky_way;
 mod patches;
 #[path = "musgrave/prism.rs"]
 mod prism;
+#[path = "musgrave/spectral_aliasing.rs"]
+mod spectral_aliasing;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
 
 fn main() -> ExitCode {
@@ -200,6 +210,7 @@ fn figures() -> Run {
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
+            Fig::SpectralAliasing => spectral_aliasing::pair(cli.quick)?,
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
             Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
