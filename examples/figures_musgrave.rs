@@ -11,8 +11,9 @@
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the physical bow's spectral aliasing and its
 //! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
-//! 4.12), "Bay Fog" (Pl. 5.1) and the multifractal Milky Way (Musgrave 2001,
-//! fig. 32).
+//! 4.12), "Bay Fog" (Pl. 5.1), planets made from each basis and fractal
+//! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31) and the multifractal Milky
+//! Way (Musgrave 2001, fig. 32).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -105,6 +106,8 @@ enum Fig {
     FullCircleBow,
     /// Pl. 5.1: "Bay Fog": an fBm fog sheet on a plane, with its shadows
     BayFog,
+    /// Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31: planets from each basis and fractal
+    Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
 }
@@ -127,6 +130,7 @@ impl Figure for Fig {
         Fig::SpectralAliasing,
         Fig::FullCircleBow,
         Fig::BayFog,
+        Fig::Planets,
         Fig::MilkyWay,
     ];
 
@@ -157,6 +161,11 @@ impl Figure for Fig {
             ],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
             Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
+            Fig::Planets => &[
+                "musgrave2001_fig09_roughness.png",
+                "musgrave2001_figs13_18-23_bases.png",
+                "musgrave2001_figs25-28_31_fractals.png",
+            ],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
         }
     }
@@ -178,6 +187,8 @@ mod mandala;
 mod milky_way;
 #[path = "musgrave/patches.rs"]
 mod patches;
+#[path = "musgrave/planets.rs"]
+mod planets;
 #[path = "musgrave/prism.rs"]
 mod prism;
 #[path = "musgrave/spectral_aliasing.rs"]
@@ -213,6 +224,7 @@ fn figures() -> Run {
             Fig::SpectralAliasing => spectral_aliasing::pair(cli.quick)?,
             Fig::FullCircleBow => vec![full_circle_bow(cli.seed, cli.quick)?],
             Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
+            Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
         })
     })
