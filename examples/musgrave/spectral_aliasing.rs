@@ -1,9 +1,10 @@
 //! Plates 4.10–4.11: spectral aliasing in the physical rainbow and its
 //! jittered antialiasing (Musgrave 1993, §4.2.4.3.2). natura-atmos's
 //! physical rainbow table traced at the centres of its 13 wavelength
-//! strata shows a set of discrete, overlapping coloured bows; jittering
-//! each ray's wavelength within its stratum turns them into a continuous
-//! band. The same view of the primary bow, once each way.
+//! strata under a point sun shows a set of discrete, overlapping coloured
+//! bows; jittering each ray's wavelength within its stratum and convolving
+//! with the sun's disk turns them into a continuous band. The same view of
+//! the primary bow, once each way.
 
 use natura::atmos::Dir3;
 use natura::atmos::rainbow::{Rainbow, RainbowParams};
@@ -24,14 +25,21 @@ const HALF_FIELD_DEG: f64 = 2.5;
 const BINS: usize = 7200;
 
 /// The table of one plate: the sources' 13 wavelength strata, orders 1
-/// and 2, a point sun (the 0.5° sun would blur the rings together),
-/// `jitter` choosing the plate.
-pub(crate) fn table(jitter: bool, quick: bool) -> R<Rainbow> {
+/// and 2. Plate 4.10 ("a small number of samples and a point light
+/// source"): the strata's centres and a point sun; Plate 4.11 ("jittering
+/// and convolution … with a kernel representing the angular illumination
+/// distribution across the Sun's disk"): jittered wavelengths and the
+/// 0.5° sun. `antialiased` chooses the plate.
+pub(crate) fn table(antialiased: bool, quick: bool) -> R<Rainbow> {
     Ok(Rainbow::new(&RainbowParams {
-        jitter,
+        jitter: antialiased,
         rays_per_wavelength: if quick { 20_000 } else { 200_000 },
         bins: BINS,
-        sun_diameter_deg: 0.0,
+        sun_diameter_deg: if antialiased {
+            RainbowParams::default().sun_diameter_deg
+        } else {
+            0.0
+        },
         ..RainbowParams::default()
     })?)
 }
@@ -114,15 +122,16 @@ mod tests {
     #[test]
     fn stratum_centres_alias_and_jitter_smooths_the_bow() {
         // Across the primary bow (39.5°–42.8°) the aliased table jumps from
-        // one wavelength's sharp bow to the next; the jittered one, traced
-        // with the same rays, varies far more smoothly.
+        // one wavelength's sharp bow to the next; the antialiased one
+        // (jittered, the sun's disk) varies far more smoothly.
         let (aliased, jittered) = (table(false, true).unwrap(), table(true, true).unwrap());
         let (a, j) = (
             ripple(&profile(&aliased, 39.5, 42.8)),
             ripple(&profile(&jittered, 39.5, 42.8)),
         );
         assert!(a > 1.5 * j, "ripple aliased {a:.3}, jittered {j:.3}");
-        // The same light in all: jitter moves it, it does not add or remove it.
+        // The same light in all: jitter and the sun's disk move it, they do
+        // not add or remove it.
         let total = |r: &Rainbow| profile(r, 30.0, 60.0).iter().sum::<f64>();
         let (ta, tj) = (total(&aliased), total(&jittered));
         assert!((ta - tj).abs() < 0.05 * ta, "{ta} {tj}");
