@@ -78,3 +78,18 @@ def test_bad_parameters_are_named():
     calls = []
     plant.ecosystem(slope(), cell_size=2.0, steps=3, progress=lambda *a: calls.append(a))
     assert calls[0][1] == 0 and calls[-1][1] == calls[-1][2] == 3
+
+
+def test_nan_and_zero_size_heights_are_refused():
+    h = slope()
+    h[2, 2] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        plant.ecosystem(h)
+    with pytest.raises(ValueError, match="zero"):
+        plant.ecosystem(np.zeros((0, 8), np.float32))
+    # A non-contiguous view is the same terrain.
+    wide = np.zeros((33, 66), np.float32)
+    wide[:, ::2] = slope()
+    a = plant.ecosystem(wide[:, ::2], cell_size=2.0, steps=2)
+    b = plant.ecosystem(slope(), cell_size=2.0, steps=2)
+    assert np.array_equal(a["positions"], b["positions"])

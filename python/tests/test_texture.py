@@ -86,3 +86,17 @@ def test_sky_image_and_parameters():
         atmos.sky(np.array([[0.0, 0.0, 1.0]]), colour=1)
     with pytest.raises(ValueError, match="elevation"):
         atmos.sky(np.array([[0.0, 0.0, 1.0]]), sun_elevation_deg=float("nan"))
+
+
+def test_zero_size_non_contiguous_and_nan_points_do_not_crash():
+    assert texture.sample("terran", np.zeros((0, 3))).colour.shape == (0, 3)
+    assert atmos.sky(np.zeros((0, 3))).shape == (0, 3)
+    p = points3()
+    wide = np.zeros((37, 6))
+    wide[:, ::2] = p
+    a = texture.sample("terran", wide[:, ::2]).colour  # a strided view
+    assert np.array_equal(a, texture.sample("terran", p).colour)
+    texture.sample("terran", np.full((2, 3), np.nan))  # unspecified values, no crash
+    assert np.all(atmos.sky(np.full((1, 3), np.nan)) == 0.0)  # black
+    with pytest.raises(ValueError, match="width and height"):
+        texture.equirect("terran", 0, 4)

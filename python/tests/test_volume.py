@@ -88,3 +88,16 @@ def test_vdb_round_trip(tmp_path):
         volume.write_vdb(path, bad)
     with pytest.raises(OSError):
         volume.read_vdb(tmp_path / "missing.vdb")
+
+
+def test_non_contiguous_zero_size_and_nan_grids(tmp_path):
+    v = volume.cloud(cell=1.0)
+    view = v.density[:, ::-1, ::2]
+    volume.write_vdb(tmp_path / "v.vdb", view, cell=2.0)
+    g = volume.read_vdb(tmp_path / "v.vdb")["density"]
+    assert g.density.sum() == np.ascontiguousarray(view).sum()
+    with pytest.raises(ValueError, match="zero"):
+        volume.write_vdb(tmp_path / "z.vdb", np.zeros((0, 2, 2), np.float32))
+    with pytest.raises(ValueError, match="cell"):
+        volume.cloud(cell=float("nan"))
+    assert not (tmp_path / "z.vdb").exists()
