@@ -5,6 +5,8 @@ footprint (the width a sample covers, in texture units): Musgrave's clouds,
 storms, fire, water, rock strata and whole planets. :func:`sample`
 evaluates one at the rows of an ``(n, 3)`` array; :func:`equirect` paints
 it over a sphere as an equirectangular (longitude × latitude) RGB image.
+:func:`planet` maps a whole planet of natura-texture's (Gaea, Venus,
+Jupiter, Selene: displaced terrain, biomes, bands) the same way.
 
 Names (:data:`NAMES`): ``puffy_clouds``, ``planet_clouds``, ``cyclone``,
 ``venus``, ``flame``, ``ripples``, ``windy_wave``, ``strata``, ``terran``,
@@ -22,9 +24,17 @@ from typing import Any, Dict, List, NamedTuple
 
 import numpy as np
 
-from natura import _native
+from natura import _native, _progress
+from natura._progress import ProgressArg
 
-__all__ = ["NAMES", "Samples", "defaults", "equirect", "sample"]
+__all__ = [
+    "NAMES", "PLANETS", "PlanetMap", "Samples", "defaults", "equirect", "planet",
+    "planet_defaults", "sample",
+]
+
+#: The planet presets (the Rust ``PlanetParams::gaea``, ``venus``,
+#: ``jupiter``, ``selene``).
+PLANETS = ("gaea", "venus", "jupiter", "selene")
 
 #: Every texture name.
 NAMES: List[str] = list(_native.TEXTURE_NAMES)
@@ -80,3 +90,40 @@ def equirect(
     ).reshape(-1, 3) * radius
     s = sample(name, p, footprint=footprint, **params)
     return s.colour.reshape(height, width, 3).astype(np.float32)
+
+
+class PlanetMap(NamedTuple):
+    """A planet's surface on an equirectangular map: unlit linear-RGB
+    ``colour`` float32 ``(height, width, 3)`` and ``height`` above the
+    sea-level sphere (metres) float32 ``(height, width)``."""
+
+    colour: np.ndarray
+    height: np.ndarray
+
+
+def planet_defaults(preset: str = "gaea") -> Dict[str, Any]:
+    """The preset's ``PlanetParams`` as a dict (every key; a layer the
+    preset lacks, such as Gaea's rings, is absent)."""
+    return _native.planet_defaults(preset)
+
+
+def planet(
+    preset: str = "gaea",
+    *,
+    width: int = 256,
+    height: int = 128,
+    progress: ProgressArg = None,
+    **params: Any,
+) -> PlanetMap:
+    """The planet ``preset`` (:data:`PLANETS`), with the ``PlanetParams``
+    fields of ``params`` laid over it (nested dicts merge key by key:
+    ``radius_m=…``, ``light={"sun_direction": …}``), sampled onto a
+    ``width × height`` equirectangular map (the Rust ``Planet::equirect``:
+    column ``i`` at longitude ``-π + 2π(i + ½)/width``, row ``j`` at
+    latitude ``π/2 - π(j + ½)/height``). ``progress`` hears one unit per
+    row."""
+    cb = _progress.reporter(progress)
+    try:
+        return PlanetMap(*_native.planet_equirect(preset, width, height, params, cb))
+    finally:
+        _progress.closing(cb)

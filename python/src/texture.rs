@@ -1,6 +1,6 @@
 //! `natura.texture` and `natura.atmos`: natura-texture's solid textures
-//! sampled at arrays of points, and natura-atmos's physical sky radiance for
-//! arrays of view directions.
+//! sampled at arrays of points, its planets on equirectangular maps, and
+//! natura-atmos's physical sky radiance for arrays of view directions.
 
 use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
@@ -10,15 +10,18 @@ use natura_texture::fire::Flame;
 use natura_texture::giants::{GasGiant, Rings};
 use natura_texture::glam::{DVec3, Vec3};
 use natura_texture::multicolor::Multicolor;
+use natura_texture::planet::{Planet, PlanetParams};
 use natura_texture::water::{Ripples, WindyWave};
 use natura_texture::{Footprint, SolidTexture};
-use numpy::ndarray::{Array1, Array2};
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use serde::Deserialize;
 
 use crate::args::{floats, run, run_sized, value_error};
-use crate::values::{from_params, to_params};
+use crate::progress::PyProgress;
+use crate::values::{from_params, to_params, to_toml};
 
 /// The textures by name: `(name, build from a params dict, defaults)`.
 macro_rules! textures {
@@ -205,6 +208,86 @@ fn sky_radiance<'py>(
     Ok(a.into_pyarray(py))
 }
 
+/// The planet presets of natura-texture, by name.
+fn planet_preset(name: &str) -> PyResult<PlanetParams> {
+    Ok(match name {
+        "gaea" => PlanetParams::gaea(),
+        "venus" => PlanetParams::venus(),
+        "jupiter" => PlanetParams::jupiter(),
+        "selene" => PlanetParams::selene(),
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "preset = {other:?} is not one of gaea, venus, jupiter, selene"
+            )));
+        }
+    })
+}
+
+/// Lays `top` over `base`: tables merge key by key, any other value replaces.
+fn overlay(base: &mut toml::Value, top: toml::Value) {
+    match (base, top) {
+        (toml::Value::Table(b), toml::Value::Table(t)) => {
+            for (k, v) in t {
+                match b.get_mut(&k) {
+                    Some(slot) => overlay(slot, v),
+                    None => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (slot, v) => *slot = v,
+    }
+}
+
+/// A planet's colour and height maps.
+type PlanetMap<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<f32>>);
+
+/// `planet_equirect(preset, width, height, params, progress)`: the planet
+/// (the `PlanetParams` preset with the fields of `params` laid over it)
+/// sampled onto a `width × height` equirectangular map
+/// (`Planet::equirect`): unlit linear-RGB colour float32 `(height, width,
+/// 3)` and height above the sea-level radius (metres) float32 `(height,
+/// width)`.
+#[pyfunction]
+#[pyo3(signature = (preset, width, height, params, progress=None))]
+fn planet_equirect<'py>(
+    py: Python<'py>,
+    preset: &str,
+    width: usize,
+    height: usize,
+    params: &Bound<'py, PyAny>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<PlanetMap<'py>> {
+    let mut value = toml::Value::try_from(planet_preset(preset)?).map_err(value_error)?;
+    overlay(&mut value, to_toml(params, "")?);
+    let p = PlanetParams::deserialize(value)
+        .map_err(|e| PyValueError::new_err(format!("planet: {}", e.message().trim())))?;
+    let planet = Planet::new(p).map_err(value_error)?;
+    let sink = PyProgress::new(progress);
+    let out = run(py, || {
+        planet.equirect(width, height, &sink).map_err(value_error)
+    });
+    let map = sink.finish_call(out)?;
+    let colour: Vec<f32> = map
+        .colour
+        .as_slice()
+        .iter()
+        .flat_map(|c| c.to_array())
+        .collect();
+    let colour = Array3::from_shape_vec((height, width, 3), colour)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let h = Array2::from_shape_vec((height, width), map.height.into_vec())
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok((colour.into_pyarray(py), h.into_pyarray(py)))
+}
+
+/// `planet_defaults(preset)`: the planet preset's `PlanetParams` as a dict.
+#[pyfunction]
+fn planet_defaults<'py>(py: Python<'py>, preset: &str) -> PyResult<Bound<'py, PyAny>> {
+    to_params(py, &planet_preset(preset)?)
+}
+
 /// `atmosphere_defaults()`: `AtmosphereParams::default()` as a dict.
 #[pyfunction]
 fn atmosphere_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
@@ -218,5 +301,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(texture_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(sky_radiance, m)?)?;
     m.add_function(wrap_pyfunction!(atmosphere_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(planet_equirect, m)?)?;
+    m.add_function(wrap_pyfunction!(planet_defaults, m)?)?;
     Ok(())
 }

@@ -67,7 +67,10 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
         }
         return Ok(toml::Value::Array(out));
     }
-    // numpy scalars and other numbers: as a float if they convert losslessly.
+    // numpy scalars: integers (they have `__index__`), then floats.
+    if let Ok(i) = obj.extract::<i64>() {
+        return Ok(toml::Value::Integer(i));
+    }
     if let Ok(x) = obj.extract::<f64>() {
         return Ok(toml::Value::Float(x));
     }

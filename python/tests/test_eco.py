@@ -93,3 +93,14 @@ def test_nan_and_zero_size_heights_are_refused():
     a = plant.ecosystem(wide[:, ::2], cell_size=2.0, steps=2)
     b = plant.ecosystem(slope(), cell_size=2.0, steps=2)
     assert np.array_equal(a["positions"], b["positions"])
+
+
+def test_keyword_defaults_are_the_rust_defaults():
+    import inspect
+
+    sig = inspect.signature(plant.ecosystem).parameters
+    d = plant.ecosystem_defaults()
+    for k in ("steps", "seed", "max_plants"):
+        assert sig[k].default == d[k], k
+    assert list(sig["sun"].default) == d["sun"]
+    assert [s["name"] for s in d["species"]] == ["tree", "shrub", "wet_shrub", "grass"]

@@ -100,3 +100,26 @@ def test_zero_size_non_contiguous_and_nan_points_do_not_crash():
     assert np.all(atmos.sky(np.full((1, 3), np.nan)) == 0.0)  # black
     with pytest.raises(ValueError, match="width and height"):
         texture.equirect("terran", 0, 4)
+
+
+def test_planet_map_equals_the_rust_api_bit_for_bit():
+    m = texture.planet("gaea", width=32, height=16)
+    assert m.colour.shape == (16, 32, 3) and m.height.shape == (16, 32)
+    assert hash_array(m.colour) == REF["gaea_colour"]
+    assert hash_array(m.height) == REF["gaea_height"]
+    d = texture.planet_defaults("gaea")
+    assert d["radius_m"] == 6_371_000.0 and "rings" not in d
+    # Fields laid over the preset: a smaller planet, same layers.
+    small = texture.planet("selene", width=8, height=4, radius_m=1_000_000.0)
+    assert small.colour.shape == (4, 8, 3)
+    with pytest.raises(ValueError, match="radius_m"):
+        texture.planet("selene", width=8, height=4, radius_m=-1.0)
+    with pytest.raises(ValueError, match="radius_km"):
+        texture.planet("selene", width=8, height=4, radius_km=1.0)
+    with pytest.raises(ValueError, match="preset"):
+        texture.planet("mars", width=8, height=4)
+    with pytest.raises(ValueError, match="width"):
+        texture.planet("selene", width=0, height=4)
+    calls = []
+    texture.planet("selene", width=8, height=4, progress=lambda *a: calls.append(a))
+    assert calls and calls[-1][1] == calls[-1][2]

@@ -11,6 +11,7 @@ use natura_plant::eco::{EcoParams, Ecosystem, Instancing};
 use natura_render::{SceneDesc, render_scene};
 use natura_texture::air::{PuffyClouds, PuffyCloudsParams};
 use natura_texture::earth::{Terran, TerranParams};
+use natura_texture::planet::{Planet, PlanetParams};
 use natura_texture::{Footprint, SolidTexture};
 use natura_volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura_volume::grid::GridDensity;
@@ -143,7 +144,8 @@ pub fn volume() -> Vec<String> {
     ]
 }
 
-/// Terran and puffy clouds at the 3-D points, footprint 10⁻³.
+/// Terran and puffy clouds at the 3-D points, footprint 10⁻³; the planet
+/// Gaea on a 32 × 16 equirectangular map.
 pub fn texture() -> Vec<String> {
     let fp = Footprint::new(1e-3).unwrap();
     let terran = Terran::new(TerranParams::default()).unwrap();
@@ -161,6 +163,21 @@ pub fn texture() -> Vec<String> {
         v.push(format!("    \"{name}_opacity\": {}", hash_f64(&o)));
         v.push(format!("    \"{name}_height\": {}", hash_f64(&h)));
     }
+    let map = Planet::new(PlanetParams::gaea())
+        .unwrap()
+        .equirect(32, 16, &NoProgress)
+        .unwrap();
+    let colour: Vec<f32> = map
+        .colour
+        .as_slice()
+        .iter()
+        .flat_map(|c| c.to_array())
+        .collect();
+    v.push(format!("    \"gaea_colour\": {}", hash_f32(&colour)));
+    v.push(format!(
+        "    \"gaea_height\": {}",
+        hash_f32(map.height.as_slice())
+    ));
     v
 }
 
