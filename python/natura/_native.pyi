@@ -1,9 +1,9 @@
 """Type stubs of the compiled module natura._native (see natura.noise,
-natura.terrain, natura.plant and natura.ocean for the documented,
-keyword-argument API)."""
+natura.terrain, natura.plant, natura.ocean, natura.volume, natura.texture,
+natura.atmos and natura.render for the documented, keyword-argument API)."""
 
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -13,6 +13,11 @@ NOISE_FRACTALS: List[str]
 TERRAIN_MODELS: List[str]
 TERRAIN_SYNTHS: List[str]
 OCEAN_SPECTRA: List[str]
+TEXTURE_NAMES: List[str]
+DEFAULT_SCENE_TOML: str
+
+Progress = Optional[Callable[[str, int, int], Any]]
+Baked = Tuple[np.ndarray, Tuple[float, float, float], float]
 
 def _panic_for_test(message: str) -> None: ...
 def noise_points(spec: Dict[str, Any], points: np.ndarray) -> np.ndarray: ...
@@ -28,6 +33,7 @@ def terrain_erode(
     steps: int,
     params: Dict[str, Any],
     seed: int,
+    progress: Progress = None,
 ) -> np.ndarray: ...
 def terrain_synth(
     method: str, nx: int, ny: int, cell_size: float, params: Dict[str, Any], seed: int
@@ -70,3 +76,54 @@ def ocean_frames(
     foam: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, np.ndarray]: ...
 def ocean_defaults(name: str) -> Dict[str, Any]: ...
+def plant_ecosystem(
+    heights: np.ndarray,
+    cell_size: float,
+    params: Dict[str, Any],
+    per_species: int = 3,
+    progress: Progress = None,
+) -> Dict[str, Any]: ...
+def ecosystem_defaults() -> Dict[str, Any]: ...
+def species_preset(name: str) -> Dict[str, Any]: ...
+def cloud_density(
+    shape: str, cell: float, seed: int, params: Dict[str, Any], progress: Progress = None
+) -> Baked: ...
+def layer_density(
+    cell: float, seed: int, params: Dict[str, Any], progress: Progress = None
+) -> Baked: ...
+def volume_defaults(kind: str) -> Dict[str, Any]: ...
+def smoke_plume(
+    cells: int, width: float, epsilon: float, steps: int, progress: Progress = None
+) -> Tuple[np.ndarray, np.ndarray, float, float]: ...
+def vdb_write(
+    path: Union[str, "os.PathLike[str]"],
+    grids: Dict[str, np.ndarray],
+    origin: Tuple[float, float, float],
+    cell: float,
+) -> None: ...
+def vdb_read(path: Union[str, "os.PathLike[str]"]) -> Dict[str, Baked]: ...
+def texture_sample(
+    name: str, points: np.ndarray, footprint: float, params: Dict[str, Any]
+) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+def texture_defaults(name: str) -> Dict[str, Any]: ...
+def sky_radiance(
+    directions: np.ndarray,
+    sun_elevation_deg: float,
+    sun_azimuth_deg: float,
+    altitude_m: float,
+    params: Dict[str, Any],
+) -> np.ndarray: ...
+def atmosphere_defaults() -> Dict[str, Any]: ...
+def planet_equirect(
+    preset: str, width: int, height: int, params: Dict[str, Any], progress: Progress = None
+) -> Tuple[np.ndarray, np.ndarray]: ...
+def planet_defaults(preset: str) -> Dict[str, Any]: ...
+def scene_toml(scene: Union[None, str, Dict[str, Any]] = None) -> str: ...
+def render_scene_array(
+    scene: Union[None, str, Dict[str, Any]] = None,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    spp: Optional[int] = None,
+    seed: Optional[int] = None,
+    progress: Progress = None,
+) -> Tuple[np.ndarray, float]: ...

@@ -13,6 +13,11 @@ validation (a bad value raises ``ValueError`` naming it). Enumerations are
 given by name in snake case (``edges="periodic"``). The Musgrave model's
 ``rain`` law is ``"altitude_linear"`` (``rain_k``, ``rain_base_m``) or
 ``"uniform"`` (``rain_depth_m``).
+
+Every erosion function takes ``progress``: ``None``, ``True`` (a ``tqdm``
+bar when tqdm is installed) or a callable ``progress(stage, done, total)``
+called with the model's own reports (natura-core's ``Progress``: its steps,
+or droplets in batches); reports never change the result.
 """
 
 from __future__ import annotations
@@ -22,7 +27,8 @@ from typing import Optional, Tuple, Union
 
 import numpy as np
 
-from natura import _native
+from natura import _native, _progress
+from natura._progress import ProgressArg
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -57,6 +63,7 @@ def erode_thermal(
     talus_rate: float = 0.001,
     neighbourhood: str = "eight",
     edges: str = "closed",
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Thermal weathering: material above the talus angle slides to lower neighbours.
 
@@ -70,7 +77,11 @@ def erode_thermal(
         "neighbourhood": neighbourhood,
         "edges": edges,
     }
-    return _native.terrain_erode("thermal", heights, cell_size, steps, params, 0)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("thermal", heights, cell_size, steps, params, 0, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def erode_hydraulic(
@@ -91,6 +102,7 @@ def erode_hydraulic(
     rain_k: float = 0.001,
     rain_base_m: float = 0.0,
     rain_depth_m: float = 0.01,
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Musgrave et al. 1989 hydraulic erosion: rain, water and sediment moved between cells.
 
@@ -114,7 +126,11 @@ def erode_hydraulic(
         "rain_base_m": rain_base_m,
         "rain_depth_m": rain_depth_m,
     }
-    return _native.terrain_erode("hydraulic", heights, cell_size, steps, _rain(params), 0)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("hydraulic", heights, cell_size, steps, _rain(params), 0, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def erode_droplet(
@@ -135,6 +151,7 @@ def erode_droplet(
     initial_water: float = 1.0,
     initial_speed: float = 1.0,
     batch: int = 1,
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Particle (droplet) hydraulic erosion: `droplets` droplets descend, erode and deposit.
 
@@ -156,7 +173,11 @@ def erode_droplet(
         "initial_speed": initial_speed,
         "batch": batch,
     }
-    return _native.terrain_erode("droplet", heights, cell_size, droplets, params, seed)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("droplet", heights, cell_size, droplets, params, seed, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def erode_pipe(
@@ -176,6 +197,7 @@ def erode_pipe(
     depth_ref: float = 0.05,
     transport: str = "conservative",
     edges: str = "closed",
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Shallow-water pipe model: water flux through virtual pipes, sediment capacity erosion.
 
@@ -197,7 +219,11 @@ def erode_pipe(
         "transport": transport,
         "edges": edges,
     }
-    return _native.terrain_erode("pipe", heights, cell_size, steps, params, 0)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("pipe", heights, cell_size, steps, params, 0, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def erode_stream_power(
@@ -211,6 +237,7 @@ def erode_stream_power(
     uplift_m_per_yr: float = 0.0005,
     dt_yr: float = 5000.0,
     depressions: str = "fill",
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Stream-power law fluvial erosion with tectonic uplift.
 
@@ -226,7 +253,11 @@ def erode_stream_power(
         "dt_yr": dt_yr,
         "depressions": depressions,
     }
-    return _native.terrain_erode("stream_power", heights, cell_size, steps, params, 0)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("stream_power", heights, cell_size, steps, params, 0, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def erode_diffusion(
@@ -237,6 +268,7 @@ def erode_diffusion(
     rate: float = 0.1,
     neighbourhood: str = "four",
     edges: str = "closed",
+    progress: ProgressArg = None,
 ) -> np.ndarray:
     """Linear hillslope diffusion (soil creep).
 
@@ -245,7 +277,11 @@ def erode_diffusion(
     parameters: the fields of ``DiffusionParams``, same names and defaults.
     """
     params = {"rate": rate, "neighbourhood": neighbourhood, "edges": edges}
-    return _native.terrain_erode("diffusion", heights, cell_size, steps, params, 0)
+    cb = _progress.reporter(progress)
+    try:
+        return _native.terrain_erode("diffusion", heights, cell_size, steps, params, 0, cb)
+    finally:
+        _progress.closing(cb)
 
 
 def _rain(params: dict) -> dict:

@@ -1,18 +1,26 @@
 //! The compiled part of the `natura` Python package (`natura._native`):
-//! numpy arrays in and out of natura's noise, terrain, plant and ocean crates.
+//! numpy arrays in and out of natura's noise, terrain, plant, ocean,
+//! volume, fluid, texture, atmosphere and render crates.
 //!
-//! The Python modules `natura.noise`, `natura.terrain`, `natura.plant` and
-//! `natura.ocean` (in `python/natura/`) give these functions their keyword
+//! The Python modules `natura.noise`, `natura.terrain`, `natura.plant`,
+//! `natura.ocean`, `natura.volume`, `natura.texture`, `natura.atmos` and
+//! `natura.render` (in `python/natura/`) give these functions their keyword
 //! signatures and docstrings; this module checks every argument (a wrong
 //! dtype, shape or value raises `TypeError` or `ValueError` naming it),
 //! releases the GIL for the computation (a noise call on fewer than 256
 //! points keeps it) and turns a Rust panic into `RuntimeError`.
 
 mod args;
+mod eco;
 mod noise;
 mod ocean;
 mod plant;
+mod progress;
+mod render;
 mod terrain;
+mod texture;
+mod values;
+mod volume;
 
 use pyo3::prelude::*;
 
@@ -33,5 +41,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     terrain::register(m)?;
     plant::register(m)?;
     ocean::register(m)?;
+    eco::register(m)?;
+    volume::register(m)?;
+    texture::register(m)?;
+    render::register(m)?;
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! export of natura-terrain, on float32 2-D height arrays (rows are `y`,
 //! columns `x`; the array's row `j` is the height field's row `j`).
 
-use natura_core::{Grid2, HeightField, NoProgress, Seed};
+use natura_core::{Grid2, HeightField, Seed};
 use natura_terrain::analysis::{
     Depressions, channel_network, fill_depressions, flow_accumulation_mfd, strahler_order, wetness,
 };
@@ -218,7 +218,7 @@ fn model_defaults(model: &str) -> Option<Vec<(&'static str, Dv)>> {
 }
 
 /// The height field of a float32 2-D array.
-fn field(obj: &Bound<'_, PyAny>, name: &str, cell_size: f32) -> PyResult<HeightField> {
+pub(crate) fn field(obj: &Bound<'_, PyAny>, name: &str, cell_size: f32) -> PyResult<HeightField> {
     let (data, rows, cols) = heights(obj, name)?;
     let grid = Grid2::from_vec(cols, rows, data).map_err(value_error)?;
     HeightField::new(grid, cell_size).map_err(value_error)
@@ -234,10 +234,14 @@ fn array<'py, T: numpy::Element>(
     Ok(a.into_pyarray(py))
 }
 
-/// `terrain_erode(model, heights, cell_size, steps, params, seed)`: runs
-/// `steps` steps (droplets for `"droplet"`) of an erosion model on a copy of
-/// `heights` and returns the eroded heights.
+/// `terrain_erode(model, heights, cell_size, steps, params, seed, progress)`:
+/// runs `steps` steps (droplets for `"droplet"`) of an erosion model on a
+/// copy of `heights` and returns the eroded heights. `progress`, if given,
+/// is called as `progress(stage, done, total)` with the model's own reports
+/// (its steps, or droplets in batches), which never change the result.
 #[pyfunction]
+#[pyo3(signature = (model, heights, cell_size, steps, params, seed, progress=None))]
+#[allow(clippy::too_many_arguments)]
 fn terrain_erode<'py>(
     py: Python<'py>,
     model: &str,
@@ -246,6 +250,7 @@ fn terrain_erode<'py>(
     steps: u64,
     params: &Bound<'py, PyAny>,
     seed: u64,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let mut hf = field(heights, "heights", cell_size)?;
     let kw = Kw::new(params, model)?;
@@ -284,8 +289,9 @@ fn terrain_erode<'py>(
     };
     kw.finish()?;
     let n = if model == "droplet" { 0 } else { steps32()? };
-    let out = run(py, move || {
-        let p = &NoProgress;
+    let sink = crate::progress::PyProgress::new(progress);
+    let out = run(py, || {
+        let p = &sink;
         match m {
             M::Thermal(mut m) => m.run(&mut hf, n, p),
             M::Hydraulic(mut m) => m.run(&mut hf, n, p),
@@ -296,8 +302,8 @@ fn terrain_erode<'py>(
         }
         .map_err(value_error)?;
         Ok(hf.into_heights())
-    })?;
-    array(py, out)
+    });
+    array(py, sink.finish_call(out)?)
 }
 
 /// `terrain_synth(method, nx, ny, cell_size, params, seed)`: a new height

@@ -1,11 +1,16 @@
 //! The reference values of the Python tests (`python/tests/reference.json`),
 //! computed here through natura's Rust API: the noises on a 2-D and a 3-D
 //! lattice and at 2-D and 3-D points, synthesis, every erosion model, the
-//! drainage analysis, an L-system's string and mesh, and ocean fields. The test fails if
+//! drainage analysis, an L-system's string and mesh, ocean fields, and (in
+//! `reference/more.rs`) a rendered scene, an ecosystem, clouds and smoke,
+//! solid textures and the sky. The test fails if
 //! the file differs from what the Rust API computes now; `NATURA_BLESS=1
 //! cargo test --release -p natura-python --test reference` rewrites it. The
 //! Python tests compute the same values through `natura` and compare them
 //! bit for bit, so the two together show the bindings equal the Rust API.
+
+#[path = "reference/more.rs"]
+mod more;
 
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -346,6 +351,16 @@ fn reference_values_match_the_rust_api() {
     text += &plant().join(",\n");
     text += "\n  },\n  \"ocean\": {\n";
     text += &ocean().join(",\n");
+    for (name, lines) in [
+        ("render", more::render()),
+        ("eco", more::eco()),
+        ("volume", more::volume()),
+        ("texture", more::texture()),
+        ("sky", more::sky()),
+    ] {
+        write!(text, "\n  }},\n  \"{name}\": {{\n").unwrap();
+        text += &lines.join(",\n");
+    }
     writeln!(text, "\n  }}\n}}").unwrap();
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/reference.json");
     if std::env::var_os("NATURA_BLESS").is_some() {

@@ -37,3 +37,27 @@ def test_the_gil_is_released_during_a_long_erosion():
         time.sleep(0.001)
     worker.join()
     assert len(ticks) >= 20, f"only {len(ticks)} ticks of the main thread during the erosion"
+
+
+def test_the_gil_is_released_during_a_render_with_progress():
+    from natura import render
+
+    ticks = []
+    heard = []
+    done = threading.Event()
+
+    def work():
+        try:
+            # The callback takes the GIL from the renderer's worker threads
+            # and gives it back.
+            render.render(render.QUICK, spp=4, progress=lambda *a: heard.append(a))
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    while not done.is_set():
+        ticks.append(time.perf_counter())
+        time.sleep(0.001)
+    worker.join()
+    assert heard and len(ticks) >= 20, f"only {len(ticks)} ticks of the main thread"

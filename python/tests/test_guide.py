@@ -20,9 +20,10 @@ BLOCKS = [
 
 
 def test_the_pages_have_their_python_blocks():
-    # the guide: noise, terrain, L-systems, ocean; one in each README
-    assert [p.name for p, _ in BLOCKS].count("python.md") == 4
-    assert len(BLOCKS) == 6
+    # the guide: noise, terrain, L-systems, ecosystems, ocean, volumes,
+    # textures and sky, render; one in each README
+    assert [p.name for p, _ in BLOCKS].count("python.md") == 8
+    assert len(BLOCKS) == 10
 
 
 @pytest.mark.parametrize("index", range(len(BLOCKS)))

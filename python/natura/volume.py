@@ -1,0 +1,152 @@
+"""Clouds and smoke as voxel density arrays, and OpenVDB files
+(natura-volume, natura-fluid).
+
+Arrays are float32 of shape ``(nz, ny, nx)`` (voxel ``(x, y, z)`` is
+``a[z, y, x]``; z up, metres). A baked volume comes as a :class:`Volume`:
+the density array, the world position of its minimum corner and the voxel
+edge. Parameters are the fields of the Rust ``Params`` structs as keyword
+arguments, same names (nested structs and options as dicts, enumerations by
+name in snake case); what is left out keeps the Rust default
+(:func:`cloud_defaults`, :func:`layer_defaults`). An unknown name or a
+wrong type raises ``ValueError`` naming it, as does a bad value.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, NamedTuple, Tuple, Union
+
+import numpy as np
+
+from natura import _native, _progress
+from natura._progress import ProgressArg
+
+__all__ = [
+    "Smoke", "Volume", "cloud", "cloud_defaults", "layer_clouds", "layer_defaults",
+    "read_vdb", "smoke_plume", "write_vdb",
+]
+
+
+class Volume(NamedTuple):
+    """A voxel grid: ``density`` float32 ``(nz, ny, nx)``, voxel centres at
+    ``origin + (index + 0.5) * cell``."""
+
+    density: np.ndarray
+    origin: Tuple[float, float, float]
+    cell: float
+
+
+class Smoke(NamedTuple):
+    """A smoke simulation's state: ``density`` and ``temperature`` (kelvin)
+    float32 ``(nz, ny, nx)``, cell-centred samples ``cell`` metres apart
+    with the box's corner at the origin, after ``steps`` steps of ``dt``
+    seconds."""
+
+    density: np.ndarray
+    temperature: np.ndarray
+    cell: float
+    dt: float
+    steps: int
+
+
+def _volume(t: tuple) -> Volume:
+    return Volume(t[0], tuple(t[1]), t[2])
+
+
+def cloud_defaults() -> Dict[str, Any]:
+    """The Rust ``CloudParams::default()`` (Ebert's cumulus) as a dict."""
+    return _native.volume_defaults("cloud")
+
+
+def layer_defaults() -> Dict[str, Any]:
+    """The Rust ``LayerParams::default()`` as a dict."""
+    return _native.volume_defaults("layer")
+
+
+def cloud(
+    shape: str = "cumulus",
+    *,
+    cell: float = 0.25,
+    seed: int = 7,
+    progress: ProgressArg = None,
+    **params: Any,
+) -> Volume:
+    """Ebert's implicit cloud baked to voxels (``cloud`` then
+    ``GridDensity::bake_with_progress``: density at each voxel centre over
+    the cloud's bounds).
+
+    ``shape``: ``"cumulus"`` (the nine-sphere cumulus of Ebert's Figure 1,
+    about 10 m across) or ``"cirrostratus"`` (Figure 4's veil and cirrus).
+    ``params``: the fields of ``CloudParams`` (``density_scale``,
+    ``exponent``, ``blend``, ``displacement``, ``noise_frequency``,
+    ``blend_form``, ``frame``, ``jet_stream``, ``mackerel``, ``detail``)."""
+    cb = _progress.reporter(progress)
+    try:
+        return _volume(_native.cloud_density(shape, cell, seed, params, cb))
+    finally:
+        _progress.closing(cb)
+
+
+def layer_clouds(
+    *,
+    cell: float = 200.0,
+    seed: int = 1,
+    progress: ProgressArg = None,
+    **params: Any,
+) -> Volume:
+    """natura-volume's layer clouds (kilometre scale) baked to voxels over
+    the layer's bounds. ``params``: the fields of ``LayerParams``
+    (``region_min``, ``region_max``, ``base_m``, ``top_m``, ``coverage``,
+    ``cloud_type``, …); the default region is 40 km square, so choose
+    ``cell`` (metres) to suit."""
+    cb = _progress.reporter(progress)
+    try:
+        return _volume(_native.layer_density(cell, seed, params, cb))
+    finally:
+        _progress.closing(cb)
+
+
+def smoke_plume(
+    *,
+    cells: int = 48,
+    width: float = 1.0,
+    epsilon: float = 4.0,
+    steps: int = 10,
+    progress: ProgressArg = None,
+) -> Smoke:
+    """natura-fluid's plume (the Rust ``Plume``, the ``smoke3d`` example's
+    set-up: warm smoke rising past a fixed sphere in a box ``width`` wide,
+    ``cells × cells × 2·cells``, vorticity confinement ``epsilon``) after
+    ``steps`` steps of the solver (``Smoke::step``) at the plume's time step.
+    ``progress`` hears one unit per step."""
+    cb = _progress.reporter(progress)
+    try:
+        d, t, cell, dt = _native.smoke_plume(cells, width, epsilon, steps, cb)
+    finally:
+        _progress.closing(cb)
+    return Smoke(d, t, cell, dt, steps)
+
+
+def write_vdb(
+    path: Union[str, "os.PathLike[str]"],
+    grids: Union[np.ndarray, Dict[str, np.ndarray], Volume],
+    *,
+    origin: Tuple[float, float, float] = (0.0, 0.0, 0.0),
+    cell: float = 1.0,
+) -> None:
+    """Writes float grids to an OpenVDB file (natura-volume's ``write_vdb``;
+    a temporary file renamed). ``grids``: one float32 ``(nz, ny, nx)``
+    array (named ``density``), a dict name → array, or a :class:`Volume`
+    (its origin and cell used). Voxels must be finite and non-negative."""
+    if isinstance(grids, Volume):
+        grids, origin, cell = {"density": grids.density}, grids.origin, grids.cell
+    elif isinstance(grids, np.ndarray):
+        grids = {"density": grids}
+    _native.vdb_write(os.fspath(path), grids, tuple(origin), cell)
+
+
+def read_vdb(path: Union[str, "os.PathLike[str]"]) -> Dict[str, Volume]:
+    """The float grids of an OpenVDB file as written by :func:`write_vdb`
+    (natura-volume's ``read_vdb``), name → :class:`Volume` over the bounding
+    box of the grid's active voxels."""
+    return {k: _volume(v) for k, v in _native.vdb_read(os.fspath(path)).items()}
