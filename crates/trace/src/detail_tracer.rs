@@ -305,12 +305,10 @@ impl<'a> DetailTracer<'a> {
             // whose slope is the triangles' alone (`A` only shrinks along
             // the ray); with all of them it is the exact gap.
             let n = detail.octaves_at(w);
-            let top = ceil_count(n);
+            let top = n.ceil() as usize;
             let h = s * (p.z - base);
+            let m = f64::from(self.surface.mask_at(x, y));
             let q = DVec2::new(f64::from(x), f64::from(y));
-            // The mask is read only once an octave is needed (far above the
-            // surface none is).
-            let mut m = None;
             let (mut k, mut part) = (0, h);
             let g = loop {
                 let rest = detail.amplitude_between(k, top);
@@ -318,7 +316,6 @@ impl<'a> DetailTracer<'a> {
                 if k == top || g >= STOP_REST * rest {
                     break g;
                 }
-                let m = *m.get_or_insert_with(|| f64::from(self.surface.mask_at(x, y)));
                 if m != 0.0 {
                     part -= s * m * detail.octave(k, n, q);
                 }
@@ -443,14 +440,6 @@ impl<'a> DetailTracer<'a> {
     }
 }
 
-/// `⌈n⌉` as a count for `n ≥ 0` (0 for NaN): the octaves present, exactly
-/// `n.ceil() as usize` without the library call.
-#[inline]
-fn ceil_count(n: f64) -> usize {
-    let t = n as usize;
-    if (t as f64) < n { t + 1 } else { t }
-}
-
 /// The ray's `t` interval over the box `[lo, hi]` in x and y, within `[t0, t1]`.
 fn slab(r: &WalkRay, lo: DVec2, hi: DVec2, t0: f64, t1: f64) -> Option<(f64, f64)> {
     let pad = 1e-7 * (1.0 + hi.x.abs().max(hi.y.abs()));
@@ -517,28 +506,5 @@ impl Tracer for DetailTracer<'_> {
         rays.iter()
             .map(|r| self.occluded(r, t_min, t_max))
             .collect()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::ceil_count;
-
-    #[test]
-    fn the_octave_count_is_the_ceiling() {
-        for n in [
-            0.0,
-            1e-300,
-            0.5,
-            1.0,
-            1.0 + f64::EPSILON,
-            2.999_999,
-            3.0,
-            8.25,
-            9.0,
-        ] {
-            assert_eq!(ceil_count(n), n.ceil() as usize, "{n}");
-        }
-        assert_eq!(ceil_count(f64::NAN), 0);
     }
 }

@@ -8,7 +8,6 @@ use natura_core::HeightField;
 ///
 /// This differs from [`HeightField::height_at`], which interpolates
 /// bilinearly; both agree at the samples and along cell edges.
-#[inline]
 #[must_use]
 pub fn surface_height(hf: &HeightField, x: f32, y: f32) -> Option<f32> {
     let e = hf.extent();
