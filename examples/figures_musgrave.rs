@@ -11,7 +11,8 @@
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the physical bow's spectral aliasing and its
 //! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
-//! 4.12), "Bay Fog" (Pl. 5.1), planets made from each basis and fractal
+//! 4.12), "Bay Fog" (Pl. 5.1), the stages of the terran texture (Pl.
+//! 5.9a–f), planets made from each basis and fractal
 //! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31) and the multifractal Milky
 //! Way (Musgrave 2001, fig. 32).
 //!
@@ -105,6 +106,8 @@ enum Fig {
     FullCircleBow,
     /// Pl. 5.1: "Bay Fog": an fBm fog sheet on a plane, with its shadows
     BayFog,
+    /// Pl. 5.9a–f: the stages of the terran texture's construction
+    TerranStages,
     /// Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31: planets from each basis and fractal
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
@@ -129,6 +132,7 @@ impl Figure for Fig {
         Fig::SpectralAliasing,
         Fig::FullCircleBow,
         Fig::BayFog,
+        Fig::TerranStages,
         Fig::Planets,
         Fig::MilkyWay,
     ];
@@ -160,6 +164,7 @@ impl Figure for Fig {
             ],
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
             Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
+            Fig::TerranStages => &["musgrave_pl5-9_terran_stages.png"],
             Fig::Planets => &[
                 "musgrave2001_fig09_roughness.png",
                 "musgrave2001_figs13_18-23_bases.png",
@@ -194,6 +199,8 @@ mod planets;
 mod prism;
 #[path = "musgrave/spectral_aliasing.rs"]
 mod spectral_aliasing;
+#[path = "musgrave/terran_stages.rs"]
+mod terran_stages;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
 
 fn main() -> ExitCode {
@@ -225,6 +232,7 @@ fn figures() -> Run {
             Fig::SpectralAliasing => spectral_aliasing::pair(cli.quick)?,
             Fig::FullCircleBow => vec![full_circle_bow::picture(cli.seed, cli.quick)?],
             Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
+            Fig::TerranStages => vec![terran_stages::picture(cli.seed, cli.quick)?],
             Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
         })
