@@ -109,11 +109,16 @@ fn rescaled(raw: &[f64], n: usize, ny: usize, relief: f64) -> R<HeightField> {
     })?)
 }
 
-/// The height below which a fraction `q` of `hf`'s samples lie.
-fn quantile(hf: &HeightField, q: f64) -> f32 {
+/// `hf` filled flat up to the height below which a fraction `q` of its
+/// samples lie (a lake, a lava sea): `(filled, that level)`.
+fn filled(hf: &HeightField, q: f64) -> R<(HeightField, f32)> {
     let mut v = hf.heights().as_slice().to_vec();
     v.sort_by(f32::total_cmp);
-    v[((v.len() - 1) as f64 * q).round() as usize]
+    let level = v[((v.len() - 1) as f64 * q).round() as usize];
+    let out = HeightField::from_fn(hf.nx(), hf.ny(), hf.cell_size(), |i, j| {
+        hf.heights()[(i, j)].max(level)
+    })?;
+    Ok((out, level))
 }
 
 /// Land by altitude `z` (0 … `relief`) and slope (normal's z): meadow
@@ -191,12 +196,7 @@ pub(crate) const LAKE_FRACTION: f64 = 0.18;
 /// below which [`LAKE_FRACTION`] of it lies: `(ground, lake level)`.
 pub(crate) fn spirit_lake_field(seed: u64, n: usize) -> R<(HeightField, f32)> {
     let f = StatsByAltitude::new(Perlin::new(seed), StatsByAltitudeParams::default())?;
-    let hf = unit_patch(&f, n, 4.0, RELIEF as f64)?;
-    let level = quantile(&hf, LAKE_FRACTION);
-    let filled = HeightField::from_fn(hf.nx(), hf.ny(), hf.cell_size(), |i, j| {
-        hf.heights()[(i, j)].max(level)
-    })?;
-    Ok((filled, level))
+    filled(&unit_patch(&f, n, 4.0, RELIEF as f64)?, LAKE_FRACTION)
 }
 
 /// Pl. 2.4–2.5: statistics by altitude, smooth lowlands and rough peaks,
@@ -265,12 +265,7 @@ pub(crate) const LAVA_FRACTION: f64 = 0.22;
 /// `(ground, lava level)`.
 pub(crate) fn hell_field(seed: u64, n: usize) -> R<(HeightField, f32)> {
     let f = HeteroTerrain::new(Ridged(Perlin::new(seed)), HeteroTerrainParams::default())?;
-    let hf = unit_patch(&f, n, 4.0, RELIEF as f64)?;
-    let level = quantile(&hf, LAVA_FRACTION);
-    let filled = HeightField::from_fn(hf.nx(), hf.ny(), hf.cell_size(), |i, j| {
-        hf.heights()[(i, j)].max(level)
-    })?;
-    Ok((filled, level))
+    filled(&unit_patch(&f, n, 4.0, RELIEF as f64)?, LAVA_FRACTION)
 }
 
 /// Pl. 2.9: "Hell": ridged heterogeneous terrain, dark scorched rock over

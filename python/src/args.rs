@@ -279,13 +279,19 @@ pub fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, Vec<usi
     )))
 }
 
-/// A 2-D float32 numpy array (any layout) as owned values in C order, with
-/// its `(rows, cols)` shape.
+/// `obj` as a float32 numpy array of `ndim` dimensions (any layout), its
+/// values in C order and its shape; `axes` names the dimensions in errors
+/// (`"rows, columns"`).
 ///
 /// # Errors
 /// `TypeError` naming `name` if `obj` is not a float32 numpy array,
-/// `ValueError` if it is not 2-D.
-pub fn heights(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f32>, usize, usize)> {
+/// `ValueError` if it has another number of dimensions.
+pub fn f32_array(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    ndim: usize,
+    axes: &str,
+) -> PyResult<(Vec<f32>, Vec<usize>)> {
     let arr = obj
         .cast::<PyUntypedArray>()
         .map_err(|_| PyTypeError::new_err(format!("{name} must be a numpy array")))?;
@@ -295,15 +301,25 @@ pub fn heights(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f32>, usize,
             arr.dtype()
         )));
     };
-    if arr.ndim() != 2 {
+    if arr.ndim() != ndim {
         return Err(PyValueError::new_err(format!(
-            "{name} must be 2-D (rows, columns), not {}-D",
+            "{name} must be {ndim}-D ({axes}), not {}-D",
             arr.ndim()
         )));
     }
-    let (rows, cols) = (arr.shape()[0], arr.shape()[1]);
+    let shape = arr.shape().to_vec();
     let ro = a.readonly();
-    Ok((ro.as_array().iter().copied().collect(), rows, cols))
+    Ok((ro.as_array().iter().copied().collect(), shape))
+}
+
+/// `obj` as a 2-D float32 height array ([`f32_array`]): its values in C
+/// order and its `(rows, cols)` shape.
+///
+/// # Errors
+/// As [`f32_array`].
+pub fn heights(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f32>, usize, usize)> {
+    let (data, shape) = f32_array(obj, name, 2, "rows, columns")?;
+    Ok((data, shape[0], shape[1]))
 }
 
 /// The name of `v` in a `(name, value)` table ("" if absent).

@@ -13,9 +13,7 @@ use natura_volume::glam::Vec3;
 use natura_volume::grid::GridDensity;
 use natura_volume::layer::{LayerClouds, LayerParams};
 use natura_volume::vdb::{read_vdb, write_vdb};
-use numpy::{
-    IntoPyArray, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
-};
+use numpy::{IntoPyArray, PyArray3};
 use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -34,24 +32,8 @@ fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
 
 /// A float32 `(nz, ny, nx)` numpy array (any layout) as a `Grid3`.
 fn grid3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid3<f32>> {
-    let arr = obj
-        .cast::<PyUntypedArray>()
-        .map_err(|_| PyTypeError::new_err(format!("{name} must be a numpy array")))?;
-    let Ok(a) = obj.cast::<PyArrayDyn<f32>>() else {
-        return Err(PyTypeError::new_err(format!(
-            "{name} must have dtype float32, not {}",
-            arr.dtype()
-        )));
-    };
-    if arr.ndim() != 3 {
-        return Err(PyValueError::new_err(format!(
-            "{name} must be 3-D (nz, ny, nx), not {}-D",
-            arr.ndim()
-        )));
-    }
-    let s = arr.shape();
+    let (data, s) = crate::args::f32_array(obj, name, 3, "nz, ny, nx")?;
     let (nz, ny, nx) = (s[0], s[1], s[2]);
-    let data = a.readonly().as_array().iter().copied().collect();
     Grid3::from_vec(nx, ny, nz, data).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 
