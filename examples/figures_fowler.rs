@@ -209,13 +209,7 @@ fn draw(fig: Fig, d: Detail) -> R<Image> {
             )
         }
         Fig::Mammillaria => {
-            let h = heads::mammillaria(
-                1.6,
-                0.3,
-                Vec3::new(0.9, 0.9, 0.86),
-                Vec3::new(0.35, 0.2, 0.1),
-                res,
-            )?;
+            let h = heads::geminispina(res)?;
             report("Mammillaria geminispina", &h)?;
             let mut s = Mesh::default();
             add(&mut s, &h.mesh, [0.0, 0.0, 0.0], DMat3::IDENTITY, 1.0);

@@ -280,6 +280,18 @@ pub fn cactus_body(height: f64) -> Receptacle {
     }
 }
 
+/// Fig. 9's *Mammillaria geminispina*: a short body (1.6) with white
+/// spines 0.3 long, brown at the tips (also the short cactus of Fig. 11).
+pub fn geminispina(res: u32) -> R<Head> {
+    mammillaria(
+        1.6,
+        0.3,
+        Vec3::new(0.9, 0.9, 0.86),
+        Vec3::new(0.35, 0.2, 0.1),
+        res,
+    )
+}
+
 /// Fig. 9 (and 11): a *Mammillaria*: tubercles in a spiral on the cactus
 /// body, each with its cluster of spines. `spines` and `tips` colour them;
 /// `length` is the spines' length.

@@ -262,13 +262,7 @@ pub fn smartweed(res: u32, d: Detail) -> R<Image> {
 /// The cacti of Fig. 11: a short *M. geminispina* (white spines, brown
 /// tips) and an elongated *M. spinosissima* (red-brown spines).
 fn cactus_pair(res: u32) -> R<(Head, Head)> {
-    let gem = heads::mammillaria(
-        1.6,
-        0.3,
-        Vec3::new(0.9, 0.9, 0.86),
-        Vec3::new(0.35, 0.2, 0.1),
-        res,
-    )?;
+    let gem = heads::geminispina(res)?;
     let spin = heads::mammillaria(
         3.6,
         0.22,
