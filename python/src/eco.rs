@@ -13,7 +13,7 @@ use pyo3::types::{PyDict, PyList};
 use crate::args::{run, value_error};
 use crate::progress::PyProgress;
 use crate::terrain::field;
-use crate::values::{to_params, to_toml};
+use crate::values::{from_value, to_params, to_toml};
 
 /// The species presets of natura-plant, by the name each carries.
 fn preset(name: &str) -> Option<Species> {
@@ -47,9 +47,7 @@ fn eco_params(params: &Bound<'_, PyAny>) -> PyResult<EcoParams> {
             }
         }
     }
-    let text = toml::to_string(&value).map_err(value_error)?;
-    let p: EcoParams = toml::from_str(&text)
-        .map_err(|e| PyValueError::new_err(format!("ecosystem: {}", e.message().trim())))?;
+    let p: EcoParams = from_value(value, "ecosystem")?;
     p.validate().map_err(value_error)?;
     Ok(p)
 }

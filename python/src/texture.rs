@@ -17,11 +17,10 @@ use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use serde::Deserialize;
 
 use crate::args::{floats, run, run_sized, value_error};
 use crate::progress::PyProgress;
-use crate::values::{from_params, to_params, to_toml};
+use crate::values::{from_params, from_value, to_params, to_toml};
 
 /// The textures by name: `(name, build from a params dict, defaults)`.
 macro_rules! textures {
@@ -261,8 +260,7 @@ fn planet_equirect<'py>(
 ) -> PyResult<PlanetMap<'py>> {
     let mut value = toml::Value::try_from(planet_preset(preset)?).map_err(value_error)?;
     overlay(&mut value, to_toml(params, "")?);
-    let p = PlanetParams::deserialize(value)
-        .map_err(|e| PyValueError::new_err(format!("planet: {}", e.message().trim())))?;
+    let p: PlanetParams = from_value(value, "planet")?;
     let planet = Planet::new(p).map_err(value_error)?;
     let sink = PyProgress::new(progress);
     let out = run(py, || {

@@ -116,7 +116,16 @@ pub fn to_py<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, PyAny
 /// `TypeError` from [`to_toml`]; `ValueError` starting with `what` and
 /// naming the key serde refused (unknown, or of the wrong type).
 pub fn from_params<T: DeserializeOwned>(params: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
-    let value = to_toml(params, "")?;
+    from_value(to_toml(params, "")?, what)
+}
+
+/// The Rust type `T` from a TOML value through its serde implementation
+/// (what [`from_params`] does once the dict is TOML; callers that edit the
+/// value first, laying it over a preset, call this).
+///
+/// # Errors
+/// `ValueError` starting with `what` and naming the key serde refused.
+pub fn from_value<T: DeserializeOwned>(value: toml::Value, what: &str) -> PyResult<T> {
     T::deserialize(value)
         .map_err(|e| PyValueError::new_err(format!("{what}: {}", e.message().trim())))
 }
