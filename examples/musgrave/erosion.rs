@@ -12,7 +12,7 @@ use natura::noise::{DistNoise, Fbm, Field, Perlin, Spectral};
 use natura::terrain::erosion::{MusgraveHydraulic, MusgraveParams, Thermal, ThermalParams};
 
 use super::R;
-use super::patches::{Facet, render_patch};
+use super::patches::{Facet, render_patch, rescaled};
 
 /// The patch's side, m (200 samples a metre apart, the dissertation's
 /// 200 × 200).
@@ -154,18 +154,12 @@ pub(crate) fn dune_patch(seed: u64, n: usize) -> R<HeightField> {
     let raw: Vec<f64> = (0..n * n)
         .map(|k| f.eval2(DVec2::new((k % n) as f64 + 0.5, (k / n) as f64 + 0.5) / n as f64))
         .collect();
-    let (lo, hi) = raw
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
-    let scale = f64::from(DUNE_RELIEF_M) / (hi - lo).max(f64::MIN_POSITIVE);
-    Ok(HeightField::from_fn(
-        n,
-        n,
+    rescaled(
+        &raw,
+        (n, n),
         (SIDE_M / n as f64) as f32,
-        |i, j| ((raw[j * n + i] - lo) * scale) as f32,
-    )?)
+        f64::from(DUNE_RELIEF_M),
+    )
 }
 
 /// Plate 2.13's slumping: thermal weathering toward sand's angle of

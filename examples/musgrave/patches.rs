@@ -92,19 +92,24 @@ fn unit_patch(f: &dyn Field, n: usize, span: f64, relief: f64) -> R<HeightField>
             f.eval2(p * span)
         })
         .collect();
-    rescaled(&raw, n, ny, relief)
+    rescaled(&raw, (n, ny), 1.0 / n as f32, relief)
 }
 
-/// `raw` (row by row, `n` × `ny`) rescaled to heights in `[0, relief]` on a
-/// patch one unit wide.
-fn rescaled(raw: &[f64], n: usize, ny: usize, relief: f64) -> R<HeightField> {
+/// `raw` (row by row, `n` × `ny`) rescaled to heights in `[0, relief]`,
+/// samples `cell` apart.
+pub(crate) fn rescaled(
+    raw: &[f64],
+    (n, ny): (usize, usize),
+    cell: f32,
+    relief: f64,
+) -> R<HeightField> {
     let (lo, hi) = raw
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
             (a.min(v), b.max(v))
         });
     let scale = if hi > lo { relief / (hi - lo) } else { 0.0 };
-    Ok(HeightField::from_fn(n, ny, 1.0 / n as f32, |i, j| {
+    Ok(HeightField::from_fn(n, ny, cell, |i, j| {
         ((raw[j * n + i] - lo) * scale) as f32
     })?)
 }
@@ -236,7 +241,7 @@ pub(crate) fn ridge(seed: u64, quick: bool) -> R<Image> {
             ridge.height(p, Footprint::POINT)
         })
         .collect();
-    let hf = rescaled(&raw, n, ny, RELIEF as f64)?;
+    let hf = rescaled(&raw, (n, ny), 1.0 / n as f32, RELIEF as f64)?;
     let size = if quick { (320, 200) } else { (1200, 750) };
     render_patch(&hf, size, SKY, &|c, nrm| Facet {
         albedo: land(c.z, RELIEF, nrm.z),
