@@ -62,6 +62,29 @@ pub trait Density: Send + Sync {
         }
         Ok(())
     }
+
+    /// [`density_batch`](Density::density_batch) for samples `spacing`
+    /// metres apart, such as the steps of a march toward a light or the
+    /// nodes of a shadow table: a density with detail finer than the
+    /// spacing (noise octaves) may leave that detail out and keep its mean,
+    /// since samples that far apart cannot resolve it and would only alias
+    /// it. The default ignores `spacing` and is
+    /// [`density_batch`](Density::density_batch) bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::SizeMismatch`] if the four slices differ in length.
+    fn density_batch_spaced(
+        &self,
+        x: &[f32],
+        y: &[f32],
+        z: &[f32],
+        spacing: f32,
+        out: &mut [f32],
+    ) -> Result<()> {
+        let _ = spacing;
+        self.density_batch(x, y, z, out)
+    }
 }
 
 /// The densities of `density` at `(x[i], y[i], z[i])` into `out`: one
@@ -75,6 +98,23 @@ pub(crate) fn fill_densities(
     out: &mut [f32],
 ) {
     if density.density_batch(x, y, z, out).is_err() {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = density.density(Vec3::new(x[i], y[i], z[i]));
+        }
+    }
+}
+
+/// [`fill_densities`] for samples `spacing` metres apart
+/// ([`Density::density_batch_spaced`]).
+pub(crate) fn fill_densities_spaced(
+    density: &dyn Density,
+    x: &[f32],
+    y: &[f32],
+    z: &[f32],
+    spacing: f32,
+    out: &mut [f32],
+) {
+    if density.density_batch_spaced(x, y, z, spacing, out).is_err() {
         for (i, o) in out.iter_mut().enumerate() {
             *o = density.density(Vec3::new(x[i], y[i], z[i]));
         }

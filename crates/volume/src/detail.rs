@@ -40,7 +40,11 @@
 //! The field is one 3-D field for a given camera: the fast renderer and the
 //! reference path tracer sample the same [`Detailed`] object, point by point
 //! or in batches, and see the same bits (given a base whose batch path is
-//! its point path).
+//! its point path). Only the fast mode's shadow tables and the cells of
+//! its multiple-scattering cache, whose samples lie a cell apart, see the
+//! detail band-limited to that spacing as well
+//! ([`Density::density_batch_spaced`]): octaves they cannot resolve enter
+//! them as the noise's mean.
 
 use glam::{DVec3, Vec3};
 use natura_core::Aabb;
@@ -302,23 +306,25 @@ impl Detail {
     #[must_use]
     pub fn noise_drifting(&self, p: Vec3, drift: Vec3) -> f32 {
         let mut n = [0.0f32];
-        self.noise_chunk::<1, 4>(&[p], drift, &mut n);
+        self.noise_chunk::<1, 4>(&[p], drift, 0.0, &mut n);
         n[0]
     }
 
     /// [`noise_drifting`](Self::noise_drifting) at up to `P` points, with
-    /// `L = 4P` lanes of scratch for the warp.
+    /// `L = 4P` lanes of scratch for the warp, the footprint at least
+    /// `min_footprint` (m).
     fn noise_chunk<const P: usize, const L: usize>(
         &self,
         p: &[Vec3],
         drift: Vec3,
+        min_footprint: f64,
         out: &mut [f32],
     ) {
         let (mut x, mut y, mut z) = ([0.0f64; P], [0.0f64; P], [0.0f64; P]);
         let (mut w, mut at) = ([0.0f64; P], [0usize; P]);
         let mut m = 0;
         for (i, o) in out.iter_mut().enumerate() {
-            let fw = self.footprint(p[i]);
+            let fw = self.footprint(p[i]).max(min_footprint);
             *o = 0.5;
             if self.gain == 0.0 || fw >= self.far {
                 continue;
@@ -357,7 +363,7 @@ impl Detail {
     #[must_use]
     pub fn erode_drifting(&self, p: Vec3, drift: Vec3, base: f32, full: f32) -> f32 {
         let mut b = [base];
-        self.erode_chunk::<1, 4>(&[p.x], &[p.y], &[p.z], drift, &mut b, full);
+        self.erode_chunk::<1, 4>(&[p.x], &[p.y], &[p.z], drift, 0.0, &mut b, full);
         b[0]
     }
 
@@ -374,22 +380,54 @@ impl Detail {
         base: &mut [f32],
         full: f32,
     ) {
+        self.erode_batch_spaced(x, y, z, drift, 0.0, base, full);
+    }
+
+    /// [`erode_batch`](Self::erode_batch) for points sampled `spacing`
+    /// metres apart (a march toward a light, a table's nodes): the octaves
+    /// stop at the footprint of the spacing where it is wider than the
+    /// pixel's, widened like the pixel's by the warp's stretch, so samples
+    /// that cannot resolve an octave see its mean instead of aliasing it.
+    /// A spacing of 0 is [`erode_batch`](Self::erode_batch) bit for bit.
+    #[allow(clippy::too_many_arguments)]
+    pub fn erode_batch_spaced(
+        &self,
+        x: &[f32],
+        y: &[f32],
+        z: &[f32],
+        drift: Vec3,
+        spacing: f32,
+        base: &mut [f32],
+        full: f32,
+    ) {
+        let min_footprint =
+            f64::from(spacing.max(0.0)) * (1.0 + WARP_STRETCH * f64::from(self.params.warp));
         let len = base.len().min(x.len()).min(y.len()).min(z.len());
         for s in (0..len).step_by(CHUNK) {
             let r = s..(s + CHUNK).min(len);
             let (x, y, z) = (&x[r.clone()], &y[r.clone()], &z[r.clone()]);
-            self.erode_chunk::<CHUNK, { 4 * CHUNK }>(x, y, z, drift, &mut base[r], full);
+            self.erode_chunk::<CHUNK, { 4 * CHUNK }>(
+                x,
+                y,
+                z,
+                drift,
+                min_footprint,
+                &mut base[r],
+                full,
+            );
         }
     }
 
     /// [`erode_batch`](Self::erode_batch) over at most `P` points, with
-    /// `L = 4P` lanes of scratch.
+    /// `L = 4P` lanes of scratch, the footprint at least `min_footprint`.
+    #[allow(clippy::too_many_arguments)]
     fn erode_chunk<const P: usize, const L: usize>(
         &self,
         x: &[f32],
         y: &[f32],
         z: &[f32],
         drift: Vec3,
+        min_footprint: f64,
         base: &mut [f32],
         full: f32,
     ) {
@@ -410,7 +448,7 @@ impl Detail {
             return;
         }
         let mut n = [0.0f32; P];
-        self.noise_chunk::<P, L>(&p[..m], drift, &mut n[..m]);
+        self.noise_chunk::<P, L>(&p[..m], drift, min_footprint, &mut n[..m]);
         for k in 0..m {
             let d = &mut base[at[k]];
             let b = *d / full;
@@ -507,6 +545,27 @@ impl<D: Density> Density for Detailed<D> {
         }
         Ok(())
     }
+    /// The base's batch eroded with the octaves stopped at the footprint
+    /// of `spacing` where it is wider than the pixel's
+    /// ([`Detail::erode_batch_spaced`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`density_batch`](Density::density_batch).
+    fn density_batch_spaced(
+        &self,
+        x: &[f32],
+        y: &[f32],
+        z: &[f32],
+        spacing: f32,
+        out: &mut [f32],
+    ) -> Result<()> {
+        self.base.density_batch(x, y, z, out)?;
+        if let Some(f) = &self.detail {
+            f.erode_batch_spaced(x, y, z, Vec3::ZERO, spacing, out, self.full);
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
@@ -569,5 +628,96 @@ mod tests {
         assert!(worst < WARP_STRETCH, "{worst}");
         assert!(worst > 0.5 * WARP_STRETCH, "{worst}");
         assert!((0.2..=1.0).contains(&size), "{size}");
+    }
+
+    /// A soft ball: density `1 − r/R` inside the radius `R` of 400 m.
+    #[derive(Debug)]
+    struct Soft;
+    impl Density for Soft {
+        fn density(&self, p: Vec3) -> f32 {
+            (1.0 - p.length() / 400.0).max(0.0)
+        }
+        fn bounds(&self) -> Aabb {
+            Aabb {
+                min: Vec3::splat(-400.0),
+                max: Vec3::splat(400.0),
+            }
+        }
+        fn max_density(&self) -> f32 {
+            1.0
+        }
+    }
+
+    /// The soft ball eroded by the default detail seen from 300 m away,
+    /// and points through it.
+    fn spaced_case() -> (Detailed<Soft>, Vec<f32>, Vec<f32>, Vec<f32>) {
+        let ball = Soft;
+        let p = DetailParams::default().seen_from(Vec3::new(0.0, -700.0, 0.0), 8e-4);
+        let d = Detailed::new(ball, &p, 3).unwrap();
+        let n = 200;
+        let xs: Vec<f32> = (0..n).map(|i| -390.0 + 3.9 * i as f32).collect();
+        let ys: Vec<f32> = (0..n).map(|i| -50.0 + 0.5 * i as f32).collect();
+        let zs: Vec<f32> = (0..n).map(|i| 30.0 - 0.2 * i as f32).collect();
+        (d, xs, ys, zs)
+    }
+
+    /// Samples closer together than a pixel's footprint see every octave
+    /// the pixels see: the spaced batch is the plain batch bit for bit.
+    #[test]
+    fn a_spacing_finer_than_the_pixels_changes_nothing() {
+        let (d, xs, ys, zs) = spaced_case();
+        let mut plain = vec![0.0f32; xs.len()];
+        let mut spaced = plain.clone();
+        d.density_batch(&xs, &ys, &zs, &mut plain).unwrap();
+        // The nearest point is about 310 m away: a footprint of about 0.25 m.
+        d.density_batch_spaced(&xs, &ys, &zs, 0.1, &mut spaced)
+            .unwrap();
+        assert_eq!(plain, spaced);
+        d.density_batch_spaced(&xs, &ys, &zs, 0.0, &mut spaced)
+            .unwrap();
+        assert_eq!(plain, spaced);
+    }
+
+    /// Samples farther apart than the coarsest octave's Nyquist limit see
+    /// the noise's mean, `n = ½`, everywhere: the base eroded by
+    /// `e = a·½·(1 − b)`; and a spacing between leaves the coarse octaves,
+    /// so the eroded density varies, but less than the pixels see it vary.
+    #[test]
+    fn a_spacing_coarser_than_the_detail_sees_its_mean() {
+        let (d, xs, ys, zs) = spaced_case();
+        let mut spaced = vec![0.0f32; xs.len()];
+        d.density_batch_spaced(&xs, &ys, &zs, 1000.0, &mut spaced)
+            .unwrap();
+        let a = DetailParams::default().amplitude;
+        let mut eroded = 0;
+        for i in 0..xs.len() {
+            let base = d.base().density(Vec3::new(xs[i], ys[i], zs[i]));
+            let b = base;
+            let e = a * 0.5 * (1.0 - b);
+            let want = if b > 0.0 && b < 1.0 {
+                base * ((b - e) / ((1.0 - e) * b)).clamp(0.0, 1.0)
+            } else {
+                base
+            };
+            assert!(
+                (spaced[i] - want).abs() <= 1e-6,
+                "{i}: {} {want}",
+                spaced[i]
+            );
+            eroded += usize::from(spaced[i] < base);
+        }
+        assert!(eroded > 100, "{eroded}");
+        // The spread about the mean erosion shrinks as the spacing grows.
+        let spread = |spacing: f32| {
+            let mut v = vec![0.0f32; xs.len()];
+            d.density_batch_spaced(&xs, &ys, &zs, spacing, &mut v)
+                .unwrap();
+            v.iter()
+                .zip(&spaced)
+                .map(|(a, b)| f64::from(a - b).powi(2))
+                .sum::<f64>()
+        };
+        let (fine, mid) = (spread(0.0), spread(60.0));
+        assert!(fine > 0.0 && mid > 0.0 && mid < fine, "{fine} {mid}");
     }
 }

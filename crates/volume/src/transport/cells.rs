@@ -9,7 +9,7 @@
 use glam::Vec3;
 use natura_core::Aabb;
 
-use crate::density::{Density, fill_densities, ray_box};
+use crate::density::{Density, fill_densities_spaced, ray_box};
 use crate::error::{Result, VolumeError};
 
 /// Fewest cells along a thin axis (see [`CellGrid::new`]).
@@ -109,7 +109,12 @@ impl CellGrid {
             dims,
             sigma: Vec::new(),
         };
-        grid.sigma = grid.mean_per_cell(|xs, ys, zs, out| fill_densities(density, xs, ys, zs, out));
+        // The samples lie half a cell apart: detail finer than that would
+        // only alias into the cells' means, which keep its mean instead.
+        let spacing = 0.5 * h.min_element();
+        grid.sigma = grid.mean_per_cell(|xs, ys, zs, out| {
+            fill_densities_spaced(density, xs, ys, zs, spacing, out);
+        });
         for s in &mut grid.sigma {
             *s *= extinction;
         }

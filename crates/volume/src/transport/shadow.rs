@@ -12,11 +12,17 @@
 //! from the light's side, interpolating each slice from the previous one, is
 //! cheaper, but its repeated interpolation blurs the optical depth, and the
 //! blur darkens the shadows of broken cloud: `e^{−mean τ} < mean e^{−τ}`.)
+//!
+//! The nodes' marches sample the density a cell apart, so detail finer than
+//! a cell (the noise octaves of [`crate::detail::Detailed`]) could only
+//! alias into the table; they sample it through
+//! [`Density::density_batch_spaced`], which leaves such octaves out and
+//! keeps their mean. That also spares the table the octaves' cost.
 
 use glam::Vec3;
 use natura_core::{Aabb, NoProgress, Progress};
 
-use crate::density::{Density, check_bounds, fill_densities, ray_box};
+use crate::density::{Density, check_bounds, fill_densities_spaced, ray_box};
 use crate::error::{Result, VolumeError, positive};
 
 /// Optical depth `∫ σ·ρ ds` from `p` along the unit direction `l` to the
@@ -29,6 +35,19 @@ pub fn optical_depth_ray(
     p: Vec3,
     l: Vec3,
     step: f32,
+) -> f32 {
+    optical_depth_spaced(density, extinction, p, l, step, 0.0)
+}
+
+/// [`optical_depth_ray`] whose density samples leave out detail finer
+/// than `spacing` metres ([`Density::density_batch_spaced`]).
+pub(crate) fn optical_depth_spaced(
+    density: &dyn Density,
+    extinction: f32,
+    p: Vec3,
+    l: Vec3,
+    step: f32,
+    spacing: f32,
 ) -> f32 {
     let Some((t0, t1)) = ray_box(p, l.recip(), &density.bounds()) else {
         return 0.0;
@@ -54,7 +73,7 @@ pub fn optical_depth_ray(
                 let q = p + l * (t0 + (j as f32 + 0.5) * dt);
                 (x[k], y[k], z[k]) = (q.x, q.y, q.z);
             }
-            fill_densities(density, &x[..m], &y[..m], &z[..m], &mut rho[..m]);
+            fill_densities_spaced(density, &x[..m], &y[..m], &z[..m], spacing, &mut rho[..m]);
             for &r in &rho[..m] {
                 tau += r;
             }
@@ -184,7 +203,7 @@ impl ShadowTable {
                     {
                         super::BLOCKED_DEPTH
                     } else {
-                        optical_depth_ray(density, extinction, p, light, step)
+                        optical_depth_spaced(density, extinction, p, light, step, step)
                     }
                 })
                 .collect();
