@@ -86,8 +86,29 @@ def plant_ecosystem(
 def ecosystem_defaults() -> Dict[str, Any]: ...
 def species_preset(name: str) -> Dict[str, Any]: ...
 def cloud_density(
-    shape: str, cell: float, seed: int, params: Dict[str, Any], progress: Progress = None
+    shape: Union[str, List[Dict[str, Any]]],
+    cell: float,
+    seed: int,
+    params: Dict[str, Any],
+    progress: Progress = None,
 ) -> Baked: ...
+def cloud_primitives(name: str) -> List[Dict[str, Any]]: ...
+def volume_render(
+    density: np.ndarray,
+    origin: Tuple[float, float, float],
+    cell: float,
+    eye: Tuple[float, float, float],
+    target: Tuple[float, float, float],
+    fov_deg: float,
+    width: int,
+    height: int,
+    sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
+    sky: Tuple[float, float, float],
+    medium: Dict[str, Any],
+    mode: str,
+    settings: Dict[str, Any],
+    progress: Progress = None,
+) -> np.ndarray: ...
 def layer_density(
     cell: float, seed: int, params: Dict[str, Any], progress: Progress = None
 ) -> Baked: ...

@@ -14,7 +14,7 @@ wrong type raises ``ValueError`` naming it, as does a bad value.
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, NamedTuple, Tuple, Union
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -22,8 +22,8 @@ from natura import _native, _progress
 from natura._progress import ProgressArg
 
 __all__ = [
-    "Smoke", "Volume", "cloud", "cloud_defaults", "layer_clouds", "layer_defaults",
-    "read_vdb", "smoke_plume", "write_vdb",
+    "Smoke", "Volume", "cloud", "cloud_defaults", "cloud_primitives", "layer_clouds",
+    "layer_defaults", "read_vdb", "render", "smoke_plume", "write_vdb",
 ]
 
 
@@ -63,8 +63,18 @@ def layer_defaults() -> Dict[str, Any]:
     return _native.volume_defaults("layer")
 
 
+def cloud_primitives(name: str = "cumulus") -> List[Dict[str, Any]]:
+    """The implicit primitives of a named cloud shape (``"cumulus"`` or
+    ``"cirrostratus"``) as a list of dicts with the fields of the Rust
+    ``ImplicitPrimitive``: ``skeleton`` (``{"point": [x, y, z]}``,
+    ``{"segment": {"a": [...], "b": [...]}}`` or ``{"ellipsoid": {...}}``),
+    ``radius`` and ``weight``. Edit them and pass them to :func:`cloud` as
+    its ``shape``."""
+    return _native.cloud_primitives(name)
+
+
 def cloud(
-    shape: str = "cumulus",
+    shape: Union[str, Sequence[Dict[str, Any]]] = "cumulus",
     *,
     cell: float = 0.25,
     seed: int = 7,
@@ -76,12 +86,17 @@ def cloud(
     the cloud's bounds).
 
     ``shape``: ``"cumulus"`` (the nine-sphere cumulus of Ebert's Figure 1,
-    about 10 m across) or ``"cirrostratus"`` (Figure 4's veil and cirrus).
+    about 10 m across), ``"cirrostratus"`` (Figure 4's veil and cirrus), or
+    your own list of implicit primitives (see :func:`cloud_primitives`); a
+    bad primitive (a radius that is not positive, say) raises
+    ``ValueError`` naming the field.
     ``params``: the fields of ``CloudParams`` (``density_scale``,
     ``exponent``, ``blend``, ``displacement``, ``noise_frequency``,
     ``blend_form``, ``frame``, ``jet_stream``, ``mackerel``, ``detail``)."""
     cb = _progress.reporter(progress)
     try:
+        if not isinstance(shape, str):
+            shape = list(shape)
         return _volume(_native.cloud_density(shape, cell, seed, params, cb))
     finally:
         _progress.closing(cb)
@@ -150,3 +165,52 @@ def read_vdb(path: Union[str, "os.PathLike[str]"]) -> Dict[str, Volume]:
     (natura-volume's ``read_vdb``), name → :class:`Volume` over the bounding
     box of the grid's active voxels."""
     return {k: _volume(v) for k, v in _native.vdb_read(os.fspath(path)).items()}
+
+
+def render(
+    volume: Volume,
+    *,
+    eye: Tuple[float, float, float],
+    target: Tuple[float, float, float],
+    fov_deg: float = 40.0,
+    width: int = 256,
+    height: int = 256,
+    sun_direction: Optional[Tuple[float, float, float]] = (0.4, -0.6, 0.7),
+    sun_irradiance: Tuple[float, float, float] = (3.0, 3.0, 3.0),
+    sky: Tuple[float, float, float] = (0.25, 0.35, 0.55),
+    medium: Optional[Dict[str, Any]] = None,
+    mode: str = "fast",
+    settings: Optional[Dict[str, Any]] = None,
+    progress: ProgressArg = None,
+) -> np.ndarray:
+    """Renders a voxel density (a :class:`Volume`: one of this module's
+    clouds or smoke, a grid read from OpenVDB, or your own array) lit by a
+    sun and a uniform sky, seen from ``eye`` looking at ``target`` (z up,
+    metres; ``fov_deg`` the vertical field of view). Returns linear
+    radiance as float32 ``(height, width, 3)``.
+
+    ``medium``: the fields of the Rust ``MediumParams`` (``extinction`` in
+    1/m per unit density, ``albedo``, ``phase``: for example
+    ``{"henyey_greenstein": 0.6}`` or ``{"cloud": {"diameter_um": 10.0}}``).
+    ``mode``: ``"fast"`` (natura-volume's ``FastRenderer``: shadow tables
+    and the multiple-scattering cache; ``settings`` are ``FastSettings``
+    fields over steps of half a voxel, a table node per voxel along the
+    longest axis up to 256, and a cache cell per voxel along it from 16 to
+    64 with 16 events a cell from one to four million) or ``"reference"`` (the
+    null-scattering path tracer, the fast mode's oracle; ``settings`` are
+    ``ReferenceSettings`` fields, ``samples_per_pixel`` and ``seed``).
+    ``sun_direction=None`` leaves the sky alone. A bad value raises
+    ``ValueError`` naming it."""
+    sun = None
+    if sun_direction is not None:
+        sun = (tuple(map(float, sun_direction)), tuple(map(float, sun_irradiance)))
+    cb = _progress.reporter(progress)
+    try:
+        return _native.volume_render(
+            volume.density, tuple(volume.origin), float(volume.cell),
+            tuple(map(float, eye)), tuple(map(float, target)), float(fov_deg),
+            int(width), int(height), sun, tuple(map(float, sky)),
+            medium or {}, mode, settings or {}, cb,
+        )
+    finally:
+        _progress.closing(cb)

@@ -20,7 +20,7 @@ use pyo3::prelude::*;
 
 use crate::args::{floats, run, run_sized, value_error};
 use crate::progress::PyProgress;
-use crate::values::{from_params, from_value, to_params, to_toml};
+use crate::values::{from_params, from_value, overlay, to_params, to_toml};
 
 /// The textures by name: `(name, build from a params dict, defaults)`.
 macro_rules! textures {
@@ -220,23 +220,6 @@ fn planet_preset(name: &str) -> PyResult<PlanetParams> {
             )));
         }
     })
-}
-
-/// Lays `top` over `base`: tables merge key by key, any other value replaces.
-fn overlay(base: &mut toml::Value, top: toml::Value) {
-    match (base, top) {
-        (toml::Value::Table(b), toml::Value::Table(t)) => {
-            for (k, v) in t {
-                match b.get_mut(&k) {
-                    Some(slot) => overlay(slot, v),
-                    None => {
-                        b.insert(k, v);
-                    }
-                }
-            }
-        }
-        (slot, v) => *slot = v,
-    }
 }
 
 /// A planet's colour and height maps.

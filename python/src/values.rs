@@ -138,3 +138,28 @@ pub fn to_params<'py, T: Serialize>(py: Python<'py>, value: &T) -> PyResult<Boun
     let v = toml::Value::try_from(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
     to_py(py, &v)
 }
+
+/// Lays `top` over `base`: tables merge key by key, any other value
+/// replaces. A one-key table laid over a one-key table of another key is a
+/// different variant of an enumeration (`{ rays = 1.0 }` over
+/// `{ table = 64 }`) and replaces it whole.
+pub fn overlay(base: &mut toml::Value, top: toml::Value) {
+    match (base, top) {
+        (toml::Value::Table(b), toml::Value::Table(t))
+            if b.len() == 1 && t.len() == 1 && b.keys().ne(t.keys()) =>
+        {
+            *b = t;
+        }
+        (toml::Value::Table(b), toml::Value::Table(t)) => {
+            for (k, v) in t {
+                match b.get_mut(&k) {
+                    Some(slot) => overlay(slot, v),
+                    None => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (slot, v) => *slot = v,
+    }
+}

@@ -101,3 +101,87 @@ def test_non_contiguous_zero_size_and_nan_grids(tmp_path):
     with pytest.raises(ValueError, match="cell"):
         volume.cloud(cell=float("nan"))
     assert not (tmp_path / "z.vdb").exists()
+
+
+def test_custom_cloud_shapes_equal_the_named_ones_and_bad_primitives_are_named():
+    prims = volume.cloud_primitives("cumulus")
+    assert len(prims) == 9 and prims[0]["skeleton"] == {"point": [0.0, 0.0, 2.0]}
+    named = volume.cloud("cumulus", cell=0.5, seed=7, density_scale=0.35)
+    custom = volume.cloud(prims, cell=0.5, seed=7, density_scale=0.35)
+    assert np.array_equal(named.density, custom.density) and named.origin == custom.origin
+    # One sphere of radius 2 at (10, 0, 3): the cloud lies about it.
+    one = volume.cloud([{"skeleton": {"point": [10.0, 0.0, 3.0]}, "radius": 2.0}], cell=0.25)
+    nz, ny, nx = one.density.shape
+    centre = [one.origin[i] + one.cell * n / 2 for i, n in enumerate((nx, ny, nz))]
+    assert centre == pytest.approx([10.0, 0.0, 3.0], abs=0.5)
+    assert one.density[nz // 2, ny // 2, nx // 2] > 0.0 and one.density[0, 0, 0] == 0.0
+    with pytest.raises(ValueError, match="radius"):
+        volume.cloud([{"skeleton": {"point": [0.0, 0.0, 0.0]}, "radius": -1.0}], cell=0.5)
+    with pytest.raises(ValueError, match="skeleton"):
+        volume.cloud([{"radius": 1.0}], cell=0.5)
+
+
+def _ball(n=16, value=1.0):
+    """A ball of constant density filling an n³ grid of 1/8 m voxels."""
+    c = (np.arange(n, dtype=np.float32) + 0.5) / n * 2.0 - 1.0
+    z, y, x = np.meshgrid(c, c, c, indexing="ij")
+    d = np.where(x * x + y * y + z * z < 1.0, value, 0.0).astype(np.float32)
+    return volume.Volume(d, (-1.0, -1.0, -1.0), 2.0 / n)
+
+
+VIEW = dict(eye=(0.0, -4.0, 0.5), target=(0.0, 0.0, 0.0), fov_deg=40.0, width=24, height=24)
+
+
+def test_an_empty_volume_renders_the_sky_in_both_modes():
+    empty = _ball(value=0.0)
+    for mode, settings in [("fast", {}), ("reference", {"samples_per_pixel": 2})]:
+        img = volume.render(empty, sky=(0.1, 0.2, 0.3), mode=mode, settings=settings, **VIEW)
+        assert img.dtype == np.float32 and img.shape == (24, 24, 3)
+        assert np.allclose(img, np.array([0.1, 0.2, 0.3], dtype=np.float32), rtol=1e-6)
+
+
+def test_the_fast_mode_agrees_with_the_reference_on_a_ball():
+    ball = _ball()
+    medium = {"extinction": 2.0, "albedo": 0.95, "phase": {"henyey_greenstein": 0.6}}
+    fast = volume.render(ball, medium=medium, **VIEW)
+    ref = volume.render(
+        ball, medium=medium, mode="reference",
+        settings={"samples_per_pixel": 64, "seed": 3}, **VIEW)
+    sky = np.array([0.25, 0.35, 0.55], dtype=np.float32)
+    seen = np.abs(ref - sky).sum(axis=2) > 1e-3
+    assert 100 < seen.sum() < 24 * 24
+    lum = lambda a: (a * np.array([0.2126, 0.7152, 0.0722])).sum(axis=2)
+    ratio = lum(fast)[seen].sum() / lum(ref)[seen].sum()
+    assert abs(ratio - 1.0) < 0.05, ratio
+    # Another variant of an enumeration replaces the default whole.
+    rays = volume.render(ball, medium=medium, settings={"shadows": {"rays": 0.05}}, **VIEW)
+    assert abs(lum(rays)[seen].sum() / lum(ref)[seen].sum() - 1.0) < 0.05
+
+
+def test_bad_render_input_is_named():
+    ball = _ball()
+    with pytest.raises(ValueError, match="albedo"):
+        volume.render(ball, medium={"albedo": 1.5}, **VIEW)
+    with pytest.raises(ValueError, match="mode"):
+        volume.render(ball, mode="slow", **VIEW)
+    with pytest.raises(ValueError, match="fov_deg"):
+        volume.render(ball, **{**VIEW, "fov_deg": 0.0})
+    with pytest.raises(ValueError, match="target|eye"):
+        volume.render(ball, **{**VIEW, "target": VIEW["eye"]})
+    with pytest.raises(ValueError, match="stepp"):
+        volume.render(ball, settings={"stepp": 0.1}, **VIEW)
+    with pytest.raises(ValueError, match="samples_per_pixel"):
+        volume.render(ball, mode="reference", settings={"samples_per_pixel": 0}, **VIEW)
+    with pytest.raises(ValueError, match="width|resolution"):
+        volume.render(ball, **{**VIEW, "width": 0})
+    bad = ball.density.copy()
+    bad[3, 3, 3] = np.nan
+    with pytest.raises(ValueError):
+        volume.render(volume.Volume(bad, ball.origin, ball.cell), **VIEW)
+
+
+def test_render_reports_progress():
+    calls = []
+    volume.render(_ball(), progress=lambda *a: calls.append(a), **VIEW)
+    stages = {c[0] for c in calls}
+    assert "shadow tables" in stages and len(stages) >= 2

@@ -70,13 +70,21 @@ pub enum Skeleton {
 /// its weight `w`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct ImplicitPrimitive {
     /// The skeleton.
     pub skeleton: Skeleton,
     /// Radius of influence `R` (m, `> 0`).
     pub radius: f32,
-    /// Weight `w` (finite; negative weights carve).
+    /// Weight `w` (finite; negative weights carve; 1 when a file leaves it out).
+    #[cfg_attr(feature = "serde", serde(default = "unit_weight"))]
     pub weight: f32,
+}
+
+/// The weight of a primitive that does not give one.
+#[cfg(feature = "serde")]
+fn unit_weight() -> f32 {
+    1.0
 }
 
 impl ImplicitPrimitive {
