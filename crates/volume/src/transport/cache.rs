@@ -101,10 +101,11 @@ pub struct CacheParams {
     /// `order + 1` to 31 (`zonal − order` more coefficients per cell; see
     /// the module docs).
     pub zonal: u32,
-    /// Scattering events traced for the light of the scene's ground,
-    /// solids and glow in the medium: 0 for none (that light is then left
-    /// out, but for the ground's share of the environment's ambient term),
-    /// or `10⁴` to `10⁹` (see [`local`](super::local)).
+    /// Scattering events traced for the light of the sky and of the
+    /// scene's ground, solids and glow in the medium: 0 for none (the
+    /// surfaces' and glow's light is then left out, the sky's and ground's
+    /// share of the environment come by the ambient term and the octaves), or
+    /// `10⁴` to `10⁹` (see [`local`](super::local)).
     pub local: u32,
     /// Seed of the photons' random streams.
     pub seed: u64,

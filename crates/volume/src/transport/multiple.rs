@@ -25,9 +25,9 @@ pub enum Scattering {
     Octaves(ScatterOctaves),
     /// The sun's multiply scattered light traced once per scene onto a grid
     /// ([`ScatterCache`], where the model and its error are described), with
-    /// the light of the scene's surfaces and glow on the same grid
-    /// ([`local`](super::local)); the environment's light by the default
-    /// octaves.
+    /// the light of the sky, the scene's surfaces and its glow on the same
+    /// grid ([`local`](super::local)); with no local events, the sky's light
+    /// by the ambient term and the default octaves.
     Cache(CacheParams),
 }
 
@@ -114,6 +114,12 @@ impl Multiple {
     /// mean radiance then leaves it out).
     pub(crate) fn traces_ground(&self) -> bool {
         self.local.as_ref().is_some_and(|l| l.has_ground())
+    }
+
+    /// Whether the light of the scene's sky is traced (the environment's
+    /// mean radiance then leaves it out).
+    pub(crate) fn traces_sky(&self) -> bool {
+        self.local.as_ref().is_some_and(|l| l.has_sky())
     }
 
     /// Whether the sun's factor needs the chord at optical depth `tau`
