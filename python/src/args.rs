@@ -5,7 +5,10 @@
 use std::cell::RefCell;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
+use natura_core::Image;
+use numpy::{
+    IntoPyArray, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyDictMethods};
@@ -55,6 +58,20 @@ fn caught<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 /// A library error as `ValueError` (natura's errors name the parameter).
 pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// `img`'s linear radiance as a float32 `(height, width, 3)` array.
+pub fn image_array<'py>(py: Python<'py>, img: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let (w, h) = (img.width(), img.height());
+    let flat: Vec<f32> = img
+        .pixels()
+        .as_slice()
+        .iter()
+        .flat_map(|c| c.to_array())
+        .collect();
+    numpy::ndarray::Array3::from_shape_vec((h, w, 3), flat)
+        .map(|a| a.into_pyarray(py))
+        .map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
 /// The keyword arguments of one call: each read notes its key, and

@@ -2,12 +2,12 @@
 //! same keys) rendered to a linear-radiance float32 image array.
 
 use natura_render::{DEFAULT_SCENE_TOML, SceneDesc, render_scene};
-use numpy::{IntoPyArray, PyArray3};
+use numpy::PyArray3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
-use crate::args::{run, value_error};
+use crate::args::{image_array, run, value_error};
 use crate::progress::PyProgress;
 use crate::values::to_toml;
 
@@ -73,17 +73,7 @@ fn render_scene_array<'py>(
     let sink = PyProgress::new(progress);
     let out = run(py, || render_scene(&s, &sink).map_err(value_error));
     let out = sink.finish_call(out)?;
-    let (w, h) = (out.image.width(), out.image.height());
-    let flat: Vec<f32> = out
-        .image
-        .pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array())
-        .collect();
-    let arr = numpy::ndarray::Array3::from_shape_vec((h, w, 3), flat)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok((arr.into_pyarray(py), out.exposure_ev))
+    Ok((image_array(py, &out.image)?, out.exposure_ev))
 }
 
 /// Adds the render functions to `m`.

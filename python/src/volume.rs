@@ -23,7 +23,7 @@ use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{run, value_error};
+use crate::args::{image_array, run, value_error};
 use crate::progress::PyProgress;
 use crate::values::{from_params, from_value, overlay, to_params, to_toml};
 
@@ -232,17 +232,6 @@ fn vdb_read<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'p
 /// A point, direction or colour from Python.
 type Triple = (f32, f32, f32);
 
-/// The camera, sun and sky of [`volume_render`].
-struct View {
-    eye: Vec3,
-    target: Vec3,
-    fov_deg: f32,
-    width: u32,
-    height: u32,
-    sun: Option<Sun>,
-    sky: Vec3,
-}
-
 /// The fast mode's settings for a grid of voxel edge `cell` and `dims`
 /// voxels: steps of half a voxel, a shadow table with a node per voxel
 /// along the longest axis (2 to 256), the multiple-scattering cache with a
@@ -308,18 +297,10 @@ fn volume_render<'py>(
     let dims = g.dims();
     let grid = GridDensity::new(g, v3(origin), cell).map_err(value_error)?;
     let medium: MediumParams = from_params(medium, "medium")?;
-    let view = View {
-        eye: v3(eye),
-        target: v3(target),
-        fov_deg,
-        width,
-        height,
-        sun: sun.map(|(d, e)| Sun {
-            direction: v3(d),
-            irradiance: v3(e),
-        }),
-        sky: v3(sky),
-    };
+    let sun = sun.map(|(d, e)| Sun {
+        direction: v3(d),
+        irradiance: v3(e),
+    });
     enum Mode {
         Fast(FastSettings),
         Reference(ReferenceSettings),
@@ -333,26 +314,25 @@ fn volume_render<'py>(
             )));
         }
     };
-    if !(view.fov_deg > 0.0 && view.fov_deg < 180.0) {
+    if !(fov_deg > 0.0 && fov_deg < 180.0) {
         return Err(PyValueError::new_err(format!(
-            "fov_deg = {} must lie in (0, 180)",
-            view.fov_deg
+            "fov_deg = {fov_deg} must lie in (0, 180)"
         )));
     }
     let camera = LookAtCamera::look_at(
-        view.eye,
-        view.target,
+        v3(eye),
+        v3(target),
         Vec3::Z,
-        view.fov_deg.to_radians(),
-        view.width,
-        view.height,
+        fov_deg.to_radians(),
+        width,
+        height,
     )
     .map_err(value_error)?;
     let sink = PyProgress::new(progress);
     let out = run(py, || {
         let scene = Scene {
-            sun: view.sun,
-            ..Scene::new(&grid, medium, view.sky)
+            sun,
+            ..Scene::new(&grid, medium, v3(sky))
         };
         match mode {
             Mode::Fast(s) => FastRenderer::new_with_progress(&scene, s, &sink)
@@ -362,17 +342,7 @@ fn volume_render<'py>(
         }
         .map_err(value_error)
     });
-    let img = sink.finish_call(out)?;
-    let (w, h) = (img.width(), img.height());
-    let flat: Vec<f32> = img
-        .pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array())
-        .collect();
-    numpy::ndarray::Array3::from_shape_vec((h, w, 3), flat)
-        .map(|a| a.into_pyarray(py))
-        .map_err(|e| PyValueError::new_err(e.to_string()))
+    image_array(py, &sink.finish_call(out)?)
 }
 
 /// Adds the volume functions to `m`.
