@@ -616,6 +616,19 @@ mod tests {
         (Homogeneous::new(region, 1.0).unwrap(), medium)
     }
 
+    /// Every channel of `got` within the relative error `tol` of `want`.
+    fn assert_rel(got: Vec3, want: Vec3, tol: f32) {
+        for k in 0..3 {
+            let e = (got[k] - want[k]) / want[k];
+            assert!(
+                e.abs() < tol,
+                "channel {k}: {} vs {} ({e:+.3})",
+                got[k],
+                want[k]
+            );
+        }
+    }
+
     /// The light at `p` toward a horizontal eye (the flux there is
     /// vertical, so this is the mean radiance over every direction).
     fn light_at(scene: &Scene<'_>, p: Vec3) -> Vec3 {
@@ -641,15 +654,7 @@ mod tests {
         };
         let got = light_at(&scene, Vec3::ZERO);
         let want = colour * ((1.0 - medium.albedo) * (1.0 - e2(0.5)) as f32);
-        for k in 0..3 {
-            let e = (got[k] - want[k]) / want[k];
-            assert!(
-                e.abs() < 0.03,
-                "channel {k}: {} vs {} ({e:+.3})",
-                got[k],
-                want[k]
-            );
-        }
+        assert_rel(got, want, 0.03);
     }
 
     #[test]
@@ -693,15 +698,7 @@ mod tests {
         let scene = Scene::new(&d, medium, sky);
         let got = light_at(&scene, Vec3::ZERO);
         let want = sky * e2(0.5) as f32;
-        for k in 0..3 {
-            let e = (got[k] - want[k]) / want[k];
-            assert!(
-                e.abs() < 0.03,
-                "channel {k}: {} vs {} ({e:+.3})",
-                got[k],
-                want[k]
-            );
-        }
+        assert_rel(got, want, 0.03);
         // Over a ground the sky enters from above only: at the slab's
         // middle, half the sphere, L·E₂(0.5)/2 (the ground, black and unlit,
         // sends nothing).
