@@ -239,6 +239,10 @@ pub struct DetailSurface<'a> {
     mask: Option<Grid2<f32>>,
     /// `|∇m|` bound, per metre.
     mask_lip: f64,
+    /// The mask's maximum over the nodes of the tracer's pyramid: level
+    /// `k ≥ 1` (entry `k − 1`) holds `⌈ncx/2ᵏ⌉ × ⌈ncy/2ᵏ⌉` nodes of
+    /// `2ᵏ × 2ᵏ` cells, row-major (empty without a mask).
+    mask_max: Vec<Vec<f32>>,
 }
 
 impl<'a> DetailSurface<'a> {
@@ -278,11 +282,13 @@ impl<'a> DetailSurface<'a> {
             }
             mask_lip = std::f64::consts::SQRT_2 * f64::from(d) / f64::from(hf.cell_size());
         }
+        let mask_max = mask.as_ref().map_or_else(Vec::new, mask_pyramid);
         Ok(Self {
             hf,
             detail,
             mask,
             mask_lip,
+            mask_max,
         })
     }
 
@@ -351,10 +357,46 @@ impl<'a> DetailSurface<'a> {
         m * gd + d * gm
     }
 
-    /// The bound on the mask's gradient `|∇m|`, per metre (0 without a mask).
+    /// The mask at the corners of cell `(i, j)`, in the order of the
+    /// height field's corners: `(i, j)`, `(i + 1, j)`, `(i, j + 1)`,
+    /// `(i + 1, j + 1)` (ones without a mask). The bilinear mask over the
+    /// cell lies between their least and greatest.
     #[inline]
-    pub(crate) fn mask_lipschitz(&self) -> f64 {
-        self.mask_lip
+    pub(crate) fn mask_corners(&self, i: u32, j: u32) -> [f32; 4] {
+        match &self.mask {
+            None => [1.0; 4],
+            Some(m) => {
+                let (i, j) = (i as usize, j as usize);
+                [m[(i, j)], m[(i + 1, j)], m[(i, j + 1)], m[(i + 1, j + 1)]]
+            }
+        }
+    }
+
+    /// The mask's greatest value over node `(a, b)` of level `k ≥ 1` of the
+    /// tracer's pyramid (1 without a mask or outside it).
+    #[inline]
+    pub(crate) fn mask_max_node(&self, k: u32, a: u32, b: u32) -> f32 {
+        let Some(level) = self.mask_max.get(k as usize - 1) else {
+            return 1.0;
+        };
+        let w = (self.hf.nx() - 1).div_ceil(1 << k);
+        level
+            .get(b as usize * w + a as usize)
+            .copied()
+            .unwrap_or(1.0)
+    }
+
+    /// Bytes held by the mask and its pyramid.
+    #[must_use]
+    pub fn memory_bytes(&self) -> usize {
+        self.mask
+            .as_ref()
+            .map_or(0, |m| std::mem::size_of_val(m.as_slice()))
+            + self
+                .mask_max
+                .iter()
+                .map(|l| std::mem::size_of_val(l.as_slice()))
+                .sum::<usize>()
     }
 
     /// A bound on `|m·D|` for every footprint `w' ≥ w`.
@@ -387,6 +429,44 @@ pub(crate) fn add_gradient(n: Vec3, g: DVec2) -> Vec3 {
     Vec3::new(-gx, -gy, 1.0).normalize()
 }
 
+/// The mask's maximum over the nodes of every level `k ≥ 1` of a pyramid
+/// over the `(nx − 1) × (ny − 1)` cells of its samples, each level's node
+/// covering the 2 × 2 nodes below it (the last row and column clipped), up
+/// to a single node: level 1 from the cells' corner samples, each level
+/// above from the one below.
+fn mask_pyramid(m: &Grid2<f32>) -> Vec<Vec<f32>> {
+    let (ncx, ncy) = (m.width() - 1, m.height() - 1);
+    let mut levels: Vec<Vec<f32>> = Vec::new();
+    let (mut w, mut h) = (ncx, ncy);
+    let mut k = 1;
+    while w > 1 || h > 1 || k == 1 {
+        let (nw, nh) = (ncx.div_ceil(1 << k), ncy.div_ceil(1 << k));
+        let level = (0..nw * nh)
+            .map(|n| {
+                let (a, b) = (n % nw, n / nw);
+                match levels.last() {
+                    // Level 1: the samples of cells 2a..2a+2 × 2b..2b+2.
+                    None => {
+                        let (x1, y1) = ((2 * a + 2).min(ncx), (2 * b + 2).min(ncy));
+                        (2 * b..=y1)
+                            .flat_map(|y| (2 * a..=x1).map(move |x| (x, y)))
+                            .map(|(x, y)| m[(x, y)])
+                            .fold(0.0f32, f32::max)
+                    }
+                    Some(below) => (2 * b..(2 * b + 2).min(h))
+                        .flat_map(|y| (2 * a..(2 * a + 2).min(w)).map(move |x| (x, y)))
+                        .map(|(x, y)| below[y * w + x])
+                        .fold(0.0f32, f32::max),
+                }
+            })
+            .collect();
+        levels.push(level);
+        (w, h) = (nw, nh);
+        k += 1;
+    }
+    levels
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -401,6 +481,52 @@ mod tests {
             seed: 7,
         })
         .unwrap()
+    }
+
+    #[test]
+    fn the_mask_pyramid_holds_each_nodes_greatest_sample() {
+        // A random mask on a field of 23 × 14 samples (22 × 13 cells, so
+        // every level clips its last row or column): each node of every
+        // level holds exactly the greatest sample of its cells' corners,
+        // found by brute force, up to the one node covering the field.
+        let hf = HeightField::from_fn(23, 14, 5.0, |_, _| 0.0).unwrap();
+        let mut s = 3u64;
+        let mask = Grid2::from_fn(23, 14, |_, _| {
+            s = natura_core::mix64(s);
+            natura_core::unit_f64(s) as f32
+        })
+        .unwrap();
+        let surface = DetailSurface::new(&hf, detail(), Some(mask.clone())).unwrap();
+        let (ncx, ncy) = (22u32, 13u32);
+        let mut k = 1;
+        loop {
+            let size = 1u32 << k;
+            let (w, h) = (ncx.div_ceil(size), ncy.div_ceil(size));
+            for b in 0..h {
+                for a in 0..w {
+                    let mut want = 0.0f32;
+                    for y in b * size..=((b + 1) * size).min(ncy) {
+                        for x in a * size..=((a + 1) * size).min(ncx) {
+                            want = want.max(mask[(x as usize, y as usize)]);
+                        }
+                    }
+                    assert_eq!(
+                        surface.mask_max_node(k, a, b),
+                        want,
+                        "level {k}, node ({a}, {b})"
+                    );
+                }
+            }
+            if w == 1 && h == 1 {
+                break;
+            }
+            k += 1;
+        }
+        // Above the top, and without a mask: no bound below 1.
+        assert_eq!(surface.mask_max_node(k + 1, 0, 0), 1.0);
+        let bare = DetailSurface::new(&hf, detail(), None).unwrap();
+        assert_eq!(bare.mask_max_node(1, 0, 0), 1.0);
+        assert_eq!(bare.mask_corners(3, 4), [1.0; 4]);
     }
 
     #[test]

@@ -113,10 +113,10 @@ impl<'a> DetailTracer<'a> {
         self.footprint
     }
 
-    /// Bytes of acceleration data (the base tracer's pyramid).
+    /// Bytes of acceleration data (the base tracer's pyramid, the mask's).
     #[must_use]
     pub fn memory_bytes(&self) -> usize {
-        self.base.memory_bytes()
+        self.base.memory_bytes() + self.surface.memory_bytes()
     }
 
     /// The ray parameter from which the footprint leaves no detail (∞ if never).
@@ -228,17 +228,21 @@ impl<'a> DetailTracer<'a> {
     /// Node `(a, b)` of level `k` (level 0: cells) over `[t0, t1]`.
     fn node(&self, r: &WalkRay, k: u32, a: u32, b: u32, t0: f64, t1: f64) -> Option<f64> {
         let f = &self.base.f;
-        let (lo, hi) = if k == 0 {
+        let (lo, hi, mask) = if k == 0 {
             let c = f.corners(a, b);
+            let m = self.surface.mask_corners(a, b);
             (
                 c[0].min(c[1]).min(c[2].min(c[3])),
                 c[0].max(c[1]).max(c[2].max(c[3])),
+                m[0].max(m[1]).max(m[2].max(m[3])),
             )
         } else {
-            self.base.mipmap().node_range(k, a, b)?
+            let (lo, hi) = self.base.mipmap().node_range(k, a, b)?;
+            (lo, hi, self.surface.mask_max_node(k, a, b))
         };
-        // The footprint is smallest (the detail largest) where the ray enters.
-        let amp = self.surface.amplitude_bound(r.w(t0));
+        // The footprint is smallest (the detail largest) where the ray
+        // enters; the mask scales it (a node under water has none).
+        let amp = f64::from(mask) * self.surface.amplitude_bound(r.w(t0));
         let (za, zb) = (r.o.z + t0 * r.d.z, r.o.z + t1 * r.d.z);
         let m = 1e-4 * (1.0 + za.abs().max(zb.abs()));
         if za.max(zb) < f64::from(lo) - amp - m || za.min(zb) > f64::from(hi) + amp + m {
@@ -285,9 +289,25 @@ impl<'a> DetailTracer<'a> {
         let cell = f64::from(f.cell);
         let slope = |a: f32, b: f32| f64::from(a).hypot(f64::from(b)) / cell;
         let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
+        // The mask over the cell: at most its greatest corner, and its
+        // gradient at most √2 × its largest edge difference per cell.
+        let mc = self.surface.mask_corners(i, j);
+        let m_max = f64::from(mc[0].max(mc[1]).max(mc[2].max(mc[3])));
+        if m_max == 0.0 {
+            return self.bare(r, i, j, t0, t1);
+        }
+        let uniform = (mc[1] == mc[0] && mc[2] == mc[0] && mc[3] == mc[0]).then_some(mc[0]);
+        let mask_lip = if uniform.is_some() {
+            0.0
+        } else {
+            let d = (mc[1] - mc[0])
+                .abs()
+                .max((mc[2] - mc[0]).abs())
+                .max((mc[3] - mc[1]).abs().max((mc[3] - mc[2]).abs()));
+            std::f64::consts::SQRT_2 * f64::from(d) / cell
+        };
         let detail = self.surface.detail();
         let finest = detail.finest_footprint();
-        let mask_lip = self.surface.mask_lipschitz();
         let fw_per_w = f64::from(r.fp.per_metre) * r.len;
         let s = r.side;
         let hf = self.surface.height_field();
@@ -307,11 +327,11 @@ impl<'a> DetailTracer<'a> {
             let n = detail.octaves_at(w);
             let top = n.ceil() as usize;
             let h = s * (p.z - base);
-            let m = f64::from(self.surface.mask_at(x, y));
+            let m = f64::from(uniform.unwrap_or_else(|| self.surface.mask_at(x, y)));
             let q = DVec2::new(f64::from(x), f64::from(y));
             let (mut k, mut part) = (0, h);
             let g = loop {
-                let rest = detail.amplitude_between(k, top);
+                let rest = m_max * detail.amplitude_between(k, top);
                 let g = part - rest;
                 if k == top || g >= STOP_REST * rest {
                     break g;
@@ -336,9 +356,10 @@ impl<'a> DetailTracer<'a> {
             } else {
                 // The evaluated octaves' slope (and the mask's over all
                 // octaves), and the blended octave's change with the footprint.
-                let l =
-                    lb + detail.lipschitz_first(k) + detail.amplitude_between(0, top) * mask_lip;
-                let fw = detail.footprint_bound_n(w, n) * fw_per_w;
+                let l = lb
+                    + m_max * detail.lipschitz_first(k)
+                    + detail.amplitude_between(0, top) * mask_lip;
+                let fw = m_max * detail.footprint_bound_n(w, n) * fw_per_w;
                 l * r.dxy + fw - s * r.d.z
             };
             if t >= t1 || denom <= 0.0 {
@@ -349,6 +370,52 @@ impl<'a> DetailTracer<'a> {
             t_prev = t;
             t = (t + step).min(t1);
         }
+    }
+
+    /// The first crossing of cell `(i, j)` over `[t0, t1]` where the mask
+    /// is 0 at every corner, so the surface there is the bare height
+    /// field: the two triangles are planes, the gap is linear along the
+    /// ray on each side of the diagonal, and its root is found exactly
+    /// (no march). The gap is read as the march reads it, so a ray
+    /// already below the surface where it enters is hit there.
+    fn bare(&self, r: &WalkRay, i: u32, j: u32, t0: f64, t1: f64) -> Option<f64> {
+        let hf = self.surface.height_field();
+        let e = hf.extent();
+        let gap = |t: f64| {
+            let p = r.o + t * r.d;
+            let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+            r.side * (p.z - f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN)))
+        };
+        // Where the ray crosses the diagonal `u + v = 1`, if inside.
+        let cell = f64::from(self.base.f.cell);
+        let along = r.d.x + r.d.y;
+        let tc = (f64::from(i + j + 1) * cell - r.o.x - r.o.y) / along;
+        let ends = if tc > t0 && tc < t1 {
+            [t0, tc, t1]
+        } else {
+            [t0, t1, t1]
+        };
+        let (mut ta, mut ga) = (t0, gap(t0));
+        if !ga.is_finite() {
+            return None;
+        }
+        if ga <= 0.0 {
+            return Some(t0);
+        }
+        for &tb in &ends[1..] {
+            if tb <= ta {
+                continue;
+            }
+            let gb = gap(tb);
+            if !gb.is_finite() {
+                return None;
+            }
+            if gb <= 0.0 {
+                return Some((ta + ga / (ga - gb) * (tb - ta)).clamp(ta, tb));
+            }
+            (ta, ga) = (tb, gb);
+        }
+        None
     }
 
     /// The crossing in `(lo, hi]` where `s·g(lo) > 0 ≥ s·g(hi) = ghi`, to a
