@@ -21,6 +21,11 @@
 //! evaluated, so far above the surface no noise is evaluated at all (the
 //! shell `B ± A`, the triangles' slope alone) and near it the fine octaves'
 //! large slopes shorten only the last steps.
+//! The mask `m` scales each bound by its greatest value over the node
+//! (a max pyramid of the mask beside the heights') or the cell (its
+//! corners), so nodes under water cull on their bare heights; a cell bare
+//! at every corner is the height field's two planes, whose crossing is
+//! solved exactly instead of marched.
 //! Steps are at least a quarter of the footprint; where one lands below the
 //! surface a bracketed regula falsi finds the crossing. A feature thinner than a quarter
 //! of a pixel's footprint along the ray can therefore be stepped over; none
