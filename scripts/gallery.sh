@@ -104,10 +104,12 @@ for name in $(printf '%s\n' "${!area[@]}" | sort); do
       run landscape --out "$out/render" --width 1280 --height 720
       variant landscape landscape.png valley_morning.png \
         --scene examples/scenes/valley_morning.toml --width 960 --height 540
+      # The close-ups show the ground whose detail they are for: without
+      # the forest, a tree fills most of the frame.
       variant landscape landscape.png landscape_detail_off.png \
-        --closeup --no-detail --width 400 --height 225 --spp 8
+        --closeup --no-forest --no-detail --width 400 --height 225 --spp 8
       variant landscape landscape.png landscape_detail.png \
-        --closeup --width 400 --height 225 --spp 8
+        --closeup --no-forest --width 400 --height 225 --spp 8
       ;;
     planet)
       run planet --out "$out/texture"
