@@ -240,9 +240,10 @@ pub struct DetailSurface<'a> {
     /// `|∇m|` bound, per metre.
     mask_lip: f64,
     /// The mask's maximum over the nodes of the tracer's pyramid: level
-    /// `k ≥ 1` (entry `k − 1`) holds `⌈ncx/2ᵏ⌉ × ⌈ncy/2ᵏ⌉` nodes of
-    /// `2ᵏ × 2ᵏ` cells, row-major (empty without a mask).
-    mask_max: Vec<Vec<f32>>,
+    /// `k ≥ 1` (entry `k − 1`) holds its width `⌈ncx/2ᵏ⌉` and its
+    /// `⌈ncx/2ᵏ⌉ × ⌈ncy/2ᵏ⌉` nodes of `2ᵏ × 2ᵏ` cells, row-major (empty
+    /// without a mask).
+    mask_max: Vec<(usize, Vec<f32>)>,
 }
 
 impl<'a> DetailSurface<'a> {
@@ -376,10 +377,9 @@ impl<'a> DetailSurface<'a> {
     /// tracer's pyramid (1 without a mask or outside it).
     #[inline]
     pub(crate) fn mask_max_node(&self, k: u32, a: u32, b: u32) -> f32 {
-        let Some(level) = self.mask_max.get(k as usize - 1) else {
+        let Some((w, level)) = self.mask_max.get(k as usize - 1) else {
             return 1.0;
         };
-        let w = (self.hf.nx() - 1).div_ceil(1 << k);
         level
             .get(b as usize * w + a as usize)
             .copied()
@@ -395,7 +395,7 @@ impl<'a> DetailSurface<'a> {
             + self
                 .mask_max
                 .iter()
-                .map(|l| std::mem::size_of_val(l.as_slice()))
+                .map(|(_, l)| std::mem::size_of_val(l.as_slice()))
                 .sum::<usize>()
     }
 
@@ -434,9 +434,9 @@ pub(crate) fn add_gradient(n: Vec3, g: DVec2) -> Vec3 {
 /// covering the 2 × 2 nodes below it (the last row and column clipped), up
 /// to a single node: level 1 from the cells' corner samples, each level
 /// above from the one below.
-fn mask_pyramid(m: &Grid2<f32>) -> Vec<Vec<f32>> {
+fn mask_pyramid(m: &Grid2<f32>) -> Vec<(usize, Vec<f32>)> {
     let (ncx, ncy) = (m.width() - 1, m.height() - 1);
-    let mut levels: Vec<Vec<f32>> = Vec::new();
+    let mut levels: Vec<(usize, Vec<f32>)> = Vec::new();
     let (mut w, mut h) = (ncx, ncy);
     let mut k = 1;
     while w > 1 || h > 1 || k == 1 {
@@ -453,14 +453,14 @@ fn mask_pyramid(m: &Grid2<f32>) -> Vec<Vec<f32>> {
                             .map(|(x, y)| m[(x, y)])
                             .fold(0.0f32, f32::max)
                     }
-                    Some(below) => (2 * b..(2 * b + 2).min(h))
+                    Some((_, below)) => (2 * b..(2 * b + 2).min(h))
                         .flat_map(|y| (2 * a..(2 * a + 2).min(w)).map(move |x| (x, y)))
                         .map(|(x, y)| below[y * w + x])
                         .fold(0.0f32, f32::max),
                 }
             })
             .collect();
-        levels.push(level);
+        levels.push((nw, level));
         (w, h) = (nw, nh);
         k += 1;
     }

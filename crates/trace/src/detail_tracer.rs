@@ -197,11 +197,22 @@ impl<'a> DetailTracer<'a> {
     /// into the field).
     #[inline]
     fn gap(&self, r: &WalkRay, t: f64) -> f64 {
-        let p = r.o + t * r.d;
-        let e = self.surface.height_field().extent();
-        let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+        let (p, x, y) = self.at(r, t);
         let s = self.surface.height(x, y, r.w(t)).unwrap_or(f64::NAN);
         p.z - s
+    }
+
+    /// The ray's point at `t`, and its `(x, y)` clamped into the field
+    /// (where the surface is read).
+    #[inline]
+    fn at(&self, r: &WalkRay, t: f64) -> (DVec3, f32, f32) {
+        let p = r.o + t * r.d;
+        let e = self.surface.height_field().extent();
+        (
+            p,
+            (p.x as f32).clamp(0.0, e.x),
+            (p.y as f32).clamp(0.0, e.y),
+        )
     }
 
     /// The first crossing of the surface over `[t0, t1]` in the detail
@@ -316,12 +327,10 @@ impl<'a> DetailTracer<'a> {
         let fw_per_w = f64::from(r.fp.per_metre) * r.len;
         let s = r.side;
         let hf = self.surface.height_field();
-        let e = hf.extent();
         let (mut t, mut t_prev) = (t0, t0);
         loop {
             let w = r.w(t);
-            let p = r.o + t * r.d;
-            let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+            let (p, x, y) = self.at(r, t);
             let base = f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN));
             // The gap above the base surface, then the octaves from the
             // coarsest on until the ones left (bounded by their amplitudes)
@@ -385,10 +394,8 @@ impl<'a> DetailTracer<'a> {
     /// already below the surface where it enters is hit there.
     fn bare(&self, r: &WalkRay, i: u32, j: u32, t0: f64, t1: f64) -> Option<f64> {
         let hf = self.surface.height_field();
-        let e = hf.extent();
         let gap = |t: f64| {
-            let p = r.o + t * r.d;
-            let (x, y) = ((p.x as f32).clamp(0.0, e.x), (p.y as f32).clamp(0.0, e.y));
+            let (p, x, y) = self.at(r, t);
             r.side * (p.z - f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN)))
         };
         // Where the ray crosses the diagonal `u + v = 1`, if inside.
