@@ -5,7 +5,8 @@
 use std::cell::RefCell;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use natura_core::Image;
+use glam::Vec3;
+use natura_core::{Grid2, Image};
 use numpy::{
     IntoPyArray, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
@@ -62,14 +63,13 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
 
 /// `img`'s linear radiance as a float32 `(height, width, 3)` array.
 pub fn image_array<'py>(py: Python<'py>, img: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
-    let (w, h) = (img.width(), img.height());
-    let flat: Vec<f32> = img
-        .pixels()
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array())
-        .collect();
-    numpy::ndarray::Array3::from_shape_vec((h, w, 3), flat)
+    rgb_array(py, img.pixels())
+}
+
+/// A grid of colours as a float32 `(height, width, 3)` array.
+pub fn rgb_array<'py>(py: Python<'py>, g: &Grid2<Vec3>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let flat: Vec<f32> = g.as_slice().iter().flat_map(|c| c.to_array()).collect();
+    numpy::ndarray::Array3::from_shape_vec((g.height(), g.width(), 3), flat)
         .map(|a| a.into_pyarray(py))
         .map_err(|e| PyValueError::new_err(e.to_string()))
 }

@@ -13,12 +13,12 @@ use natura_texture::multicolor::Multicolor;
 use natura_texture::planet::{Planet, PlanetParams};
 use natura_texture::water::{Ripples, WindyWave};
 use natura_texture::{Footprint, SolidTexture};
-use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::args::{floats, run, run_sized, value_error};
+use crate::args::{floats, rgb_array, run, run_sized, value_error};
 use crate::progress::PyProgress;
 use crate::values::{from_params, from_value, overlay, to_params, to_toml};
 
@@ -250,17 +250,10 @@ fn planet_equirect<'py>(
         planet.equirect(width, height, &sink).map_err(value_error)
     });
     let map = sink.finish_call(out)?;
-    let colour: Vec<f32> = map
-        .colour
-        .as_slice()
-        .iter()
-        .flat_map(|c| c.to_array())
-        .collect();
-    let colour = Array3::from_shape_vec((height, width, 3), colour)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let colour = rgb_array(py, &map.colour)?;
     let h = Array2::from_shape_vec((height, width), map.height.into_vec())
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok((colour.into_pyarray(py), h.into_pyarray(py)))
+    Ok((colour, h.into_pyarray(py)))
 }
 
 /// `planet_defaults(preset)`: the planet preset's `PlanetParams` as a dict.
