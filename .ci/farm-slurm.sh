@@ -2,7 +2,7 @@
 # A real Slurm on loopback: starts munge, slurmctld and slurmd (one node,
 # 2 CPUs, private ports and state under target/ci-farm/slurm), validates the
 # generated scripts with `sbatch --test-only`, submits prepare → render array
-# (3 frames × 16 tiles, throttle 2) → assemble with `natura farm slurm`'s
+# (3 frames × 6 tiles, throttle 2) → assemble with `natura farm slurm`'s
 # submit.sh, waits, checks every frame against a single-process render, and
 # prints the wall time of the Slurm job against one process rendering the
 # same frames. Needs root and Debian's slurm-wlm and munge packages
@@ -82,7 +82,7 @@ for _ in $(seq 60); do
 done
 sinfo
 
-"$natura" farm slurm "$scene" --out "$out" --tiles 16 --throttle "$cpus" --cpus 1
+"$natura" farm slurm "$scene" --out "$out" --tiles 6 --throttle "$cpus" --cpus 1
 for s in prepare render assemble; do
   sbatch --test-only "$out/slurm/$s.sbatch"
 done
@@ -108,5 +108,5 @@ done
 t1=$(date +%s.%N)
 one_s=$(echo "$t1 - $t0" | bc)
 same_as_single_process "$out" 0 1 2
-printf 'wall time, 3 frames x 16 tiles: Slurm (%s slots) %.2f s, one process (%s threads) %.2f s, ratio %.2f\n' \
+printf 'wall time, 3 frames x 6 tiles: Slurm (%s slots) %.2f s, one process (%s threads) %.2f s, ratio %.2f\n' \
   "$cpus" "$slurm_s" "$cpus" "$one_s" "$(echo "$slurm_s / $one_s" | bc -l)"
