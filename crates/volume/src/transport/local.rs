@@ -37,11 +37,16 @@
 //! free flights and scatterings sampled as the reference samples them,
 //! every flight scored by its track length (Lux & Koblinger 1991, ch. 5)
 //! into the cells' projections on the real spherical harmonics of bands 0
-//! and 1 per colour channel; a flight ends where it meets a surface (the
+//! to 3 per colour channel; a flight ends where it meets a surface (the
 //! surfaces do not reflect the medium's light back, as in the reference).
 //! The march reads `Σ σ_l χ_l c_lm Y_lm(ω_o)` per channel, as it reads the
-//! sun's cache ([`super::cache`]): band 1 is enough for light that comes
-//! from below and beside over wide solid angles.
+//! sun's cache ([`super::cache`]). Light from wide solid angles needs few
+//! bands, but in a thick medium of low albedo the first order dominates,
+//! and the sky's light there arrives from the nearest surface, a peaked
+//! field that an anisotropic phase turns toward the eye: cut after band 1
+//! (its σ-factor 0.64), the fast mode was 6–10 % too bright at albedo 0.8
+//! under HG 0.6 and 0.8 and the 5 µm cloud phase; cut after band 3 it is
+//! within 5 % (`docs/performance.md`).
 //!
 //! **What it costs.** Its photons run with the sun's (the scattering
 //! events are [`CacheParams::local`](super::CacheParams::local)). The march reads
@@ -55,7 +60,7 @@ use natura_core::Seed;
 use rand_core::Rng;
 
 use super::cells::{CellGrid, Flight};
-use super::harmonics::{MAX_COEFFS, legendre_moments, sh_basis, sigma_factor};
+use super::harmonics::{MAX_COEFFS, dot, legendre_moments, sh_basis, sigma_factor};
 use super::model::lit_ground;
 use super::{MediumParams, Scene, Surface};
 use crate::animate::unit;
@@ -63,8 +68,10 @@ use crate::density::{fill_densities, ray_box};
 
 /// Photon chunks (each its own random stream and grid; summed in order).
 const CHUNKS: usize = 4;
-/// Coefficients per channel: bands 0 and 1.
-const PER: usize = 4;
+/// The highest band of the cells' radiance.
+const ORDER: usize = 3;
+/// Coefficients per channel: bands 0 to [`ORDER`].
+const PER: usize = (ORDER + 1) * (ORDER + 1);
 /// Most scattering events one photon is followed through.
 const MAX_EVENTS_PER_PHOTON: u32 = 1 << 20;
 /// Most photons drawn per scattering event of the budget (photons that
@@ -77,10 +84,10 @@ const MAX_DRAWS_PER_EVENT: u64 = 64;
 pub(crate) struct LocalLight {
     grid: CellGrid,
     /// Per cell, per channel, the coefficients `∫ L Y_lm dω` of bands 0
-    /// and 1 (radiance units).
+    /// to [`ORDER`] (radiance units).
     coeffs: Vec<[f32; 3 * PER]>,
-    /// Band 1's Legendre moment times its σ-factor.
-    band1: f32,
+    /// Per band, the phase's Legendre moment times its σ-factor.
+    band: [f32; ORDER + 1],
     /// Whether the ground is one of the sources.
     ground: bool,
     /// Whether the sky is one of the sources.
@@ -200,7 +207,7 @@ impl LocalLight {
         let mut light = Self {
             coeffs: vec![[0.0; 3 * PER]; grid.count()],
             grid,
-            band1: chi[1] * sigma_factor(1, 1),
+            band: std::array::from_fn(|l| chi[l] * sigma_factor(l, ORDER)),
             ground: false,
             sky: false,
         };
@@ -226,14 +233,10 @@ impl LocalLight {
     /// The factors of an eye looking along unit `d`.
     pub(crate) fn eye(&self, d: Vec3) -> LocalEye {
         let mut y = [0.0f32; MAX_COEFFS];
-        sh_basis(1, -d, &mut y);
+        sh_basis(ORDER, -d, &mut y);
         LocalEye {
-            factors: [
-                y[0],
-                y[1] * self.band1,
-                y[2] * self.band1,
-                y[3] * self.band1,
-            ],
+            // Band l holds the coefficients l² .. (l + 1)².
+            factors: std::array::from_fn(|i| y[i] * self.band[i.isqrt()]),
             memo: std::cell::Cell::new(None),
         }
     }
@@ -252,12 +255,7 @@ impl LocalLight {
                 for (out, c) in v.iter_mut().zip(self.grid.corner_cells(i, j)) {
                     let s = &self.coeffs[c];
                     let f = &eye.factors;
-                    let ch = |k: usize| {
-                        s[k * PER] * f[0]
-                            + s[k * PER + 1] * f[1]
-                            + s[k * PER + 2] * f[2]
-                            + s[k * PER + 3] * f[3]
-                    };
+                    let ch = |k: usize| dot(&s[k * PER..(k + 1) * PER], f);
                     *out = Vec3::new(ch(0), ch(1), ch(2));
                 }
                 eye.memo.set(Some((key, v)));
@@ -514,7 +512,7 @@ impl LocalLight {
                 for _ in 0..MAX_EVENTS_PER_PHOTON {
                     used += 1;
                     let mut y = [0.0f32; MAX_COEFFS];
-                    sh_basis(1, d, &mut y);
+                    sh_basis(ORDER, d, &mut y);
                     let target = -(1.0 - unit(&mut rng)).ln();
                     let t_max = scene.surface_hit(x, d).map_or(f32::INFINITY, |(t, _)| t);
                     let flight = self.grid.fly(x, d, target, t_max, |c, len| {
