@@ -37,7 +37,7 @@
 use glam::Vec3;
 use natura_core::{Aabb, Grid3};
 use natura_volume::Density;
-use natura_volume::density::{Ball, Homogeneous};
+use natura_volume::density::{Ball, Homogeneous, ray_box};
 use natura_volume::grid::GridDensity;
 use natura_volume::phase::CloudPhase;
 use natura_volume::transport::{
@@ -343,7 +343,7 @@ fn background(c: &Case, px: u32) -> Vec<f64> {
                         x as f32 + (i as f32 + 0.5) / 4.0,
                         y as f32 + (j as f32 + 0.5) / 4.0,
                     );
-                    let Some((t0, t1)) = slabs(&b, ray.origin, ray.dir) else {
+                    let Some((t0, t1)) = ray_box(ray.origin, ray.dir.recip(), &b) else {
                         t += 1.0;
                         continue;
                     };
@@ -361,15 +361,6 @@ fn background(c: &Case, px: u32) -> Vec<f64> {
         }
     }
     out
-}
-
-/// Where the ray `o + t·d` (t ≥ 0) crosses the box, if it does.
-fn slabs(b: &Aabb, o: Vec3, d: Vec3) -> Option<(f32, f32)> {
-    let inv = d.recip();
-    let (a, c) = ((b.min - o) * inv, (b.max - o) * inv);
-    let t0 = a.min(c).max_element().max(0.0);
-    let t1 = a.max(c).min_element();
-    (t1 > t0).then_some((t0, t1))
 }
 
 fn render_case(c: &Case, px: u32, spp: u32) -> Measured {
