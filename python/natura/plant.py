@@ -136,12 +136,20 @@ def ecosystem(
     max_plants: int = 20_000_000,
     per_species: int = 3,
     progress: ProgressArg = None,
+    wetness: Optional[np.ndarray] = None,
 ) -> Dict[str, Any]:
     """Grows an ecosystem on the height field ``heights`` (float32 ``(ny,
     nx)``, ``cell_size`` metres apart) and returns its plants as instances
     (Deussen et al. 1998: the Rust ``Ecosystem::new``, ``Ecosystem::run``,
     then ``Instancing::new`` with at most ``per_species`` prototypes per
     species).
+
+    ``wetness`` (float32, the shape of ``heights``, values in ``[0, 1]``)
+    is the soil moisture the species' preferences read; by default it is
+    :func:`natura.terrain.wetness` of ``heights``. Pass a map cut from a
+    larger terrain's wetness when ``heights`` is a piece of it, so the
+    plants see the same moisture as everything else that reads it (the
+    Rust ``Ecosystem::with_wetness``).
 
     Keyword parameters are the fields of ``EcoParams`` with its defaults:
     ``species`` (default: tree, shrub, wet shrub, grass) is a list of preset
@@ -170,7 +178,7 @@ def ecosystem(
         params["species"] = list(species)
     cb = _progress.reporter(progress)
     try:
-        return _native.plant_ecosystem(heights, cell_size, params, per_species, cb)
+        return _native.plant_ecosystem(heights, cell_size, params, per_species, cb, wetness)
     finally:
         _progress.closing(cb)
 

@@ -392,7 +392,12 @@ def channel_network(area: np.ndarray, *, threshold_m2: float) -> np.ndarray:
 
 
 def wetness(heights: np.ndarray, *, cell_size: float = 1.0) -> np.ndarray:
-    """Topographic wetness index ``ln(a / tan b)`` of every cell (``wetness``)."""
+    """The wetness of every cell in ``[0, 1]`` (the Rust ``analysis::wetness``):
+    the topographic wetness index ``ln(a / tan b)`` (Beven & Kirkby 1979)
+    over the multiple-flow-direction drainage area, rescaled so the driest
+    cell is 0 and the wettest 1. The map the ecosystem's species read
+    (:func:`natura.plant.ecosystem`'s ``wetness``) and the renderer's
+    materials."""
     return _native.terrain_wetness(heights, cell_size)
 
 

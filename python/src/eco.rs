@@ -2,6 +2,7 @@
 //! grown on a height array, its plants as instance arrays and its
 //! prototypes as meshes.
 
+use natura_core::Grid2;
 use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Species};
 use natura_plant::{MeshParams, PlantMesh};
 use numpy::ndarray::{Array1, Array2};
@@ -83,9 +84,12 @@ fn vec1<'py, T: numpy::Element>(py: Python<'py>, v: Vec<T>) -> Bound<'py, PyArra
 /// (radians about z), `radius` (metres), `vigor` (float32) and `age` (uint32,
 /// steps lived); `species_names` (list of str) and `prototypes` (a list of
 /// dicts: `species`, `radius`, `steps` and the mesh arrays of
-/// `lsystem_mesh` with default mesh parameters).
+/// `lsystem_mesh` with default mesh parameters). `wetness`, if given (a
+/// float32 array of the heights' shape, values in `[0, 1]`), is the map the
+/// plants read instead of the one computed from `heights`
+/// (`Ecosystem::with_wetness`).
 #[pyfunction]
-#[pyo3(signature = (heights, cell_size, params, per_species=3, progress=None))]
+#[pyo3(signature = (heights, cell_size, params, per_species=3, progress=None, wetness=None))]
 fn plant_ecosystem<'py>(
     py: Python<'py>,
     heights: &Bound<'py, PyAny>,
@@ -93,12 +97,31 @@ fn plant_ecosystem<'py>(
     params: &Bound<'py, PyAny>,
     per_species: usize,
     progress: Option<Py<PyAny>>,
+    wetness: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let hf = field(heights, "heights", cell_size)?;
+    let wet = match wetness {
+        None => None,
+        Some(obj) => {
+            let (data, rows, cols) = crate::args::heights(obj, "wetness")?;
+            if (cols, rows) != (hf.nx(), hf.ny()) {
+                return Err(PyValueError::new_err(format!(
+                    "wetness must have the heights' shape ({}, {}), not ({rows}, {cols})",
+                    hf.ny(),
+                    hf.nx()
+                )));
+            }
+            Some(Grid2::from_vec(cols, rows, data).map_err(value_error)?)
+        }
+    };
     let p = eco_params(params)?;
     let sink = PyProgress::new(progress);
     let out = run(py, || {
-        let mut eco = Ecosystem::new(&hf, p).map_err(value_error)?;
+        let mut eco = match wet {
+            None => Ecosystem::new(&hf, p),
+            Some(w) => Ecosystem::with_wetness(&hf, w, p),
+        }
+        .map_err(value_error)?;
         eco.run(&sink).map_err(value_error)?;
         let inst = Instancing::new(&eco, per_species).map_err(value_error)?;
         let meshes = inst

@@ -428,7 +428,9 @@ fn terrain_channel_network<'py>(
     array(py, a)
 }
 
-/// `terrain_wetness(heights, cell_size)`: the topographic wetness index.
+/// `terrain_wetness(heights, cell_size)`: the wetness in `[0, 1]`
+/// (natura-terrain's `analysis::wetness`: the topographic wetness index
+/// rescaled from the driest cell to the wettest).
 #[pyfunction]
 fn terrain_wetness<'py>(
     py: Python<'py>,

@@ -104,3 +104,37 @@ def test_keyword_defaults_are_the_rust_defaults():
         assert sig[k].default == d[k], k
     assert list(sig["sun"].default) == d["sun"]
     assert [s["name"] for s in d["species"]] == ["tree", "shrub", "wet_shrub", "grass"]
+
+
+def test_a_given_wetness_is_the_map_the_plants_read():
+    from natura import terrain
+
+    h = slope()
+    plain = plant.ecosystem(h, cell_size=2.0, steps=4, per_species=2)
+    # The terrain's own wetness, given: the same plants bit for bit.
+    own = terrain.wetness(h, cell_size=2.0)
+    given = plant.ecosystem(h, cell_size=2.0, steps=4, per_species=2, wetness=own)
+    for k in ("positions", "species", "prototype", "scale", "rotation", "radius"):
+        assert np.array_equal(plain[k], given[k]), k
+    # Soaked and parched ground: the wet shrub (index 2), whose preference
+    # is for wet soil, grows more on the soaked one.
+    wet = plant.ecosystem(h, cell_size=2.0, steps=4, wetness=np.ones_like(h))
+    dry = plant.ecosystem(h, cell_size=2.0, steps=4, wetness=np.zeros_like(h))
+    assert not np.array_equal(wet["species"], dry["species"])
+    assert np.sum(wet["species"] == 2) > np.sum(dry["species"] == 2)
+
+
+def test_bad_wetness_is_named():
+    h = slope()
+    with pytest.raises(ValueError, match="wetness"):
+        plant.ecosystem(h, wetness=np.full((33, 32), 0.5, np.float32))
+    with pytest.raises(ValueError, match="wetness"):
+        plant.ecosystem(h, wetness=np.full_like(h, 1.5))
+    bad = np.full_like(h, 0.5)
+    bad[3, 4] = np.nan
+    with pytest.raises(ValueError, match="wetness"):
+        plant.ecosystem(h, wetness=bad)
+    with pytest.raises(TypeError, match="wetness"):
+        plant.ecosystem(h, wetness=np.full(h.shape, 0.5))
+    with pytest.raises(ValueError, match="wetness"):
+        plant.ecosystem(h, wetness=np.full(33 * 33, 0.5, np.float32))
