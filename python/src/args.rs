@@ -329,14 +329,14 @@ pub fn f32_array(
     Ok((ro.as_array().iter().copied().collect(), shape))
 }
 
-/// `obj` as a 2-D float32 height array ([`f32_array`]): its values in C
-/// order and its `(rows, cols)` shape.
+/// `obj`, a 2-D float32 array ([`f32_array`]), as a grid: its columns along
+/// x, its rows along y.
 ///
 /// # Errors
-/// As [`f32_array`].
-pub fn heights(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f32>, usize, usize)> {
+/// As [`f32_array`]; `ValueError` if the grid cannot be made (zero size).
+pub fn grid2(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid2<f32>> {
     let (data, shape) = f32_array(obj, name, 2, "rows, columns")?;
-    Ok((data, shape[0], shape[1]))
+    Grid2::from_vec(shape[1], shape[0], data).map_err(value_error)
 }
 
 /// The name of `v` in a `(name, value)` table ("" if absent).

@@ -2,7 +2,6 @@
 //! grown on a height array, its plants as instance arrays and its
 //! prototypes as meshes.
 
-use natura_core::Grid2;
 use natura_plant::eco::{EcoParams, Ecosystem, Instancing, Species};
 use natura_plant::{MeshParams, PlantMesh};
 use numpy::ndarray::{Array1, Array2};
@@ -11,7 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::args::{run, value_error};
+use crate::args::{grid2, run, value_error};
 use crate::progress::PyProgress;
 use crate::terrain::field;
 use crate::values::{from_value, to_params, to_toml};
@@ -100,20 +99,8 @@ fn plant_ecosystem<'py>(
     wetness: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let hf = field(heights, "heights", cell_size)?;
-    let wet = match wetness {
-        None => None,
-        Some(obj) => {
-            let (data, rows, cols) = crate::args::heights(obj, "wetness")?;
-            if (cols, rows) != (hf.nx(), hf.ny()) {
-                return Err(PyValueError::new_err(format!(
-                    "wetness must have the heights' shape ({}, {}), not ({rows}, {cols})",
-                    hf.ny(),
-                    hf.nx()
-                )));
-            }
-            Some(Grid2::from_vec(cols, rows, data).map_err(value_error)?)
-        }
-    };
+    // Its size is checked against the heights' by `Site::with_wetness`.
+    let wet = wetness.map(|w| grid2(w, "wetness")).transpose()?;
     let p = eco_params(params)?;
     let sink = PyProgress::new(progress);
     let out = run(py, || {

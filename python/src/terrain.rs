@@ -21,7 +21,7 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Dv, Kw, defaults_dict, heights, name_of, params, run, value_error};
+use crate::args::{Dv, Kw, defaults_dict, grid2, name_of, params, run, value_error};
 
 const NEIGHBOURHOODS: &[(&str, Neighbourhood)] = &[
     ("four", Neighbourhood::Four),
@@ -219,9 +219,7 @@ fn model_defaults(model: &str) -> Option<Vec<(&'static str, Dv)>> {
 
 /// The height field of a float32 2-D array.
 pub(crate) fn field(obj: &Bound<'_, PyAny>, name: &str, cell_size: f32) -> PyResult<HeightField> {
-    let (data, rows, cols) = heights(obj, name)?;
-    let grid = Grid2::from_vec(cols, rows, data).map_err(value_error)?;
-    HeightField::new(grid, cell_size).map_err(value_error)
+    HeightField::new(grid2(obj, name)?, cell_size).map_err(value_error)
 }
 
 fn array<'py, T: numpy::Element>(
@@ -420,8 +418,7 @@ fn terrain_channel_network<'py>(
     area: &Bound<'py, PyAny>,
     threshold_m2: f32,
 ) -> PyResult<Bound<'py, PyArray2<bool>>> {
-    let (data, rows, cols) = heights(area, "area")?;
-    let grid = Grid2::from_vec(cols, rows, data).map_err(value_error)?;
+    let grid = grid2(area, "area")?;
     let a = run(py, move || {
         channel_network(&grid, threshold_m2).map_err(value_error)
     })?;

@@ -461,23 +461,23 @@ fn images_are_identical_on_one_and_two_threads() {
         ..Scene::new(&g, MediumParams::default(), Vec3::splat(0.1))
     };
     let cam = camera_for(&g.bounds(), 24, 16);
+    // A small cache: every path of its set-up runs, at a fraction of the
+    // default's events.
+    let settings = FastSettings {
+        scattering: Scattering::Cache(CacheParams {
+            cells: 24,
+            events: 100_000,
+            local: 50_000,
+            ..CacheParams::default()
+        }),
+        ..FastSettings::default()
+    };
     let render = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
         pool.install(|| {
-            // A small cache: every path of its set-up runs, at a fraction
-            // of the default's events.
-            let settings = FastSettings {
-                scattering: Scattering::Cache(CacheParams {
-                    cells: 24,
-                    events: 100_000,
-                    local: 50_000,
-                    ..CacheParams::default()
-                }),
-                ..FastSettings::default()
-            };
             let fast = FastRenderer::new(&scene, settings)
                 .unwrap()
                 .render(&cam)

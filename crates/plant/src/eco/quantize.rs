@@ -31,6 +31,28 @@ fn sse(w: &[f64], wx: &[f64], wxx: &[f64], a: usize, b: usize) -> f64 {
     ((wxx[b] - wxx[a]) - s * s / sw).max(0.0)
 }
 
+/// The values' order (ascending, ties by index) and the prefix sums along it
+/// of the weight, weight·x and weight·x².
+fn sorted_sums(values: &[f32], weights: &[f32]) -> (Vec<u32>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = values.len();
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    order.sort_by(|&a, &b| {
+        values[a as usize]
+            .total_cmp(&values[b as usize])
+            .then(a.cmp(&b))
+    });
+    let (mut w, mut wx, mut wxx) = (vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]);
+    for (r, &i) in order.iter().enumerate() {
+        // A zero weight would leave a cluster without a mean; a tiny floor keeps every value counted.
+        let wi = f64::from(weights[i as usize]).max(1e-12);
+        let x = f64::from(values[i as usize]);
+        w[r + 1] = w[r] + wi;
+        wx[r + 1] = wx[r] + wi * x;
+        wxx[r + 1] = wxx[r] + wi * x * x;
+    }
+    (order, w, wx, wxx)
+}
+
 /// A run's best split point and the run's own weighted error.
 type Split = (usize, f64);
 
@@ -63,21 +85,7 @@ pub fn quantize(values: &[f32], weights: &[f32], k: usize) -> Result<Quantizatio
         return Err(bad("weights", w.to_string(), "finite non-negative numbers"));
     }
     let n = values.len();
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_by(|&a, &b| {
-        values[a as usize]
-            .total_cmp(&values[b as usize])
-            .then(a.cmp(&b))
-    });
-    let (mut w, mut wx, mut wxx) = (vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]);
-    for (r, &i) in order.iter().enumerate() {
-        // A zero weight would leave a cluster without a mean; a tiny floor keeps every value counted.
-        let wi = f64::from(weights[i as usize]).max(1e-12);
-        let x = f64::from(values[i as usize]);
-        w[r + 1] = w[r] + wi;
-        wx[r + 1] = wx[r] + wi * x;
-        wxx[r + 1] = wxx[r] + wi * x * x;
-    }
+    let (order, w, wx, wxx) = sorted_sums(values, weights);
     // The best split of run [a, b): only between different values, at the
     // point that minimises the halves' summed error; with the run's error.
     let best_split = |a: usize, b: usize| -> Option<Split> {
@@ -175,18 +183,8 @@ mod tests {
     /// The splitting done plainly: every round re-scans every run for its
     /// error and best split (what [`quantize`] keeps from round to round).
     fn runs_by_rescanning(values: &[f32], weights: &[f32], k: usize) -> Vec<f32> {
-        let mut order: Vec<usize> = (0..values.len()).collect();
-        order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
-        let n = values.len();
-        let (mut w, mut wx, mut wxx) = (vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]);
-        for (r, &i) in order.iter().enumerate() {
-            let wi = f64::from(weights[i]).max(1e-12);
-            let x = f64::from(values[i]);
-            w[r + 1] = w[r] + wi;
-            wx[r + 1] = wx[r] + wi * x;
-            wxx[r + 1] = wxx[r] + wi * x * x;
-        }
-        let mut runs = vec![(0, n)];
+        let (order, w, wx, wxx) = sorted_sums(values, weights);
+        let mut runs = vec![(0, values.len())];
         while runs.len() < k {
             let mut best: Option<(usize, usize, f64)> = None;
             for (ci, &(a, b)) in runs.iter().enumerate() {
@@ -196,7 +194,7 @@ mod tests {
                 }
                 let mut split: Option<(usize, f64)> = None;
                 for m in a + 1..b {
-                    if values[order[m - 1]] == values[order[m]] {
+                    if values[order[m - 1] as usize] == values[order[m] as usize] {
                         continue;
                     }
                     let s = sse(&w, &wx, &wxx, a, m) + sse(&w, &wx, &wxx, m, b);
