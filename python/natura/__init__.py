@@ -10,8 +10,8 @@ numpy arrays in and out of natura's Rust crates:
   arrays, binary glTF; ecosystems grown on a terrain as instance arrays;
 * :mod:`natura.ocean` -- Tessendorf's ocean: height, slope, choppy
   displacement, Jacobian and foam fields at given times;
-* :mod:`natura.volume` -- Ebert's clouds, layer clouds and a smoke plume as
-  3-D density arrays; OpenVDB files;
+* :mod:`natura.volume` -- Ebert's clouds, layer clouds, the smoke plume and
+  a smoke solver of your own set-up as 3-D density arrays; OpenVDB files;
 * :mod:`natura.texture` -- Musgrave's solid textures and planets at points
   and over a sphere;
 * :mod:`natura.atmos` -- the physical sky's radiance in given directions;

@@ -1,5 +1,6 @@
 """Clouds and smoke as voxel density arrays, and OpenVDB files
-(natura-volume, natura-fluid).
+(natura-volume, natura-fluid). Smoke comes as the plume preset
+(:func:`smoke_plume`) or from a solver you set up (:class:`SmokeSolver`).
 
 Arrays are float32 of shape ``(nz, ny, nx)`` (voxel ``(x, y, z)`` is
 ``a[z, y, x]``; z up, metres). A baked volume comes as a :class:`Volume`:
@@ -22,8 +23,9 @@ from natura import _native, _progress
 from natura._progress import ProgressArg
 
 __all__ = [
-    "Smoke", "Volume", "cloud", "cloud_defaults", "cloud_primitives", "layer_clouds",
-    "layer_defaults", "read_vdb", "render", "smoke_plume", "write_vdb",
+    "Smoke", "SmokeSolver", "Volume", "cloud", "cloud_defaults", "cloud_primitives",
+    "cuboid", "layer_clouds", "layer_defaults", "oriented_box", "read_vdb", "render",
+    "smoke_plume", "sphere", "write_vdb",
 ]
 
 
@@ -140,6 +142,157 @@ def smoke_plume(
     finally:
         _progress.closing(cb)
     return Smoke(d, t, cell, dt, steps)
+
+
+Vec3 = Tuple[float, float, float]
+
+
+def sphere(centre: Vec3, radius: float) -> Dict[str, Any]:
+    """A ball for a smoke source or obstacle (natura-fluid's
+    ``Shape::Sphere``), metres."""
+    return {"kind": "sphere", "centre": list(centre), "radius": radius}
+
+
+def cuboid(min: Vec3, max: Vec3) -> Dict[str, Any]:  # noqa: A002 - the Rust field names
+    """An axis-aligned box from its ``min`` to its ``max`` corner
+    (``Shape::Cuboid``), metres."""
+    return {"kind": "cuboid", "min": list(min), "max": list(max)}
+
+
+def oriented_box(
+    centre: Vec3, half: Vec3, rotation: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+) -> Dict[str, Any]:
+    """A box of half extents ``half`` about ``centre``, turned by the unit
+    quaternion ``rotation`` ``(x, y, z, w)`` (``Shape::OrientedBox``)."""
+    return {"kind": "oriented_box", "centre": list(centre), "half": list(half),
+            "rotation": list(rotation)}
+
+
+class SmokeSolver:
+    """natura-fluid's smoke solver (the Rust ``Smoke``: Fedkiw, Stam and
+    Jensen 2001, buoyancy, vorticity confinement and a pressure projection on
+    a staggered grid) on ``dims = (nx, ny, nz)`` cells of edge ``cell``
+    metres, the box's corner at the origin, z up; still air at the ambient
+    temperature to start with.
+
+    ``params`` are the fields of the Rust ``SmokeParams`` (``alpha``,
+    ``beta``, ``ambient_temperature``, ``epsilon``, ``advection``,
+    ``solver``, ``bounds``; :attr:`params` shows them all). Add sources and
+    obstacles (shapes from :func:`sphere`, :func:`cuboid`,
+    :func:`oriented_box`), then :meth:`step`. A bad value raises
+    ``ValueError`` naming it, a wrong array dtype ``TypeError``.
+
+    ``SmokeSolver`` built like :func:`smoke_plume`'s preset steps to the same
+    fields bit for bit."""
+
+    def __init__(self, dims: Tuple[int, int, int], cell: float, **params: Any) -> None:
+        self._s = _native.SmokeSolver(tuple(dims), cell, params)
+
+    def add_source(
+        self,
+        shape: Dict[str, Any],
+        *,
+        density: float,
+        temperature: float,
+        velocity: Optional[Vec3] = None,
+    ) -> None:
+        """Places smoke each step (``SmokeSource``): inside ``shape`` the
+        density and temperature (K) are raised to at least these, and with
+        ``velocity`` (m/s) the free faces inside are set to it (a jet). The
+        shape must lie inside the box."""
+        src: Dict[str, Any] = {"shape": shape, "density": density, "temperature": temperature}
+        if velocity is not None:
+            src["velocity"] = list(velocity)
+        self._s.add_source(src)
+
+    def add_obstacle(
+        self,
+        shape: Dict[str, Any],
+        *,
+        velocity: Vec3 = (0.0, 0.0, 0.0),
+        angular_velocity: Vec3 = (0.0, 0.0, 0.0),
+        temperature: Optional[float] = None,
+    ) -> None:
+        """A solid the smoke flows round (``Obstacle``), moving rigidly at
+        ``velocity`` (m/s) and turning at ``angular_velocity`` (rad/s) about
+        its centre; with ``temperature`` (K) its cells hold that
+        temperature. The shape must lie inside the box."""
+        ob: Dict[str, Any] = {
+            "shape": shape, "velocity": list(velocity), "angular_velocity": list(angular_velocity),
+        }
+        if temperature is not None:
+            ob["temperature"] = temperature
+        self._s.add_obstacle(ob)
+
+    def step(self, dt: float, steps: int = 1, progress: ProgressArg = None) -> Dict[str, Any]:
+        """Advances ``steps`` steps of ``dt`` seconds (``Smoke::step``; the
+        GIL is released). Returns the last step's report: ``max_speed``
+        (m/s; keep ``max_speed * dt / cell`` to a few cells),
+        ``max_divergence``, ``kinetic_energy``, ``pressure_iterations`` and
+        the pressure solve's ``relative_residual`` and ``converged``.
+        ``progress`` hears one unit per step."""
+        cb = _progress.reporter(progress)
+        try:
+            return self._s.step(dt, steps, cb)
+        finally:
+            _progress.closing(cb)
+
+    @property
+    def density(self) -> np.ndarray:
+        """The smoke density, float32 ``(nz, ny, nx)`` (a copy)."""
+        return self._s.density
+
+    @property
+    def temperature(self) -> np.ndarray:
+        """The temperature (K), float32 ``(nz, ny, nx)`` (a copy)."""
+        return self._s.temperature
+
+    def set_density(self, a: np.ndarray) -> None:
+        """Replaces the density by float32 ``(nz, ny, nx)`` values, finite
+        and non-negative."""
+        self._s.set_density(a)
+
+    def set_temperature(self, a: np.ndarray) -> None:
+        """Replaces the temperature by float32 ``(nz, ny, nx)`` values,
+        finite and positive (K)."""
+        self._s.set_temperature(a)
+
+    @property
+    def velocity(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The staggered velocity (m/s): float32 arrays on the x, y and z
+        faces, ``(nz, ny, nx + 1)``, ``(nz, ny + 1, nx)``, ``(nz + 1, ny, nx)``."""
+        u, v, w = self._s.velocity
+        return u, v, w
+
+    @property
+    def solid(self) -> np.ndarray:
+        """The cells obstacles occupy, bool ``(nz, ny, nx)``."""
+        return self._s.solid
+
+    @property
+    def time(self) -> float:
+        """Simulated time (s)."""
+        return self._s.time
+
+    @property
+    def dims(self) -> Tuple[int, int, int]:
+        """``(nx, ny, nz)``."""
+        return self._s.dims
+
+    @property
+    def cell(self) -> float:
+        """The cell edge (m)."""
+        return self._s.cell
+
+    @property
+    def params(self) -> Dict[str, Any]:
+        """The solver's ``SmokeParams`` as a dict."""
+        return self._s.params
+
+    def volume(self) -> Volume:
+        """The density as a :class:`Volume` (corner at the origin), for
+        :func:`render` and :func:`write_vdb`."""
+        return Volume(self.density, (0.0, 0.0, 0.0), self.cell)
 
 
 def write_vdb(

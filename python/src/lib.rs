@@ -17,6 +17,7 @@ mod ocean;
 mod plant;
 mod progress;
 mod render;
+mod smoke;
 mod terrain;
 mod texture;
 mod values;
@@ -43,6 +44,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     ocean::register(m)?;
     eco::register(m)?;
     volume::register(m)?;
+    smoke::register(m)?;
     texture::register(m)?;
     render::register(m)?;
     Ok(())

@@ -28,7 +28,7 @@ use crate::progress::PyProgress;
 use crate::values::{from_params, from_value, overlay, to_params, to_toml};
 
 /// A `Grid3` as a float32 `(nz, ny, nx)` array (its buffer moved, not copied).
-fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
+pub(crate) fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
     let (nx, ny, nz) = g.dims();
     let a = numpy::ndarray::Array3::from_shape_vec((nz, ny, nx), g.into_vec())
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -36,7 +36,7 @@ fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
 }
 
 /// A float32 `(nz, ny, nx)` numpy array (any layout) as a `Grid3`.
-fn grid3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid3<f32>> {
+pub(crate) fn grid3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid3<f32>> {
     let (data, s) = crate::args::f32_array(obj, name, 3, "nz, ny, nx")?;
     let (nz, ny, nx) = (s[0], s[1], s[2]);
     Grid3::from_vec(nx, ny, nz, data).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))

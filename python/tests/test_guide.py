@@ -21,9 +21,9 @@ BLOCKS = [
 
 def test_the_pages_have_their_python_blocks():
     # the guide: noise, terrain, L-systems, ecosystems, ocean, volumes,
-    # textures and sky, render; one in each README
-    assert [p.name for p, _ in BLOCKS].count("python.md") == 9
-    assert len(BLOCKS) == 11
+    # smoke, textures and sky, render; one in each README
+    assert [p.name for p, _ in BLOCKS].count("python.md") == 10
+    assert len(BLOCKS) == 12
 
 
 @pytest.mark.parametrize("index", range(len(BLOCKS)))

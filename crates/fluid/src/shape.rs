@@ -8,7 +8,15 @@ use natura_core::Grid3;
 use crate::grid::{CellKind, Dims};
 
 /// A solid region given by its signed distance (negative inside), in metres.
+///
+/// With the `serde` feature it reads and writes as a table tagged by `kind`
+/// (`sphere`, `cuboid`, `oriented_box`), the rotation as `[x, y, z, w]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Shape {
     /// A ball.
     Sphere {
@@ -30,7 +38,7 @@ pub enum Shape {
         centre: Vec3,
         /// Half extents along the box's own axes (m).
         half: Vec3,
-        /// Orientation.
+        /// Orientation (a unit quaternion).
         rotation: Quat,
     },
 }
@@ -145,12 +153,15 @@ impl Shape {
                     && half.is_finite()
                     && half.cmpgt(Vec3::ZERO).all()
                     && rotation.is_finite()
+                    && (rotation.length() - 1.0).abs() < 1e-3
             }
         };
         if ok {
             Ok(())
         } else {
-            Err(bad("must be finite with positive size"))
+            Err(bad(
+                "must be finite with positive size (an oriented box's rotation a unit quaternion)",
+            ))
         }
     }
 
@@ -192,15 +203,26 @@ impl Shape {
 /// A solid obstacle moving rigidly: translation `velocity` plus rotation
 /// `angular_velocity` (rad/s) about its centre. Its cells are occupied; their
 /// faces carry the obstacle's velocity (Fedkiw et al. 2001, §4).
+///
+/// With the `serde` feature every field but `shape` may be left out (a
+/// fixed obstacle with no temperature of its own).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Obstacle {
     /// The occupied region at the current time.
     pub shape: Shape,
     /// Linear velocity (m/s).
+    #[cfg_attr(feature = "serde", serde(default))]
     pub velocity: Vec3,
     /// Angular velocity (rad/s) about the shape's centre.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angular_velocity: Vec3,
     /// Temperature imposed on occupied cells (smoke), if any (Fedkiw et al. 2001, §4).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
     pub temperature: Option<f32>,
 }
 

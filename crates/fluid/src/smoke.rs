@@ -88,7 +88,11 @@ impl SmokeParams {
 /// sources", Fedkiw et al. 2001, §6): inside `shape` density and temperature are raised to
 /// at least the given values, and with `velocity` the free faces inside are
 /// set to it (an inflow jet).
+///
+/// With the `serde` feature `velocity` may be left out (no inflow).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct SmokeSource {
     /// The region.
     pub shape: Shape,
@@ -97,6 +101,10 @@ pub struct SmokeSource {
     /// Temperature placed (K).
     pub temperature: f32,
     /// Optional inflow velocity (m/s).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
     pub velocity: Option<Vec3>,
 }
 
