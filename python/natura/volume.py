@@ -224,16 +224,25 @@ class SmokeSolver:
             ob["temperature"] = temperature
         self._s.add_obstacle(ob)
 
-    def step(self, dt: float, steps: int = 1, progress: ProgressArg = None) -> Dict[str, Any]:
+    def step(
+        self,
+        dt: float,
+        steps: int = 1,
+        *,
+        force: Optional[Sequence[np.ndarray]] = None,
+        progress: ProgressArg = None,
+    ) -> Dict[str, Any]:
         """Advances ``steps`` steps of ``dt`` seconds (``Smoke::step``; the
-        GIL is released). Returns the last step's report: ``max_speed``
-        (m/s; keep ``max_speed * dt / cell`` to a few cells),
+        GIL is released), with the user force ``force`` (three float32
+        ``(nz, ny, nx)`` arrays, x, y and z, in m/s² at the cell centres:
+        wind, a fan) in each of them. Returns the last step's report:
+        ``max_speed`` (m/s; keep ``max_speed * dt / cell`` to a few cells),
         ``max_divergence``, ``kinetic_energy``, ``pressure_iterations`` and
         the pressure solve's ``relative_residual`` and ``converged``.
         ``progress`` hears one unit per step."""
         cb = _progress.reporter(progress)
         try:
-            return self._s.step(dt, steps, cb)
+            return self._s.step(dt, steps, None if force is None else list(force), cb)
         finally:
             _progress.closing(cb)
 

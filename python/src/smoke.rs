@@ -59,25 +59,50 @@ impl SmokeSolver {
         self.smoke.add_obstacle(o).map_err(value_error)
     }
 
-    /// `step(dt, steps, progress)`: `steps` steps of `dt` seconds, the GIL
-    /// released; returns the last step's report as a dict.
-    #[pyo3(signature = (dt, steps=1, progress=None))]
+    /// `step(dt, steps, force, progress)`: `steps` steps of `dt` seconds,
+    /// the GIL released, with the user force `force` (a sequence of three
+    /// float32 `(nz, ny, nx)` arrays, m/s² at cell centres) in each of them;
+    /// returns the last step's report as a dict.
+    #[pyo3(signature = (dt, steps=1, force=None, progress=None))]
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         dt: f32,
         steps: u32,
+        force: Option<Vec<Bound<'py, PyAny>>>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         if steps == 0 {
             return Err(PyValueError::new_err("steps = 0: at least one step"));
         }
+        let force = match force {
+            None => None,
+            Some(f) if f.len() == 3 => {
+                let names = ["force[0]", "force[1]", "force[2]"];
+                let mut g = Vec::with_capacity(3);
+                for (a, name) in f.iter().zip(names) {
+                    g.push(self.field(a, name, f32::NEG_INFINITY)?);
+                }
+                Some(g)
+            }
+            Some(f) => {
+                return Err(PyValueError::new_err(format!(
+                    "force has {} arrays; it must have three (x, y and z)",
+                    f.len()
+                )));
+            }
+        };
         let sink = PyProgress::new(progress);
         let smoke = &mut self.smoke;
         let out = run(py, || {
             natura_core::Progress::start(&sink, "smoke", u64::from(steps));
             let mut last = None;
             for _ in 0..steps {
+                if let Some(f) = &force {
+                    for (slot, g) in smoke.force_mut().iter_mut().zip(f) {
+                        slot.as_mut_slice().copy_from_slice(g.as_slice());
+                    }
+                }
                 last = Some(smoke.step(dt).map_err(value_error)?);
                 natura_core::Progress::advance(&sink, 1);
             }
@@ -178,7 +203,7 @@ impl SmokeSolver {
 
 impl SmokeSolver {
     /// `a` as a field of this grid's size whose every value is finite and
-    /// at least `least`.
+    /// at least `least` (any finite value for `f32::NEG_INFINITY`).
     fn field(&self, a: &Bound<'_, PyAny>, name: &str, least: f32) -> PyResult<Grid3<f32>> {
         let g = grid3(a, name)?;
         let want = self.dims();

@@ -26,7 +26,9 @@ def plume_by_hand(cells: int, cell: float) -> volume.SmokeSolver:
 def test_the_plume_set_up_by_hand_steps_to_the_preset_bit_for_bit():
     preset = volume.smoke_plume(cells=16, steps=4)
     s = plume_by_hand(16, preset.cell)
-    report = s.step(preset.dt, steps=4)
+    calls = []
+    report = s.step(preset.dt, steps=4, progress=lambda *a: calls.append(a))
+    assert calls == [("smoke", k, 4) for k in range(5)] + [("smoke", 4, 4)]
     np.testing.assert_array_equal(s.density, preset.density)
     np.testing.assert_array_equal(s.temperature, preset.temperature)
     assert s.time == pytest.approx(4 * preset.dt)
@@ -59,6 +61,31 @@ def test_warm_smoke_rises_and_a_cold_heavy_one_sinks():
 
     assert height(340.0, 0.0) > 0.5
     assert height(293.15, 5.0) < -0.5
+
+
+def test_a_force_pushes_the_smoke_along_it_and_only_while_given():
+    def centre_x(force) -> float:
+        s = volume.SmokeSolver((24, 8, 8), 0.05)
+        d = np.zeros((8, 8, 24), np.float32)
+        d[2:6, 2:6, 10:14] = 1.0
+        s.set_density(d)
+        s.step(0.02, steps=10, force=force)
+        x = np.arange(24, dtype=np.float64)[None, None, :]
+        return float((s.density * x).sum() / s.density.sum())
+
+    zero = np.zeros((8, 8, 24), np.float32)
+    wind = (np.full((8, 8, 24), 2.0, np.float32), zero, zero)
+    still = centre_x(None)
+    assert still == pytest.approx(11.5, abs=0.05)
+    assert centre_x(wind) > still + 0.5
+    assert centre_x((-wind[0], zero, zero)) < still - 0.5
+    assert centre_x((zero, zero, zero)) == still
+    s = volume.SmokeSolver((4, 4, 4), 0.1)
+    with pytest.raises(ValueError, match="three"):
+        s.step(0.01, force=[zero])
+    with pytest.raises(ValueError, match=r"force\[1\]"):
+        s.step(0.01, force=[np.zeros((4, 4, 4), np.float32), np.full((4, 4, 4), np.inf, np.float32),
+                            np.zeros((4, 4, 4), np.float32)])
 
 
 def test_a_moving_obstacle_and_a_hot_one_act_on_the_air():
