@@ -257,10 +257,11 @@ fn camera(shape: Shape, px: u32) -> LookAtCamera {
 /// The fast settings of the comparison: eye steps of 1/200 of the box's
 /// diagonal, a 96-node shadow table, the default multiple scattering, the
 /// forward peak truncated. The knobs `MATRIX_CELLS`, `MATRIX_ORDER`,
-/// `MATRIX_ZONAL`, `MATRIX_TABLE`, `MATRIX_SINGLE` and `MATRIX_NOTRUNC` (in
-/// `fast_lums`) change the cache's grid, band and zonal tail, the table's
-/// nodes, turn multiple scattering off, or keep the forward peak in the
-/// transport, for studies.
+/// `MATRIX_ZONAL`, `MATRIX_TABLE`, `MATRIX_RAYS`, `MATRIX_SINGLE` and
+/// `MATRIX_NOTRUNC` (in `fast_lums`) change the cache's grid, band and zonal
+/// tail, the table's nodes, replace the table by direct shadow rays in steps
+/// of that many metres, turn multiple scattering off, or keep the forward
+/// peak in the transport, for studies.
 fn fast_settings(b: &Aabb) -> FastSettings {
     FastSettings {
         step: (b.max - b.min).length() / 200.0,
@@ -675,6 +676,13 @@ fn fast_lums(c: &Case, px: u32, scattering: Scattering) -> Vec<f64> {
     };
     if let Some(n) = knob("MATRIX_TABLE") {
         settings.shadows = Shadows::Table(n as usize);
+    }
+    // `MATRIX_RAYS=<metres>`: direct shadow rays instead of the table.
+    if let Some(h) = std::env::var("MATRIX_RAYS")
+        .ok()
+        .and_then(|v| v.parse::<f32>().ok())
+    {
+        settings.shadows = Shadows::Rays(h);
     }
     if std::env::var("MATRIX_NOTRUNC").is_ok() {
         settings.truncate_forward_peak = false;
