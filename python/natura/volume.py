@@ -173,7 +173,8 @@ class SmokeSolver:
     Jensen 2001, buoyancy, vorticity confinement and a pressure projection on
     a staggered grid) on ``dims = (nx, ny, nz)`` cells of edge ``cell``
     metres, the box's corner at the origin, z up; still air at the ambient
-    temperature to start with.
+    temperature to start with. ``ny = 1`` is a 2-D simulation in the x–z
+    plane.
 
     ``params`` are the fields of the Rust ``SmokeParams`` (``alpha``,
     ``beta``, ``ambient_temperature``, ``epsilon``, ``advection``,

@@ -63,6 +63,18 @@ def test_warm_smoke_rises_and_a_cold_heavy_one_sinks():
     assert height(293.15, 5.0) < -0.5
 
 
+def test_a_grid_one_cell_deep_is_a_2d_simulation_in_the_x_z_plane():
+    s = volume.SmokeSolver((16, 1, 32), 0.05)
+    s.add_source(volume.sphere((0.4, 0.025, 0.2), 0.1), density=1.0, temperature=340.0)
+    s.step(0.02, steps=40)
+    d = s.density
+    assert d.shape == (32, 1, 16)
+    # The warm smoke has risen from its source at 0.2 m to above 0.45 m.
+    assert np.nonzero(d.max(axis=(1, 2)) > 0.01)[0].max() * s.cell > 0.45
+    assert [a.shape for a in s.velocity] == [(32, 1, 17), (32, 2, 16), (33, 1, 16)]
+    assert np.all(s.velocity[1] == 0.0)
+
+
 def test_a_force_pushes_the_smoke_along_it_and_only_while_given():
     def centre_x(force) -> float:
         s = volume.SmokeSolver((24, 8, 8), 0.05)
