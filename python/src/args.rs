@@ -6,7 +6,7 @@ use std::cell::RefCell;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use glam::Vec3;
-use natura_core::{Grid2, Image};
+use natura_core::{Grid2, Grid3, Image};
 use numpy::{
     IntoPyArray, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
@@ -337,6 +337,27 @@ pub fn f32_array(
 pub fn grid2(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid2<f32>> {
     let (data, shape) = f32_array(obj, name, 2, "rows, columns")?;
     Grid2::from_vec(shape[1], shape[0], data).map_err(value_error)
+}
+
+/// A `Grid3` as a float32 `(nz, ny, nx)` array (its buffer moved, not copied).
+///
+/// # Errors
+/// `ValueError` if the array cannot be made (it always can from a `Grid3`).
+pub fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
+    let (nx, ny, nz) = g.dims();
+    let a = numpy::ndarray::Array3::from_shape_vec((nz, ny, nx), g.into_vec())
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py))
+}
+
+/// A float32 `(nz, ny, nx)` numpy array (any layout) as a `Grid3`.
+///
+/// # Errors
+/// As [`f32_array`]; `ValueError` naming `name` if the grid cannot be made.
+pub fn grid3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid3<f32>> {
+    let (data, s) = f32_array(obj, name, 3, "nz, ny, nx")?;
+    let (nz, ny, nx) = (s[0], s[1], s[2]);
+    Grid3::from_vec(nx, ny, nz, data).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 
 /// The name of `v` in a `(name, value)` table ("" if absent).

@@ -12,10 +12,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{run, value_error};
+use crate::args::{array3, grid3, run, value_error};
 use crate::progress::PyProgress;
 use crate::values::{from_params, to_params};
-use crate::volume::{array3, grid3};
 
 /// The smoke solver on a box of cells whose corner is at the origin.
 #[pyclass(module = "natura._native")]
@@ -40,7 +39,8 @@ impl SmokeSolver {
             Some(p) => from_params(p, "params")?,
             None => SmokeParams::default(),
         };
-        let dims = Dims::new(dims.0, dims.1, dims.2).map_err(|e| named("dims", e))?;
+        let dims = Dims::new(dims.0, dims.1, dims.2)
+            .map_err(|e| PyValueError::new_err(format!("dims: {e}")))?;
         let smoke = Smoke::new(dims, cell, params).map_err(value_error)?;
         Ok(Self { smoke })
     }
@@ -81,7 +81,7 @@ impl SmokeSolver {
                 let names = ["force[0]", "force[1]", "force[2]"];
                 let mut g = Vec::with_capacity(3);
                 for (a, name) in f.iter().zip(names) {
-                    g.push(self.field(a, name, f32::NEG_INFINITY)?);
+                    g.push(self.field(a, name, Values::Any)?);
                 }
                 Some(g)
             }
@@ -139,7 +139,7 @@ impl SmokeSolver {
     /// `set_density(a)`: replaces the density by the float32 `(nz, ny, nx)`
     /// array `a` (finite, non-negative).
     fn set_density(&mut self, a: &Bound<'_, PyAny>) -> PyResult<()> {
-        let g = self.field(a, "density", 0.0)?;
+        let g = self.field(a, "density", Values::NonNegative)?;
         *self.smoke.density_mut() = g;
         Ok(())
     }
@@ -147,7 +147,7 @@ impl SmokeSolver {
     /// `set_temperature(a)`: replaces the temperature by the float32
     /// `(nz, ny, nx)` array `a` (finite, positive kelvin).
     fn set_temperature(&mut self, a: &Bound<'_, PyAny>) -> PyResult<()> {
-        let g = self.field(a, "temperature", f32::MIN_POSITIVE)?;
+        let g = self.field(a, "temperature", Values::Positive)?;
         *self.smoke.temperature_mut() = g;
         Ok(())
     }
@@ -201,10 +201,39 @@ impl SmokeSolver {
     }
 }
 
+/// What a field's values must be, besides finite.
+#[derive(Clone, Copy, Debug)]
+enum Values {
+    /// Any finite value (a force).
+    Any,
+    /// At least zero (a density).
+    NonNegative,
+    /// Above zero (a temperature in kelvin).
+    Positive,
+}
+
+impl Values {
+    fn admits(self, v: f32) -> bool {
+        v.is_finite()
+            && match self {
+                Values::Any => true,
+                Values::NonNegative => v >= 0.0,
+                Values::Positive => v > 0.0,
+            }
+    }
+
+    fn words(self) -> &'static str {
+        match self {
+            Values::Any => "finite",
+            Values::NonNegative => "finite and non-negative",
+            Values::Positive => "finite and positive",
+        }
+    }
+}
+
 impl SmokeSolver {
-    /// `a` as a field of this grid's size whose every value is finite and
-    /// at least `least` (any finite value for `f32::NEG_INFINITY`).
-    fn field(&self, a: &Bound<'_, PyAny>, name: &str, least: f32) -> PyResult<Grid3<f32>> {
+    /// `a` as a field of this grid's size whose every value is as `values` says.
+    fn field(&self, a: &Bound<'_, PyAny>, name: &str, values: Values) -> PyResult<Grid3<f32>> {
         let g = grid3(a, name)?;
         let want = self.dims();
         if g.dims() != want {
@@ -214,18 +243,14 @@ impl SmokeSolver {
                 want.2, want.1, want.0
             )));
         }
-        if let Some(v) = g.as_slice().iter().find(|v| !v.is_finite() || **v < least) {
+        if let Some(v) = g.as_slice().iter().find(|v| !values.admits(**v)) {
             return Err(PyValueError::new_err(format!(
-                "{name} holds {v}; every value must be finite and at least {least}"
+                "{name} holds {v}; every value must be {}",
+                values.words()
             )));
         }
         Ok(g)
     }
-}
-
-/// `e` as a `ValueError` naming `name`.
-fn named(name: &str, e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(format!("{name}: {e}"))
 }
 
 /// Adds the smoke solver to `m`.

@@ -6,7 +6,6 @@
 //! Arrays are float32 `(nz, ny, nx)`: voxel `(x, y, z)` is `a[z, y, x]`,
 //! natura's `Grid3` layout, so no copy reorders them.
 
-use natura_core::Grid3;
 use natura_fluid::plume::Plume;
 use natura_volume::cloud::{CloudParams, cirrostratus_primitives, cloud, nine_sphere_cumulus};
 use natura_volume::glam::Vec3;
@@ -18,29 +17,14 @@ use natura_volume::transport::{
     ReferenceSettings, Scattering, Scene, Shadows, Sun,
 };
 use natura_volume::vdb::{read_vdb, write_vdb};
-use numpy::{IntoPyArray, PyArray3};
+use numpy::PyArray3;
 use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{image_array, run, value_error};
+use crate::args::{array3, grid3, image_array, run, value_error};
 use crate::progress::PyProgress;
 use crate::values::{from_params, from_value, overlay, to_params, to_toml};
-
-/// A `Grid3` as a float32 `(nz, ny, nx)` array (its buffer moved, not copied).
-pub(crate) fn array3(py: Python<'_>, g: Grid3<f32>) -> PyResult<Bound<'_, PyArray3<f32>>> {
-    let (nx, ny, nz) = g.dims();
-    let a = numpy::ndarray::Array3::from_shape_vec((nz, ny, nx), g.into_vec())
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok(a.into_pyarray(py))
-}
-
-/// A float32 `(nz, ny, nx)` numpy array (any layout) as a `Grid3`.
-pub(crate) fn grid3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Grid3<f32>> {
-    let (data, s) = crate::args::f32_array(obj, name, 3, "nz, ny, nx")?;
-    let (nz, ny, nx) = (s[0], s[1], s[2]);
-    Grid3::from_vec(nx, ny, nz, data).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
-}
 
 /// A baked density as `(density, origin, cell)`.
 type Baked<'py> = (Bound<'py, PyArray3<f32>>, (f32, f32, f32), f32);
