@@ -63,6 +63,84 @@ pub enum CloudPhase {
         /// Droplet diameter (µm).
         diameter_um: f32,
     },
+    /// [`CloudPhase::Cloud`] without the core of its forward peak, renormalised:
+    /// its Draine lobe and the part of its Henyey–Greenstein lobe more than
+    /// `cut_deg` from the forward direction. The phase function the fast
+    /// mode's transport medium scatters with when it treats the peak's core
+    /// as unscattered light (see [`CloudPhase::peak_core`]).
+    CloudWithoutCore {
+        /// Droplet diameter (µm).
+        diameter_um: f32,
+        /// The core's half-angle (degrees), in `(0, 90]`.
+        cut_deg: f32,
+    },
+}
+
+/// The core of a phase function's forward peak, split off by
+/// [`CloudPhase::peak_core`]: the part of the peak's Henyey–Greenstein
+/// lobe within `cos_cut` of the forward direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PeakCore {
+    /// The core's share of all scattering, `f·c` (`f` the peak's, `c` the
+    /// share of the peak's lobe within the cut).
+    pub weight: f32,
+    /// The peak lobe's asymmetry.
+    pub g: f32,
+    /// The cosine of the core's half-angle.
+    pub cos_cut: f32,
+    /// The share `c` of the lobe within the cut.
+    pub lobe_share: f32,
+    /// The core's mean cosine.
+    pub mean_cosine: f32,
+    /// The phase function of the other `1 − f·c`, normalised.
+    pub rest: CloudPhase,
+}
+
+impl PeakCore {
+    /// The core's phase function at `cos_theta`, normalised over the sphere:
+    /// `HG(g, cos θ)/c` within the cut, zero outside.
+    #[inline]
+    #[must_use]
+    pub fn eval(&self, cos_theta: f32) -> f32 {
+        if cos_theta >= self.cos_cut {
+            henyey_greenstein(self.g, cos_theta) / self.lobe_share
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The half-angle of the forward peak's core that the fast mode treats as
+/// unscattered (degrees): [`CloudPhase::peak_core`] at this angle is
+/// [`MediumParams::without_forward_peak`](crate::MediumParams::without_forward_peak)'s
+/// split. About the angular resolution of the multiple-scattering cache's
+/// spherical harmonics (band 7: `180°/8`).
+pub const PEAK_CORE_DEG: f32 = 20.0;
+
+/// The share of a Henyey–Greenstein lobe of asymmetry `g` at cosines below
+/// `mu`: `(1 − g²)/(2g)·(1/√s − 1/(1 + g))` with `s = 1 + g² − 2gμ`.
+#[must_use]
+pub fn hg_share_below(g: f32, mu: f32) -> f32 {
+    let (g, mu) = (f64::from(g), f64::from(mu.clamp(-1.0, 1.0)));
+    if g.abs() < 1e-6 {
+        return ((mu + 1.0) / 2.0) as f32;
+    }
+    let s = 1.0 + g * g - 2.0 * g * mu;
+    ((1.0 - g * g) / (2.0 * g) * (1.0 / s.sqrt() - 1.0 / (1.0 + g))) as f32
+}
+
+/// `∫ μ·HG(g, μ) dω` over the cosines below `mu`: the first moment of
+/// that part, `(1 − g²)/(4g²)·[(1 + g²)/√s + √s]` between `s = 1 + g² − 2gμ`
+/// and `(1 + g)²` (the whole sphere gives `g`).
+#[must_use]
+pub fn hg_moment_below(g: f32, mu: f32) -> f32 {
+    let (g, mu) = (f64::from(g), f64::from(mu.clamp(-1.0, 1.0)));
+    if g.abs() < 1e-6 {
+        return ((mu * mu - 1.0) / 4.0) as f32;
+    }
+    let h = |s: f64| (1.0 + g * g) / s.sqrt() + s.sqrt();
+    let s = 1.0 + g * g - 2.0 * g * mu;
+    ((1.0 - g * g) / (4.0 * g * g) * (h(s) - h((1.0 + g) * (1.0 + g)))) as f32
 }
 
 impl Default for CloudPhase {
@@ -119,6 +197,19 @@ impl CloudPhase {
                     "must lie in [5, 50] µm",
                 )?;
             }
+            CloudPhase::CloudWithoutCore {
+                diameter_um,
+                cut_deg,
+            } => {
+                CloudPhase::Cloud { diameter_um }.validate()?;
+                if !(cut_deg > 0.0 && cut_deg <= 90.0) {
+                    return Err(crate::VolumeError::InvalidParameter {
+                        name: "cut_deg",
+                        value: cut_deg.to_string(),
+                        expected: "the peak core's half-angle, in (0, 90] degrees",
+                    });
+                }
+            }
         }
         Ok(())
     }
@@ -144,6 +235,19 @@ impl CloudPhase {
                 (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
                     + w_d * draine(g_d, alpha, cos_theta)
             }
+            CloudPhase::CloudWithoutCore {
+                diameter_um,
+                cut_deg,
+            } => {
+                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
+                let hg = if cos_theta < cos_cut {
+                    (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
+                } else {
+                    0.0
+                };
+                (hg + w_d * draine(g_d, alpha, cos_theta)) / (w_d + tail)
+            }
         }
     }
 
@@ -162,6 +266,16 @@ impl CloudPhase {
             CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
                 (1.0 - w_d) * g_hg + w_d * draine_mean_cosine(g_d, alpha)
+            }
+            CloudPhase::CloudWithoutCore {
+                diameter_um,
+                cut_deg,
+            } => {
+                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
+                ((1.0 - w_d) * hg_moment_below(g_hg, cos_cut)
+                    + w_d * draine_mean_cosine(g_d, alpha))
+                    / (w_d + tail)
             }
         }
     }
@@ -182,7 +296,9 @@ impl CloudPhase {
                 back: back * c,
                 weight,
             },
-            CloudPhase::Draine { .. } | CloudPhase::Cloud { .. } => {
+            CloudPhase::Draine { .. }
+            | CloudPhase::Cloud { .. }
+            | CloudPhase::CloudWithoutCore { .. } => {
                 CloudPhase::HenyeyGreenstein(self.mean_cosine() * c)
             }
         }
@@ -219,22 +335,70 @@ impl CloudPhase {
         }
     }
 
-    /// The lobes this phase function mixes: `(g, α, weight)` of two Draine
-    /// lobes (`α = 0` is Henyey–Greenstein; the second's weight is 0 for a
-    /// single lobe).
-    fn lobes(&self) -> [(f32, f32, f32); 2] {
+    /// The core of the forward peak, within `cut_deg` of the forward
+    /// direction, split off: the part of the peak's lobe
+    /// ([`CloudPhase::peak_lobe`]) narrow enough to count as unscattered,
+    /// and the phase function of the rest, which keeps the lobe's wider
+    /// part ([`CloudPhase::CloudWithoutCore`]). `None` without a peak.
+    ///
+    /// Why not the whole lobe: a Henyey–Greenstein lobe of `g ≈ 0.97` (the
+    /// peak of 5 µm droplets) is narrow in the mean but has wide wings, 7 %
+    /// of it beyond 20° and 0.6 % beyond 90°, where at right angles the
+    /// lobe is a third of the whole phase function. Treated as unscattered,
+    /// that light never turns toward a viewer at the side after its first
+    /// peak scatterings; kept in the medium, it does.
+    #[must_use]
+    pub fn peak_core(&self, cut_deg: f32) -> Option<PeakCore> {
+        let CloudPhase::Cloud { diameter_um } = *self else {
+            return None;
+        };
+        let (g, ..) = cloud_fit(diameter_um);
+        let (f, _) = self.peak_lobe()?;
+        let cos_cut = cut_deg.to_radians().cos();
+        let below = hg_share_below(g, cos_cut);
+        let lobe_share = 1.0 - below;
+        // The core's first moment: the lobe's `g` less its part below the cut.
+        let mean_cosine = (g - hg_moment_below(g, cos_cut)) / lobe_share;
+        Some(PeakCore {
+            weight: f * lobe_share,
+            g,
+            cos_cut,
+            lobe_share,
+            mean_cosine,
+            rest: CloudPhase::CloudWithoutCore {
+                diameter_um,
+                cut_deg,
+            },
+        })
+    }
+
+    /// The lobes this phase function mixes: `(g, α, weight, u₀)` of two
+    /// Draine lobes (`α = 0` is Henyey–Greenstein; the second's weight is 0
+    /// for a single lobe), each drawn from its Henyey–Greenstein inverse CDF
+    /// over `u ∈ [u₀, 1)` (`u₀ > 0` keeps the cosines below a cut).
+    fn lobes(&self) -> [(f32, f32, f32, f32); 2] {
         match *self {
-            CloudPhase::Isotropic => [(0.0, 0.0, 1.0), (0.0, 0.0, 0.0)],
-            CloudPhase::HenyeyGreenstein(g) => [(g, 0.0, 1.0), (0.0, 0.0, 0.0)],
+            CloudPhase::Isotropic => [(0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 0.0)],
+            CloudPhase::HenyeyGreenstein(g) => [(g, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 0.0)],
             CloudPhase::DualHenyeyGreenstein {
                 forward,
                 back,
                 weight,
-            } => [(forward, 0.0, 1.0 - weight), (back, 0.0, weight)],
-            CloudPhase::Draine { g, alpha } => [(g, alpha, 1.0), (0.0, 0.0, 0.0)],
+            } => [(forward, 0.0, 1.0 - weight, 0.0), (back, 0.0, weight, 0.0)],
+            CloudPhase::Draine { g, alpha } => [(g, alpha, 1.0, 0.0), (0.0, 0.0, 0.0, 0.0)],
             CloudPhase::Cloud { diameter_um } => {
                 let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                [(g_hg, 0.0, 1.0 - w_d), (g_d, alpha, w_d)]
+                [(g_hg, 0.0, 1.0 - w_d, 0.0), (g_d, alpha, w_d, 0.0)]
+            }
+            CloudPhase::CloudWithoutCore {
+                diameter_um,
+                cut_deg,
+            } => {
+                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
+                let u0 = 1.0 - hg_share_below(g_hg, cos_cut);
+                let rest = w_d + tail;
+                [(g_hg, 0.0, tail / rest, u0), (g_d, alpha, w_d / rest, 0.0)]
             }
         }
     }
@@ -253,19 +417,26 @@ impl CloudPhase {
     #[must_use]
     pub fn sample(&self, d: Vec3, next: &mut impl FnMut() -> f32) -> Vec3 {
         let [first, second] = self.lobes();
-        let (g, alpha, _) = if second.2 > 0.0 && next() < second.2 {
+        let (g, alpha, _, u0) = if second.2 > 0.0 && next() < second.2 {
             second
         } else {
             first
         };
         let cos = loop {
-            let c = sample_hg_cos(g, next());
+            let c = sample_hg_cos(g, u0 + (1.0 - u0) * next());
             if alpha <= 0.0 || next() * (1.0 + alpha) < 1.0 + alpha * c * c {
                 break c;
             }
         };
         direction_about(d, cos, next())
     }
+}
+
+/// The share `f·(1 − c)` of all scattering in a peak lobe (share `f`,
+/// asymmetry `g`) beyond `cut_deg`, and the cut's cosine.
+fn core_tail(g: f32, f: f32, cut_deg: f32) -> (f32, f32) {
+    let cos_cut = cut_deg.to_radians().cos();
+    (f * hg_share_below(g, cos_cut), cos_cut)
 }
 
 /// The unit direction at `cos` from the unit `axis`, at azimuth `2πu`.
@@ -333,6 +504,18 @@ mod tests {
             CloudPhase::Cloud { diameter_um: 5.0 },
             CloudPhase::Cloud { diameter_um: 20.0 },
             CloudPhase::Cloud { diameter_um: 50.0 },
+            CloudPhase::CloudWithoutCore {
+                diameter_um: 5.0,
+                cut_deg: 20.0,
+            },
+            CloudPhase::CloudWithoutCore {
+                diameter_um: 20.0,
+                cut_deg: 5.0,
+            },
+            CloudPhase::CloudWithoutCore {
+                diameter_um: 50.0,
+                cut_deg: 90.0,
+            },
         ] {
             p.validate().unwrap();
             let (norm, mean) = integrate(&p);
@@ -381,6 +564,91 @@ mod tests {
     }
 
     #[test]
+    fn the_peak_core_and_the_rest_make_up_the_cloud_phase() {
+        for (d, cut) in [(5.0f32, 20.0f32), (20.0, 20.0), (5.0, 3.0), (50.0, 60.0)] {
+            let p = CloudPhase::Cloud { diameter_um: d };
+            let core = p.peak_core(cut).unwrap();
+            core.rest.validate().unwrap();
+            let (f, g) = p.peak_lobe().unwrap();
+            assert_eq!(core.g, g);
+            assert!((core.weight - f * core.lobe_share).abs() < 1e-7);
+            // p = w·core + (1 − w)·rest at every angle, on both sides of the cut.
+            let c = cut.to_radians().cos();
+            for mu in [-1.0f32, -0.3, 0.0, 0.5, c - 1e-3, c + 1e-3, 0.999, 1.0] {
+                let sum = core.weight * core.eval(mu) + (1.0 - core.weight) * core.rest.eval(mu);
+                assert!(
+                    (sum - p.eval(mu)).abs() <= 2e-4 * p.eval(mu),
+                    "{d} {cut} {mu}"
+                );
+            }
+            let g_sum =
+                core.weight * core.mean_cosine + (1.0 - core.weight) * core.rest.mean_cosine();
+            assert!((g_sum - p.mean_cosine()).abs() < 1e-5, "{d} {cut}");
+            assert!(core.mean_cosine > g, "{core:?}");
+            if cut >= 20.0 {
+                assert!(core.lobe_share > 0.9, "{core:?}");
+            }
+        }
+        // 5 µm droplets: 7.2 % of the peak's lobe lies beyond 20°.
+        let core = CloudPhase::Cloud { diameter_um: 5.0 }
+            .peak_core(20.0)
+            .unwrap();
+        assert!((1.0 - core.lobe_share - 0.072).abs() < 1e-3, "{core:?}");
+        assert!(CloudPhase::HenyeyGreenstein(0.9).peak_core(20.0).is_none());
+        for cut in [0.0f32, -5.0, 90.5, f32::NAN] {
+            let bad = CloudPhase::CloudWithoutCore {
+                diameter_um: 10.0,
+                cut_deg: cut,
+            };
+            let e = bad.validate().unwrap_err().to_string();
+            assert!(e.contains("cut_deg"), "{e}");
+        }
+        let bad = CloudPhase::CloudWithoutCore {
+            diameter_um: 4.0,
+            cut_deg: 20.0,
+        };
+        assert!(
+            bad.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("diameter_um")
+        );
+    }
+
+    #[test]
+    fn the_hg_shares_and_moments_below_a_cosine_match_quadrature() {
+        for g in [-0.5f32, 0.0, 0.3, 0.9, 0.97, 0.995] {
+            for mu in [-1.0f32, -0.2, 0.5, 0.94, 1.0] {
+                // Midpoint rule over [−1, mu] in t with x = mu − (mu + 1)t³,
+                // which crowds the nodes toward mu (a forward peak).
+                let n = 1_000_000;
+                let (mut s, mut m) = (0.0f64, 0.0f64);
+                let span = f64::from(mu) + 1.0;
+                for i in 0..n {
+                    let t = (f64::from(i) + 0.5) / f64::from(n);
+                    let x = f64::from(mu) - span * t * t * t;
+                    let h = 3.0 * span * t * t / f64::from(n);
+                    let (gg, xx) = (f64::from(g), x);
+                    let p = (1.0 - gg * gg)
+                        / (4.0 * std::f64::consts::PI * (1.0 + gg * gg - 2.0 * gg * xx).powf(1.5));
+                    s += p * 2.0 * std::f64::consts::PI * h;
+                    m += p * x * 2.0 * std::f64::consts::PI * h;
+                }
+                assert!(
+                    (f64::from(hg_share_below(g, mu)) - s).abs() < 1e-4,
+                    "{g} {mu}"
+                );
+                assert!(
+                    (f64::from(hg_moment_below(g, mu)) - m).abs() < 1e-4,
+                    "{g} {mu}"
+                );
+            }
+            assert!((hg_share_below(g, 1.0) - 1.0).abs() < 1e-6);
+            assert!((hg_moment_below(g, 1.0) - g).abs() < 1e-6);
+        }
+    }
+
+    #[test]
     fn sampling_follows_the_phase_function() {
         // A histogram of the sampled cosines against the phase function
         // integrated over each bin (exact sampling: no weights).
@@ -395,6 +663,14 @@ mod tests {
             },
             CloudPhase::Cloud { diameter_um: 5.0 },
             CloudPhase::Cloud { diameter_um: 15.0 },
+            CloudPhase::CloudWithoutCore {
+                diameter_um: 5.0,
+                cut_deg: 20.0,
+            },
+            CloudPhase::CloudWithoutCore {
+                diameter_um: 20.0,
+                cut_deg: 3.0,
+            },
             CloudPhase::Draine {
                 g: 0.6,
                 alpha: 20.0,

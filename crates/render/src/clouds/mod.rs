@@ -35,8 +35,8 @@
 //! only on where the sun's ray from a point enters the layer's base, so it
 //! is a 2-D map over the base, covering the terrain's extent projected
 //! along the sun ([`ShadowMap`]). It uses the δ-M extinction (Wiscombe
-//! 1977: light scattered into the phase function's forward peak, within a
-//! degree of the sun, still arrives as sunlight).
+//! 1977: light scattered into the core of the phase function's forward
+//! peak, within 20° of its direction, still arrives as sunlight).
 //!
 //! Approximations: a reflected ray sees the clouds the eye sees toward the
 //! point where that ray crosses the middle of the layer (exact parallax at

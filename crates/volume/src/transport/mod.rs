@@ -76,22 +76,22 @@ impl Default for MediumParams {
 }
 
 impl MediumParams {
-    /// The same medium with the phase function's forward diffraction peak
-    /// treated as unscattered light (the δ-M similarity relations of
-    /// [`model::delta_scaled`] with the peak of [`CloudPhase::forward_peak`]):
-    /// lower extinction, lower albedo, the phase function without its peak.
-    /// Unchanged for phase functions without a peak.
+    /// The same medium with the core of the phase function's forward
+    /// diffraction peak treated as unscattered light (the δ-M similarity
+    /// relations of [`model::delta_scaled`] with the core of
+    /// [`CloudPhase::peak_core`] within [`PEAK_CORE_DEG`](crate::phase::PEAK_CORE_DEG)):
+    /// lower extinction, lower albedo, the phase function without the
+    /// core. Unchanged for phase functions without a peak.
     #[must_use]
     pub fn without_forward_peak(&self) -> Self {
-        let (f, phase) = self.phase.forward_peak();
-        if f <= 0.0 {
+        let Some(core) = self.phase.peak_core(crate::phase::PEAK_CORE_DEG) else {
             return *self;
-        }
-        let (extinction, albedo) = model::delta_scaled(self.extinction, self.albedo, f);
+        };
+        let (extinction, albedo) = model::delta_scaled(self.extinction, self.albedo, core.weight);
         Self {
             extinction,
             albedo,
-            phase,
+            phase: core.rest,
         }
     }
 

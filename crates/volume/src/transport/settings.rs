@@ -34,10 +34,12 @@ pub struct FastSettings {
     pub powder: f32,
     /// The march stops below this transmittance, in `[0, 1)`.
     pub min_transmittance: f32,
-    /// Treat the phase function's forward diffraction peak as transmitted
-    /// light (the δ-M medium for everything but the peak's own single
-    /// scattering of the sun, which stays exact: see the module docs); no
-    /// effect on phase functions without such a peak.
+    /// Treat the core of the phase function's forward diffraction peak,
+    /// within [`PEAK_CORE_DEG`](crate::phase::PEAK_CORE_DEG) of the forward
+    /// direction, as transmitted light (the δ-M medium for everything but
+    /// the core's own scattering of the sun along the eye ray, which stays
+    /// in the exact medium: see the module docs); no effect on phase
+    /// functions without such a peak.
     pub truncate_forward_peak: bool,
     /// Direct shadow rays toward the sun for the eye rays near it, instead
     /// of the table (`None`: the table everywhere; see [`NearSunRays`]).
