@@ -225,11 +225,13 @@ impl Cloudscape {
     /// of the distance (with the detail, three density samples per step, the
     /// light looked up once: [`FastSettings::substeps`]), shadow tables of 256 nodes across (direct shadow
     /// rays in 20 m steps for the eye rays within 3° of the sun, blended into
-    /// the table out to 4.5°), the multiple-scattering cache (64 cells
+    /// the table out to 4.5°), the multiple-scattering cache (128 cells
     /// across, bands up to 3 with a zonal tail about the sun's beam up to
     /// band 23, two million events: the clouds are thick and their
     /// multiply scattered light broad, except toward the low sun, where the
-    /// tail keeps its peak; the ground's light left to the ambient term)
+    /// tail keeps its peak; the ground's light left to the ambient term;
+    /// at 64 cells the thick cloud's light is smoothed over cells too wide
+    /// and the frame's mean is 5.0 % short of the reference, at 128 4.4 %)
     /// with the forward peak truncated, the march stopped below a
     /// transmittance of 0.003.
     #[must_use]
@@ -239,7 +241,7 @@ impl Cloudscape {
             step_growth: Self::STEP_GROWTH,
             shadows: Shadows::Table(256),
             scattering: Scattering::Cache(CacheParams {
-                cells: 64,
+                cells: 128,
                 events: 2_000_000,
                 order: 3,
                 zonal: 23,
