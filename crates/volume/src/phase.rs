@@ -112,7 +112,7 @@ impl PeakCore {
 
 /// The half-angle of the forward peak's core that the fast mode treats as
 /// unscattered (degrees): [`CloudPhase::peak_core`] at this angle is
-/// [`MediumParams::without_forward_peak`](crate::MediumParams::without_forward_peak)'s
+/// [`MediumParams::without_forward_peak`](crate::transport::MediumParams::without_forward_peak)'s
 /// split. About the angular resolution of the multiple-scattering cache's
 /// spherical harmonics (band 7: `180°/8`).
 pub const PEAK_CORE_DEG: f32 = 20.0;
