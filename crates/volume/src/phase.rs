@@ -239,14 +239,13 @@ impl CloudPhase {
                 diameter_um,
                 cut_deg,
             } => {
-                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
-                let hg = if cos_theta < cos_cut {
-                    (1.0 - w_d) * henyey_greenstein(g_hg, cos_theta)
+                let r = WithoutCore::new(diameter_um, cut_deg);
+                let hg = if cos_theta < r.cos_cut {
+                    (1.0 - r.w_d) * henyey_greenstein(r.g_hg, cos_theta)
                 } else {
                     0.0
                 };
-                (hg + w_d * draine(g_d, alpha, cos_theta)) / (w_d + tail)
+                (hg + r.w_d * draine(r.g_d, r.alpha, cos_theta)) / r.total
             }
         }
     }
@@ -271,11 +270,10 @@ impl CloudPhase {
                 diameter_um,
                 cut_deg,
             } => {
-                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
-                ((1.0 - w_d) * hg_moment_below(g_hg, cos_cut)
-                    + w_d * draine_mean_cosine(g_d, alpha))
-                    / (w_d + tail)
+                let r = WithoutCore::new(diameter_um, cut_deg);
+                ((1.0 - r.w_d) * hg_moment_below(r.g_hg, r.cos_cut)
+                    + r.w_d * draine_mean_cosine(r.g_d, r.alpha))
+                    / r.total
             }
         }
     }
@@ -394,11 +392,13 @@ impl CloudPhase {
                 diameter_um,
                 cut_deg,
             } => {
-                let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
-                let (tail, cos_cut) = core_tail(g_hg, 1.0 - w_d, cut_deg);
-                let u0 = 1.0 - hg_share_below(g_hg, cos_cut);
-                let rest = w_d + tail;
-                [(g_hg, 0.0, tail / rest, u0), (g_d, alpha, w_d / rest, 0.0)]
+                let r = WithoutCore::new(diameter_um, cut_deg);
+                let u0 = 1.0 - r.below;
+                let tail = (1.0 - r.w_d) * r.below;
+                [
+                    (r.g_hg, 0.0, tail / r.total, u0),
+                    (r.g_d, r.alpha, r.w_d / r.total, 0.0),
+                ]
             }
         }
     }
@@ -432,11 +432,34 @@ impl CloudPhase {
     }
 }
 
-/// The share `f·(1 − c)` of all scattering in a peak lobe (share `f`,
-/// asymmetry `g`) beyond `cut_deg`, and the cut's cosine.
-fn core_tail(g: f32, f: f32, cut_deg: f32) -> (f32, f32) {
-    let cos_cut = cut_deg.to_radians().cos();
-    (f * hg_share_below(g, cos_cut), cos_cut)
+/// [`CloudPhase::CloudWithoutCore`]'s parts: the cloud fit's lobes, the
+/// cut, the share of the peak's lobe below it, and the normalisation
+/// `w_D + (1 − w_D)·below` of what is left.
+struct WithoutCore {
+    g_hg: f32,
+    g_d: f32,
+    alpha: f32,
+    w_d: f32,
+    cos_cut: f32,
+    below: f32,
+    total: f32,
+}
+
+impl WithoutCore {
+    fn new(diameter_um: f32, cut_deg: f32) -> Self {
+        let (g_hg, g_d, alpha, w_d) = cloud_fit(diameter_um);
+        let cos_cut = cut_deg.to_radians().cos();
+        let below = hg_share_below(g_hg, cos_cut);
+        Self {
+            g_hg,
+            g_d,
+            alpha,
+            w_d,
+            cos_cut,
+            below,
+            total: w_d + (1.0 - w_d) * below,
+        }
+    }
 }
 
 /// The unit direction at `cos` from the unit `axis`, at azimuth `2πu`.
