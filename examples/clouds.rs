@@ -22,7 +22,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use common::cloudshot::{Look, SHOT, render, strip};
+use common::cloudshot::{CUMULUS_EXTINCTION, Look, SHOT, render, strip};
 use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
@@ -76,7 +76,13 @@ fn clouds() -> Run {
     // (a) The nine-sphere cumulus with the source's parameters.
     bar.start("cumulus", SHOT + u64::from(write_vdb));
     let cumulus = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed)?;
-    let img = render(&cumulus, &look, 4.0, Vec3::new(0.0, -2.4, 0.25), &bar)?;
+    let img = render(
+        &cumulus,
+        &look,
+        CUMULUS_EXTINCTION,
+        Vec3::new(0.0, -2.4, 0.25),
+        &bar,
+    )?;
     img.save_png(out.join("clouds_cumulus.png"))?;
     if write_vdb {
         let baked = GridDensity::bake(&cumulus, look.cell)?;
@@ -100,7 +106,10 @@ fn clouds() -> Run {
         cell: look.cell * 4.0,
         ..look
     };
-    render(&cs, &big, 12.0, Vec3::new(0.0, -0.9, -0.35), &bar)?
+    // The cirrus parameters' density is small (scale 0.2 under the
+    // exponent 1.5, about 0.05 in the veil): at 120 /m the veil is opaque
+    // in its middle and milky toward its edges, where the sky shows through.
+    render(&cs, &big, 120.0, Vec3::new(0.0, -0.9, -0.35), &bar)?
         .save_png(out.join("clouds_cirrostratus.png"))?;
     bar.finish();
 
@@ -119,7 +128,13 @@ fn clouds() -> Run {
                 ..CloudParams::cumulus()
             };
             let c: Cloud = cloud(nine_sphere_cumulus(), p, seed)?;
-            render(&c, &look, 4.0, Vec3::new(0.0, -2.6, 0.25), &bar)
+            render(
+                &c,
+                &look,
+                CUMULUS_EXTINCTION,
+                Vec3::new(0.0, -2.6, 0.25),
+                &bar,
+            )
         })
         .collect::<Result<Vec<Image>, Exit>>()?;
     strip(&shots)?.save_png(out.join("clouds_jet_stream.png"))?;
@@ -134,7 +149,13 @@ fn clouds() -> Run {
         .map(|&t| {
             let imp = keyed_implicit(&keys, t)?;
             let c = natura::volume::cloud::Cloud::new(imp, CloudParams::cumulus(), seed)?;
-            render(&c, &look, 4.0, Vec3::new(0.0, -2.0, 0.25), &bar)
+            render(
+                &c,
+                &look,
+                CUMULUS_EXTINCTION,
+                Vec3::new(0.0, -2.0, 0.25),
+                &bar,
+            )
         })
         .collect::<Result<Vec<Image>, Exit>>()?;
     strip(&shots)?.save_png(out.join("clouds_born.png"))?;

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, ValueEnum};
-use common::cloudshot::{Look, render, strip};
+use common::cloudshot::{CUMULUS_EXTINCTION, Look, render, strip};
 use common::figures::{self, Figure};
 use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
@@ -124,7 +124,13 @@ fn creatures(look: &Look, seed: u64) -> R<Image> {
         .into_iter()
         .map(|prims| {
             let c: Cloud = cloud(prims, CloudParams::cumulus(), seed)?;
-            render(&c, look, 12.0, Vec3::new(0.0, -1.9, 0.15), &NoProgress)
+            render(
+                &c,
+                look,
+                CUMULUS_EXTINCTION,
+                Vec3::new(0.0, -1.9, 0.15),
+                &NoProgress,
+            )
         })
         .collect::<R<Vec<_>>>()?;
     Ok(strip(&shots)?)
@@ -192,7 +198,13 @@ fn particle_cumulus(look: &Look, seed: u64, quick: bool) -> R<Image> {
         .into_iter()
         .map(|imp| {
             let c = Cloud::new(imp, CloudParams::cumulus(), seed)?;
-            render(&c, &look, 12.0, Vec3::new(0.0, -2.0, 0.3), &NoProgress)
+            render(
+                &c,
+                &look,
+                CUMULUS_EXTINCTION,
+                Vec3::new(0.0, -2.0, 0.3),
+                &NoProgress,
+            )
         })
         .collect::<R<Vec<_>>>()?;
     Ok(strip(&shots)?)
@@ -201,6 +213,46 @@ fn particle_cumulus(look: &Look, seed: u64, quick: bool) -> R<Image> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_cumulus_is_white_in_the_sun_and_shaded_away_from_it() {
+        // The look of the cumulus figures: the sunlit side near white and
+        // well above the blue sky, the side away from the sun darker.
+        let look = Look::new(true);
+        let c: Cloud = cloud(
+            natura::volume::cloud::nine_sphere_cumulus(),
+            CloudParams::cumulus(),
+            7,
+        )
+        .unwrap();
+        let img = render(
+            &c,
+            &look,
+            CUMULUS_EXTINCTION,
+            Vec3::new(0.0, -2.4, 0.25),
+            &NoProgress,
+        )
+        .unwrap();
+        let lum = |v: Vec3| 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
+        let sky = lum(img.get(0, 0).unwrap());
+        let px: Vec<f32> = (0..img.height())
+            .flat_map(|y| (0..img.width()).map(move |x| (x, y)))
+            .map(|(x, y)| lum(img.get(x, y).unwrap()))
+            .collect();
+        let brightest = px.iter().fold(0.0f32, |a, &b| a.max(b));
+        assert!(brightest > 0.7, "sunlit side {brightest}");
+        assert!(brightest > 2.0 * sky, "sunlit side {brightest}, sky {sky}");
+        // The cloud's pixels (clearly apart from the sky): the shaded ones
+        // are well below the sunlit ones.
+        let cloud: Vec<f32> = px
+            .iter()
+            .copied()
+            .filter(|&v| (v - sky).abs() > 0.1)
+            .collect();
+        assert!(cloud.len() > 100, "{} cloud pixels", cloud.len());
+        let darkest = cloud.iter().fold(1.0f32, |a, &b| a.min(b));
+        assert!(darkest < 0.75 * brightest, "{darkest} against {brightest}");
+    }
 
     #[test]
     fn each_creature_is_nine_spheres() {

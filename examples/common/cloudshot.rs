@@ -58,9 +58,23 @@ impl Look {
     }
 }
 
+/// The optical density of a cumulus in these shots: extinction per unit
+/// density (1/m). Ebert's cumulus density peaks at `√0.3 ≈ 0.55` (its
+/// density scale 0.3 under the exponent 0.5), so a cloud 10 m across is
+/// about 100 mean free paths thick, as a real cumulus is (the source
+/// gives densities, not an extinction). Thinner, the cloud is a pale haze
+/// the sky shows through.
+pub const CUMULUS_EXTINCTION: f32 = 40.0;
+
 /// Bakes `d`, builds its shadow tables and renders it from `view` (a
 /// direction from the centre, in bounding radii), advancing `bar` by one
 /// unit after each ([`SHOT`] in all).
+///
+/// The light is a clear afternoon's: the sun 30° up on the left, a little
+/// toward the camera, so the cloud shows a sunlit side and a shaded one; a
+/// deep blue sky about a seventh as bright as a white surface facing the
+/// sun; water droplets that absorb one part in a thousand (albedo 0.999);
+/// half a stop of exposure, so the sunlit side is near white.
 pub fn render(
     d: &dyn Density,
     look: &Look,
@@ -75,16 +89,17 @@ pub fn render(
     bar.advance(1);
     let scene = Scene {
         sun: Some(Sun {
-            direction: Vec3::new(-0.5, -0.6, 0.62).normalize(),
+            direction: Vec3::new(-0.85, -0.25, 0.5).normalize(),
             irradiance: Vec3::new(3.2, 3.0, 2.7),
         }),
         ..Scene::new(
             &baked,
             MediumParams {
                 extinction,
+                albedo: 0.999,
                 ..MediumParams::default()
             },
-            Vec3::new(0.18, 0.3, 0.55),
+            Vec3::new(0.09, 0.15, 0.275),
         )
     };
     let settings = FastSettings {
@@ -108,7 +123,7 @@ pub fn render(
     bar.advance(1);
     let image = fast.render(&camera)?;
     bar.advance(1);
-    Ok(image.tone_mapped(0.0, natura::core::ToneMap::AcesFilmic))
+    Ok(image.tone_mapped(0.5, natura::core::ToneMap::AcesFilmic))
 }
 
 /// Images side by side with 4 px white gaps.
