@@ -21,13 +21,14 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use common::outln;
+use natura::core::Image;
 use natura::core::glam::{DVec3, Vec3};
 use natura::plant::models::Run as ModelRun;
 use natura::plant::models::{
     clonal, compound, crowns, phyllotaxis, positional, roots, roots3d, tiers,
 };
 use natura::plant::preview::{PreviewCamera, PreviewParams, render};
-use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
+use natura::plant::turtle::{SurfaceInstance, Turtle, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
@@ -73,6 +74,54 @@ fn picture(g: &Geometry, view: Vec3, size: u32, out: &std::path::Path, name: &st
 /// Renders the final string of a model's run.
 fn show(run: &ModelRun, view: Vec3, size: u32, out: &std::path::Path, name: &str) -> common::Run {
     picture(&run.geometry()?, view, size, out, name)
+}
+
+/// How far the second tree of the crowns figure is moved (m).
+const CROWNS_APART_M: f64 = 4.0;
+
+/// The crowns' final string drawn with a sphere for each living leaf
+/// cluster (a module `L(vig, p, age, del)` with `vig > 0` and
+/// `age < LS`), of the radius the light model gives it, `vig/2`; the
+/// second tree moved `apart` metres along x (its axiom's move `f`
+/// lengthened).
+fn crown_geometry(
+    run: &ModelRun,
+    p: &crowns::CrownParams,
+    apart: f64,
+) -> Result<Geometry, common::Exit> {
+    let syms = run.lsystem.symbols();
+    let (open, close, f, leaf) = (syms.get("["), syms.get("]"), syms.get("f"), syms.get("L"));
+    let mut s = run.string.clone();
+    // The second top-level branch is the second tree; its first `f` is the
+    // move to its place.
+    let (mut depth, mut tree) = (0usize, 0usize);
+    for i in 0..s.len() {
+        let sym = Some(s.symbol(i));
+        if sym == open {
+            if depth == 0 {
+                tree += 1;
+            }
+            depth += 1;
+        } else if sym == close {
+            depth = depth.saturating_sub(1);
+        } else if sym == f && tree == 2 && depth == 1 {
+            s.params_mut(i)[0] += apart;
+            break;
+        }
+    }
+    let turtle = Turtle::new(&run.lsystem, run.turtle.clone())?;
+    let mut g = turtle.interpret(&s)?;
+    let mut clusters = Vec::new();
+    turtle.visit(&s, |i, state| {
+        if Some(s.symbol(i)) == leaf {
+            let q = s.params(i);
+            if q.len() == 4 && q[0] > 0.0 && q[2] < f64::from(p.leaf_years) {
+                clusters.push((state.frame.p, 0.5 * q[0]));
+            }
+        }
+    })?;
+    g.surfaces.extend(spheres(clusters.into_iter()).surfaces);
+    Ok(g)
 }
 
 /// Spheres at the given centres and radii, as turtle geometry.
@@ -136,14 +185,31 @@ fn plant_models() -> common::Run {
         show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png")?;
     }
     if want("crowns") {
-        // Fig. 14: two trees grown side by side, seen from the side.
+        // Fig. 14: two trees grown side by side, seen from the side with
+        // their leaf clusters; on the left as they grew, on the right moved
+        // apart, so each crown shows it grew away from the other.
         let p = crowns::CrownParams {
             years: if quick { 4 } else { 8 },
             trees_x: vec![-1.0, 1.0],
             ..crowns::CrownParams::default()
         };
         let run = crowns::crowns(&p)?;
-        show(&run, Vec3::Y, size, &out, "crowns.png")?;
+        let together = crown_geometry(&run, &p, 0.0)?;
+        let apart = crown_geometry(&run, &p, CROWNS_APART_M)?;
+        // One camera for both, framed on the trees moved apart.
+        let (lo, hi) = apart.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+        let cam = PreviewCamera::framing(lo, hi, Vec3::Y, None, 1.0)?;
+        let clusters = together.surfaces.len();
+        let shots = [together, apart]
+            .iter()
+            .map(|g| {
+                let mesh = PlantMesh::from_geometry(g, &MeshParams::default())?;
+                Ok(render(&mesh, &PreviewParams::new(size, size, cam))?)
+            })
+            .collect::<Result<Vec<Image>, common::Exit>>()?;
+        let sheet = Image::contact_sheet(&shots, 2, 0, Vec3::ONE)?;
+        sheet.save_png(out.join("crowns.png"))?;
+        outln(format_args!("crowns.png: {clusters} leaf clusters"))?;
     }
     if want("phyllotaxis") {
         // Fig. 4: primordia on a cone, shrinking towards the tip.
@@ -169,4 +235,39 @@ fn plant_models() -> common::Run {
         show(&run, Vec3::NEG_X, size, &out, "compound.png")?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moving_the_second_crown_moves_only_it() {
+        // Fig. 14's right panel: the same trees, the second `apart` metres
+        // to the right; the first stays, and every leaf cluster is drawn in
+        // both.
+        let p = crowns::CrownParams {
+            years: 3,
+            trees_x: vec![-1.0, 1.0],
+            ..crowns::CrownParams::default()
+        };
+        let run = crowns::crowns(&p).unwrap();
+        let a = crown_geometry(&run, &p, 0.0).unwrap();
+        let b = crown_geometry(&run, &p, 2.5).unwrap();
+        assert!(!a.surfaces.is_empty());
+        assert_eq!(a.surfaces.len(), b.surfaces.len());
+        assert_eq!(a.segment_count(), b.segment_count());
+        let (lo_a, hi_a) = a.bounds().unwrap();
+        let (lo_b, hi_b) = b.bounds().unwrap();
+        assert!((lo_a.x - lo_b.x).abs() < 1e-4, "{lo_a} {lo_b}");
+        assert!((hi_b.x - hi_a.x - 2.5).abs() < 1e-3, "{hi_a} {hi_b}");
+        // Half the segments (the first tree's) did not move.
+        let same = a
+            .start
+            .iter()
+            .zip(&b.start)
+            .filter(|(u, v)| (**u - **v).length() < 1e-5)
+            .count();
+        assert!(same > 0 && same < a.segment_count(), "{same}");
+    }
 }
