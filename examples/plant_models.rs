@@ -1,9 +1,9 @@
 //! The source papers' plant models as pictures: Honda's branch tiers, a
-//! clonal plant foraging over patches of light, roots in soil water and
-//! tree crowns competing for light (open L-systems, Měch & Prusinkiewicz
-//! 1996), collision-based phyllotaxis on a cone (Fowler et al. 1992) and
-//! Ridley's packing on a disc and a pinnate leaf on a curved stem
-//! (Prusinkiewicz et al. 2001, Alg. 5 and 4).
+//! clonal plant foraging over patches of light, roots in soil water, tree
+//! crowns competing for light and a stand of three trees (open L-systems,
+//! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
+//! (Fowler et al. 1992) and Ridley's packing on a disc and a pinnate leaf
+//! on a curved stem (Prusinkiewicz et al. 2001, Alg. 5 and 4).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -32,12 +32,13 @@ use natura::plant::turtle::{SurfaceInstance, Turtle, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 8] = [
+const MODELS: [&str; 9] = [
     "tiers",
     "clonal",
     "roots",
     "roots3d",
     "crowns",
+    "stand",
     "phyllotaxis",
     "ridley",
     "compound",
@@ -45,8 +46,9 @@ const MODELS: [&str; 8] = [
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
-/// competing for light, phyllotaxis on a cone, Ridley's packing on a disc
-/// and a pinnate leaf. Writes MODEL.png for each.
+/// competing for light, a stand of three trees, phyllotaxis on a cone,
+/// Ridley's packing on a disc and a pinnate leaf. Writes MODEL.png for
+/// each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -80,21 +82,64 @@ fn show(run: &ModelRun, view: Vec3, size: u32, out: &std::path::Path, name: &str
 const CROWNS_APART_M: f64 = 4.0;
 
 /// The crowns' final string drawn with a sphere for each living leaf
-/// cluster (a module `L(vig, p, age, del)` with `vig > 0` and
-/// `age < LS`), of the radius the light model gives it, `vig/2`; the
-/// second tree moved `apart` metres along x (its axiom's move `f`
-/// lengthened).
+/// cluster ([`leaf_clusters`]); the second tree moved `apart` metres along
+/// x (its axiom's move `f` lengthened).
 fn crown_geometry(
     run: &ModelRun,
     p: &crowns::CrownParams,
     apart: f64,
 ) -> Result<Geometry, common::Exit> {
-    let syms = run.lsystem.symbols();
-    let (open, close, f, leaf) = (syms.get("["), syms.get("]"), syms.get("f"), syms.get("L"));
+    let f = run.lsystem.symbols().get("f");
     let mut s = run.string.clone();
-    // The second top-level branch is the second tree; its first `f` is the
-    // move to its place.
+    // The second tree's first `f` outside any inner branch is the move to
+    // its place.
+    let (tree, depth) = trees(run);
+    if let Some(i) = (0..s.len()).find(|&i| tree[i] == 2 && depth[i] == 1 && Some(s.symbol(i)) == f)
+    {
+        s.params_mut(i)[0] += apart;
+    }
+    let moved = ModelRun {
+        string: s,
+        ..run.clone()
+    };
+    let mut g = moved.geometry()?;
+    let clusters = leaf_clusters(&moved, p)?;
+    g.surfaces
+        .extend(spheres(clusters.into_iter().map(|(_, c, r)| (c, r))).surfaces);
+    Ok(g)
+}
+
+/// The stand of Fig. 16: three trees 2.5 m apart in a row, grown `years`.
+/// (Five trees 1.5 m apart, the inner ones die within 14 years.)
+fn stand_params(years: u32) -> crowns::CrownParams {
+    crowns::CrownParams {
+        years,
+        trees_x: (0..3).map(|i| (f64::from(i) - 1.0) * 2.5).collect(),
+        ..crowns::CrownParams::default()
+    }
+}
+
+/// The height of each tree's lowest living leaf cluster (`trees` trees;
+/// infinite for a tree without one).
+fn lowest_clusters(clusters: &[(usize, DVec3, f64)], trees: usize) -> Vec<f64> {
+    let mut low = vec![f64::INFINITY; trees];
+    for &(t, c, _) in clusters {
+        if (1..=trees).contains(&t) {
+            low[t - 1] = low[t - 1].min(c.z);
+        }
+    }
+    low
+}
+
+/// For each module of the crowns' final string, the tree it belongs to
+/// (1, 2, …: the axiom's top-level branches in order; 0 outside them) and
+/// its bracket depth.
+fn trees(run: &ModelRun) -> (Vec<usize>, Vec<usize>) {
+    let syms = run.lsystem.symbols();
+    let (open, close) = (syms.get("["), syms.get("]"));
+    let s = &run.string;
     let (mut depth, mut tree) = (0usize, 0usize);
+    let (mut trees, mut depths) = (Vec::with_capacity(s.len()), Vec::with_capacity(s.len()));
     for i in 0..s.len() {
         let sym = Some(s.symbol(i));
         if sym == open {
@@ -102,26 +147,36 @@ fn crown_geometry(
                 tree += 1;
             }
             depth += 1;
-        } else if sym == close {
+        }
+        trees.push(if depth == 0 { 0 } else { tree });
+        depths.push(depth);
+        if sym == close {
             depth = depth.saturating_sub(1);
-        } else if sym == f && tree == 2 && depth == 1 {
-            s.params_mut(i)[0] += apart;
-            break;
         }
     }
-    let turtle = Turtle::new(&run.lsystem, run.turtle.clone())?;
-    let mut g = turtle.interpret(&s)?;
+    (trees, depths)
+}
+
+/// The living leaf clusters of the crowns: for each module
+/// `L(vig, p, age, del)` with `vig > 0` and `age < LS`, its tree
+/// ([`trees`]), its centre and the radius the light model gives it, `vig/2`.
+fn leaf_clusters(
+    run: &ModelRun,
+    p: &crowns::CrownParams,
+) -> Result<Vec<(usize, DVec3, f64)>, common::Exit> {
+    let leaf = run.lsystem.symbols().get("L");
+    let (tree, _) = trees(run);
+    let s = &run.string;
     let mut clusters = Vec::new();
-    turtle.visit(&s, |i, state| {
+    Turtle::new(&run.lsystem, run.turtle.clone())?.visit(s, |i, state| {
         if Some(s.symbol(i)) == leaf {
             let q = s.params(i);
             if q.len() == 4 && q[0] > 0.0 && q[2] < f64::from(p.leaf_years) {
-                clusters.push((state.frame.p, 0.5 * q[0]));
+                clusters.push((tree[i], state.frame.p, 0.5 * q[0]));
             }
         }
     })?;
-    g.surfaces.extend(spheres(clusters.into_iter()).surfaces);
-    Ok(g)
+    Ok(clusters)
 }
 
 /// Spheres at the given centres and radii, as turtle geometry.
@@ -211,6 +266,21 @@ fn plant_models() -> common::Run {
         sheet.save_png(out.join("crowns.png"))?;
         outln(format_args!("crowns.png: {clusters} leaf clusters"))?;
     }
+    if want("stand") {
+        // Fig. 16: a row of three trees grown together: shaded by its
+        // neighbours, the middle one sheds its lower branches and keeps
+        // only its upper crown.
+        let p = stand_params(if quick { 10 } else { 14 });
+        let run = crowns::crowns(&p)?;
+        let g = crown_geometry(&run, &p, 0.0)?;
+        picture(&g, Vec3::Y, size, &out, "stand.png")?;
+        let lowest = lowest_clusters(&leaf_clusters(&run, &p)?, p.trees_x.len());
+        let shown: Vec<String> = lowest.iter().map(|z| format!("{z:.1}")).collect();
+        outln(format_args!(
+            "stand: lowest living leaf cluster of each tree at {} m",
+            shown.join(", ")
+        ))?;
+    }
     if want("phyllotaxis") {
         // Fig. 4: primordia on a cone, shrinking towards the tip.
         let v = phyllotaxis::phyllotaxis(&phyllotaxis::PhyllotaxisParams::default())?;
@@ -240,6 +310,21 @@ fn plant_models() -> common::Run {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_middle_tree_of_the_stand_keeps_only_its_upper_crown() {
+        // Fig. 16: shaded from both sides, the middle tree sheds its lower
+        // branches: its lowest living leaf cluster stands well above its
+        // neighbours', and it still has a crown.
+        let p = stand_params(10);
+        let run = crowns::crowns(&p).unwrap();
+        let clusters = leaf_clusters(&run, &p).unwrap();
+        let low = lowest_clusters(&clusters, 3);
+        assert!(low[1].is_finite(), "{low:?}");
+        assert!(low[1] > low[0].max(low[2]) + 1.0, "{low:?}");
+        let middle = clusters.iter().filter(|c| c.0 == 2).count();
+        assert!(middle > 50, "{middle} clusters");
+    }
 
     #[test]
     fn moving_the_second_crown_moves_only_it() {
