@@ -1,7 +1,7 @@
 //! Steam rising from a teacup (Ebert 2001, slides "Steam rising from a
 //! teacup"): the basic gas shaped radially and vertically, drifting up with
-//! time. Four moments, lit from behind and the side, with Ebert's
-//! shadow-table march.
+//! time over a cup of tea. Four moments, lit from behind and the side, with
+//! Ebert's shadow-table march.
 //!
 //! ```text
 //! cargo run --release --example steam                 # 320 × 400 frames

@@ -25,7 +25,7 @@ use crate::layer::{LayerClouds, LayerParams};
 use crate::phase::CloudPhase;
 use crate::transport::{
     CacheParams, Emission, FastSettings, GroundPlane, LookAtCamera, MediumParams, NearSunRays,
-    Scattering, Scene, Shadows, SkyRadiance, Solid, Sun,
+    Scattering, Scene, Shadows, SkyRadiance, Solid, SolidShape, Sun,
 };
 
 /// Parameters of [`Cloudscape`].
@@ -294,10 +294,10 @@ impl SteamCup {
     /// As [`Steam::new`] (a bad time) and [`LookAtCamera::look_at`] (a bad
     /// picture size).
     pub fn new(time: f32, seed: u64, width: u32, height: u32) -> Result<Self> {
-        let fov = 22f32.to_radians();
+        let fov = 28f32.to_radians();
         let camera = LookAtCamera::look_at(
             Self::EYE,
-            Vec3::new(0.0, 0.0, 0.065),
+            Vec3::new(0.0, 0.0, 0.045),
             Vec3::Z,
             fov,
             width,
@@ -330,8 +330,36 @@ impl SteamCup {
         })
     }
 
+    /// The cup and its tea: white porcelain, 9.6 cm across and 7 cm tall,
+    /// its top 1 mm below the steam's mouth, and a disc of tea 1 mm thick on
+    /// it, 4 mm short of its rim (closed cylinders: the cup's inside and
+    /// its handle are not modelled).
+    #[must_use]
+    pub fn cup(&self) -> [Solid; 2] {
+        let room = Vec3::new(0.3, 0.3, 0.36);
+        [
+            Solid {
+                centre: Vec3::new(0.0, 0.0, -0.036),
+                radius: 0.048,
+                albedo: Vec3::new(0.85, 0.83, 0.8),
+                sky_irradiance: room,
+                shape: SolidShape::Cylinder { half_height: 0.035 },
+            },
+            Solid {
+                centre: Vec3::new(0.0, 0.0, -0.0005),
+                radius: 0.044,
+                albedo: Vec3::new(0.09, 0.04, 0.015),
+                sky_irradiance: room,
+                shape: SolidShape::Cylinder {
+                    half_height: 0.0005,
+                },
+            },
+        ]
+    }
+
     /// The scene: the steam (extinction 60 /m, albedo 0.95, Henyey–Greenstein
-    /// g = 0.5) under a warm sun behind and beside it, a dim blue-grey room.
+    /// g = 0.5) over its cup ([`SteamCup::cup`]) under a warm sun behind and
+    /// beside it, a dim blue-grey room.
     #[must_use]
     pub fn scene(&self) -> Scene<'_> {
         Scene {
@@ -339,6 +367,7 @@ impl SteamCup {
                 direction: Vec3::new(-0.3, 0.8, 0.5).normalize(),
                 irradiance: Vec3::new(2.4, 2.2, 2.0),
             }),
+            solids: self.cup().to_vec(),
             ..Scene::new(
                 &self.steam,
                 MediumParams {
@@ -451,6 +480,7 @@ impl SmokeAroundSphere {
                 radius: self.sphere.1,
                 albedo: Vec3::new(0.7, 0.35, 0.25),
                 sky_irradiance: sky,
+                shape: SolidShape::Sphere,
             }],
             emission: Some(Emission {
                 field: &self.temperature,
@@ -505,6 +535,16 @@ mod tests {
         let cup = SteamCup::new(1.0, 3, 16, 20).unwrap();
         let scene = cup.scene();
         assert!(scene.validate().is_ok());
+        // The cup and its tea stand under the steam's mouth, the tea's top
+        // level with it.
+        assert_eq!(scene.solids.len(), 2);
+        assert!(
+            scene
+                .solids
+                .iter()
+                .all(|s| !s.contains(Vec3::new(0.0, 0.0, 1e-4)))
+        );
+        assert!(scene.solids[1].contains(Vec3::new(0.0, 0.0, -1e-4)));
         assert_eq!(cup.camera().resolution().x, 16);
         assert!(SteamCup::new(1.0, 3, 0, 20).is_err());
 

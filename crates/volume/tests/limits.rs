@@ -12,7 +12,7 @@ use natura_volume::phase::CloudPhase;
 use natura_volume::transport::reference::MAX_COLLISIONS_PER_RAY;
 use natura_volume::transport::{
     FastRenderer, FastSettings, LookAtCamera, MediumParams, ReferenceRenderer, ReferenceSettings,
-    Scene,
+    Scene, Solid, SolidShape,
 };
 
 fn medium(extinction: f32) -> MediumParams {
@@ -164,4 +164,29 @@ fn both_renderers_refuse_a_density_that_is_nan_negative_or_above_its_bound() {
     let fine = Faulty(0.9);
     let scene = Scene::new(&fine, medium(1.0), Vec3::ONE);
     assert!(FastRenderer::new(&scene, FastSettings::default()).is_ok());
+}
+
+#[test]
+fn a_cylinder_without_height_is_refused() {
+    let cube = Homogeneous::new(unit_cube(), 1.0).unwrap();
+    for h in [0.0, -0.1, f32::NAN, f32::INFINITY] {
+        let scene = Scene {
+            solids: vec![Solid {
+                centre: Vec3::splat(0.5),
+                radius: 0.2,
+                albedo: Vec3::splat(0.5),
+                sky_irradiance: Vec3::ZERO,
+                shape: SolidShape::Cylinder { half_height: h },
+            }],
+            ..Scene::new(&cube, medium(1.0), Vec3::ONE)
+        };
+        refused_naming(
+            FastRenderer::new(&scene, FastSettings::default()),
+            "solid.shape.half_height",
+        );
+        refused_naming(
+            ReferenceRenderer::new(&scene, quick()),
+            "solid.shape.half_height",
+        );
+    }
 }

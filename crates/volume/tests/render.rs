@@ -622,6 +622,7 @@ fn solids_are_seen_and_cast_shadows_in_both_renderers() {
             radius: 1.0,
             albedo: Vec3::splat(0.8),
             sky_irradiance: sky,
+            shape: natura_volume::transport::SolidShape::Sphere,
         }],
         ..Scene::new(
             &slab,

@@ -354,8 +354,7 @@ impl LocalLight {
         for (i, s) in scene.solids.iter().enumerate() {
             let e = scene.sun_unit().map_or(Vec3::ZERO, |s| s.irradiance);
             let l = s.albedo * std::f32::consts::FRAC_1_PI * (e * 0.5 + s.sky_irradiance);
-            let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
-            power.push((Source::Solid(i), std::f32::consts::PI * lum(l) * area));
+            power.push((Source::Solid(i), std::f32::consts::PI * lum(l) * s.area()));
         }
         let (mut glow, mut glow_cdf) = (Vec::new(), Vec::new());
         if let Some(e) = scene.emission {
@@ -456,10 +455,10 @@ impl LocalLight {
             }
             Source::Solid(i) => {
                 let s = &scene.solids[i];
-                let n = uniform_sphere(rng);
-                let q = s.centre + n * (s.radius * 1.001 + 1e-4);
+                let (p, n) = s.sample(&mut || unit(rng));
+                let q = s.lift(p);
                 let l = Self::surface(scene, &self.grid, ratio, Surface::Solid(i), q, n);
-                (q, n, l * (PI * 4.0 * PI * s.radius * s.radius / prob))
+                (q, n, l * (PI * s.area() / prob))
             }
             Source::Glow => {
                 let total = *src.glow_cdf.last()?;

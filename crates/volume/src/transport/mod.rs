@@ -23,6 +23,7 @@ pub mod multiple;
 pub mod reference;
 mod settings;
 pub mod shadow;
+mod solid;
 
 use std::sync::Arc;
 
@@ -40,6 +41,7 @@ pub use model::{MediumOctaves, ScatterOctaves};
 pub use multiple::Scattering;
 pub use reference::{ReferenceRenderer, ReferenceSettings};
 pub use shadow::ShadowTable;
+pub use solid::{Solid, SolidShape};
 
 /// The camera the renderers take: natura-core's [`PinholeCamera`], set up
 /// with [`PinholeCamera::look_at`] (radians, `u32` pixels, z up as the up
@@ -168,52 +170,6 @@ pub struct GroundPlane {
     pub sky_irradiance: Vec3,
 }
 
-/// An opaque Lambertian sphere (for example a fluid simulation's obstacle):
-/// seen, lit by the sun through the volume, shadowing the volume, the ground
-/// and other solids from the sun; like the ground it does not reflect light
-/// back into the volume.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solid {
-    /// Centre (m).
-    pub centre: Vec3,
-    /// Radius (m, `> 0`).
-    pub radius: f32,
-    /// Albedo (linear RGB, each in `[0, 1]`).
-    pub albedo: Vec3,
-    /// Ambient irradiance on its surface (linear RGB).
-    pub sky_irradiance: Vec3,
-}
-
-impl Solid {
-    /// Whether `p` lies inside the sphere.
-    #[inline]
-    #[must_use]
-    pub fn contains(&self, p: Vec3) -> bool {
-        (p - self.centre).length_squared() < self.radius * self.radius
-    }
-
-    /// Distance along unit `d` from `o` to the sphere's surface (from outside), if hit.
-    #[inline]
-    #[must_use]
-    pub fn hit(&self, o: Vec3, d: Vec3) -> Option<f32> {
-        let oc = o - self.centre;
-        let b = oc.dot(d);
-        let c = oc.length_squared() - self.radius * self.radius;
-        let disc = b * b - c;
-        if disc < 0.0 {
-            return None;
-        }
-        let t = -b - disc.sqrt();
-        if t > 0.0 {
-            Some(t)
-        } else if c < 0.0 {
-            Some(0.0)
-        } else {
-            None
-        }
-    }
-}
-
 /// Optical depth standing for "blocked by a solid" (transmittance `e^{−30}`).
 pub const BLOCKED_DEPTH: f32 = 30.0;
 
@@ -262,7 +218,7 @@ pub struct Scene<'a> {
     pub emission: Option<Emission<'a>>,
     /// Aerial perspective between the eye and what it sees, if any.
     pub aerial: Option<Arc<SkyView>>,
-    /// Opaque spheres.
+    /// Opaque solids (spheres and upright cylinders).
     pub solids: Vec<Solid>,
 }
 
@@ -343,6 +299,9 @@ impl<'a> Scene<'a> {
         for s in &self.solids {
             finite3("solid.centre", s.centre)?;
             positive("solid.radius", s.radius)?;
+            if let SolidShape::Cylinder { half_height } = s.shape {
+                positive("solid.shape.half_height", half_height)?;
+            }
             rgb("solid.sky_irradiance", s.sky_irradiance)?;
             for c in s.albedo.to_array() {
                 in_range(
@@ -430,10 +389,7 @@ impl<'a> Scene<'a> {
     pub(crate) fn lift(&self, s: Surface, p: Vec3) -> Vec3 {
         match s {
             Surface::GroundPlane => p + Vec3::Z * 1e-3,
-            Surface::Solid(i) => {
-                let c = &self.solids[i];
-                c.centre + (p - c.centre).normalize_or(Vec3::Z) * (c.radius * 1.001 + 1e-4)
-            }
+            Surface::Solid(i) => self.solids[i].lift(p),
         }
     }
 
@@ -444,7 +400,7 @@ impl<'a> Scene<'a> {
             Surface::GroundPlane => self.ground_radiance(t_sun),
             Surface::Solid(i) => {
                 let c = &self.solids[i];
-                let n = (p - c.centre).normalize_or(Vec3::Z);
+                let n = c.normal(p);
                 match self.sun_unit() {
                     Some(sun) => model::lit_ground(
                         c.albedo,
