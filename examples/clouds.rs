@@ -1,6 +1,6 @@
 //! Ebert's procedural clouds (Ebert 2001, "Cloud Modeling" and "Animating
-//! Volumetric Procedural Clouds"): the nine-sphere cumulus, a cirrostratus
-//! layer over cirrus, the cumulus warped along the jet stream with an eased
+//! Volumetric Procedural Clouds"): the nine-sphere cumulus, cirrus, a
+//! cirrostratus layer over cirrus, the cumulus warped along the jet stream with an eased
 //! amount, and "A Cloud is Born". Rendered with Ebert's shadow-table march
 //! plus the multiple-scattering cache; the cumulus is also
 //! written as an OpenVDB file with `--vdb` (and always with `--quick`).
@@ -12,8 +12,9 @@
 //! cargo run --release --example clouds -- --help       # every flag and its default
 //! ```
 //!
-//! Writes `clouds_cumulus.png`, `clouds_cirrostratus.png`,
-//! `clouds_jet_stream.png` and `clouds_born.png` (and `cumulus.vdb`) into
+//! Writes `clouds_cumulus.png`, `clouds_cirrus.png`,
+//! `clouds_cirrostratus.png`, `clouds_jet_stream.png` and `clouds_born.png`
+//! (and `cumulus.vdb`) into
 //! `--out` (default: `./clouds/`), with a progress bar per picture.
 
 mod common;
@@ -33,11 +34,12 @@ use natura::volume::cloud::{
 use natura::volume::grid::GridDensity;
 use natura::volume::vdb;
 
-/// Ebert's procedural clouds: the nine-sphere cumulus, cirrostratus over
-/// cirrus, the cumulus warped along the jet stream and "A Cloud is Born",
-/// rendered with shadow tables and multiple scattering. Writes
-/// clouds_cumulus.png, clouds_cirrostratus.png, clouds_jet_stream.png and
-/// clouds_born.png (and cumulus.vdb with --vdb or --quick).
+/// Ebert's procedural clouds: the nine-sphere cumulus, cirrus, cirrostratus
+/// over cirrus, the cumulus warped along the jet stream and "A Cloud is
+/// Born", rendered with shadow tables and multiple scattering. Writes
+/// clouds_cumulus.png, clouds_cirrus.png, clouds_cirrostratus.png,
+/// clouds_jet_stream.png and clouds_born.png (and cumulus.vdb with --vdb or
+/// --quick).
 #[derive(Parser)]
 #[command(name = "clouds", version)]
 struct Cli {
@@ -91,21 +93,26 @@ fn clouds() -> Run {
     }
     bar.finish();
 
-    // (b) Cirrostratus: one large ellipsoid over cylinders, cirrus parameters.
-    bar.start("cirrostratus", SHOT);
-    let cs = cloud(
-        cirrostratus_primitives(),
-        CloudParams {
-            noise_frequency: 0.3,
-            displacement: 1.5,
-            ..CloudParams::cirrus(Vec3::new(6.0, 0.0, 0.0))
-        },
-        seed,
-    )?;
+    // (b) Cirrus (Fig. 3): the three cylinders of the cirrostratus figure
+    // alone, with the cirrus parameters, sheared along the jet stream.
+    let cirrus_params = CloudParams {
+        noise_frequency: 0.3,
+        displacement: 1.5,
+        ..CloudParams::cirrus(Vec3::new(6.0, 0.0, 0.0))
+    };
     let big = Look {
         cell: look.cell * 4.0,
         ..look
     };
+    bar.start("cirrus", SHOT);
+    let ci = cloud(cirrostratus_primitives()[1..].to_vec(), cirrus_params, seed)?;
+    render(&ci, &big, 120.0, Vec3::new(0.0, -0.9, -0.35), &bar)?
+        .save_png(out.join("clouds_cirrus.png"))?;
+    bar.finish();
+
+    // (c) Cirrostratus (Fig. 4): one large ellipsoid over the cylinders.
+    bar.start("cirrostratus", SHOT);
+    let cs = cloud(cirrostratus_primitives(), cirrus_params, seed)?;
     // The cirrus parameters' density is small (scale 0.2 under the
     // exponent 1.5, about 0.05 in the veil): at 120 /m the veil is opaque
     // in its middle and milky toward its edges, where the sky shows through.
@@ -113,7 +120,7 @@ fn clouds() -> Run {
         .save_png(out.join("clouds_cirrostratus.png"))?;
     bar.finish();
 
-    // (c) The jet-stream warp, eased in over 96 frames; the primitives stay put.
+    // (d) The jet-stream warp, eased in over 96 frames; the primitives stay put.
     let frames = [0u32, 32, 64, 96];
     bar.start("jet stream", SHOT * frames.len() as u64);
     let shots = frames
@@ -140,7 +147,7 @@ fn clouds() -> Run {
     strip(&shots)?.save_png(out.join("clouds_jet_stream.png"))?;
     bar.finish();
 
-    // (d) A Cloud is Born: three elements move together and grow.
+    // (e) A Cloud is Born: three elements move together and grow.
     let keys = cloud_is_born();
     let times = [0.0f32, 0.35, 0.7, 1.0];
     bar.start("cloud is born", SHOT * times.len() as u64);
@@ -161,7 +168,7 @@ fn clouds() -> Run {
     strip(&shots)?.save_png(out.join("clouds_born.png"))?;
     bar.finish();
     outln(format_args!(
-        "wrote clouds_cumulus.png, clouds_cirrostratus.png, clouds_jet_stream.png and clouds_born.png{} to {}",
+        "wrote clouds_cumulus.png, clouds_cirrus.png, clouds_cirrostratus.png, clouds_jet_stream.png and clouds_born.png{} to {}",
         if write_vdb { ", cumulus.vdb" } else { "" },
         out.display()
     ))
