@@ -220,6 +220,12 @@ impl CellGrid {
         v
     }
 
+    /// The centre of the cell of indices `i`.
+    #[inline]
+    pub(crate) fn centre(&self, i: [usize; 3]) -> Vec3 {
+        self.origin + (Vec3::new(i[0] as f32, i[1] as f32, i[2] as f32) + 0.5) * self.h
+    }
+
     /// The trilinear blend of eight corner values.
     #[inline]
     pub(crate) fn blend<T>(v: &[T; 8], w: [f32; 3]) -> T
