@@ -512,7 +512,23 @@ impl ScatterCache {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::density::Homogeneous;
     use crate::phase::CloudPhase;
+
+    /// A homogeneous slab 12 m wide, `2·half` thick (unit density), and an
+    /// isotropic medium of extinction 1 /m and `albedo`.
+    fn isotropic_slab(half: f32, albedo: f32) -> (Homogeneous, MediumParams) {
+        let region = Aabb {
+            min: Vec3::new(-6.0, -6.0, -half),
+            max: Vec3::new(6.0, 6.0, half),
+        };
+        let medium = MediumParams {
+            extinction: 1.0,
+            albedo,
+            phase: CloudPhase::Isotropic,
+        };
+        (Homogeneous::new(region, 1.0).unwrap(), medium)
+    }
 
     #[test]
     fn deep_in_a_thick_slab_the_cells_gradient_is_the_diffusion_decay() {
@@ -523,16 +539,7 @@ mod tests {
         // √(3(1 − ω)) = 0.775), so Fick's law read from band 1 must give the
         // cells there a relative gradient pointing up, toward the light, of
         // about ν per metre; carried by it, the light falls with depth.
-        let region = Aabb {
-            min: Vec3::new(-6.0, -6.0, -10.0),
-            max: Vec3::new(6.0, 6.0, 10.0),
-        };
-        let d = crate::density::Homogeneous::new(region, 1.0).unwrap();
-        let medium = MediumParams {
-            extinction: 1.0,
-            albedo: 0.8,
-            phase: CloudPhase::Isotropic,
-        };
+        let (d, medium) = isotropic_slab(10.0, 0.8);
         let params = CacheParams {
             cells: 40,
             events: 4_000_000,
@@ -575,16 +582,7 @@ mod tests {
         // `(ω/2)·∫ E₁(|τ − τ'|) dτ'` over the slab (ω = 1), about 0.358 at
         // optical thickness 0.3 (within the extent's edge effects, the
         // slab is 40 times wider than thick).
-        let region = Aabb {
-            min: Vec3::new(-6.0, -6.0, -0.15),
-            max: Vec3::new(6.0, 6.0, 0.15),
-        };
-        let d = crate::density::Homogeneous::new(region, 1.0).unwrap();
-        let medium = MediumParams {
-            extinction: 1.0,
-            albedo: 1.0,
-            phase: CloudPhase::Isotropic,
-        };
+        let (d, medium) = isotropic_slab(0.15, 1.0);
         let params = CacheParams {
             cells: 80,
             events: 2_000_000,

@@ -62,6 +62,7 @@ use rand_core::Rng;
 use super::cells::{CellGrid, Flight};
 use super::harmonics::{MAX_COEFFS, dot, legendre_moments, sh_basis, sigma_factor};
 use super::model::lit_ground;
+use super::solid::uniform_direction;
 use super::{MediumParams, Scene, Surface};
 use crate::animate::unit;
 use crate::density::{fill_densities, ray_box};
@@ -474,7 +475,11 @@ impl LocalLight {
                 }
                 let q = self.grid.cell_corner(c)
                     + Vec3::new(unit(rng), unit(rng), unit(rng)) * self.grid.h;
-                return Some((q, uniform_sphere(rng), src.glow[c] / (prob * p_cell)));
+                return Some((
+                    q,
+                    uniform_direction(&mut || unit(rng)),
+                    src.glow[c] / (prob * p_cell),
+                ));
             }
         };
         let d = cosine_about(n, rng);
@@ -571,14 +576,6 @@ fn cosine_about(n: Vec3, rng: &mut impl Rng) -> Vec3 {
     let phi = 2.0 * std::f32::consts::PI * unit(rng);
     let z = (1.0 - r * r).max(0.0).sqrt();
     (u * (r * phi.cos()) + v * (r * phi.sin()) + n * z).normalize()
-}
-
-/// A direction uniform over the sphere.
-fn uniform_sphere(rng: &mut impl Rng) -> Vec3 {
-    let z = 1.0 - 2.0 * unit(rng);
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * std::f32::consts::PI * unit(rng);
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 #[cfg(test)]

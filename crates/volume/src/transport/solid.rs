@@ -169,10 +169,7 @@ impl Solid {
         let tau = 2.0 * std::f32::consts::PI;
         match self.shape {
             SolidShape::Sphere => {
-                let z = 1.0 - 2.0 * unit();
-                let s = (1.0 - z * z).max(0.0).sqrt();
-                let phi = tau * unit();
-                let n = Vec3::new(s * phi.cos(), s * phi.sin(), z);
+                let n = uniform_direction(unit);
                 (self.centre + n * r, n)
             }
             SolidShape::Cylinder { half_height: h } => {
@@ -195,6 +192,15 @@ impl Solid {
             }
         }
     }
+}
+
+/// A direction uniform over the sphere, from uniform numbers in `[0, 1)`
+/// drawn by `unit` (its height first, then its azimuth).
+pub(crate) fn uniform_direction(unit: &mut impl FnMut() -> f32) -> Vec3 {
+    let z = 1.0 - 2.0 * unit();
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * std::f32::consts::PI * unit();
+    Vec3::new(s * phi.cos(), s * phi.sin(), z)
 }
 
 #[cfg(test)]
