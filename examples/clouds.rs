@@ -23,7 +23,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use common::cloudshot::{CUMULUS_EXTINCTION, Look, SHOT, render, strip};
+use common::cloudshot::{CUMULUS_EXTINCTION, Look, SHOT, cumulus, render, strip};
 use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
@@ -77,14 +77,7 @@ fn clouds() -> Run {
 
     // (a) The nine-sphere cumulus with the source's parameters.
     bar.start("cumulus", SHOT + u64::from(write_vdb));
-    let cumulus = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed)?;
-    let img = render(
-        &cumulus,
-        &look,
-        CUMULUS_EXTINCTION,
-        Vec3::new(0.0, -2.4, 0.25),
-        &bar,
-    )?;
+    let (cumulus, img) = cumulus(&look, seed, &bar)?;
     img.save_png(out.join("clouds_cumulus.png"))?;
     if write_vdb {
         let baked = GridDensity::bake(&cumulus, look.cell)?;

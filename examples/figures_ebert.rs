@@ -216,23 +216,10 @@ mod tests {
 
     #[test]
     fn a_cumulus_is_white_in_the_sun_and_shaded_away_from_it() {
-        // The look of the cumulus figures: the sunlit side near white and
-        // well above the blue sky, the side away from the sun darker.
-        let look = Look::new(true);
-        let c: Cloud = cloud(
-            natura::volume::cloud::nine_sphere_cumulus(),
-            CloudParams::cumulus(),
-            7,
-        )
-        .unwrap();
-        let img = render(
-            &c,
-            &look,
-            CUMULUS_EXTINCTION,
-            Vec3::new(0.0, -2.4, 0.25),
-            &NoProgress,
-        )
-        .unwrap();
+        // The look of the cumulus figures (the `clouds` program's Fig. 1
+        // shot): the sunlit side near white and well above the blue sky,
+        // the side away from the sun darker.
+        let (_, img) = common::cloudshot::cumulus(&Look::new(true), 7, &NoProgress).unwrap();
         let lum = |v: Vec3| 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
         let sky = lum(img.get(0, 0).unwrap());
         let px: Vec<f32> = (0..img.height())

@@ -78,35 +78,40 @@ fn show(run: &ModelRun, view: Vec3, size: u32, out: &std::path::Path, name: &str
     picture(&run.geometry()?, view, size, out, name)
 }
 
+/// A living leaf cluster of the crowns: its tree (1, 2, …), its centre and
+/// its radius (m).
+type Cluster = (usize, DVec3, f64);
+
 /// How far the second tree of the crowns figure is moved (m).
 const CROWNS_APART_M: f64 = 4.0;
 
 /// The crowns' final string drawn with a sphere for each living leaf
-/// cluster ([`leaf_clusters`]); the second tree moved `apart` metres along
-/// x (its axiom's move `f` lengthened).
+/// cluster, and those clusters ([`leaf_clusters`]); the second tree moved
+/// `apart` metres along x (its axiom's move `f` lengthened).
 fn crown_geometry(
     run: &ModelRun,
     p: &crowns::CrownParams,
     apart: f64,
-) -> Result<Geometry, common::Exit> {
+) -> Result<(Geometry, Vec<Cluster>), common::Exit> {
     let f = run.lsystem.symbols().get("f");
     let mut s = run.string.clone();
     // The second tree's first `f` outside any inner branch is the move to
-    // its place.
+    // its place. Lengthening it leaves every module's tree as it was.
     let (tree, depth) = trees(run);
     if let Some(i) = (0..s.len()).find(|&i| tree[i] == 2 && depth[i] == 1 && Some(s.symbol(i)) == f)
     {
         s.params_mut(i)[0] += apart;
     }
     let moved = ModelRun {
+        lsystem: run.lsystem.clone(),
         string: s,
-        ..run.clone()
+        turtle: run.turtle.clone(),
     };
     let mut g = moved.geometry()?;
-    let clusters = leaf_clusters(&moved, p)?;
+    let clusters = leaf_clusters(&moved, p, &tree)?;
     g.surfaces
-        .extend(spheres(clusters.into_iter().map(|(_, c, r)| (c, r))).surfaces);
-    Ok(g)
+        .extend(spheres(clusters.iter().map(|&(_, c, r)| (c, r))).surfaces);
+    Ok((g, clusters))
 }
 
 /// The stand of Fig. 16: three trees 2.5 m apart in a row, grown `years`.
@@ -121,7 +126,7 @@ fn stand_params(years: u32) -> crowns::CrownParams {
 
 /// The height of each tree's lowest living leaf cluster (`trees` trees;
 /// infinite for a tree without one).
-fn lowest_clusters(clusters: &[(usize, DVec3, f64)], trees: usize) -> Vec<f64> {
+fn lowest_clusters(clusters: &[Cluster], trees: usize) -> Vec<f64> {
     let mut low = vec![f64::INFINITY; trees];
     for &(t, c, _) in clusters {
         if (1..=trees).contains(&t) {
@@ -158,14 +163,15 @@ fn trees(run: &ModelRun) -> (Vec<usize>, Vec<usize>) {
 }
 
 /// The living leaf clusters of the crowns: for each module
-/// `L(vig, p, age, del)` with `vig > 0` and `age < LS`, its tree
-/// ([`trees`]), its centre and the radius the light model gives it, `vig/2`.
+/// `L(vig, p, age, del)` with `vig > 0` and `age < LS`, its tree (`tree`,
+/// from [`trees`]), its centre and the radius the light model gives it,
+/// `vig/2`.
 fn leaf_clusters(
     run: &ModelRun,
     p: &crowns::CrownParams,
-) -> Result<Vec<(usize, DVec3, f64)>, common::Exit> {
+    tree: &[usize],
+) -> Result<Vec<Cluster>, common::Exit> {
     let leaf = run.lsystem.symbols().get("L");
-    let (tree, _) = trees(run);
     let s = &run.string;
     let mut clusters = Vec::new();
     Turtle::new(&run.lsystem, run.turtle.clone())?.visit(s, |i, state| {
@@ -249,12 +255,12 @@ fn plant_models() -> common::Run {
             ..crowns::CrownParams::default()
         };
         let run = crowns::crowns(&p)?;
-        let together = crown_geometry(&run, &p, 0.0)?;
-        let apart = crown_geometry(&run, &p, CROWNS_APART_M)?;
+        let (together, clusters) = crown_geometry(&run, &p, 0.0)?;
+        let (apart, _) = crown_geometry(&run, &p, CROWNS_APART_M)?;
         // One camera for both, framed on the trees moved apart.
         let (lo, hi) = apart.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
         let cam = PreviewCamera::framing(lo, hi, Vec3::Y, None, 1.0)?;
-        let clusters = together.surfaces.len();
+        let clusters = clusters.len();
         let shots = [together, apart]
             .iter()
             .map(|g| {
@@ -272,9 +278,9 @@ fn plant_models() -> common::Run {
         // only its upper crown.
         let p = stand_params(if quick { 10 } else { 14 });
         let run = crowns::crowns(&p)?;
-        let g = crown_geometry(&run, &p, 0.0)?;
+        let (g, clusters) = crown_geometry(&run, &p, 0.0)?;
         picture(&g, Vec3::Y, size, &out, "stand.png")?;
-        let lowest = lowest_clusters(&leaf_clusters(&run, &p)?, p.trees_x.len());
+        let lowest = lowest_clusters(&clusters, p.trees_x.len());
         let shown: Vec<String> = lowest.iter().map(|z| format!("{z:.1}")).collect();
         outln(format_args!(
             "stand: lowest living leaf cluster of each tree at {} m",
@@ -318,7 +324,7 @@ mod tests {
         // neighbours', and it still has a crown.
         let p = stand_params(10);
         let run = crowns::crowns(&p).unwrap();
-        let clusters = leaf_clusters(&run, &p).unwrap();
+        let clusters = leaf_clusters(&run, &p, &trees(&run).0).unwrap();
         let low = lowest_clusters(&clusters, 3);
         assert!(low[1].is_finite(), "{low:?}");
         assert!(low[1] > low[0].max(low[2]) + 1.0, "{low:?}");
@@ -337,8 +343,8 @@ mod tests {
             ..crowns::CrownParams::default()
         };
         let run = crowns::crowns(&p).unwrap();
-        let a = crown_geometry(&run, &p, 0.0).unwrap();
-        let b = crown_geometry(&run, &p, 2.5).unwrap();
+        let (a, _) = crown_geometry(&run, &p, 0.0).unwrap();
+        let (b, _) = crown_geometry(&run, &p, 2.5).unwrap();
         assert!(!a.surfaces.is_empty());
         assert_eq!(a.surfaces.len(), b.surfaces.len());
         assert_eq!(a.segment_count(), b.segment_count());

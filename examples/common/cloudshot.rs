@@ -5,6 +5,7 @@
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
 use natura::volume::Density;
+use natura::volume::cloud::{Cloud, CloudParams, cloud, nine_sphere_cumulus};
 use natura::volume::grid::GridDensity;
 use natura::volume::transport::{
     CacheParams, FastRenderer, FastSettings, LookAtCamera, MediumParams, Scattering, Scene,
@@ -65,6 +66,21 @@ impl Look {
 /// gives densities, not an extinction). Thinner, the cloud is a pale haze
 /// the sky shows through.
 pub const CUMULUS_EXTINCTION: f32 = 40.0;
+
+/// Ebert's nine-sphere cumulus (Fig. 1) with the source's parameters and
+/// noise `seed`, and its shot as the cloud programs show it ([`render`],
+/// advancing `bar` as it does).
+pub fn cumulus(look: &Look, seed: u64, bar: &dyn Progress) -> Result<(Cloud, Image), Exit> {
+    let c = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed)?;
+    let img = render(
+        &c,
+        look,
+        CUMULUS_EXTINCTION,
+        Vec3::new(0.0, -2.4, 0.25),
+        bar,
+    )?;
+    Ok((c, img))
+}
 
 /// Bakes `d`, builds its shadow tables and renders it from `view` (a
 /// direction from the centre, in bounding radii), advancing `bar` by one
