@@ -1,7 +1,7 @@
 //! The source papers' plant models as pictures: Honda's branch tiers, a
 //! clonal plant foraging over patches of light, roots in soil water, tree
-//! crowns competing for light and a stand of three trees (open L-systems,
-//! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
+//! crowns and conifers competing for light and a stand of three trees
+//! (open L-systems, Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc and a pinnate leaf
 //! on a curved stem (Prusinkiewicz et al. 2001, Alg. 5 and 4).
 //!
@@ -25,19 +25,20 @@ use natura::core::Image;
 use natura::core::glam::{DVec3, Vec3};
 use natura::plant::models::Run as ModelRun;
 use natura::plant::models::{
-    clonal, compound, crowns, phyllotaxis, positional, roots, roots3d, tiers,
+    clonal, compound, conifers, crowns, phyllotaxis, positional, roots, roots3d, tiers,
 };
 use natura::plant::preview::{PreviewCamera, PreviewParams, render};
-use natura::plant::turtle::{SurfaceInstance, Turtle, TurtleFrame};
+use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 9] = [
+const MODELS: [&str; 10] = [
     "tiers",
     "clonal",
     "roots",
     "roots3d",
     "crowns",
+    "conifers",
     "stand",
     "phyllotaxis",
     "ridley",
@@ -46,7 +47,7 @@ const MODELS: [&str; 9] = [
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
-/// competing for light, a stand of three trees, phyllotaxis on a cone,
+/// and conifers competing for light, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc and a pinnate leaf. Writes MODEL.png for
 /// each.
 #[derive(Parser)]
@@ -85,12 +86,16 @@ type Cluster = (usize, DVec3, f64);
 /// How far the second tree of the crowns figure is moved (m).
 const CROWNS_APART_M: f64 = 4.0;
 
-/// The crowns' final string drawn with a sphere for each living leaf
-/// cluster, and those clusters ([`leaf_clusters`]); the second tree moved
-/// `apart` metres along x (its axiom's move `f` lengthened).
+/// How far the second tree of the conifers figure is moved (m).
+const CONIFERS_APART_M: f64 = 3.0;
+
+/// The final string of the crowns (or the conifers, whose leaves live
+/// `leaf_years`) drawn with a sphere for each living leaf cluster, and
+/// those clusters ([`leaf_clusters`]); the second tree moved `apart`
+/// metres along x (its axiom's move `f` lengthened).
 fn crown_geometry(
     run: &ModelRun,
-    p: &crowns::CrownParams,
+    leaf_years: u32,
     apart: f64,
 ) -> Result<(Geometry, Vec<Cluster>), common::Exit> {
     let f = run.lsystem.symbols().get("f");
@@ -108,10 +113,50 @@ fn crown_geometry(
         turtle: run.turtle.clone(),
     };
     let mut g = moved.geometry()?;
-    let clusters = leaf_clusters(&moved, p, &tree)?;
+    let clusters = leaf_clusters(&moved, leaf_years, &tree)?;
     g.surfaces
         .extend(spheres(clusters.iter().map(|&(_, c, r)| (c, r))).surfaces);
     Ok((g, clusters))
+}
+
+/// Two trees drawn side by side from the run's final string, as they grew
+/// (left) and with the second moved `apart` metres (right), under one
+/// camera framed on the pair moved apart; written to `name`.
+fn grown_and_apart(
+    run: &ModelRun,
+    leaf_years: u32,
+    apart: f64,
+    size: u32,
+    out: &std::path::Path,
+    name: &str,
+) -> common::Run {
+    let (together, clusters) = crown_geometry(run, leaf_years, 0.0)?;
+    let (moved, _) = crown_geometry(run, leaf_years, apart)?;
+    let segments = together.segment_count();
+    let (lo, hi) = moved.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+    let cam = PreviewCamera::framing(lo, hi, Vec3::Y, None, 1.0)?;
+    let shots = [together, moved]
+        .iter()
+        .map(|g| {
+            let mesh = PlantMesh::from_geometry(g, &MeshParams::default())?;
+            Ok(render(&mesh, &PreviewParams::new(size, size, cam))?)
+        })
+        .collect::<Result<Vec<Image>, common::Exit>>()?;
+    let sheet = Image::contact_sheet(&shots, 2, 0, Vec3::ONE)?;
+    sheet.save_png(out.join(name))?;
+    outln(format_args!(
+        "{name}: {segments} segments, {} leaf clusters",
+        clusters.len()
+    ))
+}
+
+/// The pair of Fig. 15: two conifers 2.5 m apart, grown `years`.
+fn conifer_pair(years: u32) -> conifers::ConiferParams {
+    conifers::ConiferParams {
+        years,
+        trees_x: vec![-1.25, 1.25],
+        ..conifers::ConiferParams::default()
+    }
 }
 
 /// The stand of Fig. 16: three trees 2.5 m apart in a row, grown `years`.
@@ -162,27 +207,17 @@ fn trees(run: &ModelRun) -> (Vec<usize>, Vec<usize>) {
     (trees, depths)
 }
 
-/// The living leaf clusters of the crowns: for each module
-/// `L(vig, p, age, del)` with `vig > 0` and `age < LS`, its tree (`tree`,
-/// from [`trees`]), its centre and the radius the light model gives it,
-/// `vig/2`.
+/// The living leaf clusters of the crowns ([`crowns::living_clusters`]),
+/// each with its tree (from [`trees`]).
 fn leaf_clusters(
     run: &ModelRun,
-    p: &crowns::CrownParams,
+    leaf_years: u32,
     tree: &[usize],
 ) -> Result<Vec<Cluster>, common::Exit> {
-    let leaf = run.lsystem.symbols().get("L");
-    let s = &run.string;
-    let mut clusters = Vec::new();
-    Turtle::new(&run.lsystem, run.turtle.clone())?.visit(s, |i, state| {
-        if Some(s.symbol(i)) == leaf {
-            let q = s.params(i);
-            if q.len() == 4 && q[0] > 0.0 && q[2] < f64::from(p.leaf_years) {
-                clusters.push((tree[i], state.frame.p, 0.5 * q[0]));
-            }
-        }
-    })?;
-    Ok(clusters)
+    Ok(crowns::living_clusters(run, leaf_years)?
+        .into_iter()
+        .map(|c| (tree[c.module], c.centre, c.radius))
+        .collect())
 }
 
 /// Spheres at the given centres and radii, as turtle geometry.
@@ -255,22 +290,22 @@ fn plant_models() -> common::Run {
             ..crowns::CrownParams::default()
         };
         let run = crowns::crowns(&p)?;
-        let (together, clusters) = crown_geometry(&run, &p, 0.0)?;
-        let (apart, _) = crown_geometry(&run, &p, CROWNS_APART_M)?;
-        // One camera for both, framed on the trees moved apart.
-        let (lo, hi) = apart.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
-        let cam = PreviewCamera::framing(lo, hi, Vec3::Y, None, 1.0)?;
-        let clusters = clusters.len();
-        let shots = [together, apart]
-            .iter()
-            .map(|g| {
-                let mesh = PlantMesh::from_geometry(g, &MeshParams::default())?;
-                Ok(render(&mesh, &PreviewParams::new(size, size, cam))?)
-            })
-            .collect::<Result<Vec<Image>, common::Exit>>()?;
-        let sheet = Image::contact_sheet(&shots, 2, 0, Vec3::ONE)?;
-        sheet.save_png(out.join("crowns.png"))?;
-        outln(format_args!("crowns.png: {clusters} leaf clusters"))?;
+        grown_and_apart(&run, p.leaf_years, CROWNS_APART_M, size, &out, "crowns.png")?;
+    }
+    if want("conifers") {
+        // Fig. 15: two conifers grown side by side in tiers, the lower
+        // tiers wider (the phase effect); on the right moved apart, each
+        // crown flattened on the side that faced the other.
+        let p = conifer_pair(if quick { 6 } else { 15 });
+        let run = conifers::conifers(&p)?;
+        grown_and_apart(
+            &run,
+            p.leaf_years,
+            CONIFERS_APART_M,
+            size,
+            &out,
+            "conifers.png",
+        )?;
     }
     if want("stand") {
         // Fig. 16: a row of three trees grown together: shaded by its
@@ -278,7 +313,7 @@ fn plant_models() -> common::Run {
         // only its upper crown.
         let p = stand_params(if quick { 10 } else { 14 });
         let run = crowns::crowns(&p)?;
-        let (g, clusters) = crown_geometry(&run, &p, 0.0)?;
+        let (g, clusters) = crown_geometry(&run, p.leaf_years, 0.0)?;
         picture(&g, Vec3::Y, size, &out, "stand.png")?;
         let lowest = lowest_clusters(&clusters, p.trees_x.len());
         let shown: Vec<String> = lowest.iter().map(|z| format!("{z:.1}")).collect();
@@ -324,7 +359,7 @@ mod tests {
         // neighbours', and it still has a crown.
         let p = stand_params(10);
         let run = crowns::crowns(&p).unwrap();
-        let clusters = leaf_clusters(&run, &p, &trees(&run).0).unwrap();
+        let clusters = leaf_clusters(&run, p.leaf_years, &trees(&run).0).unwrap();
         let low = lowest_clusters(&clusters, 3);
         assert!(low[1].is_finite(), "{low:?}");
         assert!(low[1] > low[0].max(low[2]) + 1.0, "{low:?}");
@@ -343,8 +378,8 @@ mod tests {
             ..crowns::CrownParams::default()
         };
         let run = crowns::crowns(&p).unwrap();
-        let (a, _) = crown_geometry(&run, &p, 0.0).unwrap();
-        let (b, _) = crown_geometry(&run, &p, 2.5).unwrap();
+        let (a, _) = crown_geometry(&run, p.leaf_years, 0.0).unwrap();
+        let (b, _) = crown_geometry(&run, p.leaf_years, 2.5).unwrap();
         assert!(!a.surfaces.is_empty());
         assert_eq!(a.surfaces.len(), b.surfaces.len());
         assert_eq!(a.segment_count(), b.segment_count());

@@ -17,7 +17,8 @@
 //! The source papers' models ([`models`]): the open L-system models of Měch &
 //! Prusinkiewicz 1996 with their environments (Honda's branch tiers, a clonal
 //! plant foraging over patches of light, roots growing in soil water in a
-//! vertical section or in 3-D soil, tree crowns competing for light),
+//! vertical section or in 3-D soil, deciduous crowns and conifers competing
+//! for light),
 //! collision-based phyllotaxis with its organ placement (Fowler et al. 1992)
 //! and positional-information
 //! algorithms (organ spacing, compound leaves, Ridley's packing and branch

@@ -32,8 +32,9 @@
 //! segments, 19 195 leaf clusters, 744 steps = 24 years) and Fig. 15
 //! (13 502 segments, 3 448 clusters, 194 steps, 15 years). Neither is the
 //! listing's model: Fig. 12 is its extension (a branch whose sister was
-//! shed straightens to become the leader) and Fig. 15 a conifer variant,
-//! and the source prints neither's rules; with the sky's radiances and the
+//! shed straightens to become the leader) and Fig. 15 a conifer variant
+//! (here [`conifers`](super::conifers), with rules of our own), and the
+//! source prints neither's rules; with the sky's radiances and the
 //! flux's normalisation also missing, the table cannot be reproduced. The
 //! listing's model here, one tree, gives 127 segments (`F`) and 127 leaf
 //! modules `L` (126 alive) after 6 years, and 463 segments and 465 `L` (409
@@ -493,6 +494,43 @@ pub fn crowns(p: &CrownParams) -> Result<Run> {
     let t = TurtleParams::for_lsystem(&l);
     let mut env = SkyLight::overcast(p.transmittance);
     run_open(l, t, &mut env, p.years * p.steps_per_year(), 0)
+}
+
+/// A living leaf cluster of a run's final string ([`living_clusters`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LeafCluster {
+    /// Index of its module `L` in the string.
+    pub module: usize,
+    /// Its centre (the turtle's position at `L`).
+    pub centre: DVec3,
+    /// Its radius as the light model sees it, `vig/2`.
+    pub radius: f64,
+}
+
+/// The living leaf clusters of a run of [`crowns`] (or of the conifers,
+/// whose leaves are the same module): every `L(vig, p, age, del)` with
+/// `vig > 0` and `age < leaf_years`.
+///
+/// # Errors
+///
+/// The turtle's errors.
+pub fn living_clusters(run: &Run, leaf_years: u32) -> Result<Vec<LeafCluster>> {
+    let leaf = run.lsystem.symbol("L");
+    let s = &run.string;
+    let mut out = Vec::new();
+    crate::Turtle::new(&run.lsystem, run.turtle.clone())?.visit(s, |i, st| {
+        if Some(s.symbol(i)) == leaf {
+            let q = s.params(i);
+            if q.len() == 4 && q[0] > 0.0 && q[2] < f64::from(leaf_years) {
+                out.push(LeafCluster {
+                    module: i,
+                    centre: st.frame.p,
+                    radius: 0.5 * q[0],
+                });
+            }
+        }
+    })?;
+    Ok(out)
 }
 
 #[cfg(test)]
