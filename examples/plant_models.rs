@@ -1,7 +1,8 @@
 //! The source papers' plant models as pictures: Honda's branch tiers, a
 //! clonal plant foraging over patches of light, roots in soil water, tree
-//! crowns and conifers competing for light and a stand of three trees
-//! (open L-systems, Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
+//! crowns and conifers competing for light, a tree of the extended crowns
+//! model and a stand of three trees (open L-systems, Měch & Prusinkiewicz
+//! 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc and a pinnate leaf
 //! on a curved stem (Prusinkiewicz et al. 2001, Alg. 5 and 4).
 //!
@@ -32,12 +33,13 @@ use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 10] = [
+const MODELS: [&str; 11] = [
     "tiers",
     "clonal",
     "roots",
     "roots3d",
     "crowns",
+    "extended",
     "conifers",
     "stand",
     "phyllotaxis",
@@ -47,7 +49,8 @@ const MODELS: [&str; 10] = [
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
-/// and conifers competing for light, a stand of three trees, phyllotaxis on a cone,
+/// and conifers competing for light, a tree of the extended crowns model, a
+/// stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc and a pinnate leaf. Writes MODEL.png for
 /// each.
 #[derive(Parser)]
@@ -148,6 +151,16 @@ fn grown_and_apart(
         "{name}: {segments} segments, {} leaf clusters",
         clusters.len()
     ))
+}
+
+/// The tree of Fig. 12: the crowns model extended, a branch losing half
+/// its branching angle a year once its sister is shed, grown `years`.
+fn extended_params(years: u32) -> crowns::CrownParams {
+    crowns::CrownParams {
+        years,
+        straightening: 0.5,
+        ..crowns::CrownParams::default()
+    }
 }
 
 /// The pair of Fig. 15: two conifers 2.5 m apart, grown `years`.
@@ -291,6 +304,13 @@ fn plant_models() -> common::Run {
         };
         let run = crowns::crowns(&p)?;
         grown_and_apart(&run, p.leaf_years, CROWNS_APART_M, size, &out, "crowns.png")?;
+    }
+    if want("extended") {
+        // Fig. 12: the extended model, a branch whose sister was shed
+        // turning into its mother's direction, drawn without its leaves.
+        let p = extended_params(if quick { 8 } else { 24 });
+        let run = crowns::crowns(&p)?;
+        show(&run, Vec3::Y, size, &out, "extended.png")?;
     }
     if want("conifers") {
         // Fig. 15: two conifers grown side by side in tiers, the lower

@@ -28,17 +28,31 @@
 //! unshaded cluster receives 1, which the thresholds `LP·r` against `LM`,
 //! `PB`, `PG` need (the source does not state it).
 //!
+//! The extension of Fig. 12 ("a gradual reduction of the branching angle
+//! of a young branch whose sister branch has been shed"; rules ours): a
+//! fork writes a module `C(s1, s2)` before its lateral branch. `C` sees
+//! both daughters' first `!` in its right context; a daughter shed by p11
+//! is left as `!(w, 0, 0)` with `w > 0` (a virtual branch has `w = 0`), and
+//! `C` records it (`s1`: the lateral shed, `s2`: the main axis shed). The
+//! daughters' turns `+(α2)` and `-(α1)` have `C` as their left context and
+//! shrink by a factor `SR` a step while their sister is gone, with
+//! `SR^(Del+1) = 1 − straightening` a year; p10 and p11 are written once
+//! more with `C` between the mother's leaf and the fork.
+//!
 //! Table 1 of the source counts the trees of Fig. 12 (22 462 branch
 //! segments, 19 195 leaf clusters, 744 steps = 24 years) and Fig. 15
 //! (13 502 segments, 3 448 clusters, 194 steps, 15 years). Neither is the
 //! listing's model: Fig. 12 is its extension (a branch whose sister was
-//! shed straightens to become the leader) and Fig. 15 a conifer variant
-//! (here [`conifers`](super::conifers), with rules of our own), and the
-//! source prints neither's rules; with the sky's radiances and the
-//! flux's normalisation also missing, the table cannot be reproduced. The
-//! listing's model here, one tree, gives 127 segments (`F`) and 127 leaf
-//! modules `L` (126 alive) after 6 years, and 463 segments and 465 `L` (409
-//! alive) after 8 years.
+//! shed straightens to become the leader; here
+//! [`CrownParams::straightening`], with rules of our own) and Fig. 15 a
+//! conifer variant (here [`conifers`](super::conifers), also with rules of
+//! our own), and the source prints neither's rules; with the sky's
+//! radiances and the flux's normalisation also missing, the table cannot
+//! be reproduced. The listing's model here, one tree, gives 127 segments
+//! (`F`) and 127 leaf modules `L` (126 alive) after 6 years, and 463
+//! segments and 465 `L` (409 alive) after 8 years; the extension, losing
+//! half the angle a year, 11 839 segments and 9 356 living clusters after
+//! 24 years.
 
 use glam::DVec3;
 use natura_core::check;
@@ -90,6 +104,11 @@ pub struct CrownParams {
     pub years: u32,
     /// Positions of the trees' bases along x (one tree per entry).
     pub trees_x: Vec<f64>,
+    /// The source's extension of the model (Fig. 12): the fraction of its
+    /// branching angle a branch loses each year once its sister has been
+    /// shed, so it turns into its mother segment's direction and becomes
+    /// the leader. 0 (the default) is the listing.
+    pub straightening: f64,
 }
 
 impl Default for CrownParams {
@@ -113,6 +132,7 @@ impl Default for CrownParams {
             transmittance: 0.25,
             years: 6,
             trees_x: vec![0.0],
+            straightening: 0.0,
         }
     }
 }
@@ -153,6 +173,13 @@ impl CrownParams {
             1e-6,
             1.0,
             "a ratio in (0, 1]",
+        )?;
+        check::in_range(
+            "CrownParams::straightening",
+            self.straightening,
+            0.0,
+            1.0,
+            "a fraction in [0, 1]",
         )?;
         check::in_range(
             "CrownParams::transmittance",
@@ -201,9 +228,14 @@ impl CrownParams {
         self.delay + 1
     }
 
-    /// The model's L-system text (the source's listing with the errata above applied).
+    /// The model's L-system text (the source's listing with the errata
+    /// above applied, and with [`Self::straightening`] above 0 its
+    /// extension, described in the module docs).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
+        if self.straightening > 0.0 {
+            return self.extension_rules();
+        }
         let tree = "!(W,1,1)F(2)L(1,LP,0,0)A(1,0)[!(0,0,0)]!(W,0,1)";
         let axiom: String = self
             .trees_x
@@ -225,6 +257,70 @@ impl CrownParams {
              ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> /(φ)-(α0)[!(0,0,0)]!(W,-PG,1)F(vig)L(vig,LP,0,0)A(vig,0)\n\
              ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
              ?E(r) -> ε\n\
+             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
+             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n",
+            self.divergence_deg,
+            self.alpha0_deg,
+            self.alpha1_deg,
+            self.alpha2_deg,
+            self.width,
+            self.vigor_decrement,
+            self.delay,
+            self.leaf_years,
+            self.production,
+            self.leaf_maintenance,
+            self.branching,
+            self.growth,
+            self.branch_maintenance,
+            self.branch_exponent,
+            self.shed_min,
+        )
+    }
+}
+
+impl CrownParams {
+    /// The listing extended as the source describes its Fig. 12 ("a
+    /// gradual reduction of the branching angle of a young branch whose
+    /// sister branch has been shed"; its rules are not printed, so these
+    /// are ours): a fork writes a module `C(s1, s2)` before its lateral
+    /// branch. `C` sees both daughters' first `!` in its right context; a
+    /// daughter shed by p11 is left as `!(w, 0, 0)` with `w > 0` (a virtual
+    /// branch has `w = 0`), and `C` records it (`s1`: the lateral shed, `s2`:
+    /// the main axis shed). The daughters' turns `+(α2)` and `-(α1)` have
+    /// `C` as their left context (the lateral's across its `[`, the main's
+    /// across the whole lateral branch) and shrink by `SR` a step while
+    /// their sister is gone: `SR^(Del+1) = 1 − straightening` a year. The
+    /// mother's p10 and p11 see `C` between its leaf and the fork, so they
+    /// are written once more with it.
+    fn extension_rules(&self) -> String {
+        let tree = "!(W,1,1)F(2)L(1,LP,0,0)A(1,0)[!(0,0,0)]!(W,0,1)";
+        let axiom: String = self
+            .trees_x
+            .iter()
+            .map(|x| format!("[-(90)f({x})+(90){tree}]"))
+            .collect();
+        let sr = (1.0 - self.straightening).powf(1.0 / f64::from(self.steps_per_year()));
+        format!(
+            "#define φ {}\n#define α0 {}\n#define α1 {}\n#define α2 {}\n#define W {}\n#define VD {}\n\
+             #define Del {}\n#define LS {}\n#define LP {}\n#define LM {}\n#define PB {}\n#define PG {}\n\
+             #define BM {}\n#define BE {}\n#define Nmin {}\n#define SR {sr}\n\
+             Consider: ?E [ ] L ! C\n\
+             ω: {axiom}\n\
+             A(vig,del) : del < Del -> A(vig,del+1)\n\
+             L(vig,p,age,del) : (age < LS) && (del < Del-1) -> L(vig,p,age,del+1)\n\
+             L(vig,p,age,del) : (age < LS) && (del == Del-1) -> L(vig,p,age,del+1)?E(vig*0.5)\n\
+             L(vig,p,age,del) > ?E(r) : (age < LS) && (r*LP >= LM) && (del == Del) -> L(vig,LP*r-LM,age+1,0)\n\
+             L(vig,p,age,del) > ?E(r) : ((age == LS) || (r*LP < LM)) && (del == Del) -> L(0,0,LS,0)\n\
+             ?E(r) < A(vig,del) : r*LP-LM > PB {{ vig = vig*VD; }} -> /(φ)C(0,0)[+(α2)!(W,-PB,1)F(vig)L(vig,LP,0,0)A(vig,0)[!(0,0,0)]!(W,0,1)]-(α1)!(W,0,1)F(vig)L(vig,LP,0,0)/A(vig,0)\n\
+             ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> /(φ)-(α0)[!(0,0,0)]!(W,-PG,1)F(vig)L(vig,LP,0,0)A(vig,0)\n\
+             ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
+             ?E(r) -> ε\n\
+             C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s1 == 0) && (w1 > 0) && (n1 == 0) -> C(1,s2)\n\
+             C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s2 == 0) && (w2 > 0) && (n2 == 0) -> C(s1,1)\n\
+             C(s1,s2) < +(a) : s2 == 1 -> +(a*SR)\n\
+             C(s1,s2) < -(a) : s1 == 1 -> -(a*SR)\n\
+             !(w0,q0,n0) > L(vig,pL,age,del) C(s1,s2) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
+             !(w0,q0,n0) > L(vig,pL,age,del) C(s1,s2) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n\
              !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
              !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n",
             self.divergence_deg,

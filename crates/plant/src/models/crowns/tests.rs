@@ -165,3 +165,115 @@ fn counts_for_table_1() {
         );
     }
 }
+
+/// The angles of each fork's daughters, `(s1, s2, lateral +, main −)`,
+/// read from the module `C(s1, s2)` the extension writes before a fork.
+fn forks(run: &Run) -> Vec<(f64, f64, f64, f64)> {
+    let sym = |n: &str| run.lsystem.symbol(n).unwrap();
+    let (c, open, close) = (sym("C"), sym("["), sym("]"));
+    let s = &run.string;
+    let mut out = Vec::new();
+    for i in 0..s.len() {
+        if s.symbol(i) != c {
+            continue;
+        }
+        assert_eq!(s.symbol(i + 1), open);
+        let lateral = s.params(i + 2)[0];
+        let mut depth = 0;
+        let mut j = i + 1;
+        loop {
+            if s.symbol(j) == open {
+                depth += 1;
+            } else if s.symbol(j) == close {
+                depth -= 1;
+                if depth == 0 {
+                    break;
+                }
+            }
+            j += 1;
+        }
+        let q = s.params(i);
+        out.push((q[0], q[1], lateral, s.params(j + 1)[0]));
+    }
+    out
+}
+
+#[test]
+fn the_extension_without_straightening_is_the_listing() {
+    // The extension's rules with a vanishing straightening grow the
+    // listing's tree: the same segments and living clusters after 8 years.
+    let p = CrownParams {
+        years: 8,
+        straightening: 1e-12,
+        ..CrownParams::default()
+    };
+    let listing = CrownParams {
+        straightening: 0.0,
+        ..p.clone()
+    };
+    let counts = |p: &CrownParams| {
+        let run = crowns(p).unwrap();
+        let live = living_clusters(&run, p.leaf_years).unwrap().len();
+        (run.count("F"), run.count("L"), live, run.count("C"))
+    };
+    let (ext, lst) = (counts(&p), counts(&listing));
+    assert_eq!((ext.0, ext.1, ext.2), (lst.0, lst.1, lst.2));
+    assert_eq!(lst, (463, 465, 405, 0));
+    assert!(ext.3 > 100, "{ext:?}");
+}
+
+#[test]
+fn a_branch_whose_sister_was_shed_turns_to_lead() {
+    // Fig. 12's extension: once a fork's lateral is shed its main axis
+    // turns back towards the mother's direction, and the other way round;
+    // a fork with both daughters keeps the listing's angles.
+    let p = CrownParams {
+        years: 12,
+        straightening: 0.5,
+        ..CrownParams::default()
+    };
+    let run = crowns(&p).unwrap();
+    let f = forks(&run);
+    let (a1, a2) = (p.alpha1_deg, p.alpha2_deg);
+    let lateral_shed = f.iter().filter(|x| x.0 == 1.0).count();
+    let main_shed = f.iter().filter(|x| x.1 == 1.0).count();
+    assert!(
+        lateral_shed > 10 && main_shed > 10,
+        "{lateral_shed} {main_shed}"
+    );
+    for &(s1, s2, lat, main) in &f {
+        assert_eq!(main < a1, s1 == 1.0, "{s1} {s2} {lat} {main}");
+        assert_eq!(lat < a2, s2 == 1.0, "{s1} {s2} {lat} {main}");
+        assert!(main > 0.0 && lat > 0.0 && main <= a1 && lat <= a2);
+    }
+    // A year after the shedding the angle has lost half: some have turned
+    // most of the way.
+    assert!(f.iter().any(|x| x.0 == 1.0 && x.3 < 0.3 * a1));
+}
+
+#[test]
+fn counts_for_table_1_extended() {
+    // Fig. 12's tree: 24 years of the extension (one tree, half the angle a
+    // year): segments and living clusters, against the source's 22 462 and
+    // 19 195 (its rules and parameters are not printed).
+    let p = CrownParams {
+        years: 24,
+        straightening: 0.5,
+        ..CrownParams::default()
+    };
+    let run = crowns(&p).unwrap();
+    let live = living_clusters(&run, p.leaf_years).unwrap().len();
+    assert_eq!((run.count("F"), live), (11839, 9356));
+}
+
+#[test]
+fn a_bad_straightening_is_named() {
+    for v in [f64::NAN, -0.1, 1.5] {
+        let p = CrownParams {
+            straightening: v,
+            ..CrownParams::default()
+        };
+        let e = crowns(&p).unwrap_err().to_string();
+        assert!(e.contains("CrownParams::straightening"), "{v}: {e}");
+    }
+}
