@@ -1,7 +1,7 @@
 //! The source papers' plant models as pictures: Honda's branch tiers, a
 //! clonal plant foraging over patches of light, roots in soil water, tree
 //! crowns and conifers competing for light, a tree of the extended crowns
-//! model and a stand of three trees (open L-systems, Měch & Prusinkiewicz
+//! model with a climber on it and a stand of three trees (open L-systems, Měch & Prusinkiewicz
 //! 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc and a pinnate leaf
 //! on a curved stem (Prusinkiewicz et al. 2001, Alg. 5 and 4).
@@ -26,20 +26,21 @@ use natura::core::Image;
 use natura::core::glam::{DVec3, Vec3};
 use natura::plant::models::Run as ModelRun;
 use natura::plant::models::{
-    clonal, compound, conifers, crowns, phyllotaxis, positional, roots, roots3d, tiers,
+    climber, clonal, compound, conifers, crowns, phyllotaxis, positional, roots, roots3d, tiers,
 };
 use natura::plant::preview::{PreviewCamera, PreviewParams, render};
 use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 11] = [
+const MODELS: [&str; 12] = [
     "tiers",
     "clonal",
     "roots",
     "roots3d",
     "crowns",
     "extended",
+    "climber",
     "conifers",
     "stand",
     "phyllotaxis",
@@ -49,8 +50,8 @@ const MODELS: [&str; 11] = [
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
-/// and conifers competing for light, a tree of the extended crowns model, a
-/// stand of three trees, phyllotaxis on a cone,
+/// and conifers competing for light, a tree of the extended crowns model and
+/// a climber on it, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc and a pinnate leaf. Writes MODEL.png for
 /// each.
 #[derive(Parser)]
@@ -160,6 +161,36 @@ fn extended_params(years: u32) -> crowns::CrownParams {
         years,
         straightening: 0.5,
         ..crowns::CrownParams::default()
+    }
+}
+
+/// The climber of Fig. 13 for `steps` steps, seeded on the ground 2 cm
+/// from the bark of `tree`'s first segment (its trunk), on the side facing
+/// +x.
+fn climber_params(tree: &Geometry, steps: u32) -> climber::ClimberParams {
+    // Scaled to the tree (about 9 m tall): leaves to be seen on it.
+    let p = climber::ClimberParams {
+        step: 0.1,
+        leaf: 0.35,
+        offset: 0.04,
+        reach: 0.5,
+        cell: 0.5,
+        width: 0.04,
+        ..climber::ClimberParams::default()
+    };
+    let (base, r) = tree
+        .start
+        .first()
+        .zip(tree.width0.first())
+        .map_or((Vec3::ZERO, 0.0), |(&b, &w)| (b, 0.5 * w));
+    climber::ClimberParams {
+        start: [
+            f64::from(base.x + r) + p.offset,
+            f64::from(base.y),
+            f64::from(base.z) + p.step,
+        ],
+        steps,
+        ..p
     }
 }
 
@@ -311,6 +342,22 @@ fn plant_models() -> common::Run {
         let p = extended_params(if quick { 8 } else { 24 });
         let run = crowns::crowns(&p)?;
         show(&run, Vec3::Y, size, &out, "extended.png")?;
+    }
+    if want("climber") {
+        // Fig. 13: a climbing plant seeded at the foot of the tree of
+        // Fig. 12, winding up its trunk and out along its branches.
+        let tree = crowns::crowns(&extended_params(if quick { 8 } else { 24 }))?.geometry()?;
+        let p = climber_params(&tree, if quick { 80 } else { 700 });
+        let (run, env) = climber::climber(&p, &tree)?;
+        let mut g = tree;
+        g.append(&run.geometry()?);
+        picture(&g, Vec3::new(0.6, 1.0, 0.0), size, &out, "climber.png")?;
+        outln(format_args!(
+            "climber: {} segments; apices stopped by crowding {}, off the bark {}",
+            run.count("F"),
+            env.crowded,
+            env.unsupported
+        ))?;
     }
     if want("conifers") {
         // Fig. 15: two conifers grown side by side in tiers, the lower

@@ -18,7 +18,7 @@
 //! Prusinkiewicz 1996 with their environments (Honda's branch tiers, a clonal
 //! plant foraging over patches of light, roots growing in soil water in a
 //! vertical section or in 3-D soil, deciduous crowns and conifers competing
-//! for light),
+//! for light, a climber on a tree),
 //! collision-based phyllotaxis with its organ placement (Fowler et al. 1992)
 //! and positional-information
 //! algorithms (organ spacing, compound leaves, Ridley's packing and branch

@@ -317,3 +317,32 @@ fn tropism_directive_with_macros_and_heading() {
     }
     assert!(*xs.last().unwrap() > 0.9, "{xs:?}");
 }
+
+#[test]
+fn appended_geometry_keeps_each_plants_segments_and_links() {
+    // Two plants in one geometry: every segment, link and surface of both,
+    // the second's links shifted past the first's segments.
+    let draw = |text: &str| {
+        let l = LSystem::parse(text).unwrap();
+        let mut d = Derivation::new(&l, 0).unwrap();
+        d.derive(2).unwrap();
+        Turtle::new(&l, TurtleParams::for_lsystem(&l))
+            .unwrap()
+            .interpret(d.string())
+            .unwrap()
+    };
+    let a = draw("ω: F\nF -> F[+F]F\n");
+    let b = draw("ω: FF~L(1)\n");
+    let mut g = a.clone();
+    g.append(&b);
+    assert_eq!(g.segment_count(), a.segment_count() + b.segment_count());
+    assert_eq!(g.surfaces.len(), a.surfaces.len() + b.surfaces.len());
+    let n = a.segment_count();
+    assert_eq!(&g.start[n..], &b.start[..]);
+    assert_eq!(&g.prev[..n], &a.prev[..]);
+    for (k, &p) in b.prev.iter().enumerate() {
+        let q = g.prev[n + k];
+        assert_eq!(q, if p == u32::MAX { p } else { p + n as u32 });
+    }
+    assert!(b.prev.iter().any(|&p| p != u32::MAX));
+}

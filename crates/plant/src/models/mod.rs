@@ -10,12 +10,14 @@
 //! | the same in 3-D soil | Měch & Prusinkiewicz 1996, §7, Fig. 10 | [`roots3d`] |
 //! | tree crowns competing for light | Měch & Prusinkiewicz 1996, §8, Fig. 11–14, 16 | [`crowns`] |
 //! | conifers in tiers competing for light (rules our own) | Měch & Prusinkiewicz 1996, §8, Fig. 15 | [`conifers`] |
+//! | a climbing plant following a tree's bark, avoiding crowding (rules our own) | Měch & Prusinkiewicz 1996, §8, Fig. 13 | [`climber`] |
 //! | collision-based spiral phyllotaxis and organ placement | Fowler et al. 1992, §2.4, §3.1 | [`phyllotaxis`] |
 //! | compound leaves (organs at a density along a curved stem) | Prusinkiewicz et al. 2001, §5, Alg. 4 | [`compound`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
 //! [`Environment`]: crate::Environment
 
+pub mod climber;
 pub mod clonal;
 pub mod compound;
 pub mod conifers;

@@ -98,6 +98,30 @@ impl Geometry {
         k
     }
 
+    /// Appends `other`'s segments, polygons and surfaces (a second plant in
+    /// the same picture, as a climber on its tree); the links of `other`'s
+    /// segments to the segments they continue are shifted past this
+    /// geometry's, so each still continues its own.
+    pub fn append(&mut self, other: &Geometry) {
+        let shift = self.start.len() as u32;
+        self.start.extend_from_slice(&other.start);
+        self.end.extend_from_slice(&other.end);
+        self.up.extend_from_slice(&other.up);
+        self.width0.extend_from_slice(&other.width0);
+        self.width1.extend_from_slice(&other.width1);
+        self.dist0.extend_from_slice(&other.dist0);
+        self.dist1.extend_from_slice(&other.dist1);
+        self.colour.extend_from_slice(&other.colour);
+        self.prev.extend(
+            other
+                .prev
+                .iter()
+                .map(|&k| if k == u32::MAX { k } else { k + shift }),
+        );
+        self.polygons.extend(other.polygons.iter().cloned());
+        self.surfaces.extend(other.surfaces.iter().cloned());
+    }
+
     /// The largest path length from the base (for wind weights), at least a tiny positive number.
     #[must_use]
     pub fn max_distance(&self) -> f32 {
