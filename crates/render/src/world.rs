@@ -238,8 +238,18 @@ impl World {
         let deposition = times.time("erosion", || erode(scene, &mut terrain, progress))?;
         times.time("terraces", || terrace(scene, seed, &mut terrain))?;
         times.time("coast", || sink_coast(scene, seed, &mut terrain))?;
-        let wetness = times.time("wetness", || analysis::wetness(&terrain))?;
-        Self::finish(scene, terrain, deposition, wetness, times, progress)
+        // The wetness (a flow analysis of the whole field, in good part
+        // serial) and the water and the sky need only the finished terrain:
+        // they run side by side, timed as one stage.
+        let (wetness, water_sky) = times.time("wetness, lakes, atmosphere", || {
+            join(
+                || analysis::wetness(&terrain),
+                || water_and_sky(scene, &terrain, progress),
+            )
+        });
+        Ok(Self::assemble(
+            scene, terrain, deposition, wetness?, water_sky?, times,
+        ))
     }
 
     /// The terrain alone, exactly as [`World::build`] makes it (synthesis,
@@ -361,27 +371,34 @@ impl World {
         mut times: StageTimes,
         progress: &dyn Progress,
     ) -> Result<World> {
-        let water_level = if scene.water.enabled {
-            Some(water_level(scene, &terrain)?)
-        } else {
-            None
-        };
-        let surface = times.time("lakes", || water_surface(&terrain, water_level))?;
-        let sun = sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg);
-        let atmosphere = times.time("atmosphere", || {
-            Atmosphere::with_progress(atmosphere_params(scene, &terrain), progress)
+        let water_sky = times.time("lakes, atmosphere", || {
+            water_and_sky(scene, &terrain, progress)
         })?;
-        Ok(World {
+        Ok(Self::assemble(
+            scene, terrain, deposition, wetness, water_sky, times,
+        ))
+    }
+
+    /// The world from its parts.
+    fn assemble(
+        scene: &SceneDesc,
+        terrain: HeightField,
+        deposition: Grid2<f32>,
+        wetness: Grid2<f32>,
+        (water_level, surface, atmosphere): WaterSky,
+        times: StageTimes,
+    ) -> World {
+        World {
             scene: scene.clone(),
             terrain,
             deposition,
             wetness,
             water_level,
             surface,
-            sun,
+            sun: sun_direction(scene.sun.elevation_deg, scene.sun.azimuth_deg),
             atmosphere,
             times,
-        })
+        }
     }
 
     /// A shaded-relief map of the terrain (north up): terrain false colour,
@@ -420,6 +437,40 @@ impl World {
     pub fn sun_dir(&self) -> Dir3 {
         // `sun` is a unit vector built from angles; Dir3::new only fails on zero/NaN.
         Dir3::new(self.sun.as_dvec3()).unwrap_or(Dir3::UP)
+    }
+}
+
+/// The water level (if the scene has water), the water's surface and the
+/// atmosphere's tables.
+type WaterSky = (Option<f32>, HeightField, Atmosphere);
+
+/// The stages after the terrain that need only it: the water level and
+/// surface (the lakes) and the atmosphere's tables.
+fn water_and_sky(
+    scene: &SceneDesc,
+    terrain: &HeightField,
+    progress: &dyn Progress,
+) -> Result<WaterSky> {
+    let level = if scene.water.enabled {
+        Some(water_level(scene, terrain)?)
+    } else {
+        None
+    };
+    let surface = water_surface(terrain, level)?;
+    let atmosphere = Atmosphere::with_progress(atmosphere_params(scene, terrain), progress)?;
+    Ok((level, surface, atmosphere))
+}
+
+/// `a` and `b`, side by side with the `parallel` feature (each result is
+/// its closure's alone, so the world is the same bit for bit either way).
+fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::join(a, b)
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (a(), b())
     }
 }
 
