@@ -1,10 +1,11 @@
 //! The source papers' plant models as pictures: Honda's branch tiers, a
 //! clonal plant foraging over patches of light, roots in soil water, tree
 //! crowns and conifers competing for light, a tree of the extended crowns
-//! model with a climber on it and a stand of three trees (open L-systems, Měch & Prusinkiewicz
-//! 1996), collision-based phyllotaxis on a cone
-//! (Fowler et al. 1992) and Ridley's packing on a disc and a pinnate leaf
-//! on a curved stem (Prusinkiewicz et al. 2001, Alg. 5 and 4).
+//! model with a climber on it and a stand of three trees (open L-systems,
+//! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
+//! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
+//! curved stem and three phyllotaxes set by one constant (Prusinkiewicz et
+//! al. 2001, Alg. 5 and 4).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -33,7 +34,7 @@ use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 12] = [
+const MODELS: [&str; 13] = [
     "tiers",
     "clonal",
     "roots",
@@ -46,14 +47,15 @@ const MODELS: [&str; 12] = [
     "phyllotaxis",
     "ridley",
     "compound",
+    "phyllotaxes",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
 /// and conifers competing for light, a tree of the extended crowns model and
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
-/// Ridley's packing on a disc and a pinnate leaf. Writes MODEL.png for
-/// each.
+/// Ridley's packing on a disc, a pinnate leaf and three phyllotaxes.
+/// Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -412,7 +414,62 @@ fn plant_models() -> common::Run {
         let run = compound::compound(&compound::CompoundParams::fern())?;
         show(&run, Vec3::NEG_X, size, &out, "compound.png")?;
     }
+    if want("phyllotaxes") {
+        // Fig. 8: one constant of Algorithm 4 sets the phyllotaxis: a
+        // distichous, a decussate and a spiral shoot, seen from the side.
+        let sheet = Image::contact_sheet(
+            &phyllotaxes()?
+                .iter()
+                .map(|p| {
+                    let g = compound::compound(p)?.geometry()?;
+                    let mesh = PlantMesh::from_geometry(&g, &MeshParams::default())?;
+                    let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+                    let cam = PreviewCamera::framing(lo, hi, Vec3::new(1.0, 0.35, 0.0), None, 1.0)?;
+                    Ok(render(&mesh, &PreviewParams::new(size, size, cam))?)
+                })
+                .collect::<Result<Vec<Image>, common::Exit>>()?,
+            3,
+            0,
+            Vec3::ONE,
+        )?;
+        sheet.save_png(out.join("phyllotaxes.png"))?;
+        outln(format_args!(
+            "phyllotaxes.png: Φ = 0°, 90° (pairs), 137.5° (single)"
+        ))?;
+    }
     Ok(())
+}
+
+/// Fig. 8's three shoots from Algorithm 4 ([`compound::compound`]): a
+/// stem of 10 with organs shrinking from 2.2 long at its base to 0.4 at
+/// its tip at 55°, the nodes every 0.5; `Φ = 0` with a pair at each node
+/// (distichous), `Φ = 90°` with a pair (decussate) and `Φ = 137.5°` with
+/// one organ at each node every 0.25 (spiral).
+fn phyllotaxes() -> Result<Vec<compound::CompoundParams>, common::Exit> {
+    let f = |pts: &[(f64, f64)]| natura::plant::lang::Function::new(pts);
+    let base = compound::CompoundParams {
+        leaflet_length: f(&[(0.0, 2.2), (10.0, 0.4)])?,
+        leaflet_width: f(&[(0.0, 0.7), (10.0, 0.2)])?,
+        branch_angle: f(&[(0.0, 55.0)])?,
+        stem_width: f(&[(0.0, 0.14), (10.0, 0.04)])?,
+        ..compound::CompoundParams::default()
+    };
+    Ok(vec![
+        compound::CompoundParams {
+            phyllotaxis_deg: 0.0,
+            ..base.clone()
+        },
+        compound::CompoundParams {
+            phyllotaxis_deg: 90.0,
+            ..base.clone()
+        },
+        compound::CompoundParams {
+            phyllotaxis_deg: 137.5,
+            pairs: false,
+            internode: f(&[(0.0, 0.25)])?,
+            ..base
+        },
+    ])
 }
 
 #[cfg(test)]
@@ -432,6 +489,37 @@ mod tests {
         assert!(low[1] > low[0].max(low[2]) + 1.0, "{low:?}");
         let middle = clusters.iter().filter(|c| c.0 == 2).count();
         assert!(middle > 50, "{middle} clusters");
+    }
+
+    #[test]
+    fn one_constant_sets_the_phyllotaxis() {
+        // Fig. 8: the organs' directions round the stem (azimuths of their
+        // headings, degrees) in node order.
+        let azimuths = |p: &compound::CompoundParams| -> Vec<f64> {
+            let g = compound::compound(p).unwrap().geometry().unwrap();
+            g.surfaces
+                .iter()
+                .map(|s| s.frame.h.y.atan2(s.frame.h.x).to_degrees())
+                .collect()
+        };
+        let near = |a: f64, b: f64, period: f64| {
+            let r = (a - b).rem_euclid(period);
+            r.min(period - r) < 1e-6
+        };
+        let shoots = phyllotaxes().unwrap();
+        // Distichous: every organ in one plane, on either side.
+        let a = azimuths(&shoots[0]);
+        assert!(a.len() > 30 && a.iter().all(|&x| near(x, a[0], 180.0)));
+        // Decussate: pairs turned 90° from node to node.
+        let a = azimuths(&shoots[1]);
+        assert!(a.iter().all(|&x| near(x, a[0], 90.0)));
+        assert!(near(a[2], a[0] + 90.0, 180.0) && near(a[1], a[0] + 180.0, 360.0));
+        // Spiral: one organ a node, each 137.5° round from the last.
+        let a = azimuths(&shoots[2]);
+        for w in a.windows(2) {
+            let d = (w[1] - w[0]).rem_euclid(360.0);
+            assert!((d - 137.5).abs() < 1e-6 || (d - 222.5).abs() < 1e-6, "{d}");
+        }
     }
 
     #[test]
