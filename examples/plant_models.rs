@@ -4,8 +4,8 @@
 //! model with a climber on it and a stand of three trees (open L-systems,
 //! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
-//! curved stem and three phyllotaxes set by one constant (Prusinkiewicz et
-//! al. 2001, Alg. 5 and 4).
+//! curved stem, three phyllotaxes set by one constant and a lilac panicle
+//! by branch mapping (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -31,10 +31,10 @@ use natura::plant::models::{
 };
 use natura::plant::preview::{PreviewCamera, PreviewParams, render};
 use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
-use natura::plant::{Geometry, MeshParams, PlantMesh};
+use natura::plant::{Derivation, Geometry, LSystem, MeshParams, PlantMesh, TurtleParams};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 13] = [
+const MODELS: [&str; 14] = [
     "tiers",
     "clonal",
     "roots",
@@ -48,14 +48,15 @@ const MODELS: [&str; 13] = [
     "ridley",
     "compound",
     "phyllotaxes",
+    "lilac",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
 /// and conifers competing for light, a tree of the extended crowns model and
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
-/// Ridley's packing on a disc, a pinnate leaf and three phyllotaxes.
-/// Writes MODEL.png for each.
+/// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes and a lilac
+/// panicle. Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -437,8 +438,58 @@ fn plant_models() -> common::Run {
             "phyllotaxes.png: Φ = 0°, 90° (pairs), 137.5° (single)"
         ))?;
     }
+    if want("lilac") {
+        // Fig. 18: a lilac panicle by branch mapping (Algorithm 6): each
+        // branch repeats the distal part of the longest axis of its order,
+        // in decussate pairs, a flower at every axis's end.
+        let g = lilac()?;
+        let mesh = PlantMesh::from_geometry(&g, &MeshParams::default())?;
+        let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+        let cam = PreviewCamera::framing(lo, hi, Vec3::new(1.0, 0.4, 0.0), None, 1.0)?;
+        let params = PreviewParams {
+            leaf: Vec3::new(0.42, 0.28, 0.62),
+            ..PreviewParams::new(size, size, cam)
+        };
+        render(&mesh, &params)?.save_png(out.join("lilac.png"))?;
+        outln(format_args!(
+            "lilac.png: {} segments, {} flowers",
+            g.segment_count(),
+            g.surfaces.len()
+        ))?;
+    }
     Ok(())
 }
+
+/// The lilac panicle of Fig. 18: Algorithm 6 with [`LILAC_MAX_LEN`],
+/// internodes of 0.5, branches at 50° and children as long as the rest of
+/// their mother's order (`branch_len(o, rel) = max_len[o+1]·(1 − rel)`),
+/// derived to the end; the listing's flowers `~K`, of unit size, drawn
+/// 0.3 across (a few internodes).
+fn lilac() -> Result<Geometry, common::Exit> {
+    let l = LSystem::parse(&positional::branch_mapping_text(
+        &LILAC_MAX_LEN,
+        0.5,
+        50.0,
+        1.0,
+    )?)?;
+    let mut d = Derivation::new(&l, 0)?;
+    d.derive(64)?;
+    let run = ModelRun {
+        turtle: TurtleParams::for_lsystem(&l),
+        string: d.string().clone(),
+        lsystem: l,
+    };
+    let mut g = run.geometry()?;
+    for f in &mut g.surfaces {
+        (f.length, f.width) = (0.3, 0.3);
+    }
+    Ok(g)
+}
+
+/// The longest axis of each order of the lilac panicle of Fig. 18 (the
+/// main axis, its branches, theirs; the last entry is the order the
+/// listing indexes past the deepest): our values.
+const LILAC_MAX_LEN: [f64; 4] = [8.0, 4.0, 1.5, 0.5];
 
 /// Fig. 8's three shoots from Algorithm 4 ([`compound::compound`]): a
 /// stem of 10 with organs shrinking from 2.2 long at its base to 0.4 at
@@ -520,6 +571,28 @@ mod tests {
             let d = (w[1] - w[0]).rem_euclid(360.0);
             assert!((d - 137.5).abs() < 1e-6 || (d - 222.5).abs() < 1e-6, "{d}");
         }
+    }
+
+    #[test]
+    fn the_lilac_narrows_to_its_tip() {
+        // Fig. 18: branch mapping makes each branch the distal part of the
+        // longest of its order, so the branches shorten up the main axis
+        // and the panicle is a cone: its lower third spreads half as wide
+        // again as its upper third (the branches rise at 50°, so the lower
+        // ones reach into the upper third), and every axis ends in a flower.
+        let g = lilac().unwrap();
+        let (lo, hi) = g.bounds().unwrap();
+        let third = (hi.z - lo.z) / 3.0;
+        let spread = |z0: f32, z1: f32| {
+            g.end
+                .iter()
+                .filter(|e| e.z >= z0 && e.z < z1)
+                .map(|e| e.truncate().length())
+                .fold(0.0f32, f32::max)
+        };
+        let (low, high) = (spread(lo.z, lo.z + third), spread(hi.z - third, hi.z + 1.0));
+        assert!(low > 1.5 * high, "{low} {high}");
+        assert!(g.surfaces.len() > g.segment_count());
     }
 
     #[test]
