@@ -4,8 +4,9 @@
 //! model with a climber on it and a stand of three trees (open L-systems,
 //! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
-//! curved stem, three phyllotaxes set by one constant and a lilac panicle
-//! by branch mapping (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
+//! curved stem, three phyllotaxes set by one constant, and a lilac, an
+//! astilbe and a tree shaped by a silhouette by branch mapping
+//! (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -34,7 +35,7 @@ use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Derivation, Geometry, LSystem, MeshParams, PlantMesh, TurtleParams};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 14] = [
+const MODELS: [&str; 16] = [
     "tiers",
     "clonal",
     "roots",
@@ -49,14 +50,16 @@ const MODELS: [&str; 14] = [
     "compound",
     "phyllotaxes",
     "lilac",
+    "astilbe",
+    "silhouette",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
 /// clonal plant, roots in soil water (in a section and in 3-D), tree crowns
 /// and conifers competing for light, a tree of the extended crowns model and
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
-/// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes and a lilac
-/// panicle. Writes MODEL.png for each.
+/// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
+/// an astilbe and a tree shaped by a silhouette. Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -442,23 +445,111 @@ fn plant_models() -> common::Run {
         // Fig. 18: a lilac panicle by branch mapping (Algorithm 6): each
         // branch repeats the distal part of the longest axis of its order,
         // in decussate pairs, a flower at every axis's end.
-        let g = lilac()?;
-        let mesh = PlantMesh::from_geometry(&g, &MeshParams::default())?;
-        let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
-        let cam = PreviewCamera::framing(lo, hi, Vec3::new(1.0, 0.4, 0.0), None, 1.0)?;
-        let params = PreviewParams {
-            leaf: Vec3::new(0.42, 0.28, 0.62),
-            ..PreviewParams::new(size, size, cam)
-        };
-        render(&mesh, &params)?.save_png(out.join("lilac.png"))?;
-        outln(format_args!(
-            "lilac.png: {} segments, {} flowers",
-            g.segment_count(),
-            g.surfaces.len()
-        ))?;
+        flowers(
+            &lilac()?,
+            Vec3::new(0.42, 0.28, 0.62),
+            size,
+            &out,
+            "lilac.png",
+        )?;
+    }
+    if want("astilbe") {
+        // Fig. 19: the source's "small modification" of Algorithm 6, one
+        // branch a node rolled 137.5° (spiral), an astilbe's plume.
+        let g = mapped(&astilbe()?, 0.035, 0.22)?;
+        flowers(&g, Vec3::new(0.86, 0.7, 0.78), size, &out, "astilbe.png")?;
+    }
+    if want("silhouette") {
+        // Fig. 20: straight first-order axes and short higher orders: the
+        // children's lengths along the trunk are the crown's silhouette.
+        let g = mapped(&silhouette_tree()?, 0.1, 0.25)?;
+        flowers(&g, Vec3::new(0.3, 0.55, 0.22), size, &out, "silhouette.png")?;
     }
     Ok(())
 }
+
+/// Draws `g` from the side, its flowers (its only surfaces) in `colour`.
+fn flowers(
+    g: &Geometry,
+    colour: Vec3,
+    size: u32,
+    out: &std::path::Path,
+    name: &str,
+) -> common::Run {
+    let mesh = PlantMesh::from_geometry(g, &MeshParams::default())?;
+    let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ONE));
+    let cam = PreviewCamera::framing(lo, hi, Vec3::new(1.0, 0.4, 0.0), None, 1.0)?;
+    let params = PreviewParams {
+        leaf: colour,
+        ..PreviewParams::new(size, size, cam)
+    };
+    render(&mesh, &params)?.save_png(out.join(name))?;
+    outln(format_args!(
+        "{name}: {} segments, {} flowers",
+        g.segment_count(),
+        g.surfaces.len()
+    ))
+}
+
+/// An L-system of Algorithm 6 derived to the end (64 steps) and drawn with
+/// stems `width` across, its flowers `~K` (of unit size in the listing)
+/// `flower` across.
+fn mapped(l: &LSystem, width: f64, flower: f64) -> Result<Geometry, common::Exit> {
+    let mut d = Derivation::new(l, 0)?;
+    d.derive(64)?;
+    let run = ModelRun {
+        turtle: TurtleParams {
+            width,
+            ..TurtleParams::for_lsystem(l)
+        },
+        string: d.string().clone(),
+        lsystem: l.clone(),
+    };
+    let mut g = run.geometry()?;
+    for f in &mut g.surfaces {
+        (f.length, f.width) = (flower, flower);
+    }
+    Ok(g)
+}
+
+/// Fig. 19's astilbe: a spiral plume, the main axis 6 long with branches of
+/// at most 2.5, 0.8 and 0.3, internodes of 0.25, branches at 45°, children
+/// shortening linearly up their mother (our values).
+fn astilbe() -> Result<LSystem, common::Exit> {
+    Ok(positional::BranchMapping {
+        max_len: vec![6.0, 2.5, 0.8, 0.3],
+        internode: 0.25,
+        angle_deg: 45.0,
+        silhouette: natura::plant::lang::Function::new(&[(0.0, 1.0), (1.0, 0.0)])?,
+        spiral: true,
+    }
+    .lsystem()?)
+}
+
+/// Fig. 20's tree: a trunk 12 long with decussate branches of at most 6,
+/// then 1 and 0.3, internodes of 0.4, at 60°, along the silhouette
+/// [`SILHOUETTE`] (our values): bare to a quarter of the trunk, widest at
+/// 0.45, closing at the top.
+fn silhouette_tree() -> Result<LSystem, common::Exit> {
+    Ok(positional::BranchMapping {
+        max_len: vec![12.0, 6.0, 1.0, 0.3],
+        internode: 0.4,
+        angle_deg: 60.0,
+        silhouette: natura::plant::lang::Function::new(&SILHOUETTE)?,
+        spiral: false,
+    }
+    .lsystem()?)
+}
+
+/// The crown silhouette of Fig. 20's tree: a child's length as a fraction
+/// of the longest, by its node's position up its mother.
+const SILHOUETTE: [(f64, f64); 5] = [
+    (0.0, 0.0),
+    (0.25, 0.0),
+    (0.45, 1.0),
+    (0.75, 0.6),
+    (1.0, 0.0),
+];
 
 /// The lilac panicle of Fig. 18: Algorithm 6 with [`LILAC_MAX_LEN`],
 /// internodes of 0.5, branches at 50° and children as long as the rest of
@@ -466,24 +557,8 @@ fn plant_models() -> common::Run {
 /// derived to the end; the listing's flowers `~K`, of unit size, drawn
 /// 0.3 across (a few internodes).
 fn lilac() -> Result<Geometry, common::Exit> {
-    let l = LSystem::parse(&positional::branch_mapping_text(
-        &LILAC_MAX_LEN,
-        0.5,
-        50.0,
-        1.0,
-    )?)?;
-    let mut d = Derivation::new(&l, 0)?;
-    d.derive(64)?;
-    let run = ModelRun {
-        turtle: TurtleParams::for_lsystem(&l),
-        string: d.string().clone(),
-        lsystem: l,
-    };
-    let mut g = run.geometry()?;
-    for f in &mut g.surfaces {
-        (f.length, f.width) = (0.3, 0.3);
-    }
-    Ok(g)
+    let text = positional::branch_mapping_text(&LILAC_MAX_LEN, 0.5, 50.0, 1.0)?;
+    mapped(&LSystem::parse(&text)?, 0.1, 0.3)
 }
 
 /// The longest axis of each order of the lilac panicle of Fig. 18 (the
@@ -593,6 +668,66 @@ mod tests {
         let (low, high) = (spread(lo.z, lo.z + third), spread(hi.z - third, hi.z + 1.0));
         assert!(low > 1.5 * high, "{low} {high}");
         assert!(g.surfaces.len() > g.segment_count());
+    }
+
+    /// The first segments of the branches leaving the main axis (the
+    /// vertical through the origin): `(height, azimuth in degrees)`, lowest
+    /// first.
+    fn first_order(g: &Geometry) -> Vec<(f32, f32)> {
+        let on_axis = |p: Vec3| p.truncate().length() < 1e-4;
+        let mut v: Vec<(f32, f32)> = g
+            .start
+            .iter()
+            .zip(&g.end)
+            .filter(|(a, b)| on_axis(**a) && !on_axis(**b))
+            .map(|(a, b)| (a.z, (b.y - a.y).atan2(b.x - a.x).to_degrees()))
+            .collect();
+        v.sort_by(|p, q| p.0.total_cmp(&q.0));
+        v
+    }
+
+    #[test]
+    fn the_astilbe_branches_in_a_spiral() {
+        // Fig. 19: one branch a node, each 137.5° round from the one below.
+        let g = mapped(&astilbe().unwrap(), 0.035, 0.22).unwrap();
+        let b = first_order(&g);
+        assert!(b.len() > 15, "{}", b.len());
+        for w in b.windows(2) {
+            assert!(w[1].0 > w[0].0, "one branch a node");
+            let d = (w[1].1 - w[0].1).rem_euclid(360.0);
+            assert!((d - 137.5).abs() < 1e-3 || (d - 222.5).abs() < 1e-3, "{d}");
+        }
+    }
+
+    #[test]
+    fn the_silhouette_sets_the_crown() {
+        // Fig. 20: the children's lengths follow the silhouette, which is
+        // 0 up to a quarter of the trunk: no branch leaves the trunk below
+        // a quarter of its length plus an internode (a node's branches sit
+        // at the internode's top), and above it the branches come in
+        // decussate pairs.
+        let g = mapped(&silhouette_tree().unwrap(), 0.1, 0.25).unwrap();
+        let b = first_order(&g);
+        assert!(b.len() > 20, "{}", b.len());
+        assert!(
+            b.iter().all(|x| x.0 >= 0.25 * 12.0 + 0.4 - 1e-3),
+            "{:?}",
+            b[0]
+        );
+        for pair in b.chunks(2) {
+            assert_eq!(pair[0].0, pair[1].0);
+            let d = (pair[1].1 - pair[0].1).rem_euclid(360.0);
+            assert!((d - 180.0).abs() < 1e-3, "{d}");
+        }
+        // The widest crown is where the silhouette peaks (near 0.45 of the
+        // trunk): no segment reaches farther out than the longest branch of
+        // 6 at 60° and its short children.
+        let reach = g
+            .end
+            .iter()
+            .map(|e| e.truncate().length())
+            .fold(0.0f32, f32::max);
+        assert!(reach > 4.0 && reach < 6.0 * 0.87 + 1.3, "{reach}");
     }
 
     #[test]

@@ -8,7 +8,8 @@
 //!   (Vogel's eq. 13 on a flat disc).
 //! * [`branch_mapping_text`]: Algorithm 6 as L-system text — a child axis of
 //!   length ℓ starts at `s = max_len − ℓ` so it repeats the distal part of
-//!   the longest axis of its order (§6).
+//!   the longest axis of its order (§6); [`BranchMapping`]: the same with the
+//!   children's lengths drawn from a silhouette, and decussate or spiral.
 //!
 //! Errata: Algorithm 5 as printed places one last organ when the curve ends
 //! with `a < 1`; here an organ is placed only when `a ≥ 1`. The appendix's
@@ -17,6 +18,7 @@
 //! most one node per step, so it needs `Δs < min λ` (checked here).
 
 use crate::error::{PlantError, Result};
+use crate::lang::Function;
 
 fn bad(name: &'static str, v: f64, reason: &str) -> PlantError {
     PlantError::InvalidParameter {
@@ -156,18 +158,91 @@ pub fn branch_mapping_text(
             "positive and finite, with a finite angle",
         ));
     }
+    let child = format!("max_len[o+1] - {child_ratio}*max_len[o+1]*(1-rel)");
+    Ok(algorithm_6(max_len, int_len, &child, &decussate(angle_deg)))
+}
+
+/// Algorithm 6's branches at a node: a decussate pair, rolled 90° from the
+/// last (lilac).
+fn decussate(angle_deg: f64) -> String {
+    format!("[+({angle_deg})A(o+1,c)][-({angle_deg})A(o+1,c)]/(90)")
+}
+
+/// Algorithm 6's text: the child's start `c` given by the expression
+/// `child` of `o`, `rel` and `max_len`, and `branches` the branching at a
+/// node (which starts `A(o+1, c)`). One template for every variant.
+fn algorithm_6(max_len: &[f64], int_len: f64, child: &str, branches: &str) -> String {
     let arr: Vec<String> = max_len.iter().map(f64::to_string).collect();
     let max = max_len.len() - 1;
-    Ok(format!(
+    format!(
         "#define MAX {max}\n\
          Define: {{ array max_len[{}] = {{{}}}; }}\n\
          ω: A(0,0)\n\
-         A(o,s) : (o < MAX) && (s < max_len[o]) {{ rel = s/max_len[o]; c = max_len[o+1] - {child_ratio}*max_len[o+1]*(1-rel); }} -> F({int_len})[+({angle_deg})A(o+1,c)][-({angle_deg})A(o+1,c)]/(90)A(o,s+{int_len})\n\
+         A(o,s) : (o < MAX) && (s < max_len[o]) {{ rel = s/max_len[o]; c = {child}; }} -> F({int_len}){branches}A(o,s+{int_len})\n\
          A(o,s) : s >= max_len[o] -> ~K\n\
          A(o,s) : o >= MAX -> ~K\n",
         max_len.len(),
         arr.join(", ")
-    ))
+    )
+}
+
+/// Algorithm 6 (branch mapping) with the child length drawn from a
+/// silhouette: `branch_len(o, rel) = max_len[o+1]·silhouette(rel)`. With
+/// straight first-order axes and short higher orders the silhouette is the
+/// crown's outline (§6, Fig. 20); branches are decussate pairs (lilac,
+/// Fig. 18) or, the source's "small modification", one branch a node
+/// rolled 137.5° from the last (spiral, *Astilbe*, Fig. 19).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BranchMapping {
+    /// The longest axis of each order (the last entry is the order past the
+    /// deepest, which the listing indexes).
+    pub max_len: Vec<f64>,
+    /// Internode length.
+    pub internode: f64,
+    /// Branching angle, degrees.
+    pub angle_deg: f64,
+    /// A child's length as a fraction of the longest of its order, by the
+    /// position `rel ∈ [0, 1]` of its node along its mother (values in
+    /// `[0, 1]`).
+    pub silhouette: Function,
+    /// One branch a node rolled 137.5° (spiral) instead of decussate pairs.
+    pub spiral: bool,
+}
+
+impl BranchMapping {
+    /// The L-system, with the silhouette as `func(1, rel)`.
+    ///
+    /// # Errors
+    ///
+    /// [`PlantError::InvalidParameter`] as [`branch_mapping_text`], or if
+    /// the silhouette leaves `[−0.25, 1.25]` on `[0, 1]` (checked at 65
+    /// evenly spaced positions). The smooth curve through a silhouette's
+    /// points may overshoot them a little; the fraction is clamped to
+    /// `[0, 1]`.
+    pub fn lsystem(&self) -> Result<crate::LSystem> {
+        // The cone's checks, on the same lengths.
+        branch_mapping_text(&self.max_len, self.internode, self.angle_deg, 1.0)?;
+        for x in (0..=64).map(|k| f64::from(k) / 64.0) {
+            let v = self.silhouette.eval(x);
+            if !(-0.25..=1.25).contains(&v) {
+                return Err(bad("silhouette", v, "a fraction in [0, 1] over [0, 1]"));
+            }
+        }
+        let branches = if self.spiral {
+            format!("[+({})A(o+1,c)]/(137.5)", self.angle_deg)
+        } else {
+            decussate(self.angle_deg)
+        };
+        let text = algorithm_6(
+            &self.max_len,
+            self.internode,
+            "max_len[o+1] - max_len[o+1]*clamp(func(1,rel),0,1)",
+            &branches,
+        );
+        let mut l = crate::LSystem::parse(&text)?;
+        l.set_function(1, self.silhouette.clone());
+        Ok(l)
+    }
 }
 
 #[cfg(test)]
@@ -209,6 +284,40 @@ mod tests {
         let n = v.len();
         let ratio = v[n - 1].x / v[n / 4 - 1].x;
         assert!((ratio - 2.0).abs() < 0.02, "{ratio}");
+    }
+
+    #[test]
+    fn a_straight_silhouette_is_the_cone() {
+        // The silhouette 1 − rel is the cone of `branch_mapping_text` (child
+        // ratio 1): the same segments and flowers; a spiral has one branch
+        // a node; a silhouette far outside [0, 1] is refused.
+        use crate::{Derivation, LSystem};
+        let count = |l: &LSystem| {
+            let mut d = Derivation::new(l, 0).unwrap();
+            d.derive(64).unwrap();
+            let n = |name: &str| {
+                let id = l.symbol(name).unwrap();
+                d.string().symbols().iter().filter(|&&x| x == id).count()
+            };
+            (n("F"), n("~K"))
+        };
+        let max_len = vec![10.0, 6.0, 3.0];
+        let cone = LSystem::parse(&branch_mapping_text(&max_len, 1.0, 45.0, 1.0).unwrap()).unwrap();
+        let mut m = BranchMapping {
+            max_len,
+            internode: 1.0,
+            angle_deg: 45.0,
+            silhouette: Function::new(&[(0.0, 1.0), (1.0, 0.0)]).unwrap(),
+            spiral: false,
+        };
+        let (f, k) = count(&cone);
+        assert_eq!(count(&m.lsystem().unwrap()), (f, k));
+        m.spiral = true;
+        let (fs, ks) = count(&m.lsystem().unwrap());
+        assert!(fs < f && ks < k, "{fs} {ks} against {f} {k}");
+        m.silhouette = Function::new(&[(0.0, 2.0), (1.0, 0.0)]).unwrap();
+        let e = m.lsystem().unwrap_err().to_string();
+        assert!(e.contains("silhouette"), "{e}");
     }
 
     #[test]
