@@ -4,8 +4,8 @@
 //! model with a climber on it and a stand of three trees (open L-systems,
 //! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
-//! curved stem, three phyllotaxes set by one constant, and a lilac, an
-//! astilbe and a tree shaped by a silhouette by branch mapping
+//! curved stem, three phyllotaxes set by one constant, a pine cone, and a
+//! lilac, an astilbe and a tree shaped by a silhouette by branch mapping
 //! (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
 //!
 //! ```text
@@ -35,7 +35,7 @@ use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Derivation, Geometry, LSystem, MeshParams, PlantMesh, TurtleParams};
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 16] = [
+const MODELS: [&str; 17] = [
     "tiers",
     "clonal",
     "roots",
@@ -52,6 +52,7 @@ const MODELS: [&str; 16] = [
     "lilac",
     "astilbe",
     "silhouette",
+    "pinecone",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
@@ -59,7 +60,8 @@ const MODELS: [&str; 16] = [
 /// and conifers competing for light, a tree of the extended crowns model and
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
-/// an astilbe and a tree shaped by a silhouette. Writes MODEL.png for each.
+/// an astilbe, a tree shaped by a silhouette and a pine cone. Writes
+/// MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -465,10 +467,64 @@ fn plant_models() -> common::Run {
         let g = mapped(&silhouette_tree()?, 0.1, 0.25)?;
         flowers(&g, Vec3::new(0.3, 0.55, 0.22), size, &out, "silhouette.png")?;
     }
+    if want("pinecone") {
+        // Fig. 15: a jack-pine cone, its scales placed by Algorithm 5 on an
+        // ovoid receptacle, the axis bent afterwards.
+        let (len, curve) = pine_cone_profile();
+        let scales = positional::ridley(len, 1e-4, &curve, pine_cone_scale(&curve))?;
+        let g = spheres(scales.iter().map(|o| (bent(o), 0.95 * o.radius)));
+        flowers(&g, Vec3::new(0.42, 0.27, 0.15), size, &out, "pinecone.png")?;
+    }
     Ok(())
 }
 
-/// Draws `g` from the side, its flowers (its only surfaces) in `colour`.
+/// The generating curve of Fig. 15's cone, `(f_x, f_y)` by arc length, and
+/// its length: an ovoid 4 long, 1.2 across at its widest, a third of the
+/// way up, closed at both ends (our profile), parametrised by arc length
+/// from a table of 4 096 chords.
+fn pine_cone_profile() -> (f64, impl Fn(f64) -> (f64, f64)) {
+    let shape = |u: f64| {
+        let x = 1.2
+            * (std::f64::consts::PI * u.powf(0.8))
+                .sin()
+                .max(0.0)
+                .powf(0.7);
+        (x, 4.0 * u)
+    };
+    let n = 4096;
+    let pts: Vec<(f64, f64)> = (0..=n)
+        .map(|k| shape(f64::from(k) / f64::from(n)))
+        .collect();
+    let mut arc = vec![0.0];
+    for w in pts.windows(2) {
+        let d = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+        arc.push(arc.last().copied().unwrap_or(0.0) + d);
+    }
+    let len = arc.last().copied().unwrap_or(0.0);
+    let curve = move |s: f64| {
+        let k = arc.partition_point(|&a| a <= s).clamp(1, arc.len() - 1);
+        let t = ((s - arc[k - 1]) / (arc[k] - arc[k - 1]).max(1e-12)).clamp(0.0, 1.0);
+        let (a, b) = (pts[k - 1], pts[k]);
+        (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t)
+    };
+    (len, curve)
+}
+
+/// The scales' radius on Fig. 15's cone: a tenth of the receptacle's
+/// radius where they sit, plus 0.04 (smallest at the ends).
+fn pine_cone_scale(curve: &impl Fn(f64) -> (f64, f64)) -> impl Fn(f64) -> f64 + '_ {
+    move |s| 0.04 + 0.1 * curve(s).0
+}
+
+/// A scale's centre on the cone, the axis bent to the side by `0.06·y²`
+/// (the source's post-deformation of a straight cone).
+fn bent(o: &positional::Organ) -> DVec3 {
+    let a = o.angle_deg.to_radians();
+    DVec3::new(o.x * a.cos(), o.x * a.sin() + 0.06 * o.y * o.y, o.y)
+}
+
+/// Draws `g` from the side, its flowers (or the cone's scales: its only
+/// surfaces) in `colour`.
 fn flowers(
     g: &Geometry,
     colour: Vec3,
@@ -485,7 +541,7 @@ fn flowers(
     };
     render(&mesh, &params)?.save_png(out.join(name))?;
     outln(format_args!(
-        "{name}: {} segments, {} flowers",
+        "{name}: {} segments, {} flowers or scales",
         g.segment_count(),
         g.surfaces.len()
     ))
@@ -728,6 +784,34 @@ mod tests {
             .map(|e| e.truncate().length())
             .fold(0.0f32, f32::max);
         assert!(reach > 4.0 && reach < 6.0 * 0.87 + 1.3, "{reach}");
+    }
+
+    #[test]
+    fn the_cone_holds_as_many_scales_as_its_area_allows() {
+        // Fig. 15 by Algorithm 5: the number of scales is the integral of
+        // eq. 14, N = ∫ 2 f_x/ρ² ds over the receptacle (by the midpoint
+        // rule on a much finer step), to within one; each scale 137.5°
+        // round from the last.
+        let (len, curve) = pine_cone_profile();
+        let rho = pine_cone_scale(&curve);
+        let scales = positional::ridley(len, 1e-4, &curve, &rho).unwrap();
+        let n = 200_000;
+        let h = len / f64::from(n);
+        let integral: f64 = (0..n)
+            .map(|k| {
+                let s = (f64::from(k) + 0.5) * h;
+                2.0 * curve(s).0 / (rho(s) * rho(s)) * h
+            })
+            .sum();
+        assert!(
+            (scales.len() as f64 - integral.floor()).abs() <= 1.0,
+            "{} scales, N = {integral}",
+            scales.len()
+        );
+        assert!(scales.len() > 100);
+        for w in scales.windows(2) {
+            assert!((w[1].angle_deg - w[0].angle_deg - 137.5).abs() < 1e-9);
+        }
     }
 
     #[test]
