@@ -44,8 +44,8 @@
 
 use natura_core::check;
 
-use super::crowns::SkyLight;
 pub use super::crowns::{LeafCluster, living_clusters};
+use super::crowns::{SkyLight, check_stand, light_defines, light_rules, stand_axiom};
 use super::{Run, run_open};
 use crate::error::Result;
 use crate::lang::LSystem;
@@ -192,37 +192,18 @@ impl ConiferParams {
             1.0,
             "a number in [0, 1]",
         )?;
-        check::count(
-            "ConiferParams::delay",
-            self.delay as usize,
-            1,
-            1000,
-            "1 to 1000 steps",
+        check_stand(
+            [
+                "ConiferParams::delay",
+                "ConiferParams::leaf_years",
+                "ConiferParams::years",
+                "ConiferParams::trees_x",
+            ],
+            self.delay,
+            self.leaf_years,
+            self.years,
+            &self.trees_x,
         )?;
-        check::count(
-            "ConiferParams::leaf_years",
-            self.leaf_years as usize,
-            1,
-            100,
-            "1 to 100 years",
-        )?;
-        check::count(
-            "ConiferParams::years",
-            self.years as usize,
-            0,
-            40,
-            "at most 40 years",
-        )?;
-        check::count(
-            "ConiferParams::trees_x",
-            self.trees_x.len(),
-            1,
-            64,
-            "1 to 64 trees",
-        )?;
-        for &x in &self.trees_x {
-            check::finite("ConiferParams::trees_x", x)?;
-        }
         Ok(())
     }
 
@@ -235,12 +216,7 @@ impl ConiferParams {
     /// The model's L-system text (see the module docs).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
-        let tree = "!(SW*V0)F(V0)S(V0,0)";
-        let axiom: String = self
-            .trees_x
-            .iter()
-            .map(|x| format!("[-(90)f({x})+(90){tree}]"))
-            .collect();
+        let axiom = stand_axiom(&self.trees_x, "!(SW*V0)F(V0)S(V0,0)");
         let k = self.whorl;
         let turn = 360.0 / f64::from(k);
         let lateral = "[&(β)!(LW*LR*v)F(LR*v)L(LR*v,LP,0,0)A(LR*v,0)]";
@@ -251,24 +227,17 @@ impl ConiferParams {
                 whorl.push_str(&format!("/({turn})"));
             }
         }
+        let fork = "[+(α)!(LW*vig)F(vig)L(vig,LP,0,0)A(vig,0)]-(α0)!(LW*vig)F(vig)L(vig,LP,0,0)/(180)A(vig,0)";
+        let grow = "-(α0)!(LW*vig)F(vig)L(vig,LP,0,0)/(180)A(vig,0)";
         format!(
             "#define β {}\n#define φ {}\n#define α {}\n#define α0 {}\n#define V0 {}\n#define SD {}\n\
-             #define LR {}\n#define VD {}\n#define SW {}\n#define LW {}\n\
-             #define Del {}\n#define LS {}\n#define LP {}\n#define LM {}\n#define PB {}\n#define PG {}\n\
+             #define LR {}\n#define VD {}\n#define SW {}\n#define LW {}\n{}\
              tropism: 0, 0, -1, {}\n\
              Consider: ?E [ ] L\n\
              ω: {axiom}\n\
              S(vig,del) : del < Del -> S(vig,del+1)\n\
              S(vig,del) : del == Del {{ v = vig*SD; }} -> !(SW*v)F(v){whorl}/({turn}+φ)S(v,0)\n\
-             A(vig,del) : del < Del -> A(vig,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del < Del-1) -> L(vig,p,age,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del == Del-1) -> L(vig,p,age,del+1)?E(vig*0.5)\n\
-             L(vig,p,age,del) > ?E(r) : (age < LS) && (r*LP >= LM) && (del == Del) -> L(vig,LP*r-LM,age+1,0)\n\
-             L(vig,p,age,del) > ?E(r) : ((age == LS) || (r*LP < LM)) && (del == Del) -> L(0,0,LS,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PB {{ vig = vig*VD; }} -> [+(α)!(LW*vig)F(vig)L(vig,LP,0,0)A(vig,0)]-(α0)!(LW*vig)F(vig)L(vig,LP,0,0)/(180)A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> -(α0)!(LW*vig)F(vig)L(vig,LP,0,0)/(180)A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
-             ?E(r) -> ε\n",
+             {}",
             self.tier_deg,
             self.divergence_deg,
             self.fork_deg,
@@ -279,13 +248,18 @@ impl ConiferParams {
             self.vigor_decrement,
             self.stem_width,
             self.lateral_width,
-            self.delay,
-            self.leaf_years,
-            self.production,
-            self.leaf_maintenance,
-            self.branching,
-            self.growth,
+            light_defines(
+                self.delay,
+                self.leaf_years,
+                [
+                    self.production,
+                    self.leaf_maintenance,
+                    self.branching,
+                    self.growth
+                ]
+            ),
             self.droop,
+            light_rules(fork, grow),
         )
     }
 }

@@ -188,37 +188,18 @@ impl CrownParams {
             1.0,
             "a number in [0, 1]",
         )?;
-        check::count(
-            "CrownParams::delay",
-            self.delay as usize,
-            1,
-            1000,
-            "1 to 1000 steps",
+        check_stand(
+            [
+                "CrownParams::delay",
+                "CrownParams::leaf_years",
+                "CrownParams::years",
+                "CrownParams::trees_x",
+            ],
+            self.delay,
+            self.leaf_years,
+            self.years,
+            &self.trees_x,
         )?;
-        check::count(
-            "CrownParams::leaf_years",
-            self.leaf_years as usize,
-            1,
-            100,
-            "1 to 100 years",
-        )?;
-        check::count(
-            "CrownParams::years",
-            self.years as usize,
-            0,
-            40,
-            "at most 40 years",
-        )?;
-        check::count(
-            "CrownParams::trees_x",
-            self.trees_x.len(),
-            1,
-            64,
-            "1 to 64 trees",
-        )?;
-        for &x in &self.trees_x {
-            check::finite("CrownParams::trees_x", x)?;
-        }
         Ok(())
     }
 
@@ -233,113 +214,128 @@ impl CrownParams {
     /// extension, described in the module docs).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
-        if self.straightening > 0.0 {
-            return self.extension_rules();
-        }
-        let tree = "!(W,1,1)F(2)L(1,LP,0,0)A(1,0)[!(0,0,0)]!(W,0,1)";
-        let axiom: String = self
-            .trees_x
-            .iter()
-            .map(|x| format!("[-(90)f({x})+(90){tree}]"))
-            .collect();
+        let axiom = stand_axiom(
+            &self.trees_x,
+            "!(W,1,1)F(2)L(1,LP,0,0)A(1,0)[!(0,0,0)]!(W,0,1)",
+        );
+        // The extension (see the module docs) marks each fork with `C`.
+        let extended = self.straightening > 0.0;
+        let (mark, consider) = if extended {
+            ("C(0,0)", "?E [ ] L ! C")
+        } else {
+            ("", "?E [ ] L !")
+        };
+        let fork = format!(
+            "/(φ){mark}[+(α2)!(W,-PB,1)F(vig)L(vig,LP,0,0)A(vig,0)[!(0,0,0)]!(W,0,1)]-(α1)!(W,0,1)F(vig)L(vig,LP,0,0)/A(vig,0)"
+        );
+        let grow = "/(φ)-(α0)[!(0,0,0)]!(W,-PG,1)F(vig)L(vig,LP,0,0)A(vig,0)";
+        // p10 and p11: the pipe model's flow to the base and the shedding,
+        // for a mother whose fork carries `ctx` between its leaf and the
+        // fork.
+        let flow = |ctx: &str| {
+            format!(
+                "!(w0,q0,n0) > L(vig,pL,age,del) {ctx}[!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
+                 !(w0,q0,n0) > L(vig,pL,age,del) {ctx}[!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n"
+            )
+        };
+        let extension = if extended {
+            let sr = (1.0 - self.straightening).powf(1.0 / f64::from(self.steps_per_year()));
+            format!(
+                "#define SR {sr}\n\
+                 C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s1 == 0) && (w1 > 0) && (n1 == 0) -> C(1,s2)\n\
+                 C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s2 == 0) && (w2 > 0) && (n2 == 0) -> C(s1,1)\n\
+                 C(s1,s2) < +(a) : s2 == 1 -> +(a*SR)\n\
+                 C(s1,s2) < -(a) : s1 == 1 -> -(a*SR)\n{}",
+                flow("C(s1,s2) ")
+            )
+        } else {
+            String::new()
+        };
         format!(
             "#define φ {}\n#define α0 {}\n#define α1 {}\n#define α2 {}\n#define W {}\n#define VD {}\n\
-             #define Del {}\n#define LS {}\n#define LP {}\n#define LM {}\n#define PB {}\n#define PG {}\n\
-             #define BM {}\n#define BE {}\n#define Nmin {}\n\
-             Consider: ?E [ ] L !\n\
+             #define BM {}\n#define BE {}\n#define Nmin {}\n{}\
+             Consider: {consider}\n\
              ω: {axiom}\n\
-             A(vig,del) : del < Del -> A(vig,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del < Del-1) -> L(vig,p,age,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del == Del-1) -> L(vig,p,age,del+1)?E(vig*0.5)\n\
-             L(vig,p,age,del) > ?E(r) : (age < LS) && (r*LP >= LM) && (del == Del) -> L(vig,LP*r-LM,age+1,0)\n\
-             L(vig,p,age,del) > ?E(r) : ((age == LS) || (r*LP < LM)) && (del == Del) -> L(0,0,LS,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PB {{ vig = vig*VD; }} -> /(φ)[+(α2)!(W,-PB,1)F(vig)L(vig,LP,0,0)A(vig,0)[!(0,0,0)]!(W,0,1)]-(α1)!(W,0,1)F(vig)L(vig,LP,0,0)/A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> /(φ)-(α0)[!(0,0,0)]!(W,-PG,1)F(vig)L(vig,LP,0,0)A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
-             ?E(r) -> ε\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n",
+             {}{extension}{}",
             self.divergence_deg,
             self.alpha0_deg,
             self.alpha1_deg,
             self.alpha2_deg,
             self.width,
             self.vigor_decrement,
-            self.delay,
-            self.leaf_years,
-            self.production,
-            self.leaf_maintenance,
-            self.branching,
-            self.growth,
             self.branch_maintenance,
             self.branch_exponent,
             self.shed_min,
+            light_defines(
+                self.delay,
+                self.leaf_years,
+                [
+                    self.production,
+                    self.leaf_maintenance,
+                    self.branching,
+                    self.growth
+                ]
+            ),
+            light_rules(&fork, grow),
+            flow(""),
         )
     }
 }
 
-impl CrownParams {
-    /// The listing extended as the source describes its Fig. 12 ("a
-    /// gradual reduction of the branching angle of a young branch whose
-    /// sister branch has been shed"; its rules are not printed, so these
-    /// are ours): a fork writes a module `C(s1, s2)` before its lateral
-    /// branch. `C` sees both daughters' first `!` in its right context; a
-    /// daughter shed by p11 is left as `!(w, 0, 0)` with `w > 0` (a virtual
-    /// branch has `w = 0`), and `C` records it (`s1`: the lateral shed, `s2`:
-    /// the main axis shed). The daughters' turns `+(α2)` and `-(α1)` have
-    /// `C` as their left context (the lateral's across its `[`, the main's
-    /// across the whole lateral branch) and shrink by `SR` a step while
-    /// their sister is gone: `SR^(Del+1) = 1 − straightening` a year. The
-    /// mother's p10 and p11 see `C` between its leaf and the fork, so they
-    /// are written once more with it.
-    fn extension_rules(&self) -> String {
-        let tree = "!(W,1,1)F(2)L(1,LP,0,0)A(1,0)[!(0,0,0)]!(W,0,1)";
-        let axiom: String = self
-            .trees_x
-            .iter()
-            .map(|x| format!("[-(90)f({x})+(90){tree}]"))
-            .collect();
-        let sr = (1.0 - self.straightening).powf(1.0 / f64::from(self.steps_per_year()));
-        format!(
-            "#define φ {}\n#define α0 {}\n#define α1 {}\n#define α2 {}\n#define W {}\n#define VD {}\n\
-             #define Del {}\n#define LS {}\n#define LP {}\n#define LM {}\n#define PB {}\n#define PG {}\n\
-             #define BM {}\n#define BE {}\n#define Nmin {}\n#define SR {sr}\n\
-             Consider: ?E [ ] L ! C\n\
-             ω: {axiom}\n\
-             A(vig,del) : del < Del -> A(vig,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del < Del-1) -> L(vig,p,age,del+1)\n\
-             L(vig,p,age,del) : (age < LS) && (del == Del-1) -> L(vig,p,age,del+1)?E(vig*0.5)\n\
-             L(vig,p,age,del) > ?E(r) : (age < LS) && (r*LP >= LM) && (del == Del) -> L(vig,LP*r-LM,age+1,0)\n\
-             L(vig,p,age,del) > ?E(r) : ((age == LS) || (r*LP < LM)) && (del == Del) -> L(0,0,LS,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PB {{ vig = vig*VD; }} -> /(φ)C(0,0)[+(α2)!(W,-PB,1)F(vig)L(vig,LP,0,0)A(vig,0)[!(0,0,0)]!(W,0,1)]-(α1)!(W,0,1)F(vig)L(vig,LP,0,0)/A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> /(φ)-(α0)[!(0,0,0)]!(W,-PG,1)F(vig)L(vig,LP,0,0)A(vig,0)\n\
-             ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
-             ?E(r) -> ε\n\
-             C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s1 == 0) && (w1 > 0) && (n1 == 0) -> C(1,s2)\n\
-             C(s1,s2) > [!(w1,q1,n1)] !(w2,q2,n2) : (s2 == 0) && (w2 > 0) && (n2 == 0) -> C(s1,1)\n\
-             C(s1,s2) < +(a) : s2 == 1 -> +(a*SR)\n\
-             C(s1,s2) < -(a) : s1 == 1 -> -(a*SR)\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) C(s1,s2) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) C(s1,s2) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) : {{ w = (w1^2+w2^2)^0.5; q = q1+q2+pL-BM*(w/W)^BE; }} (q > 0) || (n1+n2 >= Nmin) -> !(w,q,n1+n2)\n\
-             !(w0,q0,n0) > L(vig,pL,age,del) [!(w1,q1,n1)] !(w2,q2,n2) -> !(w0,0,0)L%\n",
-            self.divergence_deg,
-            self.alpha0_deg,
-            self.alpha1_deg,
-            self.alpha2_deg,
-            self.width,
-            self.vigor_decrement,
-            self.delay,
-            self.leaf_years,
-            self.production,
-            self.leaf_maintenance,
-            self.branching,
-            self.growth,
-            self.branch_maintenance,
-            self.branch_exponent,
-            self.shed_min,
-        )
+/// The axiom of a stand: `tree` at each base along x, each in a branch of
+/// its own (moved there with `f`), so each tree is one top-level branch.
+pub(super) fn stand_axiom(trees_x: &[f64], tree: &str) -> String {
+    trees_x
+        .iter()
+        .map(|x| format!("[-(90)f({x})+(90){tree}]"))
+        .collect()
+}
+
+/// Checks the growing season and the stand shared by the crowns and the
+/// conifers: `Del` 1 to 1000 steps, `LS` 1 to 100 years, at most 40 years,
+/// 1 to 64 trees at finite places; `names` name the four fields in errors.
+pub(super) fn check_stand(
+    names: [&'static str; 4],
+    delay: u32,
+    leaf_years: u32,
+    years: u32,
+    trees_x: &[f64],
+) -> Result<()> {
+    let [n_delay, n_leaf, n_years, n_trees] = names;
+    check::count(n_delay, delay as usize, 1, 1000, "1 to 1000 steps")?;
+    check::count(n_leaf, leaf_years as usize, 1, 100, "1 to 100 years")?;
+    check::count(n_years, years as usize, 0, 40, "at most 40 years")?;
+    check::count(n_trees, trees_x.len(), 1, 64, "1 to 64 trees")?;
+    for &x in trees_x {
+        check::finite(n_trees, x)?;
     }
+    Ok(())
+}
+
+/// The `#define`s of the light economy shared by the crowns and the
+/// conifers: `Del`, `LS` and `[LP, LM, PB, PG]`.
+pub(super) fn light_defines(delay: u32, leaf_years: u32, [lp, lm, pb, pg]: [f64; 4]) -> String {
+    format!(
+        "#define Del {delay}\n#define LS {leaf_years}\n#define LP {lp}\n#define LM {lm}\n#define PB {pb}\n#define PG {pg}\n"
+    )
+}
+
+/// The listing's rules of the leaf clusters and the apices, shared by the
+/// crowns and the conifers (p1–p9): each year a leaf reports its cluster
+/// through `?E`, lives or dies by the light it is answered, and the apex
+/// behind it forks (`fork`), grows (`grow`) or rests.
+pub(super) fn light_rules(fork: &str, grow: &str) -> String {
+    format!(
+        "A(vig,del) : del < Del -> A(vig,del+1)\n\
+         L(vig,p,age,del) : (age < LS) && (del < Del-1) -> L(vig,p,age,del+1)\n\
+         L(vig,p,age,del) : (age < LS) && (del == Del-1) -> L(vig,p,age,del+1)?E(vig*0.5)\n\
+         L(vig,p,age,del) > ?E(r) : (age < LS) && (r*LP >= LM) && (del == Del) -> L(vig,LP*r-LM,age+1,0)\n\
+         L(vig,p,age,del) > ?E(r) : ((age == LS) || (r*LP < LM)) && (del == Del) -> L(0,0,LS,0)\n\
+         ?E(r) < A(vig,del) : r*LP-LM > PB {{ vig = vig*VD; }} -> {fork}\n\
+         ?E(r) < A(vig,del) : r*LP-LM > PG {{ vig = vig*VD; }} -> {grow}\n\
+         ?E(r) < A(vig,del) : r*LP-LM <= PG -> A(vig,0)\n\
+         ?E(r) -> ε\n"
+    )
 }
 
 /// The light environment: nine sky sources over a 32³ voxel grid of leaf clusters.
