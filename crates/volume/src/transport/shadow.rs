@@ -13,6 +13,15 @@
 //! cheaper, but its repeated interpolation blurs the optical depth, and the
 //! blur darkens the shadows of broken cloud: `e^{−mean τ} < mean e^{−τ}`.)
 //!
+//! A node in clear air, with no medium between it and the light, stores
+//! the optical depth below the medium's lit surface continued across the
+//! surface (negative, and 0 when no medium lies within a few cells against
+//! the light), and a lookup clamps the blend at 0, so trilinear
+//! interpolation finds the lit surface where it is instead of a cell too
+//! far out: with 0 at such nodes the lit layer of a dense medium (a mean
+//! free path deep or less, often thinner than a cell) was darkened by up to
+//! a cell's optical depth.
+//!
 //! The nodes' marches sample the density a cell apart, so detail finer than
 //! a cell (the noise octaves of [`crate::detail::Detailed`]) could only
 //! alias into the table; they sample it through
@@ -81,6 +90,66 @@ pub(crate) fn optical_depth_spaced(
         i = end;
     }
     tau * dt * extinction
+}
+
+/// How far (in the table's longest cells) a node in clear air looks away
+/// from the light for the medium's lit surface ([`lit_side_depth`]).
+const LIT_SIDE_REACH: f32 = 4.0;
+
+/// Samples of that look, `LIT_SIDE_REACH` cells in `LIT_SIDE_SAMPLES` steps.
+const LIT_SIDE_SAMPLES: usize = 32;
+
+/// What a node in clear air (no medium between it and the light) stores:
+/// the optical depth below the medium's lit surface carried on linearly
+/// across the surface, `−σ·s`, where `s` is the node's distance from the
+/// surface against the light and `σ` the extinction just below it; 0 when
+/// no medium lies within `reach` metres against the light.
+///
+/// A table that stored 0 there would interpolate, between such a node and
+/// the first node inside, an optical depth that is already positive at the
+/// surface and reaches its true value only at the inner node: the lit layer
+/// of a dense medium, a mean free path deep or less, would be darkened by
+/// up to a cell's optical depth. With the depth continued across the
+/// surface, trilinear interpolation is exact for a flat surface of
+/// constant density at any orientation (the optical depth is then linear
+/// in space), and the lookup clamps the result at 0. The samples leave out
+/// detail finer than `spacing`, as the nodes' marches do.
+fn lit_side_depth(
+    density: &dyn Density,
+    extinction: f32,
+    p: Vec3,
+    l: Vec3,
+    reach: f32,
+    spacing: f32,
+) -> f32 {
+    const N: usize = LIT_SIDE_SAMPLES;
+    let dt = reach / N as f32;
+    let far = p - l * (reach + 3.0 * dt);
+    if density.bound_in(&Aabb {
+        min: p.min(far),
+        max: p.max(far),
+    }) <= 0.0
+    {
+        return 0.0;
+    }
+    let (mut x, mut y, mut z, mut rho) = (
+        [0.0f32; N + 3],
+        [0.0f32; N + 3],
+        [0.0f32; N + 3],
+        [0.0f32; N + 3],
+    );
+    for j in 0..N + 3 {
+        let q = p - l * ((j as f32 + 0.5) * dt);
+        (x[j], y[j], z[j]) = (q.x, q.y, q.z);
+    }
+    fill_densities_spaced(density, &x, &y, &z, spacing, &mut rho);
+    let Some(j) = rho[..N].iter().position(|&r| r > 0.0) else {
+        return 0.0;
+    };
+    // The surface lies between samples j − 1 and j; σ is the mean of the
+    // first three samples below it.
+    let sigma = extinction * (rho[j] + rho[j + 1] + rho[j + 2]) / 3.0;
+    -sigma * (j as f32 * dt)
 }
 
 /// Ebert's 3-D shadow table: the optical depth toward one directional light
@@ -188,6 +257,7 @@ impl ShadowTable {
     ) {
         let (nx, ny) = (self.dims[0], self.dims[1]);
         let step = self.cell.min_element();
+        let reach = LIT_SIDE_REACH * self.cell.max_element();
         let light = self.light;
         let this = &*self;
         let tau = map_rows(self.dims[2] * ny, |row| {
@@ -203,7 +273,12 @@ impl ShadowTable {
                     {
                         super::BLOCKED_DEPTH
                     } else {
-                        optical_depth_spaced(density, extinction, p, light, step, step)
+                        let tau = optical_depth_spaced(density, extinction, p, light, step, step);
+                        if tau > 0.0 {
+                            tau
+                        } else {
+                            lit_side_depth(density, extinction, p, light, reach, step)
+                        }
                     }
                 })
                 .collect();
@@ -219,10 +294,11 @@ impl ShadowTable {
         self.light
     }
 
-    /// The optical depth toward the light at `p`, trilinear in the table; a
-    /// point outside the bounds is first carried along the light direction
-    /// to where it enters them (no density lies outside), and is 0 if it
-    /// never does.
+    /// The optical depth toward the light at `p`, trilinear in the table
+    /// and clamped at 0 (nodes in clear air hold the depth continued across
+    /// the lit surface, which is negative); a point outside the bounds is
+    /// first carried along the light direction to where it enters them (no
+    /// density lies outside), and is 0 if it never does.
     #[inline]
     #[must_use]
     pub fn optical_depth(&self, p: Vec3) -> f32 {
@@ -245,7 +321,7 @@ impl ShadowTable {
         let c10 = l(at(x0, y0 + 1, z0), at(x0 + 1, y0 + 1, z0), f.x);
         let c01 = l(at(x0, y0, z0 + 1), at(x0 + 1, y0, z0 + 1), f.x);
         let c11 = l(at(x0, y0 + 1, z0 + 1), at(x0 + 1, y0 + 1, z0 + 1), f.x);
-        l(l(c00, c10, f.y), l(c01, c11, f.y), f.z)
+        l(l(c00, c10, f.y), l(c01, c11, f.y), f.z).max(0.0)
     }
 
     /// The transmittance `exp(−τ)` toward the light at `p`.
