@@ -273,17 +273,34 @@ impl ShadowTable {
                     {
                         super::BLOCKED_DEPTH
                     } else {
-                        let tau = optical_depth_spaced(density, extinction, p, light, step, step);
-                        if tau > 0.0 {
-                            tau
-                        } else {
-                            lit_side_depth(density, extinction, p, light, reach, step)
-                        }
+                        optical_depth_spaced(density, extinction, p, light, step, step)
                     }
                 })
                 .collect();
             progress.advance(1);
             nodes
+        });
+        // Nodes in clear air take the depth continued across the lit surface
+        // only where a neighbour (of the 26) holds a positive depth: a cell
+        // whose eight corners are all clear blends to 0 whatever they hold.
+        let nz = self.dims[2];
+        let positive_near = |x: usize, y: usize, z: usize| {
+            let r = |c: usize, n: usize| c.saturating_sub(1)..=(c + 1).min(n - 1);
+            r(z, nz).any(|k| r(y, ny).any(|j| r(x, nx).any(|i| tau[(k * ny + j) * nx + i] > 0.0)))
+        };
+        let tau = map_rows(nz * ny, |row| {
+            let (y, z) = (row % ny, row / ny);
+            (0..nx)
+                .map(|x| {
+                    let t = tau[row * nx + x];
+                    if t == 0.0 && positive_near(x, y, z) {
+                        let p = this.node([x, y, z]);
+                        lit_side_depth(density, extinction, p, light, reach, step)
+                    } else {
+                        t
+                    }
+                })
+                .collect()
         });
         self.tau = tau;
     }
