@@ -443,20 +443,19 @@ impl ScatterCache {
             let per = self.n;
             let mut rng = Seed(params.seed).derive_index(k as u64).rng();
             let (mut photons, mut events) = (0u64, 0u64);
+            let mut line = Vec::with_capacity(4 * self.grid.dims.iter().sum::<usize>());
             while events < per_chunk {
                 photons += 1;
                 let a = lo + (hi - lo) * glam::Vec2::new(unit(&mut rng), unit(&mut rng));
                 let o = centre + sun * (radius * 2.0) + u * a.x + v * a.y;
-                let tau = self.grid.optical_depth(o, beam);
+                let tau = self.grid.line(o, beam, &mut line);
                 if tau <= 0.0 {
                     events += 1;
                     continue;
                 }
                 let p_hit = -(-tau).exp_m1();
                 let target = -(-unit(&mut rng) * p_hit).ln_1p();
-                let Flight::Collided(mut x) =
-                    self.grid
-                        .fly(o, beam, target.min(tau), f32::INFINITY, |_, _| {})
+                let Flight::Collided(mut x) = self.grid.fly_line(o, beam, target.min(tau), &line)
                 else {
                     events += 1;
                     continue;

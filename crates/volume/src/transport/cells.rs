@@ -318,6 +318,44 @@ impl CellGrid {
         tau
     }
 
+    /// The cells the ray from `o` along unit `d` crosses, as
+    /// `(cell, t_in, t_out)` into `line` (cleared first), and the ray's
+    /// optical depth, the same bits as [`optical_depth`](Self::optical_depth):
+    /// a photon that needs its line's depth before it flies along it
+    /// ([`fly_line`](Self::fly_line)) walks the grid once.
+    pub(crate) fn line(&self, o: Vec3, d: Vec3, line: &mut Vec<(usize, f32, f32)>) -> f32 {
+        line.clear();
+        let mut tau = 0.0;
+        self.cross(o, d, f32::INFINITY, |c, a, b| {
+            tau += self.sigma[c] * (b - a);
+            line.push((c, a, b));
+            true
+        });
+        tau
+    }
+
+    /// [`fly`](Self::fly) without scoring along a ray's recorded `line`
+    /// ([`line`](Self::line)) from `o` along `d`: the same collision, bit
+    /// for bit.
+    pub(crate) fn fly_line(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        target: f32,
+        line: &[(usize, f32, f32)],
+    ) -> Flight {
+        let mut left = target;
+        for &(c, a, b) in line {
+            let s = self.sigma[c];
+            let len = b - a;
+            if s * len >= left {
+                return Flight::Collided(o + d * (a + left / s));
+            }
+            left -= s * len;
+        }
+        Flight::Left
+    }
+
     /// Flies from `o` along unit `d` until optical depth `target` is used up
     /// or distance `t_max` is reached, calling `score(cell, length)` for
     /// each stretch flown.
