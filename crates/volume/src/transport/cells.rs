@@ -322,14 +322,23 @@ impl CellGrid {
     /// `(cell, t_in, t_out)` into `line` (cleared first), and the ray's
     /// optical depth, the same bits as [`optical_depth`](Self::optical_depth):
     /// a photon that needs its line's depth before it flies along it
-    /// ([`fly_line`](Self::fly_line)) walks the grid once.
-    pub(crate) fn line(&self, o: Vec3, d: Vec3, line: &mut Vec<(usize, f32, f32)>) -> f32 {
+    /// ([`fly_line`](Self::fly_line)) walks the grid once. The walk stops at
+    /// the first cell that takes the depth to `cap` or beyond, and the depth
+    /// so far is returned: a depth past which nothing the caller computes
+    /// from it changes need not be walked to its end.
+    pub(crate) fn line(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        cap: f32,
+        line: &mut Vec<(usize, f32, f32)>,
+    ) -> f32 {
         line.clear();
         let mut tau = 0.0;
         self.cross(o, d, f32::INFINITY, |c, a, b| {
             tau += self.sigma[c] * (b - a);
             line.push((c, a, b));
-            true
+            tau < cap
         });
         tau
     }
