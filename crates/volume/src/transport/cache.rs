@@ -35,7 +35,9 @@
 //! are those of the series cut after `Z`.
 //!
 //! **How it is traced.** Photons of the sun's beam start on a plane across
-//! the volume's bounds. Each is forced to collide once inside the medium
+//! the volume's bounds, at uniform random points taken in the order of a
+//! Z-order curve over the plane, so that photons following one another
+//! cross the same cells. Each is forced to collide once inside the medium
 //! (weight `1 − e^{−τ}` of its line; no photon is wasted on a thin
 //! medium), scatters with the albedo as weight, and is then followed through
 //! free flights and scatterings sampled as the reference path tracer
@@ -104,6 +106,41 @@ const MAX_EVENTS_PER_PHOTON: u32 = 1 << 20;
 /// under 16.7): a sun photon's line is walked only this deep, with the same
 /// weight and the same collision as the whole line's.
 const OPAQUE: f32 = 24.0;
+
+/// The fewest and the most photons whose starting points on the beam's
+/// plane are drawn at once and taken in the order of a Z-order curve across
+/// the plane (see [`start_batch`]); a batch is sized to the events left at
+/// the rate of events per photon so far.
+const MIN_BATCH: usize = 256;
+const MAX_BATCH: usize = 1 << 16;
+
+/// `n` uniform points of the unit square, in the reverse order of their
+/// places on a Z-order (Morton) curve of `2¹⁰ × 2¹⁰` squares, ties in the
+/// order drawn; popped from the end, they come in the curve's order.
+/// Photons that start side by side cross the same cells and collide near
+/// each other, so the cells' extinction and moments they read and score
+/// are still in the processor's cache: the walks are bound by memory, not
+/// by arithmetic, and a random order of starts made them miss it at
+/// nearly every cell.
+fn start_batch(rng: &mut impl rand_core::Rng, n: usize) -> Vec<glam::Vec2> {
+    /// The bits of `x < 2¹⁰` spread to the even places.
+    fn spread(x: u32) -> u32 {
+        let mut v = x & 0x3ff;
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        (v | (v << 1)) & 0x5555_5555
+    }
+    let mut batch: Vec<(u32, u32, glam::Vec2)> = (0..n as u32)
+        .map(|i| {
+            let p = glam::Vec2::new(unit(rng), unit(rng));
+            let q = |x: f32| ((x * 1024.0) as u32).min(1023);
+            (spread(q(p.x)) | (spread(q(p.y)) << 1), i, p)
+        })
+        .collect();
+    batch.sort_unstable_by_key(|&(key, i, _)| std::cmp::Reverse((key, i)));
+    batch.into_iter().map(|(_, _, p)| p).collect()
+}
 
 /// The default highest band (see [`CacheParams::order`]).
 pub const ORDER_DEFAULT: u32 = 7;
@@ -451,9 +488,23 @@ impl ScatterCache {
             let mut rng = Seed(params.seed).derive_index(k as u64).rng();
             let (mut photons, mut events) = (0u64, 0u64);
             let mut line = Vec::with_capacity(4 * self.grid.dims.iter().sum::<usize>());
-            while events < per_chunk {
+            let mut starts = Vec::new();
+            // Every photon of a batch is traced, so that the photons cover
+            // the plane uniformly: a batch cut short would leave out the
+            // end of its curve, a part of the plane.
+            while events < per_chunk || !starts.is_empty() {
+                if starts.is_empty() {
+                    // As many as the events left take at the rate so far.
+                    let left = (per_chunk - events) as f64;
+                    let n = if photons == 0 {
+                        MIN_BATCH
+                    } else {
+                        (left * photons as f64 / events as f64).ceil() as usize
+                    };
+                    starts = start_batch(&mut rng, n.clamp(MIN_BATCH, MAX_BATCH));
+                }
+                let a = lo + (hi - lo) * starts.pop().unwrap_or_default();
                 photons += 1;
-                let a = lo + (hi - lo) * glam::Vec2::new(unit(&mut rng), unit(&mut rng));
                 let o = centre + sun * (radius * 2.0) + u * a.x + v * a.y;
                 let tau = self.grid.line(o, beam, OPAQUE, &mut line);
                 if tau <= 0.0 {
