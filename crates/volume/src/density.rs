@@ -42,6 +42,17 @@ pub trait Density: Send + Sync {
         })
     }
 
+    /// Along the ray from `o` along unit `d`, from distance `t` to
+    /// `t_max`: `Some((a, b))` when the density is zero on `[t, a)` and may
+    /// be positive on `[a, b)` (`t ≤ a ≤ b ≤ t_max`; `a = b = t_max` when it is
+    /// zero all the way), or `None` when the field cannot tell more cheaply
+    /// than [`bound_in`](Density::bound_in) over boxes (the default). A
+    /// march skips `[t, a)` and samples `[a, b)` without bounding its steps.
+    fn clear_along(&self, o: Vec3, d: Vec3, t: f32, t_max: f32) -> Option<(f32, f32)> {
+        let _ = (o, d, t, t_max);
+        None
+    }
+
     /// An upper bound of the density over all space.
     fn max_density(&self) -> f32;
 
@@ -152,6 +163,9 @@ impl<D: Density + ?Sized> Density for &D {
     fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
         (**self).bound_near(centre, radius)
     }
+    fn clear_along(&self, o: Vec3, d: Vec3, t: f32, t_max: f32) -> Option<(f32, f32)> {
+        (**self).clear_along(o, d, t, t_max)
+    }
     fn max_density(&self) -> f32 {
         (**self).max_density()
     }
@@ -172,6 +186,9 @@ impl<D: Density + ?Sized> Density for Box<D> {
     }
     fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
         (**self).bound_near(centre, radius)
+    }
+    fn clear_along(&self, o: Vec3, d: Vec3, t: f32, t_max: f32) -> Option<(f32, f32)> {
+        (**self).clear_along(o, d, t, t_max)
     }
     fn max_density(&self) -> f32 {
         (**self).max_density()

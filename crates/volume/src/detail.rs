@@ -527,6 +527,10 @@ impl<D: Density> Density for Detailed<D> {
     fn bound_near(&self, centre: Vec3, radius: f32) -> f32 {
         self.base.bound_near(centre, radius)
     }
+    /// The base's: erosion only removes density.
+    fn clear_along(&self, o: Vec3, d: Vec3, t: f32, t_max: f32) -> Option<(f32, f32)> {
+        self.base.clear_along(o, d, t, t_max)
+    }
     fn max_density(&self) -> f32 {
         self.full
     }

@@ -10,6 +10,7 @@ use natura_core::{Aabb, Grid3, NoProgress, Progress, floor_f32};
 use crate::density::{Density, check_batch, check_bounds};
 use crate::error::{Result, VolumeError, finite3, positive};
 
+mod clear;
 mod lanes;
 
 /// Trilinear interpolation of the eight corners `c` (x fastest: `c[0]` at
@@ -360,6 +361,11 @@ impl Density for GridDensity {
             min: centre - Vec3::splat(radius),
             max: centre + Vec3::splat(radius),
         })
+    }
+    /// A walk over the fine majorant blocks the ray crosses (see
+    /// `grid/clear.rs`): never `None`.
+    fn clear_along(&self, o: Vec3, d: Vec3, t: f32, t_max: f32) -> Option<(f32, f32)> {
+        Some(self.clear_run(o, d, t, t_max))
     }
     fn max_density(&self) -> f32 {
         self.max

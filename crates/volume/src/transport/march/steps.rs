@@ -51,18 +51,37 @@ impl FastRenderer<'_> {
         let (mut steps, mut mids, mut rhos) = ([0.0f32; BATCH], [0.0f32; BATCH], [0.0f32; BATCH]);
         let mut t = t0;
         while t1 - t > 1e-6 * t1.abs().max(1.0) {
-            // Empty-space skipping over blocks of steps.
-            let span = (step_at(t) * skip).min(t1 - t);
-            let (pa, pb) = (o + d * t, o + d * (t + span));
-            let block = Aabb {
-                min: pa.min(pb),
-                max: pa.max(pb),
+            // Empty space skipped: along the density's own runs where it
+            // knows them (its steps then need no bound of their own), else
+            // over blocks of steps.
+            let mut bound_steps = sc.emission.is_none();
+            let end = match sc
+                .emission
+                .is_none()
+                .then(|| sc.density.clear_along(o, d, t, t1))
+            {
+                Some(Some((a, b))) => {
+                    if a >= t1 {
+                        return;
+                    }
+                    t = t.max(a);
+                    bound_steps = false;
+                    b
+                }
+                _ => {
+                    let span = (step_at(t) * skip).min(t1 - t);
+                    let (pa, pb) = (o + d * t, o + d * (t + span));
+                    let block = Aabb {
+                        min: pa.min(pb),
+                        max: pa.max(pb),
+                    };
+                    if bound_steps && sc.density.bound_in(&block) <= 0.0 {
+                        t += span;
+                        continue;
+                    }
+                    t + span
+                }
             };
-            if sc.emission.is_none() && sc.density.bound_in(&block) <= 0.0 {
-                t += span;
-                continue;
-            }
-            let end = t + span;
             let open = |t: f32| end - t > 1e-6 * end.abs().max(1.0);
             let parts = self.settings.substeps as usize;
             if parts > 1 {
@@ -75,7 +94,7 @@ impl FastRenderer<'_> {
                     while c < per && open(t) {
                         let dt = step_at(t).min(end - t);
                         // A step the density's bound finds empty costs no samples.
-                        if sc.emission.is_none()
+                        if bound_steps
                             && sc.density.bound_near(o + d * (t + 0.5 * dt), 0.5 * dt) <= 0.0
                         {
                             t += dt;
@@ -108,6 +127,7 @@ impl FastRenderer<'_> {
                         }
                     }
                 }
+                t = t.max(end);
                 continue;
             }
             while open(t) {
@@ -129,6 +149,7 @@ impl FastRenderer<'_> {
                     }
                 }
             }
+            t = t.max(end);
         }
     }
 
