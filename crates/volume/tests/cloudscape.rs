@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 mod common;
 
-use common::{centre_ray, frame_rays, lum, reference_lum};
+use common::{cached_reference_lum, centre_ray, frame_rays, lum};
 
 /// Relative luminance error per pixel, over `b × b` blocks (to average the
 /// reference's noise), and of the mean.
@@ -156,7 +156,8 @@ fn cloudscape_full_frame_against_the_reference_and_its_noise_floor() {
     let (rays, w) = frame_rays(&cam, 20);
     let spp = 1024;
     let fast = FastRenderer::new(&scene, cs.fast_settings()).unwrap();
-    let reference = |seed: u64| reference_lum(&scene, &cam, &rays, spp, seed);
+    let reference =
+        |seed: u64| cached_reference_lum("cloudscape_full", &scene, &cam, &rays, spp, seed);
     let a: Vec<f64> = rays
         .par_iter()
         .map(|&(x, y)| lum(fast.radiance(cam.eye(), centre_ray(&cam, x, y))))
