@@ -64,16 +64,34 @@ pub(crate) fn optical_depth_spaced(
     let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
     let dt = (t1 - t0) / n as f32;
     let mut tau = 0.0;
-    // Blocks of 8 steps whose density bound is zero are skipped (they would add zeros).
+    // Blocks of 8 steps where the density is zero are skipped (they would
+    // add zeros): those off the density's runs along the ray where it knows
+    // them, else those whose box it bounds by zero.
+    let mut run = density.clear_along(p, l, t0, t1);
     let mut i = 0;
     while i < n {
         let end = (i + 8).min(n);
-        let (a, b) = (p + l * (t0 + i as f32 * dt), p + l * (t0 + end as f32 * dt));
-        if density.bound_in(&Aabb {
-            min: a.min(b),
-            max: a.max(b),
-        }) > 0.0
-        {
+        let (ta, tb) = (t0 + i as f32 * dt, t0 + end as f32 * dt);
+        let filled = match run.as_mut() {
+            Some(r) => {
+                // The runs are zero between them: the first that ends past
+                // the block's start decides.
+                while r.1 <= ta && r.0 < t1 {
+                    *r = density
+                        .clear_along(p, l, r.1.max(ta), t1)
+                        .unwrap_or((ta, t1));
+                }
+                r.0 < tb
+            }
+            None => {
+                let (a, b) = (p + l * ta, p + l * tb);
+                density.bound_in(&Aabb {
+                    min: a.min(b),
+                    max: a.max(b),
+                }) > 0.0
+            }
+        };
+        if filled {
             // The block's densities in one batch (the same bits as one by one).
             let (mut x, mut y, mut z, mut rho) =
                 ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
@@ -381,5 +399,74 @@ pub(crate) fn map_rows(rows: usize, f: impl Fn(usize) -> Vec<f32> + Sync + Send)
     #[cfg(not(feature = "parallel"))]
     {
         (0..rows).flat_map(f).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::GridDensity;
+    use natura_core::{Grid3, Seed};
+
+    /// A density that hides its runs ([`Density::clear_along`]).
+    struct Boxed<'a>(&'a dyn Density);
+
+    impl Density for Boxed<'_> {
+        fn density(&self, p: Vec3) -> f32 {
+            self.0.density(p)
+        }
+        fn bounds(&self) -> Aabb {
+            self.0.bounds()
+        }
+        fn bound_in(&self, region: &Aabb) -> f32 {
+            self.0.bound_in(region)
+        }
+        fn max_density(&self) -> f32 {
+            self.0.max_density()
+        }
+        fn density_batch(
+            &self,
+            x: &[f32],
+            y: &[f32],
+            z: &[f32],
+            out: &mut [f32],
+        ) -> crate::Result<()> {
+            self.0.density_batch(x, y, z, out)
+        }
+    }
+
+    #[test]
+    fn the_runs_skip_only_zeros() {
+        // Puffs of density in a mostly empty grid: the optical depth of a
+        // ray is the same bits whether its empty blocks of steps are found
+        // by the grid's runs or by bounding their boxes.
+        let mut rng = Seed(4).rng();
+        let mut u = || crate::animate::unit(&mut rng);
+        let centres: Vec<Vec3> = (0..30)
+            .map(|_| Vec3::new(u() * 48.0, u() * 40.0, u() * 16.0))
+            .collect();
+        let g = Grid3::from_fn(48, 40, 16, |x, y, z| {
+            let p = Vec3::new(x as f32, y as f32, z as f32);
+            centres
+                .iter()
+                .map(|c| (1.0 - p.distance(*c) / 3.0).max(0.0))
+                .sum::<f32>()
+        })
+        .unwrap();
+        let grid = GridDensity::new(g, Vec3::new(10.0, -20.0, 500.0), 20.0).unwrap();
+        let b = grid.bounds();
+        let (mut same, mut lit) = (0, 0);
+        for _ in 0..400 {
+            let p = b.min + (b.max - b.min) * Vec3::new(u(), u(), u());
+            let l = Vec3::new(u() - 0.5, u() - 0.5, u() * 0.5 + 0.05).normalize();
+            let step = 5.0 + 30.0 * u();
+            let fast = optical_depth_spaced(&grid, 0.03, p, l, step, 10.0);
+            let boxed = optical_depth_spaced(&Boxed(&grid), 0.03, p, l, step, 10.0);
+            assert_eq!(fast.to_bits(), boxed.to_bits(), "{p} {l} {step}");
+            same += 1;
+            lit += usize::from(fast > 0.0);
+        }
+        assert_eq!(same, 400);
+        assert!(lit > 100 && lit < 390, "{lit}");
     }
 }
