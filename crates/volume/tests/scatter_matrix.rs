@@ -256,14 +256,15 @@ fn cached_reference(c: &Case, px: u32, spp: u32) -> (Vec<f64>, Vec<f64>) {
 fn fast_lums(c: &Case, px: u32, scattering: Scattering) -> Vec<f64> {
     let d = density(c.shape);
     let scene = scene(c, d.as_ref());
-    // `MATRIX_CELLS`, `MATRIX_ORDER` and `MATRIX_ZONAL` override the cache's grid, band
-    // and zonal tail (a study's knobs).
+    // `MATRIX_CELLS`, `MATRIX_ORDER`, `MATRIX_ZONAL` and `MATRIX_SEED` override the
+    // cache's grid, band, zonal tail and photons' seed (a study's knobs).
     let knob = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u32>().ok());
     let scattering = match scattering {
         Scattering::Cache(c) => Scattering::Cache(natura_volume::transport::CacheParams {
             cells: knob("MATRIX_CELLS").unwrap_or(c.cells),
             order: knob("MATRIX_ORDER").unwrap_or(c.order),
             zonal: knob("MATRIX_ZONAL").unwrap_or(c.zonal),
+            seed: knob("MATRIX_SEED").map_or(c.seed, u64::from),
             ..c
         }),
         s => s,
