@@ -152,8 +152,9 @@ pub const ORDER_DEFAULT: u32 = 7;
 pub struct CacheParams {
     /// Cells along the bounds' longest axis (4 to 1024; cells are cubes).
     pub cells: u32,
-    /// Scattering events traced in all (`10⁴` to `10⁹`); the cache's noise
-    /// falls as its inverse square root.
+    /// Scattering events traced in all (`10⁴` to `10⁹`; photons are traced
+    /// in whole batches, so the last batch may add a few more); the cache's
+    /// noise falls as its inverse square root.
     pub events: u32,
     /// Highest spherical-harmonic band of the stored radiance, 1 to 7
     /// (`(order + 1)²` coefficients per cell).
