@@ -44,10 +44,13 @@
 //! which carries every optical depth and the whole octave sum; its first
 //! order `σ_s'·p'·e^{−τ'}` is the light scattered once out of the core. The
 //! light that scatters only within the core, `e^{−τ'} − e^{−τ}` of the sun,
-//! is counted at its first core scattering (`σ_s·f·e^{−τ}` in the exact
-//! medium) and spread along the eye ray by the core's orders ([`PeakOrders`],
-//! where the series is derived), so the aureole round a low sun shows through
-//! thin cloud.
+//! is counted at the core scattering on the eye ray that turns it toward
+//! the eye, with the core scatterings before it along the sun's line and
+//! after it along the eye ray (Poisson in the peak's share of the exact
+//! optical depths toward the sun and the eye), each order a little wider
+//! ([`PeakOrders`], where the series is derived), so the aureole round a
+//! low sun shows through thin cloud, and brightens where a thicker cloud
+//! lies along the sun's line.
 //!
 //! This is Nakajima & Tanaka's truncated multiple-scattering approximation
 //! (1988, §2, "TMS": the truncated medium for the multiple scattering, the
@@ -468,10 +471,10 @@ impl<'s> FastRenderer<'s> {
 
     /// The sources at `p` (radiance per metre): in the transport medium
     /// (emission, the sun's light of every order, the first included, and
-    /// the ambient light), and the forward peak's own single scattering of
-    /// the sun in the exact medium (zero without truncation). `tau_eye0` is
-    /// the exact medium's optical depth from the eye (the peak scatterings
-    /// it holds: `ω f τ_e`).
+    /// the ambient light), and the sun's light scattered toward the eye at
+    /// `p` by the forward peak's core, in the exact medium, with the core
+    /// scatterings before and after it (zero without truncation).
+    /// `tau_eye0` is the exact medium's optical depth from the eye.
     #[inline]
     fn sources(
         &self,
@@ -503,12 +506,14 @@ impl<'s> FastRenderer<'s> {
                 };
                 src += s.irradiance
                     * (sigma_s * ms.sun(&m.phase, p, ray.eye.as_ref(), mu, tau, chord) * pw);
-                // The peak's own single scattering toward the eye, in
-                // the exact medium (optical depths scale with the
-                // extinction).
+                // The sunlight scattered toward the eye at `p` by the
+                // peak's core, with the core scatterings along the sun's
+                // line before it and along the eye ray after it, in the
+                // exact medium (optical depths scale with the extinction;
+                // see `PeakOrders`).
                 if let (Some(hg), Some(po)) = (self.peak, ray.orders) {
                     let tau0 = tau / self.ratio;
-                    let lobe = po.eval(ray.peak_share * tau_eye0);
+                    let lobe = po.eval(ray.peak_share * (tau0 + tau_eye0));
                     src0 = s.irradiance
                         * (sigma_t0 * m0.albedo * hg.weight * lobe * (-tau0).exp() * pw);
                 }

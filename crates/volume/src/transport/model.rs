@@ -267,43 +267,63 @@ pub fn delta_scaled(extinction: f32, albedo: f32, f: f32) -> (f32, f32) {
     (extinction * k, albedo * (1.0 - f) / k)
 }
 
-/// Orders of the forward peak kept in [`PeakOrders`]: enough for an
-/// exact-medium peak depth `ω f τ` of 8 along the eye ray to within 10⁻⁴ of
-/// the series' sum.
+/// Orders of the forward peak kept in [`PeakOrders`]: enough for a peak
+/// depth `X = ω f (τ_s + τ_e)` of 8 to within 10⁻⁴ of the series' sum.
+/// Past that depth the series carries `e^{−τ_s'−τ_e'}` of the sun's light
+/// at most, with the δ-M depths `τ' = τ(1 − ω f)` past 7 for the cloud
+/// phase's peak shares (`ω f ≤ 0.52`), so the orders cut are lost in it.
 pub const PEAK_ORDERS: usize = 24;
 
 /// The light that reaches the eye having scattered only within a phase
 /// function's forward peak, for one eye ray.
 ///
-/// Derivation (small-angle transport, every peak scattering keeps the light
-/// on the line from the sun through the eye). Along that line, with total
-/// optical depth `τ` of the exact medium and a fraction `ω f` of its
-/// extinction events being peak scatterings, the probability of exactly `n`
-/// peak scatterings and no other event is `e^{−τ}(ω f τ)^n/n!`; summed over
-/// `n ≥ 1` it is `e^{−τ'} − e^{−τ}` with the δ-M depth `τ' = τ(1 − ω f)`:
-/// the sunlight the δ-M medium counts as unscattered minus the sun's own
-/// beam. Each such path is counted once, by its first peak scattering (the
-/// one nearest the sun): there the sun arrives unscattered (`e^{−τ_s}`,
-/// exact medium), scatters into the peak (`σ_s f p_peak`), and on the way
-/// to the eye, over an exact-medium depth `τ_e`, scatters `k` more times
-/// in the peak with probability `e^{−τ_e}(ω f τ_e)^k/k!`. The angular
+/// Derivation (small-angle transport: a peak scattering turns the light by
+/// a fraction of a degree). Along a line of optical depth `τ` in the exact
+/// medium, with a fraction `ω f` of its extinction events being peak
+/// scatterings, the probability of exactly `m` peak scatterings and no
+/// other event is `e^{−τ}(ω f τ)^m/m!`; summed over `m ≥ 1` it is
+/// `e^{−τ'} − e^{−τ}` with the δ-M depth `τ' = τ(1 − ω f)`: the sunlight the
+/// δ-M medium counts as unscattered minus the sun's own beam. The angular
 /// spread grows with the orders: the Legendre coefficients of `HG(g)` are
 /// `g^l` (its form is the generating function of the Legendre
 /// polynomials; Henyey & Greenstein 1941, eq. 3), and successive
 /// scatterings convolve on the sphere, which multiplies the coefficients,
-/// so `k + 1` peak scatterings spread the light exactly as `HG(g^{k+1})`.
-/// The factor this type returns is
+/// so `m` peak scatterings spread the light exactly as `HG(g^m)`.
 ///
-/// `Σ_{k≥0} (ω f τ_e)^k/k!·HG(g^{k+1}, cos θ)`,
+/// Where the scatterings lie: a path that reaches the eye at an angle `θ`
+/// from the sun has one scattering on the eye ray (its last), the ones
+/// before it near the sun's line through that point, the ones after on the
+/// eye ray. A view a few degrees from the sun sees the two lines part by
+/// tens of metres over a kilometre of cloud, and there (past the peak's
+/// width) one of the `m` scatterings makes nearly the whole turn while the
+/// others barely deflect: the light travels along the sun's line up to the
+/// turning one and along the eye ray after it, and each of the `m` is as
+/// likely to be the one. So the march counts each path once over its `m`
+/// scatterings, each with weight `1/m`: at a point of the eye ray with
+/// exact depths `τ_s` toward the sun and `τ_e` toward the eye, `a` peak
+/// scatterings before it on the sun's line and `b` after it on the eye ray
+/// come with probability `e^{−τ_s}(ω f τ_s)^a/a!·e^{−τ_e}(ω f τ_e)^b/b!`,
+/// and by the binomial theorem the sum over `a + b = n` depends on the
+/// depths' sum alone. The factor this type returns is
+///
+/// `Σ_{n≥0} X^n/(n+1)!·HG(g^{n+1}, cos θ)`, `X = ω f (τ_s + τ_e)`,
 ///
 /// to be multiplied by `σ_s f e^{−τ_s}` and the exact eye transmittance
-/// `e^{−τ_e}`. Integrated over the eye ray it gives exactly the
-/// `e^{−τ'} − e^{−τ}` above, where counting every peak scattering as a
-/// first one (the δ-M depths on both legs, as in Nakajima & Tanaka 1988,
-/// §2) counts an `n`-fold path `n` times, and counting the first order
+/// `e^{−τ_e}`. Along a line toward the sun, where `τ_s + τ_e = τ` at every
+/// point, it integrates to exactly the `e^{−τ'} − e^{−τ}` above; past the
+/// peak's width, where `HG(g^m) ≈ m·HG(g)`, it is the single turn with the
+/// δ-M depths on both legs, Nakajima & Tanaka's form (1988, §2), which near
+/// the peak counts an `m`-fold path `m` times. Counting the first order
 /// alone (the exact depths) drops every path with two peak scatterings or
 /// more; at a depth `τ = 2` along the line and `f = ½` these give `1.6`
-/// and `0.58` times the peak-only light.
+/// and `0.58` times the peak-only light. Counting every path by its first
+/// scattering with the later ones on the eye ray (`X = ω f τ_e`) misses the
+/// peak light a thicker cloud beside the eye ray sends along the sun's
+/// line: the cloudscape's thin cloud within 3° of its low sun was 11 %
+/// darker than the reference. Counting it by its last with the earlier ones
+/// on the sun's line (`X = ω f τ_s`) made a sheet under a denser layer 11 %
+/// to 20 % too bright a few degrees from the sun, and the first 10 % to
+/// 17 % too dark; this count puts it within 5 %.
 #[derive(Clone, Copy, Debug)]
 pub struct PeakOrders {
     lobes: [f32; PEAK_ORDERS],
@@ -340,18 +360,19 @@ impl PeakOrders {
         s
     }
 
-    /// `Σ_k x^k/k!·HG(g^{k+1}, cos θ)` at `x = ω f τ_e ≥ 0` (see the type's docs).
+    /// `Σ_n X^n/(n+1)!·HG(g^{n+1}, cos θ)` at `X = ω f (τ_s + τ_e) ≥ 0`
+    /// (see the type's docs).
     #[inline]
     #[must_use]
     pub fn eval(&self, x: f32) -> f32 {
-        // Poisson weights x^k/k!; stop once past the mode and the next
-        // weight is below 10⁻⁶ of the weights summed.
+        // Weights X^n/(n+1)!; stop once past the mode and the next weight
+        // is below 10⁻⁶ of the weights summed.
         let (mut term, mut weights, mut s) = (1.0f32, 0.0f32, 0.0f32);
-        for (k, &l) in self.lobes.iter().enumerate() {
+        for (n, &l) in self.lobes.iter().enumerate() {
             s += term * l;
             weights += term;
-            term *= x / (k + 1) as f32;
-            if k as f32 > x && term < 1e-6 * weights {
+            term *= x / (n + 2) as f32;
+            if n as f32 > x && term < 1e-6 * weights {
                 break;
             }
         }
@@ -480,7 +501,9 @@ mod tests {
         // x = 0: the first order alone.
         let po = PeakOrders::new_lobe(g, 0.7);
         assert!((po.eval(0.0) - crate::phase::henyey_greenstein(g, 0.7)).abs() < 1e-7);
-        // Every lobe is normalised, so over the sphere the series is e^x.
+        // Every lobe is normalised, so over the sphere the series is
+        // Σ x^n/(n+1)! = (e^x − 1)/x: times the σ_s f e^{−τ} of a line of
+        // peak depth x, integrated along it (x over ω f), e^{−τ'} − e^{−τ}.
         let n = 200_000;
         let lobes: Vec<PeakOrders> = (0..n)
             .map(|i| PeakOrders::new_lobe(g, -1.0 + 2.0 * (i as f32 + 0.5) / n as f32))
@@ -490,7 +513,11 @@ mod tests {
             for l in &lobes {
                 s += f64::from(l.eval(x)) * 2.0 * std::f64::consts::PI * 2.0 / f64::from(n);
             }
-            let e = f64::from(x).exp();
+            let e = if x == 0.0 {
+                1.0
+            } else {
+                f64::from(x).exp_m1() / f64::from(x)
+            };
             assert!((s - e).abs() < 2e-3 * e, "{x}: {s} vs {e}");
         }
     }
@@ -507,7 +534,8 @@ mod tests {
         let hg = crate::phase::henyey_greenstein(core.g, inside) / core.lobe_share;
         assert!((po.eval(0.0) - hg).abs() < 1e-6 * hg);
         assert_eq!(PeakOrders::new(&core, 0.5).eval(0.0), 0.0);
-        // Every order is normalised: over the sphere the series is e^x.
+        // Every order is normalised: over the sphere the series is
+        // (e^x − 1)/x.
         // The nodes crowd into the forward direction (1 − μ = 2t³).
         let n = 400_000;
         for x in [0.0f32, 0.7, 3.0] {
@@ -518,7 +546,11 @@ mod tests {
                 let w = 6.0 * t * t * 2.0 * std::f64::consts::PI / f64::from(n);
                 s += f64::from(PeakOrders::new(&core, mu as f32).eval(x)) * w;
             }
-            let e = f64::from(x).exp();
+            let e = if x == 0.0 {
+                1.0
+            } else {
+                f64::from(x).exp_m1() / f64::from(x)
+            };
             assert!((s - e).abs() < 3e-3 * e, "{x}: {s} vs {e}");
         }
     }
