@@ -289,3 +289,62 @@ fn trees_on_the_shore_stand_in_the_water_s_mirror_image() {
         "{mirrored} of {tried} rays saw a tree in the water"
     );
 }
+
+/// The sun's light on a tree: the shadow ray through the triangles where a
+/// pixel is smaller than a leaf's sun-flecks, and the crowns as turbid media
+/// where it covers many leaves, with the same mean over the forest's leaves.
+#[test]
+fn sun_visibility_is_the_shadow_ray_near_and_its_mean_far() {
+    let world = forest_world(120.0);
+    let forest = Forest::build(&world, &NoProgress).unwrap().unwrap();
+    let sc = forest.instanced();
+    let sun = world.sun;
+    let eps = 0.03;
+    let (mut near, mut far, mut n) = (0.0f64, 0.0f64, 0.0f64);
+    let mut between_ok = 0;
+    for (i, p) in sc.placements.iter().enumerate() {
+        let m = &sc.meshes[p.mesh as usize];
+        if p.mesh % 2 == 1 {
+            continue;
+        }
+        for (k, (tri, _)) in m.tris.iter().zip(&m.leaf).filter(|(_, l)| **l).enumerate() {
+            if k % 7 != 0 {
+                continue;
+            }
+            let local = (tri[0] + tri[1] + tri[2]) / 3.0;
+            let (c, s) = p.cos_sin;
+            let q = p.position
+                + p.scale
+                    * Vec3::new(
+                        c * local.x - s * local.y,
+                        s * local.x + c * local.y,
+                        local.z,
+                    );
+            let own = Some(i as u32);
+            // A footprint far under a leaf: exactly the shadow ray.
+            let ray = if forest.occluded(q, sun, eps, f32::INFINITY) {
+                0.0
+            } else {
+                1.0
+            };
+            assert_eq!(forest.sun_visibility(q, sun, eps, 1e-4, own), ray);
+            // A footprint over many leaves: a share, not a fleck.
+            let v = forest.sun_visibility(q, sun, eps, 100.0, own);
+            assert!((0.0..=1.0).contains(&v), "{v}");
+            // Between, the blend of the two.
+            let mid = forest.sun_visibility(q, sun, eps, 0.1, own);
+            if mid >= ray.min(v) - 1e-6 && mid <= ray.max(v) + 1e-6 {
+                between_ok += 1;
+            }
+            near += f64::from(ray);
+            far += f64::from(v);
+            n += 1.0;
+        }
+    }
+    assert!(n > 500.0, "{n} leaf points");
+    assert_eq!(between_ok, n as usize);
+    let (near, far) = (near / n, far / n);
+    eprintln!("mean sun on {n} leaves: rays {near:.3}, media {far:.3}");
+    assert!(near > 0.1 && near < 0.9, "{near}");
+    assert!((near - far).abs() < 0.05, "rays {near:.3}, media {far:.3}");
+}

@@ -5,11 +5,14 @@
 use super::*;
 
 impl Renderer<'_> {
-    /// Whether a tree stands between `p` and the sun (beyond `t_min` metres).
-    pub(super) fn trees_occlude(&self, p: Vec3, t_min: f32) -> bool {
-        self.forest
-            .as_ref()
-            .is_some_and(|f| f.occluded(p, self.sun, t_min, f32::INFINITY))
+    /// The share of the sun's light the trees let through to `p` (beyond
+    /// `t_min` metres) as a pixel of footprint `footprint` metres sees it,
+    /// `own` the tree `p` lies on ([`Forest::sun_visibility`]); 1 without
+    /// a forest.
+    pub(super) fn trees_sun(&self, p: Vec3, t_min: f32, footprint: f32, own: Option<u32>) -> f32 {
+        self.forest.as_ref().map_or(1.0, |f| {
+            f.sun_visibility(p, self.sun, t_min, footprint, own)
+        })
     }
 
     /// Radiance leaving a tree toward `-d`: the sun unless the terrain or a
@@ -22,14 +25,18 @@ impl Renderer<'_> {
             at_origin_m: h.t * self.pixel_angle,
             per_metre: self.pixel_angle,
         };
-        let visible = self.sun.z > 0.0
-            && !self.trees_occlude(h.point, eps)
+        let terrain_lets = self.sun.z > 0.0
             && !self.tracer.occluded_footprint(
                 &Ray::new(h.point, self.sun),
                 eps,
                 f32::INFINITY,
                 fp,
             );
+        let visible = if terrain_lets {
+            self.trees_sun(h.point, eps, fp.at_origin_m, Some(h.instance))
+        } else {
+            0.0
+        };
         let light = Light {
             sun: self.sun,
             // The clouds' shadow dims the sun on trees as on the ground.
@@ -109,6 +116,8 @@ impl Renderer<'_> {
         let mut l = Vec3::ZERO;
         let mut e_sun = None;
 
+        // The sun's light through the clouds here.
+        let cloud = self.cloud_shadow(tp.point);
         // Direct sun, with a shadow ray from just above the surface.
         let cos_i = n.dot(self.sun);
         if cos_i > 0.0 && tp.geo.dot(self.sun) > -0.05 {
@@ -118,23 +127,30 @@ impl Renderer<'_> {
                 at_origin_m: footprint,
                 per_metre: self.pixel_angle,
             };
-            if !self
+            let trees = if self
                 .tracer
                 .occluded_footprint(&shadow, eps, f32::INFINITY, fp)
-                && !self.trees_occlude(shadow.origin, eps)
             {
-                let f = self.materials.diffuse_factor(n, self.sun, v) * self.cloud_shadow(tp.point);
+                0.0
+            } else {
+                self.trees_sun(shadow.origin, eps, footprint, None)
+            };
+            if trees > 0.0 {
+                let f = self.materials.diffuse_factor(n, self.sun, v) * cloud * trees;
                 l += albedo / std::f32::consts::PI * self.sun_irradiance * cos_i * f;
                 e_sun = Some(self.sun_irradiance * cos_i * f);
             }
         }
         // Sky light over the visible hemisphere, plus light bounced off the
-        // surroundings for normals that face down-slope.
+        // surroundings (under the clouds' shadow as this point is) for
+        // normals that face down-slope.
+        let light = Light {
+            sun: self.sun,
+            sun_irradiance: self.sun_irradiance * cloud,
+            sky_irradiance: self.sky_irradiance,
+        };
         let up = 0.5 * (1.0 + n.z);
-        let bounce = 0.5
-            * (1.0 - n.z)
-            * 0.25
-            * (self.sun_irradiance * self.sun.z.max(0.0) + self.sky_irradiance);
+        let bounce = 0.5 * (1.0 - n.z) * light.bounced();
         l += albedo / std::f32::consts::PI * (self.sky_irradiance * up + bounce);
         match &self.forest {
             // The forest's floor, and its canopy beyond the trees.
@@ -150,11 +166,7 @@ impl Renderer<'_> {
                     sun_visible: e_sun.is_some(),
                     radiance: l,
                 },
-                &Light {
-                    sun: self.sun,
-                    sun_irradiance: self.sun_irradiance * self.cloud_shadow(tp.point),
-                    sky_irradiance: self.sky_irradiance,
-                },
+                &light,
             ),
             None => l,
         }
@@ -300,11 +312,13 @@ impl Renderer<'_> {
             at_origin_m: footprint,
             per_metre: self.pixel_angle,
         };
-        let shadowed =
-            self.tracer
-                .occluded_footprint(&Ray::new(o, self.sun), 0.0, f32::INFINITY, fp)
-                || self.trees_occlude(o, 1e-2);
-        if shadowed { Vec3::ZERO } else { g }
+        if self
+            .tracer
+            .occluded_footprint(&Ray::new(o, self.sun), 0.0, f32::INFINITY, fp)
+        {
+            return Vec3::ZERO;
+        }
+        g * self.trees_sun(o, 1e-2, footprint, None)
     }
 
     /// Rain between `rain_distance_m` and the hit: extinction of what is behind

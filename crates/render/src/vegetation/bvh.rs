@@ -168,7 +168,7 @@ impl Mesh {
     }
 
     /// Whether any triangle crosses `o + t·d` in `(t_min, t_max)`.
-    fn any(&self, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
+    pub(crate) fn any(&self, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
         let Some(bvh) = &self.bvh else {
             return false;
         };
@@ -227,6 +227,9 @@ impl Placement {
         b
     }
 }
+
+/// Optical depth past which [`Instanced::transmittance`] stops adding.
+const OPAQUE_DEPTH: f32 = 6.9;
 
 /// The closest hit of a ray on an instanced scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -332,6 +335,37 @@ impl Instanced {
                 f32::INFINITY
             }
         })
+    }
+
+    /// The fraction of light passing along `o + t·d`, `t > t_min`, through
+    /// the crowns as turbid media: `exp(−Σ τ)` over the placements whose
+    /// crown the ray crosses, `media[mesh]` the crown of each mesh (`None`:
+    /// no leaves, transparent). Stops adding once the light is under a
+    /// thousandth.
+    #[must_use]
+    pub fn transmittance(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        t_min: f32,
+        media: &[Option<super::turbid::CrownMedium>],
+    ) -> f32 {
+        let Some(tlas) = &self.tlas else {
+            return 1.0;
+        };
+        let mut depth = 0.0f32;
+        tlas.ray_traverse_miss(bvh_ray(o, d, t_min, f32::INFINITY), |_, id| {
+            let p = &self.placements[tlas.primitive_indices[id] as usize];
+            if let Some(m) = &media[p.mesh as usize] {
+                depth += m.optical_depth(p.local(o, true), p.local(d, false), t_min);
+            }
+            if depth > OPAQUE_DEPTH {
+                t_min
+            } else {
+                f32::INFINITY
+            }
+        });
+        (-depth).exp()
     }
 
     /// Whether anything lies along the ray, by testing every triangle.

@@ -32,7 +32,8 @@
 //! `Φ(α) = (sin α + (π − α) cos α)/π` (Lambert's law integrated over the
 //! sphere's lit, visible half), dimmed by the crowns' mutual shading as
 //! the far hulls are ([`super::CROWN_HULL_SHADE`]), plus the skylight a
-//! crown's surface sees ([`CROWN_OPENNESS`]).
+//! crown's surface sees ([`CROWN_OPENNESS`]) and the lit ground's light
+//! from below ([`Light::bounced`]), as on the instanced trees.
 //!
 //! **Seam.** The instanced trees thin out over the outer quarter of the
 //! forest's radius with probability `1 − near_share(d)`
@@ -418,7 +419,10 @@ impl Canopy {
             p.y / (self.cell * COLOUR_STEP as f32),
             Boundary::Clamp,
         );
-        let mut crown = rho * inv_pi * light.sky_irradiance * (0.75 * CROWN_OPENNESS);
+        // The sky on three quarters of the crown's seen surface, the lit
+        // ground's light ([`Light::bounced`]) on the last quarter.
+        let mut crown =
+            rho * inv_pi * (light.sky_irradiance * 0.75 + light.bounced() * 0.25) * CROWN_OPENNESS;
         if g.sun_visible {
             let phase = lambert_phase((-g.dir).dot(light.sun));
             crown += rho * inv_pi * light.sun_irradiance * (2.0 / 3.0 * phase);

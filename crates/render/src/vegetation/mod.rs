@@ -16,7 +16,10 @@
 //! 4. Rays meet the trees through obvhs' wide BVHs ([`bvh`]): one over the
 //!    instances, one per mesh; shading ([`shade`]) adds leaf translucency,
 //!    on normals interpolated over each crown, and each plant's leaves take
-//!    their own colour at the scene's season.
+//!    their own colour at the scene's season. Where a pixel covers many
+//!    leaves, the sun reaching a leaf or the floor is the mean over them:
+//!    the crowns as turbid media ([`turbid`]), instead of one shadow ray's
+//!    fleck.
 //! 5. Beyond the instanced trees the forest goes on to the horizon as a
 //!    canopy layer over the terrain ([`canopy`]), its density learned from
 //!    the stand and spread by the same species' establishment rules over
@@ -27,6 +30,7 @@ pub mod canopy;
 pub mod proto;
 pub mod shade;
 pub mod tri;
+pub mod turbid;
 
 use std::time::{Duration, Instant};
 
@@ -40,6 +44,7 @@ use bvh::{Instanced, Mesh, Placement};
 use canopy::{Canopy, CanopyInput, Ground, StandTree};
 use natura_plant::eco::catalogue::{self, Look};
 pub use shade::Light;
+use turbid::CrownMedium;
 
 /// The share of the forest drawn as instanced trees at horizontal distance
 /// `dist` from the eye in a forest of radius `radius` (metres): 1 within
@@ -50,6 +55,16 @@ pub use shade::Light;
 pub fn near_share(dist: f32, radius: f32) -> f32 {
     (4.0 * (1.0 - dist / radius)).clamp(0.0, 1.0)
 }
+
+/// The footprint, in leaf cards, under which the sun on a tree is one
+/// shadow ray's ([`Forest::sun_visibility`]): a spray's flecks are about a
+/// twentieth of its card (an own value).
+const FLECK_OF_CARD: f32 = 0.05;
+
+/// The footprint, in leaf cards, from which the sun on a tree is the mean
+/// over the crowns as turbid media (an own value: from a quarter of a card
+/// a pixel covers many flecks).
+const MEAN_OF_CARD: f32 = 0.25;
 
 /// Brightness of a low-polygon crown relative to a lit leaf: the mean
 /// self-shadowing of a full crown seen from afar (own value, matched by eye
@@ -110,6 +125,11 @@ pub struct Forest {
     leaf_of: Vec<(Vec3, Vec3)>,
     /// The forest beyond the trees, if the scene has it.
     canopy: Option<Canopy>,
+    /// Each mesh's crown as a turbid medium (a crown mesh shares its full
+    /// mesh's), for the sun's light where a pixel covers many leaves.
+    media: Vec<Option<CrownMedium>>,
+    /// The mean size of a leaf over the trees, metres.
+    leaf_m: f32,
     transmission: f32,
     brute: bool,
     stats: ForestStats,
@@ -391,6 +411,19 @@ impl Forest {
         if let Some(ground) = ground {
             placements = grounded(&meshes, &placements, ground);
         }
+        let elevation = world.sun.z.clamp(-1.0, 1.0).asin();
+        let media: Vec<Option<CrownMedium>> = meshes
+            .chunks_exact(2)
+            .flat_map(|pair| {
+                let m = CrownMedium::of(&pair[0], elevation);
+                [m.clone(), m]
+            })
+            .collect();
+        let leaf_m = placements
+            .iter()
+            .filter_map(|p| Some(media[p.mesh as usize].as_ref()?.leaf_size() * p.scale))
+            .sum::<f32>()
+            / placements.len() as f32;
         let scene_bvh = Instanced::new(meshes, placements);
         stats.tlas = t2.elapsed();
         let t3 = Instant::now();
@@ -406,6 +439,8 @@ impl Forest {
             species_of,
             leaf_of,
             canopy,
+            media,
+            leaf_m,
             transmission: v.leaf_transmission as f32,
             brute: false,
             stats,
@@ -495,10 +530,53 @@ impl Forest {
         }
     }
 
-    /// Radiance toward `-d` from a tree hit, lit by `light` (the sun counted
-    /// only if `sun_visible`).
+    /// The share of the sun's light along the unit direction `sun` that
+    /// reaches `p` past the trees (beyond `t_min` metres), as a pixel whose
+    /// footprint there is `footprint` metres wide sees it; `own` is the tree
+    /// `p` lies on, if any.
+    ///
+    /// A prototype's leaf triangles are cards that stand for sprays of
+    /// needles or leaves, through whose gaps the sun falls in flecks a
+    /// fraction of the card across. Where the footprint is under a
+    /// twentieth of a card (that tree's, or the forest's mean), a shadow
+    /// ray through the trees' triangles: 1 or 0. Where it is a quarter of a
+    /// card or more, the mean over the flecks: the crowns as turbid media
+    /// ([`turbid`]), `exp(−Σ κ·s)`. Between, the two blended. So near leaves
+    /// keep their sun-flecks and farther crowns are lit by their depth
+    /// toward the sun, without one sample's fleck showing as a speck.
     #[must_use]
-    pub fn shade(&self, hit: &TreeHit, d: Vec3, light: &Light, sun_visible: bool) -> Vec3 {
+    pub fn sun_visibility(
+        &self,
+        p: Vec3,
+        sun: Vec3,
+        t_min: f32,
+        footprint: f32,
+        own: Option<u32>,
+    ) -> f32 {
+        let leaf = own
+            .and_then(|i| {
+                let pl = &self.scene.placements[i as usize];
+                Some(self.media[pl.mesh as usize].as_ref()?.leaf_size() * pl.scale)
+            })
+            .unwrap_or(self.leaf_m);
+        let mean = natura_core::smoothstep(FLECK_OF_CARD * leaf, MEAN_OF_CARD * leaf, footprint);
+        let ray = if mean < 1.0 && !self.occluded(p, sun, t_min, f32::INFINITY) {
+            1.0 - mean
+        } else {
+            0.0
+        };
+        if mean > 0.0 {
+            ray + mean * self.scene.transmittance(p, sun, t_min, &self.media)
+        } else {
+            ray
+        }
+    }
+
+    /// Radiance toward `-d` from a tree hit, lit by `light` (the sun's
+    /// light times `sun_visible`, the share of it reaching the hit:
+    /// [`Self::sun_visibility`]).
+    #[must_use]
+    pub fn shade(&self, hit: &TreeHit, d: Vec3, light: &Light, sun_visible: f32) -> Vec3 {
         let i = hit.instance as usize;
         let (leaf, leaf_transmit) = self.leaf_of[i];
         let look = Look {
