@@ -33,8 +33,17 @@ fn crop(img: &Image, x0: usize, y0: usize, w: usize, h: usize) -> Vec<u32> {
 
 #[test]
 fn regions_equal_the_full_render_on_any_thread_count() {
-    let scene = small_scene();
-    let world = World::build(&scene, &NoProgress).unwrap();
+    for sigma in [0.0, 0.5] {
+        let mut scene = small_scene();
+        scene.render.filter_sigma_px = sigma;
+        regions_equal_the_full_render(&scene);
+    }
+}
+
+/// With the Gaussian pixel filter, a region's edge pixels mix samples of
+/// pixels outside it: they are traced alike.
+fn regions_equal_the_full_render(scene: &SceneDesc) {
+    let world = World::build(scene, &NoProgress).unwrap();
     let renderer = Renderer::new(&world, &NoProgress).unwrap();
     let full = renderer.render(&NoProgress).unwrap();
     // Odd sizes and offsets that straddle the renderer's own tiles.

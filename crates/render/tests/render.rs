@@ -52,15 +52,23 @@ fn same_image_on_one_and_two_threads() {
 /// The tile renderer traces each tile's primary rays together (the mipmap
 /// tracer's lanes); every pixel must equal the one-ray-at-a-time
 /// [`Renderer::pixel`] bit for bit: with lakes, sea and rain, for one, two and
-/// three samples per pixel (a non-square stratification), and through a
-/// panoramic camera.
+/// three samples per pixel (a non-square stratification), through a
+/// panoramic camera, and with the Gaussian pixel filter (whose pixels mix
+/// their neighbours' samples, refined where they disagree together).
 #[test]
 fn tile_render_equals_per_pixel_samples() {
-    for (spp, panorama) in [(1, false), (2, false), (3, true)] {
+    for (spp, panorama, sigma) in [
+        (1, false, 0.0),
+        (2, false, 0.0),
+        (3, true, 0.0),
+        (4, false, 0.5),
+        (2, true, 0.8),
+    ] {
         let mut scene = small_scene();
         scene.render.width = 40;
         scene.render.height = 24;
         scene.render.spp = spp;
+        scene.render.filter_sigma_px = sigma;
         scene.atmosphere.rain_extinction_per_m = 2e-4;
         if panorama {
             scene.camera.kind = natura_render::CameraKind::Cylindrical;
@@ -75,7 +83,7 @@ fn tile_render_equals_per_pixel_samples() {
                 assert_eq!(
                     a.to_array().map(f32::to_bits),
                     b.to_array().map(f32::to_bits),
-                    "spp {spp}, pixel ({x}, {y}): {a} vs {b}"
+                    "spp {spp}, σ {sigma}, pixel ({x}, {y}): {a} vs {b}"
                 );
             }
         }
@@ -288,6 +296,8 @@ fn refinement_leaves_agreeing_pixels_as_they_were() {
     let mut scene = small_scene();
     scene.render.spp = 4;
     scene.render.adaptive_samples = 16;
+    // The box filter: a pixel is its own samples only.
+    scene.render.filter_sigma_px = 0.0;
     let world = World::build(&scene, &NoProgress).unwrap();
     let on = Renderer::new(&world, &NoProgress).unwrap();
     let mut plain = scene.clone();
@@ -325,4 +335,48 @@ fn refinement_leaves_agreeing_pixels_as_they_were() {
         refined > 0 && refined < all / 2,
         "{refined} of {all} refined"
     );
+}
+
+/// The Gaussian pixel filter moves light between neighbouring pixels but
+/// neither makes nor loses it: the image's mean luminance is the box's
+/// within a per cent (the edges of the frame, where a pixel has fewer
+/// neighbours, and the samples' noise), while the pixel-to-pixel
+/// differences shrink.
+#[test]
+fn the_gaussian_filter_keeps_the_image_s_light_and_softens_it() {
+    let render = |sigma: f32| {
+        let mut scene = small_scene();
+        scene.render.width = 64;
+        scene.render.height = 36;
+        scene.render.spp = 4;
+        scene.render.filter_sigma_px = sigma;
+        scene.render.exposure_ev = Some(0.0);
+        let world = World::build(&scene, &NoProgress).unwrap();
+        Renderer::new(&world, &NoProgress)
+            .unwrap()
+            .render(&NoProgress)
+            .unwrap()
+    };
+    let stats = |img: &natura_core::Image| {
+        let (w, h) = (img.width(), img.height());
+        let px = img.pixels();
+        let l = |x: usize, y: usize| f64::from(luma(px[(x, y)]));
+        let mean = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| l(x, y))
+            .sum::<f64>()
+            / (w * h) as f64;
+        let steps = (0..h)
+            .flat_map(|y| (1..w).map(move |x| (x, y)))
+            .map(|(x, y)| (l(x, y) - l(x - 1, y)).abs())
+            .sum::<f64>();
+        (mean, steps)
+    };
+    let (box_mean, box_steps) = stats(&render(0.0));
+    let (g_mean, g_steps) = stats(&render(0.5));
+    assert!(
+        (g_mean / box_mean - 1.0).abs() < 0.01,
+        "mean {g_mean} vs {box_mean}"
+    );
+    assert!(g_steps < 0.9 * box_steps, "steps {g_steps} vs {box_steps}");
 }

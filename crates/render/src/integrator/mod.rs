@@ -37,10 +37,13 @@ use crate::vegetation::{Forest, Light, TreeHit};
 use crate::water::{WindSea, glitter};
 use crate::world::World;
 
+mod filter;
+mod pixels;
 mod sampling;
 mod shade;
 mod surface;
 
+use filter::PixelFilter;
 use sampling::{Adaptive, refined_position};
 use surface::detail_surface;
 
@@ -79,6 +82,8 @@ pub struct Renderer<'w> {
     spp: u32,
     /// When a pixel takes more than its `spp` samples.
     adaptive: Adaptive,
+    /// How a pixel's samples spread over the image plane.
+    filter: PixelFilter,
     seed: Seed,
 }
 
@@ -91,6 +96,7 @@ impl std::fmt::Debug for Renderer<'_> {
             .field("height", &self.height)
             .field("spp", &self.spp)
             .field("adaptive_samples", &self.adaptive.total())
+            .field("filter", &self.filter)
             .finish_non_exhaustive()
     }
 }
@@ -264,6 +270,7 @@ impl<'w> Renderer<'w> {
                 luminance(sun_irradiance * world.sun.z.max(0.0) + sky_irradiance)
                     / std::f32::consts::PI,
             ),
+            filter: PixelFilter::gaussian(r.filter_sigma_px),
             seed: seed.derive("pixels"),
         })
     }
@@ -312,161 +319,6 @@ impl<'w> Renderer<'w> {
     #[must_use]
     pub fn acceleration_bytes(&self) -> usize {
         self.tracer.memory_bytes() + self.ground.memory_bytes()
-    }
-
-    /// Renders the linear (scene-referred) image in parallel tiles.
-    ///
-    /// Each pixel averages `spp` stratified samples whose positions are
-    /// random numbers indexed by pixel and sample, so the image is
-    /// bit-identical for any thread count; a pixel whose samples disagree
-    /// takes more, up to the scene's `adaptive_samples`, and averages them
-    /// all (the refinement's samples fill the pixel with its base ones). The
-    /// primary rays of a tile (all their base samples, then the further
-    /// samples of its pixels that take them) are traced together with
-    /// [`Tracer::trace_many`], the mipmap tracer's lock-step lanes; every
-    /// pixel equals [`Self::pixel`] bit for bit.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`RenderError::Core`](crate::RenderError::Core) if the image cannot be allocated, and the
-    /// errors of sky and aerial-perspective lookups.
-    pub fn render(&self, progress: &dyn Progress) -> Result<Image> {
-        self.render_region(0, 0, self.width, self.height, progress)
-    }
-
-    /// Renders the `width × height` pixel rectangle of the image whose
-    /// top-left pixel is `(x0, y0)`, in parallel tiles: a shard of a frame.
-    ///
-    /// Every pixel is a function of its position, sample index and seed only
-    /// (see [`Self::render`]), so the region equals the same rectangle of the
-    /// full image bit for bit, whatever the region and thread count.
-    ///
-    /// # Errors
-    ///
-    /// Returns [`RenderError::Invalid`](crate::RenderError::Invalid) if the
-    /// rectangle is empty or reaches outside the image, and the errors of
-    /// [`Self::render`].
-    pub fn render_region(
-        &self,
-        x0: u32,
-        y0: u32,
-        width: u32,
-        height: u32,
-        progress: &dyn Progress,
-    ) -> Result<Image> {
-        let inside =
-            |o: u32, n: u32, side: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= side);
-        if !inside(x0, width, self.width) || !inside(y0, height, self.height) {
-            return Err(crate::RenderError::invalid(
-                "region",
-                format_args!("{width} × {height} at ({x0}, {y0})"),
-                &format!(
-                    "a non-empty rectangle inside the {} × {} image",
-                    self.width, self.height
-                ),
-            ));
-        }
-        let n = self.spp as usize;
-        let grid = natura_trace::render_tiles(
-            width,
-            height,
-            natura_trace::DEFAULT_TILE,
-            progress,
-            |bx, by, w, h, out| {
-                let (bx, by) = (x0 + bx, y0 + by);
-                let mut rays = Vec::with_capacity((w * h) as usize * n);
-                for y in by..by + h {
-                    for x in bx..bx + w {
-                        rays.extend((0..self.spp).map(|s| self.primary_ray(x, y, s)));
-                    }
-                }
-                let hits = self.tracer.trace_many(&rays, 0.0, f32::INFINITY);
-                // Pixels whose samples disagree: their index in the tile
-                // and their base samples' sum, to which their further
-                // samples (traced together below) are added in order.
-                let mut refine = Vec::new();
-                let mut base = Vec::with_capacity(n);
-                for (r, h) in rays.chunks_exact(n).zip(hits.chunks_exact(n)) {
-                    base.clear();
-                    base.extend(
-                        r.iter()
-                            .zip(h)
-                            .map(|(ray, hit)| self.radiance_traced(ray, hit.as_ref())),
-                    );
-                    let sum = base.iter().fold(Vec3::ZERO, |a, &l| a + l);
-                    if self.adaptive.disagree(&base) {
-                        refine.push((out.len(), sum));
-                    }
-                    out.push(sum / self.spp as f32);
-                }
-                if refine.is_empty() {
-                    return;
-                }
-                let total = self.adaptive.total();
-                rays.clear();
-                for &(i, _) in &refine {
-                    let (x, y) = (bx + i as u32 % w, by + i as u32 / w);
-                    rays.extend((self.spp..total).map(|s| self.primary_ray(x, y, s)));
-                }
-                let hits = self.tracer.trace_many(&rays, 0.0, f32::INFINITY);
-                let more = (total - self.spp) as usize;
-                for ((i, mut sum), (r, h)) in refine
-                    .into_iter()
-                    .zip(rays.chunks_exact(more).zip(hits.chunks_exact(more)))
-                {
-                    for (ray, hit) in r.iter().zip(h) {
-                        sum += self.radiance_traced(ray, hit.as_ref());
-                    }
-                    out[i] = sum / total as f32;
-                }
-            },
-        )?;
-        Ok(Image::from_grid(grid))
-    }
-
-    /// The average radiance of pixel `(x, y)` over its stratified samples:
-    /// its `spp` base samples, and where they disagree its further samples
-    /// up to the scene's `adaptive_samples`.
-    #[must_use]
-    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
-        self.pixel_samples(x, y).0
-    }
-
-    /// [`Self::pixel`] and the number of samples it took: `spp`, or the
-    /// scene's `adaptive_samples` where the base samples disagree.
-    #[must_use]
-    pub fn pixel_samples(&self, x: u32, y: u32) -> (Vec3, u32) {
-        let sample = |s: u32| {
-            let ray = self.primary_ray(x, y, s);
-            let hit = self.tracer.trace(&ray, 0.0, f32::INFINITY);
-            self.radiance_traced(&ray, hit.as_ref())
-        };
-        let base: Vec<Vec3> = (0..self.spp).map(sample).collect();
-        let mut sum = base.iter().fold(Vec3::ZERO, |a, &l| a + l);
-        if !self.adaptive.disagree(&base) {
-            return (sum / self.spp as f32, self.spp);
-        }
-        let total = self.adaptive.total();
-        for s in self.spp..total {
-            sum += sample(s);
-        }
-        (sum / total as f32, total)
-    }
-
-    /// Sample `s` of pixel `(x, y)`: the camera ray through its jittered
-    /// position in the pixel ([`refined_position`]), with a unit direction.
-    fn primary_ray(&self, x: u32, y: u32, s: u32) -> Ray {
-        let jitter = |s: u32| {
-            let h = self.seed.hash(&[i64::from(x), i64::from(y), i64::from(s)]);
-            (
-                unit_f64(h) as f32,
-                unit_f64(mix64(h ^ 0x9E37_79B9_7F4A_7C15)) as f32,
-            )
-        };
-        let shuffle = |k: i64| self.seed.hash(&[i64::from(x), i64::from(y), k]);
-        let p = refined_position(s, self.spp, self.adaptive.total(), jitter, shuffle);
-        let ray = self.camera.camera().ray(x, y, p);
-        Ray::new(ray.origin, ray.dir.normalize())
     }
 
     /// Radiance arriving at the camera along a primary `ray`.

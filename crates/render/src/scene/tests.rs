@@ -39,12 +39,13 @@ fn round_trips_through_toml() {
     s.camera.kind = CameraKind::Cylindrical;
     s.render.adaptive_samples = 64;
     s.render.adaptive_contrast = 0.4;
+    s.render.filter_sigma_px = 0.3;
     let text = s.to_toml_string().unwrap();
     assert_eq!(SceneDesc::from_toml_str(&text, "x").unwrap(), s);
 }
 
 #[test]
-fn adaptive_sampling_keys_are_read_and_refused_by_name() {
+fn sampling_keys_are_read_and_refused_by_name() {
     let text = "[render]\nadaptive_samples = 36\nadaptive_contrast = 0.5\n";
     let s = SceneDesc::from_toml_str(text, "a.toml").unwrap();
     assert_eq!(
@@ -76,6 +77,18 @@ fn adaptive_sampling_keys_are_read_and_refused_by_name() {
         (
             "render.adaptive_contrast",
             Box::new(|s| s.render.adaptive_contrast = 1.5),
+        ),
+        (
+            "render.filter_sigma_px",
+            Box::new(|s| s.render.filter_sigma_px = f32::NAN),
+        ),
+        (
+            "render.filter_sigma_px",
+            Box::new(|s| s.render.filter_sigma_px = -0.1),
+        ),
+        (
+            "render.filter_sigma_px",
+            Box::new(|s| s.render.filter_sigma_px = 1.5),
         ),
     ];
     for (key, mutate) in cases {

@@ -299,6 +299,7 @@ impl RenderDesc {
             4096.0,
         )?;
         in_range("render.adaptive_contrast", self.adaptive_contrast, 0.0, 1.0)?;
+        in_range("render.filter_sigma_px", self.filter_sigma_px, 0.0, 1.0)?;
         if let Some(ev) = self.exposure_ev {
             in_range("render.exposure_ev", ev, -64.0, 64.0)?;
         }
