@@ -23,9 +23,13 @@
 //!   16 (`render.adaptive_samples`), which count the sky within a
 //!   sixteenth.
 //!
-//! The forest is left out: its crowns at these sizes are a texture of lit
-//! and shaded needles a pixel wide, which the detector's test cannot tell
-//! from specks; more samples a pixel do not remove them (they are there).
+//! The forest is held to the count it shows today instead of none: its
+//! crowns at these sizes are lit tips and sun-flecks a pixel wide among
+//! shade. Where a pixel covers many leaves the sun on them is now the mean
+//! through the crowns as turbid media, and the shade is lit from below,
+//! which halved the count in the default landscape; more samples a pixel
+//! (or the Gaussian pixel filter) remove much of the rest, which is the
+//! samples' noise.
 
 use natura_core::NoProgress;
 use natura_render::scene::CameraKind;
@@ -47,6 +51,9 @@ fn quick(mut s: SceneDesc) -> SceneDesc {
     s.vegetation.enabled = false;
     s
 }
+
+/// Stray pixels in the quick landscape with its forest, today.
+const KNOWN_FOREST_STRAYS: usize = 141;
 
 /// Fails if `scene` shows more than `known` stray pixels.
 fn at_most(scene: &SceneDesc, known: usize) {
@@ -119,4 +126,14 @@ fn pictures_have_no_stray_pixels() {
         stray += found.len();
     }
     assert_eq!(stray, 0, "stray pixels in {} pictures", paths.len());
+}
+
+/// The quick landscape with its forest. The forest's lit crowns among
+/// shade still leave specks (the target is none); this holds the count
+/// known today, so a change that adds specks fails here.
+#[test]
+fn quick_forest_has_no_more_stray_pixels_than_known() {
+    let mut s = quick(SceneDesc::default());
+    s.vegetation.enabled = true;
+    at_most(&s, KNOWN_FOREST_STRAYS);
 }
