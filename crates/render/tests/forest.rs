@@ -312,14 +312,7 @@ fn sun_visibility_is_the_shadow_ray_near_and_its_mean_far() {
                 continue;
             }
             let local = (tri[0] + tri[1] + tri[2]) / 3.0;
-            let (c, s) = p.cos_sin;
-            let q = p.position
-                + p.scale
-                    * Vec3::new(
-                        c * local.x - s * local.y,
-                        s * local.x + c * local.y,
-                        local.z,
-                    );
+            let q = p.position + p.scale * p.normal_to_world(local);
             let own = Some(i as u32);
             // A footprint far under a leaf: exactly the shadow ray.
             let ray = if forest.occluded(q, sun, eps, f32::INFINITY) {

@@ -226,12 +226,11 @@ mod tests {
     /// grid (leaf size `w`).
     fn crown(n: usize, w: f32) -> Mesh {
         let mut tris = Vec::new();
-        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let seed = natura_core::Seed(11);
+        let mut k = 0i64;
         let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
+            k += 1;
+            seed.uniform(&[k]) as f32
         };
         for _ in 0..n {
             let (r, a, z) = (
