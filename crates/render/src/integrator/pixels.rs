@@ -12,13 +12,16 @@ const FILTER_TILE: u32 = 64;
 /// The samples of one pixel of a tile's traced block: where its base
 /// samples are in the block's arrays, and its further ones, if any.
 struct Samples {
-    /// Positions in their pixel (`[0, 1)²`) and radiances of every pixel's
-    /// base samples, `spp` a pixel in row order over the block.
+    /// The top-left pixel and width of the traced pixels: the block and
+    /// the ring around it the refinement's test reads.
+    origin: (u32, u32, u32),
+    /// Positions in their pixel (`[0, 1)²`) and radiances of every traced
+    /// pixel's base samples, `spp` a pixel in row order.
     base: (Vec<Vec2>, Vec<Vec3>),
     /// The same of the further samples of the pixels that take them.
     more: (Vec<Vec2>, Vec<Vec3>),
-    /// Per pixel of the block, the index in `more` of its first further
-    /// sample, or `usize::MAX`.
+    /// Per traced pixel, the index in `more` of its first further sample,
+    /// or `usize::MAX` (always for the ring outside the block).
     more_at: Vec<usize>,
 }
 
@@ -99,8 +102,7 @@ impl Renderer<'_> {
                 for y in by..by + h {
                     for x in bx..bx + w {
                         out.push(self.filtered(x, y, |nx, ny, f| {
-                            let i = ((ny - ay) * aw + (nx - ax)) as usize;
-                            block.pixel(i, self.spp as usize, self.adaptive.total(), f);
+                            block.pixel(nx, ny, self.spp as usize, self.adaptive.total(), f);
                         }));
                     }
                 }
@@ -136,26 +138,17 @@ impl Renderer<'_> {
             .zip(&hits)
             .map(|(ray, hit)| self.radiance_traced(ray, hit.as_ref()))
             .collect();
-        // The block's own pixels, in row order.
-        let at = |x: u32, y: u32| ((y - ey) * ew + (x - ex)) as usize * n;
-        let pixels = (w * h) as usize;
-        let (mut pos, mut rad) = (
-            Vec::with_capacity(pixels * n),
-            Vec::with_capacity(pixels * n),
-        );
-        let mut more_at = vec![usize::MAX; pixels];
+        let at = |x: u32, y: u32| ((y - ey) * ew + (x - ex)) as usize;
+        let mut more_at = vec![usize::MAX; (ew * eh) as usize];
         let (mut mpos, mut mrays) = (Vec::new(), Vec::new());
         for y in y0..y0 + h {
             for x in x0..x0 + w {
-                let k = at(x, y);
-                pos.extend_from_slice(&epos[k..k + n]);
-                rad.extend_from_slice(&erad[k..k + n]);
                 let refine = self.refines(x, y, |nx, ny| {
-                    let k = at(nx, ny);
+                    let k = at(nx, ny) * n;
                     &erad[k..k + n]
                 });
                 if refine {
-                    more_at[((y - y0) * w + (x - x0)) as usize] = mpos.len();
+                    more_at[at(x, y)] = mpos.len();
                     for s in self.spp..self.adaptive.total() {
                         let p = self.sample_position(x, y, s);
                         mpos.push(p);
@@ -175,7 +168,8 @@ impl Renderer<'_> {
                 .collect()
         };
         Samples {
-            base: (pos, rad),
+            origin: (ex, ey, ew),
+            base: (epos, erad),
             more: (mpos, mrad),
             more_at,
         }
@@ -251,13 +245,17 @@ impl Renderer<'_> {
     /// disagree.
     #[must_use]
     pub fn pixel_samples(&self, x: u32, y: u32) -> (Vec3, u32) {
-        let own = self.samples_of(x, y).len() as u32;
+        let own = std::cell::Cell::new(0);
         let value = self.filtered(x, y, |nx, ny, f| {
-            for (p, l) in self.samples_of(nx, ny) {
+            let samples = self.samples_of(nx, ny);
+            if (nx, ny) == (x, y) {
+                own.set(samples.len() as u32);
+            }
+            for (p, l) in samples {
                 f(p, l);
             }
         });
-        (value, own)
+        (value, own.get())
     }
 
     /// The samples of pixel `(x, y)`, traced one by one: its base samples,
@@ -311,9 +309,12 @@ impl Renderer<'_> {
 }
 
 impl Samples {
-    /// Hands pixel `i`'s samples, in order, to `f`: its `n` base samples,
-    /// then its further ones up to `total` if it took them.
-    fn pixel(&self, i: usize, n: usize, total: u32, f: &mut dyn FnMut(Vec2, Vec3)) {
+    /// Hands the samples of pixel `(x, y)` of the image (a traced pixel),
+    /// in order, to `f`: its `n` base samples, then its further ones up to
+    /// `total` if it took them.
+    fn pixel(&self, x: u32, y: u32, n: usize, total: u32, f: &mut dyn FnMut(Vec2, Vec3)) {
+        let (ex, ey, ew) = self.origin;
+        let i = ((y - ey) * ew + (x - ex)) as usize;
         for k in i * n..(i + 1) * n {
             f(self.base.0[k], self.base.1[k]);
         }
