@@ -8,7 +8,7 @@
 //! estimated by ratio tracking (`T = Π(1 − σ_t/σ̄)` over the majorant's
 //! events; Novák et al. 2014); the environment is reached by phase-sampled
 //! paths that leave the volume; absorption weights the path by the albedo;
-//! Russian roulette ends long paths without bias. GroundPlane and solids are lit
+//! Russian roulette ends long paths without bias (see below). GroundPlane and solids are lit
 //! surfaces that end a path (they do not reflect light back into the volume),
 //! exactly as in the fast renderer.
 //!
@@ -34,6 +34,19 @@
 //! The first collision's direction is the eye's, not sampled, and is lit
 //! through the whole phase function.
 //!
+//! **Russian roulette** starts after eight collisions and only once the
+//! path's weight `β` (the albedo's product so far) has fallen below 1: the
+//! path goes on with probability `max β` and its weight is divided by it,
+//! so a surviving path's weight is at most 1 (Pharr et al. 2023, §2.2.4).
+//! In a thick, nearly conservative medium that lets a path live as long as
+//! its light does. An earlier rule, survival with probability
+//! `min(max β, 0.95)`, is as unbiased in expectation, but in such a medium
+//! (albedo 0.99 and over) it kills 5 % of the paths at each collision and
+//! multiplies the survivors' weights by 1/0.95, so the light of paths of a
+//! few hundred scatterings rests on samples of weight `10⁶` and more, which
+//! no affordable run draws: a ball of optical diameter 50 and albedo 0.999
+//! read some 4 % too dark at 96 paths a pixel, consistently.
+//!
 //! It is kept short and plainly correct, like pbrt-v4's simple integrator
 //! beside its fast one: its job is to be the truth the fast modes are
 //! measured against.
@@ -56,7 +69,10 @@ use crate::phase::{henyey_greenstein, sample_hg};
 pub struct ReferenceSettings {
     /// Paths per pixel (1 to 10⁶).
     pub samples_per_pixel: u32,
-    /// Longest path in scattering events (1 to 10⁵); Russian roulette ends most paths long before.
+    /// Longest path in scattering events (1 to 10⁵). Most paths leave the
+    /// medium or end by Russian roulette long before; in a ball of optical
+    /// diameter 50 and albedo 0.999, raising it from 1000 to 10⁵ moved the
+    /// image's total by 0.1 %.
     pub max_depth: u32,
     /// Random seed.
     pub seed: u64,
@@ -279,11 +295,13 @@ impl<'s> ReferenceRenderer<'s> {
                 break;
             }
             if depth >= 8 {
-                let q = beta.max_element().min(0.95);
-                if unit(rng) >= q {
-                    break;
+                let q = beta.max_element();
+                if q < 1.0 {
+                    if unit(rng) >= q {
+                        break;
+                    }
+                    beta /= q;
                 }
-                beta /= q;
             }
             // The peak's light at the next collision by the second strategy.
             if let (Some(((share, g), _)), Some(s)) = (peak, sun) {

@@ -331,6 +331,15 @@ pub fn background(c: &Case, px: u32) -> Vec<f64> {
     out
 }
 
+/// The reference's longest path: its default, or `MATRIX_DEPTH` (a
+/// study's knob: the light of paths longer than the default's).
+pub fn reference_depth() -> u32 {
+    std::env::var("MATRIX_DEPTH")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(ReferenceSettings::default().max_depth)
+}
+
 pub fn render_case(c: &Case, px: u32, spp: u32) -> Measured {
     let d = density(c.shape);
     let scene = scene(c, d.as_ref());
@@ -345,6 +354,7 @@ pub fn render_case(c: &Case, px: u32, spp: u32) -> Measured {
             ReferenceSettings {
                 samples_per_pixel: spp,
                 seed,
+                max_depth: reference_depth(),
                 ..ReferenceSettings::default()
             },
         )
