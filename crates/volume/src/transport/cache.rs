@@ -49,8 +49,8 @@
 //! 3-D DDA of Amanatides & Woo 1987, through the medium averaged over each
 //! cell: its extinction is the mean of `2³` samples per cell. Cells are
 //! cubes along the bounds' longest axis; a thin axis keeps at least 16,
-//! and an axis gets as many as a cell per mean free path of the medium's
-//! mean extinction takes, up to the longest axis's count.
+//! and an axis gets as many as two cells per mean free path of the
+//! medium's mean extinction take, up to the longest axis's count.
 //!
 //! **What it costs and what it misses.** The photons run when the renderer
 //! is built, in fixed chunks with their own random streams (the grid is

@@ -19,8 +19,15 @@ const MIN_THIN_CELLS: usize = 16;
 const MAX_GRID_CELLS: usize = 1 << 26;
 
 /// The most mean optical depth a cell may span along an axis, while that
-/// axis has fewer cells than the grid's longest (see [`CellGrid::new`]).
-pub(crate) const MAX_CELL_DEPTH: f32 = 1.0;
+/// axis has fewer cells than the grid's longest (see [`CellGrid::new`]):
+/// half a mean free path. The light a viewer sees from a thick medium's
+/// lit face comes from its first mean free path along the eye ray, where
+/// the multiply scattered light is still rising from the face and leaving
+/// it; a cell a whole path deep averages that layer away (a slab of optical
+/// thickness 50, albedo 0.999, Henyey–Greenstein 0.6 lit from ahead read
+/// −5.2 % against the reference with a cell per path, −3.0 … −4.2 % over
+/// four photon seeds with two).
+pub(crate) const MAX_CELL_DEPTH: f32 = 0.5;
 
 /// Cubic cells over a density's bounds and the medium's mean extinction in
 /// each.
@@ -47,8 +54,8 @@ impl CellGrid {
     /// of `2³` samples times `extinction`. An axis whose cells would each
     /// span more than [`MAX_CELL_DEPTH`] of the medium's mean optical depth
     /// (its mean extinction over the cells it fills) gets more cells, up to
-    /// `cells`: a thick slab's lit face needs cells no deeper than a mean
-    /// free path along its thin axis, where cubes would leave it a few.
+    /// `cells`: a thick slab's lit face needs cells no deeper than half a
+    /// mean free path along its thin axis, where cubes would leave it a few.
     ///
     /// # Errors
     ///
@@ -401,7 +408,7 @@ mod tests {
     use crate::density::Homogeneous;
 
     #[test]
-    fn a_thin_axis_gets_a_cell_per_mean_free_path_up_to_the_longest_axis_count() {
+    fn a_thin_axis_gets_two_cells_per_mean_free_path_up_to_the_longest_axis_count() {
         // A 4 × 4 × 1 m slab: cubes of 4/64 m leave its height 16 cells.
         let slab = Homogeneous::new(
             Aabb {
@@ -414,9 +421,10 @@ mod tests {
         let dims = |extinction: f32| CellGrid::new(&slab, extinction, 64).unwrap().dims;
         // Optically thin across its height: cubes.
         assert_eq!(dims(5.0), [64, 64, 16]);
-        // 20 and 50 mean free paths high: a cell per path.
-        assert_eq!(dims(20.0), [64, 64, 20]);
-        assert_eq!(dims(50.0), [64, 64, 50]);
+        // 10 and 20 mean free paths high: two cells per path.
+        assert_eq!(dims(10.0), [64, 64, 20]);
+        assert_eq!(dims(20.0), [64, 64, 40]);
+        assert_eq!(dims(50.0), [64, 64, 64]);
         // 500: no more cells than the longest axis has.
         assert_eq!(dims(500.0), [64, 64, 64]);
         // Refined, the cells still hold the medium's extinction.
