@@ -1,7 +1,7 @@
 //! natura-volume benchmarks.
 //!
 //! ```text
-//! cargo bench --bench volume -- shadows      # shadow tables vs ray-traced shadows, same cumulus
+//! cargo bench --bench volume -- shadows      # shadow tables vs ray-traced shadows, and the multiple-scattering cache's cost, same cumulus
 //! cargo bench --bench volume -- cloudscape   # 1920×1080 fast mode, 2 threads, with and without the detail
 //! cargo bench --bench volume -- density      # cumulus with turbulence, samples/s, 1 thread
 //! ```
@@ -112,6 +112,17 @@ fn shadows(c: &mut Criterion) {
     let built = pool.install(|| FastRenderer::new(&scene, table).unwrap());
     g.bench_function("cumulus_render_with_table", |bch| {
         bch.iter(|| pool.install(|| built.render(&camera).unwrap()))
+    });
+    // What multiple scattering costs: the default cache's build (with the
+    // table's), and the march reading it against single scattering alone,
+    // with the same table.
+    let cached = table.multiple_scattering();
+    g.bench_function("cumulus_table_and_cache_build", |bch| {
+        bch.iter(|| pool.install(|| FastRenderer::new(&scene, cached).unwrap()))
+    });
+    let built_cached = pool.install(|| FastRenderer::new(&scene, cached).unwrap());
+    g.bench_function("cumulus_render_with_table_and_cache", |bch| {
+        bch.iter(|| pool.install(|| built_cached.render(&camera).unwrap()))
     });
     g.bench_function("cumulus_render_with_shadow_rays", |bch| {
         bch.iter(|| {
