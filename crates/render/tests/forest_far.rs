@@ -238,8 +238,12 @@ fn the_new_keys_round_trip_through_toml() {
 }
 
 /// The main picture's forest: the layer's crown-area index over forested
-/// land beyond 5 km against the stand's within its inner 70 % (1.75 km).
-/// Slow (the default world's erosion): `cargo test --release -p
+/// land beyond 5 km against the stand's within its inner 70 % (1.75 km),
+/// compared as the Boolean model's cover `1 − e^{−index}`. The `panorama`
+/// example renders the same world from the same eye (only the camera's
+/// projection differs), so this holds for it too. Measured 2026-12-02:
+/// the stand's cover 0.304, the layer's beyond 5 km 0.284 (0.93 of it)
+/// over 2.0 M terrain samples. Slow (the default world's erosion): `cargo test --release -p
 /// natura-render --test forest_far -- --ignored --nocapture`.
 #[test]
 #[ignore = "builds the default 2048² world"]
