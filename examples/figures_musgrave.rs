@@ -12,7 +12,8 @@
 //! empirical bow (Pl. 4.9), the physical bow's spectral aliasing and its
 //! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1), the stages of the terran texture (Pl.
-//! 5.9a–f), planets made from each basis and fractal
+//! 5.9a–f), the ridged basis built from the Perlin basis (Musgrave 2001,
+//! fig. 17), planets made from each basis and fractal
 //! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31) and the multifractal Milky
 //! Way (Musgrave 2001, fig. 32).
 //!
@@ -108,6 +109,8 @@ enum Fig {
     BayFog,
     /// Pl. 5.9a–f: the stages of the terran texture's construction
     TerranStages,
+    /// Musgrave 2001, fig. 17: the ridged basis built from the Perlin basis
+    RidgedBasis,
     /// Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31: planets from each basis and fractal
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
@@ -133,6 +136,7 @@ impl Figure for Fig {
         Fig::FullCircleBow,
         Fig::BayFog,
         Fig::TerranStages,
+        Fig::RidgedBasis,
         Fig::Planets,
         Fig::MilkyWay,
     ];
@@ -165,6 +169,7 @@ impl Figure for Fig {
             Fig::FullCircleBow => &["musgrave_pl4-12_full_circle_bow.png"],
             Fig::BayFog => &["musgrave_pl5-1_bay_fog.png"],
             Fig::TerranStages => &["musgrave_pl5-9_terran_stages.png"],
+            Fig::RidgedBasis => &["musgrave2001_fig17_ridged_basis.png"],
             Fig::Planets => &[
                 "musgrave2001_fig09_roughness.png",
                 "musgrave2001_figs13_18-23_bases.png",
@@ -197,6 +202,8 @@ mod patches;
 mod planets;
 #[path = "musgrave/prism.rs"]
 mod prism;
+#[path = "musgrave/ridged_basis.rs"]
+mod ridged_basis;
 #[path = "musgrave/spectral_aliasing.rs"]
 mod spectral_aliasing;
 #[path = "musgrave/terran_stages.rs"]
@@ -233,6 +240,7 @@ fn figures() -> Run {
             Fig::FullCircleBow => vec![full_circle_bow::picture(cli.seed, cli.quick)?],
             Fig::BayFog => vec![bay_fog::bay_fog_picture(cli.seed, cli.quick)?],
             Fig::TerranStages => vec![terran_stages::picture(cli.seed, cli.quick)?],
+            Fig::RidgedBasis => vec![ridged_basis::picture(cli.seed, cli.quick)?],
             Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
         })
@@ -541,6 +549,29 @@ mod tests {
     use super::*;
     use natura::atmos::Medium;
     use natura::terrain::analysis::path_h;
+
+    #[test]
+    fn the_ridged_basis_peaks_where_the_perlin_basis_crosses_zero() {
+        // Fig. 17: along a row, every sign change of the Perlin basis is a
+        // ridge of one minus its absolute value (a value within the step's
+        // reach of 1), and the ridged basis is 1 − |N| everywhere.
+        let n = Perlin::with_fade(7, Fade::Cubic);
+        let r = natura::noise::Ridged(n);
+        let h = 1e-3;
+        let (mut crossings, mut prev) = (0, n.eval2(DVec2::new(0.0, 2.37)));
+        for i in 1..=4000 {
+            let p = DVec2::new(f64::from(i) * h, 2.37);
+            let v = n.eval2(p);
+            assert!((r.eval2(p) - (1.0 - v.abs())).abs() < 1e-12);
+            if v * prev < 0.0 {
+                crossings += 1;
+                // |N| ≤ its Lipschitz constant times the step at a crossing.
+                assert!(r.eval2(p) >= 1.0 - n.lipschitz2() * h, "{p}");
+            }
+            prev = v;
+        }
+        assert!(crossings >= 2, "{crossings}");
+    }
 
     #[test]
     fn docs_figures_md_links_every_picture() {
