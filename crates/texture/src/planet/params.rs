@@ -226,9 +226,11 @@ pub struct PlanetAtmosphereParams {
     /// How much wider than the planet the shadow cylinder is, metres
     /// (must exceed any ray offset; Musgrave 1993 §4.1.6).
     pub umbra_margin_m: f64,
-    /// Whether the day side's haze is also dimmed by the sun's cosine
-    /// (Musgrave 1993 §4.1.6.5's second remedy; true). Without it the haze
-    /// ends in a hard edge where it enters the umbra.
+    /// Whether the day side's haze is also dimmed by the sun's cosine and
+    /// lit by the sunlight that reaches it through the air, reddening
+    /// towards the terminator (Musgrave 1993 §4.1.6.5's second remedy,
+    /// Plate 4.6; true). Without it the haze keeps its colour and ends in a
+    /// hard edge where it enters the umbra (Plate 4.5).
     pub lambert_haze: bool,
 }
 

@@ -121,9 +121,9 @@ impl Planet {
     }
 
     /// The atmosphere between `a` and `b` (or to infinity along `d`): the
-    /// umbra-switched radial atmosphere, its in-scattered light dimmed by
-    /// [`haze_light`](Self::haze_light) where the segment passes closest to
-    /// the planet.
+    /// umbra-switched radial atmosphere, its in-scattered light dimmed and
+    /// tinted by [`haze_light`](Self::haze_light) where the segment passes
+    /// closest to the planet.
     fn attenuation(&self, a: DVec3, b: Option<DVec3>, d: DVec3) -> Attenuation {
         let Some(air) = &self.air else {
             return Attenuation::NONE;
@@ -140,17 +140,28 @@ impl Planet {
         att
     }
 
-    /// How brightly the haze around `p` is lit: the Lambert shading of the
-    /// atmosphere (Musgrave 1993 §4.1.6.5, Plate 4.6, which gives no blend
-    /// function; here `smoothstep(−0.15, 0.35, n·l)` of the normal at the
-    /// point), so the day side's haze dims towards the terminator instead of
-    /// ending at the umbra's edge. 1 when the shading is off.
-    fn haze_light(&self, p: DVec3) -> f64 {
-        match &self.params.atmosphere {
-            Some(a) if a.lambert_haze => {
-                crate::footprint::smoothstep(-0.15, 0.35, p.normalize_or_zero().dot(self.sun))
+    /// How brightly, and in what colour, the haze around `p` is lit: the
+    /// Lambert shading of the atmosphere (Musgrave 1993 §4.1.6.5, Plate 4.6,
+    /// which gives no blend function; here `smoothstep(−0.15, 0.35, n·l)` of
+    /// the normal at the point), so the day side's haze dims towards the
+    /// terminator instead of ending at the umbra's edge, times the sun's
+    /// transmittance through the day air to `p`. Plate 4.6 fades the haze's
+    /// colour by hand from a pale grey at high noon to red at the terminator;
+    /// here the red comes from the sunlight's own path, which grows long
+    /// through the air where the sun is low and loses its blue on the way.
+    /// 1 when the shading is off.
+    fn haze_light(&self, p: DVec3) -> DVec3 {
+        match (&self.params.atmosphere, &self.air) {
+            (Some(a), Some(air)) if a.lambert_haze => {
+                let lambert =
+                    crate::footprint::smoothstep(-0.15, 0.35, p.normalize_or_zero().dot(self.sun));
+                let sunlit = Dir3::new(self.sun).map_or(DVec3::ONE, |dir| {
+                    let tau = air.day.optical_depth_to_infinity(p, dir);
+                    DVec3::new((-tau.x).exp(), (-tau.y).exp(), (-tau.z).exp())
+                });
+                sunlit * lambert
             }
-            _ => 1.0,
+            _ => DVec3::ONE,
         }
     }
 
