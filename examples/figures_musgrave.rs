@@ -7,7 +7,9 @@
 //! the ridge by position, Pl. 2.6; Terrain(), Pl. 2.8; "Hell", Pl. 2.9), a
 //! stream-bed patch before and after hydraulic erosion and thermal
 //! weathering (Pl. 2.10–2.11, MKM 2 and 9), dunes by slumping (Pl.
-//! 2.12–2.13, MKM 7 and 8), a diffusion-limited aggregate in radial fog (Pl. 4.7), the "Fractal
+//! 2.12–2.13, MKM 7 and 8), a quarter-lit planet with the umbra model and
+//! with the shaded atmosphere (Pl. 4.5–4.6), a diffusion-limited aggregate
+//! in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
 //! empirical bow (Pl. 4.9), the physical bow's spectral aliasing and its
 //! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
@@ -95,6 +97,8 @@ enum Fig {
     /// Pl. 2.12–2.13 (MKM 7, 8): a patch of non-uniform lacunarity before
     /// and after 100 steps of thermal weathering (dunes)
     Dunes,
+    /// Pl. 4.5–4.6: a quarter-lit planet with the cylinder-umbra model, and with the shaded atmosphere
+    Umbra,
     /// Pl. 4.7: a diffusion-limited aggregate in radial fog
     DlaFog,
     /// Pl. 4.8: "Fractal Mandala": balls of gas glowing like black bodies
@@ -129,6 +133,7 @@ impl Figure for Fig {
         Fig::Hell,
         Fig::Fluvial,
         Fig::Dunes,
+        Fig::Umbra,
         Fig::DlaFog,
         Fig::Mandala,
         Fig::Prism,
@@ -158,6 +163,10 @@ impl Figure for Fig {
             Fig::Dunes => &[
                 "musgrave_pl2-12_dunes_before.png",
                 "musgrave_pl2-13_dunes_after.png",
+            ],
+            Fig::Umbra => &[
+                "musgrave_pl4-5_umbra.png",
+                "musgrave_pl4-6_shaded_atmosphere.png",
             ],
             Fig::DlaFog => &["musgrave_pl4-7_dla_radial_fog.png"],
             Fig::Mandala => &["musgrave_pl4-8_fractal_mandala.png"],
@@ -208,6 +217,8 @@ mod ridged_basis;
 mod spectral_aliasing;
 #[path = "musgrave/terran_stages.rs"]
 mod terran_stages;
+#[path = "musgrave/umbra.rs"]
+mod umbra;
 use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
 
 fn main() -> ExitCode {
@@ -233,6 +244,7 @@ fn figures() -> Run {
             Fig::Hell => vec![patches::hell(cli.seed, cli.quick)?],
             Fig::Fluvial => erosion::fluvial(cli.seed, cli.quick)?,
             Fig::Dunes => erosion::dunes(cli.seed, cli.quick)?,
+            Fig::Umbra => umbra::pair(cli.seed, cli.quick)?,
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
             Fig::Prism => vec![prism::prism_picture(cli.quick)?],
