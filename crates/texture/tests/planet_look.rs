@@ -417,3 +417,25 @@ fn the_haze_reddens_towards_the_terminator() {
     let (noon, low) = (redness(false, 0.95), redness(false, 0.05));
     assert!((low / noon - 1.0).abs() < 0.02, "{low} against {noon}");
 }
+
+/// A body behind the planet's limb is seen through its air (Plate 4.4):
+/// over a grey backdrop the limb ray adds the air's transmittance times the
+/// grey, redder than it is blue, and with the backdrop of black space the
+/// call is the plain radiance bit for bit.
+#[test]
+fn a_backdrop_is_reddened_through_the_limb() {
+    let mut p = PlanetParams::gaea();
+    p.clouds = None;
+    p.light.sun = DVec3::Y;
+    let planet = Planet::new(p).unwrap();
+    let r = planet.radius() + 6_000.0;
+    let (o, d) = (DVec3::new(-5.0 * r, r, 0.0), DVec3::X);
+    let settings = TraceSettings::default();
+    let plain = planet.radiance(o, d, 1e-4, &settings);
+    let black = planet.radiance_over(o, d, 1e-4, &settings, &|_| DVec3::ZERO);
+    assert_eq!(plain, black);
+    let grey = planet.radiance_over(o, d, 1e-4, &settings, &|_| DVec3::splat(0.5));
+    let t = (grey - black) / 0.5;
+    assert!(t.max_element() < 1.0 && t.min_element() > 0.0, "{t}");
+    assert!(t.x > 1.5 * t.z, "transmittance {t}");
+}

@@ -58,6 +58,23 @@ impl Planet {
         pixel_angle: f64,
         settings: &TraceSettings,
     ) -> DVec3 {
+        self.radiance_over(o, d, pixel_angle, settings, &|d| self.background(d))
+    }
+
+    /// [`Self::radiance`] with `behind(d)`, the radiance beyond the planet's
+    /// atmosphere along `d`, in place of black space and the sun's disc: a
+    /// ray that meets nothing of the planet sees it through the atmosphere
+    /// and the cloud and ring layers (another body behind the planet, a
+    /// star field), attenuated and in-scattered as the surface would be.
+    #[must_use]
+    pub fn radiance_over(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        pixel_angle: f64,
+        settings: &TraceSettings,
+        behind: &dyn Fn(DVec3) -> DVec3,
+    ) -> DVec3 {
         let hit = self.trace(o, d, pixel_angle, settings);
         let far = hit.map_or(f64::INFINITY, |h| h.t);
         let mut layers = [Layer {
@@ -107,7 +124,7 @@ impl Planet {
 
         let mut l = match &hit {
             Some(h) => self.surface_radiance(h, d, settings),
-            None => self.background(d),
+            None => behind(d),
         };
         // Far to near: the stretch behind each layer, then the layer.
         let mut end = hit.map(|h| h.point);
