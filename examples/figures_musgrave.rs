@@ -7,7 +7,7 @@
 //! the ridge by position, Pl. 2.6; Terrain(), Pl. 2.8; "Hell", Pl. 2.9), a
 //! stream-bed patch before and after hydraulic erosion and thermal
 //! weathering (Pl. 2.10–2.11, MKM 2 and 9), dunes by slumping (Pl.
-//! 2.12–2.13, MKM 7 and 8), a quarter-lit planet with the umbra model and
+//! 2.12–2.13, MKM 7 and 8), "Gaea & Selene" (Pl. 4.3–4.4), a quarter-lit planet with the umbra model and
 //! with the shaded atmosphere (Pl. 4.5–4.6), a diffusion-limited aggregate
 //! in radial fog (Pl. 4.7), the "Fractal
 //! Mandala" of glowing gas (Pl. 4.8), the dispersing prism under the
@@ -97,6 +97,8 @@ enum Fig {
     /// Pl. 2.12–2.13 (MKM 7, 8): a patch of non-uniform lacunarity before
     /// and after 100 steps of thermal weathering (dunes)
     Dunes,
+    /// Pl. 4.3–4.4: "Gaea & Selene": a planet occulting its moon, and the occultation close up
+    GaeaSelene,
     /// Pl. 4.5–4.6: a quarter-lit planet with the cylinder-umbra model, and with the shaded atmosphere
     Umbra,
     /// Pl. 4.7: a diffusion-limited aggregate in radial fog
@@ -133,6 +135,7 @@ impl Figure for Fig {
         Fig::Hell,
         Fig::Fluvial,
         Fig::Dunes,
+        Fig::GaeaSelene,
         Fig::Umbra,
         Fig::DlaFog,
         Fig::Mandala,
@@ -163,6 +166,10 @@ impl Figure for Fig {
             Fig::Dunes => &[
                 "musgrave_pl2-12_dunes_before.png",
                 "musgrave_pl2-13_dunes_after.png",
+            ],
+            Fig::GaeaSelene => &[
+                "musgrave_pl4-3_gaea_selene.png",
+                "musgrave_pl4-4_gaea_selene_detail.png",
             ],
             Fig::Umbra => &[
                 "musgrave_pl4-5_umbra.png",
@@ -199,6 +206,8 @@ mod dla_fog;
 mod erosion;
 #[path = "musgrave/full_circle_bow.rs"]
 mod full_circle_bow;
+#[path = "musgrave/gaea_selene.rs"]
+mod gaea_selene;
 #[path = "musgrave/landscape.rs"]
 mod landscape;
 #[path = "musgrave/mandala.rs"]
@@ -244,6 +253,7 @@ fn figures() -> Run {
             Fig::Hell => vec![patches::hell(cli.seed, cli.quick)?],
             Fig::Fluvial => erosion::fluvial(cli.seed, cli.quick)?,
             Fig::Dunes => erosion::dunes(cli.seed, cli.quick)?,
+            Fig::GaeaSelene => gaea_selene::pair(cli.seed, cli.quick)?,
             Fig::Umbra => umbra::pair(cli.seed, cli.quick)?,
             Fig::DlaFog => vec![dla_fog::dla_picture(cli.seed, cli.quick)?],
             Fig::Mandala => vec![mandala::mandala_picture(cli.quick)?],
