@@ -1,7 +1,8 @@
 //! Settings the renderers cannot carry out are refused up front, naming
 //! what the user set: a medium too thick for delta tracking to cross, a
 //! camera too far for `f32` to resolve the mean free path, a grid whose
-//! majorant overflows.
+//! majorant overflows, a density that is NaN, negative or above its bound,
+//! a phase function or albedo outside its domain.
 
 use glam::Vec3;
 use natura_core::{Aabb, Grid3};
@@ -188,5 +189,38 @@ fn a_cylinder_without_height_is_refused() {
             ReferenceRenderer::new(&scene, quick()),
             "solid.shape.half_height",
         );
+    }
+}
+
+/// A phase function outside its domain (`|g| ≥ 1`, a droplet size outside
+/// the cloud phase's fitted table) or an albedo above 1 or NaN is refused by
+/// both renderers, naming the key, before any work.
+#[test]
+fn both_renderers_refuse_a_phase_or_albedo_outside_its_domain() {
+    let density = Homogeneous::new(unit_cube(), 1.0).unwrap();
+    let with = |albedo: f32, phase: CloudPhase| MediumParams {
+        extinction: 1.0,
+        albedo,
+        phase,
+    };
+    for (m, field) in [
+        (with(0.5, CloudPhase::HenyeyGreenstein(1.0)), "g"),
+        (with(0.5, CloudPhase::HenyeyGreenstein(-1.2)), "g"),
+        (with(0.5, CloudPhase::HenyeyGreenstein(f32::NAN)), "g"),
+        (
+            with(0.5, CloudPhase::Cloud { diameter_um: 2.0 }),
+            "diameter_um",
+        ),
+        (
+            with(0.5, CloudPhase::Cloud { diameter_um: 80.0 }),
+            "diameter_um",
+        ),
+        (with(1.5, CloudPhase::Isotropic), "albedo"),
+        (with(f32::NAN, CloudPhase::Isotropic), "albedo"),
+    ] {
+        let scene = Scene::new(&density, m, Vec3::ONE);
+        let fast = refused_naming(FastRenderer::new(&scene, FastSettings::default()), field);
+        let reference = refused_naming(ReferenceRenderer::new(&scene, quick()), field);
+        assert_eq!(fast, reference);
     }
 }
