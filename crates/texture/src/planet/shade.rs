@@ -5,7 +5,7 @@ use glam::DVec3;
 use natura_atmos::medium::Attenuation;
 use natura_atmos::{Dir3, Medium};
 
-use super::{Planet, Surface};
+use super::{Air, Planet, Surface};
 use crate::footprint::Footprint;
 use crate::normal::bump;
 use crate::planet::height::Relief;
@@ -172,14 +172,19 @@ impl Planet {
             (Some(a), Some(air)) if a.lambert_haze => {
                 let lambert =
                     crate::footprint::smoothstep(-0.15, 0.35, p.normalize_or_zero().dot(self.sun));
-                let sunlit = Dir3::new(self.sun).map_or(DVec3::ONE, |dir| {
-                    let tau = air.day.optical_depth_to_infinity(p, dir);
-                    DVec3::new((-tau.x).exp(), (-tau.y).exp(), (-tau.z).exp())
-                });
-                sunlit * lambert
+                Self::through_air(air, p, self.sun) * lambert
             }
             _ => DVec3::ONE,
         }
+    }
+
+    /// The day air's transmittance from `p` toward the unit direction `sun`
+    /// (1 for a direction that is not unit).
+    fn through_air(air: &Air, p: DVec3, sun: DVec3) -> DVec3 {
+        Dir3::new(sun).map_or(DVec3::ONE, |dir| {
+            let tau = air.day.optical_depth_to_infinity(p, dir);
+            DVec3::new((-tau.x).exp(), (-tau.y).exp(), (-tau.z).exp())
+        })
     }
 
     /// What a ray that meets nothing sees behind the atmosphere.
@@ -197,11 +202,8 @@ impl Planet {
     /// up with a footprint of `footprint_m` metres.
     fn sunlight(&self, p: DVec3, footprint_m: f64) -> DVec3 {
         let mut k = self.params.light.sun_colour;
-        if let Some(air) = &self.air
-            && let Ok(dir) = Dir3::new(self.sun)
-        {
-            let tau = air.day.optical_depth_to_infinity(p, dir);
-            k *= DVec3::new((-tau.x).exp(), (-tau.y).exp(), (-tau.z).exp());
+        if let Some(air) = &self.air {
+            k *= Self::through_air(air, p, self.sun);
         }
         if let (Some(clouds), Some(c)) = (&self.clouds, &self.params.clouds)
             && c.shadows
