@@ -15,6 +15,7 @@ use natura::texture::planet::{Planet, PlanetParams, SurfaceParams, TraceSettings
 
 use crate::common::Exit;
 use crate::landscape::supersampled;
+use crate::umbra::gaea_from_orbit;
 
 type R<T> = Result<T, Exit>;
 
@@ -22,16 +23,7 @@ type R<T> = Result<T, Exit>;
 pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
     let (w, h) = if quick { (240, 160) } else { (960, 640) };
     let sun = direction(0.35, 1.55);
-    let mut g = PlanetParams::gaea();
-    if let SurfaceParams::Terrain(t) = &mut g.surface {
-        t.terran.seed = seed;
-    }
-    if let Some(c) = &mut g.clouds {
-        c.clouds.seed = seed;
-    }
-    g.light.ambient = 0.0;
-    g.light.sun = sun;
-    let gaea = Planet::new(g)?;
+    let gaea = Planet::new(gaea_from_orbit(seed, sun))?;
     let mut m = PlanetParams::selene();
     if let SurfaceParams::Luna(l) = &mut m.surface {
         l.seed = seed;

@@ -7,12 +7,29 @@
 //! the sun's cosine and lit by the sunlight that reaches it through the
 //! air, blue at high noon and red towards the terminator).
 
+use natura::core::glam::DVec3;
 use natura::core::{Image, NoProgress};
 use natura::texture::planet::{Planet, PlanetParams, SurfaceParams, TraceSettings, direction};
 
 use crate::common::Exit;
 
 type R<T> = Result<T, Exit>;
+
+/// Gaea with its terrain and clouds from `seed`, lit by the sun in unit
+/// direction `sun` and, as from orbit, by nothing but the night air's glow
+/// on its night side.
+pub(crate) fn gaea_from_orbit(seed: u64, sun: DVec3) -> PlanetParams {
+    let mut p = PlanetParams::gaea();
+    if let SurfaceParams::Terrain(t) = &mut p.surface {
+        t.terran.seed = seed;
+    }
+    if let Some(c) = &mut p.clouds {
+        c.clouds.seed = seed;
+    }
+    p.light.ambient = 0.0;
+    p.light.sun = sun;
+    p
+}
 
 /// The two plates, the umbra model's first.
 pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
@@ -22,19 +39,10 @@ pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
     [false, true]
         .into_iter()
         .map(|shaded| {
-            let mut p = PlanetParams::gaea();
-            if let SurfaceParams::Terrain(t) = &mut p.surface {
-                t.terran.seed = seed;
-            }
-            if let Some(c) = &mut p.clouds {
-                c.clouds.seed = seed;
-            }
+            let mut p = gaea_from_orbit(seed, direction(0.0, lon + std::f64::consts::FRAC_PI_2));
             if let Some(a) = &mut p.atmosphere {
                 a.lambert_haze = shaded;
             }
-            // From orbit nothing but the night air's glow lights the night side.
-            p.light.ambient = 0.0;
-            p.light.sun = direction(0.0, lon + std::f64::consts::FRAC_PI_2);
             let planet = Planet::new(p)?;
             let view = planet.orbit_view(1.55e7, lat, lon, 0.62, w, h)?;
             Ok(planet.render(&view, &TraceSettings::default(), &NoProgress)?)
