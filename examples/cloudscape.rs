@@ -61,8 +61,9 @@ struct Cli {
     /// on 2 cores), which is why it is off by default
     #[arg(long)]
     detail: bool,
-    /// Warp of the detail for wisps, a fraction of its coarsest wavelength
-    /// (0: none; 0.15 adds about a fifth to the render's time)
+    /// Warp of the detail by curl noise for wisps, a fraction of its
+    /// coarsest wavelength (0: none; 0.15 adds about a quarter to the
+    /// render's time)
     #[arg(long, default_value_t = 0.0, value_parser = common::in_range(0.0f32, 1.0))]
     warp: f32,
     /// Output directory (created if needed)

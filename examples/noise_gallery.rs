@@ -335,6 +335,16 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
             4.0,
             v,
         ),
+        t(
+            "distortion_curl",
+            "fBm displaced by curl noise, divergence-free (Bridson et al. 2007, §2)",
+            Box::new(Warped {
+                field: Fbm::new(p, s)?,
+                warp: Displace::new(CurlNoise::new(p), 0.25)?,
+            }),
+            4.0,
+            v,
+        ),
     ])
 }
 

@@ -34,8 +34,9 @@
 //!   [`Fbm::fill_points3_band`] evaluate struct-of-arrays point lists (a
 //!   sphere's hit points, a cube face) with the same SIMD dispatch as the rows.
 //! * **Vector noise and distortion** ([`vector`], [`warp`]): [`DNoise`],
-//!   [`VecNoise`], [`VectorFbm`]; [`DistNoise`], [`VlNoise`], and general
-//!   [`Warped`] fields with [`Displace`] and [`Twist`] warps.
+//!   [`VecNoise`], [`VectorFbm`], divergence-free [`CurlNoise`] ([`curl`]);
+//!   [`DistNoise`], [`VlNoise`], and general [`Warped`] fields with
+//!   [`Displace`] and [`Twist`] warps.
 //!
 //! Every type documents its source (document and section, as keyed in the
 //! repository's `docs/sources.md`), the errors of the source it corrects,
@@ -66,6 +67,7 @@ extern crate std;
 
 pub mod basis;
 pub mod combinators;
+pub mod curl;
 mod error;
 mod field;
 pub mod fractal;
@@ -84,6 +86,7 @@ pub use basis::sparse::{SparseConvolution, SparseKernel, SparseParams};
 pub use basis::steps::Steps;
 pub use basis::value::{Value, ValueInterp};
 pub use combinators::{Abs, Ridged, Transform};
+pub use curl::CurlNoise;
 pub use error::{NoiseError, Result};
 pub use field::{Constant, Field, Lattice2, Lattice3};
 pub use fractal::altitude::{StatsByAltitude, StatsByAltitudeLegacy, StatsByAltitudeParams};

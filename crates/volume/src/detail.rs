@@ -28,14 +28,17 @@
 //!   above 1 would let the denominator change sign (density negative before
 //!   the clamp, above the base after it); it is refused.
 //! * the lookup point `q = p + δ(p)` is warped for wispy, streaked edges
-//!   by the gradient of a noise potential `φ` at half the coarsest detail
-//!   frequency (Perlin's `DNoise` distortion: Musgrave 1998, "A Variety of
-//!   fBm"; domain distortion, Musgrave 1993, §2.3.2.4), its size
-//!   `warp·λ₀`. The gradient is a forward difference of `1/64` lattice unit,
-//!   so it is itself a smooth field. A warp compresses the noise locally by
-//!   up to `1 + |∇δ|`, so the footprint that fades the octaves is widened
-//!   by the bound [`WARP_STRETCH`]`·warp` of `|∇δ|`: the warped noise stays
-//!   below the pixels' Nyquist limit.
+//!   by curl noise (natura-noise's [`CurlNoise`]: the curl of a noise
+//!   vector potential, Bridson et al. 2007, §2) at half the coarsest detail
+//!   frequency, its size at most `warp·λ₀` (Schneider 2015, "Modeling",
+//!   distorts the detail noise by curl noise for the same look). The curl
+//!   has no divergence: it stirs the noise into streaks and curls without
+//!   gathering it into knots or thinning it into holes, as the gradient of
+//!   a potential (Perlin's `DNoise`) would, so the eroded cloud keeps its
+//!   mean density under any warp. A warp compresses the noise along some
+//!   direction by up to `1 + |∇δ|`, so the footprint that fades the octaves
+//!   is widened by the bound [`WARP_STRETCH`]`·warp` of `|∇δ|`: the warped
+//!   noise stays below the pixels' Nyquist limit.
 //!
 //! The field is one 3-D field for a given camera: the fast renderer and the
 //! reference path tracer sample the same [`Detailed`] object, point by point
@@ -48,16 +51,16 @@
 
 use glam::{DVec3, Vec3};
 use natura_core::Aabb;
-use natura_noise::{Field, FootprintFbm, FootprintParams, Perlin};
+use natura_noise::{CurlNoise, FootprintFbm, FootprintParams, Perlin, VectorField};
 
 use crate::density::Density;
 use crate::error::{Result, finite3, in_range, positive};
 
 /// A bound on `|∇δ|/warp` of the warp `δ` (see the module docs): the
 /// largest norm of the warp's Jacobian per unit of `warp`, measured over
-/// random points of the lattice (1.53 over 2·10⁴ points), with a margin. It widens the footprint so
-/// that the warped noise stays band-limited.
-pub const WARP_STRETCH: f64 = 2.0;
+/// random points of the lattice (0.92 over 2·10⁴ points), with a margin.
+/// It widens the footprint so that the warped noise stays band-limited.
+pub const WARP_STRETCH: f64 = 1.2;
 
 /// Parameters of [`Detail`] and [`Detailed`]: the detail octaves, the
 /// erosion, the warp, and the camera that defines the footprint.
@@ -180,9 +183,6 @@ impl DetailParams {
 /// fetches 16 at a time).
 const CHUNK: usize = 16;
 
-/// The step (lattice units) of the warp potential's forward differences.
-const WARP_H: f64 = 1.0 / 64.0;
-
 /// The detail noise and erosion of [`DetailParams`] (see the module docs),
 /// for densities that apply it themselves ([`Detailed`] wraps any density).
 ///
@@ -194,16 +194,17 @@ const WARP_H: f64 = 1.0 / 64.0;
 pub struct Detail {
     params: DetailParams,
     fbm: FootprintFbm<Perlin>,
-    /// The warp's potential `φ`.
-    potential: Perlin,
+    /// The warp's field.
+    curl: CurlNoise<Perlin>,
     eye: DVec3,
     /// `α·(1 + WARP_STRETCH·warp)`: footprint per metre of distance.
     angle: f64,
     /// `1.6 / B`, the noise's gain.
     gain: f32,
-    /// `1/(2λ₀)`, the potential's frequency.
+    /// `1/(2λ₀)`, the curl noise's frequency.
     warp_frequency: f64,
-    /// `warp·λ₀ / (L₃·h)`: metres of displacement per unit difference of `φ`.
+    /// `warp·λ₀ / B_c`, with `B_c` the curl's bound: metres of
+    /// displacement per unit of the curl.
     warp_scale: f64,
     /// The footprint from which on no octave is left.
     far: f64,
@@ -228,7 +229,7 @@ impl Detail {
             },
         )?;
         let bound = fbm.amplitude_between(0, fbm.octave_count());
-        let potential = Perlin::new(seed.wrapping_add(1) ^ 0x7761_7270);
+        let curl = CurlNoise::new(Perlin::new(seed.wrapping_add(1) ^ 0x7761_7270));
         let warp = f64::from(params.warp);
         Ok(Self {
             eye: Vec3::from_array(params.eye).as_dvec3(),
@@ -239,11 +240,11 @@ impl Detail {
                 0.0
             },
             warp_frequency: 0.5 / f64::from(params.feature_m),
-            warp_scale: warp * f64::from(params.feature_m) / (potential.lipschitz3() * WARP_H),
+            warp_scale: warp * f64::from(params.feature_m) / curl.bound(),
             far: fbm.far_footprint(),
             params: *params,
             fbm,
-            potential,
+            curl,
         })
     }
 
@@ -262,34 +263,29 @@ impl Detail {
     }
 
     /// The warp `δ` (m) of the noise's lookup points `(x, y, z)` (at most
-    /// `P`, with `L = 4P` lanes of scratch), added to them in place: the
-    /// gradient of the potential `φ` at half the coarsest detail frequency,
-    /// by forward differences of `1/64` lattice unit, scaled so that
-    /// `|δ| ≲ warp·λ₀`. The four values of each point go through the
-    /// kernel together.
-    fn warp<const L: usize>(&self, x: &mut [f64], y: &mut [f64], z: &mut [f64]) {
+    /// `P`), added to them in place: the curl noise at half the coarsest
+    /// detail frequency, scaled by its bound so that `|δ| ≤ warp·λ₀`.
+    fn warp<const P: usize>(&self, x: &mut [f64], y: &mut [f64], z: &mut [f64]) {
         let m = x.len();
         let f = self.warp_frequency;
-        let (mut qx, mut qy, mut qz) = ([0.0f64; L], [0.0f64; L], [0.0f64; L]);
-        let mut phi = [0.0f32; L];
+        let (mut qx, mut qy, mut qz) = ([0.0f64; P], [0.0f64; P], [0.0f64; P]);
+        let (mut u, mut v, mut w) = ([0.0f32; P], [0.0f32; P], [0.0f32; P]);
         for i in 0..m {
-            let (a, b, c) = (x[i] * f, y[i] * f, z[i] * f);
-            let l = 4 * i;
-            (qx[l], qy[l], qz[l]) = (a, b, c);
-            (qx[l + 1], qy[l + 1], qz[l + 1]) = (a + WARP_H, b, c);
-            (qx[l + 2], qy[l + 2], qz[l + 2]) = (a, b + WARP_H, c);
-            (qx[l + 3], qy[l + 3], qz[l + 3]) = (a, b, c + WARP_H);
+            (qx[i], qy[i], qz[i]) = (x[i] * f, y[i] * f, z[i] * f);
         }
-        let n = 4 * m;
         // The slices are equally long: no error is possible.
-        let _ = self
-            .potential
-            .fill_points3(&qx[..n], &qy[..n], &qz[..n], &mut phi[..n]);
+        let _ = self.curl.fill_points3(
+            &qx[..m],
+            &qy[..m],
+            &qz[..m],
+            &mut u[..m],
+            &mut v[..m],
+            &mut w[..m],
+        );
         for i in 0..m {
-            let l = 4 * i;
-            x[i] += f64::from(phi[l + 1] - phi[l]) * self.warp_scale;
-            y[i] += f64::from(phi[l + 2] - phi[l]) * self.warp_scale;
-            z[i] += f64::from(phi[l + 3] - phi[l]) * self.warp_scale;
+            x[i] += f64::from(u[i]) * self.warp_scale;
+            y[i] += f64::from(v[i]) * self.warp_scale;
+            z[i] += f64::from(w[i]) * self.warp_scale;
         }
     }
 
@@ -306,14 +302,13 @@ impl Detail {
     #[must_use]
     pub fn noise_drifting(&self, p: Vec3, drift: Vec3) -> f32 {
         let mut n = [0.0f32];
-        self.noise_chunk::<1, 4>(&[p], drift, 0.0, &mut n);
+        self.noise_chunk::<1>(&[p], drift, 0.0, &mut n);
         n[0]
     }
 
-    /// [`noise_drifting`](Self::noise_drifting) at up to `P` points, with
-    /// `L = 4P` lanes of scratch for the warp, the footprint at least
-    /// `min_footprint` (m).
-    fn noise_chunk<const P: usize, const L: usize>(
+    /// [`noise_drifting`](Self::noise_drifting) at up to `P` points, the
+    /// footprint at least `min_footprint` (m).
+    fn noise_chunk<const P: usize>(
         &self,
         p: &[Vec3],
         drift: Vec3,
@@ -337,7 +332,7 @@ impl Detail {
             return;
         }
         if self.params.warp > 0.0 {
-            self.warp::<L>(&mut x[..m], &mut y[..m], &mut z[..m]);
+            self.warp::<P>(&mut x[..m], &mut y[..m], &mut z[..m]);
         }
         let mut d = [0.0f32; P];
         // The slices are equally long: no error is possible.
@@ -363,7 +358,7 @@ impl Detail {
     #[must_use]
     pub fn erode_drifting(&self, p: Vec3, drift: Vec3, base: f32, full: f32) -> f32 {
         let mut b = [base];
-        self.erode_chunk::<1, 4>(&[p.x], &[p.y], &[p.z], drift, 0.0, &mut b, full);
+        self.erode_chunk::<1>(&[p.x], &[p.y], &[p.z], drift, 0.0, &mut b, full);
         b[0]
     }
 
@@ -406,22 +401,14 @@ impl Detail {
         for s in (0..len).step_by(CHUNK) {
             let r = s..(s + CHUNK).min(len);
             let (x, y, z) = (&x[r.clone()], &y[r.clone()], &z[r.clone()]);
-            self.erode_chunk::<CHUNK, { 4 * CHUNK }>(
-                x,
-                y,
-                z,
-                drift,
-                min_footprint,
-                &mut base[r],
-                full,
-            );
+            self.erode_chunk::<CHUNK>(x, y, z, drift, min_footprint, &mut base[r], full);
         }
     }
 
-    /// [`erode_batch`](Self::erode_batch) over at most `P` points, with
-    /// `L = 4P` lanes of scratch, the footprint at least `min_footprint`.
+    /// [`erode_batch`](Self::erode_batch) over at most `P` points, the
+    /// footprint at least `min_footprint`.
     #[allow(clippy::too_many_arguments)]
-    fn erode_chunk<const P: usize, const L: usize>(
+    fn erode_chunk<const P: usize>(
         &self,
         x: &[f32],
         y: &[f32],
@@ -448,7 +435,7 @@ impl Detail {
             return;
         }
         let mut n = [0.0f32; P];
-        self.noise_chunk::<P, L>(&p[..m], drift, min_footprint, &mut n[..m]);
+        self.noise_chunk::<P>(&p[..m], drift, min_footprint, &mut n[..m]);
         for k in 0..m {
             let d = &mut base[at[k]];
             let b = *d / full;
@@ -590,7 +577,7 @@ mod tests {
 
     fn displacement(d: &Detail, p: DVec3) -> DVec3 {
         let (mut x, mut y, mut z) = ([p.x], [p.y], [p.z]);
-        d.warp::<4>(&mut x, &mut y, &mut z);
+        d.warp::<1>(&mut x, &mut y, &mut z);
         DVec3::new(x[0], y[0], z[0]) - p
     }
 

@@ -8,7 +8,7 @@
 //! | module | what | source |
 //! |---|---|---|
 //! | [`density`] | the [`Density`] trait (density at a point, bounds for empty-space skipping), homogeneous slab and ball | |
-//! | [`detail`] | any density eroded by noise octaves down to the pixel footprint, warped for wisps | Schneider 2015; Musgrave 1993, §2.3.2.4, §6.3 |
+//! | [`detail`] | any density eroded by noise octaves down to the pixel footprint, stirred by curl noise for wisps | Schneider 2015; Bridson et al. 2007, §2; Musgrave 1993, §6.3 |
 //! | [`implicit`] | skeletal implicit primitives, the Wyvill blending function | Ebert 2001, "Volumetric Procedural Implicit Functions" |
 //! | [`gas`] | noise and turbulence, shaping functions, basic gas, teacup steam, fog | Ebert 2001, slides "Basic gas procedure", "Steam rising from a teacup" |
 //! | [`cloud`] | the cumulus procedure: cumulus, cirrus with jet stream, stratus, cirrostratus, mackerel sky | Ebert 2001, "Cloud Modeling" |

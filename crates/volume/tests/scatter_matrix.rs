@@ -314,6 +314,14 @@ fn fast_lums(c: &Case, px: u32, scattering: Scattering) -> Vec<f64> {
     if std::env::var("MATRIX_NOTRUNC").is_ok() {
         settings.truncate_forward_peak = false;
     }
+    // `MATRIX_POWDER=<strength>`: Schneider's powder term on, to measure
+    // the error it adds against the reference.
+    if let Some(s) = std::env::var("MATRIX_POWDER")
+        .ok()
+        .and_then(|v| v.parse::<f32>().ok())
+    {
+        settings.powder = s;
+    }
     lums(
         &FastRenderer::new(&scene, settings)
             .unwrap()

@@ -103,7 +103,9 @@ impl Default for CloudsDesc {
             shadow_cell_m: 100.0,
             seed_offset: 0,
             wind_m_s: [6.0, 2.0],
-            // No warp: it would add about half again to the detail's cost.
+            // No warp: the curl noise that stirs the detail (nine lookups a
+            // sample) adds about a quarter to a detailed frame (the
+            // cloudscape at 1080 rows: 5.2 s against 4.1 s).
             detail: DetailParams {
                 feature_m: 250.0,
                 warp: 0.0,

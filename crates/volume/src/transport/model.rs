@@ -384,8 +384,19 @@ impl PeakOrders {
 /// light that has travelled a little way in has been scattered toward the
 /// viewer more often than at the sunlit edge, so edges facing the sun darken
 /// and creases brighten: `(1 − s) + s·2(1 − e^{−2τ})`, with `τ` the optical
-/// depth toward the sun and `s ∈ [0, 1]` the strength (0: off). An artistic
-/// term: it is not in the reference and is off in the comparisons.
+/// depth toward the sun and `s ∈ [0, 1]` the strength (0: off).
+///
+/// A painted term, not transport: the fast mode's multiple scattering
+/// already darkens sunlit edges and brightens creases as the reference
+/// does, and the term counts that again. Its error against the reference
+/// path tracer, over the 63 scenes of the black-sky scene matrix (balls,
+/// slabs and a blob; every phase family; sun behind, beside and ahead;
+/// measured 2026-12-02): at strength 0.2 the median image total is off by
+/// 6.8 % and the median 4 × 4 block by 7.8 % (totals −17 … +18 %, 42 scenes
+/// outside ±5 % or 10 %); at 0.5, 17.5 % and 19.8 % (totals −42 … +39 %,
+/// 62 scenes outside), against 0.1 % and 2.0 % with it off. Thin media
+/// darken (the factor is `1 − s` at `τ = 0`), thick ones brighten (up to
+/// `1 + s`). Off by default and in every comparison.
 #[inline]
 #[must_use]
 pub fn powder(tau: f32, strength: f32) -> f32 {
