@@ -144,14 +144,22 @@ fn cloudscape(c: &mut Criterion) {
         .unwrap();
     let mut g = c.benchmark_group("cloudscape");
     g.sample_size(10);
-    // The plain baked grid, and the grid eroded by the detail (three density
-    // samples a step: `cloudscape --detail`).
+    // The plain baked grid, the grid eroded by the detail (three density
+    // samples a step: `cloudscape --detail`), and that detail stirred.
     for (name, detail) in [
         ("fast_1920x1080_2threads", None),
         (
             "fast_detail_1920x1080_2threads",
             Some(natura::volume::detail::DetailParams {
                 warp: 0.0,
+                ..Default::default()
+            }),
+        ),
+        // The detail stirred by curl noise for wisps (`--detail --warp 0.15`).
+        (
+            "fast_detail_curl_1920x1080_2threads",
+            Some(natura::volume::detail::DetailParams {
+                warp: 0.15,
                 ..Default::default()
             }),
         ),
