@@ -12,7 +12,8 @@
 //! cargo run --release --example clouds -- --help       # every flag and its default
 //! ```
 //!
-//! Writes `clouds_cumulus.png`, `clouds_cirrus.png`,
+//! Writes `clouds_cumulus.png`, `clouds_cumulus_detail.png` (the cumulus
+//! eroded by noise detail down to the pixels' footprint), `clouds_cirrus.png`,
 //! `clouds_cirrostratus.png`, `clouds_jet_stream.png` and `clouds_born.png`
 //! (and `cumulus.vdb`) into
 //! `--out` (default: `./clouds/`), with a progress bar per picture.
@@ -23,7 +24,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use common::cloudshot::{CUMULUS_EXTINCTION, Look, SHOT, cumulus, render, strip};
+use common::cloudshot::{
+    CUMULUS_EXTINCTION, CUMULUS_VIEW, Look, SHOT, cumulus, render, render_detailed, strip,
+};
 use common::{Exit, Run, outln};
 use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
@@ -31,13 +34,14 @@ use natura::volume::animate::{cloud_is_born, eased_amount, keyed_implicit};
 use natura::volume::cloud::{
     Cloud, CloudParams, JetStream, cirrostratus_primitives, cloud, nine_sphere_cumulus,
 };
+use natura::volume::detail::DetailParams;
 use natura::volume::grid::GridDensity;
 use natura::volume::vdb;
 
 /// Ebert's procedural clouds: the nine-sphere cumulus, cirrus, cirrostratus
 /// over cirrus, the cumulus warped along the jet stream and "A Cloud is
 /// Born", rendered with shadow tables and multiple scattering. Writes
-/// clouds_cumulus.png, clouds_cirrus.png, clouds_cirrostratus.png,
+/// clouds_cumulus.png, clouds_cumulus_detail.png, clouds_cirrus.png, clouds_cirrostratus.png,
 /// clouds_jet_stream.png and clouds_born.png (and cumulus.vdb with --vdb or
 /// --quick).
 #[derive(Parser)]
@@ -84,6 +88,25 @@ fn clouds() -> Run {
         vdb::write_vdb(out.join("cumulus.vdb"), &[("density", &baked)])?;
         bar.advance(1);
     }
+    bar.finish();
+
+    // (a') The same cumulus eroded by noise detail down to the pixels'
+    // footprint: its voxels alone are soft at this distance.
+    bar.start("cumulus with detail", SHOT);
+    let detail = DetailParams {
+        feature_m: 1.5,
+        octaves: 8,
+        ..DetailParams::default()
+    };
+    render_detailed(
+        &cumulus,
+        &look,
+        CUMULUS_EXTINCTION,
+        CUMULUS_VIEW,
+        Some((detail, seed)),
+        &bar,
+    )?
+    .save_png(out.join("clouds_cumulus_detail.png"))?;
     bar.finish();
 
     // (b) Cirrus (Fig. 3): the three cylinders of the cirrostratus figure

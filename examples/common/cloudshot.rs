@@ -6,6 +6,7 @@ use natura::core::glam::Vec3;
 use natura::core::{Image, Progress};
 use natura::volume::Density;
 use natura::volume::cloud::{Cloud, CloudParams, cloud, nine_sphere_cumulus};
+use natura::volume::detail::{DetailParams, Detailed};
 use natura::volume::grid::GridDensity;
 use natura::volume::transport::{
     CacheParams, FastRenderer, FastSettings, LookAtCamera, MediumParams, Scattering, Scene,
@@ -67,18 +68,16 @@ impl Look {
 /// the sky shows through.
 pub const CUMULUS_EXTINCTION: f32 = 40.0;
 
+/// Where the cumulus is seen from: a direction from its centre, in
+/// bounding radii.
+pub const CUMULUS_VIEW: Vec3 = Vec3::new(0.0, -2.4, 0.25);
+
 /// Ebert's nine-sphere cumulus (Fig. 1) with the source's parameters and
 /// noise `seed`, and its shot as the cloud programs show it ([`render`],
 /// advancing `bar` as it does).
 pub fn cumulus(look: &Look, seed: u64, bar: &dyn Progress) -> Result<(Cloud, Image), Exit> {
     let c = cloud(nine_sphere_cumulus(), CloudParams::cumulus(), seed)?;
-    let img = render(
-        &c,
-        look,
-        CUMULUS_EXTINCTION,
-        Vec3::new(0.0, -2.4, 0.25),
-        bar,
-    )?;
+    let img = render(&c, look, CUMULUS_EXTINCTION, CUMULUS_VIEW, bar)?;
     Ok((c, img))
 }
 
@@ -98,10 +97,40 @@ pub fn render(
     view: Vec3,
     bar: &dyn Progress,
 ) -> Result<Image, Exit> {
+    render_detailed(d, look, extinction, view, None, bar)
+}
+
+/// [`render`], the baked voxels eroded by `detail` (when given) down to
+/// the footprint of a pixel at each point, or of the march's density
+/// samples where those are farther apart; the march then takes
+/// [`DetailParams::MARCH_SUBSTEPS`] density samples a step.
+pub fn render_detailed(
+    d: &dyn Density,
+    look: &Look,
+    extinction: f32,
+    view: Vec3,
+    detail: Option<(DetailParams, u64)>,
+    bar: &dyn Progress,
+) -> Result<Image, Exit> {
     let b = d.bounds();
     let c = (b.min + b.max) * 0.5;
     let r = (b.max - b.min).length() * 0.5;
+    let fov = 40f32.to_radians();
+    let eye = c + view * r;
+    let step = look.cell * 0.5;
     let baked = GridDensity::bake(d, look.cell)?;
+    let (density, substeps) = match detail {
+        Some((p, seed)) => {
+            // The footprint of the march's parts at the cloud's near side.
+            let parts = step / DetailParams::MARCH_SUBSTEPS as f32 / (view.length() - 1.0) / r;
+            let angle = (fov / look.height as f32).max(parts);
+            (
+                Detailed::new(baked, &p.seen_from(eye, angle), seed)?,
+                DetailParams::MARCH_SUBSTEPS,
+            )
+        }
+        None => (Detailed::without_detail(baked), 1),
+    };
     bar.advance(1);
     let scene = Scene {
         sun: Some(Sun {
@@ -109,7 +138,7 @@ pub fn render(
             irradiance: Vec3::new(3.2, 3.0, 2.7),
         }),
         ..Scene::new(
-            &baked,
+            &density,
             MediumParams {
                 extinction,
                 albedo: 0.999,
@@ -119,7 +148,8 @@ pub fn render(
         )
     };
     let settings = FastSettings {
-        step: look.cell * 0.5,
+        step,
+        substeps,
         shadows: Shadows::Table(look.shadow_nodes),
         scattering: Scattering::Cache(CacheParams {
             events: look.cache_events,
@@ -127,14 +157,8 @@ pub fn render(
         }),
         ..FastSettings::default()
     };
-    let camera = LookAtCamera::look_at(
-        c + view * r,
-        c,
-        Vec3::Z,
-        40f32.to_radians(),
-        look.width as u32,
-        look.height as u32,
-    )?;
+    let camera =
+        LookAtCamera::look_at(eye, c, Vec3::Z, fov, look.width as u32, look.height as u32)?;
     let fast = FastRenderer::new(&scene, settings)?;
     bar.advance(1);
     let image = fast.render(&camera)?;
