@@ -27,9 +27,10 @@
 //! crowns at these sizes are lit tips and sun-flecks a pixel wide among
 //! shade. Where a pixel covers many leaves the sun on them is now the mean
 //! through the crowns as turbid media, and the shade is lit from below,
-//! which halved the count in the default landscape; more samples a pixel
-//! (or the Gaussian pixel filter) remove much of the rest, which is the
-//! samples' noise.
+//! which halved the count in the default landscape. The camera's blur, the
+//! Gaussian pixel filter of σ = 0.5 pixel now on by default, spreads a lit
+//! tip over its neighbours as a lens does: the quick forest's count fell
+//! from 141 to 11, the full-size landscape's from 2949 to 637.
 
 use natura_core::NoProgress;
 use natura_render::scene::CameraKind;
@@ -52,8 +53,9 @@ fn quick(mut s: SceneDesc) -> SceneDesc {
     s
 }
 
-/// Stray pixels in the quick landscape with its forest, today.
-const KNOWN_FOREST_STRAYS: usize = 141;
+/// Stray pixels in the quick landscape with its forest, today (141 under
+/// the box filter).
+const KNOWN_FOREST_STRAYS: usize = 11;
 
 /// Fails if `scene` shows more than `known` stray pixels.
 fn at_most(scene: &SceneDesc, known: usize) {
@@ -78,6 +80,12 @@ fn quick_landscape_has_no_stray_pixels() {
     at_most(&s, 0);
 }
 
+/// The panorama under the box filter, which guards the silhouettes' fix
+/// (a near ridge against the lake 8 km away): under the default Gaussian
+/// filter one pixel at the tip of a one-pixel sliver of the lake between
+/// two ridges is flagged, (55, 61), whose neighbours along the sliver the
+/// filter has dimmed below the detector's ratio: the sliver's own light at
+/// the detector's threshold, not a sample's accident.
 #[test]
 fn quick_panorama_has_no_stray_pixels() {
     let mut s = quick(SceneDesc::default());
@@ -86,6 +94,7 @@ fn quick_panorama_has_no_stray_pixels() {
     s.camera.vfov_deg = 40.0;
     s.render.width = 480;
     s.render.height = 87;
+    s.render.filter_sigma_px = 0.0;
     at_most(&s, 0);
 }
 

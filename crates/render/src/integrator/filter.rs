@@ -22,7 +22,7 @@
 //!
 //! σ = 0 is the box: each pixel is the plain mean of its own samples.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 /// The filter's truncation radius in standard deviations.
 const RADIUS_SIGMAS: f32 = 3.0;
@@ -87,9 +87,103 @@ impl PixelFilter {
     }
 }
 
+impl PixelFilter {
+    /// The value of pixel `(x, y)` of a `size = (width, height)` image
+    /// under this (Gaussian) filter, from the samples `visit(nx, ny, f)`
+    /// hands to `f` (as `f(position in the pixel, radiance)`) for each
+    /// pixel `(nx, ny)` the filter reaches.
+    ///
+    /// Each pixel's samples estimate the filter's integral over that
+    /// pixel's square, `∫ f·L` and `∫ f`, by their mean (the pixel's area
+    /// is 1); the value is the sum of the first over the sum of the
+    /// second. So a pixel that took more samples than its neighbours
+    /// (adaptive refinement) counts as much as they do, not in proportion
+    /// to its samples, as it would in the weighted mean over all samples
+    /// at once (`Σ f(x − xᵢ) L(xᵢ) / Σ f(x − xᵢ)`, Pharr et al. 2023,
+    /// §8.8.1, which assumes the samples evenly spread).
+    pub(crate) fn mean(
+        &self,
+        x: u32,
+        y: u32,
+        size: (u32, u32),
+        visit: impl Fn(u32, u32, &mut dyn FnMut(Vec2, Vec3)),
+    ) -> Vec3 {
+        let r = self.reach();
+        let (mut acc, mut weight) = (Vec3::ZERO, 0.0f32);
+        for ny in y.saturating_sub(r)..=(y + r).min(size.1 - 1) {
+            for nx in x.saturating_sub(r)..=(x + r).min(size.0 - 1) {
+                let d = Vec2::new(nx as f32 - x as f32 - 0.5, ny as f32 - y as f32 - 0.5);
+                let (mut a, mut w, mut n) = (Vec3::ZERO, 0.0f32, 0u32);
+                visit(nx, ny, &mut |p, l| {
+                    let f = self.weight(d + p);
+                    a += l * f;
+                    w += f;
+                    n += 1;
+                });
+                if n > 0 {
+                    acc += a / n as f32;
+                    weight += w / n as f32;
+                }
+            }
+        }
+        acc / weight
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A pixel that took four times its neighbours' samples, all at the
+    /// same places in their pixels, counts as much as when it took as few:
+    /// the value is that of the even sampling.
+    #[test]
+    fn a_pixel_with_more_samples_does_not_weigh_more() {
+        let f = PixelFilter::gaussian(0.5);
+        let spots = [
+            Vec2::new(0.25, 0.25),
+            Vec2::new(0.75, 0.25),
+            Vec2::new(0.25, 0.75),
+            Vec2::new(0.75, 0.75),
+        ];
+        // The pixel right of (1, 1) is bright; it took 16 or 4 samples.
+        let value = |copies: usize| {
+            f.mean(1, 1, (3, 3), |nx, ny, g| {
+                let l = if (nx, ny) == (2, 1) {
+                    Vec3::ONE
+                } else {
+                    Vec3::ZERO
+                };
+                let k = if (nx, ny) == (2, 1) { copies } else { 1 };
+                for _ in 0..k {
+                    for &p in &spots {
+                        g(p, l);
+                    }
+                }
+            })
+        };
+        let (even, refined) = (value(1), value(4));
+        assert!(even.x > 0.01 && even.x < 0.3, "{even}");
+        approx::assert_relative_eq!(even.x, refined.x, max_relative = 1e-6);
+        // The plain weighted mean over all samples would weigh it 4 times.
+        let all = |copies: f32| {
+            let w = |p: Vec2, dx: f32| f.weight(Vec2::new(dx - 0.5, -0.5) + p);
+            let bright: f32 = spots.iter().map(|&p| w(p, 1.0)).sum::<f32>() * copies;
+            let dark: f32 = (-1..=1)
+                .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
+                .filter(|&d| d != (1, 0))
+                .map(|(dx, dy)| {
+                    spots
+                        .iter()
+                        .map(|&p| f.weight(Vec2::new(dx as f32 - 0.5, dy as f32 - 0.5) + p))
+                        .sum::<f32>()
+                })
+                .sum();
+            bright / (bright + dark)
+        };
+        approx::assert_relative_eq!(all(1.0), even.x, max_relative = 1e-5);
+        assert!(all(4.0) > 2.0 * even.x);
+    }
 
     #[test]
     fn the_box_counts_its_own_square() {

@@ -4,16 +4,16 @@
 
 use super::*;
 
-/// Tile side with the Gaussian filter, pixels: large enough that the two
-/// rings of pixels around a tile whose samples the filter and the
-/// refinement read add little (13 %).
+/// Tile side with the Gaussian filter, pixels: large enough that the ring
+/// of pixels around a tile whose samples the filter reads adds little
+/// (6 % at σ ≤ 0.5, whose ring is one pixel wide).
 const FILTER_TILE: u32 = 64;
 
 /// The samples of one pixel of a tile's traced block: where its base
 /// samples are in the block's arrays, and its further ones, if any.
 struct Samples {
-    /// The top-left pixel and width of the traced pixels: the block and
-    /// the ring around it the refinement's test reads.
+    /// The top-left pixel and width of the traced block: a tile and the
+    /// ring of pixels around it the filter reaches.
     origin: (u32, u32, u32),
     /// Positions in their pixel (`[0, 1)²`) and radiances of every traced
     /// pixel's base samples, `spp` a pixel in row order.
@@ -21,7 +21,7 @@ struct Samples {
     /// The same of the further samples of the pixels that take them.
     more: (Vec<Vec2>, Vec<Vec3>),
     /// Per traced pixel, the index in `more` of its first further sample,
-    /// or `usize::MAX` (always for the ring outside the block).
+    /// or `usize::MAX` where it took none.
     more_at: Vec<usize>,
 }
 
@@ -34,7 +34,9 @@ impl Renderer<'_> {
     /// `adaptive_samples` (the refinement's samples fill the pixel with its
     /// base ones). Each pixel is then the mean of the samples around it
     /// weighted by the scene's pixel filter (`render.filter_sigma_px`):
-    /// its own and those of the pixels the filter reaches. So the image is
+    /// its own and those of the pixels the filter reaches, each pixel's
+    /// samples counted by their mean, so a refined pixel weighs no more
+    /// than its neighbours. So the image is
     /// bit-identical for any thread count. The primary rays of a tile and
     /// of the ring of pixels around it the filter reaches (all their base
     /// samples, then the further samples of the pixels that take them)
@@ -113,14 +115,11 @@ impl Renderer<'_> {
 
     /// The base and further samples of the `w × h` pixels whose top-left
     /// pixel is `(x0, y0)`, their rays traced together. Whether a pixel
-    /// takes further samples is [`Self::refines`]'s test, for which the
-    /// base samples of the ring of pixels around the block are traced too.
+    /// takes further samples is [`Self::refines`]'s test of its own base
+    /// samples.
     fn trace_block(&self, x0: u32, y0: u32, w: u32, h: u32) -> Samples {
         let n = self.spp as usize;
-        let d = self.decision_reach();
-        let (ex, ey) = (x0.saturating_sub(d), y0.saturating_sub(d));
-        let ew = (x0 + w + d).min(self.width) - ex;
-        let eh = (y0 + h + d).min(self.height) - ey;
+        let (ex, ey, ew, eh) = (x0, y0, w, h); // the traced block
         let mut epos = Vec::with_capacity((ew * eh) as usize * n);
         let mut rays = Vec::with_capacity((ew * eh) as usize * n);
         for y in ey..ey + eh {
@@ -143,10 +142,8 @@ impl Renderer<'_> {
         let (mut mpos, mut mrays) = (Vec::new(), Vec::new());
         for y in y0..y0 + h {
             for x in x0..x0 + w {
-                let refine = self.refines(x, y, |nx, ny| {
-                    let k = at(nx, ny) * n;
-                    &erad[k..k + n]
-                });
+                let k = at(x, y) * n;
+                let refine = self.refines(&erad[k..k + n]);
                 if refine {
                     more_at[at(x, y)] = mpos.len();
                     for s in self.spp..self.adaptive.total() {
@@ -175,35 +172,20 @@ impl Renderer<'_> {
         }
     }
 
-    /// How far around a pixel [`Self::refines`] looks: none for the box
-    /// filter, the neighbours for the Gaussian.
-    fn decision_reach(&self) -> u32 {
-        u32::from(!self.filter.is_box())
-    }
-
-    /// Whether pixel `(x, y)` takes further samples, from the base samples
-    /// `base(nx, ny)` of the pixels within [`Self::decision_reach`] of it:
-    /// its own disagree, or (with the Gaussian filter, which mixes the
-    /// neighbours' samples into it) those of it and its eight neighbours
-    /// do, taken together.
-    fn refines<'a>(&self, x: u32, y: u32, base: impl Fn(u32, u32) -> &'a [Vec3]) -> bool {
-        let d = self.decision_reach();
-        if d == 0 {
-            return self.adaptive.disagree(base(x, y));
-        }
-        let ys = y.saturating_sub(d)..=(y + d).min(self.height - 1);
-        let xs = x.saturating_sub(d)..=(x + d).min(self.width - 1);
-        let around = ys.flat_map(|ny| xs.clone().map(move |nx| (nx, ny)));
-        self.adaptive.disagree_around(
-            self.spp,
-            around.flat_map(|(nx, ny)| base(nx, ny).iter().copied()),
-        )
+    /// Whether a pixel whose base samples are `base` takes further ones:
+    /// they disagree ([`Adaptive::disagree`]). Under the Gaussian filter
+    /// a pixel's value mixes in its neighbours' samples, but a neighbour
+    /// whose samples disagree refines itself, and [`PixelFilter::mean`]
+    /// counts each pixel by the mean of its own samples, so the test of a
+    /// pixel's own samples is enough.
+    fn refines(&self, base: &[Vec3]) -> bool {
+        self.adaptive.disagree(base)
     }
 
     /// Pixel `(x, y)` from the samples `visit(nx, ny, f)` hands to `f` (as
     /// `f(position in the pixel, radiance)`, in sample order) for each pixel
     /// `(nx, ny)` the filter reaches from it: the plain mean of its own for
-    /// the box, else their filter-weighted mean.
+    /// the box, else [`PixelFilter::mean`].
     fn filtered(
         &self,
         x: u32,
@@ -218,19 +200,7 @@ impl Renderer<'_> {
             });
             return sum / count as f32;
         }
-        let r = self.filter.reach();
-        let (mut acc, mut weight) = (Vec3::ZERO, 0.0f32);
-        for ny in y.saturating_sub(r)..=(y + r).min(self.height - 1) {
-            for nx in x.saturating_sub(r)..=(x + r).min(self.width - 1) {
-                let d = Vec2::new(nx as f32 - x as f32 - 0.5, ny as f32 - y as f32 - 0.5);
-                visit(nx, ny, &mut |p, l| {
-                    let w = self.filter.weight(d + p);
-                    acc += l * w;
-                    weight += w;
-                });
-            }
-        }
-        acc / weight
+        self.filter.mean(x, y, (self.width, self.height), visit)
     }
 
     /// Pixel `(x, y)` of [`Self::render`]: the filter-weighted mean of the
@@ -268,19 +238,9 @@ impl Renderer<'_> {
             let hit = self.tracer.trace(&ray, 0.0, f32::INFINITY);
             (p, self.radiance_traced(&ray, hit.as_ref()))
         };
-        let base =
-            |x: u32, y: u32| -> Vec<Vec3> { (0..self.spp).map(|s| sample(x, y, s).1).collect() };
-        let d = self.decision_reach();
-        let (ex, ey) = (x.saturating_sub(d), y.saturating_sub(d));
-        let ew = (x + d).min(self.width - 1) - ex + 1;
-        let eh = (y + d).min(self.height - 1) - ey + 1;
-        let ring: Vec<Vec<Vec3>> = (ey..ey + eh)
-            .flat_map(|ny| (ex..ex + ew).map(move |nx| (nx, ny)))
-            .map(|(nx, ny)| base(nx, ny))
-            .collect();
-        let refine = self.refines(x, y, |nx, ny| &ring[((ny - ey) * ew + (nx - ex)) as usize]);
         let mut all: Vec<(Vec2, Vec3)> = (0..self.spp).map(|s| sample(x, y, s)).collect();
-        if refine {
+        let base: Vec<Vec3> = all.iter().map(|a| a.1).collect();
+        if self.refines(&base) {
             all.extend((self.spp..self.adaptive.total()).map(|s| sample(x, y, s)));
         }
         all

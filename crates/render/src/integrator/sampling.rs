@@ -75,19 +75,6 @@ impl Adaptive {
         self.total as usize > base.len() && self.contrast_exceeds(base.iter().copied())
     }
 
-    /// Whether the base samples of a pixel and its neighbours (`spp` a
-    /// pixel) disagree, by the same contrast over all of them: where the
-    /// pixel filter mixes the neighbours' samples into a pixel, a
-    /// highlight one of them caught counts toward it too. Never when
-    /// refinement is off.
-    pub(crate) fn disagree_around(
-        &self,
-        spp: u32,
-        samples: impl Iterator<Item = glam::Vec3>,
-    ) -> bool {
-        self.total > spp && self.contrast_exceeds(samples)
-    }
-
     fn contrast_exceeds(&self, samples: impl Iterator<Item = glam::Vec3>) -> bool {
         let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
         for c in samples {
