@@ -1,12 +1,13 @@
 //! Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001) that the
-//! smoke examples do not show: the rotor (Fig. 6), linear against monotone
-//! cubic interpolation of falling smoke (Fig. 8), and the 1-D Hermite
-//! cubic against the monotone one (Fig. 9).
+//! smoke examples do not show: smoke rising by its buoyancy alone (Fig. 3),
+//! the rotor (Fig. 6), linear against monotone cubic interpolation of
+//! falling smoke (Fig. 8), and the 1-D Hermite cubic against the monotone
+//! one (Fig. 9).
 //!
 //! ```text
 //! cargo run --release --example figures_fedkiw                 # every figure
 //! cargo run --release --example figures_fedkiw -- --quick      # small, for CI
-//! cargo run --release --example figures_fedkiw -- --only hermite
+//! cargo run --release --example figures_fedkiw -- --only rising
 //! ```
 //!
 //! Writes into `--out` (default `./figures_fedkiw/`); docs/figures.md sets
@@ -30,11 +31,11 @@ use natura::fluid::export::render_smoke_volume;
 use natura::fluid::grid::{Boundaries, Dims};
 use natura::fluid::interp::{CubicLimiter, Interpolation, monotone_cubic};
 use natura::fluid::shape::{Obstacle, Shape};
-use natura::fluid::smoke::{Smoke, SmokeParams};
+use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 
 /// Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001) not shown by
-/// the smoke examples: the rotor, linear against monotone cubic
-/// interpolation, and the 1-D Hermite comparison.
+/// the smoke examples: rising smoke, the rotor, linear against monotone
+/// cubic interpolation, and the 1-D Hermite comparison.
 #[derive(Parser)]
 #[command(name = "figures_fedkiw", version)]
 struct Cli {
@@ -52,6 +53,8 @@ struct Cli {
 /// The figures, in the source's order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Fig {
+    /// Fig. 3: smoke rising by its buoyancy alone, its vortices kept
+    Rising,
     /// Fig. 6: a box rotating inside a smoke cloud
     Rotor,
     /// Fig. 8: falling smoke, linear (top) against monotone cubic (bottom)
@@ -61,10 +64,11 @@ enum Fig {
 }
 
 impl Figure for Fig {
-    const ALL: &'static [Fig] = &[Fig::Rotor, Fig::Interpolation, Fig::Hermite];
+    const ALL: &'static [Fig] = &[Fig::Rising, Fig::Rotor, Fig::Interpolation, Fig::Hermite];
 
     fn files(self) -> &'static [&'static str] {
         match self {
+            Fig::Rising => &["fedkiw_fig03_rising.png"],
             Fig::Rotor => &["fedkiw_fig06_rotor.png"],
             Fig::Interpolation => &["fedkiw_fig08_linear_cubic.png"],
             Fig::Hermite => &["fedkiw_fig09_hermite.png"],
@@ -84,6 +88,7 @@ fn run() -> Run {
     let q = cli.quick;
     figures::make(&out, &cli.only, |fig| {
         Ok(match fig {
+            Fig::Rising => vec![rising(q)?],
             Fig::Rotor => vec![rotor(q)?],
             Fig::Interpolation => vec![interpolation(q)?],
             Fig::Hermite => vec![hermite_figure()?],
@@ -104,6 +109,96 @@ fn enlarge(img: &Image, k: usize) -> R<Image> {
         let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), tx);
         top.lerp(bottom, ty)
     })?))
+}
+
+// ---------------------------------------------------------------- Fig. 3
+
+/// Fig. 3's scene: smoke rising under its buoyancy alone ("the only
+/// external force", §6) in the source's grid of 100 × 100 × 40 cells, the
+/// second its height (here `n × 2n/5 × n`, z up) over 2 × 0.8 × 2 m, walls
+/// and an open ceiling, with vorticity confinement of strength `epsilon`.
+/// The source gives nothing else: a warm source 0.36 m across a little
+/// above the floor's centre places smoke of density 1 at 25 K above
+/// ambient each step.
+fn rising_smoke(n: usize, epsilon: f32) -> R<Smoke> {
+    let h = 2.0 / n as f32;
+    let params = SmokeParams {
+        epsilon,
+        advection: Advection {
+            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
+            ..Advection::default()
+        },
+        ..SmokeParams::default()
+    };
+    let hot = params.ambient_temperature + 25.0;
+    let mut smoke = Smoke::new(Dims::new(n, 2 * n / 5, n)?, h, params)?;
+    smoke.add_source(SmokeSource {
+        shape: Shape::Sphere {
+            centre: Vec3::new(1.0, 0.4, 0.25),
+            radius: 0.18,
+        },
+        density: 1.0,
+        temperature: hot,
+        velocity: None,
+    })?;
+    Ok(smoke)
+}
+
+/// The mean vorticity magnitude `|∇ × u|` over the cells with smoke (1/s).
+fn vorticity_in_smoke(smoke: &Smoke) -> R<f64> {
+    let w = smoke.vorticity()?;
+    let rho = smoke.density();
+    let (nx, ny, nz) = rho.dims();
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                if rho[(i, j, k)] > 0.05 {
+                    let v = Vec3::new(w[0][(i, j, k)], w[1][(i, j, k)], w[2][(i, j, k)]);
+                    sum += f64::from(v.length());
+                    n += 1;
+                }
+            }
+        }
+    }
+    Ok(sum / n.max(1) as f64)
+}
+
+/// Fig. 3: the plume from the side at four times, lit from above and the
+/// left.
+fn rising(quick: bool) -> R<Image> {
+    let n = if quick { 25 } else { 100 };
+    let mut smoke = rising_smoke(n, SmokeParams::default().epsilon)?;
+    let h = smoke.h();
+    let dt = 0.02;
+    let (steps, every) = if quick { (40, 10) } else { (160, 40) };
+    let light = Vec3::new(-0.5, -0.4, 1.0).normalize();
+    let mut frames = Vec::new();
+    for s in 1..=steps {
+        smoke.step(dt)?;
+        if s % every == 0 {
+            frames.push(render_smoke_volume(
+                smoke.density(),
+                h,
+                16.0,
+                0.9,
+                light,
+                1,
+                Vec3::splat(0.05),
+            )?);
+        }
+    }
+    outln(format_args!(
+        "  Fig. 3: mean vorticity in the smoke {:.2} /s after {:.1} s",
+        vorticity_in_smoke(&smoke)?,
+        steps as f32 * dt
+    ))?;
+    let k = if quick { 4 } else { 2 };
+    let shots = frames
+        .iter()
+        .map(|i| enlarge(i, k))
+        .collect::<R<Vec<_>>>()?;
+    Ok(Image::contact_sheet(&shots, shots.len(), 6, Vec3::ONE)?)
 }
 
 // ---------------------------------------------------------------- Fig. 6
@@ -532,8 +627,60 @@ mod tests {
     }
 
     #[test]
+    fn the_rising_smoke_is_lifted_by_its_buoyancy_alone() {
+        // Fig. 3: buoyancy is the only external force. After 1.2 s the
+        // plume's top is far above its source (0.25 m up, 0.18 m in radius) and
+        // the flow swirls; with the buoyancy's coefficients at zero nothing
+        // moves: the smoke stays in the source and the air is still.
+        let height = |lift: bool| {
+            let mut smoke = rising_smoke(25, 2.0).unwrap();
+            if !lift {
+                let p = SmokeParams {
+                    alpha: 0.0,
+                    beta: 0.0,
+                    ..*smoke.params()
+                };
+                smoke = Smoke::new(smoke.dims(), smoke.h(), p).unwrap();
+                smoke
+                    .add_source(SmokeSource {
+                        shape: Shape::Sphere {
+                            centre: Vec3::new(1.0, 0.4, 0.25),
+                            radius: 0.18,
+                        },
+                        density: 1.0,
+                        temperature: p.ambient_temperature + 25.0,
+                        velocity: None,
+                    })
+                    .unwrap();
+            }
+            for _ in 0..60 {
+                smoke.step(0.02).unwrap();
+            }
+            // The top of the smoke: the highest cell denser than 0.05.
+            let rho = smoke.density();
+            let (nx, ny, nz) = rho.dims();
+            let top = (0..nz)
+                .filter(|&k| (0..ny).any(|j| (0..nx).any(|i| rho[(i, j, k)] > 0.05)))
+                .max()
+                .unwrap_or(0);
+            (
+                (top as f64 + 0.5) * f64::from(smoke.h()),
+                vorticity_in_smoke(&smoke).unwrap(),
+            )
+        };
+        let (lifted, swirl) = height(true);
+        let (still, calm) = height(false);
+        assert!(lifted > 0.55, "the smoke's top at {lifted} m");
+        assert!(still < 0.4, "without buoyancy its top at {still} m");
+        assert!(
+            swirl > 1.0 && calm < 1e-6,
+            "vorticity {swirl} against {calm}"
+        );
+    }
+
+    #[test]
     fn every_figure_writes_its_files() {
-        assert_eq!(Fig::ALL.len(), 3);
+        assert_eq!(Fig::ALL.len(), 4);
         for f in Fig::ALL {
             assert_eq!(f.files().len(), 1);
         }
