@@ -1,5 +1,6 @@
 //! Stam's *Stable Fluids* figures (Stam 1999) that the smoke examples do
-//! not show: the periodic 2-D "liquid texture" a user stirs (Fig. 4a–d).
+//! not show: the periodic 2-D "liquid texture" a user stirs (Fig. 4a–d),
+//! and 3-D gas carrying a texture map (Fig. 4e–j).
 //!
 //! ```text
 //! cargo run --release --example figures_stam                 # every figure
@@ -19,13 +20,19 @@ use std::process::ExitCode;
 use clap::{Parser, ValueEnum};
 use common::figures::{self, Figure};
 use common::{Exit, Run, outln};
-use natura::core::glam::Vec3;
+use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Grid2, Grid3, Image};
+use natura::fluid::export::render_smoke_volume;
 use natura::fluid::grid::Dims;
-use natura::fluid::stable::{PeriodicFluid, StableParams, Substance, SubstanceId};
+use natura::fluid::shape::Shape;
+use natura::fluid::stable::{
+    BoundedFluid, ForceSource, PeriodicFluid, StableParams, Substance, SubstanceId,
+};
+use natura::noise::{CurlNoise, Fbm, Field, Perlin, Spectral, VectorField};
 
 /// Stam's *Stable Fluids* figures (Stam 1999) not shown by the smoke
-/// examples: the periodic liquid texture a user stirs.
+/// examples: the periodic liquid texture a user stirs, and 3-D gas
+/// carrying a texture map.
 #[derive(Parser)]
 #[command(name = "figures_stam", version)]
 struct Cli {
@@ -45,14 +52,17 @@ struct Cli {
 enum Fig {
     /// Fig. 4a-d: a periodic liquid texture stirred by a user, and one frame tiled 2 × 2
     LiquidTexture,
+    /// Fig. 4e-j: 3-D gas billowing under a noise force, carrying a fractal and a striped texture
+    Gas,
 }
 
 impl Figure for Fig {
-    const ALL: &'static [Fig] = &[Fig::LiquidTexture];
+    const ALL: &'static [Fig] = &[Fig::LiquidTexture, Fig::Gas];
 
     fn files(self) -> &'static [&'static str] {
         match self {
             Fig::LiquidTexture => &["stam_fig04a-d_liquid_texture.png", "stam_fig04_tiled.png"],
+            Fig::Gas => &["stam_fig04e-j_gas.png"],
         }
     }
 }
@@ -69,6 +79,7 @@ fn run() -> Run {
     let q = cli.quick;
     figures::make(&out, &cli.only, |fig| match fig {
         Fig::LiquidTexture => liquid_texture(q),
+        Fig::Gas => Ok(vec![gas(q)?]),
     })
 }
 
@@ -329,9 +340,232 @@ fn liquid_texture(quick: bool) -> R<Vec<Image>> {
     Ok(vec![Image::contact_sheet(&shots, 2, 6, Vec3::ONE)?, tiled])
 }
 
+// ------------------------------------------------------------- Fig. 4e–j
+
+/// The noise force per unit density (m/s²): the source's "noise term
+/// proportional to the amount of density", whose factor is a user's
+/// parameter it does not give.
+const NOISE_FORCE: f32 = 20.0;
+
+/// The noise force's field: curl noise (divergence-free, so the projection
+/// keeps all of it), 3 lattice cells a metre, drifting down through the
+/// gas at 0.4 m/s so the billows keep changing.
+fn noise_force(noise: &CurlNoise<Perlin>, p: Vec3, t: f32) -> Vec3 {
+    let q = p.as_dvec3() * 3.0 + DVec3::new(0.0, 0.0, 1.2 * f64::from(t));
+    (noise.eval3(q) / noise.bound()).as_vec3()
+}
+
+/// The texture map a gas carries (Stam 1999, §5: "a fractal texture map"
+/// in Fig. 4e–i, "evenly spaced lines" in Fig. 4j), as a factor in
+/// `[0, 1]` of the carried coordinates.
+#[derive(Clone, Copy, Debug)]
+enum Carried {
+    Fractal,
+    Lines,
+}
+
+/// Fig. 4e–j's gas: the source's largest grid, 30³ cells, over a closed
+/// 1 m box (none of its sessions is given). A ball of gas placed over the
+/// floor, a force region in it pushes it up as the animator's forces
+/// did, and the noise force stirs it where it is dense. Three passive
+/// substances carry the texture coordinates, starting at each cell's
+/// centre.
+struct Gas {
+    fluid: BoundedFluid,
+    smoke: SubstanceId,
+    coords: [SubstanceId; 3],
+    noise: CurlNoise<Perlin>,
+    strength: f32,
+    time: f32,
+}
+
+impl Gas {
+    fn new(n: usize, strength: f32) -> R<Self> {
+        let h = 1.0 / n as f32;
+        let mut fluid = BoundedFluid::new(Dims::new(n, n, n)?, h, StableParams::default())?;
+        let smoke = fluid.add_substance(Substance::passive("smoke"))?;
+        let mut coords = [smoke; 3];
+        for (a, c) in coords.iter_mut().enumerate() {
+            *c = fluid.add_substance(Substance::passive(["u", "v", "w"][a]))?;
+            let g = fluid.substance_mut(*c)?;
+            for k in 0..n {
+                for j in 0..n {
+                    for i in 0..n {
+                        g[(i, j, k)] = ([i, j, k][a] as f32 + 0.5) * h;
+                    }
+                }
+            }
+        }
+        // The animator's density: a ball of gas over the floor's centre.
+        let centre = Vec3::new(0.5, 0.5, 0.3);
+        let g = fluid.substance_mut(smoke)?;
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let p = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * h;
+                    g[(i, j, k)] = (1.0 - (p - centre).length() / 0.24).clamp(0.0, 0.5) * 2.0;
+                }
+            }
+        }
+        fluid.add_force_source(ForceSource {
+            shape: Shape::Sphere {
+                centre: Vec3::new(0.5, 0.5, 0.25),
+                radius: 0.15,
+            },
+            acceleration: Vec3::new(0.0, 0.0, 3.0),
+        })?;
+        Ok(Self {
+            fluid,
+            smoke,
+            coords,
+            noise: CurlNoise::new(Perlin::new(4)),
+            strength,
+            time: 0.0,
+        })
+    }
+
+    fn step(&mut self, dt: f32) -> R<()> {
+        let h = self.fluid.h();
+        let rho = self.fluid.substance(self.smoke)?.clone();
+        let (nx, ny, nz) = rho.dims();
+        let (noise, strength, t) = (&self.noise, self.strength, self.time);
+        let f = self.fluid.force_mut();
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let r = rho[(i, j, k)];
+                    if r > 0.0 {
+                        let p = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * h;
+                        let v = noise_force(noise, p, t) * (strength * r.min(1.0));
+                        for a in 0..3 {
+                            f[a][(i, j, k)] = v[a];
+                        }
+                    }
+                }
+            }
+        }
+        self.fluid.step(dt)?;
+        self.time += dt;
+        Ok(())
+    }
+
+    /// The density times the carried texture, `ρ·(0.25 + 0.75·T)`.
+    fn textured(&self, carried: Carried) -> R<Grid3<f32>> {
+        let rho = self.fluid.substance(self.smoke)?;
+        let [u, v, w] = self.coords.map(|c| self.fluid.substance(c));
+        let (u, v, w) = (u?, v?, w?);
+        let fbm = Fbm::new(Perlin::new(9), Spectral::default().with_octaves(4.0))?;
+        let b = fbm.bound();
+        let (nx, ny, nz) = rho.dims();
+        Ok(Grid3::from_fn(nx, ny, nz, |i, j, k| {
+            let c = DVec3::new(
+                f64::from(u[(i, j, k)]),
+                f64::from(v[(i, j, k)]),
+                f64::from(w[(i, j, k)]),
+            );
+            let t = match carried {
+                Carried::Fractal => (0.5 + 0.8 * fbm.eval3(c * 4.0) / b).clamp(0.0, 1.0) as f32,
+                Carried::Lines => (0.5 + 0.5 * (c.z * std::f64::consts::TAU / 0.15).cos()) as f32,
+            };
+            rho[(i, j, k)] * (0.25 + 0.75 * t)
+        })?)
+    }
+
+    /// The density's second moment about the vertical axis through the
+    /// source (`Σ ρ r²`, r horizontal, m²) over its total.
+    fn spread(&self) -> R<f64> {
+        let rho = self.fluid.substance(self.smoke)?;
+        let h = f64::from(self.fluid.h());
+        let (nx, ny, nz) = rho.dims();
+        let (mut m, mut m2) = (0.0f64, 0.0f64);
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let (x, y) = ((i as f64 + 0.5) * h - 0.5, (j as f64 + 0.5) * h - 0.5);
+                    let r = f64::from(rho[(i, j, k)]);
+                    m += r;
+                    m2 += r * (x * x + y * y);
+                }
+            }
+        }
+        Ok(m2 / m.max(1e-12))
+    }
+}
+
+/// Fig. 4e–j: the gas at four times carrying the fractal texture (top)
+/// and the lines (bottom), seen from the side with self-shadowing from a
+/// fixed directional light, as the source's renderer did.
+fn gas(quick: bool) -> R<Image> {
+    let n = if quick { 16 } else { 30 };
+    let mut g = Gas::new(n, NOISE_FORCE)?;
+    let dt = 0.02;
+    let (steps, every) = if quick { (60, 15) } else { (160, 40) };
+    let light = Vec3::new(-0.5, -0.5, 1.0).normalize();
+    let (mut top, mut bottom) = (Vec::new(), Vec::new());
+    let h = g.fluid.h();
+    let shoot = |d: &Grid3<f32>| render_smoke_volume(d, h, 5.0, 0.9, light, 1, Vec3::splat(0.05));
+    for s in 1..=steps {
+        g.step(dt)?;
+        if s % every == 0 {
+            top.push(shoot(&g.textured(Carried::Fractal)?)?);
+            bottom.push(shoot(&g.textured(Carried::Lines)?)?);
+        }
+    }
+    outln(format_args!(
+        "  Fig. 4e–j: {n}³ cells, {steps} steps of {dt} s, the density's spread {:.3} m²",
+        g.spread()?
+    ))?;
+    let shots = top
+        .iter()
+        .chain(&bottom)
+        .map(|i| enlarge(i, 6))
+        .collect::<R<Vec<_>>>()?;
+    Ok(Image::contact_sheet(&shots, top.len(), 6, Vec3::ONE)?)
+}
+
+/// `img` enlarged `k` times with bilinear filtering (the grids are small).
+fn enlarge(img: &Image, k: usize) -> R<Image> {
+    let (w, h) = (img.width(), img.height());
+    let at = |x: usize, y: usize| img.get(x.min(w - 1), y.min(h - 1)).unwrap_or(Vec3::ZERO);
+    Ok(Image::from_grid(Grid2::from_fn(w * k, h * k, |x, y| {
+        let fx = ((x as f32 + 0.5) / k as f32 - 0.5).max(0.0);
+        let fy = ((y as f32 + 0.5) / k as f32 - 0.5).max(0.0);
+        let (x0, y0) = (fx as usize, fy as usize);
+        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let top = at(x0, y0).lerp(at(x0 + 1, y0), tx);
+        let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), tx);
+        top.lerp(bottom, ty)
+    })?))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_noise_force_makes_the_gas_billow_and_the_texture_moves_with_it() {
+        // Fig. 4e–j: the noise term "produced nice billowing motions". The
+        // same gas without it spreads less about its axis; and the carried
+        // coordinates left their cells.
+        let run = |strength: f32| {
+            let mut g = Gas::new(16, strength).unwrap();
+            for _ in 0..60 {
+                g.step(0.02).unwrap();
+            }
+            g
+        };
+        let (billowing, plain) = (run(NOISE_FORCE), run(0.0));
+        let (a, b) = (billowing.spread().unwrap(), plain.spread().unwrap());
+        assert!(a > 1.3 * b, "spread {a} against {b}");
+        let w = billowing.fluid.substance(billowing.coords[2]).unwrap();
+        let moved = (0..16)
+            .filter(|&k| (w[(8, 8, k)] - (k as f32 + 0.5) / 16.0).abs() > 0.03)
+            .count();
+        assert!(
+            moved > 3,
+            "{moved} cells on the axis carry moved coordinates"
+        );
+    }
 
     #[test]
     fn at_rest_the_coordinates_are_the_identity_and_the_weights_sum_to_one() {
