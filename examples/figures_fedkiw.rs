@@ -21,11 +21,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use common::figures::{self, Figure};
+use common::figures::{self, Figure, enlarge};
 use common::plot::{Canvas, Panel, Pen, colour};
 use common::{Exit, Run, outln};
 use natura::core::glam::{Quat, Vec3};
-use natura::core::{Grid2, Grid3, Image};
+use natura::core::{Grid3, Image};
 use natura::fluid::advect::Advection;
 use natura::fluid::export::render_smoke_volume;
 use natura::fluid::grid::{Boundaries, Dims};
@@ -94,21 +94,6 @@ fn run() -> Run {
             Fig::Hermite => vec![hermite_figure()?],
         })
     })
-}
-
-/// `img` enlarged `k` times with bilinear filtering (the grids are small).
-fn enlarge(img: &Image, k: usize) -> R<Image> {
-    let (w, h) = (img.width(), img.height());
-    let at = |x: usize, y: usize| img.get(x.min(w - 1), y.min(h - 1)).unwrap_or(Vec3::ZERO);
-    Ok(Image::from_grid(Grid2::from_fn(w * k, h * k, |x, y| {
-        let fx = ((x as f32 + 0.5) / k as f32 - 0.5).max(0.0);
-        let fy = ((y as f32 + 0.5) / k as f32 - 0.5).max(0.0);
-        let (x0, y0) = (fx as usize, fy as usize);
-        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
-        let top = at(x0, y0).lerp(at(x0 + 1, y0), tx);
-        let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), tx);
-        top.lerp(bottom, ty)
-    })?))
 }
 
 // ---------------------------------------------------------------- Fig. 3

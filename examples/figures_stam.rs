@@ -18,7 +18,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, ValueEnum};
-use common::figures::{self, Figure};
+use common::figures::{self, Figure, enlarge};
 use common::{Exit, Run, outln};
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Grid2, Grid3, Image};
@@ -521,21 +521,6 @@ fn gas(quick: bool) -> R<Image> {
         .map(|i| enlarge(i, 6))
         .collect::<R<Vec<_>>>()?;
     Ok(Image::contact_sheet(&shots, top.len(), 6, Vec3::ONE)?)
-}
-
-/// `img` enlarged `k` times with bilinear filtering (the grids are small).
-fn enlarge(img: &Image, k: usize) -> R<Image> {
-    let (w, h) = (img.width(), img.height());
-    let at = |x: usize, y: usize| img.get(x.min(w - 1), y.min(h - 1)).unwrap_or(Vec3::ZERO);
-    Ok(Image::from_grid(Grid2::from_fn(w * k, h * k, |x, y| {
-        let fx = ((x as f32 + 0.5) / k as f32 - 0.5).max(0.0);
-        let fy = ((y as f32 + 0.5) / k as f32 - 0.5).max(0.0);
-        let (x0, y0) = (fx as usize, fy as usize);
-        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
-        let top = at(x0, y0).lerp(at(x0 + 1, y0), tx);
-        let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), tx);
-        top.lerp(bottom, ty)
-    })?))
 }
 
 #[cfg(test)]

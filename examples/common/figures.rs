@@ -6,7 +6,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use natura::core::{Image, io::OutputSet};
+use natura::core::glam::Vec3;
+use natura::core::{Grid2, Image, io::OutputSet};
 
 use super::{Exit, Run, outln};
 
@@ -79,6 +80,26 @@ pub fn make<F: Figure>(
         outln(format_args!("wrote {}", t.display()))?;
     }
     Ok(())
+}
+
+/// `img` enlarged `k` times with bilinear filtering, for pictures of small
+/// grids (a simulation's cells, one pixel each).
+///
+/// # Errors
+///
+/// As [`Grid2::from_fn`] (a picture too large).
+pub fn enlarge(img: &Image, k: usize) -> Result<Image, Exit> {
+    let (w, h) = (img.width(), img.height());
+    let at = |x: usize, y: usize| img.get(x.min(w - 1), y.min(h - 1)).unwrap_or(Vec3::ZERO);
+    Ok(Image::from_grid(Grid2::from_fn(w * k, h * k, |x, y| {
+        let fx = ((x as f32 + 0.5) / k as f32 - 0.5).max(0.0);
+        let fy = ((y as f32 + 0.5) / k as f32 - 0.5).max(0.0);
+        let (x0, y0) = (fx as usize, fy as usize);
+        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let top = at(x0, y0).lerp(at(x0 + 1, y0), tx);
+        let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), tx);
+        top.lerp(bottom, ty)
+    })?))
 }
 
 #[cfg(test)]
