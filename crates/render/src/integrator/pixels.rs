@@ -119,11 +119,10 @@ impl Renderer<'_> {
     /// samples.
     fn trace_block(&self, x0: u32, y0: u32, w: u32, h: u32) -> Samples {
         let n = self.spp as usize;
-        let (ex, ey, ew, eh) = (x0, y0, w, h); // the traced block
-        let mut epos = Vec::with_capacity((ew * eh) as usize * n);
-        let mut rays = Vec::with_capacity((ew * eh) as usize * n);
-        for y in ey..ey + eh {
-            for x in ex..ex + ew {
+        let mut epos = Vec::with_capacity((w * h) as usize * n);
+        let mut rays = Vec::with_capacity((w * h) as usize * n);
+        for y in y0..y0 + h {
+            for x in x0..x0 + w {
                 for s in 0..self.spp {
                     let p = self.sample_position(x, y, s);
                     epos.push(p);
@@ -137,20 +136,17 @@ impl Renderer<'_> {
             .zip(&hits)
             .map(|(ray, hit)| self.radiance_traced(ray, hit.as_ref()))
             .collect();
-        let at = |x: u32, y: u32| ((y - ey) * ew + (x - ex)) as usize;
-        let mut more_at = vec![usize::MAX; (ew * eh) as usize];
+        // Pixels in row order, as the base samples were traced.
+        let mut more_at = vec![usize::MAX; (w * h) as usize];
         let (mut mpos, mut mrays) = (Vec::new(), Vec::new());
-        for y in y0..y0 + h {
-            for x in x0..x0 + w {
-                let k = at(x, y) * n;
-                let refine = self.refines(&erad[k..k + n]);
-                if refine {
-                    more_at[at(x, y)] = mpos.len();
-                    for s in self.spp..self.adaptive.total() {
-                        let p = self.sample_position(x, y, s);
-                        mpos.push(p);
-                        mrays.push(self.primary_ray(x, y, p));
-                    }
+        for (i, more) in more_at.iter_mut().enumerate() {
+            if self.refines(&erad[i * n..(i + 1) * n]) {
+                let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
+                *more = mpos.len();
+                for s in self.spp..self.adaptive.total() {
+                    let p = self.sample_position(x, y, s);
+                    mpos.push(p);
+                    mrays.push(self.primary_ray(x, y, p));
                 }
             }
         }
@@ -165,7 +161,7 @@ impl Renderer<'_> {
                 .collect()
         };
         Samples {
-            origin: (ex, ey, ew),
+            origin: (x0, y0, w),
             base: (epos, erad),
             more: (mpos, mrad),
             more_at,
