@@ -101,14 +101,17 @@ fn run() -> Run {
 /// Fig. 3's scene: smoke rising under its buoyancy alone ("the only
 /// external force", §6) in the source's grid of 100 × 100 × 40 cells, the
 /// second its height (here `n × 2n/5 × n`, z up) over 2 × 0.8 × 2 m, walls
-/// and an open ceiling, with vorticity confinement of strength `epsilon`.
-/// The source gives nothing else: a warm source 0.36 m across a little
-/// above the floor's centre places smoke of density 1 at 25 K above
-/// ambient each step.
-fn rising_smoke(n: usize, epsilon: f32) -> R<Smoke> {
+/// and an open ceiling, with the default vorticity confinement. The source
+/// gives nothing else: a warm source 0.36 m across a little above the
+/// floor's centre places smoke of density 1 at 25 K above ambient each
+/// step. Unless `buoyant`, the buoyancy's coefficients are zero (a
+/// control: nothing then moves the smoke).
+fn rising_smoke(n: usize, buoyant: bool) -> R<Smoke> {
     let h = 2.0 / n as f32;
+    let lift = SmokeParams::default();
     let params = SmokeParams {
-        epsilon,
+        alpha: if buoyant { lift.alpha } else { 0.0 },
+        beta: if buoyant { lift.beta } else { 0.0 },
         advection: Advection {
             interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
             ..Advection::default()
@@ -153,7 +156,7 @@ fn vorticity_in_smoke(smoke: &Smoke) -> R<f64> {
 /// left.
 fn rising(quick: bool) -> R<Image> {
     let n = if quick { 25 } else { 100 };
-    let mut smoke = rising_smoke(n, SmokeParams::default().epsilon)?;
+    let mut smoke = rising_smoke(n, true)?;
     let h = smoke.h();
     let dt = 0.02;
     let (steps, every) = if quick { (40, 10) } else { (160, 40) };
@@ -618,26 +621,7 @@ mod tests {
         // the flow swirls; with the buoyancy's coefficients at zero nothing
         // moves: the smoke stays in the source and the air is still.
         let height = |lift: bool| {
-            let mut smoke = rising_smoke(25, 2.0).unwrap();
-            if !lift {
-                let p = SmokeParams {
-                    alpha: 0.0,
-                    beta: 0.0,
-                    ..*smoke.params()
-                };
-                smoke = Smoke::new(smoke.dims(), smoke.h(), p).unwrap();
-                smoke
-                    .add_source(SmokeSource {
-                        shape: Shape::Sphere {
-                            centre: Vec3::new(1.0, 0.4, 0.25),
-                            radius: 0.18,
-                        },
-                        density: 1.0,
-                        temperature: p.ambient_temperature + 25.0,
-                        velocity: None,
-                    })
-                    .unwrap();
-            }
+            let mut smoke = rising_smoke(25, lift).unwrap();
             for _ in 0..60 {
                 smoke.step(0.02).unwrap();
             }
