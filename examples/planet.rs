@@ -122,6 +122,11 @@ struct Cli {
         value_parser = common::in_range(-20.0f32, 20.0)
     )]
     ev: Option<f32>,
+    /// Rays a pixel takes along each axis, resolved by the camera's pixel
+    /// filter (1 to 16) [default: 2 orbit, 1 ground, whose rays cost
+    /// ten times as much]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+    supersample: Option<u32>,
     /// Output directory (created if needed)
     #[arg(long, value_name = "DIR", default_value = "planet")]
     out: PathBuf,
@@ -158,6 +163,7 @@ fn planet() -> Run {
         search,
         heading,
         ev,
+        supersample,
         out,
     } = cli;
     let orbit = view == View::Orbit;
@@ -235,7 +241,11 @@ fn planet() -> Run {
     };
     let bar = common::Bar::new();
     let started = std::time::Instant::now();
-    let image = planet.render(&camera, &TraceSettings::default(), &bar)?;
+    let settings = TraceSettings {
+        supersample: supersample.unwrap_or(if orbit { 2 } else { 1 }),
+        ..TraceSettings::default()
+    };
+    let image = planet.render(&camera, &settings, &bar)?;
     outln(format_args!(
         "rendered {width}×{height} in {:.2} s",
         started.elapsed().as_secs_f64()

@@ -3,8 +3,9 @@
 //! height fields and supersampled pictures.
 
 use natura::atmos::{Dir3, Medium};
+use natura::core::filter::PixelFilter;
 use natura::core::glam::{DVec2, Vec3};
-use natura::core::{HeightField, Image};
+use natura::core::{Grid2, HeightField, Image};
 use natura::noise::{Field, Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura::texture::Footprint;
 use natura::texture::earth::Strata;
@@ -84,22 +85,19 @@ pub(crate) fn misty_sky(d: Vec3) -> Vec3 {
     Vec3::new(0.86, 0.88, 0.92).lerp(Vec3::new(0.45, 0.58, 0.80), d.z.clamp(0.0, 1.0).sqrt())
 }
 
-/// `pixel` averaged over s × s rays on a regular grid in each pixel.
+/// `pixel` at s × s rays on a regular grid in each pixel, resolved by the
+/// camera's pixel filter (natura-core's `PixelFilter::camera`).
 pub(crate) fn supersampled(
     w: u32,
     h: u32,
     ss: usize,
     mut pixel: impl FnMut(f32, f32) -> Vec3,
 ) -> R<Image> {
-    Ok(Image::from_fn(w as usize, h as usize, |x, y| {
-        let mut sum = Vec3::ZERO;
-        for k in 0..ss * ss {
-            let (u, v) = ((k % ss) as f32, (k / ss) as f32);
-            let sub = |i: usize, o: f32| i as f32 + (o + 0.5) / ss as f32;
-            sum += pixel(sub(x, u), sub(y, v));
-        }
-        sum / (ss * ss) as f32
-    })?)
+    let step = 1.0 / ss as f32;
+    let frame = Grid2::from_fn(w as usize * ss, h as usize * ss, |i, j| {
+        pixel((i as f32 + 0.5) * step, (j as f32 + 0.5) * step)
+    })?;
+    Ok(PixelFilter::camera().resolve(&frame, ss)?)
 }
 
 /// Ridged multifractal heights (Musgrave's ridged basis, 9 octaves, H = 1,

@@ -10,6 +10,7 @@ use natura::noise::{
 };
 
 use crate::common::Exit;
+use crate::landscape::supersampled;
 
 type R<T> = Result<T, Exit>;
 
@@ -36,7 +37,7 @@ pub(crate) fn dust(seed: u64) -> R<Multifractal<Perlin>> {
 /// band's diffuse glow (a Gaussian across the band times fBm), seen
 /// through the dust where the band is.
 pub(crate) fn milky_way_picture(seed: u64, quick: bool) -> R<Image> {
-    let (w, h) = if quick { (240, 120) } else { (1200, 600) };
+    let (w, h) = if quick { (240u32, 120u32) } else { (1200, 600) };
     let dust = dust(seed)?;
     let glow = Fbm::new(
         Perlin::new(seed ^ 0x32),
@@ -67,8 +68,11 @@ pub(crate) fn milky_way_picture(seed: u64, quick: bool) -> R<Image> {
         .collect();
     sample.sort_by(f64::total_cmp);
     let dust_ref = sample[sample.len() * 9 / 10].max(f64::MIN_POSITIVE);
-    Ok(Image::from_fn(w, h, |i, j| {
-        let p = DVec2::new(i as f64 / h as f64, j as f64 / h as f64);
+    // Stars are points smaller than a pixel: 3 × 3 samples a pixel,
+    // resolved by the camera's pixel filter, share each with its
+    // neighbours as a photograph's lens does.
+    supersampled(w, h, if quick { 2 } else { 3 }, |x, y| {
+        let p = DVec2::new(f64::from(x) / f64::from(h), f64::from(y) / f64::from(h));
         let across = frame(p).0;
         let band = (-(across / 0.16).powi(2)).exp();
         let q = p * star_cells;
@@ -79,7 +83,7 @@ pub(crate) fn milky_way_picture(seed: u64, quick: bool) -> R<Image> {
         let tau = 1.2 * band.sqrt() * dust_at(p).max(0.0) / dust_ref;
         let light = DVec3::new(1.0, 0.9, 0.75) * (0.55 * haze) + DVec3::splat(star);
         (light * (-tau).exp()).as_vec3()
-    })?)
+    })
 }
 
 #[cfg(test)]

@@ -6,8 +6,9 @@
 //! and position-indexed random numbers ([`Seed`]), [`Progress`] reporting,
 //! crash-safe file writing ([`io::write_atomic`]), and the cameras every
 //! renderer shares ([`camera`]: pinhole, orthographic and panoramic maps from
-//! pixels to rays and back), and the preview rasterizer every crate's small
-//! pictures are drawn with ([`preview`]).
+//! pixels to rays and back), the preview rasterizer every crate's small
+//! pictures are drawn with ([`preview`]), and the pixel filter both resolve
+//! their samples with ([`filter`]).
 //!
 //! Conventions (shared by every natura crate): right-handed, **z up**,
 //! metres, seconds, radians; `f32` for grids and images, `f64` where
@@ -29,6 +30,7 @@ pub mod camera;
 pub mod check;
 pub mod colour;
 mod error;
+pub mod filter;
 mod grid2;
 mod grid3;
 mod heightfield;

@@ -112,6 +112,9 @@ impl Default for TopView {
     }
 }
 
+/// Samples a pixel of [`TopView::render`] takes along each axis.
+pub const SUPERSAMPLE: u32 = 2;
+
 impl TopView {
     /// Sky radiance seen in direction `d` (z up): the horizon colour blended
     /// toward the zenith with the square root of the elevation's sine.
@@ -121,7 +124,9 @@ impl TopView {
     }
 
     /// Renders `n × n` pixels over `extent` metres of `surface` (which
-    /// tiles, so any extent works).
+    /// tiles, so any extent works), [`SUPERSAMPLE`]² samples a pixel
+    /// resolved by the camera's pixel filter (natura-core's
+    /// `PixelFilter::camera`).
     ///
     /// # Errors
     ///
@@ -134,15 +139,16 @@ impl TopView {
         let sky = |d: Vec3| self.sky(d);
         let cell = extent / n.max(1) as f32;
         let side = u32::try_from(n).unwrap_or(u32::MAX);
-        let img = preview::shade_pixels(side, side, 1, "top view", &NoProgress, |x, y| {
-            // Image row 0 is the grid's north edge.
-            let p = Vec2::new(x as f32, n as f32 - y as f32) * cell;
-            let c = self
-                .shader
-                .shade(self.view, surface.normal_at(p), 0.0, Some(&sky));
-            let foam = surface.foam_at(p).clamp(0.0, 1.0) * self.foam_opacity;
-            c.lerp(self.foam_colour, foam)
-        })?;
+        let img =
+            preview::shade_pixels(side, side, SUPERSAMPLE, "top view", &NoProgress, |x, y| {
+                // Image row 0 is the grid's north edge.
+                let p = Vec2::new(x as f32, n as f32 - y as f32) * cell;
+                let c = self
+                    .shader
+                    .shade(self.view, surface.normal_at(p), 0.0, Some(&sky));
+                let foam = surface.foam_at(p).clamp(0.0, 1.0) * self.foam_opacity;
+                c.lerp(self.foam_colour, foam)
+            })?;
         Ok(img.tone_mapped(0.0, ToneMap::AcesFilmic))
     }
 }

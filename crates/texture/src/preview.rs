@@ -1,7 +1,8 @@
 //! Pictures of a texture on its own: on a sphere, on a plane, and as water
 //! (natura-core's `Image::contact_sheet` lays several out). These are what the examples write; they are
 //! simple fixed renderers, not a scene description, drawn with natura-core's
-//! preview loop ([`natura_core::preview::shade_pixels`]: rows in parallel,
+//! preview loop ([`natura_core::preview::shade_pixels`]: [`SUPERSAMPLE`]² samples a
+//! pixel resolved by the camera's pixel filter, rows in parallel,
 //! the same bits on any number of threads).
 
 use glam::DVec3;
@@ -15,6 +16,9 @@ use crate::view::View;
 
 /// The light of the swatches: upper left, slightly in front.
 const LIGHT: DVec3 = DVec3::new(-0.5, -0.55, 0.67);
+/// Samples a swatch's pixel takes along each axis (resolved by the
+/// camera's pixel filter, natura-core's `PixelFilter::camera`).
+pub const SUPERSAMPLE: u32 = 3;
 /// The dark blue behind densities (clouds, rings) and around spheres.
 const BACKDROP: DVec3 = DVec3::new(0.02, 0.035, 0.08);
 
@@ -51,7 +55,7 @@ fn look(texture: &dyn SolidTexture, p: DVec3, n: DVec3, fp: Footprint, emissive:
 }
 
 /// The texture on the unit sphere, seen orthographically in a `size ×
-/// size` image (one sample per pixel, footprint one pixel), lit from the
+/// size` image ([`SUPERSAMPLE`]² samples a pixel, each with the pixel's footprint), lit from the
 /// upper left; densities are shown over a dark blue backdrop. Emissive
 /// textures (fire) are shown unlit when `emissive` is set.
 ///
@@ -96,17 +100,18 @@ pub fn sphere_from(
     let up = toward.cross(right);
     let px = 2.2 / f64::from(size);
     let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
-    let image = preview::shade_pixels(size, size, 1, texture.name(), progress, |x, y| {
-        let (u, v) = (x * px - 1.1, 1.1 - y * px);
-        let r2 = u * u + v * v;
-        let c = if r2 < 1.0 {
-            let n = right * u + up * v + toward * (1.0 - r2).sqrt();
-            look(texture, n, n, fp, emissive)
-        } else {
-            BACKDROP
-        };
-        c.as_vec3()
-    })?;
+    let image =
+        preview::shade_pixels(size, size, SUPERSAMPLE, texture.name(), progress, |x, y| {
+            let (u, v) = (x * px - 1.1, 1.1 - y * px);
+            let r2 = u * u + v * v;
+            let c = if r2 < 1.0 {
+                let n = right * u + up * v + toward * (1.0 - r2).sqrt();
+                look(texture, n, n, fp, emissive)
+            } else {
+                BACKDROP
+            };
+            c.as_vec3()
+        })?;
     Ok(image)
 }
 
@@ -136,14 +141,15 @@ pub fn plane(
     positive("extent", extent)?;
     let px = extent / f64::from(size);
     let fp = Footprint::new(px).unwrap_or(Footprint::POINT);
-    let image = preview::shade_pixels(size, size, 1, texture.name(), progress, |x, y| {
-        let (a, b) = (x * px - 0.5 * extent, 0.5 * extent - y * px);
-        let (p, n) = match which {
-            Plane::Horizontal => (DVec3::new(a, b, 0.37), DVec3::Z),
-            Plane::Vertical => (DVec3::new(a, 0.37, b + 0.5 * extent), DVec3::NEG_Y),
-        };
-        look(texture, p, n, fp, emissive).as_vec3()
-    })?;
+    let image =
+        preview::shade_pixels(size, size, SUPERSAMPLE, texture.name(), progress, |x, y| {
+            let (a, b) = (x * px - 0.5 * extent, 0.5 * extent - y * px);
+            let (p, n) = match which {
+                Plane::Horizontal => (DVec3::new(a, b, 0.37), DVec3::Z),
+                Plane::Vertical => (DVec3::new(a, 0.37, b + 0.5 * extent), DVec3::NEG_Y),
+            };
+            look(texture, p, n, fp, emissive).as_vec3()
+        })?;
     Ok(image)
 }
 
@@ -178,23 +184,30 @@ pub fn water(
         base + DVec3::new(1.0, 0.9, 0.7) * (d.dot(sun).max(0.0).powi(4000) * 12.0)
     };
     let alpha = view.pixel_angle();
-    let image = preview::shade_pixels(width, height, 1, texture.name(), progress, |x, y| {
-        let d = view.direction(x, y);
-        let c = if d.z >= -1e-4 {
-            sky(d)
-        } else {
-            let t = -eye.z / d.z;
-            let p = eye + d * t;
-            let fp = Footprint::new(t * alpha / scale).unwrap_or(Footprint::POINT);
-            let g = texture.height_gradient(p / scale, fp);
-            let n = bump(DVec3::Z, g);
-            let r = d - n * (2.0 * d.dot(n));
-            let cos = (-d.dot(n)).clamp(0.0, 1.0);
-            let f = 0.02 + 0.98 * (1.0 - cos).powi(5);
-            let deep = DVec3::new(0.01, 0.04, 0.05);
-            deep.lerp(sky(DVec3::new(r.x, r.y, r.z.abs())), f)
-        };
-        c.as_vec3()
-    })?;
+    let image = preview::shade_pixels(
+        width,
+        height,
+        SUPERSAMPLE,
+        texture.name(),
+        progress,
+        |x, y| {
+            let d = view.direction(x, y);
+            let c = if d.z >= -1e-4 {
+                sky(d)
+            } else {
+                let t = -eye.z / d.z;
+                let p = eye + d * t;
+                let fp = Footprint::new(t * alpha / scale).unwrap_or(Footprint::POINT);
+                let g = texture.height_gradient(p / scale, fp);
+                let n = bump(DVec3::Z, g);
+                let r = d - n * (2.0 * d.dot(n));
+                let cos = (-d.dot(n)).clamp(0.0, 1.0);
+                let f = 0.02 + 0.98 * (1.0 - cos).powi(5);
+                let deep = DVec3::new(0.01, 0.04, 0.05);
+                deep.lerp(sky(DVec3::new(r.x, r.y, r.z.abs())), f)
+            };
+            c.as_vec3()
+        },
+    )?;
     Ok(image)
 }

@@ -43,6 +43,7 @@ fn trace_settings_that_cannot_finish_are_refused() {
         epsilon: 0.0,
         min_epsilon_m: 1e-300,
         max_steps: u32::MAX,
+        supersample: 2,
     };
     let msg = named(planet.render(&view, &endless, &NoProgress), "max_steps");
     assert!(msg.contains("1048576"), "{msg}");
@@ -54,6 +55,14 @@ fn trace_settings_that_cannot_finish_are_refused() {
     };
     let msg = named(planet.render(&view, &fine, &NoProgress), "min_epsilon_m");
     assert!(msg.contains("1e-300") && msg.contains("2⁻⁴⁶"), "{msg}");
+    // No rays a pixel, or more than the preview's bound, are refused.
+    for supersample in [0, 17] {
+        let bad = TraceSettings {
+            supersample,
+            ..TraceSettings::default()
+        };
+        named(planet.render(&view, &bad, &NoProgress), "supersample");
+    }
     // The defaults render, and no ray takes more steps than it is allowed.
     assert!(
         planet

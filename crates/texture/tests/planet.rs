@@ -18,6 +18,7 @@ fn tight() -> TraceSettings {
         epsilon: 1e-4,
         min_epsilon_m: 1e-7,
         max_steps: 1_000_000,
+        ..TraceSettings::default()
     }
 }
 

@@ -3,15 +3,19 @@
 //! texture swatch, an ecosystem from above). Each crate keeps only its scene
 //! (the geometry, texture or colour it feeds in); the loops are here:
 //!
-//! * [`shade_pixels`]: the image loop. Every pixel is the mean of `s × s`
-//!   samples of a closure of continuous pixel coordinates (a box filter in
-//!   a fixed order), rows in parallel with the `parallel` feature, the same
-//!   bits for any number of threads;
+//! * [`shade_pixels`]: the image loop. Every pixel is resolved from `s × s`
+//!   samples a pixel of a closure of continuous pixel coordinates by the
+//!   camera's pixel filter ([`PixelFilter::camera`], a Gaussian of σ = 0.5
+//!   pixel that shares a point of light with the pixel's neighbours as a
+//!   lens does; [`shade_pixels_filtered`] takes another, such as the box),
+//!   rows in parallel with the `parallel` feature, the same bits for any
+//!   number of threads;
 //! * [`trace_pixels`]: the same loop driving a camera, a closure from each
 //!   sample's [`Ray`] to a linear colour, for ray-cast previews;
 //! * [`Raster`]: triangles filled with edge functions at sample centres,
 //!   resolved with a z-buffer and shaded per fragment by a callback
-//!   ([`Fragment`]: barycentric weights, depth), then box-filtered;
+//!   ([`Fragment`]: barycentric weights, depth), then resolved by the same
+//!   filter;
 //!   [`disc_pixels`] covers discs the same way;
 //! * [`PreviewCamera`]: a look-at camera with its framing of a bounding box,
 //!   and its [`Projector`] onto a picture (natura-core's
@@ -27,9 +31,10 @@
 //! ```
 //! use natura_core::glam::Vec3;
 //! use natura_core::preview;
-//! // A disc of radius 4 in an 8 × 8 picture, 4 × 4 samples per pixel.
-//! let img = preview::shade_pixels(8, 8, 4, "disc", &natura_core::NoProgress, |x, y| {
-//!     let inside = (x - 4.0).powi(2) + (y - 4.0).powi(2) <= 16.0;
+//! // A disc of radius 4 in a 12 × 12 picture, 4 × 4 samples per pixel: the
+//! // camera's filter softens its edge but keeps its light.
+//! let img = preview::shade_pixels(12, 12, 4, "disc", &natura_core::NoProgress, |x, y| {
+//!     let inside = (x - 6.0).powi(2) + (y - 6.0).powi(2) <= 16.0;
 //!     if inside { Vec3::ONE } else { Vec3::ZERO }
 //! })?;
 //! let covered: f32 = img.pixels().as_slice().iter().map(|c| c.x).sum();
@@ -50,6 +55,7 @@ use glam::{UVec2, Vec3};
 use crate::camera::{MAX_RESOLUTION, OrthographicCamera, PinholeCamera, Ray, check_resolution};
 use crate::check::{Checked, ParamError};
 use crate::error::Result;
+use crate::filter::PixelFilter;
 use crate::grid2::Grid2;
 use crate::image::Image;
 use crate::progress::Progress;
@@ -160,17 +166,18 @@ pub fn fill_rows<T: Send>(
     progress.finish();
 }
 
-/// A `width × height` image whose every pixel is the mean of
-/// `supersample × supersample` samples `pixel(px, py)` at the samples'
-/// continuous pixel coordinates (one sample: the pixel centre), rows as in
-/// [`render_rows`].
+/// A `width × height` image whose every pixel is resolved by the camera's
+/// pixel filter ([`PixelFilter::camera`]) from `supersample × supersample`
+/// samples a pixel, `pixel(px, py)` at the samples' continuous pixel
+/// coordinates (one sample: the pixel centre), rows as in [`render_rows`].
 ///
 /// # Errors
 ///
 /// [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter)
 /// naming `width`, `height` or `supersample` ([`check_size`]);
-/// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the image cannot
-/// be allocated.
+/// [`CoreError::TooLarge`](crate::CoreError::TooLarge) if the image (or,
+/// for a filter wider than the box, the frame of its samples) cannot be
+/// allocated.
 pub fn shade_pixels(
     width: u32,
     height: u32,
@@ -179,18 +186,70 @@ pub fn shade_pixels(
     progress: &dyn Progress,
     pixel: impl Fn(f64, f64) -> Vec3 + Sync,
 ) -> Result<Image> {
+    shade_pixels_filtered(
+        width,
+        height,
+        supersample,
+        PixelFilter::camera(),
+        stage,
+        progress,
+        pixel,
+    )
+}
+
+/// As [`shade_pixels`], resolved by `filter`. The box makes each pixel the
+/// mean of its own samples (summed row by row) without storing them; a
+/// wider filter draws the whole frame of samples first, then resolves it
+/// ([`PixelFilter::resolve`]).
+///
+/// ```
+/// use natura_core::filter::PixelFilter;
+/// use natura_core::glam::Vec3;
+/// use natura_core::{NoProgress, preview};
+/// // A checkerboard of single pixels: the box keeps it, the camera softens it.
+/// let check = |x: f64, y: f64| Vec3::splat(((x as u32 + y as u32) % 2) as f32);
+/// let hard = preview::shade_pixels_filtered(6, 6, 2, PixelFilter::BOX, "c", &NoProgress, check)?;
+/// let soft = preview::shade_pixels(6, 6, 2, "c", &NoProgress, check)?;
+/// assert_eq!(hard.get(3, 2), Some(Vec3::ONE));
+/// let v = soft.get(3, 2).unwrap().x;
+/// assert!(v < 0.9 && v > 0.5);
+/// # Ok::<(), natura_core::CoreError>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`shade_pixels`].
+pub fn shade_pixels_filtered(
+    width: u32,
+    height: u32,
+    supersample: u32,
+    filter: PixelFilter,
+    stage: &str,
+    progress: &dyn Progress,
+    pixel: impl Fn(f64, f64) -> Vec3 + Sync,
+) -> Result<Image> {
     check_size(width, height, supersample)?;
     let s = supersample as usize;
     let step = 1.0 / f64::from(supersample);
-    render_rows(width, height, stage, progress, |y, row| {
-        for (x, out) in row.iter_mut().enumerate() {
-            *out = box_filter(s, |i, j| {
-                let px = x as f64 + (i as f64 + 0.5) * step;
-                let py = f64::from(y) + (j as f64 + 0.5) * step;
-                pixel(px, py)
-            });
+    if filter.is_box() {
+        return render_rows(width, height, stage, progress, |y, row| {
+            for (x, out) in row.iter_mut().enumerate() {
+                *out = box_filter(s, |i, j| {
+                    let px = x as f64 + (i as f64 + 0.5) * step;
+                    let py = f64::from(y) + (j as f64 + 0.5) * step;
+                    pixel(px, py)
+                });
+            }
+        });
+    }
+    let mut frame = Grid2::new(width as usize * s, height as usize * s, Vec3::ZERO)?;
+    fill_rows(&mut frame, stage, progress, |j, row| {
+        let py = (j as f64 + 0.5) * step;
+        for (i, out) in row.iter_mut().enumerate() {
+            *out = pixel((i as f64 + 0.5) * step, py);
         }
-    })
+    });
+    filter.resolve(&frame, s)
 }
 
 /// A camera that gives the ray through continuous pixel coordinates of its
@@ -220,9 +279,9 @@ impl PixelRays for OrthographicCamera {
     }
 }
 
-/// The camera's picture, every pixel the mean of `supersample ×
-/// supersample` samples `trace(ray)` along the rays through the samples
-/// (a ray-cast preview), as [`shade_pixels`].
+/// The camera's picture, every pixel resolved by the camera's pixel filter
+/// from `supersample × supersample` samples `trace(ray)` along the rays
+/// through the samples (a ray-cast preview), as [`shade_pixels`].
 ///
 /// ```
 /// use natura_core::camera::OrthographicCamera;

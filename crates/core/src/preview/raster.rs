@@ -2,9 +2,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{box_filter, check_size};
+use super::check_size;
 use crate::check::{Checked, ParamError};
 use crate::error::Result;
+use crate::filter::PixelFilter;
 use crate::image::Image;
 
 /// One sample a triangle covers, handed to the shading callback of
@@ -90,8 +91,6 @@ fn owns_edge(a: [f32; 3], b: [f32; 3], sign: f32) -> bool {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Raster {
-    width: usize,
-    height: usize,
     supersample: usize,
     w: usize,
     h: usize,
@@ -115,8 +114,6 @@ impl Raster {
         // The sample grid's size through the grid's own allocation check.
         let colour = crate::Grid2::new(w, h, background)?.into_vec();
         Ok(Self {
-            width: width as usize,
-            height: height as usize,
             supersample: s,
             w,
             h,
@@ -227,18 +224,27 @@ impl Raster {
         (x0 < x1 && y0 < y1).then_some((x0 as usize, x1 as usize, y0 as usize, y1 as usize))
     }
 
-    /// The picture: each pixel the mean of its `s × s` samples (a box
-    /// filter, summed row by row).
+    /// The picture: each pixel resolved from the samples by the camera's
+    /// pixel filter ([`PixelFilter::camera`]).
     ///
     /// # Errors
     ///
     /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) only if the image
     /// cannot be allocated.
     pub fn resolve(&self) -> Result<Image> {
-        let s = self.supersample;
-        Image::from_fn(self.width, self.height, |x, y| {
-            box_filter(s, |i, j| self.colour[(y * s + j) * self.w + x * s + i])
-        })
+        self.resolve_with(PixelFilter::camera())
+    }
+
+    /// The picture resolved by `filter` ([`PixelFilter::BOX`]: each pixel
+    /// the mean of its `s × s` samples, summed row by row).
+    ///
+    /// # Errors
+    ///
+    /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) only if the image
+    /// cannot be allocated.
+    pub fn resolve_with(&self, filter: PixelFilter) -> Result<Image> {
+        let frame = crate::Grid2::from_vec(self.w, self.h, self.colour.clone())?;
+        filter.resolve(&frame, self.supersample)
     }
 }
 

@@ -242,11 +242,13 @@ fn supersampling_a_half_plane_gives_its_area() {
         ];
         let tri = tri.map(|v| [v[0] * sf, v[1], v[2]]);
         r.triangle(tri, |_| Vec3::ONE).unwrap();
-        let raster = r.resolve().unwrap();
-        let closure = shade_pixels(
+        // The box: a pixel's value is the area it covers.
+        let raster = r.resolve_with(PixelFilter::BOX).unwrap();
+        let closure = shade_pixels_filtered(
             w as u32,
             h as u32,
             s,
+            PixelFilter::BOX,
             "half-plane",
             &NoProgress,
             |px, py| {

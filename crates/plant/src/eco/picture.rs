@@ -4,7 +4,8 @@
 //! natura-core's preview loops ([`natura_core::preview`]).
 
 use glam::{Vec2, Vec3};
-use natura_core::{Image, NoProgress, preview};
+use natura_core::filter::PixelFilter;
+use natura_core::{Grid2, Image, preview};
 
 use super::sim::Ecosystem;
 use crate::error::{PlantError, Result};
@@ -25,7 +26,14 @@ pub fn species_colour(k: usize) -> Vec3 {
     Vec3::from(C[k % C.len()])
 }
 
-/// Renders the ecosystem from above, `width` pixels wide (height from the terrain's aspect).
+/// Samples a pixel of [`top_view`] takes along each axis.
+const SUPERSAMPLE: usize = 3;
+
+/// Renders the ecosystem from above, `width` pixels wide (height from the
+/// terrain's aspect): the ground shaded by its light, and each plant a disc
+/// of its crown's radius in its species' colour, smallest first, drawn on
+/// 3 × 3 samples a pixel and resolved by the camera's pixel
+/// filter (natura-core's `PixelFilter::camera`).
 ///
 /// # Errors
 ///
@@ -45,20 +53,20 @@ pub fn top_view(eco: &Ecosystem, width: usize) -> Result<Image> {
     let (ex, ey) = site.extent();
     let height = ((width as f32 * ey / ex).round() as usize).max(1);
     let px = ex / width as f32;
-    let mut img = preview::shade_pixels(
-        width as u32,
-        u32::try_from(height).unwrap_or(u32::MAX),
-        1,
-        "top view",
-        &NoProgress,
-        |x, y| {
-            // Row 0 at the top is the terrain's far (+y) edge.
-            let (wx, wy) = (x as f32 * px, ey - y as f32 * px);
-            let (i, j) = site.nearest(wx, wy);
-            let shade = 0.25 + 0.6 * site.light[(i, j)];
-            Vec3::new(0.55, 0.5, 0.42) * shade
-        },
-    )?;
+    // The ground and the crowns are drawn on SUPERSAMPLE² samples a pixel,
+    // then resolved by the camera's pixel filter, so a crown's edge is
+    // antialiased and a crown smaller than a pixel is a soft dot.
+    let s = SUPERSAMPLE;
+    let h32 = u32::try_from(height).unwrap_or(u32::MAX);
+    preview::check_size(width as u32, h32, s as u32)?;
+    let sp = px / s as f32;
+    let mut frame = Grid2::from_fn(width * s, height * s, |i, j| {
+        // Row 0 at the top is the terrain's far (+y) edge.
+        let (wx, wy) = ((i as f32 + 0.5) * sp, ey - (j as f32 + 0.5) * sp);
+        let (i, j) = site.nearest(wx, wy);
+        let shade = 0.25 + 0.6 * site.light[(i, j)];
+        Vec3::new(0.55, 0.5, 0.42) * shade
+    })?;
     // Small plants first, so crowns of trees lie on top of the meadow.
     let mut order: Vec<usize> = (0..eco.plants().len()).collect();
     order.sort_by(|&a, &b| {
@@ -69,12 +77,13 @@ pub fn top_view(eco: &Ecosystem, width: usize) -> Result<Image> {
     });
     for p in order.iter().map(|&i| &eco.plants()[i]) {
         let c = species_colour(p.species as usize);
-        let centre = Vec2::new(p.x / px, (ey - p.y) / px);
-        let r = (p.radius / px).max(0.5);
-        for (x, y) in preview::disc_pixels(centre, r, width, height) {
-            let base = img.get(x, y).unwrap_or(c);
-            img.set(x, y, base * 0.25 + c * 0.75);
+        let centre = Vec2::new(p.x / sp, (ey - p.y) / sp);
+        // At least half a pixel, so the smallest plants still show.
+        let r = (p.radius / px).max(0.5) * s as f32;
+        for (x, y) in preview::disc_pixels(centre, r, width * s, height * s) {
+            let base = frame[(x, y)];
+            frame[(x, y)] = base * 0.25 + c * 0.75;
         }
     }
-    Ok(img)
+    Ok(PixelFilter::camera().resolve(&frame, s)?)
 }

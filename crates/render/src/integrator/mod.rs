@@ -37,13 +37,12 @@ use crate::vegetation::{Forest, Light, TreeHit};
 use crate::water::{WindSea, glitter};
 use crate::world::World;
 
-mod filter;
 mod pixels;
 mod sampling;
 mod shade;
 mod surface;
 
-use filter::PixelFilter;
+use natura_core::filter::PixelFilter;
 use sampling::{Adaptive, refined_position};
 use surface::detail_surface;
 

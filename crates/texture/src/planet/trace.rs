@@ -23,6 +23,11 @@ pub struct TraceSettings {
     /// its current point (a ray grazing the surface for a long way; 4096;
     /// at most [`MAX_TRACE_STEPS`]).
     pub max_steps: u32,
+    /// Rays a pixel takes along each axis of [`Planet::render`]'s picture
+    /// (2: four rays on a regular grid), resolved by the camera's pixel
+    /// filter (natura-core's `PixelFilter::camera`, a Gaussian of σ = 0.5
+    /// pixel); every ray keeps the pixel's footprint. 1 to 16.
+    pub supersample: u32,
 }
 
 impl Default for TraceSettings {
@@ -31,6 +36,7 @@ impl Default for TraceSettings {
             epsilon: 0.25,
             min_epsilon_m: 1e-4,
             max_steps: 4096,
+            supersample: 2,
         }
     }
 }
@@ -49,6 +55,13 @@ impl TraceSettings {
                 "max_steps",
                 self.max_steps,
                 "must be in 1..=1048576",
+            ));
+        }
+        if !(1..=natura_core::preview::MAX_SUPERSAMPLE).contains(&self.supersample) {
+            return Err(crate::error::invalid(
+                "supersample",
+                self.supersample,
+                "must be in 1..=16",
             ));
         }
         Ok(())

@@ -1,12 +1,11 @@
 //! Views of a planet — from orbit and from a mountain top — and rendering.
 
 use glam::DVec3;
-use natura_core::{Image, Progress};
+use natura_core::{Image, Progress, preview};
 
 use super::Planet;
 use crate::error::{Result, TextureError, finite, in_range, non_negative};
 use crate::planet::trace::TraceSettings;
-use crate::row_fill::render_rows;
 use crate::view::View;
 
 /// Where to stand for a view from the ground.
@@ -183,9 +182,11 @@ impl Planet {
         View::look_at(eye, eye + forward * 1000.0, up, g.vfov, width, height)
     }
 
-    /// Renders `view`: one ray per pixel through its centre, rows in
-    /// parallel (with the `parallel` feature), linear RGB with the sun's
-    /// light = 1.
+    /// Renders `view`: `settings.supersample²` rays a pixel on a regular
+    /// grid, each with the pixel's footprint, resolved by the camera's
+    /// pixel filter (natura-core's `PixelFilter::camera`); rows in parallel
+    /// (with the `parallel` feature), the same bits on any number of
+    /// threads; linear RGB with the sun's light = 1.
     ///
     /// # Errors
     /// [`TextureError`] for bad trace settings
@@ -210,11 +211,16 @@ impl Planet {
                 reason: "the view's eye must lie above the planet's surface",
             });
         }
-        render_rows(view.width(), view.height(), "planet", progress, |y, row| {
-            for (x, px) in row.iter_mut().enumerate() {
-                let d = view.pixel(x as u32, y);
-                *px = self.radiance(eye, d, alpha, settings).as_vec3();
-            }
-        })
+        Ok(preview::shade_pixels(
+            view.width(),
+            view.height(),
+            settings.supersample,
+            "planet",
+            progress,
+            |px, py| {
+                let d = view.direction(px, py);
+                self.radiance(eye, d, alpha, settings).as_vec3()
+            },
+        )?)
     }
 }
