@@ -12,6 +12,7 @@ use natura::core::glam::{DVec2, DVec3};
 use natura::noise::{Checkerboard, Field};
 
 use crate::common::Exit;
+use crate::landscape::supersampled;
 
 type R<T> = Result<T, Exit>;
 
@@ -173,24 +174,22 @@ impl PrismScene {
 /// Pl. 4.9: the prism from the front, a little above, the bow in the sky.
 pub(crate) fn prism_picture(quick: bool) -> R<Image> {
     let scene = PrismScene::new()?;
-    let (w, h) = if quick { (240, 160) } else { (960, 640) };
+    let (w, h) = if quick { (240u32, 160u32) } else { (960, 640) };
     let eye = DVec3::new(-3.6, -5.6, 2.6);
     let target = DVec3::new(0.0, 0.0, 0.7);
     let f = (target - eye).normalize();
     let right = f.cross(DVec3::Z).normalize();
     let up = right.cross(f);
     let tan = (50f64.to_radians() / 2.0).tan();
-    let ss = if quick { 1 } else { 2 };
-    Ok(Image::from_fn(w, h, |x, y| {
-        let mut sum = DVec3::ZERO;
-        for k in 0..ss * ss {
-            let u = ((x * ss + k % ss) as f64 + 0.5) / (w * ss) as f64 * 2.0 - 1.0;
-            let v = 1.0 - ((y * ss + k / ss) as f64 + 0.5) / (h * ss) as f64 * 2.0;
-            let d = (f + right * (u * tan * w as f64 / h as f64) + up * (v * tan)).normalize();
-            sum += scene.radiance(eye, d);
-        }
-        (sum / (ss * ss) as f64).as_vec3()
-    })?)
+    // 3 × 3 rays a pixel, resolved by the camera's pixel filter: the
+    // checkerboard's squares grow smaller than a pixel toward the horizon.
+    let ss = if quick { 1 } else { 3 };
+    supersampled(w, h, ss, |px, py| {
+        let u = f64::from(px) / f64::from(w) * 2.0 - 1.0;
+        let v = 1.0 - f64::from(py) / f64::from(h) * 2.0;
+        let d = (f + right * (u * tan * f64::from(w) / f64::from(h)) + up * (v * tan)).normalize();
+        scene.radiance(eye, d).as_vec3()
+    })
 }
 
 #[cfg(test)]
