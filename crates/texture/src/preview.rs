@@ -1,9 +1,9 @@
 //! Pictures of a texture on its own: on a sphere, on a plane, and as water
 //! (natura-core's `Image::contact_sheet` lays several out). These are what the examples write; they are
 //! simple fixed renderers, not a scene description, drawn with natura-core's
-//! preview loop ([`natura_core::preview::shade_pixels`]: [`SUPERSAMPLE`]² samples a
-//! pixel resolved by the camera's pixel filter, rows in parallel,
-//! the same bits on any number of threads).
+//! preview loop ([`natura_core::preview::shade_pixels`]: [`SUPERSAMPLE`]²
+//! samples a pixel resolved by the camera's pixel filter, rows in
+//! parallel, the same bits on any number of threads).
 
 use glam::DVec3;
 use natura_core::{Image, Progress, preview};
@@ -55,8 +55,8 @@ fn look(texture: &dyn SolidTexture, p: DVec3, n: DVec3, fp: Footprint, emissive:
 }
 
 /// The texture on the unit sphere, seen orthographically in a `size ×
-/// size` image ([`SUPERSAMPLE`]² samples a pixel, each with the pixel's footprint), lit from the
-/// upper left; densities are shown over a dark blue backdrop. Emissive
+/// size` image ([`SUPERSAMPLE`]² samples a pixel, each with the pixel's
+/// footprint), lit from the upper left; densities are shown over a dark blue backdrop. Emissive
 /// textures (fire) are shown unlit when `emissive` is set.
 ///
 /// # Errors

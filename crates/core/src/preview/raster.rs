@@ -95,7 +95,7 @@ pub struct Raster {
     w: usize,
     h: usize,
     depth: Vec<f32>,
-    colour: Vec<Vec3>,
+    colour: crate::Grid2<Vec3>,
 }
 
 impl Raster {
@@ -112,7 +112,7 @@ impl Raster {
         let s = supersample as usize;
         let (w, h) = (width as usize * s, height as usize * s);
         // The sample grid's size through the grid's own allocation check.
-        let colour = crate::Grid2::new(w, h, background)?.into_vec();
+        let colour = crate::Grid2::new(w, h, background)?;
         Ok(Self {
             supersample: s,
             w,
@@ -133,8 +133,7 @@ impl Raster {
     /// frame. The depth key of a sample no triangle covers is −∞.
     #[must_use]
     pub fn sample(&self, x: usize, y: usize) -> Option<(Vec3, f32)> {
-        (x < self.w && y < self.h)
-            .then(|| (self.colour[y * self.w + x], self.depth[y * self.w + x]))
+        (x < self.w && y < self.h).then(|| (self.colour[(x, y)], self.depth[y * self.w + x]))
     }
 
     /// Draws one triangle `v` (screen x, y and depth key per vertex): every
@@ -195,7 +194,7 @@ impl Raster {
                         weights: [w0, w1, w2],
                         depth: key,
                     };
-                    self.colour[k] = shade(&f);
+                    self.colour.as_mut_slice()[k] = shade(&f);
                     written += 1;
                 }
             }
@@ -243,8 +242,7 @@ impl Raster {
     /// [`CoreError::TooLarge`](crate::CoreError::TooLarge) only if the image
     /// cannot be allocated.
     pub fn resolve_with(&self, filter: PixelFilter) -> Result<Image> {
-        let frame = crate::Grid2::from_vec(self.w, self.h, self.colour.clone())?;
-        filter.resolve(&frame, self.supersample)
+        filter.resolve(&self.colour, self.supersample)
     }
 }
 
