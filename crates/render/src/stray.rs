@@ -1,10 +1,20 @@
 //! Stray pixels: isolated bright pixels a viewer reads as specks (a sun
 //! glint caught by one sample, a firefly of the sampling, a gap in a
 //! surface). The test is local and scale-free: a pixel is stray when its
-//! luminance exceeds [`STRAY_RATIO`] times the median luminance of the
+//! luminance exceeds [`STRAY_RATIO`] times the median luminance `m` of the
 //! 5 × 5 pixels around it (itself included) while none of its eight
-//! neighbours does. Real highlights larger than a pixel (a glitter path,
-//! a lit ridge) have bright neighbours and are not counted.
+//! neighbours exceeds `STRAY_RATIO · m`. Real highlights larger than a
+//! pixel (a glitter path, a lit ridge) have bright neighbours and are not
+//! counted.
+//!
+//! The neighbours are held to the pixel's own background `m`, not each to
+//! its own neighbourhood's median: a speck is bright against one
+//! background, alone. Held each to its own median, a neighbour inside a
+//! wide bright feature is "not bright" (its median is the feature), and
+//! the feature's dimmer edge pixel, whose median is still the dark field
+//! beside it, was counted as a speck although the neighbours beside it
+//! are brighter than it: the edges of anti-aliased lines over a dark
+//! field, the rims of lit shapes.
 //!
 //! What the test cannot tell from a speck: a real feature of a pixel's
 //! size whose contrast is moderate. Under the camera's pixel filter
@@ -13,7 +23,7 @@
 //! each side; over a background `b`, its pixel passes the ratio once its
 //! excess over `b` exceeds 6.2 `b` and its neighbours only above 28 `b`,
 //! so a feature between the two (a lit crown tip in shade, a faint star in
-//! a glowing band, a floret's highlight) is counted. Any filter that keeps
+//! a dark sky, a floret's highlight) is counted. Any filter that keeps
 //! more of a pixel's light in it than it lends each neighbour leaves such
 //! a window (σ = 1 pixel: 20 `b` to 32 `b`); only a blur wider than a
 //! camera's closes it. A count of 0 is reached where the specks are the
@@ -29,7 +39,8 @@ pub const STRAY_RATIO: f32 = 4.0;
 /// row order. `image` holds linear colours: best the picture as shown
 /// (exposed and tone-mapped, or an 8-bit picture decoded to linear), whose
 /// contrasts are the viewer's; the luminance is Rec. 709's. Pixels within
-/// two of the border see the border pixels repeated.
+/// two of the border see the border pixels repeated in the median; a
+/// border pixel's neighbours are those inside the picture.
 #[must_use]
 pub fn stray_pixels(image: &Image) -> Vec<(usize, usize)> {
     let (w, h) = (image.width(), image.height());
@@ -45,28 +56,26 @@ pub fn stray_pixels(image: &Image) -> Vec<(usize, usize)> {
         let (x, y) = (x.clamp(0, w as isize - 1), y.clamp(0, h as isize - 1));
         lum[y as usize * w + x as usize]
     };
-    let bright = |x: isize, y: isize| {
+    let median = |x: isize, y: isize| {
         let mut v = [0.0f32; 25];
         for (k, s) in v.iter_mut().enumerate() {
             *s = at(x + (k % 5) as isize - 2, y + (k / 5) as isize - 2);
         }
         v.sort_unstable_by(f32::total_cmp);
-        at(x, y) > STRAY_RATIO * v[12]
+        v[12]
     };
     let mut out = Vec::new();
     for y in 0..h as isize {
         for x in 0..w as isize {
-            if !bright(x, y) {
+            let level = STRAY_RATIO * median(x, y);
+            if at(x, y) <= level {
                 continue;
             }
             let lonely = (-1..=1)
-                .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
-                .filter(|&d| d != (0, 0))
-                .filter(|&(dx, dy)| {
-                    let (nx, ny) = (x + dx, y + dy);
-                    (0..w as isize).contains(&nx) && (0..h as isize).contains(&ny)
-                })
-                .all(|(dx, dy)| !bright(x + dx, y + dy));
+                .flat_map(|dy| (-1..=1).map(move |dx| (x + dx, y + dy)))
+                .filter(|&(nx, ny)| (nx, ny) != (x, y))
+                .filter(|&(nx, ny)| (0..w as isize).contains(&nx) && (0..h as isize).contains(&ny))
+                .all(|(nx, ny)| at(nx, ny) <= level);
             if lonely {
                 out.push((x as usize, y as usize));
             }
@@ -107,5 +116,23 @@ mod tests {
         })
         .unwrap();
         assert!(stray_pixels(&cb).is_empty());
+    }
+
+    #[test]
+    fn the_dim_edge_of_a_bright_shape_is_not_a_speck() {
+        // A bright half-plane (x + y ≤ 11) over a dark field, and at (6, 6)
+        // one edge pixel dimmer than the shape: its own median is the dark
+        // field, and three of its neighbours are the shape. Held each to
+        // its own median, those neighbours were "not bright" and the edge
+        // pixel was counted.
+        let dark = Vec3::splat(0.02);
+        let mut img =
+            Image::from_fn(13, 13, |x, y| if x + y <= 11 { Vec3::ONE } else { dark }).unwrap();
+        img.set(6, 6, Vec3::splat(0.2));
+        assert!(stray_pixels(&img).is_empty());
+        // Alone in the dark field, the same pixel is a speck.
+        let mut alone = Image::new(13, 13, dark).unwrap();
+        alone.set(6, 6, Vec3::splat(0.2));
+        assert_eq!(stray_pixels(&alone), vec![(6, 6)]);
     }
 }
