@@ -15,9 +15,14 @@
 //! ```
 //!
 //! Writes `MODEL.png` for each model into `--out` (default:
-//! `./plant_models/`).
+//! `./plant_models/`); the clonal plant also writes `clonal_patches.png`
+//! (three stages over its patches of light), the roots `roots_water.png`
+//! (the roots over the water left in their section of soil) and the 3-D
+//! roots `roots3d_water.png` (among iso-surfaces of the water they took).
 
 mod common;
+#[path = "plant_models/fields.rs"]
+mod fields;
 #[path = "plant_models/positional_info.rs"]
 mod positional_info;
 
@@ -321,6 +326,12 @@ fn plant_models() -> common::Run {
         };
         let (run, _) = clonal::clonal(&p)?;
         show(&run, Vec3::NEG_Z, size, &out, "clonal.png")?;
+        // The same clone at three stages over its patches of light, drawn
+        // in the plane as the source's figure shows it.
+        let stages = if quick { [10, 20, 60] } else { [15, 40, 182] };
+        let img = fields::clone_on_patches(&p, &stages, size as usize)?;
+        img.save_png(out.join("clonal_patches.png"))?;
+        outln(format_args!("clonal_patches.png: steps {stages:?}"))?;
     }
     if want("roots") {
         // Fig. 9: roots in a vertical section of soil, wet on the left, dry on the right.
@@ -328,15 +339,26 @@ fn plant_models() -> common::Run {
             steps: if quick { 60 } else { 186 },
             ..roots::RootParams::default()
         };
-        let (run, _) = roots::roots(&p)?;
+        let (run, soil) = roots::roots(&p)?;
         show(&run, Vec3::Y, size, &out, "roots.png")?;
+        // The same roots over the water left in their section.
+        let img = fields::roots_on_water(&run, &soil, size as usize)?;
+        img.save_png(out.join("roots_water.png"))?;
+        outln(format_args!("roots_water.png: {} cells", soil.nx * soil.nz))?;
     }
     if want("roots3d") {
         // Fig. 10: the same roots in a block of soil, seen obliquely.
         let mut p = roots3d::Roots3dParams::default();
         p.roots.steps = if quick { 60 } else { 301 };
-        let (run, _) = roots3d::roots_3d(&p)?;
+        let (run, soil) = roots3d::roots_3d(&p)?;
         show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png")?;
+        // The same roots among iso-surfaces of the water they took.
+        let img = fields::roots_in_block(&run, &p, &soil, size, Vec3::new(0.5, 1.0, -0.3))?;
+        img.save_png(out.join("roots3d_water.png"))?;
+        outln(format_args!(
+            "roots3d_water.png: {} levels",
+            fields::SHELLS.len()
+        ))?;
     }
     if want("crowns") {
         // Fig. 14: two trees grown side by side, seen from the side with

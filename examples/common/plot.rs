@@ -118,6 +118,21 @@ impl Canvas {
         }
     }
 
+    /// A `width × height` canvas whose paper is `paper(x, y)`: a field
+    /// the curves are drawn over.
+    #[must_use]
+    pub fn with_paper(width: usize, height: usize, paper: impl Fn(usize, usize) -> Vec3) -> Self {
+        let pixels = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| paper(x, y))
+            .collect();
+        Self {
+            width,
+            height,
+            pixels,
+        }
+    }
+
     /// Size in pixels.
     #[must_use]
     pub fn size(&self) -> (usize, usize) {
