@@ -4,9 +4,10 @@
 //! model with a climber on it and a stand of three trees (open L-systems,
 //! Měch & Prusinkiewicz 1996), collision-based phyllotaxis on a cone
 //! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
-//! curved stem, three phyllotaxes set by one constant, a pine cone, and a
-//! lilac, an astilbe and a tree shaped by a silhouette by branch mapping
-//! (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
+//! curved stem, three phyllotaxes set by one constant, a pine cone, a
+//! strawflower, beargrass and a red-hot poker whose flowers Ridley's packing
+//! places, and a lilac, an astilbe and a tree shaped by a silhouette by
+//! branch mapping (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -23,6 +24,16 @@
 mod common;
 #[path = "plant_models/fields.rs"]
 mod fields;
+#[path = "plant_models/inflorescences.rs"]
+mod inflorescences;
+// The flower meshes and their rasterizer, shared with figures_fowler (of
+// which this program uses a part).
+#[allow(dead_code)]
+#[path = "fowler/mesh.rs"]
+mod mesh;
+#[allow(dead_code)]
+#[path = "fowler/organs.rs"]
+mod organs;
 #[path = "plant_models/positional_info.rs"]
 mod positional_info;
 
@@ -46,7 +57,7 @@ use positional_info::{
 };
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 17] = [
+const MODELS: [&str; 20] = [
     "tiers",
     "clonal",
     "roots",
@@ -64,6 +75,9 @@ const MODELS: [&str; 17] = [
     "astilbe",
     "silhouette",
     "pinecone",
+    "strawflower",
+    "beargrass",
+    "kniphofia",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
@@ -71,8 +85,8 @@ const MODELS: [&str; 17] = [
 /// and conifers competing for light, a tree of the extended crowns model and
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
-/// an astilbe, a tree shaped by a silhouette and a pine cone. Writes
-/// MODEL.png for each.
+/// an astilbe, a tree shaped by a silhouette, a pine cone, strawflowers,
+/// beargrass and red-hot pokers. Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -503,6 +517,8 @@ fn plant_models() -> common::Run {
         let g = spheres(scales.iter().map(|o| (bent(o), 0.95 * o.radius)));
         flowers(&g, Vec3::new(0.42, 0.27, 0.15), size, &out, "pinecone.png")?;
     }
+    // Figs. 9, 10 and 14: inflorescences placed by Algorithm 5.
+    inflorescences::draw(want, quick, &out)?;
     Ok(())
 }
 

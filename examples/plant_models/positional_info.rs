@@ -25,23 +25,7 @@ pub fn pine_cone_profile() -> (f64, impl Fn(f64) -> (f64, f64)) {
                 .powf(0.7);
         (x, 4.0 * u)
     };
-    let n = 4096;
-    let pts: Vec<(f64, f64)> = (0..=n)
-        .map(|k| shape(f64::from(k) / f64::from(n)))
-        .collect();
-    let mut arc = vec![0.0];
-    for w in pts.windows(2) {
-        let d = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
-        arc.push(arc.last().copied().unwrap_or(0.0) + d);
-    }
-    let len = arc.last().copied().unwrap_or(0.0);
-    let curve = move |s: f64| {
-        let k = arc.partition_point(|&a| a <= s).clamp(1, arc.len() - 1);
-        let t = ((s - arc[k - 1]) / (arc[k] - arc[k - 1]).max(1e-12)).clamp(0.0, 1.0);
-        let (a, b) = (pts[k - 1], pts[k]);
-        (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t)
-    };
-    (len, curve)
+    crate::inflorescences::by_arc_length(shape, 4096)
 }
 
 /// The scales' radius on Fig. 15's cone: a tenth of the receptacle's
