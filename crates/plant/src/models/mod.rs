@@ -12,6 +12,7 @@
 //! | conifers in tiers competing for light (rules our own) | Měch & Prusinkiewicz 1996, §8, Fig. 15 | [`conifers`] |
 //! | a climbing plant following a tree's bark, avoiding crowding (rules our own) | Měch & Prusinkiewicz 1996, §8, Fig. 13 | [`climber`] |
 //! | collision-based spiral phyllotaxis and organ placement | Fowler et al. 1992, §2.4, §3.1 | [`phyllotaxis`] |
+//! | curved limbs by differential turtle geometry (stems, twisted leaves) | Prusinkiewicz et al. 2001, §3, eq. 4, Alg. 1 | [`limb`] |
 //! | compound leaves (organs at a density along a curved stem) | Prusinkiewicz et al. 2001, §5, Alg. 4 | [`compound`] |
 //! | organ spacing, Ridley packing, branch mapping | Prusinkiewicz et al. 2001, §4–6, Alg. 3, 5, 6 | [`positional`] |
 //!
@@ -22,6 +23,7 @@ pub mod clonal;
 pub mod compound;
 pub mod conifers;
 pub mod crowns;
+pub mod limb;
 pub mod phyllotaxis;
 pub mod positional;
 pub mod roots;
