@@ -6,8 +6,10 @@
 //! (Fowler et al. 1992) and Ridley's packing on a disc, a pinnate leaf on a
 //! curved stem, three phyllotaxes set by one constant, a pine cone, a
 //! strawflower, beargrass and a red-hot poker whose flowers Ridley's packing
-//! places, and a lilac, an astilbe and a tree shaped by a silhouette by
-//! branch mapping (Prusinkiewicz et al. 2001, Alg. 5, 4 and 6).
+//! places, a herb lily and a tulip whose leaves curve and twist by rates
+//! along them, field garlic on curled stems, and a lilac, an astilbe and a
+//! tree shaped by a silhouette by branch mapping (Prusinkiewicz et al.
+//! 2001, Alg. 1, 2, 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -26,6 +28,8 @@ mod common;
 mod fields;
 #[path = "plant_models/inflorescences.rs"]
 mod inflorescences;
+#[path = "plant_models/limbs.rs"]
+mod limbs;
 // The flower meshes and their rasterizer, shared with figures_fowler (of
 // which this program uses a part).
 #[allow(dead_code)]
@@ -57,7 +61,7 @@ use positional_info::{
 };
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 20] = [
+const MODELS: [&str; 22] = [
     "tiers",
     "clonal",
     "roots",
@@ -78,6 +82,8 @@ const MODELS: [&str; 20] = [
     "strawflower",
     "beargrass",
     "kniphofia",
+    "lily",
+    "garlic",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
@@ -86,7 +92,8 @@ const MODELS: [&str; 20] = [
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
 /// an astilbe, a tree shaped by a silhouette, a pine cone, strawflowers,
-/// beargrass and red-hot pokers. Writes MODEL.png for each.
+/// beargrass, red-hot pokers, a herb lily and a tulip, and field garlic.
+/// Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -519,6 +526,8 @@ fn plant_models() -> common::Run {
     }
     // Figs. 9, 10 and 14: inflorescences placed by Algorithm 5.
     inflorescences::draw(want, quick, &out)?;
+    // Figs. 4 and 5: limbs curved by Algorithms 1 and 2.
+    limbs::draw(want, quick, &out)?;
     Ok(())
 }
 
