@@ -7,9 +7,9 @@
 //! curved stem, three phyllotaxes set by one constant, a pine cone, a
 //! strawflower, beargrass and a red-hot poker whose flowers Ridley's packing
 //! places, a herb lily and a tulip whose leaves curve and twist by rates
-//! along them, field garlic on curled stems, and a lilac, an astilbe and a
-//! tree shaped by a silhouette by branch mapping (Prusinkiewicz et al.
-//! 2001, Alg. 1, 2, 5, 4 and 6).
+//! along them, field garlic on curled stems, a lilac, an astilbe and a
+//! tree shaped by a silhouette by branch mapping, and an ecosystem's stand
+//! drawn with that tree (Prusinkiewicz et al. 2001, Alg. 1, 2, 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -24,6 +24,8 @@
 //! roots `roots3d_water.png` (among iso-surfaces of the water they took).
 
 mod common;
+#[path = "plant_models/ecosystem.rs"]
+mod ecosystem;
 #[path = "plant_models/fields.rs"]
 mod fields;
 #[path = "plant_models/inflorescences.rs"]
@@ -61,7 +63,7 @@ use positional_info::{
 };
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 22] = [
+const MODELS: [&str; 23] = [
     "tiers",
     "clonal",
     "roots",
@@ -84,6 +86,7 @@ const MODELS: [&str; 22] = [
     "kniphofia",
     "lily",
     "garlic",
+    "stand-silhouettes",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
@@ -92,8 +95,8 @@ const MODELS: [&str; 22] = [
 /// a climber on it, a stand of three trees, phyllotaxis on a cone,
 /// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
 /// an astilbe, a tree shaped by a silhouette, a pine cone, strawflowers,
-/// beargrass, red-hot pokers, a herb lily and a tulip, and field garlic.
-/// Writes MODEL.png for each.
+/// beargrass, red-hot pokers, a herb lily and a tulip, field garlic and an
+/// ecosystem's stand of silhouette trees. Writes MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -528,6 +531,8 @@ fn plant_models() -> common::Run {
     inflorescences::draw(want, quick, &out)?;
     // Figs. 4 and 5: limbs curved by Algorithms 1 and 2.
     limbs::draw(want, quick, &out)?;
+    // Fig. 21: an ecosystem's plants as circles and as silhouette trees.
+    ecosystem::draw(want, quick, &out)?;
     Ok(())
 }
 

@@ -121,6 +121,18 @@ impl Mesh {
         self.append(&m, |p| a + along(axis / len, p), |n| along(axis / len, n));
     }
 
+    /// Adds triangles `tri` over the vertices `pos` with normals `nrm` and
+    /// colours `col` (one each a vertex).
+    #[allow(dead_code)] // plant_models draws its stand of trees with it
+    pub fn add_triangles(&mut self, pos: &[DVec3], nrm: &[DVec3], col: &[Vec3], tri: &[[u32; 3]]) {
+        let base = self.pos.len() as u32;
+        self.pos.extend_from_slice(pos);
+        self.nrm
+            .extend(nrm.iter().map(|n| n.normalize_or(DVec3::Z)));
+        self.col.extend_from_slice(col);
+        self.tri.extend(tri.iter().map(|t| t.map(|k| k + base)));
+    }
+
     /// Adds `other` with its points mapped by `point` and normals by `dir`.
     pub fn append(
         &mut self,
