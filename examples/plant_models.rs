@@ -9,7 +9,8 @@
 //! places, a herb lily and a tulip whose leaves curve and twist by rates
 //! along them, field garlic on curled stems, a lilac, an astilbe and a
 //! tree shaped by a silhouette by branch mapping, and an ecosystem's stand
-//! drawn with that tree (Prusinkiewicz et al. 2001, Alg. 1, 2, 5, 4 and 6).
+//! drawn with that tree, and a *Spiraea* twig whose shoots tropism stands
+//! up (Prusinkiewicz et al. 2001, Alg. 1, 2, 5, 4 and 6).
 //!
 //! ```text
 //! cargo run --release --example plant_models                 # all, into ./plant_models/
@@ -42,6 +43,8 @@ mod mesh;
 mod organs;
 #[path = "plant_models/positional_info.rs"]
 mod positional_info;
+#[path = "plant_models/spiraea.rs"]
+mod spiraea;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -63,7 +66,7 @@ use positional_info::{
 };
 
 /// The models, in the order they are drawn.
-const MODELS: [&str; 23] = [
+const MODELS: [&str; 24] = [
     "tiers",
     "clonal",
     "roots",
@@ -87,6 +90,7 @@ const MODELS: [&str; 23] = [
     "lily",
     "garlic",
     "stand-silhouettes",
+    "spiraea",
 ];
 
 /// The source papers' plant models as pictures: Honda's branch tiers, a
@@ -96,7 +100,8 @@ const MODELS: [&str; 23] = [
 /// Ridley's packing on a disc, a pinnate leaf, three phyllotaxes, a lilac,
 /// an astilbe, a tree shaped by a silhouette, a pine cone, strawflowers,
 /// beargrass, red-hot pokers, a herb lily and a tulip, field garlic and an
-/// ecosystem's stand of silhouette trees. Writes MODEL.png for each.
+/// ecosystem's stand of silhouette trees, and a Spiraea twig. Writes
+/// MODEL.png for each.
 #[derive(Parser)]
 #[command(name = "plant_models", version)]
 struct Cli {
@@ -533,6 +538,8 @@ fn plant_models() -> common::Run {
     limbs::draw(want, quick, &out)?;
     // Fig. 21: an ecosystem's plants as circles and as silhouette trees.
     ecosystem::draw(want, quick, &out)?;
+    // Fig. 16: a Spiraea twig, its shoots upright by tropism.
+    spiraea::draw(want, quick, &out)?;
     Ok(())
 }
 
