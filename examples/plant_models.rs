@@ -62,7 +62,7 @@ use natura::plant::turtle::{SurfaceInstance, TurtleFrame};
 use natura::plant::{Geometry, MeshParams, PlantMesh};
 use positional_info::{
     astilbe, bent, flowers, lilac, mapped, phyllotaxes, pine_cone_profile, pine_cone_scale,
-    silhouette_tree,
+    reticulata, silhouette_tree,
 };
 
 /// The models, in the order they are drawn.
@@ -501,15 +501,23 @@ fn plant_models() -> common::Run {
         ))?;
     }
     if want("lilac") {
-        // Fig. 18: a lilac panicle by branch mapping (Algorithm 6): each
+        // Fig. 18: lilac panicles by branch mapping (Algorithm 6): each
         // branch repeats the distal part of the longest axis of its order,
-        // in decussate pairs, a flower at every axis's end.
+        // in decussate pairs, a flower at every axis's end; (a) S. chinensis
+        // 'Rubra', purple, and (b) S. reticulata, creamy white.
         flowers(
             &lilac()?,
             Vec3::new(0.42, 0.28, 0.62),
             size,
             &out,
             "lilac.png",
+        )?;
+        flowers(
+            &reticulata()?,
+            Vec3::new(0.85, 0.82, 0.66),
+            size,
+            &out,
+            "lilac_reticulata.png",
         )?;
     }
     if want("astilbe") {
@@ -591,6 +599,23 @@ mod tests {
             let d = (w[1] - w[0]).rem_euclid(360.0);
             assert!((d - 137.5).abs() < 1e-6 || (d - 222.5).abs() < 1e-6, "{d}");
         }
+    }
+
+    #[test]
+    fn the_two_lilacs_differ_in_habit() {
+        // Fig. 18: S. reticulata's panicle is broader for its height and
+        // denser in flowers than S. chinensis'.
+        let shape = |g: &Geometry| {
+            let (lo, hi) = g.bounds().unwrap();
+            (
+                (hi.x - lo.x).max(hi.y - lo.y) / (hi.z - lo.z),
+                g.surfaces.len(),
+            )
+        };
+        let (a, fa) = shape(&lilac().unwrap());
+        let (b, fb) = shape(&reticulata().unwrap());
+        assert!(b > 1.15 * a, "width/height {a} against {b}");
+        assert!(fb > fa, "flowers {fa} against {fb}");
     }
 
     #[test]

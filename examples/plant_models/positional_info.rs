@@ -57,12 +57,69 @@ pub fn flowers(
         leaf: colour,
         ..PreviewParams::new(size, size, cam)
     };
-    render(&mesh, &params)?.save_png(out.join(name))?;
+    let mut img = render(&mesh, &params)?;
+    if name == "silhouette.png" {
+        img = beside_silhouette(&img)?;
+    }
+    img.save_png(out.join(name))?;
     outln(format_args!(
         "{name}: {} segments, {} flowers or scales",
         g.segment_count(),
         g.surfaces.len()
     ))
+}
+
+/// Fig. 20's silhouette specification to the left of the tree's picture
+/// `tree`: the child's length as a fraction of the longest ([`SILHOUETTE`],
+/// as natura-plant's `Function` interpolates it and the model clamps it to
+/// `[0, 1]`) against the position up
+/// the trunk, drawn to both sides of the trunk (green) on the picture's
+/// background, the trunk from its foot to its top in the picture's
+/// height (the framing's margins of 3 %).
+fn beside_silhouette(tree: &natura::core::Image) -> Result<natura::core::Image, common::Exit> {
+    use crate::common::plot::{Canvas, Panel, Pen};
+    let (w, h) = (tree.width(), tree.height());
+    let bg = tree.get(0, 0).unwrap_or(Vec3::ONE);
+    let pw = w / 2;
+    let mut c = Canvas::with_paper(pw, h, |_, _| bg);
+    let (hf, wf) = (h as f32, pw as f32);
+    let panel = Panel::new(
+        [0.08 * wf, 0.03 * hf, 0.92 * wf, 0.97 * hf],
+        [-1.1, 1.1, 0.0, 1.0],
+    );
+    let f = natura::plant::lang::Function::new(&SILHOUETTE)?;
+    let side = |sign: f64| -> Vec<(f64, f64)> {
+        (0..=200)
+            .map(|k| {
+                let t = f64::from(k) / 200.0;
+                (sign * f.eval(t).clamp(0.0, 1.0), t)
+            })
+            .collect()
+    };
+    c.line(
+        &panel,
+        &[(0.0, 0.0), (0.0, 1.0)],
+        Pen::solid(Vec3::new(0.35, 0.22, 0.12), 2.0),
+    );
+    c.line(
+        &panel,
+        &side(1.0),
+        Pen::solid(Vec3::new(0.1, 0.4, 0.08), 2.0),
+    );
+    c.line(
+        &panel,
+        &side(-1.0),
+        Pen::solid(Vec3::new(0.1, 0.4, 0.08), 2.0),
+    );
+    let plot = c.into_image()?;
+    Ok(natura::core::Image::from_fn(pw + w, h, |x, y| {
+        if x < pw {
+            plot.get(x, y)
+        } else {
+            tree.get(x - pw, y)
+        }
+        .unwrap_or(bg)
+    })?)
 }
 
 /// An L-system of Algorithm 6 derived to the end (64 steps) and drawn with
@@ -134,6 +191,18 @@ pub fn lilac() -> Result<Geometry, common::Exit> {
     let text = positional::branch_mapping_text(&LILAC_MAX_LEN, 0.5, 50.0, 1.0)?;
     mapped(&LSystem::parse(&text)?, 0.1, 0.3)
 }
+
+/// Fig. 18 b, *Syringa reticulata*: a broader, denser panicle than
+/// [`lilac`]'s (Algorithm 6 with [`RETICULATA_MAX_LEN`], internodes of
+/// 0.35, branches at 62°), its many small flowers drawn 0.24 across (our
+/// values, read off the species' habit: the source prints none).
+pub fn reticulata() -> Result<Geometry, common::Exit> {
+    let text = positional::branch_mapping_text(&RETICULATA_MAX_LEN, 0.35, 62.0, 1.0)?;
+    mapped(&LSystem::parse(&text)?, 0.08, 0.24)
+}
+
+/// The longest axis of each order of Fig. 18 b's *S. reticulata* panicle.
+pub const RETICULATA_MAX_LEN: [f64; 4] = [6.0, 4.0, 1.8, 0.6];
 
 /// The longest axis of each order of the lilac panicle of Fig. 18 (the
 /// main axis, its branches, theirs; the last entry is the order the
