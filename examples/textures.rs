@@ -7,8 +7,9 @@
 //! cargo run --release --example textures -- --help           # every flag and its default
 //! ```
 //!
-//! Writes `NAME_sphere.png` and `NAME_plane.png` for every texture and the
-//! sheet `textures.png` into `--out` (default: `./textures/`), with a
+//! Writes `NAME_sphere.png` and `NAME_plane.png` for every texture, the
+//! sheet `textures.png`, and `ripples_lake.png` (the ripples on a lake seen
+//! from just above it) into `--out` (default: `./textures/`), with a
 //! progress bar per swatch.
 
 mod common;
@@ -223,7 +224,7 @@ fn textures() -> Run {
     let out = common::out_dir(&cli.out)?;
 
     let textures = catalogue(cli.seed)?;
-    let mut paths = vec![out.join("textures.png")];
+    let mut paths = vec![out.join("textures.png"), out.join("ripples_lake.png")];
     for e in &textures {
         paths.push(out.join(format!("{}_sphere.png", e.file)));
         paths.push(out.join(format!("{}_plane.png", e.file)));
@@ -244,7 +245,16 @@ fn textures() -> Run {
         sheet.push(plane);
     }
     let sheet = Image::contact_sheet(&sheet, 6, 4, Vec3::splat(0.01))?;
-    save(&sheet, &paths[0])
+    save(&sheet, &paths[0])?;
+    // The ripples as Musgrave shows them ("Spirit Lake", "Lethe"): a
+    // mirror-like lake seen from just above it, reflecting the sky.
+    if let Some(e) = textures.iter().find(|e| e.file == "ripples") {
+        let lake = preview::water(e.texture.as_ref(), size * 4 / 3, size, 1.0, &bar)?;
+        let path = out.join("ripples_lake.png");
+        lake.tone_mapped(0.0, ToneMap::AcesFilmic).save_png(&path)?;
+        outln(format_args!("wrote {}", path.display()))?;
+    }
+    Ok(())
 }
 
 fn save(image: &Image, path: &std::path::Path) -> Run {
