@@ -203,6 +203,12 @@ impl RootParams {
     /// turn's direction into the turning plane, and the heading also pitches
     /// by `nran(0, Dev[n])`.
     pub(crate) fn text(&self, three_d: bool) -> String {
+        self.text_from(three_d, "A(0,0,0)?E(Req[0],Sens[0]{z})")
+    }
+
+    /// The L-system text with the axiom `axiom` (`{z}` in it stands for the
+    /// third value of a 3-D query).
+    pub(crate) fn text_from(&self, three_d: bool, axiom: &str) -> String {
         let a3 = |v: [f64; 3]| format!("{{{}, {}, {}}}", v[0], v[1], v[2]);
         let a2 = |v: [f64; 2]| format!("{{{}, {}, 0}}", v[0], v[1]);
         let (e, roll, pitch, z) = if three_d {
@@ -214,7 +220,7 @@ impl RootParams {
             "#define N 3\n\
              Define: {{ array Req[3] = {}, MinReq[3] = {}, ElRate[3] = {}, MaxLen[3] = {},\n\
              Sens[3] = {}, Dev[3] = {}, Del[3] = {}, BrAngle[3] = {}, BrSpace[3] = {} }}\n\
-             ω: A(0,0,0)?E(Req[0],Sens[0]{z})\n\
+             ω: {axiom}\n\
              p1: A(n,s,b) > {e} : (s > MaxLen[n]) || (c < MinReq[n]) -> ε\n\
              p2: A(n,s,b) > {e} : (n >= N-1) || (b < BrSpace[n]) {{ h = c/Req[n]*ElRate[n]; }} \
              -> {roll}+(nran(th,Dev[n])){pitch}F(h)A(n,s+h,b+h)?E(Req[n],Sens[n]{z})\n\
@@ -232,6 +238,7 @@ impl RootParams {
             a2([f64::from(self.delay[0]), f64::from(self.delay[1])]),
             a2(self.branch_angle_deg),
             a2(self.branch_spacing),
+            axiom = axiom.replace("{z}", z),
         )
     }
 

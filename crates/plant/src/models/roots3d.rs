@@ -20,7 +20,9 @@
 //!
 //! Roots that take water from a region lower the water there, so
 //! neighbouring roots, which follow the gradient, grow apart (the source's
-//! observation for Fig. 10).
+//! observation for Fig. 10). Several root systems may share the block
+//! ([`Roots3dParams::systems`]), as the source's figure shows two, each
+//! drinking what the others leave.
 //!
 //! Table 1 of the source gives Fig. 10 37 228 segments and 448 active apices
 //! after 301 steps. The defaults here make 4 793 segments and 22 apices: the
@@ -48,7 +50,15 @@ pub struct Roots3dParams {
     pub roots: RootParams,
     /// Extent of the soil along `y`, centred on the start.
     pub breadth: f64,
+    /// Where each root system starts: `[x, y]` offsets from `roots.start`
+    /// on the surface (one system at the start by default; at most
+    /// [`MAX_ROOT_SYSTEMS`]). The systems share the soil and compete for
+    /// its water.
+    pub systems: Vec<[f64; 2]>,
 }
+
+/// The most root systems one block of soil holds.
+pub const MAX_ROOT_SYSTEMS: usize = 64;
 
 impl Default for Roots3dParams {
     /// The 2-D defaults on 2-unit cells, 301 steps (Fig. 10), 60 units broad.
@@ -60,7 +70,59 @@ impl Default for Roots3dParams {
                 ..RootParams::default()
             },
             breadth: 60.0,
+            systems: vec![[0.0, 0.0]],
         }
+    }
+}
+
+impl Roots3dParams {
+    /// The L-system text: the listing's, its axiom one apex and query at
+    /// each system's start (reached by turtle moves, inside a branch).
+    ///
+    /// # Errors
+    ///
+    /// [`PlantError::InvalidParameter`] naming `Roots3dParams::systems` if
+    /// there are none or more than [`MAX_ROOT_SYSTEMS`], or an offset is
+    /// not finite or starts outside the block of soil.
+    pub fn lsystem_text(&self) -> Result<String> {
+        let bad = |v: String, reason: &str| PlantError::InvalidParameter {
+            name: "Roots3dParams::systems",
+            value: v,
+            reason: reason.into(),
+        };
+        if self.systems.is_empty() || self.systems.len() > MAX_ROOT_SYSTEMS {
+            return Err(bad(
+                format!("{} systems", self.systems.len()),
+                "1 to 64 root systems",
+            ));
+        }
+        let r = &self.roots;
+        for s in &self.systems {
+            let x = r.start[0] + s[0];
+            let inside = s.iter().all(|v| v.is_finite())
+                && x >= r.origin[0]
+                && x <= r.origin[0] + r.size[0]
+                && s[1].abs() <= 0.5 * self.breadth;
+            if !inside {
+                return Err(bad(
+                    format!("{s:?}"),
+                    "finite offsets starting inside the soil",
+                ));
+            }
+        }
+        if self.systems == [[0.0, 0.0]] {
+            return Ok(r.text(true));
+        }
+        // From the start frame (heading down, left +x, up −y): `+` turns
+        // towards +x and `&` towards +y.
+        let axiom: String = self
+            .systems
+            .iter()
+            .map(|[x, y]| {
+                format!("[+(90)f({x:?})-(90)&(90)f({y:?})^(90)A(0,0,0)?E(Req[0],Sens[0]{{z}})]")
+            })
+            .collect();
+        Ok(r.text_from(true, &axiom))
     }
 }
 
@@ -257,7 +319,7 @@ impl Environment for SoilWater3 {
 /// [`SoilWater3::new`]'s errors; derivation, turtle and environment errors.
 pub fn roots_3d(p: &Roots3dParams) -> Result<(Run, SoilWater3)> {
     let mut env = SoilWater3::new(p)?;
-    let l = LSystem::parse(&p.roots.text(true))?;
+    let l = LSystem::parse(&p.lsystem_text()?)?;
     let t = turtle(&p.roots, &l);
     let run = run_open(l, t, &mut env, p.roots.steps, p.roots.seed)?;
     Ok((run, env))
@@ -293,6 +355,51 @@ mod tests {
                 ..Roots3dParams::default().roots
             },
             breadth: 40.0,
+            ..Roots3dParams::default()
+        }
+    }
+
+    #[test]
+    fn two_systems_share_the_soil() {
+        // One system at the start is the listing's own axiom; two systems
+        // 20 apart both grow from their starts, drink from one soil (water
+        // is conserved) and refuse to start outside it.
+        let one = small(3);
+        assert_eq!(one.lsystem_text().unwrap(), one.roots.text(true));
+        let two = Roots3dParams {
+            systems: vec![[-10.0, 0.0], [10.0, 0.0]],
+            ..small(3)
+        };
+        let soil0 = SoilWater3::new(&two).unwrap();
+        let (run, soil) = roots_3d(&two).unwrap();
+        let total0 = soil0.total();
+        assert!((soil.total() + soil.taken - total0).abs() < 1e-9 * total0);
+        let g = run.geometry().unwrap();
+        let x0 = two.roots.start[0];
+        for dx in [-10.0, 10.0] {
+            let at = DVec3::new(x0 + dx, 0.0, two.roots.start[1]);
+            let near = g.start.iter().any(|s| s.as_dvec3().distance(at) < 1e-6);
+            assert!(near, "a root starts at {at}");
+        }
+        let (_, soil1) = roots_3d(&small(3)).unwrap();
+        assert!(
+            soil.taken > 1.3 * soil1.taken,
+            "{} against {}",
+            soil.taken,
+            soil1.taken
+        );
+        for systems in [
+            vec![],
+            vec![[f64::NAN, 0.0]],
+            vec![[0.0, 100.0]],
+            vec![[500.0, 0.0]],
+        ] {
+            let p = Roots3dParams {
+                systems,
+                ..small(3)
+            };
+            let e = roots_3d(&p).unwrap_err().to_string();
+            assert!(e.contains("Roots3dParams::systems"), "{e}");
         }
     }
 
