@@ -379,10 +379,12 @@ fn plant_models() -> common::Run {
         // Fig. 10: the same roots in a block of soil, seen obliquely.
         let mut p = roots3d::Roots3dParams::default();
         p.roots.steps = if quick { 60 } else { 301 };
-        let (run, soil) = roots3d::roots_3d(&p)?;
+        let (run, _) = roots3d::roots_3d(&p)?;
         show(&run, Vec3::new(0.5, 1.0, 0.3), size, &out, "roots3d.png")?;
-        // The same roots among iso-surfaces of the water they took.
-        let img = fields::roots_in_block(&run, &p, &soil, size, Vec3::new(0.5, 1.0, -0.3))?;
+        // Two root systems competing for the water, among iso-surfaces of
+        // the water they took: with the default rootlets (left) and with
+        // slower ones (right).
+        let img = fields::competing_roots(&p, size)?;
         img.save_png(out.join("roots3d_water.png"))?;
         outln(format_args!(
             "roots3d_water.png: {} levels",

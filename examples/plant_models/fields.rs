@@ -334,6 +334,55 @@ pub fn roots_in_block(
     Ok(img)
 }
 
+/// Where Fig. 10's two root systems start: 8 apart across the section (in
+/// `y`), in the same water.
+pub const TWO_SYSTEMS: [[f64; 2]; 2] = [[0.0, -4.0], [0.0, 4.0]];
+
+/// The rootlets' elongation rates of Fig. 10's right panel (orders 1 and
+/// 2; the main axes' as the default): a third and two fifths of the
+/// default's.
+pub const SLOW_ROOTLETS: [f64; 3] = [0.55, 0.08, 0.22];
+
+/// Fig. 10: two root systems ([`TWO_SYSTEMS`]) grown by `p` in one block,
+/// among iso-surfaces of the water they took ([`roots_in_block`]), with
+/// the default rootlets (left) and with slower ones ([`SLOW_ROOTLETS`],
+/// right), each panel `size` square, 8 white pixels between them.
+///
+/// # Errors
+///
+/// [`roots_in_block`]'s and the model's errors.
+pub fn competing_roots(
+    p: &roots3d::Roots3dParams,
+    size: u32,
+) -> Result<Image, crate::common::Exit> {
+    let view = Vec3::new(0.5, 1.0, -0.3);
+    let mut panels = Vec::new();
+    for elongation in [p.roots.elongation, SLOW_ROOTLETS] {
+        let q = roots3d::Roots3dParams {
+            roots: roots::RootParams {
+                elongation,
+                ..p.roots.clone()
+            },
+            systems: TWO_SYSTEMS.to_vec(),
+            ..p.clone()
+        };
+        let (run, soil) = roots3d::roots_3d(&q)?;
+        panels.push(roots_in_block(&run, &q, &soil, size, view)?);
+    }
+    let gap = 8;
+    let s = size as usize;
+    Ok(Image::from_fn(2 * s + gap, s, |x, y| {
+        if x < s {
+            panels[0].get(x, y)
+        } else if x >= s + gap {
+            panels[1].get(x - s - gap, y)
+        } else {
+            None
+        }
+        .unwrap_or(Vec3::ONE)
+    })?)
+}
+
 /// The share of its water each cell of `soil`, after a run of `p`, lost
 /// to the roots: `1 − w / b`, `w` its water and `b` the water of the same
 /// soil diffused for the same steps without roots (one diffusion a step and
@@ -385,6 +434,7 @@ mod tests {
                 ..roots3d::Roots3dParams::default().roots
             },
             breadth: 40.0,
+            ..roots3d::Roots3dParams::default()
         };
         let (run, soil) = roots3d::roots_3d(&p).unwrap();
         let taken = water_taken(&p, &soil).unwrap();
