@@ -24,8 +24,9 @@
 //! once the stem is complete.
 
 use super::Run;
-use crate::error::{PlantError, Result};
+use crate::error::Result;
 use crate::lang::{Curve, Function, LSystem};
+use crate::mesh::invalid;
 use crate::turtle::{Turtle, TurtleFrame, TurtleParams};
 use crate::{Derivation, ModuleString};
 use glam::DVec3;
@@ -139,14 +140,6 @@ fn text(p: &CompoundParams, slices: u64) -> String {
     )
 }
 
-fn bad(name: &'static str, v: f64, reason: &str) -> PlantError {
-    PlantError::InvalidParameter {
-        name,
-        value: v.to_string(),
-        reason: reason.into(),
-    }
-}
-
 /// Grows the compound structure of `p` (Algorithm 4), one slice per
 /// derivation step, with the query modules `?U ?L` refreshed from the turtle
 /// before each step. The result holds the final string; its leaflets are the
@@ -154,7 +147,7 @@ fn bad(name: &'static str, v: f64, reason: &str) -> PlantError {
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if `length` or `ds` is not positive and
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `length` or `ds` is not positive and
 /// finite, there are more than 10⁶ slices, `λ(s)` is not larger than `ds`
 /// somewhere on the stem, or `phyllotaxis_deg` is not finite; errors of the
 /// derivation (an expression failing on the caller's functions).
@@ -164,13 +157,13 @@ pub fn compound(p: &CompoundParams) -> Result<Run> {
     natura_core::check::finite("CompoundParams::phyllotaxis_deg", p.phyllotaxis_deg)?;
     let n = p.length / p.ds;
     if n > 1e6 {
-        return Err(bad("CompoundParams::ds", p.ds, "at most 10^6 slices"));
+        return Err(invalid("CompoundParams::ds", p.ds, "at most 10^6 slices"));
     }
     let slices = (n + 1e-9).floor() as u64;
     for k in 0..slices {
         let l = p.internode.eval(k as f64 * p.ds);
         if !(l.is_finite() && l > p.ds) {
-            return Err(bad(
+            return Err(invalid(
                 "CompoundParams::internode",
                 l,
                 "finite and larger than ds on the whole stem (one node per slice)",
@@ -346,7 +339,10 @@ mod tests {
             },
         ] {
             assert!(
-                matches!(compound(&p), Err(PlantError::InvalidParameter { .. })),
+                matches!(
+                    compound(&p),
+                    Err(crate::PlantError::InvalidParameter { .. })
+                ),
                 "{p:?}"
             );
         }

@@ -26,8 +26,9 @@ use glam::DVec3;
 
 use super::Run;
 use crate::Derivation;
-use crate::error::{PlantError, Result};
+use crate::error::Result;
 use crate::lang::{Function, LSystem};
+use crate::mesh::invalid;
 use crate::turtle::{TurtleFrame, TurtleParams};
 
 /// Parameters of Algorithm 1: the limb's length and slice, and the
@@ -85,21 +86,13 @@ fn text(slices: u64, ds: f64) -> String {
     )
 }
 
-fn bad(name: &'static str, v: f64, reason: &str) -> PlantError {
-    PlantError::InvalidParameter {
-        name,
-        value: v.to_string(),
-        reason: reason.into(),
-    }
-}
-
 /// Grows the limb of `p` (Algorithm 1), one slice a derivation step. The
 /// result's geometry has one segment a slice, each with the turtle's `U`
 /// rolled by the twist so far.
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if `length` or `ds` is not positive
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `length` or `ds` is not positive
 /// and finite, `ds` exceeds `length` or there are more than 10⁶ slices;
 /// errors of the derivation (a function giving a value that is not finite).
 pub fn limb(p: &LimbParams) -> Result<Run> {
@@ -107,10 +100,10 @@ pub fn limb(p: &LimbParams) -> Result<Run> {
     natura_core::check::positive("LimbParams::ds", p.ds)?;
     let n = p.length / p.ds;
     if n > 1e6 {
-        return Err(bad("LimbParams::ds", p.ds, "at most 10^6 slices"));
+        return Err(invalid("LimbParams::ds", p.ds, "at most 10^6 slices"));
     }
     if n < 1.0 - 1e-9 {
-        return Err(bad("LimbParams::ds", p.ds, "at most the length"));
+        return Err(invalid("LimbParams::ds", p.ds, "at most the length"));
     }
     let slices = (n + 1e-9).floor() as u64;
     let mut lsystem = LSystem::parse(&text(slices, p.ds))?;

@@ -17,30 +17,27 @@
 //! where `N(s₀, s_{i+1}) = N(s₀, s_i) + 1` is meant. Algorithm 3 places at
 //! most one node per step, so it needs `Δs < min λ` (checked here).
 
-use crate::error::{PlantError, Result};
+use crate::error::Result;
 use crate::lang::Function;
-
-fn bad(name: &'static str, v: f64, reason: &str) -> PlantError {
-    PlantError::InvalidParameter {
-        name,
-        value: v.to_string(),
-        reason: reason.into(),
-    }
-}
+use crate::mesh::invalid;
 
 /// Algorithm 3: positions of nodes along an axis of length `len`, slices `ds`,
 /// with internode density `1/λ(s)`. Returns the arc lengths of the nodes.
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if `len` or `ds` is not positive and finite,
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if `len` or `ds` is not positive and finite,
 /// or `λ(s)` is not finite or not larger than `ds` somewhere on the axis.
 pub fn organ_positions(len: f64, ds: f64, lambda: impl Fn(f64) -> f64) -> Result<Vec<f64>> {
     if !(len.is_finite() && len > 0.0) {
-        return Err(bad("len", len, "a positive length"));
+        return Err(invalid("len", len, "a positive length"));
     }
     if !(ds.is_finite() && ds > 0.0 && ds <= len && len / ds < 1e9) {
-        return Err(bad("ds", ds, "a positive step at most len, len/ds < 1e9"));
+        return Err(invalid(
+            "ds",
+            ds,
+            "a positive step at most len, len/ds < 1e9",
+        ));
     }
     let mut out = Vec::new();
     let (mut s, mut a) = (0.0f64, 0.0f64);
@@ -48,7 +45,7 @@ pub fn organ_positions(len: f64, ds: f64, lambda: impl Fn(f64) -> f64) -> Result
     for k in 0..n {
         let l = lambda(s);
         if !(l.is_finite() && l > ds) {
-            return Err(bad("lambda", l, "finite and larger than ds everywhere"));
+            return Err(invalid("lambda", l, "finite and larger than ds everywhere"));
         }
         a += ds / l;
         s = (k + 1) as f64 * ds;
@@ -80,7 +77,7 @@ pub struct Organ {
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] for a non-positive `len` or `ds`, or a
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) for a non-positive `len` or `ds`, or a
 /// radius that is not positive and finite, or a curve point that is not finite.
 pub fn ridley(
     len: f64,
@@ -89,10 +86,10 @@ pub fn ridley(
     rho: impl Fn(f64) -> f64,
 ) -> Result<Vec<Organ>> {
     if !(len.is_finite() && len > 0.0) {
-        return Err(bad("len", len, "a positive length"));
+        return Err(invalid("len", len, "a positive length"));
     }
     if !(ds.is_finite() && ds > 0.0 && len / ds < 1e9) {
-        return Err(bad("ds", ds, "a positive step, len/ds < 1e9"));
+        return Err(invalid("ds", ds, "a positive step, len/ds < 1e9"));
     }
     let mut out = Vec::new();
     let (mut s, mut a) = (0.0f64, 0.0f64);
@@ -101,10 +98,10 @@ pub fn ridley(
             let (x, _) = curve(s);
             let r = rho(s);
             if !(r.is_finite() && r > 0.0) {
-                return Err(bad("rho", r, "a positive finite radius"));
+                return Err(invalid("rho", r, "a positive finite radius"));
             }
             if !x.is_finite() {
-                return Err(bad("curve", x, "finite points"));
+                return Err(invalid("curve", x, "finite points"));
             }
             a += 2.0 * x / (r * r) * ds;
             s += ds;
@@ -133,7 +130,7 @@ pub fn ridley(
 ///
 /// # Errors
 ///
-/// [`PlantError::InvalidParameter`] if a length is not positive and finite or fewer than 2 orders are given.
+/// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) if a length is not positive and finite or fewer than 2 orders are given.
 pub fn branch_mapping_text(
     max_len: &[f64],
     int_len: f64,
@@ -141,18 +138,18 @@ pub fn branch_mapping_text(
     child_ratio: f64,
 ) -> Result<String> {
     if max_len.len() < 2 || max_len.len() > 8 {
-        return Err(bad("max_len", max_len.len() as f64, "2 to 8 orders"));
+        return Err(invalid("max_len", max_len.len() as f64, "2 to 8 orders"));
     }
     for &m in max_len {
         if !(m.is_finite() && m > 0.0) {
-            return Err(bad("max_len", m, "positive finite lengths"));
+            return Err(invalid("max_len", m, "positive finite lengths"));
         }
     }
     if !(int_len.is_finite() && int_len > 0.0) {
-        return Err(bad("int_len", int_len, "a positive internode"));
+        return Err(invalid("int_len", int_len, "a positive internode"));
     }
     if !(angle_deg.is_finite() && child_ratio.is_finite() && child_ratio > 0.0) {
-        return Err(bad(
+        return Err(invalid(
             "child_ratio",
             child_ratio,
             "positive and finite, with a finite angle",
@@ -214,7 +211,7 @@ impl BranchMapping {
     ///
     /// # Errors
     ///
-    /// [`PlantError::InvalidParameter`] as [`branch_mapping_text`], or if
+    /// [`PlantError::InvalidParameter`](crate::PlantError::InvalidParameter) as [`branch_mapping_text`], or if
     /// the silhouette leaves `[−0.25, 1.25]` on `[0, 1]` (checked at 65
     /// evenly spaced positions). The smooth curve through a silhouette's
     /// points may overshoot them a little; the fraction is clamped to
@@ -225,7 +222,7 @@ impl BranchMapping {
         for x in (0..=64).map(|k| f64::from(k) / 64.0) {
             let v = self.silhouette.eval(x);
             if !(-0.25..=1.25).contains(&v) {
-                return Err(bad("silhouette", v, "a fraction in [0, 1] over [0, 1]"));
+                return Err(invalid("silhouette", v, "a fraction in [0, 1] over [0, 1]"));
             }
         }
         let branches = if self.spiral {
