@@ -29,6 +29,29 @@ S(n,i) : i >= n - 3 && i < n -> F(0.07) /(137.5) [ &(45) F(0.12) ~K(0.1) ] S(n, 
 S(n,i) : i >= n -> [ F(0.1) ~K(0.11) ]
 ";
 
+/// The twig's turtle geometry, the tropism's elasticity `elasticity` or
+/// the listing's.
+///
+/// # Errors
+///
+/// The L-system's and the turtle's errors (none for this text).
+fn grow(elasticity: Option<f64>) -> Result<natura::plant::Geometry, Exit> {
+    let l = LSystem::parse(SPIRAEA)?;
+    let mut d = Derivation::new(&l, 0)?;
+    d.derive(40)?;
+    let listing = TurtleParams::for_lsystem(&l);
+    let run = natura::plant::models::Run {
+        turtle: TurtleParams {
+            width: 0.045,
+            elasticity: elasticity.unwrap_or(listing.elasticity),
+            ..listing
+        },
+        string: d.string().clone(),
+        lsystem: l,
+    };
+    Ok(run.geometry()?)
+}
+
 /// Fig. 16: the twig drawn with round stems of their width, leaves
 /// (`~L`) as arched blades and flowers (`~K`) as small white cups. Returns
 /// the mesh, its leaves and its flowers.
@@ -37,18 +60,7 @@ S(n,i) : i >= n -> [ F(0.1) ~K(0.11) ]
 ///
 /// The L-system's and the turtle's errors (none for this text).
 pub fn twig(res: u32) -> Result<(Mesh, usize, usize), Exit> {
-    let l = LSystem::parse(SPIRAEA)?;
-    let mut d = Derivation::new(&l, 0)?;
-    d.derive(40)?;
-    let run = natura::plant::models::Run {
-        turtle: TurtleParams {
-            width: 0.045,
-            ..TurtleParams::for_lsystem(&l)
-        },
-        string: d.string().clone(),
-        lsystem: l,
-    };
-    let g = run.geometry()?;
+    let g = grow(None)?;
     let mut m = Mesh::default();
     let bark = Vec3::new(0.35, 0.2, 0.12);
     for k in 0..g.segment_count() {
@@ -103,19 +115,9 @@ mod tests {
     /// The heading's rise of each shoot's last flower (the `~K(0.11)` at
     /// its tip), for the twig grown with the tropism's elasticity `e`.
     fn tips(e: f64) -> Vec<f64> {
-        let l = LSystem::parse(SPIRAEA).unwrap();
-        let mut d = Derivation::new(&l, 0).unwrap();
-        d.derive(40).unwrap();
-        let run = natura::plant::models::Run {
-            turtle: TurtleParams {
-                elasticity: e,
-                ..TurtleParams::for_lsystem(&l)
-            },
-            string: d.string().clone(),
-            lsystem: l,
-        };
-        let g = run.geometry().unwrap();
-        g.surfaces
+        grow(Some(e))
+            .unwrap()
+            .surfaces
             .iter()
             .filter(|s| s.name == 'K' && (s.length - 0.11).abs() < 1e-9)
             .map(|s| s.frame.h.z)
