@@ -79,7 +79,7 @@
 //! optically thick medium), and the cut series spreads light that is still peaked after two
 //! scatterings in a strongly forward medium (`g ≥ 0.8`). Both errors, and
 //! the cache's noise, are measured against the reference in
-//! `crates/volume/tests/scatter_matrix.rs`; the figures are in
+//! `crates/volume/tests/it/scatter_matrix.rs`; the figures are in
 //! `docs/performance.md`.
 
 use glam::Vec3;

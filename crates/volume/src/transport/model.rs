@@ -63,7 +63,7 @@ pub fn step_inscatter(source: Vec3, sigma_t: f32, dt: f32) -> Vec3 {
 /// a first pass at 32 × 22 pixels and 256 paths also gave `a = b = 0.4`
 /// (with `c = 0.75`). None of the scenes the comparisons report (the
 /// cloudscape, the dense cumulus of seed 7, the cirrus, the smoke) is in
-/// the fit. The fit is `crates/volume/tests/octave_fit.rs`.
+/// the fit. The fit is `crates/volume/tests/it/octave_fit.rs`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
@@ -199,7 +199,7 @@ impl ScatterOctaves {
 ///   chance `1 − e^{−τ_c}` that light crossing it interacts (Beer–Lambert).
 ///   In a thick cloud the weight is 1.
 ///
-/// Measured over the scene matrix of `crates/volume/tests/scatter_matrix.rs`
+/// Measured over the scene matrix of `crates/volume/tests/it/scatter_matrix.rs`
 /// (63 scenes: ball, slab and voxel blob; Henyey–Greenstein `g` from −0.3 to
 /// 0.8 and the cloud phase at 5 and 20 µm; three suns; albedo 0.8–0.999;
 /// optical thickness 0.3–50), the median 4 × 4-block error falls from 46 %
