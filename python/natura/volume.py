@@ -24,7 +24,7 @@ from natura._progress import ProgressArg
 
 __all__ = [
     "Smoke", "SmokeSolver", "Volume", "cloud", "cloud_defaults", "cloud_primitives",
-    "cuboid", "layer_clouds", "layer_defaults", "oriented_box", "read_vdb", "render",
+    "cuboid", "ellipsoid", "layer_clouds", "layer_defaults", "oriented_box", "read_vdb", "render",
     "smoke_plume", "sphere", "write_vdb",
 ]
 
@@ -165,6 +165,16 @@ def oriented_box(
     """A box of half extents ``half`` about ``centre``, turned by the unit
     quaternion ``rotation`` ``(x, y, z, w)`` (``Shape::OrientedBox``)."""
     return {"kind": "oriented_box", "centre": list(centre), "half": list(half),
+            "rotation": list(rotation)}
+
+
+def ellipsoid(
+    centre: Vec3, radii: Vec3, rotation: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+) -> Dict[str, Any]:
+    """An ellipsoid of semi-axes ``radii`` about ``centre``, turned by the
+    unit quaternion ``rotation`` ``(x, y, z, w)`` (``Shape::Ellipsoid``),
+    metres."""
+    return {"kind": "ellipsoid", "centre": list(centre), "radii": list(radii),
             "rotation": list(rotation)}
 
 

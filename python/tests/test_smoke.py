@@ -111,6 +111,15 @@ def test_a_moving_obstacle_and_a_hot_one_act_on_the_air():
     assert u.max() > 0.1
 
 
+def test_an_ellipsoid_obstacle_pushes_the_air():
+    s = volume.SmokeSolver((16, 8, 8), 0.1)
+    s.add_obstacle(volume.ellipsoid((0.6, 0.4, 0.4), (0.3, 0.15, 0.15)), velocity=(0.5, 0.0, 0.0))
+    s.step(0.02, steps=3)
+    assert s.velocity[0].max() > 0.1
+    with pytest.raises(ValueError, match="shape"):
+        s.add_obstacle(volume.ellipsoid((0.6, 0.4, 0.4), (0.3, 0.0, 0.15)))
+
+
 def test_params_are_the_rust_defaults_and_the_solver_renders_and_writes(tmp_path):
     s = volume.SmokeSolver((8, 8, 16), 0.0625)
     p = s.params

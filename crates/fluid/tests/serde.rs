@@ -66,6 +66,10 @@ fn sources_obstacles_and_shapes_read_from_toml() {
         [[obstacle]]
         shape = { kind = "oriented_box", centre = [0.5, 0.5, 0.6], half = [0.2, 0.1, 0.05], rotation = [0.0, 0.0, 0.38268343, 0.9238795] }
         angular_velocity = [0.0, 0.0, 1.0]
+
+        [[obstacle]]
+        shape = { kind = "ellipsoid", centre = [0.3, 0.25, 0.1], radii = [0.22, 0.07, 0.07], rotation = [0.0, 0.0, 0.0, 1.0] }
+        velocity = [0.9, 0.0, 0.0]
     "#;
     let set: Set = toml::from_str(text).unwrap();
     assert_eq!(
@@ -88,6 +92,15 @@ fn sources_obstacles_and_shapes_read_from_toml() {
             rotation: Quat::from_xyzw(0.0, 0.0, 0.382_683_43, 0.923_879_5),
         }
     );
+    assert_eq!(
+        set.obstacle[1].shape,
+        Shape::Ellipsoid {
+            centre: Vec3::new(0.3, 0.25, 0.1),
+            radii: Vec3::new(0.22, 0.07, 0.07),
+            rotation: Quat::IDENTITY,
+        }
+    );
+    assert_eq!(set.obstacle[1].velocity, Vec3::new(0.9, 0.0, 0.0));
     // Written and read back, the same.
     let back: Set = toml::from_str(&toml::to_string(&set).unwrap()).unwrap();
     assert_eq!(back, set);

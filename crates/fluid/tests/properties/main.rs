@@ -19,6 +19,7 @@ use natura_fluid::stable::{BoundedFluid, PeriodicFluid, ScalarSource, StablePara
 
 mod liquid;
 mod pressure;
+mod shapes;
 mod smoke;
 mod transport;
 
