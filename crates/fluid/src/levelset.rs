@@ -317,12 +317,20 @@ impl LevelSet {
     /// Volume (m³) of `φ < 0` with a smoothed Heaviside of half-width 1.5 h.
     #[must_use]
     pub fn volume(&self) -> f64 {
+        self.volume_where(|_| true)
+    }
+
+    /// [`volume`](Self::volume) over the cells `c` (flat indices) for which
+    /// `counted(c)` holds.
+    pub(crate) fn volume_where(&self, counted: impl Fn(usize) -> bool) -> f64 {
         let eps = 1.5 * self.h;
         let cell = f64::from(self.h).powi(self.dims.active_axes() as i32);
         self.phi
             .as_slice()
             .iter()
-            .map(|&p| {
+            .enumerate()
+            .filter(|&(c, _)| counted(c))
+            .map(|(_, &p)| {
                 let x = -p;
                 let hv = if x < -eps {
                     0.0

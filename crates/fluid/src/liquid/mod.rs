@@ -315,14 +315,22 @@ impl Liquid {
         }
         let d = self.dims;
         let h = self.h;
-        for (c, p) in self.phi.phi_mut().as_mut_slice().iter_mut().enumerate() {
-            let x = grid::cell_centre(d.ijk(c), h);
-            *p = p.min(shape.sdf(x));
+        let sdf: Vec<f32> = (0..d.cells())
+            .map(|c| shape.sdf(grid::cell_centre(d.ijk(c), h)))
+            .collect();
+        // Cells already liquid get no new particles: a fill repeated over
+        // liquid (a pouring source) would otherwise pile particles up there,
+        // and each one that escapes restores its own sphere of liquid.
+        let before = self.phi.phi().clone();
+        let was_liquid = |c: usize| before.as_slice()[c] < 0.0;
+        for (p, s) in self.phi.phi_mut().as_mut_slice().iter_mut().zip(&sdf) {
+            *p = p.min(*s);
         }
+        let union = self.phi.phi().clone();
         let seed = Seed(self.params.seed)
             .derive("fill")
             .derive_index(self.particles.len() as u64);
-        for c in 0..d.cells() {
+        for c in (0..d.cells()).filter(|&c| !was_liquid(c)) {
             let ijk = d.ijk(c);
             for q in 0..self.params.particles_per_cell {
                 let p = jitter(seed, c, q, ijk, d, h);
@@ -333,9 +341,33 @@ impl Liquid {
         }
         // The union of distances is a distance only outside; inside (and for
         // shapes thinner than the grid's flat axis) make it one, keeping the
-        // zero set.
+        // zero set. Information crosses half a cell per iteration at full
+        // speed, slowed by the smoothed sign where the union is shallow (a
+        // shape thinner than the flat axis of a 2-D grid is at most half a
+        // cell deep, where the sign is 0.45), so five iterations a cell of
+        // the shape's half thickness (on the grid's active axes) reach its
+        // middle. Away from the shape, where the liquid already there made
+        // the union, the union is kept as it was: reinitialising that liquid
+        // moves its surface where it is thin or under-resolved, and a fill
+        // repeated every step (a pouring source) then lost and regained
+        // volume at every call until the surface broke up.
         let span = d.nx.max(d.ny).max(d.nz) as u32;
-        self.phi.reinitialize(2 * span.min(64));
+        let (lo, hi) = shape.bounds();
+        let half = (0..3)
+            .filter(|&a| d.active(a))
+            .map(|a| 0.5 * (hi[a] - lo[a]))
+            .fold(f32::INFINITY, f32::min);
+        let iterations = if half.is_finite() {
+            (5.0 * (half / h).ceil() + 8.0).min(2.0 * span.min(64) as f32) as u32
+        } else {
+            2 * span.min(64)
+        };
+        self.phi.reinitialize(iterations);
+        for (c, p) in self.phi.phi_mut().as_mut_slice().iter_mut().enumerate() {
+            if sdf[c] > 2.0 * h && before.as_slice()[c] < sdf[c] {
+                *p = union.as_slice()[c];
+            }
+        }
         let rmax = self.params.particle_radius * h;
         self.radii.resize(self.particles.len(), rmax);
         self.pvel.resize(self.particles.len(), velocity);
@@ -406,10 +438,12 @@ impl Liquid {
         &self.obstacles
     }
 
-    /// Liquid volume (m³; m² in 2-D) from φ with a smoothed Heaviside.
+    /// Liquid volume (m³; m² in 2-D) from φ with a smoothed Heaviside,
+    /// over the cells no obstacle occupies (φ is carried through an
+    /// obstacle's cells, but the liquid there is not liquid).
     #[must_use]
     pub fn volume(&self) -> f64 {
-        self.phi.volume()
+        self.phi.volume_where(|c| self.owner[c] == u16::MAX)
     }
 
     fn classify(&mut self) {

@@ -235,3 +235,54 @@ fn a_plate_lifting_off_a_pool_drags_it_only_when_sticky() {
         "sticky: {e_sticky} {w_sticky}"
     );
 }
+
+#[test]
+fn a_second_fill_leaves_the_liquid_already_there_alone() {
+    // A pool, settled a little, then a ball filled above it: away from the
+    // ball the pool's level set is unchanged bit for bit (the fill makes a
+    // distance of the new shape only), and a fill over liquid seeds no
+    // particles where there was liquid (each would restore liquid of its
+    // own should it escape).
+    let h = 0.05;
+    let mut l = Liquid::new(Dims::new(24, 12, 16).unwrap(), h, LiquidParams::default()).unwrap();
+    let pool = Shape::Cuboid {
+        min: Vec3::ZERO,
+        max: Vec3::new(1.2, 0.6, 0.3),
+    };
+    l.fill(pool, Vec3::ZERO).unwrap();
+    l.step(0.1).unwrap();
+    let before = l.level_set().phi().clone();
+    let ball = Shape::Sphere {
+        centre: Vec3::new(0.6, 0.3, 0.6),
+        radius: 0.1,
+    };
+    l.fill(ball, Vec3::ZERO).unwrap();
+    let after = l.level_set().phi();
+    let (nx, ny, nz) = after.dims();
+    let mut kept = 0;
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let x = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * h;
+                let s = ball.sdf(x);
+                if s > 2.0 * h && before[(i, j, k)] < s {
+                    assert_eq!(after[(i, j, k)], before[(i, j, k)], "cell {i} {j} {k}");
+                    kept += 1;
+                }
+            }
+        }
+    }
+    assert!(kept > 1000, "{kept} cells compared");
+    // The pool filled again over itself: hardly a particle more, and the
+    // same volume.
+    let (n0, v0) = (l.particles().len(), l.volume());
+    l.fill(pool, Vec3::ZERO).unwrap();
+    let added = l.particles().len() - n0;
+    assert!(added * 20 < n0, "{added} particles added to {n0}");
+    assert!(
+        (l.volume() / v0 - 1.0).abs() < 0.02,
+        "{} → {}",
+        v0,
+        l.volume()
+    );
+}
