@@ -42,7 +42,7 @@ declare -A area=(
   [trace_heightmap]=trace [trace_panorama]=trace
   [sky]=atmos [rainbow]=atmos [mirage]=atmos
   [ocean]=ocean
-  [figures_ffc]=figures [figures_tessendorf]=figures [figures_musgrave]=figures [figures_fedkiw]=figures [figures_stam]=figures [figures_mech]=figures [figures_deussen]=figures [figures_ebert]=figures [figures_fowler]=figures
+  [figures_ffc]=figures [figures_tessendorf]=figures [figures_musgrave]=figures [figures_fedkiw]=figures [figures_foster]=figures [figures_stam]=figures [figures_mech]=figures [figures_deussen]=figures [figures_ebert]=figures [figures_fowler]=figures
   [smoke2d]=fluid [smoke3d]=fluid [liquid2d]=fluid
   [planet]=texture [planets]=texture [textures]=texture/textures
   [clouds]=volume [cloudscape]=volume [steam]=volume
