@@ -16,7 +16,9 @@
 //! 3. imposes object velocities (Foster & Fedkiw 2001, §9): faces of occupied cells take the
 //!    object's velocity, either always ([`ObjectMode::StickyNormal`]) or only
 //!    where the liquid would flow into the object ([`ObjectMode::Separating`])
-//!    — the paper states both (§9), which contradict each other;
+//!    — the paper states both (§9), which contradict each other; then the
+//!    points of the control curves ([`ControlCurve`], Foster & Fedkiw 2001,
+//!    §10) set the faces around them to their velocities;
 //! 4. solves the pressure for full cells with surface and empty cells at
 //!    atmospheric pressure (Dirichlet) and objects Neumann (Foster & Fedkiw 2001, §8). The
 //!    paper's matrix has a negative diagonal (Foster & Fedkiw 2001, §8, an erratum); the
@@ -58,8 +60,11 @@ use crate::mac::{self, Projector};
 use crate::pressure::SolverParams;
 use crate::shape::{Obstacle, Shape, voxelise};
 
+mod control;
 mod particles;
 mod surface;
+
+pub use control::ControlCurve;
 
 use particles::jitter;
 
@@ -243,6 +248,7 @@ pub struct Liquid {
     cells: Grid3<LiquidCell>,
     owner: Vec<u16>,
     obstacles: Vec<Obstacle>,
+    controls: Vec<control::Control>,
     projector: Projector,
     time: f64,
     steps: u64,
@@ -272,6 +278,7 @@ impl Liquid {
             cells: Grid3::new(dims.nx, dims.ny, dims.nz, LiquidCell::Empty)?,
             owner: vec![u16::MAX; dims.cells()],
             obstacles: Vec::new(),
+            controls: Vec::new(),
             projector: Projector::new(),
             time: 0.0,
             steps: 0,
@@ -647,8 +654,10 @@ impl Liquid {
         // Domain walls stay closed.
         let open_kinds = vec![CellKind::Fluid; d.cells()];
         mac::enforce_solids(&mut self.vel, &open_kinds, &bounds, &|_, _| 0.0);
-        // 3. Objects.
+        // 3. Objects, and the control curves' points (Foster & Fedkiw 2001,
+        // §10: before the solve, which smooths what they set).
         self.apply_objects();
+        self.apply_controls();
         // 4. Pressure on full cells.
         let stats =
             self.projector
@@ -684,6 +693,8 @@ impl Liquid {
             self.owner = voxelise(&self.obstacles, d, h);
             self.push_particles_out();
         }
+        let t = self.time as f32;
+        self.controls.iter_mut().for_each(|c| c.advance(t, dt));
         self.time += f64::from(dt);
         self.steps += 1;
         Ok(StepReport {

@@ -17,6 +17,7 @@ use natura_fluid::shape::{Obstacle, Shape};
 use natura_fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 use natura_fluid::stable::{BoundedFluid, PeriodicFluid, ScalarSource, StableParams, Substance};
 
+mod control;
 mod liquid;
 mod pressure;
 mod shapes;
