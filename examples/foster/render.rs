@@ -24,6 +24,11 @@ pub struct Tank<'a> {
     pub solid_colour: Vec3,
     /// Drops: centre and radius (m).
     pub drops: Vec<(Vec3, f32)>,
+    /// Markers (centre and radius, m), drawn dark red: a control curve's
+    /// moving points.
+    pub markers: Vec<(Vec3, f32)>,
+    /// An opaque liquid of this colour (mud) instead of water.
+    pub opaque: Option<Vec3>,
 }
 
 /// A pinhole camera.
@@ -158,22 +163,29 @@ impl Tank<'_> {
     }
 
     fn drop_hit(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<(f32, Vec3)> {
-        let mut best: Option<(f32, Vec3)> = None;
-        for &(c, r) in &self.drops {
-            let oc = o - c;
-            let b = oc.dot(d);
-            let disc = b * b - (oc.length_squared() - r * r);
-            if disc < 0.0 {
-                continue;
-            }
-            let t = -b - disc.sqrt();
-            if t > 1e-5 && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
-                best = Some((t, ((o + d * t) - c) / r));
-            }
-        }
-        best
+        sphere_hit(&self.drops, o, d, t_max)
     }
+}
 
+/// The nearest of `spheres` along the ray before `t_max`: distance and normal.
+fn sphere_hit(spheres: &[(Vec3, f32)], o: Vec3, d: Vec3, t_max: f32) -> Option<(f32, Vec3)> {
+    let mut best: Option<(f32, Vec3)> = None;
+    for &(c, r) in spheres {
+        let oc = o - c;
+        let b = oc.dot(d);
+        let disc = b * b - (oc.length_squared() - r * r);
+        if disc < 0.0 {
+            continue;
+        }
+        let t = -b - disc.sqrt();
+        if t > 1e-5 && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
+            best = Some((t, ((o + d * t) - c) / r));
+        }
+    }
+    best
+}
+
+impl Tank<'_> {
     /// The tank's floor and back walls, tiled, or the sky: what a ray sees
     /// when it meets no liquid, solid or drop.
     fn room(&self, o: Vec3, d: Vec3) -> (f32, Vec3) {
@@ -229,6 +241,10 @@ impl Tank<'_> {
             t = td;
             c = self.shade_drop(d, n);
         }
+        if let Some((tm, n)) = sphere_hit(&self.markers, o, d, t) {
+            t = tm;
+            c = Vec3::new(0.55, 0.06, 0.05) * (0.35 + 0.65 * n.dot(sun()).max(0.0));
+        }
         (t, c)
     }
 
@@ -267,6 +283,13 @@ impl Tank<'_> {
         let cos = (-d.dot(n)).max(0.0);
         let f = schlick(cos);
         let r = d - 2.0 * d.dot(n) * n;
+        if let Some(albedo) = self.opaque {
+            // Mud: diffuse under the sun and sky, a wet sheen.
+            let diffuse = albedo * (0.3 + 0.7 * n.dot(sun()).max(0.0));
+            return diffuse * (1.0 - f)
+                + self.behind(p + n * 1e-3, r).1 * f
+                + Vec3::splat(0.6 * r.dot(sun()).max(0.0).powi(40));
+        }
         let reflected = self.behind(p + n * 1e-3, r).1;
         let spec = Vec3::splat(6.0 * r.dot(sun()).max(0.0).powi(200));
         // Refraction into the body, absorbed along the path inside.
