@@ -1,8 +1,8 @@
-//! Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001) that the
-//! smoke examples do not show: smoke rising by its buoyancy alone (Fig. 3),
-//! the rotor (Fig. 6), linear against monotone cubic interpolation of
-//! falling smoke (Fig. 8), and the 1-D Hermite cubic against the monotone
-//! one (Fig. 9).
+//! Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001): smoke
+//! rising by its buoyancy alone (Fig. 3), past several objects (Fig. 4)
+//! and around a ball (Fig. 5), the rotor (Fig. 6), linear against monotone
+//! cubic interpolation of falling smoke (Fig. 8), and the 1-D Hermite cubic
+//! against the monotone one (Fig. 9).
 //!
 //! ```text
 //! cargo run --release --example figures_fedkiw                 # every figure
@@ -27,15 +27,15 @@ use common::{Exit, Run, outln};
 use natura::core::glam::{Quat, Vec3};
 use natura::core::{Grid3, Image};
 use natura::fluid::advect::Advection;
-use natura::fluid::export::render_smoke_volume;
+use natura::fluid::export::{render_smoke_volume, render_smoke_volume_with_solids};
 use natura::fluid::grid::{Boundaries, Dims};
 use natura::fluid::interp::{CubicLimiter, Interpolation, monotone_cubic};
 use natura::fluid::shape::{Obstacle, Shape};
 use natura::fluid::smoke::{Smoke, SmokeParams, SmokeSource};
 
-/// Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001) not shown by
-/// the smoke examples: rising smoke, the rotor, linear against monotone
-/// cubic interpolation, and the 1-D Hermite comparison.
+/// Fedkiw, Stam & Jensen's smoke figures (Fedkiw et al. 2001): rising
+/// smoke, smoke past objects and around a ball, the rotor, linear against
+/// monotone cubic interpolation, and the 1-D Hermite comparison.
 #[derive(Parser)]
 #[command(name = "figures_fedkiw", version)]
 struct Cli {
@@ -55,6 +55,10 @@ struct Cli {
 enum Fig {
     /// Fig. 3: smoke rising by its buoyancy alone, its vortices kept
     Rising,
+    /// Fig. 4: smoke blown past several objects (low albedo)
+    Objects,
+    /// Fig. 5: smoke rising around a sphere
+    Sphere,
     /// Fig. 6: a box rotating inside a smoke cloud
     Rotor,
     /// Fig. 8: falling smoke, linear (top) against monotone cubic (bottom)
@@ -64,11 +68,20 @@ enum Fig {
 }
 
 impl Figure for Fig {
-    const ALL: &'static [Fig] = &[Fig::Rising, Fig::Rotor, Fig::Interpolation, Fig::Hermite];
+    const ALL: &'static [Fig] = &[
+        Fig::Rising,
+        Fig::Objects,
+        Fig::Sphere,
+        Fig::Rotor,
+        Fig::Interpolation,
+        Fig::Hermite,
+    ];
 
     fn files(self) -> &'static [&'static str] {
         match self {
             Fig::Rising => &["fedkiw_fig03_rising.png"],
+            Fig::Objects => &["fedkiw_fig04_objects.png"],
+            Fig::Sphere => &["fedkiw_fig05_sphere.png"],
             Fig::Rotor => &["fedkiw_fig06_rotor.png"],
             Fig::Interpolation => &["fedkiw_fig08_linear_cubic.png"],
             Fig::Hermite => &["fedkiw_fig09_hermite.png"],
@@ -89,6 +102,8 @@ fn run() -> Run {
     figures::make(&out, &cli.only, |fig| {
         Ok(match fig {
             Fig::Rising => vec![rising(q)?],
+            Fig::Objects => vec![objects(q)?],
+            Fig::Sphere => vec![sphere(q)?],
             Fig::Rotor => vec![rotor(q)?],
             Fig::Interpolation => vec![interpolation(q)?],
             Fig::Hermite => vec![hermite_figure()?],
@@ -181,6 +196,170 @@ fn rising(quick: bool) -> R<Image> {
         vorticity_in_smoke(&smoke)?,
         steps as f32 * dt
     ))?;
+    let k = if quick { 4 } else { 2 };
+    let shots = frames
+        .iter()
+        .map(|i| enlarge(i, k))
+        .collect::<R<Vec<_>>>()?;
+    Ok(Image::contact_sheet(&shots, shots.len(), 6, Vec3::ONE)?)
+}
+
+// ---------------------------------------------------------------- Figs. 4–5
+
+/// Fig. 4's scene (the source gives its grid, 160 × 80 × 80, and "low
+/// albedo"; the rest is ours): a 2 × 1 × 1 m box, `n` cells along x, walls
+/// and an open ceiling; three warm sources on the floor (0.24 m square,
+/// 0.12 m deep, 30 K above ambient) send smoke up past a ball, a box turned
+/// 30° about the vertical and a tilted slab, one above each.
+fn objects_smoke(n: usize) -> R<Smoke> {
+    let h = 2.0 / n as f32;
+    let params = SmokeParams {
+        advection: Advection {
+            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
+            ..Advection::default()
+        },
+        ..SmokeParams::default()
+    };
+    let warm = params.ambient_temperature + 30.0;
+    let mut smoke = Smoke::new(Dims::new(n, n / 2, n / 2)?, h, params)?;
+    for x in [0.45f32, 1.0, 1.55] {
+        smoke.add_source(SmokeSource {
+            shape: Shape::Cuboid {
+                min: Vec3::new(x - 0.12, 0.38, 0.0),
+                max: Vec3::new(x + 0.12, 0.62, 0.12),
+            },
+            density: 1.0,
+            temperature: warm,
+            velocity: None,
+        })?;
+    }
+    for shape in objects_shapes() {
+        smoke.add_obstacle(Obstacle::fixed(shape))?;
+    }
+    Ok(smoke)
+}
+
+fn objects_shapes() -> [Shape; 3] {
+    [
+        Shape::Sphere {
+            centre: Vec3::new(0.5, 0.5, 0.42),
+            radius: 0.14,
+        },
+        Shape::OrientedBox {
+            centre: Vec3::new(1.0, 0.5, 0.62),
+            half: Vec3::new(0.1, 0.14, 0.1),
+            rotation: Quat::from_rotation_z(30f32.to_radians()),
+        },
+        Shape::OrientedBox {
+            centre: Vec3::new(1.5, 0.5, 0.36),
+            half: Vec3::new(0.18, 0.2, 0.025),
+            rotation: Quat::from_rotation_y(-25f32.to_radians()),
+        },
+    ]
+}
+
+/// Fig. 5's scene (the source's grid is 90 × 135 × 90, the second its
+/// height): a 1 × 1 × 1.5 m box, `n` cells across, a warm source 0.3 m
+/// square on the floor's centre (30 K above ambient) and a ball 0.3 m across
+/// whose centre is 0.7 m up; walls and an open ceiling.
+fn sphere_smoke(n: usize) -> R<Smoke> {
+    let h = 1.0 / n as f32;
+    let params = SmokeParams {
+        advection: Advection {
+            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
+            ..Advection::default()
+        },
+        ..SmokeParams::default()
+    };
+    let hot = params.ambient_temperature + 30.0;
+    let mut smoke = Smoke::new(Dims::new(n, n, 3 * n / 2)?, h, params)?;
+    smoke.add_source(SmokeSource {
+        shape: Shape::Cuboid {
+            min: Vec3::new(0.35, 0.35, 0.0),
+            max: Vec3::new(0.65, 0.65, 0.08),
+        },
+        density: 1.0,
+        temperature: hot,
+        velocity: None,
+    })?;
+    smoke.add_obstacle(Obstacle::fixed(sphere_shape()))?;
+    Ok(smoke)
+}
+
+fn sphere_shape() -> Shape {
+    Shape::Sphere {
+        centre: Vec3::new(0.5, 0.5, 0.7),
+        radius: 0.15,
+    }
+}
+
+/// The cells whose centres lie inside any of `shapes`.
+fn solid_cells(dims: (usize, usize, usize), h: f32, shapes: &[Shape]) -> R<Grid3<bool>> {
+    Ok(Grid3::from_fn(dims.0, dims.1, dims.2, |i, j, k| {
+        let p = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * h;
+        shapes.iter().any(|s| s.sdf(p) < 0.0)
+    })?)
+}
+
+/// Frames of `smoke` every `every` of `steps` steps of `dt`, seen along y
+/// with `solids` drawn in clay.
+#[allow(clippy::too_many_arguments)]
+fn solid_frames(
+    smoke: &mut Smoke,
+    solids: &Grid3<bool>,
+    steps: usize,
+    every: usize,
+    dt: f32,
+    extinction: f32,
+    albedo: f32,
+    light: Vec3,
+) -> R<Vec<Image>> {
+    let h = smoke.h();
+    let mut frames = Vec::new();
+    for s in 1..=steps {
+        smoke.step(dt)?;
+        if s % every == 0 {
+            frames.push(render_smoke_volume_with_solids(
+                smoke.density(),
+                solids,
+                Vec3::new(0.62, 0.42, 0.30),
+                h,
+                extinction,
+                albedo,
+                light,
+                1,
+                Vec3::new(0.55, 0.62, 0.72),
+            )?);
+        }
+    }
+    Ok(frames)
+}
+
+/// Fig. 4: the smoke rising past the three objects at four times, from the
+/// side, dark (albedo 0.3) as the caption has it.
+fn objects(quick: bool) -> R<Image> {
+    let n = if quick { 32 } else { 96 };
+    let mut smoke = objects_smoke(n)?;
+    let solids = solid_cells(smoke.density().dims(), smoke.h(), &objects_shapes())?;
+    let (steps, every) = if quick { (30, 15) } else { (240, 60) };
+    let light = Vec3::new(-0.3, -0.5, 1.0).normalize();
+    let frames = solid_frames(&mut smoke, &solids, steps, every, 0.02, 12.0, 0.3, light)?;
+    let k = 3;
+    let shots = frames
+        .iter()
+        .map(|i| enlarge(i, k))
+        .collect::<R<Vec<_>>>()?;
+    Ok(Image::contact_sheet(&shots, 2, 6, Vec3::ONE)?)
+}
+
+/// Fig. 5: the plume rising around the ball at four times, from the side.
+fn sphere(quick: bool) -> R<Image> {
+    let n = if quick { 24 } else { 80 };
+    let mut smoke = sphere_smoke(n)?;
+    let solids = solid_cells(smoke.density().dims(), smoke.h(), &[sphere_shape()])?;
+    let (steps, every) = if quick { (30, 15) } else { (200, 50) };
+    let light = Vec3::new(-0.5, -0.4, 1.0).normalize();
+    let frames = solid_frames(&mut smoke, &solids, steps, every, 0.02, 16.0, 0.9, light)?;
     let k = if quick { 4 } else { 2 };
     let shots = frames
         .iter()
@@ -614,6 +793,47 @@ mod tests {
         assert!(above < 0.0 && below > 0.0, "above {above} below {below}");
     }
 
+    /// The smoke (Σ ρ over cells) beyond `x` (m) and above `z` (m).
+    fn beyond(smoke: &Smoke, x: f32, z: f32) -> f64 {
+        let rho = smoke.density();
+        let (nx, ny, nz) = rho.dims();
+        let h = smoke.h();
+        let mut sum = 0.0f64;
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    if (i as f32 + 0.5) * h > x && (k as f32 + 0.5) * h > z {
+                        sum += f64::from(rho[(i, j, k)]);
+                    }
+                }
+            }
+        }
+        sum
+    }
+
+    #[test]
+    fn smoke_passes_the_objects_and_rises_around_the_ball() {
+        // Fig. 4: the smoke rises past the three objects to above the
+        // highest (whose top is at 0.75 m at most).
+        let mut smoke = objects_smoke(32).unwrap();
+        assert_eq!(beyond(&smoke, 0.0, 0.75), 0.0);
+        for _ in 0..200 {
+            smoke.step(0.02).unwrap();
+        }
+        let past = beyond(&smoke, 0.0, 0.75);
+        assert!(past > 1.0, "smoke above the highest object: {past}");
+        // Fig. 5: the plume rises around the ball to above its top (0.85 m)
+        // within 4 s, on a grid of 40 cells across (on coarser ones it
+        // lingers under the ball longer).
+        let mut smoke = sphere_smoke(40).unwrap();
+        assert_eq!(beyond(&smoke, 0.0, 0.9), 0.0);
+        for _ in 0..200 {
+            smoke.step(0.02).unwrap();
+        }
+        let above = beyond(&smoke, 0.0, 0.9);
+        assert!(above > 1.0, "smoke above the ball: {above}");
+    }
+
     #[test]
     fn the_rising_smoke_is_lifted_by_its_buoyancy_alone() {
         // Fig. 3: buoyancy is the only external force. After 1.2 s the
@@ -649,7 +869,7 @@ mod tests {
 
     #[test]
     fn every_figure_writes_its_files() {
-        assert_eq!(Fig::ALL.len(), 4);
+        assert_eq!(Fig::ALL.len(), 6);
         for f in Fig::ALL {
             assert_eq!(f.files().len(), 1);
         }

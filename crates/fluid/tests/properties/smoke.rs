@@ -189,3 +189,52 @@ fn twenty_incomplete_cholesky_iterations_are_visually_converged() {
     });
     assert!(mg.iter().all(|&i| i > 0 && i < 20), "{mg:?}");
 }
+
+#[test]
+fn solids_hide_the_smoke_behind_them_and_shadow_it() {
+    use natura_fluid::export::{render_smoke_volume, render_smoke_volume_with_solids};
+    // A slab of smoke at y = 10..14 of a 16³ grid, seen along y from y = 0.
+    let n = 16;
+    let rho = Grid3::from_fn(
+        n,
+        n,
+        n,
+        |_, j, _| if (10..14).contains(&j) { 1.0 } else { 0.0 },
+    )
+    .unwrap();
+    let light = Vec3::new(0.0, 0.0, 1.0);
+    let bg = Vec3::new(0.2, 0.3, 0.4);
+    let plain = render_smoke_volume(&rho, 0.1, 4.0, 0.9, light, 1, bg).unwrap();
+    // No solids: the same picture bit for bit.
+    let none = Grid3::new(n, n, n, false).unwrap();
+    let same = render_smoke_volume_with_solids(&rho, &none, Vec3::ONE, 0.1, 4.0, 0.9, light, 1, bg)
+        .unwrap();
+    assert_eq!(plain.pixels().as_slice(), same.pixels().as_slice());
+    // A solid block in front (y = 2..4) over x < 8: there the picture is the
+    // solid's colour, lit from above (its top cells see the light).
+    let clay = Vec3::new(0.6, 0.4, 0.3);
+    let block = Grid3::from_fn(n, n, n, |i, j, _| i < 8 && (2..4).contains(&j)).unwrap();
+    let img =
+        render_smoke_volume_with_solids(&rho, &block, clay, 0.1, 4.0, 0.9, light, 1, bg).unwrap();
+    let top_row = 0; // image rows run from the top (high z) down
+    let hidden = img.get(3, top_row).unwrap();
+    assert!((hidden - clay).abs().max_element() < 1e-6, "{hidden}");
+    assert_eq!(img.get(12, 8), plain.get(12, 8));
+    // A solid above the smoke (z = 14..16 over all of it) shadows it: no
+    // light is scattered, only the background shows through, dimmed.
+    let lid = Grid3::from_fn(n, n, n, |_, _, k| k >= 14).unwrap();
+    let shaded =
+        render_smoke_volume_with_solids(&rho, &lid, clay, 0.1, 4.0, 0.9, light, 1, bg).unwrap();
+    let (lit, dark) = (plain.get(12, 8).unwrap(), shaded.get(12, 8).unwrap());
+    let t = dark / bg;
+    assert!(
+        (t.x - t.y).abs() < 1e-6 && (t.y - t.z).abs() < 1e-6,
+        "{dark}"
+    );
+    assert!(dark.x < lit.x - 0.02, "{dark} against {lit}");
+    // A solid grid of another size is refused by name.
+    let small = Grid3::new(8, 8, 8, false).unwrap();
+    let e = render_smoke_volume_with_solids(&rho, &small, clay, 0.1, 4.0, 0.9, light, 1, bg)
+        .unwrap_err();
+    assert!(e.to_string().contains("solid"), "{e}");
+}
