@@ -333,7 +333,6 @@ impl Liquid {
         for (p, s) in self.phi.phi_mut().as_mut_slice().iter_mut().zip(&sdf) {
             *p = p.min(*s);
         }
-        let union = self.phi.phi().clone();
         let seed = Seed(self.params.seed)
             .derive("fill")
             .derive_index(self.particles.len() as u64);
@@ -371,8 +370,10 @@ impl Liquid {
         };
         self.phi.reinitialize(iterations);
         for (c, p) in self.phi.phi_mut().as_mut_slice().iter_mut().enumerate() {
-            if sdf[c] > 2.0 * h && before.as_slice()[c] < sdf[c] {
-                *p = union.as_slice()[c];
+            // Where the old liquid made the union, the union is its φ.
+            let old = before.as_slice()[c];
+            if sdf[c] > 2.0 * h && old < sdf[c] {
+                *p = old;
             }
         }
         let rmax = self.params.particle_radius * h;
