@@ -147,24 +147,37 @@ fn escaped(l: &Liquid) -> Vec<(Vec3, f32)> {
         .collect()
 }
 
+/// The cells with liquid at their centre (φ < 0): their indices.
+fn wet_cells(l: &Liquid) -> impl Iterator<Item = [usize; 3]> + '_ {
+    let phi = l.level_set().phi();
+    let (nx, ny, nz) = phi.dims();
+    (0..nz)
+        .flat_map(move |k| (0..ny).flat_map(move |j| (0..nx).map(move |i| [i, j, k])))
+        .filter(move |&[i, j, k]| phi[(i, j, k)] < 0.0)
+}
+
+/// The centre of cell `c` of `l` (m).
+fn centre(l: &Liquid, [i, j, k]: [usize; 3]) -> Vec3 {
+    (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * l.h()
+}
+
+/// The volume (m³) of the wet cells whose centres satisfy `inside`.
+fn wet_volume(l: &Liquid, inside: impl Fn(Vec3) -> bool) -> f64 {
+    let cell = f64::from(l.h()).powi(3);
+    wet_cells(l)
+        .filter(|&c| inside(centre(l, c)))
+        .map(|_| cell)
+        .sum()
+}
+
 /// The highest point of the liquid in the columns within `radius` of
 /// `(x, y)` (m): the top of the topmost cell with φ < 0.
 fn top_near(l: &Liquid, x: f32, y: f32, radius: f32) -> f32 {
-    let phi = l.level_set().phi();
-    let (nx, ny, nz) = phi.dims();
     let h = l.h();
-    let mut top = 0.0f32;
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                let (cx, cy) = ((i as f32 + 0.5) * h, (j as f32 + 0.5) * h);
-                if (cx - x).hypot(cy - y) <= radius && phi[(i, j, k)] < 0.0 {
-                    top = top.max((k as f32 + 1.0) * h);
-                }
-            }
-        }
-    }
-    top
+    wet_cells(l)
+        .filter(|&[i, j, _]| ((i as f32 + 0.5) * h - x).hypot((j as f32 + 0.5) * h - y) <= radius)
+        .map(|[_, _, k]| (k as f32 + 1.0) * h)
+        .fold(0.0f32, f32::max)
 }
 
 /// Pictures in a grid of `columns`.
@@ -489,22 +502,8 @@ fn pour_to(f: &mut Filling, t: f32, count: usize) -> R<()> {
 
 /// The liquid's volume inside the container (m³), cell by cell.
 fn volume_inside(f: &Filling) -> f64 {
-    let phi = f.liquid.level_set().phi();
-    let (nx, ny, nz) = phi.dims();
-    let h = f.liquid.h();
     let (lo, hi) = f.inside;
-    let mut v = 0.0f64;
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                let c = (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * h;
-                if c.cmpge(lo).all() && c.cmple(hi).all() && phi[(i, j, k)] < 0.0 {
-                    v += f64::from(h).powi(3);
-                }
-            }
-        }
-    }
-    v
+    wet_volume(&f.liquid, |c| c.cmpge(lo).all() && c.cmple(hi).all())
 }
 
 /// Columns poured.
@@ -718,20 +717,7 @@ fn mud_figure(quick: bool) -> R<Image> {
 
 /// Volume (m³) of the liquid's cells beyond the cup's far wall (x > 0.34 m).
 fn mud_outside(l: &Liquid) -> f64 {
-    let phi = l.level_set().phi();
-    let (nx, ny, nz) = phi.dims();
-    let h = l.h();
-    let mut v = 0.0f64;
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                if (i as f32 + 0.5) * h > 0.34 && phi[(i, j, k)] < 0.0 {
-                    v += f64::from(h).powi(3);
-                }
-            }
-        }
-    }
-    v
+    wet_volume(l, |c| c.x > 0.34)
 }
 
 #[cfg(test)]

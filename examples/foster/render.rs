@@ -88,13 +88,7 @@ impl Tank<'_> {
     }
 
     fn normal(&self, p: Vec3) -> Vec3 {
-        let e = 0.5 * self.phi.h();
-        let g = Vec3::new(
-            self.phi_at(p + Vec3::X * e) - self.phi_at(p - Vec3::X * e),
-            self.phi_at(p + Vec3::Y * e) - self.phi_at(p - Vec3::Y * e),
-            self.phi_at(p + Vec3::Z * e) - self.phi_at(p - Vec3::Z * e),
-        );
-        g.try_normalize().unwrap_or(Vec3::Z)
+        unit_gradient(|q| self.phi_at(q), p, 0.5 * self.phi.h())
     }
 
     /// The first crossing of the liquid's surface along the ray, from
@@ -152,19 +146,21 @@ impl Tank<'_> {
     }
 
     fn solid_normal(&self, p: Vec3) -> Vec3 {
-        let e = 0.2 * self.phi.h();
-        Vec3::new(
-            self.solid_sdf(p + Vec3::X * e) - self.solid_sdf(p - Vec3::X * e),
-            self.solid_sdf(p + Vec3::Y * e) - self.solid_sdf(p - Vec3::Y * e),
-            self.solid_sdf(p + Vec3::Z * e) - self.solid_sdf(p - Vec3::Z * e),
-        )
-        .try_normalize()
-        .unwrap_or(Vec3::Z)
+        unit_gradient(|q| self.solid_sdf(q), p, 0.2 * self.phi.h())
     }
 
     fn drop_hit(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<(f32, Vec3)> {
         sphere_hit(&self.drops, o, d, t_max)
     }
+}
+
+/// The direction of `f`'s gradient at `p` by central differences of step
+/// `e` (up where it vanishes).
+fn unit_gradient(f: impl Fn(Vec3) -> f32, p: Vec3, e: f32) -> Vec3 {
+    let d = |a: Vec3| f(p + a * e) - f(p - a * e);
+    Vec3::new(d(Vec3::X), d(Vec3::Y), d(Vec3::Z))
+        .try_normalize()
+        .unwrap_or(Vec3::Z)
 }
 
 /// The nearest of `spheres` along the ray before `t_max`: distance and normal.
