@@ -685,11 +685,8 @@ mod tests {
             "Of the {n}, {made} are re-made, {partly} partly (a flat colour map where the\nsource shows a rendered patch, a different scene, a missing element) and\n{missing} missing"
         );
         assert!(text.contains(&tally), "the header should read: {tally}");
-        for f in Fig::ALL {
-            for name in f.files() {
-                assert!(text.contains(&format!("gallery/figures/{name}")), "{name}");
-            }
-        }
+        let missing = common::figures::unlisted_in_figures_md::<Fig>();
+        assert!(missing.is_empty(), "not in docs/figures.md: {missing:?}");
     }
 
     #[test]

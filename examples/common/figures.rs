@@ -82,6 +82,22 @@ pub fn make<F: Figure>(
     Ok(())
 }
 
+/// The files of `F`'s figures that docs/figures.md does not link (as
+/// `gallery/figures/NAME`); a figure program's test asserts there are none.
+///
+/// # Panics
+///
+/// If docs/figures.md cannot be read.
+pub fn unlisted_in_figures_md<F: Figure>() -> Vec<&'static str> {
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    let text = std::fs::read_to_string(docs.join("figures.md")).expect("docs/figures.md");
+    F::ALL
+        .iter()
+        .flat_map(|f| f.files().iter().copied())
+        .filter(|name| !text.contains(&format!("gallery/figures/{name}")))
+        .collect()
+}
+
 /// `img` enlarged `k` times with bilinear filtering, for pictures of small
 /// grids (a simulation's cells, one pixel each).
 ///
