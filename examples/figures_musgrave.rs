@@ -16,8 +16,10 @@
 //! 4.12), "Bay Fog" (Pl. 5.1), the stages of the terran texture (Pl.
 //! 5.9a–f), the ridged basis built from the Perlin basis (Musgrave 2001,
 //! fig. 17), planets made from each basis and fractal
-//! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31) and the multifractal Milky
-//! Way (Musgrave 2001, fig. 32).
+//! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31), the multifractal Milky
+//! Way (Musgrave 2001, fig. 32), and "Slickrock I" and "III" in random fBm
+//! colour and a GIT texture, and a picture repainted by the GIT filter
+//! (Musgrave 1998, figs. 15.13–15.15).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -53,8 +55,8 @@ use natura::trace::{MipmapTracer, Ray, Tracer};
 /// patches (Pl. 2.3–2.9), fluvial erosion before and after (Pl.
 /// 2.10–2.11), dunes by slumping (Pl. 2.12–2.13), DLA in radial fog, the fractal
 /// mandala, the prism under the empirical bow, the full-circle rainbow
-/// modulated by fBm, "Bay Fog" and the multifractal Milky Way (Musgrave
-/// 2001).
+/// modulated by fBm, "Bay Fog", the multifractal Milky Way (Musgrave
+/// 2001), and Slickrock in GIT colour and the GIT filter (Musgrave 1998).
 #[derive(Parser)]
 #[command(name = "figures_musgrave", version)]
 struct Cli {
@@ -121,6 +123,11 @@ enum Fig {
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
+    /// Musgrave 1998, figs. 15.13–15.14: "Slickrock I" and "III": ridged
+    /// terrain in random fBm colour and in a GIT texture
+    Slickrock,
+    /// Musgrave 1998, fig. 15.15: a picture repainted by the GIT filter
+    GitFilter,
 }
 
 impl Figure for Fig {
@@ -147,6 +154,8 @@ impl Figure for Fig {
         Fig::RidgedBasis,
         Fig::Planets,
         Fig::MilkyWay,
+        Fig::Slickrock,
+        Fig::GitFilter,
     ];
 
     fn files(self) -> &'static [&'static str] {
@@ -192,6 +201,11 @@ impl Figure for Fig {
                 "musgrave2001_figs25-28_31_fractals.png",
             ],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
+            Fig::Slickrock => &[
+                "musgrave1998_fig15-13_slickrock_i.png",
+                "musgrave1998_fig15-14_slickrock_iii.png",
+            ],
+            Fig::GitFilter => &["musgrave1998_fig15-15_git_filter.png"],
         }
     }
 }
@@ -222,13 +236,17 @@ mod planets;
 mod prism;
 #[path = "musgrave/ridged_basis.rs"]
 mod ridged_basis;
+#[path = "musgrave/slickrock.rs"]
+mod slickrock;
 #[path = "musgrave/spectral_aliasing.rs"]
 mod spectral_aliasing;
 #[path = "musgrave/terran_stages.rs"]
 mod terran_stages;
 #[path = "musgrave/umbra.rs"]
 mod umbra;
-use landscape::{Landscape, desert_sky, misty_sky, ridged_field, smoothstep, supersampled};
+use landscape::{
+    Landscape, desert_sky, misty_sky, ridged_field, smoothstep, strata_albedo, supersampled,
+};
 
 fn main() -> ExitCode {
     common::run(figures)
@@ -265,6 +283,8 @@ fn figures() -> Run {
             Fig::RidgedBasis => vec![ridged_basis::picture(cli.seed, cli.quick)?],
             Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
+            Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
+            Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],
         })
     })
 }
@@ -303,7 +323,7 @@ fn misty_mountains(seed: u64, quick: bool) -> R<Image> {
     let mist = misty_mist()?;
     let scene = Landscape {
         tracer: &tracer,
-        strata: &strata,
+        albedo: &strata_albedo(&strata),
         medium: &mist,
         sun: Vec3::new(-0.6, 0.5, 0.45).normalize(),
         sky: misty_sky,
@@ -393,7 +413,7 @@ fn zabriskie(seed: u64, quick: bool) -> R<Image> {
     )?;
     let scene = Landscape {
         tracer: &tracer,
-        strata: &strata,
+        albedo: &strata_albedo(&strata),
         medium: &haze,
         sun: Vec3::new(-0.55, -0.45, 0.70).normalize(),
         sky: desert_sky,

@@ -31,6 +31,7 @@ use natura::texture::earth::{
 };
 use natura::texture::fire::{Flame, FlameParams};
 use natura::texture::giants::{GasGiant, GasGiantParams, Rings, RingsParams};
+use natura::texture::git::{Git, GitParams};
 use natura::texture::multicolor::{Multicolor, MulticolorParams};
 use natura::texture::preview::{self, Plane};
 use natura::texture::water::{Ripples, RipplesParams, WindyWave, WindyWaveParams};
@@ -200,6 +201,14 @@ fn catalogue(seed: u64) -> Result<Vec<Entry>, TextureError> {
                 ..Default::default()
             })?),
             0.6,
+        ),
+        entry(
+            "git",
+            Box::new(Git::new(GitParams {
+                seed,
+                ..Default::default()
+            })?),
+            2.0,
         ),
         entry(
             "ridge",

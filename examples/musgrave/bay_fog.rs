@@ -12,7 +12,7 @@ use natura::texture::earth::{Strata, StrataParams};
 use natura::trace::MipmapTracer;
 
 use crate::common::Exit;
-use crate::landscape::{Landscape, misty_sky, ridged_field, supersampled};
+use crate::landscape::{Landscape, misty_sky, ridged_field, strata_albedo, supersampled};
 
 type R<T> = Result<T, Exit>;
 
@@ -54,7 +54,7 @@ pub(crate) fn bay_fog_picture(seed: u64, quick: bool) -> R<Image> {
     let fog = bay_fog(seed)?;
     let scene = Landscape {
         tracer: &tracer,
-        strata: &strata,
+        albedo: &strata_albedo(&strata),
         medium: &fog,
         sun: Vec3::new(0.5, 0.3, 0.55).normalize(),
         sky: misty_sky,

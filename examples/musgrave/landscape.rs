@@ -4,7 +4,7 @@
 
 use natura::atmos::{Dir3, Medium};
 use natura::core::filter::PixelFilter;
-use natura::core::glam::{DVec2, Vec3};
+use natura::core::glam::{DVec2, DVec3, Vec3};
 use natura::core::{Grid2, HeightField, Image};
 use natura::noise::{Field, Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura::texture::Footprint;
@@ -15,13 +15,14 @@ use crate::common::Exit;
 
 type R<T> = Result<T, Exit>;
 
-/// Terrain seen along rays: strata-coloured, lit by a sun (with shadows)
-/// and the sky, through a medium; the sky where a ray misses.
+/// Terrain seen along rays: coloured by a solid texture, lit by a sun
+/// (with shadows) and the sky, through a medium; the sky where a ray
+/// misses.
 pub(crate) struct Landscape<'a, M> {
     /// The terrain.
     pub tracer: &'a MipmapTracer<'a>,
-    /// Its colour.
-    pub strata: &'a Strata,
+    /// Its colour (linear RGB) at a point seen from a distance (m).
+    pub albedo: &'a dyn Fn(DVec3, f64) -> Vec3,
     /// The air between.
     pub medium: &'a M,
     /// Towards the sun.
@@ -48,7 +49,7 @@ impl<M: Medium> Landscape<'_, M> {
             },
             Some(h) => {
                 let p = h.point.as_dvec3();
-                let albedo = self.strata.colour(p, Footprint::POINT).as_vec3();
+                let albedo = (self.albedo)(p, f64::from(h.t));
                 let n = h.smooth_normal;
                 let lit = n.dot(self.sun).max(0.0);
                 let from = Ray::new(h.point + h.geometric_normal * 0.5, self.sun);
@@ -72,6 +73,12 @@ impl<M: Medium> Landscape<'_, M> {
             }
         }
     }
+}
+
+/// The colour of `strata` at a point, unfiltered (the plates' renders
+/// supersample instead).
+pub(crate) fn strata_albedo(strata: &Strata) -> impl Fn(DVec3, f64) -> Vec3 + '_ {
+    |p, _| strata.colour(p, Footprint::POINT).as_vec3()
 }
 
 /// A desert sky: pale at the horizon, blue above.

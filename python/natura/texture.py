@@ -10,7 +10,7 @@ Jupiter, Selene: displaced terrain, biomes, bands) the same way.
 
 Names (:data:`NAMES`): ``puffy_clouds``, ``planet_clouds``, ``cyclone``,
 ``venus``, ``flame``, ``ripples``, ``windy_wave``, ``strata``, ``terran``,
-``luna``, ``ridge``, ``gas_giant``, ``rings``, ``multicolor``. Parameters
+``luna``, ``ridge``, ``gas_giant``, ``rings``, ``multicolor``, ``git``. Parameters
 are the fields of the texture's Rust ``Params`` struct (e.g.
 ``TerranParams``) as keyword arguments (nested structs as dicts,
 enumerations by name); :func:`defaults` lists them with their defaults. An

@@ -8,6 +8,7 @@ use natura_texture::air::{Cyclone, PlanetClouds, PuffyClouds, Venus};
 use natura_texture::earth::{Luna, Ridge, Strata, Terran};
 use natura_texture::fire::Flame;
 use natura_texture::giants::{GasGiant, Rings};
+use natura_texture::git::Git;
 use natura_texture::glam::{DVec3, Vec3};
 use natura_texture::multicolor::Multicolor;
 use natura_texture::planet::{Planet, PlanetParams};
@@ -74,6 +75,7 @@ has_params! {
     GasGiant => natura_texture::giants::GasGiantParams,
     Rings => natura_texture::giants::RingsParams,
     Multicolor => natura_texture::multicolor::MulticolorParams,
+    Git => natura_texture::git::GitParams,
 }
 
 textures! {
@@ -91,6 +93,7 @@ textures! {
     "gas_giant" => GasGiant,
     "rings" => Rings,
     "multicolor" => Multicolor,
+    "git" => Git,
 }
 
 fn unknown(name: &str) -> PyErr {

@@ -25,6 +25,7 @@
 //! | [`earth`] | [`Strata`](earth::Strata), [`Terran`](earth::Terran) (Gaea), [`Luna`](earth::Luna) (Selene, a rayed crater), [`Ridge`](earth::Ridge) (the tent `F(x)`) |
 //! | [`giants`] | [`GasGiant`](giants::GasGiant) (Jupiter, Saturn), [`Rings`](giants::Rings) |
 //! | [`multicolor`] | [`Multicolor`](multicolor::Multicolor) |
+//! | [`git`] | [`Git`](git::Git) (the generalized Impressionistic texture) and the painterly [`git_filter`](git::git_filter) |
 //!
 //! **Antialiasing** lives in one place, [`footprint`]: a sample's
 //! [`Footprint`] (the width it covers in texture space) becomes a real-valued
@@ -62,6 +63,7 @@ pub mod fire;
 pub mod footprint;
 mod fractals;
 pub mod giants;
+pub mod git;
 pub mod multicolor;
 pub mod normal;
 pub mod planet;
