@@ -123,6 +123,9 @@ enum Fig {
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
+    /// Pl. 4.1: "Slickrock": ridged terrain in exponential mist with the
+    /// Rayleigh approximation, over a black background
+    SlickrockMist,
     /// Musgrave 1998, figs. 15.13–15.14: "Slickrock I" and "III": ridged
     /// terrain in random fBm colour and in a GIT texture
     Slickrock,
@@ -154,6 +157,7 @@ impl Figure for Fig {
         Fig::RidgedBasis,
         Fig::Planets,
         Fig::MilkyWay,
+        Fig::SlickrockMist,
         Fig::Slickrock,
         Fig::GitFilter,
     ];
@@ -201,6 +205,7 @@ impl Figure for Fig {
                 "musgrave2001_figs25-28_31_fractals.png",
             ],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
+            Fig::SlickrockMist => &["musgrave_pl4-1_slickrock.png"],
             Fig::Slickrock => &[
                 "musgrave1998_fig15-13_slickrock_i.png",
                 "musgrave1998_fig15-14_slickrock_iii.png",
@@ -283,6 +288,7 @@ fn figures() -> Run {
             Fig::RidgedBasis => vec![ridged_basis::picture(cli.seed, cli.quick)?],
             Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
+            Fig::SlickrockMist => vec![slickrock::plate(cli.seed, cli.quick)?],
             Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
             Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],
         })

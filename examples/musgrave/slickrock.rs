@@ -1,8 +1,11 @@
 //! Musgrave 1998, figs. 15.13–15.15: "Slickrock I" (ridged terrain under
 //! a subtle random fBm colouring squashed into strata), "Slickrock III"
-//! (the same terrain in a GIT texture) and a GIT-filtered picture.
+//! (the same terrain in a GIT texture) and a GIT-filtered picture; and
+//! Musgrave 1993, Plate 4.1, "Slickrock" in exponential mist with the
+//! Rayleigh approximation over a black background.
 
-use natura::atmos::medium::HomogeneousFog;
+use natura::atmos::Medium;
+use natura::atmos::medium::{ExponentialMist, HomogeneousFog, RayleighRgb};
 use natura::core::camera::PinholeCamera;
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{HeightField, Image, NoProgress};
@@ -54,15 +57,30 @@ pub(crate) fn slickrock_iii_texture(seed: u64) -> R<Git> {
     })?)
 }
 
-/// The terrain seen from a rise at its southern edge, looking north under
-/// a high morning sun through light haze, coloured by `texture` with the
-/// level of detail the pixel's footprint sets (ss × ss rays a pixel).
-fn render(hf: &HeightField, texture: &Git, (w, h): (u32, u32), ss: usize) -> R<Image> {
-    let tracer = MipmapTracer::new(hf)?;
-    let haze = HomogeneousFog::new(
+/// The light haze of Figs. 15.13–15.15.
+fn haze() -> R<HomogeneousFog> {
+    Ok(HomogeneousFog::new(
         DVec3::new(1.2e-5, 1.5e-5, 2.0e-5),
         DVec3::new(0.80, 0.84, 0.92),
-    )?;
+    )?)
+}
+
+/// The terrain seen from a rise at its southern edge, `above` metres over
+/// the ground, looking north and down by `pitch` (radians) under a high
+/// morning sun through `medium`, coloured by `texture` with the level of
+/// detail the pixel's footprint sets (ss × ss rays a pixel).
+#[allow(clippy::too_many_arguments)]
+fn render<M: Medium>(
+    hf: &HeightField,
+    texture: &Git,
+    (w, h): (u32, u32),
+    ss: usize,
+    medium: &M,
+    sky: fn(Vec3) -> Vec3,
+    above: f32,
+    pitch: f32,
+) -> R<Image> {
+    let tracer = MipmapTracer::new(hf)?;
     let fov = 40f32.to_radians();
     // The footprint of one ray: the pixel's angle over the rays per side.
     let ray_angle = f64::from(fov) / f64::from(h) / ss as f64;
@@ -73,15 +91,17 @@ fn render(hf: &HeightField, texture: &Git, (w, h): (u32, u32), ss: usize) -> R<I
     let scene = Landscape {
         tracer: &tracer,
         albedo: &albedo,
-        medium: &haze,
+        medium,
         sun: Vec3::new(0.45, -0.55, 0.70).normalize(),
-        sky: desert_sky,
+        sky,
         shadows: false,
     };
-    let x0 = 3000.0;
-    let ground = hf.height_at(x0, 250.0).unwrap_or(0.0).max(0.0);
-    let eye = Vec3::new(x0, 250.0, ground + 260.0);
-    let camera = PinholeCamera::look_at(eye, eye + Vec3::new(0.0, 1.0, -0.16), Vec3::Z, fov, w, h)?;
+    let side = (hf.nx() - 1) as f32 * hf.cell_size();
+    let (x0, y0) = (side * 0.5, side / 24.0);
+    let ground = hf.height_at(x0, y0).unwrap_or(0.0).max(0.0);
+    let eye = Vec3::new(x0, y0, ground + above);
+    let (s, c) = pitch.sin_cos();
+    let camera = PinholeCamera::look_at(eye, eye + Vec3::new(0.0, c, -s), Vec3::Z, fov, w, h)?;
     supersampled(w, h, ss, |x, y| {
         scene.look(eye, camera.ray_at(x, y).dir.normalize())
     })
@@ -93,9 +113,11 @@ pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
     let hf = slickrock_field(seed, quick)?;
     let size = if quick { (320, 180) } else { (1200, 675) };
     let ss = if quick { 1 } else { 2 };
+    let haze = haze()?;
+    let view = |t: &Git| render(&hf, t, size, ss, &haze, desert_sky, 260.0, 0.16f32.atan());
     Ok(vec![
-        render(&hf, &slickrock_i_texture(seed)?, size, ss)?,
-        render(&hf, &slickrock_iii_texture(seed)?, size, ss)?,
+        view(&slickrock_i_texture(seed)?)?,
+        view(&slickrock_iii_texture(seed)?)?,
     ])
 }
 
@@ -105,7 +127,16 @@ pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
 pub(crate) fn git_filtered(seed: u64, quick: bool) -> R<Image> {
     let hf = slickrock_field(seed, quick)?;
     let small = if quick { (107, 60) } else { (400, 225) };
-    let picture = render(&hf, &slickrock_i_texture(seed)?, small, 2)?;
+    let picture = render(
+        &hf,
+        &slickrock_i_texture(seed)?,
+        small,
+        2,
+        &haze()?,
+        desert_sky,
+        260.0,
+        0.16f32.atan(),
+    )?;
     Ok(git_filter(
         &picture,
         &GitFilterParams {
@@ -117,10 +148,79 @@ pub(crate) fn git_filtered(seed: u64, quick: bool) -> R<Image> {
     )?)
 }
 
+/// Plate 4.1's mist: Musgrave's Rayleigh approximation, extinction in the
+/// ratio 1 : 3 : 20 (red : green : blue), 4·10⁻⁶ per metre in red at the
+/// valley floor, falling by e every 1500 m; off-white, "as seen at the
+/// horizon" (the source gives neither number).
+fn rayleigh_mist() -> R<ExponentialMist> {
+    Ok(ExponentialMist::new(
+        RayleighRgb::musgrave_1_3_20(4.0e-6),
+        DVec3::new(0.93, 0.92, 0.88),
+        0.0,
+        1500.0,
+    )?)
+}
+
+/// Plate 4.1, "Slickrock": ridged terrain 24 km across and 1.8 km high
+/// (the ridged basis, first wavelength 7 km) in the subtle strata colour of
+/// Fig. 15.13, level of detail by footprint, seen through exponential mist
+/// with the Rayleigh approximation over a black background: the mist
+/// alone makes the sky blue overhead and off-white at the horizon, and the
+/// far ridges bluer and paler.
+pub(crate) fn plate(seed: u64, quick: bool) -> R<Image> {
+    let n = if quick { 257 } else { 1025 };
+    let hf = ridged_field(seed, n, 24_000.0, 7000.0, 0.2, 1800.0, |_, _| 1.0)?;
+    let (size, ss) = if quick {
+        ((320, 180), 1)
+    } else {
+        ((1200, 675), 2)
+    };
+    let texture = Git::new(GitParams {
+        txtscale: 1.0 / 1200.0,
+        ..*slickrock_i_texture(seed)?.params()
+    })?;
+    render(
+        &hf,
+        &texture,
+        size,
+        ss,
+        &rayleigh_mist()?,
+        |_| Vec3::ZERO,
+        600.0,
+        0.09,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use natura::texture::git::ColourEllipsoid;
+
+    #[test]
+    fn the_rayleigh_mist_blues_the_black_sky_and_pales_the_horizon() {
+        // Plate 4.1: over a black background the mist's own light is the
+        // sky: blue overhead (blue's extinction is 20 times red's) and
+        // nearly its off-white colour along the horizon.
+        use natura::atmos::Dir3;
+        let mist = rayleigh_mist().unwrap();
+        let o = DVec3::new(0.0, 0.0, 600.0);
+        let sky = |d: DVec3| {
+            mist.attenuation_to_infinity(o, Dir3::new(d).unwrap())
+                .apply(DVec3::ZERO)
+        };
+        let up = sky(DVec3::Z);
+        assert!(up.z > 4.0 * up.x && up.z > 2.0 * up.y, "{up}");
+        let fog = mist.params().fog_colour;
+        let level = sky(DVec3::Y);
+        assert!((level - fog).abs().max_element() < 1e-9, "{level}");
+        // Just above the horizon: pale in every channel, blue the palest.
+        let low = sky(DVec3::new(0.0, 1.0, 0.002));
+        assert!(low.min_element() > 0.75 && low.z / fog.z > low.x / fog.x, "{low}");
+        // A far ridge (20 km) is bluer than a near one (2 km).
+        let far = mist.composite(o, DVec3::new(0.0, 20_000.0, 600.0), DVec3::splat(0.2));
+        let near = mist.composite(o, DVec3::new(0.0, 2_000.0, 600.0), DVec3::splat(0.2));
+        assert!(far.z - far.x > 2.0 * (near.z - near.x), "{far} {near}");
+    }
 
     #[test]
     fn slickrock_iii_juxtaposes_colours_around_its_mean_along_its_axis() {
