@@ -123,6 +123,8 @@ enum Fig {
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
+    /// Pl. 4.2 (MKM 12): "Carolina": receding ridges in exponential mist
+    Carolina,
     /// Pl. 4.1: "Slickrock": ridged terrain in exponential mist with the
     /// Rayleigh approximation, over a black background
     SlickrockMist,
@@ -158,6 +160,7 @@ impl Figure for Fig {
         Fig::Planets,
         Fig::MilkyWay,
         Fig::SlickrockMist,
+        Fig::Carolina,
         Fig::Slickrock,
         Fig::GitFilter,
     ];
@@ -206,6 +209,7 @@ impl Figure for Fig {
             ],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
             Fig::SlickrockMist => &["musgrave_pl4-1_slickrock.png"],
+            Fig::Carolina => &["musgrave_pl4-2_carolina.png"],
             Fig::Slickrock => &[
                 "musgrave1998_fig15-13_slickrock_i.png",
                 "musgrave1998_fig15-14_slickrock_iii.png",
@@ -219,6 +223,8 @@ type R<T> = Result<T, Exit>;
 
 #[path = "musgrave/bay_fog.rs"]
 mod bay_fog;
+#[path = "musgrave/carolina.rs"]
+mod carolina;
 #[path = "musgrave/dla_fog.rs"]
 mod dla_fog;
 #[path = "musgrave/erosion.rs"]
@@ -289,6 +295,7 @@ fn figures() -> Run {
             Fig::Planets => planets::pictures(cli.seed, cli.quick)?,
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
             Fig::SlickrockMist => vec![slickrock::plate(cli.seed, cli.quick)?],
+            Fig::Carolina => vec![carolina::carolina(cli.seed, cli.quick)?],
             Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
             Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],
         })

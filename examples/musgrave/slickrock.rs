@@ -65,23 +65,32 @@ fn haze() -> R<HomogeneousFog> {
     )?)
 }
 
-/// The terrain seen from a rise at its southern edge, `above` metres over
-/// the ground, looking north and down by `pitch` (radians) under a high
+/// Where the camera looks: from `above` metres over the ground at the
+/// middle of the southern edge (a 24th of the way in), or at least at
+/// altitude `floor`, north and down by `pitch` radians, `fov` radians
+/// from the picture's top to bottom.
+#[derive(Clone, Copy)]
+pub(crate) struct View {
+    pub above: f32,
+    pub floor: f32,
+    pub pitch: f32,
+    pub fov: f32,
+}
+
+/// The terrain seen from `view` under a high
 /// morning sun through `medium`, coloured by `texture` with the level of
 /// detail the pixel's footprint sets (ss × ss rays a pixel).
-#[allow(clippy::too_many_arguments)]
-fn render<M: Medium>(
+pub(crate) fn render<M: Medium>(
     hf: &HeightField,
     texture: &Git,
     (w, h): (u32, u32),
     ss: usize,
     medium: &M,
     sky: fn(Vec3) -> Vec3,
-    above: f32,
-    pitch: f32,
+    view: View,
 ) -> R<Image> {
     let tracer = MipmapTracer::new(hf)?;
-    let fov = 40f32.to_radians();
+    let fov = view.fov;
     // The footprint of one ray: the pixel's angle over the rays per side.
     let ray_angle = f64::from(fov) / f64::from(h) / ss as f64;
     let albedo = |p: DVec3, distance: f64| {
@@ -99,13 +108,21 @@ fn render<M: Medium>(
     let side = (hf.nx() - 1) as f32 * hf.cell_size();
     let (x0, y0) = (side * 0.5, side / 24.0);
     let ground = hf.height_at(x0, y0).unwrap_or(0.0).max(0.0);
-    let eye = Vec3::new(x0, y0, ground + above);
-    let (s, c) = pitch.sin_cos();
+    let eye = Vec3::new(x0, y0, (ground + view.above).max(view.floor));
+    let (s, c) = view.pitch.sin_cos();
     let camera = PinholeCamera::look_at(eye, eye + Vec3::new(0.0, c, -s), Vec3::Z, fov, w, h)?;
     supersampled(w, h, ss, |x, y| {
         scene.look(eye, camera.ray_at(x, y).dir.normalize())
     })
 }
+
+/// The view of Figs. 15.13–15.15: 260 m over the rise, 9° down.
+const OVER_THE_RISE: View = View {
+    above: 260.0,
+    floor: 0.0,
+    pitch: 0.158_655_25,
+    fov: 0.698_131_7,
+};
 
 /// Figs. 15.13 and 15.14: the same slickrock under the random fBm colour
 /// and under the GIT texture.
@@ -114,7 +131,7 @@ pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
     let size = if quick { (320, 180) } else { (1200, 675) };
     let ss = if quick { 1 } else { 2 };
     let haze = haze()?;
-    let view = |t: &Git| render(&hf, t, size, ss, &haze, desert_sky, 260.0, 0.16f32.atan());
+    let view = |t: &Git| render(&hf, t, size, ss, &haze, desert_sky, OVER_THE_RISE);
     Ok(vec![
         view(&slickrock_i_texture(seed)?)?,
         view(&slickrock_iii_texture(seed)?)?,
@@ -134,8 +151,7 @@ pub(crate) fn git_filtered(seed: u64, quick: bool) -> R<Image> {
         2,
         &haze()?,
         desert_sky,
-        260.0,
-        0.16f32.atan(),
+        OVER_THE_RISE,
     )?;
     Ok(git_filter(
         &picture,
@@ -153,11 +169,18 @@ pub(crate) fn git_filtered(seed: u64, quick: bool) -> R<Image> {
 /// valley floor, falling by e every 1500 m; off-white, "as seen at the
 /// horizon" (the source gives neither number).
 fn rayleigh_mist() -> R<ExponentialMist> {
+    rayleigh_mist_of(4.0e-6, 1500.0)
+}
+
+/// Off-white mist whose extinction is `red` per metre in red at altitude 0
+/// and in Musgrave's Rayleigh ratio 1 : 3 : 20 across red, green and blue,
+/// falling by e every `scale_height` metres.
+pub(crate) fn rayleigh_mist_of(red: f64, scale_height: f64) -> R<ExponentialMist> {
     Ok(ExponentialMist::new(
-        RayleighRgb::musgrave_1_3_20(4.0e-6),
+        RayleighRgb::musgrave_1_3_20(red),
         DVec3::new(0.93, 0.92, 0.88),
         0.0,
-        1500.0,
+        scale_height,
     )?)
 }
 
@@ -186,8 +209,12 @@ pub(crate) fn plate(seed: u64, quick: bool) -> R<Image> {
         ss,
         &rayleigh_mist()?,
         |_| Vec3::ZERO,
-        600.0,
-        0.09,
+        View {
+            above: 600.0,
+            floor: 0.0,
+            pitch: 0.09,
+            fov: 0.698_131_7,
+        },
     )
 }
 
@@ -215,7 +242,10 @@ mod tests {
         assert!((level - fog).abs().max_element() < 1e-9, "{level}");
         // Just above the horizon: pale in every channel, blue the palest.
         let low = sky(DVec3::new(0.0, 1.0, 0.002));
-        assert!(low.min_element() > 0.75 && low.z / fog.z > low.x / fog.x, "{low}");
+        assert!(
+            low.min_element() > 0.75 && low.z / fog.z > low.x / fog.x,
+            "{low}"
+        );
         // A far ridge (20 km) is bluer than a near one (2 km).
         let far = mist.composite(o, DVec3::new(0.0, 20_000.0, 600.0), DVec3::splat(0.2));
         let near = mist.composite(o, DVec3::new(0.0, 2_000.0, 600.0), DVec3::splat(0.2));
