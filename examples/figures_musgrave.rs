@@ -128,6 +128,9 @@ enum Fig {
     /// Pl. 4.1: "Slickrock": ridged terrain in exponential mist with the
     /// Rayleigh approximation, over a black background
     SlickrockMist,
+    /// Musgrave 1998, figs. 15.7–15.8: "Spirit Lake" and "Lethe": lakes
+    /// under the ripples bump map
+    Lakes,
     /// Musgrave 1998, figs. 15.13–15.14: "Slickrock I" and "III": ridged
     /// terrain in random fBm colour and in a GIT texture
     Slickrock,
@@ -161,6 +164,7 @@ impl Figure for Fig {
         Fig::MilkyWay,
         Fig::SlickrockMist,
         Fig::Carolina,
+        Fig::Lakes,
         Fig::Slickrock,
         Fig::GitFilter,
     ];
@@ -210,6 +214,10 @@ impl Figure for Fig {
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
             Fig::SlickrockMist => &["musgrave_pl4-1_slickrock.png"],
             Fig::Carolina => &["musgrave_pl4-2_carolina.png"],
+            Fig::Lakes => &[
+                "musgrave1998_fig15-7_spirit_lake.png",
+                "musgrave1998_fig15-8_lethe.png",
+            ],
             Fig::Slickrock => &[
                 "musgrave1998_fig15-13_slickrock_i.png",
                 "musgrave1998_fig15-14_slickrock_iii.png",
@@ -233,6 +241,8 @@ mod erosion;
 mod full_circle_bow;
 #[path = "musgrave/gaea_selene.rs"]
 mod gaea_selene;
+#[path = "musgrave/lakes.rs"]
+mod lakes;
 #[path = "musgrave/landscape.rs"]
 mod landscape;
 #[path = "musgrave/mandala.rs"]
@@ -296,6 +306,7 @@ fn figures() -> Run {
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
             Fig::SlickrockMist => vec![slickrock::plate(cli.seed, cli.quick)?],
             Fig::Carolina => vec![carolina::carolina(cli.seed, cli.quick)?],
+            Fig::Lakes => lakes::pair(cli.seed, cli.quick)?,
             Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
             Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],
         })
@@ -339,7 +350,7 @@ fn misty_mountains(seed: u64, quick: bool) -> R<Image> {
         albedo: &strata_albedo(&strata),
         medium: &mist,
         sun: Vec3::new(-0.6, 0.5, 0.45).normalize(),
-        sky: misty_sky,
+        sky: &misty_sky,
         shadows: false,
     };
     let (w, h) = if quick { (320, 180) } else { (1200, 675) };
@@ -429,7 +440,7 @@ fn zabriskie(seed: u64, quick: bool) -> R<Image> {
         albedo: &strata_albedo(&strata),
         medium: &haze,
         sun: Vec3::new(-0.55, -0.45, 0.70).normalize(),
-        sky: desert_sky,
+        sky: &desert_sky,
         shadows: false,
     };
     let look = |o: Vec3, d: Vec3| scene.look(o, d);

@@ -57,7 +57,7 @@ pub(crate) fn bay_fog_picture(seed: u64, quick: bool) -> R<Image> {
         albedo: &strata_albedo(&strata),
         medium: &fog,
         sun: Vec3::new(0.5, 0.3, 0.55).normalize(),
-        sky: misty_sky,
+        sky: &misty_sky,
         shadows: true,
     };
     let (w, h) = if quick { (320, 180) } else { (1200, 675) };

@@ -28,7 +28,7 @@ pub(crate) struct Landscape<'a, M> {
     /// Towards the sun.
     pub sun: Vec3,
     /// The sky's radiance by direction, before the medium.
-    pub sky: fn(Vec3) -> Vec3,
+    pub sky: &'a dyn Fn(Vec3) -> Vec3,
     /// Whether the medium shades the sunlight too (a fog sheet's shadows).
     pub shadows: bool,
 }

@@ -102,7 +102,7 @@ pub(crate) fn render<M: Medium>(
         albedo: &albedo,
         medium,
         sun: Vec3::new(0.45, -0.55, 0.70).normalize(),
-        sky,
+        sky: &sky,
         shadows: false,
     };
     let side = (hf.nx() - 1) as f32 * hf.cell_size();
