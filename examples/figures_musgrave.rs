@@ -128,6 +128,9 @@ enum Fig {
     /// Pl. 4.1: "Slickrock": ridged terrain in exponential mist with the
     /// Rayleigh approximation, over a black background
     SlickrockMist,
+    /// Pl. 5.8 (Musgrave 1998, fig. 15.18): "Other State": Saturn over the
+    /// windywave sea
+    OtherState,
     /// Musgrave 1998, figs. 15.7–15.8: "Spirit Lake" and "Lethe": lakes
     /// under the ripples bump map
     Lakes,
@@ -164,6 +167,7 @@ impl Figure for Fig {
         Fig::MilkyWay,
         Fig::SlickrockMist,
         Fig::Carolina,
+        Fig::OtherState,
         Fig::Lakes,
         Fig::Slickrock,
         Fig::GitFilter,
@@ -214,6 +218,7 @@ impl Figure for Fig {
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],
             Fig::SlickrockMist => &["musgrave_pl4-1_slickrock.png"],
             Fig::Carolina => &["musgrave_pl4-2_carolina.png"],
+            Fig::OtherState => &["musgrave_pl5-8_other_state.png"],
             Fig::Lakes => &[
                 "musgrave1998_fig15-7_spirit_lake.png",
                 "musgrave1998_fig15-8_lethe.png",
@@ -249,6 +254,8 @@ mod landscape;
 mod mandala;
 #[path = "musgrave/milky_way.rs"]
 mod milky_way;
+#[path = "musgrave/other_state.rs"]
+mod other_state;
 #[path = "musgrave/patches.rs"]
 mod patches;
 #[path = "musgrave/planets.rs"]
@@ -306,6 +313,7 @@ fn figures() -> Run {
             Fig::MilkyWay => vec![milky_way::milky_way_picture(cli.seed, cli.quick)?],
             Fig::SlickrockMist => vec![slickrock::plate(cli.seed, cli.quick)?],
             Fig::Carolina => vec![carolina::carolina(cli.seed, cli.quick)?],
+            Fig::OtherState => vec![other_state::other_state(cli.seed, cli.quick)?],
             Fig::Lakes => lakes::pair(cli.seed, cli.quick)?,
             Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
             Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],

@@ -22,24 +22,25 @@ use crate::patches::rescaled;
 /// Water's reflectance at normal incidence (index 1.333).
 const F0: f32 = 0.02;
 
-/// A lake at `level` in a landscape: its surface the ripples bump map
-/// (natura-texture's `Ripples`, the book's noise-based water: two octaves
-/// of fBm with H = 3), reflecting the land and the sky by Schlick's
-/// Fresnel and showing the dark water below by the rest.
-struct Lake<'a, M> {
-    land: &'a Landscape<'a, M>,
-    level: f32,
-    ripples: &'a Ripples,
+/// A lake at `level` in a landscape: its surface a bump map (a texture's
+/// height gradient: the ripples, the book's noise-based water, or the
+/// windywave sea), reflecting the land and the sky by Schlick's Fresnel
+/// and showing the dark water below by the rest.
+pub(crate) struct Lake<'a, M> {
+    pub land: &'a Landscape<'a, M>,
+    pub level: f32,
+    pub ripples: &'a dyn SolidTexture,
     /// Ripple texture units per metre.
-    per_metre: f64,
+    pub per_metre: f64,
     /// The water's own colour, lit.
-    body: Vec3,
+    pub body: Vec3,
     /// Footprint of one ray per metre of distance.
-    ray_angle: f64,
+    pub ray_angle: f64,
 }
 
 impl<M: Medium> Lake<'_, M> {
-    fn look(&self, o: Vec3, d: Vec3) -> Vec3 {
+    /// The radiance reaching `o` from direction `d` (unit).
+    pub(crate) fn look(&self, o: Vec3, d: Vec3) -> Vec3 {
         let land = self.land.tracer.trace(&Ray::new(o, d), 0.0, f32::INFINITY);
         if d.z < 0.0 && o.z > self.level {
             let t = (self.level - o.z) / d.z;
@@ -74,7 +75,7 @@ impl<M: Medium> Lake<'_, M> {
 /// A camera at `eye` looking north, down by `pitch` radians, `fov`
 /// radians from top to bottom, and the footprint of one of `ss × ss` rays
 /// a pixel per metre of distance.
-fn camera(
+pub(crate) fn camera(
     eye: Vec3,
     pitch: f32,
     fov: f32,
