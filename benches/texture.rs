@@ -9,6 +9,8 @@
 //! * `texture_planet/gaea_orbit_1080p_2t`: the `planet` example's render —
 //!   displaced Earth-sized planet, atmosphere with umbra, clouds with
 //!   shadows — at 1920×1080, 1 sample per pixel, 2 threads (target ≤ 10 s);
+//! * `texture_git_filter/320x180_x4_2t`: the GIT image filter repainting a
+//!   320×180 picture at four times its size, 2 threads (output pixels/s);
 //! * `texture_cube/export_6x1024_2t`: the cube-sphere export of that planet,
 //!   six 1024² faces of height and colour sampled and written as EXR,
 //!   2 threads (target ≤ 10 s).
@@ -17,6 +19,7 @@
 //! cargo bench --bench texture -- texture_terran_orbit
 //! cargo bench --bench texture -- texture_planet
 //! cargo bench --bench texture -- texture_cube
+//! cargo bench --bench texture -- texture_git_filter
 //! ```
 
 use std::hint::black_box;
@@ -94,6 +97,10 @@ fn textures() -> Vec<(&'static str, Box<dyn SolidTexture>)> {
         (
             "multicolor",
             Box::new(Multicolor::new(MulticolorParams::default()).unwrap()),
+        ),
+        (
+            "git",
+            Box::new(natura::texture::git::Git::new(Default::default()).unwrap()),
         ),
     ]
 }
@@ -193,6 +200,27 @@ fn planet(c: &mut Criterion) {
     group.finish();
 }
 
+fn git_filter(c: &mut Criterion) {
+    use natura::core::Image;
+    use natura::core::glam::Vec3;
+    use natura::texture::git::{GitFilterParams, git_filter};
+    let picture = Image::from_fn(320, 180, |x, y| {
+        let (u, v) = (x as f32 / 320.0, y as f32 / 180.0);
+        Vec3::new(u, 0.5 + 0.4 * (u * 17.0).sin() * v, v * v)
+    })
+    .unwrap();
+    let params = GitFilterParams::default();
+    let p = pool(2);
+    let mut group = c.benchmark_group("texture_git_filter");
+    group.throughput(Throughput::Elements(320 * 180 * 16));
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(10));
+    group.bench_function("320x180_x4_2t", |b| {
+        p.install(|| b.iter(|| black_box(git_filter(&picture, &params, &NoProgress).unwrap())))
+    });
+    group.finish();
+}
+
 fn cube(c: &mut Criterion) {
     let planet = gaea();
     let dir = std::env::temp_dir().join(format!("natura-bench-cube-{}", std::process::id()));
@@ -215,5 +243,5 @@ fn cube(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-criterion_group!(benches, points, terran_orbit, planet, cube);
+criterion_group!(benches, points, terran_orbit, planet, git_filter, cube);
 criterion_main!(benches);
