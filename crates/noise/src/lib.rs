@@ -77,7 +77,7 @@ pub mod vector;
 pub mod warp;
 
 pub use basis::Fade;
-pub use basis::cellular::{Metric, Worley, WorleyFeature, WorleyParams};
+pub use basis::cellular::{FeaturePoints, Metric, Worley, WorleyFeature, WorleyParams};
 pub use basis::checker::Checkerboard;
 pub use basis::perlin::Perlin;
 pub use basis::simplex::Simplex;
