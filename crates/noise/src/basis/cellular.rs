@@ -582,6 +582,16 @@ impl Worley {
         }
     }
 
+    /// The value over a seed table's points, kept out of line (and off the
+    /// hot path's layout) so the one-point-per-cell path compiles as it did
+    /// before the tables.
+    #[cold]
+    #[inline(never)]
+    fn table_value(&self, t: &Table, p: [f64; 3], dims: usize) -> f64 {
+        let nan = !p[..dims].iter().all(|v| v.is_finite());
+        self.value_from(self.search_table(t, p, dims).0, nan)
+    }
+
     fn value_from(&self, best: [f64; 4], nan: bool) -> f64 {
         if nan {
             f64::NAN
@@ -640,7 +650,7 @@ impl Field for Worley {
     #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
         if let Some(t) = &self.table {
-            return self.value_from(self.search_table(t, [p.x, p.y, 0.0], 2).0, !p.is_finite());
+            return self.table_value(t, [p.x, p.y, 0.0], 2);
         }
         worley_dispatch!(self, f64, search_block2, (self, p))
             .unwrap_or_else(|| self.value_from(self.search2(p).0, !p.is_finite()))
@@ -648,7 +658,7 @@ impl Field for Worley {
     #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
         if let Some(t) = &self.table {
-            return self.value_from(self.search_table(t, p.to_array(), 3).0, !p.is_finite());
+            return self.table_value(t, p.to_array(), 3);
         }
         worley_dispatch!(self, f64, search_block3, (self, p))
             .unwrap_or_else(|| self.value_from(self.search3(p).0, !p.is_finite()))
