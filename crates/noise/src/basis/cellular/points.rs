@@ -375,6 +375,23 @@ impl Worley {
                             continue;
                         }
                         let d = [dx, dy, dz];
+                        // The least distance to the cell's box (grown by the
+                        // spill): a cell that cannot hold a point nearer than
+                        // the k-th so far (or the cap) cannot change the
+                        // values, so its points are not drawn.
+                        let gap: [f64; 3] = core::array::from_fn(|a| {
+                            let lo = d[a] as f64 - t.spill;
+                            let f = cell[a].1;
+                            (lo - f).max(f - (lo + 1.0 + 2.0 * t.spill)).max(0.0)
+                        });
+                        let near = if dims == 2 {
+                            m.d2(gap[0], gap[1])
+                        } else {
+                            m.d3(gap[0], gap[1], gap[2])
+                        };
+                        if near >= best[k - 1].min(cap) {
+                            continue;
+                        }
                         let idx: [u32; 3] =
                             core::array::from_fn(|a| cell[a].0.wrapping_add(d[a] as u32));
                         let h = if dims == 2 {
