@@ -14,6 +14,9 @@
 //!   against fastnoise-lite's `get_noise_2d`/`get_noise_3d` and noise-rs's
 //!   `get`; after each group the CPU-time rates and natura's ratio to each
 //!   peer are printed (`[noise] ratio ...`)
+//! * P9–P10 per-point 2-D and 3-D Worley F1 with seed table 4 (a Poisson
+//!   number of feature points per cell, mean 4), on the same point set;
+//!   natura alone (no peer has the tables)
 //!
 //! Throughput is reported in points per second (`Throughput::Elements`).
 //! Besides criterion's wall-clock figures, each single-thread contender's rate
@@ -31,8 +34,8 @@ use fastnoise_lite::{
 };
 use glam::{DVec2, DVec3};
 use natura::noise::{
-    Fbm, Field, GainConvention, Lattice2, Lattice3, Perlin, Simd, SimdLevel, Simplex, Spectral,
-    Worley, WorleyParams,
+    Fbm, FeaturePoints, Field, GainConvention, Lattice2, Lattice3, Perlin, Simd, SimdLevel,
+    Simplex, Spectral, Worley, WorleyParams,
 };
 use noise::{MultiFractal, NoiseFn};
 use rayon::prelude::*;
@@ -756,6 +759,24 @@ fn p_worley(c: &mut Criterion) {
     );
 }
 
+/// Worley F1 with seed table 4 (a Poisson number of points per cell, mean
+/// 4; Musgrave 2001, "The Seed Tables"), per point: no peer has the tables,
+/// so natura alone.
+fn p_worley_table4(c: &mut Criterion) {
+    let (n2, _, _) = points2();
+    let (n3, _, _) = points3();
+    let w = Worley::new(
+        1,
+        WorleyParams {
+            points: FeaturePoints::Poisson { density: 4.0 },
+            ..WorleyParams::default()
+        },
+    )
+    .unwrap();
+    point_group(c, "P9_worley_f1_table4_2d_point", vec![natura2(&w, &n2)]);
+    point_group(c, "P10_worley_f1_table4_3d_point", vec![natura3(&w, &n3)]);
+}
+
 fn p_fbm(c: &mut Criterion) {
     let (n2, f2, r2) = points2();
     let (n3, f3, r3) = points3();
@@ -788,6 +809,7 @@ criterion_group!(
     p_perlin,
     p_simplex,
     p_worley,
+    p_worley_table4,
     p_fbm
 );
 criterion_main!(benches);

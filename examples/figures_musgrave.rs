@@ -15,8 +15,8 @@
 //! jittered antialiasing (Pl. 4.10–4.11), the full-circle rainbow modulated by fBm (Pl.
 //! 4.12), "Bay Fog" (Pl. 5.1), the stages of the terran texture (Pl.
 //! 5.9a–f), the ridged basis built from the Perlin basis (Musgrave 2001,
-//! fig. 17), planets made from each basis and fractal
-//! (Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31), the multifractal Milky
+//! fig. 17), planets made from each basis, Voronoi seed table and fractal
+//! (Musgrave 2001, figs. 9, 13, 18–28, 31), the multifractal Milky
 //! Way (Musgrave 2001, fig. 32), and "Slickrock I" and "III" in random fBm
 //! colour and a GIT texture, and a picture repainted by the GIT filter
 //! (Musgrave 1998, figs. 15.13–15.15).
@@ -119,7 +119,7 @@ enum Fig {
     TerranStages,
     /// Musgrave 2001, fig. 17: the ridged basis built from the Perlin basis
     RidgedBasis,
-    /// Musgrave 2001, figs. 9, 13, 18–23, 25–28, 31: planets from each basis and fractal
+    /// Musgrave 2001, figs. 9, 13, 18–28, 31: planets from each basis, seed table and fractal
     Planets,
     /// Musgrave 2001, fig. 32: a multifractal Milky Way
     MilkyWay,
@@ -213,6 +213,7 @@ impl Figure for Fig {
             Fig::Planets => &[
                 "musgrave2001_fig09_roughness.png",
                 "musgrave2001_figs13_18-23_bases.png",
+                "musgrave2001_fig24_seed_tables.png",
                 "musgrave2001_figs25-28_31_fractals.png",
             ],
             Fig::MilkyWay => &["musgrave2001_fig32_milky_way.png"],

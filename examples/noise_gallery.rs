@@ -55,6 +55,7 @@ fn tiles(seed: u64) -> natura::noise::Result<Vec<Tile>> {
                 feature,
                 metric,
                 jitter: 1.0,
+                ..WorleyParams::default()
             },
         )
     };

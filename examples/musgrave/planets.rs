@@ -1,5 +1,5 @@
 //! "Building Planets" (Musgrave 2001): planets made from each basis
-//! function and fractal of natura-noise, as MojoWorld's figures show them.
+//! function, Voronoi seed table and fractal of natura-noise, as MojoWorld's figures show them.
 //! Each planet is the unit sphere, its relief the fractal at the sphere's
 //! point (bump-shaded by natura-texture's sphere preview, lit from the upper
 //! left), coloured by altitude (meadow, scrub, rock, snow) over a sea
@@ -8,9 +8,9 @@
 use natura::core::glam::{DVec3, Vec3};
 use natura::core::{Image, NoProgress};
 use natura::noise::{
-    Checkerboard, Displace, Fbm, Field, HeteroTerrain, HeteroTerrainParams, HybridMultifractal,
-    HybridParams, Metric, Perlin, Sine, SparseConvolution, SparseParams, Spectral, Steps, Value,
-    VecNoise, Warped, Worley, WorleyFeature, WorleyParams,
+    Checkerboard, Displace, Fbm, FeaturePoints, Field, HeteroTerrain, HeteroTerrainParams,
+    HybridMultifractal, HybridParams, Metric, Perlin, Sine, SparseConvolution, SparseParams,
+    Spectral, Steps, Value, VecNoise, Warped, Worley, WorleyFeature, WorleyParams,
 };
 use natura::texture::{Footprint, Sample, SolidTexture, TextureKind, preview};
 
@@ -200,6 +200,49 @@ pub(crate) fn bases(seed: u64, quick: bool) -> R<Image> {
     Ok(Image::contact_sheet(&out, 4, 4, Vec3::ZERO)?)
 }
 
+/// Fig. 24's seed tables in the caption's order (clockwise from the upper
+/// left): 1, 4, 4v and 4g. natura-noise's definitions (the source gives
+/// none): "n" a Poisson number of points per cell of mean n, "nv" that mean
+/// varying smoothly over space (0.2 to 1.8 times n), "ng" Gaussian clusters
+/// of varying spread (see `FeaturePoints`).
+pub(crate) const SEED_TABLES: [(&str, FeaturePoints); 4] = [
+    ("1", FeaturePoints::Poisson { density: 1.0 }),
+    ("4", FeaturePoints::Poisson { density: 4.0 }),
+    ("4v", FeaturePoints::Variable { density: 4.0 }),
+    ("4g", FeaturePoints::Gaussian { density: 4.0 }),
+];
+
+/// Voronoi F1 (distance) with the seed table `points`.
+fn voronoi(seed: u64, points: FeaturePoints) -> R<Worley> {
+    Ok(Worley::new(
+        seed,
+        WorleyParams {
+            feature: WorleyFeature::F1,
+            metric: Metric::Euclidean,
+            points,
+            ..WorleyParams::default()
+        },
+    )?)
+}
+
+/// Fig. 24: planets from fBm (H = 0.7, as Fig. 19's) of Voronoi F1 with
+/// seed tables 1, 4, 4v and 4g, going clockwise from the upper left as the
+/// caption has them: table 4's cells are smaller than table 1's, 4v's are
+/// small in some regions and large in others, 4g's come in knots of tiny
+/// cells among large ones.
+pub(crate) fn seed_tables(seed: u64, quick: bool) -> R<Image> {
+    let size = if quick { 64 } else { 300 };
+    let mut out = Vec::new();
+    for (_, points) in SEED_TABLES {
+        let planet = Planet::new(fbm(voronoi(seed, points)?, 0.7)?, 1.5, true);
+        out.push(draw(&planet, size)?);
+    }
+    // A 2×2 sheet fills row by row: clockwise from the upper left is
+    // sheet order 0, 1, 3, 2.
+    out.swap(2, 3);
+    Ok(Image::contact_sheet(&out, 2, 4, Vec3::ZERO)?)
+}
+
 /// Figs. 25–28 and 31: monofractal fBm (Perlin, roughness 0.3: H = 0.7)
 /// with and without oceans; heterofractal (natura-noise's heterogeneous
 /// terrain) and multifractal (its hybrid multifractal, which MojoWorld
@@ -323,11 +366,12 @@ impl<F: Field> Field for Scaled<F> {
     }
 }
 
-/// Figs. 9, 13, 18–23, 25–28 and 31.
+/// Figs. 9, 13, 18–23, 24, 25–28 and 31.
 pub(crate) fn pictures(seed: u64, quick: bool) -> R<Vec<Image>> {
     Ok(vec![
         roughness(seed, quick)?,
         bases(seed, quick)?,
+        seed_tables(seed, quick)?,
         fractals(seed, quick)?,
     ])
 }
@@ -344,6 +388,41 @@ mod tests {
         assert!((wet - SEA_COVER).abs() < 0.02, "{wet}");
         let dry = Planet::new(fbm(Perlin::new(3), 0.7).unwrap(), 1.5, false);
         assert!(sphere_points(1000).all(|p| !dry.is_sea(p)));
+    }
+
+    /// Fig. 24's tables differ as the caption's names say: table 4's
+    /// cells are smaller than table 1's (mean F1 over the sphere about
+    /// `4^{-1/3}` as large), 4v's sizes vary between regions of the sphere
+    /// more than 4's, and 4g's clusters leave wider gaps than 4's points.
+    #[test]
+    fn the_seed_tables_differ_as_named() {
+        let f1 = |points| {
+            let w = voronoi(5, points).unwrap();
+            sphere_points(20_000)
+                .map(|p| w.eval3(p * 6.0))
+                .collect::<Vec<f64>>()
+        };
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let [one, four, var, gauss] = SEED_TABLES.map(|(_, t)| f1(t));
+        let ratio = mean(&four) / mean(&one);
+        assert!((ratio - 0.25f64.cbrt()).abs() < 0.08, "{ratio}");
+        // The spread of the means of 400 patches of 50 neighbouring points
+        // (the Fibonacci lattice runs in bands, so these are strips).
+        let patches = |v: &[f64]| {
+            let m: Vec<f64> = v.chunks(50).map(mean).collect();
+            let mm = mean(&m);
+            (m.iter().map(|x| (x - mm).powi(2)).sum::<f64>() / m.len() as f64).sqrt() / mm
+        };
+        assert!(
+            patches(&var) > 1.5 * patches(&four),
+            "{} {}",
+            patches(&var),
+            patches(&four)
+        );
+        // Clusters leave gaps: at the same density, a random point's
+        // nearest feature point is farther in 4g than in 4.
+        let gaps = mean(&gauss) / mean(&four);
+        assert!(gaps > 1.15, "{gaps}");
     }
 
     #[test]

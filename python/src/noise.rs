@@ -238,6 +238,7 @@ fn build_basis(kind: &str, kw: &Kw<'_>) -> PyResult<(Arc<dyn Field>, Option<Perl
                 feature: kw.choice("feature", FEATURES, d.feature)?,
                 metric: kw.choice("metric", METRICS, d.metric)?,
                 jitter: kw.f64("jitter", d.jitter)?,
+                ..d
             };
             (Arc::new(Worley::new(seed, p).map_err(value_error)?), None)
         }

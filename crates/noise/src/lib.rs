@@ -14,7 +14,8 @@
 //! * **Bases** ([`basis`]): [`Perlin`] gradient noise (1-D to 4-D, quintic or
 //!   the sources' cubic fade), [`Value`] noise (1-D to 4-D; "Linear"),
 //!   [`Simplex`] (2-D, 3-D), [`Worley`] (F1–F4, F2−F1…, Euclidean, squared,
-//!   Manhattan, Chebyshev; exact search), [`SparseConvolution`], and
+//!   Manhattan, Chebyshev; one feature point per cell or MojoWorld's random
+//!   seed tables, [`FeaturePoints`]; exact search), [`SparseConvolution`], and
 //!   Musgrave's [`Sine`], [`Steps`] and [`Checkerboard`]; all seeded by a hash
 //!   of lattice position and seed (no 256-periodic table). Combinators:
 //!   [`Ridged`], [`Abs`], [`Transform`].
@@ -77,7 +78,7 @@ pub mod vector;
 pub mod warp;
 
 pub use basis::Fade;
-pub use basis::cellular::{Metric, Worley, WorleyFeature, WorleyParams};
+pub use basis::cellular::{FeaturePoints, Metric, Worley, WorleyFeature, WorleyParams};
 pub use basis::checker::Checkerboard;
 pub use basis::perlin::Perlin;
 pub use basis::simplex::Simplex;

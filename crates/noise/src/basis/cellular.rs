@@ -13,9 +13,19 @@
 //! block in SIMD lanes and redo the rare lanes that may need the next ring
 //! with the exact point path, so batch and point agree.
 //!
+//! The points may instead follow one of MojoWorld's random "seed tables"
+//! (Musgrave 2001, "The Seed Tables"): a Poisson number per cell of a chosen
+//! mean (Worley 1996), that mean varying in space, or clusters
+//! ([`FeaturePoints`]; the definitions, which the source leaves open, are in
+//! its documentation). Their search is exact too, up to a distance cap
+//! ([`CAP_DISTANCE`]), and their batch rows are the point values.
+//!
 //! Values are distances in lattice units (not re-centred to `[-1, 1]`, since
 //! the ridge structure is what users want from them); [`Field::bound`] is the
-//! largest possible value.
+//! largest possible value: with one point per cell, the largest distance to
+//! a point of the 3ⁿ block around the point's cell; with a seed table, the
+//! cap's distance under the metric (24, or 576 for
+//! [`Metric::EuclideanSquared`]).
 
 use glam::{DVec2, DVec3};
 
@@ -167,8 +177,13 @@ pub struct WorleyParams {
     /// The distance metric.
     pub metric: Metric,
     /// How far feature points stray from their cell centres, in `[0, 1]`:
-    /// 0 is a regular grid, 1 fills the whole cell (the default).
+    /// 0 is a regular grid, 1 fills the whole cell (the default). Used only
+    /// with one point per cell (the seed tables' points are random).
     pub jitter: f64,
+    /// How the feature points are spread over the cells: one per cell (the
+    /// default) or one of MojoWorld's seed tables (Musgrave 2001, "The Seed
+    /// Tables").
+    pub points: FeaturePoints,
 }
 
 impl Default for WorleyParams {
@@ -177,12 +192,14 @@ impl Default for WorleyParams {
             feature: WorleyFeature::F1,
             metric: Metric::Euclidean,
             jitter: 1.0,
+            points: FeaturePoints::OnePerCell,
         }
     }
 }
 
 impl WorleyParams {
-    /// Checks that the jitter lies in `[0, 1]`.
+    /// Checks that the jitter lies in `[0, 1]` and a seed table's density
+    /// in `[0.5, 16]`.
     ///
     /// # Errors
     /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain.
@@ -194,14 +211,17 @@ impl WorleyParams {
                 expected: "must be in [0, 1]",
             });
         }
-        Ok(())
+        self.points.validate()
     }
 }
 
 const SALT: u64 = 0x574F_524C; // "WORL"
 
 mod place;
+mod points;
 pub(crate) use place::{Cheb, Dist, Euclid, EuclidSq, Placement, Taxicab, insert_k};
+pub use points::{CAP_DISTANCE, FeaturePoints, MAX_DENSITY, MIN_DENSITY};
+use points::{Table, cap_value};
 
 /// Monomorphises a search for the metric and the feature (its rank `K` and
 /// how the sorted distances combine), over lane type `$t`: calls
@@ -238,6 +258,8 @@ pub struct Worley {
     seed: u64,
     s: u32,
     params: WorleyParams,
+    /// The seed table's draws, or `None` for one point per cell.
+    table: Option<Table>,
 }
 
 /// Sorted insertion of `d` into the 4 smallest so far, with the offset of
@@ -267,6 +289,7 @@ impl Worley {
             seed,
             s: seed32(seed, SALT),
             params,
+            table: Table::new(params.points, seed),
         })
     }
 
@@ -559,6 +582,16 @@ impl Worley {
         }
     }
 
+    /// The value over a seed table's points, kept out of line (and off the
+    /// hot path's layout) so the one-point-per-cell path compiles as it did
+    /// before the tables.
+    #[cold]
+    #[inline(never)]
+    fn table_value(&self, t: &Table, p: [f64; 3], dims: usize) -> f64 {
+        let nan = !p[..dims].iter().all(|v| v.is_finite());
+        self.value_from(self.search_table(t, p, dims).0, nan)
+    }
+
     fn value_from(&self, best: [f64; 4], nan: bool) -> f64 {
         if nan {
             f64::NAN
@@ -595,10 +628,16 @@ impl Worley {
     }
 
     fn lipschitz_n(&self, n: usize) -> f64 {
+        // Squared distance: the slope 2·d at the largest distance d.
+        let largest = if self.table.is_some() {
+            CAP_DISTANCE
+        } else {
+            2.0 * libm::sqrt(n as f64)
+        };
         let base = match self.params.metric {
             Metric::Euclidean | Metric::Chebyshev => 1.0,
             Metric::Manhattan => libm::sqrt(n as f64),
-            Metric::EuclideanSquared => 2.0 * 2.0 * libm::sqrt(n as f64),
+            Metric::EuclideanSquared => 2.0 * largest,
         };
         match self.params.feature {
             WorleyFeature::F1 | WorleyFeature::F2 | WorleyFeature::F3 | WorleyFeature::F4 => base,
@@ -610,16 +649,25 @@ impl Worley {
 impl Field for Worley {
     #[inline]
     fn eval2(&self, p: DVec2) -> f64 {
+        if let Some(t) = &self.table {
+            return self.table_value(t, [p.x, p.y, 0.0], 2);
+        }
         worley_dispatch!(self, f64, search_block2, (self, p))
             .unwrap_or_else(|| self.value_from(self.search2(p).0, !p.is_finite()))
     }
     #[inline]
     fn eval3(&self, p: DVec3) -> f64 {
+        if let Some(t) = &self.table {
+            return self.table_value(t, p.to_array(), 3);
+        }
         worley_dispatch!(self, f64, search_block3, (self, p))
             .unwrap_or_else(|| self.value_from(self.search3(p).0, !p.is_finite()))
     }
     fn eval_grad2(&self, p: DVec2) -> (f64, DVec2) {
-        let (best, at) = self.search2(p);
+        let (best, at) = match &self.table {
+            Some(t) => self.search_table(t, [p.x, p.y, 0.0], 2),
+            None => self.search2(p),
+        };
         let g = self.grad_from(&at, 2);
         (
             self.value_from(best, !p.is_finite()),
@@ -627,14 +675,21 @@ impl Field for Worley {
         )
     }
     fn eval_grad3(&self, p: DVec3) -> (f64, DVec3) {
-        let (best, at) = self.search3(p);
+        let (best, at) = match &self.table {
+            Some(t) => self.search_table(t, p.to_array(), 3),
+            None => self.search3(p),
+        };
         (
             self.value_from(best, !p.is_finite()),
             DVec3::from_array(self.grad_from(&at, 3)),
         )
     }
     fn bound(&self) -> f64 {
-        self.max_distance(3)
+        if self.table.is_some() {
+            cap_value(self.params.metric)
+        } else {
+            self.max_distance(3)
+        }
     }
     fn lipschitz2(&self) -> f64 {
         self.lipschitz_n(2)
@@ -644,7 +699,9 @@ impl Field for Worley {
     }
 
     fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        if !crate::basis::row_in_fast_range(origin.x, step, out.len())
+        // The seed tables have no batch kernel: their rows are the point values.
+        if self.table.is_some()
+            || !crate::basis::row_in_fast_range(origin.x, step, out.len())
             || !origin.y.is_finite()
             || origin.y.abs() > 1e15
         {
@@ -678,7 +735,8 @@ impl Field for Worley {
     }
 
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
-        if !crate::basis::row_in_fast_range(origin.x, step, out.len())
+        if self.table.is_some()
+            || !crate::basis::row_in_fast_range(origin.x, step, out.len())
             || !origin.is_finite()
             || origin.y.abs().max(origin.z.abs()) > 1e15
         {

@@ -61,6 +61,7 @@ fn worleys() -> Vec<Worley> {
                         feature,
                         metric,
                         jitter: 1.0,
+                        ..WorleyParams::default()
                     },
                 )
                 .unwrap(),
@@ -109,6 +110,7 @@ fn worley_search_is_exact_and_ordered() {
                     feature,
                     metric,
                     jitter: 1.0,
+                    ..WorleyParams::default()
                 },
             )
             .unwrap()

@@ -15,3 +15,4 @@ mod perlin;
 mod robustness;
 mod serde_round_trips;
 mod simplex_bits;
+mod worley_tables;

@@ -6,10 +6,10 @@
 
 use glam::{DVec2, DVec3};
 use natura_noise::{
-    CascadeForm, Constant, Fade, Fbm, Field, GainConvention, HeteroTerrainParams, HybridParams,
-    Lattice2, Lattice3, Metric, MultifractalParams, NoiseError, Perlin, RidgedParams, SparseKernel,
-    SparseParams, Spectral, StatsByAltitudeParams, TwistLaw, ValueInterp, Worley, WorleyFeature,
-    WorleyParams,
+    CascadeForm, Constant, Fade, Fbm, FeaturePoints, Field, GainConvention, HeteroTerrainParams,
+    HybridParams, Lattice2, Lattice3, Metric, MultifractalParams, NoiseError, Perlin, RidgedParams,
+    SparseKernel, SparseParams, Spectral, StatsByAltitudeParams, TwistLaw, ValueInterp, Worley,
+    WorleyFeature, WorleyParams,
 };
 use serde::{Deserialize, Serialize};
 
@@ -89,6 +89,7 @@ fn everything() -> Everything {
             feature: WorleyFeature::F2MinusF1,
             metric: Metric::Chebyshev,
             jitter: 0.9,
+            points: FeaturePoints::Gaussian { density: 4.0 },
         },
         metrics: vec![
             Metric::Euclidean,
@@ -195,4 +196,16 @@ fn invalid_values_from_a_file_are_still_refused() {
         toml::from_str::<WorleyParams>("feature = \"F5\"\nmetric = \"Euclidean\"\njitter = 1.0")
             .is_err()
     );
+    // A seed table read from a file: its density is still validated.
+    let w: WorleyParams = toml::from_str("[points.variable]\ndensity = 0.0").unwrap();
+    assert_eq!(w.points, FeaturePoints::Variable { density: 0.0 });
+    assert!(matches!(
+        Worley::new(1, w).unwrap_err(),
+        NoiseError::InvalidParam {
+            name: "points.density",
+            ..
+        }
+    ));
+    let w: WorleyParams = toml::from_str("points = \"one_per_cell\"").unwrap();
+    assert_eq!(w, WorleyParams::default());
 }

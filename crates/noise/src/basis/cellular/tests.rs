@@ -73,6 +73,7 @@ fn staged_search_equals_brute_force() {
                     feature,
                     metric,
                     jitter,
+                    ..WorleyParams::default()
                 };
                 let w = Worley::new(11, params).unwrap();
                 for k in 0..300 {
