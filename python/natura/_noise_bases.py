@@ -43,14 +43,36 @@ class Simplex(Basis):
 
 
 class Worley(Basis):
-    """Worley (cellular) noise: the distance `feature` (f1..f4, f2_minus_f1, ...) under `metric`."""
+    """Worley (cellular) noise: the distance `feature` (f1..f4, f2_minus_f1, ...) under `metric`.
+
+    `feature_points` (the Rust ``WorleyParams::points``; ``points`` names
+    the coordinates here) chooses the feature points: ``"one_per_cell"`` (the default,
+    jittered by `jitter`) or one of MojoWorld's seed tables, ``"poisson"``
+    (a Poisson count of mean `density` per cell), ``"variable"`` (that mean
+    varying in space) or ``"gaussian"`` (clustered); `density` in [0.5, 16]
+    is used by the tables only.
+    """
 
     kind = "worley"
 
     def __init__(
-        self, *, seed: int = 0, feature: str = "f1", metric: str = "euclidean", jitter: float = 1.0
+        self,
+        *,
+        seed: int = 0,
+        feature: str = "f1",
+        metric: str = "euclidean",
+        jitter: float = 1.0,
+        feature_points: str = "one_per_cell",
+        density: float = 4.0,
     ) -> None:
-        super().__init__(seed=seed, feature=feature, metric=metric, jitter=jitter)
+        super().__init__(
+            seed=seed,
+            feature=feature,
+            metric=metric,
+            jitter=jitter,
+            feature_points=feature_points,
+            density=density,
+        )
 
 
 class SparseConvolution(Basis):
@@ -206,15 +228,26 @@ def worley(
     feature: str = "f1",
     metric: str = "euclidean",
     jitter: float = 1.0,
+    feature_points: str = "one_per_cell",
+    density: float = 4.0,
 ) -> np.ndarray:
     """Worley (cellular) noise: the distance `feature` (f1..f4, f2_minus_f1, ...) under `metric`.
 
     Evaluated at ``points`` (float32/float64, shape ``(..., 2)`` or
     ``(..., 3)``); returns float32 of shape ``points.shape[:-1]``.
-    Parameters ``seed``, ``feature``, ``metric``, ``jitter``: as the Rust ``Worley`` and its ``Params``.
+    Parameters ``seed``, ``feature``, ``metric``, ``jitter``: as the Rust ``Worley`` and its ``Params``;
+    ``feature_points`` and ``density``: its ``points`` (see :class:`Worley`).
     """
     return _native.noise_points(
-        {"kind": "worley", "seed": seed, "feature": feature, "metric": metric, "jitter": jitter},
+        {
+            "kind": "worley",
+            "seed": seed,
+            "feature": feature,
+            "metric": metric,
+            "jitter": jitter,
+            "feature_points": feature_points,
+            "density": density,
+        },
         points,
     )
 
@@ -228,15 +261,27 @@ def worley_grid(
     feature: str = "f1",
     metric: str = "euclidean",
     jitter: float = 1.0,
+    feature_points: str = "one_per_cell",
+    density: float = 4.0,
 ) -> np.ndarray:
     """Worley (cellular) noise: the distance `feature` (f1..f4, f2_minus_f1, ...) under `metric`.
 
     On the lattice ``origin + index * step`` (``shape`` ``(ny, nx)`` or
     ``(nz, ny, nx)``; ``origin`` defaults to zeros, ``step`` to ones);
-    returns float32 of shape ``shape``. Parameters ``seed``, ``feature``, ``metric``, ``jitter``: as the Rust ``Worley`` and its ``Params``.
+    returns float32 of shape ``shape``. Parameters ``seed``, ``feature``, ``metric``, ``jitter``:
+    as the Rust ``Worley`` and its ``Params``; ``feature_points`` and ``density``: its ``points``
+    (see :class:`Worley`).
     """
     return _grid(
-        {"kind": "worley", "seed": seed, "feature": feature, "metric": metric, "jitter": jitter},
+        {
+            "kind": "worley",
+            "seed": seed,
+            "feature": feature,
+            "metric": metric,
+            "jitter": jitter,
+            "feature_points": feature_points,
+            "density": density,
+        },
         shape,
         origin,
         step,

@@ -6,10 +6,10 @@ use std::sync::Arc;
 
 use natura_noise::glam::{DVec2, DVec3};
 use natura_noise::{
-    CascadeForm, Checkerboard, DistNoise, Fade, Fbm, Field, FilteredFbm, GainConvention,
-    HeteroTerrain, HeteroTerrainParams, HybridMultifractal, HybridParams, Lattice2, Lattice3,
-    Metric, Multifractal, MultifractalParams, Perlin, RidgedMultifractal, RidgedParams, Simplex,
-    Sine, SparseConvolution, SparseKernel, SparseParams, Spectral, StatsByAltitude,
+    CascadeForm, Checkerboard, DistNoise, Fade, Fbm, FeaturePoints, Field, FilteredFbm,
+    GainConvention, HeteroTerrain, HeteroTerrainParams, HybridMultifractal, HybridParams, Lattice2,
+    Lattice3, Metric, Multifractal, MultifractalParams, Perlin, RidgedMultifractal, RidgedParams,
+    Simplex, Sine, SparseConvolution, SparseKernel, SparseParams, Spectral, StatsByAltitude,
     StatsByAltitudeParams, Steps, Turbulence, Value, ValueInterp, VlNoise, Worley, WorleyFeature,
     WorleyParams,
 };
@@ -34,6 +34,21 @@ const FEATURES: &[(&str, WorleyFeature)] = &[
     ("f2_minus_f1", WorleyFeature::F2MinusF1),
     ("f3_minus_f2", WorleyFeature::F3MinusF2),
     ("f4_minus_f3", WorleyFeature::F4MinusF3),
+];
+/// The feature-point distributions (`WorleyParams::points`) by name; a
+/// table's density is the separate keyword `density`.
+#[derive(Clone, Copy)]
+enum Table {
+    OnePerCell,
+    Poisson,
+    Variable,
+    Gaussian,
+}
+const TABLES: &[(&str, Table)] = &[
+    ("one_per_cell", Table::OnePerCell),
+    ("poisson", Table::Poisson),
+    ("variable", Table::Variable),
+    ("gaussian", Table::Gaussian),
 ];
 const METRICS: &[(&str, Metric)] = &[
     ("euclidean", Metric::Euclidean),
@@ -122,6 +137,8 @@ fn defaults(kind: &str) -> Option<Vec<(&'static str, Dv)>> {
             ("feature", Dv::S(name_of(FEATURES, w.feature))),
             ("metric", Dv::S(name_of(METRICS, w.metric))),
             ("jitter", Dv::F(w.jitter)),
+            ("feature_points", Dv::S("one_per_cell")),
+            ("density", Dv::F(4.0)),
         ],
         "sparse_convolution" => vec![
             ("seed", Dv::I(0)),
@@ -234,11 +251,20 @@ fn build_basis(kind: &str, kw: &Kw<'_>) -> PyResult<(Arc<dyn Field>, Option<Perl
         "worley" => {
             let d = WorleyParams::default();
             let seed = seed(kw)?;
+            // `feature_points`: Python's name for `points`, which there names the
+            // coordinates evaluated.
+            let table = kw.choice("feature_points", TABLES, Table::OnePerCell)?;
+            let density = kw.f64("density", 4.0)?;
             let p = WorleyParams {
                 feature: kw.choice("feature", FEATURES, d.feature)?,
                 metric: kw.choice("metric", METRICS, d.metric)?,
                 jitter: kw.f64("jitter", d.jitter)?,
-                ..d
+                points: match table {
+                    Table::OnePerCell => FeaturePoints::OnePerCell,
+                    Table::Poisson => FeaturePoints::Poisson { density },
+                    Table::Variable => FeaturePoints::Variable { density },
+                    Table::Gaussian => FeaturePoints::Gaussian { density },
+                },
             };
             (Arc::new(Worley::new(seed, p).map_err(value_error)?), None)
         }

@@ -108,9 +108,29 @@ def test_bad_spectral_values_raise_value_error_naming_them(kwargs, name):
         noise.fbm(points2(), **kwargs)
 
 
+def test_worley_seed_tables():
+    # MojoWorld's seed tables: denser tables give smaller cells (F1 about
+    # n^(-1/2) in 2-D), deterministic, and the default is one point a cell.
+    p = np.stack(np.meshgrid(np.linspace(0, 40, 120), np.linspace(0, 40, 120)), -1).reshape(-1, 2)
+    one = noise.worley(p, seed=3)
+    assert np.array_equal(one, noise.worley(p, seed=3, feature_points="one_per_cell"))
+    four = noise.worley(p, seed=3, feature_points="poisson", density=4.0)
+    assert np.array_equal(four, noise.worley(p, seed=3, feature_points="poisson", density=4.0))
+    assert 0.35 < four.mean() / one.mean() < 0.7
+    for table in ("variable", "gaussian"):
+        v = noise.worley(p, seed=3, feature_points=table, density=4.0)
+        assert np.all(np.isfinite(v)) and not np.array_equal(v, four)
+    g = noise.worley_grid((8, 8), seed=3, feature_points="gaussian", density=2.0)
+    assert g.shape == (8, 8) and np.all(np.isfinite(g))
+
+
 def test_bad_parameters_of_bases_and_fractals_name_them():
     with pytest.raises(ValueError, match="jitter"):
         noise.worley(points2(), jitter=1.5)
+    with pytest.raises(ValueError, match="density"):
+        noise.worley(points2(), feature_points="poisson", density=0.0)
+    with pytest.raises(ValueError, match="feature_points"):
+        noise.worley(points2(), feature_points="hexagonal")
     with pytest.raises(ValueError, match="density"):
         noise.sparse_convolution(points2(), density=17)
     with pytest.raises(ValueError, match="threshold"):
