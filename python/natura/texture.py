@@ -28,8 +28,8 @@ from natura import _native, _progress
 from natura._progress import ProgressArg
 
 __all__ = [
-    "NAMES", "PLANETS", "PlanetMap", "Samples", "defaults", "equirect", "planet",
-    "planet_defaults", "sample",
+    "NAMES", "PLANETS", "PlanetMap", "Samples", "colour_ellipsoid", "defaults", "equirect",
+    "git_filter", "git_filter_defaults", "planet", "planet_defaults", "sample",
 ]
 
 #: The planet presets (the Rust ``PlanetParams::gaea``, ``venus``,
@@ -54,6 +54,36 @@ class Samples(NamedTuple):
 def defaults(name: str) -> Dict[str, Any]:
     """The texture's Rust ``Params::default()`` as a dict."""
     return _native.texture_defaults(name)
+
+
+def colour_ellipsoid(colours: np.ndarray) -> Dict[str, Any]:
+    """The colour ellipsoid (the Rust ``ColourEllipsoid::from_colours``:
+    mean, principal axes, spreads) of the rows of ``colours`` (float32 or
+    float64 ``(n, 3)``, display RGB in [0, 1], at least two), as the dict
+    the ``git`` texture's ``ellipsoid`` parameter takes::
+
+        texture.sample("git", points, ellipsoid=texture.colour_ellipsoid(palette))
+    """
+    return _native.colour_ellipsoid(colours)
+
+
+def git_filter(image: np.ndarray, *, progress: ProgressArg = None, **params: Any) -> np.ndarray:
+    """The picture ``image`` (linear RGB, float32 ``(height, width, 3)``)
+    repainted in brush strokes by the GIT filter (the Rust
+    ``git::git_filter``; ``params`` are the fields of ``GitFilterParams``,
+    :func:`git_filter_defaults`): float32 ``(height·expand, width·expand,
+    3)``. ``progress`` hears one unit per row of each of its three
+    passes."""
+    cb = _progress.reporter(progress)
+    try:
+        return _native.git_filter(image, params, cb)
+    finally:
+        _progress.closing(cb)
+
+
+def git_filter_defaults() -> Dict[str, Any]:
+    """The Rust ``GitFilterParams::default()`` as a dict."""
+    return _native.git_filter_defaults()
 
 
 def sample(name: str, points: np.ndarray, *, footprint: float = 1e-3, **params: Any) -> Samples:

@@ -4,11 +4,12 @@
 
 use natura_atmos::Dir3;
 use natura_atmos::sky::{Atmosphere, AtmosphereParams};
+use natura_core::{Grid2, Image};
 use natura_texture::air::{Cyclone, PlanetClouds, PuffyClouds, Venus};
 use natura_texture::earth::{Luna, Ridge, Strata, Terran};
 use natura_texture::fire::Flame;
 use natura_texture::giants::{GasGiant, Rings};
-use natura_texture::git::Git;
+use natura_texture::git::{ColourEllipsoid, Git, GitFilterParams};
 use natura_texture::glam::{DVec3, Vec3};
 use natura_texture::multicolor::Multicolor;
 use natura_texture::planet::{Planet, PlanetParams};
@@ -19,7 +20,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::args::{floats, rgb_array, run, run_sized, value_error};
+use crate::args::{f32_array, floats, image_array, rgb_array, run, run_sized, value_error};
 use crate::progress::PyProgress;
 use crate::values::{from_params, from_value, overlay, to_params, to_toml};
 
@@ -271,11 +272,66 @@ fn atmosphere_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     to_params(py, &AtmosphereParams::default())
 }
 
+/// `git_filter(image, params, progress)`: the picture `image` (linear RGB,
+/// float32 `(height, width, 3)`) repainted by natura-texture's GIT filter
+/// (`git_filter`, `GitFilterParams` from `params`): float32 `(height·e,
+/// width·e, 3)` for the enlargement `e = params["expand"]`.
+#[pyfunction]
+#[pyo3(signature = (image, params, progress=None))]
+fn git_filter<'py>(
+    py: Python<'py>,
+    image: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let (data, shape) = f32_array(image, "image", 3, "rows, columns, RGB")?;
+    if shape[2] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "image must have shape (height, width, 3), not {shape:?}"
+        )));
+    }
+    let pixels: Vec<Vec3> = data
+        .chunks_exact(3)
+        .map(|c| Vec3::new(c[0], c[1], c[2]))
+        .collect();
+    let grid = Grid2::from_vec(shape[1], shape[0], pixels).map_err(value_error)?;
+    let p: GitFilterParams = from_params(params, "git_filter")?;
+    let sink = PyProgress::new(progress);
+    let out = run(py, || {
+        natura_texture::git::git_filter(&Image::from_grid(grid), &p, &sink).map_err(value_error)
+    });
+    let img = sink.finish_call(out)?;
+    image_array(py, &img)
+}
+
+/// `git_filter_defaults()`: `GitFilterParams::default()` as a dict.
+#[pyfunction]
+fn git_filter_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_params(py, &GitFilterParams::default())
+}
+
+/// `colour_ellipsoid(colours)`: the `ColourEllipsoid` of the rows of the
+/// float `(n, 3)` array `colours` (display RGB in `[0, 1]`, at least two)
+/// by principal components, as the dict the `git` texture's `ellipsoid`
+/// parameter takes.
+#[pyfunction]
+fn colour_ellipsoid<'py>(
+    py: Python<'py>,
+    colours: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let c = points3(colours, "colours")?;
+    let e = ColourEllipsoid::from_colours(&c).map_err(value_error)?;
+    to_params(py, &e)
+}
+
 /// Adds the texture and sky functions to `m`.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("TEXTURE_NAMES", NAMES.to_vec())?;
     m.add_function(wrap_pyfunction!(texture_sample, m)?)?;
     m.add_function(wrap_pyfunction!(texture_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(git_filter, m)?)?;
+    m.add_function(wrap_pyfunction!(git_filter_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(colour_ellipsoid, m)?)?;
     m.add_function(wrap_pyfunction!(sky_radiance, m)?)?;
     m.add_function(wrap_pyfunction!(atmosphere_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(planet_equirect, m)?)?;

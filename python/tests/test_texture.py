@@ -44,6 +44,38 @@ def test_equirect_is_the_texture_on_the_sphere():
     np.testing.assert_allclose(img[2, 5], s.colour[0].astype(np.float32), rtol=1e-6, atol=1e-7)
 
 
+def test_git_texture_from_a_palette_and_the_git_filter():
+    palette = np.array([[0.78, 0.52, 0.36], [0.66, 0.42, 0.30], [0.72, 0.50, 0.40], [0.60, 0.36, 0.24]])
+    e = texture.colour_ellipsoid(palette)
+    np.testing.assert_allclose(e["mean"], palette.mean(axis=0), rtol=1e-12)
+    assert len(e["axes"]) == 3 and e["sigma"][0] >= e["sigma"][1] >= e["sigma"][2] >= 0.0
+    s = texture.sample("git", points3() * 3.0, ellipsoid=e)
+    assert np.all((s.colour >= 0.0) & (s.colour <= 1.0))
+    # The filter: an image four times larger, finite, deterministic; a flat
+    # picture stays flat.
+    img = np.zeros((12, 16, 3), dtype=np.float32)
+    img[..., 0] = np.linspace(0.0, 1.0, 16, dtype=np.float32)
+    img[..., 1] = 0.4
+    out = texture.git_filter(img, seed=3)
+    assert out.shape == (48, 64, 3) and out.dtype == np.float32 and np.all(np.isfinite(out))
+    assert np.array_equal(out, texture.git_filter(img, seed=3))
+    flat = texture.git_filter(np.full((6, 5, 3), 0.2, dtype=np.float32), expand=2)
+    assert flat.shape == (12, 10, 3) and np.allclose(flat, 0.2, atol=1e-4)
+    assert texture.git_filter_defaults()["expand"] == 4
+    with pytest.raises(ValueError, match="expand"):
+        texture.git_filter(img, expand=0)
+    with pytest.raises(ValueError, match="image"):
+        texture.git_filter(np.zeros((4, 4, 2), dtype=np.float32))
+    with pytest.raises(TypeError, match="image"):
+        texture.git_filter(np.zeros((4, 4, 3), dtype=np.float64))
+    bad = img.copy()
+    bad[2, 3, 1] = np.nan
+    with pytest.raises(ValueError, match="image"):
+        texture.git_filter(bad)
+    with pytest.raises(ValueError, match="colours"):
+        texture.colour_ellipsoid(palette[:1])
+
+
 def test_bad_names_values_and_arrays_are_named():
     with pytest.raises(ValueError, match="name"):
         texture.sample("marble", np.zeros((1, 3)))
