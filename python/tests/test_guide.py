@@ -21,9 +21,10 @@ BLOCKS = [
 
 def test_the_pages_have_their_python_blocks():
     # the guide: noise, terrain, L-systems, ecosystems, ocean, volumes,
-    # smoke, textures and sky, render; one in each README
-    assert [p.name for p, _ in BLOCKS].count("python.md") == 10
-    assert len(BLOCKS) == 12
+    # smoke, textures and sky, the GIT texture and filter, render; one in
+    # each README
+    assert [p.name for p, _ in BLOCKS].count("python.md") == 11
+    assert len(BLOCKS) == 13
 
 
 @pytest.mark.parametrize("index", range(len(BLOCKS)))
