@@ -588,6 +588,33 @@ impl<'s> FastRenderer<'s> {
         super::render_image(camera, |o, d, _, _| self.radiance(o, d), "render", progress)
     }
 
+    /// `camera`'s image from `s × s` rays a pixel on a regular grid,
+    /// resolved by natura-core's camera pixel filter (a Gaussian of σ = ½
+    /// pixel over each pixel's and its neighbours' rays, as a lens spreads
+    /// light): the edges of solids and of thin wisps antialiased, where
+    /// [`FastRenderer::render`] takes the one ray through each pixel's
+    /// centre. Reports the stage `"render"` with one unit per row of rays.
+    ///
+    /// # Errors
+    ///
+    /// [`VolumeError::InvalidParameter`] naming `supersample` unless `s` is
+    /// in `1..=`[`MAX_SUPERSAMPLE`](super::MAX_SUPERSAMPLE);
+    /// [`VolumeError::Core`] for a too-large image.
+    pub fn render_supersampled(
+        &self,
+        camera: &LookAtCamera,
+        s: usize,
+        progress: &dyn Progress,
+    ) -> Result<Image> {
+        super::render_image_supersampled(
+            camera,
+            s,
+            |o, d, _, _| self.radiance(o, d),
+            "render",
+            progress,
+        )
+    }
+
     /// The transmittance of the scene's medium (its phase function's peak
     /// included) the march finds along the ray from `o` in unit direction `d`
     /// over `[0, t_max]`: `exp(−σ·Σρ·Δt)` with midpoint samples.

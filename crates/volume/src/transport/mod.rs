@@ -490,6 +490,52 @@ pub(crate) fn render_image(
     Ok(Image::from_grid(g))
 }
 
+/// The most rays per pixel side of [`FastRenderer::render_supersampled`].
+pub const MAX_SUPERSAMPLE: usize = 8;
+
+/// Renders `camera`'s image from `s × s` rays a pixel on a regular grid
+/// (ray `(i, j)` of pixel `(x, y)` through `(x + (i + ½)/s, y + (j + ½)/s)`,
+/// `radiance` told the pixel), resolved by natura-core's camera pixel
+/// filter (`PixelFilter::camera`), rows in parallel (bit-identical on any
+/// thread count), reporting `stage` with one unit per finished row of rays.
+pub(crate) fn render_image_supersampled(
+    camera: &PinholeCamera,
+    s: usize,
+    radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
+    stage: &str,
+    progress: &dyn Progress,
+) -> Result<Image> {
+    if !(1..=MAX_SUPERSAMPLE).contains(&s) {
+        return Err(VolumeError::InvalidParameter {
+            name: "supersample",
+            value: s.to_string(),
+            expected: "rays per pixel side, in 1..=8",
+        });
+    }
+    let eye = camera.eye();
+    let res = camera.resolution();
+    let (w, h) = (res.x as usize, res.y as usize);
+    let mut frame = Grid2::new(w * s, h * s, Vec3::ZERO)?;
+    let inv = 1.0 / s as f32;
+    let row = |y: usize, row: &mut [Vec3]| {
+        let py = (y as f32 + 0.5) * inv;
+        for (x, v) in row.iter_mut().enumerate() {
+            let d = camera.ray_at((x as f32 + 0.5) * inv, py).dir;
+            *v = radiance(eye, d, x / s, y / s);
+        }
+        progress.advance(1);
+    };
+    progress.start(stage, (h * s) as u64);
+    #[cfg(feature = "parallel")]
+    frame.par_rows_mut(row);
+    #[cfg(not(feature = "parallel"))]
+    for (y, r) in frame.rows_mut().enumerate() {
+        row(y, r);
+    }
+    progress.finish();
+    Ok(natura_core::filter::PixelFilter::camera().resolve(&frame, s)?)
+}
+
 /// Checks a step length in metres: finite, `> 0`, and no more than `max_steps` across `extent`.
 pub(crate) fn check_step(name: &'static str, step: f32, extent: f32, max_steps: f32) -> Result<()> {
     positive(name, step)?;

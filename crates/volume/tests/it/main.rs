@@ -18,4 +18,5 @@ mod scatter_matrix;
 mod shadows;
 mod sky_light;
 mod substeps;
+mod supersample;
 mod vdb;
