@@ -190,10 +190,14 @@ pub fn git_filter(
         e,
     };
     let steps = (params.stroke_length * 0.5 * e as f64).round().max(1.0) as usize;
+    // A Hann window over the stroke.
+    let hann: Vec<f64> = (0..=steps)
+        .map(|k| 0.5 + 0.5 * (std::f64::consts::PI * k as f64 / (steps + 1) as f64).cos())
+        .collect();
     let mut strokes = Grid2::new(w * e, h * e, [Vec3::ZERO; 2])?;
     fill_rows(&mut strokes, "GIT filter: strokes", progress, |y, row| {
         for (x, s) in row.iter_mut().enumerate() {
-            let (c, n) = field.stroke(x, y, steps);
+            let (c, n) = field.stroke(x, y, &hann);
             *s = [c.as_vec3(), n.as_vec3()];
         }
     });
@@ -253,6 +257,7 @@ impl Field<'_> {
         ]
     }
 
+    #[cfg(test)]
     fn colour_at(&self, u: DVec2) -> DVec3 {
         self.corners(u)
             .iter()
@@ -267,16 +272,32 @@ impl Field<'_> {
     }
 
     /// The stroke's direction at `u`: across the lightness gradient.
+    #[cfg(test)]
     fn direction_at(&self, u: DVec2) -> DVec2 {
-        let j: DVec3 = self
-            .corners(u)
-            .iter()
-            .map(|&(i, f)| self.tensor[i] * f)
-            .sum();
-        // The gradient's orientation is half the angle of (Jxx − Jyy, 2Jxy).
-        let phi = 0.5 * (2.0 * j.y).atan2(j.x - j.z);
-        let (s, c) = phi.sin_cos();
-        DVec2::new(-s, c)
+        self.direction_of(&self.corners(u))
+    }
+
+    /// The stroke's direction from the tensor interpolated over `corners`:
+    /// the gradient's orientation φ is half the angle of
+    /// `(Jxx − Jyy, 2Jxy)`, taken by the half-angle formulas (φ in
+    /// (−π/2, π/2], as `atan2` would give it), and the stroke runs at φ + π/2.
+    fn direction_of(&self, corners: &[(usize, f64); 4]) -> DVec2 {
+        let j: DVec3 = corners.iter().map(|&(i, f)| self.tensor[i] * f).sum();
+        let (a, b) = (j.x - j.z, 2.0 * j.y);
+        let r = (a * a + b * b).sqrt();
+        if r == 0.0 {
+            return DVec2::Y;
+        }
+        // cos φ = √((r + a)/2r), sin φ = ±√((r − a)/2r), the larger first
+        // and the other from sin 2φ = b/r without cancellation.
+        let (sin, cos) = if a >= 0.0 {
+            let c = ((r + a) / (2.0 * r)).sqrt();
+            (b / (2.0 * r * c), c)
+        } else {
+            let s = b.signum() * ((r - a) / (2.0 * r)).sqrt();
+            (s, b / (2.0 * r * s))
+        };
+        DVec2::new(-sin, cos)
     }
 
     /// The noise of the output grid at output coordinate `q`, bilinear.
@@ -292,26 +313,28 @@ impl Field<'_> {
     }
 
     /// The picture's colour and the streaked noise averaged along the
-    /// stroke through output pixel `(x, y)`: `steps` steps of one output
-    /// pixel each way, weighted by a Hann window.
-    fn stroke(&self, x: usize, y: usize, steps: usize) -> (DVec3, DVec3) {
+    /// stroke through output pixel `(x, y)`: `hann.len() − 1` steps of one
+    /// output pixel each way, step `k` weighted by `hann[k]`.
+    fn stroke(&self, x: usize, y: usize, hann: &[f64]) -> (DVec3, DVec3) {
         let e = self.e as f64;
         let start = self.input_at(x, y);
         let (mut colour, mut noise, mut weight) = (DVec3::ZERO, DVec3::ZERO, 0.0);
-        let mut add = |u: DVec2, k: usize| {
-            let f = 0.5 + 0.5 * (std::f64::consts::PI * k as f64 / (steps + 1) as f64).cos();
-            colour += self.colour_at(u) * f;
+        // Adds the step at `u` with weight `f`; returns the stroke's
+        // direction there (one interpolation of the picture for both).
+        let mut add = |u: DVec2, f: f64| {
+            let corners = self.corners(u);
+            let c: DVec3 = corners.iter().map(|&(i, w)| self.display[i] * w).sum();
+            colour += c * f;
             noise += self.noise_at((u + 0.5) * e - 0.5) * f;
             weight += f;
+            self.direction_of(&corners)
         };
-        add(start, 0);
-        let first = self.direction_at(start);
+        let first = add(start, hann[0]);
         for sign in [1.0, -1.0] {
             let (mut u, mut d) = (start, first * sign);
-            for k in 1..=steps {
+            for &f in &hann[1..] {
                 u += d / e;
-                add(u, k);
-                let next = self.direction_at(u);
+                let next = add(u, f);
                 // Orientations are axial: keep walking the same way.
                 d = if next.dot(d) < 0.0 { -next } else { next };
             }
@@ -454,6 +477,39 @@ mod tests {
     }
 
     #[test]
+    fn the_half_angle_direction_is_the_trigonometric_one() {
+        // The stroke at φ + π/2 for φ = ½·atan2(2Jxy, Jxx − Jyy), over
+        // tensors of every orientation, signed zeros included.
+        let mut tensors = vec![DVec3::new(1.0, 0.0, 2.0), DVec3::new(1.0, -0.0, 2.0)];
+        for k in 0..500 {
+            let t = f64::from(k);
+            let (a, b) = ((t * 0.37).sin(), (t * 0.71).cos());
+            tensors.push(DVec3::new(
+                a * a + 0.1 * b.abs(),
+                a * b,
+                b * b * (1.0 + 0.3 * a),
+            ));
+        }
+        for j in tensors {
+            let f = Field {
+                display: &[DVec3::ZERO],
+                spread: &[DMat3::ZERO],
+                tensor: &[j],
+                noise: &Grid2::new(1, 1, Vec3::ZERO).unwrap(),
+                w: 1,
+                h: 1,
+                e: 1,
+            };
+            let got = f.direction_at(DVec2::ZERO);
+            // The tensor as interpolated: a sum from zero (so −0 is +0).
+            let j = DVec3::ZERO + j;
+            let phi = 0.5 * (2.0 * j.y).atan2(j.x - j.z);
+            let want = DVec2::new(-phi.sin(), phi.cos());
+            assert!((got - want).length() < 1e-12, "{j}: {got} against {want}");
+        }
+    }
+
+    #[test]
     fn strokes_run_across_the_gradient() {
         // Light increasing to the right: strokes vertical.
         let image = Image::from_fn(24, 24, |x, _| Vec3::splat(x as f32 / 24.0)).unwrap();
@@ -477,7 +533,8 @@ mod tests {
         assert!(d.y.abs() > 0.999, "{d:?}");
         // Averaging along a vertical stroke keeps a horizontal ramp: the
         // stroke blurs along itself only.
-        let (c, _) = f.stroke(48, 48, 8);
+        let hann = [1.0; 9];
+        let (c, _) = f.stroke(48, 48, &hann);
         assert!(
             (c - f.colour_at(f.input_at(48, 48))).length() < 1e-9,
             "{c:?}"
