@@ -109,6 +109,7 @@ def volume_render(
     mode: str,
     settings: Dict[str, Any],
     progress: Progress = None,
+    supersample: int = 1,
 ) -> np.ndarray: ...
 def layer_density(
     cell: float, seed: int, params: Dict[str, Any], progress: Progress = None

@@ -255,9 +255,12 @@ fn fast_settings_for(
 /// (`mode = "fast"`, `FastSettings` keys in `settings` over
 /// [`fast_settings_for`]) or its null-scattering reference path tracer
 /// (`"reference"`, `ReferenceSettings` keys), lit by the sun and a uniform
-/// sky; linear radiance as float32 `(height, width, 3)`.
+/// sky; linear radiance as float32 `(height, width, 3)`. In the fast mode
+/// `supersample > 1` traces that many rays a pixel side, resolved by the
+/// camera's pixel filter (`FastRenderer::render_supersampled`); 1 is one
+/// ray through each pixel's centre.
 #[pyfunction]
-#[pyo3(signature = (density, origin, cell, eye, target, fov_deg, width, height, sun, sky, medium, mode, settings, progress=None))]
+#[pyo3(signature = (density, origin, cell, eye, target, fov_deg, width, height, sun, sky, medium, mode, settings, progress=None, supersample=1))]
 #[allow(clippy::too_many_arguments)]
 fn volume_render<'py>(
     py: Python<'py>,
@@ -275,8 +278,19 @@ fn volume_render<'py>(
     mode: &str,
     settings: &Bound<'py, PyAny>,
     progress: Option<Py<PyAny>>,
+    supersample: usize,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let v3 = |t: (f32, f32, f32)| Vec3::new(t.0, t.1, t.2);
+    if !(1..=natura_volume::transport::MAX_SUPERSAMPLE).contains(&supersample) {
+        return Err(PyValueError::new_err(format!(
+            "supersample = {supersample} must be in 1..=8 (rays per pixel side)"
+        )));
+    }
+    if supersample > 1 && mode != "fast" {
+        return Err(PyValueError::new_err(
+            "supersample applies to mode = \"fast\" (the reference averages samples_per_pixel paths)",
+        ));
+    }
     let g = grid3(density, "density")?;
     let dims = g.dims();
     let grid = GridDensity::new(g, v3(origin), cell).map_err(value_error)?;
@@ -319,8 +333,13 @@ fn volume_render<'py>(
             ..Scene::new(&grid, medium, v3(sky))
         };
         match mode {
-            Mode::Fast(s) => FastRenderer::new_with_progress(&scene, s, &sink)
-                .and_then(|r| r.render_with_progress(&camera, &sink)),
+            Mode::Fast(s) => FastRenderer::new_with_progress(&scene, s, &sink).and_then(|r| {
+                if supersample > 1 {
+                    r.render_supersampled(&camera, supersample, &sink)
+                } else {
+                    r.render_with_progress(&camera, &sink)
+                }
+            }),
             Mode::Reference(s) => ReferenceRenderer::new(&scene, s)
                 .and_then(|r| r.render_with_progress(&camera, &sink)),
         }

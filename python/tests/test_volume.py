@@ -158,6 +158,26 @@ def test_the_fast_mode_agrees_with_the_reference_on_a_ball():
     assert abs(lum(rays)[seen].sum() / lum(ref)[seen].sum() - 1.0) < 0.05
 
 
+def test_supersampling_keeps_the_sky_and_softens_the_ball():
+    ball = _ball()
+    medium = {"extinction": 2.0, "albedo": 0.95, "phase": {"henyey_greenstein": 0.6}}
+    one = volume.render(ball, medium=medium, **VIEW)
+    four = volume.render(ball, medium=medium, supersample=4, **VIEW)
+    assert four.shape == one.shape and four.dtype == np.float32
+    # The sky far from the ball stays exactly the sky.
+    assert np.array_equal(four[0, 0], one[0, 0])
+    # The image's total light agrees within a few per cent, and the edge is
+    # softer: fewer large jumps between neighbours.
+    lum = lambda a: (a * np.array([0.2126, 0.7152, 0.0722])).sum(axis=2)
+    assert abs(lum(four).sum() / lum(one).sum() - 1.0) < 0.03
+    jumps = lambda a: (np.abs(np.diff(lum(a), axis=1)) > 0.05).sum()
+    assert jumps(four) <= jumps(one)
+    with pytest.raises(ValueError, match="supersample"):
+        volume.render(ball, supersample=0, **VIEW)
+    with pytest.raises(ValueError, match="supersample"):
+        volume.render(ball, supersample=2, mode="reference", **VIEW)
+
+
 def test_bad_render_input_is_named():
     ball = _ball()
     with pytest.raises(ValueError, match="albedo"):
