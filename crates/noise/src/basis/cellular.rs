@@ -582,16 +582,6 @@ impl Worley {
         }
     }
 
-    /// The value over a seed table's points, kept out of line (and off the
-    /// hot path's layout) so the one-point-per-cell path compiles as it did
-    /// before the tables.
-    #[cold]
-    #[inline(never)]
-    fn table_value(&self, t: &Table, p: [f64; 3], dims: usize) -> f64 {
-        let nan = !p[..dims].iter().all(|v| v.is_finite());
-        self.value_from(self.search_table(t, p, dims).0, nan)
-    }
-
     fn value_from(&self, best: [f64; 4], nan: bool) -> f64 {
         if nan {
             f64::NAN

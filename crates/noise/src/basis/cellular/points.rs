@@ -333,6 +333,16 @@ fn insert(best: &mut [f64; 4], at: &mut [[f64; 3]; 4], d: f64, off: [f64; 3]) {
 }
 
 impl Worley {
+    /// The value over a seed table's points, kept out of line (and off the
+    /// hot path's layout) so the one-point-per-cell path compiles as it did
+    /// before the tables.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn table_value(&self, t: &Table, p: [f64; 3], dims: usize) -> f64 {
+        let nan = !p[..dims].iter().all(|v| v.is_finite());
+        self.value_from(self.search_table(t, p, dims).0, nan)
+    }
+
     /// The 4 nearest distances (capped at the metric's value of
     /// [`CAP_DISTANCE`]) and offsets (point minus feature point; zero where
     /// capped) from `p` over a seed table's points, in `dims` = 2 or 3
