@@ -37,7 +37,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::basis::cellular::{Metric, Worley};
+use crate::basis::cellular::{Metric, Worley, insert};
 use crate::basis::perlin::Perlin;
 use crate::error::{NoiseError, Result};
 use crate::field::Field;
@@ -313,22 +313,6 @@ impl Table {
                 }
             }
         }
-    }
-}
-
-/// Sorted insertion of `d` into the 4 smallest so far, with the offset of
-/// its feature point (for gradients).
-#[inline]
-fn insert(best: &mut [f64; 4], at: &mut [[f64; 3]; 4], d: f64, off: [f64; 3]) {
-    if d < best[3] {
-        let mut i = 3;
-        while i > 0 && best[i - 1] > d {
-            best[i] = best[i - 1];
-            at[i] = at[i - 1];
-            i -= 1;
-        }
-        best[i] = d;
-        at[i] = off;
     }
 }
 
