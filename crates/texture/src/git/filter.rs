@@ -447,6 +447,28 @@ mod tests {
         git_filter(image, &p, &NoProgress).unwrap()
     }
 
+    /// `run` on the strokes' inputs over a `w × h` picture of colours
+    /// `display` and tensors `tensor`, enlarged `e` times, with no spread
+    /// and no noise.
+    fn with_field<R>(
+        display: &[DVec3],
+        tensor: &[DVec3],
+        (w, h, e): (usize, usize, usize),
+        run: impl FnOnce(&Field<'_>) -> R,
+    ) -> R {
+        let spread = vec![DMat3::ZERO; w * h];
+        let noise = Grid2::new(w * e, h * e, Vec3::ZERO).unwrap();
+        run(&Field {
+            display,
+            spread: &spread,
+            tensor,
+            noise: &noise,
+            w,
+            h,
+            e,
+        })
+    }
+
     fn encoded(image: &Image, x: usize, y: usize) -> DVec3 {
         srgb_encode_rgb(image.get(x, y).unwrap()).as_dvec3()
     }
@@ -463,16 +485,9 @@ mod tests {
         }
         let display = vec![DVec3::splat(0.5); 12 * 10];
         let t = structure_tensor(&display, 12, 10);
-        let f = Field {
-            display: &display,
-            spread: &vec![DMat3::ZERO; 120],
-            tensor: &t,
-            noise: &Grid2::new(48, 40, Vec3::ZERO).unwrap(),
-            w: 12,
-            h: 10,
-            e: 4,
-        };
-        let d = f.direction_at(DVec2::new(5.0, 5.0));
+        let d = with_field(&display, &t, (12, 10, 4), |f| {
+            f.direction_at(DVec2::new(5.0, 5.0))
+        });
         assert!(d.x.abs() > 0.999, "{d:?}");
     }
 
@@ -491,16 +506,9 @@ mod tests {
             ));
         }
         for j in tensors {
-            let f = Field {
-                display: &[DVec3::ZERO],
-                spread: &[DMat3::ZERO],
-                tensor: &[j],
-                noise: &Grid2::new(1, 1, Vec3::ZERO).unwrap(),
-                w: 1,
-                h: 1,
-                e: 1,
-            };
-            let got = f.direction_at(DVec2::ZERO);
+            let got = with_field(&[DVec3::ZERO], &[j], (1, 1, 1), |f| {
+                f.direction_at(DVec2::ZERO)
+            });
             // The tensor as interpolated: a sum from zero (so −0 is +0).
             let j = DVec3::ZERO + j;
             let phi = 0.5 * (2.0 * j.y).atan2(j.x - j.z);
@@ -520,25 +528,18 @@ mod tests {
             .map(|&c| srgb_encode_rgb(c).as_dvec3())
             .collect();
         let t = structure_tensor(&display, 24, 24);
-        let f = Field {
-            display: &display,
-            spread: &vec![DMat3::ZERO; 24 * 24],
-            tensor: &t,
-            noise: &Grid2::new(96, 96, Vec3::ZERO).unwrap(),
-            w: 24,
-            h: 24,
-            e: 4,
-        };
-        let d = f.direction_at(DVec2::new(12.0, 12.0));
-        assert!(d.y.abs() > 0.999, "{d:?}");
-        // Averaging along a vertical stroke keeps a horizontal ramp: the
-        // stroke blurs along itself only.
-        let hann = [1.0; 9];
-        let (c, _) = f.stroke(48, 48, &hann);
-        assert!(
-            (c - f.colour_at(f.input_at(48, 48))).length() < 1e-9,
-            "{c:?}"
-        );
+        with_field(&display, &t, (24, 24, 4), |f| {
+            let d = f.direction_at(DVec2::new(12.0, 12.0));
+            assert!(d.y.abs() > 0.999, "{d:?}");
+            // Averaging along a vertical stroke keeps a horizontal ramp: the
+            // stroke blurs along itself only.
+            let hann = [1.0; 9];
+            let (c, _) = f.stroke(48, 48, &hann);
+            assert!(
+                (c - f.colour_at(f.input_at(48, 48))).length() < 1e-9,
+                "{c:?}"
+            );
+        });
     }
 
     #[test]

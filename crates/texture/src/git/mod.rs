@@ -25,7 +25,7 @@ mod filter;
 pub use ellipsoid::{ColourEllipsoid, symmetric_eigen};
 pub use filter::{GitFilterParams, git_filter};
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use natura_noise::{Perlin, Spectral, VecNoise, VectorFbm, VectorField};
 
 use crate::error::{Result, positive};
@@ -141,6 +141,8 @@ pub struct Git {
     spectral: Spectral,
     /// The standard deviation of one component of the full fBm.
     sigma_fbm: f64,
+    /// The ellipsoid's spread matrix ([`ColourEllipsoid::spread`]).
+    spread: DMat3,
 }
 
 impl Git {
@@ -158,6 +160,7 @@ impl Git {
             fbm,
             spectral,
             sigma_fbm,
+            spread: params.ellipsoid.spread(),
         })
     }
 
@@ -183,7 +186,7 @@ impl Git {
         let tx = p * s * k;
         let fp = fp.scaled(k * s.max_element());
         let v = vfbm_at(&self.fbm, &self.spectral, tx, fp) / self.sigma_fbm;
-        let c = self.params.ellipsoid.mean + self.params.ellipsoid.spread() * v;
+        let c = self.params.ellipsoid.mean + self.spread * v;
         DVec3::new(fold(c.x), fold(c.y), fold(c.z))
     }
 
