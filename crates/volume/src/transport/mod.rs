@@ -468,50 +468,22 @@ pub(crate) fn render_image(
     stage: &str,
     progress: &dyn Progress,
 ) -> Result<Image> {
-    let eye = camera.eye();
-    let res = camera.resolution();
-    let (w, h) = (res.x as usize, res.y as usize);
-    let mut g = Grid2::new(w, h, Vec3::ZERO)?;
-    let row = |y: usize, row: &mut [Vec3]| {
-        for (x, v) in row.iter_mut().enumerate() {
-            let d = camera.ray_at(x as f32 + 0.5, y as f32 + 0.5).dir;
-            *v = radiance(eye, d, x, y);
-        }
-        progress.advance(1);
-    };
-    progress.start(stage, h as u64);
-    #[cfg(feature = "parallel")]
-    g.par_rows_mut(row);
-    #[cfg(not(feature = "parallel"))]
-    for (y, r) in g.rows_mut().enumerate() {
-        row(y, r);
-    }
-    progress.finish();
-    Ok(Image::from_grid(g))
+    Ok(Image::from_grid(trace_frame(
+        camera, 1, radiance, stage, progress,
+    )?))
 }
 
-/// The most rays per pixel side of [`FastRenderer::render_supersampled`].
-pub const MAX_SUPERSAMPLE: usize = 8;
-
-/// Renders `camera`'s image from `s × s` rays a pixel on a regular grid
-/// (ray `(i, j)` of pixel `(x, y)` through `(x + (i + ½)/s, y + (j + ½)/s)`,
-/// `radiance` told the pixel), resolved by natura-core's camera pixel
-/// filter (`PixelFilter::camera`), rows in parallel (bit-identical on any
-/// thread count), reporting `stage` with one unit per finished row of rays.
-pub(crate) fn render_image_supersampled(
+/// `radiance` along `s × s` rays a pixel on a regular grid (ray `(i, j)` of
+/// pixel `(x, y)` through `(x + (i + ½)/s, y + (j + ½)/s)`, stored at
+/// `(x·s + i, y·s + j)`; `radiance` told the pixel), rows in parallel
+/// (bit-identical on any thread count), one unit of `stage` a row of rays.
+fn trace_frame(
     camera: &PinholeCamera,
     s: usize,
     radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
     stage: &str,
     progress: &dyn Progress,
-) -> Result<Image> {
-    if !(1..=MAX_SUPERSAMPLE).contains(&s) {
-        return Err(VolumeError::InvalidParameter {
-            name: "supersample",
-            value: s.to_string(),
-            expected: "rays per pixel side, in 1..=8",
-        });
-    }
+) -> Result<Grid2<Vec3>> {
     let eye = camera.eye();
     let res = camera.resolution();
     let (w, h) = (res.x as usize, res.y as usize);
@@ -533,6 +505,29 @@ pub(crate) fn render_image_supersampled(
         row(y, r);
     }
     progress.finish();
+    Ok(frame)
+}
+
+/// The most rays per pixel side of [`FastRenderer::render_supersampled`].
+pub const MAX_SUPERSAMPLE: usize = 8;
+
+/// Renders `camera`'s image from `s × s` rays a pixel ([`trace_frame`]),
+/// resolved by natura-core's camera pixel filter (`PixelFilter::camera`).
+pub(crate) fn render_image_supersampled(
+    camera: &PinholeCamera,
+    s: usize,
+    radiance: impl Fn(Vec3, Vec3, usize, usize) -> Vec3 + Sync + Send,
+    stage: &str,
+    progress: &dyn Progress,
+) -> Result<Image> {
+    if !(1..=MAX_SUPERSAMPLE).contains(&s) {
+        return Err(VolumeError::InvalidParameter {
+            name: "supersample",
+            value: s.to_string(),
+            expected: "rays per pixel side, in 1..=8",
+        });
+    }
+    let frame = trace_frame(camera, s, radiance, stage, progress)?;
     Ok(natura_core::filter::PixelFilter::camera().resolve(&frame, s)?)
 }
 
