@@ -7,7 +7,7 @@ use natura::noise::{Field, Perlin, Spectral, StatsByAltitude, StatsByAltitudePar
 use natura::texture::git::{ColourEllipsoid, Git, GitParams};
 
 use crate::R;
-use crate::landscape::misty_sky;
+use crate::landscape::{misty_sky, picture_size};
 use crate::patches::rescaled;
 use crate::slickrock::{View, rayleigh_mist_of, render};
 
@@ -50,11 +50,7 @@ pub(crate) fn carolina_field(seed: u64) -> R<HeightField> {
 /// forest of dark greens.
 pub(crate) fn carolina(seed: u64, quick: bool) -> R<Image> {
     let hf = carolina_field(seed)?;
-    let (size, ss) = if quick {
-        ((320, 180), 1)
-    } else {
-        ((1200, 675), 2)
-    };
+    let (size, ss) = picture_size(quick);
     let forest = Git::new(GitParams {
         seed,
         ellipsoid: ColourEllipsoid::along(

@@ -16,24 +16,29 @@ use natura::texture::{Footprint, SolidTexture};
 use natura::trace::{MipmapTracer, Ray, Tracer};
 
 use crate::R;
-use crate::landscape::{Landscape, misty_sky, smoothstep, supersampled};
+use crate::landscape::{Landscape, misty_sky, picture_size, smoothstep, supersampled};
 use crate::patches::rescaled;
 
 /// Water's reflectance at normal incidence (index 1.333).
 const F0: f32 = 0.02;
 
-/// A lake at `level` in a landscape: its surface a bump map (a texture's
+/// The water of a lake: its level, its surface a bump map (a texture's
 /// height gradient: the ripples, the book's noise-based water, or the
-/// windywave sea), reflecting the land and the sky by Schlick's Fresnel
-/// and showing the dark water below by the rest.
-pub(crate) struct Lake<'a, M> {
-    pub land: &'a Landscape<'a, M>,
+/// windywave sea) and its own colour.
+pub(crate) struct Water<'a> {
     pub level: f32,
     pub ripples: &'a dyn SolidTexture,
     /// Ripple texture units per metre.
     pub per_metre: f64,
     /// The water's own colour, lit.
     pub body: Vec3,
+}
+
+/// A lake in a landscape, reflecting the land and the sky by Schlick's
+/// Fresnel and showing the dark water below by the rest.
+pub(crate) struct Lake<'a, M> {
+    pub land: &'a Landscape<'a, M>,
+    pub water: Water<'a>,
     /// Footprint of one ray per metre of distance.
     pub ray_angle: f64,
 }
@@ -41,17 +46,15 @@ pub(crate) struct Lake<'a, M> {
 impl<M: Medium> Lake<'_, M> {
     /// The radiance reaching `o` from direction `d` (unit).
     pub(crate) fn look(&self, o: Vec3, d: Vec3) -> Vec3 {
+        let w = &self.water;
         let land = self.land.tracer.trace(&Ray::new(o, d), 0.0, f32::INFINITY);
-        if d.z < 0.0 && o.z > self.level {
-            let t = (self.level - o.z) / d.z;
+        if d.z < 0.0 && o.z > w.level {
+            let t = (w.level - o.z) / d.z;
             if land.is_none_or(|h| t < h.t) {
                 let p = o + d * t;
-                let fp = Footprint::new(f64::from(t) * self.ray_angle * self.per_metre)
+                let fp = Footprint::new(f64::from(t) * self.ray_angle * w.per_metre)
                     .unwrap_or(Footprint::POINT);
-                let g = self
-                    .ripples
-                    .height_gradient(p.as_dvec3() * self.per_metre, fp)
-                    * self.per_metre;
+                let g = w.ripples.height_gradient(p.as_dvec3() * w.per_metre, fp) * w.per_metre;
                 let n = bump(DVec3::Z, g).as_vec3();
                 let mut r = d - n * (2.0 * d.dot(n));
                 if r.z < 1e-3 {
@@ -60,7 +63,7 @@ impl<M: Medium> Lake<'_, M> {
                 let cos = (-d.dot(n)).clamp(0.0, 1.0);
                 let f = F0 + (1.0 - F0) * (1.0 - cos).powi(5);
                 let seen = self.land.look(p + Vec3::Z * 0.05, r);
-                let c = seen * f + self.body * (1.0 - f);
+                let c = seen * f + w.body * (1.0 - f);
                 return self
                     .land
                     .medium
@@ -68,23 +71,31 @@ impl<M: Medium> Lake<'_, M> {
                     .as_vec3();
             }
         }
-        self.land.look(o, d)
+        // The land, or the sky, as traced above.
+        self.land.shade(o, d, land)
     }
 }
 
-/// A camera at `eye` looking north, down by `pitch` radians, `fov`
-/// radians from top to bottom, and the footprint of one of `ss × ss` rays
-/// a pixel per metre of distance.
-pub(crate) fn camera(
+/// The lake picture ([`picture_size`]) seen from `eye` looking north and
+/// down by `pitch` radians, `fov` radians from top to bottom.
+pub(crate) fn lake_picture<M: Medium>(
+    land: &Landscape<'_, M>,
+    water: Water<'_>,
     eye: Vec3,
-    pitch: f32,
-    fov: f32,
-    (w, h): (u32, u32),
-    ss: usize,
-) -> R<(PinholeCamera, f64)> {
+    (pitch, fov): (f32, f32),
+    quick: bool,
+) -> R<Image> {
+    let ((w, h), ss) = picture_size(quick);
     let (s, c) = pitch.sin_cos();
     let cam = PinholeCamera::look_at(eye, eye + Vec3::new(0.0, c, -s), Vec3::Z, fov, w, h)?;
-    Ok((cam, f64::from(fov) / f64::from(h) / ss as f64))
+    let lake = Lake {
+        land,
+        water,
+        ray_angle: f64::from(fov) / f64::from(h) / ss as f64,
+    };
+    supersampled(w, h, ss, |x, y| {
+        lake.look(eye, cam.ray_at(x, y).dir.normalize())
+    })
 }
 
 /// Fig. 15.7's valley: statistics by altitude over the Perlin basis (the
@@ -136,29 +147,19 @@ fn spirit_lake(seed: u64, quick: bool) -> R<Image> {
         scale: DVec3::new(1.0, 3.0, 1.0),
         ..RipplesParams::default()
     })?;
-    let (size, ss) = if quick {
-        ((320, 180), 1)
-    } else {
-        ((1200, 675), 2)
-    };
     let x0 = 2000.0;
     let eye = Vec3::new(
         x0,
         40.0,
         hf.height_at(x0, 40.0).unwrap_or(0.0).max(level) + 45.0,
     );
-    let (cam, ray_angle) = camera(eye, 0.06, 0.6, size, ss)?;
-    let lake = Lake {
-        land: &land,
+    let water = Water {
         level,
         ripples: &ripples,
         per_metre: 1.0 / 6.0,
         body: Vec3::new(0.012, 0.025, 0.03),
-        ray_angle,
     };
-    supersampled(size.0, size.1, ss, |x, y| {
-        lake.look(eye, cam.ray_at(x, y).dir.normalize())
-    })
+    lake_picture(&land, water, eye, (0.06, 0.6), quick)
 }
 
 /// Fig. 15.8's terrain: Fournier–Fussell–Carpenter subdivision (the
@@ -253,11 +254,6 @@ fn lethe(seed: u64, quick: bool) -> R<Image> {
         km: 0.006,
         ..RipplesParams::default()
     })?;
-    let (size, ss) = if quick {
-        ((320, 180), 1)
-    } else {
-        ((1200, 675), 2)
-    };
     // From the basin's southern rim, 60 m over the ground, looking north
     // across the lake.
     let (x0, y0) = (1500.0, 380.0);
@@ -266,18 +262,13 @@ fn lethe(seed: u64, quick: bool) -> R<Image> {
         y0,
         hf.height_at(x0, y0).unwrap_or(0.0).max(level) + 60.0,
     );
-    let (cam, ray_angle) = camera(eye, 0.07, 0.6, size, ss)?;
-    let lake = Lake {
-        land: &land,
+    let water = Water {
         level,
         ripples: &ripples,
         per_metre: 1.0 / 4.0,
         body: Vec3::new(0.01, 0.015, 0.02),
-        ray_angle,
     };
-    supersampled(size.0, size.1, ss, |x, y| {
-        lake.look(eye, cam.ray_at(x, y).dir.normalize())
-    })
+    lake_picture(&land, water, eye, (0.07, 0.6), quick)
 }
 
 /// Figs. 15.7 and 15.8.
@@ -315,10 +306,12 @@ mod tests {
         let body = Vec3::new(0.01, 0.02, 0.03);
         let lake = Lake {
             land: &land,
-            level: 1.0,
-            ripples: &ripples,
-            per_metre: 1.0,
-            body,
+            water: Water {
+                level: 1.0,
+                ripples: &ripples,
+                per_metre: 1.0,
+                body,
+            },
             ray_angle: 0.0,
         };
         let d = Vec3::new(0.0, 1.0, -1.0).normalize();

@@ -9,7 +9,7 @@ use natura::core::{Grid2, HeightField, Image};
 use natura::noise::{Field, Perlin, RidgedMultifractal, RidgedParams, Spectral};
 use natura::texture::Footprint;
 use natura::texture::earth::Strata;
-use natura::trace::{MipmapTracer, Ray, Tracer};
+use natura::trace::{Hit, MipmapTracer, Ray, Tracer};
 
 use crate::common::Exit;
 
@@ -36,9 +36,15 @@ pub(crate) struct Landscape<'a, M> {
 impl<M: Medium> Landscape<'_, M> {
     /// The radiance reaching `o` from direction `d` (unit).
     pub(crate) fn look(&self, o: Vec3, d: Vec3) -> Vec3 {
+        self.shade(o, d, self.tracer.trace(&Ray::new(o, d), 0.0, f32::INFINITY))
+    }
+
+    /// [`Landscape::look`] for the ray's terrain hit already traced (`None`:
+    /// it leaves the terrain for the sky).
+    pub(crate) fn shade(&self, o: Vec3, d: Vec3, hit: Option<Hit>) -> Vec3 {
         let sun_light = Vec3::new(1.0, 0.95, 0.85) * 1.1;
         let sky_light = Vec3::new(0.35, 0.42, 0.55);
-        match self.tracer.trace(&Ray::new(o, d), 0.0, f32::INFINITY) {
+        match hit {
             None => match Dir3::new(d.as_dvec3()) {
                 Ok(dir) => self
                     .medium
@@ -90,6 +96,16 @@ pub(crate) fn desert_sky(d: Vec3) -> Vec3 {
 /// A misty sky: the mist's white at the horizon, pale blue above.
 pub(crate) fn misty_sky(d: Vec3) -> Vec3 {
     Vec3::new(0.86, 0.88, 0.92).lerp(Vec3::new(0.45, 0.58, 0.80), d.z.clamp(0.0, 1.0).sqrt())
+}
+
+/// The size of the rendered plates and their rays a pixel side: 320 × 180
+/// at one ray when `quick`, else 1200 × 675 at 2 × 2.
+pub(crate) fn picture_size(quick: bool) -> ((u32, u32), usize) {
+    if quick {
+        ((320, 180), 1)
+    } else {
+        ((1200, 675), 2)
+    }
 }
 
 /// `pixel` at s × s rays on a regular grid in each pixel, resolved by the

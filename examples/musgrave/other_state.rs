@@ -10,8 +10,8 @@ use natura::texture::{Footprint, display_to_linear};
 use natura::trace::MipmapTracer;
 
 use crate::R;
-use crate::lakes::{Lake, camera};
-use crate::landscape::{Landscape, supersampled};
+use crate::lakes::{Water, lake_picture};
+use crate::landscape::Landscape;
 
 /// Saturn in the sky: a banded giant of angular radius `radius` towards
 /// `towards`, its rings (natura-texture's `Rings`: a 1-D fBm of the
@@ -123,24 +123,13 @@ pub(crate) fn other_state(seed: u64, quick: bool) -> R<Image> {
         km: 0.05,
         ..WindyWaveParams::default()
     })?;
-    let (size, ss) = if quick {
-        ((320, 180), 1)
-    } else {
-        ((1200, 675), 2)
-    };
-    let eye = Vec3::new(0.0, 0.0, 6.0);
-    let (cam, ray_angle) = camera(eye, -0.12, 0.7, size, ss)?;
-    let lake = Lake {
-        land: &land,
+    let water = Water {
         level: 0.0,
         ripples: &sea,
         per_metre: 1.0 / 8.0,
         body: Vec3::new(0.006, 0.012, 0.016),
-        ray_angle,
     };
-    supersampled(size.0, size.1, ss, |x, y| {
-        lake.look(eye, cam.ray_at(x, y).dir.normalize())
-    })
+    lake_picture(&land, water, Vec3::new(0.0, 0.0, 6.0), (-0.12, 0.7), quick)
 }
 
 #[cfg(test)]

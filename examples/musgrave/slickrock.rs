@@ -14,7 +14,7 @@ use natura::texture::git::{ColourEllipsoid, Git, GitFilterParams, GitParams, git
 use natura::trace::MipmapTracer;
 
 use crate::R;
-use crate::landscape::{Landscape, desert_sky, ridged_field, supersampled};
+use crate::landscape::{Landscape, desert_sky, picture_size, ridged_field, supersampled};
 
 /// Slickrock: ridged terrain "with ridges everywhere and at all scales"
 /// (the ridged basis, 9 octaves, H = 1), 6 km across, 700 m high, first
@@ -128,8 +128,7 @@ const OVER_THE_RISE: View = View {
 /// and under the GIT texture.
 pub(crate) fn pair(seed: u64, quick: bool) -> R<Vec<Image>> {
     let hf = slickrock_field(seed, quick)?;
-    let size = if quick { (320, 180) } else { (1200, 675) };
-    let ss = if quick { 1 } else { 2 };
+    let (size, ss) = picture_size(quick);
     let haze = haze()?;
     let view = |t: &Git| render(&hf, t, size, ss, &haze, desert_sky, OVER_THE_RISE);
     Ok(vec![
@@ -193,11 +192,7 @@ pub(crate) fn rayleigh_mist_of(red: f64, scale_height: f64) -> R<ExponentialMist
 pub(crate) fn plate(seed: u64, quick: bool) -> R<Image> {
     let n = if quick { 257 } else { 1025 };
     let hf = ridged_field(seed, n, 24_000.0, 7000.0, 0.2, 1800.0, |_, _| 1.0)?;
-    let (size, ss) = if quick {
-        ((320, 180), 1)
-    } else {
-        ((1200, 675), 2)
-    };
+    let (size, ss) = picture_size(quick);
     let texture = Git::new(GitParams {
         txtscale: 1.0 / 1200.0,
         ..*slickrock_i_texture(seed)?.params()
