@@ -127,10 +127,7 @@ fn rising_smoke(n: usize, buoyant: bool) -> R<Smoke> {
     let params = SmokeParams {
         alpha: if buoyant { lift.alpha } else { 0.0 },
         beta: if buoyant { lift.beta } else { 0.0 },
-        advection: Advection {
-            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-            ..Advection::default()
-        },
+        advection: cubic_advection(),
         ..SmokeParams::default()
     };
     let hot = params.ambient_temperature + 25.0;
@@ -196,12 +193,7 @@ fn rising(quick: bool) -> R<Image> {
         vorticity_in_smoke(&smoke)?,
         steps as f32 * dt
     ))?;
-    let k = if quick { 4 } else { 2 };
-    let shots = frames
-        .iter()
-        .map(|i| enlarge(i, k))
-        .collect::<R<Vec<_>>>()?;
-    Ok(Image::contact_sheet(&shots, shots.len(), 6, Vec3::ONE)?)
+    sheet(&frames, if quick { 4 } else { 2 }, frames.len())
 }
 
 // ---------------------------------------------------------------- Figs. 4–5
@@ -212,31 +204,16 @@ fn rising(quick: bool) -> R<Image> {
 /// 0.12 m deep, 30 K above ambient) send smoke up past a ball, a box turned
 /// 30° about the vertical and a tilted slab, one above each.
 fn objects_smoke(n: usize) -> R<Smoke> {
-    let h = 2.0 / n as f32;
-    let params = SmokeParams {
-        advection: Advection {
-            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-            ..Advection::default()
-        },
-        ..SmokeParams::default()
-    };
-    let warm = params.ambient_temperature + 30.0;
-    let mut smoke = Smoke::new(Dims::new(n, n / 2, n / 2)?, h, params)?;
-    for x in [0.45f32, 1.0, 1.55] {
-        smoke.add_source(SmokeSource {
-            shape: Shape::Cuboid {
-                min: Vec3::new(x - 0.12, 0.38, 0.0),
-                max: Vec3::new(x + 0.12, 0.62, 0.12),
-            },
-            density: 1.0,
-            temperature: warm,
-            velocity: None,
-        })?;
-    }
-    for shape in objects_shapes() {
-        smoke.add_obstacle(Obstacle::fixed(shape))?;
-    }
-    Ok(smoke)
+    let sources = [0.45f32, 1.0, 1.55].map(|x| Shape::Cuboid {
+        min: Vec3::new(x - 0.12, 0.38, 0.0),
+        max: Vec3::new(x + 0.12, 0.62, 0.12),
+    });
+    warm_smoke(
+        Dims::new(n, n / 2, n / 2)?,
+        2.0 / n as f32,
+        &sources,
+        &objects_shapes(),
+    )
 }
 
 fn objects_shapes() -> [Shape; 3] {
@@ -263,27 +240,58 @@ fn objects_shapes() -> [Shape; 3] {
 /// square on the floor's centre (30 K above ambient) and a ball 0.3 m across
 /// whose centre is 0.7 m up; walls and an open ceiling.
 fn sphere_smoke(n: usize) -> R<Smoke> {
-    let h = 1.0 / n as f32;
+    let source = Shape::Cuboid {
+        min: Vec3::new(0.35, 0.35, 0.0),
+        max: Vec3::new(0.65, 0.65, 0.08),
+    };
+    warm_smoke(
+        Dims::new(n, n, 3 * n / 2)?,
+        1.0 / n as f32,
+        &[source],
+        &[sphere_shape()],
+    )
+}
+
+/// Smoke of the default parameters with monotone cubic advection in a box
+/// of `dims` cells of `h` m: warm `sources` (density 1, 30 K above
+/// ambient) and fixed `obstacles`.
+fn warm_smoke(dims: Dims, h: f32, sources: &[Shape], obstacles: &[Shape]) -> R<Smoke> {
     let params = SmokeParams {
-        advection: Advection {
-            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-            ..Advection::default()
-        },
+        advection: cubic_advection(),
         ..SmokeParams::default()
     };
-    let hot = params.ambient_temperature + 30.0;
-    let mut smoke = Smoke::new(Dims::new(n, n, 3 * n / 2)?, h, params)?;
-    smoke.add_source(SmokeSource {
-        shape: Shape::Cuboid {
-            min: Vec3::new(0.35, 0.35, 0.0),
-            max: Vec3::new(0.65, 0.65, 0.08),
-        },
-        density: 1.0,
-        temperature: hot,
-        velocity: None,
-    })?;
-    smoke.add_obstacle(Obstacle::fixed(sphere_shape()))?;
+    let warm = params.ambient_temperature + 30.0;
+    let mut smoke = Smoke::new(dims, h, params)?;
+    for &shape in sources {
+        smoke.add_source(SmokeSource {
+            shape,
+            density: 1.0,
+            temperature: warm,
+            velocity: None,
+        })?;
+    }
+    for &shape in obstacles {
+        smoke.add_obstacle(Obstacle::fixed(shape))?;
+    }
     Ok(smoke)
+}
+
+/// Advection with monotone cubic interpolation (Fritsch–Carlson), the
+/// source's choice.
+fn cubic_advection() -> Advection {
+    Advection {
+        interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
+        ..Advection::default()
+    }
+}
+
+/// `frames` each enlarged `k` times, `columns` to a row, on white.
+fn sheet(frames: &[Image], k: usize, columns: usize) -> R<Image> {
+    let shots = frames
+        .iter()
+        .map(|i| enlarge(i, k))
+        .collect::<R<Vec<_>>>()?;
+    Ok(Image::contact_sheet(&shots, columns, 6, Vec3::ONE)?)
 }
 
 fn sphere_shape() -> Shape {
@@ -344,12 +352,7 @@ fn objects(quick: bool) -> R<Image> {
     let (steps, every) = if quick { (30, 15) } else { (240, 60) };
     let light = Vec3::new(-0.3, -0.5, 1.0).normalize();
     let frames = solid_frames(&mut smoke, &solids, steps, every, 0.02, 12.0, 0.3, light)?;
-    let k = 3;
-    let shots = frames
-        .iter()
-        .map(|i| enlarge(i, k))
-        .collect::<R<Vec<_>>>()?;
-    Ok(Image::contact_sheet(&shots, 2, 6, Vec3::ONE)?)
+    sheet(&frames, 3, 2)
 }
 
 /// Fig. 5: the plume rising around the ball at four times, from the side.
@@ -360,12 +363,7 @@ fn sphere(quick: bool) -> R<Image> {
     let (steps, every) = if quick { (30, 15) } else { (200, 50) };
     let light = Vec3::new(-0.5, -0.4, 1.0).normalize();
     let frames = solid_frames(&mut smoke, &solids, steps, every, 0.02, 16.0, 0.9, light)?;
-    let k = if quick { 4 } else { 2 };
-    let shots = frames
-        .iter()
-        .map(|i| enlarge(i, k))
-        .collect::<R<Vec<_>>>()?;
-    Ok(Image::contact_sheet(&shots, shots.len(), 6, Vec3::ONE)?)
+    sheet(&frames, if quick { 4 } else { 2 }, frames.len())
 }
 
 // ---------------------------------------------------------------- Fig. 6
@@ -385,10 +383,7 @@ fn rotor_smoke(n: usize) -> R<Smoke> {
         alpha: 0.0,
         beta: 0.0,
         epsilon: 2.0,
-        advection: Advection {
-            interpolation: Interpolation::MonotoneCubic(CubicLimiter::FritschCarlson),
-            ..Advection::default()
-        },
+        advection: cubic_advection(),
         bounds: Boundaries::closed(),
         ..SmokeParams::default()
     };
@@ -461,13 +456,10 @@ fn rotor(quick: bool) -> R<Image> {
         spread_about_axis(smoke.density(), h) / m0,
         steps as f32 * dt
     ))?;
-    let k = if quick { 4 } else { 3 };
-    let shots = side
-        .iter()
-        .chain(&top)
-        .map(|i| enlarge(i, k))
-        .collect::<R<Vec<_>>>()?;
-    Ok(Image::contact_sheet(&shots, side.len(), 6, Vec3::ONE)?)
+    let columns = side.len();
+    let mut shots = side;
+    shots.extend(top);
+    sheet(&shots, if quick { 4 } else { 3 }, columns)
 }
 
 // ---------------------------------------------------------------- Fig. 8
