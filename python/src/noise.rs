@@ -35,20 +35,15 @@ const FEATURES: &[(&str, WorleyFeature)] = &[
     ("f3_minus_f2", WorleyFeature::F3MinusF2),
     ("f4_minus_f3", WorleyFeature::F4MinusF3),
 ];
-/// The feature-point distributions (`WorleyParams::points`) by name; a
-/// table's density is the separate keyword `density`.
-#[derive(Clone, Copy)]
-enum Table {
-    OnePerCell,
-    Poisson,
-    Variable,
-    Gaussian,
-}
+/// The feature-point distributions (`WorleyParams::points`) by name, each
+/// made from the separate keyword `density` (which one point per cell
+/// ignores).
+type Table = fn(f64) -> FeaturePoints;
 const TABLES: &[(&str, Table)] = &[
-    ("one_per_cell", Table::OnePerCell),
-    ("poisson", Table::Poisson),
-    ("variable", Table::Variable),
-    ("gaussian", Table::Gaussian),
+    ("one_per_cell", |_| FeaturePoints::OnePerCell),
+    ("poisson", |density| FeaturePoints::Poisson { density }),
+    ("variable", |density| FeaturePoints::Variable { density }),
+    ("gaussian", |density| FeaturePoints::Gaussian { density }),
 ];
 const METRICS: &[(&str, Metric)] = &[
     ("euclidean", Metric::Euclidean),
@@ -253,18 +248,13 @@ fn build_basis(kind: &str, kw: &Kw<'_>) -> PyResult<(Arc<dyn Field>, Option<Perl
             let seed = seed(kw)?;
             // `feature_points`: Python's name for `points`, which there names the
             // coordinates evaluated.
-            let table = kw.choice("feature_points", TABLES, Table::OnePerCell)?;
+            let table = kw.choice("feature_points", TABLES, TABLES[0].1)?;
             let density = kw.f64("density", 4.0)?;
             let p = WorleyParams {
                 feature: kw.choice("feature", FEATURES, d.feature)?,
                 metric: kw.choice("metric", METRICS, d.metric)?,
                 jitter: kw.f64("jitter", d.jitter)?,
-                points: match table {
-                    Table::OnePerCell => FeaturePoints::OnePerCell,
-                    Table::Poisson => FeaturePoints::Poisson { density },
-                    Table::Variable => FeaturePoints::Variable { density },
-                    Table::Gaussian => FeaturePoints::Gaussian { density },
-                },
+                points: table(density),
             };
             (Arc::new(Worley::new(seed, p).map_err(value_error)?), None)
         }
