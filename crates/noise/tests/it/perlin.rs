@@ -96,6 +96,54 @@ fn batch_matches_point_at_every_simd_level() {
     check_batch(&Perlin::with_fade(12, Fade::Cubic), 1e-5, 8);
 }
 
+/// The 2-D rows between 1/64 and 1 cell a point (each group of 16 points
+/// looks its cells' columns up by permutes): at the range's ends, where a
+/// group spans all 16 cells and a lane's point can round onto the next
+/// lattice line, across the chunks of 256 points the columns are prepared
+/// in, far from the origin and on both sides of it, at every SIMD level.
+#[test]
+fn window_rows_match_point_path_at_their_edges() {
+    use natura_noise::Simd;
+    let n = Perlin::new(31);
+    let steps = [
+        1.0 / 64.0 + 1e-9,
+        0.0625,
+        0.1,
+        0.5,
+        15.0 / 16.0,
+        0.999_999_9,
+        1.0,
+    ];
+    let origins = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(-3.999_999_99, 0.5),
+        DVec2::new(-1234.567, -89.1),
+        DVec2::new(7.0 - 1e-12, 3.25),
+        DVec2::new(2.0e6 + 0.3, -4.0e5),
+    ];
+    for &step in &steps {
+        for &o in &origins {
+            let mut reference: Option<Vec<u32>> = None;
+            for simd in Simd::supported() {
+                let mut row = vec![0.0f32; 1000];
+                n.fill_row2_with(simd, o, step, &mut row);
+                for (i, &v) in row.iter().enumerate() {
+                    let e = n.eval2(DVec2::new(o.x + i as f64 * step, o.y));
+                    assert!(
+                        (f64::from(v) - e).abs() <= 1e-5,
+                        "{simd:?} step {step} origin {o} i {i}: row {v}, point {e}"
+                    );
+                }
+                let bits: Vec<u32> = row.iter().map(|v| v.to_bits()).collect();
+                match &reference {
+                    None => reference = Some(bits),
+                    Some(r) => assert_eq!(r, &bits, "levels differ at {simd:?} step {step}"),
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn analytic_gradient_matches_central_differences() {
     check_gradient(&Perlin::new(4), 1e-6, 9, 2000);

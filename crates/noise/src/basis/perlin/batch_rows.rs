@@ -1,12 +1,20 @@
 //! Batch rows of [`Perlin`] noise (f32 lanes, compiled per SIMD level
 //! through natura-simd's dispatch).
 //!
-//! For steps up to [`SPAN_MAX_STEP`] a row is evaluated span by span (four
-//! coefficients per cell, each lattice column hashed once per row, whole
-//! 16-lane groups); larger steps run a per-lane kernel whose 32-point blocks
-//! are rebased to a local origin (one f64 split per block, then f32/u32
-//! lanes from precomputed lane offsets), so lattice indices stay exact at
-//! planet-scale coordinates while every lane runs at the full f32 width.
+//! Three kernels by the row's step (lattice cells per point):
+//!
+//! - up to 1/64 (2-D) or [`SPAN_MAX_STEP`] (3-D), span by span: four
+//!   coefficients per cell, each lattice column hashed once per row, whole
+//!   16-lane groups;
+//! - in 2-D, up to 1, window by window ([`row_windows`]): each lattice column hashed
+//!   once per row into two terms, and every 16-point group, which spans at
+//!   most 16 cells, looks its lanes' columns up by permutes
+//!   (`natura_simd::lookup16`);
+//! - beyond, a per-lane kernel whose 32-point blocks are rebased to a local
+//!   origin (one f64 split per block, then f32/u32 lanes from precomputed
+//!   lane offsets), so lattice indices stay exact at planet-scale
+//!   coordinates while every lane runs at the full f32 width.
+//!
 //! Both equal the f64 point path within 1e-5. The corner hashes and
 //! gradients are the point path's ([`corner`], [`grad2`], [`grad3`]).
 
@@ -18,6 +26,7 @@ use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
 use crate::lattice_math::{BLOCK, LaneOffsets, Simd, rebase, split_fast};
+use natura_simd::lookup16;
 
 impl Perlin {
     /// The 2-D row fill behind [`Field::fill_row2_with`].
@@ -73,8 +82,17 @@ multiversion! {
         k: f64,
         out: &'a mut [f32],
     ) {
+        // 2-D only: a 3-D column hashes four corner rows, and the lane
+        // kernel, which shares each point's hashes between them, measured
+        // faster than the windows there.
+        let windows = !D3 && step > WINDOW_MIN_STEP && step <= WINDOW_MAX_STEP;
         let spans = step > 0.0 && step <= SPAN_MAX_STEP;
         match (spans, D3) {
+            (_, false) if windows => {
+                let k = k as f32;
+                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, |ix| rows
+                    .column2_32(ix, k)));
+            }
             (true, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
             (true, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
             (false, false) => {
@@ -181,6 +199,18 @@ impl RowCoeffs {
             c[0] += w * f64::from(gy) * dy;
         }
         c
+    }
+
+    /// [`column2`](Self::column2) in `f32`, scaled by `k`.
+    #[inline(always)]
+    fn column2_32(&self, ix: u32, k: f32) -> [f32; 2] {
+        let (w, fy) = (self.w32, self.fy32);
+        let (gx0, gy0) = grad2(corner(ix, self.r[0]));
+        let (gx1, gy1) = grad2(corner(ix, self.r[1]));
+        [
+            (w[0] * (gy0 * fy) + w[1] * (gy1 * (fy - 1.0))) * k,
+            (w[0] * gx0 + w[1] * gx1) * k,
+        ]
     }
 
     /// As [`column2`](Self::column2) for the 3-D row (four corner rows).
@@ -396,6 +426,122 @@ const SPAN_CELLS: usize = 32;
 
 /// Points [`row_spans`] writes per group (one AVX-512 vector, two AVX2 ones).
 const SPAN_GROUP: usize = 16;
+
+/// 2-D steps above this go to [`row_windows`] rather than [`row_spans`]:
+/// below 64 points a cell, the set-up of each cell costs more than the
+/// lookups.
+const WINDOW_MIN_STEP: f64 = 1.0 / 64.0;
+
+/// Largest lattice step [`row_windows`] takes: a group of [`WINDOW`]
+/// points then spans at most [`WINDOW`] cells.
+const WINDOW_MAX_STEP: f64 = 1.0;
+
+/// Points per group of [`row_windows`] (the lanes of one lookup).
+const WINDOW: usize = 16;
+
+/// Points whose lattice columns [`row_windows`] prepares in one batch.
+const WINDOW_CHUNK: usize = 256;
+
+/// Columns a chunk may need: its cells, and a window's reach past the last
+/// group's first cell.
+const WINDOW_COLUMNS: usize = WINDOW_CHUNK + WINDOW + 2;
+
+/// A 2-D row at steps from [`WINDOW_MIN_STEP`] to [`WINDOW_MAX_STEP`] (1 to
+/// 64 points per cell): too few points per cell for [`row_spans`] to
+/// amortise a cell's set-up, but points enough on each lattice column that
+/// [`perlin2_row`], which hashes every point's corners, repeats most of its
+/// work.
+///
+/// Each chunk of [`WINDOW_CHUNK`] points hashes its lattice columns once,
+/// into the two column terms `column(ix)` ([`RowCoeffs::column2_32`]:
+/// scaled, in `f32`). Each group of [`WINDOW`] points starts in some cell `c` and ends at most
+/// 15 cells later, so every lane finds its cell's two bounding columns among
+/// the 17 from `c` on: the lanes look them up ([`lookup16`], AVX2 permutes),
+/// form [`span_coeffs`] and evaluate the cell's polynomial at their
+/// fraction. No hashing per point; equal to the f64 point path within 1e-5.
+#[inline(always)]
+fn row_windows(
+    simd: Simd,
+    fade: impl Fn(f32) -> f32,
+    x0: f64,
+    step: f64,
+    out: &mut [f32],
+    column: impl Fn(u32) -> [f32; 2],
+) {
+    let s32 = step as f32;
+    let offset: [f32; WINDOW] = core::array::from_fn(|l| (l as i32) as f32 * s32);
+    // Per column: the fraction-independent term and the x-gradient term.
+    let mut ca = [0.0f32; WINDOW_COLUMNS];
+    let mut cb = [0.0f32; WINDOW_COLUMNS];
+    for (c, chunk) in out.chunks_mut(WINDOW_CHUNK).enumerate() {
+        let (first, fx) = split_fast(x0 + (c * WINDOW_CHUNK) as f64 * step);
+        // The last group's first cell, relative to `first`, and its window.
+        let reach = fx + ((chunk.len() - 1) / WINDOW * WINDOW) as f64 * step;
+        let columns = (reach as usize + WINDOW + 2).min(WINDOW_COLUMNS);
+        for (i, (a, b)) in ca[..columns].iter_mut().zip(&mut cb[..columns]).enumerate() {
+            [*a, *b] = column(first.wrapping_add(i as u32));
+        }
+        for (g, group) in chunk.chunks_mut(WINDOW).enumerate() {
+            // The group's start from the chunk's first cell (≥ 0, below
+            // WINDOW_CHUNK + 1): its cell and fraction.
+            let u = fx + ((g * WINDOW) as f64) * step;
+            let cell = u as usize;
+            let f = (u - cell as f64) as f32;
+            let mut index = [0u32; WINDOW];
+            let mut t = [0.0f32; WINDOW];
+            for l in 0..WINDOW {
+                // The lane's point from the group's cell, in [0, 16]: its
+                // floor by rounding at 2²³ (whose integer sits in the low
+                // mantissa bits) and a correction, as `split_fast` does in
+                // f64 (a float-to-int cast is a compare and a scalar
+                // convert per lane). A sum rounded up to 16 stays in cell 15
+                // at fraction 1, the same point.
+                const M: f32 = 8_388_608.0;
+                let s = f + offset[l];
+                let r = s + M;
+                let n = r - M;
+                let down = n > s;
+                let i = (r.to_bits() & 0xff).wrapping_sub(u32::from(down));
+                let i = i.min(WINDOW as u32 - 1);
+                index[l] = i;
+                t[l] = s - (i as i32) as f32;
+            }
+            let window = |v: &[f32; WINDOW_COLUMNS], from: usize| -> [f32; WINDOW] {
+                v[from..from + WINDOW].try_into().unwrap()
+            };
+            let (a0, b0, a1, b1) = (
+                window(&ca, cell),
+                window(&cb, cell),
+                window(&ca, cell + 1),
+                window(&cb, cell + 1),
+            );
+            let [la, lb, ra, rb] = lookup16(simd, [&a0, &b0, &a1, &b1], &index);
+            let mut v = [0.0f32; WINDOW];
+            for l in 0..WINDOW {
+                let c = span_coeffs32([la[l], lb[l]], [ra[l], rb[l]]);
+                let t = t[l];
+                v[l] = (c[0] + c[1] * t) + fade(t) * (c[2] + c[3] * t);
+            }
+            // A whole group as one fixed-size store (a slice copy of
+            // unknown length is a library call per group).
+            match <&mut [f32; WINDOW]>::try_from(&mut *group) {
+                Ok(whole) => *whole = v,
+                Err(_) => {
+                    for (o, x) in group.iter_mut().zip(v) {
+                        *o = x;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// [`span_coeffs`] in `f32`, for columns already scaled.
+#[inline(always)]
+fn span_coeffs32(left: [f32; 2], right: [f32; 2]) -> [f32; 4] {
+    let c0 = right[0] - right[1];
+    [left[0], left[1], c0 - left[0], right[1] - left[1]]
+}
 
 /// The general 2-D row kernel: every lane finds its own cell.
 #[inline(always)]
