@@ -96,7 +96,7 @@ fn batch_matches_point_at_every_simd_level() {
     check_batch(&Perlin::with_fade(12, Fade::Cubic), 1e-5, 8);
 }
 
-/// The 2-D rows between 1/64 and 1 cell a point (each group of 16 points
+/// The 2-D and 3-D rows between 1/64 and 1 cell a point (each group of 16 points
 /// looks its cells' columns up by permutes): at the range's ends, where a
 /// group spans all 16 cells and a lane's point can round onto the next
 /// lattice line, across the chunks of 256 points the columns are prepared
@@ -134,7 +134,17 @@ fn window_rows_match_point_path_at_their_edges() {
                         "{simd:?} step {step} origin {o} i {i}: row {v}, point {e}"
                     );
                 }
-                let bits: Vec<u32> = row.iter().map(|v| v.to_bits()).collect();
+                let mut row3 = vec![0.0f32; 1000];
+                let o3 = DVec3::new(o.x, o.y, 0.37 - o.y);
+                n.fill_row3_with(simd, o3, step, &mut row3);
+                for (i, &v) in row3.iter().enumerate() {
+                    let e = n.eval3(o3 + DVec3::X * (i as f64 * step));
+                    assert!(
+                        (f64::from(v) - e).abs() <= 1e-5,
+                        "3-D {simd:?} step {step} origin {o3} i {i}: row {v}, point {e}"
+                    );
+                }
+                let bits: Vec<u32> = row.iter().chain(&row3).map(|v| v.to_bits()).collect();
                 match &reference {
                     None => reference = Some(bits),
                     Some(r) => assert_eq!(r, &bits, "levels differ at {simd:?} step {step}"),

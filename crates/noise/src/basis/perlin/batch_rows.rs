@@ -3,10 +3,10 @@
 //!
 //! Three kernels by the row's step (lattice cells per point):
 //!
-//! - up to 1/64 (2-D) or [`SPAN_MAX_STEP`] (3-D), span by span: four
-//!   coefficients per cell, each lattice column hashed once per row, whole
-//!   16-lane groups;
-//! - in 2-D, up to 1, window by window ([`row_windows`]): each lattice column hashed
+//! - up to 1/64, span by span: four coefficients per cell, each lattice
+//!   column hashed once per row, whole 16-lane groups (the 3-D grid fill
+//!   caches the columns' gradients across rows);
+//! - up to 1, window by window ([`row_windows`]): each lattice column hashed
 //!   once per row into two terms, and every 16-point group, which spans at
 //!   most 16 cells, looks its lanes' columns up by permutes
 //!   (`natura_simd::lookup16`);
@@ -15,7 +15,7 @@
 //!   lane offsets), so lattice indices stay exact at planet-scale
 //!   coordinates while every lane runs at the full f32 width.
 //!
-//! Both equal the f64 point path within 1e-5. The corner hashes and
+//! All equal the f64 point path within 1e-5. The corner hashes and
 //! gradients are the point path's ([`corner`], [`grad2`], [`grad3`]).
 
 use glam::{DVec2, DVec3};
@@ -82,16 +82,16 @@ multiversion! {
         k: f64,
         out: &'a mut [f32],
     ) {
-        // 2-D only: a 3-D column hashes four corner rows, and the lane
-        // kernel, which shares each point's hashes between them, measured
-        // faster than the windows there.
-        let windows = !D3 && step > WINDOW_MIN_STEP && step <= WINDOW_MAX_STEP;
+        let windows = step > WINDOW_MIN_STEP && step <= WINDOW_MAX_STEP;
         let spans = step > 0.0 && step <= SPAN_MAX_STEP;
         match (spans, D3) {
             (_, false) if windows => {
-                let k = k as f32;
-                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, |ix| rows
-                    .column2_32(ix, k)));
+                let columns = Columns::<false> { rows, k: k as f32 };
+                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, &columns));
+            }
+            (_, true) if windows => {
+                let columns = Columns::<true> { rows, k: k as f32 };
+                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, &columns));
             }
             (true, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
             (true, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
@@ -213,6 +213,30 @@ impl RowCoeffs {
         ]
     }
 
+    /// [`column3`](Self::column3) in `f32`, scaled by `k`, for the lattice
+    /// columns `first, first + 1, …` into `a` (the fraction-independent
+    /// terms) and `b` (the x-gradient terms): one pass over the columns per
+    /// corner row, each a plain loop that vectorises.
+    #[inline(always)]
+    fn columns3_32(&self, first: u32, k: f32, a: &mut [f32], b: &mut [f32]) {
+        let (w, fy, fz) = (self.w32, self.fy32, self.fz32);
+        a.fill(0.0);
+        b.fill(0.0);
+        for (j, (&wj, &r)) in w.iter().zip(&self.r).enumerate() {
+            let dy = fy - (j & 1) as f32;
+            let dz = fz - (j >> 1) as f32;
+            for (i, (a, b)) in a.iter_mut().zip(b.iter_mut()).enumerate() {
+                let (gx, gy, gz) = grad3(corner(first.wrapping_add(i as u32), r));
+                *b += wj * gx;
+                *a += wj * (gy * dy + gz * dz);
+            }
+        }
+        for (a, b) in a.iter_mut().zip(b.iter_mut()) {
+            *a *= k;
+            *b *= k;
+        }
+    }
+
     /// As [`column2`](Self::column2) for the 3-D row (four corner rows).
     #[inline(always)]
     fn column3(&self, ix: u32) -> [f64; 2] {
@@ -292,7 +316,9 @@ impl Perlin {
     ) -> crate::Result<()> {
         lattice.check(out.len())?;
         let (x0, step, nx) = (lattice.origin.x, lattice.step.x, lattice.nx);
-        let columns = if step > 0.0 && step <= SPAN_MAX_STEP && row_in_fast_range(x0, step, nx) {
+        // Where the rows go span by span (see `row_at`).
+        let spans = step > 0.0 && step <= WINDOW_MIN_STEP;
+        let columns = if spans && row_in_fast_range(x0, step, nx) {
             let (first, _) = split_fast(x0);
             let (last, _) = split_fast(x0 + (nx - 1) as f64 * step);
             Some((first, last.wrapping_sub(first) as usize + 2))
@@ -427,9 +453,8 @@ const SPAN_CELLS: usize = 32;
 /// Points [`row_spans`] writes per group (one AVX-512 vector, two AVX2 ones).
 const SPAN_GROUP: usize = 16;
 
-/// 2-D steps above this go to [`row_windows`] rather than [`row_spans`]:
-/// below 64 points a cell, the set-up of each cell costs more than the
-/// lookups.
+/// Steps above this go to [`row_windows`] rather than [`row_spans`]: below
+/// 64 points a cell, the set-up of each cell costs more than the lookups.
 const WINDOW_MIN_STEP: f64 = 1.0 / 64.0;
 
 /// Largest lattice step [`row_windows`] takes: a group of [`WINDOW`]
@@ -446,27 +471,27 @@ const WINDOW_CHUNK: usize = 256;
 /// group's first cell.
 const WINDOW_COLUMNS: usize = WINDOW_CHUNK + WINDOW + 2;
 
-/// A 2-D row at steps from [`WINDOW_MIN_STEP`] to [`WINDOW_MAX_STEP`] (1 to
-/// 64 points per cell): too few points per cell for [`row_spans`] to
+/// A 2-D or 3-D row at steps from [`WINDOW_MIN_STEP`] to [`WINDOW_MAX_STEP`]
+/// (1 to 64 points per cell): too few points per cell for [`row_spans`] to
 /// amortise a cell's set-up, but points enough on each lattice column that
-/// [`perlin2_row`], which hashes every point's corners, repeats most of its
-/// work.
+/// [`perlin2_row`] and [`perlin3_row`], which hash every point's corners,
+/// repeat most of their work.
 ///
 /// Each chunk of [`WINDOW_CHUNK`] points hashes its lattice columns once,
-/// into the two column terms `column(ix)` ([`RowCoeffs::column2_32`]:
-/// scaled, in `f32`). Each group of [`WINDOW`] points starts in some cell `c` and ends at most
+/// into its two terms ([`Columns`]: [`RowCoeffs::column2`] or
+/// [`RowCoeffs::column3`], scaled, in `f32`). Each group of [`WINDOW`] points starts in some cell `c` and ends at most
 /// 15 cells later, so every lane finds its cell's two bounding columns among
 /// the 17 from `c` on: the lanes look them up ([`lookup16`], AVX2 permutes),
 /// form [`span_coeffs`] and evaluate the cell's polynomial at their
 /// fraction. No hashing per point; equal to the f64 point path within 1e-5.
 #[inline(always)]
-fn row_windows(
+fn row_windows<const D3: bool>(
     simd: Simd,
     fade: impl Fn(f32) -> f32,
     x0: f64,
     step: f64,
     out: &mut [f32],
-    column: impl Fn(u32) -> [f32; 2],
+    columns: &Columns<'_, D3>,
 ) {
     let s32 = step as f32;
     let offset: [f32; WINDOW] = core::array::from_fn(|l| (l as i32) as f32 * s32);
@@ -477,10 +502,8 @@ fn row_windows(
         let (first, fx) = split_fast(x0 + (c * WINDOW_CHUNK) as f64 * step);
         // The last group's first cell, relative to `first`, and its window.
         let reach = fx + ((chunk.len() - 1) / WINDOW * WINDOW) as f64 * step;
-        let columns = (reach as usize + WINDOW + 2).min(WINDOW_COLUMNS);
-        for (i, (a, b)) in ca[..columns].iter_mut().zip(&mut cb[..columns]).enumerate() {
-            [*a, *b] = column(first.wrapping_add(i as u32));
-        }
+        let n = (reach as usize + WINDOW + 2).min(WINDOW_COLUMNS);
+        columns.fill(first, &mut ca[..n], &mut cb[..n]);
         for (g, group) in chunk.chunks_mut(WINDOW).enumerate() {
             // The group's start from the chunk's first cell (≥ 0, below
             // WINDOW_CHUNK + 1): its cell and fraction.
@@ -531,6 +554,29 @@ fn row_windows(
                         *o = x;
                     }
                 }
+            }
+        }
+    }
+}
+
+/// The column terms [`row_windows`] looks up, of a 2-D (`D3` false) or 3-D
+/// row, scaled by `k` (a struct with an inlined method rather than a
+/// closure: a closure is not always inlined into the level's
+/// `#[target_feature]` function, and then runs at the baseline level).
+struct Columns<'a, const D3: bool> {
+    rows: &'a RowCoeffs,
+    k: f32,
+}
+
+impl<const D3: bool> Columns<'_, D3> {
+    /// The terms of the lattice columns `first, first + 1, …` into `a` and `b`.
+    #[inline(always)]
+    fn fill(&self, first: u32, a: &mut [f32], b: &mut [f32]) {
+        if D3 {
+            self.rows.columns3_32(first, self.k, a, b);
+        } else {
+            for (i, (a, b)) in a.iter_mut().zip(b).enumerate() {
+                [*a, *b] = self.rows.column2_32(first.wrapping_add(i as u32), self.k);
             }
         }
     }
