@@ -387,6 +387,48 @@ fn w4_perlin3(c: &mut Criterion) {
     );
 }
 
+/// 3-D fBm, 8 octaves, over a 128³ grid at 0.01 cells a sample: the octaves
+/// at 0.02 to 0.64 cells a sample are the rows between the spans and the
+/// per-lane kernel (volume and cloud textures sample there).
+fn w6_fbm3(c: &mut Criterion) {
+    const M: usize = 128;
+    let mut out = vec![0.0f32; M * M * M];
+    let mut g = group(c, "W6_fbm8_3d_128", M * M * M);
+    let f = fbm8();
+    let l = Lattice3::new(glam::DVec3::ZERO, glam::DVec3::splat(FREQ), M, M, M).unwrap();
+    g.bench_function("natura", |b| {
+        b.iter(|| f.fill_grid3(&l, black_box(&mut out)).unwrap())
+    });
+    let simd_fbm = || {
+        NoiseBuilder::fbm_3d(M, M, M)
+            .with_freq(FREQ as f32)
+            .with_octaves(8)
+            .with_lacunarity(2.0)
+            .with_gain(0.5)
+            .with_seed(1)
+            .generate()
+    };
+    g.bench_function("simdnoise_fbm_3d", |b| b.iter(|| black_box(simd_fbm())));
+    g.finish();
+    batch_ratios(
+        "W6_fbm8_3d_128",
+        M * M * M,
+        &mut out,
+        vec![
+            (
+                "natura",
+                Box::new(|o: &mut [f32]| f.fill_grid3(&l, o).unwrap()),
+            ),
+            (
+                "simdnoise fbm_3d",
+                Box::new(|_: &mut [f32]| {
+                    black_box(simd_fbm());
+                }),
+            ),
+        ],
+    );
+}
+
 fn w5_worley2(c: &mut Criterion) {
     let mut out = vec![0.0f32; N * N];
     let mut g = group(c, "W5_worley_f1_2d_1024", N * N);
@@ -806,6 +848,7 @@ criterion_group!(
     w3_fbm2,
     w4_perlin3,
     w5_worley2,
+    w6_fbm3,
     p_perlin,
     p_simplex,
     p_worley,
