@@ -16,6 +16,7 @@ pub mod sine;
 pub mod sparse;
 pub mod steps;
 pub mod value;
+pub(crate) mod window;
 
 /// The interpolant ("fade") used across a lattice cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -13,10 +13,12 @@ use natura_simd::multiversion;
 
 use crate::basis::SPAN_MAX_STEP;
 use crate::basis::lattice::lattice_sum;
+use crate::basis::window::{WINDOW, WINDOW_COLUMNS, Window, row_windows, takes_windows, window_at};
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
 use crate::lattice_math::{Simd, split_fast};
+use natura_simd::lookup16;
 
 /// How value noise interpolates across a cell.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -212,6 +214,26 @@ multiversion! {
         step: f64,
         out: &'a mut [f32],
     ) {
+        // Span by span up to 1/32 cell a point (measured faster there than
+        // the windows), window by window to 1 cell, then lane by lane.
+        if takes_windows(step, VALUE_WINDOW_MIN_STEP) {
+            let w32: [f32; 4] = core::array::from_fn(|k| w.get(k).copied().unwrap_or(0.0) as f32);
+            match interp {
+                ValueInterp::Linear => {
+                    let v = ValueWindow { rows, w: w32, interp: linear32 };
+                    row_windows(simd, &v, x0, step, out);
+                }
+                ValueInterp::Cubic => {
+                    let v = ValueWindow { rows, w: w32, interp: crate::lattice_math::cubic32 };
+                    row_windows(simd, &v, x0, step, out);
+                }
+                ValueInterp::Quintic => {
+                    let v = ValueWindow { rows, w: w32, interp: crate::lattice_math::quintic32 };
+                    row_windows(simd, &v, x0, step, out);
+                }
+            }
+            return;
+        }
         let cell = |ix: u32| {
             let (mut a, mut b) = (0.0, 0.0);
             for (r, wt) in rows.iter().zip(w) {
@@ -269,5 +291,57 @@ multiversion! {
                 *o = acc;
             }
         }
+    }
+}
+
+/// Value noise rows go window by window above this step (cells a point).
+const VALUE_WINDOW_MIN_STEP: f64 = 1.0 / 32.0;
+
+/// The linear interpolation's weight: the fraction itself.
+#[inline(always)]
+fn linear32(t: f32) -> f32 {
+    t
+}
+
+/// Value noise's side of [`row_windows`]: each lattice column's value, the
+/// row-weighted lattice values of its corner rows; a lane interpolates
+/// between its cell's two columns (the same function as the lane kernel's,
+/// re-associated).
+struct ValueWindow<'a, F> {
+    rows: &'a [u32],
+    w: [f32; 4],
+    interp: F,
+}
+
+/// The one table: each column's value.
+impl<F: Fn(f32) -> f32> Window<1> for ValueWindow<'_, F> {
+    #[inline(always)]
+    fn columns(&self, first: u32, n: usize, tables: &mut [[f32; WINDOW_COLUMNS]; 1]) {
+        let v = &mut tables[0][..n];
+        v.fill(0.0);
+        // One pass per corner row: plain loops that vectorise.
+        for (&r, &w) in self.rows.iter().zip(&self.w) {
+            for (i, v) in v.iter_mut().enumerate() {
+                *v += w * signed_unit(corner(first.wrapping_add(i as u32), r));
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn group(
+        &self,
+        simd: Simd,
+        tables: &[[f32; WINDOW_COLUMNS]; 1],
+        cell: usize,
+        index: &[u32; WINDOW],
+        t: &[f32; WINDOW],
+    ) -> [f32; WINDOW] {
+        let (l, r) = (window_at(&tables[0], cell), window_at(&tables[0], cell + 1));
+        let [a, b] = lookup16(simd, [&l, &r], index);
+        let mut v = [0.0f32; WINDOW];
+        for k in 0..WINDOW {
+            v[k] = a[k] + (self.interp)(t[k]) * (b[k] - a[k]);
+        }
+        v
     }
 }

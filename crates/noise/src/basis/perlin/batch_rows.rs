@@ -6,10 +6,10 @@
 //! - up to 1/64, span by span: four coefficients per cell, each lattice
 //!   column hashed once per row, whole 16-lane groups (the 3-D grid fill
 //!   caches the columns' gradients across rows);
-//! - up to 1, window by window ([`row_windows`]): each lattice column hashed
-//!   once per row into two terms, and every 16-point group, which spans at
-//!   most 16 cells, looks its lanes' columns up by permutes
-//!   (`natura_simd::lookup16`);
+//! - up to 1, window by window ([`row_windows`], with [`PerlinWindow`]):
+//!   each lattice column hashed once per row into two terms, and every
+//!   16-point group, which spans at most 16 cells, looks its lanes' columns
+//!   up by permutes (`natura_simd::lookup16`);
 //! - beyond, a per-lane kernel whose 32-point blocks are rebased to a local
 //!   origin (one f64 split per block, then f32/u32 lanes from precomputed
 //!   lane offsets), so lattice indices stay exact at planet-scale
@@ -22,6 +22,9 @@ use glam::{DVec2, DVec3};
 use natura_simd::multiversion;
 
 use super::Perlin;
+use crate::basis::window::{
+    WINDOW, WINDOW_COLUMNS, WINDOW_MIN_STEP, Window, row_windows, takes_windows, window_at,
+};
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
@@ -82,17 +85,17 @@ multiversion! {
         k: f64,
         out: &'a mut [f32],
     ) {
-        let windows = step > WINDOW_MIN_STEP && step <= WINDOW_MAX_STEP;
+        let windows = takes_windows(step, WINDOW_MIN_STEP);
         let spans = step > 0.0 && step <= SPAN_MAX_STEP;
         match (spans, D3) {
-            (_, false) if windows => {
-                let columns = Columns::<false> { rows, k: k as f32 };
-                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, &columns));
-            }
-            (_, true) if windows => {
-                let columns = Columns::<true> { rows, k: k as f32 };
-                with_fade32!(fade, |f| row_windows(simd, f, x0, step, out, &columns));
-            }
+            (_, false) if windows => with_fade32!(fade, |f| {
+                let w = PerlinWindow::<false, _> { rows, k: k as f32, fade: f };
+                row_windows(simd, &w, x0, step, out);
+            }),
+            (_, true) if windows => with_fade32!(fade, |f| {
+                let w = PerlinWindow::<true, _> { rows, k: k as f32, fade: f };
+                row_windows(simd, &w, x0, step, out);
+            }),
             (true, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
             (true, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
             (false, false) => {
@@ -453,125 +456,23 @@ const SPAN_CELLS: usize = 32;
 /// Points [`row_spans`] writes per group (one AVX-512 vector, two AVX2 ones).
 const SPAN_GROUP: usize = 16;
 
-/// Steps above this go to [`row_windows`] rather than [`row_spans`]: below
-/// 64 points a cell, the set-up of each cell costs more than the lookups.
-const WINDOW_MIN_STEP: f64 = 1.0 / 64.0;
-
-/// Largest lattice step [`row_windows`] takes: a group of [`WINDOW`]
-/// points then spans at most [`WINDOW`] cells.
-const WINDOW_MAX_STEP: f64 = 1.0;
-
-/// Points per group of [`row_windows`] (the lanes of one lookup).
-const WINDOW: usize = 16;
-
-/// Points whose lattice columns [`row_windows`] prepares in one batch.
-const WINDOW_CHUNK: usize = 256;
-
-/// Columns a chunk may need: its cells, and a window's reach past the last
-/// group's first cell.
-const WINDOW_COLUMNS: usize = WINDOW_CHUNK + WINDOW + 2;
-
-/// A 2-D or 3-D row at steps from [`WINDOW_MIN_STEP`] to [`WINDOW_MAX_STEP`]
-/// (1 to 64 points per cell): too few points per cell for [`row_spans`] to
-/// amortise a cell's set-up, but points enough on each lattice column that
-/// [`perlin2_row`] and [`perlin3_row`], which hash every point's corners,
-/// repeat most of their work.
-///
-/// Each chunk of [`WINDOW_CHUNK`] points hashes its lattice columns once,
-/// into its two terms ([`Columns`]: [`RowCoeffs::column2`] or
-/// [`RowCoeffs::column3`], scaled, in `f32`). Each group of [`WINDOW`] points starts in some cell `c` and ends at most
-/// 15 cells later, so every lane finds its cell's two bounding columns among
-/// the 17 from `c` on: the lanes look them up ([`lookup16`], AVX2 permutes),
-/// form [`span_coeffs`] and evaluate the cell's polynomial at their
-/// fraction. No hashing per point; equal to the f64 point path within 1e-5.
-#[inline(always)]
-fn row_windows<const D3: bool>(
-    simd: Simd,
-    fade: impl Fn(f32) -> f32,
-    x0: f64,
-    step: f64,
-    out: &mut [f32],
-    columns: &Columns<'_, D3>,
-) {
-    let s32 = step as f32;
-    let offset: [f32; WINDOW] = core::array::from_fn(|l| (l as i32) as f32 * s32);
-    // Per column: the fraction-independent term and the x-gradient term.
-    let mut ca = [0.0f32; WINDOW_COLUMNS];
-    let mut cb = [0.0f32; WINDOW_COLUMNS];
-    for (c, chunk) in out.chunks_mut(WINDOW_CHUNK).enumerate() {
-        let (first, fx) = split_fast(x0 + (c * WINDOW_CHUNK) as f64 * step);
-        // The last group's first cell, relative to `first`, and its window.
-        let reach = fx + ((chunk.len() - 1) / WINDOW * WINDOW) as f64 * step;
-        let n = (reach as usize + WINDOW + 2).min(WINDOW_COLUMNS);
-        columns.fill(first, &mut ca[..n], &mut cb[..n]);
-        for (g, group) in chunk.chunks_mut(WINDOW).enumerate() {
-            // The group's start from the chunk's first cell (≥ 0, below
-            // WINDOW_CHUNK + 1): its cell and fraction.
-            let u = fx + ((g * WINDOW) as f64) * step;
-            let cell = u as usize;
-            let f = (u - cell as f64) as f32;
-            let mut index = [0u32; WINDOW];
-            let mut t = [0.0f32; WINDOW];
-            for l in 0..WINDOW {
-                // The lane's point from the group's cell, in [0, 16]: its
-                // floor by rounding at 2²³ (whose integer sits in the low
-                // mantissa bits) and a correction, as `split_fast` does in
-                // f64 (a float-to-int cast is a compare and a scalar
-                // convert per lane). A sum rounded up to 16 stays in cell 15
-                // at fraction 1, the same point.
-                const M: f32 = 8_388_608.0;
-                let s = f + offset[l];
-                let r = s + M;
-                let n = r - M;
-                let down = n > s;
-                let i = (r.to_bits() & 0xff).wrapping_sub(u32::from(down));
-                let i = i.min(WINDOW as u32 - 1);
-                index[l] = i;
-                t[l] = s - (i as i32) as f32;
-            }
-            let window = |v: &[f32; WINDOW_COLUMNS], from: usize| -> [f32; WINDOW] {
-                v[from..from + WINDOW].try_into().unwrap()
-            };
-            let (a0, b0, a1, b1) = (
-                window(&ca, cell),
-                window(&cb, cell),
-                window(&ca, cell + 1),
-                window(&cb, cell + 1),
-            );
-            let [la, lb, ra, rb] = lookup16(simd, [&a0, &b0, &a1, &b1], &index);
-            let mut v = [0.0f32; WINDOW];
-            for l in 0..WINDOW {
-                let c = span_coeffs32([la[l], lb[l]], [ra[l], rb[l]]);
-                let t = t[l];
-                v[l] = (c[0] + c[1] * t) + fade(t) * (c[2] + c[3] * t);
-            }
-            // A whole group as one fixed-size store (a slice copy of
-            // unknown length is a library call per group).
-            match <&mut [f32; WINDOW]>::try_from(&mut *group) {
-                Ok(whole) => *whole = v,
-                Err(_) => {
-                    for (o, x) in group.iter_mut().zip(v) {
-                        *o = x;
-                    }
-                }
-            }
-        }
-    }
-}
-
-/// The column terms [`row_windows`] looks up, of a 2-D (`D3` false) or 3-D
-/// row, scaled by `k` (a struct with an inlined method rather than a
-/// closure: a closure is not always inlined into the level's
-/// `#[target_feature]` function, and then runs at the baseline level).
-struct Columns<'a, const D3: bool> {
+/// Perlin noise's side of [`row_windows`]: the two terms of each lattice
+/// column of a 2-D (`D3` false) or 3-D row ([`RowCoeffs::column2`] or
+/// [`RowCoeffs::column3`], scaled by `k`, in `f32`); a lane forms its cell's
+/// [`span_coeffs`] from its two columns and evaluates the cell's polynomial
+/// at its fraction.
+struct PerlinWindow<'a, const D3: bool, F> {
     rows: &'a RowCoeffs,
     k: f32,
+    fade: F,
 }
 
-impl<const D3: bool> Columns<'_, D3> {
-    /// The terms of the lattice columns `first, first + 1, …` into `a` and `b`.
+/// Tables: per column, the fraction-independent term and the x-gradient term.
+impl<const D3: bool, F: Fn(f32) -> f32> Window<2> for PerlinWindow<'_, D3, F> {
     #[inline(always)]
-    fn fill(&self, first: u32, a: &mut [f32], b: &mut [f32]) {
+    fn columns(&self, first: u32, n: usize, tables: &mut [[f32; WINDOW_COLUMNS]; 2]) {
+        let [a, b] = tables;
+        let (a, b) = (&mut a[..n], &mut b[..n]);
         if D3 {
             self.rows.columns3_32(first, self.k, a, b);
         } else {
@@ -579,6 +480,28 @@ impl<const D3: bool> Columns<'_, D3> {
                 [*a, *b] = self.rows.column2_32(first.wrapping_add(i as u32), self.k);
             }
         }
+    }
+
+    #[inline(always)]
+    fn group(
+        &self,
+        simd: Simd,
+        tables: &[[f32; WINDOW_COLUMNS]; 2],
+        cell: usize,
+        index: &[u32; WINDOW],
+        t: &[f32; WINDOW],
+    ) -> [f32; WINDOW] {
+        let [a, b] = tables;
+        let (a0, b0) = (window_at(a, cell), window_at(b, cell));
+        let (a1, b1) = (window_at(a, cell + 1), window_at(b, cell + 1));
+        let [la, lb, ra, rb] = lookup16(simd, [&a0, &b0, &a1, &b1], index);
+        let mut v = [0.0f32; WINDOW];
+        for l in 0..WINDOW {
+            let c = span_coeffs32([la[l], lb[l]], [ra[l], rb[l]]);
+            let t = t[l];
+            v[l] = (c[0] + c[1] * t) + (self.fade)(t) * (c[2] + c[3] * t);
+        }
+        v
     }
 }
 

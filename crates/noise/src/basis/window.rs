@@ -1,0 +1,133 @@
+//! Batch rows window by window: the lattice bases' kernel for rows of 1 to
+//! 64 points a cell.
+//!
+//! At these steps a row has too few points per cell for a span kernel (one
+//! cell's set-up, then its points) to amortise the set-up, yet enough points
+//! on each lattice column that a per-lane kernel, which hashes every
+//! point's corners, repeats most of its work. Here each chunk of
+//! [`WINDOW_CHUNK`] points has its lattice columns prepared once (hashed
+//! into the basis's column terms, [`Window::columns`]), and each group of
+//! [`WINDOW`] points, which starts in some cell and spans at most
+//! [`WINDOW`] cells, hands its lanes' cells (relative to the group's first)
+//! and fractions to [`Window::group`], which looks their columns' terms up
+//! by permutes (`natura_simd::lookup16`) and evaluates the basis's formula
+//! in the cell. No hashing per point.
+
+use crate::lattice_math::{Simd, split_fast};
+
+/// Steps (lattice cells per point) above this go window by window rather
+/// than span by span: below 64 points a cell, the set-up of each cell costs
+/// more than the lookups (Perlin noise; value noise, whose cells cost less
+/// to set up, from 1/32).
+pub(crate) const WINDOW_MIN_STEP: f64 = 1.0 / 64.0;
+
+/// Largest step [`row_windows`] takes: a group of [`WINDOW`] points then
+/// spans at most [`WINDOW`] cells.
+pub(crate) const WINDOW_MAX_STEP: f64 = 1.0;
+
+/// Points per group (the lanes of one lookup).
+pub(crate) const WINDOW: usize = 16;
+
+/// Points whose lattice columns are prepared in one batch.
+pub(crate) const WINDOW_CHUNK: usize = 256;
+
+/// Columns a chunk may need: its cells, and a window's reach past the last
+/// group's first cell (a lane's cell and the column to its right).
+pub(crate) const WINDOW_COLUMNS: usize = WINDOW_CHUNK + WINDOW + 2;
+
+/// Whether a row of spacing `step` goes window by window, for a basis
+/// whose span kernel is the faster up to `min` (at most 1/64).
+#[inline(always)]
+pub(crate) fn takes_windows(step: f64, min: f64) -> bool {
+    step > min.max(WINDOW_MIN_STEP) && step <= WINDOW_MAX_STEP
+}
+
+/// A basis's side of [`row_windows`]: its column terms and its formula in a
+/// cell. Implementations are structs with `#[inline(always)]` methods (a
+/// closure is not always inlined into the level's `#[target_feature]`
+/// function, and then runs at the baseline level).
+pub(crate) trait Window<const T: usize> {
+    /// Fills the `T` tables of terms of the lattice columns `first, first +
+    /// 1, …`, `n ≤ WINDOW_COLUMNS` of them (table index 0 is column `first`).
+    fn columns(&self, first: u32, n: usize, tables: &mut [[f32; WINDOW_COLUMNS]; T]);
+
+    /// The values of a group's lanes: lane `l` lies in the cell between
+    /// table columns `cell + index[l]` and `cell + index[l] + 1`, at fraction
+    /// `t[l]` in `[0, 1]`.
+    fn group(
+        &self,
+        simd: Simd,
+        tables: &[[f32; WINDOW_COLUMNS]; T],
+        cell: usize,
+        index: &[u32; WINDOW],
+        t: &[f32; WINDOW],
+    ) -> [f32; WINDOW];
+}
+
+/// The row `out[i]` at `x0 + i·step` (`WINDOW_MIN_STEP < step ≤
+/// WINDOW_MAX_STEP`, inside the fast-split range), window by window (see
+/// the module docs). Equal at every SIMD level.
+#[inline(always)]
+pub(crate) fn row_windows<const T: usize, W: Window<T>>(
+    simd: Simd,
+    basis: &W,
+    x0: f64,
+    step: f64,
+    out: &mut [f32],
+) {
+    let s32 = step as f32;
+    // The column tables live here, on the kernel's stack, not in `basis`:
+    // held behind a reference they kept the loops from vectorising.
+    let mut tables = [[0.0f32; WINDOW_COLUMNS]; T];
+    let offset: [f32; WINDOW] = core::array::from_fn(|l| (l as i32) as f32 * s32);
+    for (c, chunk) in out.chunks_mut(WINDOW_CHUNK).enumerate() {
+        let (first, fx) = split_fast(x0 + (c * WINDOW_CHUNK) as f64 * step);
+        // The last group's first cell, relative to `first`, and its window.
+        let reach = fx + ((chunk.len() - 1) / WINDOW * WINDOW) as f64 * step;
+        let n = (reach as usize + WINDOW + 2).min(WINDOW_COLUMNS);
+        basis.columns(first, n, &mut tables);
+        for (g, group) in chunk.chunks_mut(WINDOW).enumerate() {
+            // The group's start from the chunk's first cell (≥ 0, below
+            // WINDOW_CHUNK + 1): its cell and fraction.
+            let u = fx + ((g * WINDOW) as f64) * step;
+            let cell = u as usize;
+            let f = (u - cell as f64) as f32;
+            let mut index = [0u32; WINDOW];
+            let mut t = [0.0f32; WINDOW];
+            for l in 0..WINDOW {
+                // The lane's point from the group's cell, in [0, 16]: its
+                // floor by rounding at 2²³ (whose integer sits in the low
+                // mantissa bits) and a correction, as `split_fast` does in
+                // f64 (a float-to-int cast is a compare and a scalar
+                // convert per lane). A sum rounded up to 16 stays in cell 15
+                // at fraction 1, the same point.
+                const M: f32 = 8_388_608.0;
+                let s = f + offset[l];
+                let r = s + M;
+                let n = r - M;
+                let down = n > s;
+                let i = (r.to_bits() & 0xff).wrapping_sub(u32::from(down));
+                let i = i.min(WINDOW as u32 - 1);
+                index[l] = i;
+                t[l] = s - (i as i32) as f32;
+            }
+            let v = basis.group(simd, &tables, cell, &index, &t);
+            // A whole group as one fixed-size store (a slice copy of
+            // unknown length is a library call per group).
+            match <&mut [f32; WINDOW]>::try_from(&mut *group) {
+                Ok(whole) => *whole = v,
+                Err(_) => {
+                    for (o, x) in group.iter_mut().zip(v) {
+                        *o = x;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The [`WINDOW`] table entries from `from` on.
+#[inline(always)]
+pub(crate) fn window_at(table: &[f32; WINDOW_COLUMNS], from: usize) -> [f32; WINDOW] {
+    table[from..from + WINDOW].try_into().unwrap()
+}
