@@ -28,7 +28,7 @@ use crate::basis::window::{
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
 use crate::hash::{corner, grad2, grad3, row2, row3};
-use crate::lattice_math::{BLOCK, LaneOffsets, Simd, rebase, split_fast};
+use crate::lattice_math::{BLOCK, LaneOffsets, Real, Simd, rebase, split_fast};
 use natura_simd::lookup16;
 
 impl Perlin {
@@ -369,8 +369,9 @@ impl Perlin {
 /// over the cell between lattice columns `left` and `right` (see
 /// [`RowCoeffs::column2`]): the left corners give `a0 + a1·fx`, the right ones
 /// `c1·(fx − 1) + c0`, and the fade blends them.
+/// In `f64` for the spans, in `f32` for the windows' lanes.
 #[inline(always)]
-fn span_coeffs(left: [f64; 2], right: [f64; 2]) -> [f64; 4] {
+fn span_coeffs<R: Real>(left: [R; 2], right: [R; 2]) -> [R; 4] {
     let c0 = right[0] - right[1];
     [left[0], left[1], c0 - left[0], right[1] - left[1]]
 }
@@ -497,19 +498,12 @@ impl<const D3: bool, F: Fn(f32) -> f32> Window<2> for PerlinWindow<'_, D3, F> {
         let [la, lb, ra, rb] = lookup16(simd, [&a0, &b0, &a1, &b1], index);
         let mut v = [0.0f32; WINDOW];
         for l in 0..WINDOW {
-            let c = span_coeffs32([la[l], lb[l]], [ra[l], rb[l]]);
+            let c = span_coeffs([la[l], lb[l]], [ra[l], rb[l]]);
             let t = t[l];
             v[l] = (c[0] + c[1] * t) + (self.fade)(t) * (c[2] + c[3] * t);
         }
         v
     }
-}
-
-/// [`span_coeffs`] in `f32`, for columns already scaled.
-#[inline(always)]
-fn span_coeffs32(left: [f32; 2], right: [f32; 2]) -> [f32; 4] {
-    let c0 = right[0] - right[1];
-    [left[0], left[1], c0 - left[0], right[1] - left[1]]
 }
 
 /// The general 2-D row kernel: every lane finds its own cell.
