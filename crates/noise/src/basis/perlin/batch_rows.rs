@@ -85,23 +85,21 @@ multiversion! {
         k: f64,
         out: &'a mut [f32],
     ) {
-        let windows = takes_windows(step, WINDOW_MIN_STEP);
-        let spans = step > 0.0 && step <= SPAN_MAX_STEP;
-        match (spans, D3) {
-            (_, false) if windows => with_fade32!(fade, |f| {
+        match (RowKernel::of(step), D3) {
+            (RowKernel::Windows, false) => with_fade32!(fade, |f| {
                 let w = PerlinWindow::<false, _> { rows, k: k as f32, fade: f };
                 row_windows(simd, &w, x0, step, out);
             }),
-            (_, true) if windows => with_fade32!(fade, |f| {
+            (RowKernel::Windows, true) => with_fade32!(fade, |f| {
                 let w = PerlinWindow::<true, _> { rows, k: k as f32, fade: f };
                 row_windows(simd, &w, x0, step, out);
             }),
-            (true, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
-            (true, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
-            (false, false) => {
+            (RowKernel::Spans, false) => row_spans(fade, x0, step, k, out, |ix| rows.column2(ix)),
+            (RowKernel::Spans, true) => row_spans(fade, x0, step, k, out, |ix| rows.column3(ix)),
+            (RowKernel::Lanes, false) => {
                 with_fade32!(fade, |f| perlin2_row(f, rows, x0, step, k as f32, out));
             }
-            (false, true) => {
+            (RowKernel::Lanes, true) => {
                 with_fade32!(fade, |f| perlin3_row(f, rows, x0, step, k as f32, out));
             }
         }
@@ -122,6 +120,31 @@ multiversion! {
         out: &'a mut [f32],
     ) {
         row_spans(fade, x0, step, k, out, |ix| cache.column(rows, ix));
+    }
+}
+
+/// The kernel a row of spacing `step` (lattice cells per point) takes, the
+/// one decision [`row_at`] and the 3-D grid fill's column cache share.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum RowKernel {
+    /// [`row_spans`]: up to [`WINDOW_MIN_STEP`].
+    Spans,
+    /// [`row_windows`]: up to `WINDOW_MAX_STEP`.
+    Windows,
+    /// [`perlin2_row`] or [`perlin3_row`]: beyond.
+    Lanes,
+}
+
+impl RowKernel {
+    #[inline(always)]
+    fn of(step: f64) -> Self {
+        if takes_windows(step, WINDOW_MIN_STEP) {
+            Self::Windows
+        } else if step > 0.0 && step <= SPAN_MAX_STEP {
+            Self::Spans
+        } else {
+            Self::Lanes
+        }
     }
 }
 
@@ -319,8 +342,7 @@ impl Perlin {
     ) -> crate::Result<()> {
         lattice.check(out.len())?;
         let (x0, step, nx) = (lattice.origin.x, lattice.step.x, lattice.nx);
-        // Where the rows go span by span (see `row_at`).
-        let spans = step > 0.0 && step <= WINDOW_MIN_STEP;
+        let spans = RowKernel::of(step) == RowKernel::Spans;
         let columns = if spans && row_in_fast_range(x0, step, nx) {
             let (first, _) = split_fast(x0);
             let (last, _) = split_fast(x0 + (nx - 1) as f64 * step);
