@@ -2,7 +2,7 @@
 
 use crate::common;
 
-use common::{Rng, check_batch, check_gradient, check_lipschitz};
+use common::{Rng, check_batch, check_gradient, check_lipschitz, check_rows_bitwise};
 use glam::{DVec2, DVec3};
 use natura_noise::{Field, Metric, Simplex, Worley, WorleyFeature, WorleyParams};
 
@@ -232,7 +232,7 @@ fn rebased_rows_match_point_path_far_from_origin() {
 /// for every interpolation, 2-D and 3-D, equal at every SIMD level.
 #[test]
 fn value_window_rows_match_point_path() {
-    use natura_noise::{Simd, Value, ValueInterp};
+    use natura_noise::{Value, ValueInterp};
     let steps = [1.0 / 32.0 + 1e-9, 0.1, 0.5, 0.999_999_9, 1.0];
     let origins = [
         DVec3::new(0.0, 0.0, 0.0),
@@ -247,29 +247,7 @@ fn value_window_rows_match_point_path() {
         let n = Value::with_interp(8, interp);
         for &step in &steps {
             for &o in &origins {
-                let mut reference: Option<Vec<u32>> = None;
-                for simd in Simd::supported() {
-                    let (mut r2, mut r3) = (vec![0.0f32; 700], vec![0.0f32; 700]);
-                    n.fill_row2_with(simd, o.truncate(), step, &mut r2);
-                    n.fill_row3_with(simd, o, step, &mut r3);
-                    for i in 0..700 {
-                        let dx = i as f64 * step;
-                        let e2 = n.eval2(DVec2::new(o.x + dx, o.y));
-                        let e3 = n.eval3(DVec3::new(o.x + dx, o.y, o.z));
-                        assert!(
-                            (f64::from(r2[i]) - e2).abs() <= 1e-5
-                                && (f64::from(r3[i]) - e3).abs() <= 1e-5,
-                            "{interp:?} {simd:?} step {step} {o} i {i}: {} {e2} / {} {e3}",
-                            r2[i],
-                            r3[i]
-                        );
-                    }
-                    let bits: Vec<u32> = r2.iter().chain(&r3).map(|v| v.to_bits()).collect();
-                    match &reference {
-                        None => reference = Some(bits),
-                        Some(r) => assert_eq!(r, &bits, "levels differ at {simd:?} step {step}"),
-                    }
-                }
+                check_rows_bitwise(&n, step, o.truncate(), o, 700, 1e-5);
             }
         }
     }

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{Rng, check_batch, check_gradient, check_lipschitz};
+use common::{Rng, check_batch, check_gradient, check_lipschitz, check_rows_bitwise};
 use glam::{DVec2, DVec3, DVec4};
 use natura_noise::{Fade, Field, Perlin};
 
@@ -103,7 +103,6 @@ fn batch_matches_point_at_every_simd_level() {
 /// in, far from the origin and on both sides of it, at every SIMD level.
 #[test]
 fn window_rows_match_point_path_at_their_edges() {
-    use natura_noise::Simd;
     let n = Perlin::new(31);
     let steps = [
         1.0 / 64.0 + 1e-9,
@@ -123,33 +122,8 @@ fn window_rows_match_point_path_at_their_edges() {
     ];
     for &step in &steps {
         for &o in &origins {
-            let mut reference: Option<Vec<u32>> = None;
-            for simd in Simd::supported() {
-                let mut row = vec![0.0f32; 1000];
-                n.fill_row2_with(simd, o, step, &mut row);
-                for (i, &v) in row.iter().enumerate() {
-                    let e = n.eval2(DVec2::new(o.x + i as f64 * step, o.y));
-                    assert!(
-                        (f64::from(v) - e).abs() <= 1e-5,
-                        "{simd:?} step {step} origin {o} i {i}: row {v}, point {e}"
-                    );
-                }
-                let mut row3 = vec![0.0f32; 1000];
-                let o3 = DVec3::new(o.x, o.y, 0.37 - o.y);
-                n.fill_row3_with(simd, o3, step, &mut row3);
-                for (i, &v) in row3.iter().enumerate() {
-                    let e = n.eval3(o3 + DVec3::X * (i as f64 * step));
-                    assert!(
-                        (f64::from(v) - e).abs() <= 1e-5,
-                        "3-D {simd:?} step {step} origin {o3} i {i}: row {v}, point {e}"
-                    );
-                }
-                let bits: Vec<u32> = row.iter().chain(&row3).map(|v| v.to_bits()).collect();
-                match &reference {
-                    None => reference = Some(bits),
-                    Some(r) => assert_eq!(r, &bits, "levels differ at {simd:?} step {step}"),
-                }
-            }
+            let o3 = DVec3::new(o.x, o.y, 0.37 - o.y);
+            check_rows_bitwise(&n, step, o, o3, 1000, 1e-5);
         }
     }
 }

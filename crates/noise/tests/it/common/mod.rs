@@ -87,6 +87,38 @@ pub fn check_batch<F: Field>(f: &F, tol: f64, seed: u64) {
     }
 }
 
+/// Asserts the 2-D row from `o2` and the 3-D row from `o3`, `n` points
+/// `step` apart along x, match the point path within `tol` at every SIMD
+/// level, and that every level gives the same bits.
+pub fn check_rows_bitwise<F: Field>(f: &F, step: f64, o2: DVec2, o3: DVec3, n: usize, tol: f64) {
+    let mut reference: Option<Vec<u32>> = None;
+    for simd in Simd::supported() {
+        let (mut r2, mut r3) = (vec![0.0f32; n], vec![0.0f32; n]);
+        f.fill_row2_with(simd, o2, step, &mut r2);
+        f.fill_row3_with(simd, o3, step, &mut r3);
+        for i in 0..n {
+            let dx = i as f64 * step;
+            let e2 = f.eval2(DVec2::new(o2.x + dx, o2.y));
+            let e3 = f.eval3(DVec3::new(o3.x + dx, o3.y, o3.z));
+            assert!(
+                (f64::from(r2[i]) - e2).abs() <= tol,
+                "2-D {simd:?} step {step} origin {o2} i {i}: row {}, point {e2}",
+                r2[i]
+            );
+            assert!(
+                (f64::from(r3[i]) - e3).abs() <= tol,
+                "3-D {simd:?} step {step} origin {o3} i {i}: row {}, point {e3}",
+                r3[i]
+            );
+        }
+        let bits: Vec<u32> = r2.iter().chain(&r3).map(|v| v.to_bits()).collect();
+        match &reference {
+            None => reference = Some(bits),
+            Some(r) => assert_eq!(r, &bits, "levels differ at {simd:?} step {step}"),
+        }
+    }
+}
+
 /// Asserts the analytic gradient matches central differences within `tol`
 /// (relative to the Lipschitz constant).
 pub fn check_gradient<F: Field>(f: &F, tol: f64, seed: u64, n: usize) {
