@@ -31,6 +31,10 @@ use natura::trace::{
     PinholeCamera, Ray, RayCone, RenderOptions, Tracer, render, trace_image,
 };
 
+#[cfg(feature = "embree-peer")]
+#[path = "trace/embree.rs"]
+mod embree;
+
 const CELL: f32 = 10.0;
 
 /// A multifractal-like field of `n × n` samples (heterogeneous terrain over
@@ -502,5 +506,25 @@ fn detail(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, primary, scaling, detail);
+/// Embree as a peer (with the `embree-peer` feature; see `trace/embree.rs`).
+#[cfg(feature = "embree-peer")]
+fn embree_peer(c: &mut Criterion) {
+    if !wanted("embree") {
+        return;
+    }
+    let hf = field(4096, 1);
+    embree::compare(
+        c,
+        &hf,
+        &[
+            ("grazing", grazing(&hf, 1920, 1080)),
+            ("topdown", topdown(&hf, 1920, 1080)),
+        ],
+    );
+}
+
+#[cfg(not(feature = "embree-peer"))]
+fn embree_peer(_: &mut Criterion) {}
+
+criterion_group!(benches, primary, scaling, detail, embree_peer);
 criterion_main!(benches);
