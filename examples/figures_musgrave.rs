@@ -19,7 +19,8 @@
 //! (Musgrave 2001, figs. 9, 13, 18–28, 31), the multifractal Milky
 //! Way (Musgrave 2001, fig. 32), and "Slickrock I" and "III" in random fBm
 //! colour and a GIT texture, and a picture repainted by the GIT filter
-//! (Musgrave 1998, figs. 15.13–15.15).
+//! (Musgrave 1998, figs. 15.13–15.15), and a 370° × 180° panorama of a
+//! canyon system on Mars through the panoramic virtual screen (Pl. 8.1).
 //!
 //! ```text
 //! cargo run --release --example figures_musgrave                 # into ./figures_musgrave/
@@ -139,6 +140,9 @@ enum Fig {
     Slickrock,
     /// Musgrave 1998, fig. 15.15: a picture repainted by the GIT filter
     GitFilter,
+    /// Pl. 8.1: a panorama of a canyon system on Mars, 370° × 180°, through
+    /// the panoramic virtual screen
+    VallesMarineris,
 }
 
 impl Figure for Fig {
@@ -171,6 +175,7 @@ impl Figure for Fig {
         Fig::Lakes,
         Fig::Slickrock,
         Fig::GitFilter,
+        Fig::VallesMarineris,
     ];
 
     fn files(self) -> &'static [&'static str] {
@@ -229,6 +234,7 @@ impl Figure for Fig {
                 "musgrave1998_fig15-14_slickrock_iii.png",
             ],
             Fig::GitFilter => &["musgrave1998_fig15-15_git_filter.png"],
+            Fig::VallesMarineris => &["musgrave_pl8-1_valles_marineris.png"],
         }
     }
 }
@@ -273,6 +279,8 @@ mod spectral_aliasing;
 mod terran_stages;
 #[path = "musgrave/umbra.rs"]
 mod umbra;
+#[path = "musgrave/valles.rs"]
+mod valles;
 use landscape::{
     Landscape, desert_sky, misty_sky, ridged_field, smoothstep, strata_albedo, supersampled,
 };
@@ -318,6 +326,7 @@ fn figures() -> Run {
             Fig::Lakes => lakes::pair(cli.seed, cli.quick)?,
             Fig::Slickrock => slickrock::pair(cli.seed, cli.quick)?,
             Fig::GitFilter => vec![slickrock::git_filtered(cli.seed, cli.quick)?],
+            Fig::VallesMarineris => vec![valles::picture(cli.seed, cli.quick)?],
         })
     })
 }
