@@ -109,6 +109,22 @@ pub trait Field: Send + Sync {
         }
     }
 
+    /// Fills rows of a 2-D grid at once using `simd`: `out` holds
+    /// `ys.len()` rows of `n = out.len() / ys.len()` points one after
+    /// another, and point `i` of row `r` is the value at `(x0 + i·step,
+    /// ys[r])`. Equal, bit for bit, to [`fill_row2_with`](Self::fill_row2_with)
+    /// row by row, which is the default; the bases and fBm override it to
+    /// share between the rows the work that depends on x alone. Points past
+    /// the last whole row are left as they are.
+    fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+            return;
+        };
+        for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
+            self.fill_row2_with(simd, DVec2::new(x0, y), step, row);
+        }
+    }
+
     /// Fills `out[i]` with the value at `origin + i·step·x̂` (3-D) using `simd`.
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         let _ = simd;
@@ -139,8 +155,15 @@ pub trait Field: Send + Sync {
     fn fill_grid2(&self, lattice: &Lattice2, out: &mut [f32]) -> Result<()> {
         lattice.check(out.len())?;
         let simd = Simd::best();
-        for (j, row) in out.chunks_exact_mut(lattice.nx).enumerate() {
-            self.fill_row2_with(simd, lattice.row_origin(j), lattice.step.x, row);
+        // Blocks of rows, so fields that share work between rows can.
+        for (b, block) in out
+            .chunks_mut(GRID_ROWS.saturating_mul(lattice.nx))
+            .enumerate()
+        {
+            let ys: [f64; GRID_ROWS] =
+                core::array::from_fn(|r| lattice.row_origin(b * GRID_ROWS + r).y);
+            let rows = block.len() / lattice.nx;
+            self.fill_rows2_with(simd, lattice.origin.x, &ys[..rows], lattice.step.x, block);
         }
         Ok(())
     }
@@ -166,6 +189,9 @@ pub trait Field: Send + Sync {
         Ok(())
     }
 }
+
+/// Rows [`Field::fill_grid2`] hands [`Field::fill_rows2_with`] at a time.
+const GRID_ROWS: usize = 8;
 
 /// A regular 2-D lattice of sample points: `origin + (i·step.x, j·step.y)` for
 /// `i < nx`, `j < ny`.
@@ -387,6 +413,9 @@ macro_rules! forward_field {
             }
             fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
                 (**self).fill_row3_with(simd, origin, step, out)
+            }
+            fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+                (**self).fill_rows2_with(simd, x0, ys, step, out)
             }
         }
     )*};

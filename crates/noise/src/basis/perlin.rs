@@ -330,6 +330,10 @@ impl Field for Perlin {
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         self.rows3(simd, origin, step, out);
     }
+
+    fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+        self.rows2_many(simd, x0, ys, step, out);
+    }
 }
 
 /// Binds `$f` to the fade as a function of an f64 (monomorphised per fade).

@@ -73,6 +73,63 @@ pub(crate) fn octave_rows<P: RowPoint, B: Field + ?Sized>(
     }
 }
 
+/// Rows [`octave_rows_many`] evaluates together.
+pub(crate) const MANY_ROWS: usize = 8;
+
+/// [`octave_rows`] for rows of a 2-D grid at once: `out` holds `ys.len()`
+/// rows of `out.len() / ys.len()` points, row `r` at `y = ys[r]`, and each
+/// octave's rows come from one [`Field::fill_rows2_with`] call, so the
+/// basis can share its x work between them. `combine` sees every row's
+/// chunks in the order [`octave_rows`] gives it one row's, so each row
+/// equals [`octave_rows`]'s bit for bit.
+#[allow(clippy::too_many_arguments)] // `octave_rows`'s, and the rows' y
+pub(crate) fn octave_rows_many<B: Field + ?Sized>(
+    basis: &B,
+    simd: Simd,
+    oct: &Octaves,
+    x0: f64,
+    ys: &[f64],
+    step: f64,
+    out: &mut [f32],
+    mut combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+) {
+    let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+        return;
+    };
+    let mut tmp = [0.0f32; MANY_ROWS * CHUNK];
+    let mut state = [0.0f32; MANY_ROWS * CHUNK];
+    for (block, ys) in out.chunks_mut(MANY_ROWS * n).zip(ys.chunks(MANY_ROWS)) {
+        let rows = ys.len();
+        for c in 0..n.div_ceil(CHUNK) {
+            let m = CHUNK.min(n - c * CHUNK);
+            // As `octave_rows`: the chunk's start advanced along x, then
+            // scaled by the octave's frequency.
+            let start = DVec2::new(x0, 0.0).advanced((c * CHUNK) as f64 * step);
+            for k in 0..oct.count() {
+                let f = oct.frequency(k);
+                let fy: [f64; MANY_ROWS] =
+                    core::array::from_fn(|r| DVec2::new(0.0, ys[r.min(rows - 1)]).scaled(f).y);
+                basis.fill_rows2_with(
+                    simd,
+                    start.scaled(f).x,
+                    &fy[..rows],
+                    step * f,
+                    &mut tmp[..rows * m],
+                );
+                for r in 0..rows {
+                    let chunk = &mut block[r * n + c * CHUNK..][..m];
+                    let (vals, st) = (&tmp[r * m..][..m], &mut state[r * m..][..m]);
+                    run(
+                        simd,
+                        #[inline(always)]
+                        || combine(k, vals, chunk, st),
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// Point types the fractals are generic over (2-D and 3-D), with basis evaluation.
 pub(crate) trait Pt:
     RowPoint

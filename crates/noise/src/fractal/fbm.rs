@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::field::Field;
 #[cfg(doc)]
 use crate::fractal::MAX_OCTAVES;
-use crate::fractal::batch_rows::{Pt, octave_rows};
+use crate::fractal::batch_rows::{Pt, octave_rows, octave_rows_many};
 use crate::fractal::{Octaves, Spectral};
 use crate::lattice_math::Simd;
 
@@ -96,6 +96,20 @@ macro_rules! monofractal {
             fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
                 fbm_rows(&self.basis, simd, &self.oct, origin, step, out, $abs);
             }
+
+            fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+                octave_rows_many(
+                    &self.basis,
+                    simd,
+                    &self.oct,
+                    x0,
+                    ys,
+                    step,
+                    out,
+                    #[inline(always)]
+                    |k, n, acc, _| fbm_combine(&self.oct, $abs, k, n, acc),
+                );
+            }
         }
     };
 }
@@ -163,19 +177,23 @@ fn fbm_rows<P: crate::fractal::batch_rows::RowPoint, B: Field>(
         step,
         out,
         #[inline(always)]
-        |k, n, acc, _| {
-            let w = oct.weight(k) as f32;
-            if k == 0 {
-                for (a, &v) in acc.iter_mut().zip(n) {
-                    *a = w * if abs { v.abs() } else { v };
-                }
-            } else {
-                for (a, &v) in acc.iter_mut().zip(n) {
-                    *a += w * if abs { v.abs() } else { v };
-                }
-            }
-        },
+        |k, n, acc, _| fbm_combine(oct, abs, k, n, acc),
     );
+}
+
+/// Octave `k`'s values `n` (of `|n|` when `abs`) weighted into `acc`.
+#[inline(always)]
+fn fbm_combine(oct: &Octaves, abs: bool, k: usize, n: &[f32], acc: &mut [f32]) {
+    let w = oct.weight(k) as f32;
+    if k == 0 {
+        for (a, &v) in acc.iter_mut().zip(n) {
+            *a = w * if abs { v.abs() } else { v };
+        }
+    } else {
+        for (a, &v) in acc.iter_mut().zip(n) {
+            *a += w * if abs { v.abs() } else { v };
+        }
+    }
 }
 
 monofractal! {

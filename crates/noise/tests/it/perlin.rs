@@ -3,9 +3,11 @@
 
 use crate::common;
 
-use common::{Rng, check_batch, check_gradient, check_lipschitz, check_rows_bitwise};
+use common::{
+    Rng, check_batch, check_gradient, check_lipschitz, check_rows_bitwise, check_rows_many,
+};
 use glam::{DVec2, DVec3, DVec4};
-use natura_noise::{Fade, Field, Perlin};
+use natura_noise::{Fade, Fbm, Field, Lattice2, Perlin, Spectral, Turbulence, Value};
 
 #[test]
 fn zero_at_every_lattice_point() {
@@ -125,6 +127,55 @@ fn window_rows_match_point_path_at_their_edges() {
             let o3 = DVec3::new(o.x, o.y, 0.37 - o.y);
             check_rows_bitwise(&n, step, o, o3, 1000, 1e-5);
         }
+    }
+}
+
+#[test]
+fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
+    // Every kernel's steps (spans, windows at their edges, lanes), row
+    // counts around the blocks of 8, ragged chunks, far origins; rows the
+    // fast kernels refuse (NaN, huge y) fall back to the row fill alike.
+    let perlin = Perlin::new(5);
+    let cubic = Perlin::with_fade(5, Fade::Cubic);
+    let fbm = Fbm::new(Perlin::new(6), Spectral::default()).unwrap();
+    let turbulence = Turbulence::new(Perlin::new(6), Spectral::default()).unwrap();
+    let value = Value::new(7);
+    let steps = [1.0 / 128.0, 1.0 / 64.0 + 1e-9, 0.1, 0.999_999_9, 1.0, 1.7];
+    let ys: Vec<f64> = (0..19).map(|r| -3.3 + 0.37 * f64::from(r)).collect();
+    for &step in &steps {
+        for (x0, rows, n) in [(0.0, 1, 700), (-41.3, 8, 257), (2.0e6 + 0.3, 19, 300)] {
+            let ys = &ys[..rows];
+            check_rows_many(&perlin, x0, ys, step, n);
+            check_rows_many(&cubic, x0, ys, step, n);
+            check_rows_many(&fbm, x0, ys, step / 8.0, n);
+            check_rows_many(&turbulence, x0, ys, step / 8.0, n);
+            check_rows_many(&value, x0, ys, step, n);
+        }
+    }
+    check_rows_many(&perlin, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
+    check_rows_many(&fbm, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
+    // No rows, or rows of no points: nothing written, nothing panics.
+    let mut out = [7.0f32; 3];
+    perlin.fill_rows2_with(natura_noise::Simd::best(), 0.0, &[], 0.5, &mut out);
+    perlin.fill_rows2_with(natura_noise::Simd::best(), 0.0, &[0.0; 4], 0.5, &mut out);
+    fbm.fill_rows2_with(natura_noise::Simd::best(), 0.0, &[0.0; 4], 0.5, &mut out);
+    assert_eq!(out, [7.0; 3]);
+    // The grid fill (blocks of rows) equals its rows, with a last block of 3.
+    let lattice =
+        Lattice2::new(DVec2::new(-5.5, 2.25), DVec2::new(1.0 / 16.0, 0.3), 333, 11).unwrap();
+    let mut grid = vec![0.0f32; 333 * 11];
+    fbm.fill_grid2(&lattice, &mut grid).unwrap();
+    for j in 0..11 {
+        let mut row = vec![0.0f32; 333];
+        fbm.fill_row2(lattice.row_origin(j), lattice.step.x, &mut row);
+        assert_eq!(
+            row.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            grid[j * 333..(j + 1) * 333]
+                .iter()
+                .map(|v| v.to_bits())
+                .collect::<Vec<_>>(),
+            "row {j}"
+        );
     }
 }
 

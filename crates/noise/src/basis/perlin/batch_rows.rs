@@ -23,7 +23,8 @@ use natura_simd::multiversion;
 
 use super::Perlin;
 use crate::basis::window::{
-    WINDOW, WINDOW_COLUMNS, WINDOW_MIN_STEP, Window, row_windows, takes_windows, window_at,
+    WINDOW, WINDOW_COLUMNS, WINDOW_MIN_STEP, Window, row_windows, rows_windows, takes_windows,
+    window_at,
 };
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
 use crate::field::{Field, Lattice3};
@@ -47,6 +48,39 @@ impl Perlin {
         let k = self.scale(2);
         let fade = self.fade();
         row_at::<false>(simd, &rows, fade, origin.x, step, k, out);
+    }
+
+    /// The 2-D rows fill behind [`Field::fill_rows2_with`]: rows that take
+    /// the window kernel share their groups' cells and fractions
+    /// ([`rows_windows`]); any other row is [`Perlin::rows2`]'s.
+    pub(crate) fn rows2_many(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+            return;
+        };
+        let fast = RowKernel::of(step) == RowKernel::Windows
+            && row_in_fast_range(x0, step, n)
+            && ys.iter().all(|y| y.is_finite() && y.abs() <= 1e15);
+        if !fast {
+            for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
+                self.rows2(simd, DVec2::new(x0, y), step, row);
+            }
+            return;
+        }
+        let (seed, fade, k) = (self.lattice_seed(), self.fade(), self.scale(2));
+        for (block, ys) in out.chunks_mut(MANY_ROWS * n).zip(ys.chunks(MANY_ROWS)) {
+            let coeffs: [RowCoeffs; MANY_ROWS] =
+                core::array::from_fn(|r| RowCoeffs::new2(seed, fade, ys[r.min(ys.len() - 1)]));
+            let rows = ys.len();
+            rows2_windows_at(
+                simd,
+                &coeffs[..rows],
+                fade,
+                x0,
+                step,
+                k,
+                &mut block[..rows * n],
+            );
+        }
     }
 
     /// The 3-D row fill behind [`Field::fill_row3_with`].
@@ -122,6 +156,33 @@ multiversion! {
         row_spans(fade, x0, step, k, out, |ix| cache.column(rows, ix));
     }
 }
+
+multiversion! {
+    /// Rows of a 2-D grid window by window, one row per entry of `coeffs`
+    /// (at most [`MANY_ROWS`]), their groups' cells and fractions shared.
+    fn rows2_windows_at<'a>(
+        simd: Simd,
+        coeffs: &'a [RowCoeffs],
+        fade: Fade,
+        x0: f64,
+        step: f64,
+        k: f64,
+        out: &'a mut [f32],
+    ) {
+        with_fade32!(fade, |f| {
+            let windows: [PerlinWindow<'_, false, _>; MANY_ROWS] =
+                core::array::from_fn(|r| PerlinWindow {
+                    rows: &coeffs[r.min(coeffs.len() - 1)],
+                    k: k as f32,
+                    fade: f,
+                });
+            rows_windows(simd, &windows[..coeffs.len()], x0, step, out);
+        });
+    }
+}
+
+/// Rows [`Perlin::rows2_many`] evaluates together.
+const MANY_ROWS: usize = 8;
 
 /// The kernel a row of spacing `step` (lattice cells per point) takes, the
 /// one decision [`row_at`] and the 3-D grid fill's column cache share.

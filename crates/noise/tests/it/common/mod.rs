@@ -179,3 +179,25 @@ pub fn check_lipschitz<F: Field>(f: &F, seed: u64, n: usize, radius: f64) -> (f6
     }
     (r2, r3)
 }
+
+/// Asserts `f.fill_rows2_with` over the rows at `ys` equals `fill_row2_with`
+/// row by row, bit for bit, at every SIMD level, for rows of `n` points
+/// from `x0` at `step`; and that `fill_grid2` equals its rows.
+pub fn check_rows_many<F: Field>(f: &F, x0: f64, ys: &[f64], step: f64, n: usize) {
+    for simd in Simd::supported() {
+        let mut many = vec![f32::NAN; ys.len() * n];
+        f.fill_rows2_with(simd, x0, ys, step, &mut many);
+        for (r, &y) in ys.iter().enumerate() {
+            let mut row = vec![0.0f32; n];
+            f.fill_row2_with(simd, DVec2::new(x0, y), step, &mut row);
+            let (a, b): (Vec<u32>, Vec<u32>) = (
+                row.iter().map(|v| v.to_bits()).collect(),
+                many[r * n..(r + 1) * n]
+                    .iter()
+                    .map(|v| v.to_bits())
+                    .collect(),
+            );
+            assert_eq!(a, b, "{simd:?} step {step} x0 {x0} row {r} (y {y})");
+        }
+    }
+}
