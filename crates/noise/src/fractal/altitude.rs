@@ -4,7 +4,7 @@
 use crate::error::{NoiseError, Result, finite};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::fractal::batch_rows::{Pt, RowSet, multifractal};
 use crate::lattice_math::Simd;
 use glam::{DVec2, DVec3};
 
@@ -128,15 +128,14 @@ impl<B: Field> StatsByAltitude<B> {
         d
     }
 
-    fn rows<P: Pt>(&self, simd: Simd, origin: P, step: f64, out: &mut [f32]) {
+    fn rows<R: RowSet>(&self, simd: Simd, rows: R, step: f64, out: &mut [f32]) {
         let q = &self.params;
         let (shift, scale, sea) = (q.shift as f32, q.scale as f32, q.sea_level as f32);
         let o = &self.oct;
-        octave_rows(
+        rows.octave_rows(
             &self.basis,
             simd,
             o,
-            origin,
             step,
             out,
             #[inline(always)]

@@ -73,6 +73,75 @@ pub(crate) fn octave_rows<P: RowPoint, B: Field + ?Sized>(
     }
 }
 
+/// What a fractal's batch fill covers: one row from a point (2-D or 3-D),
+/// or rows of a 2-D grid ([`GridRows2`]). The fractals write their octave
+/// combination once, generic over this.
+pub(crate) trait RowSet: Copy {
+    /// [`octave_rows`] or [`octave_rows_many`] over these rows.
+    fn octave_rows<B: Field + ?Sized>(
+        self,
+        basis: &B,
+        simd: Simd,
+        oct: &Octaves,
+        step: f64,
+        out: &mut [f32],
+        combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+    );
+}
+
+impl RowSet for DVec2 {
+    #[inline(always)]
+    fn octave_rows<B: Field + ?Sized>(
+        self,
+        basis: &B,
+        simd: Simd,
+        oct: &Octaves,
+        step: f64,
+        out: &mut [f32],
+        combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+    ) {
+        octave_rows(basis, simd, oct, self, step, out, combine);
+    }
+}
+
+impl RowSet for DVec3 {
+    #[inline(always)]
+    fn octave_rows<B: Field + ?Sized>(
+        self,
+        basis: &B,
+        simd: Simd,
+        oct: &Octaves,
+        step: f64,
+        out: &mut [f32],
+        combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+    ) {
+        octave_rows(basis, simd, oct, self, step, out, combine);
+    }
+}
+
+/// Rows of a 2-D grid: from `x0`, row `r` at `ys[r]` (see
+/// [`Field::fill_rows2_with`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GridRows2<'a> {
+    pub x0: f64,
+    pub ys: &'a [f64],
+}
+
+impl RowSet for GridRows2<'_> {
+    #[inline(always)]
+    fn octave_rows<B: Field + ?Sized>(
+        self,
+        basis: &B,
+        simd: Simd,
+        oct: &Octaves,
+        step: f64,
+        out: &mut [f32],
+        combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
+    ) {
+        octave_rows_many(basis, simd, oct, self.x0, self.ys, step, out, combine);
+    }
+}
+
 /// Rows [`octave_rows_many`] evaluates together.
 pub(crate) const MANY_ROWS: usize = 8;
 
@@ -255,6 +324,17 @@ macro_rules! multifractal {
                 out: &mut [f32],
             ) {
                 self.rows(simd, origin, step, out);
+            }
+            fn fill_rows2_with(
+                &self,
+                simd: $crate::lattice_math::Simd,
+                x0: f64,
+                ys: &[f64],
+                step: f64,
+                out: &mut [f32],
+            ) {
+                let rows = $crate::fractal::batch_rows::GridRows2 { x0, ys };
+                self.rows(simd, rows, step, out);
             }
         }
     };

@@ -3,7 +3,7 @@
 use crate::error::{Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::fractal::batch_rows::{Pt, RowSet, multifractal};
 use crate::lattice_math::Simd;
 
 /// Where the octave amplitude enters each factor of the cascade.
@@ -147,15 +147,14 @@ impl<B: Field> Multifractal<B> {
         d
     }
 
-    fn rows<P: Pt>(&self, simd: Simd, origin: P, step: f64, out: &mut [f32]) {
+    fn rows<R: RowSet>(&self, simd: Simd, rows: R, step: f64, out: &mut [f32]) {
         let o = &self.oct;
         let off = self.params.offset as f32;
         let additive = self.params.form == CascadeForm::Additive;
-        octave_rows(
+        rows.octave_rows(
             &self.basis,
             simd,
             o,
-            origin,
             step,
             out,
             #[inline(always)]

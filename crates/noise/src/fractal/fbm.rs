@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::field::Field;
 #[cfg(doc)]
 use crate::fractal::MAX_OCTAVES;
-use crate::fractal::batch_rows::{Pt, octave_rows, octave_rows_many};
+use crate::fractal::batch_rows::{GridRows2, Pt, RowSet};
 use crate::fractal::{Octaves, Spectral};
 use crate::lattice_math::Simd;
 
@@ -98,17 +98,8 @@ macro_rules! monofractal {
             }
 
             fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
-                octave_rows_many(
-                    &self.basis,
-                    simd,
-                    &self.oct,
-                    x0,
-                    ys,
-                    step,
-                    out,
-                    #[inline(always)]
-                    |k, n, acc, _| fbm_combine(&self.oct, $abs, k, n, acc),
-                );
+                let rows = GridRows2 { x0, ys };
+                fbm_rows(&self.basis, simd, &self.oct, rows, step, out, $abs);
             }
         }
     };
@@ -160,40 +151,35 @@ Fbm, "Fbm", false,
 "fBm of `basis` with `spectral` parameters (validated)."
 }
 
-fn fbm_rows<P: crate::fractal::batch_rows::RowPoint, B: Field>(
+fn fbm_rows<R: RowSet, B: Field>(
     basis: &B,
     simd: Simd,
     oct: &Octaves,
-    origin: P,
+    rows: R,
     step: f64,
     out: &mut [f32],
     abs: bool,
 ) {
-    octave_rows(
+    rows.octave_rows(
         basis,
         simd,
         oct,
-        origin,
         step,
         out,
         #[inline(always)]
-        |k, n, acc, _| fbm_combine(oct, abs, k, n, acc),
+        |k, n, acc, _| {
+            let w = oct.weight(k) as f32;
+            if k == 0 {
+                for (a, &v) in acc.iter_mut().zip(n) {
+                    *a = w * if abs { v.abs() } else { v };
+                }
+            } else {
+                for (a, &v) in acc.iter_mut().zip(n) {
+                    *a += w * if abs { v.abs() } else { v };
+                }
+            }
+        },
     );
-}
-
-/// Octave `k`'s values `n` (of `|n|` when `abs`) weighted into `acc`.
-#[inline(always)]
-fn fbm_combine(oct: &Octaves, abs: bool, k: usize, n: &[f32], acc: &mut [f32]) {
-    let w = oct.weight(k) as f32;
-    if k == 0 {
-        for (a, &v) in acc.iter_mut().zip(n) {
-            *a = w * if abs { v.abs() } else { v };
-        }
-    } else {
-        for (a, &v) in acc.iter_mut().zip(n) {
-            *a += w * if abs { v.abs() } else { v };
-        }
-    }
 }
 
 monofractal! {

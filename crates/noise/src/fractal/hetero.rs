@@ -3,7 +3,7 @@
 use crate::error::{NoiseError, Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::fractal::batch_rows::{Pt, RowSet, multifractal};
 use crate::lattice_math::Simd;
 
 /// Parameters of [`HeteroTerrain`].
@@ -138,15 +138,14 @@ impl<B: Field> HeteroTerrain<B> {
         total
     }
 
-    fn rows<P: Pt>(&self, simd: Simd, origin: P, step: f64, out: &mut [f32]) {
+    fn rows<R: RowSet>(&self, simd: Simd, rows: R, step: f64, out: &mut [f32]) {
         let off = self.params.offset as f32;
         let inv_thr = (1.0 / self.params.threshold) as f32;
         let o = &self.oct;
-        octave_rows(
+        rows.octave_rows(
             &self.basis,
             simd,
             o,
-            origin,
             step,
             out,
             #[inline(always)]

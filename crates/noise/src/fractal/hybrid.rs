@@ -3,7 +3,7 @@
 use crate::error::{Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::fractal::batch_rows::{Pt, RowSet, multifractal};
 use crate::lattice_math::Simd;
 
 /// Parameters of [`HybridMultifractal`].
@@ -136,14 +136,13 @@ impl<B: Field> HybridMultifractal<B> {
         self.recursion(l).1
     }
 
-    fn rows<P: Pt>(&self, simd: Simd, origin: P, step: f64, out: &mut [f32]) {
+    fn rows<R: RowSet>(&self, simd: Simd, rows: R, step: f64, out: &mut [f32]) {
         let off = self.params.offset as f32;
         let o = &self.oct;
-        octave_rows(
+        rows.octave_rows(
             &self.basis,
             simd,
             o,
-            origin,
             step,
             out,
             #[inline(always)]

@@ -3,7 +3,7 @@
 use crate::error::{Result, moderate};
 use crate::field::Field;
 use crate::fractal::Spectral;
-use crate::fractal::batch_rows::{Pt, multifractal, octave_rows};
+use crate::fractal::batch_rows::{Pt, RowSet, multifractal};
 use crate::fractal::fbm::sign;
 use crate::lattice_math::Simd;
 
@@ -135,15 +135,14 @@ impl<B: Field> RidgedMultifractal<B> {
         total
     }
 
-    fn rows<P: Pt>(&self, simd: Simd, origin: P, step: f64, out: &mut [f32]) {
+    fn rows<R: RowSet>(&self, simd: Simd, rows: R, step: f64, out: &mut [f32]) {
         let off = self.params.offset as f32;
         let gain = self.params.gain as f32;
         let o = &self.oct;
-        octave_rows(
+        rows.octave_rows(
             &self.basis,
             simd,
             o,
-            origin,
             step,
             out,
             #[inline(always)]

@@ -7,7 +7,10 @@ use common::{
     Rng, check_batch, check_gradient, check_lipschitz, check_rows_bitwise, check_rows_many,
 };
 use glam::{DVec2, DVec3, DVec4};
-use natura_noise::{Fade, Fbm, Field, Lattice2, Perlin, Spectral, Turbulence, Value};
+use natura_noise::{
+    Fade, Fbm, Field, HeteroTerrain, HybridMultifractal, Lattice2, Multifractal, Perlin,
+    RidgedMultifractal, Spectral, StatsByAltitude, Turbulence, Value,
+};
 
 #[test]
 fn zero_at_every_lattice_point() {
@@ -150,6 +153,22 @@ fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
             check_rows_many(&fbm, x0, ys, step / 8.0, n);
             check_rows_many(&turbulence, x0, ys, step / 8.0, n);
             check_rows_many(&value, x0, ys, step, n);
+        }
+    }
+    // The multifractals (their octaves' state carried row by row).
+    let ridged = RidgedMultifractal::new(Perlin::new(8), Default::default()).unwrap();
+    let hetero = HeteroTerrain::new(Perlin::new(8), Default::default()).unwrap();
+    let hybrid = HybridMultifractal::new(Perlin::new(8), Default::default()).unwrap();
+    let cascade = Multifractal::new(Perlin::new(8), Default::default()).unwrap();
+    let altitude = StatsByAltitude::new(Perlin::new(8), Default::default()).unwrap();
+    for (x0, rows, n) in [(0.25, 8, 300), (-7.5, 11, 513)] {
+        for step in [1.0 / 256.0, 1.0 / 40.0, 0.3] {
+            let ys = &ys[..rows];
+            check_rows_many(&ridged, x0, ys, step, n);
+            check_rows_many(&hetero, x0, ys, step, n);
+            check_rows_many(&hybrid, x0, ys, step, n);
+            check_rows_many(&cascade, x0, ys, step, n);
+            check_rows_many(&altitude, x0, ys, step, n);
         }
     }
     check_rows_many(&perlin, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
