@@ -13,7 +13,9 @@ use natura_simd::multiversion;
 
 use crate::basis::SPAN_MAX_STEP;
 use crate::basis::lattice::lattice_sum;
-use crate::basis::window::{WINDOW, WINDOW_COLUMNS, Window, row_windows, takes_windows, window_at};
+use crate::basis::window::{
+    WINDOW, WINDOW_COLUMNS, Window, row_windows, rows_windows, takes_windows, window_at,
+};
 use crate::basis::{Fade, row_in_fast_range};
 use crate::field::Field;
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
@@ -167,6 +169,46 @@ impl Field for Value {
         self.fill_row(simd, origin.x, step, out, &rows, &w);
     }
 
+    fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
+        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+            return;
+        };
+        // Rows on the window kernel share their groups' cells and fractions
+        // (`rows_windows`); any other row is `fill_row2_with`'s.
+        let fast = takes_windows(step, VALUE_WINDOW_MIN_STEP)
+            && row_in_fast_range(x0, step, n)
+            && ys.iter().all(|y| y.is_finite() && y.abs() < 1e15);
+        if !fast {
+            for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
+                self.fill_row2_with(simd, DVec2::new(x0, y), step, row);
+            }
+            return;
+        }
+        for (block, ys) in out.chunks_mut(MANY_ROWS * n).zip(ys.chunks(MANY_ROWS)) {
+            // As `fill_row2_with`, row by row: the lattice rows' hashes and
+            // their weights (in f32, as `value_row_at` gives its windows).
+            let at = |r: usize| split_fast(ys[r.min(ys.len() - 1)]);
+            let rows: [[u32; 2]; MANY_ROWS] = core::array::from_fn(|r| {
+                let iy = at(r).0;
+                [row2(iy, self.s), row2(iy.wrapping_add(1), self.s)]
+            });
+            let w: [[f32; 4]; MANY_ROWS] = core::array::from_fn(|r| {
+                let v = self.interp.eval(at(r).1).0;
+                [(1.0 - v) as f32, v as f32, 0.0, 0.0]
+            });
+            let m = ys.len();
+            value_rows_at(
+                simd,
+                &rows[..m],
+                &w[..m],
+                self.interp,
+                x0,
+                step,
+                &mut block[..m * n],
+            );
+        }
+    }
+
     fn fill_row3_with(&self, simd: Simd, origin: DVec3, step: f64, out: &mut [f32]) {
         let yz_ok = origin.y.is_finite()
             && origin.z.is_finite()
@@ -296,6 +338,51 @@ multiversion! {
 
 /// Value noise rows go window by window above this step (cells a point).
 const VALUE_WINDOW_MIN_STEP: f64 = 1.0 / 32.0;
+
+/// Rows [`Value`]'s `fill_rows2_with` evaluates together.
+const MANY_ROWS: usize = 8;
+
+multiversion! {
+    /// Rows of a 2-D grid window by window (`WINDOW_MIN_STEP < step ≤ 1`,
+    /// from [`VALUE_WINDOW_MIN_STEP`]), row `r` from its lattice rows'
+    /// hashes `rows[r]` and weights `w[r]` (at most [`MANY_ROWS`] rows),
+    /// their groups' cells and fractions shared.
+    fn value_rows_at<'a>(
+        simd: Simd,
+        rows: &'a [[u32; 2]],
+        w: &'a [[f32; 4]],
+        interp: ValueInterp,
+        x0: f64,
+        step: f64,
+        out: &'a mut [f32],
+    ) {
+        let m = rows.len();
+        let window = |r: usize| (&rows[r.min(m - 1)][..], w[r.min(m - 1)]);
+        match interp {
+            ValueInterp::Linear => {
+                let ws: [ValueWindow<'_, _>; MANY_ROWS] = core::array::from_fn(|r| {
+                    let (rows, w) = window(r);
+                    ValueWindow { rows, w, interp: linear32 }
+                });
+                rows_windows(simd, &ws[..m], x0, step, out);
+            }
+            ValueInterp::Cubic => {
+                let ws: [ValueWindow<'_, _>; MANY_ROWS] = core::array::from_fn(|r| {
+                    let (rows, w) = window(r);
+                    ValueWindow { rows, w, interp: crate::lattice_math::cubic32 }
+                });
+                rows_windows(simd, &ws[..m], x0, step, out);
+            }
+            ValueInterp::Quintic => {
+                let ws: [ValueWindow<'_, _>; MANY_ROWS] = core::array::from_fn(|r| {
+                    let (rows, w) = window(r);
+                    ValueWindow { rows, w, interp: crate::lattice_math::quintic32 }
+                });
+                rows_windows(simd, &ws[..m], x0, step, out);
+            }
+        }
+    }
+}
 
 /// The linear interpolation's weight: the fraction itself.
 #[inline(always)]

@@ -9,7 +9,7 @@ use common::{
 use glam::{DVec2, DVec3, DVec4};
 use natura_noise::{
     Fade, Fbm, Field, HeteroTerrain, HybridMultifractal, Lattice2, Multifractal, Perlin,
-    RidgedMultifractal, Spectral, StatsByAltitude, Turbulence, Value,
+    RidgedMultifractal, Spectral, StatsByAltitude, Turbulence, Value, ValueInterp,
 };
 
 #[test]
@@ -143,6 +143,8 @@ fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
     let fbm = Fbm::new(Perlin::new(6), Spectral::default()).unwrap();
     let turbulence = Turbulence::new(Perlin::new(6), Spectral::default()).unwrap();
     let value = Value::new(7);
+    let linear = Value::with_interp(7, ValueInterp::Linear);
+    let quintic = Value::with_interp(7, ValueInterp::Quintic);
     let steps = [1.0 / 128.0, 1.0 / 64.0 + 1e-9, 0.1, 0.999_999_9, 1.0, 1.7];
     let ys: Vec<f64> = (0..19).map(|r| -3.3 + 0.37 * f64::from(r)).collect();
     for &step in &steps {
@@ -153,6 +155,8 @@ fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
             check_rows_many(&fbm, x0, ys, step / 8.0, n);
             check_rows_many(&turbulence, x0, ys, step / 8.0, n);
             check_rows_many(&value, x0, ys, step, n);
+            check_rows_many(&linear, x0, ys, step, n);
+            check_rows_many(&quintic, x0, ys, step, n);
         }
     }
     // The multifractals (their octaves' state carried row by row).
@@ -173,6 +177,7 @@ fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
     }
     check_rows_many(&perlin, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
     check_rows_many(&fbm, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
+    check_rows_many(&value, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
     // No rows, or rows of no points: nothing written, nothing panics.
     let mut out = [7.0f32; 3];
     perlin.fill_rows2_with(natura_noise::Simd::best(), 0.0, &[], 0.5, &mut out);
