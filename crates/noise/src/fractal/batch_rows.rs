@@ -89,22 +89,8 @@ pub(crate) trait RowSet: Copy {
     );
 }
 
-impl RowSet for DVec2 {
-    #[inline(always)]
-    fn octave_rows<B: Field + ?Sized>(
-        self,
-        basis: &B,
-        simd: Simd,
-        oct: &Octaves,
-        step: f64,
-        out: &mut [f32],
-        combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
-    ) {
-        octave_rows(basis, simd, oct, self, step, out, combine);
-    }
-}
-
-impl RowSet for DVec3 {
+/// One row, from a point of either dimension.
+impl<P: RowPoint> RowSet for P {
     #[inline(always)]
     fn octave_rows<B: Field + ?Sized>(
         self,
