@@ -402,6 +402,11 @@ struct ValueWindow<'a, F> {
 
 /// The one table: each column's value.
 impl<F: Fn(f32) -> f32> Window<1> for ValueWindow<'_, F> {
+    type Shared = ();
+
+    #[inline(always)]
+    fn shared(&self) {}
+
     #[inline(always)]
     fn columns(&self, first: u32, n: usize, tables: &mut [[f32; WINDOW_COLUMNS]; 1]) {
         let v = &mut tables[0][..n];

@@ -175,6 +175,15 @@ fn rows_of_a_grid_at_once_equal_their_rows_bit_for_bit() {
             check_rows_many(&altitude, x0, ys, step, n);
         }
     }
+    // Rows in any order, sharing lattice rows with rows before them or not
+    // (the 2-D columns keep two lattice rows' corner terms from row to row).
+    let jumbled = [
+        5.5, -2.25, 5.7, 6.1, -2.0, 100.5, 5.5, 6.6, 6.99, 7.0, 7.01, -0.5,
+    ];
+    for step in [0.05, 0.3, 1.0] {
+        check_rows_many(&perlin, 1.25, &jumbled, step, 600);
+        check_rows_many(&cubic, 1.25, &jumbled, step, 600);
+    }
     check_rows_many(&perlin, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
     check_rows_many(&fbm, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);
     check_rows_many(&value, 0.5, &[0.25, f64::NAN, 3.0e15, -1.0], 0.25, 100);

@@ -553,6 +553,44 @@ struct PerlinWindow<'a, const D3: bool, F> {
 
 /// Tables: per column, the fraction-independent term and the x-gradient term.
 impl<const D3: bool, F: Fn(f32) -> f32> Window<2> for PerlinWindow<'_, D3, F> {
+    type Shared = LatticeRows;
+
+    #[inline(always)]
+    fn shared(&self) -> LatticeRows {
+        LatticeRows {
+            key: [None; 2],
+            g: [[[0.0; WINDOW_COLUMNS]; 2]; 2],
+        }
+    }
+
+    /// 2-D: a row's two lattice rows' corner gradients, kept for the next
+    /// rows of the grid (a row's upper lattice row is often the next row's
+    /// lower one, or both are the same), then combined with the row's own
+    /// fraction and weights exactly as [`RowCoeffs::column2_32`] does.
+    #[inline(always)]
+    fn columns_shared(
+        &self,
+        first: u32,
+        n: usize,
+        shared: &mut LatticeRows,
+        tables: &mut [[f32; WINDOW_COLUMNS]; 2],
+    ) {
+        if D3 {
+            self.columns(first, n, tables);
+            return;
+        }
+        let rows = [self.rows.r[0], self.rows.r[1]];
+        let slot = shared.fill(rows, first, n);
+        let (w, fy, k) = (self.rows.w32, self.rows.fy32, self.k);
+        let [g0, g1] = [&shared.g[slot[0]], &shared.g[slot[1]]];
+        let [a, b] = tables;
+        for i in 0..n {
+            let (gx0, gy0, gx1, gy1) = (g0[0][i], g0[1][i], g1[0][i], g1[1][i]);
+            a[i] = (w[0] * (gy0 * fy) + w[1] * (gy1 * (fy - 1.0))) * k;
+            b[i] = (w[0] * gx0 + w[1] * gx1) * k;
+        }
+    }
+
     #[inline(always)]
     fn columns(&self, first: u32, n: usize, tables: &mut [[f32; WINDOW_COLUMNS]; 2]) {
         let [a, b] = tables;
@@ -586,6 +624,46 @@ impl<const D3: bool, F: Fn(f32) -> f32> Window<2> for PerlinWindow<'_, D3, F> {
             v[l] = (c[0] + c[1] * t) + (self.fade)(t) * (c[2] + c[3] * t);
         }
         v
+    }
+}
+
+/// Two lattice rows' corner gradients along a chunk's columns: slot `s`
+/// holds row hash `key[s]`'s `(gx, gy)` for columns `first..first + n`.
+pub(crate) struct LatticeRows {
+    key: [Option<u32>; 2],
+    g: [[[f32; WINDOW_COLUMNS]; 2]; 2],
+}
+
+impl LatticeRows {
+    /// The slots holding lattice rows `rows` (hashes), computing those not
+    /// held (into the slot the other row does not need).
+    #[inline(always)]
+    fn fill(&mut self, rows: [u32; 2], first: u32, n: usize) -> [usize; 2] {
+        let mut slot = [0usize; 2];
+        for (j, &r) in rows.iter().enumerate() {
+            let held = self.key.iter().position(|&k| k == Some(r));
+            slot[j] = match held {
+                Some(s) => s,
+                None => {
+                    // Not the slot the other row of this pair sits in.
+                    let other = rows[1 - j];
+                    let s = if j == 1 && self.key[slot[0]] == Some(rows[0]) {
+                        1 - slot[0]
+                    } else if self.key[0] == Some(other) {
+                        1
+                    } else {
+                        0
+                    };
+                    let [gx, gy] = &mut self.g[s];
+                    for i in 0..n {
+                        (gx[i], gy[i]) = grad2(corner(first.wrapping_add(i as u32), r));
+                    }
+                    self.key[s] = Some(r);
+                    s
+                }
+            };
+        }
+        slot
     }
 }
 
