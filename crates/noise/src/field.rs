@@ -117,12 +117,7 @@ pub trait Field: Send + Sync {
     /// share between the rows the work that depends on x alone. Points past
     /// the last whole row are left as they are.
     fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
-        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
-            return;
-        };
-        for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
-            self.fill_row2_with(simd, DVec2::new(x0, y), step, row);
-        }
+        fill_rows2_each(self, simd, x0, ys, step, out);
     }
 
     /// Fills `out[i]` with the value at `origin + i·step·x̂` (3-D) using `simd`.
@@ -187,6 +182,31 @@ pub trait Field: Send + Sync {
             );
         }
         Ok(())
+    }
+}
+
+/// The points a row of `out` holds when it holds `rows` rows (see
+/// [`Field::fill_rows2_with`]); `None` if there are no rows or no points.
+#[inline]
+pub(crate) fn row_len(out: usize, rows: usize) -> Option<usize> {
+    out.checked_div(rows).filter(|&n| n > 0)
+}
+
+/// [`Field::fill_rows2_with`] row by row through `fill_row2_with`: its
+/// default, and what the overrides do with rows their shared kernels refuse.
+pub(crate) fn fill_rows2_each<F: Field + ?Sized>(
+    f: &F,
+    simd: Simd,
+    x0: f64,
+    ys: &[f64],
+    step: f64,
+    out: &mut [f32],
+) {
+    let Some(n) = row_len(out.len(), ys.len()) else {
+        return;
+    };
+    for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
+        f.fill_row2_with(simd, DVec2::new(x0, y), step, row);
     }
 }
 

@@ -17,7 +17,7 @@ use crate::basis::window::{
     WINDOW, WINDOW_COLUMNS, Window, row_windows, rows_windows, takes_windows, window_at,
 };
 use crate::basis::{Fade, row_in_fast_range};
-use crate::field::Field;
+use crate::field::{Field, fill_rows2_each, row_len};
 use crate::hash::{corner, row2, row3, seed32, signed_unit};
 use crate::lattice_math::{Simd, split_fast};
 use natura_simd::lookup16;
@@ -153,49 +153,35 @@ impl Field for Value {
     }
 
     fn fill_row2_with(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        if !(row_in_fast_range(origin.x, step, out.len())
-            && origin.y.is_finite()
-            && origin.y.abs() < 1e15)
-        {
+        if !fast_row2(origin.x, step, out.len(), origin.y) {
             for (i, o) in out.iter_mut().enumerate() {
                 *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
             }
             return;
         }
-        let (iy, fy) = split_fast(origin.y);
-        let v = self.interp.eval(fy).0;
-        let rows = [row2(iy, self.s), row2(iy.wrapping_add(1), self.s)];
-        let w = [1.0 - v, v];
+        let (rows, w) = self.row2_terms(origin.y);
         self.fill_row(simd, origin.x, step, out, &rows, &w);
     }
 
     fn fill_rows2_with(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
-        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+        let Some(n) = row_len(out.len(), ys.len()) else {
             return;
         };
         // Rows on the window kernel share their groups' cells and fractions
         // (`rows_windows`); any other row is `fill_row2_with`'s.
-        let fast = takes_windows(step, VALUE_WINDOW_MIN_STEP)
-            && row_in_fast_range(x0, step, n)
-            && ys.iter().all(|y| y.is_finite() && y.abs() < 1e15);
-        if !fast {
-            for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
-                self.fill_row2_with(simd, DVec2::new(x0, y), step, row);
-            }
+        if !takes_windows(step, VALUE_WINDOW_MIN_STEP)
+            || !ys.iter().all(|&y| fast_row2(x0, step, n, y))
+        {
+            fill_rows2_each(self, simd, x0, ys, step, out);
             return;
         }
         for (block, ys) in out.chunks_mut(MANY_ROWS * n).zip(ys.chunks(MANY_ROWS)) {
-            // As `fill_row2_with`, row by row: the lattice rows' hashes and
-            // their weights (in f32, as `value_row_at` gives its windows).
-            let at = |r: usize| split_fast(ys[r.min(ys.len() - 1)]);
-            let rows: [[u32; 2]; MANY_ROWS] = core::array::from_fn(|r| {
-                let iy = at(r).0;
-                [row2(iy, self.s), row2(iy.wrapping_add(1), self.s)]
-            });
-            let w: [[f32; 4]; MANY_ROWS] = core::array::from_fn(|r| {
-                let v = self.interp.eval(at(r).1).0;
-                [(1.0 - v) as f32, v as f32, 0.0, 0.0]
-            });
+            // Each row's lattice rows and weights as `fill_row2_with` takes
+            // them, the weights in f32 as `value_row_at` gives its windows.
+            let terms: [([u32; 2], [f64; 2]); MANY_ROWS] =
+                core::array::from_fn(|r| self.row2_terms(ys[r.min(ys.len() - 1)]));
+            let rows = terms.map(|t| t.0);
+            let w = terms.map(|(_, [a, b])| [a as f32, b as f32, 0.0, 0.0]);
             let m = ys.len();
             value_rows_at(
                 simd,
@@ -235,7 +221,25 @@ impl Field for Value {
     }
 }
 
+/// Whether the 2-D row of `n` points from `(x0, y)` at `step` takes the row
+/// kernels (else the point path), for a row alone or in a grid's block.
+#[inline]
+fn fast_row2(x0: f64, step: f64, n: usize, y: f64) -> bool {
+    row_in_fast_range(x0, step, n) && y.is_finite() && y.abs() < 1e15
+}
+
 impl Value {
+    /// A 2-D row's two lattice rows (their hashes) and their weights at `y`.
+    #[inline]
+    fn row2_terms(&self, y: f64) -> ([u32; 2], [f64; 2]) {
+        let (iy, fy) = split_fast(y);
+        let v = self.interp.eval(fy).0;
+        (
+            [row2(iy, self.s), row2(iy.wrapping_add(1), self.s)],
+            [1.0 - v, v],
+        )
+    }
+
     /// Row kernel: `N(fx) = A + interp(fx)·B` with per-cell `A`, `B` (the
     /// row-weighted lattice values of the cell's two x columns).
     fn fill_row(&self, simd: Simd, x0: f64, step: f64, out: &mut [f32], rows: &[u32], w: &[f64]) {

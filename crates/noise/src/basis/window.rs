@@ -97,7 +97,10 @@ pub(crate) trait Window<const T: usize> {
 
 /// The row `out[i]` at `x0 + i·step` (`WINDOW_MIN_STEP < step ≤
 /// WINDOW_MAX_STEP`, inside the fast-split range), window by window (see
-/// the module docs). Equal at every SIMD level.
+/// the module docs). Equal at every SIMD level. (Not [`rows_windows`] of
+/// one row: that keeps its groups' x parts in arrays across the chunk,
+/// which is right for many rows but made a single row take twice as long
+/// as this loop, which uses each group's straight away.)
 #[inline(always)]
 pub(crate) fn row_windows<const T: usize, W: Window<T>>(
     simd: Simd,

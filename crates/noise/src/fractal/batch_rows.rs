@@ -3,7 +3,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::field::Field;
+use crate::field::{Field, row_len};
 use crate::fractal::{CHUNK, Octaves};
 use crate::lattice_math::{Simd, run};
 
@@ -148,7 +148,7 @@ pub(crate) fn octave_rows_many<B: Field + ?Sized>(
     out: &mut [f32],
     mut combine: impl FnMut(usize, &[f32], &mut [f32], &mut [f32]),
 ) {
-    let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+    let Some(n) = row_len(out.len(), ys.len()) else {
         return;
     };
     let mut tmp = [0.0f32; MANY_ROWS * CHUNK];

@@ -27,7 +27,7 @@ use crate::basis::window::{
     window_at,
 };
 use crate::basis::{Fade, SPAN_MAX_STEP, row_in_fast_range, with_fade32};
-use crate::field::{Field, Lattice3};
+use crate::field::{Field, Lattice3, fill_rows2_each, row_len};
 use crate::hash::{corner, grad2, grad3, row2, row3};
 use crate::lattice_math::{BLOCK, LaneOffsets, Real, Simd, rebase, split_fast};
 use natura_simd::lookup16;
@@ -35,10 +35,7 @@ use natura_simd::lookup16;
 impl Perlin {
     /// The 2-D row fill behind [`Field::fill_row2_with`].
     pub(crate) fn rows2(&self, simd: Simd, origin: DVec2, step: f64, out: &mut [f32]) {
-        if !row_in_fast_range(origin.x, step, out.len())
-            || !origin.y.is_finite()
-            || origin.y.abs() > 1e15
-        {
+        if !fast_row2(origin.x, step, out.len(), origin.y) {
             for (i, o) in out.iter_mut().enumerate() {
                 *o = self.eval2(DVec2::new(origin.x + i as f64 * step, origin.y)) as f32;
             }
@@ -54,16 +51,13 @@ impl Perlin {
     /// the window kernel share their groups' cells and fractions
     /// ([`rows_windows`]); any other row is [`Perlin::rows2`]'s.
     pub(crate) fn rows2_many(&self, simd: Simd, x0: f64, ys: &[f64], step: f64, out: &mut [f32]) {
-        let Some(n) = out.len().checked_div(ys.len()).filter(|&n| n > 0) else {
+        let Some(n) = row_len(out.len(), ys.len()) else {
             return;
         };
-        let fast = RowKernel::of(step) == RowKernel::Windows
-            && row_in_fast_range(x0, step, n)
-            && ys.iter().all(|y| y.is_finite() && y.abs() <= 1e15);
-        if !fast {
-            for (row, &y) in out.chunks_exact_mut(n).zip(ys) {
-                self.rows2(simd, DVec2::new(x0, y), step, row);
-            }
+        if RowKernel::of(step) != RowKernel::Windows
+            || !ys.iter().all(|&y| fast_row2(x0, step, n, y))
+        {
+            fill_rows2_each(self, simd, x0, ys, step, out);
             return;
         }
         let (seed, fade, k) = (self.lattice_seed(), self.fade(), self.scale(2));
@@ -155,6 +149,14 @@ multiversion! {
     ) {
         row_spans(fade, x0, step, k, out, |ix| cache.column(rows, ix));
     }
+}
+
+/// Whether the 2-D row of `n` points from `(x0, y)` at `step` takes the row
+/// kernels (else the point path): the one test [`Perlin::rows2`] and
+/// [`Perlin::rows2_many`] share, so a grid's rows equal the row fill.
+#[inline]
+fn fast_row2(x0: f64, step: f64, n: usize, y: f64) -> bool {
+    row_in_fast_range(x0, step, n) && y.is_finite() && y.abs() <= 1e15
 }
 
 multiversion! {
@@ -645,14 +647,11 @@ impl LatticeRows {
             slot[j] = match held {
                 Some(s) => s,
                 None => {
-                    // Not the slot the other row of this pair sits in.
-                    let other = rows[1 - j];
-                    let s = if j == 1 && self.key[slot[0]] == Some(rows[0]) {
+                    // Not the slot the pair's other row sits in (or will).
+                    let s = if j == 1 {
                         1 - slot[0]
-                    } else if self.key[0] == Some(other) {
-                        1
                     } else {
-                        0
+                        usize::from(self.key[0] == Some(rows[1]))
                     };
                     let [gx, gy] = &mut self.g[s];
                     for i in 0..n {
