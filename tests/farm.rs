@@ -55,7 +55,7 @@ fn s(p: &Path) -> &str {
 
 fn render_tiles(out: &Path, frame: u32, n: u32, threads: u32) {
     let f = frame.to_string();
-    for i in 0..n {
+    let tile = |i: u32| {
         let t = format!("{i}/{n}");
         ok(
             threads,
@@ -70,6 +70,17 @@ fn render_tiles(out: &Path, frame: u32, n: u32, threads: u32) {
                 s(out),
             ],
         );
+    };
+    // Tiles of one thread run two at a time, as a farm's do side by side:
+    // their processes share the output folder.
+    let side_by_side = if threads == 1 { 2 } else { 1 };
+    let tiles: Vec<u32> = (0..n).collect();
+    for pair in tiles.chunks(side_by_side) {
+        std::thread::scope(|scope| {
+            for &i in pair {
+                scope.spawn(move || tile(i));
+            }
+        });
     }
 }
 
