@@ -137,7 +137,6 @@ mod tests {
         })
         .unwrap();
         let g = GridDensity::new(g, Vec3::new(-18_000.0, 100.0, 1200.0), 50.0).unwrap();
-        let b = g.bounds();
         let mut rng = Seed(2).rng();
         let mut u = || crate::animate::unit(&mut rng);
         let mut hits = 0;
