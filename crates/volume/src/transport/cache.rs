@@ -86,7 +86,7 @@ use glam::Vec3;
 use natura_core::Aabb;
 
 use super::MediumParams;
-use super::cells::CellGrid;
+use super::cells::{CellGrid, written_zeros};
 use super::harmonics::{MAX_CELL, dot, zonal_basis};
 pub use super::harmonics::{
     MAX_COEFFS, MAX_ORDER, MAX_ZONAL, legendre_moments, sh_basis, sigma_factor,
@@ -276,7 +276,7 @@ impl ScatterCache {
             zonal,
             axis: -sun,
             n: per,
-            coeffs: vec![0.0; count * per],
+            coeffs: written_zeros(count * per, 0.0),
             band: [0.0; MAX_ZONAL + 1],
             transport: 1.0 - medium.albedo * medium.phase.mean_cosine(),
         };

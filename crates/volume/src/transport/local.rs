@@ -59,7 +59,7 @@ use glam::Vec3;
 use natura_core::Seed;
 use rand_core::Rng;
 
-use super::cells::{CellGrid, Flight};
+use super::cells::{CellGrid, Flight, written_zeros};
 use super::harmonics::{MAX_COEFFS, dot, legendre_moments, sh_basis, sigma_factor};
 use super::model::lit_ground;
 use super::solid::uniform_direction;
@@ -206,7 +206,7 @@ impl LocalLight {
         }
         let chi = legendre_moments(&medium.phase);
         let mut light = Self {
-            coeffs: vec![[0.0; 3 * PER]; grid.count()],
+            coeffs: written_zeros(grid.count(), [0.0; 3 * PER]),
             grid,
             band: std::array::from_fn(|l| chi[l] * sigma_factor(l, ORDER)),
             ground: false,
@@ -500,7 +500,7 @@ impl LocalLight {
         let per_chunk = (u64::from(events) / CHUNKS as u64).max(1);
         let lum = |c: Vec3| natura_core::colour::luminance(c);
         let run = |k: usize| -> (Vec<[f32; 3 * PER]>, u64) {
-            let mut grid = vec![[0.0f32; 3 * PER]; self.coeffs.len()];
+            let mut grid = written_zeros(self.coeffs.len(), [0.0f32; 3 * PER]);
             // Streams apart from the sun cache's (which are 0..CHUNKS).
             let mut rng = Seed(seed).derive_index((CHUNKS + k) as u64).rng();
             let (mut drawn, mut used) = (0u64, 0u64);

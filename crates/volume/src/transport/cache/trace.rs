@@ -5,7 +5,7 @@ use glam::Vec3;
 use natura_core::Seed;
 
 use super::super::MediumParams;
-use super::super::cells::Flight;
+use super::super::cells::{Flight, written_zeros};
 use super::super::harmonics::MAX_CELL;
 use super::{CacheParams, ScatterCache};
 use crate::animate::unit;
@@ -82,7 +82,7 @@ impl ScatterCache {
         let area = (hi.x - lo.x) * (hi.y - lo.y);
         let per_chunk = (u64::from(params.events) / CHUNKS as u64).max(1);
         let run = |k: usize| -> (Vec<f32>, u64) {
-            let mut grid = vec![0.0f32; self.coeffs.len()];
+            let mut grid = written_zeros(self.coeffs.len(), 0.0f32);
             let per = self.n;
             let mut rng = Seed(params.seed).derive_index(k as u64).rng();
             let (mut photons, mut events) = (0u64, 0u64);
