@@ -10,10 +10,12 @@ use natura_render::vegetation::Forest;
 use natura_render::{RenderError, Renderer, SceneDesc, World, render_world};
 
 /// A gentle bumpy slope of 96² samples 5 m apart, no water, seen from a
-/// few metres up with the forest within `radius` metres.
+/// few metres up with the forest within `radius` metres. No clouds: their
+/// preparation was most of these tests' time, and the sky's tests cover them.
 fn forest_world(radius: f64) -> World {
     let mut s = SceneDesc::default();
     s.water.enabled = false;
+    s.clouds.enabled = false;
     s.vegetation.tree_line_m = 80.0;
     s.camera.position_uv = [0.5, 0.25];
     s.camera.target_uv = [0.5, 0.9];
@@ -214,6 +216,7 @@ fn trees_on_the_shore_stand_in_the_water_s_mirror_image() {
     // A slope rising through the sea level (0 m) at row 30: water below,
     // trees above.
     let mut s = SceneDesc::default();
+    s.clouds.enabled = false;
     s.water.enabled = true;
     s.water.level_m = Some(0.0);
     // A still mirror, so each reflected ray goes where it is aimed.

@@ -18,7 +18,8 @@ const RADIUS: f64 = 260.0;
 
 /// A gently rolling plain (no water, everything below the tree line), seen
 /// from 40 m above its centre: the instanced trees within [`RADIUS`] and the
-/// canopy layer beyond.
+/// canopy layer beyond. No clouds (the sky's tests cover them; their
+/// preparation was most of these tests' time).
 fn plain(far_field: bool) -> World {
     plain_within(far_field, RADIUS)
 }
@@ -27,6 +28,7 @@ fn plain(far_field: bool) -> World {
 fn plain_within(far_field: bool, radius: f64) -> World {
     let mut s = SceneDesc::default();
     s.water.enabled = false;
+    s.clouds.enabled = false;
     s.vegetation.tree_line_m = 400.0;
     s.camera.position_uv = [0.5, 0.5];
     s.camera.target_uv = [0.5, 0.9];

@@ -17,6 +17,11 @@ fn small_scene() -> SceneDesc {
     s.erosion.droplets_per_sample = 0.05;
     s.erosion.thermal_steps = 2;
     s.atmosphere.multiple_scattering = false;
+    // Coarse cloud voxels and shadow tables: the clouds' preparation at the
+    // default resolution was most of these tests' time.
+    s.clouds.voxel_m = 400.0;
+    s.clouds.shadow_table_nodes = 128;
+    s.clouds.shadow_cell_m = 300.0;
     s.render.width = 61;
     s.render.height = 37;
     s.render.spp = 2;
@@ -121,10 +126,7 @@ fn a_frame_prepared_once_renders_as_the_frame_and_its_clouds_round_trip() {
     use natura_render::{FramePrep, StageTimes, scene_renderer, scene_renderer_prepared};
     use std::path::Path;
 
-    let mut scene = small_scene();
-    scene.clouds.voxel_m = 400.0;
-    scene.clouds.shadow_table_nodes = 128;
-    scene.clouds.shadow_cell_m = 300.0;
+    let scene = small_scene();
     let world = World::build(&scene, &NoProgress).unwrap();
     let whole = scene_renderer(&world, &mut StageTimes::default(), &NoProgress)
         .unwrap()
