@@ -215,13 +215,24 @@ fn written(v: &toml::Value) -> String {
 }
 
 /// Refuses an array of numbers whose length differs from the schema's,
-/// naming its dotted key and the length it must have.
+/// naming its dotted key and the length it must have, and an array where
+/// the schema has a table.
 fn check_lengths(user: &toml::Table, schema: &toml::Table, path: &str) -> Result<()> {
     let number = |v: &toml::Value| matches!(v, toml::Value::Float(_) | toml::Value::Integer(_));
     for (key, value) in user {
         let name = join(path, key);
         match (value, schema.get(key)) {
             (toml::Value::Table(u), Some(toml::Value::Table(s))) => check_lengths(u, s, &name)?,
+            // A section or a variant's parameters written as an array (serde
+            // reads a struct from a sequence): refused here by its key, where
+            // a surplus element was refused later without naming it.
+            (toml::Value::Array(_), Some(toml::Value::Table(_))) => {
+                return Err(RenderError::Invalid {
+                    name,
+                    value: written(value),
+                    reason: "must be a table of keys (`{ key = value, … }`), not an array".into(),
+                });
+            }
             (toml::Value::Array(u), Some(toml::Value::Array(s))) => {
                 if !s.is_empty() && s.iter().all(number) && u.len() != s.len() {
                     return Err(RenderError::Invalid {

@@ -3,8 +3,8 @@
 //! the scene asks for against the budget (`budget.rs`).
 
 use super::{
-    AtmosphereDesc, CameraDesc, CameraKind, DetailDesc, Diffuse, ErosionDesc, MaterialDesc,
-    RenderDesc, SceneDesc, SunDesc, TerrainDesc, WaterDesc, WaterWaves,
+    AtmosphereDesc, CameraDesc, DetailDesc, Diffuse, ErosionDesc, MaterialDesc, RenderDesc,
+    SceneDesc, SunDesc, TerrainDesc, WaterDesc, WaterWaves,
 };
 use crate::error::{RenderError, Result, fmt_f64};
 
@@ -278,12 +278,10 @@ impl CameraDesc {
         )?;
         in_range("camera.pitch_deg", self.pitch_deg, -89.0, 89.0)?;
         in_range("camera.vfov_deg", self.vfov_deg, 0.1, 179.0)?;
-        match self.kind {
-            CameraKind::Pinhole => Ok(()),
-            CameraKind::Cylindrical | CameraKind::Spherical => {
-                in_range("camera.hfov_deg", self.hfov_deg, 0.1, 720.0)
-            }
-        }
+        // Checked for every kind: a pinhole camera does not use it, but a
+        // NaN or out-of-range value written there is still refused, not kept
+        // (a scene that validates round-trips through its text unchanged).
+        in_range("camera.hfov_deg", self.hfov_deg, 0.1, 720.0)
     }
 }
 

@@ -176,6 +176,21 @@ fn huge_values_are_named_and_printed_short() {
     );
 }
 
+/// Keys a scene does not use are still checked: a pinhole camera's
+/// `hfov_deg` (a NaN kept there broke the scene's round trip through its
+/// text), and a variant's parameters written as an array.
+#[test]
+fn unused_keys_and_arrays_for_tables_are_named() {
+    refused("[camera]\nhfov_deg = nan\n", "camera.hfov_deg", &["NaN"]);
+    refused("[camera]\nhfov_deg = 1e9\n", "camera.hfov_deg", &[]);
+    refused(
+        "[clouds.medium.phase]\ncloud = [8.0, 2.0, 3.0]\n",
+        "clouds.medium.phase.cloud",
+        &["table", "[8.0, 2.0, 3.0]"],
+    );
+    refused("[clouds]\nmedium = [0.03]\n", "clouds.medium", &["table"]);
+}
+
 #[test]
 fn animation_keys_are_checked_as_written() {
     let keys = |field: &str| {
