@@ -29,6 +29,27 @@ impl Ground<'_> {
         self.h[i - self.offset] += d;
         self.deposition[i - self.offset] += d;
     }
+
+    /// Lowers sample `i` by `a` (cell units) as [`add`](Self::add) with
+    /// `-a` does, but never below `floor_m` (metres, at most its height):
+    /// returns the depth taken (cell units), `a` itself unless the floor
+    /// held. A bound that holds in exact arithmetic can fail by a rounding
+    /// of the metres-to-cells conversion; repeated over many droplets, those
+    /// roundings dug a pit step by step below the terrain's lowest point.
+    #[inline]
+    pub(super) fn dig(&mut self, i: usize, a: f32, floor_m: f32) -> f32 {
+        let j = i - self.offset;
+        let d = -a * self.cell;
+        if self.h[j] + d >= floor_m {
+            self.h[j] += d;
+            self.deposition[j] += d;
+            return a;
+        }
+        let d = (floor_m - self.h[j]).min(0.0);
+        self.h[j] += d;
+        self.deposition[j] += d;
+        -d / self.cell
+    }
 }
 
 /// What one droplet needs of the model: its parameters and the field's shape.
@@ -101,7 +122,8 @@ impl DropletModel<'_> {
             if !(nxp >= 0.0 && nyp >= 0.0 && nxp < wmax && nyp < hmax) {
                 return f64::from(sed * self.cell); // carried off the map
             }
-            let (nz, _, _) = Corners::at(nxp, nyp, nx, ny).height_grad(|i| g.height(i));
+            let next = Corners::at(nxp, nyp, nx, ny);
+            let (nz, _, _) = next.height_grad(|i| g.height(i));
             let dh = nz - z;
             let cap = (-dh).max(p.min_slope as f32) * speed * water * p.capacity as f32;
             if sed > cap || dh > 0.0 {
@@ -138,6 +160,15 @@ impl DropletModel<'_> {
                         .sum()
                 };
                 if wsum > 0.0 && want > 0.0 {
+                    // The lowest corner where the droplet flows to, metres:
+                    // below `nz` in exact arithmetic, and a height the
+                    // terrain already has, so no rounding takes a cell
+                    // lower than the terrain's lowest point.
+                    let floor = next
+                        .cells
+                        .into_iter()
+                        .map(|c| g.h[c - g.offset])
+                        .fold(f32::INFINITY, f32::min);
                     let centre = cy as isize * nx as isize + cx as isize;
                     for &(bx, by, w) in self.brush {
                         let i = if interior {
@@ -152,8 +183,7 @@ impl DropletModel<'_> {
                         let room = (g.height(i) - nz).max(0.0);
                         let amount = (want * w / wsum * k).min(room);
                         if amount > 0.0 {
-                            g.add(i, -amount);
-                            sed += amount;
+                            sed += g.dig(i, amount, floor);
                         }
                     }
                 }
