@@ -261,6 +261,15 @@ impl HeightField {
             info.bit_depth,
         );
         checked_len::<f32>(&[w, h]).map_err(|e| bad(format!("PNG header: {e}")))?;
+        // Refused from the header, before the pixels' buffer exists: a
+        // colour image's buffer (up to 8 bytes a pixel) could pass the check
+        // above and still ask for tens of gigabytes. A greyscale buffer (at
+        // most 2 bytes a pixel) is smaller than the grid just checked.
+        if colour != png::ColorType::Grayscale {
+            return Err(bad(format!(
+                "expected a greyscale height map, found colour type {colour:?}"
+            )));
+        }
         let texts: Vec<(String, String)> = info
             .uncompressed_latin1_text
             .iter()
@@ -277,12 +286,7 @@ impl HeightField {
             .finish()
             .map_err(|e| bad(format!("corrupt or truncated PNG: {e}")))?;
         let decoded = (w, h, colour, depth, texts, buf);
-        let (w, h, colour, depth, texts, buf) = decoded;
-        if colour != png::ColorType::Grayscale {
-            return Err(bad(format!(
-                "expected a greyscale height map, found colour type {colour:?}"
-            )));
-        }
+        let (w, h, _, depth, texts, buf) = decoded;
         let text = |k: &str| {
             texts
                 .iter()

@@ -182,6 +182,16 @@ fn huge_png_header_is_refused_before_allocating() {
     assert!(err.to_string().contains("cap"), "{err}");
 }
 
+#[test]
+fn a_colour_png_header_is_refused_before_its_pixels_are_allocated() {
+    // 60 000² RGBA pixels of 16 bits: as a grid of f32 heights (14.4 GB)
+    // within the cap, but the decoder's buffer would be 28.8 GB (before, the
+    // process aborted allocating it).
+    let p = write_case("png-rgba", &png_with_header(60_000, 60_000, 16, 6));
+    let err = HeightField::load_png16(&p, Some(1.0), Some((0.0, 1.0))).unwrap_err();
+    assert!(err.to_string().contains("greyscale"), "{err}");
+}
+
 #[cfg(unix)]
 #[test]
 fn endless_streams_are_refused_without_reading_them_whole() {
