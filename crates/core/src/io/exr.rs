@@ -15,6 +15,28 @@ use crate::grid2::checked_len;
 use crate::io::{WriteError, write_atomic};
 
 const CHECKSUM_KEY: &str = "naturaChecksum";
+/// The checksum of the other text attributes (a height map's cell size and
+/// range live there): a flipped digit in them changed the field silently.
+/// Files written before it existed carry none and are read as before.
+const ATTRIBUTES_CHECKSUM_KEY: &str = "naturaAttributesChecksum";
+
+/// FNV-1a over the text attributes in key order, the two checksums left out.
+fn attributes_checksum<'a>(attributes: impl Iterator<Item = (&'a str, &'a str)>) -> String {
+    let mut sorted: Vec<_> = attributes
+        .filter(|(k, _)| *k != CHECKSUM_KEY && *k != ATTRIBUTES_CHECKSUM_KEY)
+        .collect();
+    sorted.sort_unstable();
+    let mut h: u64 = 0xCBF2_9CE4_8422_2325;
+    let mut eat = |b: u8| h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3);
+    for (k, v) in sorted {
+        k.bytes()
+            .chain([0])
+            .chain(v.bytes())
+            .chain([0])
+            .for_each(&mut eat);
+    }
+    format!("{h:016x}")
+}
 
 /// The channels and text attributes of one EXR layer, all as `f32`.
 #[derive(Clone, Debug, PartialEq)]
@@ -109,6 +131,12 @@ pub fn write_exr(
             .insert(Text::from(*k), AttributeValue::Text(Text::from(*v)));
     }
     let sum = checksum(channels.iter().map(|(n, d)| (*n, *d)));
+    attrs.other.insert(
+        Text::from(ATTRIBUTES_CHECKSUM_KEY),
+        AttributeValue::Text(Text::from(
+            attributes_checksum(attributes.iter().map(|(k, v)| (*k, *v))).as_str(),
+        )),
+    );
     attrs.other.insert(
         Text::from(CHECKSUM_KEY),
         AttributeValue::Text(Text::from(sum.as_str())),
@@ -281,6 +309,14 @@ pub fn read_exr_from(mut reader: impl Read + Seek, name: &Path) -> Result<ExrCha
         if got != expected {
             return Err(bad(format!(
                 "checksum mismatch (stored {expected}, data gives {got}): file is corrupt"
+            )));
+        }
+    }
+    if let Some(expected) = out.attribute(ATTRIBUTES_CHECKSUM_KEY) {
+        let got = attributes_checksum(out.attributes.iter().map(|(k, v)| (k.as_str(), v.as_str())));
+        if got != expected {
+            return Err(bad(format!(
+                "attribute checksum mismatch (stored {expected}, attributes give {got}): file is corrupt"
             )));
         }
     }
