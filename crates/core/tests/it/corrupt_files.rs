@@ -182,6 +182,24 @@ fn huge_png_header_is_refused_before_allocating() {
     assert!(err.to_string().contains("cap"), "{err}");
 }
 
+/// Every byte of a height map's EXR with its lowest bit flipped: refused, or
+/// the same field (the flip of the cell size's digit in the text attributes
+/// was read as another cell size before their checksum).
+#[test]
+fn every_flipped_bit_of_an_exr_is_refused_or_harmless() {
+    let f = fixture();
+    let mut read = 0;
+    for at in 0..f.exr.len() {
+        let p = write_case("exr-flip", &corrupt(&f.exr, at, 1));
+        if let Ok(hf) = HeightField::load_exr(&p, None) {
+            assert!(hf == field(), "byte {at} changed the field silently");
+            read += 1;
+        }
+    }
+    // Some flips land where nothing is read (padding, unused fields).
+    assert!(read > 0 && read < f.exr.len(), "{read}");
+}
+
 #[test]
 fn a_colour_png_header_is_refused_before_its_pixels_are_allocated() {
     // 60 000² RGBA pixels of 16 bits: as a grid of f32 heights (14.4 GB)
