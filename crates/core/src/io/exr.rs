@@ -26,15 +26,18 @@ fn attributes_checksum<'a>(attributes: impl Iterator<Item = (&'a str, &'a str)>)
         .filter(|(k, _)| *k != CHECKSUM_KEY && *k != ATTRIBUTES_CHECKSUM_KEY)
         .collect();
     sorted.sort_unstable();
-    let mut h: u64 = 0xCBF2_9CE4_8422_2325;
-    let mut eat = |b: u8| h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3);
-    for (k, v) in sorted {
-        k.bytes()
-            .chain([0])
-            .chain(v.bytes())
-            .chain([0])
-            .for_each(&mut eat);
-    }
+    fnv1a_hex(
+        sorted
+            .into_iter()
+            .flat_map(|(k, v)| k.bytes().chain([0]).chain(v.bytes()).chain([0])),
+    )
+}
+
+/// FNV-1a (64 bits) of `bytes`, as 16 hexadecimal digits.
+fn fnv1a_hex(bytes: impl Iterator<Item = u8>) -> String {
+    let h = bytes.fold(0xCBF2_9CE4_8422_2325_u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3)
+    });
     format!("{h:016x}")
 }
 
@@ -76,16 +79,11 @@ impl ExrChannels {
 fn checksum<'a>(channels: impl Iterator<Item = (&'a str, &'a [f32])>) -> String {
     let mut sorted: Vec<_> = channels.collect();
     sorted.sort_by(|a, b| a.0.cmp(b.0));
-    let mut h: u64 = 0xCBF2_9CE4_8422_2325;
-    let mut eat = |b: u8| h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3);
-    for (name, data) in sorted {
-        name.bytes().for_each(&mut eat);
-        eat(0);
-        for v in data {
-            v.to_bits().to_le_bytes().into_iter().for_each(&mut eat);
-        }
-    }
-    format!("{h:016x}")
+    fnv1a_hex(sorted.into_iter().flat_map(|(name, data)| {
+        name.bytes()
+            .chain([0])
+            .chain(data.iter().flat_map(|v| v.to_bits().to_le_bytes()))
+    }))
 }
 
 /// Writes `channels` (each `width·height` row-major `f32` samples) and text
