@@ -285,8 +285,6 @@ impl HeightField {
         reader
             .finish()
             .map_err(|e| bad(format!("corrupt or truncated PNG: {e}")))?;
-        let decoded = (w, h, colour, depth, texts, buf);
-        let (w, h, _, depth, texts, buf) = decoded;
         let text = |k: &str| {
             texts
                 .iter()
