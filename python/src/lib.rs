@@ -13,46 +13,32 @@
 //! The module is compiled with the crate's `extension` feature, which the
 //! package's `pyproject.toml` turns on for maturin; without it the crate is
 //! empty (so `cargo test --workspace` compiles no PyO3).
+#![cfg(feature = "extension")]
 
-#[cfg(feature = "extension")]
 mod args;
-#[cfg(feature = "extension")]
 mod eco;
-#[cfg(feature = "extension")]
 mod noise;
-#[cfg(feature = "extension")]
 mod ocean;
-#[cfg(feature = "extension")]
 mod plant;
-#[cfg(feature = "extension")]
 mod progress;
-#[cfg(feature = "extension")]
 mod render;
-#[cfg(feature = "extension")]
 mod smoke;
-#[cfg(feature = "extension")]
 mod terrain;
-#[cfg(feature = "extension")]
 mod texture;
-#[cfg(feature = "extension")]
 mod values;
-#[cfg(feature = "extension")]
 mod volume;
 
-#[cfg(feature = "extension")]
 use pyo3::prelude::*;
 
 /// Raises `RuntimeError` from a Rust panic carrying `message`: the boundary's
 /// last resort, exposed so the Python tests can show that a panic never
 /// crosses into Python as anything else.
-#[cfg(feature = "extension")]
 #[pyfunction]
 fn _panic_for_test(py: Python<'_>, message: String) -> PyResult<()> {
     args::run(py, move || -> PyResult<()> { panic!("{message}") })
 }
 
 /// The module `natura._native`.
-#[cfg(feature = "extension")]
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
