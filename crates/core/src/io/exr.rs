@@ -33,12 +33,9 @@ fn attributes_checksum<'a>(attributes: impl Iterator<Item = (&'a str, &'a str)>)
     )
 }
 
-/// FNV-1a (64 bits) of `bytes`, as 16 hexadecimal digits.
-fn fnv1a_hex(bytes: impl Iterator<Item = u8>) -> String {
-    let h = bytes.fold(0xCBF2_9CE4_8422_2325_u64, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01B3)
-    });
-    format!("{h:016x}")
+/// [`checksum`](crate::io::checksum) of `bytes`, as 16 hexadecimal digits.
+fn fnv1a_hex(bytes: impl IntoIterator<Item = u8>) -> String {
+    format!("{:016x}", crate::io::checksum(bytes))
 }
 
 /// The channels and text attributes of one EXR layer, all as `f32`.

@@ -6,19 +6,29 @@
 //! first azimuth and elevation, inverse cell size, wrap flag (`u32`), width
 //! and height (`u64`) and its cells (5 × `f32` each, row by row); the shadow
 //! map's origin (2 × `f32`), inverse cell size, base height, sun slope
-//! (2 × `f32`), width and height (`u64`) and its transmittances. Nothing may
-//! follow. Floats are stored as their bits, so a round trip is exact.
+//! (2 × `f32`), width and height (`u64`) and its transmittances; then the
+//! checksum of every byte before it (`u64`, natura-core's
+//! [`checksum`](natura_core::io::checksum)). Nothing may follow. Floats
+//! are stored as their bits, so a round trip is exact.
+//!
+//! The checksum is there because a flipped bit in a float is a valid float:
+//! without it a damaged file gave another sky without a word. Format 1
+//! (before the checksum) is still read.
 
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
+use natura_core::io::checksum;
 use natura_core::{CoreError, Grid2};
 
 use super::{CloudSky, Dome, ShadowMap};
 use crate::error::Result;
 
 const MAGIC: &[u8; 16] = b"natura cloud sky";
-const FORMAT: u32 = 1;
+/// The format written; [`FORMAT_UNCHECKED`] is read as well.
+const FORMAT: u32 = 2;
+/// The format before the checksum, read without one.
+const FORMAT_UNCHECKED: u32 = 1;
 
 impl CloudSky {
     /// The clouds as bytes (see [`Self::from_bytes`]); a round trip gives
@@ -56,6 +66,8 @@ impl CloudSky {
         for x in s.transmittance.as_slice() {
             out.extend_from_slice(&x.to_bits().to_le_bytes());
         }
+        let sum = checksum(out.iter().copied());
+        out.extend_from_slice(&sum.to_le_bytes());
         out
     }
 
@@ -67,7 +79,8 @@ impl CloudSky {
     /// [`RenderError::Core`](crate::RenderError::Core) with
     /// [`CoreError::Format`] if the bytes are not a cloud sky of this format
     /// (wrong magic or format number, truncated, trailing bytes, sizes over
-    /// the grid cap, non-finite values or transmittances outside [0, 1]).
+    /// the grid cap, a checksum that does not match the bytes, non-finite
+    /// values or transmittances outside [0, 1]).
     pub fn from_bytes(bytes: &[u8], source: &Path) -> Result<Self> {
         let bad = |problem: String| {
             crate::RenderError::Core(CoreError::Format {
@@ -81,8 +94,10 @@ impl CloudSky {
         }
         let truncated = || bad("truncated".into());
         let format = r.u32().ok_or_else(truncated)?;
-        if format != FORMAT {
-            return Err(bad(format!("format {format}, this build reads {FORMAT}")));
+        if format != FORMAT && format != FORMAT_UNCHECKED {
+            return Err(bad(format!(
+                "format {format}, this build reads {FORMAT_UNCHECKED} and {FORMAT}"
+            )));
         }
         let mut head = [0f32; 7];
         for h in &mut head {
@@ -111,10 +126,23 @@ impl CloudSky {
         let transmittance = r
             .grid(sx, sy, Reader::f32)
             .map_err(|e| e.map_or_else(truncated, |e| bad(e.to_string())))?;
+        if format == FORMAT {
+            let end = r.at;
+            let stored = r.take(8).ok_or_else(truncated)?;
+            let stored = u64::from_le_bytes(stored.try_into().map_err(|_| truncated())?);
+            if r.at == bytes.len() && stored != checksum(bytes[..end].iter().copied()) {
+                return Err(bad("checksum does not match: the file is damaged".into()));
+            }
+        }
         if r.at != bytes.len() {
             return Err(bad(format!(
-                "{} bytes after the shadow map",
-                bytes.len() - r.at
+                "{} bytes after the {}",
+                bytes.len() - r.at,
+                if format == FORMAT {
+                    "checksum"
+                } else {
+                    "shadow map"
+                }
             )));
         }
         if nx < 2 || ny < 2 {
@@ -200,5 +228,89 @@ impl Reader<'_> {
             data.push(cell(self).ok_or(None)?);
         }
         Grid2::from_vec(nx, ny, data).map_err(Some)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small sky with every field distinct.
+    fn sky() -> CloudSky {
+        let cells = Grid2::from_fn(4, 3, |i, j| {
+            let v = (i + 4 * j) as f32;
+            [0.1 * v, 0.2 * v, 0.3 * v, 0.05 * v, 1.0 - 0.05 * v]
+        })
+        .unwrap();
+        let transmittance = Grid2::from_fn(3, 2, |i, j| 0.1 * (i + 3 * j) as f32).unwrap();
+        CloudSky {
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            mid: 1500.0,
+            dome: Dome {
+                az0: -3.1,
+                el0: -0.1,
+                inv_cell: 12.5,
+                wrap: true,
+                cells,
+            },
+            shadow: ShadowMap {
+                origin: Vec2::new(-50.0, 20.0),
+                inv_cell: 0.01,
+                base: 900.0,
+                slope: Vec2::new(0.3, -0.2),
+                transmittance,
+            },
+        }
+    }
+
+    fn read(bytes: &[u8]) -> Result<CloudSky> {
+        CloudSky::from_bytes(bytes, Path::new("sky"))
+    }
+
+    #[test]
+    fn every_damaged_byte_and_every_cut_is_refused() {
+        let bytes = sky().to_bytes();
+        assert_eq!(read(&bytes).unwrap().to_bytes(), bytes, "exact round trip");
+        for at in 0..bytes.len() {
+            for bit in 0..8 {
+                let mut b = bytes.clone();
+                b[at] ^= 1 << bit;
+                let e = read(&b).err();
+                assert!(
+                    e.is_some_and(|e| e.to_string().contains("cloud sky")),
+                    "bit {bit} of byte {at} flipped was read"
+                );
+            }
+            assert!(read(&bytes[..at]).is_err(), "cut at {at}");
+        }
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(read(&longer).unwrap_err().to_string().contains("after the checksum"));
+    }
+
+    #[test]
+    fn a_value_damaged_under_a_matching_checksum_is_still_refused() {
+        let mut bytes = sky().to_bytes();
+        let n = bytes.len() - 8;
+        // The first dome cell follows the magic, format, 7 floats, wrap flag and two sizes.
+        bytes[68..72].copy_from_slice(&f32::NAN.to_bits().to_le_bytes());
+        let sum = checksum(bytes[..n].iter().copied());
+        bytes[n..].copy_from_slice(&sum.to_le_bytes());
+        let e = read(&bytes).unwrap_err().to_string();
+        assert!(e.contains("non-finite"), "{e}");
+    }
+
+    #[test]
+    fn the_format_before_the_checksum_is_still_read() {
+        let sky = sky();
+        let bytes = sky.to_bytes();
+        let mut old = bytes[..bytes.len() - 8].to_vec();
+        old[16..20].copy_from_slice(&FORMAT_UNCHECKED.to_le_bytes());
+        assert_eq!(read(&old).unwrap().to_bytes(), bytes);
+        // A later format is named.
+        let mut new = bytes.clone();
+        new[16..20].copy_from_slice(&7u32.to_le_bytes());
+        let e = read(&new).unwrap_err().to_string();
+        assert!(e.contains("format 7"), "{e}");
     }
 }
