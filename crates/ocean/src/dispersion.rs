@@ -129,7 +129,15 @@ impl Dispersion {
             Dispersion::Deep { g } => g,
             Dispersion::FiniteDepth { g, depth } => {
                 let t = (k * depth).tanh();
-                g * t + g * k * depth * (1.0 - t * t)
+                // k D sech²(k D) → 0 where tanh is 1 in f64 (k D may be ∞
+                // there, and ∞ · 0 was NaN).
+                let sech2 = 1.0 - t * t;
+                g * t
+                    + if sech2 == 0.0 {
+                        0.0
+                    } else {
+                        g * k * depth * sech2
+                    }
             }
             Dispersion::Capillary {
                 g,

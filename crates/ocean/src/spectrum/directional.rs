@@ -6,7 +6,7 @@ use glam::DVec2;
 
 use super::{FrequencySpectrum, Spectrum, direction};
 use crate::dispersion::Dispersion;
-use crate::error::{Result, finite, non_negative};
+use crate::error::{Result, finite, invalid, non_negative};
 
 /// A directional spreading function D(ω, θ), normalised so ∫D dθ = 1 over
 /// (−π, π], with θ the angle between the direction of travel and the wind.
@@ -142,7 +142,25 @@ impl<F: FrequencySpectrum> Spectrum for Directional<F> {
         self.spectrum.validate()?;
         self.spreading.validate()?;
         finite("wind_direction", self.wind_direction)?;
-        self.dispersion.validate()
+        self.dispersion.validate()?;
+        // The Jacobian (dω/dk)/k can take the density over wave vectors past
+        // f64 where S(ω) is finite (a wind of 10⁵² m/s; a capillary length
+        // of 10¹⁸⁶ m): along the wind at eight wavenumbers a decade over
+        // f64's whole range, with room for the peak between samples (the
+        // density varies by less than 10⁶ over an eighth of a decade).
+        let wind = direction(self.wind_direction);
+        let out = (-2400..=2400).any(|j| {
+            let k = 10f64.powf(f64::from(j) / 8.0);
+            !(self.density(wind * k) * 1e6).is_finite()
+        });
+        if out {
+            return Err(invalid(
+                "wind_speed",
+                self.spectrum.wind_speed(),
+                "puts the spectrum's density over wave vectors outside f64's range",
+            ));
+        }
+        Ok(())
     }
 }
 

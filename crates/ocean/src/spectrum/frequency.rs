@@ -4,7 +4,23 @@
 //! constants here are the standard ones (Pierson & Moskowitz 1964; Hasselmann et al. 1973, Bouws et al. 1985).
 
 use crate::dispersion::G;
-use crate::error::{Result, positive};
+use crate::error::{Result, invalid, positive};
+
+/// Refuses a wind (`name` = `value`) whose spectrum has a scale outside
+/// f64's range: each of `scales` must be finite and > 0. Such winds are
+/// thousands of orders of magnitude from any sea, and their spectra were
+/// NaN (a vanishing wind puts the peak frequency at infinity).
+fn scales_in_range(name: &'static str, value: f64, scales: &[f64]) -> Result<()> {
+    if scales.iter().all(|s| s.is_finite() && *s > 0.0) {
+        Ok(())
+    } else {
+        Err(invalid(
+            name,
+            value,
+            "puts the spectrum's peak or level outside f64's range",
+        ))
+    }
+}
 
 /// A one-sided frequency spectrum S(ω), m²·s: the height variance per unit of
 /// angular frequency. [`super::Directional`] spreads it over directions.
@@ -69,7 +85,13 @@ impl FrequencySpectrum for PiersonMoskowitz {
             return 0.0;
         }
         let w0 = self.g / self.wind_speed;
-        PM_ALPHA * self.g * self.g / omega.powi(5) * (-PM_BETA * (w0 / omega).powi(4)).exp()
+        // Zero where the exponential underflows (below ω₀/5.7), before ω⁻⁵
+        // can overflow: 0 · ∞ was NaN.
+        let e = (-PM_BETA * (w0 / omega).powi(4)).exp();
+        if e == 0.0 {
+            return 0.0;
+        }
+        PM_ALPHA * self.g * self.g / omega.powi(5) * e
     }
     fn peak_frequency(&self) -> f64 {
         self.g / self.wind_speed * (0.8 * PM_BETA).powf(0.25)
@@ -82,7 +104,11 @@ impl FrequencySpectrum for PiersonMoskowitz {
     }
     fn validate(&self) -> Result<()> {
         positive("wind_speed", self.wind_speed)?;
-        positive("g", self.g).map(|_| ()).map_err(Into::into)
+        positive("g", self.g)?;
+        // ω₀ and the ω⁻⁵ factor where the exponential leaves f64 (ω₀/6).
+        let w0 = self.g / self.wind_speed;
+        let level = PM_ALPHA * self.g * self.g / (w0 / 6.0).powi(5);
+        scales_in_range("wind_speed", self.wind_speed, &[w0, level, self.variance()])
     }
 }
 
@@ -144,9 +170,13 @@ impl FrequencySpectrum for Jonswap {
         };
         let d = omega - wp;
         let r = (-d * d / (2.0 * sigma * sigma * wp * wp)).exp();
-        self.alpha() * self.g * self.g / omega.powi(5)
-            * (-1.25 * (wp / omega).powi(4)).exp()
-            * self.gamma.powf(r)
+        // Zero where the exponential underflows (below ω_p/4.9), before ω⁻⁵
+        // can overflow: 0 · ∞ was NaN.
+        let e = (-1.25 * (wp / omega).powi(4)).exp();
+        if e == 0.0 {
+            return 0.0;
+        }
+        self.alpha() * self.g * self.g / omega.powi(5) * e * self.gamma.powf(r)
     }
     fn peak_frequency(&self) -> f64 {
         22.0 * (self.g * self.g / (self.wind_speed * self.fetch)).cbrt()
@@ -163,7 +193,19 @@ impl FrequencySpectrum for Jonswap {
         positive("gamma", self.gamma)?;
         positive("sigma_low", self.sigma_low)?;
         positive("sigma_high", self.sigma_high)?;
-        positive("g", self.g).map(|_| ()).map_err(Into::into)
+        positive("g", self.g)?;
+        // α, ω_p, the ω⁻⁵ factor where the exponential leaves f64 (ω_p/5)
+        // and the peak's enhancement (wind and fetch together: the name is
+        // the wind's, the reason covers both).
+        let wp = self.peak_frequency();
+        let level = self.alpha() * self.g * self.g / (wp / 5.0).powi(5) * self.gamma;
+        scales_in_range("wind_speed", self.wind_speed, &[self.alpha(), wp, level]).map_err(|_| {
+            invalid(
+                "wind_speed",
+                format!("{} (fetch {})", self.wind_speed, self.fetch),
+                "with this fetch puts the spectrum's peak or level outside f64's range",
+            )
+        })
     }
 }
 

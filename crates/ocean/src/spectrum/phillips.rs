@@ -82,9 +82,15 @@ impl Spectrum for Phillips {
             return 0.0;
         }
         let l = self.largest_wave();
+        // Zero where the exponential underflows (k below 1/(27 L)), before
+        // k⁻⁴ can overflow: 0 · ∞ was NaN.
+        let e = (-1.0 / (k2 * l * l)).exp();
+        if e == 0.0 {
+            return 0.0;
+        }
         let kk = k2.sqrt();
         let c = (k / kk).dot(direction(self.wind_direction));
-        let mut p = self.amplitude * (-1.0 / (k2 * l * l)).exp() / (k2 * k2)
+        let mut p = self.amplitude * e / (k2 * k2)
             * c.abs().powf(self.direction_exponent)
             * (-k2 * self.small_wave_length * self.small_wave_length).exp();
         if c < 0.0 {
@@ -98,6 +104,23 @@ impl Spectrum for Phillips {
         positive("wind_speed", self.wind_speed)?;
         finite("wind_direction", self.wind_direction)?;
         positive("g", self.g)?;
+        // L, and the k⁻⁴ factor where the exponential leaves f64 (1/(28 L)).
+        let l = self.largest_wave();
+        let level = self.amplitude * (28.0 * l).powi(4);
+        if !(l.is_finite() && l > 0.0) {
+            return Err(invalid(
+                "wind_speed",
+                self.wind_speed,
+                "puts the largest wave V²/g outside f64's range",
+            ));
+        }
+        if !level.is_finite() {
+            return Err(invalid(
+                "amplitude",
+                self.amplitude,
+                "with this wind speed puts the spectrum's level outside f64's range",
+            ));
+        }
         non_negative("small_wave_length", self.small_wave_length)?;
         non_negative("direction_exponent", self.direction_exponent)?;
         if !(0.0..=1.0).contains(&self.against_wind) {

@@ -1,7 +1,12 @@
 //! Hostile parameters give a typed error naming the parameter, and an `Ok`
 //! ocean's frames are finite.
 
-use natura_ocean::{Ocean, OceanError, OceanParams, Phillips, Seed};
+use natura_ocean::glam::DVec2;
+use natura_ocean::{
+    Directional, FrequencySpectrum, G, Jonswap, Ocean, OceanError, OceanParams, Phillips,
+    PiersonMoskowitz, Seed, Spectrum, Spreading, Tma,
+};
+use proptest::prelude::*;
 
 fn params() -> OceanParams {
     OceanParams {
@@ -88,4 +93,93 @@ fn accepted_extremes_give_finite_frames() {
             assert!(g.as_slice().iter().all(|v| v.is_finite()), "{p:?}");
         }
     }
+}
+
+/// `10^e` for exponents across f64's whole range, subnormals included.
+fn magnitude() -> impl Strategy<Value = f64> {
+    (-323.0f64..308.0).prop_map(|e| 10f64.powf(e))
+}
+
+/// The spectra whose validation passed.
+fn accepted(u: f64, fetch: f64, depth: f64, spreading: Spreading) -> Vec<Box<dyn Spectrum>> {
+    let pm = PiersonMoskowitz {
+        wind_speed: u,
+        ..PiersonMoskowitz::default()
+    };
+    let jonswap = Jonswap {
+        wind_speed: u,
+        fetch,
+        ..Jonswap::default()
+    };
+    let tma = Tma { jonswap, depth };
+    let phillips = Phillips {
+        wind_speed: u,
+        ..Phillips::default()
+    };
+    let mut out: Vec<Box<dyn Spectrum>> = Vec::new();
+    let mut push = |s: Box<dyn Spectrum>| {
+        if s.validate().is_ok() {
+            out.push(s);
+        }
+    };
+    let mut p = Directional::new(pm, 0.4);
+    p.spreading = spreading;
+    push(Box::new(p));
+    let mut j = Directional::new(jonswap, 0.4);
+    j.spreading = spreading;
+    push(Box::new(j));
+    let mut t = Directional::new(tma, 0.4);
+    t.spreading = spreading;
+    t.dispersion = natura_ocean::Dispersion::FiniteDepth { g: G, depth };
+    push(Box::new(t));
+    let mut c = Directional::new(pm, 0.4);
+    c.dispersion = natura_ocean::Dispersion::Capillary {
+        g: G,
+        capillary_length: depth,
+    };
+    push(Box::new(c));
+    push(Box::new(phillips));
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// The spectra's contract: a spectrum whose parameters validate gives a
+    /// finite density ≥ 0 at every wave vector, at any scale of wind, fetch,
+    /// depth and wavenumber f64 holds. (The smallest subnormal wind speed
+    /// once validated and gave NaN.)
+    #[test]
+    fn validated_spectra_are_finite_everywhere(
+        u in magnitude(),
+        fetch in magnitude(),
+        depth in magnitude(),
+        k in magnitude(),
+        angle in -3.2f64..3.2,
+        hasselmann in any::<bool>(),
+    ) {
+        let spreading = if hasselmann { Spreading::Hasselmann } else { Spreading::Cos2s { s: 8.0 } };
+        let kv = DVec2::new(angle.cos(), angle.sin()) * k;
+        for s in accepted(u, fetch, depth, spreading) {
+            let p = s.density(kv);
+            prop_assert!(p.is_finite() && p >= 0.0, "{s:?} at k = {kv}: {p}");
+        }
+    }
+}
+
+#[test]
+fn practical_winds_are_accepted_and_vanishing_ones_named() {
+    for u in [0.1, 1.0, 10.0, 60.0] {
+        assert_eq!(
+            accepted(u, 1e4, 20.0, Spreading::Hasselmann).len(),
+            5,
+            "{u}"
+        );
+    }
+    let tiny = Jonswap {
+        wind_speed: 5e-324,
+        ..Jonswap::default()
+    };
+    let e = tiny.validate().unwrap_err().to_string();
+    assert!(e.contains("wind_speed"), "{e}");
 }
