@@ -285,7 +285,12 @@ mod tests {
         }
         let mut longer = bytes.clone();
         longer.push(0);
-        assert!(read(&longer).unwrap_err().to_string().contains("after the checksum"));
+        assert!(
+            read(&longer)
+                .unwrap_err()
+                .to_string()
+                .contains("after the checksum")
+        );
     }
 
     #[test]

@@ -201,8 +201,9 @@ pub struct WaterDesc {
     /// Wavelength of the largest ripples, metres.
     pub ripple_size_m: f64,
     /// Wind speed 10 m above the water, m/s: it drives the wind sea
-    /// (`waves = "wind"`; 0 is a calm, the ripples alone) and the ocean's
-    /// Phillips spectrum (`waves = "ocean"`, at least 0.1).
+    /// (`waves = "wind"`; 0 is a calm, the ripples alone, otherwise at
+    /// least 0.1) and the ocean's Phillips spectrum (`waves = "ocean"`, at
+    /// least 0.1).
     pub wind_speed_m_s: f64,
     /// Compass direction the wind blows toward, degrees clockwise from north
     /// (+y) toward east (+x): the waves', and the prevailing wind that

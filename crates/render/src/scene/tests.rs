@@ -209,6 +209,16 @@ fn impossible_values_are_refused_by_name() {
             "water.wind_speed_m_s",
             Box::new(|s| s.water.wind_speed_m_s = -1.0),
         ),
+        // Below a breeze the wind sea's spectrum leaves f64's range (the
+        // smallest subnormal gave NaN waves at render time).
+        (
+            "water.wind_speed_m_s",
+            Box::new(|s| s.water.wind_speed_m_s = 5e-324),
+        ),
+        (
+            "water.wind_speed_m_s",
+            Box::new(|s| s.water.wind_speed_m_s = 0.05),
+        ),
     ];
     for (key, mutate) in cases {
         let mut s = SceneDesc::default();
@@ -216,6 +226,16 @@ fn impossible_values_are_refused_by_name() {
         let err = s.validate().unwrap_err().to_string();
         assert!(err.contains(key), "{key}: {err}");
     }
+    // A calm is 0 exactly, for the wind sea; the ocean needs a wind.
+    let mut calm = SceneDesc::default();
+    calm.water.wind_speed_m_s = 0.0;
+    calm.validate().unwrap();
+    calm.water.waves = WaterWaves::Ocean;
+    let err = calm.validate().unwrap_err().to_string();
+    assert!(
+        err.contains("water.wind_speed_m_s") && !err.contains("calm"),
+        "{err}"
+    );
     let mut twilight = SceneDesc::default();
     twilight.sun.elevation_deg = -4.0;
     twilight.sun.allow_below_horizon = true;

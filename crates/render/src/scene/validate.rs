@@ -106,12 +106,24 @@ impl WaterDesc {
         in_range("water.level_quantile", self.level_quantile, 0.0, 1.0)?;
         in_range("water.ripple_height_m", self.ripple_height_m, 0.0, 100.0)?;
         in_range("water.ripple_size_m", self.ripple_size_m, 1e-3, 1e6)?;
-        let calm = if self.waves == WaterWaves::Ocean {
-            0.1
-        } else {
-            0.0
-        };
-        in_range("water.wind_speed_m_s", self.wind_speed_m_s, calm, 60.0)?;
+        // The weakest wind that raises waves here, m/s: below it the
+        // spectra's scales (a peak at g²/(U F) and beyond) leave f64's range.
+        let breeze = 0.1;
+        let u = self.wind_speed_m_s;
+        if self.waves == WaterWaves::Ocean || u != 0.0 {
+            in_range("water.wind_speed_m_s", u, breeze, 60.0).map_err(|e| match e {
+                RenderError::Invalid {
+                    name,
+                    value,
+                    reason,
+                } if self.waves != WaterWaves::Ocean => RenderError::Invalid {
+                    name,
+                    value,
+                    reason: format!("must be 0 (a calm) or {reason}"),
+                },
+                e => e,
+            })?;
+        }
         if let Some(f) = self.fetch_m {
             in_range("water.fetch_m", f, 1.0, 1e7)?;
         }
