@@ -521,9 +521,9 @@ fn terrace(scene: &SceneDesc, seed: Seed, hf: &mut HeightField) -> Result<()> {
         return Ok(());
     }
     let s = &scene.textures.strata;
-    let cycle_m = (1.0 / (s.zscale * s.txtscale)) as f32;
+    let (cycle_m, bed_m) = t.cycle_and_bed_m(s.zscale, s.txtscale);
     let params = TerraceParams {
-        bed_m: cycle_m / t.beds_per_cycle as f32,
+        bed_m,
         cliff_fraction: t.cliff_fraction,
         flatness: t.flatness,
         min_slope_deg: t.min_slope_deg,

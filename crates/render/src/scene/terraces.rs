@@ -46,7 +46,7 @@ impl Default for TerracesDesc {
 impl TerracesDesc {
     /// Checks every key of the section (whether or not it is enabled), and
     /// that the strata it follows repeat in altitude when it is.
-    pub(crate) fn validate(&self, strata_zscale: f64) -> Result<()> {
+    pub(crate) fn validate(&self, strata_zscale: f64, strata_txtscale: f64) -> Result<()> {
         in_range(
             "terraces.beds_per_cycle",
             f64::from(self.beds_per_cycle),
@@ -87,6 +87,28 @@ impl TerracesDesc {
                     .to_owned(),
             });
         }
+        let (_, bed) = self.cycle_and_bed_m(strata_zscale, strata_txtscale);
+        if self.enabled && !(bed > 0.0 && bed <= MAX_BED_M) {
+            return Err(RenderError::Invalid {
+                name: "textures.strata.zscale".to_owned(),
+                value: format!("{strata_zscale}"),
+                reason: format!(
+                    "gives beds of {bed} m (a cycle of 1/(zscale·txtscale) m over {} beds); \
+                     while [terraces] is enabled they must be over 0 and at most {MAX_BED_M} m",
+                    self.beds_per_cycle
+                ),
+            });
+        }
         Ok(())
     }
+
+    /// The strata's colour-map cycle `1/(zscale·txtscale)` and the height
+    /// of one bed, metres, as the world's terraces use them.
+    pub(crate) fn cycle_and_bed_m(&self, strata_zscale: f64, strata_txtscale: f64) -> (f32, f32) {
+        let cycle_m = (1.0 / (strata_zscale * strata_txtscale)) as f32;
+        (cycle_m, cycle_m / self.beds_per_cycle as f32)
+    }
 }
+
+/// The highest bed natura-terrain's terraces take, metres.
+const MAX_BED_M: f32 = 10_000.0;

@@ -39,7 +39,8 @@ impl SceneDesc {
         self.camera.validate()?;
         self.clouds.validate()?;
         self.textures.validate()?;
-        self.terraces.validate(self.textures.strata.zscale)?;
+        self.terraces
+            .validate(self.textures.strata.zscale, self.textures.strata.txtscale)?;
         self.render.validate()?;
         self.validate_animation_keys()?;
         self.check_memory_budget()

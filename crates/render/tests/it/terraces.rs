@@ -147,7 +147,7 @@ type Spoil = fn(&mut SceneDesc);
 
 #[test]
 fn bad_terrace_keys_are_named_before_any_work() {
-    let cases: [(&str, Spoil); 7] = [
+    let cases: [(&str, Spoil); 9] = [
         ("terraces.beds_per_cycle", |s| s.terraces.beds_per_cycle = 0),
         ("terraces.cliff_fraction", |s| {
             s.terraces.cliff_fraction = 0.0
@@ -160,6 +160,15 @@ fn bad_terrace_keys_are_named_before_any_work() {
             s.terraces.min_slope_deg = -5.0
         }),
         ("textures.strata.zscale", |s| s.textures.strata.zscale = 0.0),
+        // Beds of infinite height in f32 (found by the scene-edit property
+        // test under another seed: named by natura-terrain, not by key),
+        // and beds taller than the terraces take.
+        ("textures.strata.zscale", |s| {
+            s.textures.strata.zscale = 6.674_344_689_176_268e-239
+        }),
+        ("textures.strata.zscale", |s| {
+            s.textures.strata.zscale = 1e-9
+        }),
         ("textures.strata_tint", |s| s.textures.strata_tint = 2.0),
     ];
     for (key, spoil) in cases {
