@@ -151,7 +151,16 @@ proptest! {
         match (base, t, r) {
             (None, None, None) => {}
             (Some(b), Some(t), Some(r)) => {
-                prop_assert!((b.t - t.t).abs() <= tol(b.t) && (b.t - r.t).abs() <= tol(b.t));
+                // Mirroring rounds the ray's origin by an ulp of the field's
+                // size, which moves the hit along a ray that grazes the
+                // triangle by that over the cosine between them (a ray
+                // 0.2° off a near-vertical face moved it by 2.6e-4 in 2.5).
+                let cos = b.geometric_normal.dot(ray.dir.normalize()).abs().max(1e-6);
+                let tol = |a: f32| tol(a) + 4.0 * f32::EPSILON * scale(&hf) / cos;
+                prop_assert!(
+                    (b.t - t.t).abs() <= tol(b.t) && (b.t - r.t).abs() <= tol(b.t),
+                    "{ray:?}: {b:?}, transposed {t:?}, rotated {r:?}"
+                );
                 prop_assert!((swap(b.point) - t.point).length() <= 1e-3 * scale(&hf));
             }
             (b, t, r) => {
