@@ -6,19 +6,21 @@
 use crate::dispersion::G;
 use crate::error::{Result, invalid, positive};
 
-/// Refuses a wind (`name` = `value`) whose spectrum has a scale outside
-/// f64's range: each of `scales` must be finite and > 0. Such winds are
-/// thousands of orders of magnitude from any sea, and their spectra were
-/// NaN (a vanishing wind puts the peak frequency at infinity).
-fn scales_in_range(name: &'static str, value: f64, scales: &[f64]) -> Result<()> {
+/// Refuses a wind (`name` = `value`, `reason` saying why) whose spectrum
+/// has a scale outside f64's range: each of `scales` must be finite and
+/// positive. Such winds are hundreds of orders of magnitude from any sea,
+/// and their spectra were NaN (a vanishing wind puts the peak frequency at
+/// infinity).
+fn scales_in_range(
+    name: &'static str,
+    value: impl std::fmt::Display,
+    reason: &'static str,
+    scales: &[f64],
+) -> Result<()> {
     if scales.iter().all(|s| s.is_finite() && *s > 0.0) {
         Ok(())
     } else {
-        Err(invalid(
-            name,
-            value,
-            "puts the spectrum's peak or level outside f64's range",
-        ))
+        Err(invalid(name, value, reason))
     }
 }
 
@@ -85,7 +87,7 @@ impl FrequencySpectrum for PiersonMoskowitz {
             return 0.0;
         }
         let w0 = self.g / self.wind_speed;
-        // Zero where the exponential underflows (below ω₀/5.7), before ω⁻⁵
+        // Zero where the exponential underflows (below ω₀/5.6), before ω⁻⁵
         // can overflow: 0 · ∞ was NaN.
         let e = (-PM_BETA * (w0 / omega).powi(4)).exp();
         if e == 0.0 {
@@ -108,7 +110,12 @@ impl FrequencySpectrum for PiersonMoskowitz {
         // ω₀ and the ω⁻⁵ factor where the exponential leaves f64 (ω₀/6).
         let w0 = self.g / self.wind_speed;
         let level = PM_ALPHA * self.g * self.g / (w0 / 6.0).powi(5);
-        scales_in_range("wind_speed", self.wind_speed, &[w0, level, self.variance()])
+        scales_in_range(
+            "wind_speed",
+            self.wind_speed,
+            "puts the spectrum's peak or level outside f64's range",
+            &[w0, level, self.variance()],
+        )
     }
 }
 
@@ -194,18 +201,17 @@ impl FrequencySpectrum for Jonswap {
         positive("sigma_low", self.sigma_low)?;
         positive("sigma_high", self.sigma_high)?;
         positive("g", self.g)?;
-        // α, ω_p, the ω⁻⁵ factor where the exponential leaves f64 (ω_p/5)
-        // and the peak's enhancement (wind and fetch together: the name is
-        // the wind's, the reason covers both).
+        // α, ω_p, and the ω⁻⁵ factor with the peak's enhancement where the
+        // exponential leaves f64 (ω_p/5). Wind and fetch set them together:
+        // the error names the wind and gives both.
         let wp = self.peak_frequency();
         let level = self.alpha() * self.g * self.g / (wp / 5.0).powi(5) * self.gamma;
-        scales_in_range("wind_speed", self.wind_speed, &[self.alpha(), wp, level]).map_err(|_| {
-            invalid(
-                "wind_speed",
-                format!("{} (fetch {})", self.wind_speed, self.fetch),
-                "with this fetch puts the spectrum's peak or level outside f64's range",
-            )
-        })
+        scales_in_range(
+            "wind_speed",
+            format!("{} (fetch {})", self.wind_speed, self.fetch),
+            "with this fetch puts the spectrum's peak or level outside f64's range",
+            &[self.alpha(), wp, level],
+        )
     }
 }
 

@@ -107,8 +107,10 @@ impl WaterDesc {
         in_range("water.level_quantile", self.level_quantile, 0.0, 1.0)?;
         in_range("water.ripple_height_m", self.ripple_height_m, 0.0, 100.0)?;
         in_range("water.ripple_size_m", self.ripple_size_m, 1e-3, 1e6)?;
-        // The weakest wind that raises waves here, m/s: below it the
-        // spectra's scales (a peak at g²/(U F) and beyond) leave f64's range.
+        // The weakest wind the wind sea and the ocean take, m/s (a calm is
+        // 0 exactly, for the wind sea): Beaufort's calm reaches 0.5 m/s, and
+        // far below it a spectrum's peak leaves f64 (a subnormal wind
+        // validated and gave NaN waves).
         let breeze = 0.1;
         let u = self.wind_speed_m_s;
         if self.waves == WaterWaves::Ocean || u != 0.0 {
