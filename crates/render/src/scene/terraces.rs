@@ -79,14 +79,8 @@ impl TerracesDesc {
             -1e6,
             1e6,
         )?;
-        if self.enabled && strata_zscale <= 0.0 {
-            return Err(RenderError::Invalid {
-                name: "textures.strata.zscale".to_owned(),
-                value: format!("{strata_zscale}"),
-                reason: "must be > 0 while [terraces] is enabled (the beds follow the strata)"
-                    .to_owned(),
-            });
-        }
+        // The beds follow the strata: a zscale of 0 (no cycle) gives beds
+        // of infinite height, as one too small for f32 does.
         let (_, bed) = self.cycle_and_bed_m(strata_zscale, strata_txtscale);
         if self.enabled && !(bed > 0.0 && bed <= MAX_BED_M) {
             return Err(RenderError::Invalid {
@@ -94,7 +88,8 @@ impl TerracesDesc {
                 value: format!("{strata_zscale}"),
                 reason: format!(
                     "gives beds of {bed} m (a cycle of 1/(zscale·txtscale) m over {} beds); \
-                     while [terraces] is enabled they must be over 0 and at most {MAX_BED_M} m",
+                     while [terraces] is enabled (the beds follow the strata) they must be \
+                     over 0 and at most {MAX_BED_M} m",
                     self.beds_per_cycle
                 ),
             });
