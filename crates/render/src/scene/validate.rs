@@ -122,7 +122,10 @@ impl WaterDesc {
                 } if self.waves != WaterWaves::Ocean => RenderError::Invalid {
                     name,
                     value,
-                    reason: format!("must be 0 (a calm) or {reason}"),
+                    reason: format!(
+                        "must be 0 (a calm) or {}",
+                        reason.trim_start_matches("must ")
+                    ),
                 },
                 e => e,
             })?;
