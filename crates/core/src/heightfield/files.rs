@@ -11,6 +11,9 @@ use crate::grid2::{Grid2, checked_len};
 use crate::io::exr::{read_exr, write_exr};
 use crate::io::{WriteError, read_file_at_most, write_atomic};
 
+/// The most deflate can compress: 1032 bytes out of every byte in.
+const DEFLATE_MAX_RATIO: u64 = 1032;
+
 impl HeightField {
     // ---------------------------------------------------------------- raw --
 
@@ -242,6 +245,23 @@ impl HeightField {
     ) -> Result<Self> {
         let path = name;
         let bad = |m: String| CoreError::format(path, m);
+        let mut reader = reader;
+        // The bytes the stream holds, to refuse a header whose pixels they
+        // cannot hold before the pixels' buffer is allocated.
+        // A stream that cannot seek (a pipe) is not measured: the decoder
+        // then meets its end while it reads.
+        let held = match (
+            reader.stream_position(),
+            reader.seek(std::io::SeekFrom::End(0)),
+        ) {
+            (Ok(start), Ok(end)) => {
+                reader
+                    .seek(std::io::SeekFrom::Start(start))
+                    .map_err(|e| CoreError::io(path, e))?;
+                end.saturating_sub(start)
+            }
+            _ => u64::MAX,
+        };
         // The decoder may allocate no more than the image itself needs plus
         // its chunks; the image's size is checked against the cap from the
         // header, before any pixel memory exists.
@@ -278,6 +298,17 @@ impl HeightField {
         let size = reader
             .output_buffer_size()
             .ok_or_else(|| bad("PNG too large".into()))?;
+        // Deflate compresses at most 1032 to 1 (a length-258 match in two
+        // bits), so a stream shorter than the pixels over 1032 is
+        // truncated whatever it holds: refused before a buffer of the
+        // header's size is allocated and filled (a 49-byte file claiming
+        // four billion pixels asked for gigabytes).
+        if (size as u64) / DEFLATE_MAX_RATIO > held {
+            return Err(bad(format!(
+                "truncated PNG: its {w} × {h} pixels need at least {} compressed bytes, the file holds {held}",
+                (size as u64).div_ceil(DEFLATE_MAX_RATIO)
+            )));
+        }
         let mut buf = vec![0u8; size];
         reader
             .next_frame(&mut buf)

@@ -182,6 +182,32 @@ fn huge_png_header_is_refused_before_allocating() {
     assert!(err.to_string().contains("cap"), "{err}");
 }
 
+/// A header within the memory cap whose file cannot hold its pixels (four
+/// billion 8-bit pixels in a few dozen bytes; deflate compresses at most
+/// 1032 to 1) is refused as truncated before its buffer is allocated (a
+/// fuzzer's find: the buffer of several gigabytes was allocated and
+/// filled first). The same header over a stream that cannot seek still
+/// fails, when the decoder meets the end.
+#[test]
+fn a_png_too_short_for_its_header_is_refused_before_allocating() {
+    let bytes = png_with_header(0xF300_0000, 1, 8, 0);
+    let p = write_case("png-short", &bytes);
+    let err = HeightField::load_png16(&p, Some(1.0), Some((0.0, 1.0))).unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("truncated")
+            && msg.contains("at least 3950450 compressed bytes")
+            && msg.contains(&format!("holds {}", bytes.len())),
+        "{msg}"
+    );
+    // A file whose stream would hold the pixels at deflate's best ratio is
+    // not refused by this check (it fails later, on its bogus data).
+    let small = png_with_header(1032 * 4, 1, 8, 0);
+    let err = HeightField::load_png16(write_case("png-fits", &small), Some(1.0), Some((0.0, 1.0)))
+        .unwrap_err();
+    assert!(!err.to_string().contains("need at least"), "{err}");
+}
+
 /// Every byte of a height map's EXR with its lowest bit flipped: refused, or
 /// the same field (the flip of the cell size's digit in the text attributes
 /// was read as another cell size before their checksum).
