@@ -171,6 +171,13 @@ impl Detail {
         self.fbm.visible(w)
     }
 
+    /// `(⌈n(w)⌉, ⌊n(w)⌋)` without the logarithm, or `None` where the
+    /// logarithm decides ([`FootprintFbm::visible_whole`]).
+    #[inline]
+    pub(crate) fn octaves_whole(&self, w: f64) -> Option<(usize, usize)> {
+        self.fbm.visible_whole(w)
+    }
+
     /// Octave `k`'s weighted term of `D(p; w)` where `n = n(w)`.
     #[inline]
     pub(crate) fn octave(&self, k: usize, n: f64, p: DVec2) -> f64 {
@@ -222,6 +229,12 @@ impl Detail {
     #[must_use]
     pub fn footprint_bound(&self, w: f64) -> f64 {
         self.fbm.footprint_bound(w)
+    }
+
+    /// [`Self::footprint_bound`] with `(⌈n(w)⌉, ⌊n(w)⌋)` already known.
+    #[inline]
+    pub(crate) fn footprint_bound_whole(&self, w: f64, whole: (usize, usize)) -> f64 {
+        self.fbm.footprint_bound_whole(w, whole)
     }
 
     /// [`Self::footprint_bound`] with `n = n(w)` already known.

@@ -46,6 +46,10 @@ use crate::field::Field;
 use crate::fractal::MAX_OCTAVES;
 use crate::fractal::lod::visible_octaves_ln;
 
+/// The relative margin about each `rᵏ` within which
+/// [`FootprintFbm::visible_whole`] leaves `⌈v⌉` to the logarithm.
+const WHOLE_MARGIN: f64 = 1e-9;
+
 /// Parameters of a [`FootprintFbm`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -130,6 +134,12 @@ pub struct FootprintFbm<B> {
     /// Octave `k` is present (`v(w) > k`) below the footprint `λ₀/(2rᵏ)`,
     /// widened by a relative 1e-9 so that rounding never drops one.
     nyquist: [f64; MAX_OCTAVES],
+    /// `rᵏ·(1 − 1e-9)` and `rᵏ·(1 + 1e-9)` for `k` from 0 to the octave
+    /// count: where `NYQUIST/(w·f₀)`, the logarithm's argument in `v(w)`,
+    /// lies between two of them, `⌈v⌉` and `⌊v⌋` are known without the
+    /// logarithm ([`FootprintFbm::visible_whole`]).
+    whole_lo: [f64; MAX_OCTAVES + 1],
+    whole_hi: [f64; MAX_OCTAVES + 1],
     /// `Σ_{j<k} a_j` and `Σ_{j<k} a_j f_j` (index `k` from 0 to the octave
     /// count), and `max_{j<k} a_j / w_min,j` for the footprint bound.
     amp_pre: [f64; MAX_OCTAVES + 1],
@@ -192,6 +202,8 @@ impl<B: Field> FootprintFbm<B> {
             offset: [DVec2::ZERO; MAX_OCTAVES],
             offset3: [DVec3::ZERO; MAX_OCTAVES],
             nyquist: [0.0; MAX_OCTAVES],
+            whole_lo: [0.0; MAX_OCTAVES + 1],
+            whole_hi: [0.0; MAX_OCTAVES + 1],
             amp_pre: [0.0; MAX_OCTAVES + 1],
             lip_pre: [0.0; MAX_OCTAVES + 1],
             fp_max: [0.0; MAX_OCTAVES + 1],
@@ -215,6 +227,11 @@ impl<B: Field> FootprintFbm<B> {
             f.lip_pre[k + 1] = f.lip_pre[k] + f.amp[k] * f.freq[k];
             let wmin = 0.5 * lambda0 / powi(lac, k as u32 + 1);
             f.fp_max[k + 1] = f.fp_max[k].max(f.amp[k] / wmin);
+        }
+        for k in 0..=count {
+            let p = powi(lac, k as u32);
+            f.whole_lo[k] = p * (1.0 - WHOLE_MARGIN);
+            f.whole_hi[k] = p * (1.0 + WHOLE_MARGIN);
         }
         bounded("FootprintFbm", f.amplitude_between(0, count))?;
         Ok(f)
@@ -269,6 +286,48 @@ impl<B: Field> FootprintFbm<B> {
             return n;
         }
         visible_octaves_ln(w, self.frequency, self.ln_lacunarity).min(n)
+    }
+
+    /// `⌈v(w)⌉` and `⌊v(w)⌋` of [`visible`](Self::visible) without its
+    /// logarithm, or `None` where they need it.
+    ///
+    /// `v(w) > k` exactly when the logarithm's argument `x = ½/(w·f₀)`
+    /// exceeds `rᵏ`, so comparing `x` with the powers of `r` gives both
+    /// whole numbers. Where `x` lies within a relative `1e-9` of a power
+    /// the rounding of `v` could decide, and `None` is returned, as for a
+    /// NaN footprint or an `x` that is not a normal number. Elsewhere the
+    /// margin exceeds every rounding error of `v` (at most a few units in
+    /// the last place of `x`, of the logarithm and of `rᵏ`, all under
+    /// `1e-13` against the margin's `1e-9/ln r`), so the pair equals
+    /// `(v.ceil(), v.floor())` of `visible(w)` in every case: a marcher that
+    /// needs only the octave count, or the weights of the octaves below
+    /// the blended one (1), skips the logarithm.
+    #[inline]
+    #[must_use]
+    pub fn visible_whole(&self, w: f64) -> Option<(usize, usize)> {
+        if w <= 0.0 {
+            return Some((self.count, self.count));
+        }
+        let x = crate::fractal::lod::NYQUIST / (w * self.frequency);
+        if !x.is_normal() {
+            return None;
+        }
+        // The powers `rᵏ` that `x` exceeds, `v > k` for each.
+        let mut above = 0;
+        while above <= self.count {
+            if x > self.whole_hi[above] {
+                above += 1;
+            } else if x >= self.whole_lo[above] {
+                return None;
+            } else {
+                break;
+            }
+        }
+        Some(match above {
+            0 => (0, 0),
+            a if a > self.count => (self.count, self.count),
+            a => (a, a - 1),
+        })
     }
 
     /// Octave `k`'s lattice point for the world point `p`: `f_k·p + o_k`.
@@ -423,8 +482,27 @@ impl<B: Field> FootprintFbm<B> {
         if visible <= 0.0 {
             return 0.0;
         }
+        self.footprint_bound_floor(w, libm::floor(visible) as usize)
+    }
+
+    /// [`footprint_bound`](Self::footprint_bound) with `(⌈v(w)⌉, ⌊v(w)⌋)`
+    /// already known ([`visible_whole`](Self::visible_whole)); the same
+    /// value as [`footprint_bound_visible`](Self::footprint_bound_visible).
+    #[inline]
+    #[must_use]
+    pub fn footprint_bound_whole(&self, w: f64, (ceil, floor): (usize, usize)) -> f64 {
+        // `v ≤ 0` exactly when its ceiling is 0 (`v` is never negative).
+        if ceil == 0 {
+            return 0.0;
+        }
+        self.footprint_bound_floor(w, floor)
+    }
+
+    /// The footprint bound for `v(w) > 0` with `⌊v(w)⌋ = floor`.
+    #[inline]
+    fn footprint_bound_floor(&self, w: f64, floor: usize) -> f64 {
         let top = self.count;
-        let kstar = (libm::floor(visible) as usize).min(top);
+        let kstar = floor.min(top);
         let mut b = 0.0f64;
         if kstar < top && w > 0.0 {
             b = self.amp[kstar] / w;

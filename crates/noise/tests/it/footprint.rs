@@ -23,8 +23,41 @@ fn fbm(h: f64, lacunarity: f64, octaves: u32, seed: u64) -> FootprintFbm<Perlin>
     .unwrap()
 }
 
+/// `visible_whole` is `(⌈v⌉, ⌊v⌋)` of `visible` or `None`, never another
+/// pair: the one property the detail tracer's march relies on to skip
+/// the logarithm.
+fn whole_agrees(d: &FootprintFbm<Perlin>, w: f64) -> Result<bool, TestCaseError> {
+    let v = d.visible(w);
+    match d.visible_whole(w) {
+        Some((c, f)) => {
+            prop_assert_eq!((c, f), (v.ceil() as usize, v.floor() as usize), "w {:e}, v {}", w, v);
+            prop_assert_eq!(
+                d.footprint_bound_whole(w, (c, f)).to_bits(),
+                d.footprint_bound_visible(w, v).to_bits(),
+                "w {:e}", w
+            );
+            Ok(true)
+        }
+        None => Ok(false),
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// At random footprints, lacunarities and octave counts (and
+    /// wavelengths across many decades) the whole part agrees, and it is
+    /// known without the logarithm almost everywhere.
+    #[test]
+    fn the_whole_octave_count_is_the_logarithms(
+        lac in 1.0001f64..64.0, octaves in 0u32..25, lw in -12.0f64..6.0, l0 in -3.0f64..4.0,
+    ) {
+        let d = FootprintFbm::new(Perlin::new(1), &FootprintParams {
+            amplitude: 1.0, h: 0.5, lacunarity: lac, octaves, wavelength: 10f64.powf(l0),
+        }).unwrap();
+        let w = 10f64.powf(lw);
+        prop_assert!(whole_agrees(&d, w)?, "w {:e}: left to the logarithm", w);
+    }
 
     /// The analytic gradient is the central difference of the value (at a
     /// step a thousandth of the finest wavelength summed), and the value it
@@ -206,4 +239,53 @@ fn bad_parameters_name_themselves() {
     .unwrap();
     assert_eq!(none.octave_count(), 0);
     assert_eq!(none.eval2(DVec2::new(1.0, 2.0), 0.0), 0.0);
+}
+
+/// Footprints at and around every whole octave count, a few units in the
+/// last place apart and at the relative margin on both sides: where the
+/// rounding of `v` could decide, `visible_whole` defers to the logarithm;
+/// everywhere it answers, it answers as the logarithm does. Lacunarities
+/// near 1, 2 and huge, and the degenerate footprints.
+#[test]
+fn the_whole_octave_count_holds_at_every_threshold() {
+    let mut answered = 0;
+    let mut deferred = 0;
+    for (lac, octaves, wavelength) in [
+        (2.0, 9, 10.0),
+        (2.0, 24, 1.0),
+        (1.000_001, 12, 3.0),
+        (std::f64::consts::E, 7, 0.1),
+        (1.9, 64, 10.0),
+        (1e100, 3, 1.0),
+        (1e300, 2, 1e-300),
+    ] {
+        let d = FootprintFbm::new(
+            Perlin::new(2),
+            &FootprintParams { amplitude: 1.0, h: 0.9, lacunarity: lac, octaves, wavelength },
+        )
+        .unwrap();
+        for k in 0..=octaves {
+            let at = 0.5 * wavelength / lac.powi(k as i32);
+            if !at.is_normal() {
+                continue;
+            }
+            for rel in [0.0, 1e-15, -1e-15, 5e-10, -5e-10, 2e-9, -2e-9, 1e-6, -1e-6, 0.3, -0.3] {
+                let mut w = at * (1.0 + rel);
+                for _ in 0..9 {
+                    if whole_agrees(&d, w).unwrap() {
+                        answered += 1;
+                    } else {
+                        deferred += 1;
+                    }
+                    w = f64::from_bits(w.to_bits() + 1);
+                }
+            }
+        }
+        for w in [0.0, -1.0, f64::MIN_POSITIVE, 5e-324, f64::MAX, f64::INFINITY] {
+            whole_agrees(&d, w).unwrap();
+        }
+        assert_eq!(d.visible_whole(f64::NAN), None);
+    }
+    // Both branches were taken: the margin defers, the rest answers.
+    assert!(answered > 1000 && deferred > 100, "{answered} answered, {deferred} deferred");
 }
