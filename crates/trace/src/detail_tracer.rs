@@ -39,7 +39,7 @@ use crate::error::{Result, TraceError};
 use crate::max_mipmap::MipmapTracer;
 use crate::ray::{Hit, Ray, TraceStats, Triangle};
 use crate::ray_cell::{CellHit, make_hit};
-use crate::surface::surface_height;
+use crate::surface::{cell_plane_height, surface_height};
 use crate::tracer::Tracer;
 
 /// Smallest march step, as a fraction of the footprint.
@@ -331,7 +331,7 @@ impl<'a> DetailTracer<'a> {
         loop {
             let w = r.w(t);
             let (p, x, y) = self.at(r, t);
-            let base = f64::from(surface_height(hf, x, y).unwrap_or(f32::NAN));
+            let base = f64::from(cell_height(hf, &c, i, j, x, y));
             // The gap above the base surface, then the octaves from the
             // coarsest on until the ones left (bounded by their amplitudes)
             // cannot close what remains: `g` bounds `s·(z − S)` from below.
@@ -543,6 +543,22 @@ impl<'a> DetailTracer<'a> {
             from_above: ray.dir.dot(geometric_normal) < 0.0,
         }
     }
+}
+
+/// [`surface_height`] at `(x, y)` (inside the field) for a march in cell
+/// `(i, j)` whose corners `c` (the field view's `corners`) are already read:
+/// the same planes, so the same bits, without reading the heights
+/// again; where rounding puts the point in another
+/// cell, that cell's, read by `surface_height`. NaN where it is `None`.
+#[inline]
+fn cell_height(hf: &HeightField, c: &[f32; 4], i: u32, j: u32, x: f32, y: f32) -> f32 {
+    let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
+    let gi = (gx as usize).min(hf.nx() - 2);
+    let gj = (gy as usize).min(hf.ny() - 2);
+    if gi != i as usize || gj != j as usize || x.is_nan() || y.is_nan() {
+        return surface_height(hf, x, y).unwrap_or(f32::NAN);
+    }
+    cell_plane_height(c, gx - gi as f32, gy - gj as f32)
 }
 
 /// The ray's `t` interval over the box `[lo, hi]` in x and y, within `[t0, t1]`.

@@ -20,10 +20,19 @@ pub fn surface_height(hf: &HeightField, x: f32, y: f32) -> Option<f32> {
     let j = (gy as usize).min(hf.ny() - 2);
     let (u, v) = (gx - i as f32, gy - j as f32);
     let h = hf.heights();
-    let (h00, h10, h01, h11) = (h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]);
-    Some(if u + v <= 1.0 {
+    let c = [h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]];
+    Some(cell_plane_height(&c, u, v))
+}
+
+/// The height at `(u, v) ∈ [0, 1]²` in a cell of corner heights
+/// `[h00, h10, h01, h11]`: the lower triangle's plane where `u + v ≤ 1`,
+/// else the upper's (the split [`surface_height`] and the tracers use).
+#[inline(always)]
+pub(crate) fn cell_plane_height(c: &[f32; 4], u: f32, v: f32) -> f32 {
+    let [h00, h10, h01, h11] = *c;
+    if u + v <= 1.0 {
         h00 + (h10 - h00) * u + (h01 - h00) * v
     } else {
         h11 + (h11 - h01) * (u - 1.0) + (h11 - h10) * (v - 1.0)
-    })
+    }
 }
