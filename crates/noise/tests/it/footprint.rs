@@ -30,11 +30,18 @@ fn whole_agrees(d: &FootprintFbm<Perlin>, w: f64) -> Result<bool, TestCaseError>
     let v = d.visible(w);
     match d.visible_whole(w) {
         Some((c, f)) => {
-            prop_assert_eq!((c, f), (v.ceil() as usize, v.floor() as usize), "w {:e}, v {}", w, v);
+            prop_assert_eq!(
+                (c, f),
+                (v.ceil() as usize, v.floor() as usize),
+                "w {:e}, v {}",
+                w,
+                v
+            );
             prop_assert_eq!(
                 d.footprint_bound_whole(w, (c, f)).to_bits(),
                 d.footprint_bound_visible(w, v).to_bits(),
-                "w {:e}", w
+                "w {:e}",
+                w
             );
             Ok(true)
         }
@@ -261,7 +268,13 @@ fn the_whole_octave_count_holds_at_every_threshold() {
     ] {
         let d = FootprintFbm::new(
             Perlin::new(2),
-            &FootprintParams { amplitude: 1.0, h: 0.9, lacunarity: lac, octaves, wavelength },
+            &FootprintParams {
+                amplitude: 1.0,
+                h: 0.9,
+                lacunarity: lac,
+                octaves,
+                wavelength,
+            },
         )
         .unwrap();
         for k in 0..=octaves {
@@ -269,7 +282,9 @@ fn the_whole_octave_count_holds_at_every_threshold() {
             if !at.is_normal() {
                 continue;
             }
-            for rel in [0.0, 1e-15, -1e-15, 5e-10, -5e-10, 2e-9, -2e-9, 1e-6, -1e-6, 0.3, -0.3] {
+            for rel in [
+                0.0, 1e-15, -1e-15, 5e-10, -5e-10, 2e-9, -2e-9, 1e-6, -1e-6, 0.3, -0.3,
+            ] {
                 let mut w = at * (1.0 + rel);
                 for _ in 0..9 {
                     if whole_agrees(&d, w).unwrap() {
@@ -281,11 +296,21 @@ fn the_whole_octave_count_holds_at_every_threshold() {
                 }
             }
         }
-        for w in [0.0, -1.0, f64::MIN_POSITIVE, 5e-324, f64::MAX, f64::INFINITY] {
+        for w in [
+            0.0,
+            -1.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::INFINITY,
+        ] {
             whole_agrees(&d, w).unwrap();
         }
         assert_eq!(d.visible_whole(f64::NAN), None);
     }
     // Both branches were taken: the margin defers, the rest answers.
-    assert!(answered > 1000 && deferred > 100, "{answered} answered, {deferred} deferred");
+    assert!(
+        answered > 1000 && deferred > 100,
+        "{answered} answered, {deferred} deferred"
+    );
 }
