@@ -546,10 +546,10 @@ impl<'a> DetailTracer<'a> {
 }
 
 /// [`surface_height`] at `(x, y)` (inside the field) for a march in cell
-/// `(i, j)` whose corners `c` (the field view's `corners`) are already read:
-/// the same planes, so the same bits, without reading the heights
-/// again; where rounding puts the point in another
-/// cell, that cell's, read by `surface_height`. NaN where it is `None`.
+/// `(i, j)` whose corners `c` (the field view's `corners`) are already
+/// read: the same planes, so the same bits, without reading the heights
+/// again. Where rounding puts the point in another cell, that cell's,
+/// read by `surface_height`; NaN where it is `None`.
 #[inline]
 fn cell_height(hf: &HeightField, c: &[f32; 4], i: u32, j: u32, x: f32, y: f32) -> f32 {
     let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
