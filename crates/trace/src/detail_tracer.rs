@@ -39,7 +39,7 @@ use crate::error::{Result, TraceError};
 use crate::max_mipmap::MipmapTracer;
 use crate::ray::{Hit, Ray, TraceStats, Triangle};
 use crate::ray_cell::{CellHit, make_hit};
-use crate::surface::{cell_plane_height, surface_height};
+use crate::surface::{cell_at, cell_plane_height, surface_height};
 use crate::tracer::Tracer;
 
 /// Smallest march step, as a fraction of the footprint.
@@ -552,13 +552,11 @@ impl<'a> DetailTracer<'a> {
 /// read by `surface_height`; NaN where it is `None`.
 #[inline]
 fn cell_height(hf: &HeightField, c: &[f32; 4], i: u32, j: u32, x: f32, y: f32) -> f32 {
-    let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
-    let gi = (gx as usize).min(hf.nx() - 2);
-    let gj = (gy as usize).min(hf.ny() - 2);
+    let (gi, gj, u, v) = cell_at(hf, x, y);
     if gi != i as usize || gj != j as usize || x.is_nan() || y.is_nan() {
         return surface_height(hf, x, y).unwrap_or(f32::NAN);
     }
-    cell_plane_height(c, gx - gi as f32, gy - gj as f32)
+    cell_plane_height(c, u, v)
 }
 
 /// The ray's `t` interval over the box `[lo, hi]` in x and y, within `[t0, t1]`.

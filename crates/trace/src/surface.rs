@@ -14,14 +14,22 @@ pub fn surface_height(hf: &HeightField, x: f32, y: f32) -> Option<f32> {
     if !(x >= 0.0 && y >= 0.0 && x <= e.x && y <= e.y) || hf.nx() < 2 || hf.ny() < 2 {
         return None;
     }
+    let (i, j, u, v) = cell_at(hf, x, y);
+    let h = hf.heights();
+    let c = [h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]];
+    Some(cell_plane_height(&c, u, v))
+}
+
+/// The cell `(i, j)` holding world `(x, y)` (inside the field, of at least
+/// 2 × 2 samples) and the point's place `(u, v)` in it, as
+/// [`surface_height`] finds them.
+#[inline(always)]
+pub(crate) fn cell_at(hf: &HeightField, x: f32, y: f32) -> (usize, usize, f32, f32) {
     let (gx, gy) = (x / hf.cell_size(), y / hf.cell_size());
     // `x, y ≥ 0`: truncation is the floor.
     let i = (gx as usize).min(hf.nx() - 2);
     let j = (gy as usize).min(hf.ny() - 2);
-    let (u, v) = (gx - i as f32, gy - j as f32);
-    let h = hf.heights();
-    let c = [h[(i, j)], h[(i + 1, j)], h[(i, j + 1)], h[(i + 1, j + 1)]];
-    Some(cell_plane_height(&c, u, v))
+    (i, j, gx - i as f32, gy - j as f32)
 }
 
 /// The height at `(u, v) ∈ [0, 1]²` in a cell of corner heights
