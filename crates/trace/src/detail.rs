@@ -171,11 +171,21 @@ impl Detail {
         self.fbm.visible(w)
     }
 
-    /// `(⌈n(w)⌉, ⌊n(w)⌋)` without the logarithm, or `None` where the
-    /// logarithm decides ([`FootprintFbm::visible_whole`]).
+    /// `(⌈n(w)⌉, ⌊n(w)⌋)`, found without the logarithm where
+    /// [`FootprintFbm::visible_whole`] can, and `n(w)` itself where the
+    /// logarithm had to decide them (`(0, 0)` for a NaN footprint).
     #[inline]
-    pub(crate) fn octaves_whole(&self, w: f64) -> Option<(usize, usize)> {
-        self.fbm.visible_whole(w)
+    pub(crate) fn octave_count(&self, w: f64) -> ((usize, usize), Option<f64>) {
+        if let Some(whole) = self.fbm.visible_whole(w) {
+            return (whole, None);
+        }
+        let n = self.octaves_at(w);
+        // ⌈n⌉ by truncation, equal to `n.ceil() as usize` for every n (NaN
+        // and negatives give 0 both ways): `ceil` is a library call on the
+        // baseline instruction set.
+        let floor = n as usize;
+        let ceil = if (floor as f64) < n { floor + 1 } else { floor };
+        ((ceil, floor), Some(n))
     }
 
     /// Octave `k`'s weighted term of `D(p; w)` where `n = n(w)`.
@@ -235,12 +245,6 @@ impl Detail {
     #[inline]
     pub(crate) fn footprint_bound_whole(&self, w: f64, whole: (usize, usize)) -> f64 {
         self.fbm.footprint_bound_whole(w, whole)
-    }
-
-    /// [`Self::footprint_bound`] with `n = n(w)` already known.
-    #[inline]
-    pub(crate) fn footprint_bound_n(&self, w: f64, n: f64) -> f64 {
-        self.fbm.footprint_bound_visible(w, n)
     }
 }
 

@@ -338,24 +338,13 @@ impl<'a> DetailTracer<'a> {
             // With none evaluated this is the gap to the shell `B ± A(w)`,
             // whose slope is the triangles' alone (`A` only shrinks along
             // the ray); with all of them it is the exact gap.
-            // The octave count ⌈n⌉ (and ⌊n⌋) by comparisons where they
+            // The octave count ⌈n⌉ (and ⌊n⌋), by comparisons where they
             // settle it; `n` itself, a logarithm (4 % of the main job's
             // time when taken at every step), only where they do not or
             // where the blended octave `⌈n⌉ − 1` is summed: every octave
             // below it has weight 1, which `top` gives as well.
-            let whole = detail.octaves_whole(w);
-            let mut exact = whole.is_none().then(|| detail.octaves_at(w));
-            let top = match (whole, exact) {
-                (Some((c, _)), _) => c,
-                // ⌈n⌉ by truncation, equal to `n.ceil() as usize` for every
-                // n (NaN and negatives give 0 both ways): `ceil` is a
-                // library call on the baseline instruction set.
-                (None, n) => {
-                    let n = n.unwrap_or(f64::NAN);
-                    let t = n as usize;
-                    if (t as f64) < n { t + 1 } else { t }
-                }
-            };
+            let (whole, mut exact) = detail.octave_count(w);
+            let top = whole.0;
             let h = s * (p.z - base);
             let m = f64::from(uniform.unwrap_or_else(|| self.surface.mask_at(x, y)));
             let q = DVec2::new(f64::from(x), f64::from(y));
@@ -368,7 +357,7 @@ impl<'a> DetailTracer<'a> {
                 }
                 if m != 0.0 {
                     // A whole `n` (all octaves, or none) is `top` itself.
-                    let n = if k + 1 < top || whole.is_some_and(|(c, f)| c == f) {
+                    let n = if k + 1 < top || whole.0 == whole.1 {
                         top as f64
                     } else {
                         *exact.get_or_insert_with(|| detail.octaves_at(w))
@@ -395,11 +384,7 @@ impl<'a> DetailTracer<'a> {
                 let l = lb
                     + m_max * detail.lipschitz_first(k)
                     + detail.amplitude_between(0, top) * mask_lip;
-                let fb = match (whole, exact) {
-                    (Some(c), _) => detail.footprint_bound_whole(w, c),
-                    (None, n) => detail.footprint_bound_n(w, n.unwrap_or(f64::NAN)),
-                };
-                let fw = m_max * fb * fw_per_w;
+                let fw = m_max * detail.footprint_bound_whole(w, whole) * fw_per_w;
                 l * r.dxy + fw - s * r.d.z
             };
             if t >= t1 || denom <= 0.0 {
