@@ -56,7 +56,11 @@ pub fn slope_image(frame: &Frame) -> Result<Image> {
     ))
 }
 
-/// Foam coverage from 0 (none) to 1 in the magma ramp.
+/// Foam coverage from 0 (none) to 1 in the viridis ramp. Its dark end is a
+/// deep blue, not black: over black (the magma ramp's end) the faintest
+/// foam, a few thousandths of coverage left by an old whitecap, is one
+/// 8-bit level above the open sea yet four times its luminance, and the
+/// map reads as a field of specks where the sea is clear.
 ///
 /// # Errors
 ///
@@ -65,7 +69,7 @@ pub fn slope_image(frame: &Frame) -> Result<Image> {
 pub fn foam_image(foam: &Foam) -> Result<Image> {
     Ok(Image::false_colour(
         &north_up(foam.coverage())?,
-        Ramp::Magma,
+        Ramp::Viridis,
         0.0,
         1.0,
     ))
