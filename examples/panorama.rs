@@ -29,7 +29,9 @@ use natura::render::{SceneDesc, render_scene};
 #[derive(Parser)]
 #[command(name = "panorama", version)]
 struct Cli {
-    /// Small terrain and image (CI)
+    /// A preview in seconds: the scene's world coarsened (256 terrain
+    /// samples over the same extent, fewer erosion steps, coarser clouds)
+    /// in a 480-pixel-wide picture
     #[arg(long)]
     quick: bool,
     /// An equirectangular (spherical) screen instead of a cylindrical one
@@ -59,7 +61,7 @@ struct Cli {
     /// [default: 2400; 480 with --quick]
     #[arg(long, value_parser = common::in_range(16u32, 16_384))]
     width: Option<u32>,
-    /// Samples per pixel [default: 4; 1 with --quick]
+    /// Samples per pixel [default: 4]
     #[arg(long, value_parser = common::in_range(1u32, 4096))]
     spp: Option<u32>,
     /// Output directory (created if needed)
@@ -86,7 +88,7 @@ fn panorama() -> Run {
         out,
     } = cli;
     let width = width.unwrap_or(if quick { 480 } else { 2400 });
-    let spp = spp.unwrap_or(if quick { 1 } else { 4 });
+    let spp = spp.unwrap_or(4);
 
     let mut scene = match &scene_file {
         Some(p) => SceneDesc::load(p)?,
@@ -104,12 +106,7 @@ fn panorama() -> Run {
     scene.render.height = ((f64::from(width) * vfov / hfov).round() as u32).max(1);
     scene.render.spp = spp;
     if quick {
-        scene.terrain.size = 256;
-        scene.terrain.cell_size_m *= 8.0;
-        scene.erosion.stream_power_steps = scene.erosion.stream_power_steps.min(5);
-        scene.erosion.thermal_steps = scene.erosion.thermal_steps.min(5);
-        scene.clouds.voxel_m *= 4.0;
-        scene.clouds.shadow_cell_m *= 4.0;
+        scene = scene.quick();
     }
     scene.validate()?;
     let out = common::out_dir(&out)?;

@@ -87,9 +87,9 @@ pub use error::{RenderError, Result};
 pub use integrator::{Renderer, WATER_IOR};
 pub use scene::{
     AnimationDesc, AnimationKey, AtmosphereDesc, CameraDesc, CameraKind, CloudsDesc,
-    DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc, HydraulicModel, MaterialDesc, RenderDesc,
-    SceneDesc, SunDesc, TerrainDesc, TerrainGenerator, TexturesDesc, VegetationDesc, WaterDesc,
-    WaterWaves,
+    DEFAULT_SCENE_TOML, DetailDesc, Diffuse, ErosionDesc, HydraulicModel, MaterialDesc,
+    QUICK_TERRAIN_SIZE, RenderDesc, SceneDesc, SunDesc, TerrainDesc, TerrainGenerator,
+    TexturesDesc, VegetationDesc, WaterDesc, WaterWaves,
 };
 pub use world::{
     ErodedTerrain, MIN_LAKE_DEPTH_M, MIN_LAKE_SAMPLES, StageTimes, TerrainFunction, World,

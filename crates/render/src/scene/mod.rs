@@ -27,6 +27,7 @@
 mod animation;
 mod budget;
 mod clouds;
+mod quick;
 mod terraces;
 mod text;
 mod textures;
@@ -38,6 +39,7 @@ pub use vegetation::{SPECIES_NAMES, VegetationDesc};
 pub use animation::{AnimationDesc, AnimationKey, MAX_DURATION_S};
 pub(crate) use budget::MAX_PLANTS;
 pub use budget::{MAX_SCENE_FILE_BYTES, MEMORY_BUDGET_BYTES};
+pub use quick::QUICK_TERRAIN_SIZE;
 
 #[cfg(test)]
 mod tests;

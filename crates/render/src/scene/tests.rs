@@ -296,3 +296,33 @@ fn bad_detail_keys_are_named() {
         s
     );
 }
+
+/// The quick preview keeps a terrain's extent whatever its size, leaves a
+/// small one and fewer erosion steps alone, and touches nothing else.
+#[test]
+fn the_quick_preview_keeps_the_world_and_only_coarsens_it() {
+    let mut s = SceneDesc::default();
+    s.terrain.size = 1000;
+    s.terrain.cell_size_m = 12.5;
+    s.erosion.thermal_steps = 3;
+    let q = s.quick();
+    assert_eq!(q.terrain.size, QUICK_TERRAIN_SIZE);
+    approx::assert_relative_eq!(
+        q.terrain.size as f32 * q.terrain.cell_size_m,
+        12_500.0,
+        max_relative = 1e-6
+    );
+    assert_eq!(q.erosion.thermal_steps, 3);
+    assert_eq!(q.erosion.stream_power_steps, 5);
+    assert_eq!(q.erosion.hydraulic_steps, 20);
+    assert_eq!(q.clouds.voxel_m, 4.0 * s.clouds.voxel_m);
+    // Everything else is the scene's own.
+    let mut back = q.clone();
+    back.terrain = s.terrain.clone();
+    back.erosion = s.erosion.clone();
+    back.clouds = s.clouds.clone();
+    assert_eq!(back, s);
+    // A terrain already small is left as it is.
+    s.terrain.size = 128;
+    assert_eq!(s.quick().terrain, s.terrain);
+}
