@@ -323,7 +323,14 @@ fn frame_bytes(prep: &FramePrep) -> Vec<u8> {
     out
 }
 
-fn frame_from_bytes(body: &[u8], file: &Path) -> Result<FramePrep> {
+/// The frame's preparation from a frame cache's payload `body` (the
+/// layout [`frame_bytes`] writes).
+///
+/// # Errors
+///
+/// Refuses, naming `file`, a payload that is truncated or whose counts and
+/// sizes disagree with its length.
+pub(crate) fn frame_from_bytes(body: &[u8], file: &Path) -> Result<FramePrep> {
     let refuse = |reason: String| CliError::Cache {
         path: file.display().to_string(),
         reason,

@@ -1,6 +1,8 @@
-//! Any bytes as a frame cache file (header, then clouds and plants): the
-//! frame's preparation or an error naming the file; never a panic, and no
-//! allocation beyond what the file's own bytes hold.
+//! Any bytes as a frame cache file (header, then clouds and plants), and
+//! as the payload its header's hash vouches for: the frame's preparation
+//! or an error naming the file; never a panic, and no allocation beyond
+//! what the file's own bytes hold. A changed payload fails the hash, so
+//! the payload's parser is also given the bytes directly.
 #![no_main]
 
 #[allow(dead_code)]
@@ -27,4 +29,5 @@ fuzz_target!(|data: &[u8]| {
         .unwrap_or("k")
         .to_owned();
     let _ = cache::parse_frame_cache(data.to_vec(), &key, "fuzz.bin");
+    let _ = cache::frame_from_bytes(data, std::path::Path::new("fuzz.bin"));
 });
