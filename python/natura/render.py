@@ -8,7 +8,8 @@ Keys left out keep the built-in scene's values. An unknown key, a value of
 the wrong type or a bad value raises ``ValueError`` naming the key.
 
 The built-in scene is large (a 2048² terrain at 1920 × 1080 with clouds and
-a forest: minutes). :data:`QUICK` is a small one for trying things out.
+a forest: minutes). :data:`QUICK` is a small one for trying things out, and
+``quick=True`` previews any scene as the Rust examples' ``--quick`` does.
 """
 
 from __future__ import annotations
@@ -42,10 +43,13 @@ QUICK: Dict[str, Any] = {
 Scene = Union[None, str, Dict[str, Any]]
 
 
-def scene_toml(scene: Scene = None) -> str:
+def scene_toml(scene: Scene = None, *, quick: bool = False) -> str:
     """The scene with every key written out, as TOML text (parsed and
-    validated as :func:`render` does)."""
-    return _native.scene_toml(copy.deepcopy(scene) if isinstance(scene, dict) else scene)
+    validated as :func:`render` does); with ``quick``, its quick preview
+    (see :func:`render`)."""
+    return _native.scene_toml(
+        copy.deepcopy(scene) if isinstance(scene, dict) else scene, quick
+    )
 
 
 def render_with_exposure(
@@ -55,6 +59,7 @@ def render_with_exposure(
     height: Optional[int] = None,
     spp: Optional[int] = None,
     seed: Optional[int] = None,
+    quick: bool = False,
     progress: ProgressArg = None,
 ) -> "tuple[np.ndarray, float]":
     """As :func:`render`, with the exposure in stops the scene asks for
@@ -62,7 +67,7 @@ def render_with_exposure(
     18 % grey) that the Rust ``render_scene`` picks for its PNG."""
     cb = _progress.reporter(progress)
     try:
-        return _native.render_scene_array(scene, width, height, spp, seed, cb)
+        return _native.render_scene_array(scene, width, height, spp, seed, quick, cb)
     finally:
         _progress.closing(cb)
 
@@ -74,6 +79,7 @@ def render(
     height: Optional[int] = None,
     spp: Optional[int] = None,
     seed: Optional[int] = None,
+    quick: bool = False,
     progress: ProgressArg = None,
 ) -> np.ndarray:
     """Builds the scene's world (synthesis, erosion, atmosphere, clouds,
@@ -81,12 +87,17 @@ def render(
     scene-referred radiance as float32 ``(height, width, 3)`` (the content
     of the EXR the ``landscape`` example writes).
 
-    ``width``, ``height``, ``spp`` and ``seed``, when given, replace the
-    scene's ``render.width``, ``render.height``, ``render.spp`` and
+    ``quick`` makes the scene's quick preview first (the Rust
+    ``SceneDesc::quick``, as the examples' ``--quick``): a terrain of more
+    than 256 samples a side keeps its extent on 256, erosion takes at most
+    5 stream-power, 20 hydraulic and 5 thermal steps, the clouds are 4
+    times coarser; the camera and the picture stay the scene's.
+    ``width``, ``height``, ``spp`` and ``seed``, when given, then replace
+    the scene's ``render.width``, ``render.height``, ``render.spp`` and
     ``seed``. The GIL is released while it runs; ``progress`` (``True`` for
     a tqdm bar, or a callable ``progress(stage, done, total)``) hears each
     stage: synthesis, the erosions, the atmosphere tables, the forest,
     acceleration, and the tracing (one unit per tile of pixels)."""
     return render_with_exposure(
-        scene, width=width, height=height, spp=spp, seed=seed, progress=progress
+        scene, width=width, height=height, spp=spp, seed=seed, quick=quick, progress=progress
     )[0]

@@ -34,19 +34,23 @@ fn scene_of(scene: Option<&Bound<'_, PyAny>>) -> PyResult<SceneDesc> {
 /// `scene_toml(scene)`: the whole scene with every key written out, after
 /// the dict or text is parsed and validated (the TOML `render_scene` renders).
 #[pyfunction]
-#[pyo3(signature = (scene=None))]
-fn scene_toml(scene: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
-    let s = scene_of(scene)?;
+#[pyo3(signature = (scene=None, quick=false))]
+fn scene_toml(scene: Option<&Bound<'_, PyAny>>, quick: bool) -> PyResult<String> {
+    let mut s = scene_of(scene)?;
+    if quick {
+        s = s.quick();
+    }
     s.validate().map_err(value_error)?;
     s.to_toml_string().map_err(value_error)
 }
 
-/// `render_scene(scene, width, height, spp, seed, progress)`: the scene's
-/// linear radiance as float32 `(height, width, 3)` and the exposure (stops)
-/// the scene asks for or the automatic one. The GIL is released; `progress`
-/// is called as `progress(stage, done, total)`.
+/// `render_scene(scene, width, height, spp, seed, quick, progress)`: the
+/// scene's linear radiance as float32 `(height, width, 3)` and the exposure
+/// (stops) the scene asks for or the automatic one; with `quick`, the
+/// scene's quick preview (`SceneDesc::quick`) before the overrides. The GIL
+/// is released; `progress` is called as `progress(stage, done, total)`.
 #[pyfunction]
-#[pyo3(signature = (scene=None, width=None, height=None, spp=None, seed=None, progress=None))]
+#[pyo3(signature = (scene=None, width=None, height=None, spp=None, seed=None, quick=false, progress=None))]
 fn render_scene_array<'py>(
     py: Python<'py>,
     scene: Option<&Bound<'py, PyAny>>,
@@ -54,9 +58,13 @@ fn render_scene_array<'py>(
     height: Option<u32>,
     spp: Option<u32>,
     seed: Option<u64>,
+    quick: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray3<f32>>, f32)> {
     let mut s = scene_of(scene)?;
+    if quick {
+        s = s.quick();
+    }
     if let Some(w) = width {
         s.render.width = w;
     }

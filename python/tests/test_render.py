@@ -68,3 +68,28 @@ def test_an_exception_in_the_callback_is_raised_after_the_call():
         render.render(render.QUICK, width=16, height=9, progress=bad)
     with pytest.raises(TypeError, match="progress"):
         render.render(render.QUICK, width=16, height=9, progress=3)
+
+
+def test_quick_previews_any_scene_as_the_rust_examples_do():
+    import tomllib
+
+    full = tomllib.loads(render.scene_toml())
+    q = tomllib.loads(render.scene_toml(quick=True))
+    assert q["terrain"]["size"] == 256
+    extent = lambda s: s["terrain"]["size"] * s["terrain"]["cell_size_m"]
+    assert extent(q) == pytest.approx(extent(full), rel=1e-6)
+    assert q["erosion"]["hydraulic_steps"] == min(20, full["erosion"]["hydraulic_steps"])
+    assert q["clouds"]["voxel_m"] == pytest.approx(4 * full["clouds"]["voxel_m"])
+    assert q["camera"] == full["camera"] and q["render"] == full["render"]
+    # A scene of 1024 samples of 12.5 m keeps its 12.8 km on 256 of 50 m.
+    small = {
+        "terrain": {"size": 1024, "cell_size_m": 12.5},
+        "clouds": {"enabled": False},
+        "vegetation": {"enabled": False},
+    }
+    text = render.scene_toml(small, quick=True)
+    assert tomllib.loads(text)["terrain"]["cell_size_m"] == 50.0
+    # Rendering with quick renders that preview, bit for bit.
+    a = render.render(small, quick=True, width=24, height=14)
+    b = render.render(text, width=24, height=14)
+    assert np.array_equal(a, b)
