@@ -23,10 +23,14 @@
 //! each side; over a background `b`, its pixel passes the ratio once its
 //! excess over `b` exceeds 6.2 `b` and its neighbours only above 28 `b`,
 //! so a feature between the two (a lit crown tip in shade, a faint star in
-//! a dark sky, a floret's highlight) is counted. Any filter that keeps
-//! more of a pixel's light in it than it lends each neighbour leaves such
-//! a window (σ = 1 pixel: 20 `b` to 32 `b`); only a blur wider than a
-//! camera's closes it. A count of 0 is reached where the specks are the
+//! a dark sky, a floret's highlight) is counted. A wider blur does not
+//! close the window but moves it: at σ = 1 pixel the square lights a
+//! third of the 5 × 5 pixels, and their median rises with it (by a sixth
+//! of its pixel's excess), so its pixel passes the ratio above 56 `b` and
+//! its neighbours, at 0.63 of the pixel, never do: every such feature
+//! brighter than that is counted, however bright. Only from σ ≈ 1.2
+//! pixels, twice and more a camera's, is none (a star field drawn so is a
+//! field of soft discs). A count of 0 is reached where the specks are the
 //! sampling's (aliasing, fireflies), not where they are the scene's.
 
 use natura_core::Image;
@@ -116,6 +120,48 @@ mod tests {
         })
         .unwrap();
         assert!(stray_pixels(&cb).is_empty());
+    }
+
+    /// A lit square one pixel wide, `excess` times brighter than the
+    /// background `b`, blurred by a Gaussian of `sigma` pixels, in the
+    /// middle of a 15 × 15 picture; whether the detector counts it.
+    fn blurred_square_is_counted(sigma: f32, excess: f32) -> bool {
+        let b = 0.01;
+        // The filter's weight on the square from a pixel `d` pixels off:
+        // the Gaussian over the square's width (the midpoint rule).
+        let w = |d: i32| -> f32 {
+            (0..1000)
+                .map(|k| {
+                    let x = d as f32 - (k as f32 + 0.5) / 1000.0 + 0.5;
+                    (-0.5 * (x / sigma).powi(2)).exp()
+                })
+                .sum::<f32>()
+                / 1000.0
+                / (sigma * std::f32::consts::TAU.sqrt())
+        };
+        let img = Image::from_fn(15, 15, |x, y| {
+            let (dx, dy) = (x as i32 - 7, y as i32 - 7);
+            Vec3::splat(b + excess * b * w(dx) * w(dy))
+        })
+        .unwrap();
+        stray_pixels(&img).contains(&(7, 7))
+    }
+
+    #[test]
+    fn a_wider_blur_moves_the_window_of_a_pixel_wide_feature() {
+        // The camera's σ = 0.5: counted between 6.2 b and 28 b.
+        assert!(!blurred_square_is_counted(0.5, 5.5));
+        assert!(blurred_square_is_counted(0.5, 7.0));
+        assert!(blurred_square_is_counted(0.5, 26.0));
+        assert!(!blurred_square_is_counted(0.5, 30.0));
+        // σ = 1: from 56 b on, however bright (the median rises with it).
+        assert!(!blurred_square_is_counted(1.0, 50.0));
+        assert!(blurred_square_is_counted(1.0, 60.0));
+        assert!(blurred_square_is_counted(1.0, 1e4));
+        // σ = 1.2: never.
+        for excess in [3.0, 10.0, 30.0, 100.0, 1e3, 1e4] {
+            assert!(!blurred_square_is_counted(1.2, excess), "{excess}");
+        }
     }
 
     #[test]
