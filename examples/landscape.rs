@@ -150,8 +150,7 @@ fn landscape() -> Run {
     }
     if let Some(s) = size {
         // Keep the world the same size in metres.
-        scene.terrain.cell_size_m *= scene.terrain.size as f32 / s as f32;
-        scene.terrain.size = s;
+        scene.terrain.resample(s);
     }
     if let Some(w) = width {
         scene.render.width = w;

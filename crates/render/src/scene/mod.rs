@@ -494,6 +494,24 @@ impl Default for TerrainDesc {
     }
 }
 
+impl TerrainDesc {
+    /// Sets the samples per side to `size` and scales the cells so that the
+    /// terrain keeps its extent in metres: the same world, finer or
+    /// coarser. [`SceneDesc::validate`] checks the new size and cell size.
+    ///
+    /// ```
+    /// use natura_render::TerrainDesc;
+    ///
+    /// let mut t = TerrainDesc::default(); // 2048 samples of 30 m
+    /// t.resample(512);
+    /// assert_eq!((t.size, t.cell_size_m), (512, 120.0));
+    /// ```
+    pub fn resample(&mut self, size: usize) {
+        self.cell_size_m *= self.size as f32 / size as f32;
+        self.size = size;
+    }
+}
+
 impl Default for ErosionDesc {
     fn default() -> Self {
         Self {

@@ -40,9 +40,7 @@ impl SceneDesc {
     pub fn quick(&self) -> SceneDesc {
         let mut s = self.clone();
         if s.terrain.size > QUICK_TERRAIN_SIZE {
-            let factor = s.terrain.size as f32 / QUICK_TERRAIN_SIZE as f32;
-            s.terrain.size = QUICK_TERRAIN_SIZE;
-            s.terrain.cell_size_m *= factor;
+            s.terrain.resample(QUICK_TERRAIN_SIZE);
         }
         let e = &mut s.erosion;
         let [stream_power, hydraulic, thermal] = QUICK_EROSION_STEPS;

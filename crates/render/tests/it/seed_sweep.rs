@@ -11,8 +11,7 @@ fn two_hundred_seeds_give_finite_heights_in_a_physical_range() {
     let mut scene = SceneDesc::default();
     // The default world (61 km across) at 128², with the default erosion
     // (droplets on, one per four samples, stream power and thermal).
-    scene.terrain.cell_size_m *= scene.terrain.size as f32 / 128.0;
-    scene.terrain.size = 128;
+    scene.terrain.resample(128);
     let relief = scene.terrain.relief_m as f32;
     let mut worst = (f32::INFINITY, f32::NEG_INFINITY);
     for seed in 0..200 {
