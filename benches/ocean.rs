@@ -75,10 +75,9 @@ fn full_frame(c: &mut Criterion) {
 /// iteration, so the frame times can be compared across machines.
 fn calibration(c: &mut Criterion) {
     use criterion::BatchSize;
-    use rustfft::FftPlanner;
-    use rustfft::num_complex::Complex;
+    use natura::core::fft::{self, Complex, FftDirection};
     let n = 512;
-    let fft = FftPlanner::<f32>::new().plan_fft_inverse(n);
+    let fft = fft::plan_f32(n, FftDirection::Inverse);
     let input: Vec<Complex<f32>> = (0..n * n)
         .map(|i| Complex::new((i % 7) as f32, (i % 5) as f32))
         .collect();
@@ -106,10 +105,10 @@ fn calibration(c: &mut Criterion) {
 /// The calibration workload on an n × n grid `a`: row transforms, a plain
 /// transpose into `b`, row transforms of `b` (the result stays transposed).
 fn calibration_transform(
-    fft: &dyn rustfft::Fft<f32>,
-    a: &mut [rustfft::num_complex::Complex<f32>],
-    b: &mut [rustfft::num_complex::Complex<f32>],
-    scratch: &mut [rustfft::num_complex::Complex<f32>],
+    fft: &dyn natura::core::fft::Fft<f32>,
+    a: &mut [natura::core::fft::Complex<f32>],
+    b: &mut [natura::core::fft::Complex<f32>],
+    scratch: &mut [natura::core::fft::Complex<f32>],
 ) {
     let n = fft.len();
     fft.process_with_scratch(a, scratch);
@@ -136,16 +135,16 @@ fn selected(name: &str) -> bool {
 /// alternate, one of each per pair, so both see the same conditions; prints
 /// the minimum and median of each and the median of the per-pair ratios.
 fn interleaved_ratio(
-    fft: &std::sync::Arc<dyn rustfft::Fft<f32>>,
-    input: &[rustfft::num_complex::Complex<f32>],
+    fft: &std::sync::Arc<dyn natura::core::fft::Fft<f32>>,
+    input: &[natura::core::fft::Complex<f32>],
 ) {
     use std::time::Instant;
     let n = 512;
     let o = ocean(n);
     let p = pool(1);
-    let mut b = vec![rustfft::num_complex::Complex::new(0.0f32, 0.0); n * n];
+    let mut b = vec![natura::core::fft::Complex::new(0.0f32, 0.0); n * n];
     let mut scratch =
-        vec![rustfft::num_complex::Complex::new(0.0f32, 0.0); fft.get_inplace_scratch_len()];
+        vec![natura::core::fft::Complex::new(0.0f32, 0.0); fft.get_inplace_scratch_len()];
     let pairs = 200;
     let (mut frames, mut calib, mut ratios) = (vec![], vec![], vec![]);
     p.install(|| {

@@ -8,7 +8,8 @@
 //! renderer shares ([`camera`]: pinhole, orthographic and panoramic maps from
 //! pixels to rays and back), the preview rasterizer every crate's small
 //! pictures are drawn with ([`preview`]), and the pixel filter both resolve
-//! their samples with ([`filter`]).
+//! their samples with ([`filter`]), and the planner of every crate's fast
+//! Fourier transforms ([`fft`]).
 //!
 //! Conventions (shared by every natura crate): right-handed, **z up**,
 //! metres, seconds, radians; `f32` for grids and images, `f64` where
@@ -30,6 +31,7 @@ pub mod camera;
 pub mod check;
 pub mod colour;
 mod error;
+pub mod fft;
 pub mod filter;
 mod grid2;
 mod grid3;

@@ -13,12 +13,14 @@
 use std::sync::Arc;
 
 use natura_core::Grid3;
-use rustfft::num_complex::Complex64;
-use rustfft::{Fft, FftPlanner};
+use natura_core::fft::{self, Complex, Fft, FftDirection};
 
 use crate::chunks;
 use crate::error::{FluidError, Result};
 use crate::grid::Dims;
+
+/// A double-precision complex value.
+type Complex64 = Complex<f64>;
 
 /// Which wavenumbers the Fourier operators use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -61,12 +63,15 @@ impl std::fmt::Debug for Fft3 {
 
 impl Fft3 {
     pub fn new(dims: Dims) -> Self {
-        let mut p = FftPlanner::new();
         let n = dims.n();
         Self {
             dims,
-            fwd: std::array::from_fn(|a| (n[a] > 1).then(|| p.plan_fft_forward(n[a]))),
-            inv: std::array::from_fn(|a| (n[a] > 1).then(|| p.plan_fft_inverse(n[a]))),
+            fwd: std::array::from_fn(|a| {
+                (n[a] > 1).then(|| fft::plan_f64(n[a], FftDirection::Forward))
+            }),
+            inv: std::array::from_fn(|a| {
+                (n[a] > 1).then(|| fft::plan_f64(n[a], FftDirection::Inverse))
+            }),
         }
     }
 

@@ -23,8 +23,8 @@
 //! and row is transformed the same way whatever thread runs it, so results do
 //! not depend on the thread count or the instruction set.
 
+use natura_core::fft::Complex;
 use natura_core::simd::{self, Kernel, Simd};
-use rustfft::num_complex::Complex;
 
 use crate::fastmath::{phase, sin_cos};
 use crate::frame::{Frame, Workspace};

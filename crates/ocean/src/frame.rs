@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 use natura_core::Grid2;
-use rustfft::num_complex::Complex;
+use natura_core::fft::Complex;
 
 use crate::error::{OceanError, Result};
 use crate::fft::SOURCES;

@@ -89,4 +89,4 @@ pub use surface::{Surface, WaterSurface};
 /// Re-export of natura-core's seed type.
 pub use natura_core::Seed;
 /// Re-export of the complex type used for spectra.
-pub use rustfft::num_complex::Complex;
+pub use natura_core::fft::Complex;

@@ -5,8 +5,7 @@ use std::sync::Arc;
 
 use glam::{DVec2, Vec2};
 use natura_core::Seed;
-use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
+use natura_core::fft::{self, Complex, Fft, FftDirection};
 
 use crate::dispersion::{Dispersion, Quantized};
 use crate::error::{OceanError, Result, in_range, invalid, non_negative, positive};
@@ -310,8 +309,8 @@ impl Ocean {
             ky: (0..ny)
                 .map(|m| (signed(m, ny) as f64 * dk.y) as f32)
                 .collect(),
-            col_fft: FftPlanner::new().plan_fft_inverse(ny),
-            row_fft: FftPlanner::new().plan_fft_inverse(nx),
+            col_fft: fft::plan_f32(ny, FftDirection::Inverse),
+            row_fft: fft::plan_f32(nx, FftDirection::Inverse),
         };
         for n in 0..half {
             for m in 0..ny {

@@ -11,8 +11,7 @@
 use std::sync::Arc;
 
 use natura_core::Grid2;
-use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
+use natura_core::fft::{self, Complex, Fft, FftDirection};
 
 use crate::error::Result;
 use crate::frame::FrameField;
@@ -60,9 +59,8 @@ impl Reference {
         let p = ocean.params();
         let (nx, ny) = (p.nx, p.ny);
         let h0 = ocean.h0();
-        let mut planner = FftPlanner::new();
-        let fft_x = planner.plan_fft_inverse(nx);
-        let fft_y = planner.plan_fft_inverse(ny);
+        let fft_x = fft::plan_f32(nx, FftDirection::Inverse);
+        let fft_y = fft::plan_f32(ny, FftDirection::Inverse);
         let scratch = fft_x
             .get_inplace_scratch_len()
             .max(fft_y.get_inplace_scratch_len());

@@ -1,10 +1,8 @@
-//! 2-D real FFTs (rows with `realfft`, columns with `rustfft`), parallel over
+//! 2-D real FFTs (rows real-to-complex, columns complex), parallel over
 //! rows and columns. Spectra are stored row-major by `ky`: element
 //! `ky·(nx/2 + 1) + kx` holds frequency `(kx, ky)`, `kx ∈ [0, nx/2]`.
 
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
-use rustfft::num_complex::Complex;
+use natura_core::fft::{self, Complex, FftDirection};
 
 use crate::bands;
 
@@ -17,7 +15,7 @@ pub(crate) fn half(nx: usize) -> usize {
 /// Forward 2-D FFT of `nx × ny` reals (row-major), unnormalised.
 pub(crate) fn forward_real_2d(data: &[f64], nx: usize, ny: usize) -> Vec<Complex<f64>> {
     let hx = half(nx);
-    let r2c = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
+    let r2c = fft::plan_real_forward_f64(nx);
     let rows: Vec<usize> = (0..ny).collect();
     let spec_rows: Vec<Vec<Complex<f64>>> = bands::run(chunk_list(rows), |rows| {
         let mut input = r2c.make_input_vec();
@@ -48,7 +46,7 @@ pub(crate) fn inverse_real_2d(
 ) -> (Vec<f64>, f64) {
     let hx = half(nx);
     columns(&mut spec, hx, ny, true);
-    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(nx);
+    let c2r = fft::plan_real_inverse_f64(nx);
     let norm = 1.0 / (nx as f64 * ny as f64);
     let rows: Vec<usize> = (0..ny).collect();
     let spec = &spec;
@@ -82,12 +80,12 @@ pub(crate) fn inverse_real_2d(
 
 /// Complex FFT of every column of a `w × h` row-major array, in place.
 fn columns(spec: &mut [Complex<f64>], w: usize, h: usize, inverse: bool) {
-    let mut planner = FftPlanner::<f64>::new();
-    let fft = if inverse {
-        planner.plan_fft_inverse(h)
+    let direction = if inverse {
+        FftDirection::Inverse
     } else {
-        planner.plan_fft_forward(h)
+        FftDirection::Forward
     };
+    let fft = fft::plan_f64(h, direction);
     // Transpose into column-major, transform contiguous columns, transpose back.
     let mut t = vec![Complex::new(0.0, 0.0); w * h];
     for y in 0..h {

@@ -1,4 +1,4 @@
-//! natura-core's integration tests: files (corrupt and exact bytes), the camera, bad input.
+//! natura-core's integration tests: files (corrupt and exact bytes), the camera, the FFT plans, bad input.
 //!
 //! One test binary for the crate's integration tests (one build and link
 //! instead of one per file); each file below is a module, and
@@ -7,4 +7,5 @@
 mod camera;
 mod corrupt_files;
 mod exr_bytes;
+mod fft;
 mod robustness;

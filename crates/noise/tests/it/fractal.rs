@@ -578,12 +578,10 @@ fn invalid_parameters_are_typed_errors() {
 /// rows of 2¹⁷ samples, Hann-windowed, fitted over 1 to 6.4 cycles per unit
 /// in 24 log-spaced bins (two octaves below the top octave of 128).
 fn periodogram_slope(fill: &dyn Fn(DVec2, f64, &mut [f32])) -> f64 {
-    use realfft::RealFftPlanner;
     let len = 1 << 17;
     let dx = 1.0 / 1024.0;
     let lines = 12;
-    let mut planner = RealFftPlanner::<f32>::new();
-    let fft = planner.plan_fft_forward(len);
+    let fft = natura_core::fft::plan_real_forward_f32(len);
     let mut power = vec![0.0f64; len / 2 + 1];
     let mut row = vec![0.0f32; len];
     let mut spectrum = fft.make_output_vec();

@@ -5,7 +5,6 @@
 use natura_noise::fractal::MAX_FREQUENCY_RATIO;
 use natura_noise::glam::DVec2;
 use natura_noise::*;
-use realfft::RealFftPlanner;
 
 const LACUNARITIES: [f64; 10] = [
     1.01,
@@ -118,8 +117,7 @@ fn weights_fall_monotonically_and_the_count_is_continuous_in_the_footprint() {
 /// The averaged Hann-windowed periodogram of `f` along `lines` rows of `len`
 /// samples `dx` apart, and the frequency step of its bins.
 fn periodogram(f: &dyn Fn(DVec2) -> f64, len: usize, dx: f64, lines: usize) -> (Vec<f64>, f64) {
-    let mut planner = RealFftPlanner::<f64>::new();
-    let fft = planner.plan_fft_forward(len);
+    let fft = natura_core::fft::plan_real_forward_f64(len);
     let mut power = vec![0.0f64; len / 2 + 1];
     let mut spectrum = fft.make_output_vec();
     for l in 0..lines {

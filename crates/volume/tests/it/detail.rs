@@ -6,6 +6,7 @@
 
 use glam::Vec3;
 use natura_core::Aabb;
+use natura_core::fft::{self, Complex, FftDirection};
 use natura_volume::cloud::{CloudParams, cloud, nine_sphere_cumulus};
 use natura_volume::density::Homogeneous;
 use natura_volume::detail::{DetailParams, Detailed};
@@ -19,8 +20,6 @@ use natura_volume::transport::{
 };
 use natura_volume::{Density, VolumeError};
 use proptest::prelude::*;
-use rustfft::FftPlanner;
-use rustfft::num_complex::Complex;
 
 /// A xorshift stream in `[0, 1)`.
 fn uniform(seed: u32) -> impl FnMut() -> f32 {
@@ -271,7 +270,7 @@ fn energy_fractions(v: &[f64], dx: f64, lo: f64, f: f64) -> (f64, f64) {
             Complex::new((x - mean) * hann, 0.0)
         })
         .collect();
-    FftPlanner::new().plan_fft_forward(n).process(&mut buf);
+    fft::plan_f64(n, FftDirection::Forward).process(&mut buf);
     let (mut total, mut above, mut band) = (0.0, 0.0, 0.0);
     for (k, c) in buf.iter().enumerate().take(n / 2 + 1).skip(1) {
         let freq = k as f64 / (n as f64 * dx);
