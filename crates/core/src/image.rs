@@ -225,7 +225,12 @@ impl Image {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_png(&self, path: impl AsRef<Path>) -> Result<()> {
-        let path = path.as_ref();
+        self.save_png_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::save_png`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn save_png_impl(&self, path: &Path) -> Result<()> {
         if let Some((x, y)) = self.first_non_finite() {
             return Err(CoreError::format(
                 path,
@@ -247,6 +252,12 @@ impl Image {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
+        self.save_exr_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::save_exr`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn save_exr_impl(&self, path: &Path) -> Result<()> {
         let px = self.pixels.as_slice();
         let r: Vec<f32> = px.iter().map(|c| c.x).collect();
         let g: Vec<f32> = px.iter().map(|c| c.y).collect();
@@ -269,7 +280,12 @@ impl Image {
     /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
     /// unsupported layout, or if its size exceeds the memory cap. An EXR without R, G, B or Y channels is a format error.
     pub fn load_exr(path: impl AsRef<Path>) -> Result<Image> {
-        let path = path.as_ref();
+        Self::load_exr_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::load_exr`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn load_exr_impl(path: &Path) -> Result<Image> {
         let exr = read_exr(path)?;
         let (w, h) = (exr.width, exr.height);
         let pixels = match (
@@ -300,7 +316,12 @@ impl Image {
     /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
     /// unsupported layout, or if its size exceeds the memory cap.
     pub fn load_png(path: impl AsRef<Path>) -> Result<Image> {
-        let path = path.as_ref();
+        Self::load_png_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::load_png`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn load_png_impl(path: &Path) -> Result<Image> {
         let img = decode_png(path)?;
         let (w, h) = (img.width() as usize, img.height() as usize);
         let pixels = match img {

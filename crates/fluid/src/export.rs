@@ -274,7 +274,12 @@ fn render_volume(
 /// Returns [`FluidError::Core`] naming the file if it cannot be written (written
 /// atomically: nothing is left half-written).
 pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Result<()> {
-    let path = path.as_ref();
+    write_raw_volume_impl(path.as_ref(), g, h)
+}
+
+/// The body of [`write_raw_volume`]: not generic, so it is compiled once, here, and not again in
+/// every crate that calls it.
+fn write_raw_volume_impl(path: &Path, g: &Grid3<f32>, h: f32) -> Result<()> {
     write_atomic(path, |w| {
         for v in g.as_slice() {
             w.write_all(&v.to_le_bytes())?;
@@ -300,6 +305,12 @@ pub fn write_raw_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Resul
 /// Returns [`FluidError::Core`] naming the file if it cannot be written (written
 /// atomically: nothing is left half-written).
 pub fn write_exr_volume(path: impl AsRef<Path>, g: &Grid3<f32>, h: f32) -> Result<()> {
+    write_exr_volume_impl(path.as_ref(), g, h)
+}
+
+/// The body of [`write_exr_volume`]: not generic, so it is compiled once, here, and not again in
+/// every crate that calls it.
+fn write_exr_volume_impl(path: &Path, g: &Grid3<f32>, h: f32) -> Result<()> {
     let (nx, ny, nz) = g.dims();
     let (sx, sy, sz, hs) = (
         nx.to_string(),

@@ -25,6 +25,12 @@ use crate::frame::Frame;
 /// Returns [`OceanError::SizeMismatch`] if `foam` is not the frame's size, and
 /// [`OceanError::Core`] if the file cannot be written.
 pub fn write_maps(path: impl AsRef<Path>, frame: &Frame, foam: Option<&Foam>) -> Result<()> {
+    write_maps_impl(path.as_ref(), frame, foam)
+}
+
+/// The body of [`write_maps`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn write_maps_impl(path: &Path, frame: &Frame, foam: Option<&Foam>) -> Result<()> {
     let (nx, ny) = frame.dims();
     if let Some(f) = foam
         && f.coverage().dims() != (nx, ny)

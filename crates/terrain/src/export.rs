@@ -22,6 +22,12 @@ use crate::error::{Result, invalid};
 /// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
 /// file is written atomically: nothing is left half-written).
 pub fn save_height_png16(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
+    save_height_png16_impl(hf, path.as_ref())
+}
+
+/// The body of [`save_height_png16`]: not generic, so it is compiled once, here, and not again in
+/// every crate that calls it.
+fn save_height_png16_impl(hf: &HeightField, path: &Path) -> Result<()> {
     let (lo, hi) = hf.min_max();
     let hi = if hi > lo { hi } else { lo + 1.0 };
     Ok(hf.save_png16(path, (lo, hi))?)
@@ -34,6 +40,12 @@ pub fn save_height_png16(hf: &HeightField, path: impl AsRef<Path>) -> Result<()>
 /// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
 /// file is written atomically: nothing is left half-written).
 pub fn save_height_exr(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
+    save_height_exr_impl(hf, path.as_ref())
+}
+
+/// The body of [`save_height_exr`]: not generic, so it is compiled once, here, and not again in
+/// every crate that calls it.
+fn save_height_exr_impl(hf: &HeightField, path: &Path) -> Result<()> {
     Ok(hf.save_exr(path)?)
 }
 
@@ -214,6 +226,12 @@ pub fn mesh(hf: &HeightField, step: usize) -> Result<Mesh> {
 /// vertices; [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
 /// file is written atomically: nothing is left half-written).
 pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    save_obj_impl(m, path.as_ref())
+}
+
+/// The body of [`save_obj`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn save_obj_impl(m: &Mesh, path: &Path) -> Result<()> {
     m.check()?;
     Ok(write_atomic(path, |w| {
         writeln!(w, "# natura-terrain height-field mesh (z up, metres)")?;
@@ -240,6 +258,12 @@ pub fn save_obj(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
 /// As [`save_obj`]; also [`TerrainError::Core`](crate::TerrainError::Core) if the file would
 /// exceed glTF's 4 GiB limit.
 pub fn save_glb(m: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    save_glb_impl(m, path.as_ref())
+}
+
+/// The body of [`save_glb`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn save_glb_impl(m: &Mesh, path: &Path) -> Result<()> {
     m.check()?;
     let conv = |v: Vec3| [v.x, v.z, -v.y];
     let mut bin: Vec<u8> = Vec::with_capacity(m.positions.len() * 24 + m.indices.len() * 4);

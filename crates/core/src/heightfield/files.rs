@@ -26,6 +26,12 @@ impl HeightField {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_raw(&self, path: impl AsRef<Path>) -> Result<()> {
+        self.save_raw_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::save_raw`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn save_raw_impl(&self, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = map_rows(&self.heights)
             .flat_map(|r| r.iter().flat_map(|v| v.to_le_bytes()))
             .collect();
@@ -45,7 +51,12 @@ impl HeightField {
     /// unsupported layout, or if its size exceeds the memory cap. A file of the wrong length for the stated size, a
     /// NaN or infinite height, and a bad cell size are errors too.
     pub fn load_raw(path: impl AsRef<Path>, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
-        let path = path.as_ref();
+        Self::load_raw_impl(path.as_ref(), nx, ny, cell_size)
+    }
+
+    /// The body of [`Self::load_raw`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn load_raw_impl(path: &Path, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
         let len = checked_len::<f32>(&[nx, ny])?;
         // Never read more than one byte past the expected size, so an endless
         // stream (a pipe, /dev/zero) is refused instead of read without end.
@@ -102,6 +113,12 @@ impl HeightField {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
+        self.save_exr_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::save_exr`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn save_exr_impl(&self, path: &Path) -> Result<()> {
         let values: Vec<f32> = map_rows(&self.heights).flatten().copied().collect();
         let cell = self.cell_size.to_string();
         write_exr(
@@ -123,7 +140,12 @@ impl HeightField {
     /// [`CoreError::Format`](crate::CoreError::Format) if it is truncated, corrupt or of an
     /// unsupported layout, or if its size exceeds the memory cap. A NaN or infinite height and a missing cell size are errors too.
     pub fn load_exr(path: impl AsRef<Path>, cell_size: Option<f32>) -> Result<Self> {
-        let path = path.as_ref();
+        Self::load_exr_impl(path.as_ref(), cell_size)
+    }
+
+    /// The body of [`Self::load_exr`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn load_exr_impl(path: &Path, cell_size: Option<f32>) -> Result<Self> {
         let exr = read_exr(path)?;
         let data = ["Y", "Z", "R", "H", "height"]
             .iter()
@@ -156,7 +178,12 @@ impl HeightField {
     /// if the encoder refuses the data. Nothing is left half-written.
     /// Returns [`CoreError::InvalidParameter`](crate::CoreError::InvalidParameter) if the height range is empty or not finite.
     pub fn save_png16(&self, path: impl AsRef<Path>, range: (f32, f32)) -> Result<()> {
-        let path = path.as_ref();
+        self.save_png16_impl(path.as_ref(), range)
+    }
+
+    /// The body of [`Self::save_png16`]: not generic, so it is compiled once, here, and not again
+    /// in every crate that calls it.
+    fn save_png16_impl(&self, path: &Path, range: (f32, f32)) -> Result<()> {
         let (lo, hi) = range;
         if !(lo.is_finite() && hi.is_finite() && hi > lo) {
             return Err(CoreError::InvalidParameter {
@@ -226,7 +253,16 @@ impl HeightField {
         cell_size: Option<f32>,
         range: Option<(f32, f32)>,
     ) -> Result<Self> {
-        let path = path.as_ref();
+        Self::load_png16_impl(path.as_ref(), cell_size, range)
+    }
+
+    /// The body of [`Self::load_png16`]: not generic, so it is compiled once, here, and not again
+    /// in every crate that calls it.
+    fn load_png16_impl(
+        path: &Path,
+        cell_size: Option<f32>,
+        range: Option<(f32, f32)>,
+    ) -> Result<Self> {
         let file = std::fs::File::open(path).map_err(|e| CoreError::io(path, e))?;
         Self::read_png16(std::io::BufReader::new(file), path, cell_size, range)
     }
@@ -374,7 +410,12 @@ impl HeightField {
         cell_size: Option<f32>,
         range: Option<(f32, f32)>,
     ) -> Result<Self> {
-        let path = path.as_ref();
+        Self::load_impl(path.as_ref(), cell_size, range)
+    }
+
+    /// The body of [`Self::load`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn load_impl(path: &Path, cell_size: Option<f32>, range: Option<(f32, f32)>) -> Result<Self> {
         match path
             .extension()
             .and_then(|e| e.to_str())

@@ -102,7 +102,18 @@ pub fn write_exr(
     channels: &[(&str, &[f32])],
     attributes: &[(&str, &str)],
 ) -> Result<()> {
-    let path = path.as_ref();
+    write_exr_impl(path.as_ref(), width, height, channels, attributes)
+}
+
+/// The body of [`write_exr`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn write_exr_impl(
+    path: &Path,
+    width: usize,
+    height: usize,
+    channels: &[(&str, &[f32])],
+    attributes: &[(&str, &str)],
+) -> Result<()> {
     let len = checked_len::<f32>(&[width, height, channels.len().max(1)])? / channels.len().max(1);
     if channels.is_empty() {
         return Err(CoreError::format(path, "no channels to write"));
@@ -225,7 +236,12 @@ fn sort_header_attributes(bytes: &mut [u8]) -> Option<()> {
 /// [`CoreError::Format`] if it is truncated, corrupt or of an
 /// unsupported layout, or if its size exceeds the memory cap.
 pub fn read_exr(path: impl AsRef<Path>) -> Result<ExrChannels> {
-    let path = path.as_ref();
+    read_exr_impl(path.as_ref())
+}
+
+/// The body of [`read_exr`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn read_exr_impl(path: &Path) -> Result<ExrChannels> {
     let file = std::fs::File::open(path).map_err(|e| CoreError::Io {
         path: path.into(),
         source: e,

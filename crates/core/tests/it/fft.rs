@@ -15,10 +15,12 @@ fn dft(x: &[Complex<f64>], direction: FftDirection) -> Vec<Complex<f64>> {
     };
     (0..n)
         .map(|k| {
-            x.iter().enumerate().fold(Complex::new(0.0, 0.0), |acc, (j, v)| {
-                let a = sign * std::f64::consts::TAU * ((j * k) % n) as f64 / n as f64;
-                acc + v * Complex::new(a.cos(), a.sin())
-            })
+            x.iter()
+                .enumerate()
+                .fold(Complex::new(0.0, 0.0), |acc, (j, v)| {
+                    let a = sign * std::f64::consts::TAU * ((j * k) % n) as f64 / n as f64;
+                    acc + v * Complex::new(a.cos(), a.sin())
+                })
         })
         .collect()
 }
@@ -49,8 +51,10 @@ fn complex_plans_equal_the_direct_sum() {
             for (g, w) in got.iter().zip(&want) {
                 assert!((g - w).norm() <= 1e-12 * n as f64, "n {n}: {g} vs {w}");
             }
-            let mut single: Vec<Complex<f32>> =
-                x.iter().map(|c| Complex::new(c.re as f32, c.im as f32)).collect();
+            let mut single: Vec<Complex<f32>> = x
+                .iter()
+                .map(|c| Complex::new(c.re as f32, c.im as f32))
+                .collect();
             fft::plan_f32(n, direction).process(&mut single);
             for (g, w) in single.iter().zip(&want) {
                 let g = Complex::new(f64::from(g.re), f64::from(g.im));

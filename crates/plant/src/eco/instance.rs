@@ -157,6 +157,12 @@ impl Instancing {
     ///
     /// [`PlantError::Core`] if the file cannot be written (it is written to a temporary name and renamed).
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
+        self.write_csv_impl(path.as_ref())
+    }
+
+    /// The body of [`Self::write_csv`]: not generic, so it is compiled once, here, and not again in
+    /// every crate that calls it.
+    fn write_csv_impl(&self, path: &Path) -> Result<()> {
         use std::io::Write;
         Ok(write_atomic(path, |w| {
             writeln!(w, "species,prototype,x,y,z,scale,rotation").map_err(WriteError::from)?;

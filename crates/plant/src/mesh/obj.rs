@@ -18,8 +18,13 @@ use std::path::Path;
 /// the mesh fails [`PlantMesh::check`]; [`PlantError::Core`](crate::PlantError::Core)
 /// naming a file that cannot be written (nothing is left half-written).
 pub fn save_obj(mesh: &PlantMesh, path: impl AsRef<Path>) -> Result<()> {
+    save_obj_impl(mesh, path.as_ref())
+}
+
+/// The body of [`save_obj`]: not generic, so it is compiled once, here, and not again in every
+/// crate that calls it.
+fn save_obj_impl(mesh: &PlantMesh, path: &Path) -> Result<()> {
     mesh.check()?;
-    let path = path.as_ref();
     let mtl = path.with_extension("mtl");
     let mtl_name = mtl
         .file_name()
