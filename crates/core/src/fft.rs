@@ -15,6 +15,13 @@
 //! chooses the same algorithms for the same length and CPU, so the same
 //! input gives the same bits as calling rustfft directly.
 //!
+//! Every call plans through one planner per kind and float type, shared by
+//! the whole process: a length asked for again is handed the plan made the
+//! first time (rustfft's planners keep what they plan), so the three axes of
+//! a cubic fluid grid, or the rows and columns of a square ocean patch, share
+//! one plan. The plans of every length a process has asked for stay in
+//! memory until it ends (each holds its twiddle factors: O(length)).
+//!
 //! Transforms are unnormalised, as rustfft's are: a forward transform
 //! followed by an inverse one multiplies the data by its length.
 //!
@@ -33,7 +40,7 @@
 //! }
 //! ```
 
-use std::sync::Arc;
+use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError};
 
 use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
@@ -42,6 +49,21 @@ pub use realfft::{ComplexToReal, RealToComplex};
 pub use rustfft::num_complex::Complex;
 pub use rustfft::{Fft, FftDirection};
 
+/// A planner shared by every call of this module, created on first use.
+type Shared<P> = LazyLock<Mutex<P>>;
+
+static COMPLEX_F32: Shared<FftPlanner<f32>> = LazyLock::new(|| Mutex::new(FftPlanner::new()));
+static COMPLEX_F64: Shared<FftPlanner<f64>> = LazyLock::new(|| Mutex::new(FftPlanner::new()));
+static REAL_F32: Shared<RealFftPlanner<f32>> = LazyLock::new(|| Mutex::new(RealFftPlanner::new()));
+static REAL_F64: Shared<RealFftPlanner<f64>> = LazyLock::new(|| Mutex::new(RealFftPlanner::new()));
+
+/// The planner behind `shared`. A thread that panicked while planning
+/// leaves a planner whose cache holds only complete plans, so a poisoned
+/// lock is taken as it is.
+fn lock<P>(shared: &Mutex<P>) -> MutexGuard<'_, P> {
+    shared.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
 /// A complex transform of `len` single-precision values in `direction`.
 ///
 /// Any length is planned (lengths with large prime factors through
@@ -49,28 +71,28 @@ pub use rustfft::{Fft, FftDirection};
 /// does nothing.
 #[must_use]
 pub fn plan_f32(len: usize, direction: FftDirection) -> Arc<dyn Fft<f32>> {
-    FftPlanner::new().plan_fft(len, direction)
+    lock(&COMPLEX_F32).plan_fft(len, direction)
 }
 
 /// A complex transform of `len` double-precision values in `direction`
 /// (as [`plan_f32`]).
 #[must_use]
 pub fn plan_f64(len: usize, direction: FftDirection) -> Arc<dyn Fft<f64>> {
-    FftPlanner::new().plan_fft(len, direction)
+    lock(&COMPLEX_F64).plan_fft(len, direction)
 }
 
 /// The forward transform of `len` real single-precision values to their
 /// `len / 2 + 1` non-negative frequencies.
 #[must_use]
 pub fn plan_real_forward_f32(len: usize) -> Arc<dyn RealToComplex<f32>> {
-    RealFftPlanner::new().plan_fft_forward(len)
+    lock(&REAL_F32).plan_fft_forward(len)
 }
 
 /// The forward transform of `len` real double-precision values to their
 /// `len / 2 + 1` non-negative frequencies.
 #[must_use]
 pub fn plan_real_forward_f64(len: usize) -> Arc<dyn RealToComplex<f64>> {
-    RealFftPlanner::new().plan_fft_forward(len)
+    lock(&REAL_F64).plan_fft_forward(len)
 }
 
 /// The inverse of [`plan_real_forward_f64`]: `len / 2 + 1` frequencies back
@@ -80,5 +102,5 @@ pub fn plan_real_forward_f64(len: usize) -> Arc<dyn RealToComplex<f64>> {
 /// otherwise, after transforming as if they were.
 #[must_use]
 pub fn plan_real_inverse_f64(len: usize) -> Arc<dyn ComplexToReal<f64>> {
-    RealFftPlanner::new().plan_fft_inverse(len)
+    lock(&REAL_F64).plan_fft_inverse(len)
 }

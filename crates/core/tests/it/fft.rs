@@ -3,6 +3,8 @@
 //! mixed radix, primes through Rader's and Bluestein's algorithms), and the
 //! real transforms against the complex ones.
 
+use std::sync::Arc;
+
 use natura_core::fft::{self, Complex, FftDirection};
 use proptest::prelude::*;
 
@@ -96,6 +98,20 @@ fn real_plans_equal_the_complex_ones_and_invert() {
             assert!((b / n as f64 - v).abs() <= 1e-12, "n {n}: {b} vs {v}");
         }
     }
+}
+
+#[test]
+fn a_length_asked_for_again_gets_the_same_plan() {
+    let a = fft::plan_f64(48, FftDirection::Forward);
+    let b = fft::plan_f64(48, FftDirection::Forward);
+    assert!(Arc::ptr_eq(&a, &b));
+    let c = fft::plan_f32(48, FftDirection::Inverse);
+    assert!(Arc::ptr_eq(&c, &fft::plan_f32(48, FftDirection::Inverse)));
+    let r = fft::plan_real_forward_f64(48);
+    assert!(Arc::ptr_eq(&r, &fft::plan_real_forward_f64(48)));
+    // A different length or direction is a different plan.
+    assert!(!Arc::ptr_eq(&a, &fft::plan_f64(48, FftDirection::Inverse)));
+    assert!(!Arc::ptr_eq(&a, &fft::plan_f64(49, FftDirection::Forward)));
 }
 
 #[test]
