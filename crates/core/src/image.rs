@@ -252,12 +252,6 @@ impl Image {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
-        self.save_exr_impl(path.as_ref())
-    }
-
-    /// The body of [`Self::save_exr`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn save_exr_impl(&self, path: &Path) -> Result<()> {
         let px = self.pixels.as_slice();
         let r: Vec<f32> = px.iter().map(|c| c.x).collect();
         let g: Vec<f32> = px.iter().map(|c| c.y).collect();

@@ -128,12 +128,6 @@ fn refuse_directory(path: &Path) -> Result<()> {
 ///
 /// As [`write_atomic`].
 pub fn write_bytes_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
-    write_bytes_atomic_impl(path.as_ref(), bytes)
-}
-
-/// The body of [`write_bytes_atomic`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn write_bytes_atomic_impl(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, |w| w.write_all(bytes).map_err(WriteError::Io))
 }
 
@@ -146,12 +140,7 @@ fn write_bytes_atomic_impl(path: &Path, bytes: &[u8]) -> Result<()> {
 /// Returns [`CoreError::Format`] naming `path` if it is a directory, and
 /// [`CoreError::Io`] naming it if a file cannot be created beside it.
 pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
-    check_writable_impl(path.as_ref())
-}
-
-/// The body of [`check_writable`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn check_writable_impl(path: &Path) -> Result<()> {
+    let path = path.as_ref();
     if path.file_name().is_none() {
         return Err(CoreError::format(path, "not a file path"));
     }
@@ -187,12 +176,7 @@ impl From<std::io::Error> for WriteError {
 ///
 /// Returns [`CoreError::Io`] naming `path` if it cannot be opened or read.
 pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<u8>> {
-    read_file_impl(path.as_ref())
-}
-
-/// The body of [`read_file`]: not generic, so it is compiled once, here, and not again in every
-/// crate that calls it.
-fn read_file_impl(path: &Path) -> Result<Vec<u8>> {
+    let path = path.as_ref();
     std::fs::read(path).map_err(|e| CoreError::io(path, e))
 }
 
@@ -204,13 +188,8 @@ fn read_file_impl(path: &Path) -> Result<Vec<u8>> {
 ///
 /// Returns [`CoreError::Io`] naming `path` if it cannot be opened or read.
 pub fn read_file_at_most(path: impl AsRef<Path>, limit: u64) -> Result<Vec<u8>> {
-    read_file_at_most_impl(path.as_ref(), limit)
-}
-
-/// The body of [`read_file_at_most`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn read_file_at_most_impl(path: &Path, limit: u64) -> Result<Vec<u8>> {
     use std::io::Read;
+    let path = path.as_ref();
     let file = File::open(path).map_err(|e| CoreError::io(path, e))?;
     let mut bytes = Vec::new();
     file.take(limit)

@@ -131,12 +131,7 @@ impl Rendered {
     /// Returns [`RenderError::Core`] if either file cannot be written (a
     /// directory in the way, an unwritable folder, a failed encode).
     pub fn save(&self, png: impl AsRef<Path>, exr: impl AsRef<Path>) -> Result<()> {
-        self.save_impl(png.as_ref(), exr.as_ref())
-    }
-
-    /// The body of [`Self::save`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn save_impl(&self, png: &Path, exr: &Path) -> Result<()> {
+        let (png, exr) = (png.as_ref(), exr.as_ref());
         let set = natura_core::io::OutputSet::new([png, exr])?;
         self.save_staged(&set, png, exr)?;
         Ok(set.commit()?)
@@ -154,17 +149,6 @@ impl Rendered {
         set: &natura_core::io::OutputSet,
         png: impl AsRef<Path>,
         exr: impl AsRef<Path>,
-    ) -> Result<()> {
-        self.save_staged_impl(set, png.as_ref(), exr.as_ref())
-    }
-
-    /// The body of [`Self::save_staged`]: not generic, so it is compiled once, here, and not again
-    /// in every crate that calls it.
-    fn save_staged_impl(
-        &self,
-        set: &natura_core::io::OutputSet,
-        png: &Path,
-        exr: &Path,
     ) -> Result<()> {
         self.image.save_exr(set.stage(exr)?)?;
         self.display().save_png(set.stage(png)?)?;

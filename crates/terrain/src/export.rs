@@ -22,12 +22,6 @@ use crate::error::{Result, invalid};
 /// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
 /// file is written atomically: nothing is left half-written).
 pub fn save_height_png16(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
-    save_height_png16_impl(hf, path.as_ref())
-}
-
-/// The body of [`save_height_png16`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn save_height_png16_impl(hf: &HeightField, path: &Path) -> Result<()> {
     let (lo, hi) = hf.min_max();
     let hi = if hi > lo { hi } else { lo + 1.0 };
     Ok(hf.save_png16(path, (lo, hi))?)
@@ -40,12 +34,6 @@ fn save_height_png16_impl(hf: &HeightField, path: &Path) -> Result<()> {
 /// Returns [`TerrainError::Core`](crate::TerrainError::Core) naming the file if it cannot be written (the
 /// file is written atomically: nothing is left half-written).
 pub fn save_height_exr(hf: &HeightField, path: impl AsRef<Path>) -> Result<()> {
-    save_height_exr_impl(hf, path.as_ref())
-}
-
-/// The body of [`save_height_exr`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn save_height_exr_impl(hf: &HeightField, path: &Path) -> Result<()> {
     Ok(hf.save_exr(path)?)
 }
 

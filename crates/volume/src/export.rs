@@ -15,12 +15,6 @@ use crate::grid::GridDensity;
 ///
 /// [`VolumeError::Core`] for an I/O failure.
 pub fn write_raw(path: impl AsRef<Path>, grid: &GridDensity) -> Result<()> {
-    write_raw_impl(path.as_ref(), grid)
-}
-
-/// The body of [`write_raw`]: not generic, so it is compiled once, here, and not again in every
-/// crate that calls it.
-fn write_raw_impl(path: &Path, grid: &GridDensity) -> Result<()> {
     let bytes: Vec<u8> = grid
         .grid()
         .as_slice()
@@ -57,12 +51,6 @@ pub fn slice_z(grid: &GridDensity, k: usize) -> Result<Image> {
 ///
 /// As [`slice_z`]; [`VolumeError::Core`] for an I/O failure.
 pub fn write_exr_slice(path: impl AsRef<Path>, grid: &GridDensity, k: usize) -> Result<()> {
-    write_exr_slice_impl(path.as_ref(), grid, k)
-}
-
-/// The body of [`write_exr_slice`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn write_exr_slice_impl(path: &Path, grid: &GridDensity, k: usize) -> Result<()> {
     slice_z(grid, k)?.save_exr(path)?;
     Ok(())
 }

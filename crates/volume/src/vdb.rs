@@ -358,12 +358,6 @@ fn write_topology(o: &mut Out, tree: &Tree) {
 ///
 /// As [`encode_vdb`]; [`VolumeError::Core`] for an I/O failure.
 pub fn write_vdb(path: impl AsRef<Path>, grids: &[(&str, &GridDensity)]) -> Result<()> {
-    write_vdb_impl(path.as_ref(), grids)
-}
-
-/// The body of [`write_vdb`]: not generic, so it is compiled once, here, and not again in every
-/// crate that calls it.
-fn write_vdb_impl(path: &Path, grids: &[(&str, &GridDensity)]) -> Result<()> {
     let bytes = encode_vdb(grids)?;
     natura_core::io::write_bytes_atomic(path, &bytes)?;
     Ok(())
@@ -735,12 +729,6 @@ fn dense(
 ///
 /// As [`decode_vdb`]; [`VolumeError::Core`] for an I/O failure or a file over natura's memory cap.
 pub fn read_vdb(path: impl AsRef<Path>) -> Result<Vec<VdbGrid>> {
-    read_vdb_impl(path.as_ref())
-}
-
-/// The body of [`read_vdb`]: not generic, so it is compiled once, here, and not again in every
-/// crate that calls it.
-fn read_vdb_impl(path: &Path) -> Result<Vec<VdbGrid>> {
     let bytes = natura_core::io::read_file(path)?;
     decode_vdb(&bytes)
 }

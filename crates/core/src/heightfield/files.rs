@@ -26,12 +26,6 @@ impl HeightField {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_raw(&self, path: impl AsRef<Path>) -> Result<()> {
-        self.save_raw_impl(path.as_ref())
-    }
-
-    /// The body of [`Self::save_raw`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn save_raw_impl(&self, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = map_rows(&self.heights)
             .flat_map(|r| r.iter().flat_map(|v| v.to_le_bytes()))
             .collect();
@@ -51,12 +45,7 @@ impl HeightField {
     /// unsupported layout, or if its size exceeds the memory cap. A file of the wrong length for the stated size, a
     /// NaN or infinite height, and a bad cell size are errors too.
     pub fn load_raw(path: impl AsRef<Path>, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
-        Self::load_raw_impl(path.as_ref(), nx, ny, cell_size)
-    }
-
-    /// The body of [`Self::load_raw`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn load_raw_impl(path: &Path, nx: usize, ny: usize, cell_size: f32) -> Result<Self> {
+        let path = path.as_ref();
         let len = checked_len::<f32>(&[nx, ny])?;
         // Never read more than one byte past the expected size, so an endless
         // stream (a pipe, /dev/zero) is refused instead of read without end.
@@ -113,12 +102,6 @@ impl HeightField {
     /// read-only folder, a directory in the way), and [`CoreError::Format`](crate::CoreError::Format)
     /// if the encoder refuses the data. Nothing is left half-written.
     pub fn save_exr(&self, path: impl AsRef<Path>) -> Result<()> {
-        self.save_exr_impl(path.as_ref())
-    }
-
-    /// The body of [`Self::save_exr`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn save_exr_impl(&self, path: &Path) -> Result<()> {
         let values: Vec<f32> = map_rows(&self.heights).flatten().copied().collect();
         let cell = self.cell_size.to_string();
         write_exr(
@@ -410,12 +393,7 @@ impl HeightField {
         cell_size: Option<f32>,
         range: Option<(f32, f32)>,
     ) -> Result<Self> {
-        Self::load_impl(path.as_ref(), cell_size, range)
-    }
-
-    /// The body of [`Self::load`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn load_impl(path: &Path, cell_size: Option<f32>, range: Option<(f32, f32)>) -> Result<Self> {
+        let path = path.as_ref();
         match path
             .extension()
             .and_then(|e| e.to_str())

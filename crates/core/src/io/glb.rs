@@ -68,12 +68,6 @@ impl<'a> Glb<'a> {
     /// The errors of [`Glb::to_bytes`], and [`CoreError::Io`] naming the file
     /// if it cannot be written.
     pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
-        self.write_impl(path.as_ref())
-    }
-
-    /// The body of [`Self::write`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn write_impl(&self, path: &Path) -> Result<()> {
         let bytes = self.to_bytes()?;
         write_atomic(path, |w| w.write_all(&bytes).map_err(WriteError::Io))
     }

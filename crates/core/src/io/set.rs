@@ -62,12 +62,7 @@ impl OutputSet {
     /// Returns [`CoreError::Format`] naming `target` if it is not one of the
     /// set's targets.
     pub fn stage(&self, target: impl AsRef<Path>) -> Result<&Path> {
-        self.stage_impl(target.as_ref())
-    }
-
-    /// The body of [`Self::stage`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn stage_impl(&self, target: &Path) -> Result<&Path> {
+        let target = target.as_ref();
         self.entries
             .iter()
             .find(|(p, _)| p == target)

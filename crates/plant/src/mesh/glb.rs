@@ -282,12 +282,6 @@ fn materials_json(bark_used: bool, leaf_used: bool) -> Vec<String> {
 ///
 /// As [`glb_bytes`]; [`PlantError::Core`](crate::PlantError::Core) naming the file if it cannot be written.
 pub fn save_glb(mesh: &PlantMesh, path: impl AsRef<Path>) -> Result<()> {
-    save_glb_impl(mesh, path.as_ref())
-}
-
-/// The body of [`save_glb`]: not generic, so it is compiled once, here, and not again in every
-/// crate that calls it.
-fn save_glb_impl(mesh: &PlantMesh, path: &Path) -> Result<()> {
     save_glb_instanced(&[(mesh, &[])], path)
 }
 
@@ -300,12 +294,6 @@ pub fn save_glb_instanced(
     items: &[(&PlantMesh, &[Instance])],
     path: impl AsRef<Path>,
 ) -> Result<()> {
-    save_glb_instanced_impl(items, path.as_ref())
-}
-
-/// The body of [`save_glb_instanced`]: not generic, so it is compiled once, here, and not again in
-/// every crate that calls it.
-fn save_glb_instanced_impl(items: &[(&PlantMesh, &[Instance])], path: &Path) -> Result<()> {
     let bytes = glb_bytes(items)?;
     Ok(write_atomic(path, |w| {
         w.write_all(&bytes).map_err(WriteError::Io)

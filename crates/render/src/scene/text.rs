@@ -57,12 +57,7 @@ impl SceneDesc {
     /// before it is read), the errors of [`SceneDesc::from_toml_str`], and those of
     /// [`SceneDesc::validate`].
     pub fn load(path: impl AsRef<Path>) -> Result<Self> {
-        Self::load_impl(path.as_ref())
-    }
-
-    /// The body of [`Self::load`]: not generic, so it is compiled once, here, and not again in
-    /// every crate that calls it.
-    fn load_impl(path: &Path) -> Result<Self> {
+        let path = path.as_ref();
         let text = read_scene_file(path)?;
         let scene = Self::from_toml_str(&text, &path.display().to_string())?;
         scene.validate()?;
