@@ -95,6 +95,13 @@ pub fn plan_real_forward_f64(len: usize) -> Arc<dyn RealToComplex<f64>> {
     lock(&REAL_F64).plan_fft_forward(len)
 }
 
+/// The inverse of [`plan_real_forward_f32`]: `len / 2 + 1` frequencies back
+/// to `len` real values (unnormalised), as [`plan_real_inverse_f64`].
+#[must_use]
+pub fn plan_real_inverse_f32(len: usize) -> Arc<dyn ComplexToReal<f32>> {
+    lock(&REAL_F32).plan_fft_inverse(len)
+}
+
 /// The inverse of [`plan_real_forward_f64`]: `len / 2 + 1` frequencies back
 /// to `len` real values (unnormalised). The imaginary parts of the zero
 /// frequency, and of the Nyquist frequency for an even `len`, must be zero

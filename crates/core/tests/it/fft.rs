@@ -91,6 +91,16 @@ fn real_plans_equal_the_complex_ones_and_invert() {
             assert!((h - f).norm() <= 2e-6 * n as f64, "f32, n {n}: {h} vs {f}");
         }
 
+        let c2r32 = fft::plan_real_inverse_f32(n);
+        let mut back32 = c2r32.make_output_vec();
+        c2r32.process(&mut half32, &mut back32).unwrap();
+        for (b, v) in back32.iter().zip(&x) {
+            assert!(
+                (f64::from(*b) / n as f64 - v).abs() <= 1e-5,
+                "f32, n {n}: {b} vs {v}"
+            );
+        }
+
         let c2r = fft::plan_real_inverse_f64(n);
         let mut back = c2r.make_output_vec();
         c2r.process(&mut half, &mut back).unwrap();
