@@ -42,15 +42,20 @@ fn rays(seed: u64, n: usize) -> Vec<Ray> {
         .collect()
 }
 
-/// Length of the stretch of `ray` below the surface from `t` on (metres), by
-/// fine steps (`f64::INFINITY` past 2 m).
+/// Length of the stretch of `ray` on the far side of the surface from `t` on
+/// (metres; below it for a ray from above), by fine steps (`f64::INFINITY`
+/// past 2 m).
 fn submerged(s: &DetailSurface<'_>, ray: &Ray, t: f64, fp: RayCone) -> f64 {
+    let p0 = ray.origin.as_dvec3();
+    let above = s
+        .height(p0.x as f32, p0.y as f32, fp.at(0.0))
+        .is_none_or(|h| p0.z >= h);
     let d = ray.dir.as_dvec3();
     for k in 1..=4000 {
         let tt = t + k as f64 * 5e-4;
         let p = ray.origin.as_dvec3() + tt * d;
         match s.height(p.x as f32, p.y as f32, fp.at(tt)) {
-            Some(h) if p.z > h => return tt - t,
+            Some(h) if (p.z > h) == above => return tt - t,
             None => return tt - t,
             _ => {}
         }
@@ -63,10 +68,14 @@ fn submerged(s: &DetailSurface<'_>, ray: &Ray, t: f64, fp: RayCone) -> f64 {
 /// fraction of the footprint, except where the tracer stepped over a
 /// sliver thinner than a quarter of the footprint (at most 3 %).
 fn agree_with_brute_force(surface: &DetailSurface<'_>, fp: RayCone, what: &str) {
+    agree_on(surface, fp, what, &rays(5, 300));
+}
+
+/// [`agree_with_brute_force`] on the rays `all`.
+fn agree_on(surface: &DetailSurface<'_>, fp: RayCone, what: &str, all: &[Ray]) {
     let tracer = DetailTracer::new(surface.clone(), fp).unwrap();
     let (mut agree, mut thin) = (0, 0);
-    let all = rays(5, 300);
-    for ray in &all {
+    for ray in all {
         let fast = tracer.trace_footprint(ray, 0.0, f32::INFINITY, fp);
         let brute = detail_brute_force(surface, ray, 0.0, 1e4, fp, 0.004);
         let tol = |t: f64| 0.01 + 2e-3 * fp.at(t);
@@ -115,6 +124,34 @@ fn hits_agree_with_a_fine_brute_force_march() {
         let surface = DetailSurface::new(&hf, Detail::new(&params(1.5)).unwrap(), None).unwrap();
         agree_with_brute_force(&surface, fp, &format!("{kind:?}"));
     }
+}
+
+#[test]
+fn rays_from_below_and_skimming_agree_with_a_fine_brute_force_march() {
+    // Rays that start under the surface and rise (the march's gap is then
+    // read from below), and rays that skim it at under 3°: where the
+    // over-relaxed steps and their backward check do most of the work.
+    let hf = field(Kind::Uniform, 34, 34, 10.0, 3);
+    let surface = DetailSurface::new(&hf, Detail::new(&params(1.5)).unwrap(), None).unwrap();
+    let s = Seed(8);
+    let all: Vec<Ray> = (0..300i64)
+        .map(|k| {
+            let u = |c: i64| s.uniform2(k, c) as f32;
+            let (x, y) = (20.0 + 290.0 * u(0), 20.0 + 290.0 * u(1));
+            let ground = surface.height(x, y, 0.0).unwrap() as f32;
+            let az = std::f32::consts::TAU * u(3);
+            let (z, el) = if k % 2 == 0 {
+                (ground - 0.3 - 3.0 * u(2), (1.0 + 19.0 * u(4)).to_radians())
+            } else {
+                (ground + 2.0 + 6.0 * u(2), -(0.5 + 2.5 * u(4)).to_radians())
+            };
+            Ray::new(
+                Vec3::new(x, y, z),
+                Vec3::new(az.cos() * el.cos(), az.sin() * el.cos(), el.sin()),
+            )
+        })
+        .collect();
+    agree_on(&surface, RayCone::cone(2e-3), "below and skimming", &all);
 }
 
 #[test]
