@@ -84,6 +84,8 @@ struct WalkRay {
     dxy: f64,
     /// `1/d_x`, `1/d_y` (for the slabs).
     inv: DVec2,
+    /// `1/d_z` (for the altitude slabs).
+    inv_z: f64,
     fp: RayCone,
     /// `+1` if the ray starts above the surface, `−1` below.
     side: f64,
@@ -240,6 +242,7 @@ impl<'a> DetailTracer<'a> {
             len: d.length(),
             dxy: d.truncate().length(),
             inv: DVec2::ONE / d.truncate(),
+            inv_z: 1.0 / d.z,
             fp,
             side: 1.0,
         };
@@ -275,7 +278,19 @@ impl<'a> DetailTracer<'a> {
         let amp = f64::from(mask) * self.surface.amplitude_bound(r.w(t0));
         let (za, zb) = (r.o.z + t0 * r.d.z, r.o.z + t1 * r.d.z);
         let m = 1e-4 * (1.0 + za.abs().max(zb.abs()));
-        if za.max(zb) < f64::from(lo) - amp - m || za.min(zb) > f64::from(hi) + amp + m {
+        let (zlo, zhi) = (f64::from(lo) - amp - m, f64::from(hi) + amp + m);
+        if za.max(zb) < zlo || za.min(zb) > zhi {
+            return None;
+        }
+        // Only where the ray's altitude is within the node's shell can it
+        // meet the surface: the children and the march see that stretch.
+        let (t0, t1) = if r.d.z == 0.0 {
+            (t0, t1)
+        } else {
+            let (ta, tb) = ((zlo - r.o.z) * r.inv_z, (zhi - r.o.z) * r.inv_z);
+            (t0.max(ta.min(tb)), t1.min(ta.max(tb)))
+        };
+        if t0 > t1 {
             return None;
         }
         if k == 0 {
