@@ -261,9 +261,13 @@ impl<'a> DetailTracer<'a> {
     /// Node `(a, b)` of level `k` (level 0: cells) over `[t0, t1]`.
     fn node(&self, r: &WalkRay, k: u32, a: u32, b: u32, t0: f64, t1: f64) -> Option<f64> {
         let f = &self.base.f;
+        // A cell's corners (heights and mask), read once for the test and
+        // the march.
+        let mut cell = None;
         let (lo, hi, mask) = if k == 0 {
             let c = f.corners(a, b);
             let m = self.surface.mask_corners(a, b);
+            cell = Some((c, m));
             (
                 c[0].min(c[1]).min(c[2].min(c[3])),
                 c[0].max(c[1]).max(c[2].max(c[3])),
@@ -275,7 +279,11 @@ impl<'a> DetailTracer<'a> {
         };
         // The footprint is smallest (the detail largest) where the ray
         // enters; the mask scales it (a node under water has none).
-        let amp = f64::from(mask) * self.surface.amplitude_bound(r.w(t0));
+        let amp = if mask == 0.0 {
+            0.0
+        } else {
+            f64::from(mask) * self.surface.amplitude_bound(r.w(t0))
+        };
         let (za, zb) = (r.o.z + t0 * r.d.z, r.o.z + t1 * r.d.z);
         let m = 1e-4 * (1.0 + za.abs().max(zb.abs()));
         let (zlo, zhi) = (f64::from(lo) - amp - m, f64::from(hi) + amp + m);
@@ -293,8 +301,8 @@ impl<'a> DetailTracer<'a> {
         if t0 > t1 {
             return None;
         }
-        if k == 0 {
-            return self.march(r, a, b, t0, t1);
+        if let Some((c, m)) = cell {
+            return self.march(r, a, b, c, m, t0, t1);
         }
         let (cw, ch) = if k == 1 {
             (f.ncx, f.ncy)
@@ -349,10 +357,20 @@ impl<'a> DetailTracer<'a> {
         None
     }
 
-    /// The Lipschitz march over cell `(i, j)` for `t` in `[t0, t1]`.
-    fn march(&self, r: &WalkRay, i: u32, j: u32, t0: f64, t1: f64) -> Option<f64> {
+    /// The Lipschitz march over cell `(i, j)` for `t` in `[t0, t1]`; `c` and
+    /// `mc` are its corners' heights and mask values as the walk read them.
+    #[allow(clippy::too_many_arguments)]
+    fn march(
+        &self,
+        r: &WalkRay,
+        i: u32,
+        j: u32,
+        c: [f32; 4],
+        mc: [f32; 4],
+        t0: f64,
+        t1: f64,
+    ) -> Option<f64> {
         let f = &self.base.f;
-        let c = f.corners(i, j);
         let cell = f64::from(f.cell);
         let slope = |a: f32, b: f32| {
             (f64::from(a) * f64::from(a) + f64::from(b) * f64::from(b)).sqrt() / cell
@@ -360,7 +378,6 @@ impl<'a> DetailTracer<'a> {
         let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
         // The mask over the cell: at most its greatest corner, and its
         // gradient at most √2 × its largest edge difference per cell.
-        let mc = self.surface.mask_corners(i, j);
         let m_max = f64::from(mc[0].max(mc[1]).max(mc[2].max(mc[3])));
         if m_max == 0.0 {
             return self.bare(r, i, j, t0, t1);
