@@ -91,6 +91,17 @@ struct WalkRay {
     side: f64,
 }
 
+/// A cell of the field as the walk read it: its index, its corners'
+/// heights and its mask's corner values (in [`FieldView::corners`] order).
+///
+/// [`FieldView::corners`]: crate::field::FieldView::corners
+struct Cell {
+    i: u32,
+    j: u32,
+    heights: [f32; 4],
+    mask: [f32; 4],
+}
+
 impl WalkRay {
     #[inline]
     fn w(&self, t: f64) -> f64 {
@@ -265,9 +276,13 @@ impl<'a> DetailTracer<'a> {
         // the march.
         let mut cell = None;
         let (lo, hi, mask) = if k == 0 {
-            let c = f.corners(a, b);
-            let m = self.surface.mask_corners(a, b);
-            cell = Some((c, m));
+            let (c, m) = (f.corners(a, b), self.surface.mask_corners(a, b));
+            cell = Some(Cell {
+                i: a,
+                j: b,
+                heights: c,
+                mask: m,
+            });
             (
                 c[0].min(c[1]).min(c[2].min(c[3])),
                 c[0].max(c[1]).max(c[2].max(c[3])),
@@ -292,6 +307,8 @@ impl<'a> DetailTracer<'a> {
         }
         // Only where the ray's altitude is within the node's shell can it
         // meet the surface: the children and the march see that stretch.
+        // (The test above rejects what this would empty, more cheaply: the
+        // main job took 1–2 % longer with this alone.)
         let (t0, t1) = if r.d.z == 0.0 {
             (t0, t1)
         } else {
@@ -301,8 +318,8 @@ impl<'a> DetailTracer<'a> {
         if t0 > t1 {
             return None;
         }
-        if let Some((c, m)) = cell {
-            return self.march(r, a, b, c, m, t0, t1);
+        if let Some(cell) = cell {
+            return self.march(r, &cell, t0, t1);
         }
         let (cw, ch) = if k == 1 {
             (f.ncx, f.ncy)
@@ -357,23 +374,18 @@ impl<'a> DetailTracer<'a> {
         None
     }
 
-    /// The Lipschitz march over cell `(i, j)` for `t` in `[t0, t1]`; `c` and
-    /// `mc` are its corners' heights and mask values as the walk read them.
-    #[allow(clippy::too_many_arguments)]
-    fn march(
-        &self,
-        r: &WalkRay,
-        i: u32,
-        j: u32,
-        c: [f32; 4],
-        mc: [f32; 4],
-        t0: f64,
-        t1: f64,
-    ) -> Option<f64> {
+    /// The Lipschitz march over `cell` for `t` in `[t0, t1]`.
+    fn march(&self, r: &WalkRay, cell: &Cell, t0: f64, t1: f64) -> Option<f64> {
+        let &Cell {
+            i,
+            j,
+            heights: c,
+            mask: mc,
+        } = cell;
         let f = &self.base.f;
-        let cell = f64::from(f.cell);
+        let spacing = f64::from(f.cell);
         let slope = |a: f32, b: f32| {
-            (f64::from(a) * f64::from(a) + f64::from(b) * f64::from(b)).sqrt() / cell
+            (f64::from(a) * f64::from(a) + f64::from(b) * f64::from(b)).sqrt() / spacing
         };
         let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
         // The mask over the cell: at most its greatest corner, and its
@@ -390,7 +402,7 @@ impl<'a> DetailTracer<'a> {
                 .abs()
                 .max((mc[2] - mc[0]).abs())
                 .max((mc[3] - mc[1]).abs().max((mc[3] - mc[2]).abs()));
-            std::f64::consts::SQRT_2 * f64::from(d) / cell
+            std::f64::consts::SQRT_2 * f64::from(d) / spacing
         };
         let detail = self.surface.detail();
         let finest = detail.finest_footprint();
