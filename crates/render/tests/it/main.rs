@@ -1,4 +1,4 @@
-//! natura-render's integration tests: scenes, forests, sky, detail, regions, stray pixels.
+//! natura-render's integration tests: scenes, forests, sky, detail, regions, stray pixels, the main job's reference picture.
 //!
 //! One test binary for the crate's integration tests (one build and link
 //! instead of one per file); each file below is a module, and
@@ -9,6 +9,7 @@ mod detail;
 mod forest;
 mod forest_far;
 mod quickstart;
+mod reference_picture;
 mod region;
 mod render;
 mod scene_edits;
