@@ -92,7 +92,8 @@ struct WalkRay {
 }
 
 /// A cell of the field as the walk read it: its index, its corners'
-/// heights and its mask's corner values (in [`FieldView::corners`] order).
+/// heights and its mask's corner values (in [`FieldView::corners`] order),
+/// and the largest of those.
 ///
 /// [`FieldView::corners`]: crate::field::FieldView::corners
 struct Cell {
@@ -100,6 +101,7 @@ struct Cell {
     j: u32,
     heights: [f32; 4],
     mask: [f32; 4],
+    mask_max: f32,
 }
 
 impl WalkRay {
@@ -274,19 +276,22 @@ impl<'a> DetailTracer<'a> {
         let f = &self.base.f;
         // A cell's corners (heights and mask), read once for the test and
         // the march.
-        let mut cell = None;
-        let (lo, hi, mask) = if k == 0 {
-            let (c, m) = (f.corners(a, b), self.surface.mask_corners(a, b));
-            cell = Some(Cell {
+        let cell = (k == 0).then(|| {
+            let m = self.surface.mask_corners(a, b);
+            Cell {
                 i: a,
                 j: b,
-                heights: c,
+                heights: f.corners(a, b),
                 mask: m,
-            });
+                mask_max: m[0].max(m[1]).max(m[2].max(m[3])),
+            }
+        });
+        let (lo, hi, mask) = if let Some(c) = &cell {
+            let h = c.heights;
             (
-                c[0].min(c[1]).min(c[2].min(c[3])),
-                c[0].max(c[1]).max(c[2].max(c[3])),
-                m[0].max(m[1]).max(m[2].max(m[3])),
+                h[0].min(h[1]).min(h[2].min(h[3])),
+                h[0].max(h[1]).max(h[2].max(h[3])),
+                c.mask_max,
             )
         } else {
             let (lo, hi) = self.base.mipmap().node_range(k, a, b)?;
@@ -381,6 +386,7 @@ impl<'a> DetailTracer<'a> {
             j,
             heights: c,
             mask: mc,
+            mask_max,
         } = cell;
         let f = &self.base.f;
         let spacing = f64::from(f.cell);
@@ -390,7 +396,7 @@ impl<'a> DetailTracer<'a> {
         let lb = slope(c[1] - c[0], c[2] - c[0]).max(slope(c[3] - c[2], c[3] - c[1]));
         // The mask over the cell: at most its greatest corner, and its
         // gradient at most √2 × its largest edge difference per cell.
-        let m_max = f64::from(mc[0].max(mc[1]).max(mc[2].max(mc[3])));
+        let m_max = f64::from(mask_max);
         if m_max == 0.0 {
             return self.bare(r, i, j, t0, t1);
         }
@@ -416,6 +422,16 @@ impl<'a> DetailTracer<'a> {
         let mut omega = OMEGA;
         let mut relaxed = false;
         let (mut safe_end, mut prev_w, mut prev_whole) = (t0, 0.0f64, (0usize, 0usize));
+        // The blended octave's change with the footprint along the ray, at
+        // footprint `w` with octave counts `whole`, `k` octaves evaluated
+        // (none: the triangles' slope alone).
+        let footprint_change = |k: usize, w: f64, whole: (usize, usize)| {
+            if k == 0 {
+                0.0
+            } else {
+                m_max * detail.footprint_bound_whole(w, whole) * fw_per_w
+            }
+        };
         loop {
             let w = r.w(t);
             let (p, x, y) = self.at(r, t);
@@ -472,12 +488,7 @@ impl<'a> DetailTracer<'a> {
                 // not evaluated are bounded as there, and so is the
                 // blended octave's change with the footprint.
                 let gb = part - m_max * detail.amplitude_between(k, prev_whole.0.max(k));
-                let fw = if k == 0 {
-                    0.0
-                } else {
-                    m_max * detail.footprint_bound_whole(prev_w, prev_whole) * fw_per_w
-                };
-                let db = l * r.dxy + fw + s * r.d.z;
+                let db = l * r.dxy + footprint_change(k, prev_w, prev_whole) + s * r.d.z;
                 let back = if gb <= 0.0 {
                     0.0
                 } else if db <= 0.0 {
@@ -502,13 +513,7 @@ impl<'a> DetailTracer<'a> {
                     self.close_in(r, t_prev, t, g)
                 });
             }
-            // The blended octave's change with the footprint.
-            let fw = if k == 0 {
-                0.0
-            } else {
-                m_max * detail.footprint_bound_whole(w, whole) * fw_per_w
-            };
-            let denom = l * r.dxy + fw - s * r.d.z;
+            let denom = l * r.dxy + footprint_change(k, w, whole) - s * r.d.z;
             if t >= t1 || denom <= 0.0 {
                 // At the cell's end, or `g` cannot shrink over the rest of it.
                 return None;
