@@ -25,29 +25,11 @@ use std::path::PathBuf;
 use natura_core::{Image, NoProgress};
 use natura_render::{SceneDesc, render_scene};
 
-/// How far a render may stray from the reference and still be "the same
-/// picture", over the 8-bit sRGB channels of the displayed image.
-#[derive(Debug, Clone, Copy)]
-struct Bound {
-    /// Largest mean absolute difference over all channels, in levels.
-    mean_abs: f64,
-    /// Largest fraction of pixels with a channel more than 2 levels off.
-    moved: f64,
-    /// Largest difference of any channel, in levels.
-    max: u8,
-}
+use crate::common::quick_preview;
 
-/// The stated error: a mean of at most 0.05 level, at most 0.25 % of the
-/// pixels (144 of 57 600) more than two levels off, none more than 64
-/// levels (a pixel one of whose 4 samples crossed from shade onto sunlit
-/// snow moves by about a quarter of the range under the camera's filter).
-const BOUND: Bound = Bound {
-    mean_abs: 0.05,
-    moved: 0.0025,
-    max: 64,
-};
-
-/// The difference between two pictures of the same size.
+/// The difference between two pictures of the same size, over the 8-bit
+/// sRGB channels of the displayed image (and, as [`BOUND`], the largest a
+/// render may show and still be "the same picture").
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Difference {
     /// Mean absolute difference over all channels, in levels.
@@ -57,6 +39,16 @@ struct Difference {
     /// Largest difference of any channel, in levels.
     max: u8,
 }
+
+/// The stated error: a mean of at most 0.05 level, at most 0.25 % of the
+/// pixels (144 of 57 600) more than two levels off, none more than 64
+/// levels (a pixel one of whose 4 samples crossed from shade onto sunlit
+/// snow moves by about a quarter of the range under the camera's filter).
+const BOUND: Difference = Difference {
+    mean_abs: 0.05,
+    moved: 0.0025,
+    max: 64,
+};
 
 impl Difference {
     fn of(a: &Image, b: &Image) -> Self {
@@ -79,18 +71,14 @@ impl Difference {
         self.max == 0
     }
 
-    fn within(&self, bound: Bound) -> bool {
+    fn within(&self, bound: Difference) -> bool {
         self.mean_abs <= bound.mean_abs && self.moved <= bound.moved && self.max <= bound.max
     }
 }
 
 /// The landscape example's `--quick` scene.
 fn main_job_quick() -> SceneDesc {
-    let mut s = SceneDesc::default().quick();
-    s.render.width = 320;
-    s.render.height = 180;
-    s.render.spp = 4;
-    s
+    quick_preview(&SceneDesc::default())
 }
 
 fn reference_path() -> PathBuf {

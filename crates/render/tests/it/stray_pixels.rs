@@ -44,12 +44,11 @@ use natura_render::scene::CameraKind;
 use natura_render::stray::stray_pixels;
 use natura_render::{SceneDesc, render_scene};
 
+use crate::common::quick_preview;
+
 /// The landscape example's `--quick` set-up, without the forest.
 fn quick(s: &SceneDesc) -> SceneDesc {
-    let mut s = s.quick();
-    s.render.width = 320;
-    s.render.height = 180;
-    s.render.spp = 4;
+    let mut s = quick_preview(s);
     s.vegetation.enabled = false;
     s
 }

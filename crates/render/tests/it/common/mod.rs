@@ -22,6 +22,16 @@ pub fn small_scene() -> SceneDesc {
     s
 }
 
+/// `s` as the landscape example's `--quick` makes it: [`SceneDesc::quick`]
+/// in a 320 × 180 picture at 4 samples a pixel.
+pub fn quick_preview(s: &SceneDesc) -> SceneDesc {
+    let mut s = s.quick();
+    s.render.width = 320;
+    s.render.height = 180;
+    s.render.spp = 4;
+    s
+}
+
 /// Every channel of every pixel as its bits.
 pub fn image_bits(img: &Image) -> Vec<u32> {
     img.pixels()
