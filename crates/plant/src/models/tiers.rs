@@ -13,25 +13,34 @@
 //! branching alternates sides, but the listing lost it — here it is placed
 //! before the apex in the second and fourth branch, as `/(180)` (a bare `/`
 //! would roll by the listing's default angle and lift those branches out of
-//! the tier's plane). The cluster radius ρ is
-//! not printed; the default is our own. The source does not say in which
-//! order the apices of one step are checked: here every apex of a step is
-//! checked against the clusters of earlier steps, then the step's clusters
-//! are added, so the result does not depend on order.
+//! the tier's plane). The source does not say in which order the apices of
+//! one step are checked: here every apex of a step is checked against the
+//! clusters of earlier steps, then the step's clusters are added, so the
+//! result does not depend on order.
 //!
-//! Table 1 of the source gives Fig. 5 (two tiers, 5 steps) 138 branch
-//! segments and 140 leaf clusters. The source omits the two parameters the
-//! counts depend on: the cluster radius ρ and the distance between the two
-//! tiers. With the defaults here (ρ = 0.45, tiers 5 apart, first segments of
-//! length 1) the model makes **438 segments and 438 clusters**; without
-//! competition it would make 630. A sweep of ρ from 0.3 to 0.9 in steps of
-//! 0.0005 at this spacing never gives 138 (the count jumps from 150 to 120
-//! at ρ ≈ 0.818), so the table is not reproduced by tuning ρ alone. Here
-//! every cluster belongs to one segment's apex, so the two counts are
-//! equal; the table's two extra clusters would fit one cluster at each
-//! tier's centre (the whorl's node is a non-terminal node), which the
-//! listing does not send and this model does not add.
-
+//! The environment holds "each apex or non-terminal node" as a cluster, but
+//! the listing reports only apices. The whorl's own node, where a tier's
+//! five branches start, is a non-terminal node too: here each tier's axiom
+//! reports it with a `?E(1)` before the whorl (no production reads the
+//! reply). Its cluster lies a branch's length from the tier's first apices
+//! and, at the defaults, out of the other tier's reach, so it changes no
+//! growth there (a test checks); it makes the clusters two more than the
+//! segments, as in the source's Table 1.
+//!
+//! **Table 1, Fig. 5: 138 branch segments and 140 leaf clusters after 5
+//! steps**, which the defaults reproduce. The source prints neither
+//! parameter the counts depend on, the cluster radius ρ nor the distance
+//! between the two tiers' centres, so both are derived from the counts.
+//! Without competition the two tiers make 630 segments. A tier's own
+//! clusters stop an apex whose segment is shorter than ρ and whose mother's
+//! vigor is not smaller than its own, so ρ sets how many contractions a
+//! branch survives: 138 needs ρ between 0.87·0.94² = 0.769 (a lateral
+//! segment followed by two straight ones) and 0.94⁴ = 0.781 (four straight
+//! ones), and, inside that interval, tiers between 2.99 and 3.08 apart,
+//! where the tiers meet (farther apart they make more, 140 from 3.09 and
+//! 174 once they no longer meet; nearer, 136). The
+//! defaults take the middle of both, ρ = 0.775 and a spacing of 3.04; a test
+//! checks the count over that whole range and its change outside it.
 use glam::DVec3;
 use natura_core::check;
 
@@ -56,13 +65,15 @@ pub struct TiersParams {
     pub alpha2_deg: f64,
     /// Divergence angle of the whorl, degrees (`φ`; 138.5, not 137.5, in the source).
     pub divergence_deg: f64,
-    /// Radius ρ of every leaf cluster (not printed in the source).
+    /// Radius ρ of every leaf cluster (not printed in the source; the
+    /// default reproduces its Table 1, see the module docs).
     pub cluster_radius: f64,
     /// Derivation steps (5 in the source's Table 1).
     pub steps: u32,
     /// Number of tiers side by side (Fig. 5 shows two).
     pub tiers: u32,
-    /// Distance between the centres of neighbouring tiers.
+    /// Distance between the centres of neighbouring tiers (not printed in
+    /// the source; the default reproduces its Table 1).
     pub spacing: f64,
 }
 
@@ -74,10 +85,10 @@ impl Default for TiersParams {
             alpha1_deg: 24.4,
             alpha2_deg: 36.9,
             divergence_deg: 138.5,
-            cluster_radius: 0.45,
+            cluster_radius: 0.775,
             steps: 5,
             tiers: 2,
-            spacing: 5.0,
+            spacing: 3.04,
         }
     }
 }
@@ -113,15 +124,17 @@ impl TiersParams {
         Ok(())
     }
 
-    /// The model's L-system text (the source's listing with the errata above applied).
+    /// The model's L-system text (the source's listing with the errata above
+    /// applied, and each whorl's node reported to the environment).
     #[must_use]
     pub fn lsystem_text(&self) -> String {
         let whorl = "-(90)[F(1)?E(1)A(1)]+(φ)[F(1)/(180)?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]+(φ)[F(1)/(180)?E(1)A(1)]+(φ)[F(1)?E(1)A(1)]";
         let mut axiom = String::new();
-        // Tiers side by side along x: turn to +x, move, turn back.
+        // Tiers side by side along x: turn to +x, move, turn back; the
+        // whorl's node reports itself as a cluster (see the module docs).
         for k in 0..self.tiers {
             let x = (f64::from(k) - f64::from(self.tiers - 1) / 2.0) * self.spacing;
-            axiom.push_str(&format!("[-(90)f({x})+(90){whorl}]"));
+            axiom.push_str(&format!("[-(90)f({x})+(90)?E(1){whorl}]"));
         }
         format!(
             "#define r1 {}\n#define r2 {}\n#define α1 {}\n#define α2 {}\n#define φ {}\n\
@@ -210,11 +223,14 @@ mod tests {
         for _ in 0..p.steps {
             d.step_open(&t, &mut env).unwrap();
         }
-        // Every message comes from a ?E directly before an apex, one per apex of that step.
-        for msgs in &env.seen {
+        // Every message comes from a ?E directly before an apex, one per
+        // apex of that step, but for each whorl's node on the axiom.
+        for msgs in &env.seen[1..] {
             assert!(msgs.iter().all(|m| m.next_symbol == Some(a)));
         }
-        assert_eq!(env.seen[0].len(), 10, "two whorls of five");
+        let apices = env.seen[0].iter().filter(|m| m.next_symbol == Some(a));
+        assert_eq!(apices.count(), 10, "two whorls of five");
+        assert_eq!(env.seen[0].len(), 12, "and the two whorls' nodes");
         let (run, clusters) = tiers(&p).unwrap();
         let segs = run.count("F");
         // Without competition each tier has 5·(2^(n+1) − 1) segments.
@@ -230,12 +246,57 @@ mod tests {
         assert_eq!(run.geometry().unwrap().segment_count(), segs);
     }
 
+    /// Segments and clusters of the two tiers at `rho` and `spacing`.
+    fn counts(rho: f64, spacing: f64) -> (usize, usize) {
+        let (run, env) = tiers(&TiersParams {
+            cluster_radius: rho,
+            spacing,
+            ..TiersParams::default()
+        })
+        .unwrap();
+        (run.count("F"), env.clusters.len())
+    }
+
     #[test]
     fn counts_for_table_1() {
-        // Our counts for the source's Fig. 5 set-up (see the module docs).
-        let (run, env) = tiers(&TiersParams::default()).unwrap();
-        assert_eq!(run.count("F"), 438);
-        assert_eq!(env.clusters.len(), 438);
+        // The source's Table 1 for Fig. 5: 138 segments, 140 clusters.
+        assert_eq!(counts(0.775, 3.04), (138, 140));
+        let p = TiersParams::default();
+        assert_eq!((p.cluster_radius, p.spacing), (0.775, 3.04));
+        // Over the whole range the module docs derive (ρ between
+        // 0.87·0.94² and 0.94⁴, tiers 2.99 to 3.08 apart)…
+        for rho in [0.770, 0.775, 0.780] {
+            for spacing in [2.99, 3.04, 3.08] {
+                assert_eq!(
+                    counts(rho, spacing),
+                    (138, 140),
+                    "ρ {rho}, spacing {spacing}"
+                );
+            }
+        }
+        // …and not outside it: ρ across either bound, or tiers farther
+        // apart (meeting less) or nearer.
+        assert_eq!(counts(0.766, 3.04).0, 178);
+        assert_eq!(counts(0.785, 3.04).0, 130);
+        assert_eq!(counts(0.775, 3.2).0, 142);
+        assert_eq!(counts(0.775, 2.95).0, 136);
+        assert_eq!(counts(0.775, 10.0).0, 174);
+        // The whorls' nodes change no growth here: without them, the same
+        // segments and two clusters fewer.
+        let text = p.lsystem_text();
+        let bare = text.replace("+(90)?E(1)-(90)", "+(90)-(90)");
+        assert_eq!(bare.len() + 2 * "?E(1)".len(), text.len());
+        let l = LSystem::parse(&bare).unwrap();
+        let t = TurtleParams {
+            start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
+            ..TurtleParams::for_lsystem(&l)
+        };
+        let mut env = ClusterField {
+            radius: p.cluster_radius,
+            clusters: Vec::new(),
+        };
+        let run = run_open(l, t, &mut env, p.steps, 0).unwrap();
+        assert_eq!((run.count("F"), env.clusters.len()), (138, 138));
         // No competition (a vanishing ρ): 5·(2⁶ − 1) segments per tier.
         let (run, _) = tiers(&TiersParams {
             cluster_radius: 1e-9,
