@@ -12,7 +12,7 @@ use numpy::{
 };
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyDictMethods};
+use pyo3::types::{PyDict, PyDictMethods, PyString};
 
 /// Runs `f` without the GIL and turns a panic inside it into `RuntimeError`
 /// (its message included), so no panic crosses into Python.
@@ -74,6 +74,25 @@ pub fn rgb_array<'py>(py: Python<'py>, g: &Grid2<Vec3>) -> PyResult<Bound<'py, P
         .map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
+/// `key` as an interned Python string, made once per thread and key: a
+/// dict looked up by it neither allocates a string nor hashes one (an
+/// interned string keeps its hash), which a `&str` key does on every call.
+pub fn key_str<'py>(py: Python<'py>, key: &'static str) -> Bound<'py, PyString> {
+    thread_local! {
+        static KEYS: RefCell<Vec<((usize, usize), Py<PyString>)>> =
+            const { RefCell::new(Vec::new()) };
+    }
+    let id = (key.as_ptr() as usize, key.len());
+    KEYS.with_borrow_mut(|keys| {
+        if let Some((_, s)) = keys.iter().find(|(k, _)| *k == id) {
+            return s.bind(py).clone();
+        }
+        let s = PyString::intern(py, key);
+        keys.push((id, s.clone().unbind()));
+        s
+    })
+}
+
 /// The keyword arguments of one call: each read notes its key, and
 /// [`Kw::finish`] refuses any key that was not read. (The caller's
 /// dictionary is only read, never copied or changed.)
@@ -103,7 +122,7 @@ impl<'py> Kw<'py> {
 
     /// The value of `key` (also when it is `None`), noting the key as read.
     fn get(&self, key: &'static str) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let v = self.dict.get_item(key)?;
+        let v = self.dict.get_item(key_str(self.dict.py(), key))?;
         if v.is_some() {
             let mut read = self.read.borrow_mut();
             if !read.contains(&key) {

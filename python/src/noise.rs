@@ -283,7 +283,7 @@ struct Built {
 }
 
 fn build(spec: &Bound<'_, PyAny>) -> PyResult<Built> {
-    let kind: String = match spec.get_item("kind") {
+    let kind: String = match spec.get_item(crate::args::key_str(spec.py(), "kind")) {
         Ok(k) => k
             .extract()
             .map_err(|_| PyTypeError::new_err("kind must be a string"))?,

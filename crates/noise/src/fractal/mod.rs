@@ -159,6 +159,13 @@ impl Spectral {
     /// # Errors
     /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity.
     pub fn validate(&self) -> Result<()> {
+        self.checked_table().map(|_| ())
+    }
+
+    /// [`validate`](Self::validate)'s checks, returning the octave table
+    /// they compute (one table, not one for the check and another for the
+    /// caller: its amplitudes are a `pow` each).
+    fn checked_table(&self) -> Result<Octaves> {
         finite("h", self.h)?;
         if self.convention == GainConvention::Raw && self.h <= 0.0 {
             return Err(NoiseError::InvalidParam {
@@ -188,7 +195,8 @@ impl Spectral {
                 expected: "must be finite and > 0",
             });
         }
-        let amplitudes = Octaves::new(self).weight_sum();
+        let table = Octaves::new(self);
+        let amplitudes = table.weight_sum();
         if !(amplitudes.is_finite() && amplitudes <= MAX_BOUND) {
             return Err(NoiseError::InvalidParam {
                 name: "h",
@@ -207,7 +215,7 @@ impl Spectral {
                 max_octaves: max,
             });
         }
-        Ok(())
+        Ok(table)
     }
 
     /// The per-octave gain ratio this convention gives (`λ^−H`, `λ^−(H+½)` or `ω`).
@@ -225,8 +233,42 @@ impl Spectral {
     /// # Errors
     /// As [`Spectral::validate`].
     pub fn octaves_table(&self) -> Result<Octaves> {
-        self.validate()?;
-        Ok(Octaves::new(self))
+        #[cfg(feature = "std")]
+        return self.remembered_table();
+        #[cfg(not(feature = "std"))]
+        self.checked_table()
+    }
+
+    /// [`checked_table`](Self::checked_table), remembering per thread the
+    /// table of the last parameters asked for: a fractal built again and
+    /// again with the same parameters (a binding's call per point, a loop)
+    /// skips the checks' and the amplitudes' `pow` calls. Only valid
+    /// parameters are kept, compared bit for bit, so a hit returns the very
+    /// table they compute.
+    #[cfg(feature = "std")]
+    fn remembered_table(&self) -> Result<Octaves> {
+        std::thread_local! {
+            static LAST: core::cell::RefCell<Option<(Spectral, Octaves)>> =
+                const { core::cell::RefCell::new(None) };
+        }
+        let same = |a: &Spectral| {
+            a.h.to_bits() == self.h.to_bits()
+                && a.lacunarity.to_bits() == self.lacunarity.to_bits()
+                && a.octaves.to_bits() == self.octaves.to_bits()
+                && a.frequency.to_bits() == self.frequency.to_bits()
+                && a.convention == self.convention
+        };
+        let hit = LAST.with_borrow(|last| {
+            last.as_ref()
+                .filter(|(s, _)| same(s))
+                .map(|(_, t)| t.clone())
+        });
+        if let Some(table) = hit {
+            return Ok(table);
+        }
+        let table = self.checked_table()?;
+        LAST.with_borrow_mut(|last| *last = Some((*self, table.clone())));
+        Ok(table)
     }
 }
 

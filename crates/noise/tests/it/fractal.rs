@@ -678,3 +678,39 @@ fn variance_scales_with_the_weights() {
         }
     }
 }
+
+#[test]
+fn remembered_octave_tables_are_the_ones_computed() {
+    // A thread remembers the table of the last parameters it asked for.
+    // Tables asked for in turn, repeated and alternating, equal bit for bit
+    // those of a fresh thread, which remembers nothing.
+    let bits = |o: &Octaves| -> Vec<u64> {
+        (0..o.count())
+            .flat_map(|k| [o.frequency(k), o.amplitude(k), o.weight(k)])
+            .map(f64::to_bits)
+            .collect()
+    };
+    let fresh = |s: Spectral| std::thread::spawn(move || s.octaves_table().unwrap()).join();
+    let a = spec(0.7, 2.1, 7.5);
+    let b = spec(0.7, 2.1, 7.5).with_convention(GainConvention::HalfBeta);
+    let c = spec(0.71, 2.1, 7.5);
+    for s in [a, a, b, a, c, c, b] {
+        let t = s.octaves_table().unwrap();
+        assert_eq!(bits(&t), bits(&fresh(s).unwrap()));
+    }
+    assert_ne!(
+        bits(&a.octaves_table().unwrap()),
+        bits(&c.octaves_table().unwrap())
+    );
+    // Bad parameters after good ones are refused, every time, and the good
+    // ones still get their own table.
+    for bad in [
+        spec(f64::NAN, 2.1, 7.5),
+        spec(0.7, 1.0, 7.5),
+        spec(0.7, 2.1, 65.0),
+    ] {
+        assert!(bad.octaves_table().is_err());
+        assert!(bad.octaves_table().is_err());
+        assert_eq!(bits(&a.octaves_table().unwrap()), bits(&fresh(a).unwrap()));
+    }
+}
