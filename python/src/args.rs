@@ -78,9 +78,10 @@ pub fn rgb_array<'py>(py: Python<'py>, g: &Grid2<Vec3>) -> PyResult<Bound<'py, P
 /// dict looked up by it neither allocates a string nor hashes one (an
 /// interned string keeps its hash), which a `&str` key does on every call.
 pub fn key_str<'py>(py: Python<'py>, key: &'static str) -> Bound<'py, PyString> {
+    /// A key's address and length, and its interned string.
+    type Interned = ((usize, usize), Py<PyString>);
     thread_local! {
-        static KEYS: RefCell<Vec<((usize, usize), Py<PyString>)>> =
-            const { RefCell::new(Vec::new()) };
+        static KEYS: RefCell<Vec<Interned>> = const { RefCell::new(Vec::new()) };
     }
     let id = (key.as_ptr() as usize, key.len());
     KEYS.with_borrow_mut(|keys| {
