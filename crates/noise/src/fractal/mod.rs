@@ -159,7 +159,10 @@ impl Spectral {
     /// # Errors
     /// [`NoiseError::InvalidParam`] naming the first parameter that is NaN, infinite or outside its domain, or [`NoiseError::OctavesBeyondPrecision`] if the octave count passes the precision limit for the lacunarity.
     pub fn validate(&self) -> Result<()> {
-        self.checked_table().map(|_| ())
+        // The table the checks compute is the one `octaves_table` returns:
+        // remembered, so a constructor that validates and then asks for
+        // the table computes it once.
+        self.octaves_table().map(|_| ())
     }
 
     /// [`validate`](Self::validate)'s checks, returning the octave table
