@@ -116,14 +116,15 @@ Floats = Sequence[float]
 
 
 def _basis(basis: BasisLike, seed: int) -> Dict[str, Any]:
-    if isinstance(basis, Basis):
-        return basis.spec()
+    # A name first: the common case, and the cheaper test.
     if isinstance(basis, str):
         return (
             {"kind": basis, "seed": seed}
             if basis not in ("sine", "checkerboard")
             else {"kind": basis}
         )
+    if isinstance(basis, Basis):
+        return basis.spec()
     raise TypeError(
         f"basis must be a basis name or a natura.noise.Basis, not {type(basis).__name__}"
     )

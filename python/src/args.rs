@@ -2,7 +2,10 @@
 //! keys are errors, numpy arrays of the right dtype and shape, and the
 //! boundary that releases the GIL and catches panics.
 
+use std::borrow::Cow;
 use std::cell::RefCell;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use glam::Vec3;
@@ -77,21 +80,79 @@ pub fn rgb_array<'py>(py: Python<'py>, g: &Grid2<Vec3>) -> PyResult<Bound<'py, P
 /// `key` as an interned Python string, made once per thread and key: a
 /// dict looked up by it neither allocates a string nor hashes one (an
 /// interned string keeps its hash), which a `&str` key does on every call.
+/// The strings are found by the key's address and length.
 pub fn key_str<'py>(py: Python<'py>, key: &'static str) -> Bound<'py, PyString> {
-    /// A key's address and length, and its interned string.
-    type Interned = ((usize, usize), Py<PyString>);
+    /// Interned strings by their key's address and length.
+    type Keys = HashMap<(usize, usize), Py<PyString>, BuildHasherDefault<AddressHasher>>;
     thread_local! {
-        static KEYS: RefCell<Vec<Interned>> = const { RefCell::new(Vec::new()) };
+        static KEYS: RefCell<Keys> = RefCell::new(HashMap::default());
     }
     let id = (key.as_ptr() as usize, key.len());
     KEYS.with_borrow_mut(|keys| {
-        if let Some((_, s)) = keys.iter().find(|(k, _)| *k == id) {
-            return s.bind(py).clone();
-        }
-        let s = PyString::intern(py, key);
-        keys.push((id, s.clone().unbind()));
-        s
+        keys.entry(id)
+            .or_insert_with(|| PyString::intern(py, key).unbind())
+            .bind(py)
+            .clone()
     })
+}
+
+/// A hasher for [`key_str`]'s addresses: one multiply a word (the keys are
+/// the program's own, so nothing adversarial reaches it).
+#[derive(Default)]
+struct AddressHasher(u64);
+
+impl Hasher for AddressHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+    fn write_usize(&mut self, n: usize) {
+        self.write_u64(n as u64);
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// Which of `names` the string `v` is: first by identity with the names'
+/// interned strings (Python interns the literals a caller passes, such as
+/// keyword defaults), else by its text. `None` if it is none of them; a
+/// `TypeError` from `what` if it is not a string.
+///
+/// # Errors
+/// `what()` when `v` is not a string.
+pub fn which_name(
+    v: &Bound<'_, PyAny>,
+    names: impl Iterator<Item = &'static str> + Clone,
+    what: impl Fn() -> PyErr,
+) -> PyResult<Option<&'static str>> {
+    let py = v.py();
+    if let Some(n) = names.clone().find(|n| v.is(key_str(py, n))) {
+        return Ok(Some(n));
+    }
+    let s: String = v.extract().map_err(|_| what())?;
+    Ok(names.into_iter().find(|n| *n == s))
+}
+
+/// What a [`Kw`] names in its errors: a call, or a call's parameter that
+/// is itself a dict (made into text only when an error needs it).
+#[derive(Clone, Debug)]
+struct What {
+    base: Cow<'static, str>,
+    key: Option<&'static str>,
+}
+
+impl std::fmt::Display for What {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.key {
+            Some(k) => write!(f, "{}: {k}", self.base),
+            None => f.write_str(&self.base),
+        }
+    }
 }
 
 /// The keyword arguments of one call: each read notes its key, and
@@ -100,7 +161,7 @@ pub fn key_str<'py>(py: Python<'py>, key: &'static str) -> Bound<'py, PyString> 
 #[derive(Debug)]
 pub struct Kw<'py> {
     dict: Bound<'py, PyDict>,
-    what: String,
+    what: What,
     read: RefCell<Vec<&'static str>>,
 }
 
@@ -110,15 +171,40 @@ impl<'py> Kw<'py> {
     /// # Errors
     /// `TypeError` if `dict` is not a dict.
     pub fn new(dict: &Bound<'py, PyAny>, what: &str) -> PyResult<Self> {
+        Self::named(dict, Cow::Owned(what.to_owned()), None)
+    }
+
+    /// [`Kw::new`] with a name that needs no copy (a `'static` one).
+    ///
+    /// # Errors
+    /// `TypeError` if `dict` is not a dict.
+    pub fn new_static(dict: &Bound<'py, PyAny>, what: Cow<'static, str>) -> PyResult<Self> {
+        Self::named(dict, what, None)
+    }
+
+    fn named(
+        dict: &Bound<'py, PyAny>,
+        base: Cow<'static, str>,
+        key: Option<&'static str>,
+    ) -> PyResult<Self> {
+        let what = What { base, key };
         let dict = dict
             .cast::<PyDict>()
             .map_err(|_| PyTypeError::new_err(format!("{what}: parameters must be a dict")))?
             .clone();
         Ok(Self {
             dict,
-            what: what.to_owned(),
+            what,
             read: RefCell::new(Vec::new()),
         })
+    }
+
+    /// Notes `key` as read (a parameter the caller has read itself).
+    ///
+    /// # Errors
+    /// The dict lookup's error.
+    pub fn mark(&self, key: &'static str) -> PyResult<()> {
+        self.get(key).map(|_| ())
     }
 
     /// The value of `key` (also when it is `None`), noting the key as read.
@@ -218,27 +304,51 @@ impl<'py> Kw<'py> {
     pub fn choice<T: Copy>(
         &self,
         key: &'static str,
-        choices: &[(&str, T)],
+        choices: &[(&'static str, T)],
         default: T,
     ) -> PyResult<T> {
         let Some(v) = self.take(key)? else {
             return Ok(default);
         };
-        let s: String = v
-            .extract()
-            .map_err(|_| PyTypeError::new_err(format!("{}: {key} must be a string", self.what)))?;
-        choices
-            .iter()
-            .find(|(name, _)| *name == s)
-            .map(|(_, t)| *t)
-            .ok_or_else(|| {
+        let not_str = || PyTypeError::new_err(format!("{}: {key} must be a string", self.what));
+        match which_name(&v, choices.iter().map(|(n, _)| *n), not_str)? {
+            Some(name) => Ok(choices
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, t)| *t)
+                .unwrap_or(default)),
+            None => {
                 let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
-                PyValueError::new_err(format!(
+                let s: String = v.extract().map_err(|_| not_str())?;
+                Err(PyValueError::new_err(format!(
                     "{}: {key} = {s:?} is not one of {}",
                     self.what,
                     names.join(", ")
-                ))
-            })
+                )))
+            }
+        }
+    }
+
+    /// Which of `names` the string parameter `key` is, `default` when
+    /// absent or `None`; `Ok(Err(text))` with its text when it is none of
+    /// them (the caller words that error).
+    ///
+    /// # Errors
+    /// `TypeError` naming `key` if the value is not a string.
+    pub fn name(
+        &self,
+        key: &'static str,
+        names: &[&'static str],
+        default: &'static str,
+    ) -> PyResult<Result<&'static str, String>> {
+        let Some(v) = self.take(key)? else {
+            return Ok(Ok(default));
+        };
+        let not_str = || PyTypeError::new_err(format!("{}: {key} must be a string", self.what));
+        match which_name(&v, names.iter().copied(), not_str)? {
+            Some(n) => Ok(Ok(n)),
+            None => Ok(Err(v.extract::<String>().map_err(|_| not_str())?)),
+        }
     }
 
     /// A nested dictionary parameter (e.g. a basis), if present.
@@ -248,7 +358,14 @@ impl<'py> Kw<'py> {
     pub fn dict(&self, key: &'static str) -> PyResult<Option<Kw<'py>>> {
         match self.take(key)? {
             None => Ok(None),
-            Some(v) => Kw::new(&v, &format!("{}: {key}", self.what)).map(Some),
+            Some(v) => {
+                // A dict in a dict in a call: the outer name made into text.
+                let base = match self.what.key {
+                    None => self.what.base.clone(),
+                    Some(_) => Cow::Owned(self.what.to_string()),
+                };
+                Kw::named(&v, base, Some(key)).map(Some)
+            }
         }
     }
 

@@ -2,6 +2,7 @@
 //! natura-noise, built from a parameter dictionary and evaluated at numpy
 //! points or on a regular grid.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use natura_noise::glam::{DVec2, DVec3};
@@ -18,7 +19,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Dv, Kw, floats, name_of, run, run_sized, value_error};
+use crate::args::{Dv, Kw, floats, key_str, name_of, run, run_sized, value_error};
 
 const FADES: &[(&str, Fade)] = &[("quintic", Fade::Quintic), ("cubic", Fade::Cubic)];
 const INTERPS: &[(&str, ValueInterp)] = &[
@@ -205,22 +206,20 @@ fn spectral(kw: &Kw<'_>, d: Spectral) -> PyResult<Spectral> {
 }
 
 /// The basis a fractal sums, from its `basis` dict (Perlin, seed 0 when absent).
-fn basis_of(kw: &Kw<'_>) -> PyResult<(String, Arc<dyn Field>, Option<Perlin>)> {
+fn basis_of(kw: &Kw<'_>) -> PyResult<(&'static str, Arc<dyn Field>, Option<Perlin>)> {
     match kw.dict("basis")? {
-        None => Ok((
-            "perlin".into(),
-            Arc::new(Perlin::new(0)),
-            Some(Perlin::new(0)),
-        )),
+        None => Ok(("perlin", Arc::new(Perlin::new(0)), Some(Perlin::new(0)))),
         Some(b) => {
-            let kind = b.string("kind", "perlin")?;
-            if !BASES.contains(&kind.as_str()) {
-                return Err(PyValueError::new_err(format!(
-                    "basis: kind = {kind:?} is not one of {}",
-                    BASES.join(", ")
-                )));
-            }
-            let (field, perlin) = build_basis(&kind, &b)?;
+            let kind = match b.name("kind", BASES, "perlin")? {
+                Ok(kind) => kind,
+                Err(kind) => {
+                    return Err(PyValueError::new_err(format!(
+                        "basis: kind = {kind:?} is not one of {}",
+                        BASES.join(", ")
+                    )));
+                }
+            };
+            let (field, perlin) = build_basis(kind, &b)?;
             b.finish()?;
             Ok((kind, field, perlin))
         }
@@ -283,20 +282,28 @@ struct Built {
 }
 
 fn build(spec: &Bound<'_, PyAny>) -> PyResult<Built> {
-    let kind: String = match spec.get_item(crate::args::key_str(spec.py(), "kind")) {
-        Ok(k) => k
-            .extract()
-            .map_err(|_| PyTypeError::new_err("kind must be a string"))?,
-        Err(_) => String::new(),
+    // A known kind is held as its `'static` name (the dict's errors name it
+    // without a copy).
+    let kind: Cow<'static, str> = match spec.get_item(key_str(spec.py(), "kind")) {
+        Ok(k) => {
+            let text: String = k
+                .extract()
+                .map_err(|_| PyTypeError::new_err("kind must be a string"))?;
+            match BASES.iter().chain(FRACTALS).find(|n| **n == text) {
+                Some(name) => Cow::Borrowed(*name),
+                None => Cow::Owned(text),
+            }
+        }
+        Err(_) => Cow::Borrowed(""),
     };
-    let kw = Kw::new(spec, &kind)?;
-    kw.string("kind", "")?;
-    if BASES.contains(&kind.as_str()) {
+    let kw = Kw::new_static(spec, kind.clone())?;
+    kw.mark("kind")?;
+    if BASES.contains(&kind.as_ref()) {
         let (field, perlin) = build_basis(&kind, &kw)?;
         kw.finish()?;
         return Ok(Built { field, perlin });
     }
-    if !FRACTALS.contains(&kind.as_str()) {
+    if !FRACTALS.contains(&kind.as_ref()) {
         return Err(PyValueError::new_err(format!(
             "kind = {kind:?} is not a noise of natura.noise ({}, {})",
             BASES.join(", "),
@@ -305,7 +312,7 @@ fn build(spec: &Bound<'_, PyAny>) -> PyResult<Built> {
     }
     let (basis_kind, basis, perlin) = basis_of(&kw)?;
     let e = value_error;
-    let field: Arc<dyn Field> = match kind.as_str() {
+    let field: Arc<dyn Field> = match kind.as_ref() {
         "fbm" => Arc::new(Fbm::new(basis, spectral(&kw, Spectral::default())?).map_err(e)?),
         "turbulence" => {
             Arc::new(Turbulence::new(basis, spectral(&kw, Spectral::default())?).map_err(e)?)
