@@ -11,6 +11,7 @@ on a smaller grid and scaled by the point count (said in the output).
 """
 
 import argparse
+import inspect
 import os
 import pathlib
 import subprocess
@@ -174,6 +175,21 @@ def overhead():
     per["(numpy: np.sin on 1 element, for scale)"] = min(
         timeit.repeat(lambda: np.sin(one), number=n, repeat=5)
     ) / n
+    # Every point function of natura.noise (those taking a coordinate array
+    # alone), each with its defaults: the slowest is the one the target holds.
+    slowest = ("", 0.0)
+    for name in natura.noise.__all__:
+        f = getattr(natura.noise, name)
+        if name.endswith("_grid") or not inspect.isfunction(f):
+            continue
+        try:
+            f(one)
+        except TypeError:
+            continue  # needs more than the points
+        t = min(timeit.repeat(lambda: f(one), number=n, repeat=5)) / n
+        if t > slowest[1]:
+            slowest = (name, t)
+    per[f"slowest point function: natura.noise.{slowest[0]}"] = slowest[1]
     return per
 
 
