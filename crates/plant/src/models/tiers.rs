@@ -184,17 +184,23 @@ impl Environment for ClusterField {
 /// [`TiersParams::validate`]'s errors; derivation and turtle errors.
 pub fn tiers(p: &TiersParams) -> Result<(Run, ClusterField)> {
     p.validate()?;
-    let l = LSystem::parse(&p.lsystem_text())?;
+    grow(&p.lsystem_text(), p.cluster_radius, p.steps)
+}
+
+/// Grows the tier model's text `text` for `steps` steps among clusters of
+/// `radius`.
+fn grow(text: &str, radius: f64, steps: u32) -> Result<(Run, ClusterField)> {
+    let l = LSystem::parse(text)?;
     // The tier is horizontal: the turtle heads along +x with up +z, so it draws in the ground plane.
     let t = TurtleParams {
         start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
         ..TurtleParams::for_lsystem(&l)
     };
     let mut env = ClusterField {
-        radius: p.cluster_radius,
+        radius,
         clusters: Vec::new(),
     };
-    let run = run_open(l, t, &mut env, p.steps, 0)?;
+    let run = run_open(l, t, &mut env, steps, 0)?;
     Ok((run, env))
 }
 
@@ -286,16 +292,7 @@ mod tests {
         let text = p.lsystem_text();
         let bare = text.replace("+(90)?E(1)-(90)", "+(90)-(90)");
         assert_eq!(bare.len() + 2 * "?E(1)".len(), text.len());
-        let l = LSystem::parse(&bare).unwrap();
-        let t = TurtleParams {
-            start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
-            ..TurtleParams::for_lsystem(&l)
-        };
-        let mut env = ClusterField {
-            radius: p.cluster_radius,
-            clusters: Vec::new(),
-        };
-        let run = run_open(l, t, &mut env, p.steps, 0).unwrap();
+        let (run, env) = grow(&bare, p.cluster_radius, p.steps).unwrap();
         assert_eq!((run.count("F"), env.clusters.len()), (138, 138));
         // No competition (a vanishing ρ): 5·(2⁶ − 1) segments per tier.
         let (run, _) = tiers(&TiersParams {
@@ -311,16 +308,7 @@ mod tests {
     /// order of the whorl, for the model's text `text` grown one step
     /// without competition.
     fn lateral_sides(text: &str) -> Vec<f32> {
-        let l = LSystem::parse(text).unwrap();
-        let t = TurtleParams {
-            start: TurtleFrame::new(DVec3::ZERO, DVec3::X, DVec3::Y),
-            ..TurtleParams::for_lsystem(&l)
-        };
-        let mut env = ClusterField {
-            radius: 1e-9,
-            clusters: Vec::new(),
-        };
-        let g = run_open(l, t, &mut env, 1, 0).unwrap().geometry().unwrap();
+        let g = grow(text, 1e-9, 1).unwrap().0.geometry().unwrap();
         // Five whorl segments of length 1, each with two daughters, all in
         // the horizontal plane (a roll of other than 180° would leave it).
         assert_eq!(g.segment_count(), 15);
