@@ -118,24 +118,24 @@ impl Hasher for AddressHasher {
     }
 }
 
-/// Which of `names` the string `v` is: first by identity with the names'
-/// interned strings (Python interns the literals a caller passes, such as
-/// keyword defaults), else by its text. `None` if it is none of them; a
-/// `TypeError` from `what` if it is not a string.
+/// Which of `names` the string `v` is, by its index: first by identity
+/// with the names' interned strings (Python interns the literals a caller
+/// passes, such as keyword defaults), else by its text, which is returned
+/// as the error when it is none of them.
 ///
 /// # Errors
-/// `what()` when `v` is not a string.
-pub fn which_name(
+/// `not_str()` when `v` is not a string.
+fn which_name(
     v: &Bound<'_, PyAny>,
     names: impl Iterator<Item = &'static str> + Clone,
-    what: impl Fn() -> PyErr,
-) -> PyResult<Option<&'static str>> {
+    not_str: impl Fn() -> PyErr,
+) -> PyResult<Result<usize, String>> {
     let py = v.py();
-    if let Some(n) = names.clone().find(|n| v.is(key_str(py, n))) {
-        return Ok(Some(n));
+    if let Some(i) = names.clone().position(|n| v.is(key_str(py, n))) {
+        return Ok(Ok(i));
     }
-    let s: String = v.extract().map_err(|_| what())?;
-    Ok(names.into_iter().find(|n| *n == s))
+    let s: String = v.extract().map_err(|_| not_str())?;
+    Ok(names.into_iter().position(|n| n == s).ok_or(s))
 }
 
 /// What a [`Kw`] names in its errors: a call, or a call's parameter that
@@ -312,14 +312,9 @@ impl<'py> Kw<'py> {
         };
         let not_str = || PyTypeError::new_err(format!("{}: {key} must be a string", self.what));
         match which_name(&v, choices.iter().map(|(n, _)| *n), not_str)? {
-            Some(name) => Ok(choices
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map(|(_, t)| *t)
-                .unwrap_or(default)),
-            None => {
+            Ok(i) => Ok(choices[i].1),
+            Err(s) => {
                 let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
-                let s: String = v.extract().map_err(|_| not_str())?;
                 Err(PyValueError::new_err(format!(
                     "{}: {key} = {s:?} is not one of {}",
                     self.what,
@@ -345,10 +340,7 @@ impl<'py> Kw<'py> {
             return Ok(Ok(default));
         };
         let not_str = || PyTypeError::new_err(format!("{}: {key} must be a string", self.what));
-        match which_name(&v, names.iter().copied(), not_str)? {
-            Some(n) => Ok(Ok(n)),
-            None => Ok(Err(v.extract::<String>().map_err(|_| not_str())?)),
-        }
+        Ok(which_name(&v, names.iter().copied(), not_str)?.map(|i| names[i]))
     }
 
     /// A nested dictionary parameter (e.g. a basis), if present.
